@@ -1,0 +1,144 @@
+"""Command line: ``pdverify solve | models | ...``.
+
+Every user error is printed as ``error: <one line>`` on stderr with exit code 2 (3 for a failed
+computation), never a traceback.
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+from enum import Enum
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from . import __version__
+from .errors import InputError, PdverifyError
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    help="pdverify: how far a peridynamic beam model is from the truth, in numbers.",
+)
+
+
+def _fail(exc: PdverifyError) -> None:
+    for line in exc.lines:
+        typer.echo(f"error: {line}", err=True)
+    raise typer.Exit(exc.exit_code)
+
+
+def user_errors(fn):
+    """Turn PdverifyError into one line per problem and a non-zero exit code."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except PdverifyError as exc:
+            _fail(exc)
+
+    return wrapper
+
+
+class Format(str, Enum):
+    table = "table"
+    json = "json"
+    csv = "csv"
+
+
+def parse_options(pairs: list[str] | None) -> dict:
+    """``key=value`` strings from ``--option`` into a dict (values stay strings; models coerce)."""
+    out = {}
+    for item in pairs or []:
+        if "=" not in item:
+            raise InputError(f"--option {item!r}: write key=value")
+        k, v = item.split("=", 1)
+        out[k.strip()] = v.strip()
+    return out
+
+
+def _table(result) -> str:
+    cols = result.columns()
+    names = list(cols)
+    lines = [f"# scene: {result.scene}   model: {result.model}   dofs: {result.dofs}   version: {result.version}"]
+    lines.append("# parameters: " + ", ".join(f"{k}={v}" for k, v in result.parameters.items()))
+    lines.append("# timings: " + ", ".join(f"{k}={v:.4g}" for k, v in result.timings.items()))
+    for k, v in result.info.items():
+        if not isinstance(v, (list, dict)):
+            lines.append(f"# {k}: {v}")
+    lines.append("".join(f"{n:>16}" for n in names))
+    n = len(cols["x"])
+    for i in range(n):
+        lines.append("".join(f"{float(cols[c][i]):16.8g}" for c in names))
+    return "\n".join(lines) + "\n"
+
+
+@app.command()
+@user_errors
+def solve(
+    scene: Path = typer.Argument(..., help="scene TOML file"),
+    model: str = typer.Option(..., "--model", "-m", help="model name (see `pdverify models`)"),
+    points: Optional[int] = typer.Option(None, help="material points / nodes along the axis, ends included"),
+    spacing: Optional[float] = typer.Option(None, help="grid spacing in metres (instead of --points)"),
+    horizon: Optional[float] = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
+    degree: Optional[int] = typer.Option(None, help="PD-function degree (models that have one)"),
+    variant: Optional[str] = typer.Option(None, help="model variant, e.g. paper | corrected"),
+    element: Optional[str] = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
+    layers: Optional[int] = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
+    form: Optional[str] = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
+    option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="any other model option, key=value"),
+    fmt: Format = typer.Option(Format.table, "--format", help="output format"),
+    out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
+):
+    """Solve one scene with one model and print the point results."""
+    from .registry import get_model, run
+    from .scene import load_scene
+
+    m = get_model(model)
+    sc = load_scene(scene)
+    given = dict(points=points, spacing=spacing, horizon=horizon, degree=degree, variant=variant,
+                 element=element, layers=layers, form=form)
+    given.update(parse_options(option))
+    result = run(sc, m, **given)
+    if out is not None and out.suffix in result.writers:
+        result.writers[out.suffix](str(out))
+        typer.echo(f"wrote {out}", err=True)
+        return
+    text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
+    if out is not None:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(text if text.endswith("\n") else text + "\n")
+        typer.echo(f"wrote {out}", err=True)
+    else:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
+@app.command("models")
+@user_errors
+def list_models():
+    """List the available models, their options and source papers."""
+    from .registry import models
+
+    for name, m in models().items():
+        opts = ", ".join(f"{o.name}={o.default}" for o in m.options)
+        typer.echo(f"{name:22s} {m.title}  [{opts}]")
+        if m.source:
+            typer.echo(f"{'':22s} source: {m.source}")
+
+
+@app.command()
+def version():
+    """Print the package version."""
+    typer.echo(__version__)
+
+
+def main():  # console-script entry point
+    app()
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

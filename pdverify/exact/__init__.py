@@ -1,0 +1,1 @@
+"""Exact solutions (closed form, no discretisation): the ground truth of the framework."""

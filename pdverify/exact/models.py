@@ -1,0 +1,47 @@
+"""Models ``exact-eb`` and ``exact-timoshenko``: closed-form deflection of any straight scene."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..registry import POINTS, Model
+from ..result import Result, Timer
+from ..scene import Scene
+from .straight import solve_straight
+
+
+class ExactBeam(Model):
+    options = (POINTS,)
+    source = "closed-form integration of the beam equations (textbook)"
+
+    def __init__(self, name: str, shear: bool, title: str):
+        self.name, self.shear, self.title = name, shear, title
+
+    def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
+        return solve_straight(scene, self.shear).fields(x)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        with timer("assemble"):
+            x = np.linspace(0.0, scene.length, params["points"])
+        with timer("solve"):
+            sol = solve_straight(scene, self.shear)
+            f = sol.fields(x)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=f["w"],
+            rotation=f["rotation"],
+            fields={"M": f["M"], "V": f["V"]},
+            dofs=4,
+            timings=timer.timings,
+            info={"reactions": sol.reactions()},
+        )
+
+
+MODELS = [
+    ExactBeam("exact-eb", False, "exact Euler–Bernoulli beam"),
+    ExactBeam("exact-timoshenko", True, "exact Timoshenko beam"),
+]

@@ -1,0 +1,1 @@
+"""Peridynamic beam models, one module each; each module lists its models in ``MODELS``."""

@@ -1,0 +1,111 @@
+"""The result of one solve: point positions, deflection, rotation, other fields, cost."""
+
+from __future__ import annotations
+
+import io
+import json
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from . import __version__
+
+
+@dataclass
+class Result:
+    """What every model returns.
+
+    ``x``: positions of the real points (m), no fictitious ones; ``w``: deflection there (m, +z);
+    ``rotation``: rotation (rad, counter-clockwise) where the model has one; ``fields``: other
+    point outputs (axial displacement ``u``, resultants ``N``, ``Q``, ``M`` ...); ``info``:
+    scalars such as the condition-number estimate, mesh, element, warnings.
+    ``writers`` maps a file suffix (".vtu") to a function writing a model-specific artefact.
+    """
+
+    scene: str
+    model: str
+    parameters: dict
+    x: np.ndarray
+    w: np.ndarray
+    rotation: np.ndarray | None = None
+    fields: dict[str, np.ndarray] = field(default_factory=dict)
+    dofs: int = 0
+    timings: dict[str, float] = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+    version: str = __version__
+    writers: dict[str, Callable[[str], None]] = field(default_factory=dict, repr=False)
+
+    def to_dict(self) -> dict:
+        out = {
+            "scene": self.scene,
+            "model": self.model,
+            "parameters": _plain(self.parameters),
+            "x": _plain(self.x),
+            "w": _plain(self.w),
+        }
+        if self.rotation is not None:
+            out["rotation"] = _plain(self.rotation)
+        if self.fields:
+            out["fields"] = {k: _plain(v) for k, v in self.fields.items()}
+        out["dofs"] = int(self.dofs)
+        out["timings"] = {k: float(v) for k, v in self.timings.items()}
+        if self.info:
+            out["info"] = _plain(self.info)
+        out["version"] = self.version
+        return out
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict())
+
+    def columns(self) -> dict[str, np.ndarray]:
+        cols = {"x": self.x, "w": self.w}
+        if self.rotation is not None:
+            cols["rotation"] = self.rotation
+        for k, v in self.fields.items():
+            if np.shape(v) == np.shape(self.x):
+                cols[k] = v
+        return cols
+
+    def to_csv(self) -> str:
+        cols = self.columns()
+        buf = io.StringIO()
+        buf.write(",".join(cols) + "\n")
+        np.savetxt(buf, np.column_stack([np.asarray(v, float) for v in cols.values()]), delimiter=",", fmt="%.17g")
+        return buf.getvalue()
+
+
+def _plain(v):
+    """numpy -> JSON-able Python (NaN/inf become None so the JSON stays valid)."""
+    if isinstance(v, dict):
+        return {str(k): _plain(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, np.ndarray):
+        return _plain(v.tolist())
+    if isinstance(v, (np.floating, float)):
+        f = float(v)
+        return f if np.isfinite(f) else None
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
+    return v
+
+
+class Timer:
+    """Collects named wall-clock intervals: ``with timer("assemble"): ...`` -> ``assemble_s``."""
+
+    def __init__(self):
+        self.timings: dict[str, float] = {}
+
+    @contextmanager
+    def __call__(self, name: str):
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            key = f"{name}_s"
+            self.timings[key] = self.timings.get(key, 0.0) + time.perf_counter() - t0

@@ -1,0 +1,314 @@
+"""Scenes: the TOML description of one beam problem that every model shares.
+
+The straight-beam keys (``name``, ``[beam]``, ``[section]``, ``[material]``, ``[supports]``,
+``[[loads]]``) are a contract read by other tools: extend, never rename. SI units, z up, x from
+the left end (0) to the right end (``beam.length``).
+
+``load_scene(path)`` and ``parse_scene(dict)`` validate everything before any model runs and raise
+:class:`~pdverify.errors.InputError` with one line per problem (field, value, what is allowed).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from pathlib import Path
+from typing import Annotated, Literal, Union
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from .errors import InputError
+
+SUPPORTS = ("clamped", "pinned", "free", "guided")
+Support = Literal["clamped", "pinned", "free", "guided"]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class Beam(_Strict):
+    length: float = Field(gt=0, allow_inf_nan=False)
+
+
+class Section(_Strict):
+    """Rectangle (``width``, ``height``) or given ``area``, ``inertia`` (and ``shear_factor``)."""
+
+    width: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    height: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    area: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    inertia: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    shear_factor: float | None = Field(default=None, gt=0, le=1.5, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _complete(self):
+        rect = self.width is not None and self.height is not None
+        given = self.area is not None and self.inertia is not None
+        if not rect and not given:
+            raise ValueError(
+                "give width and height (rectangle) or area and inertia; "
+                f"got width={self.width}, height={self.height}, area={self.area}, inertia={self.inertia}"
+            )
+        if (self.width is None) != (self.height is None):
+            raise ValueError("width and height go together; give both or neither")
+        return self
+
+    @property
+    def A(self) -> float:
+        return self.area if self.area is not None else self.width * self.height
+
+    @property
+    def I(self) -> float:  # noqa: E743 - the field's name
+        return self.inertia if self.inertia is not None else self.width * self.height**3 / 12.0
+
+    @property
+    def k(self) -> float:
+        return self.shear_factor if self.shear_factor is not None else 5.0 / 6.0
+
+    @property
+    def depth(self) -> float:
+        """Height of the section (for a given area/inertia: of the equivalent rectangle)."""
+        if self.height is not None:
+            return self.height
+        return math.sqrt(12.0 * self.I / self.A)
+
+
+class Material(_Strict):
+    youngs_modulus: float = Field(gt=0, allow_inf_nan=False)
+    poissons_ratio: float = Field(gt=-1.0, lt=0.5, allow_inf_nan=False)
+    density: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    shear_modulus: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+
+    @property
+    def E(self) -> float:
+        return self.youngs_modulus
+
+    @property
+    def G(self) -> float:
+        if self.shear_modulus is not None:
+            return self.shear_modulus
+        return self.youngs_modulus / (2.0 * (1.0 + self.poissons_ratio))
+
+
+class Supports(_Strict):
+    left: Support
+    right: Support
+
+
+class PointForce(_Strict):
+    type: Literal["point_force"]
+    position: float = Field(allow_inf_nan=False)
+    value: float = Field(allow_inf_nan=False)
+
+
+class PointMoment(_Strict):
+    type: Literal["point_moment"]
+    position: float = Field(allow_inf_nan=False)
+    value: float = Field(allow_inf_nan=False)
+
+
+class Distributed(_Strict):
+    type: Literal["distributed"]
+    value: float = Field(allow_inf_nan=False)
+    start: float | None = Field(default=None, allow_inf_nan=False)
+    end: float | None = Field(default=None, allow_inf_nan=False)
+    shape: Literal["uniform", "sine"] = "uniform"
+
+
+Load = Annotated[Union[PointForce, PointMoment, Distributed], Field(discriminator="type")]
+
+
+class Axis(_Strict):
+    """Shape of the beam axis. ``straight`` is the default; curved axes are read by ``pd-curved``
+    and the curved plane-stress reference (see their docs for the extra keys)."""
+
+    type: Literal["straight", "arc", "polynomial"] = "straight"
+    radius: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    opening_angle_deg: float | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
+    start_angle_deg: float = Field(default=0.0, allow_inf_nan=False)
+    coefficients: list[float] | None = None
+    x_range: tuple[float, float] | None = None
+
+    @model_validator(mode="after")
+    def _complete(self):
+        if self.type == "arc" and (self.radius is None or self.opening_angle_deg is None):
+            raise ValueError("an arc axis needs radius and opening_angle_deg")
+        if self.type == "polynomial":
+            if not self.coefficients or self.x_range is None:
+                raise ValueError("a polynomial axis needs coefficients (of y(x), constant first) and x_range")
+            if not self.x_range[0] < self.x_range[1]:
+                raise ValueError(f"x_range = {list(self.x_range)}: the first value must be below the second")
+        return self
+
+
+class Scene(_Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    beam: Beam
+    section: Section
+    material: Material
+    supports: Supports
+    loads: list[Load] = Field(default_factory=list)
+    axis: Axis = Field(default_factory=Axis)
+
+    # -- derived quantities ------------------------------------------------------------------
+    @property
+    def length(self) -> float:
+        return self.beam.length
+
+    @property
+    def EI(self) -> float:
+        return self.material.E * self.section.I
+
+    @property
+    def EA(self) -> float:
+        return self.material.E * self.section.A
+
+    @property
+    def kGA(self) -> float:
+        return self.section.k * self.material.G * self.section.A
+
+    @property
+    def slenderness(self) -> float:
+        return self.length / self.section.depth
+
+    @property
+    def is_straight(self) -> bool:
+        return self.axis.type == "straight"
+
+    def span(self, load: Distributed) -> tuple[float, float]:
+        """(start, end) of a distributed load, defaults filled in."""
+        a = 0.0 if load.start is None else load.start
+        b = self.length if load.end is None else load.end
+        return a, b
+
+    def with_slenderness(self, slenderness: float) -> "Scene":
+        """The same scene with the section height set to length / slenderness.
+
+        A rectangle keeps its width; a section given by area and inertia is scaled as the
+        equivalent rectangle (area ~ h, inertia ~ h^3)."""
+        h_new = self.length / slenderness
+        s = self.section
+        if s.height is not None:
+            sec = s.model_copy(update={"height": h_new})
+        else:
+            r = h_new / s.depth
+            sec = s.model_copy(update={"area": s.A * r, "inertia": s.I * r**3})
+        return self.model_copy(update={"section": sec})
+
+    def to_dict(self) -> dict:
+        return self.model_dump(mode="json", exclude_none=True)
+
+
+def is_mechanism(left: str, right: str) -> bool:
+    """True when the supports leave a rigid-body mode of the transverse deflection w = a + b x."""
+    translation_fixed = left in ("clamped", "pinned") or right in ("clamped", "pinned")
+    rotation_fixed = (
+        "clamped" in (left, right) or "guided" in (left, right) or (left == "pinned" and right == "pinned")
+    )
+    return not (translation_fixed and rotation_fixed)
+
+
+def _loc(loc) -> str:
+    parts = []
+    for p in loc:
+        if isinstance(p, int):
+            parts.append(f"[{p}]")
+        elif p in ("point_force", "point_moment", "distributed"):
+            continue  # discriminator tag: not a field the user wrote
+        else:
+            parts.append(("." if parts else "") + str(p))
+    return "".join(parts) or "scene"
+
+
+def _allowed_keys(model_cls) -> str:
+    return ", ".join(model_cls.model_fields)
+
+
+_TABLES = {"beam": Beam, "section": Section, "material": Material, "supports": Supports, "axis": Axis}
+
+
+def _message(err: dict, data: dict) -> str:
+    loc = _loc(err["loc"])
+    kind = err["type"]
+    value = err.get("input")
+    if kind == "extra_forbidden":
+        parent = err["loc"][:-1]
+        key = err["loc"][-1]
+        cls = Scene
+        if parent and parent[0] in _TABLES:
+            cls = _TABLES[parent[0]]
+        elif parent and parent[0] == "loads" and len(parent) >= 3:
+            cls = {"point_force": PointForce, "point_moment": PointMoment, "distributed": Distributed}.get(
+                parent[2], Scene
+            )
+        return f"{loc}: unknown key '{key}'; allowed keys here: {_allowed_keys(cls)}"
+    if kind == "missing":
+        return f"{loc}: missing; this key is required"
+    if kind == "union_tag_invalid" or kind == "union_tag_not_found":
+        return f"{loc}.type = {value.get('type') if isinstance(value, dict) else value!r}: unknown load type; allowed: point_force, point_moment, distributed"
+    if kind == "literal_error" and loc.startswith("supports."):
+        return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}"
+    msg = err["msg"]
+    if msg.startswith("Value error, "):
+        msg = msg[len("Value error, ") :]
+    shown = repr(value) if not isinstance(value, dict) else "{...}"
+    return f"{loc} = {shown}: {msg}"
+
+
+def _check_loads(scene: Scene) -> list[str]:
+    lines = []
+    L = scene.length
+    for i, load in enumerate(scene.loads):
+        if isinstance(load, (PointForce, PointMoment)):
+            if not 0.0 <= load.position <= L:
+                lines.append(
+                    f"loads[{i}].position = {load.position!r}: outside the beam [0, {L}]; "
+                    "give a position between 0 and beam.length"
+                )
+        else:
+            a, b = scene.span(load)
+            for key, v in (("start", a), ("end", b)):
+                if not 0.0 <= v <= L:
+                    lines.append(
+                        f"loads[{i}].{key} = {v!r}: outside the beam [0, {L}]; give a value between 0 and beam.length"
+                    )
+            if a >= b:
+                lines.append(f"loads[{i}].start = {a!r}, end = {b!r}: start must be below end")
+    return lines
+
+
+def parse_scene(data: dict, source: str = "scene") -> Scene:
+    """Validate a scene given as a dict (parsed TOML) and return it, or raise InputError."""
+    if not isinstance(data, dict):
+        raise InputError(f"{source}: a scene must be a TOML table, got {type(data).__name__}")
+    try:
+        scene = Scene.model_validate(data)
+    except ValidationError as exc:
+        raise InputError([f"{source}: {_message(e, data)}" for e in exc.errors()]) from None
+    lines = _check_loads(scene)
+    if is_mechanism(scene.supports.left, scene.supports.right) and scene.is_straight:
+        lines.append(
+            f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism (the beam can move as a rigid "
+            "body) that cannot carry the loads; fix the deflection at one end and the rotation somewhere "
+            "(clamped, or pinned at both ends, or pinned with guided)"
+        )
+    if lines:
+        raise InputError([f"{source}: {line}" for line in lines])
+    return scene
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene TOML file."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such scene file; check the path") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read the scene file ({exc.__class__.__name__}: {exc})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: TOML syntax error: {exc}") from None
+    return parse_scene(data, source=str(path))
