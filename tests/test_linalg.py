@@ -1,0 +1,33 @@
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from pdverify.errors import SolveError
+from pdverify.linalg import solve_linear
+
+
+def lap(n):
+    return sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
+
+
+@pytest.mark.parametrize("n", [50, 2000])
+def test_banded_and_sparse_agree(n):
+    K = lap(n)
+    b = np.sin(np.arange(n))
+    u1, i1 = solve_linear(K, b)
+    u2, i2 = solve_linear(K, b, banded_max=0)
+    assert i1["solver"].startswith("banded") and i2["solver"].startswith("sparse")
+    assert np.allclose(u1, u2, rtol=1e-10, atol=1e-10 * np.abs(u1).max())
+    exact = np.linalg.cond(K.toarray(), 1) if n <= 400 else None
+    if exact:
+        assert i1["cond"] == pytest.approx(exact, rel=1e-8)
+    assert i1["residual"] < 1e-13
+
+
+def test_singular_is_one_clear_error():
+    K = lap(30).tolil()
+    K[0, 0] = 1.0  # Neumann-Neumann: singular (constant mode)
+    K[-1, -1] = 1.0
+    with pytest.raises(SolveError) as e:
+        solve_linear(K.tocsr(), np.ones(30), what="test beam")
+    assert "test beam" in str(e.value) and "singular" in str(e.value)
