@@ -86,12 +86,24 @@ class Model:
     source: str = ""
     options: tuple[Option, ...] = (POINTS,)
     kind: str = "static"  # static | dynamic
+    curved: bool = False  # solves curved axes
+    axial: bool = False  # carries axial loads (loads[i].axial)
+    bending: bool = True  # carries transverse loads (loads[i].value)
 
     def check(self, scene: Scene) -> list[str]:
         """Reasons this model cannot solve ``scene`` (empty when it can)."""
-        if not scene.is_straight:
-            return [f"model {self.name} solves straight beams only; axis.type = {scene.axis.type!r}"]
-        return []
+        out = []
+        if not scene.is_straight and not self.curved:
+            out.append(f"model {self.name} solves straight beams only; axis.type = {scene.axis.type!r}")
+        for i, load in enumerate(scene.loads):
+            if getattr(load, "axial", 0.0) != 0.0 and not self.axial:
+                out.append(f"loads[{i}].axial = {load.axial!r}: model {self.name} has no axial displacement; "
+                           "use a model with an axial DOF or drop the axial component")
+            if load.value != 0.0 and not self.bending:
+                what = "moments" if load.type == "point_moment" else "transverse loads"
+                out.append(f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} (axial only); "
+                           "give the load as loads[i].axial or use a bending model")
+        return out
 
     def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
         raise NotImplementedError

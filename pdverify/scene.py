@@ -95,10 +95,20 @@ class Supports(_Strict):
     right: Support
 
 
+Frame = Literal["local", "global"]
+
+
 class PointForce(_Strict):
+    """``value`` acts along the normal (+z for a straight beam), ``axial`` along the tangent (+x).
+
+    ``frame = "local"`` (default): normal/tangent of the axis at the load; ``"global"``: ``axial`` is the
+    global x component and ``value`` the global y (= z, up) component. Identical for straight beams."""
+
     type: Literal["point_force"]
     position: float = Field(allow_inf_nan=False)
     value: float = Field(allow_inf_nan=False)
+    axial: float = Field(default=0.0, allow_inf_nan=False)
+    frame: Frame = "local"
 
 
 class PointMoment(_Strict):
@@ -113,6 +123,8 @@ class Distributed(_Strict):
     start: float | None = Field(default=None, allow_inf_nan=False)
     end: float | None = Field(default=None, allow_inf_nan=False)
     shape: Literal["uniform", "sine"] = "uniform"
+    axial: float = Field(default=0.0, allow_inf_nan=False)
+    frame: Frame = "local"
 
 
 Load = Annotated[Union[PointForce, PointMoment, Distributed], Field(discriminator="type")]
@@ -175,6 +187,10 @@ class Scene(_Strict):
     @property
     def is_straight(self) -> bool:
         return self.axis.type == "straight"
+
+    @property
+    def has_axial_loads(self) -> bool:
+        return any(getattr(load, "axial", 0.0) != 0.0 for load in self.loads)
 
     def span(self, load: Distributed) -> tuple[float, float]:
         """(start, end) of a distributed load, defaults filled in."""
@@ -287,6 +303,15 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
     except ValidationError as exc:
         raise InputError([f"{source}: {_message(e, data)}" for e in exc.errors()]) from None
     lines = _check_loads(scene)
+    if not scene.is_straight:
+        from .geometry import axis_length
+
+        arc = axis_length(scene.axis)
+        if abs(arc - scene.length) > 1e-6 * arc:
+            lines.append(
+                f"beam.length = {scene.length!r}: the {scene.axis.type} axis is {arc:.12g} m long (arc length); "
+                "set beam.length to it"
+            )
     if is_mechanism(scene.supports.left, scene.supports.right) and scene.is_straight:
         lines.append(
             f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism (the beam can move as a rigid "
