@@ -131,6 +131,47 @@ def list_models():
 
 
 @app.command()
+@user_errors
+def bench(
+    model: Optional[list[str]] = typer.Option(None, "--model", "-m", help="model(s) to time; default: all with an assembled system"),
+    points: Optional[list[int]] = typer.Option(None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"),
+    fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
+    scene: Optional[Path] = typer.Option(None, help="scene to time (default: the example cantilever)"),
+):
+    """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
+    import json as _json
+
+    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, cost_slope, default_models
+    from .registry import get_model
+
+    names = model or default_models()
+    for n in names:
+        get_model(n)
+    rows = []
+    for n in names:
+        sizes = points or [p for p in DEFAULT_POINTS if p <= SMALL_MODELS.get(n, 10**9)]
+        for p in sizes:
+            row = bench_subprocess(n, p, str(scene) if scene else None)
+            rows.append(row)
+            if fmt == Format.json:
+                typer.echo(_json.dumps(row))
+            elif row.get("status") != "ok":
+                typer.echo(f"{n:18s} {p:>9d}  failed: {row.get('message')}")
+            else:
+                f = lambda v, spec: "-" if v is None else format(v, spec)  # noqa: E731
+                typer.echo(
+                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} assemble={f(row['assemble_s'], '.3g')}s "
+                    f"solve={f(row['solve_s'], '.3g')}s total={row['total_s']:.3g}s limit={f(row['limit_s'], '.3g')}s "
+                    f"ratio={f(row['ratio'], '.2f')} mem={row['peak_mem_mb']:.0f}MB "
+                    f"updates/s={f(row['updates_per_s'], '.3g')}"
+                )
+    slopes = cost_slope(rows)
+    for n, s in slopes.items():
+        line = {"model": n, "cost_slope": s}
+        typer.echo(_json.dumps(line) if fmt == Format.json else f"{n:18s} cost ~ N^{s:.2f}")
+
+
+@app.command()
 def version():
     """Print the package version."""
     typer.echo(__version__)

@@ -1,0 +1,125 @@
+"""``pdverify bench``: cost of each model against the physical limit of its own linear system.
+
+For a static model the limit is the banded direct solve of its own assembled matrix
+(``scipy.linalg.solve_banded`` on the same band, timed in the same run). Each (model, points) case runs
+in a fresh subprocess so its peak memory (resident set above the post-import baseline) is its own.
+Models that expose ``assemble(scene, params)`` returning ``(K, b, ...)`` get a limit; dynamic models
+that expose ``bench_dynamics(scene, params, steps)`` (returning point-updates per second) get a rate.
+"""
+
+from __future__ import annotations
+
+import json
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+BENCH_SCENE = Path(__file__).resolve().parents[1] / "studies" / "examples" / "cantilever_tip_load.toml"
+
+
+def _rss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: kB
+
+
+def _unpack(assembled):
+    if isinstance(assembled, tuple):
+        return assembled[0], assembled[1]
+    return assembled.K, assembled.b
+
+
+def bench_case(model: str, points: int, scene_path: str | None = None, repeat: int = 1) -> dict:
+    """One measurement, in this process. Returns the row printed by ``pdverify bench``."""
+    import scipy.linalg as sla
+
+    from .linalg import bandwidths, to_banded
+    from .registry import get_model, run
+    from .scene import load_scene
+
+    path = scene_path or str(BENCH_SCENE)
+    m = get_model(model)
+    load_scene(path)  # warm the parser (imports) outside the timing
+    base = _rss_mb()
+    best = None
+    for _ in range(max(1, repeat)):
+        t0 = time.perf_counter()
+        scene = load_scene(path)
+        res = run(scene, m, points=points)
+        total = time.perf_counter() - t0
+        if best is None or total < best[0]:
+            best = (total, res)
+    total, res = best
+    row = {
+        "model": model,
+        "points": points,
+        "dofs": int(res.dofs),
+        "assemble_s": res.timings.get("assemble_s"),
+        "solve_s": res.timings.get("solve_s"),
+        "total_s": total,
+        "limit_s": None,
+        "ratio": None,
+        "bandwidth": None,
+        "peak_mem_mb": None,
+        "mem_per_point_kb": None,
+        "updates_per_s": None,
+    }
+    if hasattr(m, "assemble"):
+        params = m.resolve(scene, {"points": points})
+        K, b = _unpack(m.assemble(scene, params))
+        lo, up = bandwidths(K)
+        ab = to_banded(K, lo, up)
+        rhs = np.asarray(b, float)
+        limit = np.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            sla.solve_banded((lo, up), ab, rhs, check_finite=False)
+            limit = min(limit, time.perf_counter() - t0)
+        row.update(limit_s=limit, ratio=total / limit, bandwidth=lo + up + 1)
+    if hasattr(m, "bench_dynamics"):
+        params = m.resolve(scene, {"points": points})
+        row["updates_per_s"] = float(m.bench_dynamics(scene, params, steps=200))
+    peak = _rss_mb() - base
+    row["peak_mem_mb"] = max(peak, 0.0)
+    row["mem_per_point_kb"] = max(peak, 0.0) * 1024 / points
+    return row
+
+
+def bench_subprocess(model: str, points: int, scene_path: str | None = None, timeout: float = 600) -> dict:
+    code = (
+        "import json,sys; from pdverify.bench import bench_case; "
+        f"print(json.dumps(bench_case({model!r}, {int(points)}, {scene_path!r})))"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout)
+    if proc.returncode != 0:
+        msg = (proc.stderr.strip().splitlines() or ["failed"])[-1]
+        return {"model": model, "points": points, "status": "failed", "message": msg}
+    row = json.loads(proc.stdout.strip().splitlines()[-1])
+    row["status"] = "ok"
+    return row
+
+
+def cost_slope(rows: list[dict]) -> dict[str, float]:
+    """Per model: slope of log(total_s) vs log(points) (1 = linear cost)."""
+    out = {}
+    by: dict[str, list] = {}
+    for r in rows:
+        if r.get("status") == "ok" and r.get("total_s"):
+            by.setdefault(r["model"], []).append((r["points"], r["total_s"]))
+    for m, pts in by.items():
+        if len(pts) >= 2:
+            n, t = np.log(np.array(pts, float)).T
+            out[m] = float(np.polyfit(n, t, 1)[0])
+    return out
+
+
+DEFAULT_POINTS = (1_000, 10_000, 100_000, 1_000_000)
+SMALL_MODELS = {"pd-higher-order": 100_000, "pd-curved": 100_000}  # the issue's size for 4-DOF / PDDO models
+
+
+def default_models() -> list[str]:
+    from .registry import models
+
+    return [n for n, m in models().items() if hasattr(m, "assemble") or hasattr(m, "bench_dynamics")]
