@@ -98,8 +98,8 @@ def solve(
     from .registry import get_model, run
     from .scene import load_scene
 
+    sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
     m = get_model(model)
-    sc = load_scene(scene)
     given = dict(points=points, spacing=spacing, horizon=horizon, degree=degree, variant=variant,
                  element=element, layers=layers, form=form)
     given.update(parse_options(option))
