@@ -118,3 +118,19 @@ def test_dynamics_settles_to_static_and_detects_blow_up():
     assert np.abs(hist[-1] - static).max() < 1e-6 * np.abs(static).max()
     with pytest.raises(SolveError, match="stable limit"):
         simulate(sc, params, t_end=400 * limit, dt=1.5 * limit)
+
+
+@pytest.mark.parametrize("name", list(PAPER))
+def test_errors_against_exact_and_fem_eb_recorded(name, record_property):
+    """Both variants against exact-eb and fem-eb (BEAM3 stand-in) at the paper's dx = 0.01 m."""
+    sc = PAPER[name]
+    fem = run(sc, "fem-eb", points=101)
+    exact = solve_straight(sc, False).fields(fem.x)["w"]
+    assert np.abs(fem.w - exact).max() < 1e-9 * np.abs(exact).max()
+    for variant in ("paper", "corrected"):
+        r = run(sc, "pd-eb", points=101, variant=variant)
+        e_fem = np.abs(r.w - fem.w).max() / np.abs(fem.w).max()
+        e_tip = abs(r.w[np.argmax(np.abs(fem.w))] / fem.w[np.argmax(np.abs(fem.w))] - 1)
+        record_property(f"{variant}_max_err_vs_fem", e_fem)
+        record_property(f"{variant}_err_at_max_vs_fem", e_tip)
+        assert e_fem == pytest.approx(err(sc, points=101, variant=variant), rel=1e-6)
