@@ -130,6 +130,39 @@ def list_models():
             typer.echo(f"{'':22s} source: {m.source}")
 
 
+def _slug(name: str) -> str:
+    import re
+
+    return re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_") or "study"
+
+
+@app.command()
+@user_errors
+def study(
+    study_file: Path = typer.Argument(..., help="study TOML file"),
+    out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
+    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+):
+    """Run a study: every case of the sweep, errors against the reference, derived tables."""
+    from .study import load_study, run_study
+
+    spec = load_study(study_file)
+    out = out or Path("reports") / _slug(study_file.stem)
+    df = run_study(spec, out, workers=workers, scheduler=scheduler, progress=not quiet)
+    counts = df["status"].value_counts().to_dict()
+    typer.echo(f"{spec.name}: {len(df)} cases ({counts}); results in {out}/results.csv", err=True)
+    for _, r in df[df["status"] != "ok"].iterrows():
+        typer.echo(f"failed: {r['model']} on {r['scene_file']}: {r['message']}", err=True)
+    if report:
+        from .report import build_report
+
+        index = build_report(out)
+        typer.echo(f"report: {index}")
+
+
 @app.command()
 @user_errors
 def bench(

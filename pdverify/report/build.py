@@ -1,0 +1,155 @@
+"""Build ``index.html`` from a study directory (the runner's tables and case files).
+
+Every number in a table is the value of the results table, formatted with ``fmt`` (6 significant
+digits), so it can be traced to its row; re-running on the same results gives the same HTML apart
+from the one ``generated`` line.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import time
+from pathlib import Path
+
+import jinja2
+import numpy as np
+import pandas as pd
+
+from ..errors import InputError
+from . import figures
+
+
+def fmt(v) -> str:
+    if v is None or (isinstance(v, float) and not np.isfinite(v)) or v is pd.NA:
+        return ""
+    if isinstance(v, (bool, np.bool_)):
+        return "yes" if v else "no"
+    if isinstance(v, (int, np.integer)):
+        return str(int(v))
+    if isinstance(v, (float, np.floating)):
+        return f"{float(v):.6g}"
+    return str(v)
+
+
+def table(df: pd.DataFrame, columns: list[str] | None = None, row_class: str | None = None) -> str:
+    if df is None or df.empty:
+        return ""
+    cols = [c for c in (columns or list(df.columns)) if c in df.columns]
+    head = "".join(f'<th class="{"l" if df[c].dtype == object else ""}">{html.escape(c)}</th>' for c in cols)
+    rows = []
+    for _, r in df.iterrows():
+        cls = f' class="{html.escape(str(r[row_class]))}"' if row_class and row_class in r else ""
+        cells = []
+        for c in cols:
+            v = r[c]
+            klass = "verdict" if c == "verdict" else ("l" if isinstance(v, str) else "")
+            cells.append(f'<td class="{klass}">{html.escape(fmt(v))}</td>')
+        rows.append(f"<tr{cls}>{''.join(cells)}</tr>")
+    return f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>'
+
+
+def _read(d: Path, name: str) -> pd.DataFrame:
+    p = d / f"{name}.csv"
+    if not p.exists() or p.stat().st_size == 0:
+        return pd.DataFrame()
+    try:
+        return pd.read_csv(p)
+    except pd.errors.EmptyDataError:
+        return pd.DataFrame()
+
+
+def _label(r) -> str:
+    parts = [str(r["model"])]
+    for k in ("variant", "element", "form"):
+        if k in r and isinstance(r[k], str) and r[k]:
+            parts.append(r[k])
+    for k, short in (("points", "n"), ("horizon_factor", "m"), ("degree", "P"), ("slenderness", "L/h")):
+        if k in r and pd.notna(r[k]):
+            parts.append(f"{short}={fmt(r[k])}")
+    return " ".join(parts)
+
+
+def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Path:
+    d = Path(study_dir)
+    if not (d / "results.csv").exists():
+        raise InputError(f"{d}: no results.csv; run `pdverify study STUDY.toml --out {d}` first")
+    out = Path(out_dir) if out_dir else d
+    out.mkdir(parents=True, exist_ok=True)
+    res = _read(d, "results")
+    meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
+    conv, lock, se, sesum, bench = (_read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks"))
+    ok = res[res["status"] == "ok"] if "status" in res else res
+
+    scenes = []
+    for sfile, g in ok.groupby("scene_file", sort=False):
+        figs = []
+        for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
+            curves, ref = [], None
+            # at most one curve per (model, variant): the finest grid
+            for _, grp in gs.groupby(["model", gs["variant"].fillna("")], sort=True):
+                r = grp.sort_values("points", na_position="first").iloc[-1]
+                path = d / "cases" / f"{r['case_id']}.json"
+                if not path.exists():
+                    continue
+                c = json.loads(path.read_text())["curve"]
+                curves.append((_label(r), np.array(c["x"]), np.array(c["w"])))
+                if ref is None or len(c["x"]) > len(ref[0]):
+                    ref = (np.array(c["x"]), np.array(c["w_ref"]))
+            title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
+            figs.append(figures.deflection(curves, ref, title))
+        scenes.append({"name": g["scene"].iloc[0], "file": sfile, "reference": g["reference"].iloc[0], "figures": figs})
+
+    conv_figs = []
+    if not conv.empty:
+        for scene, g in conv.groupby("scene", sort=False):
+            series = []
+            for _, r in g.iterrows():
+                h = np.array([float(v) for v in str(r["spacings"]).split()])
+                e = np.array([float(v) for v in str(r["errors"]).split()])
+                series.append((_label(r), h, e, r["observed_order"]))
+            conv_figs.append(figures.convergence(series, str(scene)))
+    lock_figs = []
+    if not lock.empty:
+        lk = ok[ok["slenderness"].notna()]
+        for scene, g in lk.groupby("scene", sort=False):
+            groups = []
+            for key, gg in g.groupby(["model", g["variant"].fillna(""), g["points"].fillna(-1), g["degree"].fillna(-1)]):
+                gg = gg.sort_values("slenderness")
+                groups.append((_label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
+                               gg["slenderness"].to_numpy(float), gg["err_max"].to_numpy(float)))
+            lock_figs.append(figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}"))
+    speed_figs = []
+    if not se.empty:
+        for scene, g in se.groupby("scene", sort=False):
+            groups = [(m, gg["total_s"].to_numpy(float), np.maximum(gg["err_max"].to_numpy(float), 1e-16))
+                      for m, gg in g.groupby("model")]
+            fr = g[g["pareto"].astype(bool)]
+            speed_figs.append(figures.scatter(groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
+                                              front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16))))
+
+    counts = ", ".join(f"{k}: {v}" for k, v in (meta.get("counts") or {}).items())
+    meta_rows = pd.DataFrame([{"item": k, "value": json.dumps(v) if isinstance(v, (dict, list)) else v}
+                              for k, v in meta.items() if k not in ("date",)])
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=False)
+    page = env.get_template("index.html.j2").render(
+        meta=meta, counts=counts, generated=time.strftime("%Y-%m-%d %H:%M:%S"),
+        benchmarks=table(bench, ["name", "model", "variant", "reference", "target", "computed", "ratio", "rel_error",
+                                 "err_max", "observed_order", "tolerance", "verdict", "case_id"], row_class="verdict"),
+        scenes=scenes, convergence_figs=conv_figs,
+        convergence=table(conv, ["scene", "model", "variant", "horizon_factor", "degree", "slenderness", "n_grids",
+                                 "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
+        locking_figs=lock_figs, locking=table(lock), speed_figs=speed_figs, speed_summary=table(sesum),
+        results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
+                            "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
+                            "assemble_s", "solve_s", "total_s", "cond", "status", "message"]),
+        meta_table=table(meta_rows),
+        study_text=html.escape((d / "study.toml").read_text()) if (d / "study.toml").exists() else "",
+    )
+    index = out / "index.html"
+    index.write_text(page, encoding="utf-8")
+    if out != d:
+        import shutil
+
+        shutil.copyfile(d / "results.csv", out / "results.csv")
+    return index

@@ -1,0 +1,70 @@
+"""Figures as inline SVG strings (matplotlib, Agg; deterministic: fixed hash salt, no date)."""
+
+from __future__ import annotations
+
+import io
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+plt.rcParams["svg.hashsalt"] = "pdverify"
+plt.rcParams["svg.fonttype"] = "none"
+
+
+def _svg(fig) -> str:
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg", bbox_inches="tight", metadata={"Date": None, "Creator": None})
+    plt.close(fig)
+    text = buf.getvalue()
+    return text[text.index("<svg"):]
+
+
+def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.ndarray, np.ndarray] | None, title: str) -> str:
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    if ref is not None:
+        ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="reference")
+    for label, x, w in curves:
+        ax.plot(x, w, "-", lw=1.2, marker="o" if len(x) <= 30 else None, ms=3, label=label)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("w (m)")
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _svg(fig)
+
+
+def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str) -> str:
+    """log-log error vs spacing, fitted slope printed on each line."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    for label, h, e, p in series:
+        line, = ax.loglog(h, e, "o-", ms=4, label=f"{label} (slope {p:.2f})")
+        ax.annotate(f"{p:.2f}", (h[len(h) // 2], e[len(e) // 2]), color=line.get_color(), fontsize=8,
+                    xytext=(4, 4), textcoords="offset points")
+    ax.set_xlabel("spacing (m)")
+    ax.set_ylabel("max relative error")
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    return _svg(fig)
+
+
+def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabel: str, title: str,
+            front: tuple[np.ndarray, np.ndarray] | None = None, logx=True) -> str:
+    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    for label, x, y in groups:
+        ax.plot(x, y, "o", ms=4, label=label)
+    if front is not None and len(front[0]):
+        o = np.argsort(front[0])
+        ax.plot(front[0][o], front[1][o], "k--", lw=1, label="Pareto front")
+    ax.set_yscale("log")
+    if logx:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    return _svg(fig)

@@ -1,0 +1,84 @@
+"""Error metrics, observed order of convergence, grid convergence index, locking slope, Pareto front."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def errors(w: np.ndarray, w_ref: np.ndarray) -> dict[str, float]:
+    """Max error relative to max|ref|, relative L2, relative error at the point of largest |ref|."""
+    w, w_ref = np.asarray(w, float), np.asarray(w_ref, float)
+    scale = np.abs(w_ref).max()
+    i = int(np.argmax(np.abs(w_ref)))
+    if scale == 0:
+        return {"err_max": float(np.abs(w).max()), "err_l2": float(np.linalg.norm(w)), "err_at_max": float(abs(w[i])),
+                "w_at_max": float(w[i]), "w_ref_at_max": 0.0}
+    return {
+        "err_max": float(np.abs(w - w_ref).max() / scale),
+        "err_l2": float(np.linalg.norm(w - w_ref) / np.linalg.norm(w_ref)),
+        "err_at_max": float(abs(w[i] - w_ref[i]) / abs(w_ref[i])),
+        "w_at_max": float(w[i]),
+        "w_ref_at_max": float(w_ref[i]),
+    }
+
+
+def observed_order(spacing, error) -> tuple[float, float]:
+    """Least-squares slope of log(error) vs log(spacing) and its R^2 (needs >= 3 grids)."""
+    h, e = np.asarray(spacing, float), np.asarray(error, float)
+    ok = (h > 0) & (e > 0) & np.isfinite(e)
+    h, e = np.log(h[ok]), np.log(e[ok])
+    if len(h) < 3:
+        return float("nan"), float("nan")
+    p, c = np.polyfit(h, e, 1)
+    fit = p * h + c
+    ss = np.sum((e - e.mean()) ** 2)
+    r2 = 1 - np.sum((e - fit) ** 2) / ss if ss > 0 else float("nan")
+    return float(p), float(r2)
+
+
+def gci(spacing, value, safety: float = 1.25) -> dict[str, float]:
+    """Roache's grid convergence index of the three finest grids (value: a solution functional)."""
+    h, f = np.asarray(spacing, float), np.asarray(value, float)
+    order = np.argsort(h)[:3]
+    if len(order) < 3:
+        return {"gci_order": float("nan"), "gci_fine": float("nan"), "richardson": float("nan")}
+    (h1, h2, h3), (f1, f2, f3) = h[order], f[order]
+    r21, r32 = h2 / h1, h3 / h2
+    e21, e32 = f2 - f1, f3 - f2
+    if e21 == 0 or e32 == 0 or np.sign(e21) != np.sign(e32):
+        return {"gci_order": float("nan"), "gci_fine": float("nan"), "richardson": float("nan")}
+    # fixed-point iteration for unequal ratios (Celik et al. 2008)
+    p = abs(np.log(abs(e32 / e21))) / np.log(r21)
+    for _ in range(50):
+        q = np.log((r21**p - 1) / (r32**p - 1))
+        p_new = abs(np.log(abs(e32 / e21)) + q) / np.log(r21)
+        if abs(p_new - p) < 1e-12:
+            break
+        p = p_new
+    rich = (r21**p * f1 - f2) / (r21**p - 1)
+    return {"gci_order": float(p), "gci_fine": float(safety * abs(e21 / f1) / (r21**p - 1)) if f1 else float("nan"),
+            "richardson": float(rich)}
+
+
+def locking_slope(slenderness, error) -> tuple[float, float]:
+    """Slope of log(error) vs log(slenderness) (0: locking-free) and the slenderness where error > 1 %."""
+    s, e = np.asarray(slenderness, float), np.asarray(error, float)
+    o = np.argsort(s)
+    s, e = s[o], e[o]
+    ok = (e > 0) & np.isfinite(e)
+    slope = float(np.polyfit(np.log(s[ok]), np.log(e[ok]), 1)[0]) if ok.sum() >= 2 else float("nan")
+    over = s[e > 0.01]
+    return slope, float(over[0]) if len(over) else float("nan")
+
+
+def pareto(cost, error) -> np.ndarray:
+    """Mask of the cases no other case beats in both cost and error."""
+    c, e = np.asarray(cost, float), np.asarray(error, float)
+    o = np.lexsort((e, c))
+    mask = np.zeros(len(c), bool)
+    best = np.inf
+    for i in o:  # sorted by cost: a case is on the front when its error beats every cheaper one
+        if e[i] < best:
+            mask[i] = True
+            best = e[i]
+    return mask

@@ -1,0 +1,326 @@
+"""Run a study: cases in parallel (process pool or Dask), each written at once and atomically,
+resumable, failures recorded; then the derived tables (convergence, locking, speed vs error).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import shutil
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .. import __version__
+from ..errors import PdverifyError
+from .metrics import errors, gci, locking_slope, observed_order, pareto
+from .spec import Case, Study
+
+ROW_KEYS = ("case", "row", "curve")
+PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
+
+
+@lru_cache(maxsize=64)
+def _solved_reference(scene_text: str, scene_file: str, slenderness, ref_items: tuple):
+    """The reference model's own solution, once per (scene, slenderness, reference options)."""
+    from ..registry import run
+
+    ref = dict(ref_items)
+    scene = Case(scene_file, scene_text, slenderness, "", {}, ref).scene()
+    return run(scene, ref.pop("model"), **ref)
+
+
+def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
+    """The reference deflection at the model's points: the reference model's ``evaluate`` where it
+    has one (exact models: exact at any x), else its solution interpolated (cubic spline) onto x."""
+    from scipy.interpolate import CubicSpline
+
+    from ..registry import Model, get_model
+
+    ref = dict(case.reference)
+    model = get_model(ref.pop("model"))
+    if type(model).evaluate is not Model.evaluate:
+        out = model.evaluate(scene, model.resolve(scene, ref), x)
+        if out is not None:
+            return np.asarray(out["w"], float)
+    solved = _solved_reference(case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())))
+    return CubicSpline(solved.x, solved.w)(x)
+
+
+def run_case(case: Case) -> dict:
+    """Solve one case and measure it. Never raises: a failure is a record with status 'failed'."""
+    from ..registry import get_model, run
+
+    row = {"case_id": case.case_id, "scene_file": case.scene_file, "model": case.model,
+           "slenderness": case.slenderness, "reference": json.dumps(case.reference, sort_keys=True),
+           "version": __version__}
+    row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
+    curve = {}
+    try:
+        scene = case.scene()
+        row["scene"] = scene.name
+        model = get_model(case.model)
+        params = model.resolve(scene, case.given)
+        row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
+        result = run(scene, model, **case.given)
+        x = np.asarray(result.x, float)
+        w_ref = reference_at(case, scene, x)
+        row.update(errors(result.w, w_ref))
+        row.update({k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")})
+        row["dofs"] = int(result.dofs)
+        row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
+        row["horizon_factor"] = params.get("horizon")
+        row["horizon"] = result.info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
+        row["cond"] = result.info.get("cond")
+        row["status"], row["message"] = "ok", ""
+        curve = {"x": x.tolist(), "w": np.asarray(result.w).tolist(), "w_ref": w_ref.tolist()}
+        if result.rotation is not None:
+            curve["rotation"] = np.asarray(result.rotation).tolist()
+    except PdverifyError as exc:
+        row["status"], row["message"] = "failed", " ".join(exc.lines)
+    except Exception as exc:  # a bug in a model must not stop the study; it is recorded
+        row["status"], row["message"] = "failed", f"{type(exc).__name__}: {exc}"
+    return {"case": {"scene_file": case.scene_file, "model": case.model, "given": case.given,
+                     "slenderness": case.slenderness, "reference": case.reference},
+            "row": row, "curve": curve}
+
+
+def write_atomic(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=path.suffix)
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, path)
+
+
+def read_case(path: Path) -> dict | None:
+    """A finished case, or None when the file is missing, partial or corrupt (then it is recomputed)."""
+    try:
+        rec = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    if not isinstance(rec, dict) or any(k not in rec for k in ROW_KEYS) or "status" not in rec["row"]:
+        return None
+    return rec
+
+
+def _jsonable(rec: dict) -> str:
+    def clean(v):
+        if isinstance(v, float) and not np.isfinite(v):
+            return None
+        if isinstance(v, (np.floating,)):
+            return clean(float(v))
+        if isinstance(v, np.integer):
+            return int(v)
+        return v
+
+    rec = dict(rec)
+    rec["row"] = {k: clean(v) for k, v in rec["row"].items()}
+    return json.dumps(rec, default=str)
+
+
+def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
+              progress: bool = True) -> pd.DataFrame:
+    out = Path(out)
+    cases_dir = out / "cases"
+    cases_dir.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    done, todo = {}, []
+    seen = set()
+    for case in study.cases:
+        cid = case.case_id
+        if cid in seen:
+            continue
+        seen.add(cid)
+        rec = read_case(cases_dir / f"{cid}.json")
+        if rec is not None:
+            done[cid] = rec
+        else:
+            todo.append(case)
+    resumed = len(done)
+
+    def finish(rec):
+        write_atomic(cases_dir / f"{rec['row']['case_id']}.json", _jsonable(rec))
+        done[rec["row"]["case_id"]] = json.loads(_jsonable(rec))
+
+    bar = _progress(len(todo), progress)
+    if scheduler:
+        from dask.distributed import Client, as_completed as dask_completed
+
+        with Client(scheduler) as client:
+            futures = client.map(run_case, todo, pure=False)
+            for fut in dask_completed(futures):
+                finish(fut.result())
+                bar.advance(failed=done[list(done)[-1]]["row"]["status"] != "ok")
+    elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
+        for case in todo:
+            rec = run_case(case)
+            finish(rec)
+            bar.advance(failed=rec["row"]["status"] != "ok")
+    else:
+        with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as pool:
+            futs = [pool.submit(run_case, c) for c in todo]
+            for fut in as_completed(futs):
+                rec = fut.result()
+                finish(rec)
+                bar.advance(failed=rec["row"]["status"] != "ok")
+    bar.close()
+    order = [c.case_id for c in study.cases]
+    rows = [done[cid]["row"] for cid in dict.fromkeys(order)]
+    df = pd.DataFrame(rows)
+    df.insert(0, "study", study.name)
+    write_tables(study, out, df, wall=time.perf_counter() - t0, resumed=resumed)
+    return df
+
+
+class _progress:
+    """rich progress bar: cases done, failures, time left (silent when disabled)."""
+
+    def __init__(self, total, enabled):
+        self.enabled = enabled and total > 0
+        self.failed = 0
+        if self.enabled:
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+            self.p = Progress(TextColumn("cases"), BarColumn(), MofNCompleteColumn(), TextColumn("failed {task.fields[failed]}"),
+                              TimeRemainingColumn(), transient=False)
+            self.p.start()
+            self.task = self.p.add_task("cases", total=total, failed=0)
+
+    def advance(self, failed=False):
+        self.failed += int(failed)
+        if self.enabled:
+            self.p.update(self.task, advance=1, failed=self.failed)
+
+    def close(self):
+        if self.enabled:
+            self.p.stop()
+
+
+def _save(df: pd.DataFrame, out: Path, name: str) -> None:
+    df.to_csv(out / f"{name}.csv", index=False)
+    try:
+        df.to_parquet(out / f"{name}.parquet", index=False)
+    except Exception:  # parquet needs pyarrow; the CSV is always there
+        pass
+
+
+GROUP = ["scene", "model", "variant", "horizon_factor", "degree", "slenderness"]
+
+
+def convergence_table(df: pd.DataFrame) -> pd.DataFrame:
+    ok = df[df["status"] == "ok"].copy()
+    rows = []
+    if ok.empty:
+        return pd.DataFrame(columns=GROUP + ["n_grids", "observed_order", "r2"])
+    for key, g in ok.groupby([c for c in GROUP], dropna=False):
+        g = g.sort_values("spacing")
+        if g["spacing"].nunique() < 3:
+            continue
+        p, r2 = observed_order(g["spacing"], g["err_max"])
+        gc = gci(g["spacing"], g["w_at_max"])
+        rows.append(dict(zip(GROUP, key), n_grids=int(g["spacing"].nunique()),
+                         spacings=" ".join(f"{v:.4g}" for v in g["spacing"]),
+                         errors=" ".join(f"{v:.3e}" for v in g["err_max"]),
+                         observed_order=p, r2=r2, **gc))
+    return pd.DataFrame(rows)
+
+
+def locking_table(df: pd.DataFrame) -> pd.DataFrame:
+    ok = df[(df["status"] == "ok") & df["slenderness"].notna()]
+    rows = []
+    keys = ["scene", "model", "variant", "points", "horizon_factor", "degree"]
+    for key, g in ok.groupby(keys, dropna=False):
+        if g["slenderness"].nunique() < 2:
+            continue
+        slope, at1 = locking_slope(g["slenderness"], g["err_max"])
+        rows.append(dict(zip(keys, key), n=int(len(g)), locking_slope=slope, slenderness_at_1pct=at1))
+    return pd.DataFrame(rows)
+
+
+def speed_error_tables(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
+    ok = df[df["status"] == "ok"].copy()
+    if ok.empty:
+        return pd.DataFrame(), pd.DataFrame()
+    ok["pareto"] = False
+    for _, g in ok.groupby("scene"):
+        ok.loc[g.index, "pareto"] = pareto(g["total_s"], g["err_max"])
+    se = ok[["scene", "model", "variant", "case_id", "points", "total_s", "err_max", "pareto"]]
+    summary = []
+    for (scene, model), g in ok.groupby(["scene", "model"]):
+        row = {"scene": scene, "model": model}
+        for tol, label in ((1e-2, "1pct"), (1e-3, "0.1pct")):
+            hit = g[g["err_max"] <= tol].sort_values("total_s")
+            row[f"cheapest_{label}_case"] = hit["case_id"].iloc[0] if len(hit) else ""
+            row[f"cheapest_{label}_s"] = hit["total_s"].iloc[0] if len(hit) else float("nan")
+        summary.append(row)
+    return se, pd.DataFrame(summary)
+
+
+def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.DataFrame:
+    rows = []
+    for b in study.benchmarks:
+        opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position")}
+        m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"]) & (df["status"] == "ok")
+        for k, v in opts.items():
+            if k in df:
+                m &= df[k] == v
+        hit = df[m]
+        if hit.empty:
+            rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing"})
+            continue
+        r = hit.iloc[0]
+        target = b.get("target", r["w_ref_at_max"])
+        computed = r["w_at_max"]
+        rel = abs(computed - target) / abs(target) if target else float("nan")
+        tol = b.get("tolerance", 0.01)
+        order = float("nan")
+        if not conv.empty:
+            c = conv[(conv["scene"] == r["scene"]) & (conv["model"] == r["model"])
+                     & (conv["variant"].astype(str) == str(r.get("variant")))]
+            if len(c):
+                order = c["observed_order"].iloc[0]
+        rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],
+                     "variant": r.get("variant"), "reference": r["reference"], "target": target,
+                     "computed": computed, "ratio": computed / target if target else float("nan"), "rel_error": rel,
+                     "err_max": r["err_max"], "tolerance": tol, "verdict": "pass" if rel <= tol else "fail",
+                     "observed_order": order, "case_id": r["case_id"]})
+    return pd.DataFrame(rows)
+
+
+def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int) -> None:
+    for col in ("variant", "element", "form"):
+        if col in df:
+            df[col] = df[col].astype("string")
+    _save(df, out, "results")
+    conv = convergence_table(df)
+    _save(conv, out, "convergence")
+    _save(locking_table(df), out, "locking")
+    se, summary = speed_error_tables(df)
+    _save(se, out, "speed_error")
+    summary.to_csv(out / "speed_error_summary.csv", index=False)
+    if study.benchmarks:
+        benchmark_table(study, df, conv).to_csv(out / "benchmarks.csv", index=False)
+    shutil.copyfile(study.path, out / "study.toml")
+    import importlib.metadata as md
+
+    versions = {}
+    for pkg in ("numpy", "scipy", "scikit-fem", "pandas", "pyvista", "matplotlib", "dask"):
+        try:
+            versions[pkg] = md.version(pkg)
+        except md.PackageNotFoundError:
+            versions[pkg] = None
+    meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
+            "python": platform.python_version(), "platform": platform.platform(), "machine": platform.machine(),
+            "cpu_count": os.cpu_count(), "wall_s": wall, "versions": versions, "resumed_cases": resumed,
+            "counts": df["status"].value_counts().to_dict(), "skipped": study.skipped}
+    write_atomic(out / "meta.json", json.dumps(meta, indent=2, default=str))

@@ -1,0 +1,202 @@
+"""Study files: parse, validate everything before running anything, expand the sweep into cases.
+
+```toml
+name = "pd-eb convergence"
+scenes = ["paper_diyaroglu/clamped_free.toml"]   # relative to the study file
+reference = "exact-eb"                            # or {model = "fem-eb", points = 401}
+[[runs]]
+model = "pd-eb"
+variant = ["paper", "corrected"]                  # every list is a sweep axis
+points = [51, 101, 201]
+[sweep]
+slenderness = [10, 100]                           # optional: section height = length / slenderness
+[[benchmarks]]                                    # optional verification-manual rows
+name = "tip deflection"
+scene = "paper_diyaroglu/clamped_free.toml"
+model = "pd-eb"
+variant = "corrected"
+points = 101
+target = -0.1                                     # omitted: the reference's value
+tolerance = 0.005
+```
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .. import __version__
+from ..errors import InputError
+from ..registry import get_model
+from ..scene import Scene, load_scene
+
+RUN_KEYS = {"model"}
+BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position"}
+
+
+@dataclass
+class Case:
+    scene_file: str
+    scene_text: str
+    slenderness: float | None
+    model: str
+    given: dict
+    reference: dict
+
+    @property
+    def case_id(self) -> str:
+        key = json.dumps([self.scene_text, self.model, sorted(self.given.items()), self.slenderness,
+                          sorted(self.reference.items()), __version__], sort_keys=True, default=str)
+        return hashlib.sha256(key.encode()).hexdigest()[:16]
+
+    def scene(self) -> Scene:
+        from ..scene import parse_scene
+
+        s = parse_scene(tomllib.loads(self.scene_text), source=self.scene_file)
+        return s.with_slenderness(self.slenderness) if self.slenderness else s
+
+
+@dataclass
+class Study:
+    name: str
+    path: Path
+    text: str
+    scenes: list[str]
+    reference: dict
+    runs: list[dict]
+    slenderness: list
+    benchmarks: list[dict] = field(default_factory=list)
+    cases: list[Case] = field(default_factory=list)
+    skipped: list[str] = field(default_factory=list)
+
+
+def _reference(value, where: str) -> dict:
+    if isinstance(value, str):
+        return {"model": value}
+    if isinstance(value, dict) and isinstance(value.get("model"), str):
+        return dict(value)
+    raise InputError(f"{where}reference = {value!r}: give a model name or a table {{model = ..., options...}}")
+
+
+def _as_list(v):
+    return v if isinstance(v, list) else [v]
+
+
+def load_study(path: str | Path) -> Study:
+    """Read a study file and validate every scene, model, option and reference. Raises InputError."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such study file; check the path") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: cannot read the study file ({exc})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: TOML syntax error: {exc}") from None
+    errors: list[str] = []
+    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks"}
+    for key in data:
+        if key not in allowed:
+            errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
+    name = data.get("name")
+    if not isinstance(name, str) or not name:
+        errors.append(f"{path}: name: missing; give the study a name")
+    scenes = data.get("scenes")
+    if not isinstance(scenes, list) or not scenes or not all(isinstance(s, str) for s in scenes):
+        errors.append(f"{path}: scenes = {scenes!r}: give a non-empty list of scene files")
+        scenes = []
+    runs = data.get("runs")
+    if not isinstance(runs, list) or not runs:
+        errors.append(f"{path}: runs: missing or empty; add at least one [[runs]] table with a model")
+        runs = []
+    sweep = data.get("sweep", {})
+    if not isinstance(sweep, dict) or set(sweep) - {"slenderness"}:
+        errors.append(f"{path}: sweep = {sweep!r}: only 'slenderness' (a list) can be swept here")
+        sweep = {}
+    slen = _as_list(sweep.get("slenderness", [None]))
+    if not slen:
+        errors.append(f"{path}: sweep.slenderness = []: an empty sweep runs nothing; give values or drop it")
+    for s in slen:
+        if s is not None and (not isinstance(s, (int, float)) or s <= 0):
+            errors.append(f"{path}: sweep.slenderness value {s!r}: must be a positive number")
+    try:
+        reference = _reference(data.get("reference", "exact-eb"), "")
+    except InputError as exc:
+        errors.extend(f"{path}: {l}" for l in exc.lines)
+        reference = {"model": "exact-eb"}
+    if errors:
+        raise InputError(errors)
+
+    scene_objs: dict[str, tuple[str, Scene]] = {}
+    for s in scenes:
+        p = (path.parent / s) if not Path(s).is_absolute() else Path(s)
+        try:
+            sc = load_scene(p)
+            scene_objs[s] = (p.read_text(encoding="utf-8"), sc)
+        except InputError as exc:
+            errors.extend(exc.lines)
+    ref_given = {k: v for k, v in reference.items() if k != "model"}
+    try:
+        ref_model = get_model(reference["model"])
+    except InputError as exc:
+        errors.append(f"{path}: reference: {exc.lines[0]}")
+        ref_model = None
+
+    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])))
+    for i, run in enumerate(runs):
+        where = f"{path}: runs[{i}]"
+        if not isinstance(run, dict) or not isinstance(run.get("model"), str):
+            errors.append(f"{where}: model: missing; every run names a model")
+            continue
+        try:
+            model = get_model(run["model"])
+        except InputError as exc:
+            errors.append(f"{where}: {exc.lines[0]}")
+            continue
+        axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
+        for k, v in axes.items():
+            if not v:
+                errors.append(f"{where}.{k} = []: an empty sweep runs nothing; give values or drop the key")
+        names = list(axes)
+        for combo in itertools.product(*(axes[k] for k in names)):
+            given = dict(zip(names, combo))
+            for sfile, (stext, sc) in scene_objs.items():
+                for sl in slen:
+                    scx = sc.with_slenderness(sl) if sl else sc
+                    try:
+                        params = model.resolve(scx, given)
+                    except InputError as exc:
+                        errors.append(f"{where}: {exc.lines[0]}")
+                        continue
+                    reasons = model.check(scx)
+                    if reasons:
+                        study.skipped.append(f"{run['model']} on {sfile}: {reasons[0]}")
+                        continue
+                    if ref_model is not None:
+                        try:
+                            ref_model.resolve(scx, ref_given)
+                        except InputError as exc:
+                            errors.append(f"{path}: reference: {exc.lines[0]}")
+                        if ref_model.check(scx):
+                            errors.append(f"{path}: reference {ref_model.name} cannot solve {sfile}: {ref_model.check(scx)[0]}")
+                    study.cases.append(Case(sfile, stext, sl, model.name, dict(given), dict(reference)))
+    for j, bench in enumerate(study.benchmarks):
+        where = f"{path}: benchmarks[{j}]"
+        if not isinstance(bench, dict) or not {"name", "scene", "model"} <= set(bench):
+            errors.append(f"{where}: needs name, scene and model")
+            continue
+        if bench["scene"] not in scene_objs:
+            errors.append(f"{where}.scene = {bench['scene']!r}: not one of the study's scenes")
+    if errors:
+        # one line per problem, duplicates (same bad option on many scenes) once
+        raise InputError(list(dict.fromkeys(errors)))
+    if not study.cases:
+        raise InputError(f"{path}: the study expands to no case a model can solve; skipped: {'; '.join(study.skipped[:3])}")
+    return study
