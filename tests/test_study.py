@@ -1,0 +1,159 @@
+"""Study runner: order by hand on a synthetic model, failures recorded, resume after SIGKILL, Dask = local."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdverify import registry
+from pdverify.errors import InputError
+from pdverify.exact.straight import solve_straight
+from pdverify.registry import Model, Option
+from pdverify.result import Result
+from pdverify.study import load_study, run_study
+from pdverify.study.metrics import gci, observed_order, pareto
+
+ROOT = Path(__file__).parents[1]
+SCENE = ROOT / "studies/paper_diyaroglu/clamped_clamped.toml"
+
+
+class Synthetic(Model):
+    """Exact EB deflection times (1 + C dx^2): its max error is exactly C dx^2."""
+
+    name = "synthetic-dx2"
+    options = (Option("points", int, 11, minimum=2), Option("fail", bool, False))
+
+    def solve(self, scene, params):
+        if params["fail"]:
+            raise np.linalg.LinAlgError("synthetic failure")
+        x = np.linspace(0, scene.length, params["points"])
+        dx = x[1] - x[0]
+        w = solve_straight(scene, False).fields(x)["w"] * (1 + 3.0 * dx**2)
+        return Result(scene.name, self.name, dict(params), x, w, dofs=len(x), timings={"assemble_s": 0.0, "solve_s": 0.0})
+
+
+@pytest.fixture
+def synthetic(monkeypatch):
+    monkeypatch.setitem(registry.models(), "synthetic-dx2", Synthetic())
+
+
+def write_study(tmp_path, body, name="s"):
+    p = tmp_path / f"{name}.toml"
+    p.write_text(f'name = "{name}"\nscenes = ["{SCENE}"]\nreference = "exact-eb"\n' + body)
+    return p
+
+
+def test_observed_order_equals_hand_computation(tmp_path, synthetic):
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9, 17, 33, 65]\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    dx = 1.0 / (np.array([5, 9, 17, 33, 65]) - 1)
+    assert np.allclose(df.sort_values("points")["err_max"], 3.0 * dx**2, rtol=1e-9)
+    conv = pd.read_csv(tmp_path / "out" / "convergence.csv")
+    hand = np.polyfit(np.log(dx), np.log(3.0 * dx**2), 1)[0]
+    assert conv["observed_order"].iloc[0] == pytest.approx(hand, abs=1e-9)
+    assert conv["observed_order"].iloc[0] == pytest.approx(2.0, abs=1e-6)
+    assert conv["r2"].iloc[0] == pytest.approx(1.0, abs=1e-12)
+    assert conv["gci_order"].iloc[0] == pytest.approx(2.0, abs=1e-6)
+
+
+def test_no_order_from_two_grids(tmp_path, synthetic):
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9]\n')
+    run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    conv = tmp_path / "out" / "convergence.csv"
+    assert conv.read_text().strip() in ("", '""') or pd.read_csv(conv).empty
+
+
+def test_failure_is_recorded_and_the_study_goes_on(tmp_path, synthetic):
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9]\nfail = [false, true]\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert sorted(df["status"]) == ["failed", "failed", "ok", "ok"]
+    assert df[df["status"] == "failed"]["message"].str.contains("synthetic failure").all()
+
+
+def test_metrics_units():
+    assert observed_order([0.1, 0.05, 0.025], [1e-2, 2.5e-3, 6.25e-4])[0] == pytest.approx(2.0)
+    assert np.isnan(observed_order([0.1, 0.05], [1e-2, 2.5e-3])[0])
+    g = gci([0.1, 0.05, 0.025], [1 + 0.01, 1 + 0.0025, 1 + 0.000625])
+    assert g["gci_order"] == pytest.approx(2.0) and g["richardson"] == pytest.approx(1.0)
+    assert list(pareto([1, 2, 3, 4], [5, 1, 2, 0.5])) == [True, True, False, True]
+
+
+BAD_STUDIES = {
+    "unknown model": ('[[runs]]\nmodel = "pd-nothing"\n', "runs[0]: model = 'pd-nothing': unknown model"),
+    "option not taken": ('[[runs]]\nmodel = "exact-eb"\nhorizon = 3\n', "takes no option 'horizon'"),
+    "empty sweep": ('[[runs]]\nmodel = "pd-eb"\npoints = []\n', "runs[0].points = []: an empty sweep"),
+    "no runs": ("", "runs: missing or empty"),
+    "horizon below spacing": ('[[runs]]\nmodel = "pd-eb"\nhorizon = 0.5\n', "horizon = 0.5"),
+    "bad reference": ('reference2 = 1\n[[runs]]\nmodel = "pd-eb"\n', "unknown key 'reference2'"),
+    "typo key": ('[[runs]]\nmodel = "pd-eb"\nvariant = "papr"\n', "variant = 'papr'"),
+    "bad slenderness": ('[sweep]\nslenderness = [-3]\n[[runs]]\nmodel = "pd-eb"\n', "slenderness value -3"),
+}
+
+
+@pytest.mark.parametrize("what", list(BAD_STUDIES))
+def test_bad_study_one_line_exit_2(tmp_path, what):
+    body, msg = BAD_STUDIES[what]
+    p = write_study(tmp_path, body)
+    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(tmp_path / "o")],
+                       capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 2 and "Traceback" not in r.stderr and msg in r.stderr, r.stderr
+    assert not (tmp_path / "o").exists()  # validated before running anything
+
+
+def test_missing_scene_and_syntax_error(tmp_path):
+    p = tmp_path / "s.toml"
+    p.write_text('name = "s"\nscenes = ["nope.toml"]\n[[runs]]\nmodel = "pd-eb"\n')
+    with pytest.raises(InputError, match="no such scene file"):
+        load_study(p)
+    p.write_text('name = "s"\nscenes = [\n')
+    with pytest.raises(InputError, match="TOML syntax error"):
+        load_study(p)
+
+
+def _cols(df):
+    return df.sort_values("case_id")[["case_id", "err_max", "err_l2", "w_at_max"]].reset_index(drop=True)
+
+
+def test_resume_after_sigkill(tmp_path):
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+                              'points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n')
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
+    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and len(list((out / "cases").glob("*.json"))) < 5:
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    partial = len(list((out / "cases").glob("*.json")))
+    assert 5 <= partial < 42, partial
+    # a corrupt file (killed mid-write elsewhere) is detected and recomputed
+    victim = sorted((out / "cases").glob("*.json"))[0]
+    victim.write_text('{"case": {"trunc')
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    meta = json.loads((out / "meta.json").read_text())
+    assert meta["resumed_cases"] == partial - 1
+    fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
+    assert np.allclose(_cols(pd.read_csv(out / "results.csv"))[["err_max", "err_l2", "w_at_max"]],
+                       _cols(fresh)[["err_max", "err_l2", "w_at_max"]], rtol=1e-12)
+
+
+def test_dask_local_cluster_matches_local_run(tmp_path):
+    from dask.distributed import LocalCluster
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101]\n'
+                              '[[runs]]\nmodel = "fem-eb"\npoints = [11]\n')
+    local = run_study(load_study(p), tmp_path / "local", workers=2, progress=False)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        dist = run_study(load_study(p), tmp_path / "dask", scheduler=cluster.scheduler_address, progress=False)
+    a, b = _cols(local), _cols(dist)
+    assert list(a["case_id"]) == list(b["case_id"])
+    assert np.array_equal(a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy())
