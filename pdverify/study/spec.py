@@ -4,7 +4,7 @@
 name = "pd-eb convergence"
 scenes = ["paper_diyaroglu/clamped_free.toml"]   # relative to the study file
 reference = "exact-eb"                            # or {model = "fem-eb", points = 401}
-[[runs]]
+[[runs]]                                          # a run may set its own reference and scenes (a subset)
 model = "pd-eb"
 variant = ["paper", "corrected"]                  # every list is a sweep axis
 points = [51, 101, 201]
@@ -35,7 +35,7 @@ from ..errors import InputError
 from ..registry import get_model
 from ..scene import Scene, load_scene
 
-RUN_KEYS = {"model"}
+RUN_KEYS = {"model", "reference", "scenes"}
 BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position"}
 
 
@@ -160,6 +160,17 @@ def load_study(path: str | Path) -> Study:
         except InputError as exc:
             errors.append(f"{where}: {exc.lines[0]}")
             continue
+        run_ref = reference
+        if "reference" in run:
+            try:
+                run_ref = _reference(run["reference"], f"runs[{i}].")
+            except InputError as exc:
+                errors.append(f"{path}: {exc.lines[0]}")
+                continue
+        run_scenes = run.get("scenes", list(scene_objs))
+        if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
+            errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
+            continue
         axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
         for k, v in axes.items():
             if not v:
@@ -167,7 +178,14 @@ def load_study(path: str | Path) -> Study:
         names = list(axes)
         for combo in itertools.product(*(axes[k] for k in names)):
             given = dict(zip(names, combo))
-            for sfile, (stext, sc) in scene_objs.items():
+            for sfile in run_scenes:
+                stext, sc = scene_objs[sfile]
+                ref_given = {k: v for k, v in run_ref.items() if k != "model"}
+                try:
+                    ref_model = get_model(run_ref["model"])
+                except InputError as exc:
+                    errors.append(f"{where}: reference: {exc.lines[0]}")
+                    continue
                 for sl in slen:
                     scx = sc.with_slenderness(sl) if sl else sc
                     try:
@@ -186,7 +204,7 @@ def load_study(path: str | Path) -> Study:
                             errors.append(f"{path}: reference: {exc.lines[0]}")
                         if ref_model.check(scx):
                             errors.append(f"{path}: reference {ref_model.name} cannot solve {sfile}: {ref_model.check(scx)[0]}")
-                    study.cases.append(Case(sfile, stext, sl, model.name, dict(given), dict(reference)))
+                    study.cases.append(Case(sfile, stext, sl, model.name, dict(given), dict(run_ref)))
     for j, bench in enumerate(study.benchmarks):
         where = f"{path}: benchmarks[{j}]"
         if not isinstance(bench, dict) or not {"name", "scene", "model"} <= set(bench):
