@@ -165,6 +165,18 @@ def study(
 
 @app.command()
 @user_errors
+def report(
+    study_dir: Path = typer.Argument(..., help="a study output directory (holds results.csv)"),
+    out: Optional[Path] = typer.Option(None, "--out", help="write the report here (default: the study directory)"),
+):
+    """Turn a study's results into a self-contained HTML report (index.html)."""
+    from .report import build_report
+
+    typer.echo(f"report: {build_report(study_dir, out)}")
+
+
+@app.command()
+@user_errors
 def bench(
     model: Optional[list[str]] = typer.Option(None, "--model", "-m", help="model(s) to time; default: all with an assembled system"),
     points: Optional[list[int]] = typer.Option(None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"),
