@@ -43,12 +43,13 @@ def condition_estimate(K: sp.spmatrix, solve) -> float:
     return float(spla.onenormest(K) * spla.onenormest(inv))
 
 
-def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition: bool = True,
+def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition: bool | None = None,
                  banded_max: int = 64) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
     Raises SolveError naming ``what`` when K is singular (a mechanism, missing supports) or the
     solution is not finite. ``info`` holds solver, bandwidths, condition estimate, relative residual.
+    The condition estimate (a few extra solves) is made by default up to 20,000 unknowns only.
     """
     K = sp.csr_matrix(K)
     b = np.asarray(b, dtype=float)
@@ -84,6 +85,8 @@ def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition:
     r = K @ u - b  # residual of the scaled system (the condition estimate below is of the scaled K)
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
+    if condition is None:
+        condition = n <= 20_000
     if condition:
         try:
             c = condition_estimate(K, solve)

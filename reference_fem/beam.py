@@ -84,11 +84,18 @@ def constrained_dofs(scene: Scene, n_nodes: int) -> np.ndarray:
     return np.array(out, dtype=int)
 
 
-def solve_beam(K, F, fixed, what):
+def reduce_supports(scene: Scene, K, F, n_nodes: int):
+    """Eliminate the supported DOFs: (K_ff, F_f, free)."""
+    fixed = constrained_dofs(scene, n_nodes)
     n = K.shape[0]
     free = np.setdiff1d(np.arange(n), fixed)
-    u = np.zeros(n)
-    uf, info = solve_linear(K[free][:, free], F[free], what=what)
+    S = sp.csr_matrix((np.ones(len(free)), (free, np.arange(len(free)))), shape=(n, len(free)))
+    return (S.T @ K @ S).tocsr(), F[free], free
+
+
+def solve_beam(Kf, Ff, free, n_dofs, what):
+    u = np.zeros(n_dofs)
+    uf, info = solve_linear(Kf, Ff, what=what)
     u[free] = uf
     return u, info, len(free)
 
@@ -126,7 +133,7 @@ class FemEulerBernoulli(Model):
         # scikit-fem orders DOFs as basis.nodal_dofs; for ElementLineHermite that is (w_i, w'_i) interleaved
         assert np.array_equal(basis.nodal_dofs[0], 2 * np.arange(len(nodes)))
         F = F + nodal_point_loads(scene, nodes, 2)
-        return K, F, nodes
+        return (*reduce_supports(scene, K, F, len(nodes)), nodes)
 
     def evaluate(self, scene, params, x):  # noqa: D401 - the FE solution itself between nodes
         r = self.solve(scene, params)
@@ -136,10 +143,9 @@ class FemEulerBernoulli(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("assemble"):
-            K, F, nodes = self.assemble(scene, params)
-            fixed = constrained_dofs(scene, len(nodes))
+            Kf, Ff, free, nodes = self.assemble(scene, params)
         with timer("solve"):
-            u, info, dofs = solve_beam(K, F, fixed, "fem-eb")
+            u, info, dofs = solve_beam(Kf, Ff, free, 2 * len(nodes), "fem-eb")
         info.update(element="ElementLineHermite", elements=len(nodes) - 1)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=nodes, w=u[0::2],
                       rotation=u[1::2], dofs=dofs, timings=timer.timings, info=info)
@@ -196,15 +202,14 @@ class FemTimoshenko(Model):
                 ke = ke + kGA * wt * l[:, None, None] * B[:, :, None] * B[:, None, :]
             fe = element_loads(scene, nodes, linear_shapes)
         K, F = assemble_elements(ke, fe, len(nodes))
-        return K, F + nodal_point_loads(scene, nodes, 2), nodes
+        return (*reduce_supports(scene, K, F + nodal_point_loads(scene, nodes, 2), len(nodes)), nodes)
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("assemble"):
-            K, F, nodes = self.assemble(scene, params)
-            fixed = constrained_dofs(scene, len(nodes))
+            Kf, Ff, free, nodes = self.assemble(scene, params)
         with timer("solve"):
-            u, info, dofs = solve_beam(K, F, fixed, f"fem-timoshenko ({params['variant']})")
+            u, info, dofs = solve_beam(Kf, Ff, free, 2 * len(nodes), f"fem-timoshenko ({params['variant']})")
         info.update(element={"iie": "interdependent interpolation (IIE)", "reduced": "linear, reduced shear",
                              "full": "linear, full integration"}[params["variant"]], elements=len(nodes) - 1)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=nodes, w=u[0::2],

@@ -193,7 +193,14 @@ class PDEulerBernoulli(Model):
         return np.linspace(0.0, scene.length, params["points"])
 
     def assemble(self, scene: Scene, params: dict):
-        """(K, b, fixed, info): K w = b on the real points (per unit volume); ``fixed`` point indices w = 0."""
+        """(K, b, free, info): the system K w_free = b after the supports (master–slave elimination of
+        the fixed points, Eq. 39–42); ``free`` are the indices of the unknown points."""
+        K, b, fixed, info = self.assemble_full(scene, params)
+        Kf, bf, free = self.reduced(K, b, fixed)
+        return Kf, bf, free, info
+
+    def assemble_full(self, scene: Scene, params: dict):
+        """(K, b, fixed, info): K w = b on all real points (per unit volume); ``fixed`` point indices w = 0."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         m, variant = params["horizon"], params["variant"]
@@ -213,38 +220,40 @@ class PDEulerBernoulli(Model):
     def _assemble_paper(self, scene, x, c, a, A, left, right):
         n, dx, J = len(x), x[1] - x[0], len(c)
         G = J
-        D = curvature_operator(n, G, n + 2 * G, c).tolil()
+        D = curvature_operator(n, G, n + 2 * G, c).tocoo()
+        keep = np.ones(D.nnz, bool)
+        rr, cc, vv = [D.row], [D.col], [D.data]
         for side, sup in ((0, left), (1, right)):
             if sup != "free":
                 continue
+            o = 1 if side == 0 else -1
             for pnt in range(min(J, n)):
                 k = pnt if side == 0 else n - 1 - pnt
-                row = np.zeros(n + 2 * G)
+                keep &= D.row != k
                 e = k + G
-                o = 1 if side == 0 else -1
                 if pnt == 0:  # Eq. A1 with d1 = 1/(A dx): one-sided second difference
-                    row[e] += 1 / dx**2
-                    row[e + o] += -2 / dx**2
-                    row[e + 2 * o] += 1 / dx**2
+                    cols, vals = [e, e + o, e + 2 * o], [1 / dx**2, -2 / dx**2, 1 / dx**2]
                 else:  # Eq. A7/A10: reduced horizon (p + 0.015) dx, d_p = 1/(A delta_p)
                     cp = curvature_weights(float(pnt), dx, "paper")
-                    for j, cj in enumerate(cp, start=1):
-                        row[e + j] += cj
-                        row[e - j] += cj
-                        row[e] -= 2 * cj
-                D[k, :] = row
-        D = D.tocsr()
+                    cols = [e] + [e + j for j in range(1, len(cp) + 1)] + [e - j for j in range(1, len(cp) + 1)]
+                    vals = [-2 * cp.sum()] + list(cp) + list(cp)
+                rr.append(np.full(len(cols), k))
+                cc.append(np.array(cols))
+                vv.append(np.array(vals))
+        rr[0], cc[0], vv[0] = D.row[keep], D.col[keep], D.data[keep]
+        D = sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=D.shape)
         # master–slave map T: extended (ghost + real) <- real (Eq. 39–41)
-        T = sp.lil_matrix((n + 2 * G, n))
-        T[G:G + n, :] = sp.identity(n)
+        tr, tc, tv = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
         for side, sup in ((0, left), (1, right)):
             sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "free": 0.0}[sup]
-            for j in range(1, G + 1):
-                g = G - j if side == 0 else G + n - 1 + j
-                r = j if side == 0 else n - 1 - j
-                if sign != 0.0 and 0 <= r < n:
-                    T[g, r] = sign
-        T = T.tocsr()
+            if sign == 0.0:
+                continue
+            j = np.arange(1, G + 1)
+            g = G - j if side == 0 else G + n - 1 + j
+            r = j if side == 0 else n - 1 - j
+            ok = (r >= 0) & (r < n)
+            tr.append(g[ok]), tc.append(r[ok]), tv.append(np.full(ok.sum(), sign))
+        T = sp.csr_matrix((np.concatenate(tv), (np.concatenate(tr), np.concatenate(tc))), shape=(n + 2 * G, n))
         DT = D @ T
         K = (a * (DT.T @ DT)).tocsr()
         b = body_loads(scene, x) / A
@@ -262,8 +271,7 @@ class PDEulerBernoulli(Model):
         P, C = end_loads(scene)
         EI = scene.EI
         p = min(4, n)
-        E = sp.lil_matrix((N, n))
-        E[G:G + n, :] = sp.identity(n)
+        er, ec, ev = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
         e0 = np.zeros(N)
         skip = {0: set(), n - 1: set()}
         for side, sup in ((0, left), (1, right)):
@@ -275,12 +283,11 @@ class PDEulerBernoulli(Model):
             Gm, g0 = taylor_ghosts(sup, G, dx, M_end, V3, EI, p)
             real = np.arange(p) if side == 0 else n - 1 - np.arange(p)
             ghost = G - 1 - np.arange(G) if side == 0 else G + n + np.arange(G)
-            for gi in range(G):
-                E[ghost[gi], real] = Gm[gi]
+            er.append(np.repeat(ghost, p)), ec.append(np.tile(real, G)), ev.append(Gm.ravel())
             e0[ghost] = g0
             k = 0 if side == 0 else n - 1
             skip[k] = {"point_force", "point_moment"}  # end loads: in the ghosts or reactions
-        E = E.tocsr()
+        E = sp.csr_matrix((np.concatenate(ev), (np.concatenate(er), np.concatenate(ec))), shape=(N, n))
         K = (K_ext @ E).tocsr()
         b = body_loads(scene, x, skip_ends=skip) / A - K_ext @ e0
         fixed = [i for i, s in ((0, left), (n - 1, right)) if s in ("clamped", "pinned")]
@@ -290,16 +297,18 @@ class PDEulerBernoulli(Model):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
         n = K.shape[0]
         free = np.setdiff1d(np.arange(n), fixed)
-        return K[free][:, free], b[free], free
+        if len(free) == n:
+            return K, b, free
+        S = sp.csr_matrix((np.ones(len(free)), (free, np.arange(len(free)))), shape=(n, len(free)))
+        return (S.T @ K @ S).tocsr(), b[free], free
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("assemble"):
-            K, b, fixed, binfo = self.assemble(scene, params)
-            Kf, bf, free = self.reduced(K, b, fixed)
+            Kf, bf, free, binfo = self.assemble(scene, params)
         with timer("solve"):
             u, info = solve_linear(Kf, bf, what=f"pd-eb ({params['variant']})")
-            w = np.zeros(K.shape[0])
+            w = np.zeros(params["points"])
             w[free] = u
         x = self.grid(scene, params)
         dx = x[1] - x[0]
@@ -327,8 +336,8 @@ def simulate(scene: Scene, params: dict, t_end: float, dt: float | None = None, 
     if scene.material.density is None:
         raise InputError("material.density: needed for dynamics; add density (kg/m^3) to the scene")
     rho = scene.material.density
-    K, b, fixed, _ = model.assemble(scene, params)
-    Kf, bf, free = model.reduced(K, b, fixed)
+    Kf, bf, free, _ = model.assemble(scene, params)
+    n_all = params["points"]
     limit = stable_time_step(Kf, rho)
     dt = safety * limit if dt is None else float(dt)
     steps = int(np.ceil(t_end / dt))
@@ -348,7 +357,7 @@ def simulate(scene: Scene, params: dict, t_end: float, dt: float | None = None, 
             if not np.isfinite(amp) or (scale and amp > 1e8 * scale):
                 raise SolveError(f"dt = {dt:.4g} s: the explicit integration blew up at step {s}; "
                                  f"the stable limit is {limit:.4g} s (use dt below it)")
-            full = np.zeros(K.shape[0])
+            full = np.zeros(n_all)
             full[free] = w
             hist.append(full)
             times.append(s * dt)
