@@ -102,8 +102,8 @@ def solve_beam(Kf, Ff, free, n_dofs, what):
 
 def hermite_shapes(xi, l):
     """Cubic Hermite shape functions (w1, w1', w2, w2') on [0, l], xi = s / l."""
-    return np.array([1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3), 3 * xi**2 - 2 * xi**3,
-                     l * (-(xi**2) + xi**3)]) * np.ones_like(l)
+    return np.stack(np.broadcast_arrays(1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3),
+                                        3 * xi**2 - 2 * xi**3, l * (-(xi**2) + xi**3)))
 
 
 class FemEulerBernoulli(Model):
@@ -112,11 +112,27 @@ class FemEulerBernoulli(Model):
     source = "scikit-fem ElementLineHermite; nodally exact (loads on nodes)"
     options = (Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),)
 
-    def assemble(self, scene: Scene, params: dict):
+    SKFEM_MAX_NODES = 20_001  # ElementLineHermite inverts a global-coordinate Vandermonde per element:
+    # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there
+
+    def assemble(self, scene: Scene, params: dict, use_skfem: bool | None = None):
+        nodes = beam_nodes(scene, params["points"])
+        if use_skfem is None:
+            use_skfem = len(nodes) <= self.SKFEM_MAX_NODES
+        if not use_skfem:
+            l = np.diff(nodes)
+            ke = np.empty((len(l), 4, 4))
+            ke[:] = np.array([[12, 0, -12, 0], [0, 0, 0, 0], [-12, 0, 12, 0], [0, 0, 0, 0]], float)
+            ke[:, 0, 1] = ke[:, 1, 0] = ke[:, 0, 3] = ke[:, 3, 0] = 6 * l
+            ke[:, 1, 2] = ke[:, 2, 1] = ke[:, 2, 3] = ke[:, 3, 2] = -6 * l
+            ke[:, 1, 1] = ke[:, 3, 3] = 4 * l**2
+            ke[:, 1, 3] = ke[:, 3, 1] = 2 * l**2
+            ke *= (scene.EI / l**3)[:, None, None]
+            K, F = assemble_elements(ke, element_loads(scene, nodes, hermite_shapes), len(nodes))
+            return (*reduce_supports(scene, K, F + nodal_point_loads(scene, nodes, 2), len(nodes)), nodes)
         import skfem as fem
         from skfem.helpers import dd, ddot
 
-        nodes = beam_nodes(scene, params["points"])
         mesh = fem.MeshLine(nodes)
         basis = fem.Basis(mesh, fem.ElementLineHermite(), intorder=12)
 
