@@ -1,0 +1,149 @@
+"""Model ``pd-bond-pair``: non-ordinary state-based bond-pair beam (O'Grady & Foster 2014), linear path.
+
+Every bond xi from a point is paired with its opposite -xi through a rotational spring with potential
+``w(xi) = omega(xi) alpha [1 + cos theta]`` (theta = deformed angle between the two bonds; the force
+state of Eq. 2 is its gradient). For small deflections 1 + cos theta ≈ Δ²/2 with
+Δ = (w_{k+j} - 2 w_k + w_{k-j}) / xi_j, so the bending energy per point is
+Σ_j ½ alpha omega_j beta_j dx (Δ_j)² dx and its gradient per unit length is (design note §1)::
+
+    Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j}) = q_k,   c_j = alpha omega_j beta_j dx / xi_j²
+
+(= EI w'''' + O(delta²) w^(6)). omega = 1. alpha from energy equivalence with Euler–Bernoulli bending
+under uniform curvature (reconstructed in the design note, the seed is truncated there):
+
+* ``paper``: the continuous horizon integral, alpha = EI / ∫_0^delta xi² dxi = 3 EI / delta³ with the
+  full family volumes (delta = (m + 0.015) dx as in the other papers);
+* ``corrected``: the discrete family sum with the last member's partial volume,
+  alpha = EI / Σ_j xi_j² beta_j dx, so a uniform curvature field gives exactly EI kappa² / 2.
+
+The stencil reaches 2J points past an end. Ends (``ends`` option):
+``mirror`` (clamped: support fixed, w_{-i} = w_i; pinned: w_{-i} = -w_i; guided: w_{-i} = w_i; free:
+no ghosts, the families are truncated) or ``taylor`` (the degree-4 polynomial ghost points of
+``pd_eb.taylor_ghosts``: end loads enter through the moment and shear at the end).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import InputError
+from ..linalg import solve_linear
+from ..registry import Model, Option
+from ..result import Result, Timer
+from ..scene import Scene
+from .pd_eb import body_loads, end_loads, taylor_ghosts
+
+
+def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets j = 1..J and volume factors beta_j (paper: full volumes within (m + 0.015) dx)."""
+    if variant == "paper":
+        J = int(np.floor(m + 0.015 + 1e-12))
+        j = np.arange(1, J + 1)
+        return j, np.ones(J)
+    J = int(np.ceil(m + 0.5 - 1e-12))
+    j = np.arange(1, J + 1)
+    beta = np.clip(m - (j - 0.5), 0.0, 1.0)
+    return j[beta > 0], beta[beta > 0]
+
+
+def spring_constants(EI: float, m: float, dx: float, variant: str) -> np.ndarray:
+    """c_j of the linear operator (alpha calibrated continuous or discrete)."""
+    j, beta = family(m, dx, variant)
+    xi = j * dx
+    if variant == "paper":
+        delta = (m + 0.015) * dx
+        alpha = 3.0 * EI / delta**3
+    else:
+        alpha = EI / np.sum(xi**2 * beta * dx)
+    return alpha * beta * dx / xi**2
+
+
+def operator(n_rows: int, row0: int, n_cols: int, j: np.ndarray, c: np.ndarray) -> sp.csr_matrix:
+    """Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j}) for rows k = row0 .. row0 + n_rows - 1."""
+    rows = np.arange(n_rows)
+    r, cc, v = [], [], []
+    for jj, cj in zip(j, c):
+        for off, coef in ((-2 * jj, 1.0), (-jj, -4.0), (0, 6.0), (jj, -4.0), (2 * jj, 1.0)):
+            r.append(rows)
+            cc.append(rows + row0 + off)
+            v.append(np.full(n_rows, cj * coef))
+    r, cc, v = (np.concatenate(a) for a in (r, cc, v))
+    keep = (cc >= 0) & (cc < n_cols)  # free ends with mirror rule: truncated families
+    return sp.csr_matrix((v[keep], (r[keep], cc[keep])), shape=(n_rows, n_cols))
+
+
+class PDBondPair(Model):
+    name = "pd-bond-pair"
+    title = "non-ordinary state-based bond-pair PD beam (linear path)"
+    source = "O'Grady & Foster 2014 (seed 003) + design note §1 (alpha calibration, ghost rules)"
+    options = (
+        Option("points", int, 201, "material points along the beam, ends included", minimum=5),
+        Option("horizon", float, 3.0, "horizon as a multiple of the spacing", minimum=1.0),
+        Option("variant", str, "corrected", "paper (continuous alpha) | corrected (discrete alpha)",
+               choices=("paper", "corrected")),
+        Option("ends", str, "taylor", "boundary ghost rule: mirror | taylor", choices=("mirror", "taylor")),
+    )
+
+    def assemble(self, scene: Scene, params: dict):
+        """(K, b, free, info) after the supports: K w_free = b (per unit length)."""
+        n = params["points"]
+        x = np.linspace(0.0, scene.length, n)
+        dx = x[1] - x[0]
+        j, _ = family(params["horizon"], dx, params["variant"])
+        c = spring_constants(scene.EI, params["horizon"], dx, params["variant"])
+        G = 2 * int(j.max())
+        if G + 1 > n:
+            raise InputError(f"horizon = {params['horizon']:g}: the stencil (2 x {j.max()} points) does not fit in "
+                             f"{n} points; use more points or a smaller horizon")
+        N = n + 2 * G
+        K_ext = operator(n, G, N, j, c)
+        left, right = scene.supports.left, scene.supports.right
+        er, ec, ev = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
+        e0 = np.zeros(N)
+        skip = {}
+        if params["ends"] == "taylor":
+            P, C = end_loads(scene)
+            for side, sup in ((0, left), (1, right)):
+                M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
+                Gm, g0 = taylor_ghosts(sup, G, dx, M_end, V3, scene.EI, min(4, n))
+                real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
+                ghost = G - 1 - np.arange(G) if side == 0 else G + n + np.arange(G)
+                er.append(np.repeat(ghost, 4)), ec.append(np.tile(real, G)), ev.append(Gm.ravel())
+                e0[ghost] = g0
+                skip[0 if side == 0 else n - 1] = {"point_force", "point_moment"}
+        else:
+            for side, sup in ((0, left), (1, right)):
+                sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "free": 0.0}[sup]
+                if sign == 0.0:
+                    continue
+                i = np.arange(1, G + 1)
+                ghost = G - i if side == 0 else G + n - 1 + i
+                real = np.minimum(i, n - 1) if side == 0 else np.maximum(n - 1 - i, 0)
+                er.append(ghost), ec.append(real), ev.append(np.full(G, sign))
+        E = sp.csr_matrix((np.concatenate(ev), (np.concatenate(er), np.concatenate(ec))), shape=(N, n))
+        K = (K_ext @ E).tocsr()
+        b = body_loads(scene, x, skip_ends=skip) - K_ext @ e0
+        fixed = [i for i, s in ((0, left), (n - 1, right)) if s in ("clamped", "pinned")]
+        free = np.setdiff1d(np.arange(n), fixed)
+        S = sp.csr_matrix((np.ones(len(free)), (free, np.arange(len(free)))), shape=(n, len(free)))
+        info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
+        return (S.T @ K @ S).tocsr(), b[free], free, info
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        with timer("assemble"):
+            K, b, free, binfo = self.assemble(scene, params)
+        with timer("solve"):
+            u, info = solve_linear(K, b, what=f"pd-bond-pair ({params['variant']}, {params['ends']} ends)")
+        x = np.linspace(0.0, scene.length, params["points"])
+        w = np.zeros(len(x))
+        w[free] = u
+        dx = x[1] - x[0]
+        info.update(binfo, spacing=dx, horizon_factor=params["horizon"],
+                    horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w,
+                      rotation=np.gradient(w, dx, edge_order=2), dofs=len(free), timings=timer.timings, info=info)
+
+
+MODELS = [PDBondPair()]
