@@ -17,8 +17,10 @@ under uniform curvature (reconstructed in the design note, the seed is truncated
   alpha = EI / Σ_j xi_j² beta_j dx, so a uniform curvature field gives exactly EI kappa² / 2.
 
 The stencil reaches 2J points past an end. Ends (``ends`` option):
-``mirror`` (clamped: support fixed, w_{-i} = w_i; pinned: w_{-i} = -w_i; guided: w_{-i} = w_i; free:
-no ghosts, the families are truncated) or ``taylor`` (the degree-4 polynomial ghost points of
+``mirror`` (the energy form: clamped = reflection of the real points through the normal to the clamp,
+pinned = point reflection through the support, guided = reflection through the support's vertical,
+free = no ghosts, truncated families; the linear path is the tangent stiffness of that energy at the
+undeformed state, the nonlinear path its Newton solution) or ``taylor`` (the degree-4 polynomial ghost points of
 ``pd_eb.taylor_ghosts``: end loads enter through the moment and shear at the end).
 """
 
@@ -83,10 +85,31 @@ class PDBondPair(Model):
         Option("variant", str, "corrected", "paper (continuous alpha) | corrected (discrete alpha)",
                choices=("paper", "corrected")),
         Option("ends", str, "taylor", "boundary ghost rule: mirror | taylor", choices=("mirror", "taylor")),
+        Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
+        Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
     )
+    axial = True
+
+    def energy_model(self, scene: Scene, params: dict):
+        from ._bond_pair_nonlinear import NonlinearBondPair
+
+        n = params["points"]
+        dx = scene.length / (n - 1)
+        j, beta = family(params["horizon"], dx, params["variant"])
+        return NonlinearBondPair(scene, n, j, beta, self.alpha(scene.EI, params["horizon"], dx, params["variant"]))
 
     def assemble(self, scene: Scene, params: dict):
-        """(K, b, free, info) after the supports: K w_free = b (per unit length)."""
+        """(K, b, free, info) after the supports.
+
+        ``ends = taylor``: the strong-form operator on w (one DOF per point, per unit length).
+        ``ends = mirror``: the tangent stiffness of the full energy at the undeformed state (u and w per
+        point, forces), i.e. exactly the linearisation of the nonlinear path."""
+        if params["ends"] == "mirror":
+            model = self.energy_model(scene, params)
+            K = model.tangent(np.zeros(2 * model.n), 0.0)
+            free = model.free
+            b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
+            return K[free][:, free].tocsr(), b[free], free, {"ghosts_per_end": model.G, "form": "energy tangent"}
         n = params["points"]
         x = np.linspace(0.0, scene.length, n)
         dx = x[1] - x[0]
@@ -130,19 +153,46 @@ class PDBondPair(Model):
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
         return (S.T @ K @ S).tocsr(), b[free], free, info
 
+    def alpha(self, EI: float, m: float, dx: float, variant: str) -> float:
+        j, beta = family(m, dx, variant)
+        if variant == "paper":
+            return 3.0 * EI / ((m + 0.015) * dx) ** 3
+        return EI / np.sum((j * dx) ** 2 * beta * dx)
+
+    def solve_nonlinear(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        dx = scene.length / (params["points"] - 1)
+        with timer("assemble"):
+            model = self.energy_model(scene, params)
+        with timer("solve"):
+            P, shots, iters = model.solve(steps=params["steps"])
+        X0 = model.X0
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=X0[:, 0], w=P[:, 1],
+                      fields={"u": P[:, 0]}, dofs=len(model.free), timings=timer.timings,
+                      info={"load_steps": shots, "newton_iterations": iters, "ends": "mirror (nonlinear reflections)",
+                            "spacing": dx, "horizon_factor": params["horizon"]})
+
     def solve(self, scene: Scene, params: dict) -> Result:
+        if params["nonlinear"]:
+            return self.solve_nonlinear(scene, params)
         timer = Timer()
         with timer("assemble"):
             K, b, free, binfo = self.assemble(scene, params)
         with timer("solve"):
             u, info = solve_linear(K, b, what=f"pd-bond-pair ({params['variant']}, {params['ends']} ends)")
         x = np.linspace(0.0, scene.length, params["points"])
-        w = np.zeros(len(x))
-        w[free] = u
+        fields = {}
+        if params["ends"] == "mirror":
+            full = np.zeros(2 * len(x))
+            full[free] = u
+            w, fields["u"] = full[1::2], full[0::2]
+        else:
+            w = np.zeros(len(x))
+            w[free] = u
         dx = x[1] - x[0]
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"],
                     horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w,
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, fields=fields,
                       rotation=np.gradient(w, dx, edge_order=2), dofs=len(free), timings=timer.timings, info=info)
 
 
