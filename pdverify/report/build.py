@@ -61,9 +61,12 @@ def _read(d: Path, name: str) -> pd.DataFrame:
 
 def _label(r) -> str:
     parts = [str(r["model"])]
-    for k in ("variant", "element", "form"):
-        if k in r and isinstance(r[k], str) and r[k]:
-            parts.append(r[k])
+    opts = json.loads(r["options"]) if isinstance(r.get("options"), str) else {}
+    for k, v in sorted(opts.items()):
+        if k in ("horizon", "degree"):
+            continue
+        if isinstance(v, str) or isinstance(v, bool):
+            parts.append(f"{v}" if isinstance(v, str) else f"{k}={v}")
     for k, short in (("points", "n"), ("horizon_factor", "m"), ("degree", "P"), ("slenderness", "L/h")):
         if k in r and pd.notna(r[k]):
             parts.append(f"{short}={fmt(r[k])}")
@@ -87,7 +90,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
             curves, ref = [], None
             # at most one curve per (model, variant): the finest grid
-            for _, grp in gs.groupby(["model", gs["variant"].fillna("")], sort=True):
+            for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
                 path = d / "cases" / f"{r['case_id']}.json"
                 if not path.exists():
@@ -114,7 +117,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         lk = ok[ok["slenderness"].notna()]
         for scene, g in lk.groupby("scene", sort=False):
             groups = []
-            for key, gg in g.groupby(["model", g["variant"].fillna(""), g["points"].fillna(-1), g["degree"].fillna(-1)]):
+            for key, gg in g.groupby(["model", g["options"].fillna(""), g["points"].fillna(-1)]):
                 gg = gg.sort_values("slenderness")
                 groups.append((_label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
                                gg["slenderness"].to_numpy(float), gg["err_max"].to_numpy(float)))
@@ -137,7 +140,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         benchmarks=table(bench, ["name", "model", "variant", "reference", "target", "computed", "ratio", "rel_error",
                                  "err_max", "observed_order", "tolerance", "verdict", "case_id"], row_class="verdict"),
         scenes=scenes, convergence_figs=conv_figs,
-        convergence=table(conv, ["scene", "model", "variant", "horizon_factor", "degree", "slenderness", "n_grids",
+        convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
         locking_figs=lock_figs, locking=table(lock), speed_figs=speed_figs, speed_summary=table(sesum),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",

@@ -68,6 +68,8 @@ def run_case(case: Case) -> dict:
         model = get_model(case.model)
         params = model.resolve(scene, case.given)
         row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
+        # every option but the grid: the key of a convergence series (variant, horizon, ends, ...)
+        row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
         result = run(scene, model, **case.given)
         x = np.asarray(result.x, float)
         w_ref = reference_at(case, scene, x)
@@ -214,7 +216,8 @@ def _save(df: pd.DataFrame, out: Path, name: str) -> None:
         pass
 
 
-GROUP = ["scene", "model", "variant", "horizon_factor", "degree", "slenderness"]
+GROUP = ["scene", "model", "options", "slenderness"]
+SHOWN = ["variant", "horizon_factor", "degree"]
 
 
 def convergence_table(df: pd.DataFrame) -> pd.DataFrame:
@@ -228,7 +231,7 @@ def convergence_table(df: pd.DataFrame) -> pd.DataFrame:
             continue
         p, r2 = observed_order(g["spacing"], g["err_max"])
         gc = gci(g["spacing"], g["w_at_max"])
-        rows.append(dict(zip(GROUP, key), n_grids=int(g["spacing"].nunique()),
+        rows.append(dict(zip(GROUP, key), **{c: g[c].iloc[0] for c in SHOWN if c in g}, n_grids=int(g["spacing"].nunique()),
                          spacings=" ".join(f"{v:.4g}" for v in g["spacing"]),
                          errors=" ".join(f"{v:.3e}" for v in g["err_max"]),
                          observed_order=p, r2=r2, **gc))
@@ -238,12 +241,13 @@ def convergence_table(df: pd.DataFrame) -> pd.DataFrame:
 def locking_table(df: pd.DataFrame) -> pd.DataFrame:
     ok = df[(df["status"] == "ok") & df["slenderness"].notna()]
     rows = []
-    keys = ["scene", "model", "variant", "points", "horizon_factor", "degree"]
+    keys = ["scene", "model", "options", "points"]
     for key, g in ok.groupby(keys, dropna=False):
         if g["slenderness"].nunique() < 2:
             continue
         slope, at1 = locking_slope(g["slenderness"], g["err_max"])
-        rows.append(dict(zip(keys, key), n=int(len(g)), locking_slope=slope, slenderness_at_1pct=at1))
+        rows.append(dict(zip(keys, key), **{c: g[c].iloc[0] for c in SHOWN if c in g}, n=int(len(g)),
+                         locking_slope=slope, slenderness_at_1pct=at1))
     return pd.DataFrame(rows)
 
 
@@ -271,10 +275,13 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.Da
     for b in study.benchmarks:
         opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position")}
         m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"]) & (df["status"] == "ok")
-        for k, v in opts.items():
-            if k in df:
-                m &= df[k] == v
-        hit = df[m]
+
+        def matches(r):
+            have = dict(json.loads(r["options"]), points=r["points"])
+            return all(k in have and have[k] == v for k, v in opts.items())
+
+        cand = df[m]
+        hit = cand[cand.apply(matches, axis=1)] if len(cand) else cand
         if hit.empty:
             rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing"})
             continue
@@ -285,8 +292,8 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.Da
         tol = b.get("tolerance", 0.01)
         order = float("nan")
         if not conv.empty:
-            c = conv[(conv["scene"] == r["scene"]) & (conv["model"] == r["model"])
-                     & (conv["variant"].astype(str) == str(r.get("variant")))]
+            c = conv[(conv["scene"] == r["scene"]) & (conv["model"] == r["model"]) & (conv["options"] == r["options"])
+                     & (conv["slenderness"].fillna(-1) == (r["slenderness"] if pd.notna(r["slenderness"]) else -1))]
             if len(c):
                 order = c["observed_order"].iloc[0]
         rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],

@@ -36,6 +36,7 @@ from ..registry import get_model
 from ..scene import Scene, load_scene
 
 RUN_KEYS = {"model", "reference", "scenes"}
+STORE_SCHEMA = 2  # bump when a case record's content changes: older case files are then recomputed
 BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position"}
 
 
@@ -51,7 +52,7 @@ class Case:
     @property
     def case_id(self) -> str:
         key = json.dumps([self.scene_text, self.model, sorted(self.given.items()), self.slenderness,
-                          sorted(self.reference.items()), __version__], sort_keys=True, default=str)
+                          sorted(self.reference.items()), __version__, STORE_SCHEMA], sort_keys=True, default=str)
         return hashlib.sha256(key.encode()).hexdigest()[:16]
 
     def scene(self) -> Scene:
