@@ -93,16 +93,26 @@ def solve(
     option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="any other model option, key=value"),
     fmt: Format = typer.Option(Format.table, "--format", help="output format"),
     out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
+    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
 ):
-    """Solve one scene with one model and print the point results."""
+    """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
     from .registry import get_model, run
     from .scene import load_scene
 
     sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
-    m = get_model(model)
     given = dict(points=points, spacing=spacing, horizon=horizon, degree=degree, variant=variant,
                  element=element, layers=layers, form=form)
     given.update(parse_options(option))
+    if model == "auto":
+        from .advise import advise as _advise
+
+        if tolerance is None:
+            raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
+        choice = _advise(sc, tolerance).choice
+        typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
+        model = choice.model
+        given = dict(choice.options, points=choice.points)
+    m = get_model(model)
     result = run(sc, m, **given)
     if out is not None and out.suffix in result.writers:
         result.writers[out.suffix](str(out))
@@ -161,6 +171,21 @@ def study(
 
         index = build_report(out)
         typer.echo(f"report: {index}")
+
+
+@app.command()
+@user_errors
+def advise(
+    scene: Path = typer.Argument(..., help="scene TOML file"),
+    tolerance: float = typer.Option(1e-3, "--tolerance", help="relative error you can accept"),
+    budget: float = typer.Option(30.0, "--budget", help="seconds per candidate model for the grid search"),
+):
+    """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
+    from .advise import advise as _advise
+    from .advise import format_advice
+    from .scene import load_scene
+
+    typer.echo(format_advice(_advise(load_scene(scene), tolerance, budget)))
 
 
 @app.command()

@@ -89,6 +89,8 @@ class Model:
     curved: bool = False  # solves curved axes
     axial: bool = False  # carries axial loads (loads[i].axial)
     bending: bool = True  # carries transverse loads (loads[i].value)
+    theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum (what it can represent)
+    reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
 
     def check(self, scene: Scene) -> list[str]:
         """Reasons this model cannot solve ``scene`` (empty when it can)."""

@@ -184,6 +184,7 @@ def linear_shapes(xi, l):
 
 
 class FemTimoshenko(Model):
+    theory = "timoshenko"
     name = "fem-timoshenko"
     title = "Timoshenko beam element (interdependent interpolation; locking-free)"
     source = "IIE element (exact homogeneous solutions, nodally exact); 'reduced'/'full' linear for contrast"

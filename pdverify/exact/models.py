@@ -14,8 +14,11 @@ class ExactBeam(Model):
     options = (POINTS,)
     source = "closed-form integration of the beam equations (textbook)"
 
+    reference = True
+
     def __init__(self, name: str, shear: bool, title: str):
         self.name, self.shear, self.title = name, shear, title
+        self.theory = "timoshenko" if shear else "euler-bernoulli"
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
         return solve_straight(scene, self.shear).fields(x)

@@ -65,8 +65,8 @@ def _label(r) -> str:
     for k, v in sorted(opts.items()):
         if k in ("horizon", "degree"):
             continue
-        if isinstance(v, str) or isinstance(v, bool):
-            parts.append(f"{v}" if isinstance(v, str) else f"{k}={v}")
+        if isinstance(v, str):
+            parts.append(v)
     for k, short in (("points", "n"), ("horizon_factor", "m"), ("degree", "P"), ("slenderness", "L/h")):
         if k in r and pd.notna(r[k]):
             parts.append(f"{short}={fmt(r[k])}")
