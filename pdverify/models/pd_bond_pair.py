@@ -34,7 +34,7 @@ from ..linalg import solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import body_loads, end_loads, taylor_ghosts
+from .pd_eb import body_loads, boundary_layer_warnings, end_loads, taylor_ghosts
 
 
 def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
@@ -190,6 +190,9 @@ class PDBondPair(Model):
             w = np.zeros(len(x))
             w[free] = u
         dx = x[1] - x[0]
+        flags = boundary_layer_warnings(scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4)
+        if flags:
+            info.setdefault("warnings", []).extend(flags)
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"],
                     horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, fields=fields,

@@ -148,6 +148,22 @@ def end_loads(scene: Scene) -> tuple[dict, dict]:
     return P, C
 
 
+def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
+    """Point loads strictly inside the first ``reach`` spacings of an end: the ghost polynomial fitted
+    there assumes a smooth solution, so such a load is under-resolved (measured: 85-300 % error for a
+    force one spacing from the support at 101 points, 1e-4 at 1601). Flag it instead of hiding it."""
+    dx = x[1] - x[0]
+    out = []
+    for i, load in enumerate(scene.loads):
+        if isinstance(load, (PointForce, PointMoment)):
+            d = min(load.position, scene.length - load.position)
+            if 1e-12 * scene.length < d < reach * dx:
+                out.append(f"loads[{i}] at {load.position:g} m is {d / dx:.3g} spacings from an end, inside the "
+                           f"boundary layer of {reach} spacings: expect large errors; use at least "
+                           f"{int(np.ceil(reach * scene.length / d)) + 1} points")
+    return out
+
+
 # -- Taylor ghost points (corrected variant) -------------------------------------------------
 
 _FIXED = {"clamped": (0, 1), "pinned": (0, 2), "free": (2, 3), "guided": (1, 3)}
@@ -315,14 +331,23 @@ class PDEulerBernoulli(Model):
         rot = np.gradient(w, dx, edge_order=2)
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
+        flags = boundary_layer_warnings(scene, x, 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4)
+        if flags:
+            info.setdefault("warnings", []).extend(flags)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=rot,
                       dofs=len(free), timings=timer.timings, info=info)
 
 
 def stable_time_step(K: sp.spmatrix, density: float) -> float:
-    """Central-difference limit dt = 2 / omega_max, omega_max² <= max row sum |K| / rho (Gershgorin)."""
-    lam = float(np.abs(K).sum(axis=1).max()) / density
-    return 2.0 / np.sqrt(lam)
+    """Central-difference limit dt = 2 / omega_max with omega_max² the largest eigenvalue of K / rho
+    (ARPACK up to 5,000 unknowns; above, the Gershgorin bound max row sum |K|, which is safe)."""
+    if K.shape[0] <= 5000:
+        import scipy.sparse.linalg as spla
+
+        lam = float(np.abs(spla.eigs(K.astype(float), k=1, which="LM", return_eigenvectors=False)[0]))
+    else:
+        lam = float(np.abs(K).sum(axis=1).max())
+    return 2.0 / np.sqrt(lam / density)
 
 
 def simulate(scene: Scene, params: dict, t_end: float, dt: float | None = None, damping: float = 0.0,

@@ -1,0 +1,63 @@
+"""Golden results of every paper benchmark: regenerate with ``python -m pdverify.golden --regenerate``.
+
+A change to a golden file must be explained in the commit message (which model changed and why).
+The tests (tests/test_golden.py) compare every curve to rtol 1e-10 of its largest value.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+import numpy as np
+
+from .registry import run
+from .scene import load_scene
+
+ROOT = Path(__file__).resolve().parents[1]
+GOLDEN = ROOT / "tests" / "golden"
+
+# (scene, model, options): the configurations the papers' benchmarks use
+CASES = [
+    *[(f"paper_diyaroglu/{s}.toml", "pd-eb", {"variant": v, "points": 101})
+      for s in ("clamped_free", "clamped_clamped", "simply_supported") for v in ("paper", "corrected")],
+    *[(f"paper_diyaroglu/{s}.toml", "fem-eb", {"points": 101}) for s in ("clamped_free", "clamped_clamped", "simply_supported")],
+    *[(f"paper_diyaroglu/{s}.toml", "pd-bond-pair", {"variant": v, "ends": e, "points": 201})
+      for s in ("clamped_free", "clamped_clamped", "simply_supported") for v, e in (("paper", "mirror"), ("corrected", "taylor"))],
+    *[(f"paper_yang/{s}.toml", "fem-timoshenko", {"points": 101})
+      for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")],
+    ("paper_moyer/cantilever_table1.toml", "fem-timoshenko", {"points": 101}),
+]
+
+
+def key(scene: str, model: str, options: dict) -> str:
+    opts = "_".join(f"{k}-{v}" for k, v in sorted(options.items()))
+    return f"{Path(scene).parent.name}__{Path(scene).stem}__{model}__{opts}"
+
+
+def compute(scene: str, model: str, options: dict) -> dict:
+    r = run(load_scene(ROOT / "studies" / scene), model, **options)
+    return {"scene": scene, "model": model, "options": options, "x": r.x.tolist(), "w": np.asarray(r.w).tolist()}
+
+
+def regenerate() -> list[Path]:
+    GOLDEN.mkdir(parents=True, exist_ok=True)
+    out = []
+    for scene, model, options in CASES:
+        p = GOLDEN / f"{key(scene, model, options)}.json"
+        p.write_text(json.dumps(compute(scene, model, options)))
+        out.append(p)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--regenerate", action="store_true", help="rewrite tests/golden/*.json")
+    if ap.parse_args().regenerate:
+        for p in regenerate():
+            print(p.relative_to(ROOT))
+
+
+if __name__ == "__main__":
+    main()

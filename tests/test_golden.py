@@ -1,0 +1,22 @@
+"""Regression: every paper benchmark's curve against its golden file (rtol 1e-10 of the largest value).
+
+Regenerate with `python -m pdverify.golden --regenerate` and explain the change in the commit message.
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+from pdverify.golden import CASES, GOLDEN, compute, key
+
+
+@pytest.mark.parametrize("scene,model,options", CASES, ids=[key(*c) for c in CASES])
+def test_golden(scene, model, options):
+    path = GOLDEN / f"{key(scene, model, options)}.json"
+    assert path.exists(), f"missing golden file {path.name}: run python -m pdverify.golden --regenerate"
+    want = json.loads(path.read_text())
+    got = compute(scene, model, options)
+    assert np.allclose(got["x"], want["x"], rtol=0, atol=1e-14)
+    w, w0 = np.array(got["w"]), np.array(want["w"])
+    assert np.abs(w - w0).max() <= 1e-10 * np.abs(w0).max()
