@@ -83,7 +83,7 @@ def test_linear_and_nonlinear_paths_agree_for_small_loads():
                                                       {"type": "point_moment", "position": 1.4, "value": 2e-4},
                                                       {"type": "distributed", "value": -1e-3, "start": 0.3}]))
     lin = run(sc, "pd-bond-pair", points=61, ends="mirror")
-    nl = run(sc, "pd-bond-pair", points=61, nonlinear=True, steps=1)
+    nl = run(sc, "pd-bond-pair", points=61, nonlinear=True, steps=1, ends="mirror")
     assert np.abs(np.gradient(lin.w, lin.x)).max() < 1e-4  # rotations below 1e-4 rad
     assert np.abs(nl.w - lin.w).max() < 1e-6 * np.abs(lin.w).max()
 
@@ -95,7 +95,7 @@ def test_large_rotation_tip_moment_elastica(frac):
     EI = parse_scene(scene_dict()).EI
     M = frac * np.pi * EI / L
     sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_moment", "position": L, "value": M}]))
-    r = run(sc, "pd-bond-pair", points=201, nonlinear=True, steps=10)
+    r = run(sc, "pd-bond-pair", points=201, nonlinear=True, steps=10, ends="mirror")
     R = EI / M
     tip = np.array([L + r.fields["u"][-1], r.w[-1]])
     exact = np.array([R * np.sin(L / R), R * (1 - np.cos(L / R))])
@@ -139,3 +139,11 @@ def test_consistent_tangent_matches_central_differences():
         e[i] = h
         Kfd[:, i] = (model.gradient(U + e, 0.7) - model.gradient(U - e, 0.7)) / (2 * h)
     assert np.abs(K - Kfd).max() < 1e-6 * np.abs(K).max()
+
+
+def test_nonlinear_path_needs_the_mirror_ghosts():
+    from pdverify.errors import InputError
+
+    sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_moment", "position": 2.0, "value": 1.0}]))
+    with pytest.raises(InputError, match="ends = taylor"):
+        run(sc, "pd-bond-pair", nonlinear=True)

@@ -100,7 +100,16 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 if ref is None or len(c["x"]) > len(ref[0]):
                     ref = (np.array(c["x"]), np.array(c["w_ref"]))
             title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
-            figs.append(figures.deflection(curves, ref, title))
+            if ref is not None and not np.all(np.isnan(ref[1])):
+                figs.append(figures.deflection(curves, ref, title))
+            else:
+                figs.append(figures.deflection(curves, None, title))
+            for _, r in gs.iterrows():
+                path = d / "cases" / f"{r['case_id']}.json"
+                c = json.loads(path.read_text())["curve"] if path.exists() else {}
+                if c.get("load_steps"):
+                    exact = [(np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st]
+                    figs.append(figures.deformed_shapes(c["load_steps"], f"{_label(r)}: deformed shapes", exact))
         scenes.append({"name": g["scene"].iloc[0], "file": sfile, "reference": g["reference"].iloc[0], "figures": figs})
 
     conv_figs = []

@@ -70,3 +70,19 @@ def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabe
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     return _svg(fig)
+
+
+def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray, np.ndarray]] | None = None) -> str:
+    """Deformed axis (x, z) at the recorded load steps of a nonlinear solve, equal axes."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.2))
+    for s in steps:
+        ax.plot(s["x"], s["z"], "-", lw=1.5, label=f"load factor {s['factor']:.2f}")
+    for i, (xe, ze) in enumerate(exact or []):
+        ax.plot(xe, ze, "k:", lw=1, label="exact elastica" if i == 0 else None)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("z (m)")
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _svg(fig)

@@ -144,11 +144,12 @@ def load_study(path: str | Path) -> Study:
         except InputError as exc:
             errors.extend(exc.lines)
     ref_given = {k: v for k, v in reference.items() if k != "model"}
-    try:
-        ref_model = get_model(reference["model"])
-    except InputError as exc:
-        errors.append(f"{path}: reference: {exc.lines[0]}")
-        ref_model = None
+    ref_model = None
+    if reference["model"] != "none":
+        try:
+            ref_model = get_model(reference["model"])
+        except InputError as exc:
+            errors.append(f"{path}: reference: {exc.lines[0]}")
 
     study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])))
     for i, run in enumerate(runs):
@@ -182,11 +183,13 @@ def load_study(path: str | Path) -> Study:
             for sfile in run_scenes:
                 stext, sc = scene_objs[sfile]
                 ref_given = {k: v for k, v in run_ref.items() if k != "model"}
-                try:
-                    ref_model = get_model(run_ref["model"])
-                except InputError as exc:
-                    errors.append(f"{where}: reference: {exc.lines[0]}")
-                    continue
+                ref_model = None
+                if run_ref["model"] != "none":  # "none": no reference (e.g. large rotations), no errors
+                    try:
+                        ref_model = get_model(run_ref["model"])
+                    except InputError as exc:
+                        errors.append(f"{where}: reference: {exc.lines[0]}")
+                        continue
                 for sl in slen:
                     scx = sc.with_slenderness(sl) if sl else sc
                     try:
