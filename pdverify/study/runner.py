@@ -104,9 +104,7 @@ def write_atomic(path: Path, text: str) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=".tmp-", suffix=path.suffix)
     with os.fdopen(fd, "w") as f:
-        f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
+        f.write(text)  # no fsync: the rename is atomic against a killed process, which is what resume needs
     os.chmod(tmp, 0o644)
     os.replace(tmp, path)
 
@@ -122,7 +120,7 @@ def read_case(path: Path) -> dict | None:
     return rec
 
 
-def _jsonable(rec: dict) -> str:
+def _clean(rec: dict) -> dict:
     def clean(v):
         if isinstance(v, float) and not np.isfinite(v):
             return None
@@ -134,7 +132,7 @@ def _jsonable(rec: dict) -> str:
 
     rec = dict(rec)
     rec["row"] = {k: clean(v) for k, v in rec["row"].items()}
-    return json.dumps(rec, default=str)
+    return rec
 
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -158,8 +156,9 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     resumed = len(done)
 
     def finish(rec):
-        write_atomic(cases_dir / f"{rec['row']['case_id']}.json", _jsonable(rec))
-        done[rec["row"]["case_id"]] = json.loads(_jsonable(rec))
+        rec = _clean(rec)
+        write_atomic(cases_dir / f"{rec['row']['case_id']}.json", json.dumps(rec, default=str, separators=(",", ":")))
+        done[rec["row"]["case_id"]] = rec
 
     bar = _progress(len(todo), progress)
     if scheduler:
