@@ -323,17 +323,22 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
     return scene
 
 
-def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene TOML file."""
+def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
+    """(text, parsed table) of a TOML file, or InputError naming the file and what is wrong."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise InputError(f"{path}: no such scene file; check the path") from None
+        raise InputError(f"{path}: no such {what} file; check the path") from None
     except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read the scene file ({exc.__class__.__name__}: {exc})") from None
+        raise InputError(f"{path}: cannot read the {what} file ({exc.__class__.__name__}: {exc})") from None
     try:
-        data = tomllib.loads(text)
+        return text, tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{path}: TOML syntax error: {exc}") from None
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene TOML file."""
+    _, data = read_toml(path, "scene")
     return parse_scene(data, source=str(path))

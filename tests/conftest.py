@@ -2,6 +2,8 @@ import copy
 
 import pytest
 
+from pdverify.scene import is_mechanism
+
 BASE = {
     "name": "test beam",
     "beam": {"length": 2.0},
@@ -10,6 +12,20 @@ BASE = {
     "supports": {"left": "clamped", "right": "free"},
     "loads": [],
 }
+
+
+SUPPORTS = ("clamped", "pinned", "free", "guided")
+# every support pair that holds the beam (the mechanisms are rejected by the scene validator)
+PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
+# forces and moments anywhere, also at both ends, uniform and sine loads on partial spans
+MIXED_LOADS = [
+    {"type": "point_force", "position": 0.7, "value": -300.0},
+    {"type": "point_moment", "position": 1.3, "value": 150.0},
+    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
+    {"type": "distributed", "value": 400.0, "shape": "sine"},
+    {"type": "point_force", "position": 2.0, "value": 80.0},
+    {"type": "point_moment", "position": 0.0, "value": -60.0},
+]
 
 
 def scene_dict(left="clamped", right="free", loads=(), **over):

@@ -6,20 +6,11 @@ import pytest
 from pdverify.exact.straight import solve_straight
 from pdverify.models.pd_bond_pair import family, spring_constants
 from pdverify.registry import run
-from pdverify.scene import is_mechanism, parse_scene
+from pdverify.scene import parse_scene
 
-from conftest import scene_dict
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-S = ("clamped", "pinned", "free", "guided")
-PAIRS = [(l, r) for l in S for r in S if not is_mechanism(l, r)]
-LOADS = [
-    {"type": "point_force", "position": 0.7, "value": -300.0},
-    {"type": "point_moment", "position": 1.3, "value": 150.0},
-    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
-    {"type": "distributed", "value": 400.0, "shape": "sine"},
-    {"type": "point_force", "position": 2.0, "value": 80.0},
-    {"type": "point_moment", "position": 0.0, "value": -60.0},
-]
+LOADS = MIXED_LOADS
 
 
 def err(scene, **opts):

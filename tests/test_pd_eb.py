@@ -9,9 +9,9 @@ from pdverify.errors import SolveError
 from pdverify.exact.straight import solve_straight
 from pdverify.models.pd_eb import PDEulerBernoulli, curvature_weights, simulate
 from pdverify.registry import run
-from pdverify.scene import is_mechanism, load_scene, parse_scene
+from pdverify.scene import load_scene, parse_scene
 
-from conftest import scene_dict
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 ROOT = Path(__file__).parents[1]
 PAPER = {f: load_scene(ROOT / f"studies/paper_diyaroglu/{f}.toml") for f in ("clamped_free", "clamped_clamped", "simply_supported")}
@@ -71,16 +71,7 @@ def test_each_correction_step_measured():
     assert e_paper > 5e-3 and e_corr < 5e-4 and e_corr < e_paper / 20
 
 
-SUPPORTS = ("clamped", "pinned", "free", "guided")
-PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
-LOADS = [
-    {"type": "point_force", "position": 0.7, "value": -300.0},
-    {"type": "point_moment", "position": 1.3, "value": 150.0},
-    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
-    {"type": "distributed", "value": 400.0, "shape": "sine"},
-    {"type": "point_force", "position": 2.0, "value": 80.0},
-    {"type": "point_moment", "position": 0.0, "value": -60.0},
-]
+LOADS = MIXED_LOADS
 
 
 @pytest.mark.parametrize("left,right", PAIRS)

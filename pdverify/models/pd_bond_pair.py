@@ -34,7 +34,7 @@ from ..linalg import solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import body_loads, boundary_layer_warnings, end_loads, taylor_ghosts
+from .pd_eb import body_loads, boundary_layer_warnings, end_loads, partial_volumes, taylor_ghosts
 
 
 def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
@@ -43,10 +43,7 @@ def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
         J = int(np.floor(m + 0.015 + 1e-12))
         j = np.arange(1, J + 1)
         return j, np.ones(J)
-    J = int(np.ceil(m + 0.5 - 1e-12))
-    j = np.arange(1, J + 1)
-    beta = np.clip(m - (j - 0.5), 0.0, 1.0)
-    return j[beta > 0], beta[beta > 0]
+    return partial_volumes(m)
 
 
 def spring_constants(EI: float, m: float, dx: float, variant: str) -> np.ndarray:

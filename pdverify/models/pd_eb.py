@@ -49,6 +49,14 @@ from ..scene import Distributed, PointForce, PointMoment, Scene
 # -- kernels (arrays in, arrays out) ---------------------------------------------------------
 
 
+def partial_volumes(m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Family offsets j and volume fractions beta_j of the cells [j - 1/2, j + 1/2] dx inside m dx."""
+    J = int(np.ceil(m + 0.5 - 1e-12))
+    j = np.arange(1, J + 1)
+    beta = np.clip(m - (j - 0.5), 0.0, 1.0)
+    return j[beta > 0], beta[beta > 0]
+
+
 def curvature_weights(m: float, dx: float, variant: str) -> np.ndarray:
     """c_j, j = 1..J, of kappa_k = Σ_j c_j (w_{k+j} + w_{k-j} - 2 w_k) (Eq. 11a with Eq. 32 or discrete)."""
     if variant == "paper":
@@ -56,11 +64,7 @@ def curvature_weights(m: float, dx: float, variant: str) -> np.ndarray:
         J = int(np.floor(delta / dx + 1e-12))
         j = np.arange(1, J + 1)
         return dx / (delta * j**2 * dx**2)  # d V / xi² with d = 1/(A delta), V = A dx
-    J = int(np.ceil(m + 0.5 - 1e-12))
-    j = np.arange(1, J + 1)
-    beta = np.clip(m - (j - 0.5), 0.0, 1.0)
-    keep = beta > 0
-    j, beta = j[keep], beta[keep]
+    j, beta = partial_volumes(m)
     return beta / (j**2 * dx**2 * beta.sum())
 
 

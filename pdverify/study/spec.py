@@ -33,7 +33,7 @@ from pathlib import Path
 from .. import __version__
 from ..errors import InputError
 from ..registry import get_model
-from ..scene import Scene, load_scene
+from ..scene import Scene, load_scene, read_toml
 
 RUN_KEYS = {"model", "reference", "scenes"}
 STORE_SCHEMA = 2  # bump when a case record's content changes: older case files are then recomputed
@@ -91,16 +91,7 @@ def _as_list(v):
 def load_study(path: str | Path) -> Study:
     """Read a study file and validate every scene, model, option and reference. Raises InputError."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such study file; check the path") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read the study file ({exc})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(f"{path}: TOML syntax error: {exc}") from None
+    text, data = read_toml(path, "study")
     errors: list[str] = []
     allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks"}
     for key in data:
