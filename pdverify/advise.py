@@ -2,12 +2,15 @@
 
 1. What the scene needs. Curved axis -> models with ``curved``; shear: the exact Euler–Bernoulli and
    Timoshenko solutions of the scene are compared; when the shear deflection is below half the tolerance,
-   Euler–Bernoulli models qualify, else only models whose ``theory`` includes shear. (No plane-stress
-   model is installed yet: for very thick beams the Timoshenko-vs-2D gap is reported as not checked.)
-2. The grid, per candidate, from an a-posteriori estimate on this very scene: nested grids
-   N, 2N-1, 4N-3 ...; the observed order p from three grids and the Richardson estimate
-   |w_2 - w_3| / (2^p - 1) of the finest grid's error (max over the common points, relative to max|w|).
-   The measured observed orders of earlier studies (reports/*/convergence.csv) are printed as the prior.
+   Euler–Bernoulli models qualify, else only models whose ``theory`` includes shear. 2D effects: when
+   (h/L)^2 exceeds half the tolerance, a q8 plane-stress solve is compared with exact Timoshenko; if they
+   differ by more than half the tolerance only the continuum model qualifies. Dynamics: the scene format
+   has no time-dependent loading yet, so the answer is always a static model.
+2. The grid, per candidate: earlier studies' results (reports/*/results.csv, clean convergence series of
+   the same model and options) predict the points needed; the ladder of nested grids N, 2N-1, 4N-3 starts
+   two refinements below that prediction and stops when the a-posteriori estimate on this very scene
+   (observed order p from three grids, Richardson |w_2 - w_3| / (2^p - 1), relative to max|w|) is below
+   the tolerance.
 3. The cheapest candidate whose estimate is below the tolerance wins (cost = its measured solve time);
    the runner-up is the next cheapest. On straight scenes the exact error is printed as a check.
 """
@@ -79,9 +82,48 @@ def prior_order(model: str, options: dict, root: Path = Path("reports")) -> str:
     return f"earlier studies: median observed order {np.median(orders):.2f} over {len(orders)} series"
 
 
+def predicted_points(model: str, options: dict, tol: float, root: Path = Path("reports")) -> tuple[int | None, str]:
+    """Points an earlier study says this model needs for tol: fit err = C (dx / L)^p over its ok rows
+    with these options (all scenes), take the most pessimistic scene's C. (None, why) without data."""
+    import json
+
+    import pandas as pd
+
+    rows = []
+    for f in sorted(root.glob("*/results.csv")):
+        try:
+            df = pd.read_csv(f)
+        except Exception:
+            continue
+        if not {"model", "options", "points", "err_max", "status"} <= set(df.columns):
+            continue
+        df = df[(df["model"] == model) & (df["status"] == "ok") & df["err_max"].notna() & (df["err_max"] > 1e-12)]
+        for _, r in df.iterrows():
+            opts = json.loads(r["options"]) if isinstance(r["options"], str) else {}
+            if all(opts.get(k) == v for k, v in options.items()) and pd.isna(r.get("slenderness")):
+                rows.append((f"{r['scene']}|{r['options']}", float(r["points"]), float(r["err_max"])))
+    data = pd.DataFrame(rows, columns=["series", "n", "err"])
+    needs, used = [], 0
+    for _, g in data.groupby("series"):  # one convergence series (scene + every option)
+        if g["n"].nunique() < 3:
+            continue
+        lh, le = np.log(1.0 / (g["n"] - 1)), np.log(g["err"])
+        p, c = np.polyfit(lh, le, 1)
+        r2 = 1 - np.sum((le - (p * lh + c)) ** 2) / max(np.sum((le - le.mean()) ** 2), 1e-300)
+        if p > 0.5 and r2 > 0.9:  # a clean discretisation-error series (not round-off, not a plateau)
+            needs.append(int(np.ceil((tol / np.exp(c)) ** (-1.0 / p))) + 1)
+            used += 1
+    if not needs:
+        return None, "no clean convergence series in earlier studies for these options"
+    n = max(needs)
+    return n, f"earlier studies: {used} convergence series predict up to {n} points"
+
+
 def estimate(scene: Scene, name: str, options: dict, tol: float, budget: float, start: int = 11,
              max_points: int = 20_001) -> Candidate | None:
     """Refine nested grids until the Richardson estimate is below tol (or the budget/size runs out)."""
+    if name == "fem-plane-stress":
+        max_points = min(max_points, 401)
     sols, n, spent = [], start, 0.0
     est, order = np.inf, float("nan")
     while n <= max_points:
@@ -110,12 +152,21 @@ def estimate(scene: Scene, name: str, options: dict, tol: float, budget: float, 
         return None
     n_best, r_best, dt_best = sols[-1]
     ex = None
-    if scene.is_straight:
+    prior = prior_order(name, options)
+    if scene.is_straight and models()[name].theory in ("euler-bernoulli", "timoshenko"):
         exw = solve_straight(scene, models()[name].theory != "euler-bernoulli").fields(r_best.x)["w"]
         ex = float(np.abs(r_best.w - exw).max() / np.abs(exw).max())
     return Candidate(name, options, n_best, float(est), order, dt_best, ex,
                      f"three-grid Richardson on this scene (N = {sols[-3][0]}, {sols[-2][0]}, {n_best}; "
-                     f"p = {order:.2f}); {prior_order(name, options)}")
+                     f"p = {order:.2f}); {prior}")
+
+
+def continuum_gap(scene: Scene) -> float:
+    """Relative difference, at the largest deflection, between exact Timoshenko and a q8 plane-stress solve."""
+    r = run(scene, "fem-plane-stress", element="q8", points=161, layers=8)
+    ex = solve_straight(scene, True).fields(r.x)["w"]
+    i = int(np.argmax(np.abs(ex)))
+    return float(abs(r.w[i] / ex[i] - 1)) if ex[i] else 0.0
 
 
 def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_reference: bool = False) -> Advice:
@@ -136,17 +187,34 @@ def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_referen
                 if m.theory == "euler-bernoulli":
                     rejected.append(f"{m.name}: Euler–Bernoulli theory misses the shear deflection ({gap:.1e})")
             cands = [m for m in cands if m.theory != "euler-bernoulli"]
-        if scene.slenderness < 4:
-            needs.append(f"L/h = {scene.slenderness:.2g}: beam theories may differ from 2D elasticity here; "
-                         "no plane-stress model is installed to check it")
-    needs.append("static: the scene has no time-dependent loading")
-    options = {"pd-eb": {"variant": "corrected"}, "pd-bond-pair": {"variant": "corrected", "ends": "taylor"}}
+        twod = (1.0 / scene.slenderness) ** 2  # order of the 2D corrections to beam theory
+        if twod <= tolerance / 2:
+            needs.append(f"beam theory is enough: 2D corrections are of order (h/L)^2 = {twod:.1e} <= tolerance/2")
+        elif "fem-plane-stress" in models() and not models()["fem-plane-stress"].check(scene):
+            gap2 = continuum_gap(scene)
+            if gap2 > tolerance / 2:
+                needs.append(f"2D effects matter: Timoshenko and a q8 plane-stress solution differ by {gap2:.2e} > "
+                             "tolerance/2; only the continuum model qualifies")
+                for m in cands:
+                    rejected.append(f"{m.name}: beam theory misses 2D effects ({gap2:.1e})")
+                cands = [models()["fem-plane-stress"]]
+            else:
+                needs.append(f"beam theory is enough: Timoshenko and q8 plane stress differ by {gap2:.2e}")
+    needs.append("static: the scene format has no time-dependent loading yet, so no time integration is chosen")
+    options = {"pd-eb": {"variant": "corrected"}, "pd-bond-pair": {"variant": "corrected", "ends": "taylor"},
+               "fem-plane-stress": {"element": "q8"}}
     found = []
     for m in cands:
         if m.option("points") is None:
             continue
+        opts = options.get(m.name, {})
+        n_pred, why = predicted_points(m.name, opts, tolerance)
+        # start the ladder two refinements below the prediction, so the three grids end near it
+        start = 11 if n_pred is None else max(11, min(5001, (n_pred - 1) // 4 + 1))
         try:
-            c = estimate(scene, m.name, options.get(m.name, {}), tolerance, budget)
+            c = estimate(scene, m.name, opts, tolerance, budget, start=start)
+            if c is not None:
+                c.basis += f"; start N = {start} ({why})"
         except (InputError, SolveError) as exc:
             rejected.append(f"{m.name}: {exc.lines[0]}")
             continue

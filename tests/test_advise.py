@@ -16,10 +16,19 @@ ROOT = Path(__file__).parents[1]
 
 
 def test_thick_beam_excludes_euler_bernoulli_models():
-    a = advise(load_scene(ROOT / "studies/paper_yang/cc_uniform.toml"), 1e-3)
+    """L/h = 5 at 5 %: shear matters (EB off by 34 %), 2D effects (1.6 %) do not -> a Timoshenko model."""
+    a = advise(load_scene(ROOT / "studies/paper_yang/cc_uniform.toml"), 5e-2)
     assert a.choice.model == "fem-timoshenko"
     assert any("pd-eb" in r and "shear" in r for r in a.rejected)
-    assert a.choice.exact_error < 1e-3
+    assert a.choice.exact_error < 5e-2
+
+
+def test_very_tight_tolerance_on_a_thick_beam_needs_the_continuum():
+    """At 1e-3 even Timoshenko misses the 2D solution (1.6 %): only plane stress qualifies."""
+    a = advise(load_scene(ROOT / "studies/paper_yang/cc_uniform.toml"), 1e-3)
+    assert a.choice.model == "fem-plane-stress"
+    assert any("fem-timoshenko" in r and "2D" in r for r in a.rejected)
+    assert a.choice.estimate < 1e-3
 
 
 def test_slender_beam_loose_tolerance_admits_euler_bernoulli():
@@ -47,9 +56,29 @@ def test_bad_tolerance():
 
 def test_solve_model_auto():
     r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", "studies/paper_yang/cantilever_tip_force.toml",
-                        "--model", "auto", "--tolerance", "1e-3", "--format", "json"], capture_output=True, text=True, cwd=ROOT)
+                        "--model", "auto", "--tolerance", "5e-2", "--format", "json"], capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 0, r.stderr
     assert "auto: fem-timoshenko" in r.stderr and '"model": "fem-timoshenko"' in r.stdout
     r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", "studies/paper_yang/cantilever_tip_force.toml",
                         "--model", "auto"], capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 2 and "needs --tolerance" in r.stderr
+
+
+def test_starting_grid_comes_from_earlier_study_data(tmp_path):
+    """With convergence data of an earlier study on disk, the grid ladder starts near its prediction."""
+    from pdverify.advise import predicted_points
+    from pdverify.study import load_study, run_study
+
+    study = tmp_path / "s.toml"
+    study.write_text(f'''name = "prior"
+scenes = ["{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]
+reference = "exact-eb"
+[[runs]]
+model = "pd-eb"
+variant = "corrected"
+points = [51, 101, 201, 401]
+''')
+    run_study(load_study(study), tmp_path / "reports" / "prior", workers=1, progress=False)
+    n, why = predicted_points("pd-eb", {"variant": "corrected"}, 1e-4, root=tmp_path / "reports")
+    # measured: 9.5e-5 at 401 points (order 2), so about 400 points reach 1e-4
+    assert n is not None and 300 < n < 500, (n, why)
