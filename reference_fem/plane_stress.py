@@ -170,8 +170,23 @@ class FemPlaneStress(Model):
                                            point_data={"displacement": np.column_stack([ux, uy, 0 * ux])},
                                            cell_data={"von_mises": [vm]}))
 
+        def write_png(path):
+            import os
+            import tempfile
+
+            from reference_fem.render import render_png
+
+            fd, tmp = tempfile.mkstemp(suffix=".vtu")
+            os.close(fd)
+            try:
+                write_vtu(tmp)
+                amp = max(np.abs(u).max(), 1e-300)
+                render_png(tmp, path, scale=0.1 * scene.length / amp)  # deformation drawn at 10 % of L
+            finally:
+                os.unlink(tmp)
+
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=xs, w=w, rotation=rot,
-                      dofs=len(free), timings=timer.timings, info=info, writers={".vtu": write_vtu})
+                      dofs=len(free), timings=timer.timings, info=info, writers={".vtu": write_vtu, ".png": write_png})
 
 
 MODELS = [FemPlaneStress()]

@@ -90,3 +90,23 @@ def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
     # the DOM after scripts ran: every inline SVG figure is in it, with a non-empty drawing
     dom = subprocess.run([chromium, *flags, "--dump-dom", url], capture_output=True, text=True, timeout=120).stdout
     assert dom.count("<svg") >= 5 and dom.count("<path") > 50
+
+
+def test_plane_stress_images_and_vtu_links(tmp_path):
+    """A study with a plane-stress case writes its VTU and an off-screen PNG; the report inlines the
+    picture and links the VTU."""
+    p = tmp_path / "ps.toml"
+    p.write_text(f'''name = "ps"
+scenes = ["{ROOT}/studies/paper_yang/cantilever_tip_force.toml"]
+reference = "exact-timoshenko"
+[[runs]]
+model = "fem-plane-stress"
+points = 21
+layers = 4
+''')
+    run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
+    pngs = list((tmp_path / "run" / "vtu").glob("*.png"))
+    assert len(pngs) == 1 and pngs[0].stat().st_size > 2000
+    page = build_report(tmp_path / "run").read_text()
+    assert "data:image/png;base64," in page and f'href="vtu/{pngs[0].stem}.vtu"' in page
+    assert (tmp_path / "run" / "vtu" / f"{pngs[0].stem}.vtu").exists()

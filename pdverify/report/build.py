@@ -140,6 +140,14 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             speed_figs.append(figures.scatter(groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
                                               front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16))))
 
+    images = []
+    for png in sorted((d / "vtu").glob("*.png")) if (d / "vtu").exists() else []:
+        import base64
+
+        r = res[res["case_id"] == png.stem]
+        label = f"{r['scene'].iloc[0]}: {_label(r.iloc[0])}" if len(r) else png.stem
+        images.append({"label": label, "data": base64.b64encode(png.read_bytes()).decode(),
+                       "vtu": f"vtu/{png.stem}.vtu"})
     counts = ", ".join(f"{k}: {v}" for k, v in (meta.get("counts") or {}).items())
     meta_rows = pd.DataFrame([{"item": k, "value": json.dumps(v) if isinstance(v, (dict, list)) else v}
                               for k, v in meta.items() if k not in ("date",)])
@@ -151,7 +159,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         scenes=scenes, convergence_figs=conv_figs,
         convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
-        locking_figs=lock_figs, locking=table(lock), speed_figs=speed_figs, speed_summary=table(sesum),
+        locking_figs=lock_figs, locking=table(lock), images=images, speed_figs=speed_figs, speed_summary=table(sesum),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
                             "assemble_s", "solve_s", "total_s", "cond", "status", "message"]),

@@ -53,8 +53,9 @@ def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
     return CubicSpline(solved.x, solved.w)(x)
 
 
-def run_case(case: Case) -> dict:
-    """Solve one case and measure it. Never raises: a failure is a record with status 'failed'."""
+def run_case(case: Case, artefacts: str | None = None) -> dict:
+    """Solve one case and measure it. Never raises: a failure is a record with status 'failed'.
+    ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id."""
     from ..registry import get_model, run
 
     row = {"case_id": case.case_id, "scene_file": case.scene_file, "model": case.model,
@@ -91,6 +92,15 @@ def run_case(case: Case) -> dict:
             curve["rotation"] = np.asarray(result.rotation).tolist()
         if "load_steps" in result.info:  # deformed shapes of a nonlinear path, for the report
             curve["load_steps"] = result.info["load_steps"]
+        if artefacts and ".vtu" in result.writers:
+            base = Path(artefacts) / case.case_id
+            base.parent.mkdir(parents=True, exist_ok=True)
+            try:
+                result.writers[".vtu"](str(base.with_suffix(".vtu")))
+                if ".png" in result.writers:
+                    result.writers[".png"](str(base.with_suffix(".png")))
+            except PdverifyError as exc:  # a failed picture never fails the case
+                row["artefact_message"] = " ".join(exc.lines)
     except PdverifyError as exc:
         row["status"], row["message"] = "failed", " ".join(exc.lines)
     except Exception as exc:  # a bug in a model must not stop the study; it is recorded
@@ -165,18 +175,18 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         from dask.distributed import Client, as_completed as dask_completed
 
         with Client(scheduler) as client:
-            futures = client.map(run_case, todo, pure=False)
+            futures = client.map(run_case, todo, pure=False)  # remote workers: no artefact files
             for fut in dask_completed(futures):
                 finish(fut.result())
                 bar.advance(failed=done[list(done)[-1]]["row"]["status"] != "ok")
     elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
         for case in todo:
-            rec = run_case(case)
+            rec = run_case(case, str(out / "vtu"))
             finish(rec)
             bar.advance(failed=rec["row"]["status"] != "ok")
     else:
         with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as pool:
-            futs = [pool.submit(run_case, c) for c in todo]
+            futs = [pool.submit(run_case, c, str(out / "vtu")) for c in todo]
             for fut in as_completed(futs):
                 rec = fut.result()
                 finish(rec)
