@@ -190,3 +190,19 @@ class FemPlaneStress(Model):
 
 
 MODELS = [FemPlaneStress()]
+
+
+def write_pvd(path: str, series: list[tuple[float, str]]) -> None:
+    """A ParaView collection (.pvd) of VTU files for a series: [(time or load factor, vtu file), ...];
+    file names are written relative to the .pvd's folder when they are inside it."""
+    import os
+    from xml.sax.saxutils import quoteattr
+
+    base = os.path.dirname(os.path.abspath(path))
+    rows = []
+    for t, f in series:
+        rel = os.path.relpath(os.path.abspath(f), base)
+        rows.append(f'    <DataSet timestep="{float(t)!r}" group="" part="0" file={quoteattr(rel)}/>')
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n')
+        fh.write("\n".join(rows) + "\n  </Collection>\n</VTKFile>\n")

@@ -70,3 +70,22 @@ def test_yang_scenes_solve_with_paper_mesh(name, tmp_path):
     r.writers[".vtu"](str(tmp_path / "r.vtu"))
     m = meshio.read(tmp_path / "r.vtu")
     assert m.point_data["displacement"].shape[1] == 3 and np.all(m.cell_data["von_mises"][0] >= 0)
+
+
+def test_pvd_collection_of_a_load_series(tmp_path):
+    """Three load levels written as VTU and collected in a .pvd that ParaView (and meshio) can follow."""
+    import xml.etree.ElementTree as ET
+
+    from reference_fem.plane_stress import write_pvd
+
+    files = []
+    for k, P in enumerate((-100.0, -200.0, -300.0)):
+        sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": P}]))
+        r = run(sc, "fem-plane-stress", points=11, layers=2)
+        f = tmp_path / f"step{k}.vtu"
+        r.writers[".vtu"](str(f))
+        files.append((k + 1, str(f)))
+    write_pvd(str(tmp_path / "series.pvd"), files)
+    sets = ET.parse(tmp_path / "series.pvd").getroot().findall("./Collection/DataSet")
+    assert [d.get("file") for d in sets] == ["step0.vtu", "step1.vtu", "step2.vtu"]
+    assert [float(d.get("timestep")) for d in sets] == [1.0, 2.0, 3.0]
