@@ -121,6 +121,20 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 e = np.array([float(v) for v in str(r["errors"]).split()])
                 series.append((_label(r), h, e, r["observed_order"]))
             conv_figs.append(figures.convergence(series, str(scene)))
+    horizon_figs = []
+    hz = ok[ok["horizon_factor"].notna() & ok["err_max"].notna()] if "horizon_factor" in ok else ok.iloc[0:0]
+    for scene, g in hz.groupby("scene", sort=False):
+        groups = []
+        others = g["options"].map(lambda o: " ".join(f"{v}" for k, v in sorted(json.loads(o).items())
+                                                      if k != "horizon" and isinstance(v, str)))
+        for (model, rest, pts), gg in g.groupby(["model", others, "points"], sort=True):
+            if gg["horizon_factor"].nunique() >= 2 and pts == g[g["model"] == model]["points"].max():
+                gg = gg.sort_values("horizon_factor")
+                groups.append((f"{model} {rest} n={fmt(pts)}", gg["horizon_factor"].to_numpy(float),
+                               np.maximum(gg["err_max"].to_numpy(float), 1e-16)))
+        if groups:
+            horizon_figs.append(figures.scatter(groups, "horizon factor m = delta / dx", "max relative error",
+                                                f"error vs horizon: {scene}", logx=False))
     lock_figs = []
     if not lock.empty:
         lk = ok[ok["slenderness"].notna()]
@@ -156,7 +170,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         meta=meta, counts=counts, generated=time.strftime("%Y-%m-%d %H:%M:%S"),
         benchmarks=table(bench, ["name", "model", "variant", "reference", "target", "computed", "ratio", "rel_error",
                                  "err_max", "observed_order", "tolerance", "verdict", "case_id"], row_class="verdict"),
-        scenes=scenes, convergence_figs=conv_figs,
+        scenes=scenes, convergence_figs=conv_figs, horizon_figs=horizon_figs,
         convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
         locking_figs=lock_figs, locking=table(lock), images=images, speed_figs=speed_figs, speed_summary=table(sesum),
