@@ -127,16 +127,20 @@ def body_loads(scene: Scene, x: np.ndarray, skip_ends: dict | None = None) -> np
             if t > 0:
                 q[i + 1] += load.value * t / dx
         elif isinstance(load, PointMoment):
-            # ccw couple C: q = -C delta'(x - a): -C/(2dx²) left of a, +C/(2dx²) right of a
+            # ccw couple C: q = -C delta'(x - a), with the delta split linearly between the two nearest
+            # points (weights 1 - t, t) and each point's delta' a central dipole (-C/(2dx²) left, +C/(2dx²) right)
             C = load.value
-            left, right = (i, i + 1) if t > 0 else (i - 1, i + 1)
-            if left < 0:
-                left, right = 0, 1
-            if right > n - 1:
-                left, right = n - 2, n - 1
-            arm = (right - left) * dx
-            q[left] -= C / (arm * dx)
-            q[right] += C / (arm * dx)
+            for node, wgt in ((i, 1.0 - t), (i + 1, t)):
+                if wgt == 0.0:
+                    continue
+                left, right = node - 1, node + 1
+                if left < 0:
+                    left, right = 0, 1
+                if right > n - 1:
+                    left, right = n - 2, n - 1
+                arm = (right - left) * dx
+                q[left] -= wgt * C / (arm * dx)
+                q[right] += wgt * C / (arm * dx)
     return q
 
 
