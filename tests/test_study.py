@@ -157,3 +157,23 @@ def test_dask_local_cluster_matches_local_run(tmp_path):
     a, b = _cols(local), _cols(dist)
     assert list(a["case_id"]) == list(b["case_id"])
     assert np.array_equal(a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy())
+
+
+def test_curve_arrays_round_trip_exactly():
+    from pdverify.study.runner import decode_array, encode_array
+
+    a = np.array([0.1, -1e-300, 1e300, np.pi, -0.0, np.nan])
+    b = decode_array(json.loads(json.dumps(encode_array(a))))
+    assert b.tobytes() == a.tobytes()
+    assert np.array_equal(decode_array([1.0, 2.5]), [1.0, 2.5])  # plain lists still read
+
+
+def test_case_key_changes_with_the_code(monkeypatch):
+    """Editing a model must recompute its cases, not resume stale ones: the key holds a code digest."""
+    from pdverify.study import spec
+
+    case = spec.Case("s.toml", "x = 1", None, "pd-eb", {"points": 11}, {"model": "exact-eb"})
+    before = case.case_id
+    assert len(spec.code_digest()) == 16
+    monkeypatch.setattr(spec, "code_digest", lambda: "0" * 16)
+    assert case.case_id != before

@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputError
+from ..study.runner import read_curve
 from . import figures
 
 
@@ -95,10 +96,10 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 path = d / "cases" / f"{r['case_id']}.json"
                 if not path.exists():
                     continue
-                c = json.loads(path.read_text())["curve"]
-                curves.append((_label(r), np.array(c["x"]), np.array(c["w"])))
+                c = read_curve(path)
+                curves.append((_label(r), c["x"], c["w"]))
                 if ref is None or len(c["x"]) > len(ref[0]):
-                    ref = (np.array(c["x"]), np.array(c["w_ref"]))
+                    ref = (c["x"], c["w_ref"])
             title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
             if ref is not None and not np.all(np.isnan(ref[1])):
                 figs.append(figures.deflection(curves, ref, title))
@@ -106,7 +107,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 figs.append(figures.deflection(curves, None, title))
             for _, r in gs.iterrows():
                 path = d / "cases" / f"{r['case_id']}.json"
-                c = json.loads(path.read_text())["curve"] if path.exists() else {}
+                c = read_curve(path) if path.exists() else {}
                 if c.get("load_steps"):
                     exact = [(np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st]
                     figs.append(figures.deformed_shapes(c["load_steps"], f"{_label(r)}: deformed shapes", exact))

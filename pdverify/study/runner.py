@@ -4,6 +4,7 @@ resumable, failures recorded; then the derived tables (convergence, locking, spe
 
 from __future__ import annotations
 
+import base64
 import json
 import os
 import platform
@@ -58,7 +59,9 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
     ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id."""
     from ..registry import get_model, run
 
-    row = {"case_id": case.case_id, "scene_file": case.scene_file, "model": case.model,
+    from .spec import code_digest
+
+    row = {"case_id": case.case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
            "slenderness": case.slenderness, "reference": json.dumps(case.reference, sort_keys=True),
            "version": __version__}
     row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
@@ -87,9 +90,9 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
         row["horizon"] = result.info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
         row["cond"] = result.info.get("cond")
         row["status"], row["message"] = "ok", ""
-        curve = {"x": x.tolist(), "w": np.asarray(result.w).tolist(), "w_ref": w_ref.tolist()}
+        curve = {"x": encode_array(x), "w": encode_array(result.w), "w_ref": encode_array(w_ref)}
         if result.rotation is not None:
-            curve["rotation"] = np.asarray(result.rotation).tolist()
+            curve["rotation"] = encode_array(result.rotation)
         if "load_steps" in result.info:  # deformed shapes of a nonlinear path, for the report
             curve["load_steps"] = result.info["load_steps"]
         if artefacts and ".vtu" in result.writers:
@@ -108,6 +111,29 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
     return {"case": {"scene_file": case.scene_file, "model": case.model, "given": case.given,
                      "slenderness": case.slenderness, "reference": case.reference},
             "row": row, "curve": curve}
+
+
+def encode_array(a) -> dict:
+    """A float array as base64 of its little-endian float64 bytes: exact, and ~20x faster to write
+    than a JSON list of floats (the per-case cost that dominated the runner's overhead)."""
+    a = np.ascontiguousarray(np.asarray(a, dtype="<f8"))
+    return {"dtype": "<f8", "shape": list(a.shape), "b64": base64.b64encode(a.tobytes()).decode("ascii")}
+
+
+def decode_array(v) -> np.ndarray:
+    """Inverse of :func:`encode_array`; plain JSON lists (older or hand-written records) pass through."""
+    if isinstance(v, dict) and "b64" in v:
+        return np.frombuffer(base64.b64decode(v["b64"]), dtype=v.get("dtype", "<f8")).reshape(v["shape"]).copy()
+    return np.asarray(v, dtype=float)
+
+
+def read_curve(path: Path) -> dict:
+    """The curve of a finished case file: arrays decoded (x, w, w_ref, rotation), other keys as stored."""
+    c = json.loads(Path(path).read_text())["curve"]
+    return {k: (decode_array(v) if k in CURVE_ARRAYS else v) for k, v in c.items()}
+
+
+CURVE_ARRAYS = ("x", "w", "w_ref", "rotation")
 
 
 def write_atomic(path: Path, text: str) -> None:

@@ -28,6 +28,7 @@ import itertools
 import json
 import tomllib
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 
 from .. import __version__
@@ -36,8 +37,28 @@ from ..registry import get_model
 from ..scene import Scene, load_scene, read_toml
 
 RUN_KEYS = {"model", "reference", "scenes"}
-STORE_SCHEMA = 2  # bump when a case record's content changes: older case files are then recomputed
+STORE_SCHEMA = 3  # bump when a case record's content changes: older case files are then recomputed
 BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position"}
+
+
+PACKAGES = ("pdverify", "reference_fem")
+
+
+@lru_cache(maxsize=1)
+def code_digest() -> str:
+    """A digest of every source file of the packages whose code can change a number (pdverify,
+    reference_fem): part of each case's key, so editing a model recomputes its cases instead of
+    resuming stale ones (conservative: any code change recomputes every case)."""
+    import importlib.util
+
+    h = hashlib.sha256()
+    for pkg in PACKAGES:
+        spec = importlib.util.find_spec(pkg)
+        root = Path(spec.origin).parent
+        for f in sorted(root.rglob("*.py")):
+            h.update(str(f.relative_to(root)).encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
 
 
 @dataclass
@@ -52,14 +73,20 @@ class Case:
     @property
     def case_id(self) -> str:
         key = json.dumps([self.scene_text, self.model, sorted(self.given.items()), self.slenderness,
-                          sorted(self.reference.items()), __version__, STORE_SCHEMA], sort_keys=True, default=str)
+                          sorted(self.reference.items()), __version__, STORE_SCHEMA, code_digest()], sort_keys=True, default=str)
         return hashlib.sha256(key.encode()).hexdigest()[:16]
 
     def scene(self) -> Scene:
-        from ..scene import parse_scene
+        return _scene(self.scene_text, self.scene_file, self.slenderness)
 
-        s = parse_scene(tomllib.loads(self.scene_text), source=self.scene_file)
-        return s.with_slenderness(self.slenderness) if self.slenderness else s
+
+@lru_cache(maxsize=256)
+def _scene(scene_text: str, scene_file: str, slenderness) -> Scene:
+    """Parsed (and rescaled) scene, once per process: scenes are frozen, so sharing is safe."""
+    from ..scene import parse_scene
+
+    s = parse_scene(tomllib.loads(scene_text), source=scene_file)
+    return s.with_slenderness(slenderness) if slenderness else s
 
 
 @dataclass
