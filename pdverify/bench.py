@@ -35,7 +35,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
     """One measurement, in this process. Returns the row printed by ``pdverify bench``."""
     import scipy.linalg as sla
 
-    from .linalg import bandwidths, to_banded
+    from .linalg import bandwidths, scale_symmetric, to_banded
     from .registry import get_model, run
     from .scene import load_scene
 
@@ -72,9 +72,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
         # the same symmetric diagonal scaling solve_linear applies (else LAPACK may call it singular)
         d = np.abs(K.diagonal())
         s = np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
-        import scipy.sparse as sp
-
-        K = sp.diags(s) @ K @ sp.diags(s)
+        K = scale_symmetric(K, s)
         b = s * np.asarray(b, float)
         lo, up = bandwidths(K)
         ab = to_banded(K, lo, up)

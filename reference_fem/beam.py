@@ -13,7 +13,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.interpolate import CubicHermiteSpline
 
-from pdverify.linalg import solve_linear
+from pdverify.linalg import eliminate, solve_linear
 from pdverify.registry import Model, Option
 from pdverify.result import Result, Timer
 from pdverify.scene import Distributed, PointForce, PointMoment, Scene
@@ -86,11 +86,7 @@ def constrained_dofs(scene: Scene, n_nodes: int) -> np.ndarray:
 
 def reduce_supports(scene: Scene, K, F, n_nodes: int):
     """Eliminate the supported DOFs: (K_ff, F_f, free)."""
-    fixed = constrained_dofs(scene, n_nodes)
-    n = K.shape[0]
-    free = np.setdiff1d(np.arange(n), fixed)
-    S = sp.csr_matrix((np.ones(len(free)), (free, np.arange(len(free)))), shape=(n, len(free)))
-    return (S.T @ K @ S).tocsr(), F[free], free
+    return eliminate(K, F, constrained_dofs(scene, n_nodes))
 
 
 def solve_beam(Kf, Ff, free, n_dofs, what):

@@ -31,3 +31,20 @@ def test_singular_is_one_clear_error():
     with pytest.raises(SolveError) as e:
         solve_linear(K.tocsr(), np.ones(30), what="test beam")
     assert "test beam" in str(e.value) and "singular" in str(e.value)
+
+
+def test_band_storage_scaling_equals_matrix_scaling():
+    import scipy.sparse as sp
+
+    from pdverify.linalg import bandwidths, scale_banded, scale_symmetric, to_banded
+
+    rng = np.random.default_rng(3)
+    n = 40
+    K = sp.random(n, n, density=0.3, random_state=4, format="csr")
+    K = sp.csr_matrix(K.multiply(abs(np.subtract.outer(np.arange(n), np.arange(n))) <= 3)) + sp.eye(n, format="csr")
+    s = rng.uniform(0.5, 2.0, n)
+    lo, up = bandwidths(K)
+    want = to_banded(scale_symmetric(K, s), lo, up)
+    got = scale_banded(to_banded(K, lo, up), s, lo, up)
+    assert np.allclose(got, want, rtol=1e-15, atol=0) and np.abs(want).max() > 0
+    assert np.array_equal(to_banded(K, lo, up)[up], K.diagonal())

@@ -30,11 +30,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import InputError
-from ..linalg import solve_linear
+from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import body_loads, boundary_layer_warnings, end_loads, partial_volumes, taylor_ghosts
+from .pd_eb import ghost_stencil_system, stencil_operator, body_loads, boundary_layer_warnings, end_loads, partial_volumes, taylor_ghosts
 
 
 def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
@@ -58,18 +58,17 @@ def spring_constants(EI: float, m: float, dx: float, variant: str) -> np.ndarray
     return alpha * beta * dx / xi**2
 
 
+def operator_stencil(j: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets and coefficients of Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j})."""
+    offs = np.array([-2, -1, 0, 1, 2])
+    coef = np.array([1.0, -4.0, 6.0, -4.0, 1.0])
+    return (np.asarray(j)[:, None] * offs[None, :]).ravel(), (np.asarray(c)[:, None] * coef[None, :]).ravel()
+
+
 def operator(n_rows: int, row0: int, n_cols: int, j: np.ndarray, c: np.ndarray) -> sp.csr_matrix:
-    """Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j}) for rows k = row0 .. row0 + n_rows - 1."""
-    rows = np.arange(n_rows)
-    r, cc, v = [], [], []
-    for jj, cj in zip(j, c):
-        for off, coef in ((-2 * jj, 1.0), (-jj, -4.0), (0, 6.0), (jj, -4.0), (2 * jj, 1.0)):
-            r.append(rows)
-            cc.append(rows + row0 + off)
-            v.append(np.full(n_rows, cj * coef))
-    r, cc, v = (np.concatenate(a) for a in (r, cc, v))
-    keep = (cc >= 0) & (cc < n_cols)  # free ends with mirror rule: truncated families
-    return sp.csr_matrix((v[keep], (r[keep], cc[keep])), shape=(n_rows, n_cols))
+    """The operator of :func:`operator_stencil` for rows k = row0 .. row0 + n_rows - 1 of a grid of
+    n_cols points (families truncated at the grid's ends)."""
+    return stencil_operator(n_rows, row0, n_cols, *operator_stencil(j, c), truncate=True)
 
 
 class PDBondPair(Model):
@@ -117,7 +116,6 @@ class PDBondPair(Model):
             raise InputError(f"horizon = {params['horizon']:g}: the stencil (2 x {j.max()} points) does not fit in "
                              f"{n} points; use more points or a smaller horizon")
         N = n + 2 * G
-        K_ext = operator(n, G, N, j, c)
         left, right = scene.supports.left, scene.supports.right
         er, ec, ev = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
         e0 = np.zeros(N)
@@ -141,14 +139,13 @@ class PDBondPair(Model):
                 ghost = G - i if side == 0 else G + n - 1 + i
                 real = np.minimum(i, n - 1) if side == 0 else np.maximum(n - 1 - i, 0)
                 er.append(ghost), ec.append(real), ev.append(np.full(G, sign))
-        E = sp.csr_matrix((np.concatenate(ev), (np.concatenate(er), np.concatenate(ec))), shape=(N, n))
-        K = (K_ext @ E).tocsr()
-        b = body_loads(scene, x, skip_ends=skip) - K_ext @ e0
+        cat = lambda v, dt: np.concatenate(v[1:]) if len(v) > 1 else np.zeros(0, dt)  # noqa: E731
+        K, r = ghost_stencil_system(*operator_stencil(j, c), G, n, cat(er, int), cat(ec, int), cat(ev, float), e0)
+        b = body_loads(scene, x, skip_ends=skip) - r
         fixed = [i for i, s in ((0, left), (n - 1, right)) if s in ("clamped", "pinned")]
-        free = np.setdiff1d(np.arange(n), fixed)
-        S = sp.csr_matrix((np.ones(len(free)), (free, np.arange(len(free)))), shape=(n, len(free)))
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
-        return (S.T @ K @ S).tocsr(), b[free], free, info
+        Kf, bf, free = eliminate(K, b, fixed)
+        return Kf, bf, free, info
 
     def alpha(self, EI: float, m: float, dx: float, variant: str) -> float:
         j, beta = family(m, dx, variant)
