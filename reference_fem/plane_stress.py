@@ -1,18 +1,34 @@
-"""``fem-plane-stress``: the 2D continuum on [0, L] x [-h/2, h/2], thickness = section width
-(scikit-fem; q4 full integration = ANSYS PLANE182 analogue, q8 serendipity, q9 Lagrange).
+"""``fem-plane-stress``: the 2D continuum of the beam, thickness = section width (scikit-fem; q4 full
+integration = ANSYS PLANE182 analogue, q8 serendipity, q9 Lagrange), for straight and curved axes.
 
 Plane stress: scikit-fem's ``lame_parameters`` are the plane-strain constants; plane stress uses
 lambda* = 2 lambda mu / (lambda + 2 mu) = E nu / (1 - nu²) (tests/test_plane_stress.py would catch the
 mix-up against the exact cantilever).
 
-Supports on the end faces: clamped = whole face fixed; pinned = the mid-height node (both directions
-at the left, vertical only at the right); guided = the face's horizontal displacement fixed (a symmetry
-plane: zero rotation, free to deflect); free = nothing. Loads: distributed loads as a traction on the top
-face; a point force at an end as a parabolic shear traction over the end face (the Timoshenko shear
-distribution); an interior point force at the top node; an end moment as a linear normal traction
-(-C y / I); an interior point moment as two opposite vertical forces on the neighbouring mid-height nodes.
-Output: the mid-line (y = 0) deflection and section rotation at the vertices; ``--out result.vtu`` writes
-the 2D displacement and cell von Mises stress (meshio).
+Geometry (``reference_fem.curved_mesh``): the parameter rectangle (s, t) in [0, L] x [-h/2, h/2] mapped
+by X(s) + t n(s); a straight axis gives [0, L] x [-h/2, h/2] exactly; an arc or a polynomial axis y = f(x)
+(scene ``[axis]``, beam.length = arc length) gives a curved strip of constant height whose q8/q9 mid-side
+nodes lie on the mapped curves. The "top" face is t = +h/2 (the +n side; for a counter-clockwise arc the
+inner face). t and n below are the axis tangent and normal at the station concerned.
+
+Supports on the end faces (s = 0, L): clamped = whole face fixed; pinned = the mid-height node, both
+directions at the left, only the normal (n) direction at the right (a roller along the end tangent; for a
+straight beam: vertical only); guided = the tangential displacement of every face node fixed (a symmetry
+plane: zero rotation, free to move along n); free = nothing. On a curved axis a support pair can leave a
+rigid-body motion (e.g. pinned-pinned on a semicircle, whose right roller slides along the rotation about
+the left pin): ``check`` rejects it.
+Loads (value along n, axial along t; ``frame = "global"``: (axial, value) = global (x, y), decomposed into
+the local t and n at each point): a distributed load's normal part is a traction on the top face, its
+tangential part a line load on the mid-line (no eccentric moment, as in the beam models), both per unit
+axis length; a point force at an end is a parabolic shear traction over the end face (the Timoshenko
+shear distribution, along n_end) plus a uniform traction for its tangential part; an interior point force
+acts at the top node (normal part) and at the mid-height node (tangential part); an end moment is a
+linear normal traction (-C t / I, along the end tangent); an interior point moment is a pure couple of two
+forces perpendicular to the chord of the neighbouring mid-height nodes (for a straight beam: two opposite
+vertical forces).
+Output: at the mid-line vertices (t = 0), x = arc length s, w = u·n, fields u = u·t (tangential),
+ux, uy (global), rotation of the section line = (u_t(bottom) - u_t(top)) / h; ``--out result.vtu``
+writes the 2D displacement and cell von Mises stress (meshio), ``--out result.png`` a picture.
 """
 
 from __future__ import annotations
@@ -29,6 +45,7 @@ ELEMENTS = {"q4": "ElementQuad1", "q8": "ElementQuadS2", "q9": "ElementQuad2"}
 
 
 def mesh_lines(scene: Scene, points: int, layers: int):
+    """Stations s along the axis (load positions and span ends included) and through-thickness t."""
     from reference_fem.beam import beam_nodes
 
     h = scene.section.depth
@@ -37,12 +54,42 @@ def mesh_lines(scene: Scene, points: int, layers: int):
     return x, y
 
 
+def _local(load, tan: np.ndarray, nor: np.ndarray):
+    """(tangential, normal) components of a load's (axial, value) in its frame, at frames (…, 2)."""
+    if getattr(load, "frame", "local") == "global":
+        g = np.array([load.axial, load.value])
+        return tan @ g, nor @ g
+    return np.full(tan.shape[:-1], float(load.axial)), np.full(tan.shape[:-1], float(load.value))
+
+
+def _support_constraints(scene: Scene, sup: str, end: int):
+    """[(point, direction)] of a support at end 0 (left) or 1 (right), points relative to the left end."""
+    from pdverify.geometry import geometry
+
+    geo = geometry(scene)
+    h = scene.section.depth
+    s = 0.0 if end == 0 else scene.length
+    X0 = geo.position(np.array([0.0]))[0]
+    X = geo.position(np.array([s]))[0] - X0
+    tan, nor = (v[0] for v in geo.frame(np.array([s])))
+    face = [X + e * nor for e in (-h / 2, 0.0, h / 2)]
+    if sup == "clamped":
+        return [(p, d) for p in face for d in (tan, nor)]
+    if sup == "guided":
+        return [(p, tan) for p in face]
+    if sup == "pinned":
+        return [(X, tan), (X, nor)] if end == 0 else [(X, nor)]
+    return []
+
+
 class FemPlaneStress(Model):
     name = "fem-plane-stress"
-    title = "2D plane-stress continuum (scikit-fem; PLANE182 analogue with q4)"
-    source = "scikit-fem linear elasticity, plane-stress Lame constants"
+    title = "2D plane-stress continuum (scikit-fem; PLANE182 analogue with q4), straight or curved axis"
+    source = "scikit-fem linear elasticity, plane-stress Lame constants; mesh mapped onto the axis"
     theory = "continuum"
     reference = True
+    curved = True
+    axial = True
     options = (
         Option("points", int, 101, "nodes along the beam (elements + 1), load positions added", minimum=2),
         Option("layers", int, 8, "elements through the thickness (even: the mid-line is a node row)", minimum=2),
@@ -53,90 +100,129 @@ class FemPlaneStress(Model):
         out = super().check(scene)
         if scene.section.height is None:
             out.append("section: the plane-stress reference needs a rectangle (width and height)")
+            return out
+        if not scene.is_straight:
+            from pdverify.geometry import geometry
+            from reference_fem.curved_mesh import rigid_modes_left
+
+            h = scene.section.height
+            kmax = float(np.max(np.abs(geometry(scene).curvature(np.linspace(0, scene.length, 401)))))
+            if kmax * h / 2 >= 1:
+                out.append(f"section.height = {h!r}: the face on the concave side would cross the centre of "
+                           f"curvature (smallest radius {1 / kmax:.6g} <= h/2); give height < {2 / kmax:.6g}")
+            cons = (_support_constraints(scene, scene.supports.left, 0)
+                    + _support_constraints(scene, scene.supports.right, 1))
+            free = rigid_modes_left(scene, cons)
+            if free:
+                out.append(f"supports = {scene.supports.left}-{scene.supports.right}: on this {scene.axis.type} axis "
+                           f"they leave {free} rigid-body motion(s) (pinned at the right is a roller along the end "
+                           "tangent, guided fixes only the tangential displacement); clamp one end or change the pair")
         return out
 
     def solve(self, scene: Scene, params: dict) -> Result:
         import skfem as fem
-        from skfem.helpers import dot
         from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+        from reference_fem import curved_mesh as cm
 
         if params["layers"] % 2:
             raise InputError(f"layers = {params['layers']}: give an even number so the mid-line is a row of nodes")
         timer = Timer()
         with timer("assemble"):
-            x, y = mesh_lines(scene, params["points"], params["layers"])
-            mesh = fem.MeshQuad.init_tensor(x, y)
-            elem = fem.ElementVector(getattr(fem, ELEMENTS[params["element"]])())
+            el = params["element"]
+            s, tt = mesh_lines(scene, params["points"], params["layers"])
+            bm = cm.build_mesh(scene, s, tt, quadratic_geometry=(not scene.is_straight and el != "q4"))
+            mesh, geo = bm.mesh, bm.geo
+            elem = fem.ElementVector(getattr(fem, ELEMENTS[el])())
             basis = fem.Basis(mesh, elem)
-            E, nu, t = scene.material.E, scene.material.poissons_ratio, scene.section.width
+            E, nu, width = scene.material.E, scene.material.poissons_ratio, scene.section.width
             lam, mu = lame_parameters(E, nu)
             lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress
-            K = t * linear_elasticity(lam, mu).assemble(basis)
-            F = np.zeros(basis.N)
+            K = width * linear_elasticity(lam, mu).assemble(basis)
             L, h, I = scene.length, scene.section.depth, scene.section.I
-            top = mesh.facets_satisfying(lambda p: np.isclose(p[1], h / 2))
-            ftop = fem.FacetBasis(mesh, elem, facets=top, intorder=8)
+            ns, nt = len(s), len(tt)
+            jm = nt // 2  # mid-line row
+            F = np.zeros(basis.N)
+            tan_s, nor_s = geo.frame(s)
             for load in scene.loads:
                 if isinstance(load, Distributed):
                     a, b = scene.span(load)
 
-                    @fem.LinearForm
-                    def q_top(v, w, load=load, a=a, b=b):
-                        xx = w.x[0]
-                        val = load.value if load.shape == "uniform" else load.value * np.sin(np.pi * xx / L)
-                        on = (xx >= a - 1e-12) & (xx <= b + 1e-12)
-                        return np.where(on, val, 0.0) * v[1]  # force per length on the top edge
+                    def profile(sq, load=load):
+                        return np.ones_like(sq) if load.shape == "uniform" else np.sin(np.pi * sq / L)
 
-                    F += q_top.assemble(ftop)
-            vx = basis.nodal_dofs[0]
-            vy = basis.nodal_dofs[1]
-            P = mesh.p
-            for load in scene.loads:
-                at_end = min(abs(load.position - 0.0), abs(load.position - L)) < 1e-12 * L if not isinstance(load, Distributed) else False
-                if isinstance(load, PointForce) and at_end:
-                    xe = 0.0 if load.position < L / 2 else L
-                    face = mesh.facets_satisfying(lambda p, xe=xe: np.isclose(p[0], xe))
-                    fb = fem.FacetBasis(mesh, elem, facets=face, intorder=6)
+                    def normal_part(sq, tq, load=load):
+                        tq_, nq_ = geo.frame(sq)
+                        _, qn = _local(load, tq_, nq_)
+                        return np.moveaxis(nq_ * (qn * profile(sq))[..., None], -1, 0)
 
-                    @fem.LinearForm
-                    def shear(v, w, P_=load.value):
-                        tau = 1.5 * P_ / (h) * (1 - (2 * w.x[1] / h) ** 2)  # per length of the face
-                        return tau * v[1]
+                    def tangential_part(sq, tq, load=load):
+                        tq_, nq_ = geo.frame(sq)
+                        qt, _ = _local(load, tq_, nq_)
+                        return np.moveaxis(tq_ * (qt * profile(sq))[..., None], -1, 0)
 
-                    F += shear.assemble(fb)
-                elif isinstance(load, PointForce):
-                    i = np.argmin(np.hypot(P[0] - load.position, P[1] - h / 2))
-                    F[vy[i]] += load.value
-                elif isinstance(load, PointMoment) and at_end:
-                    xe = 0.0 if load.position < L / 2 else L
-                    face = mesh.facets_satisfying(lambda p, xe=xe: np.isclose(p[0], xe))
-                    fb = fem.FacetBasis(mesh, elem, facets=face, intorder=6)
+                    F += cm.line_forces(bm, basis, *cm.row_edges(bm, nt - 1, a, b), normal_part)
+                    if load.axial != 0.0 or load.frame == "global":
+                        F += cm.line_forces(bm, basis, *cm.row_edges(bm, jm, a, b), tangential_part)
+                    continue
+                at_end = min(abs(load.position - 0.0), abs(load.position - L)) < 1e-12 * L
+                i = 0 if load.position < L / 2 else ns - 1
+                if at_end:
+                    te, ne = tan_s[i], nor_s[i]
+                    if isinstance(load, PointForce):
+                        ft, fn = _local(load, te, ne)
 
-                    @fem.LinearForm
-                    def bending(v, w, C=load.value):
-                        return -C * w.x[1] / I * t * v[0]  # traction (per area) times thickness
+                        def end_force(sq, tq, ft=float(ft), fn=float(fn), te=te, ne=ne):
+                            tau = 1.5 * fn / h * (1 - (2 * tq / h) ** 2)  # parabolic shear, per face length
+                            return ne[:, None, None] * tau[None] + te[:, None, None] * (ft / h)
 
-                    F += bending.assemble(fb)
-                elif isinstance(load, PointMoment):
-                    mid = np.where(np.isclose(P[1], 0.0))[0]
-                    order = mid[np.argsort(P[0, mid])]
-                    k = int(np.argmin(np.abs(P[0, order] - load.position)))
-                    lo, hi = order[max(k - 1, 0)], order[min(k + 1, len(order) - 1)]
-                    arm = P[0, hi] - P[0, lo]
-                    F[vy[lo]] -= load.value / arm
-                    F[vy[hi]] += load.value / arm
-            fixed = []
-            mid = np.where(np.isclose(P[1], 0.0))[0]
+                        F += cm.line_forces(bm, basis, *cm.face_edges(bm, i), end_force)
+                    else:
+
+                        def end_moment(sq, tq, C=load.value, te=te):
+                            return te[:, None, None] * (-C * tq / I * width)[None]  # traction times thickness
+
+                        F += cm.line_forces(bm, basis, *cm.face_edges(bm, i), end_moment)
+                    continue
+                k = int(np.argmin(np.abs(s - load.position)))
+                if isinstance(load, PointForce):
+                    ft, fn = _local(load, tan_s[k], nor_s[k])
+                    top, midn = bm.vid[k, nt - 1], bm.vid[k, jm]
+                    F[basis.nodal_dofs[:, top]] += fn * nor_s[k]
+                    if ft != 0.0:
+                        F[basis.nodal_dofs[:, midn]] += ft * tan_s[k]
+                else:
+                    lo, hi = bm.vid[max(k - 1, 0), jm], bm.vid[min(k + 1, ns - 1), jm]
+                    d = mesh.p[:, hi] - mesh.p[:, lo]
+                    arm = float(np.hypot(d[0], d[1]))
+                    perp = np.array([-d[1], d[0]]) / arm
+                    F[basis.nodal_dofs[:, lo]] -= load.value / arm * perp
+                    F[basis.nodal_dofs[:, hi]] += load.value / arm * perp
+            # supports: constraints on tangential / normal components of the end-face nodes
+            fixed, pairs, tangents = [], [], []
             for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-                xe = 0.0 if side == 0 else L
-                face_dofs = basis.get_dofs(lambda p, xe=xe: np.isclose(p[0], xe))
-                if sup == "clamped":
-                    fixed.append(face_dofs.all())
+                i = 0 if side == 0 else ns - 1
+                if sup == "free":
+                    continue
+                if sup == "pinned":
+                    face = basis.nodal_dofs[:, [bm.vid[i, jm]]]
+                else:
+                    face = cm.face_node_pairs(bm, basis, i)
+                pairs.append(face)
+                tangents.append(np.repeat(tan_s[i][:, None], face.shape[1], axis=1))
+                if sup == "clamped" or (sup == "pinned" and side == 0):
+                    fixed.append(face.ravel())
                 elif sup == "guided":
-                    fixed.append(face_dofs.all("u^1"))
-                elif sup == "pinned":
-                    node = mid[np.isclose(P[0, mid], xe)][0]
-                    fixed.append(np.array([vy[node]] + ([vx[node]] if side == 0 else [])))
+                    fixed.append(face[0])  # u' x-slot = tangential component
+                else:  # pinned at the right: the normal component
+                    fixed.append(face[1])
+            T = None
+            if pairs:
+                pr, tg = np.hstack(pairs), np.hstack(tangents)
+                if not (np.all(tg[0] == 1.0) and np.all(tg[1] == 0.0)):
+                    T = cm.rotation_matrix(basis.N, pr, tg)
+                    K = (T.T @ K @ T).tocsr()
+                    F = T.T @ F
             fixed = np.unique(np.concatenate(fixed))
             free = np.setdiff1d(np.arange(basis.N), fixed)
             Kf = K[free][:, free]
@@ -144,20 +230,29 @@ class FemPlaneStress(Model):
             uf, info = solve_linear(Kf, F[free], what="fem-plane-stress", condition=False)
             u = np.zeros(basis.N)
             u[free] = uf
-        order = mid[np.argsort(P[0, mid])]
-        xs = P[0, order]
-        w = u[vy[order]]
-        topn = np.where(np.isclose(P[1], h / 2))[0]
-        botn = np.where(np.isclose(P[1], -h / 2))[0]
-        topn, botn = topn[np.argsort(P[0, topn])], botn[np.argsort(P[0, botn])]
-        rot = (u[vx[botn]] - u[vx[topn]]) / h
-        info.update(element=params["element"], mesh=f"{len(x) - 1} x {params['layers']} {params['element']}",
+            if T is not None:
+                u = T @ u
+        vx, vy = basis.nodal_dofs[0], basis.nodal_dofs[1]
+        mid, topn, botn = bm.vid[:, jm], bm.vid[:, nt - 1], bm.vid[:, 0]
+        ux, uy = u[vx[mid]], u[vy[mid]]
+        w = ux * nor_s[:, 0] + uy * nor_s[:, 1]
+        ut = ux * tan_s[:, 0] + uy * tan_s[:, 1]
+
+        def tangential(nodes):
+            return u[vx[nodes]] * tan_s[:, 0] + u[vy[nodes]] * tan_s[:, 1]
+
+        rot = (tangential(botn) - tangential(topn)) / h
+        info.update(element=el, mesh=f"{ns - 1} x {params['layers']} {el}",
                     nodes=mesh.p.shape[1], plane_stress_lambda=lam)
+        if not scene.is_straight:
+            info.update(axis=scene.axis.type,
+                        geometry="quadratic edges on the mapped curves" if el != "q4" else "straight-edged q4")
 
         def write_vtu(path, mesh=mesh, u=u, basis=basis, E=E, nu=nu, lam=lam, mu=mu):
             import meshio
 
-            ux, uy = u[vx], u[vy]
+            nv = mesh.nvertices
+            pux, puy = u[vx], u[vy]
             ip = basis.interpolate(u)
             g = ip.grad  # (2, 2, nelems, nqp)
             exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
@@ -165,9 +260,9 @@ class FemPlaneStress(Model):
             syy = lam * (exx + eyy) + 2 * mu * eyy
             sxy = 2 * mu * exy
             vm = np.sqrt(sxx**2 - sxx * syy + syy**2 + 3 * sxy**2).mean(axis=1)
-            pts = np.column_stack([mesh.p[0], mesh.p[1], np.zeros(mesh.p.shape[1])])
-            meshio.write(path, meshio.Mesh(pts, [("quad", mesh.t.T)],
-                                           point_data={"displacement": np.column_stack([ux, uy, 0 * ux])},
+            pts = np.column_stack([mesh.p[0, :nv], mesh.p[1, :nv], np.zeros(nv)])
+            meshio.write(path, meshio.Mesh(pts, [("quad", mesh.t[:4].T)],
+                                           point_data={"displacement": np.column_stack([pux, puy, 0 * pux])},
                                            cell_data={"von_mises": [vm]}))
 
         def write_png(path):
@@ -185,8 +280,9 @@ class FemPlaneStress(Model):
             finally:
                 os.unlink(tmp)
 
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=xs, w=w, rotation=rot,
-                      dofs=len(free), timings=timer.timings, info=info, writers={".vtu": write_vtu, ".png": write_png})
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=w, rotation=rot,
+                      fields={"u": ut, "ux": ux, "uy": uy}, dofs=len(free), timings=timer.timings, info=info,
+                      writers={".vtu": write_vtu, ".png": write_png})
 
 
 MODELS = [FemPlaneStress()]
