@@ -207,6 +207,7 @@ def bench(
     points: Optional[list[int]] = typer.Option(None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"),
     fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
     scene: Optional[Path] = typer.Option(None, help="scene to time (default: the example cantilever)"),
+    out: Optional[Path] = typer.Option(None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"),
 ):
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
     import json as _json
@@ -239,6 +240,12 @@ def bench(
     for n, s in slopes.items():
         line = {"model": n, "cost_slope": s}
         typer.echo(_json.dumps(line) if fmt == Format.json else f"{n:18s} cost ~ N^{s:.2f}")
+    if out:
+        from .report.perf import build_performance
+
+        page = build_performance(rows, out, slopes)
+        if fmt != Format.json:
+            typer.echo(f"performance page: {page}")
 
 
 @app.command()

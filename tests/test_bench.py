@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
+import pandas as pd
 
 from pdverify.bench import bench_case, cost_slope
 
@@ -43,3 +44,19 @@ def test_limit_is_banded_solve_of_the_models_matrix(monkeypatch):
 def test_cost_slope_recovers_power():
     rows = [{"model": "m", "status": "ok", "points": n, "total_s": 1e-6 * n**1.5} for n in (10, 100, 1000)]
     assert abs(cost_slope(rows)["m"] - 1.5) < 1e-12
+
+
+def test_performance_page_states_targets_and_verdicts(tmp_path):
+    from pdverify.report.perf import build_performance, targets
+
+    rows = [
+        {"model": "a", "points": 1000, "total_s": 0.01, "limit_s": 0.004, "ratio": 2.5, "peak_mem_mb": 5.0, "updates_per_s": None, "status": "ok"},
+        {"model": "a", "points": 1_000_000, "total_s": 3.0, "limit_s": 1.0, "ratio": 3.0, "peak_mem_mb": 900.0, "updates_per_s": None, "status": "ok"},
+        {"model": "b", "points": 1_000_000, "total_s": 1.0, "limit_s": 0.6, "ratio": 1.6, "peak_mem_mb": 2500.0, "updates_per_s": 6e7, "status": "ok"},
+    ]
+    t = targets(pd.DataFrame(rows), {"a": 1.05})
+    got = {(r.model, r.target.split()[0]): r.verdict for r in t.itertuples()}
+    assert got[("a", "total")] == "fail" and got[("b", "total")] == "pass"  # 3.0 > 2, 1.6 <= 2
+    assert got[("b", "updates/s")] == "pass" and got[("b", "peak")] == "fail" and got[("a", "cost")] == "pass"
+    page = build_performance(rows, tmp_path, {"a": 1.05}).read_text()
+    assert "<svg" in page and 'href="bench.jsonl"' in page and (tmp_path / "bench.jsonl").read_text().count("\n") == 3

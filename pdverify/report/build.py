@@ -74,6 +74,17 @@ def _label(r) -> str:
     return " ".join(parts)
 
 
+def _folder(scene_file) -> str:
+    """The name of the scene's folder (one report page per folder: a paper's scenes)."""
+    return Path(str(scene_file)).parent.name or "scenes"
+
+
+def _slug(text: str) -> str:
+    import re
+
+    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "scenes"
+
+
 def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Path:
     d = Path(study_dir)
     if not (d / "results.csv").exists():
@@ -108,10 +119,14 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             for _, r in gs.iterrows():
                 path = d / "cases" / f"{r['case_id']}.json"
                 c = read_curve(path) if path.exists() else {}
+                if c.get("history"):
+                    h = c["history"]
+                    figs.append(figures.time_history(h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")))
                 if c.get("load_steps"):
                     exact = [(np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st]
                     figs.append(figures.deformed_shapes(c["load_steps"], f"{_label(r)}: deformed shapes", exact))
-        scenes.append({"name": g["scene"].iloc[0], "file": sfile, "reference": g["reference"].iloc[0], "figures": figs})
+        scenes.append({"name": g["scene"].iloc[0], "file": sfile, "folder": _folder(sfile),
+                       "reference": g["reference"].iloc[0], "figures": figs})
 
     conv_figs = []
     if not conv.empty:
@@ -121,7 +136,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 h = np.array([float(v) for v in str(r["spacings"]).split()])
                 e = np.array([float(v) for v in str(r["errors"]).split()])
                 series.append((_label(r), h, e, r["observed_order"]))
-            conv_figs.append(figures.convergence(series, str(scene)))
+            conv_figs.append((scene, figures.convergence(series, str(scene))))
     horizon_figs = []
     hz = ok[ok["horizon_factor"].notna() & ok["err_max"].notna()] if "horizon_factor" in ok else ok.iloc[0:0]
     for scene, g in hz.groupby("scene", sort=False):
@@ -134,8 +149,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 groups.append((f"{model} {rest} n={fmt(pts)}", gg["horizon_factor"].to_numpy(float),
                                np.maximum(gg["err_max"].to_numpy(float), 1e-16)))
         if groups:
-            horizon_figs.append(figures.scatter(groups, "horizon factor m = delta / dx", "max relative error",
-                                                f"error vs horizon: {scene}", logx=False))
+            horizon_figs.append((scene, figures.scatter(groups, "horizon factor m = delta / dx", "max relative error",
+                                                        f"error vs horizon: {scene}", logx=False)))
     lock_figs = []
     if not lock.empty:
         lk = ok[ok["slenderness"].notna()]
@@ -145,15 +160,15 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 gg = gg.sort_values("slenderness")
                 groups.append((_label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
                                gg["slenderness"].to_numpy(float), gg["err_max"].to_numpy(float)))
-            lock_figs.append(figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}"))
+            lock_figs.append((scene, figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}")))
     speed_figs = []
     if not se.empty:
         for scene, g in se.groupby("scene", sort=False):
             groups = [(m, gg["total_s"].to_numpy(float), np.maximum(gg["err_max"].to_numpy(float), 1e-16))
                       for m, gg in g.groupby("model")]
             fr = g[g["pareto"].astype(bool)]
-            speed_figs.append(figures.scatter(groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
-                                              front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16))))
+            speed_figs.append((scene, figures.scatter(groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
+                                              front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16)))))
 
     images = []
     for png in sorted((d / "vtu").glob("*.png")) if (d / "vtu").exists() else []:
@@ -167,19 +182,54 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     meta_rows = pd.DataFrame([{"item": k, "value": json.dumps(v) if isinstance(v, (dict, list)) else v}
                               for k, v in meta.items() if k not in ("date",)])
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=False)
+    generated = time.strftime("%Y-%m-%d %H:%M:%S")
+    bench_cols = ["name", "model", "variant", "reference", "target", "computed", "ratio", "rel_error",
+                  "err_max", "observed_order", "tolerance", "verdict", "case_id"]
+    study_file = d / "study.toml"
+    titles = {}
+    if study_file.exists():
+        import tomllib
+
+        try:
+            titles = dict(tomllib.loads(study_file.read_text()).get("papers", {}))
+        except (tomllib.TOMLDecodeError, AttributeError):
+            titles = {}
+    papers = []
+    for folder in dict.fromkeys(s["folder"] for s in scenes):
+        names = {s["name"] for s in scenes if s["folder"] == folder}
+        pick = lambda figs: [f for sc, f in figs if sc in names]  # noqa: E731
+        pb = bench[bench["scene_file"].map(_folder) == folder] if "scene_file" in bench else bench.iloc[0:0]
+        verdicts = pb["verdict"].value_counts().to_dict() if "verdict" in pb else {}
+        page = {"folder": folder, "title": titles.get(folder, folder), "href": f"paper-{_slug(folder)}.html",
+                "summary": ", ".join(f"{k}: {v}" for k, v in sorted(verdicts.items())) or "no benchmarks",
+                "n_scenes": len(names)}
+        html_page = env.get_template("paper.html.j2").render(
+            meta=meta, generated=generated, page=page, benchmarks=table(pb, bench_cols, row_class="verdict"),
+            scenes=[s for s in scenes if s["folder"] == folder], convergence_figs=pick(conv_figs),
+            horizon_figs=pick(horizon_figs), locking_figs=pick(lock_figs), speed_figs=pick(speed_figs),
+            convergence=table(conv[conv["scene"].isin(names)] if "scene" in conv else conv,
+                              ["scene", "model", "options", "slenderness", "n_grids", "observed_order", "r2",
+                               "gci_order", "gci_fine", "richardson"]))
+        (out / page["href"]).write_text(html_page, encoding="utf-8")
+        papers.append(page)
+    performance = None
+    for cand in (out / "bench" / "index.html", out.parent / "bench" / "index.html"):
+        if cand.exists():
+            performance = cand.relative_to(out).as_posix() if cand.is_relative_to(out) else f"../bench/index.html"
+            break
     page = env.get_template("index.html.j2").render(
-        meta=meta, counts=counts, generated=time.strftime("%Y-%m-%d %H:%M:%S"),
-        benchmarks=table(bench, ["name", "model", "variant", "reference", "target", "computed", "ratio", "rel_error",
-                                 "err_max", "observed_order", "tolerance", "verdict", "case_id"], row_class="verdict"),
-        scenes=scenes, convergence_figs=conv_figs, horizon_figs=horizon_figs,
+        meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
+        benchmarks=table(bench, bench_cols, row_class="verdict"),
+        scenes=scenes, convergence_figs=[f for _, f in conv_figs], horizon_figs=[f for _, f in horizon_figs],
         convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
-        locking_figs=lock_figs, locking=table(lock), images=images, speed_figs=speed_figs, speed_summary=table(sesum),
+        locking_figs=[f for _, f in lock_figs], locking=table(lock), images=images,
+        speed_figs=[f for _, f in speed_figs], speed_summary=table(sesum),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
                             "assemble_s", "solve_s", "total_s", "cond", "status", "message"]),
         meta_table=table(meta_rows),
-        study_text=html.escape((d / "study.toml").read_text()) if (d / "study.toml").exists() else "",
+        study_text=html.escape(study_file.read_text()) if study_file.exists() else "",
     )
     index = out / "index.html"
     index.write_text(page, encoding="utf-8")

@@ -86,3 +86,32 @@ def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray,
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
     return _svg(fig)
+
+
+def time_history(t: np.ndarray, series: dict[str, np.ndarray], title: str, ylabel: str = "displacement") -> str:
+    """Responses against time (dynamic examples)."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    for label, y in series.items():
+        ax.plot(t, y, "-", lw=1.0, label=label)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _svg(fig)
+
+
+def cost(groups: list[tuple[str, np.ndarray, np.ndarray]], limits: list[tuple[str, np.ndarray, np.ndarray]], title: str) -> str:
+    """log-log total seconds vs points per model; dashed: the banded-solve limit of the same matrix."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    for label, n, t in groups:
+        line, = ax.loglog(n, t, "o-", ms=4, label=label)
+        for lab, nl, tl in limits:
+            if lab == label and len(nl):
+                ax.loglog(nl, tl, "--", lw=1, color=line.get_color(), label=f"{label}: banded-solve limit")
+    ax.set_xlabel("points")
+    ax.set_ylabel("seconds")
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    return _svg(fig)

@@ -95,6 +95,17 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
             curve["rotation"] = encode_array(result.rotation)
         if "load_steps" in result.info:  # deformed shapes of a nonlinear path, for the report
             curve["load_steps"] = result.info["load_steps"]
+        hist = result.info.get("history")
+        if isinstance(hist, dict) and "t" in hist:  # time histories of a dynamic run: {"t": [...], "series": {label: [...]}}
+            curve["history"] = {"t": encode_array(hist["t"]),
+                                "series": {k: encode_array(v) for k, v in hist.get("series", {}).items()},
+                                "ylabel": hist.get("ylabel", "displacement")}
+            if artefacts:  # the same histories as CSV, one column per series, for other tools
+                hdir = Path(artefacts).parent / "histories"
+                hdir.mkdir(parents=True, exist_ok=True)
+                cols = {"t": np.asarray(hist["t"], float), **{k: np.asarray(v, float) for k, v in hist.get("series", {}).items()}}
+                body = "\n".join(",".join(f"{v:.17g}" for v in r) for r in np.column_stack(list(cols.values())))
+                write_atomic(hdir / f"{case.case_id}.csv", ",".join(cols) + "\n" + body + "\n")
         if artefacts and ".vtu" in result.writers:
             base = Path(artefacts) / case.case_id
             base.parent.mkdir(parents=True, exist_ok=True)
@@ -130,7 +141,12 @@ def decode_array(v) -> np.ndarray:
 def read_curve(path: Path) -> dict:
     """The curve of a finished case file: arrays decoded (x, w, w_ref, rotation), other keys as stored."""
     c = json.loads(Path(path).read_text())["curve"]
-    return {k: (decode_array(v) if k in CURVE_ARRAYS else v) for k, v in c.items()}
+    out = {k: (decode_array(v) if k in CURVE_ARRAYS else v) for k, v in c.items()}
+    if isinstance(out.get("history"), dict):
+        h = out["history"]
+        out["history"] = {"t": decode_array(h["t"]), "series": {k: decode_array(v) for k, v in h.get("series", {}).items()},
+                          "ylabel": h.get("ylabel", "displacement")}
+    return out
 
 
 CURVE_ARRAYS = ("x", "w", "w_ref", "rotation")

@@ -10,6 +10,8 @@ variant = ["paper", "corrected"]                  # every list is a sweep axis
 points = [51, 101, 201]
 [sweep]
 slenderness = [10, 100]                           # optional: section height = length / slenderness
+[papers]                                          # optional: one report page per scene folder
+paper_diyaroglu = "Diyaroglu, Oterkus & Oterkus"
 [[benchmarks]]                                    # optional verification-manual rows
 name = "tip deflection"
 scene = "paper_diyaroglu/clamped_free.toml"
@@ -101,6 +103,7 @@ class Study:
     benchmarks: list[dict] = field(default_factory=list)
     cases: list[Case] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
+    papers: dict = field(default_factory=dict)  # scene folder -> page title (the report's per-paper pages)
 
 
 def _reference(value, where: str) -> dict:
@@ -120,7 +123,7 @@ def load_study(path: str | Path) -> Study:
     path = Path(path)
     text, data = read_toml(path, "study")
     errors: list[str] = []
-    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks"}
+    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers"}
     for key in data:
         if key not in allowed:
             errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
@@ -135,6 +138,9 @@ def load_study(path: str | Path) -> Study:
     if not isinstance(runs, list) or not runs:
         errors.append(f"{path}: runs: missing or empty; add at least one [[runs]] table with a model")
         runs = []
+    papers = data.get("papers", {})
+    if not isinstance(papers, dict) or not all(isinstance(v, str) for v in papers.values()):
+        errors.append(f"{path}: papers = {papers!r}: give a table {{scene folder = \"page title\"}}")
     sweep = data.get("sweep", {})
     if not isinstance(sweep, dict) or set(sweep) - {"slenderness"}:
         errors.append(f"{path}: sweep = {sweep!r}: only 'slenderness' (a list) can be swept here")
@@ -169,7 +175,8 @@ def load_study(path: str | Path) -> Study:
         except InputError as exc:
             errors.append(f"{path}: reference: {exc.lines[0]}")
 
-    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])))
+    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])),
+                  papers=dict(papers) if isinstance(papers, dict) else {})
     for i, run in enumerate(runs):
         where = f"{path}: runs[{i}]"
         if not isinstance(run, dict) or not isinstance(run.get("model"), str):
