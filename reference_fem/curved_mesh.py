@@ -36,7 +36,7 @@ def map_points(geo: AxisGeometry, s: np.ndarray, t: np.ndarray) -> np.ndarray:
     us, inv = np.unique(np.asarray(s, float), return_inverse=True)
     X = geo.position(us)
     _, n = geo.frame(us)
-    return (X[inv] + np.asarray(t, float)[:, None] * n[inv]).T
+    return np.ascontiguousarray((X[inv] + np.asarray(t, float)[:, None] * n[inv]).T)
 
 
 @dataclass
