@@ -153,8 +153,8 @@ PARABOLA = {"type": "polynomial", "coefficients": [0.0, 0.0, 0.25], "x_range": [
 def test_parabolic_axis_converges(record_property):
     """y = x²/4 on [0, 2] (L = 2.2956 m, slope up to 1), clamped-free, global-frame uniform load, a partial
     sine load, tip force with an axial part and a tip moment (tractions: no point singularity), q8 meshes
-    16x2, 32x4, 64x8, 128x16; w at the 17 common stations. Measured max differences 1.4e-5, 3.4e-6, 1.0e-6
-    (of max |w| = 5e-3), observed orders 2.0, 1.7: the clamped face's corner singularities cap the rate near
+    16x2, 32x4, 64x8, 128x16; w at the 17 common stations. Measured max differences 9.0e-6, 2.1e-6, 6.6e-7,
+    observed orders 2.07, 1.70: the clamped face's corner singularities cap the rate near
     1.5 as for the straight beam (tests/test_plane_stress.py)."""
     L = axis_length(Axis(**PARABOLA))
     loads = [{"type": "distributed", "value": -400.0, "frame": "global"},
