@@ -142,3 +142,16 @@ def test_loads_between_points_converge_at_order_two(model):
         ex = solve_straight(sc, False).fields(r.x)["w"]
         e.append(np.abs(r.w - ex).max() / np.abs(ex).max())
     assert e[0] < 5e-4 and np.log2(e[0] / e[1]) > 1.7 and np.log2(e[1] / e[2]) > 1.7, e
+
+
+def test_mixed_form_equals_direct_form_and_rejects_the_paper_variant():
+    """Same discrete solution in both forms (to round-off at a coarse grid); the paper's energy form
+    has no two-equation split, which is said in one line."""
+    from pdverify.errors import InputError
+
+    for name, sc in PAPER.items():
+        a = run(sc, "pd-eb", points=101, form="direct").w
+        b = run(sc, "pd-eb", points=101, form="mixed").w
+        assert np.abs(a - b).max() < 1e-8 * np.abs(a).max(), name
+    with pytest.raises(InputError, match="only the corrected variant"):
+        run(PAPER["clamped_free"], "pd-eb", variant="paper", form="mixed")

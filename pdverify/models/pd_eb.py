@@ -236,6 +236,9 @@ class PDEulerBernoulli(Model):
         Option("points", int, 101, "material points along the beam, ends included", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
         Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
+        Option("form", str, "auto", "auto (mixed for corrected, direct for paper) | direct (one fourth-order system) | "
+               "mixed (two second-order equations: round-off floor ~N^2 eps instead of ~N^4 eps; corrected only)",
+               choices=("auto", "direct", "mixed")),
     )
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
@@ -317,13 +320,36 @@ class PDEulerBernoulli(Model):
         # K_ext = a D2 D1 (D1: kappa on the real points and J ghosts each side; D2: on the real points),
         # a Toeplitz operator whose stencil is the self-convolution of the curvature stencil
         st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])
+        g_rows, g_cols, g_vals, e0, skip = self.ghosts(scene, n, dx, G)
+        K, r = ghost_stencil_system(np.arange(-G, G + 1), a * np.convolve(st, st), G, n, g_rows, g_cols, g_vals, e0)
+        b = body_loads(scene, x, skip_ends=skip) / A - r
+        fixed = [i for i, s in ((0, left), (n - 1, right)) if s in ("clamped", "pinned")]
+        return K, b, fixed, {"ghosts_per_end": G, "boundary": "Taylor ghost points (degree 4, 4 real points)"}
+
+    @staticmethod
+    def form(params: dict) -> str:
+        f = params.get("form", "auto")
+        return ("mixed" if params["variant"] == "corrected" else "direct") if f == "auto" else f
+
+    def limit_system(self, scene: Scene, params: dict):
+        """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
+        if self.form(params) == "mixed":
+            M, rhs, perm, *_ = self.assemble_mixed(scene, params)
+            return M[perm][:, perm], rhs[perm]
+        K, b, *_ = self.assemble(scene, params)
+        return K, b
+
+    def ghosts(self, scene: Scene, n: int, dx: float, G: int):
+        """Taylor ghost points of both ends (design note §1): w_ghost = Gm w_real + g0.
+        Returns (rows, cols, values) of the ghost rows of E in extended numbering (G ghosts, n real,
+        G ghosts), the constant part e0 (length n + 2G) and the end loads handled by the ghosts."""
         P, C = end_loads(scene)
         EI = scene.EI
         p = min(4, n)
-        er, ec, ev = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
-        e0 = np.zeros(N)
+        er, ec, ev = [], [], []
+        e0 = np.zeros(n + 2 * G)
         skip = {0: set(), n - 1: set()}
-        for side, sup in ((0, left), (1, right)):
+        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
             # internal moment and the third s-derivative coefficient EI d3w/ds3 at the end
             if side == 0:
                 M_end, V3 = -C[0], -P[0]  # M(0+) = -C0, EI w'''(0) = P0 -> d3/ds3 = -w'''
@@ -334,13 +360,48 @@ class PDEulerBernoulli(Model):
             ghost = G - 1 - np.arange(G) if side == 0 else G + n + np.arange(G)
             er.append(np.repeat(ghost, p)), ec.append(np.tile(real, G)), ev.append(Gm.ravel())
             e0[ghost] = g0
-            k = 0 if side == 0 else n - 1
-            skip[k] = {"point_force", "point_moment"}  # end loads: in the ghosts or reactions
-        K, r = ghost_stencil_system(np.arange(-G, G + 1), a * np.convolve(st, st), G, n,
-                                    np.concatenate(er[1:]), np.concatenate(ec[1:]), np.concatenate(ev[1:]), e0)
-        b = body_loads(scene, x, skip_ends=skip) / A - r
-        fixed = [i for i, s in ((0, left), (n - 1, right)) if s in ("clamped", "pinned")]
-        return K, b, fixed, {"ghosts_per_end": G, "boundary": "Taylor ghost points (degree 4, 4 real points)"}
+            skip[0 if side == 0 else n - 1] = {"point_force", "point_moment"}  # end loads: in the ghosts or reactions
+        return np.concatenate(er), np.concatenate(ec), np.concatenate(ev), e0, skip
+
+    def assemble_mixed(self, scene: Scene, params: dict):
+        """The corrected operator split in two second-order equations (``form = mixed``)::
+
+            h² kappa - h² D1 (E w + e0) = 0      (kappa on the real points and J ghosts each side)
+            h² D2 kappa                 = h⁴ b / a
+
+        the same discrete solution as a D2 D1 (E w + e0) = b, but the matrix of fourth differences
+        (entries ~1/h⁴, condition ~N⁴) is never formed: the block system's condition grows like N², so
+        the round-off floor drops from ~N⁴ eps to ~N² eps. Unknowns interleaved by position (banded).
+        Returns (M, rhs, perm, n_kappa, free, info); solve M[perm][:, perm]."""
+        x = self.grid(scene, params)
+        n, dx = len(x), x[1] - x[0]
+        c = curvature_weights(params["horizon"], dx, "corrected")
+        J = len(c)
+        G = 2 * J
+        N = n + 2 * G
+        if 2 * J + 1 > n:
+            raise InputError(f"horizon = {params['horizon']:g}: the family ({J} points each side) does not fit in "
+                             f"{n} points; use more points or a smaller horizon")
+        A = scene.section.A
+        a = scene.EI / A
+        g_rows, g_cols, g_vals, e0, skip = self.ghosts(scene, n, dx, G)
+        E = sp.csr_matrix((np.r_[np.ones(n), g_vals], (np.r_[G + np.arange(n), g_rows], np.r_[np.arange(n), g_cols])),
+                          shape=(N, n))
+        h2 = dx * dx
+        D1 = curvature_operator(n + 2 * J, J, N, c)
+        D2 = curvature_operator(n, J, n + 2 * J, c)
+        left, right = scene.supports.left, scene.supports.right
+        fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned")]
+        free = np.setdiff1d(np.arange(n), fixed)
+        B = (-h2 * D1 @ E).tocsc()[:, free]
+        nk = n + 2 * J
+        M = sp.bmat([[sp.identity(nk, format="csr"), B], [(h2 * D2)[free], None]], format="csr")
+        rhs = np.r_[h2 * (D1 @ e0), (body_loads(scene, x, skip_ends=skip) / A * h2 * h2 / a)[free]]
+        # position of each unknown/equation on the grid: kappa_p at real index p - J, w_i at i
+        pos = np.r_[np.arange(nk) - J, free].astype(float)
+        perm = np.lexsort((np.r_[np.zeros(nk), np.ones(len(free))], pos))
+        return M, rhs, perm, nk, free, {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
+                                        "boundary": "Taylor ghost points (degree 4, 4 real points)"}
 
     def reduced(self, K, b, fixed):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
@@ -348,12 +409,25 @@ class PDEulerBernoulli(Model):
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
-        with timer("assemble"):
-            Kf, bf, free, binfo = self.assemble(scene, params)
-        with timer("solve"):
-            u, info = solve_linear(Kf, bf, what=f"pd-eb ({params['variant']})")
-            w = np.zeros(params["points"])
-            w[free] = u
+        if self.form(params) == "mixed":
+            if params["variant"] != "corrected":
+                raise InputError("form = 'mixed': only the corrected variant has the two-equation form; "
+                                 "use variant = corrected or form = direct")
+            with timer("assemble"):
+                M, rhs, perm, nk, free, binfo = self.assemble_mixed(scene, params)
+                Mp = M[perm][:, perm]
+            with timer("solve"):
+                z = np.empty(len(rhs))
+                z[perm], info = solve_linear(Mp, rhs[perm], what="pd-eb (corrected, mixed form)")
+                w = np.zeros(params["points"])
+                w[free] = z[nk:]
+        else:
+            with timer("assemble"):
+                Kf, bf, free, binfo = self.assemble(scene, params)
+            with timer("solve"):
+                u, info = solve_linear(Kf, bf, what=f"pd-eb ({params['variant']})")
+                w = np.zeros(params["points"])
+                w[free] = u
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         rot = np.gradient(w, dx, edge_order=2)
