@@ -28,7 +28,9 @@ forces perpendicular to the chord of the neighbouring mid-height nodes (for a st
 vertical forces).
 Output: at the mid-line vertices (t = 0), x = arc length s, w = u·n, fields u = u·t (tangential),
 ux, uy (global), rotation of the section line = (u_t(bottom) - u_t(top)) / h; ``--out result.vtu``
-writes the 2D displacement and cell von Mises stress (meshio), ``--out result.png`` a picture.
+writes the 2D displacement and cell von Mises stress (meshio), ``--out result.png`` a picture;
+``info.load_resultant`` = (Fx, Fy, Mz about the axis' left end) of the assembled load vector (every
+load above is placed so that it equals the beam load's resultant).
 """
 
 from __future__ import annotations
@@ -198,6 +200,12 @@ class FemPlaneStress(Model):
                     perp = np.array([-d[1], d[0]]) / arm
                     F[basis.nodal_dofs[:, lo]] -= load.value / arm * perp
                     F[basis.nodal_dofs[:, hi]] += load.value / arm * perp
+            # resultant of the assembled loads (force, moment about the left end of the axis): a check of
+            # the load assembly against the scene's beam loads
+            xd = np.concatenate([basis.nodal_dofs[0], basis.facet_dofs[0]]) if basis.facet_dofs.shape[0] else basis.nodal_dofs[0]
+            yd = np.concatenate([basis.nodal_dofs[1], basis.facet_dofs[1]]) if basis.facet_dofs.shape[0] else basis.nodal_dofs[1]
+            rel = basis.doflocs[:, xd] - geo.position(np.array([0.0]))[0][:, None]
+            resultant = [float(F[xd].sum()), float(F[yd].sum()), float(np.sum(rel[0] * F[yd] - rel[1] * F[xd]))]
             # supports: constraints on tangential / normal components of the end-face nodes
             fixed, pairs, tangents = [], [], []
             for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
@@ -243,7 +251,8 @@ class FemPlaneStress(Model):
 
         rot = (tangential(botn) - tangential(topn)) / h
         info.update(element=el, mesh=f"{ns - 1} x {params['layers']} {el}",
-                    nodes=mesh.p.shape[1], plane_stress_lambda=lam)
+                    nodes=mesh.p.shape[1], plane_stress_lambda=lam,
+                    load_resultant=resultant)
         if not scene.is_straight:
             info.update(axis=scene.axis.type,
                         geometry="quadratic edges on the mapped curves" if el != "q4" else "straight-edged q4")

@@ -222,3 +222,77 @@ def test_curved_scene_files_and_vtu(name, tmp_path):
     X = geometry(sc).position(np.array([0.0, sc.length]))
     for p in X:
         assert np.min(np.hypot(m.points[:, 0] - p[0], m.points[:, 1] - p[1])) < 1e-12 * sc.length
+
+
+def beam_load_resultant(scene):
+    """(Fx, Fy, Mz about X(0)) of the scene's loads on the axis, by 400-point Gauss per distributed load."""
+    from pdverify.geometry import geometry
+    from pdverify.scene import Distributed, PointForce
+
+    geo = geometry(scene)
+    X0 = geo.position(np.array([0.0]))[0]
+    gx, gw = np.polynomial.legendre.leggauss(400)
+    total = np.zeros(3)
+
+    def add(s, f):  # forces f (n, 2) at stations s (n,)
+        r = geo.position(s) - X0
+        total[:2] += f.sum(axis=0)
+        total[2] += np.sum(r[:, 0] * f[:, 1] - r[:, 1] * f[:, 0])
+
+    for load in scene.loads:
+        if isinstance(load, Distributed):
+            a, b = scene.span(load)
+            s = (a + b) / 2 + (b - a) / 2 * gx
+            prof = np.ones_like(s) if load.shape == "uniform" else np.sin(np.pi * s / scene.length)
+            wts = (b - a) / 2 * gw * prof
+        elif isinstance(load, PointForce):
+            s, wts = np.array([load.position]), np.ones(1)
+        else:
+            total[2] += load.value
+            continue
+        t, n = geo.frame(s)
+        if load.frame == "global":
+            f = np.tile([load.axial, load.value], (len(s), 1))
+        else:
+            f = load.axial * t + load.value * n
+        add(s, f * wts[:, None])
+    return total
+
+
+@pytest.mark.parametrize("axis", ["arc", "parabola"])
+@pytest.mark.parametrize("element", ["q4", "q8", "q9"])
+def test_assembled_loads_have_the_beam_resultant(axis, element):
+    """Every load type (local and global frame, partial uniform and sine spans, off-grid forces, interior and
+    end moments, axial parts) on a curved axis: the assembled nodal forces have the force and moment of the
+    beam loads, computed independently on the axis (top-face tractions are per unit axis length, shear
+    tractions lie along n, so the offsets carry no extra moment).
+    Point forces and moments: round-off (measured <= 5e-16). Distributed loads: the forces to round-off; the
+    moment of work-equivalent nodal forces differs from the continuous one by the lumping error, measured
+    q4 (straight chords) 2.5e-4, 6.6e-5 (31, 61 points; order 2), q8/q9 5.7e-9, 3.9e-10 (order ~4)."""
+    if axis == "arc":
+        L, ax = 2.0, {"type": "arc", "radius": 1.5, "opening_angle_deg": float(np.rad2deg(2.0 / 1.5)), "start_angle_deg": -60.0}
+    else:
+        L, ax = axis_length(Axis(**PARABOLA)), PARABOLA
+    loads = [dict(l) for l in LOADS if l.get("position", 0.0) <= L and l.get("end", 0.0) <= L] + [
+        {"type": "distributed", "value": -250.0, "axial": 40.0, "frame": "global", "start": 0.3, "end": 1.2},
+        {"type": "distributed", "value": 120.0, "axial": -70.0, "shape": "sine", "frame": "global"},
+        {"type": "point_force", "position": 1.37, "value": 90.0, "axial": -30.0, "frame": "global"},
+        {"type": "point_force", "position": L, "value": -60.0, "axial": 25.0},
+        {"type": "point_force", "position": 0.0, "value": 45.0, "axial": 15.0, "frame": "global"},
+        {"type": "point_moment", "position": L, "value": 33.0}]
+
+    def errors(sel, points):
+        sc = parse_scene(scene_dict("clamped", "free", [l for l in loads if sel(l)], beam={"length": L}, axis=ax))
+        ref = beam_load_resultant(sc)
+        got = np.array(run(sc, "fem-plane-stress", element=element, points=points, layers=4).info["load_resultant"])
+        return np.abs(got - ref) / np.abs(ref).max()
+
+    point = errors(lambda l: l["type"] != "distributed", 31)
+    assert point.max() < 1e-12, point
+    d31, d61 = errors(lambda l: l["type"] == "distributed", 31), errors(lambda l: l["type"] == "distributed", 61)
+    assert d31[:2].max() < 1e-12 and d61[:2].max() < 1e-12  # forces
+    order = np.log2(d31[2] / d61[2])
+    if element == "q4":
+        assert d31[2] < 5e-4 and order > 1.8, (d31, d61)
+    else:
+        assert d31[2] < 1e-8 and order > 3.5, (d31, d61)
