@@ -177,3 +177,20 @@ def test_case_key_changes_with_the_code(monkeypatch):
     assert len(spec.code_digest()) == 16
     monkeypatch.setattr(spec, "code_digest", lambda: "0" * 16)
     assert case.case_id != before
+
+
+def test_trust_table_states_ranges_and_the_round_off_grid():
+    from pdverify.study.runner import trust_table
+
+    ref = json.dumps({"model": "exact-eb"})
+    rows = []
+    for s, errs in ((10, [1e-2 * 4, 1e-3, 2e-4, 5e-3]), (1000, [0.5, 0.2, 0.1, 0.3])):
+        for n, e in zip([11, 21, 41, 81], errs):
+            rows.append(dict(model="m", options="{}", scene="a", slenderness=s, points=n, err_max=e, status="ok", reference=ref))
+    t = trust_table(pd.DataFrame(rows), tol=0.01).iloc[0]
+    assert t["slenderness_trusted"] == "10" and t["slenderness_not"] == "1000"
+    assert t["points_trusted"] == "21 – 81" and t["points_not"] == "11"
+    assert t["round_off_from_points"] == 81  # 2e-4 -> 5e-3 at L/h 10 (and 0.1 -> 0.3 at 1000)
+    assert "L/h 10" in t["statement"] and "from 81 points" in t["statement"]
+    small = pd.DataFrame([dict(r, err_max=r["err_max"] * 1e-6) for r in rows])  # growth below 1e-6 is not trouble
+    assert pd.isna(trust_table(small).iloc[0]["round_off_from_points"])

@@ -93,7 +93,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     out.mkdir(parents=True, exist_ok=True)
     res = _read(d, "results")
     meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
-    conv, lock, se, sesum, bench = (_read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks"))
+    conv, lock, se, sesum, bench, trust = (_read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary",
+                                                                 "benchmarks", "trust"))
     ok = res[res["status"] == "ok"] if "status" in res else res
 
     scenes = []
@@ -224,6 +225,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
         locking_figs=[f for _, f in lock_figs], locking=table(lock), images=images,
+        trust=table(trust, ["model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
+                            "points_not", "round_off_from_points", "statement"]),
         speed_figs=[f for _, f in speed_figs], speed_summary=table(sesum),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",

@@ -328,6 +328,66 @@ def speed_error_tables(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
     return se, pd.DataFrame(summary)
 
 
+TRUST_TOLERANCE = 0.01
+ROUND_OFF_VISIBLE = 1e-6  # an error that grows under refinement counts as round-off trouble above this
+
+
+def _ranges(values, ok) -> str:
+    """'a – b' runs of consecutive ok values (sorted), comma separated; '' when none."""
+    out, run = [], []
+    for v, good in zip(values, ok):
+        if good:
+            run.append(v)
+        elif run:
+            out.append(run)
+            run = []
+    if run:
+        out.append(run)
+    f = lambda v: f"{v:g}"  # noqa: E731
+    return ", ".join(f(r[0]) if len(r) == 1 else f"{f(r[0])} – {f(r[-1])}" for r in out)
+
+
+def trust_table(df: pd.DataFrame, tol: float = TRUST_TOLERANCE) -> pd.DataFrame:
+    """Per model and option set (all but the grid): the slenderness values and grids at which every
+    scene of the study is within ``tol`` of its reference, and the grid from which refining makes the
+    error grow past ``ROUND_OFF_VISIBLE`` (round-off dominates). A failed case counts as not trustworthy."""
+    if df.empty or "err_max" not in df:
+        return pd.DataFrame()
+    d = df[df["reference"].map(lambda r: json.loads(r).get("model") != "none")].copy()
+    if d.empty:
+        return pd.DataFrame()
+    d["good"] = (d["status"] == "ok") & (d["err_max"] <= tol)
+    d["slen"] = d["slenderness"].fillna(-1.0)
+    rows = []
+    for (model, options), g in d.groupby(["model", d["options"].fillna("")], sort=True):
+        by_s = g.groupby("slen")["good"].apply(lambda s: bool(s.groupby(g.loc[s.index, "points"]).all().any()))
+        sl = [(s, ok) for s, ok in by_s.items() if s > 0]
+        trusted_s = {s for s, ok in by_s.items() if ok}
+        gp = g[g["slen"].isin(trusted_s)] if trusted_s else g
+        by_n = gp.groupby("points")["good"].all().sort_index()
+        floor = []
+        for (scene, slen), gs in g[g["status"] == "ok"].groupby(["scene", "slen"]):
+            e = gs.sort_values("points")[["points", "err_max"]].to_numpy(float)
+            rise = [int(e[i, 0]) for i in range(1, len(e)) if e[i, 1] > 2.0 * e[i - 1, 1] and e[i, 1] > ROUND_OFF_VISIBLE]
+            if rise:
+                floor.append(rise[0])
+        row = {"model": model, "options": options, "tolerance": tol,
+               "slenderness_trusted": _ranges([s for s, _ in sl], [ok for _, ok in sl]) if sl else "",
+               "slenderness_not": ", ".join(f"{s:g}" for s, ok in sl if not ok),
+               "points_trusted": _ranges(list(by_n.index), list(by_n.values)),
+               "points_not": ", ".join(str(int(n)) for n, ok in by_n.items() if not ok),
+               "round_off_from_points": min(floor) if floor else None}
+        parts = [f"{model}"]
+        if sl:
+            parts.append(f"within {tol:.0%} for L/h {row['slenderness_trusted'] or 'none of the values tried'}")
+        parts.append(f"on grids of {row['points_trusted'] or 'none of the sizes tried'} points")
+        if floor:
+            parts.append(f"(from {min(floor)} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off)")
+        row["statement"] = " ".join(parts)
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
 def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for b in study.benchmarks:
@@ -373,6 +433,7 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
     se, summary = speed_error_tables(df)
     _save(se, out, "speed_error")
     summary.to_csv(out / "speed_error_summary.csv", index=False)
+    trust_table(df).to_csv(out / "trust.csv", index=False)
     if study.benchmarks:
         benchmark_table(study, df, conv).to_csv(out / "benchmarks.csv", index=False)
     shutil.copyfile(study.path, out / "study.toml")
