@@ -31,8 +31,11 @@ def _unpack(assembled):
     return assembled.K, assembled.b
 
 
-def bench_case(model: str, points: int, scene_path: str | None = None, repeat: int = 1) -> dict:
-    """One measurement, in this process. Returns the row printed by ``pdverify bench``."""
+def bench_case(model: str, points: int, scene_path: str | None = None, repeat: int = 2) -> dict:
+    """One measurement, in this process. Returns the row printed by ``pdverify bench``.
+
+    total = best of ``repeat`` whole runs (parse, assemble, solve), limit = best of 3 banded solves:
+    both warm, so the first-touch page faults of the first run's arrays count in neither."""
     import scipy.linalg as sla
 
     from .linalg import bandwidths, scale_symmetric, to_banded
