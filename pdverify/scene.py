@@ -153,6 +153,55 @@ class Axis(_Strict):
         return self
 
 
+class Motion(_Strict):
+    """A prescribed end motion of time: ``sine_ramp`` = amplitude sin(2 pi frequency t) until
+    ``hold_after``, then the value reached there; ``sine`` = amplitude sin(2 pi frequency t); ``step`` = amplitude."""
+
+    type: Literal["sine_ramp", "sine", "step"]
+    amplitude: float = Field(allow_inf_nan=False)
+    frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    hold_after: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _complete(self):
+        if self.type in ("sine_ramp", "sine") and self.frequency is None:
+            raise ValueError(f"a {self.type} motion needs frequency (Hz)")
+        if self.type == "sine_ramp" and self.hold_after is None:
+            raise ValueError("a sine_ramp motion needs hold_after (the time from which the value is held)")
+        return self
+
+
+class EndMotion(_Strict):
+    """Prescribed motion of one end: transverse ``displacement``, ``axial`` displacement, ``rotation``."""
+
+    displacement: Motion | None = None
+    axial: Motion | None = None
+    rotation: Motion | None = None
+
+
+class Dynamics(_Strict):
+    """Optional ``[dynamics]`` table: a transient run from rest (loads applied as steps at t = 0).
+
+    ``damping_ratio``: fraction of critical damping of the first mode (mass-proportional, on the
+    translations); or ``damping`` = c_d / rho in 1/s. ``time_step``: default = safety x stable limit.
+    ``probes``: positions whose time histories are recorded; ``output_interval``: seconds between records."""
+
+    end_time: float = Field(gt=0, allow_inf_nan=False)
+    time_step: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    damping_ratio: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    damping: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    output_interval: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    probes: list[float] = Field(default_factory=list)
+    left: EndMotion | None = None
+    right: EndMotion | None = None
+
+    @model_validator(mode="after")
+    def _complete(self):
+        if self.damping_ratio is not None and self.damping is not None:
+            raise ValueError("give damping_ratio or damping, not both")
+        return self
+
+
 class Scene(_Strict):
     name: str = Field(min_length=1)
     description: str = ""
@@ -162,6 +211,7 @@ class Scene(_Strict):
     supports: Supports
     loads: list[Load] = Field(default_factory=list)
     axis: Axis = Field(default_factory=Axis)
+    dynamics: Dynamics | None = None
 
     # -- derived quantities ------------------------------------------------------------------
     @property
@@ -241,7 +291,8 @@ def _allowed_keys(model_cls) -> str:
     return ", ".join(model_cls.model_fields)
 
 
-_TABLES = {"beam": Beam, "section": Section, "material": Material, "supports": Supports, "axis": Axis}
+_TABLES = {"beam": Beam, "section": Section, "material": Material, "supports": Supports, "axis": Axis,
+           "dynamics": Dynamics}
 
 
 def _message(err: dict, data: dict) -> str:
@@ -252,7 +303,9 @@ def _message(err: dict, data: dict) -> str:
         parent = err["loc"][:-1]
         key = err["loc"][-1]
         cls = Scene
-        if parent and parent[0] in _TABLES:
+        if parent and parent[0] == "dynamics":
+            cls = {1: Dynamics, 2: EndMotion}.get(len(parent), Motion)
+        elif parent and parent[0] in _TABLES:
             cls = _TABLES[parent[0]]
         elif parent and parent[0] == "loads" and len(parent) >= 3:
             cls = {"point_force": PointForce, "point_moment": PointMoment, "distributed": Distributed}.get(
@@ -294,6 +347,29 @@ def _check_loads(scene: Scene) -> list[str]:
     return lines
 
 
+_FIXES = {"displacement": ("clamped", "pinned"), "axial": ("clamped", "pinned"), "rotation": ("clamped", "guided")}
+
+
+def _check_dynamics(scene: Scene) -> list[str]:
+    d = scene.dynamics
+    if d is None:
+        return []
+    lines = []
+    for i, p in enumerate(d.probes):
+        if not 0.0 <= p <= scene.length:
+            lines.append(f"dynamics.probes[{i}] = {p!r}: outside the beam [0, {scene.length}]; give positions on the beam")
+    for side in ("left", "right"):
+        em = getattr(d, side)
+        if em is None:
+            continue
+        sup = getattr(scene.supports, side)
+        for key, allowed in _FIXES.items():
+            if getattr(em, key) is not None and sup not in allowed:
+                lines.append(f"dynamics.{side}.{key}: a {sup} end leaves this motion free, so it cannot be prescribed; "
+                             f"set supports.{side} to {' or '.join(allowed)}")
+    return lines
+
+
 def parse_scene(data: dict, source: str = "scene") -> Scene:
     """Validate a scene given as a dict (parsed TOML) and return it, or raise InputError."""
     if not isinstance(data, dict):
@@ -302,7 +378,7 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
         scene = Scene.model_validate(data)
     except ValidationError as exc:
         raise InputError([f"{source}: {_message(e, data)}" for e in exc.errors()]) from None
-    lines = _check_loads(scene)
+    lines = _check_loads(scene) + _check_dynamics(scene)
     if not scene.is_straight:
         from .geometry import axis_length
 

@@ -1,0 +1,561 @@
+"""Models ``pd-rod`` and ``pd-timoshenko``: micro-elastic PD rod and Timoshenko beam (Moyer & Miraglia).
+
+Node grid x_i = i Δ, i = 0..n-1 (ends included), horizon δ = m Δ (integer m, option ``horizon``).
+
+Rod (Section 2): ρ u_tt = ρ B I_i - c_d u_t + b with B = 2E/(δ² ρ) (Eq. 1–3) and the trapezoidal
+peridynamic integral I_i = Σ_j c_j (u_{i+j} + u_{i-j} - 2u_i), c_j = w_j / j (Eq. 13–19;
+w_j = 1, 1/2 at j = m; see ``_moyer_kernels.rod_kernel``).
+
+Timoshenko beam (Section 3), per unit length (w up, γ the cross-section rotation, ψ = w' - γ, Eq. 33):
+
+    ρA w_tt = (kGA / 2δ) I_i + q                   I_i = PV∫ ψ(x_i + ε)/ε dε       (Eq. 34, 36, 47)
+    ρI γ_tt = (2EI / δ²) J_i + (kGA / 2δ) K_i + μ   J_i = ∫ (γ(x_i+ε) - γ_i)/|ε| dε,  K_i = 2δ ψ_i (Eq. 35, 37, 48, 49)
+
+i.e. C1 = kG/(2δρ), C2 = 2E/(ρδ²), C3 = AkG/(2ρδI) (Eq. 50); q is the line load, μ the line couple.
+The static problem is the same discrete operator without inertia, assembled as a sparse matrix
+(rows: the real points; unknowns interleaved w_0, γ_0, w_1, ...) and solved directly
+(:func:`pdverify.linalg.solve_linear`). :func:`simulate` integrates the same operator in time with
+the damped leapfrog / velocity-Verlet scheme of Eq. 7–12 (38–44): one sparse product per step.
+
+Variants
+--------
+``paper`` (as published): ψ at the nodes by central differences (Eq. 45–46), I by Eq. 47; ghost
+points by Taylor extrapolation of w and γ (u) from the real points: first order (Eq. 20–21) at
+Dirichlet ends (clamped; rod: clamped/pinned), second order with one-sided second-order differences
+at the other ends (Section 4, Eq. 53); loads at an end as body force p/(AΔ) in the end cell.
+Two printing errors had to be corrected to evaluate the sums at all: Eq. 16 gives l1 = 1 + k - m,
+which runs over 2-m..0 (division by zero at k = m-1); the trapezoid of ∫_{-mΔ}^{-Δ} needs
+l1 = k - m - 1 (as Eq. 47/48 index it), and Eq. 19's first sum then needs the minus sign of Eq. 15
+(as Eq. 48 has it). Measured weaknesses (tests/test_pd_timoshenko.py): the pure extrapolation imposes
+no traction condition at a free end (the mixed-boundary cantilever of Section 4 is singular with the
+second-order extrapolation and wrong with the first-order one) and the central-difference ψ decouples
+odd and even points (w' twice by central differences).
+
+``corrected`` (default):
+1. ψ at the half points, ψ_{i+1/2} = (w_{i+1} - w_i)/Δ - (γ_i + γ_{i+1})/2, I by the midpoint rule on
+   each unit interval (weights 1/(j - 1/2)), K_i = 2δ (ψ_{i-1/2} + ψ_{i+1/2})/2: compact, no odd–even
+   decoupling, no shear locking (for m = 1 the energy-consistent FD / reduced-integration element).
+2. ghost points from one polynomial per field (degree 3, fitted to the first 4 real points) that
+   satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; pinned w = w_end,
+   EIγ' = M̄; free EIγ' = M̄, kGA ψ = P̄; guided γ = γ_end, kGA ψ = P̄ (end loads enter here);
+   the end point's own equation holds where its value is not prescribed. Rod: u = u_end or EA u' = N̄.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import InputError, SolveError
+from ..linalg import solve_linear
+from ..registry import Model, Option
+from ..result import Result, Timer
+from ..scene import Scene
+from ._moyer_kernels import (constrained_ghosts, motion_final, motion_value, node_loads, rod_kernel,
+                             shear_kernel, taylor_ghosts, toeplitz)
+
+FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
+
+
+@dataclass
+class Discrete:
+    """The assembled operator on all real DOFs: rows r: mass_r u_tt = b_r - (K u)_r (free rows only)."""
+
+    x: np.ndarray
+    K: sp.csr_matrix  # all DOFs x all DOFs (rows of prescribed DOFs are ignored)
+    b: np.ndarray
+    mass: np.ndarray  # rho A for translations, rho I for rotations
+    translational: np.ndarray  # bool per DOF (damping acts on these)
+    prescribed: dict  # dof -> (field, side) of Dirichlet DOFs
+    nf: int  # fields per point (1 rod, 2 beam)
+    info: dict = field(default_factory=dict)
+
+    @property
+    def free(self) -> np.ndarray:
+        keep = np.ones(len(self.b), bool)
+        keep[list(self.prescribed)] = False
+        return np.flatnonzero(keep)
+
+
+def _end_data(n: int, side: int, npts: int) -> np.ndarray:
+    """Real point indices from the end inward."""
+    k = np.arange(npts)
+    return k if side == 0 else n - 1 - k
+
+
+def _ghost_index(n: int, G: int, side: int) -> np.ndarray:
+    """Extended-grid indices of ghosts t = 1..G outside the end (extended index = real + G)."""
+    t = np.arange(G)
+    return G - 1 - t if side == 0 else G + n + t
+
+
+DIRICHLET = {"clamped": (True, True), "pinned": (True, False), "free": (False, False), "guided": (False, True)}
+
+
+def _extension(n: int, G: int, nf: int, blocks) -> tuple[sp.csr_matrix, np.ndarray]:
+    """Sparse map real DOFs (interleaved, nf per point) -> extended field f values (stacked f-major):
+    rows f*N + e. ``blocks``: per side, (R (nf G x nf npts), r0, npts) ghost maps, field-major."""
+    N = n + 2 * G
+    rows, cols, vals = [], [], []
+    for f in range(nf):
+        rows.append(f * N + G + np.arange(n)), cols.append(nf * np.arange(n) + f), vals.append(np.ones(n))
+    e0 = np.zeros(nf * N)
+    for side, (R, r0, npts) in blocks.items():
+        real = _end_data(n, side, npts)
+        ghost = _ghost_index(n, G, side)
+        for f in range(nf):
+            for g in range(nf):
+                blk = R[f * G:(f + 1) * G, g * npts:(g + 1) * npts]
+                rr = np.repeat(f * N + ghost, npts)
+                cc = np.tile(nf * real + g, G)
+                rows.append(rr), cols.append(cc), vals.append(blk.ravel())
+            e0[f * N + ghost] = r0[f * G:(f + 1) * G]
+    E = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nf * N, nf * n))
+    return E, e0
+
+
+def _check_grid(n: int, m: int, name: str):
+    if n < max(2 * m + 2, FIT_POINTS + 1):
+        raise InputError(f"points = {n}: model {name} with horizon = {m} needs at least {max(2 * m + 2, FIT_POINTS + 1)} "
+                         "points; use more points or a smaller horizon")
+
+
+# -- rod --------------------------------------------------------------------------------------
+
+
+def rod_operator(scene: Scene, n: int, m: int, variant: str, end_values: dict | None = None) -> Discrete:
+    """Static operator of the PD rod (axial displacement u): K u = b, b = axial line loads."""
+    _check_grid(n, m, "pd-rod")
+    L = scene.length
+    x = np.linspace(0.0, L, n)
+    dx = x[1] - x[0]
+    delta = m * dx
+    EA, rhoA = scene.EA, (scene.material.density or 0.0) * scene.section.A
+    G = m
+    q, _, ends = node_loads(scene, x, "axial", ends_apart=(variant == "corrected"))
+    blocks, prescribed = {}, {}
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        fixed = sup in ("clamped", "pinned")
+        if fixed:
+            prescribed[0 if side == 0 else n - 1] = ("u", side)
+        if variant == "paper":
+            blocks[side] = (taylor_ghosts(G, 1 if fixed else 2), np.zeros(G), 4)
+        else:
+            if fixed:
+                con = [({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0)]
+            else:  # EA u_s(0) = N̄ (outward force at this end)
+                con = [({(0, 1): 1.0}, {}, dx * ends[side][0] / EA)]
+            R, r0 = constrained_ghosts(1, FIT_DEGREE, FIT_POINTS, G, con)
+            blocks[side] = (R, r0, FIT_POINTS)
+    E, e0 = _extension(n, G, 1, blocks)
+    c = rod_kernel(m)
+    j = np.arange(1, m + 1)
+    Iop = toeplitz(n, G, n + 2 * G, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
+    B = 2.0 * EA / delta**2  # ρA B: force per length per unit of I
+    K = (-B * (Iop @ E)).tocsr()
+    b = q + B * (Iop @ e0)
+    if variant == "paper":
+        for side in (0, 1):
+            b[0 if side == 0 else n - 1] += ends[side][0] / dx
+    return Discrete(x, K, b, np.full(n, rhoA), np.ones(n, bool), prescribed, 1,
+                    {"ghosts_per_end": G, "spacing": dx, "horizon": delta})
+
+
+# -- Timoshenko beam ----------------------------------------------------------------------------
+
+
+def beam_operator(scene: Scene, n: int, m: int, variant: str) -> Discrete:
+    """Static operator of the PD Timoshenko beam on the interleaved DOFs (w_0, γ_0, w_1, γ_1, ...)."""
+    _check_grid(n, m, "pd-timoshenko")
+    L = scene.length
+    x = np.linspace(0.0, L, n)
+    dx = x[1] - x[0]
+    delta = m * dx
+    EI, kGA = scene.EI, scene.kGA
+    rho = scene.material.density or 0.0
+    G = m + 1
+    N = n + 2 * G
+    q, mu, ends = node_loads(scene, x, "transverse", ends_apart=(variant == "corrected"))
+    blocks, prescribed = {}, {}
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        sigma = -1.0 if side == 0 else 1.0
+        fix_w, fix_g = DIRICHLET[sup]
+        end = 0 if side == 0 else n - 1
+        if fix_w:
+            prescribed[2 * end] = ("w", side)
+        if fix_g:
+            prescribed[2 * end + 1] = ("rotation", side)
+        if variant == "paper":
+            T = taylor_ghosts(G, 1 if (fix_w and fix_g) else 2)
+            R = np.kron(np.eye(2), T)
+            blocks[side] = (R, np.zeros(2 * G), 4)
+            continue
+        P, C = ends[side]
+        con = []
+        if fix_w:
+            con.append(({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0))
+        if fix_g:
+            con.append(({(1, 0): 1.0}, {(1, 0): 1.0}, 0.0))
+        if not fix_g:  # moment: EI γ_s(0) = C̄ (both ends, s outward)
+            con.append(({(1, 1): 1.0}, {}, dx * C / EI))
+        if not fix_w:  # shear: kGA (w_s - σ γ) = P̄
+            con.append(({(0, 1): 1.0, (1, 0): -sigma * dx}, {}, dx * P / kGA))
+        R, r0 = constrained_ghosts(2, FIT_DEGREE, FIT_POINTS, G, con)
+        blocks[side] = (R, r0, FIT_POINTS)
+    E, e0 = _extension(n, G, 2, blocks)
+    Ew, Eg = E[:N], E[N:]
+    ew, eg = e0[:N], e0[N:]
+    offs, a = shear_kernel(m, variant)
+    c = rod_kernel(m)
+    j = np.arange(1, m + 1)
+    if variant == "paper":
+        # nodal ψ on extended points 1..N-2 (index e - 1), ψ = (W_{e+1} - W_{e-1})/(2Δ) - Γ_e
+        Dc = toeplitz(N - 2, 1, N, [-1, 1], [-0.5 / dx, 0.5 / dx])
+        Sel = toeplitz(N - 2, 1, N, [0], [1.0])
+        Pw, Pg = Dc, -Sel
+        # I_i = Σ a_j (ψ_{e+j} - ψ_{e-j}) with e = i + G, ψ index e - 1
+        Sop = toeplitz(n, G - 1, N - 2, np.concatenate([j, -j]), np.concatenate([a, -a]))
+        Avg = toeplitz(n, G - 1, N - 2, [0], [1.0])
+    else:
+        # ψ̄ of the interval [e, e+1] (half point h = e + 1/2, rows h = 1..N-3, index h - 1): the interval
+        # average of w' is (W_{e+1} - W_e)/Δ, that of γ (-Γ_{e-1} + 13Γ_e + 13Γ_{e+1} - Γ_{e+2})/24 (exact
+        # for cubic γ; the plain mean (Γ_e + Γ_{e+1})/2 leaves kGA Δ² γ''/12, a shear-force error that
+        # grows like (Δ/h)², see the module docstring)
+        Pw = toeplitz(N - 3, 1, N, [0, 1], [-1.0 / dx, 1.0 / dx])
+        Pg = toeplitz(N - 3, 1, N, [-1, 0, 1, 2], np.array([1.0, -13.0, -13.0, 1.0]) / 24)
+        # I_i = Σ_j a_j (ψ_{e + j - 1/2} - ψ_{e - j + 1/2}): half points e + j - 1/2, e - j + 1/2
+        Sop = toeplitz(n, G - 1, N - 3, np.concatenate([j - 1, -j]), np.concatenate([a, -a]))
+        Avg = toeplitz(n, G - 1, N - 3, [-1, 0], [0.5, 0.5])
+    Jop = toeplitz(n, G, N, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
+    psi_u = Pw @ Ew + Pg @ Eg  # ψ (extended) from the real DOFs
+    psi_0 = Pw @ ew + Pg @ eg
+    cw, cg = kGA / (2 * delta), 2 * EI / delta**2
+    Kw = -(cw * (Sop @ psi_u))  # rows: w equations of the real points
+    Kg = -(cg * (Jop @ Eg) + kGA * (Avg @ psi_u))
+    bw = q + cw * (Sop @ psi_0)
+    bg = mu + cg * (Jop @ eg) + kGA * (Avg @ psi_0)
+    if variant == "paper":
+        for side in (0, 1):
+            end = 0 if side == 0 else n - 1
+            bw[end] += ends[side][0] / dx
+            bg[end] += ends[side][1] / dx
+    perm = np.empty(2 * n, dtype=np.int64)
+    perm[0::2], perm[1::2] = np.arange(n), n + np.arange(n)
+    K = sp.vstack([Kw, Kg]).tocsr()[perm]
+    b = np.concatenate([bw, bg])[perm]
+    mass = np.empty(2 * n)
+    mass[0::2], mass[1::2] = rho * scene.section.A, rho * scene.section.I
+    trans = np.zeros(2 * n, bool)
+    trans[0::2] = True
+    return Discrete(x, K.tocsr(), b, mass, trans, prescribed, 2,
+                    {"ghosts_per_end": G, "spacing": dx, "horizon": delta,
+                     "C1": kGA / (2 * delta * rho * scene.section.A) if rho else None,
+                     "C2": 2 * scene.material.E / (rho * delta**2) if rho else None,
+                     "C3": kGA / (2 * rho * delta * scene.section.I) if rho else None})
+
+
+# -- prescribed values, static solve -----------------------------------------------------------
+
+_MOTION_KEY = {"w": "displacement", "u": "axial", "rotation": "rotation"}
+
+
+def prescribed_motions(scene: Scene, disc: Discrete) -> dict:
+    """dof -> Motion (or None for a fixed zero value) from the scene's [dynamics] table."""
+    out = {}
+    d = scene.dynamics
+    for dof, (fieldname, side) in disc.prescribed.items():
+        em = None if d is None else getattr(d, "left" if side == 0 else "right")
+        out[dof] = None if em is None else getattr(em, _MOTION_KEY[fieldname])
+    return out
+
+
+def static_solution(scene: Scene, disc: Discrete, what: str) -> tuple[np.ndarray, dict]:
+    """Direct sparse solve; prescribed DOFs take their settled values (zero for plain supports)."""
+    u = np.zeros(len(disc.b))
+    end_time = scene.dynamics.end_time if scene.dynamics else 0.0
+    for dof, mot in prescribed_motions(scene, disc).items():
+        u[dof] = 0.0 if mot is None else motion_final(mot, end_time)
+    free = disc.free
+    Kf = disc.K[free][:, free]
+    rhs = disc.b[free] - disc.K[free] @ u
+    sol, info = solve_linear(Kf, rhs, what=what)
+    u[free] = sol
+    return u, info
+
+
+# -- dynamics ---------------------------------------------------------------------------------
+
+
+@dataclass
+class History:
+    """Time histories of a transient run: t (s), probe positions and their w (or u) and rotation."""
+
+    t: np.ndarray
+    probes: np.ndarray
+    values: np.ndarray  # (len(t), len(probes)) translation at the probes
+    rotations: np.ndarray | None
+    final: np.ndarray  # all DOFs at the end time
+    x: np.ndarray
+    dt: float
+    dt_limit: float
+    steps: int
+    damping: float  # c_d / rho (1/s)
+    omega1: float | None
+
+    def to_csv(self) -> str:
+        import io
+
+        cols = {"t": self.t}
+        for k, p in enumerate(self.probes):
+            cols[f"x={p:g}"] = self.values[:, k]
+        buf = io.StringIO()
+        buf.write(",".join(cols) + "\n")
+        np.savetxt(buf, np.column_stack(list(cols.values())), delimiter=",", fmt="%.12g")
+        return buf.getvalue()
+
+
+def _mass_scaled(disc: Discrete, free: np.ndarray) -> sp.csr_matrix:
+    return sp.diags(1.0 / disc.mass[free]) @ disc.K[free][:, free]
+
+
+def stable_time_step(disc: Discrete) -> float:
+    """dt_limit = 2 / ω_max, ω_max² the largest |eigenvalue| of M⁻¹K on the free DOFs (ARPACK up to
+    5,000 DOFs, else the Gershgorin bound max row sum |M⁻¹K|, which is safe)."""
+    free = disc.free
+    A = _mass_scaled(disc, free)
+    if A.shape[0] <= 5000:
+        import scipy.sparse.linalg as spla
+
+        if A.shape[0] < 20:
+            lam = float(np.abs(np.linalg.eigvals(A.toarray())).max())
+        else:
+            lam = float(np.abs(spla.eigs(A, k=1, which="LM", return_eigenvectors=False, tol=1e-6)[0]))
+    else:
+        lam = float(np.abs(A).sum(axis=1).max())
+    return 2.0 / np.sqrt(lam)
+
+
+def first_frequency(disc: Discrete) -> float:
+    """ω_1 (rad/s): the smallest |eigenvalue| of M⁻¹K on the free DOFs, square-rooted (shift-invert)."""
+    import scipy.sparse.linalg as spla
+
+    free = disc.free
+    A = _mass_scaled(disc, free).tocsc()
+    if A.shape[0] < 40:
+        lam = np.linalg.eigvals(A.toarray())
+        return float(np.sqrt(np.abs(lam).min()))
+    lam = spla.eigs(A, k=1, sigma=0.0, which="LM", return_eigenvectors=False)
+    return float(np.sqrt(np.abs(lam[0])))
+
+
+def _interp_rows(x: np.ndarray, probes: np.ndarray) -> sp.csr_matrix:
+    """Linear interpolation from the points to the probe positions (sparse rows)."""
+    dx = x[1] - x[0]
+    i = np.clip(np.floor(probes / dx).astype(int), 0, len(x) - 2)
+    t = probes / dx - i
+    rows = np.repeat(np.arange(len(probes)), 2)
+    cols = np.stack([i, i + 1], 1).ravel()
+    vals = np.stack([1 - t, t], 1).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(len(probes), len(x)))
+
+
+def integrate(disc: Discrete, motions: dict, t_end: float, dt: float | None = None, damping: float = 0.0,
+              damping_ratio: float | None = None, safety: float = 0.9, probes=None,
+              record_every: int | None = None, output_interval: float | None = None) -> History:
+    """Damped leapfrog velocity-Verlet (Eq. 7–11 / 38–44) from rest (Eq. 12), loads as steps at t = 0.
+
+    Per step: a^j = (b - K u^j)/m (one sparse product); v̂ = v^{j-1/2} + dt (a^j - D v^{j-1/2});
+    û^{j+1} = u^j + dt v̂; v^j = (û^{j+1} - u^{j-1})/(2dt); v^{j+1/2} = v^{j-1/2} + dt (a^j - D v^j);
+    u^{j+1} = u^j + dt v^{j+1/2}. D = c_d/ρ acts on the translations only (Eq. 36–37: γ undamped).
+    Prescribed DOFs follow their motions. Raises SolveError when the response blows up."""
+    free = disc.free
+    limit = stable_time_step(disc)
+    omega1 = None
+    if damping_ratio is not None:
+        omega1 = first_frequency(disc)
+        damping = 2.0 * damping_ratio * omega1
+    dt = safety * limit if dt is None else float(dt)
+    steps = int(np.ceil(t_end / dt - 1e-9))
+    if output_interval is not None:
+        record_every = max(1, int(round(output_interval / dt)))
+    record_every = record_every or max(1, steps // 2000)
+    nf = disc.nf
+    n = len(disc.x)
+    probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
+    Pm = _interp_rows(disc.x, probes)
+    Kf = disc.K[free].tocsr()
+    bf = disc.b[free]
+    inv_m = 1.0 / disc.mass[free]
+    D = np.where(disc.translational[free], damping, 0.0)
+    u = np.zeros(len(disc.b))
+    pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
+    uf = np.zeros(len(free))
+    uf_old = np.zeros(len(free))
+    v = np.zeros(len(free))
+    a = np.empty(len(free))
+    tmp = np.empty(len(free))
+    times, vals, rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
+    scale = max([abs(m.amplitude) for _, m in pres] + [0.0])
+    for s in range(1, steps + 1):
+        # a^j from u^j (prescribed DOFs at t^j)
+        np.subtract(bf, Kf @ u, out=a)
+        a *= inv_m
+        # predictor for v^j (Eq. 7–9); û^{j+1} - u^{j-1} = (u^j - u^{j-1}) + dt v̂
+        np.multiply(D, v, out=tmp)
+        vhat = v + dt * (a - tmp)
+        vj = ((uf - uf_old) + dt * vhat) / (2 * dt)
+        # corrector (Eq. 10–11)
+        v += dt * (a - D * vj)
+        uf_old[:] = uf
+        uf += dt * v
+        u[free] = uf
+        t = s * dt
+        for dof, mot in pres:
+            u[dof] = float(motion_value(mot, t))
+        if s % record_every == 0 or s == steps:
+            amp = float(np.abs(uf).max())
+            if not np.isfinite(amp) or (scale > 0 and amp > 1e6 * scale) or (scale == 0 and amp > 1e100):
+                raise SolveError(f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s); "
+                                 f"the stable limit is {limit:.4g} s; use a time step below it")
+            if scale == 0 and amp > 0:
+                scale = amp
+            times.append(t)
+            vals.append(Pm @ u[0::nf])
+            if nf == 2:
+                rots.append(Pm @ u[1::2])
+    final = u.copy()
+    return History(np.array(times), probes, np.array(vals), np.array(rots) if nf == 2 else None, final, disc.x,
+                   dt, limit, steps, damping, omega1)
+
+
+# -- the models -------------------------------------------------------------------------------
+
+_OPTIONS = (
+    Option("points", int, 101, "material points along the beam, ends included", minimum=6),
+    Option("horizon", int, 3, "horizon delta = m dx, m an integer (1 = nearest neighbours)", minimum=1),
+    Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
+    Option("analysis", str, "auto", "auto (dynamic when the scene has [dynamics]) | static | dynamic",
+           choices=("auto", "static", "dynamic")),
+)
+
+
+class _MoyerModel(Model):
+    source = "Moyer & Miraglia, Peridynamic solutions for Timoshenko beams (seed 001)"
+    options = _OPTIONS
+
+    def operator(self, scene: Scene, params: dict) -> Discrete:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def assemble(self, scene: Scene, params: dict):
+        """(K, b, free, info) of the static system after the supports (for ``pdverify bench``)."""
+        disc = self.operator(scene, params)
+        free = disc.free
+        return disc.K[free][:, free].tocsr(), disc.b[free], free, disc.info
+
+    def _dynamic(self, scene: Scene, params: dict) -> bool:
+        if params["analysis"] == "dynamic" and scene.dynamics is None:
+            raise InputError("analysis = 'dynamic': the scene has no [dynamics] table; add one (end_time, ...) "
+                             "or use analysis = static")
+        return params["analysis"] == "dynamic" or (params["analysis"] == "auto" and scene.dynamics is not None)
+
+    def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
+        """Point-updates per second of the explicit integration (``pdverify bench``)."""
+        import time
+
+        disc = self.operator(scene, params)
+        t0 = time.perf_counter()
+        h = integrate(disc, {}, t_end=steps * 0.9 * stable_time_step(disc), record_every=steps)
+        return len(disc.x) * h.steps / (time.perf_counter() - t0)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        if self._dynamic(scene, params) and scene.material.density is None:
+            raise InputError("material.density: needed for dynamics; add density to the scene")
+        with timer("assemble"):
+            disc = self.operator(scene, params)
+        m = params["horizon"]
+        info = dict(disc.info, horizon_factor=m, variant=params["variant"])
+        fields = {}
+        writers = {}
+        if self._dynamic(scene, params):
+            d = scene.dynamics
+            with timer("solve"):
+                h = integrate(disc, prescribed_motions(scene, disc), d.end_time, dt=d.time_step, damping=d.damping or 0.0,
+                              damping_ratio=d.damping_ratio, probes=d.probes, output_interval=d.output_interval)
+            u = h.final
+            fields.update(t=h.t, probe_positions=h.probes, probe_values=h.values)
+            info.update(analysis="dynamic", dt=h.dt, dt_limit=h.dt_limit, steps=h.steps, damping=h.damping,
+                        omega1=h.omega1)
+            writers[".csv"] = lambda path, h=h: open(path, "w").write(h.to_csv())
+        else:
+            with timer("solve"):
+                u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})")
+            info.update(sinfo, analysis="static")
+        return self.result(scene, params, disc, u, fields, info, timer, writers)
+
+
+class PDRod(_MoyerModel):
+    name = "pd-rod"
+    title = "micro-elastic PD rod (axial), trapezoidal kernel"
+    axial = True
+    bending = False
+    theory = "axial"
+
+    def operator(self, scene, params):
+        return rod_operator(scene, params["points"], params["horizon"], params["variant"])
+
+    def result(self, scene, params, disc, u, fields, info, timer, writers):
+        x = disc.x
+        N = scene.EA * np.gradient(u, x[1] - x[0], edge_order=2)
+        fields = dict(fields, u=u, N=N)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=np.zeros_like(x),
+                      fields=fields, dofs=len(disc.free), timings=timer.timings, info=info, writers=writers)
+
+
+class PDTimoshenko(_MoyerModel):
+    name = "pd-timoshenko"
+    title = "micro-elastic PD Timoshenko beam (w, rotation)"
+    theory = "timoshenko"
+
+    def operator(self, scene, params):
+        return beam_operator(scene, params["points"], params["horizon"], params["variant"])
+
+    def result(self, scene, params, disc, u, fields, info, timer, writers):
+        x = disc.x
+        dx = x[1] - x[0]
+        w, g = u[0::2], u[1::2]
+        M = scene.EI * np.gradient(g, dx, edge_order=2)
+        psi = np.gradient(w, dx, edge_order=2) - g
+        fields = dict(fields, M=M, V=-scene.kGA * psi, psi=psi)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=g,
+                      fields=fields, dofs=len(disc.free), timings=timer.timings, info=info, writers=writers)
+
+
+def simulate(scene: Scene, params: dict | None = None, t_end: float | None = None, dt: float | None = None,
+             damping: float | None = None, damping_ratio: float | None = None, safety: float = 0.9,
+             probes=None, record_every: int | None = None, model: str = "pd-timoshenko") -> History:
+    """Transient run of ``pd-timoshenko`` (or ``model = "pd-rod"``) on ``scene``: the scene's
+    [dynamics] table gives the defaults (end time, damping, probes, prescribed end motions); the
+    arguments override them. Returns a :class:`History`."""
+    m = {"pd-timoshenko": PDTimoshenko(), "pd-rod": PDRod()}[model]
+    params = m.resolve(scene, params or {})
+    if scene.material.density is None:
+        raise InputError("material.density: needed for dynamics; add density to the scene")
+    d = scene.dynamics
+    if t_end is None:
+        if d is None:
+            raise InputError("t_end: give the end time (the scene has no [dynamics] table)")
+        t_end = d.end_time
+    if d is not None:
+        dt = d.time_step if dt is None else dt
+        if damping is None and damping_ratio is None:
+            damping, damping_ratio = d.damping, d.damping_ratio
+        probes = d.probes if probes is None else probes
+    disc = m.operator(scene, params)
+    return integrate(disc, prescribed_motions(scene, disc), t_end, dt=dt, damping=damping or 0.0,
+                     damping_ratio=damping_ratio, safety=safety, probes=probes, record_every=record_every)
+
+
+MODELS = [PDRod(), PDTimoshenko()]
