@@ -145,6 +145,28 @@ def rotation_matrix(N: int, pairs: np.ndarray, tangents: np.ndarray) -> sp.csr_m
     return sp.csr_matrix((vals, (rows, cols)), shape=(N, N))
 
 
+def constraint_basis(C: np.ndarray) -> sp.csr_matrix:
+    """S (n x (n - m)) with C S = 0 for m independent constraint rows C (m, n) u = 0: one master dof per
+    row (the largest remaining weight) is eliminated, u_M = -C_MM^-1 C_MS u_S; the others stay."""
+    m, n = C.shape
+    masters = []
+    R = C.copy()
+    for r in range(m):  # greedy pivoting: a well-conditioned C_MM
+        k = int(np.argmax(np.abs(R[r])))
+        masters.append(k)
+        if r + 1 < m:
+            R[r + 1:] -= np.outer(R[r + 1:, k] / R[r, k], R[r])
+    masters = np.array(masters)
+    slaves = np.setdiff1d(np.arange(n), masters)
+    G = -np.linalg.solve(C[:, masters], C[:, slaves])  # (m, n - m), nonzero only on the constrained faces
+    G[np.abs(G) < 1e-300] = 0.0
+    Gs = sp.coo_matrix(G)
+    rows = np.concatenate([slaves, masters[Gs.row]])
+    cols = np.concatenate([np.arange(len(slaves)), Gs.col])
+    vals = np.concatenate([np.ones(len(slaves)), Gs.data])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n, n - m))
+
+
 def rigid_modes_left(scene, constraints: list[tuple[np.ndarray, np.ndarray]]) -> int:
     """Number of rigid-body motions (of 3) the point constraints [(point, direction), ...] leave free."""
     if not constraints:
