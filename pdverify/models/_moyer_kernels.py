@@ -108,6 +108,24 @@ def constrained_ghosts(n_fields: int, degree: int, npts: int, n_ghost: int,
     return Vgh @ Rc, Vgh @ c0
 
 
+def average_ghosts(degree: int, n_real: int, n_ghost: int) -> tuple[np.ndarray, np.ndarray]:
+    """Interval averages of a polynomial p(s) = Σ a_q s^q extrapolated outward: the averages over the
+    unit intervals centred at s = -(k + 1/2) (real, k = 0..n_real-1) are fitted by least squares with
+    p(0) = v fixed; returns (R, r) with ghost averages (centres t + 1/2, t = 0..n_ghost-1) = R d + r v."""
+    q = np.arange(degree + 1)
+
+    def avg(c):
+        c = np.asarray(c, float)[:, None]
+        return ((c + 0.5) ** (q + 1) - (c - 0.5) ** (q + 1)) / (q + 1)
+
+    Vr = avg(-(np.arange(n_real) + 0.5))
+    Vg = avg(np.arange(n_ghost) + 0.5)
+    pinv = np.linalg.pinv(Vr[:, 1:])
+    R = Vg[:, 1:] @ pinv
+    r = Vg[:, 0] - R @ Vr[:, 0]
+    return R, r
+
+
 # -- loads on a node grid ----------------------------------------------------------------------
 
 
