@@ -100,7 +100,7 @@ class FemPlaneStress(Model):
         Option("points", int, 101, "nodes along the beam (elements + 1), load positions added", minimum=2),
         Option("layers", int, 8, "elements through the thickness (even: the mid-line is a node row)", minimum=2),
         Option("element", str, "q4", "q4 (full integration) | q8 | q9", choices=tuple(ELEMENTS)),
-        Option("pin", str, "node", "pinned support: node = the mid-height node (PLANE182 practice; its point "
+        Option("pin", str, "face", "pinned support: node = the mid-height node (PLANE182 practice; its point "
                "reaction makes the 2D deflection grow like log(1/element size)) | face = parabola-weighted mean "
                "normal (and, at the left, mean tangential) displacement of the end face zero (converges)",
                choices=("node", "face")),

@@ -201,7 +201,7 @@ def test_quarter_circle_pinned_pinned_solves():
     """Pinned-pinned on a quarter circle is stable (the roller's normal is not across the pin rotation)."""
     d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -100.0, "frame": "global"}],
                    beam={"length": np.pi / 2}, axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0})
-    r = run(parse_scene(d), "fem-plane-stress", element="q8", points=41, layers=4)
+    r = run(parse_scene(d), "fem-plane-stress", element="q8", points=41, layers=4, pin="node")
     assert np.all(np.isfinite(r.w)) and abs(r.w[0]) < 1e-15 and abs(r.w[-1]) < 1e-15
 
 
@@ -305,7 +305,7 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
     depth 2c = h): w(L/2) = 5 q L⁴ / (384 E I) [1 + 12/5 (h/L)² (4/5 + ν/2)].
     Measured (q8 160 x 16): -4.2e-4 (L/h = 5; their end condition is the point value, ours the weighted
     mean) and -1.8e-6 (L/h = 20). The default pin = node diverges like log(1/element size): -1.26e-7 m per
-    halving here, 1 % of w at L/h = 5, so at 320 x 32 it is 5 % off (asserted below)."""
+    halving here, 1 % of w at L/h = 5, so at 320 x 32 it is 5 % off (asserted below). pin = face is the default."""
     from conftest import scene_dict as sd
 
     sc = parse_scene(sd("pinned", "pinned", [{"type": "distributed", "value": -1000.0}])).with_slenderness(sl)
@@ -315,7 +315,7 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
     w = r.w[np.argmin(np.abs(r.x - L / 2))]
     assert abs(w / exact - 1) < tol, w / exact - 1
     if sl == 5:
-        rn = [run(sc, "fem-plane-stress", element="q8", points=n + 1, layers=k) for n, k in ((40, 4), (80, 8))]
+        rn = [run(sc, "fem-plane-stress", element="q8", points=n + 1, layers=k, pin="node") for n, k in ((40, 4), (80, 8))]
         wn = [x.w[np.argmin(np.abs(x.x - L / 2))] for x in rn]
         assert (wn[1] - wn[0]) / exact > 5e-3  # the node pin keeps moving by ~1 % per halving
 
