@@ -406,7 +406,6 @@ def integrate(disc: Discrete, motions: dict, t_end: float, dt: float | None = No
     û^{j+1} = u^j + dt v̂; v^j = (û^{j+1} - u^{j-1})/(2dt); v^{j+1/2} = v^{j-1/2} + dt (a^j - D v^j);
     u^{j+1} = u^j + dt v^{j+1/2}. D = c_d/ρ acts on the translations only (Eq. 36–37: γ undamped).
     Prescribed DOFs follow their motions. Raises SolveError when the response blows up."""
-    free = disc.free
     limit = stable_time_step(disc)
     omega1 = None
     if damping_ratio is not None:
@@ -418,40 +417,39 @@ def integrate(disc: Discrete, motions: dict, t_end: float, dt: float | None = No
         record_every = max(1, int(round(output_interval / dt)))
     record_every = record_every or max(1, steps // 2000)
     nf = disc.nf
-    n = len(disc.x)
     probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
     Pm = _interp_rows(disc.x, probes)
-    Kf = disc.K[free].tocsr()
-    bf = disc.b[free]
-    inv_m = 1.0 / disc.mass[free]
-    D = np.where(disc.translational[free], damping, 0.0)
-    u = np.zeros(len(disc.b))
+    # the whole DOF vector is advanced; prescribed DOFs have 1/m = 0 (no acceleration) and are
+    # overwritten by their motions, so no index gathering per step
+    K = disc.K.tocsr()
+    b = disc.b.copy()
+    inv_m = 1.0 / disc.mass
+    D = np.where(disc.translational, damping, 0.0)
     pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
-    uf = np.zeros(len(free))
-    uf_old = np.zeros(len(free))
-    v = np.zeros(len(free))
-    a = np.empty(len(free))
-    tmp = np.empty(len(free))
+    for dof in disc.prescribed:
+        inv_m[dof] = 0.0
+        b[dof] = 0.0
+    ndof = len(b)
+    # Eq. 7-11 in closed form: u^j - u^{j-1} = dt v^{j-1/2}, so v^j = (v^{j-1/2} + v̂)/2 and
+    # v^{j+1/2} = alpha v^{j-1/2} + beta dt a^j with c = D dt, alpha = 1 - c + c²/2, beta = 1 - c/2
+    c = D * dt
+    alpha = 1.0 - c + c * c / 2
+    gain = (1.0 - c / 2) * dt * inv_m
+    u, v, g = np.zeros(ndof), np.zeros(ndof), np.empty(ndof)
     times, vals, rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
     scale = max([abs(m.amplitude) for _, m in pres] + [0.0])
     for s in range(1, steps + 1):
-        # a^j from u^j (prescribed DOFs at t^j)
-        np.subtract(bf, Kf @ u, out=a)
-        a *= inv_m
-        # predictor for v^j (Eq. 7–9); û^{j+1} - u^{j-1} = (u^j - u^{j-1}) + dt v̂
-        np.multiply(D, v, out=tmp)
-        vhat = v + dt * (a - tmp)
-        vj = ((uf - uf_old) + dt * vhat) / (2 * dt)
-        # corrector (Eq. 10–11)
-        v += dt * (a - D * vj)
-        uf_old[:] = uf
-        uf += dt * v
-        u[free] = uf
+        np.subtract(b, K @ u, out=g)  # (b - K u^j); times beta dt / m below
+        g *= gain
+        v *= alpha
+        v += g
+        np.multiply(v, dt, out=g)
+        u += g
         t = s * dt
         for dof, mot in pres:
             u[dof] = float(motion_value(mot, t))
         if s % record_every == 0 or s == steps:
-            amp = float(np.abs(uf).max())
+            amp = float(np.abs(u).max())
             if not np.isfinite(amp) or (scale > 0 and amp > 1e6 * scale) or (scale == 0 and amp > 1e100):
                 raise SolveError(f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s); "
                                  f"the stable limit is {limit:.4g} s; use a time step below it")
