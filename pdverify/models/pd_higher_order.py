@@ -114,10 +114,12 @@ def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
     return partial_volumes(m)
 
 
-def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray) -> dict[int, np.ndarray]:
-    """{offset d (+-1..+-J): per-point weight V_k omega_kd / h-free factor} for the bonds k -> k + d
-    (zero where k + d is outside the grid). Paper: omega = dx / (delta^2 |xi|); corrected: calibrated
-    per point on its actual family so that Σ_j omega_kj xi^2 = 1."""
+def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray,
+                 calibrate: str = "point") -> dict[int, np.ndarray]:
+    """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
+    is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
+    on the discrete family so that Σ_j omega_kj xi^2 = 1, per point on its actual (possibly truncated)
+    family (``calibrate = "point"``) or on the full family (``"family"``, grids with ghost points)."""
     d, beta = family(m, dx, variant)
     k = np.arange(n)
     raw = {}
@@ -129,8 +131,40 @@ def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray)
     if variant == "paper":
         delta = (m + 0.015) * dx
         return {off: volumes * r * dx / delta**2 for off, r in raw.items()}
-    S = sum(r * (abs(off) * dx) ** 2 for off, r in raw.items())  # Σ beta |xi| over the actual family
+    if calibrate == "point":
+        S = sum(r * (abs(off) * dx) ** 2 for off, r in raw.items())  # Σ beta |xi| over the actual family
+    else:
+        S = 2.0 * float(np.sum(beta * d * dx))
     return {off: volumes * r / S for off, r in raw.items()}
+
+
+def extrapolation(G: int, p: int) -> np.ndarray:
+    """X (G x (p+1)): values at s = -1..-G (spacings beyond the end) of the degree-p polynomial through
+    the first p+1 real points s = 0..p (Lagrange extrapolation, the same for the four fields)."""
+    s_real = np.arange(p + 1, dtype=float)
+    s_g = -np.arange(1, G + 1, dtype=float)
+    V = s_real[:, None] ** np.arange(p + 1)
+    return (s_g[:, None] ** np.arange(p + 1)) @ np.linalg.inv(V)
+
+
+def taylor_map(n: int, G: int, p: int) -> sp.csr_matrix:
+    """E: extended DOFs (G ghosts, n real, G ghosts) <- real DOFs; ghosts by polynomial extrapolation."""
+    X = extrapolation(G, p)
+    rows = [NF * (G + np.arange(n))[:, None] + np.arange(NF)]
+    cols = [NF * np.arange(n)[:, None] + np.arange(NF)]
+    vals = [np.ones((n, NF))]
+    for side in (0, 1):
+        g = np.arange(1, G + 1)
+        ghost = G - g if side == 0 else G + n - 1 + g
+        real = np.arange(p + 1) if side == 0 else n - 1 - np.arange(p + 1)
+        r = NF * ghost[:, None, None] + np.arange(NF)[None, None, :]
+        c = NF * real[None, :, None] + np.arange(NF)[None, None, :]
+        rows.append(np.broadcast_to(r, (G, p + 1, NF)))
+        cols.append(np.broadcast_to(c, (G, p + 1, NF)))
+        vals.append(np.broadcast_to(X[:, :, None], (G, p + 1, NF)))
+    return sp.csr_matrix((np.concatenate([v.ravel() for v in vals]),
+                          (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols]))),
+                         shape=(NF * (n + 2 * G), NF * n))
 
 
 def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndarray], h: float) -> sp.csr_matrix:
@@ -208,11 +242,34 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
     return F / A
 
 
-def fixed_dofs(support: str, point: int, variant: str) -> list[int]:
-    """Constrained DOFs of an end point (indices into the interleaved vector)."""
-    fields = {"clamped": (TH, TS, W, WS), "guided": (TH, TS), "free": (),
-              "pinned": (W, WS) if variant == "paper" else (W,)}[support]
-    return [NF * point + f for f in fields]
+def constraint_map(n: int, left: str, right: str, variant: str, pin: str, h: float) -> sp.csr_matrix:
+    """T (4n x unknowns): u = T z with the end conditions built in. clamped: theta = theta* = w = w* = 0
+    (the end face fixed); guided: theta = theta* = 0; pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's
+    antisymmetric w*); ``pin = face``: w = -h^2/20 w* instead (zero parabola-weighted mean deflection
+    of the end face); free: nothing."""
+    drop, tie = [], []
+    for sup, k in ((left, 0), (right, n - 1)):
+        if sup == "clamped":
+            drop += [NF * k + f for f in (TH, TS, W, WS)]
+        elif sup == "guided":
+            drop += [NF * k + f for f in (TH, TS)]
+        elif sup == "pinned":
+            if variant == "paper":
+                drop += [NF * k + W, NF * k + WS]
+            elif pin == "face":
+                tie.append((NF * k + W, NF * k + WS))
+                drop.append(NF * k + W)
+            else:
+                drop.append(NF * k + W)
+    keep = np.ones(NF * n, bool)
+    keep[drop] = False
+    free = np.flatnonzero(keep)
+    col = np.full(NF * n, -1)
+    col[free] = np.arange(len(free))
+    rows, cols, vals = list(free), list(col[free]), [1.0] * len(free)
+    for slave, master in tie:
+        rows.append(slave), cols.append(col[master]), vals.append(-h * h / 20)
+    return sp.csr_matrix((vals, (rows, cols)), shape=(NF * n, len(free)))
 
 
 def mirror_map(n: int, G: tuple[int, int], left: str, right: str) -> sp.csr_matrix:
@@ -248,8 +305,15 @@ class PDHigherOrder(Model):
         Option("points", int, 201, "material points along the beam, ends included (paper: 1001 for dx = 1 mm)", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
         Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
-        Option("loads", str, "mid", "mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
-               "reference puts them: top face, parabolic end shear, linear end traction)", choices=("mid", "faces")),
+        Option("ends", str, "auto", "auto (mirror for paper, taylor for corrected) | mirror (Appendix B fictitious "
+               "layers) | truncated (no ghosts, per-point calibration) | taylor (ghosts extrapolated by a polynomial "
+               "of the real points, energy of the real points only)", choices=("auto", "mirror", "truncated", "taylor")),
+        Option("degree", int, 3, "degree of the ghost extrapolation (ends = taylor)", minimum=1, maximum=6),
+        Option("pin", str, "auto", "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | face (parabola-weighted mean of "
+               "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
+               choices=("auto", "mid", "face")),
+        Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
+               "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
     )
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
@@ -263,63 +327,91 @@ class PDHigherOrder(Model):
         h = scene.section.depth
         return coefficients(mat.E, mat.poissons_ratio, mat.G, h), h
 
+    @staticmethod
+    def choice(params: dict, key: str) -> str:
+        """An option's value with ``auto`` resolved (paper: Appendix B and Eq. 16b; corrected: see the docstring)."""
+        auto = {"ends": ("mirror", "truncated"), "pin": ("mid", "face"), "loads": ("mid", "faces")}[key]
+        v = params.get(key, "auto")
+        return auto[params["variant"] != "paper"] if v == "auto" else v
+
+    def ends(self, params: dict) -> str:
+        return self.choice(params, "ends")
+
     def assemble(self, scene: Scene, params: dict):
-        """(K, F, free, info): K u_free = F_free; u interleaved (theta, theta*, w, w*) per real point."""
+        """(K, F, T, info): K z = F with u = T z; u interleaved (theta, theta*, w, w*) per real point,
+        z the unknowns left by the end conditions."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
-        m, variant = params["horizon"], params["variant"]
+        m, variant, ends = params["horizon"], params["variant"], self.ends(params)
         d, _ = family(m, dx, variant)
         J = int(d.max())
-        if 2 * J + 1 > n:
+        if 2 * J + 1 > n or (ends == "taylor" and params["degree"] + 1 > n):
             raise InputError(f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
                              "use more points or a smaller horizon")
         C, h = self.constants(scene)
         left, right = scene.supports.left, scene.supports.right
-        info = {"depth": h, "section": "rectangle" if scene.section.height is not None else
+        info = {"depth": h, "ends": ends, "section": "rectangle" if scene.section.height is not None else
                 f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m"}
-        if variant == "paper":
+        symmetric = True
+        if ends == "mirror":
             G = (0 if left == "free" else J, 0 if right == "free" else J)
             N = n + G[0] + G[1]
-            wts = bond_weights(N, m, dx, "paper", np.full(N, dx))
+            V = np.full(N, dx)
+            if variant != "paper":
+                V[:G[0]] = 0.0
+                V[N - G[1]:] = 0.0
+                V[[G[0], G[0] + n - 1]] = dx / 2
+            wts = bond_weights(N, m, dx, variant, V, calibrate="family")
             Kx = assemble_blocks(N, dx, C, wts, h)
             P = mirror_map(n, G, left, right)
             real = slice(NF * G[0], NF * (G[0] + n))
-            K = (Kx[real] @ P).tocsr()
-            info.update(boundary="fictitious mirror layers (Appendix B), free ends truncated",
-                        ghosts_per_end=list(G), stiffness_factor=float(sum(w[J] * (abs(o) * dx) ** 2
-                                                                           for o, w in wts.items()) / dx))
+            if variant == "paper":  # Eq. 22 at the real points, images substituted
+                K = (Kx[real] @ P).tocsr()
+                symmetric = False
+            else:
+                K = (P.T @ Kx @ P).tocsr()
+            info.update(boundary="fictitious mirror layers (Appendix B), free ends truncated", ghosts_per_end=list(G))
+        elif ends == "taylor":
+            G = J
+            N = n + 2 * G
+            V = np.zeros(N)
+            V[G:G + n] = dx
+            V[[G, G + n - 1]] = dx / 2
+            Kx = assemble_blocks(N, dx, C, bond_weights(N, m, dx, variant, V, calibrate="family"), h)
+            E = taylor_map(n, G, params["degree"])
+            K = (E.T @ Kx @ E).tocsr()
+            info.update(boundary=f"ghosts extrapolated (degree {params['degree']}), energy of the real points, "
+                        "essential end conditions", ghosts_per_end=[G, G])
         else:
             V = np.full(n, dx)
             V[[0, -1]] = dx / 2
-            K = assemble_blocks(n, dx, C, bond_weights(n, m, dx, "corrected", V), h)
-            info.update(boundary="essential conditions on the end point, natural ones from the energy",
-                        stiffness_factor=1.0)
-        F = load_vector(scene, x, params["loads"] == "faces")
-        if variant == "paper":
-            F = F * 1.0  # full volumes: the same cell loads (sum = resultant)
-        fixed = fixed_dofs(left, 0, variant) + fixed_dofs(right, n - 1, variant)
-        keep = np.ones(NF * n, bool)
-        keep[fixed] = False
-        free = np.flatnonzero(keep)
-        return K[free][:, free].tocsr(), F.ravel()[free], free, info
+            K = assemble_blocks(n, dx, C, bond_weights(n, m, dx, variant, V, calibrate="point"), h)
+            info.update(boundary="truncated families (per-point calibration), essential end conditions")
+        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family")
+        info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
+        F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
+        T = constraint_map(n, left, right, variant, self.choice(params, "pin"), h)
+        info.update(pin=self.choice(params, "pin"), loads=self.choice(params, "loads"))
+        if symmetric:
+            return (T.T @ K @ T).tocsr(), T.T @ F, T, info
+        rows = np.flatnonzero(np.asarray(abs(T).sum(axis=1)).ravel() > 0)
+        return (K[rows] @ T).tocsr(), F[rows], T, info
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("assemble"):
-            K, F, free, binfo = self.assemble(scene, params)
+            K, F, T, binfo = self.assemble(scene, params)
         with timer("solve"):
             z, info = solve_linear(K, F, what=f"pd-higher-order ({params['variant']})")
         n = params["points"]
-        u = np.zeros(NF * n)
-        u[free] = z
-        u = u.reshape(n, NF)
+        u = (T @ z).reshape(n, NF)
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=u[:, W].copy(),
-                      rotation=-u[:, TH], fields=fields, dofs=len(free), timings=timer.timings, info=info)
+                      rotation=-u[:, TH], fields=fields, dofs=T.shape[1], timings=timer.timings, info=info)
 
 
 MODELS = [PDHigherOrder()]
