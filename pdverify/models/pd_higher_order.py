@@ -89,20 +89,26 @@ def coefficients(E: float, nu: float, G: float, h: float) -> np.ndarray:
     return C
 
 
-def bond_measures(xi: float) -> np.ndarray:
-    """M (5x8): m = M (u_k, u_j), u = (theta, theta*, w, w*) of the points k and j = k + xi."""
+def bond_measures(xi: float, centred: bool = False) -> np.ndarray:
+    """M (5x8): m = M (u_k, u_j), u = (theta, theta*, w, w*) of the points k and j = k + xi.
+    ``centred``: the shear measures take the bond-mean rotations, g = w_j - w_k + xi (theta_k + theta_j)/2,
+    e = w*_j - w*_k + 3 xi (theta*_k + theta*_j)/2 (corrected variant: no shear locking)."""
     M = np.zeros((5, 8))
     M[0, [TH, NF + TH]] = -1.0, 1.0  # a
     M[1, WS] = 2.0 * xi  # s
     M[2, [TS, NF + TS]] = -1.0, 1.0  # c
-    M[3, [TH, W, NF + W]] = xi, -1.0, 1.0  # g
-    M[4, [TS, WS, NF + WS]] = 3.0 * xi, -1.0, 1.0  # e
+    if centred:
+        M[3, [TH, W, NF + TH, NF + W]] = xi / 2, -1.0, xi / 2, 1.0  # g
+        M[4, [TS, WS, NF + TS, NF + WS]] = 1.5 * xi, -1.0, 1.5 * xi, 1.0  # e
+    else:
+        M[3, [TH, W, NF + W]] = xi, -1.0, 1.0  # g
+        M[4, [TS, WS, NF + WS]] = 3.0 * xi, -1.0, 1.0  # e
     return M
 
 
-def bond_block(C: np.ndarray, xi: float) -> np.ndarray:
+def bond_block(C: np.ndarray, xi: float, centred: bool = False) -> np.ndarray:
     """Hessian (8x8) of Q(M u) / 2 = the stiffness of one bond for unit weight."""
-    M = bond_measures(xi)
+    M = bond_measures(xi, centred)
     return M.T @ C @ M
 
 
@@ -167,13 +173,14 @@ def taylor_map(n: int, G: int, p: int) -> sp.csr_matrix:
                          shape=(NF * (n + 2 * G), NF * n))
 
 
-def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndarray], h: float) -> sp.csr_matrix:
+def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
+                    centred: bool = False) -> sp.csr_matrix:
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
     filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR."""
     J = max(abs(o) for o in weights)
     Kb = np.zeros((n, 2 * J + 1, NF, NF))
     for off, wt in weights.items():
-        B = bond_block(C, off * dx) / h
+        B = bond_block(C, off * dx, centred) / h
         lo, hi = max(0, -off), min(n, n - off)
         t = wt[lo:hi, None, None]
         Kb[lo:hi, J] += t * B[:NF, :NF]
@@ -187,7 +194,8 @@ def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndar
     return K.tocsr()
 
 
-def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.ndarray], h: float) -> float:
+def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
+           centred: bool = False) -> float:
     """Strain energy U = Σ_k V_k W_k (Eq. 13, 15) evaluated directly from the bond measures (for the
     gradient checks: K must equal the Hessian of this function)."""
     u = np.asarray(u, float).reshape(-1, NF)
@@ -198,8 +206,10 @@ def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.nd
         lo, hi = max(0, -off), min(n, n - off)
         uk, uj = u[lo:hi], u[lo + off:hi + off]
         xi = off * dx
+        th = (uk[:, TH] + uj[:, TH]) / 2 if centred else uk[:, TH]
+        ts = (uk[:, TS] + uj[:, TS]) / 2 if centred else uk[:, TS]
         m = np.stack([uj[:, TH] - uk[:, TH], 2 * xi * uk[:, WS], uj[:, TS] - uk[:, TS],
-                      uj[:, W] - uk[:, W] + xi * uk[:, TH], uj[:, WS] - uk[:, WS] + 3 * xi * uk[:, TS]])
+                      uj[:, W] - uk[:, W] + xi * th, uj[:, WS] - uk[:, WS] + 3 * xi * ts])
         U += 0.5 / h * np.sum(wt[lo:hi] * np.einsum("pb,pq,qb->b", m, C, m))
     return U
 
@@ -312,6 +322,9 @@ class PDHigherOrder(Model):
         Option("pin", str, "auto", "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | face (parabola-weighted mean of "
                "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
                choices=("auto", "mid", "face")),
+        Option("shear", str, "auto", "auto (point for paper, centred for corrected) | point (Eq. 14d-f: theta_k xi) | "
+               "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy)",
+               choices=("auto", "point", "centred")),
         Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
                "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
     )
@@ -353,6 +366,9 @@ class PDHigherOrder(Model):
         info = {"depth": h, "ends": ends, "section": "rectangle" if scene.section.height is not None else
                 f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m"}
         symmetric = True
+        centred = params.get("shear", "auto") == "centred" or (params.get("shear", "auto") == "auto"
+                                                               and variant != "paper")
+        info["shear"] = "centred" if centred else "point"
         if ends == "mirror":
             G = (0 if left == "free" else J, 0 if right == "free" else J)
             N = n + G[0] + G[1]
@@ -362,7 +378,7 @@ class PDHigherOrder(Model):
                 V[N - G[1]:] = 0.0
                 V[[G[0], G[0] + n - 1]] = dx / 2
             wts = bond_weights(N, m, dx, variant, V, calibrate="family")
-            Kx = assemble_blocks(N, dx, C, wts, h)
+            Kx = assemble_blocks(N, dx, C, wts, h, centred)
             P = mirror_map(n, G, left, right)
             real = slice(NF * G[0], NF * (G[0] + n))
             if variant == "paper":  # Eq. 22 at the real points, images substituted
@@ -377,7 +393,7 @@ class PDHigherOrder(Model):
             V = np.zeros(N)
             V[G:G + n] = dx
             V[[G, G + n - 1]] = dx / 2
-            Kx = assemble_blocks(N, dx, C, bond_weights(N, m, dx, variant, V, calibrate="family"), h)
+            Kx = assemble_blocks(N, dx, C, bond_weights(N, m, dx, variant, V, calibrate="family"), h, centred)
             E = taylor_map(n, G, params["degree"])
             K = (E.T @ Kx @ E).tocsr()
             info.update(boundary=f"ghosts extrapolated (degree {params['degree']}), energy of the real points, "
@@ -385,7 +401,7 @@ class PDHigherOrder(Model):
         else:
             V = np.full(n, dx)
             V[[0, -1]] = dx / 2
-            K = assemble_blocks(n, dx, C, bond_weights(n, m, dx, variant, V, calibrate="point"), h)
+            K = assemble_blocks(n, dx, C, bond_weights(n, m, dx, variant, V, calibrate="point"), h, centred)
             info.update(boundary="truncated families (per-point calibration), essential end conditions")
         wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family")
         info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
