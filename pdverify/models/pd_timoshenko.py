@@ -533,9 +533,13 @@ class _MoyerModel(Model):
                 h = integrate(disc, prescribed_motions(scene, disc), d.end_time, dt=d.time_step, damping=d.damping or 0.0,
                               damping_ratio=d.damping_ratio, probes=d.probes, output_interval=d.output_interval)
             u = h.final
-            fields.update(t=h.t, probe_positions=h.probes, probe_values=h.values)
+            label = "w" if self.bending else "u"
+            series = {f"{label}(x={p:g})": h.values[:, k] for k, p in enumerate(h.probes)}
+            if h.rotations is not None:
+                series.update({f"rotation(x={p:g})": h.rotations[:, k] for k, p in enumerate(h.probes)})
             info.update(analysis="dynamic", dt=h.dt, dt_limit=h.dt_limit, steps=h.steps, damping=h.damping,
-                        omega1=h.omega1)
+                        omega1=h.omega1, stabilisation=h.stabilisation,
+                        history={"t": h.t, "series": series, "ylabel": "axial displacement" if label == "u" else "deflection"})
             writers[".csv"] = lambda path, h=h: open(path, "w").write(h.to_csv())
         else:
             with timer("solve"):
