@@ -89,6 +89,7 @@ class Model:
     curved: bool = False  # solves curved axes
     axial: bool = False  # carries axial loads (loads[i].axial)
     bending: bool = True  # carries transverse loads (loads[i].value)
+    torsion: bool = False  # carries torques (point_torque, loads[i].torque)
     theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum (what it can represent)
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
 
@@ -101,7 +102,11 @@ class Model:
             if getattr(load, "axial", 0.0) != 0.0 and not self.axial:
                 out.append(f"loads[{i}].axial = {load.axial!r}: model {self.name} has no axial displacement; "
                            "use a model with an axial DOF or drop the axial component")
-            if load.value != 0.0 and not self.bending:
+            torque = load.type == "point_torque" or getattr(load, "torque", 0.0) != 0.0
+            if torque and not self.torsion:
+                out.append(f"loads[{i}]: a torque: model {self.name} has no twist; use a torsion model (pd-torsion) "
+                           "or drop the torque")
+            if load.value != 0.0 and not self.bending and load.type != "point_torque":
                 what = "moments" if load.type == "point_moment" else "transverse loads"
                 out.append(f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} (axial only); "
                            "give the load as loads[i].axial or use a bending model")

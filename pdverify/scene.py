@@ -39,6 +39,7 @@ class Section(_Strict):
     area: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     inertia: float | None = Field(default=None, gt=0, allow_inf_nan=False)
     shear_factor: float | None = Field(default=None, gt=0, le=1.5, allow_inf_nan=False)
+    torsion_constant: float | None = Field(default=None, gt=0, allow_inf_nan=False)
 
     @model_validator(mode="after")
     def _complete(self):
@@ -64,6 +65,24 @@ class Section(_Strict):
     @property
     def k(self) -> float:
         return self.shear_factor if self.shear_factor is not None else 5.0 / 6.0
+
+    @property
+    def J(self) -> float | None:
+        """Saint-Venant torsion constant: given, or of the rectangle (series-fit formula
+        a b³ (1/3 - 0.21 (b/a)(1 - b⁴/(12 a⁴))), a >= b); None for an area/inertia section without it."""
+        if self.torsion_constant is not None:
+            return self.torsion_constant
+        if self.width is None:
+            return None
+        a, b = max(self.width, self.height), min(self.width, self.height)
+        return a * b**3 * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b**4 / (12.0 * a**4)))
+
+    @property
+    def polar(self) -> float | None:
+        """Polar moment of area of the rectangle (rotary inertia of twist); None when not a rectangle."""
+        if self.width is None:
+            return None
+        return self.width * self.height * (self.width**2 + self.height**2) / 12.0
 
     @property
     def depth(self) -> float:
@@ -124,10 +143,19 @@ class Distributed(_Strict):
     end: float | None = Field(default=None, allow_inf_nan=False)
     shape: Literal["uniform", "sine"] = "uniform"
     axial: float = Field(default=0.0, allow_inf_nan=False)
+    torque: float = Field(default=0.0, allow_inf_nan=False)
     frame: Frame = "local"
 
 
-Load = Annotated[Union[PointForce, PointMoment, Distributed], Field(discriminator="type")]
+class PointTorque(_Strict):
+    """A twisting moment about the beam axis (right-hand rule about +x); carried by torsion models only."""
+
+    type: Literal["point_torque"]
+    position: float = Field(allow_inf_nan=False)
+    value: float = Field(allow_inf_nan=False)
+
+
+Load = Annotated[Union[PointForce, PointMoment, Distributed, PointTorque], Field(discriminator="type")]
 
 
 class Axis(_Strict):
@@ -172,11 +200,12 @@ class Motion(_Strict):
 
 
 class EndMotion(_Strict):
-    """Prescribed motion of one end: transverse ``displacement``, ``axial`` displacement, ``rotation``."""
+    """Prescribed motion of one end: transverse ``displacement``, ``axial`` displacement, ``rotation``, ``twist``."""
 
     displacement: Motion | None = None
     axial: Motion | None = None
     rotation: Motion | None = None
+    twist: Motion | None = None
 
 
 class Dynamics(_Strict):
@@ -280,7 +309,7 @@ def _loc(loc) -> str:
     for p in loc:
         if isinstance(p, int):
             parts.append(f"[{p}]")
-        elif p in ("point_force", "point_moment", "distributed"):
+        elif p in ("point_force", "point_moment", "distributed", "point_torque"):
             continue  # discriminator tag: not a field the user wrote
         else:
             parts.append(("." if parts else "") + str(p))
@@ -308,14 +337,15 @@ def _message(err: dict, data: dict) -> str:
         elif parent and parent[0] in _TABLES:
             cls = _TABLES[parent[0]]
         elif parent and parent[0] == "loads" and len(parent) >= 3:
-            cls = {"point_force": PointForce, "point_moment": PointMoment, "distributed": Distributed}.get(
+            cls = {"point_force": PointForce, "point_moment": PointMoment, "distributed": Distributed,
+                   "point_torque": PointTorque}.get(
                 parent[2], Scene
             )
         return f"{loc}: unknown key '{key}'; allowed keys here: {_allowed_keys(cls)}"
     if kind == "missing":
         return f"{loc}: missing; this key is required"
     if kind == "union_tag_invalid" or kind == "union_tag_not_found":
-        return f"{loc}.type = {value.get('type') if isinstance(value, dict) else value!r}: unknown load type; allowed: point_force, point_moment, distributed"
+        return f"{loc}.type = {value.get('type') if isinstance(value, dict) else value!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
     if kind == "literal_error" and loc.startswith("supports."):
         return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}"
     msg = err["msg"]
@@ -329,7 +359,7 @@ def _check_loads(scene: Scene) -> list[str]:
     lines = []
     L = scene.length
     for i, load in enumerate(scene.loads):
-        if isinstance(load, (PointForce, PointMoment)):
+        if isinstance(load, (PointForce, PointMoment, PointTorque)):
             if not 0.0 <= load.position <= L:
                 lines.append(
                     f"loads[{i}].position = {load.position!r}: outside the beam [0, {L}]; "
@@ -347,7 +377,8 @@ def _check_loads(scene: Scene) -> list[str]:
     return lines
 
 
-_FIXES = {"displacement": ("clamped", "pinned"), "axial": ("clamped", "pinned"), "rotation": ("clamped", "guided")}
+_FIXES = {"displacement": ("clamped", "pinned"), "axial": ("clamped", "pinned"), "rotation": ("clamped", "guided"),
+          "twist": ("clamped", "pinned")}
 
 
 def _check_dynamics(scene: Scene) -> list[str]:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..scene import Distributed, PointForce, PointMoment, Scene
+from ..scene import Distributed, PointForce, PointMoment, PointTorque, Scene
 
 
 def trapezoid_weights(m: int) -> np.ndarray:
@@ -142,7 +142,8 @@ def node_loads(scene: Scene, x: np.ndarray, component: str, ends_apart: bool):
     """Line loads on the nodes (per length): q (force) and mu (couple, ccw), and the loads applied
     exactly at the ends {0: (P, C), 1: (P, C)}.
 
-    ``component``: "transverse" (load.value) or "axial" (load.axial). Distributed loads: cell
+    ``component``: "transverse" (load.value), "axial" (load.axial) or "torque" (point_torque, load.torque).
+    Distributed loads: cell
     averages over [x - Δ/2, x + Δ/2] ∩ [0, L]; point forces and moments: P/Δ (C/Δ) split linearly
     between the two nearest nodes (the paper's body force p/(AΔ) in the loaded cell). ``ends_apart``:
     loads exactly at an end are returned in the end table instead (they enter the ghost conditions)."""
@@ -154,11 +155,17 @@ def node_loads(scene: Scene, x: np.ndarray, component: str, ends_apart: bool):
     lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
     for load in scene.loads:
         if isinstance(load, Distributed):
-            v = load.value if component == "transverse" else load.axial
+            v = {"transverse": load.value, "axial": load.axial, "torque": load.torque}[component]
             if v != 0.0:
                 q += _cell_integral(load, scene, lo, hi, v) / (hi - lo)
             continue
-        if isinstance(load, PointForce):
+        if isinstance(load, PointTorque):
+            if component != "torque":
+                continue
+            v, target, slot = load.value, q, 0
+        elif isinstance(load, PointForce):
+            if component == "torque":
+                continue
             v, target, slot = (load.value if component == "transverse" else load.axial), q, 0
         elif isinstance(load, PointMoment):
             if component != "transverse":

@@ -1,4 +1,5 @@
-"""Models ``pd-rod`` and ``pd-timoshenko``: micro-elastic PD rod and Timoshenko beam (Moyer & Miraglia).
+"""Models ``pd-rod``, ``pd-timoshenko``, ``pd-torsion``: micro-elastic PD rod, Timoshenko beam and
+torsion (Moyer & Miraglia; torsion: Section 5, Eq. 54–56, the rod kernel with GJ and twist θ).
 
 Node grid x_i = i Δ, i = 0..n-1 (ends included), horizon δ = m Δ (integer m, option ``horizon``).
 
@@ -127,41 +128,53 @@ def _check_grid(n: int, m: int, name: str):
 # -- rod --------------------------------------------------------------------------------------
 
 
-def rod_operator(scene: Scene, n: int, m: int, variant: str, end_values: dict | None = None) -> Discrete:
-    """Static operator of the PD rod (axial displacement u): K u = b, b = axial line loads."""
-    _check_grid(n, m, "pd-rod")
+def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial") -> Discrete:
+    """Static operator of the PD rod: K u = b with u the axial displacement (``kind = "axial"``: stiffness
+    EA, mass ρA, loads.axial) or the twist θ (``kind = "torsion"``, Section 5 Eq. 54–56: the same
+    kernel with GJ, mass ρ I_p, torques). Fixed ends: clamped and pinned; free and guided carry N̄ (T̄)."""
+    name = "pd-rod" if kind == "axial" else "pd-torsion"
+    _check_grid(n, m, name)
     L = scene.length
     x = np.linspace(0.0, L, n)
     dx = x[1] - x[0]
     delta = m * dx
-    EA, rhoA = scene.EA, (scene.material.density or 0.0) * scene.section.A
+    rho = scene.material.density or 0.0
+    if kind == "axial":
+        stiff, inertia, component, key = scene.EA, scene.section.A, "axial", "u"
+    else:
+        J = scene.section.J
+        if J is None:
+            raise InputError("section.torsion_constant: pd-torsion needs the torsion constant J of a section given by "
+                             "area and inertia; add torsion_constant (or give width and height)")
+        stiff, component, key = scene.material.G * J, "torque", "twist"
+        inertia = scene.section.polar if scene.section.polar is not None else np.nan
     G = m
-    q, _, ends = node_loads(scene, x, "axial", ends_apart=(variant == "corrected"))
+    q, _, ends = node_loads(scene, x, component, ends_apart=(variant == "corrected"))
     blocks, prescribed = {}, {}
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
         fixed = sup in ("clamped", "pinned")
         if fixed:
-            prescribed[0 if side == 0 else n - 1] = ("u", side)
+            prescribed[0 if side == 0 else n - 1] = (key, side)
         if variant == "paper":
             blocks[side] = (taylor_ghosts(G, 1 if fixed else 2), np.zeros(G), 4)
         else:
             if fixed:
                 con = [({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0)]
-            else:  # EA u_s(0) = N̄ (outward force at this end)
-                con = [({(0, 1): 1.0}, {}, dx * ends[side][0] / EA)]
+            else:  # EA u_s(0) = N̄ (outward force at this end); GJ θ_s(0) = T̄
+                con = [({(0, 1): 1.0}, {}, dx * ends[side][0] / stiff)]
             R, r0 = constrained_ghosts(1, FIT_DEGREE, FIT_POINTS, G, con)
             blocks[side] = (R, r0, FIT_POINTS)
     E, e0 = _extension(n, G, 1, blocks)
     c = rod_kernel(m)
     j = np.arange(1, m + 1)
     Iop = toeplitz(n, G, n + 2 * G, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
-    B = 2.0 * EA / delta**2  # ρA B: force per length per unit of I
+    B = 2.0 * stiff / delta**2  # ρA B = 2EA/δ² (Eq. 3): force per length per unit of I
     K = (-B * (Iop @ E)).tocsr()
     b = q + B * (Iop @ e0)
     if variant == "paper":
         for side in (0, 1):
             b[0 if side == 0 else n - 1] += ends[side][0] / dx
-    return Discrete(x, K, b, np.full(n, rhoA), np.ones(n, bool), prescribed, 1,
+    return Discrete(x, K, b, np.full(n, rho * inertia), np.ones(n, bool), prescribed, 1,
                     {"ghosts_per_end": G, "spacing": dx, "horizon": delta})
 
 
@@ -295,7 +308,7 @@ def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
 
 # -- prescribed values, static solve -----------------------------------------------------------
 
-_MOTION_KEY = {"w": "displacement", "u": "axial", "rotation": "rotation"}
+_MOTION_KEY = {"w": "displacement", "u": "axial", "rotation": "rotation", "twist": "twist"}
 
 
 def prescribed_motions(scene: Scene, disc: Discrete) -> dict:
@@ -533,13 +546,14 @@ class _MoyerModel(Model):
                 h = integrate(disc, prescribed_motions(scene, disc), d.end_time, dt=d.time_step, damping=d.damping or 0.0,
                               damping_ratio=d.damping_ratio, probes=d.probes, output_interval=d.output_interval)
             u = h.final
-            label = "w" if self.bending else "u"
+            label = "w" if self.bending else ("u" if self.axial else "twist")
             series = {f"{label}(x={p:g})": h.values[:, k] for k, p in enumerate(h.probes)}
             if h.rotations is not None:
                 series.update({f"rotation(x={p:g})": h.rotations[:, k] for k, p in enumerate(h.probes)})
             info.update(analysis="dynamic", dt=h.dt, dt_limit=h.dt_limit, steps=h.steps, damping=h.damping,
                         omega1=h.omega1, stabilisation=h.stabilisation,
-                        history={"t": h.t, "series": series, "ylabel": "axial displacement" if label == "u" else "deflection"})
+                        history={"t": h.t, "series": series,
+                                 "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label]})
             writers[".csv"] = lambda path, h=h: open(path, "w").write(h.to_csv())
         else:
             with timer("solve"):
@@ -556,12 +570,33 @@ class PDRod(_MoyerModel):
     theory = "axial"
 
     def operator(self, scene, params):
-        return rod_operator(scene, params["points"], params["horizon"], params["variant"])
+        return rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="axial")
 
     def result(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         N = scene.EA * np.gradient(u, x[1] - x[0], edge_order=2)
         fields = dict(fields, u=u, N=N)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=np.zeros_like(x),
+                      fields=fields, dofs=len(disc.free), timings=timer.timings, info=info, writers=writers)
+
+
+class PDTorsion(_MoyerModel):
+    name = "pd-torsion"
+    title = "micro-elastic PD torsion (twist), the rod kernel with GJ (Section 5)"
+    bending = False
+    torsion = True
+    theory = "torsion"
+
+    def operator(self, scene, params):
+        disc = rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="torsion")
+        if self._dynamic(scene, params) and not np.all(np.isfinite(disc.mass)):
+            raise InputError("section: pd-torsion dynamics needs the polar moment of a rectangle; give width and height")
+        return disc
+
+    def result(self, scene, params, disc, u, fields, info, timer, writers):
+        x = disc.x
+        T = scene.material.G * scene.section.J * np.gradient(u, x[1] - x[0], edge_order=2)
+        fields = dict(fields, twist=u, T=T)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=np.zeros_like(x),
                       fields=fields, dofs=len(disc.free), timings=timer.timings, info=info, writers=writers)
 
@@ -589,10 +624,10 @@ def simulate(scene: Scene, params: dict | None = None, t_end: float | None = Non
              damping: float | None = None, damping_ratio: float | None = None, safety: float = 0.9,
              probes=None, record_every: int | None = None, model: str = "pd-timoshenko",
              damp_rotations: bool = False, stabilisation: float = STABILISATION) -> History:
-    """Transient run of ``pd-timoshenko`` (or ``model = "pd-rod"``) on ``scene``: the scene's
+    """Transient run of ``pd-timoshenko`` (or ``model = "pd-rod"`` / ``"pd-torsion"``) on ``scene``: the scene's
     [dynamics] table gives the defaults (end time, damping, probes, prescribed end motions); the
     arguments override them. Returns a :class:`History`."""
-    m = {"pd-timoshenko": PDTimoshenko(), "pd-rod": PDRod()}[model]
+    m = {"pd-timoshenko": PDTimoshenko(), "pd-rod": PDRod(), "pd-torsion": PDTorsion()}[model]
     params = m.resolve(scene, params or {})
     if scene.material.density is None:
         raise InputError("material.density: needed for dynamics; add density to the scene")
@@ -612,4 +647,4 @@ def simulate(scene: Scene, params: dict | None = None, t_end: float | None = Non
                      damp_rotations=damp_rotations, stabilisation=stabilisation)
 
 
-MODELS = [PDRod(), PDTimoshenko()]
+MODELS = [PDRod(), PDTimoshenko(), PDTorsion()]
