@@ -192,6 +192,21 @@ def test_rod_static_any_supports(left, right, end):
     assert e[3, 201] < 3e-2 and e[3, 401] < e[3, 201] / 2**0.9
 
 
+def test_rod_paper_variant_free_end_is_singular():
+    """Section 4's recipe for a free rod end (end force as body force, second-order extrapolation) sets no
+    traction condition: condition estimate 1.6e18, reported as a SolveError instead of a number."""
+    sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 10.0}]))
+    with pytest.raises(SolveError, match="singular to working precision"):
+        run(sc, "pd-rod", points=101, variant="paper")
+    assert run(sc, "pd-rod", points=101).fields["u"][-1] == pytest.approx(10.0 * 2.0 / sc.EA, rel=1e-9)
+
+
+def test_load_inside_the_boundary_layer_is_flagged():
+    sc = parse_scene(scene_dict("pinned", "pinned", [{"type": "point_force", "position": 0.01, "value": -100.0}]))
+    r = run(sc, "pd-timoshenko", points=201)
+    assert any("boundary layer" in w for w in r.info.get("warnings", []))
+
+
 def test_rod_rejects_transverse_loads():
     with pytest.raises(InputError, match="axial only"):
         run(parse_scene(scene_dict("clamped", "free", MIXED_LOADS[:1])), "pd-rod")
