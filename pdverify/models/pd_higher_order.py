@@ -331,7 +331,7 @@ class PDHigherOrder(Model):
         Option("ends", str, "auto", "auto (mirror for paper, taylor for corrected) | mirror (Appendix B fictitious "
                "layers) | truncated (no ghosts, per-point calibration) | taylor (ghosts extrapolated by a polynomial "
                "of the real points, energy of the real points only)", choices=("auto", "mirror", "truncated", "taylor")),
-        Option("degree", int, 3, "degree of the ghost extrapolation (ends = taylor)", minimum=1, maximum=6),
+        Option("ghost_degree", int, 3, "degree of the ghost extrapolation (ends = taylor)", minimum=1, maximum=6),
         Option("pin", str, "auto", "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | face (parabola-weighted mean of "
                "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
                choices=("auto", "mid", "face")),
@@ -368,7 +368,7 @@ class PDHigherOrder(Model):
         m, variant, ends = params["horizon"], params["variant"], self.ends(params)
         d, _ = family(m, dx, variant)
         J = int(d.max())
-        if 2 * J + 1 > n or (ends == "taylor" and params["degree"] + 1 > n):
+        if 2 * J + 1 > n or (ends == "taylor" and params["ghost_degree"] + 1 > n):
             raise InputError(f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
                              "use more points or a smaller horizon")
         C, h = self.constants(scene)
@@ -404,9 +404,9 @@ class PDHigherOrder(Model):
             V[G:G + n] = dx
             V[[G, G + n - 1]] = dx / 2
             Kx = assemble_blocks(N, dx, C, bond_weights(N, m, dx, variant, V, calibrate="family"), h, centred)
-            E = taylor_map(n, G, params["degree"])
+            E = taylor_map(n, G, params["ghost_degree"])
             K = (E.T @ Kx @ E).tocsr()
-            info.update(boundary=f"ghosts extrapolated (degree {params['degree']}), energy of the real points, "
+            info.update(boundary=f"ghosts extrapolated (degree {params['ghost_degree']}), energy of the real points, "
                         "essential end conditions", ghosts_per_end=[G, G])
         else:
             V = np.full(n, dx)
