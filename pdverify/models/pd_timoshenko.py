@@ -89,6 +89,7 @@ class Discrete:
     prescribed: dict  # dof -> (field, side) of Dirichlet DOFs
     nf: int  # fields per point (1 rod, 2 beam)
     info: dict = field(default_factory=dict)
+    psi: tuple | None = None  # (sparse op, constant): the shear strain at the points used by the operator
 
     @property
     def free(self) -> np.ndarray:
@@ -281,7 +282,8 @@ def beam_operator(scene: Scene, n: int, m: int, variant: str) -> Discrete:
     mass[0::2], mass[1::2] = rho * scene.section.A, rho * scene.section.I
     trans = np.zeros(2 * n, bool)
     trans[0::2] = True
-    return Discrete(x, K.tocsr(), b, mass, trans, prescribed, 2,
+    psi_nodes = ((Avg @ psi_u).tocsr(), Avg @ psi_0)
+    return Discrete(x, K.tocsr(), b, mass, trans, prescribed, 2, psi=psi_nodes, info=
                     {"ghosts_per_end": G, "spacing": dx, "horizon": delta,
                      "C1": kGA / (2 * delta * rho * scene.section.A) if rho else None,
                      "C2": 2 * scene.material.E / (rho * delta**2) if rho else None,
@@ -655,7 +657,9 @@ class PDTimoshenko(_MoyerModel):
         dx = x[1] - x[0]
         w, g = u[0::2], u[1::2]
         M = scene.EI * np.gradient(g, dx, edge_order=2)
-        psi = np.gradient(w, dx, edge_order=2) - g
+        # ψ as the operator sees it (interval averages at the point; paper: central differences):
+        # np.gradient(w) - γ would carry the O(Δ²) error of w' multiplied by kGA
+        psi = disc.psi[0] @ u + disc.psi[1]
         fields = dict(fields, M=M, V=-scene.kGA * psi, psi=psi)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=g,
                       fields=fields, dofs=len(disc.free), timings=timer.timings, info=info, writers=writers)
