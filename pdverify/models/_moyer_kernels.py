@@ -74,6 +74,28 @@ def taylor_ghosts(n_ghost: int, order: int) -> np.ndarray:
     return G
 
 
+def taylor_ghosts_cells(n_ghost: int, order: int, anchored: bool) -> np.ndarray:
+    """Section 4 ghost cells: f(s) = f(0) + f'(0) s + f''(0) s²/2 (``order`` 1 or 2) about the end face
+    s = 0, ghosts at s = (t - 1/2)Δ, the real cells at s = -(k + 1/2)Δ. The face value and derivatives
+    come from the polynomial of degree order + 1 through the face value (``anchored``: the support
+    fixes it to zero) and the first cells (second-order one-sided differences). Returns G (n_ghost x 4)
+    on the first four cells."""
+    deg = order + 1
+    sr = -(np.arange(4) + 0.5)
+    need = deg if anchored else deg + 1  # cells used
+    pts = sr[:need]
+    X = np.concatenate([[0.0], pts]) if anchored else pts
+    V = X[:, None] ** np.arange(deg + 1)
+    C = np.linalg.inv(V)  # coefficients from the values (face first when anchored)
+    if anchored:
+        C = C[:, 1:]  # the face value is zero
+    sg = np.arange(1, n_ghost + 1) - 0.5
+    Vg = sg[:, None] ** np.arange(order + 1)  # Taylor series truncated at ``order``
+    G = np.zeros((n_ghost, 4))
+    G[:, :need] = Vg @ C[: order + 1]
+    return G
+
+
 def constrained_ghosts(n_fields: int, degree: int, npts: int, n_ghost: int,
                        constraints: list[tuple[dict, dict, float]]) -> tuple[np.ndarray, np.ndarray]:
     """Ghost values as an affine map of the real values near an end: ghosts = R d + r0.
@@ -175,10 +197,10 @@ def node_loads(scene: Scene, x: np.ndarray, component: str, ends_apart: bool):
             continue
         if v == 0.0:
             continue
-        pos = load.position / dx
+        pos = (load.position - x[0]) / dx  # x[0] = Δ/2 on a cell-centred grid
         i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
         t = pos - i
-        if abs(t) < 1e-9 or i == n - 1:
+        if abs(t) < 1e-9 or i == n - 1 or t < 0:
             t = 0.0
         if ends_apart and t == 0.0 and i in (0, n - 1):
             ends[0 if i == 0 else 1][slot] += v
