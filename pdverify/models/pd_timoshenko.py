@@ -63,6 +63,7 @@ and ``--out file.csv`` writes them.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
@@ -559,7 +560,8 @@ def integrate(disc: Discrete, motions: dict, t_end: float, dt: float | None = No
 # -- the models -------------------------------------------------------------------------------
 
 _OPTIONS = (
-    Option("points", int, 101, "material points along the beam, ends included", minimum=6),
+    Option("points", int, 101, "material points along the beam, ends included (grid = cells: points - 1 cells)",
+           minimum=6),
     Option("horizon", int, 3, "horizon delta = m dx, m an integer (1 = nearest neighbours)", minimum=1),
     Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
     Option("analysis", str, "auto", "auto (dynamic when the scene has [dynamics]) | static | dynamic",
@@ -587,9 +589,12 @@ class _MoyerModel(Model):
             raise InputError("analysis = 'dynamic': the scene has no [dynamics] table; add one (end_time, ...) "
                              "or use analysis = static")
         dyn = params["analysis"] == "dynamic" or (params["analysis"] == "auto" and scene.dynamics is not None)
-        if dyn and params.get("grid") == "cells":
-            raise InputError("grid = 'cells': the cell-centred grid is static only here (its end faces carry no "
-                             "points to prescribe a motion on); use grid = nodes or analysis = static")
+        moving = scene.dynamics is not None and any(
+            getattr(em, k) is not None for em in (scene.dynamics.left, scene.dynamics.right) if em is not None
+            for k in ("displacement", "axial", "rotation", "twist"))
+        if params.get("grid") == "cells" and (dyn or moving):
+            raise InputError("grid = 'cells': the cell-centred grid takes no dynamics or prescribed end motions here "
+                             "(its end faces carry no points); use grid = nodes")
         return dyn
 
     def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
@@ -626,7 +631,7 @@ class _MoyerModel(Model):
                         omega1=h.omega1, stabilisation=h.stabilisation,
                         history={"t": h.t, "series": series,
                                  "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label]})
-            writers[".csv"] = lambda path, h=h: open(path, "w").write(h.to_csv())
+            writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
         else:
             with timer("solve"):
                 u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})")
