@@ -310,11 +310,11 @@ def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes
     trans = np.zeros(2 * n, bool)
     trans[0::2] = True
     psi_nodes = ((Avg @ psi_u).tocsr(), Avg @ psi_0)
-    return Discrete(x, K.tocsr(), b, mass, trans, prescribed, 2, psi=psi_nodes, info=
-                    {"ghosts_per_end": G, "spacing": dx, "horizon": delta,
-                     "C1": kGA / (2 * delta * rho * scene.section.A) if rho else None,
-                     "C2": 2 * scene.material.E / (rho * delta**2) if rho else None,
-                     "C3": kGA / (2 * rho * delta * scene.section.I) if rho else None})
+    info = {"ghosts_per_end": G, "spacing": dx, "horizon": delta}
+    if rho:  # the paper's constants (Eq. 50)
+        info.update(C1=kGA / (2 * delta * rho * scene.section.A), C2=2 * scene.material.E / (rho * delta**2),
+                    C3=kGA / (2 * rho * delta * scene.section.I))
+    return Discrete(x, K.tocsr(), b, mass, trans, prescribed, 2, psi=psi_nodes, info=info)
 
 
 def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
