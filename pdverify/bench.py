@@ -18,7 +18,17 @@ from pathlib import Path
 
 import numpy as np
 
-BENCH_SCENE = Path(__file__).resolve().parents[1] / "studies" / "examples" / "cantilever_tip_load.toml"
+EXAMPLES = Path(__file__).resolve().parents[1] / "studies" / "examples"
+BENCH_SCENE = EXAMPLES / "cantilever_tip_load.toml"
+
+
+def default_scene(model) -> Path:
+    """The bench scene a model can solve: the cantilever (bending), the rod (axial) or the shaft (torsion)."""
+    if getattr(model, "bending", True):
+        return BENCH_SCENE
+    if getattr(model, "torsion", False) and not getattr(model, "axial", False):
+        return EXAMPLES / "shaft_tip_torque.toml"
+    return EXAMPLES / "rod_tip_load.toml"
 
 
 def _rss_mb() -> float:
@@ -42,8 +52,8 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
     from .registry import get_model, run
     from .scene import load_scene
 
-    path = scene_path or str(BENCH_SCENE)
     m = get_model(model)
+    path = scene_path or str(default_scene(m))
     load_scene(path)  # warm the parser (imports) outside the timing
     base = _rss_mb()
     best = None
