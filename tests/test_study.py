@@ -194,3 +194,29 @@ def test_trust_table_states_ranges_and_the_round_off_grid():
     assert "L/h 10" in t["statement"] and "from 81 points" in t["statement"]
     small = pd.DataFrame([dict(r, err_max=r["err_max"] * 1e-6) for r in rows])  # growth below 1e-6 is not trouble
     assert pd.isna(trust_table(small).iloc[0]["round_off_from_points"])
+
+
+def test_benchmark_at_a_position_of_a_field(tmp_path, synthetic):
+    """A benchmark row may name a position and a quantity: the case's curve is interpolated there."""
+    p = write_study(tmp_path, '''[[runs]]
+model = "synthetic-dx2"
+points = 11
+[[benchmarks]]
+name = "quarter point"
+scene = "%s"
+model = "synthetic-dx2"
+points = 11
+position = 0.5
+''' % SCENE)
+    run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    b = pd.read_csv(tmp_path / "out" / "benchmarks.csv").iloc[0]
+    sc = load_study(p).cases[0].scene()
+    x = np.linspace(0, sc.length, 11)
+    want = np.interp(0.5, x, solve_straight(sc, False).fields(x)["w"] * (1 + 3.0 * (x[1] - x[0]) ** 2))
+    assert b["computed"] == pytest.approx(want, rel=1e-12) and b["position"] == 0.5
+    assert b["target"] == pytest.approx(np.interp(0.5, x, solve_straight(sc, False).fields(x)["w"]), rel=1e-12)
+    bad = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\n[[benchmarks]]\nname = "b"\nscene = "%s"\n'
+                      'model = "synthetic-dx2"\nquantity = "u"\nposition = 99.0\n' % SCENE, name="bad")
+    with pytest.raises(InputError) as e:
+        load_study(bad)
+    assert any("position = 99.0" in l for l in e.value.lines) and any("needs" in l or "target" in l for l in e.value.lines)

@@ -184,7 +184,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                               for k, v in meta.items() if k not in ("date",)])
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=False)
     generated = time.strftime("%Y-%m-%d %H:%M:%S")
-    bench_cols = ["name", "model", "variant", "reference", "target", "computed", "ratio", "rel_error",
+    bench_cols = ["name", "model", "variant", "reference", "quantity", "position", "target", "computed", "ratio", "rel_error",
                   "err_max", "observed_order", "tolerance", "verdict", "case_id"]
     study_file = d / "study.toml"
     titles = {}

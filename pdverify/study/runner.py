@@ -93,6 +93,9 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
         curve = {"x": encode_array(x), "w": encode_array(result.w), "w_ref": encode_array(w_ref)}
         if result.rotation is not None:
             curve["rotation"] = encode_array(result.rotation)
+        pf = {k: encode_array(v) for k, v in result.fields.items() if np.shape(v) == np.shape(x)}
+        if pf:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
+            curve["fields"] = pf
         if "load_steps" in result.info:  # deformed shapes of a nonlinear path, for the report
             curve["load_steps"] = result.info["load_steps"]
         hist = result.info.get("history")
@@ -142,6 +145,8 @@ def read_curve(path: Path) -> dict:
     """The curve of a finished case file: arrays decoded (x, w, w_ref, rotation), other keys as stored."""
     c = json.loads(Path(path).read_text())["curve"]
     out = {k: (decode_array(v) if k in CURVE_ARRAYS else v) for k, v in c.items()}
+    if isinstance(out.get("fields"), dict):
+        out["fields"] = {k: decode_array(v) for k, v in out["fields"].items()}
     if isinstance(out.get("history"), dict):
         h = out["history"]
         out["history"] = {"t": decode_array(h["t"]), "series": {k: decode_array(v) for k, v in h.get("series", {}).items()},
@@ -388,7 +393,10 @@ def trust_table(df: pd.DataFrame, tol: float = TRUST_TOLERANCE) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.DataFrame:
+def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
+    """Verification rows. Default quantity: the deflection at the point of largest reference deflection
+    (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
+    point field such as u, theta, M), the case's curve interpolated there (the case file holds it)."""
     rows = []
     for b in study.benchmarks:
         opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position")}
@@ -406,6 +414,17 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.Da
         r = hit.iloc[0]
         target = b.get("target", r["w_ref_at_max"])
         computed = r["w_at_max"]
+        quantity = b.get("quantity", "w")
+        if "position" in b:
+            c = read_curve(Path(cases_dir) / f"{r['case_id']}.json") if cases_dir else {}
+            arr = c.get(quantity) if quantity in ("w", "rotation") else c.get("fields", {}).get(quantity)
+            if arr is None:
+                rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing",
+                             "message": f"quantity {quantity!r} not among the case's outputs"})
+                continue
+            computed = float(np.interp(float(b["position"]), c["x"], arr))
+            if "target" not in b:
+                target = float(np.interp(float(b["position"]), c["x"], c["w_ref"])) if quantity == "w" else float("nan")
         rel = abs(computed - target) / abs(target) if target else float("nan")
         tol = b.get("tolerance", 0.01)
         order = float("nan")
@@ -418,6 +437,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame) -> pd.Da
                      "variant": r.get("variant"), "reference": r["reference"], "target": target,
                      "computed": computed, "ratio": computed / target if target else float("nan"), "rel_error": rel,
                      "err_max": r["err_max"], "tolerance": tol, "verdict": "pass" if rel <= tol else "fail",
+                     "quantity": quantity if "position" in b else "w at max", "position": b.get("position"),
                      "observed_order": order, "case_id": r["case_id"]})
     return pd.DataFrame(rows)
 
@@ -435,7 +455,7 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
     summary.to_csv(out / "speed_error_summary.csv", index=False)
     trust_table(df).to_csv(out / "trust.csv", index=False)
     if study.benchmarks:
-        benchmark_table(study, df, conv).to_csv(out / "benchmarks.csv", index=False)
+        benchmark_table(study, df, conv, out / "cases").to_csv(out / "benchmarks.csv", index=False)
     shutil.copyfile(study.path, out / "study.toml")
     import importlib.metadata as md
 

@@ -241,6 +241,19 @@ def load_study(path: str | Path) -> Study:
             continue
         if bench["scene"] not in scene_objs:
             errors.append(f"{where}.scene = {bench['scene']!r}: not one of the study's scenes")
+            continue
+        if "position" in bench:
+            L = scene_objs[bench["scene"]][1].length
+            pos = bench["position"]
+            if not isinstance(pos, (int, float)) or isinstance(pos, bool) or not 0 <= pos <= L:
+                errors.append(f"{where}.position = {pos!r}: give a number between 0 and the beam length {L:g}")
+        q = bench.get("quantity", "w")
+        if not isinstance(q, str):
+            errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
+        elif q != "w" and "position" not in bench:
+            errors.append(f"{where}.quantity = {q!r}: a quantity other than w needs a position")
+        elif q != "w" and "target" not in bench:
+            errors.append(f"{where}.quantity = {q!r}: the reference gives w only; give a target")
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once
         raise InputError(list(dict.fromkeys(errors)))
