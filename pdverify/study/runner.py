@@ -393,13 +393,21 @@ def trust_table(df: pd.DataFrame, tol: float = TRUST_TOLERANCE) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def _verdict(ok: bool, expected: str) -> str:
+    """pass / fail, or for a row that documents a known defect (expected = fail): 'expected-fail' when it
+    still fails and 'unexpected-pass' when it no longer does (then the row's text needs a look)."""
+    if expected == "fail":
+        return "unexpected-pass" if ok else "expected-fail"
+    return "pass" if ok else "fail"
+
+
 def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
     """Verification rows. Default quantity: the deflection at the point of largest reference deflection
     (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
     point field such as u, theta, M), the case's curve interpolated there (the case file holds it)."""
     rows = []
     for b in study.benchmarks:
-        opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position")}
+        opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position", "expected")}
         m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"]) & (df["status"] == "ok")
 
         def matches(r):
@@ -436,7 +444,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
         rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],
                      "variant": r.get("variant"), "reference": r["reference"], "target": target,
                      "computed": computed, "ratio": computed / target if target else float("nan"), "rel_error": rel,
-                     "err_max": r["err_max"], "tolerance": tol, "verdict": "pass" if rel <= tol else "fail",
+                     "err_max": r["err_max"], "tolerance": tol, "verdict": _verdict(rel <= tol, b.get("expected", "pass")),
                      "quantity": quantity if "position" in b else "w at max", "position": b.get("position"),
                      "observed_order": order, "case_id": r["case_id"]})
     return pd.DataFrame(rows)

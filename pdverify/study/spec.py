@@ -40,7 +40,7 @@ from ..scene import Scene, load_scene, read_toml
 
 RUN_KEYS = {"model", "reference", "scenes"}
 STORE_SCHEMA = 3  # bump when a case record's content changes: older case files are then recomputed
-BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position"}
+BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position", "expected"}
 
 
 PACKAGES = ("pdverify", "reference_fem")
@@ -247,6 +247,8 @@ def load_study(path: str | Path) -> Study:
             pos = bench["position"]
             if not isinstance(pos, (int, float)) or isinstance(pos, bool) or not 0 <= pos <= L:
                 errors.append(f"{where}.position = {pos!r}: give a number between 0 and the beam length {L:g}")
+        if bench.get("expected", "pass") not in ("pass", "fail"):
+            errors.append(f"{where}.expected = {bench['expected']!r}: pass (default) or fail (a known defect the row documents)")
         q = bench.get("quantity", "w")
         if not isinstance(q, str):
             errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
