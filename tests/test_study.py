@@ -220,3 +220,10 @@ position = 0.5
     with pytest.raises(InputError) as e:
         load_study(bad)
     assert any("position = 99.0" in l for l in e.value.lines) and any("needs" in l or "target" in l for l in e.value.lines)
+
+
+def test_expected_fail_verdicts():
+    from pdverify.study.runner import _verdict
+
+    assert [_verdict(True, "pass"), _verdict(False, "pass"), _verdict(False, "fail"), _verdict(True, "fail")] == \
+        ["pass", "fail", "expected-fail", "unexpected-pass"]
