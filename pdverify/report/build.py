@@ -61,17 +61,36 @@ def _read(d: Path, name: str) -> pd.DataFrame:
 
 
 def _label(r) -> str:
+    """Model, then its string options that differ from the model's defaults, then grid and horizon."""
     parts = [str(r["model"])]
     opts = json.loads(r["options"]) if isinstance(r.get("options"), str) else {}
+    try:
+        from ..registry import get_model
+
+        model = get_model(str(r["model"]))
+    except Exception:  # a model of another installation: show every string option
+        model = None
     for k, v in sorted(opts.items()):
-        if k in ("horizon", "degree"):
+        if k in ("horizon", "degree") or not isinstance(v, str):
             continue
-        if isinstance(v, str):
-            parts.append(v)
+        opt = model.option(k) if model is not None else None
+        if opt is not None and opt.default == v and k != "variant":
+            continue
+        parts.append(v)
     for k, short in (("points", "n"), ("horizon_factor", "m"), ("degree", "P"), ("slenderness", "L/h")):
         if k in r and pd.notna(r[k]):
             parts.append(f"{short}={fmt(r[k])}")
     return " ".join(parts)
+
+
+def _short_reference(ref) -> str:
+    """'fem-plane-stress (element=q8, layers=16, points=201)' for the JSON reference of a row."""
+    try:
+        d = json.loads(ref)
+    except (TypeError, ValueError):
+        return "" if ref is None else str(ref)
+    model = d.pop("model", "?")
+    return f"{model} ({', '.join(f'{k}={v}' for k, v in sorted(d.items()))})" if d else str(model)
 
 
 def _folder(scene_file) -> str:
@@ -101,7 +120,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     for sfile, g in ok.groupby("scene_file", sort=False):
         figs = []
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
-            curves, ref = [], None
+            curves, ref, ylabels = [], None, set()
             # at most one curve per (model, variant): the finest grid
             for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
@@ -109,14 +128,20 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 if not path.exists():
                     continue
                 c = read_curve(path)
-                curves.append((_label(r), c["x"], c["w"]))
+                y = c["w"]
+                if not np.any(y) and "u" in c.get("fields", {}):  # axial models: the axial displacement
+                    y = c["fields"]["u"]
+                    ylabels.add("u")
+                else:
+                    ylabels.add("w")
+                curves.append((_label(r), c["x"], y))
                 if ref is None or len(c["x"]) > len(ref[0]):
                     ref = (c["x"], c["w_ref"])
             title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
             if ref is not None and not np.all(np.isnan(ref[1])):
-                figs.append(figures.deflection(curves, ref, title))
+                figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w"))
             else:
-                figs.append(figures.deflection(curves, None, title))
+                figs.append(figures.deflection(curves, None, title, " / ".join(sorted(ylabels)) or "w"))
             for _, r in gs.iterrows():
                 path = d / "cases" / f"{r['case_id']}.json"
                 c = read_curve(path) if path.exists() else {}
@@ -184,8 +209,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                               for k, v in meta.items() if k not in ("date",)])
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=False)
     generated = time.strftime("%Y-%m-%d %H:%M:%S")
-    bench_cols = ["name", "model", "variant", "reference", "quantity", "position", "target", "computed", "ratio", "rel_error",
-                  "err_max", "observed_order", "tolerance", "verdict", "case_id"]
+    bench_cols = ["name", "verdict", "model", "variant", "reference", "quantity", "position", "target", "computed", "ratio",
+                  "rel_error", "tolerance", "err_max", "observed_order", "case_id"]
     study_file = d / "study.toml"
     titles = {}
     if study_file.exists():
@@ -200,6 +225,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         names = {s["name"] for s in scenes if s["folder"] == folder}
         pick = lambda figs: [f for sc, f in figs if sc in names]  # noqa: E731
         pb = bench[bench["scene_file"].map(_folder) == folder] if "scene_file" in bench else bench.iloc[0:0]
+        if "reference" in pb:
+            pb = pb.assign(reference=pb["reference"].map(_short_reference))
         verdicts = pb["verdict"].value_counts().to_dict() if "verdict" in pb else {}
         page = {"folder": folder, "title": titles.get(folder, folder), "href": f"paper-{_slug(folder)}.html",
                 "summary": ", ".join(f"{k}: {v}" for k, v in sorted(verdicts.items())) or "no benchmarks",
@@ -220,7 +247,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             break
     page = env.get_template("index.html.j2").render(
         meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
-        benchmarks=table(bench, bench_cols, row_class="verdict"),
+        benchmarks=table(bench.assign(reference=bench["reference"].map(_short_reference)) if "reference" in bench else bench,
+                         bench_cols, row_class="verdict"),
         scenes=scenes, convergence_figs=[f for _, f in conv_figs], horizon_figs=[f for _, f in horizon_figs],
         convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),

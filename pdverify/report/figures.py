@@ -24,14 +24,17 @@ def _svg(fig) -> str:
     return text[text.index("<svg"):]
 
 
-def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.ndarray, np.ndarray] | None, title: str) -> str:
+def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.ndarray, np.ndarray] | None, title: str,
+               ylabel: str = "w") -> str:
+    """Deflection (or another point field) along the axis; lengths in the scene's units (SI unless the
+    scene says otherwise)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     if ref is not None:
         ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="reference")
     for label, x, w in curves:
         ax.plot(x, w, "-", lw=1.2, marker="o" if len(x) <= 30 else None, ms=3, label=label)
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("w (m)")
+    ax.set_xlabel("x")
+    ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
