@@ -28,6 +28,15 @@ CASES = [
     *[(f"paper_yang/{s}.toml", "fem-timoshenko", {"points": 101})
       for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")],
     ("paper_moyer/cantilever_table1.toml", "fem-timoshenko", {"points": 101}),
+    *[(f"paper_yang/{s}.toml", "pd-higher-order", {"variant": v, "points": 1001})
+      for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")
+      for v in ("paper", "corrected")],
+    *[(f"paper_yang/{s}.toml", "fem-plane-stress", {"element": "q4", "points": 101, "layers": 8})
+      for s in ("ss_uniform", "cantilever_tip_force")],
+    *[("paper_moyer/cantilever_table1.toml", "pd-timoshenko", {"variant": v, "horizon": m, "points": 101})
+      for v in ("paper", "corrected") for m in (2, 3, 4)],
+    ("paper_moyer/rod_example1.toml", "pd-rod", {"points": 101, "horizon": 1}),
+    ("paper_moyer/beam_example2.toml", "pd-timoshenko", {"points": 101, "horizon": 1}),
 ]
 
 
@@ -38,7 +47,10 @@ def key(scene: str, model: str, options: dict) -> str:
 
 def compute(scene: str, model: str, options: dict) -> dict:
     r = run(load_scene(ROOT / "studies" / scene), model, **options)
-    return {"scene": scene, "model": model, "options": options, "x": r.x.tolist(), "w": np.asarray(r.w).tolist()}
+    out = {"scene": scene, "model": model, "options": options, "x": r.x.tolist(), "w": np.asarray(r.w).tolist()}
+    if "u" in r.fields:  # axial models: the axial displacement is the answer
+        out["u"] = np.asarray(r.fields["u"]).tolist()
+    return out
 
 
 def regenerate() -> list[Path]:

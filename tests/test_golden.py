@@ -20,3 +20,6 @@ def test_golden(scene, model, options):
     assert np.allclose(got["x"], want["x"], rtol=0, atol=1e-14)
     w, w0 = np.array(got["w"]), np.array(want["w"])
     assert np.abs(w - w0).max() <= 1e-10 * np.abs(w0).max()
+    if "u" in want:
+        u, u0 = np.array(got["u"]), np.array(want["u"])
+        assert np.abs(u - u0).max() <= 1e-10 * np.abs(u0).max()
