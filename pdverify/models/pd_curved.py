@@ -1,0 +1,329 @@
+"""Model ``pd-curved``: planar curved Timoshenko–Ehrenfest beam by PDDO collocation (seed 004).
+
+The seed's equations were lost in extraction; they are restored in the design note
+(../shared/design/formulas-bondpair-curved.md §2–3) and re-derived here from virtual work (the signs
+below were checked: the virtual-work identity, the straight-beam limit against ``exact-timoshenko``
+and the closed-form semicircle of :mod:`pdverify.exact.curved`).
+
+Axis r(s) (arc length s), tangent t, normal n = e_z × t, curvature κ (t' = κ n, n' = -κ t).
+Unknowns per particle: u_t, u_n (u = u_t t + u_n n) and the section rotation φ (counter-clockwise).
+
+* strains (seed Eq. 3):        ε = u_t' - κ u_n,   γ = u_n' + κ u_t - φ,   χ = φ'
+* resultants (Eq. 4):          N = EA ε,   Q = kGA γ,   M = EI χ
+* equilibrium (Eq. 8–10):      N' - κ Q + p_t = 0,   Q' + κ N + p_n = 0,   M' + Q + m = 0
+* boundary (Eq. 11–13):        at s = L either u_t, u_n, φ given or N = F·t, Q = F·n, M = C̄;
+                               at s = 0 the same with a minus sign.
+
+For a straight beam Q = kGA(w' - φ) = -dM/dx: ``exact-timoshenko``'s V is -Q (Result.fields["V"]).
+
+Collocation (Eq. 27–35): three equations per particle, every derivative replaced by PDDO functions of
+degree P (:mod:`pdverify.models._pddo`), families of 2 m + 1 particles (m = ``horizon``, default
+⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P), shifted inward at the ends. Two forms:
+
+* ``primal`` (the paper, Eq. 14–16): constitutive law substituted, second derivatives by g²:
+  ``EA(u_t'' - κ' u_n - κ u_n') - κ kGA(u_n' + κ u_t - φ) + p_t = 0`` etc.;
+* ``mixed`` (beyond the paper): first-derivative functions only, applied twice: N = EA(D1 u_t - κ u_n),
+  then D1 N - κ Q + p_t = 0, ...
+
+At each end particle the three boundary equations replace the three equilibrium equations (slot t
+takes u_t or N, slot n takes u_n or Q, slot φ takes φ or M): clamped u_t = u_n = φ = 0; pinned
+u_t = u_n = 0, M = ±C̄; free N, Q, M = ±(F·t, F·n, C̄); guided φ = 0, N, Q = ±(F·t, F·n).
+
+Point loads inside the beam and the ends of a distributed load's span split the axis into segments
+(each with its own uniform particles and families; a PDDO function never reaches across a load
+discontinuity). At an interface the two coincident particles carry continuity of u_t, u_n, φ and the
+jumps N⁺ - N⁻ = -F·t, Q⁺ - Q⁻ = -F·n, M⁺ - M⁻ = -C (a counter-clockwise couple C). Distributed loads are
+collocated point-wise (value along n, axial along t; ``frame = global``: (axial, value) = global
+(x, y) components per unit arc length; ``sine``: times sin(π s / L)). Every equation row is divided
+by its largest coefficient, the non-symmetric system is solved by LU (``solve_linear``; unknowns
+interleaved per particle, so it is banded) and its condition number reported.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import InputError
+from ..geometry import geometry
+from ..linalg import solve_linear
+from ..registry import Model, Option
+from ..result import Result, Timer
+from ..scene import Distributed, PointForce, PointMoment, Scene
+from . import _pddo
+
+# -- geometry ---------------------------------------------------------------------------------
+
+
+def curvature_slope(scene: Scene, s: np.ndarray) -> np.ndarray:
+    """dκ/ds (0 for straight and arc axes; polynomial: (1/J) d/dx [y''/J³], J = sqrt(1 + y'²))."""
+    s = np.asarray(s, float)
+    if scene.axis.type != "polynomial":
+        return np.zeros_like(s)
+    from numpy.polynomial import polynomial as Pn
+
+    geo = geometry(scene)
+    c = np.asarray(scene.axis.coefficients, float)
+    x = geo._x_of_s(s)
+    d1, d2, d3 = (Pn.polyval(x, Pn.polyder(c, k)) for k in (1, 2, 3))
+    J2 = 1 + d1**2
+    return (d3 / J2**1.5 - 3 * d1 * d2**2 / J2**2.5) / np.sqrt(J2)
+
+
+# -- segments and loads -----------------------------------------------------------------------
+
+
+def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
+    """Interior break positions (sorted), the point loads there {index: [loads]} and the end point
+    loads {0: [...], 1: [...]} (loads exactly at s = 0 or s = L)."""
+    L = scene.length
+    tol = 1e-9 * L
+    pos, at = [], []
+    ends = {0: [], 1: []}
+    for load in scene.loads:
+        if isinstance(load, (PointForce, PointMoment)):
+            if load.position <= tol:
+                ends[0].append(load)
+            elif load.position >= L - tol:
+                ends[1].append(load)
+            else:
+                pos.append(load.position), at.append(load)
+        elif isinstance(load, Distributed):
+            for v in scene.span(load):
+                if tol < v < L - tol:
+                    pos.append(v), at.append(None)
+    bps: list[float] = []
+    loads: dict[int, list] = {}
+    for p, load in sorted(zip(pos, at), key=lambda t: t[0]):
+        if not bps or p - bps[-1] > tol:
+            bps.append(p)
+            loads[len(bps) - 1] = []
+        if load is not None:
+            loads[len(bps) - 1].append(load)
+    return np.array(bps), loads, ends
+
+
+def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int) -> list[np.ndarray]:
+    """Uniform particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all (a uniform
+    grid of ``points`` particles when the breaks fall on it), at least ``min_points`` per segment."""
+    edges = np.concatenate([[0.0], bps, [L]])
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
+        out.append(np.linspace(a, b, k + 1))
+    return out
+
+
+def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
+    """(F·t, F·n, C) of a point load at a point with unit tangent t and normal n."""
+    if isinstance(load, PointMoment):
+        return 0.0, 0.0, load.value
+    if load.frame == "global":
+        F = np.array([load.axial, load.value])
+        return float(F @ t), float(F @ n), 0.0
+    return load.axial, load.value, 0.0
+
+
+def distributed_loads(scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray,
+                      inside: float) -> tuple[np.ndarray, np.ndarray]:
+    """(p_t, p_n) per unit arc length at the particles s of one segment (``inside``: a position strictly
+    inside the segment, to decide which spans cover it)."""
+    pt, pn = np.zeros_like(s), np.zeros_like(s)
+    for load in scene.loads:
+        if not isinstance(load, Distributed):
+            continue
+        a, b = scene.span(load)
+        if not a <= inside <= b:
+            continue
+        f = np.ones_like(s) if load.shape == "uniform" else np.sin(np.pi * s / scene.length)
+        if load.frame == "global":
+            pt += f * (load.axial * t[:, 0] + load.value * t[:, 1])
+            pn += f * (load.axial * n[:, 0] + load.value * n[:, 1])
+        else:
+            pt += f * load.axial
+            pn += f * load.value
+    return pt, pn
+
+
+# -- the model --------------------------------------------------------------------------------
+
+_SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is prescribed, False = the resultant
+    "clamped": (True, True, True),
+    "pinned": (True, True, False),
+    "free": (False, False, False),
+    "guided": (False, False, True),
+}
+
+
+def default_horizon(degree: int) -> int:
+    return degree // 2 + 1
+
+
+class PDCurved(Model):
+    name = "pd-curved"
+    title = "PDDO curved Timoshenko–Ehrenfest beam (u_t, u_n, φ), any degree"
+    source = "PDDO planar curved Timoshenko–Ehrenfest beam (seed 004; design note §2–3)"
+    options = (
+        Option("points", int, 101, "particles along the axis, ends included", minimum=5),
+        Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
+        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1", minimum=0),
+        Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
+               "functions applied twice)", choices=("primal", "mixed")),
+    )
+    curved = True
+    axial = True
+    theory = "timoshenko"
+
+    # ---------------------------------------------------------------------------------------
+    def discretise(self, scene: Scene, params: dict):
+        P = params["degree"]
+        m = params["horizon"] or default_horizon(P)
+        size = 2 * m + 1
+        if size < P + 1:
+            raise InputError(f"horizon = {m}: a family of {size} particles cannot carry degree {P}; "
+                             f"use horizon >= {int(np.ceil(P / 2))} or a lower degree")
+        if size > params["points"]:
+            raise InputError(f"points = {params['points']}: fewer than one family ({size} particles for "
+                             f"degree {P}, horizon {m}); use more points")
+        bps, inner, ends = breakpoints(scene)
+        segs = segment_grids(scene.length, bps, params["points"], size)
+        return segs, inner, ends, m, size
+
+    def assemble(self, scene: Scene, params: dict, body=None):
+        """(K, b, data): K z = b, z = (u_t, u_n, φ) interleaved per particle (``data['perm']`` maps to the
+        component-major order); ``body(s)`` optionally adds distributed (p_t, p_n, m) (manufactured)."""
+        segs, inner, ends, m, size = self.discretise(scene, params)
+        P = params["degree"]
+        s = np.concatenate(segs)
+        N = len(s)
+        geo = geometry(scene)
+        t, nv = geo.frame(s)
+        kap = geo.curvature(s)
+        dkap = curvature_slope(scene, s)
+        offs = np.cumsum([0] + [len(g) for g in segs])
+        D1s, D2s = [], []
+        for g in segs:  # a few segments (load discontinuities), never a loop over particles
+            D = _pddo.derivative_matrices(g, P, size, (1, 2))
+            D1s.append(D[1]), D2s.append(D[2])
+        D1 = sp.block_diag(D1s, format="csr")
+        D2 = sp.block_diag(D2s, format="csr")
+        I = sp.identity(N, format="csr")
+        Z = sp.csr_matrix((N, N))
+        K_ = sp.diags(kap)
+        Kp = sp.diags(dkap)
+        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
+        # strain operators (rows: particles; block columns u_t, u_n, φ)
+        Eps = sp.hstack([D1, -K_, Z], format="csr")
+        Gam = sp.hstack([K_, D1, -I], format="csr")
+        Chi = sp.hstack([Z, Z, D1], format="csr")
+        if params["form"] == "mixed":
+            dEps, dGam, dChi = D1 @ Eps, D1 @ Gam, D1 @ Chi
+        else:  # primal: the derivative of each strain written out, second derivatives by g^2
+            dEps = sp.hstack([D2, -Kp - K_ @ D1, Z], format="csr")
+            dGam = sp.hstack([Kp + K_ @ D1, D2, -D1], format="csr")
+            dChi = sp.hstack([Z, Z, D2], format="csr")
+        Kt = EA * dEps - kGA * (K_ @ Gam)
+        Kn = kGA * dGam + EA * (K_ @ Eps)
+        Kf = EI * dChi + kGA * Gam
+        pt, pn, mm = np.zeros(N), np.zeros(N), np.zeros(N)
+        for i, g in enumerate(segs):
+            sl = slice(offs[i], offs[i + 1])
+            pt[sl], pn[sl] = distributed_loads(scene, g, t[sl], nv[sl], 0.5 * (g[0] + g[-1]))
+        if body is not None:
+            bt, bn, bm = body(s)
+            pt, pn, mm = pt + bt, pn + bn, mm + bm
+        K = sp.vstack([Kt, Kn, Kf], format="csr")
+        b = -np.concatenate([pt, pn, mm])
+        # boundary and interface rows replace the equilibrium rows of the segment-end particles
+        res = [(EA * Eps).tocsr(), (kGA * Gam).tocsr(), (EI * Chi).tocsr()]  # N, Q, M
+        rr, rc, rv = [], [], []
+        rb = {}
+
+        def put(row, op, k, coef=1.0):
+            """add coef * (row k of the operator op) to equation ``row``"""
+            r = op.getrow(k).tocoo()
+            rr.append(np.full(r.nnz, row)), rc.append(r.col), rv.append(coef * r.data)
+
+        def unit(c, k):
+            rr.append(np.array([c * N + k])), rc.append(np.array([c * N + k])), rv.append(np.array([1.0]))
+
+        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+            k = 0 if side == 0 else N - 1
+            sign = -1.0 if side == 0 else 1.0
+            F = np.zeros(3)
+            for load in ends[side]:
+                F += force_components(load, t[k], nv[k])
+            for c, kin in enumerate(_SUPPORT_SLOTS[sup]):
+                row = c * N + k
+                if kin:
+                    unit(c, k)
+                    rb[row] = 0.0
+                else:
+                    put(row, res[c], k)
+                    rb[row] = sign * F[c]
+        for i in range(len(segs) - 1):
+            ka, kb = offs[i + 1] - 1, offs[i + 1]
+            F = np.zeros(3)
+            for load in inner.get(i, []):
+                F += force_components(load, t[ka], nv[ka])
+            for c in range(3):
+                rr.append(np.array([c * N + ka] * 2)), rc.append(np.array([c * N + ka, c * N + kb]))
+                rv.append(np.array([1.0, -1.0]))
+                rb[c * N + ka] = 0.0
+                put(c * N + kb, res[c], kb)
+                put(c * N + kb, res[c], ka, -1.0)
+                rb[c * N + kb] = -F[c]
+        rows = np.array(sorted(rb))
+        keep = np.ones(3 * N)
+        keep[rows] = 0.0
+        R = sp.csr_matrix((np.concatenate(rv), (np.concatenate(rr), np.concatenate(rc))), shape=(3 * N, 3 * N))
+        K = (sp.diags(keep) @ K + R).tocsr()
+        b = b * keep
+        b[rows] = [rb[r] for r in rows]
+        # equilibrate: each row divided by its largest coefficient
+        scale = 1.0 / abs(K).max(axis=1).toarray().ravel()
+        K = (sp.diags(scale) @ K).tocsr()
+        b = b * scale
+        # interleave (particle-major) so the matrix is banded
+        perm = np.arange(3 * N).reshape(3, N).T.ravel()  # new index i -> old index perm[i]
+        inv = np.empty_like(perm)
+        inv[perm] = np.arange(3 * N)
+        C = K.tocoo()
+        K = sp.csr_matrix((C.data, (inv[C.row], inv[C.col])), shape=K.shape)
+        data = dict(s=s, segs=segs, offs=offs, N=N, perm=perm, Eps=Eps, Gam=Gam, Chi=Chi, t=t, n=nv,
+                    horizon=m, family=size)
+        return K, b[perm], data
+
+    def limit_system(self, scene: Scene, params: dict):
+        """(matrix, rhs) that ``solve`` factorises (for ``pdverify bench``)."""
+        K, b, _ = self.assemble(scene, params)
+        return K, b
+
+    def solve(self, scene: Scene, params: dict, body=None) -> Result:
+        timer = Timer()
+        with timer("assemble"):
+            K, b, d = self.assemble(scene, params, body)
+        with timer("solve"):
+            zi, info = solve_linear(K, b, what=f"pd-curved (degree {params['degree']}, {params['form']})")
+        N = d["N"]
+        z = np.empty(3 * N)
+        z[d["perm"]] = zi
+        ut, un, phi = z[:N], z[N:2 * N], z[2 * N:]
+        Nf, Qf, Mf = scene.EA * (d["Eps"] @ z), scene.kGA * (d["Gam"] @ z), scene.EI * (d["Chi"] @ z)
+        # one value per position: drop the first particle of every segment after the first (its
+        # coincident partner, the left segment's last particle, keeps the left limit of the resultants)
+        keep = np.ones(N, bool)
+        keep[d["offs"][1:-1]] = False
+        t, nv = d["t"], d["n"]
+        ux = ut * t[:, 0] + un * nv[:, 0]
+        uy = ut * t[:, 1] + un * nv[:, 1]
+        fields = {"u": ut[keep], "N": Nf[keep], "Q": Qf[keep], "M": Mf[keep], "ux": ux[keep], "uy": uy[keep]}
+        if scene.is_straight:
+            fields["V"] = -Qf[keep]
+        info.update(degree=params["degree"], horizon=d["horizon"], family=d["family"], form=params["form"],
+                    segments=len(d["segs"]), particles=N)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=d["s"][keep], w=un[keep],
+                      rotation=phi[keep], fields=fields, dofs=3 * N, timings=timer.timings, info=info)
+
+
+MODELS = [PDCurved()]
