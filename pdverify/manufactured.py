@@ -12,7 +12,8 @@ d/ds = (1/J) d/dx, J = sqrt(1 + y'^2), kappa = y''/J^3::
     p_t = -(N' - kappa Q),  p_n = -(Q' + kappa N),  m = -(M' + Q)
 
 The scene cannot express such a load profile, so the loads are exposed through Python only:
-``pd-curved --manufactured trig`` adds them to the scene's loads, and the reference model
+``body(scene)`` returns them as a function of s for ``PDCurved.solve(scene, params, body=...)``; the model
+``pd-curved-mms`` (pd-curved plus these loads) runs them from a study, and the reference model
 ``exact-curved-manufactured`` returns the chosen fields. Axis: polynomial (or straight: y = 0 on [0, L]).
 """
 
@@ -74,3 +75,14 @@ def fields(scene, s: np.ndarray) -> dict[str, np.ndarray]:
         v = f[k](x, scene.EA, scene.kGA, scene.EI)
         out[k] = np.broadcast_to(np.asarray(v, float), x.shape).copy()
     return out
+
+
+def body(scene):
+    """s -> (p_t, p_n, m): the manufactured loads per unit length (for pd-curved's ``body`` hook)."""
+    axis_data(scene)
+
+    def loads(s):
+        f = fields(scene, s)
+        return f["p_t"], f["p_n"], f["m"]
+
+    return loads

@@ -1,0 +1,60 @@
+"""Model ``exact-curved-manufactured``: the chosen fields of the manufactured curved-beam solution
+(pdverify/manufactured.py; design note §4, quintic example). The loads that produce them are not scene
+loads: ``pd-curved-mms`` adds them. The scene must be clamped at both ends and carry no [[loads]]."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry import geometry
+from ..registry import POINTS, Model
+from ..result import Result, Timer
+from ..scene import Scene
+
+
+def manufactured_checks(scene: Scene) -> list[str]:
+    out = []
+    if scene.axis.type != "polynomial":
+        out.append(f"axis.type = {scene.axis.type!r}: the manufactured solution is written for a polynomial axis")
+    if (scene.supports.left, scene.supports.right) != ("clamped", "clamped"):
+        out.append(f"supports = {scene.supports.left}-{scene.supports.right}: the manufactured fields vanish at "
+                   "both ends; set both supports to clamped")
+    if scene.loads:
+        out.append("loads: the manufactured solution brings its own loads (pd-curved-mms adds them); remove the [[loads]]")
+    return out
+
+
+class ExactCurvedManufactured(Model):
+    name = "exact-curved-manufactured"
+    title = "manufactured solution of the curved Timoshenko–Ehrenfest beam (chosen fields)"
+    source = "pdverify/manufactured.py: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x)"
+    options = (POINTS,)
+    theory = "timoshenko"
+    curved = True
+    axial = True
+    reference = True
+
+    def check(self, scene: Scene) -> list[str]:
+        return manufactured_checks(scene)
+
+    def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
+        from ..manufactured import fields
+
+        x = np.asarray(x, float)
+        f = fields(scene, x)
+        t, n = geometry(scene).frame(x)
+        U = f["u_t"][:, None] * t + f["u_n"][:, None] * n
+        return {"w": f["u_n"], "rotation": f["phi"], "u": f["u_t"], "ux": U[:, 0], "uy": U[:, 1],
+                "N": f["N"], "Q": f["Q"], "M": f["M"]}
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        with timer("solve"):
+            s = np.linspace(0.0, scene.length, params["points"])
+            f = self.evaluate(scene, params, s)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=f["w"],
+                      rotation=f["rotation"], fields={k: v for k, v in f.items() if k not in ("w", "rotation")},
+                      dofs=0, timings=timer.timings, info={})
+
+
+MODELS = [ExactCurvedManufactured()]

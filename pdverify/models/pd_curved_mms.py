@@ -1,0 +1,29 @@
+"""Model ``pd-curved-mms``: ``pd-curved`` with the loads of the manufactured solution
+(pdverify/manufactured.py) added through its ``body`` hook, so a study can run the quintic example with
+one command (reference ``exact-curved-manufactured``). Same options and discretisation as pd-curved."""
+
+from __future__ import annotations
+
+from ..result import Result
+from ..scene import Scene
+from .pd_curved import PDCurved
+
+
+class PDCurvedMMS(PDCurved):
+    name = "pd-curved-mms"
+    title = "pd-curved + manufactured loads (quintic example)"
+    source = "pd-curved; loads by sympy from the chosen fields (pdverify/manufactured.py)"
+    reference = True  # a verification harness, not a candidate model for `pdverify advise`
+
+    def check(self, scene: Scene) -> list[str]:
+        from ..exact.manufactured import manufactured_checks
+
+        return super().check(scene) + manufactured_checks(scene)
+
+    def solve(self, scene: Scene, params: dict, body=None) -> Result:
+        from ..manufactured import body as mms_body
+
+        return super().solve(scene, params, body=mms_body(scene))
+
+
+MODELS = [PDCurvedMMS()]
