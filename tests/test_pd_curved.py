@@ -1,0 +1,204 @@
+"""pd-curved (PDDO curved Timoshenko–Ehrenfest beam) and exact-curved-cantilever.
+
+References: exact-timoshenko (closed form, straight scenes), exact-curved-cantilever (statics +
+quadrature), itself checked against a sympy closed form of the semicircle and Clapeyron's theorem."""
+
+import numpy as np
+import pytest
+
+from conftest import MIXED_LOADS, PAIRS, scene_dict
+from pdverify.errors import InputError
+from pdverify.exact.curved import Cantilever
+from pdverify.registry import get_model, run
+from pdverify.scene import load_scene, parse_scene
+
+EXACT_T = get_model("exact-timoshenko")
+EXACT_C = get_model("exact-curved-cantilever")
+
+
+def rel(a, b):
+    return np.linalg.norm(a - b) / np.linalg.norm(b)
+
+
+def disp_error(res, f):
+    """relative L2 error of the displacement vector (global components) over the particles"""
+    d = np.hypot(res.fields["ux"] - f["ux"], res.fields["uy"] - f["uy"])
+    return np.linalg.norm(d) / np.linalg.norm(np.hypot(f["ux"], f["uy"]))
+
+
+# -- straight scenes vs exact-timoshenko ---------------------------------------------------------
+
+
+@pytest.mark.parametrize("form, tol", [("mixed", 1e-6), ("primal", 2e-4)])
+@pytest.mark.parametrize("pair", PAIRS)
+def test_straight_every_support_pair_and_load_type(pair, form, tol):
+    """Point forces and moments between particles and at the ends, partial uniform and sine loads."""
+    sc = parse_scene(scene_dict(*pair, MIXED_LOADS))
+    res = run(sc, "pd-curved", points=201, degree=4, form=form)
+    f = EXACT_T.evaluate(sc, {}, res.x)
+    scale = np.abs(f["w"]).max()
+    assert np.abs(res.w - f["w"]).max() <= tol * scale
+    assert np.abs(res.rotation - f["rotation"]).max() <= tol * np.abs(f["rotation"]).max()
+    inner = slice(1, -1)  # at the end particles the exact M, V include or exclude an end load
+    assert np.abs(res.fields["M"] - f["M"])[inner].max() <= 50 * tol * np.abs(f["M"]).max()
+    assert np.abs(res.fields["V"] - f["V"])[inner].max() <= 50 * tol * np.abs(f["V"]).max()
+    assert np.abs(res.fields["u"]).max() <= 1e-9 * scale  # no axial load, no axial displacement
+
+
+def test_straight_loads_off_the_grid_and_unequal_segments():
+    loads = [{"type": "point_force", "position": 0.123, "value": -300.0},
+             {"type": "distributed", "value": 700.0, "start": 0.4567, "end": 1.9, "shape": "sine"}]
+    sc = parse_scene(scene_dict("pinned", "clamped", loads))
+    res = run(sc, "pd-curved", points=101, degree=6)
+    f = EXACT_T.evaluate(sc, {}, res.x)
+    assert rel(res.w, f["w"]) < 1e-6
+    assert res.info["segments"] == 4
+
+
+def test_straight_axial_loads():
+    """Axial point force (local and global frame) and a uniform axial load on a cantilever:
+    u = P x / EA + p (L x - x²/2) / EA."""
+    loads = [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 5e4},
+             {"type": "point_force", "position": 1.0, "value": 0.0, "axial": -2e4, "frame": "global"},
+             {"type": "distributed", "value": 0.0, "axial": 3e4}]
+    sc = parse_scene(scene_dict("clamped", "free", loads))
+    res = run(sc, "pd-curved", points=101, degree=4)
+    x, L, EA = res.x, sc.length, sc.EA
+    u = (5e4 * x - 2e4 * np.minimum(x, 1.0) + 3e4 * (L * x - x**2 / 2)) / EA
+    assert np.abs(res.fields["u"] - u).max() < 1e-8 * np.abs(u).max()
+    assert np.abs(res.w).max() < 1e-9 * np.abs(u).max()
+    N = 5e4 - 2e4 * (x < 1.0 + 1e-12) + 3e4 * (L - x)
+    assert np.abs(res.fields["N"] - N).max() < 1e-6 * np.abs(N).max()
+
+
+# measured relative L2 error of w at 81 points (straight_sine.toml, slenderness 10), x 3 as the bound
+SINE_81 = {"mixed": {2: 2.6e-3, 3: 1.3e-6, 4: 1.9e-6, 5: 1.2e-9, 6: 4.1e-8},
+           "primal": {2: 1.5e-2, 3: 1.5e-2, 4: 1.2e-5, 5: 8.1e-6, 6: 8.0e-9}}
+
+
+@pytest.mark.parametrize("form", ["mixed", "primal"])
+@pytest.mark.parametrize("P", [2, 3, 4, 5, 6])
+def test_straight_sine_clamped_clamped_each_degree(P, form):
+    """Seed 004 §4.1 at slenderness 10."""
+    sc = load_scene("studies/paper_curved/straight_sine.toml")
+    res = run(sc, "pd-curved", points=81, degree=P, form=form)
+    f = EXACT_T.evaluate(sc, {}, res.x)
+    assert rel(res.w, f["w"]) < 3 * SINE_81[form][P]
+
+
+# -- the exact curved cantilever -----------------------------------------------------------------
+
+
+def _sympy_semicircle(R, Px, Py, EA, kGA, EI):
+    """Closed form (sympy) of the semicircle r = R (cos a, sin a), clamped at a = 0, force (Px, Py) at a = pi."""
+    import sympy as sy
+
+    a, b = sy.symbols("a b", real=True)
+    t = sy.Matrix([-sy.sin(b), sy.cos(b)])
+    n = sy.Matrix([-sy.cos(b), -sy.sin(b)])
+    r = lambda v: R * sy.Matrix([sy.cos(v), sy.sin(v)])  # noqa: E731
+    P = sy.Matrix([Px, Py])
+    N, Q = P.dot(t), P.dot(n)
+    d = r(sy.pi) - r(b)
+    M = d[0] * Py - d[1] * Px
+    ez = lambda v: sy.Matrix([-v[1], v[0]])  # noqa: E731
+    integrand = (N / EA) * t + (Q / kGA) * n + (M / EI) * ez(r(a) - r(b))
+    u = sy.integrate(integrand * R, (b, 0, a))
+    phi = sy.integrate(M / EI * R, (b, 0, a))
+    return sy.lambdify(a, [u[0], u[1], phi], "numpy")
+
+
+@pytest.mark.parametrize("case", ["tangential", "normal"])
+def test_exact_cantilever_matches_the_sympy_closed_form(case):
+    sc = load_scene(f"studies/paper_curved/semicircle_{case}.toml")
+    load = sc.loads[0]
+    fn = _sympy_semicircle(1.0, load.axial, load.value, sc.EA, sc.kGA, sc.EI)
+    s = np.linspace(0, np.pi, 37)
+    ux, uy, phi = (np.broadcast_to(v, s.shape) for v in fn(s))
+    f = Cantilever(sc).fields(s)
+    scale = np.abs(np.r_[ux, uy]).max()
+    assert np.abs(f["ux"] - ux).max() < 1e-12 * scale
+    assert np.abs(f["uy"] - uy).max() < 1e-12 * scale
+    assert np.abs(f["rotation"] - phi).max() < 1e-12 * np.abs(phi).max()
+
+
+def test_exact_cantilever_clapeyron_on_a_quintic_axis():
+    """P·u(L) + C φ(L) = ∫ (N²/EA + Q²/kGA + M²/EI) ds, independently integrated (trapezoid, fine)."""
+    d = scene_dict("clamped", "free", [{"type": "point_force", "position": 0.0, "value": 0.0}])
+    d["axis"] = {"type": "polynomial", "coefficients": [0.0, 0.75, -2.25, 1.5, -1.5, 1.5], "x_range": [0.0, 1.0]}
+    from pdverify.geometry import axis_length
+    from pdverify.scene import Axis
+
+    L = axis_length(Axis(**d["axis"]))
+    d["beam"] = {"length": L}
+    d["loads"] = [{"type": "point_force", "position": L, "value": -800.0, "axial": 300.0, "frame": "global"},
+                  {"type": "point_moment", "position": L, "value": 120.0}]
+    sc = parse_scene(d)
+    c = Cantilever(sc)
+    s = np.linspace(0, L, 200001)
+    N, Q, M, *_ = c.resultants(s)
+    U = np.trapezoid(N**2 / sc.EA + Q**2 / sc.kGA + M**2 / sc.EI, s)
+    end = c.fields(np.array([L]))
+    W = 300.0 * end["ux"][0] - 800.0 * end["uy"][0] + 120.0 * end["rotation"][0]
+    assert abs(W - U) < 1e-8 * U
+
+
+def test_exact_cantilever_matches_exact_timoshenko_on_straight_scenes():
+    loads = [{"type": "point_force", "position": 0.7, "value": -300.0},
+             {"type": "point_moment", "position": 1.3, "value": 150.0},
+             {"type": "point_force", "position": 2.0, "value": 80.0}]
+    for pair in (("clamped", "free"), ("free", "clamped")):
+        sc = parse_scene(scene_dict(*pair, [dict(l, position=(l["position"] if pair[1] == "free" else 2.0 - l["position"]))
+                                            for l in loads]))
+        x = np.linspace(0, 2, 41)
+        f, g = EXACT_T.evaluate(sc, {}, x), EXACT_C.evaluate(sc, {}, x)
+        assert rel(g["w"], f["w"]) < 1e-13 and rel(g["rotation"], f["rotation"]) < 1e-13
+        assert np.abs(g["M"] - f["M"])[1:-1].max() < 1e-12 * np.abs(f["M"]).max()
+
+
+# -- the semicircle ------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("form", ["mixed", "primal"])
+@pytest.mark.parametrize("case", ["tangential", "normal"])
+def test_semicircle_slenderness_10_401_points_degree_4(case, form):
+    """The issue's target: relative displacement error below 1e-4 (P = 4, 401 points, L/h = 10)."""
+    sc = load_scene(f"studies/paper_curved/semicircle_{case}.toml")
+    res = run(sc, "pd-curved", points=401, degree=4, form=form)
+    f = EXACT_C.evaluate(sc, {}, res.x)
+    assert disp_error(res, f) < 1e-4
+    assert rel(res.rotation, f["rotation"]) < 1e-4
+    assert rel(res.fields["M"], f["M"]) < 1e-4
+    assert rel(res.fields["N"], f["N"]) < 1e-3
+
+
+def test_semicircle_converges_with_points():
+    sc = load_scene("studies/paper_curved/semicircle_tangential.toml")
+    errs = []
+    for n in (41, 81):
+        res = run(sc, "pd-curved", points=n, degree=4)
+        errs.append(disp_error(res, EXACT_C.evaluate(sc, {}, res.x)))
+    assert np.log2(errs[0] / errs[1]) > 3.5
+
+
+# -- inputs ----------------------------------------------------------------------------------------
+
+
+def test_bad_inputs():
+    sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -1.0}]))
+    with pytest.raises(InputError, match="horizon"):
+        run(sc, "pd-curved", degree=6, horizon=2)
+    with pytest.raises(InputError, match="points"):
+        run(sc, "pd-curved", points=5, degree=6)
+    with pytest.raises(InputError, match="degree"):
+        run(sc, "pd-curved", degree=1)
+    with pytest.raises(InputError, match="cantilevers"):
+        run(parse_scene(scene_dict("clamped", "clamped", [])), "exact-curved-cantilever")
+
+
+def test_reports_condition_number_and_parameters():
+    sc = load_scene("studies/paper_curved/semicircle_normal.toml")
+    res = run(sc, "pd-curved", points=41, degree=3)
+    assert np.isfinite(res.info["cond"]) and res.info["cond"] > 1
+    assert res.info["family"] == 5 and res.info["degree"] == 3
+    assert res.dofs == 3 * 41
