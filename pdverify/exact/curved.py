@@ -1,32 +1,37 @@
 """Model ``exact-curved-cantilever``: any statically determinate curved (or straight) cantilever, exact.
 
-Design note §4 (RECONSTRUCTED): clamped at one end, free at the other, point forces and moments
-anywhere (scene ``point_force`` in the local or global frame, ``point_moment``). Statics gives the
-internal force F(s) = N t + Q n and moment M(s) without solving anything::
+Design note §4 (RECONSTRUCTED): clamped at one end, free at the other; point forces (local or global
+frame), point moments and distributed loads (uniform or sine, on any span, local or global frame).
+Statics gives the internal force F(s) = N t + Q n and moment M(s) without solving anything::
 
-    right end free:  F(s) =  Σ_{a_i > s} P_i,   M(s) =  Σ_{a_i > s} [C_i + (r(a_i) - r(s)) × P_i]
-    left end free:   F(s) = -Σ_{a_i < s} P_i,   M(s) = -Σ_{a_i < s} [C_i + (r(a_i) - r(s)) × P_i]
+    right end free:  F(s) = Σ_{a_i > s} P_i + ∫_s^L p,
+                     M(s) = Σ_{a_i > s} [C_i + (r(a_i) - r(s)) × P_i] + ∫_s^L (r(σ) - r(s)) × p(σ) dσ
+    left end free:   the same over [0, s) with a minus sign
 
-(the sign rules of pd-curved: F jumps by -P at a force, M by -C at a counter-clockwise couple). Then
-ε = N/EA, γ = Q/kGA, χ = M/EI and, from the clamped end (left: s = 0),
+(pd-curved's sign rules: F jumps by -P at a force, M by -C at a counter-clockwise couple; at a load
+inside the beam the left limit is returned). Then ε = N/EA, γ = Q/kGA, χ = M/EI and, from the clamp
+(left: s = 0)::
 
     φ(s) = ∫_0^s χ,    u(s) = ∫_0^s [ε t + γ n + χ e_z × (r(s) - r(σ))] dσ
 
-(the rotation term ∫ φ n dσ integrated by parts, so every field is a single integral of a smooth
-function). The integrals are composite Gauss–Legendre (24 nodes per panel, panels split at the loads)
-on the exact axis geometry: round-off accurate. For the semicircle the same fields follow in closed
-form from sympy; tests/test_pd_curved.py checks this module against that closed form.
-``evaluate`` gives u_t (``u``), u_n (``w``), φ (``rotation``), N, Q, M, ux, uy at any s.
+(the rotation term ∫ φ n dσ integrated by parts, so every field is a single integral). Integrals: on
+panels split at every load discontinuity, 24 Gauss–Legendre nodes each; the cumulative integrals at
+the nodes by the spectral (Legendre) integration matrix, and at any s by barycentric interpolation in
+its panel, so every field is round-off accurate on the exact axis geometry. For the semicircle the
+same fields follow in closed form (sympy): tests/test_pd_curved.py checks this module against it and
+against Clapeyron's theorem. ``evaluate`` gives u_t (``u``), u_n (``w``), φ (``rotation``), N, Q, M,
+ux, uy at any s.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from numpy.polynomial import legendre as leg
 
 from ..geometry import geometry
 from ..registry import POINTS, Model
 from ..result import Result, Timer
-from ..scene import PointForce, PointMoment, Scene
+from ..scene import Distributed, PointMoment, Scene
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -38,49 +43,116 @@ def _ez(a: np.ndarray) -> np.ndarray:
     return np.stack([-a[..., 1], a[..., 0]], axis=-1)
 
 
-class Cantilever:
-    """The statically determinate solution of one scene (point loads, clamped–free or free–clamped)."""
+def integration_matrix(x: np.ndarray) -> np.ndarray:
+    """S with (S f)_i = ∫_{-1}^{x_i} p(t) dt, p the polynomial interpolating f at the nodes x."""
+    n = len(x)
+    Vinv = np.linalg.inv(leg.legvander(x, n - 1))
+    lint = np.column_stack([leg.legint(np.eye(n)[k], lbnd=-1) for k in range(n)])  # (n + 1, n)
+    return leg.legvander(x, n) @ lint @ Vinv
 
-    def __init__(self, scene: Scene, panels: int = 32, order: int = 24):
+
+def barycentric(nodes: np.ndarray, values: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """Interpolate values[k, j, ...] (panel k, node j) at reference points xi[k] in [-1, 1]."""
+    w = 1.0 / np.prod(nodes[:, None] - nodes[None, :] + np.eye(len(nodes)), axis=1)
+    d = xi[:, None] - nodes[None, :]
+    hit = np.abs(d) < 1e-14
+    d = np.where(hit, 1.0, d)
+    c = np.where(hit.any(axis=1, keepdims=True), hit.astype(float), w[None, :] / d)
+    c = c / c.sum(axis=1, keepdims=True)
+    return np.einsum("kj,kj...->k...", c, values)
+
+
+class Cantilever:
+    """The statically determinate solution of one scene (clamped–free or free–clamped)."""
+
+    ORDER = 24
+
+    def __init__(self, scene: Scene, panels: int = 32):
         self.scene = scene
         self.geo = geometry(scene)
         L = scene.length
         self.free_right = scene.supports.right == "free"
-        loads = []
+        self.points = []  # (position, global force, couple)
+        cuts = []
         for load in scene.loads:
+            if isinstance(load, Distributed):
+                cuts += list(scene.span(load))
+                continue
             a = float(load.position)
+            cuts.append(a)
             t, n = self.geo.frame(np.array([a]))
             if isinstance(load, PointMoment):
-                loads.append((a, np.zeros(2), load.value))
+                self.points.append((a, np.zeros(2), load.value))
             elif load.frame == "global":
-                loads.append((a, np.array([load.axial, load.value]), 0.0))
+                self.points.append((a, np.array([load.axial, load.value]), 0.0))
             else:
-                loads.append((a, load.axial * t[0] + load.value * n[0], 0.0))
-        self.loads = loads
-        edges = np.unique(np.concatenate([np.linspace(0, L, panels + 1),
-                                          [a for a, _, _ in loads if 0 < a < L]]))
+                self.points.append((a, load.axial * t[0] + load.value * n[0], 0.0))
+        edges = np.unique(np.concatenate([np.linspace(0, L, panels + 1), np.clip(cuts, 0, L)]))
+        edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12 * L])]
+        edges[-1] = L
         self.edges = edges
-        gx, gw = np.polynomial.legendre.leggauss(order)
-        self.gx, self.gw = gx, gw
+        gx, _ = leg.leggauss(self.ORDER)
+        self.nodes = np.r_[-1.0, gx, 1.0]  # panel ends + Gauss nodes
+        self.S = integration_matrix(self.nodes)
         lo, hi = edges[:-1, None], edges[1:, None]
-        sig = (lo + hi) / 2 + (hi - lo) / 2 * gx[None, :]
-        f = self._integrands(sig.ravel())
-        w = ((hi - lo) / 2 * gw[None, :]).ravel()
-        # cumulative integrals over whole panels, from s = 0
-        per_panel = (f * w[:, None]).reshape(len(edges) - 1, order, -1).sum(axis=1)
-        self.cum = np.vstack([np.zeros((1, f.shape[1])), np.cumsum(per_panel, axis=0)])
+        self.half = (hi - lo)[:, 0] / 2
+        sig = (lo + hi) / 2 + (hi - lo) / 2 * self.nodes[None, :]
+        sig[:, 0], sig[:, -1] = edges[:-1], edges[1:]
+        mid = ((lo + hi) / 2)[:, 0]
+        # distributed loads: G1 = ∫_0^σ p, G2 = ∫_0^σ r × p at every node
+        r = self.geo.position(sig)
+        p = self._line_load(sig, np.broadcast_to(mid[:, None], sig.shape))
+        self.G = self._cumulative(np.concatenate([p, _cross(r, p)[..., None]], axis=-1))  # (panels, nodes, 3)
+        self.GL = self.G[-1, -1]
+        N, Q, M, t, n, r = self.resultants(sig.ravel(), G=self.G.reshape(-1, 3))
+        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
+        eps, gam, chi = N / EA, Q / kGA, M / EI
+        f = np.column_stack([eps[:, None] * t + gam[:, None] * n, chi, chi[:, None] * r])
+        self.I = self._cumulative(f.reshape(sig.shape + (5,)))  # (panels, nodes, 5)
 
-    def resultants(self, s: np.ndarray):
+    def _line_load(self, s: np.ndarray, inside: np.ndarray) -> np.ndarray:
+        """Global line load vector at s (``inside``: a point of the same panel, to decide the spans)."""
+        out = np.zeros(s.shape + (2,))
+        t, n = self.geo.frame(s)
+        for load in self.scene.loads:
+            if not isinstance(load, Distributed):
+                continue
+            a, b = self.scene.span(load)
+            on = (inside >= a) & (inside <= b)
+            f = on * (1.0 if load.shape == "uniform" else np.sin(np.pi * s / self.scene.length))
+            if load.frame == "global":
+                out += f[..., None] * np.array([load.axial, load.value])
+            else:
+                out += f[..., None] * (load.axial * t + load.value * n)
+        return out
+
+    def _cumulative(self, f: np.ndarray) -> np.ndarray:
+        """∫_0^σ f at every node of every panel, f given at the nodes (panels, nodes, c)."""
+        within = np.einsum("ij,kjc->kic", self.S, f) * self.half[:, None, None]
+        starts = np.concatenate([np.zeros((1, f.shape[-1])), np.cumsum(within[:, -1], axis=0)[:-1]])
+        return within + starts[:, None, :]
+
+    def _at(self, table: np.ndarray, s: np.ndarray) -> np.ndarray:
+        j = np.clip(np.searchsorted(self.edges, s, side="right") - 1, 0, len(self.edges) - 2)
+        xi = np.clip((s - self.edges[j]) / self.half[j] - 1.0, -1.0, 1.0)
+        return barycentric(self.nodes, table[j], xi)
+
+    def resultants(self, s: np.ndarray, G: np.ndarray | None = None):
         """(N, Q, M, t, n, r) at s: at a load inside the beam the left limit, at the ends the internal
         value (a load at the clamp goes into the reaction)."""
         s = np.asarray(s, float)
         r = self.geo.position(s)
         t, n = self.geo.frame(s)
-        F = np.zeros(s.shape + (2,))
-        M = np.zeros(s.shape)
-        for a, P, C in self.loads:
+        G = self._at(self.G, s) if G is None else G
+        if self.free_right:
+            dG = self.GL[None, :] - G  # ∫_s^L
+            F = dG[:, :2].copy()
+            M = dG[:, 2] - _cross(r, dG[:, :2])
+        else:
+            F = -G[:, :2]
+            M = -(G[:, 2] - _cross(r, G[:, :2]))
+        for a, P, C in self.points:
             ra = self.geo.position(np.array([a]))[0]
-            # left limits (pd-curved's convention at a load inside the beam); internal values at the ends
             on = ((a >= s) & (a > 0)) if self.free_right else ((a < s) | (a <= 0))
             sg = 1.0 if self.free_right else -1.0
             F += sg * on[:, None] * P[None, :]
@@ -89,34 +161,15 @@ class Cantilever:
         Q = np.sum(F * n, axis=-1)
         return N, Q, M, t, n, r
 
-    def _integrands(self, sig: np.ndarray) -> np.ndarray:
-        """columns: (ε t + γ n) x, y; χ; χ r x, y."""
-        sc = self.scene
-        N, Q, M, t, n, r = self.resultants(sig)
-        eps, gam, chi = N / sc.EA, Q / sc.kGA, M / sc.EI
-        f1 = eps[:, None] * t + gam[:, None] * n
-        return np.column_stack([f1, chi, chi[:, None] * r])
-
-    def integrals(self, s: np.ndarray) -> np.ndarray:
-        """∫_0^s of the integrand columns at each s."""
-        s = np.asarray(s, float)
-        j = np.clip(np.searchsorted(self.edges, s, side="right") - 1, 0, len(self.edges) - 2)
-        lo = self.edges[j]
-        sig = (lo[:, None] + s[:, None]) / 2 + (s[:, None] - lo[:, None]) / 2 * self.gx[None, :]
-        f = self._integrands(sig.ravel()).reshape(len(s), len(self.gx), -1)
-        part = np.einsum("nqc,q->nc", f, self.gw) * ((s - lo) / 2)[:, None]
-        return self.cum[j] + part
-
     def fields(self, s) -> dict[str, np.ndarray]:
         s = np.atleast_1d(np.asarray(s, float))
         N, Q, M, t, n, r = self.resultants(s)
-        I = self.integrals(s)
+        I = self._at(self.I, s)
         if self.free_right:  # clamped at s = 0
             phi = I[:, 2]
             u = I[:, 0:2] + _ez(I[:, 2:3] * r - I[:, 3:5])
         else:  # clamped at s = L: u(s) = -∫_s^L (ε t + γ n) + ∫_s^L χ e_z × (r(τ) - r(s)) dτ
-            IL = self.integrals(np.array([self.scene.length]))[0]
-            D = IL[None, :] - I
+            D = self.I[-1, -1][None, :] - I
             phi = -D[:, 2]
             u = -D[:, 0:2] + _ez(D[:, 3:5] - D[:, 2:3] * r)
         ut = np.sum(u * t, axis=-1)
@@ -140,9 +193,6 @@ class ExactCurvedCantilever(Model):
         if sorted(sup) != ["clamped", "free"]:
             out.append(f"supports = {sup}: model {self.name} solves cantilevers only (one end clamped, the other "
                        "free); use pd-curved or fem-plane-stress")
-        for i, load in enumerate(scene.loads):
-            if not isinstance(load, (PointForce, PointMoment)):
-                out.append(f"loads[{i}].type = {load.type!r}: model {self.name} takes point forces and moments only")
         return out
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
