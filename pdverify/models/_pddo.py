@@ -39,8 +39,9 @@ def families(n: int, size: int) -> np.ndarray:
 
 
 def pddo_weights(s: np.ndarray, fam: np.ndarray, degree: int, orders=(0, 1, 2),
-                 volumes: np.ndarray | None = None) -> dict[int, np.ndarray]:
-    """PDDO coefficients: {r: (n, size) array c} with f^(r)(s_k) ≈ Σ_j c[k, j] f(s[fam[k, j]]).
+                 volumes: np.ndarray | None = None, centers: np.ndarray | None = None) -> dict[int, np.ndarray]:
+    """PDDO coefficients: {r: (n, size) array c} with f^(r)(x_k) ≈ Σ_j c[k, j] f(s[fam[k, j]]), x_k = s_k
+    (or ``centers[k]``: any point, e.g. output positions between particles).
 
     ``degree`` P (Taylor order), ``fam`` from :func:`families` (>= P + 1 members each)."""
     s = np.asarray(s, float)
@@ -48,7 +49,8 @@ def pddo_weights(s: np.ndarray, fam: np.ndarray, degree: int, orders=(0, 1, 2),
     if fam.shape[1] < P + 1:
         raise ValueError(f"degree {P} needs families of at least {P + 1} particles (got {fam.shape[1]})")
     V = cell_volumes(s) if volumes is None else np.asarray(volumes, float)
-    xi = s[fam] - s[:, None]  # (n, size)
+    x = s if centers is None else np.asarray(centers, float)
+    xi = s[fam] - x[:, None]  # (n, size)
     delta = np.abs(xi).max(axis=1)  # (n,)
     z = xi / delta[:, None]
     wV = np.exp(-(2.0 * z) ** 2) * V[fam] / delta[:, None]  # volumes in units of delta
@@ -63,6 +65,13 @@ def pddo_weights(s: np.ndarray, fam: np.ndarray, degree: int, orders=(0, 1, 2),
             raise ValueError(f"derivative order {r} exceeds the degree {P}")
         out[r] = g[:, r, :] / delta[:, None] ** r
     return out
+
+
+def nearest_families(s: np.ndarray, x: np.ndarray, size: int) -> np.ndarray:
+    """(len(x), size) indices of the ``size`` consecutive particles of s around each point x."""
+    idx = np.searchsorted(s, x)
+    start = np.clip(idx - size // 2, 0, len(s) - size)
+    return start[:, None] + np.arange(size)[None, :]
 
 
 def operator(fam: np.ndarray, coef: np.ndarray, n_cols: int | None = None) -> sp.csr_matrix:

@@ -310,20 +310,46 @@ class PDCurved(Model):
         z[d["perm"]] = zi
         ut, un, phi = z[:N], z[N:2 * N], z[2 * N:]
         Nf, Qf, Mf = scene.EA * (d["Eps"] @ z), scene.kGA * (d["Gam"] @ z), scene.EI * (d["Chi"] @ z)
-        # one value per position: drop the first particle of every segment after the first (its
-        # coincident partner, the left segment's last particle, keeps the left limit of the resultants)
-        keep = np.ones(N, bool)
-        keep[d["offs"][1:-1]] = False
+        # output on the uniform grid of ``points`` positions (independent of the loads): the particle value
+        # where a particle sits there, else the degree-P PDDO interpolant g^0 of its segment; at a break
+        # the left segment's (left limit of the resultants)
+        T = self.output_map(d, scene.length, params["points"], params["degree"])
         t, nv = d["t"], d["n"]
         ux = ut * t[:, 0] + un * nv[:, 0]
         uy = ut * t[:, 1] + un * nv[:, 1]
-        fields = {"u": ut[keep], "N": Nf[keep], "Q": Qf[keep], "M": Mf[keep], "ux": ux[keep], "uy": uy[keep]}
+        fields = {"u": T @ ut, "N": T @ Nf, "Q": T @ Qf, "M": T @ Mf, "ux": T @ ux, "uy": T @ uy}
         if scene.is_straight:
-            fields["V"] = -Qf[keep]
+            fields["V"] = -fields["Q"]
         info.update(degree=params["degree"], horizon=d["horizon"], family=d["family"], form=params["form"],
                     segments=len(d["segs"]), particles=N)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=d["s"][keep], w=un[keep],
-                      rotation=phi[keep], fields=fields, dofs=3 * N, timings=timer.timings, info=info)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=d["x"], w=T @ un,
+                      rotation=T @ phi, fields=fields, dofs=3 * N, timings=timer.timings, info=info)
+
+    @staticmethod
+    def output_map(d: dict, L: float, points: int, degree: int) -> sp.csr_matrix:
+        """Sparse (points, particles) map from particle values to the uniform output grid."""
+        x = np.linspace(0.0, L, points)
+        x[-1] = L
+        d["x"] = x
+        segs, offs, size = d["segs"], d["offs"], d["family"]
+        bps = np.array([g[-1] for g in segs[:-1]])
+        seg = np.searchsorted(bps, x - 1e-12 * L, side="left")  # a break belongs to its left segment
+        rows, cols, vals = [], [], []
+        for i, g in enumerate(segs):  # a few segments
+            k = np.flatnonzero(seg == i)
+            if not len(k):
+                continue
+            j = np.clip(np.searchsorted(g, x[k]), 0, len(g) - 1)
+            j = np.where((j > 0) & (np.abs(g[j - 1] - x[k]) < np.abs(g[j] - x[k])), j - 1, j)
+            on = np.abs(g[j] - x[k]) <= 1e-12 * L
+            rows.append(k[on]), cols.append(offs[i] + j[on]), vals.append(np.ones(on.sum()))
+            if (~on).any():
+                xo = x[k[~on]]
+                fam = _pddo.nearest_families(g, xo, size)
+                c = _pddo.pddo_weights(g, fam, degree, (0,), centers=xo)[0]
+                rows.append(np.repeat(k[~on], size)), cols.append((offs[i] + fam).ravel()), vals.append(c.ravel())
+        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                             shape=(points, offs[-1]))
 
 
 MODELS = [PDCurved()]
