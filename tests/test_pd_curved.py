@@ -127,7 +127,9 @@ def test_exact_cantilever_matches_the_sympy_closed_form(case):
 
 
 def test_exact_cantilever_clapeyron_on_a_quintic_axis():
-    """P·u(L) + C φ(L) = ∫ (N²/EA + Q²/kGA + M²/EI) ds, independently integrated (trapezoid, fine)."""
+    """P·u(L) + C φ(L) = ∫ (N²/EA + Q²/kGA + M²/EI) ds, independently integrated (Simpson)."""
+    from scipy.integrate import simpson
+
     d = scene_dict("clamped", "free", [{"type": "point_force", "position": 0.0, "value": 0.0}])
     d["axis"] = {"type": "polynomial", "coefficients": [0.0, 0.75, -2.25, 1.5, -1.5, 1.5], "x_range": [0.0, 1.0]}
     from pdverify.geometry import axis_length
@@ -139,9 +141,9 @@ def test_exact_cantilever_clapeyron_on_a_quintic_axis():
                   {"type": "point_moment", "position": L, "value": 120.0}]
     sc = parse_scene(d)
     c = Cantilever(sc)
-    s = np.linspace(0, L, 200001)
+    s = np.linspace(0, L, 2001)
     N, Q, M, *_ = c.resultants(s)
-    U = np.trapezoid(N**2 / sc.EA + Q**2 / sc.kGA + M**2 / sc.EI, s)
+    U = simpson(N**2 / sc.EA + Q**2 / sc.kGA + M**2 / sc.EI, x=s)
     end = c.fields(np.array([L]))
     W = 300.0 * end["ux"][0] - 800.0 * end["uy"][0] + 120.0 * end["rotation"][0]
     assert abs(W - U) < 1e-8 * U
@@ -206,3 +208,46 @@ def test_reports_condition_number_and_parameters():
     assert np.isfinite(res.info["cond"]) and res.info["cond"] > 1
     assert res.info["family"] == 5 and res.info["degree"] == 3
     assert res.dofs == 3 * 41
+
+
+# -- curved scenes with every load type ----------------------------------------------------------
+
+CURVED_LOADS = [
+    {"type": "distributed", "value": -2000.0, "start": 0.5, "end": 2.5},
+    {"type": "distributed", "value": 300.0, "axial": -700.0, "shape": "sine", "frame": "global"},
+    {"type": "distributed", "value": 0.0, "axial": 400.0, "start": 1.0, "end": 3.141592653589793},
+    {"type": "point_force", "position": 1.234, "value": 500.0, "axial": -200.0},
+    {"type": "point_force", "position": 0.777, "value": 100.0, "axial": 250.0, "frame": "global"},
+    {"type": "point_moment", "position": 2.0, "value": 300.0},
+    {"type": "point_moment", "position": 3.141592653589793 / 2, "value": -100.0},
+]
+
+
+@pytest.mark.parametrize("pair", [("clamped", "free"), ("free", "clamped")])
+def test_semicircle_every_load_type_both_orientations(pair):
+    """Local and global frames, partial spans, sine, forces and couples on and off the grid, vs the
+    exact cantilever; measured displacement errors (P = 4) 2.9e-5 / 7.5e-7 / 2.6e-8 at 101 / 201 / 401
+    points (clamped-free), 2.1e-6 / 7.4e-7 / 1.8e-8 (free-clamped): order 4 once every segment is resolved."""
+    d = load_scene("studies/paper_curved/semicircle_normal.toml").to_dict()
+    d["loads"], d["supports"] = CURVED_LOADS, {"left": pair[0], "right": pair[1]}
+    sc = parse_scene(d)
+    errs = []
+    for n in (201, 401):
+        res = run(sc, "pd-curved", points=n, degree=4)
+        f = EXACT_C.evaluate(sc, {}, res.x)
+        errs.append(disp_error(res, f))
+        assert np.abs(res.rotation - f["rotation"]).max() < 1e-5 * np.abs(f["rotation"]).max()
+    assert errs[1] < 1e-7 and errs[0] / errs[1] > 12
+
+
+def test_straight_agrees_with_pd_timoshenko():
+    """pd-timoshenko (its defaults) and pd-curved on the same straight scenes: both converge to
+    exact-timoshenko, pd-curved much faster; their difference is pd-timoshenko's own error."""
+    for pair in (("clamped", "clamped"), ("pinned", "guided"), ("free", "clamped")):
+        sc = parse_scene(scene_dict(*pair, MIXED_LOADS))
+        a, b = run(sc, "pd-timoshenko", points=201), run(sc, "pd-curved", points=201)
+        f = EXACT_T.evaluate(sc, {}, a.x)
+        scale = np.abs(f["w"]).max()
+        assert np.allclose(a.x, b.x)
+        assert np.abs(b.w - a.w).max() < 2e-3 * scale
+        assert np.abs(b.w - f["w"]).max() < 1e-2 * np.abs(a.w - f["w"]).max()

@@ -104,7 +104,8 @@ class Cantilever:
         p = self._line_load(sig, np.broadcast_to(mid[:, None], sig.shape))
         self.G = self._cumulative(np.concatenate([p, _cross(r, p)[..., None]], axis=-1))  # (panels, nodes, 3)
         self.GL = self.G[-1, -1]
-        N, Q, M, t, n, r = self.resultants(sig.ravel(), G=self.G.reshape(-1, 3))
+        N, Q, M, t, n, r = self.resultants(sig.ravel(), G=self.G.reshape(-1, 3),
+                                           panel=np.broadcast_to(mid[:, None], sig.shape).ravel())
         EA, kGA, EI = scene.EA, scene.kGA, scene.EI
         eps, gam, chi = N / EA, Q / kGA, M / EI
         f = np.column_stack([eps[:, None] * t + gam[:, None] * n, chi, chi[:, None] * r])
@@ -137,9 +138,10 @@ class Cantilever:
         xi = np.clip((s - self.edges[j]) / self.half[j] - 1.0, -1.0, 1.0)
         return barycentric(self.nodes, table[j], xi)
 
-    def resultants(self, s: np.ndarray, G: np.ndarray | None = None):
+    def resultants(self, s: np.ndarray, G: np.ndarray | None = None, panel: np.ndarray | None = None):
         """(N, Q, M, t, n, r) at s: at a load inside the beam the left limit, at the ends the internal
-        value (a load at the clamp goes into the reaction)."""
+        value (a load at the clamp goes into the reaction). ``panel``: a point inside the panel of each s
+        (quadrature nodes on a panel end take the limit from inside the panel)."""
         s = np.asarray(s, float)
         r = self.geo.position(s)
         t, n = self.geo.frame(s)
@@ -153,7 +155,10 @@ class Cantilever:
             M = -(G[:, 2] - _cross(r, G[:, :2]))
         for a, P, C in self.points:
             ra = self.geo.position(np.array([a]))[0]
-            on = ((a >= s) & (a > 0)) if self.free_right else ((a < s) | (a <= 0))
+            if panel is not None:
+                on = (a > panel) if self.free_right else (a < panel)
+            else:
+                on = ((a >= s) & (a > 0)) if self.free_right else ((a < s) | (a <= 0))
             sg = 1.0 if self.free_right else -1.0
             F += sg * on[:, None] * P[None, :]
             M += sg * on * (C + _cross(ra[None, :] - r, np.broadcast_to(P, r.shape)))
