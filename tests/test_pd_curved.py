@@ -207,7 +207,28 @@ def test_reports_condition_number_and_parameters():
     res = run(sc, "pd-curved", points=41, degree=3)
     assert np.isfinite(res.info["cond"]) and res.info["cond"] > 1
     assert res.info["family"] == 5 and res.info["degree"] == 3
-    assert res.dofs == 3 * 41
+    assert res.dofs == 6 * 41  # mixed form, resultants as unknowns
+    assert run(sc, "pd-curved", points=41, degree=3, form="primal").dofs == 3 * 41
+
+
+@pytest.mark.parametrize("case, P", [("straight_sine", 4), ("semicircle_tangential", 6)])
+def test_mixed_form_is_free_of_locking_and_of_the_slenderness_round_off(case, P):
+    """Mixed form, 401 points: the error does not grow from L/h = 10 to 10^4 when N, Q, M are unknowns
+    (measured: straight P = 4 3.1e-9 / 3.4e-9, semicircle P = 6 1.3e-11 at every slenderness); with them
+    substituted (3 unknowns per particle, condition ~ (L/h)^2) round-off takes over (straight 4.6e-6,
+    semicircle 6e-3 at L/h = 10^4)."""
+    base = load_scene(f"studies/paper_curved/{case}.toml")
+    ref = EXACT_T if case == "straight_sine" else EXACT_C
+    errs = {}
+    for S in (10.0, 1e4):
+        sc = base.with_slenderness(S)
+        for un in ("resultants", "displacements"):
+            res = run(sc, "pd-curved", points=401, degree=P, unknowns=un)
+            f = ref.evaluate(sc, {}, res.x)
+            errs[S, un] = rel(res.w, f["w"])
+    assert errs[1e4, "resultants"] < 10 * errs[10.0, "resultants"] + 1e-10
+    assert errs[1e4, "resultants"] < 1e-8
+    assert errs[1e4, "displacements"] > 100 * errs[1e4, "resultants"]
 
 
 # -- curved scenes with every load type ----------------------------------------------------------

@@ -7,7 +7,8 @@ At particle k with family H_k (particles j, xi = s_j - s_k, volume V_j), the PD 
 give f^(r)(s_k) ≈ Σ_j f(s_j) g^r(xi_j) V_j. With A_pq = Σ_j w xi^{p+q} V_j the coefficients solve
 A a^r = r! e_r. Weight w = exp(-(2 xi/delta)²) with delta = the largest |xi| of the family. xi is
 scaled by delta before A is formed (A is a Hankel moment matrix and loses digits fast), and all
-families are solved at once: ``np.linalg.solve`` on an (n, P+1, P+1) batch. Derivatives of
+families are solved at once (batched ``np.linalg.qr`` and ``np.linalg.solve`` on (n, P+1, P+1) stacks), as the
+equivalent weighted least-squares problem in a Legendre basis (see :func:`pddo_weights`). Derivatives of
 polynomials of degree <= P are reproduced exactly (tests/test_pddo.py).
 
 Pure functions, arrays in, arrays out; no Python loop over particles.
@@ -53,12 +54,22 @@ def pddo_weights(s: np.ndarray, fam: np.ndarray, degree: int, orders=(0, 1, 2),
     xi = s[fam] - x[:, None]  # (n, size)
     delta = np.abs(xi).max(axis=1)  # (n,)
     z = xi / delta[:, None]
-    wV = np.exp(-(2.0 * z) ** 2) * V[fam] / delta[:, None]  # volumes in units of delta
-    pw = z[:, :, None] ** np.arange(P + 1)[None, None, :]  # (n, size, P+1)
-    A = np.einsum("nj,njp,njq->npq", wV, pw, pw)
-    rhs = np.diag([float(math.factorial(r)) for r in range(P + 1)])
-    a = np.linalg.solve(A, np.broadcast_to(rhs, A.shape))  # (n, P+1 (q), P+1 (r))
-    g = np.einsum("njq,nqr->nrj", pw, a) * wV[:, None, :]  # g^r(xi_j) V_j in scaled units
+    wV = np.exp(-(2.0 * z) ** 2) * V[fam] / delta[:, None]  # weight x volume, volumes in units of delta
+    # Solved as a weighted least-squares problem instead of the normal equations A a = r! e_r (A = B^T W B,
+    # cond(A) = 4e8 at P = 6, which left a 4e-8 consistency floor): with the Legendre basis L_q(z) and the
+    # QR factors of W^(1/2) L, g^r = W^(1/2) Q y with R^T y = T^(-T) r! e_r (T: monomials in Legendre
+    # coefficients). Same functions g^r in exact arithmetic; the round-off drops to ~sqrt(cond A) eps.
+    Lv = np.polynomial.legendre.legvander(z, P)  # (n, size, P+1)
+    sw = np.sqrt(wV)
+    Qm, R = np.linalg.qr(sw[:, :, None] * Lv)  # reduced: (n, size, P+1), (n, P+1, P+1)
+    T = np.zeros((P + 1, P + 1))
+    for p in range(P + 1):  # a (P+1)-loop over the degree, not over particles
+        col = np.polynomial.legendre.poly2leg(np.eye(P + 1)[p])
+        T[: len(col), p] = col
+    c = np.diag([float(math.factorial(r)) for r in range(P + 1)])
+    d = np.linalg.solve(T.T, c)  # Legendre moments of each g^r (columns r)
+    y = np.linalg.solve(np.swapaxes(R, 1, 2), np.broadcast_to(d, R.shape))  # (n, P+1, P+1 (r))
+    g = np.swapaxes(np.einsum("njq,nqr->njr", Qm, y) * sw[:, :, None], 1, 2)  # (n, r, size): g^r(xi_j) V_j
     out = {}
     for r in orders:
         if r > P:
@@ -83,7 +94,13 @@ def operator(fam: np.ndarray, coef: np.ndarray, n_cols: int | None = None) -> sp
 
 
 def derivative_matrices(s: np.ndarray, degree: int, size: int, orders=(1, 2)) -> dict[int, sp.csr_matrix]:
-    """{r: D_r} sparse PDDO derivative matrices on the particles s (one segment)."""
+    """{r: D_r} sparse PDDO derivative matrices on the particles s (one segment). Weights below 1e-10 of
+    their row's largest are round-off of exact zeros (g^1(0) of a symmetric family) and are set to 0."""
     fam = families(len(s), size)
     w = pddo_weights(s, fam, degree, orders)
-    return {r: operator(fam, w[r]) for r in orders}
+    out = {}
+    for r in orders:
+        c = w[r]
+        c = np.where(np.abs(c) < 1e-10 * np.abs(c).max(axis=1, keepdims=True), 0.0, c)
+        out[r] = operator(fam, c)
+    return out
