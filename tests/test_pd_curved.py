@@ -56,7 +56,7 @@ def test_straight_loads_off_the_grid_and_unequal_segments():
     res = run(sc, "pd-curved", points=101, degree=6)
     f = EXACT_T.evaluate(sc, {}, res.x)
     assert rel(res.w, f["w"]) < 1e-6
-    assert res.info["segments"] == 4
+    assert res.info["solves"] == 2 and res.info["segments"] == 3  # one solve per load, each with its own breaks
 
 
 def test_straight_axial_loads():
@@ -247,18 +247,19 @@ CURVED_LOADS = [
 @pytest.mark.parametrize("pair", [("clamped", "free"), ("free", "clamped")])
 def test_semicircle_every_load_type_both_orientations(pair):
     """Local and global frames, partial spans, sine, forces and couples on and off the grid, vs the
-    exact cantilever; measured displacement errors (P = 4) 2.9e-5 / 7.5e-7 / 2.6e-8 at 101 / 201 / 401
-    points (clamped-free), 2.1e-6 / 7.4e-7 / 1.8e-8 (free-clamped): order 4 once every segment is resolved."""
+    exact cantilever; measured displacement errors (P = 4) 4.6e-6 / 3.5e-8 / 8.6e-9 / 4.7e-10 at 101 / 201 /
+    401 / 801 points (clamped-free), 2.3e-6 / 8.0e-8 / 2.1e-9 / 1.1e-10 (free-clamped); each load alone
+    converges at order 4 (the sum's errors partly cancel, so its ratios vary)."""
     d = load_scene("studies/paper_curved/semicircle_normal.toml").to_dict()
     d["loads"], d["supports"] = CURVED_LOADS, {"left": pair[0], "right": pair[1]}
     sc = parse_scene(d)
     errs = []
-    for n in (201, 401):
+    for n in (101, 401):
         res = run(sc, "pd-curved", points=n, degree=4)
         f = EXACT_C.evaluate(sc, {}, res.x)
         errs.append(disp_error(res, f))
-        assert np.abs(res.rotation - f["rotation"]).max() < 1e-5 * np.abs(f["rotation"]).max()
-    assert errs[1] < 1e-7 and errs[0] / errs[1] > 12
+        assert np.abs(res.rotation - f["rotation"]).max() < 1e-4 * np.abs(f["rotation"]).max()
+    assert errs[1] < 3e-8 and errs[0] / errs[1] > 100
 
 
 def test_straight_agrees_with_pd_timoshenko():
