@@ -41,6 +41,22 @@ collocated point-wise (value along n, axial along t; ``frame = global``: (axial,
 (x, y) components per unit arc length; ``sine``: times sin(π s / L)). Every equation row is divided
 by its largest coefficient, the non-symmetric system is solved by LU (``solve_linear``; unknowns
 interleaved per particle, so it is banded) and its condition number reported.
+
+Measured (tests/test_pd_curved.py, tests/test_curved_studies.py; max-norm relative displacement error,
+L/h = 10, 41 -> 321 particles, observed order per doubling):
+
+* ``primal``: order 2⌊P/2⌋: P = 2/3/4/5/6 -> 2.0/2.0/4.0/4.0/6.0 (straight sine), 2.0/2.0/4.0/4.3-4.5/6.1
+  (semicircle), 2.0/2.0/4.0/4.0/6.0 (quintic): an odd degree converges like the even degree below it.
+* ``mixed``: order 2⌈P/2⌉: 2.0/4.0/4.0/5.9/(6 until a floor) (straight), 2.0/4.0/4.0/6.0/6.0 (semicircle),
+  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with the default family (9) has
+  a mode controlled only by the end families (condition ~ n^4 instead of n^2): on the straight beam its
+  error stops at ~2e-9 near 81 particles and grows to 4e-8 at 641 (``horizon = 5`` reaches 4e-12).
+* Locking (201 particles, error vs L/h = 10, 100, 1000, 10^4): ``primal`` error ~ (L/h)^2 for every
+  degree until it saturates at ~1 (slope 2.0 for P >= 4; P = 2, 3 saturate by L/h = 1000); a higher
+  degree lowers the constant (P = 6 straight 3.5e-11 -> 4.0e-7 at L/h = 1000), not the slope. ``mixed``
+  is locking-free on the load-driven examples (straight P = 2: 4.4e-4 -> 4.8e-4; semicircle P = 4: 2.0e-8
+  at every L/h) but not on the manufactured quintic, whose loads scale with EA and kGA (slope 2.0).
+* 10^5 particles (clamped-free, six load types): 1.8-2.3 s in all (P = 2..6, resultant unknowns).
 """
 
 from __future__ import annotations
