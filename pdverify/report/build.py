@@ -212,12 +212,14 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     bench_cols = ["name", "verdict", "model", "variant", "reference", "quantity", "position", "target", "computed", "ratio",
                   "rel_error", "tolerance", "err_max", "observed_order", "case_id"]
     study_file = d / "study.toml"
-    titles = {}
+    titles, description = {}, ""
     if study_file.exists():
         import tomllib
 
         try:
-            titles = dict(tomllib.loads(study_file.read_text()).get("papers", {}))
+            spec = tomllib.loads(study_file.read_text())
+            titles = dict(spec.get("papers", {}))
+            description = str(spec.get("description", ""))
         except (tomllib.TOMLDecodeError, AttributeError):
             titles = {}
     papers = []
@@ -247,6 +249,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             break
     page = env.get_template("index.html.j2").render(
         meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
+        description=html.escape(description),
         benchmarks=table(bench.assign(reference=bench["reference"].map(_short_reference)) if "reference" in bench else bench,
                          bench_cols, row_class="verdict"),
         scenes=scenes, convergence_figs=[f for _, f in conv_figs], horizon_figs=[f for _, f in horizon_figs],
