@@ -182,6 +182,104 @@ class Cantilever:
         return {"u": ut, "w": un, "rotation": phi, "N": N, "Q": Q, "M": M, "ux": u[:, 0], "uy": u[:, 1]}
 
 
+_KINEMATIC = {"clamped": (True, True, True), "pinned": (True, True, False), "free": (False, False, False),
+              "guided": (False, False, True)}  # per slot (t, n, φ), as in pd-curved
+
+
+class Indeterminate:
+    """Any support pair (force method): the clamped–free solution of the loads plus the six load-free
+    states (rigid translations a_x, a_y, rotation θ0 about r(0); unit end force F_x, F_y and couple C at
+    s = L of the cantilever), their amplitudes fixed by the three conditions at each end (kinematic:
+    u_t, u_n, φ = 0; resultant: N, Q, M equal to the end load, minus at s = 0)."""
+
+    def __init__(self, scene: Scene):
+        from ..scene import PointForce
+
+        L = scene.length
+        base = {"supports": scene.supports.model_copy(update={"left": "clamped", "right": "free"})}
+        self.scene = scene
+        self.geo = geometry(scene)
+        self.part = Cantilever(scene.model_copy(update=base))
+        units = [PointForce(type="point_force", position=L, value=0.0, axial=1.0, frame="global"),
+                 PointForce(type="point_force", position=L, value=1.0, axial=0.0, frame="global"),
+                 PointMoment(type="point_moment", position=L, value=1.0)]
+        self.units = [Cantilever(scene.model_copy(update=dict(base, loads=[u]))) for u in units]
+        ends = [[], []]
+        for load in scene.loads:
+            if not isinstance(load, Distributed) and load.position <= 1e-9 * L:
+                ends[0].append(load)
+            elif not isinstance(load, Distributed) and load.position >= L * (1 - 1e-9):
+                ends[1].append(load)
+        r0 = self.geo.position(np.array([0.0]))[0]
+        self.r0 = r0
+        rows, rhs = [], []
+        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+            s = np.array([0.0 if side == 0 else L])
+            t, n = self.geo.frame(s)
+            F = np.zeros(2)
+            C = 0.0
+            for load in ends[side]:
+                if isinstance(load, PointMoment):
+                    C += load.value
+                elif load.frame == "global":
+                    F += np.array([load.axial, load.value])
+                else:
+                    F += load.axial * t[0] + load.value * n[0]
+            target = (-1.0 if side == 0 else 1.0) * np.array([F @ t[0], F @ n[0], C])
+            basis = self._states(s)
+            for c, kin in enumerate(_KINEMATIC[sup]):
+                key = ("u", "w", "rotation")[c] if kin else ("N", "Q", "M")[c]
+                rows.append([b[key][0] for b in basis[1:]])
+                rhs.append((0.0 if kin else target[c]) - basis[0][key][0])
+        try:
+            self.c = np.linalg.solve(np.array(rows), np.array(rhs))
+        except np.linalg.LinAlgError:
+            from ..errors import SolveError
+
+            raise SolveError("exact-curved: the supports leave a rigid-body motion (a mechanism)") from None
+
+    def _states(self, s: np.ndarray) -> list[dict]:
+        """Fields of the particular solution and of the six load-free states at s."""
+        t, n = self.geo.frame(s)
+        r = self.geo.position(s)
+        zero = np.zeros(len(s))
+        out = [self.part.fields(s)]
+        for v, th in ((np.array([1.0, 0.0]), 0.0), (np.array([0.0, 1.0]), 0.0), (np.zeros(2), 1.0)):
+            u = v[None, :] + th * _ez(r - self.r0[None, :])
+            out.append({"ux": u[:, 0], "uy": u[:, 1], "u": np.sum(u * t, axis=-1), "w": np.sum(u * n, axis=-1),
+                        "rotation": zero + th, "N": zero, "Q": zero, "M": zero})
+        out += [c.fields(s) for c in self.units]
+        return out
+
+    def fields(self, s) -> dict[str, np.ndarray]:
+        s = np.atleast_1d(np.asarray(s, float))
+        states = self._states(s)
+        return {k: states[0][k] + sum(c * st[k] for c, st in zip(self.c, states[1:])) for k in states[0]}
+
+
+class ExactCurved(Model):
+    name = "exact-curved"
+    title = "exact curved Timoshenko–Ehrenfest beam, any supports (statics + quadrature + force method)"
+    source = "design note §4 (statically determinate cantilever) extended by the force method to any support pair"
+    options = (POINTS,)
+    curved = True
+    axial = True
+    theory = "timoshenko"
+    reference = True
+
+    def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
+        return Indeterminate(scene).fields(x)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        with timer("solve"):
+            s = np.linspace(0.0, scene.length, params["points"])
+            f = Indeterminate(scene).fields(s)
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=f["w"],
+                      rotation=f["rotation"], fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
+                      dofs=0, timings=timer.timings, info={})
+
+
 class ExactCurvedCantilever(Model):
     name = "exact-curved-cantilever"
     title = "exact curved Timoshenko–Ehrenfest cantilever (statics + quadrature)"
@@ -213,4 +311,4 @@ class ExactCurvedCantilever(Model):
                       dofs=0, timings=timer.timings, info={})
 
 
-MODELS = [ExactCurvedCantilever()]
+MODELS = [ExactCurvedCantilever(), ExactCurved()]

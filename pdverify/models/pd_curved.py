@@ -18,7 +18,8 @@ For a straight beam Q = kGA(w' - φ) = -dM/dx: ``exact-timoshenko``'s V is -Q (R
 
 Collocation (Eq. 27–35): three equations per particle, every derivative replaced by PDDO functions of
 degree P (:mod:`pdverify.models._pddo`), families of 2 m + 1 particles (m = ``horizon``, default
-⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P), shifted inward at the ends. Two forms:
+⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P; see :func:`default_horizon`), shifted inward
+at the ends. Two forms:
 
 * ``primal`` (the paper, Eq. 14–16): constitutive law substituted, second derivatives by g²:
   ``EA(u_t'' - κ' u_n - κ u_n') - κ kGA(u_n' + κ u_t - φ) + p_t = 0`` etc.;
@@ -48,9 +49,9 @@ L/h = 10, 41 -> 321 particles, observed order per doubling):
 * ``primal``: order 2⌊P/2⌋: P = 2/3/4/5/6 -> 2.0/2.0/4.0/4.0/6.0 (straight sine), 2.0/2.0/4.0/4.3-4.5/6.1
   (semicircle), 2.0/2.0/4.0/4.0/6.0 (quintic): an odd degree converges like the even degree below it.
 * ``mixed``: order 2⌈P/2⌉: 2.0/4.0/4.0/5.9/(6 until a floor) (straight), 2.0/4.0/4.0/6.0/6.0 (semicircle),
-  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with the default family (9) has
-  a mode controlled only by the end families (condition ~ n^4 instead of n^2): on the straight beam its
-  error stops at ~2e-9 near 81 particles and grows to 4e-8 at 641 (``horizon = 5`` reaches 4e-12).
+  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with 9 members has a mode
+  controlled only by the end families (condition ~ n^4 instead of n^2): on the straight beam its error
+  stops near 2e-9 at 81 particles and grows to 4e-8 at 641 (``horizon = 5``: 4e-12; see default_horizon).
 * Locking (201 particles, error vs L/h = 10, 100, 1000, 10^4): ``primal`` error ~ (L/h)^2 for every
   degree until it saturates at ~1 (slope 2.0 for P >= 4; P = 2, 3 saturate by L/h = 1000); a higher
   degree lowers the constant (P = 6 straight 3.5e-11 -> 4.0e-7 at L/h = 1000), not the slope. ``mixed``
@@ -175,7 +176,13 @@ _SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is pres
 }
 
 
-def default_horizon(degree: int) -> int:
+def default_horizon(degree: int, form: str = "primal") -> int:
+    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P). Mixed form, P = 6: with these 9 members the
+    operator has a mode held only by the end families (condition ~ n^4): straight sine, clamped-clamped,
+    error 1.8e-9 at 81 particles growing to 3.9e-8 at 321; a force 0.123 m from a pinned end 1e-9 ->
+    4.5e-7 from 51 to 201 particles. ``horizon = 5`` (11 members) gives 4e-12 and 1e-11 there, but on the
+    manufactured quintic 8.3 / 2.5e-3 / 4.4e-3 / 4.6e-6 at 41 / 81 / 161 / 321 particles (9 members:
+    9.8e-2 / 2.9e-4 / 1.3e-6 / 8.2e-9), so the default stays."""
     return degree // 2 + 1
 
 
@@ -186,7 +193,8 @@ class PDCurved(Model):
     options = (
         Option("points", int, 101, "particles along the axis, ends included", minimum=5),
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
-        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1", minimum=0),
+        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1",
+               minimum=0),
         Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
                "functions applied twice)", choices=("primal", "mixed")),
         Option("unknowns", str, "resultants", "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
@@ -200,7 +208,7 @@ class PDCurved(Model):
     # ---------------------------------------------------------------------------------------
     def discretise(self, scene: Scene, params: dict):
         P = params["degree"]
-        m = params["horizon"] or default_horizon(P)
+        m = params["horizon"] or default_horizon(P, params["form"])
         size = 2 * m + 1
         if size < P + 1:
             raise InputError(f"horizon = {m}: a family of {size} particles cannot carry degree {P}; "
@@ -281,7 +289,13 @@ class PDCurved(Model):
             def resultant(c, k):
                 r = res[c].getrow(k).tocoo()
                 return r.col, r.data
-        # boundary and interface rows replace the equilibrium rows of the segment-end particles
+        # Boundary and interface conditions replace the equilibrium rows of the segment-end particles; with
+        # N, Q, M as unknowns the continuity at an interface replaces the constitutive rows instead, on the
+        # side away from the kinematic support of that slot (else a segment between a load and a free end
+        # has only resultant conditions and a spurious discrete compatibility condition: quintic
+        # cantilever, load ending 0.22 m before the free end, 41 particles, P = 4: 170 % error). Dropping a
+        # constitutive row at the outer ends too was measured worse (clamped-clamped straight sine, P = 4,
+        # 81 particles: 7.5e-6 instead of 1.9e-6), so the outer conditions stay in the equilibrium rows.
         rr, rc, rv = [], [], []
         rb = {}
 
@@ -308,12 +322,16 @@ class PDCurved(Model):
             for load in inner.get(i, []):
                 F += force_components(load, t[ka], nv[ka])
             for c in range(3):
-                add(eq0 + c * N + ka, [c * N + ka, c * N + kb], [1.0, -1.0])
-                rb[eq0 + c * N + ka] = 0.0
+                kc, kj = (kb, ka) if _SUPPORT_SLOTS[scene.supports.left][c] else (ka, kb)
+                if not six:
+                    kc, kj = ka, kb
+                row = (0 if six else eq0) + c * N + kc
+                add(row, [c * N + ka, c * N + kb], [1.0, -1.0])
+                rb[row] = 0.0
                 cb, vb = resultant(c, kb)
                 ca, va = resultant(c, ka)
-                add(eq0 + c * N + kb, np.r_[cb, ca], np.r_[vb, -va])
-                rb[eq0 + c * N + kb] = -F[c]
+                add(eq0 + c * N + kj, np.r_[cb, ca], np.r_[vb, -va])
+                rb[eq0 + c * N + kj] = -F[c]
         rows = np.array(sorted(rb))
         n_all = nf * N
         keep = np.ones(n_all)
