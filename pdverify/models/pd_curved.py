@@ -290,8 +290,8 @@ class PDCurved(Model):
                 r = res[c].getrow(k).tocoo()
                 return r.col, r.data
         # Boundary and interface conditions replace the equilibrium rows of the segment-end particles; with
-        # N, Q, M as unknowns the continuity at an interface replaces the constitutive rows instead, on the
-        # side away from the kinematic support of that slot (else a segment between a load and a free end
+        # N, Q, M as unknowns and one kinematic end in a slot, the continuity at an interface replaces the
+        # constitutive row instead, on the side away from that end (else a segment between a load and a free end
         # has only resultant conditions and a spurious discrete compatibility condition: quintic
         # cantilever, load ending 0.22 m before the free end, 41 particles, P = 4: 170 % error). Dropping a
         # constitutive row at the outer ends too was measured worse (clamped-clamped straight sine, P = 4,
@@ -322,10 +322,13 @@ class PDCurved(Model):
             for load in inner.get(i, []):
                 F += force_components(load, t[ka], nv[ka])
             for c in range(3):
-                kc, kj = (kb, ka) if _SUPPORT_SLOTS[scene.supports.left][c] else (ka, kb)
-                if not six:
+                kl, kr = _SUPPORT_SLOTS[scene.supports.left][c], _SUPPORT_SLOTS[scene.supports.right][c]
+                if six and kl != kr:  # one kinematic end: continuity into the constitutive row away from it
+                    kc, kj = (kb, ka) if kl else (ka, kb)
+                    row = c * N + kc
+                else:  # both or neither (mirror-symmetric): both conditions replace equilibrium rows
                     kc, kj = ka, kb
-                row = (0 if six else eq0) + c * N + kc
+                    row = eq0 + c * N + kc
                 add(row, [c * N + ka, c * N + kb], [1.0, -1.0])
                 rb[row] = 0.0
                 cb, vb = resultant(c, kb)
