@@ -8,7 +8,7 @@ The moment is M(x) = c0 + c1 x + Mp(x), with Mp the Macaulay-type particular sol
 the loads (zero left of each load). Then
 
 * Euler–Bernoulli:  EI w'' = M, rotation = w';
-* Timoshenko:       EI phi' = M, kGA (w' - phi) = V = M'  ->  w = ∫phi + M/kGA, rotation = phi;
+* Timoshenko:       EI phi' = M, kGA (w' - phi) = -V = -M'  ->  w = ∫phi - M/kGA, rotation = phi;
 
 so ``phi = (c0 x + c1 x²/2 + I1)/EI + c2`` and ``w = (c0 x²/2 + c1 x³/6 + I2)/EI + c2 x + c3 - r (c1 x + Mv)/EI``
 with ``r = EI/kGA`` (0 for Euler–Bernoulli), I1 = ∫Mp, I2 = ∫∫Mp and Mv = ∫V the particular moment
