@@ -454,7 +454,8 @@ def stable_time_step(K: sp.spmatrix, density: float) -> float:
     if K.shape[0] <= 5000:
         import scipy.sparse.linalg as spla
 
-        lam = float(np.abs(spla.eigs(K.astype(float), k=1, which="LM", return_eigenvectors=False)[0]))
+        lam = float(np.abs(spla.eigs(K.astype(float), k=1, which="LM", return_eigenvectors=False,
+                                     v0=np.ones(K.shape[0]))[0]))  # fixed start: reproducible dt
     else:
         lam = float(np.abs(K).sum(axis=1).max())
     return 2.0 / np.sqrt(lam / density)

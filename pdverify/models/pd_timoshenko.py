@@ -449,7 +449,10 @@ def stable_time_step(disc: Discrete) -> float:
         if A.shape[0] < 20:
             lam = float(np.abs(np.linalg.eigvals(A.toarray())).max())
         else:
-            lam = float(np.abs(spla.eigs(A, k=1, which="LM", return_eigenvectors=False, tol=1e-6)[0]))
+            # fixed start vector: ARPACK's default is random, which made dt (and every transient) differ
+            # between runs in the 11th digit
+            lam = float(np.abs(spla.eigs(A, k=1, which="LM", return_eigenvectors=False, tol=1e-6,
+                                         v0=np.ones(A.shape[0]))[0]))
     else:
         lam = float(np.abs(A).sum(axis=1).max())
     return 2.0 / np.sqrt(lam)
@@ -464,7 +467,7 @@ def first_frequency(disc: Discrete) -> float:
     if A.shape[0] < 40:
         lam = np.linalg.eigvals(A.toarray())
         return float(np.sqrt(np.abs(lam).min()))
-    lam = spla.eigs(A, k=1, sigma=0.0, which="LM", return_eigenvectors=False)
+    lam = spla.eigs(A, k=1, sigma=0.0, which="LM", return_eigenvectors=False, v0=np.ones(A.shape[0]))
     return float(np.sqrt(np.abs(lam[0])))
 
 
