@@ -227,3 +227,22 @@ def test_expected_fail_verdicts():
 
     assert [_verdict(True, "pass"), _verdict(False, "pass"), _verdict(False, "fail"), _verdict(True, "fail")] == \
         ["pass", "fail", "expected-fail", "unexpected-pass"]
+
+
+def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monkeypatch):
+    """A worker running other code computes other case ids; the runner stores each record under the id
+    it computed itself and lists the mismatch in meta.json (a study never loses a finished case)."""
+    from pdverify.study import runner
+
+    real = runner.run_case
+
+    def other_code(case, artefacts=None):
+        rec = real(case, artefacts)
+        rec["row"]["case_id"], rec["row"]["code"] = "0" * 16, "f" * 16
+        return rec
+
+    monkeypatch.setattr(runner, "run_case", other_code)
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21]\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    meta = json.loads((tmp_path / "out" / "meta.json").read_text())
+    assert len(df) == 2 and set(df["case_id"]) == set(meta["cases_from_other_code"]) and "0" * 16 not in set(df["case_id"])

@@ -21,7 +21,7 @@ import pandas as pd
 from .. import __version__
 from ..errors import PdverifyError
 from .metrics import errors, gci, locking_slope, observed_order, pareto
-from .spec import Case, Study
+from .spec import Case, Study, code_digest
 
 ROW_KEYS = ("case", "row", "curve")
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
@@ -58,8 +58,6 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
     """Solve one case and measure it. Never raises: a failure is a record with status 'failed'.
     ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id."""
     from ..registry import get_model, run
-
-    from .spec import code_digest
 
     row = {"case_id": case.case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
            "slenderness": case.slenderness, "reference": json.dumps(case.reference, sort_keys=True),
@@ -212,10 +210,20 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             todo.append(case)
     resumed = len(done)
 
-    def finish(rec):
+    client_code = code_digest()
+    mismatched = []
+
+    def finish(rec, case):
+        """Store under the id this process computed (a worker with other code would compute another id:
+        the record is kept, and the mismatch is reported in meta.json instead of losing the case)."""
         rec = _clean(rec)
-        write_atomic(cases_dir / f"{rec['row']['case_id']}.json", json.dumps(rec, default=str, separators=(",", ":")))
-        done[rec["row"]["case_id"]] = rec
+        cid = case.case_id
+        if rec["row"].get("code") != client_code:
+            mismatched.append(cid)
+        rec["row"]["case_id"] = cid
+        write_atomic(cases_dir / f"{cid}.json", json.dumps(rec, default=str, separators=(",", ":")))
+        done[cid] = rec
+        bar.advance(failed=rec["row"]["status"] != "ok")
 
     bar = _progress(len(todo), progress)
     if scheduler:
@@ -223,27 +231,23 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
 
         with Client(scheduler) as client:
             futures = client.map(run_case, todo, pure=False)  # remote workers: no artefact files
+            by_key = {f.key: c for f, c in zip(futures, todo)}
             for fut in dask_completed(futures):
-                finish(fut.result())
-                bar.advance(failed=done[list(done)[-1]]["row"]["status"] != "ok")
+                finish(fut.result(), by_key[fut.key])
     elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
         for case in todo:
-            rec = run_case(case, str(out / "vtu"))
-            finish(rec)
-            bar.advance(failed=rec["row"]["status"] != "ok")
+            finish(run_case(case, str(out / "vtu")), case)
     else:
         with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as pool:
-            futs = [pool.submit(run_case, c, str(out / "vtu")) for c in todo]
+            futs = {pool.submit(run_case, c, str(out / "vtu")): c for c in todo}
             for fut in as_completed(futs):
-                rec = fut.result()
-                finish(rec)
-                bar.advance(failed=rec["row"]["status"] != "ok")
+                finish(fut.result(), futs[fut])
     bar.close()
     order = [c.case_id for c in study.cases]
     rows = [done[cid]["row"] for cid in dict.fromkeys(order)]
     df = pd.DataFrame(rows)
     df.insert(0, "study", study.name)
-    write_tables(study, out, df, wall=time.perf_counter() - t0, resumed=resumed)
+    write_tables(study, out, df, wall=time.perf_counter() - t0, resumed=resumed, mismatched=mismatched)
     return df
 
 
@@ -450,7 +454,8 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
     return pd.DataFrame(rows)
 
 
-def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int) -> None:
+def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
+                 mismatched: list[str] | None = None) -> None:
     for col in ("variant", "element", "form"):
         if col in df:
             df[col] = df[col].astype("string")
@@ -476,5 +481,6 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
     meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
             "python": platform.python_version(), "platform": platform.platform(), "machine": platform.machine(),
             "cpu_count": os.cpu_count(), "wall_s": wall, "versions": versions, "resumed_cases": resumed,
-            "counts": df["status"].value_counts().to_dict(), "skipped": study.skipped}
+            "counts": df["status"].value_counts().to_dict(), "skipped": study.skipped, "code": code_digest(),
+            "cases_from_other_code": mismatched or []}
     write_atomic(out / "meta.json", json.dumps(meta, indent=2, default=str))
