@@ -23,7 +23,10 @@ BENCH_SCENE = EXAMPLES / "cantilever_tip_load.toml"
 
 
 def default_scene(model) -> Path:
-    """The bench scene a model can solve: the cantilever (bending), the rod (axial) or the shaft (torsion)."""
+    """The bench scene a model can solve: its own ``bench_scene`` (a path under studies/) if it names
+    one, else the cantilever (bending), the rod (axial) or the shaft (torsion)."""
+    if getattr(model, "bench_scene", None):
+        return EXAMPLES.parent / model.bench_scene
     if getattr(model, "bending", True):
         return BENCH_SCENE
     if getattr(model, "torsion", False) and not getattr(model, "axial", False):

@@ -11,6 +11,7 @@ from .pd_curved import PDCurved
 
 class PDCurvedMMS(PDCurved):
     name = "pd-curved-mms"
+    bench_scene = "paper_curved/quintic_manufactured.toml"  # its loads come from the manufactured fields
     title = "pd-curved + manufactured loads (quintic example)"
     source = "pd-curved; loads by sympy from the chosen fields (pdverify/manufactured.py)"
     reference = True  # a verification harness, not a candidate model for `pdverify advise`
