@@ -68,6 +68,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
         if best is None or total < best[0]:
             best = (total, res)
     total, res = best
+    peak = _rss_mb() - base  # the model's own peak, before the limit measurement below allocates its copies
     row = {
         "model": model,
         "points": points,
@@ -102,7 +103,6 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
     if hasattr(m, "bench_dynamics"):
         params = m.resolve(scene, {"points": points})
         row["updates_per_s"] = float(m.bench_dynamics(scene, params, steps=200))
-    peak = _rss_mb() - base
     row["peak_mem_mb"] = max(peak, 0.0)
     row["mem_per_point_kb"] = max(peak, 0.0) * 1024 / points
     return row

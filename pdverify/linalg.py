@@ -56,9 +56,14 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
 
     K = _canonical(K)
     n = K.shape[0]
-    rows, cols = csr_rows(K), K.indices
     ab = np.zeros((2 * lower + upper + 1, n), order="F")
-    ab[lower + upper + rows - cols, cols] = K.data * (s[rows] * s[cols])
+    step = max(1, (1 << 20) // max(1, K.nnz // max(n, 1)))  # ~1e6 entries per block: bounded temporaries
+    for r0 in range(0, n, step):  # blocks of rows, not points: ~nnz / 1e6 iterations
+        r1 = min(n, r0 + step)
+        a, b = K.indptr[r0], K.indptr[r1]
+        rows = np.repeat(np.arange(r0, r1), np.diff(K.indptr[r0:r1 + 1]))
+        cols = K.indices[a:b]
+        ab[lower + upper + rows - cols, cols] = K.data[a:b] * (s[rows] * s[cols])
     lu, piv, info = lapack.dgbtrf(ab, lower, upper, overwrite_ab=1)
     if info > 0:
         raise np.linalg.LinAlgError(f"zero pivot at unknown {info - 1}")

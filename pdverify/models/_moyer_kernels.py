@@ -46,14 +46,11 @@ def shear_kernel(m: int, variant: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 def toeplitz(n_rows: int, row0: int, n_cols: int, offsets, coefs) -> sp.csr_matrix:
-    """Row r holds ``coefs`` at columns r + row0 + offsets (repeated offsets add up)."""
-    offsets = np.asarray(offsets, dtype=np.int64) + row0
-    coefs = np.asarray(coefs, dtype=float)
-    u, inv = np.unique(offsets, return_inverse=True)
-    vals = np.bincount(inv.ravel(), weights=coefs, minlength=len(u))
-    if u.min() < 0 or n_rows - 1 + u.max() > n_cols - 1:
-        raise ValueError("stencil leaves the grid")
-    return sp.diags(list(vals), list(u), shape=(n_rows, n_cols), format="csr")
+    """Row r holds ``coefs`` at columns r + row0 + offsets (repeated offsets add up); the shared
+    diagonal-wise builder of pd-eb."""
+    from .pd_eb import stencil_operator
+
+    return stencil_operator(n_rows, row0, n_cols, offsets, coefs)
 
 
 # -- ghost points --------------------------------------------------------------------------
