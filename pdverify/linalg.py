@@ -9,7 +9,6 @@ returns the solution with an info dict (solver, bandwidth, 1-norm condition esti
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -75,17 +74,6 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
         return x
 
     return solve, (lambda y: solve(y, 1))
-
-
-def scale_banded(ab: np.ndarray, s: np.ndarray, lower: int, upper: int) -> np.ndarray:
-    """diag(s) K diag(s) in LAPACK band storage, in place: ab[upper + i - j, j] *= s_i s_j."""
-    n = ab.shape[1]
-    ab *= s[None, :]
-    for d in range(lower + upper + 1):
-        k = d - upper  # row i = j + k
-        lo_j, hi_j = max(0, -k), min(n, n - k)
-        ab[d, lo_j:hi_j] *= s[lo_j + k:hi_j + k]
-    return ab
 
 
 def scale_symmetric(K: sp.csr_matrix, s: np.ndarray) -> sp.csr_matrix:

@@ -45,7 +45,7 @@ from pdverify.errors import InputError
 from pdverify.linalg import solve_linear
 from pdverify.registry import Model, Option
 from pdverify.result import Result, Timer
-from pdverify.scene import Distributed, PointForce, PointMoment, Scene
+from pdverify.scene import Distributed, PointForce, Scene
 
 ELEMENTS = {"q4": "ElementQuad1", "q8": "ElementQuadS2", "q9": "ElementQuad2"}
 

@@ -33,18 +33,22 @@ def test_singular_is_one_clear_error():
     assert "test beam" in str(e.value) and "singular" in str(e.value)
 
 
-def test_band_storage_scaling_equals_matrix_scaling():
+def test_banded_lu_of_the_scaled_matrix_solves_both_directions():
+    """banded_lu writes diag(s) K diag(s) straight into LAPACK's band array: its solves (plain and
+    transposed) must equal dense solves of the scaled matrix, and the band storage helper must hold K."""
     import scipy.sparse as sp
 
-    from pdverify.linalg import bandwidths, scale_banded, scale_symmetric, to_banded
+    from pdverify.linalg import banded_lu, bandwidths, scale_symmetric, to_banded
 
     rng = np.random.default_rng(3)
     n = 40
     K = sp.random(n, n, density=0.3, random_state=4, format="csr")
-    K = sp.csr_matrix(K.multiply(abs(np.subtract.outer(np.arange(n), np.arange(n))) <= 3)) + sp.eye(n, format="csr")
+    K = sp.csr_matrix(K.multiply(abs(np.subtract.outer(np.arange(n), np.arange(n))) <= 3)) + 4 * sp.eye(n, format="csr")
     s = rng.uniform(0.5, 2.0, n)
     lo, up = bandwidths(K)
-    want = to_banded(scale_symmetric(K, s), lo, up)
-    got = scale_banded(to_banded(K, lo, up), s, lo, up)
-    assert np.allclose(got, want, rtol=1e-15, atol=0) and np.abs(want).max() > 0
+    solve, solve_t = banded_lu(K, lo, up, s)
+    Ks = scale_symmetric(K, s).toarray()
+    y = rng.normal(size=n)
+    assert np.allclose(solve(y), np.linalg.solve(Ks, y), rtol=1e-12, atol=0)
+    assert np.allclose(solve_t(y), np.linalg.solve(Ks.T, y), rtol=1e-12, atol=0)
     assert np.array_equal(to_banded(K, lo, up)[up], K.diagonal())

@@ -11,6 +11,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..scene import Distributed, PointForce, PointMoment, PointTorque, Scene
+from .pd_eb import _cell_integral, stencil_operator
 
 
 def trapezoid_weights(m: int) -> np.ndarray:
@@ -48,8 +49,6 @@ def shear_kernel(m: int, variant: str) -> tuple[np.ndarray, np.ndarray]:
 def toeplitz(n_rows: int, row0: int, n_cols: int, offsets, coefs) -> sp.csr_matrix:
     """Row r holds ``coefs`` at columns r + row0 + offsets (repeated offsets add up); the shared
     diagonal-wise builder of pd-eb."""
-    from .pd_eb import stencil_operator
-
     return stencil_operator(n_rows, row0, n_cols, offsets, coefs)
 
 
@@ -146,15 +145,6 @@ def average_ghosts(degree: int, n_real: int, n_ghost: int) -> tuple[np.ndarray, 
 
 
 # -- loads on a node grid ----------------------------------------------------------------------
-
-
-def _cell_integral(load: Distributed, scene: Scene, lo: np.ndarray, hi: np.ndarray, value: float) -> np.ndarray:
-    a, b = scene.span(load)
-    lo, hi = np.clip(lo, a, b), np.clip(hi, a, b)
-    if load.shape == "uniform":
-        return value * (hi - lo)
-    k = np.pi / scene.length
-    return value * (np.cos(k * lo) - np.cos(k * hi)) / k
 
 
 def node_loads(scene: Scene, x: np.ndarray, component: str, ends_apart: bool):

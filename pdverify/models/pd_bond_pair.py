@@ -34,7 +34,8 @@ from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import ghost_stencil_system, stencil_operator, body_loads, boundary_layer_warnings, end_loads, partial_volumes, taylor_ghosts
+from .pd_eb import (body_loads, boundary_layer_warnings, end_loads, fixed_points, ghost_stencil_system, partial_volumes,
+                    stencil_operator, taylor_ghosts)
 
 
 def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
@@ -142,7 +143,7 @@ class PDBondPair(Model):
         cat = lambda v, dt: np.concatenate(v[1:]) if len(v) > 1 else np.zeros(0, dt)  # noqa: E731
         K, r = ghost_stencil_system(*operator_stencil(j, c), G, n, cat(er, int), cat(ec, int), cat(ev, float), e0)
         b = body_loads(scene, x, skip_ends=skip) - r
-        fixed = [i for i, s in ((0, left), (n - 1, right)) if s in ("clamped", "pinned")]
+        fixed = fixed_points(scene, n)
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
         Kf, bf, free = eliminate(K, b, fixed)
         return Kf, bf, free, info

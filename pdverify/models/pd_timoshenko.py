@@ -73,6 +73,7 @@ from ..linalg import solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
+from .pd_eb import boundary_layer_warnings
 from ._moyer_kernels import (average_ghosts, constrained_ghosts, motion_final, motion_value, node_loads, rod_kernel,
                              shear_kernel, taylor_ghosts, taylor_ghosts_cells, toeplitz)
 
@@ -155,7 +156,6 @@ def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial"
     name = "pd-rod" if kind == "axial" else "pd-torsion"
     n, x = _grid(scene, n, grid, variant, name)
     _check_grid(n, m, name)
-    L = scene.length
     dx = x[1] - x[0]
     delta = m * dx
     rho = scene.material.density or 0.0
@@ -221,7 +221,6 @@ def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes
     """Static operator of the PD Timoshenko beam on the interleaved DOFs (w_0, γ_0, w_1, γ_1, ...)."""
     n, x = _grid(scene, n, grid, variant, "pd-timoshenko")
     _check_grid(n, m, "pd-timoshenko")
-    L = scene.length
     dx = x[1] - x[0]
     delta = m * dx
     EI, kGA = scene.EI, scene.kGA
@@ -362,22 +361,6 @@ def prescribed_motions(scene: Scene, disc: Discrete) -> dict:
     for dof, (fieldname, side) in disc.prescribed.items():
         em = None if d is None else getattr(d, "left" if side == 0 else "right")
         out[dof] = None if em is None else getattr(em, _MOTION_KEY[fieldname])
-    return out
-
-
-def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
-    """Point loads strictly inside the first ``reach`` spacings of an end, where the ghost polynomials are
-    fitted to a solution that is not smooth there (measured, pd-timoshenko, 201 points, L/h = 20: 59 %
-    for a force one spacing from a pinned end, 2 % from a clamped one, 0.2 % at five spacings)."""
-    dx = x[1] - x[0]
-    out = []
-    for i, load in enumerate(scene.loads):
-        if hasattr(load, "position"):
-            d = min(load.position, scene.length - load.position)
-            if 1e-12 * scene.length < d < reach * dx:
-                out.append(f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the boundary "
-                           f"layer of {reach} spacings: expect large errors; use at least "
-                           f"{int(np.ceil(reach * scene.length / d)) + 1} points")
     return out
 
 

@@ -245,7 +245,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     performance = None
     for cand in (out / "bench" / "index.html", out.parent / "bench" / "index.html"):
         if cand.exists():
-            performance = cand.relative_to(out).as_posix() if cand.is_relative_to(out) else f"../bench/index.html"
+            performance = cand.relative_to(out).as_posix() if cand.is_relative_to(out) else "../bench/index.html"
             break
     page = env.get_template("index.html.j2").render(
         meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,

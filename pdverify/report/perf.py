@@ -11,7 +11,6 @@ import time
 from pathlib import Path
 
 import jinja2
-import numpy as np
 import pandas as pd
 
 from .. import __version__
