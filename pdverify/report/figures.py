@@ -24,6 +24,16 @@ def _svg(fig) -> str:
     return text[text.index("<svg"):]
 
 
+def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major") -> str:
+    """The labels, title, grid and legend every figure shares; then the SVG."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3, which=which)
+    ax.legend(fontsize=7)
+    return _svg(fig)
+
+
 def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.ndarray, np.ndarray] | None, title: str,
                ylabel: str = "w") -> str:
     """Deflection (or another point field) along the axis; lengths in the scene's units (SI unless the
@@ -33,12 +43,7 @@ def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.n
         ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="reference")
     for label, x, w in curves:
         ax.plot(x, w, "-", lw=1.2, marker="o" if len(x) <= 30 else None, ms=3, label=label)
-    ax.set_xlabel("x")
-    ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    return _svg(fig)
+    return _finish(fig, ax, "x", ylabel, title)
 
 
 def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str) -> str:
@@ -48,12 +53,7 @@ def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: 
         line, = ax.loglog(h, e, "o-", ms=4, label=f"{label} (slope {p:.2f})")
         ax.annotate(f"{p:.2f}", (h[len(h) // 2], e[len(e) // 2]), color=line.get_color(), fontsize=8,
                     xytext=(4, 4), textcoords="offset points")
-    ax.set_xlabel("spacing (m)")
-    ax.set_ylabel("max relative error")
-    ax.set_title(title, fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    return _svg(fig)
+    return _finish(fig, ax, "spacing (m)", "max relative error", title, which="both")
 
 
 def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabel: str, title: str,
@@ -67,12 +67,7 @@ def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabe
     ax.set_yscale("log")
     if logx:
         ax.set_xscale("log")
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    return _svg(fig)
+    return _finish(fig, ax, xlabel, ylabel, title, which="both")
 
 
 def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray, np.ndarray]] | None = None) -> str:
@@ -83,12 +78,7 @@ def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray,
     for i, (xe, ze) in enumerate(exact or []):
         ax.plot(xe, ze, "k:", lw=1, label="exact elastica" if i == 0 else None)
     ax.set_aspect("equal")
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("z (m)")
-    ax.set_title(title, fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    return _svg(fig)
+    return _finish(fig, ax, "x (m)", "z (m)", title)
 
 
 def time_history(t: np.ndarray, series: dict[str, np.ndarray], title: str, ylabel: str = "displacement") -> str:
@@ -96,12 +86,7 @@ def time_history(t: np.ndarray, series: dict[str, np.ndarray], title: str, ylabe
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     for label, y in series.items():
         ax.plot(t, y, "-", lw=1.0, label=label)
-    ax.set_xlabel("t (s)")
-    ax.set_ylabel(ylabel)
-    ax.set_title(title, fontsize=9)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    return _svg(fig)
+    return _finish(fig, ax, "t (s)", ylabel, title)
 
 
 def cost(groups: list[tuple[str, np.ndarray, np.ndarray]], limits: list[tuple[str, np.ndarray, np.ndarray]], title: str) -> str:
@@ -112,9 +97,4 @@ def cost(groups: list[tuple[str, np.ndarray, np.ndarray]], limits: list[tuple[st
         for lab, nl, tl in limits:
             if lab == label and len(nl):
                 ax.loglog(nl, tl, "--", lw=1, color=line.get_color(), label=f"{label}: banded-solve limit")
-    ax.set_xlabel("points")
-    ax.set_ylabel("seconds")
-    ax.set_title(title, fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    return _svg(fig)
+    return _finish(fig, ax, "points", "seconds", title, which="both")
