@@ -116,6 +116,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                                                                  "benchmarks", "trust"))
     ok = res[res["status"] == "ok"] if "status" in res else res
 
+    from functools import lru_cache
+
+    curve_of = lru_cache(maxsize=None)(read_curve)  # each case file decoded once per build
     scenes = []
     for sfile, g in ok.groupby("scene_file", sort=False):
         figs = []
@@ -127,7 +130,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 path = d / "cases" / f"{r['case_id']}.json"
                 if not path.exists():
                     continue
-                c = read_curve(path)
+                c = curve_of(path)
                 y = c["w"]
                 if not np.any(y) and "u" in c.get("fields", {}):  # axial models: the axial displacement
                     y = c["fields"]["u"]
@@ -138,13 +141,12 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 if ref is None or len(c["x"]) > len(ref[0]):
                     ref = (c["x"], c["w_ref"])
             title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
-            if ref is not None and not np.all(np.isnan(ref[1])):
-                figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w"))
-            else:
-                figs.append(figures.deflection(curves, None, title, " / ".join(sorted(ylabels)) or "w"))
+            if ref is not None and np.all(np.isnan(ref[1])):  # runs without a reference
+                ref = None
+            figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w"))
             for _, r in gs.iterrows():
                 path = d / "cases" / f"{r['case_id']}.json"
-                c = read_curve(path) if path.exists() else {}
+                c = curve_of(path) if path.exists() else {}
                 if c.get("history"):
                     h = c["history"]
                     figs.append(figures.time_history(h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")))
