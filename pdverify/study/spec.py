@@ -103,7 +103,6 @@ class Study:
     benchmarks: list[dict] = field(default_factory=list)
     cases: list[Case] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
-    papers: dict = field(default_factory=dict)  # scene folder -> page title (the report's per-paper pages)
 
 
 def _reference(value, where: str) -> dict:
@@ -175,8 +174,7 @@ def load_study(path: str | Path) -> Study:
         except InputError as exc:
             errors.append(f"{path}: reference: {exc.lines[0]}")
 
-    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])),
-                  papers=dict(papers) if isinstance(papers, dict) else {})
+    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])))
     for i, run in enumerate(runs):
         where = f"{path}: runs[{i}]"
         if not isinstance(run, dict) or not isinstance(run.get("model"), str):
