@@ -70,11 +70,15 @@ class Result:
         return cols
 
     def to_csv(self) -> str:
-        cols = self.columns()
-        buf = io.StringIO()
-        buf.write(",".join(cols) + "\n")
-        np.savetxt(buf, np.column_stack([np.asarray(v, float) for v in cols.values()]), delimiter=",", fmt="%.17g")
-        return buf.getvalue()
+        return columns_csv(self.columns())
+
+
+def columns_csv(cols: dict, fmt: str = "%.17g") -> str:
+    """Named equal-length columns as CSV text: a header line, then one row per entry."""
+    buf = io.StringIO()
+    buf.write(",".join(cols) + "\n")
+    np.savetxt(buf, np.column_stack([np.asarray(v, float) for v in cols.values()]), delimiter=",", fmt=fmt)
+    return buf.getvalue()
 
 
 def _plain(v):

@@ -71,7 +71,7 @@ import scipy.sparse as sp
 from ..errors import InputError, SolveError
 from ..linalg import solve_linear
 from ..registry import Model, Option
-from ..result import Result, Timer
+from ..result import Result, Timer, columns_csv
 from ..scene import Scene
 from .pd_eb import boundary_layer_warnings
 from ._moyer_kernels import (average_ghosts, constrained_ghosts, motion_final, motion_value, node_loads, rod_kernel,
@@ -406,15 +406,8 @@ class History:
     omega1: float | None
 
     def to_csv(self) -> str:
-        import io
-
-        cols = {"t": self.t}
-        for k, p in enumerate(self.probes):
-            cols[f"x={p:g}"] = self.values[:, k]
-        buf = io.StringIO()
-        buf.write(",".join(cols) + "\n")
-        np.savetxt(buf, np.column_stack(list(cols.values())), delimiter=",", fmt="%.12g")
-        return buf.getvalue()
+        cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)}}
+        return columns_csv(cols, fmt="%.12g")
 
 
 def _mass_scaled(disc: Discrete, free: np.ndarray) -> sp.csr_matrix:

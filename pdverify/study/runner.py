@@ -20,6 +20,7 @@ import pandas as pd
 
 from .. import __version__
 from ..errors import PdverifyError
+from ..result import columns_csv
 from .metrics import errors, gci, locking_slope, observed_order, pareto
 from .spec import Case, Study, code_digest
 
@@ -104,9 +105,7 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
             if artefacts:  # the same histories as CSV, one column per series, for other tools
                 hdir = Path(artefacts).parent / "histories"
                 hdir.mkdir(parents=True, exist_ok=True)
-                cols = {"t": np.asarray(hist["t"], float), **{k: np.asarray(v, float) for k, v in hist.get("series", {}).items()}}
-                body = "\n".join(",".join(f"{v:.17g}" for v in r) for r in np.column_stack(list(cols.values())))
-                write_atomic(hdir / f"{case.case_id}.csv", ",".join(cols) + "\n" + body + "\n")
+                write_atomic(hdir / f"{case.case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})}))
         if artefacts and ".vtu" in result.writers:
             base = Path(artefacts) / case.case_id
             base.parent.mkdir(parents=True, exist_ok=True)
