@@ -267,28 +267,26 @@ class ExactCurved(Model):
     theory = "timoshenko"
     reference = True
 
+    solver = Indeterminate  # the exact solution object: .fields(s)
+
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        return Indeterminate(scene).fields(x)
+        return self.solver(scene).fields(x)
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
-            f = Indeterminate(scene).fields(s)
+            f = self.solver(scene).fields(s)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=f["w"],
                       rotation=f["rotation"], fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
                       dofs=0, timings=timer.timings, info={})
 
 
-class ExactCurvedCantilever(Model):
+class ExactCurvedCantilever(ExactCurved):
     name = "exact-curved-cantilever"
     title = "exact curved Timoshenko–Ehrenfest cantilever (statics + quadrature)"
     source = "design note §4: statically determinate curved cantilever (closed form for the semicircle)"
-    options = (POINTS,)
-    curved = True
-    axial = True
-    theory = "timoshenko"
-    reference = True
+    solver = Cantilever
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
@@ -297,18 +295,6 @@ class ExactCurvedCantilever(Model):
             out.append(f"supports = {sup}: model {self.name} solves cantilevers only (one end clamped, the other "
                        "free); use pd-curved or fem-plane-stress")
         return out
-
-    def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        return Cantilever(scene).fields(x)
-
-    def solve(self, scene: Scene, params: dict) -> Result:
-        timer = Timer()
-        with timer("solve"):
-            s = np.linspace(0.0, scene.length, params["points"])
-            f = Cantilever(scene).fields(s)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=f["w"],
-                      rotation=f["rotation"], fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
-                      dofs=0, timings=timer.timings, info={})
 
 
 MODELS = [ExactCurvedCantilever(), ExactCurved()]
