@@ -54,6 +54,8 @@ def compute(scene: str, model: str, options: dict) -> dict:
     out = {"scene": scene, "model": model, "options": options, "x": r.x.tolist(), "w": np.asarray(r.w).tolist()}
     if "u" in r.fields and not np.any(r.w):  # axial models: the axial displacement is the answer
         out["u"] = np.asarray(r.fields["u"]).tolist()
+    if r.info.get("cond") is not None:  # the test's round-off allowance for LAPACK-built operators
+        out["cond"] = float(r.info["cond"])
     return out
 
 

@@ -41,7 +41,8 @@ def test_mixed_form_cures_the_round_off_floor(left, right, load):
     variant) never forms the fourth-difference matrix: at 6401 and 25601 points the direct form is at
     its round-off floor (measured, sine load: CC 2.8e-4 / 6.4e-2, SS 1.4e-3 / 0.26) while the mixed form
     keeps converging (CC 1.4e-7 -> 1.8e-9, SS 1.4e-7 -> 7.0e-9) or stays near the round-off of an exact
-    cubic (CF 5.5e-7, 3.6e-5; direct 1.6e-2, 0.74)."""
+    cubic (CF 3.6e-6 on any CPU since the ghost maps are exact, 1.5e-4 / 6.8e-4 with OpenBLAS's AVX-512 /
+    AVX2 kernels at 25601 points, where refinement is off; direct 1.6e-2, 0.74)."""
     sc = parse_scene(scene_dict(left, right, [load]))
     direct = [err(sc, "pd-eb", points=n, form="direct")[0] for n in (6401, 25601)]
     mixed = [err(sc, "pd-eb", points=n, form="mixed")[0] for n in (6401, 25601)]

@@ -37,6 +37,9 @@ horizon is exactly m dx and the last member's partial volume is used.
 
 from __future__ import annotations
 
+from fractions import Fraction
+from functools import lru_cache
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -221,6 +224,47 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
 _FIXED = {"clamped": (0, 1), "pinned": (0, 2), "free": (2, 3), "guided": (1, 3)}
 
 
+def _solve_exact(A: list[list[Fraction]], B: list[list[Fraction]]) -> list[list[Fraction]]:
+    """X with A X = B, A square and regular, by Gauss–Jordan elimination in exact rationals."""
+    n = len(A)
+    M = [list(A[i]) + list(B[i]) for i in range(n)]
+    for k in range(n):
+        piv = next(i for i in range(k, n) if M[i][k] != 0)
+        M[k], M[piv] = M[piv], M[k]
+        M[k] = [v / M[k][k] for v in M[k]]
+        for i in range(n):
+            if i != k and M[i][k] != 0:
+                f = M[i][k]
+                M[i] = [a - f * b for a, b in zip(M[i], M[k])]
+    return [row[n:] for row in M]
+
+
+@lru_cache(maxsize=None)
+def ghost_maps(support: str, n_ghost: int, p: int = 4) -> tuple[np.ndarray, np.ndarray]:
+    """(G, C): ghost values w(t) at t = 1..n_ghost spacings outside the end, for a degree-4 polynomial
+    in t = s/dx with the support's coefficients fixed (``_FIXED``), fitted by least squares to the
+    first ``p`` real points (t = 0, -1, ..., -(p-1)): w_ghost = G w_real[:p] + C c_fixed.
+
+    Computed in exact rational arithmetic and rounded once: the matrices hold small integers, and a
+    LAPACK pseudo-inverse rounds differently from one CPU's kernels to another's. The discrete
+    cantilever is so sensitive to these coefficients (its constant-curvature mode is pinned by the
+    free-end ghosts only) that the last bit of G moved the 6,401-point mixed-form solution from
+    5.5e-7 to 1.6e-5 between OpenBLAS's Haswell and SkylakeX kernels; with G exact both give 3.6e-6."""
+    fixed = _FIXED[support]
+    free = [q for q in range(5) if q not in fixed]
+    Vr = [[Fraction(-i) ** q for q in range(5)] for i in range(p)]
+    Vg = [[Fraction(t) ** q for q in range(5)] for t in range(1, n_ghost + 1)]
+    A = [[row[q] for q in free] for row in Vr]  # p x k
+    At = [list(col) for col in zip(*A)]  # k x p
+    N = [[sum(a * b for a, b in zip(r1, r2)) for r2 in At] for r1 in At]  # A^T A
+    X = _solve_exact(N, At)  # (A^T A)^-1 A^T, k x p
+    G = [[sum(row[q] * X[a][i] for a, q in enumerate(free)) for i in range(p)] for row in Vg]
+    C = [[row[f] - sum(G[g][i] * Vr[i][f] for i in range(p)) for f in fixed] for g, row in enumerate(Vg)]
+    Gf, Cf = np.array(G, dtype=float), np.array(C, dtype=float)
+    Gf.flags.writeable = Cf.flags.writeable = False
+    return Gf, Cf
+
+
 def taylor_ghosts(support: str, n_ghost: int, dx: float, M_end: float, V_coef: float, EI: float,
                   p: int = 4) -> tuple[np.ndarray, np.ndarray]:
     """Ghost values as an affine map of the first p real points: w_g = G w_real[:p] + g0.
@@ -228,20 +272,13 @@ def taylor_ghosts(support: str, n_ghost: int, dx: float, M_end: float, V_coef: f
     s is the distance from the end into the ghost region (ghost i at s = i dx, real point i at
     s = -i dx). w(s) = Σ_{q<=4} c_q s^q with the support's coefficients fixed: c0 = 0 (w = 0),
     c1 = 0 (w' = 0), c2 = M_end / (2 EI), c3 = V_coef / (6 EI) (the third s-derivative, see caller).
+    The fit is made in t = s/dx (:func:`ghost_maps`, exact).
     """
     fixed = _FIXED[support]
     values = {0: 0.0, 1: 0.0, 2: M_end / (2 * EI), 3: V_coef / (6 * EI)}
-    free = [q for q in range(5) if q not in fixed]
-    sr = -np.arange(p) * dx
-    sg = np.arange(1, n_ghost + 1) * dx
-    scale = dx ** np.arange(5)  # fit in s/dx for conditioning
-    Vr = (sr[:, None] / dx) ** np.arange(5)
-    Vg = (sg[:, None] / dx) ** np.arange(5)
-    fvals = np.array([values[q] * scale[q] for q in fixed])
-    pinv = np.linalg.pinv(Vr[:, free])
-    G = Vg[:, free] @ pinv
-    g0 = (Vg[:, list(fixed)] - G @ Vr[:, list(fixed)]) @ fvals
-    return G, g0
+    G, C = ghost_maps(support, n_ghost, p)
+    fvals = np.array([values[q] * dx**q for q in fixed])
+    return G, C @ fvals
 
 
 # -- the model -------------------------------------------------------------------------------
