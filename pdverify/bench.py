@@ -51,7 +51,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
     both warm, so the first-touch page faults of the first run's arrays count in neither."""
     import scipy.linalg as sla
 
-    from .linalg import bandwidths, scale_symmetric, to_banded
+    from .band import Band
     from .registry import get_model, run
     from .scene import load_scene
 
@@ -86,14 +86,15 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
     if hasattr(m, "assemble"):
         params = m.resolve(scene, {"points": points})
         K, b = m.limit_system(scene, params) if hasattr(m, "limit_system") else _unpack(m.assemble(scene, params))
+        B = K if isinstance(K, Band) else Band.from_sparse(K)
         # the same symmetric diagonal scaling solve_linear applies (else LAPACK may call it singular)
-        d = np.abs(K.diagonal())
+        d = np.abs(B.diag(0))
         s = np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
-        K = scale_symmetric(K, s)
-        b = s * np.asarray(b, float)
-        lo, up = bandwidths(K)
-        ab = to_banded(K, lo, up)
-        rhs = np.asarray(b, float)
+        B.scale(s)
+        lo, up = B.lower, B.upper
+        ab = B.data  # solve_banded's own (lower + upper + 1, n) layout
+        del B, K
+        rhs = s * np.asarray(b, float)
         limit = np.inf
         for _ in range(3):
             t0 = time.perf_counter()

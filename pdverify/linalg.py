@@ -12,6 +12,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from .band import Band
 from .errors import SolveError
 
 
@@ -126,7 +127,41 @@ def eliminate(K: sp.spmatrix, b: np.ndarray, fixed) -> tuple[sp.csr_matrix, np.n
     return K[free][:, free].tocsr(), np.asarray(b)[free], free
 
 
-def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition: bool | None = None,
+SMALL = 20_000  # up to this many unknowns: condition estimate, refinement and residual by default
+
+
+def solve_band(B: Band, b: np.ndarray, what: str = "system") -> tuple[np.ndarray, dict]:
+    """Solve B u = b for a :class:`~pdverify.band.Band`, factorising B's own memory (B is consumed).
+
+    The path of large systems: symmetric diagonal scaling diagonal by diagonal, LAPACK gbtrf in place,
+    gbtrs. No condition estimate, refinement or residual (each would need a copy of the matrix or
+    extra solves; ``solve_linear`` makes them up to ``SMALL`` unknowns)."""
+    from scipy.linalg import lapack
+
+    b = np.asarray(b, dtype=float)
+    if not np.all(np.isfinite(b)):
+        raise SolveError(f"{what}: the load vector holds NaN/inf; check the scene's numbers")
+    d = np.abs(B.diag(0))
+    s = np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
+    B.scale(s)
+    lo, up = B.lower, B.upper
+    info: dict = {"dofs": B.n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal",
+                  "solver": "banded LU (LAPACK gbtrf/gbtrs, assembled in place)"}
+    ab = B.lapack()
+    B.data = None  # consumed: free its memory before the factorisation
+    lu, piv, inf = lapack.dgbtrf(ab, lo, up, overwrite_ab=1)
+    if inf > 0:
+        raise SolveError(f"{what}: the system matrix is singular (zero pivot at unknown {inf - 1}); the supports do "
+                         "not hold the beam (a mechanism) or the discretisation is degenerate")
+    x, inf = lapack.dgbtrs(lu, lo, up, s * b, piv, overwrite_b=1)
+    u = s * x
+    if inf != 0 or not np.all(np.isfinite(u)):
+        raise SolveError(f"{what}: the solution is not finite; the matrix holds NaN/inf, or the system is "
+                         "singular or too ill-conditioned")
+    return u, info
+
+
+def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", condition: bool | None = None,
                  banded_max: int = 64, refinement: bool | None = None) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
@@ -134,7 +169,16 @@ def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition:
     solution is not finite. ``info`` holds solver, bandwidths, condition estimate, relative residual.
     The condition estimate (a few extra solves) and mixed-precision refinement (``refinement``; None =
     automatic) are made by default up to 20,000 unknowns only.
+
+    ``K`` may be a :class:`~pdverify.band.Band` (assembled in LAPACK's layout): above ``SMALL`` unknowns,
+    with the checks left at their defaults, it is factorised in place (:func:`solve_band`); otherwise it
+    is converted and solved like a sparse matrix (same numbers as the sparse route).
     """
+    if isinstance(K, Band):
+        if K.n > SMALL and condition is not True and refinement is not True and K.lower <= banded_max \
+                and K.upper <= banded_max:
+            return solve_band(K, b, what)
+        K = K.tocsr()
     K = _canonical(K)
     b = np.asarray(b, dtype=float)
     if not np.all(np.isfinite(K.data)) or not np.all(np.isfinite(b)):
@@ -174,7 +218,7 @@ def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition:
     # the rest: the rounding of the assembled entries themselves (data error ~ cond * eps, cond ~ N^4
     # for the fourth-order operators); see tests/test_hard_cases.py for the floor.
     if refinement is None:
-        refinement = n <= 20_000
+        refinement = n <= SMALL
     if refinement:
         u, hist = refine(K, b, u, lambda r: s * solve(s * r))
         info["refinement"] = hist
@@ -182,7 +226,7 @@ def solve_linear(K: sp.spmatrix, b: np.ndarray, what: str = "system", condition:
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
     if condition is None:
-        condition = n <= 20_000
+        condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised
         try:
             c = condition_estimate(Ks if Ks is not None else scale_symmetric(K, s), solve, solve_t)

@@ -43,6 +43,7 @@ from functools import lru_cache
 import numpy as np
 import scipy.sparse as sp
 
+from ..band import Band
 from ..errors import InputError, SolveError
 from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option
@@ -389,8 +390,8 @@ class PDEulerBernoulli(Model):
     def limit_system(self, scene: Scene, params: dict):
         """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
         if self.form(params) == "mixed":
-            M, rhs, perm, *_ = self.assemble_mixed(scene, params)
-            return permuted(M, perm), rhs[perm]
+            M, rhs, *_ = self.assemble_mixed(scene, params)
+            return M, rhs
         K, b, *_ = self.assemble(scene, params)
         return K, b
 
@@ -422,40 +423,54 @@ class PDEulerBernoulli(Model):
         """The corrected operator split in two second-order equations (``form = mixed``)::
 
             h² kappa - h² D1 (E w + e0) = 0      (kappa on the real points and J ghosts each side)
-            h² D2 kappa                 = h⁴ b / a
+            h² D2 (h² kappa)            = h⁴ b / a
 
         the same discrete solution as a D2 D1 (E w + e0) = b, but the matrix of fourth differences
-        (entries ~1/h⁴, condition ~N⁴) is never formed: the block system's condition grows like N², so
-        the round-off floor drops from ~N⁴ eps to ~N² eps. Unknowns interleaved by position (banded).
-        Returns (M, rhs, perm, n_kappa, free, info); solve M[perm][:, perm]."""
+        (entries ~1/h⁴) is never formed, which lowers the round-off floor (tests/test_hard_cases.py).
+
+        Assembled straight into LAPACK's band layout (:class:`~pdverify.band.Band`): positions
+        p = -J .. n-1+J, two unknowns each (kappa_p, w_p), interleaved; both equations are Toeplitz block
+        stencils, the ghost map adds a few entries at each end, and the w of positions outside the beam
+        and of the supported points are held at zero (unit rows). Returns (M, rhs, J, free, info): w of
+        real point i is unknown 2 (i + J) + 1."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         c = curvature_weights(params["horizon"], dx, "corrected")
         J = len(c)
         G = 2 * J
-        N = n + 2 * G
         if 2 * J + 1 > n:
             raise InputError(f"horizon = {params['horizon']:g}: the family ({J} points each side) does not fit in "
                              f"{n} points; use more points or a smaller horizon")
         A = scene.section.A
         a = scene.EI / A
-        g_rows, g_cols, g_vals, e0, skip = self.ghosts(scene, n, dx, G)
-        E = sp.csr_matrix((np.r_[np.ones(n), g_vals], (np.r_[G + np.arange(n), g_rows], np.r_[np.arange(n), g_cols])),
-                          shape=(N, n))
         h2 = dx * dx
-        D1 = curvature_operator(n + 2 * J, J, N, c)
-        D2 = curvature_operator(n, J, n + 2 * J, c)
+        st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])  # D1 = D2 stencil, offsets -J..J
+        npos = n + 2 * J
+        # ghost w (outside the beam) = Gm w_real + g0: onto the real columns of the kappa rows that reach them
+        g_rows, g_cols, g_vals, e0, skip = self.ghosts(scene, n, dx, G)
+        gpos = g_rows - G  # ghost position (extended numbering -> grid position, < 0 or > n - 1)
+        p = np.unique(np.clip(np.r_[np.arange(-J, J), np.arange(n - J, n + J)], -J, n - 1 + J))  # rows reaching a ghost
+        ge, kp = np.nonzero(np.abs(gpos[:, None] - p[None, :]) <= J)  # (ghost entry, kappa row) within a family
+        rows, cols = 2 * (p[kp] + J), 2 * (g_cols[ge] + J) + 1
+        off = np.r_[cols - rows, -2 * J - 1, 2 * J + 1]
+        M = Band(2 * npos, int(-off.min()), int(off.max()))
+        # unknowns k_p = h² kappa_p and w_p (entries of order one): kappa rows (dof 0) k_p - h² Σ_o st_o w_{p+o},
+        # w rows (dof 1) h² Σ_o st_o k_{p+o}
+        blocks = {o: [[1.0 if o == 0 else 0.0, -h2 * st[o + J]], [h2 * st[o + J], 0.0]] for o in range(-J, J + 1)}
+        M.add_block_stencil(2, blocks)
+        M.add_entries(rows, cols, -h2 * st[gpos[ge] - p[kp] + J] * g_vals[ge])
+        rhs = np.zeros(2 * npos)
+        gp = np.unique(gpos)
+        gi, kq = np.nonzero(np.abs(gp[:, None] - p[None, :]) <= J)
+        np.add.at(rhs, 2 * (p[kq] + J), h2 * st[gp[gi] - p[kq] + J] * e0[gp[gi] + G])
+        rhs[2 * J + 1: 2 * (n + J): 2] = body_loads(scene, x, skip_ends=skip) / A * h2 * h2 / a
         fixed = fixed_points(scene, n)
-        free = np.setdiff1d(np.arange(n), fixed)
-        B = (-h2 * D1 @ E).tocsc()[:, free]
-        nk = n + 2 * J
-        M = sp.bmat([[sp.identity(nk, format="csr"), B], [(h2 * D2)[free], None]], format="csr")
-        rhs = np.r_[h2 * (D1 @ e0), (body_loads(scene, x, skip_ends=skip) / A * h2 * h2 / a)[free]]
-        # position of each unknown/equation on the grid: kappa_p at real index p - J, w_i at i
-        pos = np.r_[np.arange(nk) - J, free].astype(float)
-        perm = np.lexsort((np.r_[np.zeros(nk), np.ones(len(free))], pos))
-        return M, rhs, perm, nk, free, {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
-                                        "boundary": "Taylor ghost points (degree 4, 4 real points)"}
+        free = np.delete(np.arange(n), fixed)
+        held = np.r_[2 * np.arange(J) + 1, 2 * (n + J + np.arange(J)) + 1, 2 * (np.asarray(fixed, np.int64) + J) + 1]
+        M.fix(held)
+        rhs[held] = 0.0
+        return M, rhs, J, free, {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
+                                 "boundary": "Taylor ghost points (degree 4, 4 real points)"}
 
     def reduced(self, K, b, fixed):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
@@ -468,13 +483,12 @@ class PDEulerBernoulli(Model):
                 raise InputError("form = 'mixed': only the corrected variant has the two-equation form; "
                                  "use variant = corrected or form = direct")
             with timer("assemble"):
-                M, rhs, perm, nk, free, binfo = self.assemble_mixed(scene, params)
-                Mp = permuted(M, perm)
+                M, rhs, J, free, binfo = self.assemble_mixed(scene, params)
             with timer("solve"):
-                z = np.empty(len(rhs))
-                z[perm], info = solve_linear(Mp, rhs[perm], what="pd-eb (corrected, mixed form)")
-                w = np.zeros(params["points"])
-                w[free] = z[nk:]
+                z, info = solve_linear(M, rhs, what="pd-eb (corrected, mixed form)")
+                n = params["points"]
+                w = z[2 * J + 1: 2 * (n + J): 2].copy()
+                ndofs = n + 2 * J + len(free)  # kappa on every position, w on the free points
         else:
             with timer("assemble"):
                 Kf, bf, free, binfo = self.assemble(scene, params)
@@ -482,6 +496,7 @@ class PDEulerBernoulli(Model):
                 u, info = solve_linear(Kf, bf, what=f"pd-eb ({params['variant']})")
                 w = np.zeros(params["points"])
                 w[free] = u
+                ndofs = len(free)
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         rot = np.gradient(w, dx, edge_order=2)
@@ -491,7 +506,7 @@ class PDEulerBernoulli(Model):
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=rot,
-                      dofs=len(free), timings=timer.timings, info=info)
+                      dofs=ndofs, timings=timer.timings, info=info)
 
 
 def stable_time_step(K: sp.spmatrix, density: float) -> float:
