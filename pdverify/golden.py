@@ -59,10 +59,12 @@ def compute(scene: str, model: str, options: dict) -> dict:
     return out
 
 
-def regenerate() -> list[Path]:
+def regenerate(only: str = "") -> list[Path]:
     GOLDEN.mkdir(parents=True, exist_ok=True)
     out = []
     for scene, model, options in CASES:
+        if only not in key(scene, model, options):
+            continue
         p = GOLDEN / f"{key(scene, model, options)}.json"
         p.write_text(json.dumps(compute(scene, model, options)))
         out.append(p)
@@ -72,8 +74,10 @@ def regenerate() -> list[Path]:
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--regenerate", action="store_true", help="rewrite tests/golden/*.json")
-    if ap.parse_args().regenerate:
-        for p in regenerate():
+    ap.add_argument("--only", default="", help="only the cases whose file name contains this text")
+    args = ap.parse_args()
+    if args.regenerate:
+        for p in regenerate(args.only):
             print(p.relative_to(ROOT))
 
 

@@ -96,7 +96,7 @@ class PDBondPair(Model):
         return NonlinearBondPair(scene, n, j, beta, self.alpha(scene.EI, params["horizon"], dx, params["variant"]))
 
     def assemble(self, scene: Scene, params: dict):
-        """(K, b, free, info) after the supports.
+        """(K, b, free, info) after the supports, K sparse.
 
         ``ends = taylor``: the strong-form operator on w (one DOF per point, per unit length).
         ``ends = mirror``: the tangent stiffness of the full energy at the undeformed state (u and w per
@@ -107,6 +107,22 @@ class PDBondPair(Model):
             free = model.free
             b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
             return K[free][:, free].tocsr(), b[free], free, {"ghosts_per_end": model.G, "form": "energy tangent"}
+        K, b, fixed, info = self.assemble_taylor(scene, params)
+        Kf, bf, free = eliminate(K.tocsr(), b, fixed)
+        return Kf, bf, free, info
+
+    def limit_system(self, scene: Scene, params: dict):
+        """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
+        if params["ends"] == "mirror":
+            return self.assemble(scene, params)[:2]
+        K, b, fixed, _ = self.assemble_taylor(scene, params)
+        b[fixed] = 0.0
+        return K.fix(fixed), b
+
+    def assemble_taylor(self, scene: Scene, params: dict):
+        """(K, b, fixed, info): the strong-form operator on all real points as a
+        :class:`~pdverify.band.Band` (Toeplitz by diagonals + the ghost entries), ``fixed`` the supported
+        points (w = 0)."""
         n = params["points"]
         x = np.linspace(0.0, scene.length, n)
         dx = x[1] - x[0]
@@ -145,8 +161,7 @@ class PDBondPair(Model):
         b = body_loads(scene, x, skip_ends=skip) - r
         fixed = fixed_points(scene, n)
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
-        Kf, bf, free = eliminate(K, b, fixed)
-        return Kf, bf, free, info
+        return K, b, fixed, info
 
     def alpha(self, EI: float, m: float, dx: float, variant: str) -> float:
         j, beta = family(m, dx, variant)
@@ -183,19 +198,25 @@ class PDBondPair(Model):
         if params["nonlinear"]:
             return self.solve_nonlinear(scene, params)
         timer = Timer()
-        with timer("assemble"):
-            K, b, free, binfo = self.assemble(scene, params)
-        with timer("solve"):
-            u, info = solve_linear(K, b, what=f"pd-bond-pair ({params['variant']}, {params['ends']} ends)")
+        what = f"pd-bond-pair ({params['variant']}, {params['ends']} ends)"
         x = np.linspace(0.0, scene.length, params["points"])
         fields = {}
         if params["ends"] == "mirror":
+            with timer("assemble"):
+                K, b, free, binfo = self.assemble(scene, params)
+            with timer("solve"):
+                u, info = solve_linear(K, b, what=what)
             full = np.zeros(2 * len(x))
             full[free] = u
             w, fields["u"] = full[1::2], full[0::2]
         else:
-            w = np.zeros(len(x))
-            w[free] = u
+            with timer("assemble"):
+                K, b, fixed, binfo = self.assemble_taylor(scene, params)
+                K.fix(fixed)
+                b[fixed] = 0.0
+                free = np.delete(np.arange(len(x)), fixed)
+            with timer("solve"):
+                w, info = solve_linear(K, b, what=what)
         dx = x[1] - x[0]
         flags = boundary_layer_warnings(scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4)
         if flags:

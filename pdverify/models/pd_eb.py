@@ -94,26 +94,35 @@ def curvature_operator(n_rows: int, row0: int, n_cols: int, c: np.ndarray) -> sp
     return stencil_operator(n_rows, row0, n_cols, offsets, np.concatenate([[-2.0 * c.sum()], c, c]))
 
 
-def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals, e0) -> tuple[sp.csr_matrix, np.ndarray]:
+def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals, e0) -> tuple[Band, np.ndarray]:
     """(K, r): the Toeplitz operator whose row i (real point i) holds ``coefs`` at extended columns
     i + G + ``offsets`` (extended grid: G ghosts, n real points, G ghosts), with the ghosts eliminated by
     w_ext = E w + e0 (E: identity on the real points, ghost rows (g_rows, g_cols, g_vals) in extended
-    numbering). K = K_ext E, r = K_ext e0. Built as the truncated Toeplitz part on the real columns plus
-    the few ghost columns of the boundary rows: no product of big matrices, no slicing of them."""
+    numbering). K = K_ext E as a :class:`~pdverify.band.Band` (the truncated Toeplitz part by diagonals
+    plus the few ghost entries of the boundary rows), r = K_ext e0."""
     offsets = np.asarray(offsets, dtype=np.int64)
     coefs = np.asarray(coefs, dtype=float)
-    N = n + 2 * G
-    K = stencil_operator(n, 0, n, offsets, coefs, truncate=True)
-    band = np.unique(np.r_[0:min(n, G), max(0, n - G):n])
+    g_rows, g_cols, g_vals = (np.asarray(v) for v in (g_rows, g_cols, g_vals))
+    band = np.unique(np.r_[0:min(n, G), max(0, n - G):n])  # rows whose family reaches a ghost
     cols = band[:, None] + G + offsets[None, :]
     ghost = (cols < G) | (cols >= G + n)
     rr = np.broadcast_to(band[:, None], cols.shape)[ghost]
+    cc = cols[ghost]
     vv = np.broadcast_to(coefs[None, :], cols.shape)[ghost]
-    Cg = sp.csr_matrix((vv, (rr, cols[ghost])), shape=(n, N))
-    r = Cg @ np.asarray(e0, float)
-    if len(g_rows):
-        Eg = sp.csr_matrix((g_vals, (g_rows, g_cols)), shape=(N, n))
-        K = (K + Cg @ Eg).tocsr()
+    r = np.zeros(n)
+    np.add.at(r, rr, vv * np.asarray(e0, float)[cc])
+    # ghost column g -> real columns through E's ghost rows: pairs (entry, E row) with the same ghost
+    order = np.argsort(g_rows, kind="stable")
+    gr = np.asarray(g_rows, np.int64)[order]
+    lo, hi = np.searchsorted(gr, cc, "left"), np.searchsorted(gr, cc, "right")
+    cnt = hi - lo
+    ent = np.repeat(np.arange(len(cc)), cnt)
+    k = order[np.repeat(lo, cnt) + (np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt))] if len(ent) else \
+        np.zeros(0, np.int64)
+    rows, cols_r, vals = rr[ent], np.asarray(g_cols, np.int64)[k], vv[ent] * np.asarray(g_vals, float)[k]
+    reach = int(max(np.abs(offsets).max(), np.abs(cols_r - rows).max() if len(rows) else 0))
+    K = Band(n, reach, reach).add_stencil(offsets, coefs)
+    K.add_entries(rows, cols_r, vals)
     return K, r
 
 
@@ -303,13 +312,14 @@ class PDEulerBernoulli(Model):
 
     def assemble(self, scene: Scene, params: dict):
         """(K, b, free, info): the system K w_free = b after the supports (master–slave elimination of
-        the fixed points, Eq. 39–42); ``free`` are the indices of the unknown points."""
+        the fixed points, Eq. 39–42), K sparse; ``free`` are the indices of the unknown points."""
         K, b, fixed, info = self.assemble_full(scene, params)
-        Kf, bf, free = self.reduced(K, b, fixed)
+        Kf, bf, free = self.reduced(K.tocsr(), b, fixed)
         return Kf, bf, free, info
 
     def assemble_full(self, scene: Scene, params: dict):
-        """(K, b, fixed, info): K w = b on all real points (per unit volume); ``fixed`` point indices w = 0."""
+        """(K, b, fixed, info): K w = b on all real points (per unit volume), K a
+        :class:`~pdverify.band.Band`; ``fixed`` point indices w = 0."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         m, variant = params["horizon"], params["variant"]
@@ -364,7 +374,7 @@ class PDEulerBernoulli(Model):
             tr.append(g[ok]), tc.append(r[ok]), tv.append(np.full(ok.sum(), sign))
         T = sp.csr_matrix((np.concatenate(tv), (np.concatenate(tr), np.concatenate(tc))), shape=(n + 2 * G, n))
         DT = D @ T
-        K = (a * (DT.T @ DT)).tocsr()
+        K = Band.from_sparse(a * (DT.T @ DT))
         b = body_loads(scene, x) / A
         fixed = fixed_points(scene, n)
         return K, b, fixed, {"ghosts_per_end": G, "boundary": "mirror images, Appendix free ends"}
@@ -392,8 +402,8 @@ class PDEulerBernoulli(Model):
         if self.form(params) == "mixed":
             M, rhs, *_ = self.assemble_mixed(scene, params)
             return M, rhs
-        K, b, *_ = self.assemble(scene, params)
-        return K, b
+        K, b, fixed, _ = self.assemble_full(scene, params)
+        return K.fix(fixed), np.where(np.isin(np.arange(len(b)), fixed), 0.0, b)
 
     def ghosts(self, scene: Scene, n: int, dx: float, G: int):
         """Taylor ghost points of both ends (design note §1): w_ghost = Gm w_real + g0.
@@ -491,12 +501,12 @@ class PDEulerBernoulli(Model):
                 ndofs = n + 2 * J + len(free)  # kappa on every position, w on the free points
         else:
             with timer("assemble"):
-                Kf, bf, free, binfo = self.assemble(scene, params)
+                K, b, fixed, binfo = self.assemble_full(scene, params)
+                K.fix(fixed)  # master–slave elimination of the supported points (Eq. 39–42): w = 0 there
+                b[fixed] = 0.0
             with timer("solve"):
-                u, info = solve_linear(Kf, bf, what=f"pd-eb ({params['variant']})")
-                w = np.zeros(params["points"])
-                w[free] = u
-                ndofs = len(free)
+                w, info = solve_linear(K, b, what=f"pd-eb ({params['variant']})")
+                ndofs = params["points"] - len(fixed)
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         rot = np.gradient(w, dx, edge_order=2)
