@@ -76,3 +76,18 @@ def test_diagonal_assembly_equals_triplet_assembly():
     K0 = sp.csr_matrix((ke.reshape(ne, -1).ravel(), (np.repeat(dofs, 4, axis=1).ravel(), np.tile(dofs, (1, 4)).ravel())),
                        shape=K.shape)
     assert abs(K - K0).max() < 1e-15 and np.allclose(F, np.bincount(dofs.ravel(), fe.ravel()))
+
+
+def test_nodes_hold_every_load_position_and_element_loads_do_not_depend_on_the_block_size():
+    """beam_nodes inserts load positions into the uniform grid (a position within 1e-12 L of a node is
+    that node); element_loads integrates in blocks of elements: any block size gives the same vectors."""
+    from reference_fem.beam import beam_nodes, element_loads, hermite_shapes
+
+    sc = parse_scene(scene_dict("clamped", "pinned", LOADS))
+    x = beam_nodes(sc, 11)
+    want = [v for l in LOADS for k, v in l.items() if k in ("position", "start", "end")]
+    assert all(np.abs(x - p).min() < 1e-12 for p in want) and np.all(np.diff(x) > 0)
+    assert len(beam_nodes(sc, 11)) == len(np.unique(np.r_[np.linspace(0, sc.length, 11), want]))
+    assert np.array_equal(element_loads(sc, x, hermite_shapes), element_loads(sc, x, hermite_shapes, chunk=3))
+    sc0 = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -1.0}]))
+    assert not element_loads(sc0, beam_nodes(sc0, 5), hermite_shapes).any()
