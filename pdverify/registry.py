@@ -119,6 +119,13 @@ class Model:
         """Fields at arbitrary positions ``x`` (exact models); None when only point values exist."""
         return None
 
+    def evaluator(self, scene: Scene, params: dict):
+        """A function x -> fields (as :meth:`evaluate`) for repeated evaluation on one scene, or None when
+        the model has no ``evaluate``. Models whose ``evaluate`` solves first override this to solve once."""
+        if type(self).evaluate is Model.evaluate:
+            return None
+        return lambda x: self.evaluate(scene, params, x)
+
     # -- option handling -----------------------------------------------------------------
     def option(self, name: str) -> Option | None:
         return next((o for o in self.options if o.name == name), None)
