@@ -64,7 +64,10 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
         rows = np.repeat(np.arange(r0, r1), np.diff(K.indptr[r0:r1 + 1]))
         cols = K.indices[a:b]
         ab[lower + upper + rows - cols, cols] = K.data[a:b] * (s[rows] * s[cols])
-    anorm = float(np.abs(ab[lower:]).sum(axis=0).max())  # ||diag(s) K diag(s)||_1, before the factors overwrite it
+    colsum = np.zeros(n)  # ||diag(s) K diag(s)||_1 before the factors overwrite it; row by row (elementwise adds:
+    for r in range(lower, 2 * lower + upper + 1):  # the same bits whatever the array's alignment)
+        colsum += np.abs(ab[r])
+    anorm = float(colsum.max())
     lu, piv, info = lapack.dgbtrf(ab, lower, upper, overwrite_ab=1)
     if info > 0:
         raise np.linalg.LinAlgError(f"zero pivot at unknown {info - 1}")
@@ -76,9 +79,11 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
         return x
 
     def cond() -> float:
-        """1-norm condition estimate from the factors (LAPACK gbcon: Hager–Higham, a few band solves)."""
+        """1-norm condition estimate from the factors (LAPACK gbcon: Hager–Higham, a few band solves),
+        rounded to 6 digits: gbcon's sums (OpenBLAS dasum/ddot) depend in the last bit on where its
+        work arrays happen to be aligned, and an estimate has no use for 17 digits."""
         rcond, inf = lapack.dgbcon(lower, upper, lu, piv, anorm)
-        return float(1.0 / rcond) if inf == 0 and rcond > 0 else float("inf")
+        return float(f"{1.0 / rcond:.6g}") if inf == 0 and rcond > 0 else float("inf")
 
     solve.cond = cond
     return solve, (lambda y: solve(y, 1))
