@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ..band import Band
 from ..scene import Distributed, PointForce, PointMoment, PointTorque, Scene
 from .pd_eb import _cell_integral, stencil_operator
 
@@ -161,11 +162,13 @@ def node_loads(scene: Scene, x: np.ndarray, component: str, ends_apart: bool):
     L = scene.length
     q, mu = np.zeros(n), np.zeros(n)
     ends = {0: [0.0, 0.0], 1: [0.0, 0.0]}
-    lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
+    lo = hi = None
     for load in scene.loads:
         if isinstance(load, Distributed):
             v = {"transverse": load.value, "axial": load.axial, "torque": load.torque}[component]
             if v != 0.0:
+                if lo is None:
+                    lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
                 q += _cell_integral(load, scene, lo, hi, v) / (hi - lo)
             continue
         if isinstance(load, PointTorque):
@@ -217,3 +220,202 @@ def motion_final(motion, end_time: float) -> float:
     if motion.type == "sine":
         return float(motion_value(motion, end_time))
     return float(motion_value(motion, 1e300 if motion.type == "step" else motion.hold_after + 1.0))
+
+
+# -- operators that are a stencil away from the ends ----------------------------------------------
+
+
+class EndPatched:
+    """A banded operator on ``n`` points that is translation invariant away from the ends: the PD sums
+    are one stencil in the interior, and only the rows whose family reaches a ghost point (the ghost
+    maps, the end loads) differ. ``nr`` rows and ``nf`` columns per point, interleaved point-major (row
+    nr p + a, column nf q + b). Rows of the points L .. n - R - 1 are the block stencil ``blocks``
+    {o: (nr, nf) array}: row (p, a) holds blocks[o][a, b] at column (p + o, b); the rows of the first L
+    and the last R points are explicit triplets (``rows``, ``cols``, ``vals``, global numbering).
+
+    Built by :meth:`from_core` from the same operator assembled (sparse, as written in the paper's
+    notation) on a short grid of the same spacing: its end rows are the end rows of any longer grid, its
+    middle row is the stencil. Memory and assembly time are then O(n) with a handful of array passes."""
+
+    def __init__(self, n: int, nr: int, nf: int, blocks: dict, L: int, R: int, rows, cols, vals):
+        self.n, self.nr, self.nf, self.L, self.R = int(n), int(nr), int(nf), int(L), int(R)
+        self.blocks = {int(o): np.asarray(C, float) for o, C in blocks.items()}
+        self.rows, self.cols = np.asarray(rows, np.int64), np.asarray(cols, np.int64)
+        self.vals = np.asarray(vals, float)
+        pts = [abs(o) for o in self.blocks] + [0]
+        if len(self.rows):
+            pts.append(int(np.abs(self.cols // self.nf - self.rows // self.nr).max()))
+        self.reach = max(pts)  # largest point offset of any entry
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (self.n * self.nr, self.n * self.nf)
+
+    @classmethod
+    def from_core(cls, core: sp.spmatrix, nr: int, nf: int, n: int) -> "EndPatched":
+        """The operator on ``n`` points from its assembly ``core`` on nc <= n points of the same spacing
+        (n = nc: every row explicit). The stencil is the middle row of the core; L and R count the rows
+        at each end that differ from it (compared bit for bit: equal rows come out of the same sums);
+        the core must hold a stretch of stencil rows wider than the family, else it is too short."""
+        core = sp.csr_matrix(core)
+        nc = core.shape[0] // nr
+        if n == nc:
+            C = core.tocoo()
+            return cls(n, nr, nf, {}, n, 0, C.row, C.col, C.data)
+        D = core.toarray()
+        r, c = np.nonzero(D)
+        reach = int(np.abs(c // nf - r // nr).max()) if len(r) else 0
+        Dp = np.pad(D, ((0, 0), (nf * reach, nf * reach)))
+        p = np.arange(nc)[:, None, None, None]
+        a = np.arange(nr)[None, :, None, None]
+        o = np.arange(-reach, reach + 1)[None, None, :, None]
+        b = np.arange(nf)[None, None, None, :]
+        W = Dp[nr * p + a, nf * (p + reach + o) + b]  # W[p, a, o, b]: row (p, a), column (p + o, b)
+        mid = nc // 2
+        bad = np.flatnonzero((W != W[mid]).any(axis=(1, 2, 3)))
+        L = int(bad[bad < mid].max()) + 1 if np.any(bad < mid) else 0
+        R = nc - int(bad[bad > mid].min()) if np.any(bad > mid) else 0
+        if L + R + 2 * reach + 1 > nc or n < L + R:
+            raise RuntimeError(f"EndPatched: a core of {nc} points holds no stencil rows (L = {L}, R = {R}, "
+                               f"reach = {reach}); assemble a longer core")
+        blocks = {k - reach: W[mid, :, k, :].copy() for k in range(2 * reach + 1) if W[mid, :, k, :].any()}
+        left = core[: nr * L].tocoo()
+        right = core[nr * (nc - R):].tocoo()
+        shift_r, shift_c = nr * (n - nc), nf * (n - nc)
+        rows = np.r_[left.row, right.row + nr * (nc - R) + shift_r]
+        cols = np.r_[left.col, right.col + shift_c]
+        return cls(n, nr, nf, blocks, L, R, rows, cols, np.r_[left.data, right.data])
+
+    @staticmethod
+    def add_ends(target: np.ndarray, v_core: np.ndarray, per: int) -> np.ndarray:
+        """target + v for a vector v of the core grid (``per`` entries per point) whose entries belong
+        to the ends (the ghost terms of the load vector): the core's first half is added at the start of
+        the long grid, its second half at the end (in place where the grids differ; returned)."""
+        v_core = np.asarray(v_core, float)
+        if len(target) == len(v_core):
+            return target + v_core
+        h = per * (len(v_core) // per // 2)
+        target[:h] += v_core[:h]
+        target[len(target) - (len(v_core) - h):] += v_core[h:]
+        return target
+
+    def stencil(self, a: int, b: int, scale: float = 1.0) -> dict:
+        """{point offset: coefficient} of the block (a, b) of the interior stencil (zeros left out)."""
+        return {o: float(C[a, b]) * scale for o, C in self.blocks.items() if C[a, b] != 0.0}
+
+    # -- conversions ---------------------------------------------------------------------------
+    def band(self) -> Band:
+        """The (square) operator as a :class:`~pdverify.band.Band`: each diagonal of the interior
+        written with one broadcast assignment (its entries alternate with the row's unknown), then the
+        explicit end rows added."""
+        if self.nr != self.nf:
+            raise ValueError("band(): the operator is not square per point")
+        nf, n = self.nf, self.n
+        offs = [nf * o + b - a for o in self.blocks for a in range(nf) for b in range(nf)]
+        if len(self.rows):
+            offs += (self.cols - self.rows).tolist()
+        B = Band(nf * n, max(0, -min(offs)), max(0, max(offs)))
+        r0, r1 = nf * self.L, nf * (n - self.R)  # interior rows
+        if r1 > r0:
+            for k in range(-B.lower, B.upper + 1):
+                vals = np.zeros(nf)  # value on row nf p + a of diagonal k
+                for a in range(nf):
+                    o, b = divmod(a + k, nf)
+                    C = self.blocks.get(o)
+                    vals[a] = 0.0 if C is None else C[a, b]
+                d = B.diag(k)
+                k0 = max(0, -k)  # element i of d is row i + k0
+                if vals.all():  # every interior row has this diagonal: one contiguous broadcast
+                    d[r0 - k0: r1 - k0].reshape(-1, nf)[:] = vals
+                    continue
+                for a in np.flatnonzero(vals):  # rows of one unknown only (their columns exist)
+                    d[r0 + a - k0: r1 + a - k0 - nf + 1: nf] = vals[a]
+        if len(self.rows):
+            B.add_entries(self.rows, self.cols, self.vals)
+        return B
+
+    def tocsr(self) -> sp.csr_matrix:
+        if self.nr == self.nf:
+            return self.band().tocsr()
+        K = sp.csr_matrix((self.vals, (self.rows, self.cols)), shape=self.shape)
+        lo, hi = self.L, self.n - self.R
+        if hi > lo:
+            p = np.arange(lo, hi)
+            rr, cc, vv = [], [], []
+            for o, C in self.blocks.items():
+                for a in range(self.nr):
+                    for b in range(self.nf):
+                        if C[a, b] != 0.0:
+                            rr.append(self.nr * p + a), cc.append(self.nf * (p + o) + b), vv.append(np.full(len(p), C[a, b]))
+            K = K + sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=self.shape)
+        return K.tocsr()
+
+    def rows_csr(self, points: np.ndarray) -> sp.csr_matrix:
+        """The rows of the given points (all their ``nr`` rows, in that order) as CSR over all columns."""
+        points = np.asarray(points, np.int64)
+        sel = (self.nr * points[:, None] + np.arange(self.nr)[None, :]).ravel()
+        pos = np.full(self.nr * self.n, -1)
+        pos[sel] = np.arange(len(sel))
+        keep = pos[self.rows] >= 0
+        rr, cc, vv = [pos[self.rows[keep]]], [self.cols[keep]], [self.vals[keep]]
+        inner = (points >= self.L) & (points < self.n - self.R)
+        p = points[inner]
+        for o, C in self.blocks.items():
+            for a in range(self.nr):
+                for b in range(self.nf):
+                    if C[a, b] != 0.0:
+                        rr.append(pos[self.nr * p + a]), cc.append(self.nf * (p + o) + b), vv.append(np.full(len(p), C[a, b]))
+        return sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=(len(sel), self.shape[1]))
+
+    # -- products ------------------------------------------------------------------------------
+    def matvec(self, u: np.ndarray) -> np.ndarray:
+        """y = A u: the interior by the stencil (pairs of symmetric offsets share a multiplication), the end
+        rows by their triplets."""
+        u = np.asarray(u, float)
+        n, nr, nf, h = self.n, self.nr, self.nf, self.reach
+        src = np.zeros((nf, n + 2 * h))
+        src[:, h: h + n] = u.reshape(n, nf).T
+        lo, hi = self.L, n - self.R
+        out = np.zeros((nr, n))
+        if hi > lo:
+            tmp = np.empty(hi - lo)
+            ops: list = []
+            for a in range(nr):
+                first = True
+                for b in range(nf):
+                    first = stencil_ops(ops, out[a, lo:hi], src[b], h + lo, h + hi, self.stencil(a, b), tmp, first)
+            for f, args in ops:
+                f(*args)
+        y = out.T.ravel()
+        if len(self.rows):
+            np.add.at(y, self.rows, self.vals * u[self.cols])
+        return y
+
+    def __matmul__(self, u):
+        return self.matvec(u)
+
+
+def stencil_ops(ops: list, dst: np.ndarray, src: np.ndarray, lo: int, hi: int, st: dict, tmp: np.ndarray,
+                first: bool) -> bool:
+    """Append to ``ops`` the numpy calls (ufunc, args) that add Σ_o st[o] src[lo + o: hi + o] to ``dst``
+    (``first``: write it instead). Offsets ±o with equal (opposite) coefficients are summed (differenced)
+    first and multiplied once: the PD kernels are even or odd. Returns the new ``first``."""
+    done = set()
+    for o in sorted(st, key=lambda o: (abs(o), o)):
+        if o in done:
+            continue
+        c = st[o]
+        a = src[lo + o: hi + o]
+        if o and st.get(-o) in (c, -c):
+            done |= {o, -o}
+            ops.append((np.add if st[-o] == c else np.subtract, (a, src[lo - o: hi - o], tmp)))
+            a = tmp
+        else:
+            done.add(o)
+        if first:
+            ops.append((np.multiply, (a, c, dst)))
+            first = False
+        else:
+            ops.append((np.multiply, (a, c, tmp)))
+            ops.append((np.add, (dst, tmp, dst)))
+    return first
