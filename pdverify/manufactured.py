@@ -62,27 +62,34 @@ def axis_data(scene) -> tuple[tuple, float, float]:
                      "axis; use one of those")
 
 
-def fields(scene, s: np.ndarray) -> dict[str, np.ndarray]:
-    """The chosen fields, resultants and the loads they need at arc lengths s."""
+def fields(scene, s: np.ndarray, x: np.ndarray | None = None, names=NAMES) -> dict[str, np.ndarray]:
+    """The chosen fields, resultants and the loads they need (``names``: those of :data:`NAMES` wanted) at
+    arc lengths s (``x``: their axis abscissae on a polynomial axis when the caller has them; else s is
+    inverted here). The sympy derivation runs once per axis and length (cached); each call evaluates the
+    lambdified expressions only."""
     from .geometry import geometry
 
     coef, x0, x1 = axis_data(scene)
     s = np.asarray(s, float)
-    x = geometry(scene)._x_of_s(s) if scene.axis.type == "polynomial" else s
+    if scene.axis.type != "polynomial":
+        x = s
+    elif x is None:
+        x = geometry(scene)._x_of_s(s)
     f = _functions(coef, x0, x1, float(scene.length))
     out = {}
-    for k in NAMES:
+    for k in names:
         v = f[k](x, scene.EA, scene.kGA, scene.EI)
         out[k] = np.broadcast_to(np.asarray(v, float), x.shape).copy()
     return out
 
 
 def body(scene):
-    """s -> (p_t, p_n, m): the manufactured loads per unit length (for pd-curved's ``body`` hook)."""
+    """(s, x) -> (p_t, p_n, m): the manufactured loads per unit length (for pd-curved's ``body`` hook; x: the
+    axis abscissae of s, which pd-curved has already computed, or None)."""
     axis_data(scene)
 
-    def loads(s):
-        f = fields(scene, s)
+    def loads(s, x=None):
+        f = fields(scene, s, x, ("p_t", "p_n", "m"))
         return f["p_t"], f["p_n"], f["m"]
 
     return loads

@@ -41,7 +41,10 @@ jumps N⁺ - N⁻ = -F·t, Q⁺ - Q⁻ = -F·n, M⁺ - M⁻ = -C (a counter-cloc
 collocated point-wise (value along n, axial along t; ``frame = global``: (axial, value) = global
 (x, y) components per unit arc length; ``sine``: times sin(π s / L)). Every equation row is divided
 by its largest coefficient, the non-symmetric system is solved by LU (``solve_linear``; unknowns
-interleaved per particle, so it is banded) and its condition number reported.
+interleaved per particle, so it is banded) and its condition number reported. The default form is
+written straight into a :class:`~pdverify.band.Band` (6 x 6 block stencils, one diagonal per family
+offset; :meth:`PDCurved.assemble_band`), which ``solve_linear`` factorises in place above 20,000 unknowns;
+``assemble`` returns the same band as CSR.
 
 Measured (tests/test_pd_curved.py, tests/test_curved_studies.py; max-norm relative displacement error,
 L/h = 10, 41 -> 321 particles, observed order per doubling):
@@ -65,6 +68,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ..band import Band
 from ..errors import InputError
 from ..geometry import geometry
 from ..linalg import solve_linear
@@ -78,17 +82,61 @@ from . import _pddo
 
 def curvature_slope(scene: Scene, s: np.ndarray) -> np.ndarray:
     """dκ/ds (0 for straight and arc axes; polynomial: (1/J) d/dx [y''/J³], J = sqrt(1 + y'²))."""
-    s = np.asarray(s, float)
-    if scene.axis.type != "polynomial":
-        return np.zeros_like(s)
+    return axis_frame(scene, s)[3]
+
+
+def axis_abscissae(scene: Scene, s: np.ndarray) -> np.ndarray:
+    """x(s) on a polynomial axis y(x): the arc length s(x) = ∫ sqrt(1 + y'²) dx of :mod:`pdverify.geometry`
+    (16-point Gauss–Legendre panels) inverted by Newton from a table start, as ``AxisGeometry._x_of_s``
+    does, with one difference: each step integrates from the table node below x (one panel of at most
+    1/2000 of the axis; the 2001 nodes' arc lengths by geometry's composite 32-panel rule from x0) instead
+    of from x0 (32 panels per particle and step). Same root to round-off (1-2 ulp of x, checked in
+    tests/test_pd_curved.py); 16 instead of 512 integrand values per particle and step, and bounded
+    temporaries. A local helper: geometry.py is not this model's to change."""
     from numpy.polynomial import polynomial as Pn
 
-    geo = geometry(scene)
+    from ..geometry import _arclength, _arclength_pairs
+
     c = np.asarray(scene.axis.coefficients, float)
-    x = geo._x_of_s(s)
+    x0, x1 = (float(v) for v in scene.axis.x_range)
+    dc = Pn.polyder(c)
+    s = np.asarray(s, float)
+    nodes = np.linspace(x0, x1, 2001)
+    table = _arclength(c, x0, nodes)
+    sv = s.ravel()
+    x = np.interp(sv, table, nodes)
+    for _ in range(30):  # Newton iterations (converged in 2-3)
+        j = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 1)
+        step = (table[j] + _arclength_pairs(c, nodes[j], x) - sv) / np.sqrt(1 + Pn.polyval(x, dc) ** 2)
+        x = x - step
+        if np.max(np.abs(step), initial=0.0) < 1e-15 * max(1.0, abs(x1 - x0)):
+            break
+    return x.reshape(s.shape)
+
+
+def axis_frame(scene: Scene, s: np.ndarray):
+    """(t, n, κ, dκ/ds, x) at arc lengths s: tangent and normal (each (len(s), 2)), curvature, its slope and
+    the axis abscissae x(s) (polynomial axes; None otherwise). On a polynomial axis s is inverted once
+    (:func:`axis_abscissae`) and t, n, κ are the formulas of :mod:`pdverify.geometry` evaluated at that x
+    (``geometry.frame`` and ``geometry.curvature`` would each invert s again: 0.37 s per call at 10^4
+    particles, 8 s and 2 GB of temporaries at 10^5)."""
+    s = np.asarray(s, float)
+    geo = geometry(scene)
+    if scene.axis.type != "polynomial":
+        t, n = geo.frame(s)
+        return t, n, geo.curvature(s), np.zeros_like(s), None
+    from numpy.polynomial import polynomial as Pn
+
+    c = np.asarray(scene.axis.coefficients, float)
+    x = axis_abscissae(scene, s)
+    th = np.arctan(Pn.polyval(x, Pn.polyder(c)))
+    t = np.stack([np.cos(th), np.sin(th)], axis=-1)
+    n = np.stack([-np.sin(th), np.cos(th)], axis=-1)
     d1, d2, d3 = (Pn.polyval(x, Pn.polyder(c, k)) for k in (1, 2, 3))
+    kap = d2 / (1 + d1**2) ** 1.5
     J2 = 1 + d1**2
-    return (d3 / J2**1.5 - 3 * d1 * d2**2 / J2**2.5) / np.sqrt(J2)
+    dkap = (d3 / J2**1.5 - 3 * d1 * d2**2 / J2**2.5) / np.sqrt(J2)
+    return t, n, kap, dkap, x
 
 
 # -- segments and loads -----------------------------------------------------------------------
@@ -166,6 +214,65 @@ def distributed_loads(scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray,
     return pt, pn
 
 
+# -- band bookkeeping -------------------------------------------------------------------------
+
+
+class _Extent:
+    """The diagonals of a :class:`~pdverify.band.Band` that were written and, per diagonal, the stretch of
+    its elements that was, so the row and column maxima and scales touch those only (the mixed form's band
+    has 2 x 36 + 1 diagonals at P = 4, of which 10 are filled along the beam and the outer ones near the
+    ends only). A local helper: Band has no such bookkeeping (it would read and scale all its diagonals)."""
+
+    def __init__(self, B: Band):
+        self.B = B
+        self.span: dict[int, tuple[int, int]] = {}  # offset -> (first, stop) element of B.diag(offset)
+
+    def _mark(self, off: int, k0: int, k1: int):
+        a, b = self.span.get(off, (k0, k1))
+        self.span[off] = (min(a, k0), max(b, k1))
+
+    def block(self, ndof: int, o: int, C, p0: int, p1: int):
+        """``B.add_block_stencil(ndof, {o: C}, points=(p0, p1))`` and the stretches it wrote."""
+        self.B.add_block_stencil(ndof, {o: C}, points=(p0, p1))
+        npts = self.B.n // ndof
+        lo, hi = max(p0, -o, 0), min(p1, npts - o, npts)  # as add_block_stencil: points whose partner exists
+        if hi <= lo:
+            return
+        for a in range(ndof):
+            for b in range(ndof):
+                c = C[a][b]
+                if np.isscalar(c) and c == 0.0:
+                    continue
+                off = ndof * o + b - a
+                k0 = max(0, -off)
+                self._mark(off, ndof * lo + a - k0, ndof * (hi - 1) + a - k0 + 1)
+
+    def entries(self, rows: np.ndarray, cols: np.ndarray):
+        """The stretches of entries written by ``B.add_entries(rows, cols, ...)``."""
+        off = cols - rows
+        k = rows - np.maximum(0, -off)
+        for o in np.unique(off).tolist():
+            sel = k[off == o]
+            self._mark(o, int(sel.min()), int(sel.max()) + 1)
+
+    def _each(self, rows: bool):
+        for off, (k0, k1) in self.span.items():
+            start = k0 + (max(0, -off) if rows else max(0, off))  # first row (column) of the stretch
+            yield self.B.diag(off)[k0:k1], slice(start, start + k1 - k0)
+
+    def abs_max(self, rows: bool) -> np.ndarray:
+        """Largest |entry| of every row (``rows``) or column."""
+        out = np.zeros(self.B.n)
+        for d, sl in self._each(rows):
+            np.maximum(out[sl], np.abs(d), out=out[sl])
+        return out
+
+    def scale(self, f: np.ndarray, rows: bool):
+        """In place: row i (``rows``) or column i multiplied by f[i]."""
+        for d, sl in self._each(rows):
+            d *= f[sl]
+
+
 # -- the model --------------------------------------------------------------------------------
 
 _SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is prescribed, False = the resultant
@@ -221,74 +328,59 @@ class PDCurved(Model):
         return segs, inner, ends, m, size
 
     def assemble(self, scene: Scene, params: dict, body=None):
-        """(K, b, data): K z = b, z = (u_t, u_n, φ) interleaved per particle (``data['perm']`` maps to the
-        component-major order); ``body(s)`` optionally adds distributed (p_t, p_n, m) (manufactured)."""
+        """(K, b, data): K z = b as a CSR matrix, z = (u_t, u_n, φ[, N, Q, M]) interleaved per particle
+        (``data['perm']`` maps to the component-major order). K is ``assemble_band``'s band converted
+        (``Band.tocsr``): the matrix ``solve`` factorises, from one source."""
+        B, b, data = self.assemble_band(scene, params, body)
+        return B.tocsr(), b, data
+
+    def assemble_band(self, scene: Scene, params: dict, body=None):
+        """(B, b, data): the collocation system (Eq. 27–35, boundary and interface rows replacing
+        equilibrium or constitutive rows, rows then columns equilibrated) as a :class:`~pdverify.band.Band`
+        with the unknowns of a particle interleaved. ``body(s, x)`` optionally adds distributed (p_t, p_n, m)
+        at the arc lengths s (x: their axis abscissae on a polynomial axis, else None; the manufactured loads).
+
+        The default form (mixed, resultants) is written straight into the band: the 6 x 6 block stencils of
+        the constitutive and equilibrium rows (PDDO weights per particle, one band diagonal per family offset)
+        and the boundary entries; the row and column scales are read and applied on the diagonals that were
+        written, over the stretch that was written. The other forms (three unknowns per particle, stencils
+        of D1 D1 and D2) are assembled as sparse products, as they always were, and copied into a band."""
         segs, inner, ends, m, size = self.discretise(scene, params)
         P = params["degree"]
         s = np.concatenate(segs)
         N = len(s)
-        geo = geometry(scene)
-        t, nv = geo.frame(s)
-        kap = geo.curvature(s)
-        dkap = curvature_slope(scene, s)
+        t, nv, kap, dkap, xa = axis_frame(scene, s)
         offs = np.cumsum([0] + [len(g) for g in segs])
-        D1s, D2s = [], []
-        for g in segs:  # a few segments (load discontinuities), never a loop over particles
-            D = _pddo.derivative_matrices(g, P, size, (1, 2))
-            D1s.append(D[1]), D2s.append(D[2])
-        D1 = sp.block_diag(D1s, format="csr")
-        D2 = sp.block_diag(D2s, format="csr")
-        I = sp.identity(N, format="csr")
-        Z = sp.csr_matrix((N, N))
-        K_ = sp.diags(kap)
-        Kp = sp.diags(dkap)
         EA, kGA, EI = scene.EA, scene.kGA, scene.EI
-        # strain operators (rows: particles; block columns u_t, u_n, φ)
-        Eps = sp.hstack([D1, -K_, Z], format="csr")
-        Gam = sp.hstack([K_, D1, -I], format="csr")
-        Chi = sp.hstack([Z, Z, D1], format="csr")
         six = params["form"] == "mixed" and params.get("unknowns", "resultants") == "resultants"
         pt, pn, mm = np.zeros(N), np.zeros(N), np.zeros(N)
         for i, g in enumerate(segs):
             sl = slice(offs[i], offs[i + 1])
             pt[sl], pn[sl] = distributed_loads(scene, g, t[sl], nv[sl], 0.5 * (g[0] + g[-1]))
         if body is not None:
-            bt, bn, bm = body(s)
+            bt, bn, bm = body(s, xa)
             pt, pn, mm = pt + bt, pn + bn, mm + bm
-        b_eq = -np.concatenate([pt, pn, mm])
+        data = dict(s=s, segs=segs, offs=offs, N=N, t=t, n=nv, horizon=m, family=size)
         if six:
-            # unknowns (u_t, u_n, φ, N, Q, M); rows: constitutive law at every particle, then equilibrium
-            #   ε(u) - N/EA = 0,  γ(u) - Q/kGA = 0,  χ(u) - M/EI = 0
-            #   D1 N - κ Q + p_t = 0,  D1 Q + κ N + p_n = 0,  D1 M + Q + m = 0
+            B, b, cs = self._assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, (pt, pn, mm))
             nf = 6
-            C = sp.hstack([sp.vstack([Eps, Gam, Chi]), -sp.diags(np.repeat([1 / EA, 1 / kGA, 1 / EI], N))])
-            Eq = sp.hstack([sp.csr_matrix((3 * N, 3 * N)),
-                            sp.bmat([[D1, -K_, None], [K_, D1, None], [None, I, D1]])])
-            K = sp.vstack([C, Eq], format="csr")
-            b = np.concatenate([np.zeros(3 * N), b_eq])
-            eq0 = 3 * N  # first equilibrium row
-
-            def resultant(c, k):  # (columns, values) of the resultant c (N, Q, M) at particle k
-                return np.array([(3 + c) * N + k]), np.array([1.0])
+            data.update(Eps=None, Gam=None, Chi=None)
         else:
+            K, b, cs, ops = self._assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap, dkap,
+                                                         t, nv, (pt, pn, mm))
+            B = Band.from_sparse(K)
             nf = 3
-            if params["form"] == "mixed":  # condensed: the resultants substituted, D1 applied twice
-                dEps, dGam, dChi = D1 @ Eps, D1 @ Gam, D1 @ Chi
-            else:  # primal: the derivative of each strain written out, second derivatives by g^2
-                dEps = sp.hstack([D2, -Kp - K_ @ D1, Z], format="csr")
-                dGam = sp.hstack([Kp + K_ @ D1, D2, -D1], format="csr")
-                dChi = sp.hstack([Z, Z, D2], format="csr")
-            Kt = EA * dEps - kGA * (K_ @ Gam)
-            Kn = kGA * dGam + EA * (K_ @ Eps)
-            Kf = EI * dChi + kGA * Gam
-            K = sp.vstack([Kt, Kn, Kf], format="csr")
-            b = b_eq
-            eq0 = 0
-            res = [(EA * Eps).tocsr(), (kGA * Gam).tocsr(), (EI * Chi).tocsr()]  # N, Q, M
+            data.update(ops)
+        # perm: interleaved index i -> component-major index perm[i]; cscale (component-major) and cscale_i
+        # (interleaved): the column scales, z = cscale_i * (solution of B)
+        data.update(nf=nf, perm=np.arange(nf * N).reshape(nf, N).T.ravel(), cscale=cs.reshape(N, nf).T.ravel(),
+                    cscale_i=cs)
+        return B, b, data
 
-            def resultant(c, k):
-                r = res[c].getrow(k).tocoo()
-                return r.col, r.data
+    def _conditions(self, scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, six: bool, resultant):
+        """Boundary (Eq. 11–13) and interface rows, component-major numbering (unknown c N + k, constitutive row
+        c N + k, equilibrium row eq0 + c N + k): (rows replaced, their right-hand sides, (rows, cols, values)
+        of their entries)."""
         # Boundary and interface conditions replace the equilibrium rows of the segment-end particles; with
         # N, Q, M as unknowns and one kinematic end in a slot, the continuity at an interface replaces the
         # constitutive row instead, on the side away from that end (else a segment between a load and a free end
@@ -336,35 +428,125 @@ class PDCurved(Model):
                 add(eq0 + c * N + kj, np.r_[cb, ca], np.r_[vb, -va])
                 rb[eq0 + c * N + kj] = -F[c]
         rows = np.array(sorted(rb))
-        n_all = nf * N
+        return rows, np.array([rb[r] for r in rows]), (np.concatenate(rr), np.concatenate(rc), np.concatenate(rv))
+
+    def _assemble_resultants(self, scene, segs, offs, inner, ends, size, P, kap, t, nv, loads):
+        """Mixed form with N, Q, M as unknowns, straight into a band: (B, b, column scales), unknowns
+        (u_t, u_n, φ, N, Q, M) and rows (constitutive t, n, φ; equilibrium t, n, φ) interleaved per particle:
+
+            ε(u) - N/EA = 0,  γ(u) - Q/kGA = 0,  χ(u) - M/EI = 0        (Eq. 3–4)
+            D1 N - κ Q + p_t = 0,  D1 Q + κ N + p_n = 0,  D1 M + Q + m = 0   (Eq. 8–10)
+
+        with ε = D1 u_t - κ u_n, γ = D1 u_n + κ u_t - φ, χ = D1 φ. Every entry is written once (no sums), then
+        each row is divided by its largest coefficient and each column by its largest after that: the same
+        numbers, bit for bit, as the sparse assembly this replaced (scipy's products by diagonal matrices
+        round each entry once, as here)."""
+        N, nf = len(kap), 6
+        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
+        bw = nf * (size - 1)  # the end families reach size - 1 particles
+        B = Band(nf * N, bw, bw)
+        ext = _Extent(B)
+        # particle's own block (offset 0): curvature couplings, compliances, Q in the moment equation
+        C0 = [[0.0] * nf for _ in range(nf)]
+        C0[0][1], C0[0][3] = -kap, -(1 / EA)
+        C0[1][0], C0[1][2], C0[1][4] = kap, -1.0, -(1 / kGA)
+        C0[2][5] = -(1 / EI)
+        C0[3][4], C0[4][3], C0[5][4] = -kap, kap, 1.0
+        ext.block(nf, 0, C0, 0, N)
+        for i, g in enumerate(segs):  # a few segments (load discontinuities), never a loop over particles
+            fam, W = _pddo.derivative_weights(g, P, size, (1,))
+            W = W[1]
+            first = fam[:, 0] - np.arange(len(g))  # offset of each family's first member (non-increasing)
+            for o in range(-(size - 1), size):  # one band diagonal per family offset and unknown
+                j = o - first
+                k = np.flatnonzero((j >= 0) & (j < size))  # the particles reaching offset o: contiguous
+                if not len(k):
+                    continue
+                k1, k2 = int(k[0]), int(k[-1]) + 1
+                c = W[np.arange(k1, k2), j[k1:k2]]
+                ext.block(nf, o, [[c if a == b else 0.0 for b in range(nf)] for a in range(nf)],
+                          offs[i] + k1, offs[i] + k2)
+        # boundary and interface rows (component-major numbering -> interleaved)
+        rows, vals, (rr, rc, rv) = self._conditions(
+            scene, N, offs, segs, inner, ends, t, nv, 3 * N, True,
+            lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0])))
+        inter = lambda i: (i % N) * nf + i // N  # noqa: E731
+        rows, rr, rc = inter(rows), inter(rr), inter(rc)
+        B.clear_rows(rows)
+        B.add_entries(rr, rc, rv)
+        ext.entries(rr, rc)
+        b = np.zeros((N, nf))
+        b[:, 3], b[:, 4], b[:, 5] = -loads[0], -loads[1], -loads[2]
+        b = b.ravel()
+        b[rows] = vals
+        # equilibrate: each row divided by its largest coefficient, then each column
+        rs = 1.0 / ext.abs_max(rows=True)
+        ext.scale(rs, rows=True)
+        b *= rs
+        cs = 1.0 / ext.abs_max(rows=False)
+        ext.scale(cs, rows=False)
+        return B, b, cs
+
+    def _assemble_displacements(self, scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, loads):
+        """Three unknowns (u_t, u_n, φ) per particle: ``primal`` (Eq. 14–16) or ``mixed`` with the resultants
+        substituted. Sparse assembly: (K interleaved CSR, b, column scales (ones), strain operators)."""
+        N = len(kap)
+        D1s, D2s = [], []
+        for g in segs:  # a few segments (load discontinuities), never a loop over particles
+            D = _pddo.derivative_matrices(g, P, size, (1, 2))
+            D1s.append(D[1]), D2s.append(D[2])
+        D1 = sp.block_diag(D1s, format="csr")
+        D2 = sp.block_diag(D2s, format="csr")
+        I = sp.identity(N, format="csr")
+        Z = sp.csr_matrix((N, N))
+        K_ = sp.diags(kap)
+        Kp = sp.diags(dkap)
+        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
+        # strain operators (rows: particles; block columns u_t, u_n, φ)
+        Eps = sp.hstack([D1, -K_, Z], format="csr")
+        Gam = sp.hstack([K_, D1, -I], format="csr")
+        Chi = sp.hstack([Z, Z, D1], format="csr")
+        if params["form"] == "mixed":  # condensed: the resultants substituted, D1 applied twice
+            dEps, dGam, dChi = D1 @ Eps, D1 @ Gam, D1 @ Chi
+        else:  # primal: the derivative of each strain written out, second derivatives by g^2
+            dEps = sp.hstack([D2, -Kp - K_ @ D1, Z], format="csr")
+            dGam = sp.hstack([Kp + K_ @ D1, D2, -D1], format="csr")
+            dChi = sp.hstack([Z, Z, D2], format="csr")
+        Kt = EA * dEps - kGA * (K_ @ Gam)
+        Kn = kGA * dGam + EA * (K_ @ Eps)
+        Kf = EI * dChi + kGA * Gam
+        K = sp.vstack([Kt, Kn, Kf], format="csr")
+        b = -np.concatenate(loads)
+        res = [(EA * Eps).tocsr(), (kGA * Gam).tocsr(), (EI * Chi).tocsr()]  # N, Q, M
+
+        def resultant(c, k):
+            r = res[c].getrow(k).tocoo()
+            return r.col, r.data
+
+        rows, vals, (rr, rc, rv) = self._conditions(scene, N, offs, segs, inner, ends, t, nv, 0, False, resultant)
+        n_all = 3 * N
         keep = np.ones(n_all)
         keep[rows] = 0.0
-        R = sp.csr_matrix((np.concatenate(rv), (np.concatenate(rr), np.concatenate(rc))), shape=(n_all, n_all))
+        R = sp.csr_matrix((rv, (rr, rc)), shape=(n_all, n_all))
         K = (sp.diags(keep) @ K + R).tocsr()
         b = b * keep
-        b[rows] = [rb[r] for r in rows]
-        # equilibrate: each row divided by its largest coefficient, then (resultant form) each column
+        b[rows] = vals
+        # equilibrate: each row divided by its largest coefficient
         scale = 1.0 / abs(K).max(axis=1).toarray().ravel()
         K = (sp.diags(scale) @ K).tocsr()
         b = b * scale
-        cscale = np.ones(n_all)
-        if six:
-            cscale = 1.0 / abs(K).max(axis=0).toarray().ravel()
-            K = (K @ sp.diags(cscale)).tocsr()
         # interleave (particle-major) so the matrix is banded
-        perm = np.arange(n_all).reshape(nf, N).T.ravel()  # new index i -> old index perm[i]
+        perm = np.arange(n_all).reshape(3, N).T.ravel()  # new index i -> old index perm[i]
         inv = np.empty_like(perm)
         inv[perm] = np.arange(n_all)
         Cm = K.tocoo()
         K = sp.csr_matrix((Cm.data, (inv[Cm.row], inv[Cm.col])), shape=K.shape)
-        data = dict(s=s, segs=segs, offs=offs, N=N, perm=perm, Eps=Eps, Gam=Gam, Chi=Chi, t=t, n=nv,
-                    horizon=m, family=size, nf=nf, cscale=cscale)
-        return K, b[perm], data
+        return K, b[perm], np.ones(n_all), dict(Eps=Eps, Gam=Gam, Chi=Chi)
 
     def limit_system(self, scene: Scene, params: dict):
-        """(matrix, rhs) that ``solve`` factorises (for ``pdverify bench``)."""
-        K, b, _ = self.assemble(scene, params)
-        return K, b
+        """(band, rhs) that ``solve`` factorises (for ``pdverify bench``)."""
+        B, b, _ = self.assemble_band(scene, params)
+        return B, b
 
     def solve(self, scene: Scene, params: dict, body=None) -> Result:
         """Superposition of single-load solutions: the loads are grouped by the breaks they need (a point
@@ -400,18 +582,17 @@ class PDCurved(Model):
     def _solve_once(self, scene: Scene, params: dict, body, timer: Timer):
         """Fields on the uniform output grid, solver info and unknowns of one discretisation."""
         with timer("assemble"):
-            K, b, d = self.assemble(scene, params, body)
-        with timer("solve"):
-            zi, info = solve_linear(K, b, what=f"pd-curved (degree {params['degree']}, {params['form']})")
-        N = d["N"]
-        z = np.empty(d["nf"] * N)
-        z[d["perm"]] = zi
-        z *= d["cscale"]
-        ut, un, phi = z[:N], z[N:2 * N], z[2 * N:3 * N]
-        if d["nf"] == 6:
-            Nf, Qf, Mf = z[3 * N:4 * N], z[4 * N:5 * N], z[5 * N:]
+            B, b, d = self.assemble_band(scene, params, body)
+        with timer("solve"):  # factorises B in place above 20,000 unknowns (solve_band), else as CSR
+            zi, info = solve_linear(B, b, what=f"pd-curved (degree {params['degree']}, {params['form']})")
+        del B
+        N, nf = d["N"], d["nf"]
+        Z = (zi * d["cscale_i"]).reshape(N, nf)  # row k: the unknowns of particle k
+        ut, un, phi = Z[:, 0], Z[:, 1], Z[:, 2]
+        if nf == 6:
+            Nf, Qf, Mf = Z[:, 3], Z[:, 4], Z[:, 5]
         else:
-            z = z[:3 * N]
+            z = Z.T.ravel()
             Nf, Qf, Mf = scene.EA * (d["Eps"] @ z), scene.kGA * (d["Gam"] @ z), scene.EI * (d["Chi"] @ z)
         # output on the uniform grid of ``points`` positions (independent of the loads): the particle value
         # where a particle sits there, else the degree-P PDDO interpolant g^0 of its segment; at a break

@@ -26,5 +26,12 @@ class PDCurvedMMS(PDCurved):
 
         return super().solve(scene, params, body=mms_body(scene))
 
+    def limit_system(self, scene: Scene, params: dict):
+        """(band, rhs) that ``solve`` factorises, manufactured loads included (for ``pdverify bench``)."""
+        from ..manufactured import body as mms_body
+
+        B, b, _ = self.assemble_band(scene, params, mms_body(scene))
+        return B, b
+
 
 MODELS = [PDCurvedMMS()]
