@@ -88,10 +88,10 @@ def curvature_slope(scene: Scene, s: np.ndarray) -> np.ndarray:
 def axis_abscissae(scene: Scene, s: np.ndarray) -> np.ndarray:
     """x(s) on a polynomial axis y(x): the arc length s(x) = ∫ sqrt(1 + y'²) dx of :mod:`pdverify.geometry`
     (16-point Gauss–Legendre panels) inverted by Newton from a table start, as ``AxisGeometry._x_of_s``
-    does, with one difference: each step integrates from the table node below x (one panel of at most
-    1/2000 of the axis; the 2001 nodes' arc lengths by geometry's composite 32-panel rule from x0) instead
-    of from x0 (32 panels per particle and step). Same root to round-off (1-2 ulp of x, checked in
-    tests/test_pd_curved.py); 16 instead of 512 integrand values per particle and step, and bounded
+    does, with one difference: each step integrates from the table node below the start (one panel over
+    about 1/2000 of the axis; the arc length of the nodes used by geometry's composite 32-panel rule from x0)
+    instead of from x0 (32 panels per particle and step). Same root to round-off (within 2 ulp of 40-digit
+    roots, tests/test_pd_curved.py); 16 instead of 512 integrand values per particle and step, and bounded
     temporaries. A local helper: geometry.py is not this model's to change."""
     from numpy.polynomial import polynomial as Pn
 
@@ -101,13 +101,16 @@ def axis_abscissae(scene: Scene, s: np.ndarray) -> np.ndarray:
     x0, x1 = (float(v) for v in scene.axis.x_range)
     dc = Pn.polyder(c)
     s = np.asarray(s, float)
-    nodes = np.linspace(x0, x1, 2001)
-    table = _arclength(c, x0, nodes)
     sv = s.ravel()
-    x = np.interp(sv, table, nodes)
+    nodes = np.linspace(x0, x1, 2001)
+    start = np.concatenate([[0.0], np.cumsum(_arclength_pairs(c, nodes[:-1], nodes[1:]))])  # geometry's start table
+    x = np.interp(sv, start, nodes)
+    j = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 1)
+    used, inv = np.unique(j, return_inverse=True)
+    base = _arclength(c, x0, nodes[used])[inv]  # s(node j) by the composite rule, at the nodes used only
+    a = nodes[j]
     for _ in range(30):  # Newton iterations (converged in 2-3)
-        j = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 1)
-        step = (table[j] + _arclength_pairs(c, nodes[j], x) - sv) / np.sqrt(1 + Pn.polyval(x, dc) ** 2)
+        step = (base + _arclength_pairs(c, a, x) - sv) / np.sqrt(1 + Pn.polyval(x, dc) ** 2)
         x = x - step
         if np.max(np.abs(step), initial=0.0) < 1e-15 * max(1.0, abs(x1 - x0)):
             break
