@@ -231,11 +231,10 @@ class _Extent:
 
     def __init__(self, B: Band):
         self.B = B
-        self.span: dict[int, tuple[int, int]] = {}  # offset -> (first, stop) element of B.diag(offset)
+        self.span: dict[int, list[tuple[int, int]]] = {}  # offset -> [(first, stop)] elements of B.diag(offset)
 
     def _mark(self, off: int, k0: int, k1: int):
-        a, b = self.span.get(off, (k0, k1))
-        self.span[off] = (min(a, k0), max(b, k1))
+        self.span.setdefault(off, []).append((k0, k1))
 
     def block(self, ndof: int, o: int, C, p0: int, p1: int):
         """``B.add_block_stencil(ndof, {o: C}, points=(p0, p1))`` and the stretches it wrote."""
@@ -262,9 +261,20 @@ class _Extent:
             self._mark(o, int(sel.min()), int(sel.max()) + 1)
 
     def _each(self, rows: bool):
-        for off, (k0, k1) in self.span.items():
-            start = k0 + (max(0, -off) if rows else max(0, off))  # first row (column) of the stretch
-            yield self.B.diag(off)[k0:k1], slice(start, start + k1 - k0)
+        """(diagonal stretch, slice of its rows or columns), every written element exactly once: the
+        stretches of one diagonal merged where they overlap or touch (the outer family offsets are written
+        near the two ends of each segment only)."""
+        for off, spans in self.span.items():
+            merged: list[list[int]] = []
+            for k0, k1 in sorted(spans):
+                if merged and k0 <= merged[-1][1]:
+                    merged[-1][1] = max(merged[-1][1], k1)
+                else:
+                    merged.append([k0, k1])
+            d = self.B.diag(off)
+            shift = max(0, -off) if rows else max(0, off)  # element k: row k + max(0, -off), column k + max(0, off)
+            for k0, k1 in merged:
+                yield d[k0:k1], slice(k0 + shift, k1 + shift)
 
     def abs_max(self, rows: bool) -> np.ndarray:
         """Largest |entry| of every row (``rows``) or column."""
