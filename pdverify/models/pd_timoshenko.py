@@ -461,12 +461,12 @@ def static_system(scene: Scene, disc: Discrete) -> tuple[Band, np.ndarray, dict]
     return B, rhs, held
 
 
-def static_solution(scene: Scene, disc: Discrete, what: str) -> tuple[np.ndarray, dict]:
-    """Direct banded solve (:func:`static_system`, factorised in place above 20,000 unknowns);
-    prescribed DOFs take their settled values. Raises SolveError when the system is singular to
-    working precision (condition estimate > 1/eps: the paper variant's pure extrapolation at a free rod
-    end, measured 1.6e18)."""
-    B, rhs, held = static_system(scene, disc)
+def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tuple[np.ndarray, dict]:
+    """Direct banded solve of :func:`static_system` (or the given ``system``, which is consumed: factorised
+    in place above 20,000 unknowns); prescribed DOFs take their settled values. Raises SolveError when
+    the system is singular to working precision (condition estimate > 1/eps: the paper variant's pure
+    extrapolation at a free rod end, measured 1.6e18)."""
+    B, rhs, held = static_system(scene, disc) if system is None else system
     u, info = solve_linear(B, rhs, what=what)
     cond = info.get("cond", 0.0)
     if np.isfinite(cond) and cond * np.finfo(float).eps > 1.0:
@@ -864,8 +864,10 @@ class _MoyerModel(Model):
                                  "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label]})
             writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
         else:
+            with timer("assemble"):  # the band of K and the supports
+                system = static_system(scene, disc)
             with timer("solve"):
-                u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})")
+                u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
             info.update(sinfo, analysis="static")
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m)
             if flags:
