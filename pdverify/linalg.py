@@ -79,14 +79,39 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
         return x
 
     def cond() -> float:
-        """1-norm condition estimate from the factors (LAPACK gbcon: Hager–Higham, a few band solves),
-        rounded to 6 digits: gbcon's sums (OpenBLAS dasum/ddot) depend in the last bit on where its
-        work arrays happen to be aligned, and an estimate has no use for 17 digits."""
-        rcond, inf = lapack.dgbcon(lower, upper, lu, piv, anorm)
-        return float(f"{1.0 / rcond:.6g}") if inf == 0 and rcond > 0 else float("inf")
+        """1-norm condition estimate ||A||_1 * est ||A^-1||_1 from the factors, rounded to 6 digits (an
+        estimate has no use for 17, and sums differ in the last bit with the arrays' alignment).
+        ||A^-1||_1 by Hager's method with Higham's extra test vector (the algorithm of LAPACK's dlacn2):
+        a few band solves, linear in n. (LAPACK's dgbcon does the same but measured O(n^2) here:
+        0.1 s at 20,000 unknowns, 0.39 s at 40,000; scipy's onenormest took a third of a small case.)"""
+        inv = hager_inverse_norm(solve, lambda y: solve(y, 1), n)
+        return float(f"{anorm * inv:.6g}") if np.isfinite(inv) else float("inf")
 
     solve.cond = cond
     return solve, (lambda y: solve(y, 1))
+
+
+def hager_inverse_norm(solve, solve_t, n: int, iterations: int = 5) -> float:
+    """Lower-bound estimate of ||A^-1||_1 from solves with A and A^T (Hager 1984, Higham 1988: LAPACK's
+    dlacn2 with t = 1): usually exact or within a factor of 3, deterministic (no random start)."""
+    x = np.full(n, 1.0 / n)
+    est, j_old = 0.0, -1
+    for k in range(iterations):
+        y = solve(x)
+        est_new = float(np.abs(y).sum())
+        if k > 0 and est_new <= est:
+            break
+        est = est_new
+        z = solve_t(np.where(y >= 0, 1.0, -1.0))
+        j = int(np.argmax(np.abs(z)))
+        if k > 0 and (j == j_old or abs(z[j]) <= z @ x):
+            break
+        x = np.zeros(n)
+        x[j] = 1.0
+        j_old = j
+    alt = (-1.0) ** np.arange(n) * (1.0 + np.arange(n) / max(n - 1, 1))  # Higham's safeguard vector
+    est = max(est, 2.0 * float(np.abs(solve(alt)).sum()) / (3.0 * n))
+    return est
 
 
 def scale_symmetric(K: sp.csr_matrix, s: np.ndarray) -> sp.csr_matrix:
