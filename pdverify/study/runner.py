@@ -18,6 +18,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+try:  # imported with the runner (its one-time cost belongs to start-up, not to the first study's tables)
+    import pyarrow.parquet  # noqa: F401
+except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written
+    pass
+
 from .. import __version__
 from ..errors import PdverifyError
 from ..result import columns_csv
@@ -88,18 +93,19 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
         row["horizon"] = result.info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
         row["cond"] = result.info.get("cond")
         row["status"], row["message"] = "ok", ""
-        curve = {"x": encode_array(x), "w": encode_array(result.w), "w_ref": encode_array(w_ref)}
+        # arrays stay arrays here (compact to pickle from a worker); write_record encodes them exactly
+        curve = {"x": np.asarray(x, "<f8"), "w": np.asarray(result.w, "<f8"), "w_ref": np.asarray(w_ref, "<f8")}
         if result.rotation is not None:
-            curve["rotation"] = encode_array(result.rotation)
-        pf = {k: encode_array(v) for k, v in result.fields.items() if np.shape(v) == np.shape(x)}
+            curve["rotation"] = np.asarray(result.rotation, "<f8")
+        pf = {k: np.asarray(v, "<f8") for k, v in result.fields.items() if np.shape(v) == np.shape(x)}
         if pf:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
             curve["fields"] = pf
         if "load_steps" in result.info:  # deformed shapes of a nonlinear path, for the report
             curve["load_steps"] = result.info["load_steps"]
         hist = result.info.get("history")
         if isinstance(hist, dict) and "t" in hist:  # time histories of a dynamic run: {"t": [...], "series": {label: [...]}}
-            curve["history"] = {"t": encode_array(hist["t"]),
-                                "series": {k: encode_array(v) for k, v in hist.get("series", {}).items()},
+            curve["history"] = {"t": np.asarray(hist["t"], "<f8"),
+                                "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
                                 "ylabel": hist.get("ylabel", "displacement")}
             if artefacts:  # the same histories as CSV, one column per series, for other tools
                 hdir = Path(artefacts).parent / "histories"
@@ -174,6 +180,23 @@ def write_atomic(path: Path, text: str) -> None:
     os.replace(tmp, path)
 
 
+def _json_default(v):
+    """Arrays as :func:`encode_array` (exact float64 in base64), numpy scalars as numbers, the rest as text."""
+    if isinstance(v, np.ndarray):
+        return encode_array(v)
+    if isinstance(v, np.integer):
+        return int(v)
+    if isinstance(v, np.floating):
+        return float(v)
+    return str(v)
+
+
+def write_record(path: Path, rec: dict) -> None:
+    """A case record as compact JSON, written atomically (:func:`write_atomic`); its curve arrays encoded
+    here (in the writer thread, not on the solver's path)."""
+    write_atomic(path, json.dumps(rec, default=_json_default, separators=(",", ":")))
+
+
 def read_case(path: Path) -> dict | None:
     """A finished case, or None when the file is missing, partial or corrupt (then it is recomputed)."""
     try:
@@ -237,8 +260,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         if rec["row"].get("code") != client_code:
             mismatched.append(cid)
         rec["row"]["case_id"] = cid
-        text = json.dumps(rec, default=str, separators=(",", ":"))
-        pending.append(writer.submit(write_atomic, cases_dir / f"{cid}.json", text))
+        pending.append(writer.submit(write_record, cases_dir / f"{cid}.json", rec))
         while len(pending) > WRITE_QUEUE or (pending and pending[0].done()):
             pending.pop(0).result()  # re-raises a failed write (disk full, permissions)
         done[cid] = rec
