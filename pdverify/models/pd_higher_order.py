@@ -385,7 +385,7 @@ class PDHigherOrder(Model):
         Option("points", int, 201, "material points along the beam, ends included (paper: 1001 for dx = 1 mm)", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
         Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
-        Option("ends", str, "auto", "auto (mirror for paper, taylor for corrected) | mirror (Appendix B fictitious "
+        Option("ends", str, "auto", "auto (mirror for paper, truncated for corrected) | mirror (Appendix B fictitious "
                "layers) | truncated (no ghosts, per-point calibration) | taylor (ghosts extrapolated by a polynomial "
                "of the real points, energy of the real points only)", choices=("auto", "mirror", "truncated", "taylor")),
         Option("ghost_degree", int, 3, "degree of the ghost extrapolation (ends = taylor)", minimum=1, maximum=6),
