@@ -61,27 +61,31 @@ class Band:
                 self.diag(o)[lo - k0: hi - k0] += c
         return self
 
-    def add_block_stencil(self, ndof: int, blocks: dict[int, np.ndarray], points: tuple[int, int] | None = None) -> "Band":
-        """Interleaved unknowns (``ndof`` per point, point-major): for every point p in ``points`` =
-        (first, stop), row ndof p + a gets ``blocks[o][a, b]`` at column ndof (p + o) + b. A block entry may be
-        a scalar or an array over the points of ``points`` (position-dependent coefficients). Entries
-        outside the matrix are dropped."""
+    def block_stretches(self, ndof: int, blocks: dict, points: tuple[int, int] | None = None):
+        """(offset, slice of :meth:`diag`, value, (lo, hi)) of every nonzero block entry of
+        :meth:`add_block_stencil` (the stretch of the diagonal it writes; ``lo .. hi - 1`` the points)."""
         npts = self.n // ndof
         p0, p1 = (0, npts) if points is None else points
         for o, C in blocks.items():
+            lo, hi = max(p0, -o, 0), min(p1, npts - o, npts)  # points whose partner p + o exists
+            if hi <= lo:
+                continue
             for a in range(ndof):
                 for b in range(ndof):
                     c = C[a][b]
                     if np.isscalar(c) and c == 0.0:
                         continue
                     off = ndof * o + b - a
-                    lo, hi = max(p0, -o, 0), min(p1, npts - o, npts)  # points whose partner p + o exists
-                    if hi <= lo:
-                        continue
-                    k0 = max(0, -off)
-                    d = self.diag(off)
-                    sl = slice(ndof * lo + a - k0, ndof * (hi - 1) + a - k0 + 1, ndof)
-                    d[sl] += c if np.isscalar(c) else np.asarray(c, float)[lo - p0: hi - p0]
+                    k0 = max(0, -off)  # element k of the diagonal is row k + k0
+                    yield off, slice(ndof * lo + a - k0, ndof * (hi - 1) + a - k0 + 1, ndof), c, (lo - p0, hi - p0)
+
+    def add_block_stencil(self, ndof: int, blocks: dict[int, np.ndarray], points: tuple[int, int] | None = None) -> "Band":
+        """Interleaved unknowns (``ndof`` per point, point-major): for every point p in ``points`` =
+        (first, stop), row ndof p + a gets ``blocks[o][a, b]`` at column ndof (p + o) + b. A block entry may be
+        a scalar or an array over the points of ``points`` (position-dependent coefficients). Entries
+        outside the matrix are dropped."""
+        for off, sl, c, (i0, i1) in self.block_stretches(ndof, blocks, points):
+            self.diag(off)[sl] += c if np.isscalar(c) else np.asarray(c, float)[i0:i1]
         return self
 
     def add_entries(self, rows, cols, vals) -> "Band":

@@ -239,18 +239,8 @@ class _Extent:
     def block(self, ndof: int, o: int, C, p0: int, p1: int):
         """``B.add_block_stencil(ndof, {o: C}, points=(p0, p1))`` and the stretches it wrote."""
         self.B.add_block_stencil(ndof, {o: C}, points=(p0, p1))
-        npts = self.B.n // ndof
-        lo, hi = max(p0, -o, 0), min(p1, npts - o, npts)  # as add_block_stencil: points whose partner exists
-        if hi <= lo:
-            return
-        for a in range(ndof):
-            for b in range(ndof):
-                c = C[a][b]
-                if np.isscalar(c) and c == 0.0:
-                    continue
-                off = ndof * o + b - a
-                k0 = max(0, -off)
-                self._mark(off, ndof * lo + a - k0, ndof * (hi - 1) + a - k0 + 1)
+        for off, sl, _, _ in self.B.block_stretches(ndof, {o: C}, (p0, p1)):
+            self._mark(off, sl.start, sl.stop)
 
     def entries(self, rows: np.ndarray, cols: np.ndarray):
         """The stretches of entries written by ``B.add_entries(rows, cols, ...)``."""
