@@ -18,6 +18,29 @@ import numpy as np
 import scipy.sparse as sp
 
 
+def canonical_csr(K: sp.spmatrix) -> sp.csr_matrix:
+    """CSR with sorted, summed indices (no duplicates): entries can then be placed by assignment."""
+    K = sp.csr_matrix(K)
+    if not K.has_canonical_format:
+        K = K.copy()
+        K.sum_duplicates()
+    return K
+
+
+def csr_rows(K: sp.csr_matrix) -> np.ndarray:
+    """Row index of every stored entry of a CSR matrix (the COO row array, without converting)."""
+    return np.repeat(np.arange(K.shape[0], dtype=np.int64), np.diff(K.indptr))
+
+
+def bandwidths(K: sp.spmatrix) -> tuple[int, int]:
+    """(lower, upper) bandwidth of a sparse matrix."""
+    K = sp.csr_matrix(K)
+    if K.nnz == 0:
+        return 0, 0
+    d = K.indices.astype(np.int64) - csr_rows(K)
+    return int(max(0, -d.min())), int(max(0, d.max()))
+
+
 class Band:
     """A square n x n matrix with ``lower`` sub- and ``upper`` super-diagonals (see the module docstring)."""
 
@@ -42,9 +65,6 @@ class Band:
         if not -self.lower <= offset <= self.upper:
             raise ValueError(f"offset {offset} outside the band (-{self.lower}, {self.upper})")
         return self.data[self.upper - offset, max(0, offset): self.n + min(0, offset)]
-
-    def diagonal(self) -> np.ndarray:
-        return self.diag(0).copy()
 
     # -- assembly -----------------------------------------------------------------------------
     def add_stencil(self, offsets, coefs, rows: tuple[int, int] | None = None) -> "Band":
@@ -99,10 +119,6 @@ class Band:
         np.add.at(self.data, (self.upper - off, cols), vals)
         return self
 
-    def add_sparse(self, M: sp.spmatrix) -> "Band":
-        C = sp.coo_matrix(M)
-        return self.add_entries(C.row, C.col, C.data)
-
     def clear_rows(self, rows) -> "Band":
         """Zero every entry of the given rows."""
         rows = np.asarray(rows, np.int64).ravel()
@@ -113,10 +129,12 @@ class Band:
             self.data[(self.upper - np.broadcast_to(off, cols.shape))[ok], cols[ok]] = 0.0
         return self
 
-    def fix(self, dofs) -> "Band":
+    def fix(self, dofs, rhs: np.ndarray | None = None) -> "Band":
         """Unknowns held at zero: their rows and columns cleared and a unit diagonal (elimination that
-        keeps the numbering; the right-hand side must be zero there)."""
+        keeps the numbering); ``rhs``, the right-hand side, is set to zero there in place."""
         dofs = np.asarray(dofs, np.int64).ravel()
+        if rhs is not None:
+            rhs[dofs] = 0.0
         self.clear_rows(dofs)
         self.data[:, dofs] = 0.0  # a column of A is a column of data
         self.data[self.upper, dofs] = 1.0
@@ -135,22 +153,18 @@ class Band:
     @classmethod
     def from_sparse(cls, K: sp.spmatrix, lower: int | None = None, upper: int | None = None) -> "Band":
         """Scatter a sparse matrix into a band (blocks of rows: bounded temporaries)."""
-        K = sp.csr_matrix(K)
-        if not K.has_canonical_format:
-            K = K.copy()
-            K.sum_duplicates()
+        K = canonical_csr(K)
         n = K.shape[0]
-        rows_of = lambda a, b: np.repeat(np.arange(a, b, dtype=np.int64), np.diff(K.indptr[a:b + 1]))  # noqa: E731
         if lower is None or upper is None:
-            d = K.indices.astype(np.int64) - rows_of(0, n) if K.nnz else np.zeros(1, np.int64)
-            lower, upper = int(max(0, -d.min())), int(max(0, d.max()))
+            lower, upper = bandwidths(K)
         B = cls(n, lower, upper)
-        step = max(1, (1 << 20) // max(1, K.nnz // max(n, 1)))
-        for r0 in range(0, n, step):
+        step = max(1, (1 << 20) // max(1, K.nnz // max(n, 1)))  # ~1e6 entries per block: bounded temporaries
+        for r0 in range(0, n, step):  # blocks of rows, not points: ~nnz / 1e6 iterations
             r1 = min(n, r0 + step)
             a, b = K.indptr[r0], K.indptr[r1]
+            rows = np.repeat(np.arange(r0, r1, dtype=np.int64), np.diff(K.indptr[r0:r1 + 1]))
             cols = K.indices[a:b]
-            B.data[B.upper + rows_of(r0, r1) - cols, cols] = K.data[a:b]
+            B.data[B.upper + rows - cols, cols] = K.data[a:b]
         return B
 
     def matvec(self, x: np.ndarray) -> np.ndarray:

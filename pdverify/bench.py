@@ -52,6 +52,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
     import scipy.linalg as sla
 
     from .band import Band
+    from .linalg import diagonal_scaling
     from .registry import get_model, run
     from .scene import load_scene
 
@@ -88,8 +89,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
         K, b = m.limit_system(scene, params) if hasattr(m, "limit_system") else _unpack(m.assemble(scene, params))
         B = K if isinstance(K, Band) else Band.from_sparse(K)
         # the same symmetric diagonal scaling solve_linear applies (else LAPACK may call it singular)
-        d = np.abs(B.diag(0))
-        s = np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
+        s = diagonal_scaling(B.diag(0))
         B.scale(s)
         lo, up = B.lower, B.upper
         ab = B.data  # solve_banded's own (lower + upper + 1, n) layout

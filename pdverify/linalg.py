@@ -12,63 +12,30 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .band import Band
+from .band import Band, bandwidths, canonical_csr, csr_rows
 from .errors import SolveError
 
 
-def _canonical(K: sp.spmatrix) -> sp.csr_matrix:
-    """CSR with sorted, summed indices (no duplicates): entries can then be placed by assignment."""
-    K = sp.csr_matrix(K)
-    if not K.has_canonical_format:
-        K = K.copy()
-        K.sum_duplicates()
-    return K
-
-
-def csr_rows(K: sp.csr_matrix) -> np.ndarray:
-    """Row index of every stored entry of a CSR matrix (the COO row array, without converting)."""
-    return np.repeat(np.arange(K.shape[0], dtype=np.int64), np.diff(K.indptr))
-
-
-def bandwidths(K: sp.spmatrix) -> tuple[int, int]:
-    """(lower, upper) bandwidth of a sparse matrix."""
-    K = sp.csr_matrix(K)
-    if K.nnz == 0:
-        return 0, 0
-    d = K.indices.astype(np.int64) - csr_rows(K)
-    return int(max(0, -d.min())), int(max(0, d.max()))
-
-
-def to_banded(K: sp.spmatrix, lower: int, upper: int) -> np.ndarray:
-    """LAPACK banded storage ``ab[upper + i - j, j] = K[i, j]`` (for ``scipy.linalg.solve_banded``)."""
-    K = _canonical(K)
-    ab = np.zeros((lower + upper + 1, K.shape[1]))
-    cols = K.indices
-    ab[upper + csr_rows(K) - cols, cols] = K.data
-    return ab
+def diagonal_scaling(d: np.ndarray) -> np.ndarray:
+    """s = 1 / sqrt|d| (1 where d = 0) of the symmetric equilibration diag(s) K diag(s) every banded solve
+    applies: mixed DOFs (deflection, rotation) differ by powers of the element length."""
+    d = np.abs(d)
+    return np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
 
 
 def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
-    """LU (LAPACK gbtrf) of diag(s) K diag(s), written straight into the Fortran band array gbtrf works
-    in (no intermediate copies: at 10^6 unknowns each copy of the band costs as much as the solve).
+    """LU (LAPACK gbtrf) of diag(s) K diag(s): K scattered into a :class:`~pdverify.band.Band`, scaled
+    there and copied once into the Fortran array gbtrf factorises in place.
     Returns (solve, solve_transposed); raises numpy.linalg.LinAlgError when a pivot is exactly zero."""
     from scipy.linalg import lapack
 
-    K = _canonical(K)
-    n = K.shape[0]
-    ab = np.zeros((2 * lower + upper + 1, n), order="F")
-    step = max(1, (1 << 20) // max(1, K.nnz // max(n, 1)))  # ~1e6 entries per block: bounded temporaries
-    for r0 in range(0, n, step):  # blocks of rows, not points: ~nnz / 1e6 iterations
-        r1 = min(n, r0 + step)
-        a, b = K.indptr[r0], K.indptr[r1]
-        rows = np.repeat(np.arange(r0, r1), np.diff(K.indptr[r0:r1 + 1]))
-        cols = K.indices[a:b]
-        ab[lower + upper + rows - cols, cols] = K.data[a:b] * (s[rows] * s[cols])
+    B = Band.from_sparse(K, lower, upper).scale(s)
+    n = B.n
     colsum = np.zeros(n)  # ||diag(s) K diag(s)||_1 before the factors overwrite it; row by row (elementwise adds:
-    for r in range(lower, 2 * lower + upper + 1):  # the same bits whatever the array's alignment)
-        colsum += np.abs(ab[r])
+    for row in B.data:  # the same bits whatever the array's alignment)
+        colsum += np.abs(row)
     anorm = float(colsum.max())
-    lu, piv, info = lapack.dgbtrf(ab, lower, upper, overwrite_ab=1)
+    lu, piv, info = lapack.dgbtrf(B.lapack(), lower, upper, overwrite_ab=1)
     if info > 0:
         raise np.linalg.LinAlgError(f"zero pivot at unknown {info - 1}")
 
@@ -116,7 +83,7 @@ def hager_inverse_norm(solve, solve_t, n: int, iterations: int = 5) -> float:
 
 def scale_symmetric(K: sp.csr_matrix, s: np.ndarray) -> sp.csr_matrix:
     """diag(s) K diag(s) entry by entry (no sparse products)."""
-    K = _canonical(K)
+    K = canonical_csr(K)
     return sp.csr_matrix((K.data * (s[csr_rows(K)] * s[K.indices]), K.indices, K.indptr), shape=K.shape)
 
 
@@ -178,8 +145,7 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system") -> tuple[np.ndarray
     b = np.asarray(b, dtype=float)
     if not np.all(np.isfinite(b)):
         raise SolveError(f"{what}: the load vector holds NaN/inf; check the scene's numbers")
-    d = np.abs(B.diag(0))
-    s = np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
+    s = diagonal_scaling(B.diag(0))
     B.scale(s)
     lo, up = B.lower, B.upper
     info: dict = {"dofs": B.n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal",
@@ -216,15 +182,14 @@ def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", con
                 and K.upper <= banded_max:
             return solve_band(K, b, what)
         K = K.tocsr()
-    K = _canonical(K)
+    K = canonical_csr(K)
     b = np.asarray(b, dtype=float)
     if not np.all(np.isfinite(K.data)) or not np.all(np.isfinite(b)):
         raise SolveError(f"{what}: the assembled matrix or load vector holds NaN/inf; check the scene's numbers")
     n = K.shape[0]
-    # symmetric diagonal equilibration S K S (S u') = S b: mixed DOFs (deflection, rotation) differ by
-    # powers of the element length; scaling removes that part of the condition number
-    d = np.abs(K.diagonal())
-    s = np.where(d > 0, 1.0 / np.sqrt(np.where(d > 0, d, 1.0)), 1.0)
+    # symmetric diagonal equilibration S K S (S u') = S b: removes the powers of the element length
+    # between mixed DOFs from the condition number
+    s = diagonal_scaling(K.diagonal())
     lo, up = bandwidths(K)
     info: dict = {"dofs": n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal"}
     bs = s * b

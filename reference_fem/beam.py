@@ -137,8 +137,7 @@ def reduce_supports(scene: Scene, K, F, n_nodes: int):
 def hold_supports(scene: Scene, K: Band, F: np.ndarray, n_nodes: int) -> tuple[Band, np.ndarray, int]:
     """The supported DOFs held at zero in place (unit rows, cleared columns): (K, F, free DOF count)."""
     fixed = constrained_dofs(scene, n_nodes)
-    K.fix(fixed)
-    F[fixed] = 0.0
+    K.fix(fixed, F)
     return K, F, 2 * n_nodes - len(fixed)
 
 
@@ -148,9 +147,9 @@ class _BeamFE(Model):
     def assemble_band(self, scene: Scene, params: dict):  # pragma: no cover - interface
         raise NotImplementedError
 
-    def assemble(self, scene: Scene, params: dict):
+    def assemble(self, scene: Scene, params: dict, **options):
         """(K_ff, F_f, free, nodes): the sparse system after eliminating the supported DOFs."""
-        K, F, nodes = self.assemble_band(scene, params)
+        K, F, nodes = self.assemble_band(scene, params, **options)
         return (*reduce_supports(scene, K.tocsr(), F, len(nodes)), nodes)
 
     def limit_system(self, scene: Scene, params: dict):
@@ -183,11 +182,6 @@ class FemEulerBernoulli(_BeamFE):
 
     SKFEM_MAX_NODES = 20_001  # ElementLineHermite inverts a global-coordinate Vandermonde per element:
     # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there
-
-    def assemble(self, scene: Scene, params: dict, use_skfem: bool | None = None):
-        """(K_ff, F_f, free, nodes): the sparse system after eliminating the supported DOFs."""
-        K, F, nodes = self.assemble_band(scene, params, use_skfem)
-        return (*reduce_supports(scene, K.tocsr(), F, len(nodes)), nodes)
 
     def assemble_band(self, scene: Scene, params: dict, use_skfem: bool | None = None):
         """(K, F, nodes) before the supports, K a :class:`Band`."""

@@ -35,10 +35,11 @@ def test_singular_is_one_clear_error():
 
 def test_banded_lu_of_the_scaled_matrix_solves_both_directions():
     """banded_lu writes diag(s) K diag(s) straight into LAPACK's band array: its solves (plain and
-    transposed) must equal dense solves of the scaled matrix, and the band storage helper must hold K."""
+    transposed) must equal dense solves of the scaled matrix, and the band storage must hold K."""
     import scipy.sparse as sp
 
-    from pdverify.linalg import banded_lu, bandwidths, scale_symmetric, to_banded
+    from pdverify.band import Band
+    from pdverify.linalg import banded_lu, bandwidths, scale_symmetric
 
     rng = np.random.default_rng(3)
     n = 40
@@ -51,4 +52,4 @@ def test_banded_lu_of_the_scaled_matrix_solves_both_directions():
     y = rng.normal(size=n)
     assert np.allclose(solve(y), np.linalg.solve(Ks, y), rtol=1e-12, atol=0)
     assert np.allclose(solve_t(y), np.linalg.solve(Ks.T, y), rtol=1e-12, atol=0)
-    assert np.array_equal(to_banded(K, lo, up)[up], K.diagonal())
+    assert np.array_equal(Band.from_sparse(K, lo, up).diag(0), K.diagonal())

@@ -115,14 +115,13 @@ class PDBondPair(Model):
         """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
         if params["ends"] == "mirror":
             return self.assemble(scene, params)[:2]
-        K, b, fixed, _ = self.assemble_taylor(scene, params)
-        b[fixed] = 0.0
-        return K.fix(fixed), b
+        K, b, *_ = self.assemble_taylor(scene, params)
+        return K, b
 
     def assemble_taylor(self, scene: Scene, params: dict):
         """(K, b, fixed, info): the strong-form operator on all real points as a
-        :class:`~pdverify.band.Band` (Toeplitz by diagonals + the ghost entries), ``fixed`` the supported
-        points (w = 0)."""
+        :class:`~pdverify.band.Band` (Toeplitz by diagonals + the ghost entries), the supported points
+        ``fixed`` held at w = 0 (unit rows, ``Band.fix``)."""
         n = params["points"]
         x = np.linspace(0.0, scene.length, n)
         dx = x[1] - x[0]
@@ -160,6 +159,7 @@ class PDBondPair(Model):
         K, r = ghost_stencil_system(*operator_stencil(j, c), G, n, cat(er, int), cat(ec, int), cat(ev, float), e0)
         b = body_loads(scene, x, skip_ends=skip) - r
         fixed = fixed_points(scene, n)
+        K.fix(fixed, b)
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
         return K, b, fixed, info
 
@@ -212,8 +212,6 @@ class PDBondPair(Model):
         else:
             with timer("assemble"):
                 K, b, fixed, binfo = self.assemble_taylor(scene, params)
-                K.fix(fixed)
-                b[fixed] = 0.0
                 free = np.delete(np.arange(len(x)), fixed)
             with timer("solve"):
                 w, info = solve_linear(K, b, what=what)

@@ -111,15 +111,11 @@ def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals,
     vv = np.broadcast_to(coefs[None, :], cols.shape)[ghost]
     r = np.zeros(n)
     np.add.at(r, rr, vv * np.asarray(e0, float)[cc])
-    # ghost column g -> real columns through E's ghost rows: pairs (entry, E row) with the same ghost
-    order = np.argsort(g_rows, kind="stable")
-    gr = np.asarray(g_rows, np.int64)[order]
-    lo, hi = np.searchsorted(gr, cc, "left"), np.searchsorted(gr, cc, "right")
-    cnt = hi - lo
-    ent = np.repeat(np.arange(len(cc)), cnt)
-    k = order[np.repeat(lo, cnt) + (np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt))] if len(ent) else \
-        np.zeros(0, np.int64)
-    rows, cols_r, vals = rr[ent], np.asarray(g_cols, np.int64)[k], vv[ent] * np.asarray(g_vals, float)[k]
+    # the ghost columns through E's ghost rows onto the real columns: a product of two small matrices
+    N = n + 2 * G
+    Cg = sp.csr_matrix((vv, (np.searchsorted(band, rr), cc)), shape=(len(band), N))
+    P = (Cg @ sp.csr_matrix((g_vals, (g_rows, g_cols)), shape=(N, n))).tocoo()
+    rows, cols_r, vals = band[P.row], P.col.astype(np.int64), P.data
     reach = int(max(np.abs(offsets).max(), np.abs(cols_r - rows).max() if len(rows) else 0))
     K = Band(n, reach, reach).add_stencil(offsets, coefs)
     K.add_entries(rows, cols_r, vals)
@@ -129,14 +125,6 @@ def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals,
 def fixed_points(scene: Scene, n: int) -> list[int]:
     """End points held at w = 0 (clamped and pinned supports) of a grid of n points."""
     return [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in ("clamped", "pinned")]
-
-
-def permuted(M: sp.spmatrix, perm: np.ndarray) -> sp.csr_matrix:
-    """M[perm][:, perm] in one pass (relabel the triplets; no fancy indexing of a big CSR matrix)."""
-    inv = np.empty_like(perm)
-    inv[perm] = np.arange(len(perm))
-    C = M.tocoo()
-    return sp.csr_matrix((C.data, (inv[C.row], inv[C.col])), shape=M.shape)
 
 
 # -- loads -----------------------------------------------------------------------------------
@@ -319,7 +307,7 @@ class PDEulerBernoulli(Model):
 
     def assemble_full(self, scene: Scene, params: dict):
         """(K, b, fixed, info): K w = b on all real points (per unit volume), K a
-        :class:`~pdverify.band.Band`; ``fixed`` point indices w = 0."""
+        :class:`~pdverify.band.Band`; the points ``fixed`` are held at w = 0 (unit rows, ``Band.fix``)."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         m, variant = params["horizon"], params["variant"]
@@ -331,9 +319,10 @@ class PDEulerBernoulli(Model):
         a = scene.EI / scene.section.A
         A = scene.section.A
         left, right = scene.supports.left, scene.supports.right
-        if variant == "paper":
-            return self._assemble_paper(scene, x, c, a, A, left, right)
-        return self._assemble_corrected(scene, x, c, a, A, left, right)
+        assemble = self._assemble_paper if variant == "paper" else self._assemble_corrected
+        K, b, fixed, info = assemble(scene, x, c, a, A, left, right)
+        K.fix(fixed, b)  # master–slave elimination of the supported points (Eq. 39–42): w = 0 there
+        return K, b, fixed, info
 
     # paper: energy form with mirror ghosts and Appendix free ends -------------------------
     def _assemble_paper(self, scene, x, c, a, A, left, right):
@@ -402,8 +391,8 @@ class PDEulerBernoulli(Model):
         if self.form(params) == "mixed":
             M, rhs, *_ = self.assemble_mixed(scene, params)
             return M, rhs
-        K, b, fixed, _ = self.assemble_full(scene, params)
-        return K.fix(fixed), np.where(np.isin(np.arange(len(b)), fixed), 0.0, b)
+        K, b, *_ = self.assemble_full(scene, params)
+        return K, b
 
     def ghosts(self, scene: Scene, n: int, dx: float, G: int):
         """Taylor ghost points of both ends (design note §1): w_ghost = Gm w_real + g0.
@@ -477,8 +466,7 @@ class PDEulerBernoulli(Model):
         fixed = fixed_points(scene, n)
         free = np.delete(np.arange(n), fixed)
         held = np.r_[2 * np.arange(J) + 1, 2 * (n + J + np.arange(J)) + 1, 2 * (np.asarray(fixed, np.int64) + J) + 1]
-        M.fix(held)
-        rhs[held] = 0.0
+        M.fix(held, rhs)
         return M, rhs, J, free, {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
                                  "boundary": "Taylor ghost points (degree 4, 4 real points)"}
 
@@ -502,8 +490,6 @@ class PDEulerBernoulli(Model):
         else:
             with timer("assemble"):
                 K, b, fixed, binfo = self.assemble_full(scene, params)
-                K.fix(fixed)  # master–slave elimination of the supported points (Eq. 39–42): w = 0 there
-                b[fixed] = 0.0
             with timer("solve"):
                 w, info = solve_linear(K, b, what=f"pd-eb ({params['variant']})")
                 ndofs = params["points"] - len(fixed)

@@ -507,13 +507,12 @@ class PDHigherOrder(Model):
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
         drop, tie = end_conditions(n, left, right, variant, pin, h)
-        B.fix(drop)
         F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
         b = F.copy()
         if symmetric:  # T^T F: the slave's load acts on its master (the paper variant has no ties)
             for slave, master, c in tie:
                 b[master] += c * F[slave]
-        b[drop] = 0.0
+        B.fix(drop, b)
         wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family")
         info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
         info.update(pin=pin, loads=self.choice(params, "loads"))

@@ -456,8 +456,7 @@ def static_system(scene: Scene, disc: Discrete) -> tuple[Band, np.ndarray, dict]
         touched = np.flatnonzero(acc)
         rhs[touched] = disc.b[touched] - acc[touched]
     pres = np.array(sorted(disc.prescribed), dtype=np.int64)
-    B.fix(pres)
-    rhs[pres] = 0.0
+    B.fix(pres, rhs)
     return B, rhs, held
 
 
