@@ -438,12 +438,8 @@ def trust_table(df: pd.DataFrame, tol: float = TRUST_TOLERANCE) -> pd.DataFrame:
     slen = d["slenderness"].fillna(-1.0).to_numpy(float)
     points = d["points"].to_numpy()
     scene = d["scene"].to_numpy()
-    groups: dict = {}
-    for i, key in enumerate(zip(d["model"], d["options"].fillna(""))):
-        groups.setdefault(key, []).append(i)
     rows = []
-    for (model, options) in sorted(groups):
-        idx = groups[(model, options)]
+    for (model, options), idx in _group_rows(d.assign(options=d["options"].fillna("")), ["model", "options"]):
         # per slenderness: some grid at which every case is good
         by_sn: dict = {}
         for i in idx:
