@@ -305,9 +305,8 @@ class EndPatched:
 
     # -- conversions ---------------------------------------------------------------------------
     def band(self) -> Band:
-        """The (square) operator as a :class:`~pdverify.band.Band`: each diagonal of the interior
-        written with one broadcast assignment (its entries alternate with the row's unknown), then the
-        explicit end rows added."""
+        """The (square) operator as a :class:`~pdverify.band.Band`: the interior rows by
+        ``Band.add_block_stencil``, then the explicit end rows added."""
         if self.nr != self.nf:
             raise ValueError("band(): the operator is not square per point")
         nf, n = self.nf, self.n
@@ -315,21 +314,7 @@ class EndPatched:
         if len(self.rows):
             offs += (self.cols - self.rows).tolist()
         B = Band(nf * n, max(0, -min(offs)), max(0, max(offs)))
-        r0, r1 = nf * self.L, nf * (n - self.R)  # interior rows
-        if r1 > r0:
-            for k in range(-B.lower, B.upper + 1):
-                vals = np.zeros(nf)  # value on row nf p + a of diagonal k
-                for a in range(nf):
-                    o, b = divmod(a + k, nf)
-                    C = self.blocks.get(o)
-                    vals[a] = 0.0 if C is None else C[a, b]
-                d = B.diag(k)
-                k0 = max(0, -k)  # element i of d is row i + k0
-                if vals.all():  # every interior row has this diagonal: one contiguous broadcast
-                    d[r0 - k0: r1 - k0].reshape(-1, nf)[:] = vals
-                    continue
-                for a in np.flatnonzero(vals):  # rows of one unknown only (their columns exist)
-                    d[r0 + a - k0: r1 + a - k0 - nf + 1: nf] = vals[a]
+        B.add_block_stencil(nf, self.blocks, points=(self.L, n - self.R))
         if len(self.rows):
             B.add_entries(self.rows, self.cols, self.vals)
         return B
