@@ -128,19 +128,23 @@ def test_resume_after_sigkill(tmp_path):
     cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
     deadline = time.time() + 60
-    while time.time() < deadline and len(list((out / "cases").glob("*.json"))) < 5:
+    while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
         time.sleep(0.05)
     os.killpg(proc.pid, signal.SIGKILL)
     proc.wait()
-    partial = len(list((out / "cases").glob("*.json")))
+    partial = len(list((out / "cases").glob("*.case")))
     assert 5 <= partial < 42, partial
-    # a corrupt file (killed mid-write elsewhere) is detected and recomputed
-    victim = sorted((out / "cases").glob("*.json"))[0]
-    victim.write_text('{"case": {"trunc')
+    # corrupt files are detected and recomputed: one truncated (killed mid-write elsewhere), one with a
+    # single flipped bit inside its curve data (caught by the checksum, not by parsing)
+    truncated, flipped = sorted((out / "cases").glob("*.case"))[:2]
+    truncated.write_bytes(truncated.read_bytes()[:-100])
+    raw = bytearray(flipped.read_bytes())
+    raw[-9] ^= 0x01
+    flipped.write_bytes(bytes(raw))
     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     meta = json.loads((out / "meta.json").read_text())
-    assert meta["resumed_cases"] == partial - 1
+    assert meta["resumed_cases"] == partial - 2
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
     assert np.allclose(_cols(pd.read_csv(out / "results.csv"))[["err_max", "err_l2", "w_at_max"]],
                        _cols(fresh)[["err_max", "err_l2", "w_at_max"]], rtol=1e-12)
@@ -159,13 +163,45 @@ def test_dask_local_cluster_matches_local_run(tmp_path):
     assert np.array_equal(a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy())
 
 
-def test_curve_arrays_round_trip_exactly():
-    from pdverify.study.runner import decode_array, encode_array
+def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
+    """Case files: arrays come back bit for bit (NaN, -0.0, subnormal, huge), nested curves (fields, time
+    histories, load steps) keep their structure, and any damage reads as None (the case is recomputed)."""
+    from pdverify.study.store import decode_record, encode_record, read_case, write_record
 
-    a = np.array([0.1, -1e-300, 1e300, np.pi, -0.0, np.nan])
-    b = decode_array(json.loads(json.dumps(encode_array(a))))
-    assert b.tobytes() == a.tobytes()
-    assert np.array_equal(decode_array([1.0, 2.5]), [1.0, 2.5])  # plain lists still read
+    a = np.array([0.1, -1e-300, 1e300, np.pi, -0.0, np.nan, 5e-324])
+    rec = {"case": {"model": "m", "given": {"points": 7}}, "row": {"status": "ok", "err_max": 0.5, "n": 3},
+           "curve": {"x": a, "w": a[::-1].copy(), "fields": {"M": 2 * a}, "history": {"t": a, "series": {"p": a}},
+                     "load_steps": [{"factor": 0.5, "x": [0.0, 1.0]}], "grid": np.arange(6.0).reshape(2, 3)}}
+    back = decode_record(encode_record(rec))
+    assert back["row"] == rec["row"] and back["case"] == rec["case"]
+    for got, want in ((back["curve"]["x"], a), (back["curve"]["w"], a[::-1]), (back["curve"]["fields"]["M"], 2 * a),
+                      (back["curve"]["history"]["series"]["p"], a), (back["curve"]["grid"], np.arange(6.0).reshape(2, 3))):
+        assert got.tobytes() == np.ascontiguousarray(want).tobytes() and got.shape == want.shape
+    assert back["curve"]["load_steps"] == rec["curve"]["load_steps"]
+    raw = encode_record(rec)
+    for k in range(len(raw)):  # every single-bit flip, anywhere in the file, is caught
+        bad = bytearray(raw)
+        bad[k] ^= 0x10
+        assert decode_record(bytes(bad)) is None, k
+    assert decode_record(raw[:-1]) is None and decode_record(raw + b"x") is None and decode_record(b"") is None
+    p = tmp_path / "c.case"
+    write_record(p, rec)
+    assert read_case(p)["row"] == rec["row"] and read_case(tmp_path / "missing.case") is None
+
+
+def test_first_format_case_files_still_read(tmp_path):
+    """Studies run before the binary records (``<id>.json``, arrays as base64) still build reports."""
+    import base64
+
+    from pdverify.study.store import case_file, read_curve
+
+    a = np.array([0.0, 0.5, 1.0])
+    b64 = {"dtype": "<f8", "shape": [3], "b64": base64.b64encode(a.tobytes()).decode()}
+    (tmp_path / "abc.json").write_text(json.dumps({"case": {}, "row": {"status": "ok"},
+                                                   "curve": {"x": b64, "w": [1.0, 2.5, 3.0], "fields": {"u": b64}}}))
+    c = read_curve(case_file(tmp_path, "abc"))
+    assert np.array_equal(c["x"], a) and np.array_equal(c["w"], [1.0, 2.5, 3.0]) and np.array_equal(c["fields"]["u"], a)
+    assert case_file(tmp_path, "nope") is None
 
 
 def test_case_key_changes_with_the_code(monkeypatch):
@@ -236,8 +272,8 @@ def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monk
 
     real = runner.run_case
 
-    def other_code(case, artefacts=None):
-        rec = real(case, artefacts)
+    def other_code(case, artefacts=None, case_id=None):
+        rec = real(case, artefacts, case_id)
         rec["row"]["case_id"], rec["row"]["code"] = "0" * 16, "f" * 16
         return rec
 

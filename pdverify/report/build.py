@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputError
-from ..study.runner import read_curve
+from ..study.store import case_file, read_curve
 from . import figures
 
 
@@ -127,8 +127,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             # at most one curve per (model, variant): the finest grid
             for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
-                path = d / "cases" / f"{r['case_id']}.json"
-                if not path.exists():
+                path = case_file(d / "cases", r["case_id"])
+                if path is None:
                     continue
                 c = curve_of(path)
                 y = c["w"]
@@ -145,8 +145,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 ref = None
             figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w"))
             for _, r in gs.iterrows():
-                path = d / "cases" / f"{r['case_id']}.json"
-                c = curve_of(path) if path.exists() else {}
+                path = case_file(d / "cases", r["case_id"])
+                c = curve_of(path) if path is not None else {}
                 if c.get("history"):
                     h = c["history"]
                     figs.append(figures.time_history(h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")))

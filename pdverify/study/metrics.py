@@ -22,18 +22,32 @@ def errors(w: np.ndarray, w_ref: np.ndarray) -> dict[str, float]:
     }
 
 
+def log_slope(x, y) -> tuple[float, float]:
+    """Least-squares slope of log(y) vs log(x) and its R^2, over the points with x > 0 and finite y > 0
+    (nan, nan below two points, or when the x values are all equal). Closed form: the same line as
+    ``np.polyfit(log x, log y, 1)``, at a fraction of its cost (a study fits hundreds of series)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    ok = (x > 0) & (y > 0) & np.isfinite(y)
+    lx, ly = np.log(x[ok]), np.log(y[ok])
+    if len(lx) < 2:
+        return float("nan"), float("nan")
+    dx, dy = lx - lx.mean(), ly - ly.mean()
+    sxx = dx @ dx
+    if sxx == 0:
+        return float("nan"), float("nan")
+    p = (dx @ dy) / sxx
+    ss = dy @ dy
+    res = dy - p * dx
+    r2 = 1 - (res @ res) / ss if ss > 0 else float("nan")
+    return float(p), float(r2)
+
+
 def observed_order(spacing, error) -> tuple[float, float]:
     """Least-squares slope of log(error) vs log(spacing) and its R^2 (needs >= 3 grids)."""
     h, e = np.asarray(spacing, float), np.asarray(error, float)
-    ok = (h > 0) & (e > 0) & np.isfinite(e)
-    h, e = np.log(h[ok]), np.log(e[ok])
-    if len(h) < 3:
+    if np.count_nonzero((h > 0) & (e > 0) & np.isfinite(e)) < 3:
         return float("nan"), float("nan")
-    p, c = np.polyfit(h, e, 1)
-    fit = p * h + c
-    ss = np.sum((e - e.mean()) ** 2)
-    r2 = 1 - np.sum((e - fit) ** 2) / ss if ss > 0 else float("nan")
-    return float(p), float(r2)
+    return log_slope(h, e)
 
 
 def gci(spacing, value, safety: float = 1.25) -> dict[str, float]:
@@ -65,8 +79,7 @@ def locking_slope(slenderness, error) -> tuple[float, float]:
     s, e = np.asarray(slenderness, float), np.asarray(error, float)
     o = np.argsort(s)
     s, e = s[o], e[o]
-    ok = (e > 0) & np.isfinite(e)
-    slope = float(np.polyfit(np.log(s[ok]), np.log(e[ok]), 1)[0]) if ok.sum() >= 2 else float("nan")
+    slope = log_slope(s, e)[0]
     over = s[e > 0.01]
     return slope, float(over[0]) if len(over) else float("nan")
 

@@ -4,14 +4,12 @@ resumable, failures recorded; then the derived tables (convergence, locking, spe
 
 from __future__ import annotations
 
-import base64
 import json
 import os
 import platform
 import shutil
-import threading
 import time
-from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor, as_completed
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from functools import lru_cache
 from pathlib import Path
 
@@ -28,9 +26,8 @@ from ..errors import PdverifyError
 from ..result import columns_csv
 from .metrics import errors, gci, locking_slope, observed_order, pareto
 from .spec import Case, Study, code_digest
+from .store import LEGACY_SUFFIX, SUFFIX, case_file, read_case, read_curve, write_atomic, write_record  # noqa: F401 (re-exported)
 
-ROW_KEYS = ("case", "row", "curve")
-WRITE_QUEUE = 8  # case records that may wait for the background writer
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
 
@@ -53,18 +50,37 @@ def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tupl
     return CubicSpline(solved.x, solved.w)
 
 
+REFERENCE_CACHE_POINTS = 20_000  # grids up to this size keep their reference values (64 grids: <= 10 MB)
+
+
+@lru_cache(maxsize=64)
+def _reference_values(scene_text: str, scene_file: str, slenderness, ref_items: tuple, x_bytes: bytes) -> np.ndarray:
+    """The reference at one grid, kept: a sweep over horizon, variant or form solves many cases on the
+    same points, and the exact solutions cost as much as the rest of a small case's bookkeeping
+    (0.18 ms at 1,200 points). Read-only, so a caller cannot change the cached values."""
+    w = np.array(_reference_fn(scene_text, scene_file, slenderness, ref_items)(np.frombuffer(x_bytes, "<f8")), float)
+    w.flags.writeable = False
+    return w
+
+
 def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
-    """The reference deflection at the model's points (see :func:`_reference_fn`)."""
-    return np.asarray(_reference_fn(case.scene_text, case.scene_file, case.slenderness,
-                                    tuple(sorted(case.reference.items())))(x), float)
+    """The reference deflection at the model's points (see :func:`_reference_fn`); the values of grids of
+    up to ``REFERENCE_CACHE_POINTS`` points are kept per (scene, slenderness, reference, grid)."""
+    key = (case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())))
+    x = np.asarray(x, "<f8")
+    if x.size <= REFERENCE_CACHE_POINTS:
+        return _reference_values(*key, x.tobytes())
+    return np.asarray(_reference_fn(*key)(x), float)
 
 
-def run_case(case: Case, artefacts: str | None = None) -> dict:
+def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
     """Solve one case and measure it. Never raises: a failure is a record with status 'failed'.
-    ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id."""
+    ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id.
+    ``case_id``: the case's key when the caller has already hashed it (else it is computed here)."""
     from ..registry import get_model, run
 
-    row = {"case_id": case.case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
+    case_id = case_id or case.case_id
+    row = {"case_id": case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
            "slenderness": case.slenderness, "reference": json.dumps(case.reference, sort_keys=True),
            "version": __version__}
     row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
@@ -110,9 +126,9 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
             if artefacts:  # the same histories as CSV, one column per series, for other tools
                 hdir = Path(artefacts).parent / "histories"
                 hdir.mkdir(parents=True, exist_ok=True)
-                write_atomic(hdir / f"{case.case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})}))
+                write_atomic(hdir / f"{case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})}))
         if artefacts and ".vtu" in result.writers:
-            base = Path(artefacts) / case.case_id
+            base = Path(artefacts) / case_id
             base.parent.mkdir(parents=True, exist_ok=True)
             try:
                 result.writers[".vtu"](str(base.with_suffix(".vtu")))
@@ -129,98 +145,18 @@ def run_case(case: Case, artefacts: str | None = None) -> dict:
             "row": row, "curve": curve}
 
 
-def encode_array(a) -> dict:
-    """A float array as base64 of its little-endian float64 bytes: exact, and ~20x faster to write
-    than a JSON list of floats (the per-case cost that dominated the runner's overhead)."""
-    a = np.ascontiguousarray(np.asarray(a, dtype="<f8"))
-    return {"dtype": "<f8", "shape": list(a.shape), "b64": base64.b64encode(a.tobytes()).decode("ascii")}
-
-
-def decode_array(v) -> np.ndarray:
-    """Inverse of :func:`encode_array`; plain JSON lists (older or hand-written records) pass through."""
-    if isinstance(v, dict) and "b64" in v:
-        return np.frombuffer(base64.b64decode(v["b64"]), dtype=v.get("dtype", "<f8")).reshape(v["shape"]).copy()
-    return np.asarray(v, dtype=float)
-
-
-def read_curve(path: Path) -> dict:
-    """The curve of a finished case file: arrays decoded (x, w, w_ref, rotation), other keys as stored."""
-    c = json.loads(Path(path).read_text())["curve"]
-    out = {k: (decode_array(v) if k in CURVE_ARRAYS else v) for k, v in c.items()}
-    if isinstance(out.get("fields"), dict):
-        out["fields"] = {k: decode_array(v) for k, v in out["fields"].items()}
-    if isinstance(out.get("history"), dict):
-        h = out["history"]
-        out["history"] = {"t": decode_array(h["t"]), "series": {k: decode_array(v) for k, v in h.get("series", {}).items()},
-                          "ylabel": h.get("ylabel", "displacement")}
-    return out
-
-
-CURVE_ARRAYS = ("x", "w", "w_ref", "rotation")
-
-
-def write_atomic(path: Path, text: str) -> None:
-    """Write to a temporary file beside ``path`` and rename it over ``path`` (atomic on POSIX): a killed
-    process leaves the old file or the new one, never a partial one. No fsync: the rename is atomic
-    against a killed process, which is what resume needs. The temporary name is unique per process and
-    thread (mkstemp's random names cost 0.25 ms a file here, a third of a small case's whole overhead)."""
-    tmp = path.parent / f".tmp-{os.getpid()}-{threading.get_ident()}-{path.name}"
-    data = text.encode("utf-8")
-    try:
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-    except FileNotFoundError:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-    try:
-        view = memoryview(data)
-        while view:
-            view = view[os.write(fd, view):]
-    finally:
-        os.close(fd)
-    os.replace(tmp, path)
-
-
-def _json_default(v):
-    """Arrays as :func:`encode_array` (exact float64 in base64), numpy scalars as numbers, the rest as text."""
-    if isinstance(v, np.ndarray):
-        return encode_array(v)
-    if isinstance(v, np.integer):
-        return int(v)
-    if isinstance(v, np.floating):
-        return float(v)
-    return str(v)
-
-
-def write_record(path: Path, rec: dict) -> None:
-    """A case record as compact JSON, written atomically (:func:`write_atomic`); its curve arrays encoded
-    here (in the writer thread, not on the solver's path)."""
-    write_atomic(path, json.dumps(rec, default=_json_default, separators=(",", ":")))
-
-
-def read_case(path: Path) -> dict | None:
-    """A finished case, or None when the file is missing, partial or corrupt (then it is recomputed)."""
-    try:
-        rec = json.loads(path.read_text())
-    except (OSError, ValueError):
-        return None
-    if not isinstance(rec, dict) or any(k not in rec for k in ROW_KEYS) or "status" not in rec["row"]:
-        return None
-    return rec
-
-
 def _clean(rec: dict) -> dict:
-    def clean(v):
-        if isinstance(v, float) and not np.isfinite(v):
-            return None
-        if isinstance(v, (np.floating,)):
-            return clean(float(v))
-        if isinstance(v, np.integer):
-            return int(v)
-        return v
-
-    rec = dict(rec)
-    rec["row"] = {k: clean(v) for k, v in rec["row"].items()}
-    return rec
+    """The record with its row's numpy scalars as Python numbers and NaN / inf as None (the tables'
+    missing value)."""
+    row = {}
+    for k, v in rec["row"].items():
+        t = type(v)
+        if t is float or isinstance(v, np.floating):
+            v = float(v) if v - v == 0 else None  # finite
+        elif isinstance(v, np.integer):
+            v = int(v)
+        row[k] = v
+    return {**rec, "row": row}
 
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -231,40 +167,45 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     t0 = time.perf_counter()
     ids = [c.case_id for c in study.cases]  # hashed once: the key covers the scene text and the code digest
     id_of = {id(c): cid for c, cid in zip(study.cases, ids)}
-    done, todo = {}, []
+    done, todo = {}, []  # done: case id -> row (the curves stay on disk)
     seen = set()
+    on_disk = {e.name for e in os.scandir(cases_dir)}  # one listing instead of a look-up per case
     for case, cid in zip(study.cases, ids):
         if cid in seen:
             continue
         seen.add(cid)
-        rec = read_case(cases_dir / f"{cid}.json")
+        name = next((cid + sfx for sfx in (SUFFIX, LEGACY_SUFFIX) if cid + sfx in on_disk), None)
+        rec = read_case(cases_dir / name) if name is not None else None
         if rec is not None:
-            done[cid] = rec
+            done[cid] = rec["row"]
         else:
             todo.append(case)
     resumed = len(done)
 
     client_code = code_digest()
     mismatched = []
-    # Case files are written by one background thread, so the file system's ~0.2 ms per atomic write
-    # overlaps the next solve instead of adding to it; at most WRITE_QUEUE records wait (a killed run
-    # loses those, like the cases being solved: the cases in flight), and all are on disk before the tables.
-    writer = ThreadPoolExecutor(max_workers=1, thread_name_prefix="pdverify-case-writer")
-    pending: list = []
+    clock = {"solver_s": 0.0, "store_s": 0.0}  # this run's cases: the models' own time, encoding + writing
 
     def finish(rec, case):
-        """Store under the id this process computed (a worker with other code would compute another id:
+        """Write the case at once and atomically (a killed run loses only the cases being solved). In
+        this thread. A writer thread was measured: it waits up to the 5 ms GIL switch interval after each
+        system call while the solver runs Python, so its queue fills and the solver blocks on it; it won
+        (store 0.16 instead of ~0.4 ms a case on a slow file system) only with the process-wide switch
+        interval lowered, which a library function should not do to its caller (benchmarks/runner_overhead.py).
+        Stored under the id this process computed (a worker with other code would compute another id:
         the record is kept, and the mismatch is reported in meta.json instead of losing the case)."""
+        t = time.perf_counter()
         rec = _clean(rec)
         cid = id_of[id(case)]
-        if rec["row"].get("code") != client_code:
+        row = rec["row"]
+        if row.get("code") != client_code:
             mismatched.append(cid)
-        rec["row"]["case_id"] = cid
-        pending.append(writer.submit(write_record, cases_dir / f"{cid}.json", rec))
-        while len(pending) > WRITE_QUEUE or (pending and pending[0].done()):
-            pending.pop(0).result()  # re-raises a failed write (disk full, permissions)
-        done[cid] = rec
-        bar.advance(failed=rec["row"]["status"] != "ok")
+        row["case_id"] = cid
+        write_record(cases_dir / f"{cid}{SUFFIX}", rec)  # raises on a failed write (disk full, permissions)
+        done[cid] = row
+        clock["solver_s"] += row.get("total_s") or 0.0
+        clock["store_s"] += time.perf_counter() - t
+        bar.advance(failed=row["status"] != "ok")
 
     bar = _progress(len(todo), progress)
     try:
@@ -272,27 +213,27 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             from dask.distributed import Client, as_completed as dask_completed
 
             with Client(scheduler) as client:
-                futures = client.map(run_case, todo, pure=False)  # remote workers: no artefact files
+                futures = client.map(run_case, todo, [None] * len(todo), [id_of[id(c)] for c in todo],
+                                     pure=False)  # remote workers: no artefact files
                 by_key = {f.key: c for f, c in zip(futures, todo)}
                 for fut in dask_completed(futures):
                     finish(fut.result(), by_key[fut.key])
         elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
             for case in todo:
-                finish(run_case(case, str(out / "vtu")), case)
+                finish(run_case(case, str(out / "vtu"), id_of[id(case)]), case)
         else:
             with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as pool:
-                futs = {pool.submit(run_case, c, str(out / "vtu")): c for c in todo}
+                futs = {pool.submit(run_case, c, str(out / "vtu"), id_of[id(c)]): c for c in todo}
                 for fut in as_completed(futs):
                     finish(fut.result(), futs[fut])
     finally:
-        writer.shutdown(wait=True)  # also on Ctrl-C: finished cases reach the disk
-    for fut in pending:
-        fut.result()
-    bar.close()
-    rows = [done[cid]["row"] for cid in dict.fromkeys(ids)]
+        bar.close()
+    rows = [done[cid] for cid in dict.fromkeys(ids)]
     df = pd.DataFrame(rows)
     df.insert(0, "study", study.name)
-    write_tables(study, out, df, wall=time.perf_counter() - t0, resumed=resumed, mismatched=mismatched)
+    cases_s = time.perf_counter() - t0
+    write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=mismatched,
+                 timing={"cases_s": cases_s, "computed_cases": len(todo), **clock})
     return df
 
 
@@ -369,11 +310,15 @@ def locking_table(df: pd.DataFrame) -> pd.DataFrame:
     ok = df[(df["status"] == "ok") & df["slenderness"].notna()]
     rows = []
     keys = ["scene", "model", "options", "points"]
-    for key, g in ok.groupby(keys, dropna=False):
-        if g["slenderness"].nunique() < 2:
+    if ok.empty:
+        return pd.DataFrame(rows)
+    slen, err = ok["slenderness"].to_numpy(float), ok["err_max"].to_numpy(float)
+    shown = {c: ok[c].to_numpy(object) for c in SHOWN if c in ok}
+    for key, idx in _group_rows(ok, keys):
+        if len(np.unique(slen[idx])) < 2:
             continue
-        slope, at1 = locking_slope(g["slenderness"], g["err_max"])
-        rows.append(dict(zip(keys, key), **{c: g[c].iloc[0] for c in SHOWN if c in g}, n=int(len(g)),
+        slope, at1 = locking_slope(slen[idx], err[idx])
+        rows.append(dict(zip(keys, key), **{c: v[idx[0]] for c, v in shown.items()}, n=int(len(idx)),
                          locking_slope=slope, slenderness_at_1pct=at1))
     return pd.DataFrame(rows)
 
@@ -510,7 +455,8 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
         computed = r["w_at_max"]
         quantity = b.get("quantity", "w")
         if "position" in b:
-            c = read_curve(Path(cases_dir) / f"{r['case_id']}.json") if cases_dir else {}
+            path = case_file(cases_dir, r["case_id"]) if cases_dir else None
+            c = read_curve(path) if path is not None else {}
             arr = c.get(quantity) if quantity in ("w", "rotation") else c.get("fields", {}).get(quantity)
             if arr is None:
                 rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing",
@@ -551,7 +497,10 @@ def package_versions() -> dict:
 
 
 def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
-                 mismatched: list[str] | None = None) -> None:
+                 mismatched: list[str] | None = None, timing: dict | None = None) -> None:
+    """results, convergence, locking, speed_error(_summary), trust, benchmarks, study.toml and meta.json.
+    ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the tables' own time."""
+    t_tables = time.perf_counter()
     for col in ("variant", "element", "form"):
         if col in df:
             df[col] = df[col].astype("string")
@@ -572,4 +521,6 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
             "cpu_count": os.cpu_count(), "wall_s": wall, "versions": versions, "resumed_cases": resumed,
             "counts": df["status"].value_counts().to_dict(), "skipped": study.skipped, "code": code_digest(),
             "cases_from_other_code": mismatched or []}
+    if timing is not None:
+        meta["timing"] = {**timing, "tables_s": time.perf_counter() - t_tables}
     write_atomic(out / "meta.json", json.dumps(meta, indent=2, default=str))

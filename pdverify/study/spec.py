@@ -39,7 +39,7 @@ from ..registry import get_model
 from ..scene import Scene, load_scene, read_toml
 
 RUN_KEYS = {"model", "reference", "scenes"}
-STORE_SCHEMA = 3  # bump when a case record's content changes: older case files are then recomputed
+STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
 BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position", "expected"}
 
 
