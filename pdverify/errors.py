@@ -26,3 +26,9 @@ class SolveError(PdverifyError):
     """The numerical solution failed: singular system, blow-up, no convergence (exit code 3)."""
 
     exit_code = 3
+
+
+class OutputError(PdverifyError):
+    """Results could not be written: disk full, permissions, a file where a directory should be (exit code 4)."""
+
+    exit_code = 4

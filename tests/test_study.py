@@ -282,3 +282,42 @@ def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monk
     df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
     meta = json.loads((tmp_path / "out" / "meta.json").read_text())
     assert len(df) == 2 and set(df["case_id"]) == set(meta["cases_from_other_code"]) and "0" * 16 not in set(df["case_id"])
+
+
+def test_writer_process_writes_every_record_and_reports_a_failed_write(tmp_path):
+    """The serial runner's case writer (a spawned child): every record arrives intact and in place; a
+    write that fails (here: a file name the file system refuses) is raised as OSError naming the cause,
+    also by a later ``put``, never lost silently."""
+    from pdverify.study.store import WriterProcess, decode_record, encode_record
+
+    if not WriterProcess.available:
+        pytest.skip("no posix_spawn on this platform: the runner writes in its own thread")
+    recs = [{"case": {"i": i}, "row": {"status": "ok", "i": i}, "curve": {"x": np.linspace(0, 1, 5000) * i}}
+            for i in range(40)]  # 40 kB each: more than the pipe holds, so put() has to wait for the child
+    w = WriterProcess()
+    for i, r in enumerate(recs):
+        w.put(tmp_path / f"{i}.case", encode_record(r))
+    assert w.close() >= 0.0
+    for i, r in enumerate(recs):
+        back = decode_record((tmp_path / f"{i}.case").read_bytes())
+        assert back["row"] == r["row"] and np.array_equal(back["curve"]["x"], r["curve"]["x"])
+    assert not list(tmp_path.glob(".tmp-*"))
+
+    w = WriterProcess()
+    w.put(tmp_path / ("x" * 300 + ".case"), b"data")  # name too long for the file system
+    with pytest.raises(OSError, match="writing a case file failed: OSError"):
+        for i in range(200):  # the child has stopped: a later put or the close raises its message
+            w.put(tmp_path / f"more{i}.case", b"y" * 65536)
+        w.close()
+
+
+def test_unwritable_output_is_one_line_exit_4(tmp_path):
+    """An output directory that cannot be made (here a file stands where it should go; permissions or a
+    full disk end the same way) stops the study with one line naming the directory and the fix."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [11, 21]\n')
+    blocker = tmp_path / "taken"
+    blocker.write_text("a file, not a directory")
+    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(blocker / "out"), "--quiet"],
+                       capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 4 and "Traceback" not in r.stderr, r.stderr
+    assert f"output directory {blocker / 'out'}" in r.stderr and "writable --out" in r.stderr

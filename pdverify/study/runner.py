@@ -22,11 +22,13 @@ except ImportError:  # pragma: no cover - parquet is optional, the CSV tables ar
     pass
 
 from .. import __version__
-from ..errors import PdverifyError
+from ..errors import OutputError, PdverifyError
+from ..registry import get_model, run
 from ..result import columns_csv
 from .metrics import errors, gci, locking_slope, observed_order, pareto
 from .spec import Case, Study, code_digest
-from .store import LEGACY_SUFFIX, SUFFIX, case_file, read_case, read_curve, write_atomic, write_record  # noqa: F401 (re-exported)
+from .store import (LEGACY_SUFFIX, SUFFIX, WriterProcess, case_file, encode_record, read_case, read_curve,  # noqa: F401
+                    write_atomic, write_record)
 
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
@@ -38,7 +40,6 @@ def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tupl
     interpolated by a cubic spline."""
     from scipy.interpolate import CubicSpline
 
-    from ..registry import get_model, run
 
     ref = dict(ref_items)
     model = get_model(ref.pop("model"))
@@ -73,15 +74,19 @@ def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
     return np.asarray(_reference_fn(*key)(x), float)
 
 
+@lru_cache(maxsize=256)
+def _reference_text(items: tuple) -> str:
+    """The reference's options as the results table stores them (one per study, not one per case)."""
+    return json.dumps(dict(items), sort_keys=True)
+
+
 def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
     """Solve one case and measure it. Never raises: a failure is a record with status 'failed'.
     ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id.
     ``case_id``: the case's key when the caller has already hashed it (else it is computed here)."""
-    from ..registry import get_model, run
-
     case_id = case_id or case.case_id
     row = {"case_id": case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
-           "slenderness": case.slenderness, "reference": json.dumps(case.reference, sort_keys=True),
+           "slenderness": case.slenderness, "reference": _reference_text(tuple(sorted(case.reference.items()))),
            "version": __version__}
     row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
     curve = {}
@@ -163,7 +168,10 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
               progress: bool = True) -> pd.DataFrame:
     out = Path(out)
     cases_dir = out / "cases"
-    cases_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        cases_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise _output_error(out, exc) from None
     t0 = time.perf_counter()
     ids = [c.case_id for c in study.cases]  # hashed once: the key covers the scene text and the code digest
     id_of = {id(c): cid for c, cid in zip(study.cases, ids)}
@@ -187,13 +195,9 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     clock = {"solver_s": 0.0, "store_s": 0.0}  # this run's cases: the models' own time, encoding + writing
 
     def finish(rec, case):
-        """Write the case at once and atomically (a killed run loses only the cases being solved). In
-        this thread. A writer thread was measured: it waits up to the 5 ms GIL switch interval after each
-        system call while the solver runs Python, so its queue fills and the solver blocks on it; it won
-        (store 0.16 instead of ~0.4 ms a case on a slow file system) only with the process-wide switch
-        interval lowered, which a library function should not do to its caller (benchmarks/runner_overhead.py).
-        Stored under the id this process computed (a worker with other code would compute another id:
-        the record is kept, and the mismatch is reported in meta.json instead of losing the case)."""
+        """Write the case at once and atomically (a killed run loses only the cases in flight). Stored
+        under the id this process computed (a worker with other code would compute another id: the
+        record is kept, and the mismatch is reported in meta.json instead of losing the case)."""
         t = time.perf_counter()
         rec = _clean(rec)
         cid = id_of[id(case)]
@@ -201,12 +205,26 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         if row.get("code") != client_code:
             mismatched.append(cid)
         row["case_id"] = cid
-        write_record(cases_dir / f"{cid}{SUFFIX}", rec)  # raises on a failed write (disk full, permissions)
+        try:
+            store(cases_dir / f"{cid}{SUFFIX}", encode_record(rec))
+        except OSError as exc:  # disk full, permissions: stop with one line; the cases written so far stay
+            raise _output_error(out, exc) from None
         done[cid] = row
         clock["solver_s"] += row.get("total_s") or 0.0
         clock["store_s"] += time.perf_counter() - t
         bar.advance(failed=row["status"] != "ok")
 
+    # Solving here (one worker): the case files are written by a child process, so the file system's
+    # latency (0.2-1 ms a file measured on a 2-core VM) overlaps the next solve (store.WriterProcess).
+    # With workers or Dask this process only collects results, and writes them itself.
+    serial = not scheduler and ((workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1)
+    writer = None
+    if serial and len(todo) > 1 and WriterProcess.available:
+        try:
+            writer = WriterProcess()
+        except OSError:  # no process to be had (limits): write in this thread instead
+            writer = None
+    store = writer.put if writer is not None else write_atomic
     bar = _progress(len(todo), progress)
     try:
         if scheduler:
@@ -218,7 +236,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
                 by_key = {f.key: c for f, c in zip(futures, todo)}
                 for fut in dask_completed(futures):
                     finish(fut.result(), by_key[fut.key])
-        elif (workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1:
+        elif serial:
             for case in todo:
                 finish(run_case(case, str(out / "vtu"), id_of[id(case)]), case)
         else:
@@ -228,6 +246,11 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
                     finish(fut.result(), futs[fut])
     finally:
         bar.close()
+        if writer is not None:  # also after Ctrl-C: the finished cases given to the writer reach the disk
+            try:
+                clock["writer_cpu_s"] = writer.close()
+            except OSError as exc:
+                raise _output_error(out, exc) from None
     rows = [done[cid] for cid in dict.fromkeys(ids)]
     df = pd.DataFrame(rows)
     df.insert(0, "study", study.name)
@@ -235,6 +258,11 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=mismatched,
                  timing={"cases_s": cases_s, "computed_cases": len(todo), **clock})
     return df
+
+
+def _output_error(out: Path, exc: OSError) -> OutputError:
+    return OutputError(f"output directory {out}: a case file could not be written ({exc}); free disk space or "
+                       "give a writable --out. The cases already written are kept: run the study again to resume.")
 
 
 class _progress:
