@@ -3,24 +3,25 @@ largest value (cond: the run's own condition estimate; 1e-10 for runs without on
 
 Regenerate with `python -m pdverify.golden --regenerate` and explain the change in the commit message.
 
-Why cond * eps and not a flat 1e-10: the last digits of a solve depend on the CPU's BLAS kernels
-(OpenBLAS picks them at run time), and below cond * eps they are not determined by the inputs. Two
-mechanisms, both measured:
-- the banded LU's bits differ between kernels, and the refinement after it (residual in x87 long double)
-  stalls at about cond * 1e-19 instead of converging (its corrections stop shrinking at 1e-13..1e-12),
-  so the refined answer keeps a kernel-dependent part. fem-eb's 101-point cantilever (cond 9.8e8) is
-  -0.1000000000 with the Haswell/Zen kernels and -0.0999999999 with SkylakeX (AVX-512), where its golden
-  was made: 1.1e-9 apart, 5e-3 cond * eps. It failed a flat 1e-10 on a machine without AVX-512.
-- pd-curved's primal form builds its operator from PDDO weights computed by LAPACK QR (0.6e-9..1e-9
-  between kernels on the semicircles, cond 3.2e8).
-Measured spread from the goldens over five kernel types (Haswell, Zen, Sandybridge, Nehalem, Prescott):
-at most 4e-2 cond * eps on every case (fem-eb, fem-timoshenko, pd-timoshenko, pd-curved primal move;
-pd-eb, pd-bond-pair and pd-higher-order did not move beyond 2e-13). cond * eps is the forward-error bound
-of a backward-stable solve, so the allowance has a 25x margin over the measured spread and is not fitted
-to it. The price: a regression smaller than cond * eps (up to 6e-7 on the worst-conditioned golden) goes
-unseen here; the model tests check accuracy against exact solutions. A refinement whose residual is
-computed in double-double would converge on every golden case and make the answers reproducible to the
-last bits; that is recorded as open work, not done.
+Why cond * eps and not a flat 1e-10: the last digits of a solution depend on the CPU's BLAS kernels
+(OpenBLAS picks them at run time), and below cond * eps they are not determined by the scene. Measured:
+- assembly that goes through LAPACK: fem-eb up to 20,001 nodes assembles with scikit-fem, whose Hermite
+  element inverts a Vandermonde matrix per element; K's last bits differ between kernels (b does not).
+  Its 101-point cantilever (cond 9.8e8) is -0.1000000000 with the Haswell/Zen kernels and -0.0999999999
+  with SkylakeX (AVX-512), where its golden was made: 1.1e-9 apart, 5e-3 cond * eps; it failed a flat
+  1e-10 on a machine without AVX-512. pd-curved's primal form builds its operator from PDDO weights
+  computed by LAPACK QR (0.6e-9..1e-9 between kernels on the semicircles, cond 3.2e8).
+- the banded LU and its refinement: fem-timoshenko and pd-timoshenko assemble the same K and b on every
+  kernel and still move by up to 4.4e-11 (the long-double refinement stalls near cond * 1e-19 instead of
+  converging, so part of the LU's rounding stays). A residual in double-double makes it converge; tried:
+  it moved the goldens by at most 8e-13 and left the spread between kernels as it was, since that
+  comes from the assembly above, so it was not kept.
+Over five kernel types here (Haswell, Zen, Sandybridge, Nehalem, Prescott) every golden stays within
+4e-2 cond * eps (pd-eb, pd-bond-pair and pd-higher-order within 2e-13). cond * eps is the size of the data
+error a rounding of K's entries causes, and the forward-error bound of a backward-stable solve, so the
+allowance has a 25x margin over the measured spread and is not fitted to it. The price: a regression
+smaller than cond * eps (up to 6e-7 on the worst-conditioned golden) goes unseen here; the model tests
+check accuracy against exact solutions.
 """
 
 import json
