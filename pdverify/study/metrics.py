@@ -26,14 +26,14 @@ def errors(w: np.ndarray, w_ref: np.ndarray) -> dict[str, float]:
     }
 
 
-def log_slope(x, y) -> tuple[float, float]:
+def log_slope(x, y, min_points: int = 2) -> tuple[float, float]:
     """Least-squares slope of log(y) vs log(x) and its R^2, over the points with x > 0 and finite y > 0
-    (nan, nan below two points, or when the x values are all equal). Closed form: the same line as
-    ``np.polyfit(log x, log y, 1)``, at a fraction of its cost (a study fits hundreds of series)."""
+    (nan, nan below ``min_points`` such points, or when the x values are all equal). Closed form: the same
+    line as ``np.polyfit(log x, log y, 1)``, at a fraction of its cost (a study fits hundreds of series)."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     ok = (x > 0) & (y > 0) & np.isfinite(y)
     lx, ly = np.log(x[ok]), np.log(y[ok])
-    if len(lx) < 2:
+    if len(lx) < max(min_points, 2):
         return float("nan"), float("nan")
     dx, dy = lx - lx.mean(), ly - ly.mean()
     sxx = dx @ dx
@@ -48,10 +48,7 @@ def log_slope(x, y) -> tuple[float, float]:
 
 def observed_order(spacing, error) -> tuple[float, float]:
     """Least-squares slope of log(error) vs log(spacing) and its R^2 (needs >= 3 grids)."""
-    h, e = np.asarray(spacing, float), np.asarray(error, float)
-    if np.count_nonzero((h > 0) & (e > 0) & np.isfinite(e)) < 3:
-        return float("nan"), float("nan")
-    return log_slope(h, e)
+    return log_slope(spacing, error, min_points=3)
 
 
 def gci(spacing, value, safety: float = 1.25) -> dict[str, float]:

@@ -27,8 +27,7 @@ from ..registry import get_model, run
 from ..result import columns_csv
 from .metrics import errors, gci, locking_slope, observed_order, pareto
 from .spec import Case, Study, code_digest
-from .store import (LEGACY_SUFFIX, SUFFIX, WriterProcess, case_file, encode_record, read_case, read_curve,  # noqa: F401
-                    write_atomic, write_record)
+from .store import SUFFIX, WriterProcess, case_file, encode_record, read_case, read_curve, write_atomic
 
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
@@ -39,7 +38,6 @@ def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tupl
     model's ``evaluator`` where it has one (exact models: exact at any x), else its own solution
     interpolated by a cubic spline."""
     from scipy.interpolate import CubicSpline
-
 
     ref = dict(ref_items)
     model = get_model(ref.pop("model"))
@@ -182,8 +180,8 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         if cid in seen:
             continue
         seen.add(cid)
-        name = next((cid + sfx for sfx in (SUFFIX, LEGACY_SUFFIX) if cid + sfx in on_disk), None)
-        rec = read_case(cases_dir / name) if name is not None else None
+        path = case_file(cases_dir, cid, on_disk)
+        rec = read_case(path) if path is not None else None
         if rec is not None:
             done[cid] = rec["row"]
         else:
@@ -223,7 +221,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         try:
             writer = WriterProcess()
         except OSError:  # no process to be had (limits): write in this thread instead
-            writer = None
+            pass
     store = writer.put if writer is not None else write_atomic
     bar = _progress(len(todo), progress)
     try:

@@ -119,9 +119,10 @@ def write_record(path: Path, rec: dict) -> None:
 
 class WriterProcess:
     """Case files written by a child process (``_case_writer.py``, started with ``posix_spawn``), so the
-    file system's latency leaves the solving thread: creating a file cost 0.2-1 ms on the 2-core VM this
-    was measured on, as much as the whole 5 % budget of a 6 ms case. The runner encodes the record
-    (:func:`encode_record`) and puts it into a pipe (~20 us); the child makes the system calls. A thread
+    file system's latency leaves the solving thread: creating a file cost 0.1-1.5 ms on the 2-core VM this
+    was measured on, up to several times the whole 5 % budget of a 6 ms case. The runner encodes the
+    record (:func:`encode_record`) and puts it into a pipe (~90 us inside a run); the child makes the
+    system calls. A thread
     cannot do this (it waits for the GIL after each call while the solver runs Python), and a fork of the
     runner cost 10 ms to start and 7 ms to end; the spawned child is a bare interpreter that starts while
     the first case is solved. The pipe's buffer (64 kB: one or two records) is all that can wait, so a
@@ -166,12 +167,13 @@ class WriterProcess:
         return usage.ru_utime + usage.ru_stime
 
 
-def case_file(cases_dir: Path, case_id: str) -> Path | None:
+def case_file(cases_dir: Path, case_id: str, names: set[str] | None = None) -> Path | None:
     """The record of ``case_id`` in ``cases_dir``: this format's file, else a first-format ``.json``
-    file (studies run before the change), else None."""
+    file (studies run before the change), else None. ``names``: the directory's file names when the
+    caller has listed it once (a resumed study looks up every case; one listing instead of a stat each)."""
     for suffix in (SUFFIX, LEGACY_SUFFIX):
         p = Path(cases_dir) / f"{case_id}{suffix}"
-        if p.exists():
+        if (p.name in names) if names is not None else p.exists():
             return p
     return None
 
