@@ -118,17 +118,16 @@ def write_record(path: Path, rec: dict) -> None:
 
 
 class WriterProcess:
-    """Case files written by a child process (``_case_writer.py``, started with ``posix_spawn``), so the
-    file system's latency leaves the solving thread: creating a file cost 0.1-1.5 ms on the 2-core VM this
-    was measured on, up to several times the whole 5 % budget of a 6 ms case. The runner encodes the
-    record (:func:`encode_record`) and puts it into a pipe (~90 us inside a run); the child makes the
-    system calls. A thread
-    cannot do this (it waits for the GIL after each call while the solver runs Python), and a fork of the
-    runner cost 10 ms to start and 7 ms to end; the spawned child is a bare interpreter that starts while
-    the first case is solved. The pipe's buffer (64 kB: one or two records) is all that can wait, so a
-    killed run loses the cases in flight and nothing else; the child ignores SIGINT, so after Ctrl-C it
-    still writes what it was given. ``close`` waits for it and raises the first failed write (disk full,
-    permissions) as OSError, as does ``put`` once the child has stopped. POSIX only (``available``)."""
+    """Case files written by a child process (``_case_writer.py``, started with ``posix_spawn``), so the file
+    system's latency leaves the solving thread: creating a file cost 0.1-1.5 ms on the 2-core VM this was
+    measured on, up to several times the whole 5 % budget of a 6 ms case. The runner encodes the record
+    (:func:`encode_record`) and puts it into a pipe (~90 us inside a run); the child makes the system calls. A
+    thread cannot do this (it waits for the GIL after each call while the solver runs Python), and forking the
+    runner and waiting for it cost 10 ms even with nothing to write; the spawned child is a bare interpreter
+    that starts while the first case is solved. The pipe's buffer (64 kB: one or two records) is all that can
+    wait, so a killed run loses the cases in flight and nothing else; the child ignores SIGINT, so after
+    Ctrl-C it still writes what it was given. ``close`` waits for it and raises the first failed write (disk
+    full, permissions) as OSError, as does ``put`` once the child has stopped. POSIX only (``available``)."""
 
     available = hasattr(os, "posix_spawn")
 
