@@ -270,45 +270,69 @@ def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monk
     it computed itself and lists the mismatch in meta.json (a study never loses a finished case)."""
     from pdverify.study import runner
 
-    real = runner.run_case
+    real = runner.measure_case
 
-    def other_code(case, artefacts=None, case_id=None):
-        rec = real(case, artefacts, case_id)
+    def other_code(case, solved, case_id=None):
+        rec = real(case, solved, case_id)
         rec["row"]["case_id"], rec["row"]["code"] = "0" * 16, "f" * 16
         return rec
 
-    monkeypatch.setattr(runner, "run_case", other_code)
-    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21]\n')
-    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
-    meta = json.loads((tmp_path / "out" / "meta.json").read_text())
-    assert len(df) == 2 and set(df["case_id"]) == set(meta["cases_from_other_code"]) and "0" * 16 not in set(df["case_id"])
+    monkeypatch.setattr(runner, "measure_case", other_code)
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31]\n')
+    for workers in (1, 2):  # measured in the serial run's recorder process, and in pool workers
+        out = tmp_path / f"out{workers}"
+        df = run_study(load_study(p), out, workers=workers, progress=False)
+        meta = json.loads((out / "meta.json").read_text())
+        assert len(df) == 3 and set(df["case_id"]) == set(meta["cases_from_other_code"]) and "0" * 16 not in set(df["case_id"])
 
 
-def test_writer_process_writes_every_record_and_reports_a_failed_write(tmp_path):
-    """The serial runner's case writer (a spawned child): every record arrives intact and in place; a
-    write that fails (here: a file name the file system refuses) is raised as OSError naming the cause,
-    also by a later ``put``, never lost silently."""
-    from pdverify.study.store import WriterProcess, decode_record, encode_record
+def _record(path):
+    """The recorder's handler in these tests: writes each message's array where it says (in the child)."""
+    from pdverify.study.store import encode_record, write_atomic
 
-    if not WriterProcess.available:
-        pytest.skip("no posix_spawn on this platform: the runner writes in its own thread")
-    recs = [{"case": {"i": i}, "row": {"status": "ok", "i": i}, "curve": {"x": np.linspace(0, 1, 5000) * i}}
-            for i in range(40)]  # 40 kB each: more than the pipe holds, so put() has to wait for the child
-    w = WriterProcess()
-    for i, r in enumerate(recs):
-        w.put(tmp_path / f"{i}.case", encode_record(r))
-    assert w.close() >= 0.0
-    for i, r in enumerate(recs):
-        back = decode_record((tmp_path / f"{i}.case").read_bytes())
-        assert back["row"] == r["row"] and np.array_equal(back["curve"]["x"], r["curve"]["x"])
-    assert not list(tmp_path.glob(".tmp-*"))
+    def handle(message):
+        name, x = message
+        write_atomic(path / name, encode_record({"case": {}, "row": {"status": "ok", "name": name}, "curve": {"x": x}}))
+    return handle
 
-    w = WriterProcess()
-    w.put(tmp_path / ("x" * 300 + ".case"), b"data")  # name too long for the file system
-    with pytest.raises(OSError, match="writing a case file failed: OSError"):
-        for i in range(200):  # the child has stopped: a later put or the close raises its message
-            w.put(tmp_path / f"more{i}.case", b"y" * 65536)
-        w.close()
+
+def test_recorder_handles_every_message_in_order_and_returns_its_finish(tmp_path):
+    """The serial runner's recorder (a forked child): every message arrives, arrays bit for bit (NaN, -0.0,
+    non-contiguous and 2-D arrays included), more than the pipe holds at once; ``close`` returns what the
+    child's ``finish`` returned and the child's CPU time."""
+    from pdverify.study.recorder import Recorder
+    from pdverify.study.store import decode_record
+
+    if not Recorder.available:
+        pytest.skip("no fork or a single CPU: the runner measures and stores in its own process")
+    seen = []
+    arrays = [np.linspace(0, 1, 5000) * i for i in range(30)]  # 40 kB each: the pipe holds one or two
+    arrays[3][7], arrays[4][0] = np.nan, -0.0
+    arrays += [np.arange(40.0)[::3], np.arange(12.0).reshape(3, 4)]
+    rec = Recorder(lambda m: (seen.append(m[0]), _record(tmp_path)(m)), lambda: list(seen))
+    for i, a in enumerate(arrays):
+        rec.put((f"{i}.case", a))
+    order, cpu = rec.close()
+    assert order == [f"{i}.case" for i in range(len(arrays))] and cpu >= 0.0 and seen == []  # seen: the child's copy
+    for i, a in enumerate(arrays):
+        back = decode_record((tmp_path / f"{i}.case").read_bytes())["curve"]["x"]
+        assert back.tobytes() == np.ascontiguousarray(a).tobytes() and back.shape == a.shape
+
+
+def test_recorder_raises_the_childs_failure(tmp_path):
+    """A failure in the child (here a file name the file system refuses) is raised in the runner by a later
+    ``put`` or by ``close``, with the child's own exception, never lost."""
+    from pdverify.study.recorder import Recorder
+
+    if not Recorder.available:
+        pytest.skip("no fork or a single CPU")
+    rec = Recorder(_record(tmp_path), lambda: None)
+    rec.put(("x" * 300 + ".case", np.zeros(3)))  # name too long for the file system
+    with pytest.raises(OSError, match="File name too long"):
+        for i in range(200):
+            rec.put((f"more{i}.case", np.zeros(8192)))
+        rec.close()
+    assert rec.closed
 
 
 def test_unwritable_output_is_one_line_exit_4(tmp_path):
@@ -321,3 +345,27 @@ def test_unwritable_output_is_one_line_exit_4(tmp_path):
                        capture_output=True, text=True, cwd=ROOT)
     assert r.returncode == 4 and "Traceback" not in r.stderr, r.stderr
     assert f"output directory {blocker / 'out'}" in r.stderr and "writable --out" in r.stderr
+
+
+@pytest.mark.parametrize("recorder", [True, False])
+def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypatch, recorder):
+    """A case file that cannot be written in the middle of a run (a full disk, simulated) stops the study
+    with OutputError naming the directory and the fix, whether the serial run's recorder process or the
+    runner itself writes it; the cases written before it stay."""
+    from pdverify.errors import OutputError
+    from pdverify.study import recorder as rec_mod, runner
+
+    monkeypatch.setattr(rec_mod.Recorder, "available", recorder and rec_mod.Recorder.available)
+    real, calls = runner.write_atomic, []
+
+    def full_disk(path, data):
+        calls.append(path)
+        if len(calls) > 2:
+            raise OSError(28, "No space left on device")
+        real(path, data)
+
+    monkeypatch.setattr(runner, "write_atomic", full_disk)
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31, 41, 51]\n')
+    with pytest.raises(OutputError, match="No space left on device.*writable --out"):
+        run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 2

@@ -27,7 +27,8 @@ from ..registry import get_model, run
 from ..result import columns_csv
 from .metrics import errors, gci, locking_slope, observed_order, pareto
 from .spec import Case, Study, code_digest
-from .store import SUFFIX, WriterProcess, case_file, encode_record, read_case, read_curve, write_atomic
+from .recorder import Recorder
+from .store import SUFFIX, case_file, encode_record, read_case, read_curve, write_atomic
 
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
@@ -78,10 +79,54 @@ def _reference_text(items: tuple) -> str:
     return json.dumps(dict(items), sort_keys=True)
 
 
-def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
-    """Solve one case and measure it. Never raises: a failure is a record with status 'failed'.
-    ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG), named by case id.
-    ``case_id``: the case's key when the caller has already hashed it (else it is computed here)."""
+INFO_KEYS = ("horizon", "cond", "load_steps", "history")
+
+
+def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
+    """The solving half of a case: the model's result reduced to what :func:`measure_case` reads (arrays
+    and numbers, picklable: it crosses to a worker's parent or to the recorder), or ``{"failure": message}``.
+    Never raises. ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG, time
+    histories as CSV), named by ``case_id``: they are written here, where the model's writers live."""
+    try:
+        result = run(case.scene(), case.model, **case.given)
+        solved = {"x": np.asarray(result.x, "<f8"), "w": np.asarray(result.w, "<f8"),
+                  "rotation": None if result.rotation is None else np.asarray(result.rotation, "<f8"),
+                  "fields": {k: np.asarray(v, "<f8") for k, v in result.fields.items() if np.shape(v) == np.shape(result.x)},
+                  "timings": {k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")},
+                  "dofs": int(result.dofs), "info": {k: _plain_scalar(result.info[k]) for k in INFO_KEYS if k in result.info}}
+        hist = result.info.get("history")
+        if artefacts and isinstance(hist, dict) and "t" in hist:  # the time histories as CSV, for other tools
+            hdir = Path(artefacts).parent / "histories"
+            hdir.mkdir(parents=True, exist_ok=True)
+            write_atomic(hdir / f"{case_id or case.case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})}))
+        if artefacts and ".vtu" in result.writers:
+            base = Path(artefacts) / (case_id or case.case_id)
+            base.parent.mkdir(parents=True, exist_ok=True)
+            try:
+                result.writers[".vtu"](str(base.with_suffix(".vtu")))
+                if ".png" in result.writers:
+                    result.writers[".png"](str(base.with_suffix(".png")))
+            except PdverifyError as exc:  # a failed picture never fails the case
+                solved["artefact_message"] = " ".join(exc.lines)
+        return solved
+    except PdverifyError as exc:
+        return {"failure": " ".join(exc.lines)}
+    except Exception as exc:  # a bug in a model must not stop the study; it is recorded
+        return {"failure": f"{type(exc).__name__}: {exc}"}
+
+
+def _plain_scalar(v):
+    """A numpy scalar as the Python number it equals (pickling a numpy scalar pickles its dtype: ~20 us)."""
+    return v.item() if isinstance(v, np.generic) else v
+
+
+class _Failed(Exception):
+    """A solve that failed, replayed where the case is measured so its row fills in as far as it would have."""
+
+
+def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
+    """The measuring half of a case: its row (parameters, errors against the reference at the model's
+    points, timings, dofs, status) and its curves, from what :func:`solve_case` returned. Never raises."""
     case_id = case_id or case.case_id
     row = {"case_id": case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
            "slenderness": case.slenderness, "reference": _reference_text(tuple(sorted(case.reference.items()))),
@@ -96,56 +141,53 @@ def run_case(case: Case, artefacts: str | None = None, case_id: str | None = Non
         row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
         # every option but the grid: the key of a convergence series (variant, horizon, ends, ...)
         row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
-        result = run(scene, model, **case.given)
-        x = np.asarray(result.x, float)
+        if "failure" in solved:
+            raise _Failed(solved["failure"])
+        x, w, info = solved["x"], solved["w"], solved["info"]
         if case.reference.get("model") == "none":
             w_ref = np.full_like(x, np.nan)
             row.update(err_max=np.nan, err_l2=np.nan, err_at_max=np.nan,
-                       w_at_max=float(result.w[np.argmax(np.abs(result.w))]), w_ref_at_max=np.nan)
+                       w_at_max=float(w[np.argmax(np.abs(w))]), w_ref_at_max=np.nan)
         else:
             w_ref = reference_at(case, scene, x)
-            row.update(errors(result.w, w_ref))
-        row.update({k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")})
-        row["dofs"] = int(result.dofs)
+            row.update(errors(w, w_ref))
+        row.update(solved["timings"])
+        row["dofs"] = solved["dofs"]
         row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
         row["horizon_factor"] = params.get("horizon")
-        row["horizon"] = result.info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
-        row["cond"] = result.info.get("cond")
+        row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
+        row["cond"] = info.get("cond")
         row["status"], row["message"] = "ok", ""
-        # arrays stay arrays here (compact to pickle from a worker); write_record encodes them exactly
-        curve = {"x": np.asarray(x, "<f8"), "w": np.asarray(result.w, "<f8"), "w_ref": np.asarray(w_ref, "<f8")}
-        if result.rotation is not None:
-            curve["rotation"] = np.asarray(result.rotation, "<f8")
-        pf = {k: np.asarray(v, "<f8") for k, v in result.fields.items() if np.shape(v) == np.shape(x)}
-        if pf:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
-            curve["fields"] = pf
-        if "load_steps" in result.info:  # deformed shapes of a nonlinear path, for the report
-            curve["load_steps"] = result.info["load_steps"]
-        hist = result.info.get("history")
+        if "artefact_message" in solved:
+            row["artefact_message"] = solved["artefact_message"]
+        # arrays stay arrays here (compact to pickle from a worker); encode_record stores them exactly
+        curve = {"x": x, "w": w, "w_ref": np.asarray(w_ref, "<f8")}
+        if solved["rotation"] is not None:
+            curve["rotation"] = solved["rotation"]
+        if solved["fields"]:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
+            curve["fields"] = solved["fields"]
+        if "load_steps" in info:  # deformed shapes of a nonlinear path, for the report
+            curve["load_steps"] = info["load_steps"]
+        hist = info.get("history")
         if isinstance(hist, dict) and "t" in hist:  # time histories of a dynamic run: {"t": [...], "series": {label: [...]}}
             curve["history"] = {"t": np.asarray(hist["t"], "<f8"),
                                 "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
                                 "ylabel": hist.get("ylabel", "displacement")}
-            if artefacts:  # the same histories as CSV, one column per series, for other tools
-                hdir = Path(artefacts).parent / "histories"
-                hdir.mkdir(parents=True, exist_ok=True)
-                write_atomic(hdir / f"{case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})}))
-        if artefacts and ".vtu" in result.writers:
-            base = Path(artefacts) / case_id
-            base.parent.mkdir(parents=True, exist_ok=True)
-            try:
-                result.writers[".vtu"](str(base.with_suffix(".vtu")))
-                if ".png" in result.writers:
-                    result.writers[".png"](str(base.with_suffix(".png")))
-            except PdverifyError as exc:  # a failed picture never fails the case
-                row["artefact_message"] = " ".join(exc.lines)
+    except _Failed as exc:
+        row["status"], row["message"] = "failed", str(exc)
     except PdverifyError as exc:
         row["status"], row["message"] = "failed", " ".join(exc.lines)
-    except Exception as exc:  # a bug in a model must not stop the study; it is recorded
+    except Exception as exc:  # a bug must not stop the study; it is recorded
         row["status"], row["message"] = "failed", f"{type(exc).__name__}: {exc}"
     return {"case": {"scene_file": case.scene_file, "model": case.model, "given": case.given,
                      "slenderness": case.slenderness, "reference": case.reference},
             "row": row, "curve": curve}
+
+
+def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
+    """Solve one case and measure it (:func:`solve_case`, then :func:`measure_case`). Never raises: a
+    failure is a record with status 'failed'."""
+    return measure_case(case, solve_case(case, artefacts, case_id), case_id)
 
 
 def _clean(rec: dict) -> dict:
@@ -160,6 +202,39 @@ def _clean(rec: dict) -> dict:
             v = int(v)
         row[k] = v
     return {**rec, "row": row}
+
+
+class _Keeper:
+    """Finished cases: each record cleaned, stored under the id this process computed and written at once
+    and atomically (a killed run loses only the cases in flight); the rows kept for the tables. A worker
+    with other code computes other ids: its record is kept under ours and the mismatch reported in
+    meta.json instead of losing the case."""
+
+    def __init__(self, out: Path, code: str):
+        self.out, self.cases_dir, self.code = out, out / "cases", code
+        self.rows: dict = {}
+        self.mismatched: list[str] = []
+        self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the models' own time; cleaning, encoding, writing
+
+    def add(self, rec: dict, cid: str) -> bool:
+        """Store one record; whether its case is ok. Raises OutputError when the file cannot be written."""
+        t = time.perf_counter()
+        rec = _clean(rec)
+        row = rec["row"]
+        if row.get("code") != self.code:
+            self.mismatched.append(cid)
+        row["case_id"] = cid
+        try:
+            write_atomic(self.cases_dir / f"{cid}{SUFFIX}", encode_record(rec))
+        except OSError as exc:  # disk full, permissions: stop with one line; the cases written so far stay
+            raise _output_error(self.out, exc) from None
+        self.rows[cid] = row
+        self.clock["solver_s"] += row.get("total_s") or 0.0
+        self.clock["store_s"] += time.perf_counter() - t
+        return row["status"] == "ok"
+
+    def summary(self) -> tuple[dict, list, dict]:
+        return self.rows, self.mismatched, self.clock
 
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -188,42 +263,25 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             todo.append(case)
     resumed = len(done)
 
-    client_code = code_digest()
-    mismatched = []
-    clock = {"solver_s": 0.0, "store_s": 0.0}  # this run's cases: the models' own time, encoding + writing
-
-    def finish(rec, case):
-        """Write the case at once and atomically (a killed run loses only the cases in flight). Stored
-        under the id this process computed (a worker with other code would compute another id: the
-        record is kept, and the mismatch is reported in meta.json instead of losing the case)."""
-        t = time.perf_counter()
-        rec = _clean(rec)
-        cid = id_of[id(case)]
-        row = rec["row"]
-        if row.get("code") != client_code:
-            mismatched.append(cid)
-        row["case_id"] = cid
-        try:
-            store(cases_dir / f"{cid}{SUFFIX}", encode_record(rec))
-        except OSError as exc:  # disk full, permissions: stop with one line; the cases written so far stay
-            raise _output_error(out, exc) from None
-        done[cid] = row
-        clock["solver_s"] += row.get("total_s") or 0.0
-        clock["store_s"] += time.perf_counter() - t
-        bar.advance(failed=row["status"] != "ok")
-
-    # Solving here (one worker): the case files are written by a child process, so the file system's
-    # latency (0.2-1 ms a file measured on a 2-core VM) overlaps the next solve (store.WriterProcess).
-    # With workers or Dask this process only collects results, and writes them itself.
+    keep = _Keeper(out, code_digest())
+    # Serial runs solve here and measure + store in a forked child on the other core (recorder.Recorder);
+    # with workers or Dask this process collects the measured records and writes them itself.
     serial = not scheduler and ((workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1)
-    writer = None
-    if serial and len(todo) > 1 and WriterProcess.available:
+    recorder = None
+    if serial and len(todo) > 1 and Recorder.available:
+
+        def record(message):  # in the child: measure the i-th case from what the solve returned, store it
+            i, solved = message
+            t = time.perf_counter()
+            rec = measure_case(todo[i], solved, id_of[id(todo[i])])
+            keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
+            keep.add(rec, id_of[id(todo[i])])
+
         try:
-            writer = WriterProcess()
-        except OSError:  # no process to be had (limits): write in this thread instead
+            recorder = Recorder(record, keep.summary)
+        except OSError:  # no process to be had (limits): measure and store here instead
             pass
-    store = writer.put if writer is not None else write_atomic
-    bar = _progress(len(todo), progress)
+    bar = _progress(len(todo), progress)  # after the fork: the bar's thread stays in this process
     try:
         if scheduler:
             from dask.distributed import Client, as_completed as dask_completed
@@ -233,22 +291,31 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
                                      pure=False)  # remote workers: no artefact files
                 by_key = {f.key: c for f, c in zip(futures, todo)}
                 for fut in dask_completed(futures):
-                    finish(fut.result(), by_key[fut.key])
+                    bar.advance(failed=not keep.add(fut.result(), id_of[id(by_key[fut.key])]))
+        elif recorder is not None:
+            for i, case in enumerate(todo):
+                solved = solve_case(case, str(out / "vtu"), id_of[id(case)])
+                recorder.put((i, solved))
+                bar.advance(failed="failure" in solved)
         elif serial:
             for case in todo:
-                finish(run_case(case, str(out / "vtu"), id_of[id(case)]), case)
+                bar.advance(failed=not keep.add(run_case(case, str(out / "vtu"), id_of[id(case)]), id_of[id(case)]))
         else:
             with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as pool:
                 futs = {pool.submit(run_case, c, str(out / "vtu"), id_of[id(c)]): c for c in todo}
                 for fut in as_completed(futs):
-                    finish(fut.result(), futs[fut])
+                    bar.advance(failed=not keep.add(fut.result(), id_of[id(futs[fut])]))
     finally:
         bar.close()
-        if writer is not None:  # also after Ctrl-C: the finished cases given to the writer reach the disk
-            try:
-                clock["writer_cpu_s"] = writer.close()
-            except OSError as exc:
-                raise _output_error(out, exc) from None
+        if recorder is not None and not recorder.closed:  # also after Ctrl-C: the child records what it was given
+            t = time.perf_counter()
+            (rows, mismatched, clock), cpu = recorder.close()  # the child's OutputError, if any, is raised here
+            keep.rows.update(rows)
+            keep.mismatched += mismatched
+            keep.clock.update(clock, recorder_cpu_s=cpu, recorder_wait_s=time.perf_counter() - t)
+    done.update(keep.rows)
+    mismatched = keep.mismatched
+    clock = {**keep.clock, "recorder": "process" if recorder is not None else "inline"}
     rows = [done[cid] for cid in dict.fromkeys(ids)]
     df = pd.DataFrame(rows)
     df.insert(0, "study", study.name)

@@ -14,7 +14,8 @@ Arrays are stored bit for bit (NaN, -0.0, subnormals included). The checksum cov
 after the lengths, so a truncated file, a flipped bit in a number or in an array, or a file of another
 kind reads as ``None`` and the case is recomputed. The format exists because the first one (JSON with
 base64 arrays) cost ~0.32 ms to encode a 1,200-point case on a 2-core machine; this one costs 56 us in a
-tight loop and ~150 us inside a run, where the caches are cold after each solve (``benchmarks/runner_overhead.py``).
+tight loop and ~150 us inside a run, where the caches are cold after each solve (``benchmarks/runner_overhead.py``;
+serial runs encode in the recorder process, ``recorder.py``).
 Files of that first format (``<case id>.json``) are still read (:func:`case_file`, :func:`read_curve`).
 """
 
@@ -24,13 +25,12 @@ import base64
 import json
 import os
 import struct
-import sys
+import threading
 import zlib
 from pathlib import Path
 
 import numpy as np
 
-from ._case_writer import MESSAGE, write_all, write_atomic  # noqa: F401 (write_atomic re-exported)
 
 MAGIC = b"PDVCASE1"
 _LENGTHS = struct.Struct("<QQI")
@@ -117,53 +117,28 @@ def write_record(path: Path, rec: dict) -> None:
     write_atomic(path, encode_record(rec))
 
 
-class WriterProcess:
-    """Case files written by a child process (``_case_writer.py``, started with ``posix_spawn``), so the file
-    system's latency leaves the solving thread: creating a file cost 0.1-1.5 ms on the 2-core VM this was
-    measured on, up to several times the whole 5 % budget of a 6 ms case. The runner encodes the record
-    (:func:`encode_record`) and puts it into a pipe (~90 us inside a run); the child makes the system calls. A
-    thread cannot do this (it waits for the GIL after each call while the solver runs Python), and forking the
-    runner and waiting for it cost 10 ms even with nothing to write; the spawned child is a bare interpreter
-    that starts while the first case is solved. The pipe's buffer (64 kB: one or two records) is all that can
-    wait, so a killed run loses the cases in flight and nothing else; the child ignores SIGINT, so after
-    Ctrl-C it still writes what it was given. ``close`` waits for it and raises the first failed write (disk
-    full, permissions) as OSError, as does ``put`` once the child has stopped. POSIX only (``available``)."""
-
-    available = hasattr(os, "posix_spawn")
-
-    def __init__(self):
-        r, w = os.pipe()
-        status_r, status_w = os.pipe()
-        script = str(Path(__file__).with_name("_case_writer.py"))
-        try:
-            self._pid = os.posix_spawn(sys.executable, [sys.executable, "-S", "-I", script], os.environ,
-                                       file_actions=[(os.POSIX_SPAWN_DUP2, r, 0), (os.POSIX_SPAWN_DUP2, status_w, 1)])
-        finally:
-            os.close(r)
-            os.close(status_w)
-        self._fd, self._status = w, status_r
-
-    def put(self, path: Path, data: bytes) -> None:
-        p = os.fsencode(str(path))
-        try:
-            write_all(self._fd, MESSAGE.pack(len(p), len(data)) + p)
-            write_all(self._fd, data)
-        except BrokenPipeError:  # the child stopped: its own message says why
-            self.close()
-            raise
-
-    def close(self) -> float:
-        """Wait for the child; its CPU seconds."""
-        if self._fd < 0:
-            return 0.0
-        os.close(self._fd)
-        self._fd = -1
-        _, code, usage = os.wait4(self._pid, 0)
-        message = b"".join(iter(lambda: os.read(self._status, 65536), b""))
-        os.close(self._status)
-        if message or code:
-            raise OSError(f"writing a case file failed: {message.decode('utf-8', 'replace') or f'writer exit status {code}'}")
-        return usage.ru_utime + usage.ru_stime
+def write_atomic(path, data) -> None:
+    """Write to a temporary file beside ``path`` and rename it over ``path`` (atomic on POSIX): a killed
+    process leaves the old file or the new one, never a partial one. No fsync: the rename is atomic
+    against a killed process, which is what resume needs. The temporary name is unique per process and
+    thread (mkstemp's random names cost 0.25 ms a file here)."""
+    path = os.fspath(path)
+    head, name = os.path.split(path)
+    tmp = os.path.join(head, f".tmp-{os.getpid()}-{threading.get_ident()}-{name}")
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    try:
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    except FileNotFoundError:
+        os.makedirs(head or ".", exist_ok=True)
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    try:
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+    finally:
+        os.close(fd)
+    os.replace(tmp, path)
 
 
 def case_file(cases_dir: Path, case_id: str, names: set[str] | None = None) -> Path | None:

@@ -1,0 +1,206 @@
+"""A forked child that measures and stores the cases a serial run solves, on the machine's other core.
+
+Why: in a serial run (``--workers 1``) the runner's own work per case (the reference at the model's
+points, the errors, encoding the record, creating its file) cost ~0.6 ms beside a 6-8 ms solve when done
+between solves, about three times its cost in a tight loop, because each solve leaves the caches cold
+(``benchmarks/runner_overhead.py``). Here the solving process only pickles what the model returned into a
+pipe; the child, a ``fork`` of the runner made before the first solve (so it has the study, the models and
+every cache the runner has, and computes the same numbers with the same code), does the rest and writes
+each case file at once. At end of input it sends back what it recorded.
+
+Messages are ``<u8 length>`` + a pickle, both ways. The pipe holds one or two cases: when the child falls
+behind, ``put`` waits, so the cases waiting to be recorded are only ever those in the pipe (a killed run
+loses them, like the case being solved). The child ignores SIGINT: after Ctrl-C it still records what it
+was given. A failure in the child (a case file that cannot be written) is sent back and raised by
+``put`` or ``close`` in the runner. Used only where ``fork`` exists and the process may run on at least
+two CPUs (on one CPU the child would take the solver's time instead of an idle core's).
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import pickle
+import resource
+import signal
+import struct
+import warnings
+from typing import Any, Callable
+
+import numpy as np
+
+HEAD = struct.Struct("<QQ")
+
+
+def usable_cpus() -> int:
+    """CPUs this process may run on (its affinity mask where the platform has one)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def _views(parts) -> list[memoryview]:
+    return [v for v in (memoryview(p).cast("B") for p in parts) if v.nbytes]
+
+
+def write_all(fd: int, parts) -> None:
+    """Write the byte buffers ``parts`` in order with ``writev`` (no copy into one buffer)."""
+    views = _views(parts)
+    while views:
+        n = os.writev(fd, views[:1024])
+        while views and n >= views[0].nbytes:
+            n -= views[0].nbytes
+            views.pop(0)
+        if n:
+            views[0] = views[0][n:]
+
+
+def read_exactly(fd: int, n: int) -> bytearray | None:
+    """``n`` bytes from ``fd`` (writable), or None at end of file (also when it comes in the middle)."""
+    buf = bytearray(n)
+    view, got = memoryview(buf), 0
+    while got < n:
+        k = os.readv(fd, [view[got:]])
+        if not k:
+            return None
+        got += k
+    return buf
+
+
+class _Pickler(pickle.Pickler):
+    """Arrays leave the pickle as references to buffers written beside it: numpy's own pickling of an
+    array (``__reduce_ex__``, even with protocol 5's out-of-band buffers) cost ~85 us a case in a run."""
+
+    def __init__(self, file, buffers: list):
+        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        self.buffers = buffers
+
+    def persistent_id(self, obj):
+        if type(obj) is np.ndarray and obj.flags.c_contiguous and obj.dtype.hasobject is False:
+            self.buffers.append(obj)
+            return (len(self.buffers) - 1, obj.dtype.str, obj.shape)
+        return None
+
+
+class _Unpickler(pickle.Unpickler):
+    def __init__(self, file, buffers: list):
+        super().__init__(file)
+        self.buffers = buffers
+
+    def persistent_load(self, pid):
+        i, dtype, shape = pid
+        return np.frombuffer(self.buffers[i], dtype).reshape(shape)
+
+
+def send(fd: int, obj) -> None:
+    """``obj`` pickled, its arrays' memory written as it is beside the pickle (no copy of a case's
+    curves in the runner). Layout: ``<u8 pickle length> <u8 buffer count>``, the buffers' lengths (u8
+    each), the pickle, the buffers."""
+    arrays: list = []
+    f = io.BytesIO()
+    _Pickler(f, arrays).dump(obj)
+    data = f.getbuffer()
+    head = struct.pack(f"<QQ{len(arrays)}Q", data.nbytes, len(arrays), *(a.nbytes for a in arrays))
+    write_all(fd, [head, data, *arrays])
+
+
+def receive(fd: int):
+    """The next message, or None at end of file. Its arrays are writable and own their memory."""
+    head = read_exactly(fd, HEAD.size)
+    if head is None:
+        return None
+    n_data, n_buffers = HEAD.unpack(head)
+    lengths = struct.unpack(f"<{n_buffers}Q", read_exactly(fd, 8 * n_buffers) or b"") if n_buffers else ()
+    data = read_exactly(fd, n_data)
+    buffers = [read_exactly(fd, n) for n in lengths]
+    if data is None or any(b is None for b in buffers):
+        return None
+    return _Unpickler(io.BytesIO(data), buffers).load()
+
+
+_unreaped: list[int] = []  # finished children not waited for yet (their exit is not waited on: see close)
+
+
+def _reap() -> None:
+    for pid in list(_unreaped):
+        try:
+            done, _ = os.waitpid(pid, os.WNOHANG)
+        except ChildProcessError:
+            done = pid
+        if done:
+            _unreaped.remove(pid)
+
+
+class Recorder:
+    """``put(message)`` in the runner calls ``handle(message)`` in the child, in order; ``close()`` returns
+    ``finish()``'s value from the child (pickled back), and the child's CPU seconds.
+
+    ``handle`` and ``finish`` run in the forked child: they see the runner's objects as they were at
+    the fork, and whatever they change stays in the child."""
+
+    available = hasattr(os, "fork") and usable_cpus() >= 2
+
+    def __init__(self, handle: Callable[[Any], None], finish: Callable[[], Any]):
+        _reap()
+        jobs_r, jobs_w = os.pipe()
+        back_r, back_w = os.pipe()
+        with warnings.catch_warnings():
+            # Python >= 3.12 warns when a process with threads forks. The only other threads here are
+            # OpenBLAS's pool, which is fork-safe (its pthread_atfork handler stops the pool before the
+            # fork; the child starts its own on demand). The progress bar's thread starts after the fork.
+            warnings.filterwarnings("ignore", category=DeprecationWarning, message=r".*fork\(\)")
+            pid = os.fork()
+        if pid == 0:  # the child: never returns
+            code = 1
+            try:
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+                os.close(jobs_w)
+                os.close(back_r)
+                try:
+                    while (message := receive(jobs_r)) is not None:
+                        handle(message)
+                    outcome = ("ok", finish())
+                except BaseException as exc:  # sent back to the runner, which raises it
+                    outcome = ("error", exc)
+                usage = resource.getrusage(resource.RUSAGE_SELF)
+                send(back_w, (*outcome, usage.ru_utime + usage.ru_stime))
+                code = 0
+            finally:
+                os._exit(code)  # no atexit handlers, no flushing of the parent's buffers
+        os.close(jobs_r)
+        os.close(back_w)
+        self._pid, self._jobs, self._back = pid, jobs_w, back_r
+
+    @property
+    def closed(self) -> bool:
+        return self._jobs < 0
+
+    def put(self, message) -> None:
+        try:
+            send(self._jobs, message)
+        except BrokenPipeError:  # the child stopped: close() raises what it sent back
+            self.close()
+            raise
+
+    def close(self) -> tuple[Any, float]:
+        """End of input: ``finish()``'s value and the child's CPU seconds, once the child has sent them.
+        Raises the child's exception if ``handle`` or ``finish`` failed. The child's exit (unmapping a copy
+        of the runner: milliseconds) is not waited for; it is reaped later."""
+        if self._jobs < 0:
+            raise RuntimeError("recorder already closed")
+        os.close(self._jobs)
+        self._jobs = -1
+        try:
+            outcome = receive(self._back)
+        finally:
+            os.close(self._back)
+        if outcome is None:
+            _, status = os.waitpid(self._pid, 0)
+            raise RuntimeError(f"the recorder process ended without an answer (wait status {status})")
+        _unreaped.append(self._pid)
+        _reap()
+        kind, value, cpu = outcome
+        if kind == "error":
+            raise value
+        return value, cpu
