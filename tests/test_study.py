@@ -148,6 +148,15 @@ def test_resume_after_sigkill(tmp_path):
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
     assert np.allclose(_cols(pd.read_csv(out / "results.csv"))[["err_max", "err_l2", "w_at_max"]],
                        _cols(fresh)[["err_max", "err_l2", "w_at_max"]], rtol=1e-12)
+    # the derived tables of the resumed run cover the resumed cases too (written by the recorder process)
+    from pdverify.study.runner import write_derived
+
+    again = tmp_path / "again"
+    again.mkdir()
+    write_derived(load_study(p), again, pd.read_parquet(out / "results.parquet"))
+    for name in ("convergence.csv", "trust.csv", "speed_error.csv"):
+        assert (out / name).read_bytes() == (again / name).read_bytes(), name
+    assert len(pd.read_csv(out / "convergence.csv")) == 6  # 2 variants x 3 horizons, 7 grids each
 
 
 def test_dask_local_cluster_matches_local_run(tmp_path):
@@ -317,6 +326,54 @@ def test_recorder_handles_every_message_in_order_and_returns_its_finish(tmp_path
     for i, a in enumerate(arrays):
         back = decode_record((tmp_path / f"{i}.case").read_bytes())["curve"]["x"]
         assert back.tobytes() == np.ascontiguousarray(a).tobytes() and back.shape == a.shape
+
+
+def test_recorder_runs_after_only_when_the_input_is_complete(tmp_path):
+    """``after`` (the derived tables, in the runner) runs in the child once ``close`` has ended the input,
+    and ``join`` returns its value; after ``abort`` (Ctrl-C) the child handles what it was given and stops
+    without running it."""
+    from pdverify.study.recorder import Recorder
+
+    if not Recorder.available:
+        pytest.skip("no fork or a single CPU")
+    for complete in (True, False):
+        marker = tmp_path / f"after-{complete}"
+        rec = Recorder(_record(tmp_path), lambda: "finished", lambda: marker.write_text("x") and "after")
+        rec.put((f"{complete}.case", np.zeros(4)))
+        if complete:
+            assert rec.close()[0] == "finished" and rec.join()[0] == "after" and marker.exists()
+        else:
+            rec.abort()
+            assert not marker.exists()
+        assert (tmp_path / f"{complete}.case").exists()
+
+
+def test_serial_run_with_and_without_the_recorder_writes_the_same_tables(tmp_path, monkeypatch):
+    """The recorder process measures the cases and writes the derived tables while the runner writes the
+    results; without it (one CPU, no fork) the runner does it all. The results are the same but for the
+    timings, and the recorder's derived tables are, byte for byte, those of the results table beside them."""
+    from pdverify.study import recorder
+    from pdverify.study.runner import write_derived
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
+                              'horizon = [2, 3]\n[[runs]]\nmodel = "fem-eb"\npoints = [5, 9, 17]\n'
+                              '[[benchmarks]]\nname = "centre"\nscene = "' + str(SCENE) + '"\nmodel = "fem-eb"\npoints = 17\n')
+    frames = {}
+    for on in (True, False):
+        monkeypatch.setattr(recorder.Recorder, "available", on and recorder.usable_cpus() >= 2)
+        frames[on] = run_study(load_study(p), tmp_path / f"out-{on}", workers=1, progress=False)
+        meta = json.loads((tmp_path / f"out-{on}" / "meta.json").read_text())
+        assert meta["timing"]["recorder"] == ("process" if recorder.Recorder.available else "inline")
+    timing = ["assemble_s", "solve_s", "total_s"]
+    pd.testing.assert_frame_equal(frames[True].drop(columns=timing), frames[False].drop(columns=timing))
+    out = tmp_path / "out-True"
+    again = tmp_path / "again"
+    again.mkdir()
+    write_derived(load_study(p), again, pd.read_parquet(out / "results.parquet"))
+    names = sorted(f.name for f in again.iterdir() if f.suffix == ".csv")
+    assert {"convergence.csv", "locking.csv", "speed_error.csv", "trust.csv", "benchmarks.csv"} <= set(names)
+    for name in names:
+        assert (out / name).read_bytes() == (again / name).read_bytes(), name
 
 
 def test_recorder_raises_the_childs_failure(tmp_path):

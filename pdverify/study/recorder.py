@@ -6,14 +6,16 @@ between solves, about three times its cost in a tight loop, because each solve l
 (``benchmarks/runner_overhead.py``). Here the solving process only pickles what the model returned into a
 pipe; the child, a ``fork`` of the runner made before the first solve (so it has the study, the models and
 every cache the runner has, and computes the same numbers with the same code), does the rest and writes
-each case file at once. At end of input it sends back what it recorded.
+each case file at once. At the end it sends back what it recorded, then writes the derived tables while
+the runner writes the results table.
 
-Messages are ``<u8 length>`` + a pickle, both ways. The pipe holds one or two cases: when the child falls
-behind, ``put`` waits, so the cases waiting to be recorded are only ever those in the pipe (a killed run
-loses them, like the case being solved). The child ignores SIGINT: after Ctrl-C it still records what it
-was given. A failure in the child (a case file that cannot be written) is sent back and raised by
-``put`` or ``close`` in the runner. Used only where ``fork`` exists and the process may run on at least
-two CPUs (on one CPU the child would take the solver's time instead of an idle core's).
+Each message is a pickle with every array taken out and written beside it as it is (``send``). The pipe
+holds one or two cases: when the child falls behind, ``put`` waits, so the cases waiting to be recorded
+are only ever those in the pipe (a killed run loses them, like the case being solved; if only the runner
+is killed, the child still records them). The child ignores SIGINT: after Ctrl-C it still records what
+it was given. A failure in the child (a case file that cannot be written) is sent back and raised in the
+runner. Used only where ``fork`` exists and the process may run on at least two CPUs (on one CPU the
+child would take the solver's time instead of an idle core's).
 """
 
 from __future__ import annotations
@@ -133,15 +135,18 @@ def _reap() -> None:
 
 
 class Recorder:
-    """``put(message)`` in the runner calls ``handle(message)`` in the child, in order; ``close()`` returns
-    ``finish()``'s value from the child (pickled back), and the child's CPU seconds.
+    """``put(message)`` in the runner calls ``handle(message)`` in the child, in order. ``close()`` ends the
+    input and returns ``finish()``'s value from the child; then the child runs ``after()`` (if given) while
+    the runner goes on, and ``join()`` returns its value. ``abort()`` (the runner is stopping: Ctrl-C, an
+    error) lets the child handle what it was given, skips ``after`` and waits for it.
 
-    ``handle`` and ``finish`` run in the forked child: they see the runner's objects as they were at
-    the fork, and whatever they change stays in the child."""
+    ``handle``, ``finish`` and ``after`` run in the forked child: they see the runner's objects as they
+    were at the fork, and whatever they change stays in the child. Their exceptions are sent back and
+    raised in the runner by ``put``, ``close`` or ``join``."""
 
     available = hasattr(os, "fork") and usable_cpus() >= 2
 
-    def __init__(self, handle: Callable[[Any], None], finish: Callable[[], Any]):
+    def __init__(self, handle: Callable[[Any], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None):
         _reap()
         jobs_r, jobs_w = os.pipe()
         back_r, back_w = os.pipe()
@@ -157,20 +162,13 @@ class Recorder:
                 signal.signal(signal.SIGINT, signal.SIG_IGN)
                 os.close(jobs_w)
                 os.close(back_r)
-                try:
-                    while (message := receive(jobs_r)) is not None:
-                        handle(message)
-                    outcome = ("ok", finish())
-                except BaseException as exc:  # sent back to the runner, which raises it
-                    outcome = ("error", exc)
-                usage = resource.getrusage(resource.RUSAGE_SELF)
-                send(back_w, (*outcome, usage.ru_utime + usage.ru_stime))
+                _serve(jobs_r, back_w, handle, finish, after)
                 code = 0
             finally:
                 os._exit(code)  # no atexit handlers, no flushing of the parent's buffers
         os.close(jobs_r)
         os.close(back_w)
-        self._pid, self._jobs, self._back = pid, jobs_w, back_r
+        self._pid, self._jobs, self._back, self._after = pid, jobs_w, back_r, after is not None
 
     @property
     def closed(self) -> bool:
@@ -178,29 +176,92 @@ class Recorder:
 
     def put(self, message) -> None:
         try:
-            send(self._jobs, message)
-        except BrokenPipeError:  # the child stopped: close() raises what it sent back
-            self.close()
+            send(self._jobs, (_JOB, message))
+        except BrokenPipeError:  # the child stopped after a failure: raise what it sent back
+            self._end_input()
+            self._reply()
             raise
 
     def close(self) -> tuple[Any, float]:
-        """End of input: ``finish()``'s value and the child's CPU seconds, once the child has sent them.
-        Raises the child's exception if ``handle`` or ``finish`` failed. The child's exit (unmapping a copy
-        of the runner: milliseconds) is not waited for; it is reaped later."""
-        if self._jobs < 0:
-            raise RuntimeError("recorder already closed")
-        os.close(self._jobs)
-        self._jobs = -1
+        """End of input: ``finish()``'s value and the child's CPU seconds so far."""
         try:
-            outcome = receive(self._back)
-        finally:
-            os.close(self._back)
+            send(self._jobs, (_END, None))
+        except BrokenPipeError:  # the child stopped after a failure: its reply raises it
+            pass
+        self._end_input()
+        if not self._after:
+            return self._last(self._reply())
+        return self._reply()
+
+    def join(self) -> tuple[Any, float]:
+        """``after()``'s value and the child's CPU seconds in all. The child's exit (unmapping its copy of
+        the runner: milliseconds) is not waited for; it is reaped later."""
+        return self._last(self._reply())
+
+    def abort(self) -> None:
+        """Stop: the child handles the messages already sent and exits without ``after``; waited for."""
+        if self._back < 0:
+            return
+        if not self.closed:
+            self._end_input()  # end of file without the end message: no after()
+        os.close(self._back)
+        self._back = -1
+        os.waitpid(self._pid, 0)
+
+    def _end_input(self) -> None:
+        if self._jobs >= 0:
+            os.close(self._jobs)
+            self._jobs = -1
+
+    def _reply(self):
+        outcome = receive(self._back)
         if outcome is None:
+            os.close(self._back)
+            self._back = -1
             _, status = os.waitpid(self._pid, 0)
             raise RuntimeError(f"the recorder process ended without an answer (wait status {status})")
-        _unreaped.append(self._pid)
-        _reap()
         kind, value, cpu = outcome
         if kind == "error":
+            self.abort()
             raise value
         return value, cpu
+
+    def _last(self, reply):
+        os.close(self._back)
+        self._back = -1
+        _unreaped.append(self._pid)
+        _reap()
+        return reply
+
+
+_JOB, _END = 0, 1
+
+
+def _serve(jobs: int, back: int, handle, finish, after) -> None:
+    """The child's loop: handle each job; at the end message (or end of file: the runner stopped) send
+    back ``finish()``; after the end message, run ``after()`` and send back its value. The first exception
+    is sent back instead, and ends the child."""
+
+    def reply(fn):
+        try:
+            outcome = ("ok", fn())
+        except BaseException as exc:  # raised in the runner
+            outcome = ("error", exc)
+        usage = resource.getrusage(resource.RUSAGE_SELF)
+        send(back, (*outcome, usage.ru_utime + usage.ru_stime))
+        return outcome[0] == "ok"
+
+    ended = False
+
+    def jobs_then_finish():
+        nonlocal ended
+        while (message := receive(jobs)) is not None:
+            kind, payload = message
+            if kind == _END:
+                ended = True
+                break
+            handle(payload)
+        return finish()
+
+    if reply(jobs_then_finish) and ended and after is not None:
+        reply(after)

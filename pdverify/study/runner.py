@@ -277,8 +277,14 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
             keep.add(rec, id_of[id(todo[i])])
 
+        def derived_tables():  # in the child, once every case is in, while the runner writes the results
+            t = time.perf_counter()
+            rows = {**done, **keep.rows}
+            write_derived(study, out, results_frame(study, [rows[cid] for cid in dict.fromkeys(ids)]))
+            return time.perf_counter() - t
+
         try:
-            recorder = Recorder(record, keep.summary)
+            recorder = Recorder(record, keep.summary, derived_tables)
         except OSError:  # no process to be had (limits): measure and store here instead
             pass
     bar = _progress(len(todo), progress)  # after the fork: the bar's thread stays in this process
@@ -305,23 +311,41 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
                 futs = {pool.submit(run_case, c, str(out / "vtu"), id_of[id(c)]): c for c in todo}
                 for fut in as_completed(futs):
                     bar.advance(failed=not keep.add(fut.result(), id_of[id(futs[fut])]))
-    finally:
+    except BaseException:  # Ctrl-C, a failed write: the child records the cases it was given, no tables
         bar.close()
-        if recorder is not None and not recorder.closed:  # also after Ctrl-C: the child records what it was given
-            t = time.perf_counter()
-            (rows, mismatched, clock), cpu = recorder.close()  # the child's OutputError, if any, is raised here
-            keep.rows.update(rows)
-            keep.mismatched += mismatched
-            keep.clock.update(clock, recorder_cpu_s=cpu, recorder_wait_s=time.perf_counter() - t)
+        if recorder is not None:
+            recorder.abort()
+        raise
+    bar.close()
+    derived = None
+    if recorder is not None:
+        t = time.perf_counter()
+        (rows, mismatched, clock), _ = recorder.close()  # the child's OutputError, if any, is raised here
+        keep.rows.update(rows)
+        keep.mismatched += mismatched
+        keep.clock.update(clock, recorder_wait_s=time.perf_counter() - t)
+
+        def derived():  # written by the child meanwhile: its time for them, and its CPU time in all
+            tables_s, cpu = recorder.join()
+            return {"recorder_tables_s": tables_s, "recorder_cpu_s": cpu}
+
     done.update(keep.rows)
-    mismatched = keep.mismatched
-    clock = {**keep.clock, "recorder": "process" if recorder is not None else "inline"}
-    rows = [done[cid] for cid in dict.fromkeys(ids)]
+    df = results_frame(study, [done[cid] for cid in dict.fromkeys(ids)])
+    cases_s = time.perf_counter() - t0
+    write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
+                 timing={"cases_s": cases_s, "computed_cases": len(todo), "recorder": "process" if recorder else "inline",
+                         **keep.clock})
+    return df
+
+
+def results_frame(study: Study, rows: list[dict]) -> pd.DataFrame:
+    """The results table: one row per case, in the study's order, the study's name first; the text
+    options as pandas strings (so an all-missing column stays a text column in Parquet)."""
     df = pd.DataFrame(rows)
     df.insert(0, "study", study.name)
-    cases_s = time.perf_counter() - t0
-    write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=mismatched,
-                 timing={"cases_s": cases_s, "computed_cases": len(todo), **clock})
+    for col in ("variant", "element", "form"):
+        if col in df:
+            df[col] = df[col].astype("string")
     return df
 
 
@@ -589,15 +613,8 @@ def package_versions() -> dict:
     return dict(versions)
 
 
-def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
-                 mismatched: list[str] | None = None, timing: dict | None = None) -> None:
-    """results, convergence, locking, speed_error(_summary), trust, benchmarks, study.toml and meta.json.
-    ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the tables' own time."""
-    t_tables = time.perf_counter()
-    for col in ("variant", "element", "form"):
-        if col in df:
-            df[col] = df[col].astype("string")
-    _save(df, out, "results")
+def write_derived(study: Study, out: Path, df: pd.DataFrame) -> None:
+    """convergence, locking, speed_error(_summary), trust and benchmarks, from the results table."""
     conv = convergence_table(df)
     _save(conv, out, "convergence")
     _save(locking_table(df), out, "locking")
@@ -607,6 +624,20 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
     trust_table(df).to_csv(out / "trust.csv", index=False)
     if study.benchmarks:
         benchmark_table(study, df, conv, out / "cases").to_csv(out / "benchmarks.csv", index=False)
+
+
+def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
+                 mismatched: list[str] | None = None, timing: dict | None = None, derived=None) -> None:
+    """results (``df``, from :func:`results_frame`), the derived tables (:func:`write_derived`; or, when
+    given, ``derived()`` waits for another process that writes them and returns timings to record), study.toml
+    and meta.json, last. ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
+    tables' own time."""
+    t_tables = time.perf_counter()
+    _save(df, out, "results")
+    if derived is None:
+        write_derived(study, out, df)
+    else:
+        timing = {**(timing or {}), **derived()}
     shutil.copyfile(study.path, out / "study.toml")
     versions = package_versions()
     meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
