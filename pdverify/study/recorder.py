@@ -14,7 +14,7 @@ holds one or two cases: when the child falls behind, ``put`` waits, so the cases
 are only ever those in the pipe (a killed run loses them, like the case being solved; if only the runner
 is killed, the child still records them). The child ignores SIGINT: after Ctrl-C it still records what
 it was given. A failure in the child (a case file that cannot be written) is sent back and raised in the
-runner. Used only where ``fork`` exists and the process may run on at least two CPUs (on one CPU the
+runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on one CPU the
 child would take the solver's time instead of an idle core's).
 """
 
@@ -26,6 +26,7 @@ import pickle
 import resource
 import signal
 import struct
+import sys
 import warnings
 from typing import Any, Callable
 
@@ -144,7 +145,9 @@ class Recorder:
     were at the fork, and whatever they change stays in the child. Their exceptions are sent back and
     raised in the runner by ``put``, ``close`` or ``join``."""
 
-    available = hasattr(os, "fork") and usable_cpus() >= 2
+    # Linux only: on macOS a forked child of a process that has used the system's frameworks (Accelerate,
+    # libdispatch) may crash, which is why multiprocessing spawns there.
+    available = sys.platform.startswith("linux") and usable_cpus() >= 2
 
     def __init__(self, handle: Callable[[Any], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None):
         _reap()
