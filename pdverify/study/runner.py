@@ -280,7 +280,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         def derived_tables():  # in the child, once every case is in, while the runner writes the results
             t = time.perf_counter()
             rows = {**done, **keep.rows}
-            write_derived(study, out, results_frame(study, [rows[cid] for cid in dict.fromkeys(ids)]))
+            write_derived(study, out, results_frame(study, [rows[cid] for cid in dict.fromkeys(ids)]), RECORDER_WRITES)
             return time.perf_counter() - t
 
         try:
@@ -613,31 +613,47 @@ def package_versions() -> dict:
     return dict(versions)
 
 
-def write_derived(study: Study, out: Path, df: pd.DataFrame) -> None:
-    """convergence, locking, speed_error(_summary), trust and benchmarks, from the results table."""
+def _write_convergence(study: Study, out: Path, df: pd.DataFrame) -> None:
     conv = convergence_table(df)
     _save(conv, out, "convergence")
-    _save(locking_table(df), out, "locking")
+    if study.benchmarks:  # the verification rows quote the observed order
+        benchmark_table(study, df, conv, out / "cases").to_csv(out / "benchmarks.csv", index=False)
+
+
+def _write_speed_error(study: Study, out: Path, df: pd.DataFrame) -> None:
     se, summary = speed_error_tables(df)
     _save(se, out, "speed_error")
     summary.to_csv(out / "speed_error_summary.csv", index=False)
-    trust_table(df).to_csv(out / "trust.csv", index=False)
-    if study.benchmarks:
-        benchmark_table(study, df, conv, out / "cases").to_csv(out / "benchmarks.csv", index=False)
+
+
+DERIVED = {  # the derived tables, by the part of the work that writes them together
+    "convergence": _write_convergence,  # convergence.csv/.parquet and benchmarks.csv
+    "locking": lambda study, out, df: _save(locking_table(df), out, "locking"),
+    "speed_error": _write_speed_error,  # speed_error.csv/.parquet and speed_error_summary.csv
+    "trust": lambda study, out, df: trust_table(df).to_csv(out / "trust.csv", index=False),
+}
+RECORDER_WRITES = ("convergence", "locking", "trust")  # in a serial run; the runner writes the others beside results
+
+
+def write_derived(study: Study, out: Path, df: pd.DataFrame, parts=tuple(DERIVED)) -> None:
+    """The derived tables (``parts`` of :data:`DERIVED`: all by default) from the results table."""
+    for name in parts:
+        DERIVED[name](study, out, df)
 
 
 def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
                  mismatched: list[str] | None = None, timing: dict | None = None, derived=None) -> None:
     """results (``df``, from :func:`results_frame`), the derived tables (:func:`write_derived`; or, when
-    given, ``derived()`` waits for another process that writes them and returns timings to record), study.toml
-    and meta.json, last. ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
+    ``derived`` is given, those not in :data:`RECORDER_WRITES`, then ``derived()`` waits for the process that
+    writes those and returns timings to record), study.toml and meta.json, last. ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
     tables' own time."""
     t_tables = time.perf_counter()
     _save(df, out, "results")
     if derived is None:
         write_derived(study, out, df)
-    else:
-        timing = {**(timing or {}), **derived()}
+    else:  # the other process writes RECORDER_WRITES meanwhile
+        write_derived(study, out, df, [k for k in DERIVED if k not in RECORDER_WRITES])
+        timing = {**(timing or {}), "runner_tables_s": time.perf_counter() - t_tables, **derived()}
     shutil.copyfile(study.path, out / "study.toml")
     versions = package_versions()
     meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
