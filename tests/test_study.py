@@ -404,25 +404,24 @@ def test_unwritable_output_is_one_line_exit_4(tmp_path):
     assert f"output directory {blocker / 'out'}" in r.stderr and "writable --out" in r.stderr
 
 
-@pytest.mark.parametrize("recorder", [True, False])
-def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypatch, recorder):
+@pytest.mark.parametrize("recorder,workers", [(True, 1), (False, 1), (False, 2)])
+def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypatch, recorder, workers):
     """A case file that cannot be written in the middle of a run (a full disk, simulated) stops the study
-    with OutputError naming the directory and the fix, whether the serial run's recorder process or the
-    runner itself writes it; the cases written before it stay."""
+    with OutputError naming the directory and the fix, whether the serial run's recorder process, the
+    runner itself or a pool worker writes it; the cases written before it stay."""
     from pdverify.errors import OutputError
     from pdverify.study import recorder as rec_mod, runner
 
     monkeypatch.setattr(rec_mod.Recorder, "available", recorder and rec_mod.Recorder.available)
-    real, calls = runner.write_atomic, []
+    real = runner.write_atomic
 
-    def full_disk(path, data):
-        calls.append(path)
-        if len(calls) > 2:
+    def full_disk(path, data):  # the disk fills up after two case files (counted on disk: pool workers too)
+        if len(list(Path(path).parent.glob("*.case"))) >= 2:
             raise OSError(28, "No space left on device")
         real(path, data)
 
     monkeypatch.setattr(runner, "write_atomic", full_disk)
     p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31, 41, 51]\n')
     with pytest.raises(OutputError, match="No space left on device.*writable --out"):
-        run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+        run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
     assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 2
