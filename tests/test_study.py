@@ -159,6 +159,37 @@ def test_resume_after_sigkill(tmp_path):
     assert len(pd.read_csv(out / "convergence.csv")) == 6  # 2 variants x 3 horizons, 7 grids each
 
 
+def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
+    """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) in a serial run: exit 130 without
+    a traceback, every case that was finished is on disk (the recorder process ignores SIGINT and writes
+    what it was given), no half-written file, no tables for a partial study, no process left behind, and
+    a second run resumes every finished case."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+                              'points = [101, 151, 201, 301, 401, 601, 801, 1201, 1601, 2001]\nhorizon = [2, 3, 4]\n')
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
+    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    finished = len(list((out / "cases").glob("*.case")))
+    assert proc.returncode == 130 and b"Traceback" not in err, err
+    assert 5 <= finished < 60 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
+    left = []  # processes whose command line names this run's output (the recorder is a fork of the runner)
+    for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
+        try:
+            if str(out).encode() in cmdline.read_bytes():
+                left.append(cmdline.parent.name)
+        except OSError:  # the process ended meanwhile
+            pass
+    assert left == [], left  # the recorder was waited for
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert json.loads((out / "meta.json").read_text())["resumed_cases"] == finished
+
+
 def test_dask_local_cluster_matches_local_run(tmp_path):
     from dask.distributed import LocalCluster
 
