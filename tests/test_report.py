@@ -95,12 +95,12 @@ def test_time_histories_plotted_and_written_as_csv(tmp_path, monkeypatch):
     monkeypatch.setitem(registry.models(), "ringing-test", Ringing())
     p = tmp_path / "dyn.toml"
     p.write_text(f'name = "dyn"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "none"\n'
-                 '[[runs]]\nmodel = "ringing-test"\n')
+                 '[[runs]]\nmodel = "ringing-test"\npoints = [11, 21]\n')  # two cases: a serial run's recorder path
     df = run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
-    csv = tmp_path / "run" / "histories" / f"{df['case_id'].iloc[0]}.csv"
-    h = pd.read_csv(csv)
-    assert list(h.columns) == ["t", "midpoint"] and len(h) == 201
-    assert np.allclose(h["midpoint"], 0.1 * (1 - np.cos(2 * np.pi * 5 * h["t"]) * np.exp(-h["t"])), rtol=1e-15)
+    for case_id in df["case_id"]:
+        h = pd.read_csv(tmp_path / "run" / "histories" / f"{case_id}.csv")
+        assert list(h.columns) == ["t", "midpoint"] and len(h) == 201
+        assert np.allclose(h["midpoint"], 0.1 * (1 - np.cos(2 * np.pi * 5 * h["t"]) * np.exp(-h["t"])), rtol=1e-15)
     page = build_report(tmp_path / "run").read_text()
     assert "time history" in page and "t (s)" in page
 
@@ -155,12 +155,13 @@ scenes = ["{ROOT}/studies/paper_yang/cantilever_tip_force.toml"]
 reference = "exact-timoshenko"
 [[runs]]
 model = "fem-plane-stress"
-points = 21
+points = [21, 31]
 layers = 4
-''')
+''')  # two cases: a serial run's recorder path (the pictures are drawn by the solving process)
     run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
     pngs = list((tmp_path / "run" / "vtu").glob("*.png"))
-    assert len(pngs) == 1 and pngs[0].stat().st_size > 2000
+    assert len(pngs) == 2 and all(png.stat().st_size > 2000 for png in pngs)
     page = build_report(tmp_path / "run").read_text()
-    assert "data:image/png;base64," in page and f'href="vtu/{pngs[0].stem}.vtu"' in page
-    assert (tmp_path / "run" / "vtu" / f"{pngs[0].stem}.vtu").exists()
+    for png in pngs:
+        assert f'href="vtu/{png.stem}.vtu"' in page and (tmp_path / "run" / "vtu" / f"{png.stem}.vtu").exists()
+    assert "data:image/png;base64," in page
