@@ -456,3 +456,16 @@ def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypa
     with pytest.raises(OutputError, match="No space left on device.*writable --out"):
         run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
     assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 2
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_unwritable_table_is_an_output_error_and_the_cases_stay(tmp_path, synthetic, workers):
+    """A table that cannot be written (here a directory stands where results.csv goes) stops the study with
+    OutputError naming the directory, after every case file is written (a rerun only redoes the tables)."""
+    from pdverify.errors import OutputError
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31]\n')
+    (tmp_path / "out" / "results.csv").mkdir(parents=True)
+    with pytest.raises(OutputError, match="output directory .*: a table could not be written"):
+        run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
+    assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 3

@@ -332,9 +332,14 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     done.update(keep.rows)
     df = results_frame(study, [done[cid] for cid in dict.fromkeys(ids)])
     cases_s = time.perf_counter() - t0
-    write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
-                 timing={"cases_s": cases_s, "computed_cases": len(todo), "recorder": "process" if recorder else "inline",
-                         **keep.clock})
+    try:
+        write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
+                     timing={"cases_s": cases_s, "computed_cases": len(todo),
+                             "recorder": "process" if recorder else "inline", **keep.clock})
+    except OSError as exc:
+        if recorder is not None:
+            recorder.abort()
+        raise _output_error(out, exc, "a table") from None
     return df
 
 
@@ -349,8 +354,8 @@ def results_frame(study: Study, rows: list[dict]) -> pd.DataFrame:
     return df
 
 
-def _output_error(out: Path, exc: OSError) -> OutputError:
-    return OutputError(f"output directory {out}: a case file could not be written ({exc}); free disk space or "
+def _output_error(out: Path, exc: OSError, what: str = "a case file") -> OutputError:
+    return OutputError(f"output directory {out}: {what} could not be written ({exc}); free disk space or "
                        "give a writable --out. The cases already written are kept: run the study again to resume.")
 
 
