@@ -637,7 +637,7 @@ DERIVED = {  # the derived tables, by the part of the work that writes them toge
     "speed_error": _write_speed_error,  # speed_error.csv/.parquet and speed_error_summary.csv
     "trust": lambda study, out, df: trust_table(df).to_csv(out / "trust.csv", index=False),
 }
-RECORDER_WRITES = ("convergence", "locking", "trust")  # in a serial run; the runner writes the others beside results
+RECORDER_WRITES = ("convergence", "locking")  # in a serial run; the runner writes the others beside results
 
 
 def write_derived(study: Study, out: Path, df: pd.DataFrame, parts=tuple(DERIVED)) -> None:
