@@ -321,11 +321,18 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         if recorder is not None:
             recorder.abort()
         raise
-    bar.close()
+    if recorder is None:
+        bar.close()
     derived = None
     if recorder is not None:
         t = time.perf_counter()
-        (rows, mismatched, clock), _ = recorder.close()  # the child's OutputError, if any, is raised here
+        try:
+            (rows, mismatched, clock), _ = recorder.close()  # the child's OutputError, if any, is raised here
+            # the bar counted the failed solves as they came; a case can also fail where it is measured
+            # (its reference): the final count is the rows'
+            bar.set_failed(sum(r["status"] != "ok" for r in rows.values()))
+        finally:
+            bar.close()
         keep.rows.update(rows)
         keep.mismatched += mismatched
         keep.clock.update(clock, recorder_wait_s=time.perf_counter() - t)
@@ -382,6 +389,11 @@ class _progress:
         self.failed += int(failed)
         if self.enabled:
             self.p.update(self.task, advance=1, failed=self.failed)
+
+    def set_failed(self, n: int):
+        self.failed = n
+        if self.enabled:
+            self.p.update(self.task, failed=n)
 
     def close(self):
         if self.enabled:
