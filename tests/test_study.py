@@ -121,17 +121,25 @@ def _cols(df):
     return df.sort_values("case_id")[["case_id", "err_max", "err_l2", "w_at_max"]].reset_index(drop=True)
 
 
-def test_resume_after_sigkill(tmp_path):
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n')
-    out = tmp_path / "out"
+def _signal_mid_run(p, out, sig):
+    """Start ``pdverify study`` serially in its own process group, send ``sig`` to the group once 5 case
+    files are on disk (as a terminal sends Ctrl-C to the whole group) and wait; the process, its stderr
+    and the CLI command (to run the study again)."""
     cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
     deadline = time.time() + 60
     while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
-        time.sleep(0.05)
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
+        time.sleep(0.02)
+    os.killpg(proc.pid, sig)
+    _, err = proc.communicate(timeout=60)
+    return proc, err, cmd
+
+
+def test_resume_after_sigkill(tmp_path):
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+                              'points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n')
+    out = tmp_path / "out"
+    _, _, cmd = _signal_mid_run(p, out, signal.SIGKILL)
     partial = len(list((out / "cases").glob("*.case")))
     assert 5 <= partial < 42, partial
     # corrupt files are detected and recomputed: one truncated (killed mid-write elsewhere), one with a
@@ -167,13 +175,7 @@ def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
                               'points = [101, 151, 201, 301, 401, 601, 801, 1201, 1601, 2001]\nhorizon = [2, 3, 4]\n')
     out = tmp_path / "out"
-    cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
-    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
-    deadline = time.time() + 60
-    while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
-        time.sleep(0.02)
-    os.killpg(proc.pid, signal.SIGINT)
-    _, err = proc.communicate(timeout=60)
+    proc, err, cmd = _signal_mid_run(p, out, signal.SIGINT)
     finished = len(list((out / "cases").glob("*.case")))
     assert proc.returncode == 130 and b"Traceback" not in err, err
     assert 5 <= finished < 60 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
@@ -206,7 +208,7 @@ def test_dask_local_cluster_matches_local_run(tmp_path):
 def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
     """Case files: arrays come back bit for bit (NaN, -0.0, subnormal, huge), nested curves (fields, time
     histories, load steps) keep their structure, and any damage reads as None (the case is recomputed)."""
-    from pdverify.study.store import decode_record, encode_record, read_case, write_record
+    from pdverify.study.store import decode_record, encode_record, read_case, write_atomic
 
     a = np.array([0.1, -1e-300, 1e300, np.pi, -0.0, np.nan, 5e-324])
     rec = {"case": {"model": "m", "given": {"points": 7}}, "row": {"status": "ok", "err_max": 0.5, "n": 3},
@@ -225,7 +227,7 @@ def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
         assert decode_record(bytes(bad)) is None, k
     assert decode_record(raw[:-1]) is None and decode_record(raw + b"x") is None and decode_record(b"") is None
     p = tmp_path / "c.case"
-    write_record(p, rec)
+    write_atomic(p, encode_record(rec))
     assert read_case(p)["row"] == rec["row"] and read_case(tmp_path / "missing.case") is None
 
 

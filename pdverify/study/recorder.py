@@ -32,6 +32,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .store import write_all
+
 HEAD = struct.Struct("<QQ")
 
 
@@ -41,22 +43,6 @@ def usable_cpus() -> int:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # pragma: no cover - not Linux
         return os.cpu_count() or 1
-
-
-def _views(parts) -> list[memoryview]:
-    return [v for v in (memoryview(p).cast("B") for p in parts) if v.nbytes]
-
-
-def write_all(fd: int, parts) -> None:
-    """Write the byte buffers ``parts`` in order with ``writev`` (no copy into one buffer)."""
-    views = _views(parts)
-    while views:
-        n = os.writev(fd, views[:1024])
-        while views and n >= views[0].nbytes:
-            n -= views[0].nbytes
-            views.pop(0)
-        if n:
-            views[0] = views[0][n:]
 
 
 def read_exactly(fd: int, n: int) -> bytearray | None:
@@ -109,12 +95,16 @@ def send(fd: int, obj) -> None:
 
 
 def receive(fd: int):
-    """The next message, or None at end of file. Its arrays are writable and own their memory."""
+    """The next message, or None at end of file (also inside a message). Its arrays are writable, each
+    backed by its own buffer."""
     head = read_exactly(fd, HEAD.size)
     if head is None:
         return None
     n_data, n_buffers = HEAD.unpack(head)
-    lengths = struct.unpack(f"<{n_buffers}Q", read_exactly(fd, 8 * n_buffers) or b"") if n_buffers else ()
+    sizes = read_exactly(fd, 8 * n_buffers)
+    if sizes is None:
+        return None
+    lengths = struct.unpack(f"<{n_buffers}Q", sizes)
     data = read_exactly(fd, n_data)
     buffers = [read_exactly(fd, n) for n in lengths]
     if data is None or any(b is None for b in buffers):

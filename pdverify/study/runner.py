@@ -321,18 +321,17 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         if recorder is not None:
             recorder.abort()
         raise
-    if recorder is None:
-        bar.close()
-    derived = None
-    if recorder is not None:
-        t = time.perf_counter()
-        try:
+    try:
+        if recorder is not None:
+            t = time.perf_counter()
             (rows, mismatched, clock), _ = recorder.close()  # the child's OutputError, if any, is raised here
             # the bar counted the failed solves as they came; a case can also fail where it is measured
             # (its reference): the final count is the rows'
             bar.set_failed(sum(r["status"] != "ok" for r in rows.values()))
-        finally:
-            bar.close()
+    finally:
+        bar.close()
+    derived = None
+    if recorder is not None:
         keep.rows.update(rows)
         keep.mismatched += mismatched
         keep.clock.update(clock, recorder_wait_s=time.perf_counter() - t)
@@ -667,8 +666,8 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
                  mismatched: list[str] | None = None, timing: dict | None = None, derived=None) -> None:
     """results (``df``, from :func:`results_frame`), the derived tables (:func:`write_derived`; or, when
     ``derived`` is given, those not in :data:`RECORDER_WRITES`, then ``derived()`` waits for the process that
-    writes those and returns timings to record), study.toml and meta.json, last. ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
-    tables' own time."""
+    writes those and returns timings to record), study.toml and meta.json, last. ``timing`` (from
+    :func:`run_study`): where the run's time went; meta.json adds the tables' own time."""
     t_tables = time.perf_counter()
     _save(df, out, "results")
     if derived is None:

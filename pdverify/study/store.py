@@ -112,11 +112,6 @@ def decode_record(raw: bytes) -> dict | None:
     return rec
 
 
-def write_record(path: Path, rec: dict) -> None:
-    """A case record, encoded (:func:`encode_record`) and written atomically (:func:`write_atomic`)."""
-    write_atomic(path, encode_record(rec))
-
-
 def write_atomic(path, data) -> None:
     """Write to a temporary file beside ``path`` and rename it over ``path`` (atomic on POSIX): a killed
     process leaves the old file or the new one, never a partial one. No fsync: the rename is atomic
@@ -133,12 +128,23 @@ def write_atomic(path, data) -> None:
         os.makedirs(head or ".", exist_ok=True)
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
     try:
-        view = memoryview(data)
-        while view:
-            view = view[os.write(fd, view):]
+        write_all(fd, [data])
     finally:
         os.close(fd)
     os.replace(tmp, path)
+
+
+def write_all(fd: int, parts) -> None:
+    """Write the byte buffers ``parts`` to ``fd`` in order with ``writev`` (no copy into one buffer),
+    however many calls it takes."""
+    views = [v for v in (memoryview(p).cast("B") for p in parts) if v.nbytes]
+    while views:
+        n = os.writev(fd, views[:1024])
+        while views and n >= views[0].nbytes:
+            n -= views[0].nbytes
+            views.pop(0)
+        if n:
+            views[0] = views[0][n:]
 
 
 def case_file(cases_dir: Path, case_id: str, names: set[str] | None = None) -> Path | None:
