@@ -152,8 +152,11 @@ def case_file(cases_dir: Path, case_id: str, names: set[str] | None = None) -> P
     file (studies run before the change), else None. ``names``: the directory's file names when the
     caller has listed it once (a resumed study looks up every case; one listing instead of a stat each)."""
     for suffix in (SUFFIX, LEGACY_SUFFIX):
-        p = Path(cases_dir) / f"{case_id}{suffix}"
-        if (p.name in names) if names is not None else p.exists():
+        name = case_id + suffix
+        if names is not None and name not in names:  # no path made for a file that is not there
+            continue
+        p = Path(cases_dir) / name
+        if names is not None or p.exists():
             return p
     return None
 
