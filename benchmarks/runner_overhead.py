@@ -120,7 +120,8 @@ def main():
                         "runner_besides_solves": round(1e3 * (best["cases_s"] - best["solver_s"]) / n, 3),
                         "tables_amortised": ms("tables_s"),
                         # work done off the solving process (recorder) or in it (inline):
-                        "measure": ms("measure_s"), "store": ms("store_s"), "recorder_cpu": ms("recorder_cpu_s")},
+                        "measure": ms("measure_s"), "store": ms("store_s"), "recorder_cpu": ms("recorder_cpu_s"),
+                        "handoff": ms("handoff_s")},  # the solving process's time to hand a case to the recorder
         "tables_ms": {k: round(1e3 * min(t.get(f"{k}_s", 0.0) for t in timing), 2)  # tables: on the critical
                       for k in ("tables", "runner_tables", "recorder_tables")},  # path; each process's share
         "minor_faults": {k: int(statistics.median(v)) for k, v in faults.items()},

@@ -332,8 +332,8 @@ def _record(path):
     """The recorder's handler in these tests: writes each message's array where it says (in the child)."""
     from pdverify.study.store import encode_record, write_atomic
 
-    def handle(message):
-        name, x = message
+    def handle(name, arrays):
+        x, = arrays
         write_atomic(path / name, encode_record({"case": {}, "row": {"status": "ok", "name": name}, "curve": {"x": x}}))
     return handle
 
@@ -351,14 +351,64 @@ def test_recorder_handles_every_message_in_order_and_returns_its_finish(tmp_path
     arrays = [np.linspace(0, 1, 5000) * i for i in range(30)]  # 40 kB each: the pipe holds one or two
     arrays[3][7], arrays[4][0] = np.nan, -0.0
     arrays += [np.arange(40.0)[::3], np.arange(12.0).reshape(3, 4)]
-    rec = Recorder(lambda m: (seen.append(m[0]), _record(tmp_path)(m)), lambda: list(seen))
+    rec = Recorder(lambda m, a: (seen.append(m), _record(tmp_path)(m, a)), lambda: list(seen))
     for i, a in enumerate(arrays):
-        rec.put((f"{i}.case", a))
+        rec.put(f"{i}.case", [a])
     order, cpu = rec.close()
     assert order == [f"{i}.case" for i in range(len(arrays))] and cpu >= 0.0 and seen == []  # seen: the child's copy
     for i, a in enumerate(arrays):
         back = decode_record((tmp_path / f"{i}.case").read_bytes())["curve"]["x"]
         assert back.tobytes() == np.ascontiguousarray(a).tobytes() and back.shape == a.shape
+
+
+def test_recorder_message_encoding_is_exact_and_falls_back_to_pickle():
+    """A message crosses by marshal when marshal gives it back equal, else by pickle: a numpy scalar (which
+    marshal would write as bytes, silently), a NaN (NaN != NaN), arrays inside the message, an exception.
+    Either way the object and the arrays beside it come back exactly (dtype, shape, bits)."""
+    from pdverify.study.recorder import _MARSHAL, _PICKLE, decode, encode
+
+    arrays = [np.array([np.nan, -0.0, 1e-300]), np.arange(12, dtype="<i4").reshape(3, 4), np.arange(9.0)[::2],
+              np.zeros(0)]
+    cases = [((3, {"timings": {"total_s": 0.25}, "dofs": 7, "info": {"cond": None}}, ["x"], []), _MARSHAL),
+             ({1: (True, 2 + 1j, b"raw", "text")}, _MARSHAL),
+             ({"cond": np.float64(2.0)}, _PICKLE), ({"cond": float("nan")}, _PICKLE),
+             ({"history": {"t": np.linspace(0, 1, 5)}}, _PICKLE), (ValueError("bad"), _PICKLE)]
+    for obj, kind in cases:
+        k, data, out = encode(obj, arrays)
+        assert k == kind, obj
+        back, back_arrays = decode(k, data, [bytearray(a.tobytes()) for a in out])
+        if isinstance(obj, Exception):
+            assert type(back) is ValueError and back.args == obj.args
+        else:
+            assert repr(back) == repr(obj) and type(back) is type(obj)
+        assert [(a.dtype, a.shape, a.tobytes()) for a in back_arrays[:len(arrays)]] == \
+               [(a.dtype, a.shape, np.ascontiguousarray(a).tobytes()) for a in arrays]
+
+
+def test_handoff_of_a_solve_round_trips():
+    """What the serial runner hands to its recorder (curves apart, the rest marshalled) comes back as the
+    solve returned it: optional rotation, point fields, a failure."""
+    from pdverify.study.recorder import decode, encode
+    from pdverify.study.runner import _handback, _handoff
+
+    x = np.linspace(0, 1, 5)
+    solves = [{"x": x, "w": -x, "rotation": None, "fields": {"M": x * 2, "Q": x * 3}, "timings": {"total_s": 0.1},
+               "dofs": 5, "info": {"horizon": 0.5}},
+              {"x": x, "w": -x, "rotation": x + 1, "fields": {}, "timings": {}, "dofs": 5, "info": {},
+               "artefact_message": "no picture"},
+              {"failure": "singular matrix"}]
+    for solved in solves:
+        message, arrays = _handoff(4, solved)
+        k, data, out = encode(message, arrays)
+        i, back = _handback(*decode(k, data, [bytearray(a.tobytes()) for a in out]))
+        assert i == 4 and back.keys() == solved.keys()
+        for key, v in solved.items():
+            if isinstance(v, np.ndarray):
+                assert np.array_equal(back[key], v)
+            elif key == "fields":
+                assert back[key].keys() == v.keys() and all(np.array_equal(back[key][f], v[f]) for f in v)
+            else:
+                assert back[key] == v
 
 
 def test_recorder_runs_after_only_when_the_input_is_complete(tmp_path):
@@ -372,7 +422,7 @@ def test_recorder_runs_after_only_when_the_input_is_complete(tmp_path):
     for complete in (True, False):
         marker = tmp_path / f"after-{complete}"
         rec = Recorder(_record(tmp_path), lambda: "finished", lambda: marker.write_text("x") and "after")
-        rec.put((f"{complete}.case", np.zeros(4)))
+        rec.put(f"{complete}.case", [np.zeros(4)])
         if complete:
             assert rec.close()[0] == "finished" and rec.join()[0] == "after" and marker.exists()
         else:
@@ -417,10 +467,10 @@ def test_recorder_raises_the_childs_failure(tmp_path):
     if not Recorder.available:
         pytest.skip("no fork or a single CPU")
     rec = Recorder(_record(tmp_path), lambda: None)
-    rec.put(("x" * 300 + ".case", np.zeros(3)))  # name too long for the file system
+    rec.put("x" * 300 + ".case", [np.zeros(3)])  # name too long for the file system
     with pytest.raises(OSError, match="File name too long"):
         for i in range(200):
-            rec.put((f"more{i}.case", np.zeros(8192)))
+            rec.put(f"more{i}.case", [np.zeros(8192)])
         rec.close()
     assert rec.closed
 

@@ -3,13 +3,14 @@
 Why: in a serial run (``--workers 1``) the runner's own work per case (the reference at the model's
 points, the errors, encoding the record, creating its file) cost ~0.6 ms beside a 6-8 ms solve when done
 between solves, about three times its cost in a tight loop, because each solve leaves the caches cold
-(``benchmarks/runner_overhead.py``). Here the solving process only pickles what the model returned into a
+(``benchmarks/runner_overhead.py``). Here the solving process only writes what the model returned into a
 pipe; the child, a ``fork`` of the runner made before the first solve (so it has the study, the models and
 every cache the runner has, and computes the same numbers with the same code), does the rest and writes
 each case file at once. At the end it sends back what it recorded, then writes the derived tables while
 the runner writes the results table.
 
-Each message is a pickle with every array taken out and written beside it as it is (``send``). The pipe
+Each message's arrays are written as they are, beside the rest, marshalled (or pickled when marshal
+would not give it back equal: ``encode``). The pipe
 holds one or two cases: when the child falls behind, ``put`` waits, so the cases waiting to be recorded
 are only ever those in the pipe (a killed run loses them, like the case being solved; if only the runner
 is killed, the child still records them). The child ignores SIGINT: after Ctrl-C it still records what
@@ -21,6 +22,7 @@ child would take the solver's time instead of an idle core's).
 from __future__ import annotations
 
 import io
+import marshal
 import os
 import pickle
 import resource
@@ -34,7 +36,8 @@ import numpy as np
 
 from .store import write_all
 
-HEAD = struct.Struct("<QQ")
+HEAD = struct.Struct("<QQQ")
+_MARSHAL, _PICKLE = 0, 1  # how a message's object is encoded
 
 
 def usable_cpus() -> int:
@@ -82,25 +85,57 @@ class _Unpickler(pickle.Unpickler):
         return np.frombuffer(self.buffers[i], dtype).reshape(shape)
 
 
-def send(fd: int, obj) -> None:
-    """``obj`` pickled, its arrays' memory written as it is beside the pickle (no copy of a case's
-    curves in the runner). Layout: ``<u8 pickle length> <u8 buffer count>``, the buffers' lengths (u8
-    each), the pickle, the buffers."""
-    arrays: list = []
+def _marshalled(obj) -> bytes | None:
+    """``obj`` by marshal when it comes back equal (dicts, lists, tuples, numbers and strings: one C call
+    each way, where a pickle with a callback per object cost twice as much in a run), else None. Checked,
+    because marshal writes any object with a buffer (a numpy scalar or array) as bytes, silently; a NaN
+    anywhere also fails the check (NaN != NaN) and is pickled."""
+    try:
+        data = marshal.dumps(obj)
+        return data if marshal.loads(data) == obj else None
+    except Exception:  # unmarshallable, or a comparison that raises (an array against bytes)
+        return None
+
+
+def encode(obj, arrays=(), plain: bool = True) -> tuple[int, bytes, list]:
+    """(kind, encoded object, arrays to write beside it): ``arrays`` as they are (made contiguous); ``obj``
+    by marshal (:func:`_marshalled`; unless ``plain`` is false), else by a pickle whose own arrays join the
+    list."""
+    arrays = [a if a.flags.c_contiguous else np.ascontiguousarray(a) for a in arrays]
+    specs = [(a.dtype.str, a.shape) for a in arrays]
+    data = _marshalled((obj, specs)) if plain else None
+    if data is not None:
+        return _MARSHAL, data, arrays
     f = io.BytesIO()
-    _Pickler(f, arrays).dump(obj)
-    data = f.getbuffer()
-    head = struct.pack(f"<QQ{len(arrays)}Q", data.nbytes, len(arrays), *(a.nbytes for a in arrays))
+    _Pickler(f, arrays).dump((obj, specs))
+    return _PICKLE, f.getvalue(), arrays
+
+
+def decode(kind: int, data: bytes, buffers: list) -> tuple[Any, list]:
+    """:func:`encode` undone: (object, the arrays given beside it), every array backed by its buffer."""
+    if kind == _PICKLE:
+        obj, specs = _Unpickler(io.BytesIO(data), buffers).load()
+    else:
+        obj, specs = marshal.loads(data)
+    return obj, [np.frombuffer(b, dtype).reshape(shape) for b, (dtype, shape) in zip(buffers, specs)]
+
+
+def send(fd: int, obj, arrays=(), plain: bool = True) -> None:
+    """``obj`` and ``arrays`` (:func:`encode`), the arrays' memory written as it is (no copy of a case's
+    curves in the runner). Layout: ``<u8 object length> <u8 array count> <u8 kind>``, the arrays' lengths
+    (u8 each), the object, the arrays."""
+    kind, data, arrays = encode(obj, arrays, plain)
+    head = struct.pack(f"<QQQ{len(arrays)}Q", len(data), len(arrays), kind, *(a.nbytes for a in arrays))
     write_all(fd, [head, data, *arrays])
 
 
-def receive(fd: int):
-    """The next message, or None at end of file (also inside a message). Its arrays are writable, each
-    backed by its own buffer."""
+def receive(fd: int) -> tuple[Any, list] | None:
+    """The next (object, arrays), or None at end of file (also inside a message). The arrays are
+    writable, each backed by its own buffer."""
     head = read_exactly(fd, HEAD.size)
     if head is None:
         return None
-    n_data, n_buffers = HEAD.unpack(head)
+    n_data, n_buffers, kind = HEAD.unpack(head)
     sizes = read_exactly(fd, 8 * n_buffers)
     if sizes is None:
         return None
@@ -109,7 +144,7 @@ def receive(fd: int):
     buffers = [read_exactly(fd, n) for n in lengths]
     if data is None or any(b is None for b in buffers):
         return None
-    return _Unpickler(io.BytesIO(data), buffers).load()
+    return decode(kind, bytes(data), buffers)
 
 
 _unreaped: list[int] = []  # finished children not waited for yet (their exit is not waited on: see close)
@@ -126,7 +161,9 @@ def _reap() -> None:
 
 
 class Recorder:
-    """``put(message)`` in the runner calls ``handle(message)`` in the child, in order. ``close()`` ends the
+    """``put(message, arrays)`` in the runner calls ``handle(message, arrays)`` in the child, in order
+    (``arrays``: a list of arrays, written to the pipe as they are; ``message``: best made of dicts, lists,
+    tuples, numbers and strings, which cross by marshal, else it is pickled). ``close()`` ends the
     input and returns ``finish()``'s value from the child; then the child runs ``after()`` (if given) while
     the runner goes on, and ``join()`` returns its value. ``abort()`` (the runner is stopping: Ctrl-C, an
     error) lets the child handle what it was given, skips ``after`` and waits for it.
@@ -139,7 +176,7 @@ class Recorder:
     # libdispatch) may crash, which is why multiprocessing spawns there.
     available = sys.platform.startswith("linux") and usable_cpus() >= 2
 
-    def __init__(self, handle: Callable[[Any], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None):
+    def __init__(self, handle: Callable[[Any, list], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None):
         _reap()
         jobs_r, jobs_w = os.pipe()
         back_r, back_w = os.pipe()
@@ -167,9 +204,9 @@ class Recorder:
     def closed(self) -> bool:
         return self._jobs < 0
 
-    def put(self, message) -> None:
+    def put(self, message, arrays=()) -> None:
         try:
-            send(self._jobs, (_JOB, message))
+            send(self._jobs, (_JOB, message), arrays)
         except BrokenPipeError:  # the child stopped after a failure: raise what it sent back
             self._end_input()
             self._reply()
@@ -213,7 +250,7 @@ class Recorder:
             self._back = -1
             _, status = os.waitpid(self._pid, 0)
             raise RuntimeError(f"the recorder process ended without an answer (wait status {status})")
-        kind, value, cpu = outcome
+        (kind, value, cpu), _ = outcome
         if kind == "error":
             self.abort()
             raise value
@@ -241,7 +278,7 @@ def _serve(jobs: int, back: int, handle, finish, after) -> None:
         except BaseException as exc:  # raised in the runner
             outcome = ("error", exc)
         usage = resource.getrusage(resource.RUSAGE_SELF)
-        send(back, (*outcome, usage.ru_utime + usage.ru_stime))
+        send(back, (*outcome, usage.ru_utime + usage.ru_stime), plain=False)  # once: a pickle, unchecked
         return outcome[0] == "ok"
 
     ended = False
@@ -249,11 +286,11 @@ def _serve(jobs: int, back: int, handle, finish, after) -> None:
     def jobs_then_finish():
         nonlocal ended
         while (message := receive(jobs)) is not None:
-            kind, payload = message
+            (kind, payload), arrays = message
             if kind == _END:
                 ended = True
                 break
-            handle(payload)
+            handle(payload, arrays)
         return finish()
 
     if reply(jobs_then_finish) and ended and after is not None:

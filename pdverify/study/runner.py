@@ -117,6 +117,25 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
         return {"failure": f"{type(exc).__name__}: {exc}"}
 
 
+def _handoff(i: int, solved: dict) -> tuple[tuple, list]:
+    """The ``i``-th case's :func:`solve_case` result as it crosses to the recorder process: (message,
+    arrays), its curves apart (written to the pipe as they are), the rest numbers and strings
+    (marshalled: see ``recorder.encode``). :func:`_handback` undoes it."""
+    names = [k for k in ("x", "w", "rotation") if solved.get(k) is not None]
+    fields = solved.get("fields") or {}
+    rest = {k: v for k, v in solved.items() if k not in ("x", "w", "rotation", "fields")}
+    return (i, rest, names, list(fields)), [solved[k] for k in names] + list(fields.values())
+
+
+def _handback(message: tuple, arrays: list) -> tuple[int, dict]:
+    i, rest, names, fields = message
+    solved = {**rest, **dict(zip(names, arrays))}
+    if "failure" not in solved:
+        solved.setdefault("rotation", None)
+        solved["fields"] = dict(zip(fields, arrays[len(names):]))
+    return i, solved
+
+
 def _plain_scalar(v):
     """A numpy scalar as the Python number it equals (pickling a numpy scalar pickles its dtype: ~20 us)."""
     return v.item() if isinstance(v, np.generic) else v
@@ -272,8 +291,8 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     recorder = None
     if serial and len(todo) > 1 and Recorder.available:
 
-        def record(message):  # in the child: measure the i-th case from what the solve returned, store it
-            i, solved = message
+        def record(message, arrays):  # in the child: measure the i-th case from what the solve returned, store it
+            i, solved = _handback(message, arrays)
             t = time.perf_counter()
             rec = measure_case(todo[i], solved, id_of[id(todo[i])])
             keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
@@ -302,10 +321,14 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
                 for fut in dask_completed(futures):
                     bar.advance(failed=not keep.add(fut.result(), id_of[id(by_key[fut.key])]))
         elif recorder is not None:
+            handoff = 0.0  # the solving process's time to hand the cases over
             for i, case in enumerate(todo):
                 solved = solve_case(case, artefacts, id_of[id(case)])
-                recorder.put((i, solved))
+                t = time.perf_counter()
+                recorder.put(*_handoff(i, solved))
+                handoff += time.perf_counter() - t
                 bar.advance(failed="failure" in solved)
+            keep.clock["handoff_s"] = handoff
         elif serial:
             for case in todo:
                 bar.advance(failed=not keep.add(run_case(case, artefacts, id_of[id(case)]), id_of[id(case)]))
