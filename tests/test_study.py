@@ -411,6 +411,17 @@ def test_handoff_of_a_solve_round_trips():
                 assert back[key] == v
 
 
+def test_csv_tables_hold_the_exact_values(tmp_path):
+    """The CSV tables (written by Arrow) read back to the same numbers, bit for bit, as the Parquet ones."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n')
+    run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    for name in ("results", "convergence", "speed_error"):
+        csv, parquet = (pd.read_csv(tmp_path / "out" / f"{name}.csv"), pd.read_parquet(tmp_path / "out" / f"{name}.parquet"))
+        assert list(csv.columns) == list(parquet.columns) and len(csv) == len(parquet) > 0
+        for col in parquet.select_dtypes("number").columns:
+            assert np.array_equal(csv[col].to_numpy(float), parquet[col].to_numpy(float), equal_nan=True), (name, col)
+
+
 def test_recorder_runs_after_only_when_the_input_is_complete(tmp_path):
     """``after`` (the derived tables, in the runner) runs in the child once ``close`` has ended the input,
     and ``join`` returns its value; after ``abort`` (Ctrl-C) the child handles what it was given and stops

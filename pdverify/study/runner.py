@@ -19,9 +19,11 @@ import numpy as np
 import pandas as pd
 
 try:  # imported with the runner (its one-time cost belongs to start-up, not to the first study's tables)
-    import pyarrow.parquet  # noqa: F401
-except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written
-    pass
+    import pyarrow as pa
+    import pyarrow.csv as pa_csv
+    import pyarrow.parquet as pa_parquet
+except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written (by pandas)
+    pa = None
 
 from .. import __version__
 from ..errors import OutputError, PdverifyError
@@ -423,12 +425,30 @@ class _progress:
             self.p.stop()
 
 
-def _save(df: pd.DataFrame, out: Path, name: str) -> None:
-    df.to_csv(out / f"{name}.csv", index=False)
+def _arrow(df: pd.DataFrame):
+    """``df`` as an Arrow table (what ``to_parquet`` writes), or None without pyarrow, without columns, or
+    when a column does not convert (mixed types): then pandas writes the CSV and there is no Parquet."""
+    if pa is None or df.columns.empty:
+        return None
     try:
-        df.to_parquet(out / f"{name}.parquet", index=False)
-    except Exception:  # parquet needs pyarrow; the CSV is always there
-        pass
+        return pa.Table.from_pandas(df, preserve_index=False)
+    except (pa.ArrowException, TypeError, ValueError):
+        return None
+
+
+def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
+    """``name``.csv and (``parquet``) ``name``.parquet, both from one Arrow table: Arrow's CSV writer
+    takes ~1 ms where pandas' ``to_csv`` took 8-11 ms on a 200-case results table (the tables are on a
+    study's critical path). Arrow quotes every text value and writes an integral float without ``.0``
+    (``pandas.read_csv`` then reads such a column as integers); values are written exactly (shortest
+    round-trip form)."""
+    table = _arrow(df)
+    if table is None:
+        df.to_csv(out / f"{name}.csv", index=False)
+        return
+    pa_csv.write_csv(table, out / f"{name}.csv")
+    if parquet:
+        pa_parquet.write_table(table, out / f"{name}.parquet")
 
 
 GROUP = ["scene", "model", "options", "slenderness"]
@@ -662,20 +682,20 @@ def _write_convergence(study: Study, out: Path, df: pd.DataFrame) -> None:
     conv = convergence_table(df)
     _save(conv, out, "convergence")
     if study.benchmarks:  # the verification rows quote the observed order
-        benchmark_table(study, df, conv, out / "cases").to_csv(out / "benchmarks.csv", index=False)
+        _save(benchmark_table(study, df, conv, out / "cases"), out, "benchmarks", parquet=False)
 
 
 def _write_speed_error(study: Study, out: Path, df: pd.DataFrame) -> None:
     se, summary = speed_error_tables(df)
     _save(se, out, "speed_error")
-    summary.to_csv(out / "speed_error_summary.csv", index=False)
+    _save(summary, out, "speed_error_summary", parquet=False)
 
 
 DERIVED = {  # the derived tables, by the part of the work that writes them together
     "convergence": _write_convergence,  # convergence.csv/.parquet and benchmarks.csv
     "locking": lambda study, out, df: _save(locking_table(df), out, "locking"),
     "speed_error": _write_speed_error,  # speed_error.csv/.parquet and speed_error_summary.csv
-    "trust": lambda study, out, df: trust_table(df).to_csv(out / "trust.csv", index=False),
+    "trust": lambda study, out, df: _save(trust_table(df), out, "trust", parquet=False),
 }
 RECORDER_WRITES = ("convergence", "locking")  # in a serial run; the runner writes the others beside results
 
