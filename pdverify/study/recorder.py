@@ -166,9 +166,10 @@ class Recorder:
     tuples, numbers and strings, which cross by marshal, else it is pickled). ``close()`` ends the
     input and returns ``finish()``'s value from the child; then the child runs ``after()`` (if given) while
     the runner goes on, and ``join()`` returns its value. ``abort()`` (the runner is stopping: Ctrl-C, an
-    error) lets the child handle what it was given, skips ``after`` and waits for it.
+    error) lets the child handle what it was given, skips ``after`` and waits for it. ``start()`` (if given)
+    runs in the child before the first message is read (work it can do while the first case is solved).
 
-    ``handle``, ``finish`` and ``after`` run in the forked child: they see the runner's objects as they
+    ``start``, ``handle``, ``finish`` and ``after`` run in the forked child: they see the runner's objects as they
     were at the fork, and whatever they change stays in the child. Their exceptions are sent back and
     raised in the runner by ``put``, ``close`` or ``join``."""
 
@@ -176,7 +177,8 @@ class Recorder:
     # libdispatch) may crash, which is why multiprocessing spawns there.
     available = sys.platform.startswith("linux") and usable_cpus() >= 2
 
-    def __init__(self, handle: Callable[[Any, list], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None):
+    def __init__(self, handle: Callable[[Any, list], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None,
+                 start: Callable[[], None] | None = None):
         _reap()
         jobs_r, jobs_w = os.pipe()
         back_r, back_w = os.pipe()
@@ -192,7 +194,7 @@ class Recorder:
                 signal.signal(signal.SIGINT, signal.SIG_IGN)
                 os.close(jobs_w)
                 os.close(back_r)
-                _serve(jobs_r, back_w, handle, finish, after)
+                _serve(jobs_r, back_w, handle, finish, after, start)
                 code = 0
             finally:
                 os._exit(code)  # no atexit handlers, no flushing of the parent's buffers
@@ -267,7 +269,7 @@ class Recorder:
 _JOB, _END = 0, 1
 
 
-def _serve(jobs: int, back: int, handle, finish, after) -> None:
+def _serve(jobs: int, back: int, handle, finish, after, start=None) -> None:
     """The child's loop: handle each job; at the end message (or end of file: the runner stopped) send
     back ``finish()``; after the end message, run ``after()`` and send back its value. The first exception
     is sent back instead, and ends the child."""
@@ -285,6 +287,8 @@ def _serve(jobs: int, back: int, handle, finish, after) -> None:
 
     def jobs_then_finish():
         nonlocal ended
+        if start is not None:
+            start()
         while (message := receive(jobs)) is not None:
             (kind, payload), arrays = message
             if kind == _END:

@@ -29,10 +29,13 @@ from .. import __version__
 from ..errors import OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
-from .metrics import errors, gci, locking_slope, observed_order, pareto
+from .metrics import errors
 from .spec import Case, Study, code_digest
 from .recorder import Recorder
 from .store import SUFFIX, case_file, encode_record, read_case, read_curve, write_atomic
+from .tables import (EMPTY_CONVERGENCE, TRUST_TOLERANCE, Groups, convergence_rows, convergence_table,  # noqa: F401
+                     locking_rows, locking_table, rows_of, speed_error_rows, speed_error_tables, trust_rows,
+                     trust_table)
 
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
@@ -143,6 +146,29 @@ def _plain_scalar(v):
     return v.item() if isinstance(v, np.generic) else v
 
 
+def _describe(case: Case, row: dict):
+    """The columns of a case's row known before it is solved: its scene's name, its options as resolved by
+    the model (``options``: all but the grid, the key of a convergence series). Returns (scene, options)."""
+    scene = case.scene()
+    row["scene"] = scene.name
+    params = get_model(case.model).resolve(scene, case.given)
+    row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
+    row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
+    return scene, params
+
+
+def predicted_row(case: Case, case_id: str) -> dict:
+    """What the derived tables group a case by (scene, model, options, slenderness, points), before it is
+    solved (tables.Groups); as far as it goes when the case cannot even be described (its row will fail)."""
+    row = {"case_id": case_id, "model": case.model, "slenderness": case.slenderness,
+           **{k: case.given.get(k) for k in PARAM_COLUMNS}}
+    try:
+        _describe(case, row)
+    except Exception:  # noqa: BLE001 - its groups are then simply computed at the end
+        pass
+    return row
+
+
 class _Failed(Exception):
     """A solve that failed, replayed where the case is measured so its row fills in as far as it would have."""
 
@@ -157,13 +183,7 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
     row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
     curve = {}
     try:
-        scene = case.scene()
-        row["scene"] = scene.name
-        model = get_model(case.model)
-        params = model.resolve(scene, case.given)
-        row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
-        # every option but the grid: the key of a convergence series (variant, horizon, ends, ...)
-        row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
+        scene, params = _describe(case, row)
         if "failure" in solved:
             raise _Failed(solved["failure"])
         x, w, info = solved["x"], solved["w"], solved["info"]
@@ -293,21 +313,35 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     recorder = None
     if serial and len(todo) > 1 and Recorder.available:
 
+        groups = None
+
+        def start():  # in the child, while the first case is solved: each case's groups in the derived tables
+            nonlocal groups
+            t = time.perf_counter()
+            expected = [done.get(cid) or predicted_row(case, cid) for case, cid in zip(study.cases, ids)]
+            groups = Groups(list({r["case_id"]: r for r in expected}.values()))
+            for row in done.values():
+                groups.add(row)
+            keep.clock["groups_s"] = time.perf_counter() - t
+
         def record(message, arrays):  # in the child: measure the i-th case from what the solve returned, store it
             i, solved = _handback(message, arrays)
             t = time.perf_counter()
             rec = measure_case(todo[i], solved, id_of[id(todo[i])])
             keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
             keep.add(rec, id_of[id(todo[i])])
+            t = time.perf_counter()
+            groups.add(keep.rows[id_of[id(todo[i])]])  # the derived tables' groups this case completes
+            keep.clock["groups_s"] += time.perf_counter() - t
 
         def derived_tables():  # in the child, once every case is in, while the runner writes the results
             t = time.perf_counter()
             rows = {**done, **keep.rows}
-            write_derived(study, out, results_frame(study, [rows[cid] for cid in dict.fromkeys(ids)]), RECORDER_WRITES)
+            write_derived(study, out, [rows[cid] for cid in dict.fromkeys(ids)], RECORDER_WRITES, groups.memo)
             return time.perf_counter() - t
 
         try:
-            recorder = Recorder(record, keep.summary, derived_tables)
+            recorder = Recorder(record, keep.summary, derived_tables, start=start)
         except OSError:  # no process to be had (limits): measure and store here instead
             pass
     bar = _progress(len(todo), progress)  # after the fork: the bar's thread stays in this process
@@ -367,10 +401,11 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             return {"recorder_tables_s": tables_s, "recorder_cpu_s": cpu}
 
     done.update(keep.rows)
-    df = results_frame(study, [done[cid] for cid in dict.fromkeys(ids)])
+    rows = [done[cid] for cid in dict.fromkeys(ids)]
+    df = results_frame(study, rows)
     cases_s = time.perf_counter() - t0
     try:
-        write_tables(study, out, df, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
+        write_tables(study, out, df, rows=rows, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
                      timing={"cases_s": cases_s, "computed_cases": len(todo),
                              "recorder": "process" if recorder else "inline", **keep.clock})
     except OSError as exc:
@@ -436,6 +471,26 @@ def _arrow(df: pd.DataFrame):
         return None
 
 
+def _save_rows(rows: list[dict], out: Path, name: str, parquet: bool = True) -> None:
+    """:func:`_save` of the table of ``rows`` (dicts; columns in order of first appearance, as pandas makes
+    them), built by Arrow directly (a derived table: ~1 ms each where going through a DataFrame cost 2-6 ms),
+    missing values (None, NaN) written as nulls as pandas' are; through pandas when a column's values are of
+    mixed types or there are no rows (pandas' empty CSV)."""
+    columns = list(dict.fromkeys(k for r in rows for k in r))
+    table = None
+    if pa is not None and columns:
+        try:
+            table = pa.table({c: pa.array([r.get(c) for r in rows], from_pandas=True) for c in columns})
+        except (pa.ArrowException, TypeError, ValueError):
+            table = None
+    if table is None:
+        _save(pd.DataFrame(rows), out, name, parquet)
+        return
+    pa_csv.write_csv(table, out / f"{name}.csv")
+    if parquet:
+        pa_parquet.write_table(table, out / f"{name}.parquet")
+
+
 def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
     """``name``.csv and (``parquet``) ``name``.parquet, both from one Arrow table: Arrow's CSV writer
     takes ~1 ms where pandas' ``to_csv`` took 8-11 ms on a 200-case results table (the tables are on a
@@ -449,161 +504,6 @@ def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
     pa_csv.write_csv(table, out / f"{name}.csv")
     if parquet:
         pa_parquet.write_table(table, out / f"{name}.parquet")
-
-
-GROUP = ["scene", "model", "options", "slenderness"]
-SHOWN = ["variant", "horizon_factor", "degree"]
-
-
-def _group_rows(df: pd.DataFrame, keys: list[str]) -> list[tuple[tuple, np.ndarray]]:
-    """(key, row positions) per distinct key, keys sorted as pandas' groupby (NaN last): dictionaries over
-    the rows instead of a pandas groupby, whose per-group cost dominated the tables of a small study."""
-    cols = [df[k].to_numpy(object) for k in keys]
-    groups: dict = {}
-    for i, key in enumerate(zip(*cols)):
-        norm = tuple(None if isinstance(v, float) and v != v else v for v in key)  # NaN -> None: hashable, equal
-        groups.setdefault(norm, (key, []))[1].append(i)
-    order = sorted(groups, key=lambda k: tuple((v is None, v if v is not None else 0) for v in k))
-    return [(groups[k][0], np.asarray(groups[k][1])) for k in order]
-
-
-def convergence_table(df: pd.DataFrame) -> pd.DataFrame:
-    ok = df[df["status"] == "ok"]
-    rows = []
-    if ok.empty:
-        return pd.DataFrame(columns=GROUP + ["n_grids", "observed_order", "r2"])
-    spacing, err, w = (ok[c].to_numpy(float) for c in ("spacing", "err_max", "w_at_max"))
-    shown = {c: ok[c].to_numpy(object) for c in SHOWN if c in ok}
-    for key, idx in _group_rows(ok, GROUP):
-        idx = idx[np.argsort(spacing[idx], kind="stable")]
-        h = spacing[idx]
-        if len(np.unique(h)) < 3:
-            continue
-        p, r2 = observed_order(h, err[idx])
-        gc = gci(h, w[idx])
-        rows.append(dict(zip(GROUP, key), **{c: v[idx[0]] for c, v in shown.items()}, n_grids=int(len(np.unique(h))),
-                         spacings=" ".join(f"{v:.4g}" for v in h),
-                         errors=" ".join(f"{v:.3e}" for v in err[idx]),
-                         observed_order=p, r2=r2, **gc))
-    return pd.DataFrame(rows)
-
-
-def locking_table(df: pd.DataFrame) -> pd.DataFrame:
-    ok = df[(df["status"] == "ok") & df["slenderness"].notna()]
-    rows = []
-    keys = ["scene", "model", "options", "points"]
-    if ok.empty:
-        return pd.DataFrame(rows)
-    slen, err = ok["slenderness"].to_numpy(float), ok["err_max"].to_numpy(float)
-    shown = {c: ok[c].to_numpy(object) for c in SHOWN if c in ok}
-    for key, idx in _group_rows(ok, keys):
-        if len(np.unique(slen[idx])) < 2:
-            continue
-        slope, at1 = locking_slope(slen[idx], err[idx])
-        rows.append(dict(zip(keys, key), **{c: v[idx[0]] for c, v in shown.items()}, n=int(len(idx)),
-                         locking_slope=slope, slenderness_at_1pct=at1))
-    return pd.DataFrame(rows)
-
-
-def speed_error_tables(df: pd.DataFrame) -> tuple[pd.DataFrame, pd.DataFrame]:
-    ok = df[(df["status"] == "ok") & df["err_max"].notna()].copy()  # runs without a reference have no error
-    if ok.empty:
-        return pd.DataFrame(), pd.DataFrame()
-    cost, err = ok["total_s"].to_numpy(float), ok["err_max"].to_numpy(float)
-    front = np.zeros(len(ok), bool)
-    for _, idx in _group_rows(ok, ["scene"]):
-        front[idx] = pareto(cost[idx], err[idx])
-    ok["pareto"] = front
-    se = ok[["scene", "model", "variant", "case_id", "points", "total_s", "err_max", "pareto"]]
-    case_id = ok["case_id"].to_numpy(object)
-    summary = []
-    for (scene, model), idx in _group_rows(ok, ["scene", "model"]):
-        row = {"scene": scene, "model": model}
-        for tol, label in ((1e-2, "1pct"), (1e-3, "0.1pct")):
-            hit = idx[err[idx] <= tol]
-            best = hit[np.argmin(cost[hit])] if len(hit) else None
-            row[f"cheapest_{label}_case"] = case_id[best] if best is not None else ""
-            row[f"cheapest_{label}_s"] = cost[best] if best is not None else float("nan")
-        summary.append(row)
-    return se, pd.DataFrame(summary)
-
-
-TRUST_TOLERANCE = 0.01
-ROUND_OFF_VISIBLE = 1e-6  # an error that grows under refinement counts as round-off trouble above this
-
-
-def _ranges(values, ok) -> str:
-    """'a – b' runs of consecutive ok values (sorted), comma separated; '' when none."""
-    out, run = [], []
-    for v, good in zip(values, ok):
-        if good:
-            run.append(v)
-        elif run:
-            out.append(run)
-            run = []
-    if run:
-        out.append(run)
-    f = lambda v: f"{v:g}"  # noqa: E731
-    return ", ".join(f(r[0]) if len(r) == 1 else f"{f(r[0])} – {f(r[-1])}" for r in out)
-
-
-def trust_table(df: pd.DataFrame, tol: float = TRUST_TOLERANCE) -> pd.DataFrame:
-    """Per model and option set (all but the grid): the slenderness values and grids at which every
-    scene of the study is within ``tol`` of its reference, and the grid from which refining makes the
-    error grow past ``ROUND_OFF_VISIBLE`` (round-off dominates). A failed case counts as not trustworthy.
-    (Grouped with dictionaries over the rows: a study has hundreds of rows, and pandas' nested
-    groupby-apply cost 0.1 s on 200 cases, more than their file writes.)"""
-    if df.empty or "err_max" not in df:
-        return pd.DataFrame()
-    keep = ~df["reference"].str.contains('"model": "none"', regex=False)
-    d = df[keep]
-    if d.empty:
-        return pd.DataFrame()
-    ok = (d["status"] == "ok").to_numpy()
-    err = d["err_max"].to_numpy(float)
-    good = ok & (err <= tol)  # NaN errors compare False
-    slen = d["slenderness"].fillna(-1.0).to_numpy(float)
-    points = d["points"].to_numpy()
-    scene = d["scene"].to_numpy()
-    rows = []
-    for (model, options), idx in _group_rows(d.assign(options=d["options"].fillna("")), ["model", "options"]):
-        # per slenderness: some grid at which every case is good
-        by_sn: dict = {}
-        for i in idx:
-            by_sn.setdefault(slen[i], {}).setdefault(points[i], []).append(good[i])
-        by_s = {s: any(all(v) for v in by_n.values()) for s, by_n in sorted(by_sn.items())}
-        sl = [(s, g) for s, g in by_s.items() if s > 0]
-        trusted_s = {s for s, g in by_s.items() if g}
-        by_n: dict = {}
-        for i in idx:
-            if not trusted_s or slen[i] in trusted_s:
-                by_n.setdefault(points[i], []).append(good[i])
-        by_n = {n: all(v) for n, v in sorted(by_n.items())}
-        series: dict = {}
-        for i in idx:
-            if ok[i]:
-                series.setdefault((scene[i], slen[i]), []).append((points[i], err[i]))
-        floor = []
-        for e in series.values():
-            e = sorted(e, key=lambda t: t[0])  # stable: equal grids keep their row order
-            rise = [int(e[k][0]) for k in range(1, len(e)) if e[k][1] > 2.0 * e[k - 1][1] and e[k][1] > ROUND_OFF_VISIBLE]
-            if rise:
-                floor.append(rise[0])
-        row = {"model": model, "options": options, "tolerance": tol,
-               "slenderness_trusted": _ranges([s for s, _ in sl], [g for _, g in sl]) if sl else "",
-               "slenderness_not": ", ".join(f"{s:g}" for s, g in sl if not g),
-               "points_trusted": _ranges(list(by_n), list(by_n.values())),
-               "points_not": ", ".join(str(int(n)) for n, g in by_n.items() if not g),
-               "round_off_from_points": min(floor) if floor else None}
-        parts = [f"{model}"]
-        if sl:
-            parts.append(f"within {tol:.0%} for L/h {row['slenderness_trusted'] or 'none of the values tried'}")
-        parts.append(f"on grids of {row['points_trusted'] or 'none of the sizes tried'} points")
-        if floor:
-            parts.append(f"(from {min(floor)} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off)")
-        row["statement"] = " ".join(parts)
-        rows.append(row)
-    return pd.DataFrame(rows)
 
 
 def _verdict(ok: bool, expected: str) -> str:
@@ -678,46 +578,55 @@ def package_versions() -> dict:
     return dict(versions)
 
 
-def _write_convergence(study: Study, out: Path, df: pd.DataFrame) -> None:
-    conv = convergence_table(df)
-    _save(conv, out, "convergence")
+def _write_convergence(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:
+    conv = convergence_rows(rows, memo)
+    if not conv and not any(r.get("status") == "ok" for r in rows):
+        _save(pd.DataFrame(columns=EMPTY_CONVERGENCE), out, "convergence")  # the header: no case is ok
+    else:
+        _save_rows(conv, out, "convergence")
     if study.benchmarks:  # the verification rows quote the observed order
-        _save(benchmark_table(study, df, conv, out / "cases"), out, "benchmarks", parquet=False)
+        _save(benchmark_table(study, pd.DataFrame(rows), pd.DataFrame(conv), out / "cases"), out, "benchmarks",
+              parquet=False)
 
 
-def _write_speed_error(study: Study, out: Path, df: pd.DataFrame) -> None:
-    se, summary = speed_error_tables(df)
-    _save(se, out, "speed_error")
-    _save(summary, out, "speed_error_summary", parquet=False)
+def _write_speed_error(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:
+    se, summary = speed_error_rows(rows, memo)
+    _save_rows(se, out, "speed_error")
+    _save_rows(summary, out, "speed_error_summary", parquet=False)
 
 
-DERIVED = {  # the derived tables, by the part of the work that writes them together
+DERIVED = {  # the derived tables (pdverify/study/tables.py), by the part of the work that writes them together
     "convergence": _write_convergence,  # convergence.csv/.parquet and benchmarks.csv
-    "locking": lambda study, out, df: _save(locking_table(df), out, "locking"),
+    "locking": lambda study, out, rows, memo: _save_rows(locking_rows(rows, memo), out, "locking"),
     "speed_error": _write_speed_error,  # speed_error.csv/.parquet and speed_error_summary.csv
-    "trust": lambda study, out, df: _save(trust_table(df), out, "trust", parquet=False),
+    "trust": lambda study, out, rows, memo: _save_rows(trust_rows(rows, memo=memo), out, "trust", parquet=False),
 }
-RECORDER_WRITES = ("convergence", "locking")  # in a serial run; the runner writes the others beside results
+RECORDER_WRITES = tuple(DERIVED)  # in a serial run (computed along the way there); the runner writes results
 
 
-def write_derived(study: Study, out: Path, df: pd.DataFrame, parts=tuple(DERIVED)) -> None:
-    """The derived tables (``parts`` of :data:`DERIVED`: all by default) from the results table."""
+def write_derived(study: Study, out: Path, results, parts=tuple(DERIVED), memo: dict | None = None) -> None:
+    """The derived tables (``parts`` of :data:`DERIVED`: all by default) from the results (a DataFrame, or
+    its rows as dicts with None for a missing value). ``memo``: groups already computed (tables.Groups)."""
+    rows = rows_of(results) if isinstance(results, pd.DataFrame) else results
     for name in parts:
-        DERIVED[name](study, out, df)
+        DERIVED[name](study, out, rows, memo)
 
 
 def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
-                 mismatched: list[str] | None = None, timing: dict | None = None, derived=None) -> None:
-    """results (``df``, from :func:`results_frame`), the derived tables (:func:`write_derived`; or, when
-    ``derived`` is given, those not in :data:`RECORDER_WRITES`, then ``derived()`` waits for the process that
-    writes those and returns timings to record), study.toml and meta.json, last. ``timing`` (from
-    :func:`run_study`): where the run's time went; meta.json adds the tables' own time."""
+                 mismatched: list[str] | None = None, timing: dict | None = None, derived=None,
+                 rows: list[dict] | None = None) -> None:
+    """results (``df``, from :func:`results_frame`; ``rows``: the same as dicts, when at hand), the derived
+    tables (:func:`write_derived`; or, when ``derived`` is given, those not in :data:`RECORDER_WRITES`, then
+    ``derived()`` waits for the process that writes those and returns timings to record), study.toml and
+    meta.json, last. ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
+    tables' own time."""
     t_tables = time.perf_counter()
     _save(df, out, "results")
+    rows = rows if rows is not None else rows_of(df)
     if derived is None:
-        write_derived(study, out, df)
+        write_derived(study, out, rows)
     else:  # the other process writes RECORDER_WRITES meanwhile
-        write_derived(study, out, df, [k for k in DERIVED if k not in RECORDER_WRITES])
+        write_derived(study, out, rows, [k for k in DERIVED if k not in RECORDER_WRITES])
         timing = {**(timing or {}), "runner_tables_s": time.perf_counter() - t_tables, **derived()}
     shutil.copyfile(study.path, out / "study.toml")
     versions = package_versions()

@@ -1,0 +1,297 @@
+"""The derived tables of a study (convergence, locking, speed vs error, trust), from its results rows.
+
+Each table groups the rows by a few of their columns and computes one output per group from that group's
+rows alone (in the study's order), the groups sorted by key (missing values last). :class:`Groups`
+computes a group as soon as its cases are all in, while a serial run is still solving the others (in
+the recorder process, which is otherwise idle): at the end only the groups of the last cases remain.
+A group computed early is used only if its cases are exactly those of the final grouping; the tables are
+therefore the same whether they were built at once or along the way (a test compares them byte for byte).
+Rows are dicts with None for a missing value (:func:`rows_of` turns a results DataFrame into them).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from dataclasses import dataclass
+from typing import Any, Callable
+
+import numpy as np
+import pandas as pd
+
+from .metrics import gci, locking_slope, observed_order, pareto
+
+GROUP = ("scene", "model", "options", "slenderness")  # a convergence series: every option but the grid
+SHOWN = ("variant", "horizon_factor", "degree")  # columns repeated from the series' finest grid
+LOCKING = ("scene", "model", "options", "points")
+SPEED_ERROR = ("scene", "model", "variant", "case_id", "points", "total_s", "err_max", "pareto")
+TRUST_TOLERANCE = 0.01
+ROUND_OFF_VISIBLE = 1e-6  # an error that grows under refinement counts as round-off trouble above this
+
+
+def _none(v):
+    """A missing value (NaN, pandas' NA) as None: hashable, equal to itself."""
+    if v is None or v is pd.NA or (isinstance(v, float) and v != v):
+        return None
+    return v
+
+
+def _float(v) -> float:
+    return float("nan") if v is None else float(v)
+
+
+def rows_of(df: pd.DataFrame) -> list[dict]:
+    """A results table's rows as dicts, every missing value None."""
+    return [{k: _none(v) for k, v in r.items()} for r in df.to_dict("records")]
+
+
+def _ok(r: dict) -> bool:
+    return r.get("status") == "ok"
+
+
+# ---- one group each ---------------------------------------------------------------------------------
+
+def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
+    """The observed order of one series (fit of log error vs log spacing over its grids, R^2) and the GCI of
+    its three finest grids; nothing below three distinct grids (never an order from two points)."""
+    rows = [r for r in rows if _ok(r)]
+    if not rows:
+        return []
+    order = np.argsort([_float(r.get("spacing")) for r in rows], kind="stable")
+    rows = [rows[i] for i in order]
+    h = np.array([_float(r.get("spacing")) for r in rows])
+    err = np.array([_float(r.get("err_max")) for r in rows])
+    w = np.array([_float(r.get("w_at_max")) for r in rows])
+    n_grids = len(np.unique(h))
+    if n_grids < 3:
+        return []
+    p, r2 = observed_order(h, err)
+    return [dict(zip(GROUP, key), **{c: rows[0].get(c) for c in SHOWN}, n_grids=int(n_grids),
+                 spacings=" ".join(f"{v:.4g}" for v in h), errors=" ".join(f"{v:.3e}" for v in err),
+                 observed_order=p, r2=r2, **gci(h, w))]
+
+
+def _locking(key: tuple, rows: list[dict]) -> list[dict]:
+    """Slope of log error vs log slenderness at one grid (0: locking-free) and the slenderness where the
+    error first passes 1 %."""
+    rows = [r for r in rows if _ok(r) and r.get("slenderness") is not None]
+    s = np.array([_float(r["slenderness"]) for r in rows])
+    if len(np.unique(s)) < 2:
+        return []
+    slope, at1 = locking_slope(s, np.array([_float(r.get("err_max")) for r in rows]))
+    return [dict(zip(LOCKING, key), **{c: rows[0].get(c) for c in SHOWN}, n=len(rows),
+                 locking_slope=slope, slenderness_at_1pct=at1)]
+
+
+def _with_error(rows: list[dict]) -> list[dict]:
+    return [r for r in rows if _ok(r) and r.get("err_max") is not None]  # runs without a reference: no error
+
+
+def _pareto(key: tuple, rows: list[dict]) -> dict:
+    """case_id -> on the scene's Pareto front of (total seconds, error)."""
+    rows = _with_error(rows)
+    if not rows:
+        return {}
+    front = pareto([_float(r.get("total_s")) for r in rows], [r["err_max"] for r in rows])
+    return {r["case_id"]: bool(f) for r, f in zip(rows, front)}
+
+
+def _cheapest(key: tuple, rows: list[dict]) -> list[dict]:
+    """For one (scene, model): the cheapest case reaching 1 % and 0.1 % error."""
+    rows = _with_error(rows)
+    if not rows:
+        return []
+    out = dict(zip(("scene", "model"), key))
+    for tol, label in ((1e-2, "1pct"), (1e-3, "0.1pct")):
+        hit = [r for r in rows if r["err_max"] <= tol]
+        best = hit[int(np.argmin([_float(r.get("total_s")) for r in hit]))] if hit else None
+        out[f"cheapest_{label}_case"] = best["case_id"] if best else ""
+        out[f"cheapest_{label}_s"] = _float(best.get("total_s")) if best else float("nan")
+    return [out]
+
+
+def _ranges(values, ok) -> str:
+    """'a – b' runs of consecutive ok values (sorted), comma separated; '' when none."""
+    out, run = [], []
+    for v, good in zip(values, ok):
+        if good:
+            run.append(v)
+        elif run:
+            out.append(run)
+            run = []
+    if run:
+        out.append(run)
+    f = lambda v: f"{v:g}"  # noqa: E731
+    return ", ".join(f(r[0]) if len(r) == 1 else f"{f(r[0])} – {f(r[-1])}" for r in out)
+
+
+def _trust(key: tuple, rows: list[dict], tol: float = TRUST_TOLERANCE) -> list[dict]:
+    """For one model and option set: the slenderness values and grids at which every scene is within
+    ``tol`` of its reference, and the grid from which refining makes the error grow past
+    ``ROUND_OFF_VISIBLE`` (round-off dominates). A failed case counts as not trustworthy."""
+    rows = [r for r in rows if '"model": "none"' not in (r.get("reference") or "")]
+    if not rows:
+        return []
+    model, options = key
+    ok = [_ok(r) for r in rows]
+    err = [_float(r.get("err_max")) for r in rows]
+    good = [o and e <= tol for o, e in zip(ok, err)]  # NaN errors compare False
+    slen = [-1.0 if r.get("slenderness") is None else float(r["slenderness"]) for r in rows]
+    points = [_float(r.get("points")) if any(r.get("points") is None for r in rows) else r.get("points") for r in rows]
+    by_sn: dict = {}  # per slenderness: some grid at which every case is good
+    for i in range(len(rows)):
+        by_sn.setdefault(slen[i], {}).setdefault(points[i], []).append(good[i])
+    by_s = {s: any(all(v) for v in by_n.values()) for s, by_n in sorted(by_sn.items())}
+    sl = [(s, g) for s, g in by_s.items() if s > 0]
+    trusted_s = {s for s, g in by_s.items() if g}
+    by_n: dict = {}
+    for i in range(len(rows)):
+        if not trusted_s or slen[i] in trusted_s:
+            by_n.setdefault(points[i], []).append(good[i])
+    by_n = {n: all(v) for n, v in sorted(by_n.items())}
+    series: dict = {}
+    for i, r in enumerate(rows):
+        if ok[i]:
+            series.setdefault((r.get("scene"), slen[i]), []).append((points[i], err[i]))
+    floor = []
+    for e in series.values():
+        e = sorted(e, key=lambda t: t[0])  # stable: equal grids keep their row order
+        rise = [int(e[k][0]) for k in range(1, len(e)) if e[k][1] > 2.0 * e[k - 1][1] and e[k][1] > ROUND_OFF_VISIBLE]
+        if rise:
+            floor.append(rise[0])
+    row = {"model": model, "options": options, "tolerance": tol,
+           "slenderness_trusted": _ranges([s for s, _ in sl], [g for _, g in sl]) if sl else "",
+           "slenderness_not": ", ".join(f"{s:g}" for s, g in sl if not g),
+           "points_trusted": _ranges(list(by_n), list(by_n.values())),
+           "points_not": ", ".join(str(int(n)) for n, g in by_n.items() if not g),
+           "round_off_from_points": min(floor) if floor else None}
+    parts = [f"{model}"]
+    if sl:
+        parts.append(f"within {tol:.0%} for L/h {row['slenderness_trusted'] or 'none of the values tried'}")
+    parts.append(f"on grids of {row['points_trusted'] or 'none of the sizes tried'} points")
+    if floor:
+        parts.append(f"(from {min(floor)} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off)")
+    row["statement"] = " ".join(parts)
+    return [row]
+
+
+# ---- groupings --------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Grouping:
+    key: Callable[[dict], tuple]  # a row's group (None for a missing value)
+    compute: Callable[[tuple, list], Any]  # (key, the group's rows in the study's order) -> its output
+
+
+def _columns(*names):
+    return lambda r: tuple(_none(r.get(k)) for k in names)
+
+
+GROUPINGS = {
+    "convergence": Grouping(_columns(*GROUP), _convergence),
+    "locking": Grouping(_columns(*LOCKING), _locking),
+    "pareto": Grouping(_columns("scene"), _pareto),
+    "cheapest": Grouping(_columns("scene", "model"), _cheapest),
+    "trust": Grouping(lambda r: (_none(r.get("model")), _none(r.get("options")) or ""), _trust),
+}
+
+
+def _order(key: tuple):
+    return tuple((v is None, v if v is not None else 0) for v in key)  # missing last, as pandas sorts
+
+
+def grouped(name: str, rows: list[dict], memo: dict | None = None, compute=None) -> list[tuple[tuple, Any]]:
+    """(key, output) of every group of ``rows`` under grouping ``name``, keys sorted. A group found in
+    ``memo`` (see :class:`Groups`) with exactly the same cases is not computed again."""
+    g = GROUPINGS[name]
+    compute = compute or g.compute
+    members: dict = {}
+    for r in rows:
+        members.setdefault(g.key(r), []).append(r)
+    out = []
+    for key in sorted(members, key=_order):
+        hit = memo.get((name, key)) if memo else None
+        ids = tuple(r.get("case_id") for r in members[key])
+        out.append((key, hit[1] if hit is not None and hit[0] == ids else compute(key, members[key])))
+    return out
+
+
+# ---- the tables: rows (what the runner writes), or DataFrames ---------------------------------------
+
+def _rows(data) -> list[dict]:
+    return rows_of(data) if isinstance(data, pd.DataFrame) else data
+
+
+EMPTY_CONVERGENCE = [*GROUP, "n_grids", "observed_order", "r2"]  # the header when no case is ok
+
+
+def convergence_rows(rows: list[dict], memo: dict | None = None) -> list[dict]:
+    return [o for _, out in grouped("convergence", rows, memo) for o in out]
+
+
+def locking_rows(rows: list[dict], memo: dict | None = None) -> list[dict]:
+    return [o for _, out in grouped("locking", rows, memo) for o in out]
+
+
+def speed_error_rows(rows: list[dict], memo: dict | None = None) -> tuple[list[dict], list[dict]]:
+    """Every case with an error: (total seconds, error) and whether it is on its scene's Pareto front (in
+    the study's order); per scene and model, the cheapest case reaching 1 % and 0.1 %."""
+    kept = _with_error(rows)
+    if not kept:
+        return [], []
+    front = {cid: f for _, flags in grouped("pareto", rows, memo) for cid, f in flags.items()}
+    se = [{**{c: r.get(c) for c in SPEED_ERROR[:-1]}, "pareto": front[r["case_id"]]} for r in kept]
+    return se, [o for _, out in grouped("cheapest", rows, memo) for o in out]
+
+
+def trust_rows(rows: list[dict], tol: float = TRUST_TOLERANCE, memo: dict | None = None) -> list[dict]:
+    """Per model and option set: where every scene is within ``tol`` of its reference (:func:`_trust`); none
+    when no case has an error at all (every one failed before it was measured)."""
+    if not any("err_max" in r for r in rows):
+        return []
+    compute = None if tol == TRUST_TOLERANCE else (lambda key, group: _trust(key, group, tol))
+    return [o for _, out in grouped("trust", rows, None if compute else memo, compute) for o in out]
+
+
+def convergence_table(results, memo: dict | None = None) -> pd.DataFrame:
+    """Per series (scene, model, options, slenderness): the observed order and the GCI (:func:`_convergence`).
+    ``results``: row dicts or a DataFrame."""
+    rows = _rows(results)
+    if not any(_ok(r) for r in rows):
+        return pd.DataFrame(columns=EMPTY_CONVERGENCE)
+    return pd.DataFrame(convergence_rows(rows, memo))
+
+
+def locking_table(results, memo: dict | None = None) -> pd.DataFrame:
+    """Per (scene, model, options, points): the locking slope (:func:`_locking`)."""
+    return pd.DataFrame(locking_rows(_rows(results), memo))
+
+
+def speed_error_tables(results, memo: dict | None = None) -> tuple[pd.DataFrame, pd.DataFrame]:
+    se, summary = speed_error_rows(_rows(results), memo)
+    return pd.DataFrame(se, columns=list(SPEED_ERROR)) if se else pd.DataFrame(), pd.DataFrame(summary)
+
+
+def trust_table(results, tol: float = TRUST_TOLERANCE, memo: dict | None = None) -> pd.DataFrame:
+    return pd.DataFrame(trust_rows(_rows(results), tol, memo))
+
+
+class Groups:
+    """The groups of a study computed along the way: ``expected`` holds every case's predicted row (the
+    columns known before it is solved: scene, model, options, slenderness, points; or its finished row for
+    a resumed case), in the study's order; :meth:`add` takes each finished row and computes the groups it
+    completes. :attr:`memo` is for :func:`grouped`."""
+
+    def __init__(self, expected: list[dict]):
+        self.position = {r["case_id"]: i for i, r in enumerate(expected)}
+        self.expected = {name: Counter(g.key(r) for r in expected) for name, g in GROUPINGS.items()}
+        self.members: dict = {name: {} for name in GROUPINGS}
+        self.memo: dict = {}
+
+    def add(self, row: dict) -> None:
+        for name, g in GROUPINGS.items():
+            key = g.key(row)
+            group = self.members[name].setdefault(key, [])
+            group.append(row)
+            if len(group) == self.expected[name].get(key):
+                group.sort(key=lambda r: self.position.get(r["case_id"], len(self.position)))
+                self.memo[(name, key)] = (tuple(r["case_id"] for r in group), g.compute(key, group))
