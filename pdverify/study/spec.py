@@ -74,12 +74,18 @@ class Case:
 
     @property
     def case_id(self) -> str:
-        key = json.dumps([self.scene_text, self.model, sorted(self.given.items()), self.slenderness,
+        key = json.dumps([_text_digest(self.scene_text), self.model, sorted(self.given.items()), self.slenderness,
                           sorted(self.reference.items()), __version__, STORE_SCHEMA, code_digest()], sort_keys=True, default=str)
         return hashlib.sha256(key.encode()).hexdigest()[:16]
 
     def scene(self) -> Scene:
         return _scene(self.scene_text, self.scene_file, self.slenderness)
+
+
+@lru_cache(maxsize=256)
+def _text_digest(text: str) -> str:
+    """A scene file's digest, once per scene (a study's cases share a few scenes)."""
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 @lru_cache(maxsize=256)
@@ -175,6 +181,8 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{path}: reference: {exc.lines[0]}")
 
     study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])))
+    reasons_of: dict = {}  # (model, scene, slenderness) -> why the model cannot solve it
+    refs_checked: set = set()  # (scene, slenderness, reference) validated
     for i, run in enumerate(runs):
         where = f"{path}: runs[{i}]"
         if not isinstance(run, dict) or not isinstance(run.get("model"), str):
@@ -220,11 +228,15 @@ def load_study(path: str | Path) -> Study:
                     except InputError as exc:
                         errors.append(f"{where}: {exc.lines[0]}")
                         continue
-                    reasons = model.check(scx)
+                    if (model.name, sfile, sl) not in reasons_of:  # the same for every option set
+                        reasons_of[(model.name, sfile, sl)] = model.check(scx)
+                    reasons = reasons_of[(model.name, sfile, sl)]
                     if reasons:
                         study.skipped.append(f"{run['model']} on {sfile}: {reasons[0]}")
                         continue
-                    if ref_model is not None:
+                    ref_key = (sfile, sl, repr(sorted(run_ref.items())))
+                    if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
+                        refs_checked.add(ref_key)
                         try:
                             ref_model.resolve(scx, ref_given)
                         except InputError as exc:
