@@ -361,32 +361,28 @@ def test_recorder_handles_every_message_in_order_and_returns_its_finish(tmp_path
         assert back.tobytes() == np.ascontiguousarray(a).tobytes() and back.shape == a.shape
 
 
-def test_recorder_message_encoding_is_exact_and_falls_back_to_pickle():
-    """A message crosses by marshal when marshal gives it back equal, else by pickle: a numpy scalar (which
-    marshal would write as bytes, silently), a NaN (NaN != NaN), arrays inside the message, an exception.
-    Either way the object and the arrays beside it come back exactly (dtype, shape, bits)."""
-    from pdverify.study.recorder import _MARSHAL, _PICKLE, decode, encode
+def test_recorder_message_encoding_is_exact():
+    """A message and the arrays handed over beside it come back exactly: the object as it was (numpy
+    scalars, NaN, arrays inside it, an exception), the arrays with their dtype, shape and bits."""
+    from pdverify.study.recorder import decode, encode
 
     arrays = [np.array([np.nan, -0.0, 1e-300]), np.arange(12, dtype="<i4").reshape(3, 4), np.arange(9.0)[::2],
               np.zeros(0)]
-    cases = [((3, {"timings": {"total_s": 0.25}, "dofs": 7, "info": {"cond": None}}, ["x"], []), _MARSHAL),
-             ({1: (True, 2 + 1j, b"raw", "text")}, _MARSHAL),
-             ({"cond": np.float64(2.0)}, _PICKLE), ({"cond": float("nan")}, _PICKLE),
-             ({"history": {"t": np.linspace(0, 1, 5)}}, _PICKLE), (ValueError("bad"), _PICKLE)]
-    for obj, kind in cases:
-        k, data, out = encode(obj, arrays)
-        assert k == kind, obj
-        back, back_arrays = decode(k, data, [bytearray(a.tobytes()) for a in out])
+    for obj in [(3, {"timings": {"total_s": 0.25}, "dofs": 7, "info": {"cond": None}}, ["x"], []),
+                {1: (True, 2 + 1j, b"raw", "text")}, {"cond": np.float64(2.0)}, {"cond": float("nan")},
+                {"history": {"t": np.linspace(0, 1, 5)}}, ValueError("bad")]:
+        data, out = encode(obj, arrays)
+        back, back_arrays = decode(data, [bytearray(a.tobytes()) for a in out])
         if isinstance(obj, Exception):
             assert type(back) is ValueError and back.args == obj.args
         else:
             assert repr(back) == repr(obj) and type(back) is type(obj)
-        assert [(a.dtype, a.shape, a.tobytes()) for a in back_arrays[:len(arrays)]] == \
+        assert [(a.dtype, a.shape, a.tobytes()) for a in back_arrays] == \
                [(a.dtype, a.shape, np.ascontiguousarray(a).tobytes()) for a in arrays]
 
 
 def test_handoff_of_a_solve_round_trips():
-    """What the serial runner hands to its recorder (curves apart, the rest marshalled) comes back as the
+    """What the serial runner hands to its recorder (curves apart, the rest pickled) comes back as the
     solve returned it: optional rotation, point fields, a failure."""
     from pdverify.study.recorder import decode, encode
     from pdverify.study.runner import _handback, _handoff
@@ -399,8 +395,8 @@ def test_handoff_of_a_solve_round_trips():
               {"failure": "singular matrix"}]
     for solved in solves:
         message, arrays = _handoff(4, solved)
-        k, data, out = encode(message, arrays)
-        i, back = _handback(*decode(k, data, [bytearray(a.tobytes()) for a in out]))
+        data, out = encode(message, arrays)
+        i, back = _handback(*decode(data, [bytearray(a.tobytes()) for a in out]))
         assert i == 4 and back.keys() == solved.keys()
         for key, v in solved.items():
             if isinstance(v, np.ndarray):

@@ -9,8 +9,7 @@ every cache the runner has, and computes the same numbers with the same code), d
 each case file at once. At the end it sends back what it recorded, then writes the derived tables while
 the runner writes the results table.
 
-Each message's arrays are written as they are, beside the rest, marshalled (or pickled when marshal
-would not give it back equal: ``encode``). The pipe
+Each message's arrays are written as they are, beside the rest, pickled (``encode``). The pipe
 holds one or two cases: when the child falls behind, ``put`` waits, so the cases waiting to be recorded
 are only ever those in the pipe (a killed run loses them, like the case being solved; if only the runner
 is killed, the child still records them). The child ignores SIGINT: after Ctrl-C it still records what
@@ -21,8 +20,6 @@ child would take the solver's time instead of an idle core's).
 
 from __future__ import annotations
 
-import io
-import marshal
 import os
 import pickle
 import resource
@@ -36,8 +33,7 @@ import numpy as np
 
 from .store import write_all
 
-HEAD = struct.Struct("<QQQ")
-_MARSHAL, _PICKLE = 0, 1  # how a message's object is encoded
+HEAD = struct.Struct("<QQ")
 
 
 def usable_cpus() -> int:
@@ -60,72 +56,27 @@ def read_exactly(fd: int, n: int) -> bytearray | None:
     return buf
 
 
-class _Pickler(pickle.Pickler):
-    """Arrays leave the pickle as references to buffers written beside it: numpy's own pickling of an
-    array (``__reduce_ex__``, even with protocol 5's out-of-band buffers) cost ~85 us a case in a run."""
-
-    def __init__(self, file, buffers: list):
-        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
-        self.buffers = buffers
-
-    def persistent_id(self, obj):
-        if type(obj) is np.ndarray and obj.flags.c_contiguous and obj.dtype.hasobject is False:
-            self.buffers.append(obj)
-            return (len(self.buffers) - 1, obj.dtype.str, obj.shape)
-        return None
-
-
-class _Unpickler(pickle.Unpickler):
-    def __init__(self, file, buffers: list):
-        super().__init__(file)
-        self.buffers = buffers
-
-    def persistent_load(self, pid):
-        i, dtype, shape = pid
-        return np.frombuffer(self.buffers[i], dtype).reshape(shape)
-
-
-def _marshalled(obj) -> bytes | None:
-    """``obj`` by marshal when it comes back equal (dicts, lists, tuples, numbers and strings: one C call
-    each way, where a pickle with a callback per object cost twice as much in a run), else None. Checked,
-    because marshal writes any object with a buffer (a numpy scalar or array) as bytes, silently; a NaN
-    anywhere also fails the check (NaN != NaN) and is pickled."""
-    try:
-        data = marshal.dumps(obj)
-        return data if marshal.loads(data) == obj else None
-    except Exception:  # unmarshallable, or a comparison that raises (an array against bytes)
-        return None
-
-
-def encode(obj, arrays=(), plain: bool = True) -> tuple[int, bytes, list]:
-    """(kind, encoded object, arrays to write beside it): ``arrays`` as they are (made contiguous); ``obj``
-    by marshal (:func:`_marshalled`; unless ``plain`` is false), else by a pickle whose own arrays join the
-    list."""
+def encode(obj, arrays=()) -> tuple[bytes, list]:
+    """(encoded object, arrays to write beside it): ``arrays`` as they are (made contiguous), ``obj`` by a
+    plain pickle (one C call: ~25 us between two solves on the host this was written on, where a pickle
+    with a Python callback per object to take its arrays out cost ~110 us and a checked marshal ~40 us).
+    Arrays inside ``obj`` are pickled with it (a copy): hand large ones over in ``arrays``."""
     arrays = [a if a.flags.c_contiguous else np.ascontiguousarray(a) for a in arrays]
-    specs = [(a.dtype.str, a.shape) for a in arrays]
-    data = _marshalled((obj, specs)) if plain else None
-    if data is not None:
-        return _MARSHAL, data, arrays
-    f = io.BytesIO()
-    _Pickler(f, arrays).dump((obj, specs))
-    return _PICKLE, f.getvalue(), arrays
+    return pickle.dumps((obj, [(a.dtype.str, a.shape) for a in arrays]), protocol=pickle.HIGHEST_PROTOCOL), arrays
 
 
-def decode(kind: int, data: bytes, buffers: list) -> tuple[Any, list]:
+def decode(data: bytes, buffers: list) -> tuple[Any, list]:
     """:func:`encode` undone: (object, the arrays given beside it), every array backed by its buffer."""
-    if kind == _PICKLE:
-        obj, specs = _Unpickler(io.BytesIO(data), buffers).load()
-    else:
-        obj, specs = marshal.loads(data)
+    obj, specs = pickle.loads(data)
     return obj, [np.frombuffer(b, dtype).reshape(shape) for b, (dtype, shape) in zip(buffers, specs)]
 
 
-def send(fd: int, obj, arrays=(), plain: bool = True) -> None:
+def send(fd: int, obj, arrays=()) -> None:
     """``obj`` and ``arrays`` (:func:`encode`), the arrays' memory written as it is (no copy of a case's
-    curves in the runner). Layout: ``<u8 object length> <u8 array count> <u8 kind>``, the arrays' lengths
-    (u8 each), the object, the arrays."""
-    kind, data, arrays = encode(obj, arrays, plain)
-    head = struct.pack(f"<QQQ{len(arrays)}Q", len(data), len(arrays), kind, *(a.nbytes for a in arrays))
+    curves in the runner). Layout: ``<u8 object length> <u8 array count>``, the arrays' lengths (u8
+    each), the object, the arrays."""
+    data, arrays = encode(obj, arrays)
+    head = struct.pack(f"<QQ{len(arrays)}Q", len(data), len(arrays), *(a.nbytes for a in arrays))
     write_all(fd, [head, data, *arrays])
 
 
@@ -135,7 +86,7 @@ def receive(fd: int) -> tuple[Any, list] | None:
     head = read_exactly(fd, HEAD.size)
     if head is None:
         return None
-    n_data, n_buffers, kind = HEAD.unpack(head)
+    n_data, n_buffers = HEAD.unpack(head)
     sizes = read_exactly(fd, 8 * n_buffers)
     if sizes is None:
         return None
@@ -144,7 +95,7 @@ def receive(fd: int) -> tuple[Any, list] | None:
     buffers = [read_exactly(fd, n) for n in lengths]
     if data is None or any(b is None for b in buffers):
         return None
-    return decode(kind, bytes(data), buffers)
+    return decode(bytes(data), buffers)
 
 
 _unreaped: list[int] = []  # finished children not waited for yet (their exit is not waited on: see close)
@@ -162,8 +113,8 @@ def _reap() -> None:
 
 class Recorder:
     """``put(message, arrays)`` in the runner calls ``handle(message, arrays)`` in the child, in order
-    (``arrays``: a list of arrays, written to the pipe as they are; ``message``: best made of dicts, lists,
-    tuples, numbers and strings, which cross by marshal, else it is pickled). ``close()`` ends the
+    (``arrays``: a list of arrays, written to the pipe as they are; ``message``: anything picklable, best
+    small). ``close()`` ends the
     input and returns ``finish()``'s value from the child; then the child runs ``after()`` (if given) while
     the runner goes on, and ``join()`` returns its value. ``abort()`` (the runner is stopping: Ctrl-C, an
     error) lets the child handle what it was given, skips ``after`` and waits for it. ``start()`` (if given)
@@ -280,7 +231,7 @@ def _serve(jobs: int, back: int, handle, finish, after, start=None) -> None:
         except BaseException as exc:  # raised in the runner
             outcome = ("error", exc)
         usage = resource.getrusage(resource.RUSAGE_SELF)
-        send(back, (*outcome, usage.ru_utime + usage.ru_stime), plain=False)  # once: a pickle, unchecked
+        send(back, (*outcome, usage.ru_utime + usage.ru_stime))
         return outcome[0] == "ok"
 
     ended = False

@@ -124,8 +124,8 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
 
 def _handoff(i: int, solved: dict) -> tuple[tuple, list]:
     """The ``i``-th case's :func:`solve_case` result as it crosses to the recorder process: (message,
-    arrays), its curves apart (written to the pipe as they are), the rest numbers and strings
-    (marshalled: see ``recorder.encode``). :func:`_handback` undoes it."""
+    arrays), its curves apart (written to the pipe as they are), the rest small (pickled: see
+    ``recorder.encode``). :func:`_handback` undoes it."""
     names = [k for k in ("x", "w", "rotation") if solved.get(k) is not None]
     fields = solved.get("fields") or {}
     rest = {k: v for k, v in solved.items() if k not in ("x", "w", "rotation", "fields")}
