@@ -7,6 +7,7 @@ computation), never a traceback.
 from __future__ import annotations
 
 import functools
+from collections import Counter
 import sys
 from enum import Enum
 from pathlib import Path
@@ -162,7 +163,7 @@ def study(
     spec = load_study(study_file)
     out = out or Path("reports") / _slug(study_file.stem)
     df = run_study(spec, out, workers=workers, scheduler=scheduler, progress=not quiet)
-    counts = df["status"].value_counts().to_dict()
+    counts = dict(Counter(df["status"]).most_common())  # (pandas' value_counts: ~15 ms on its first call)
     typer.echo(f"{spec.name}: {len(df)} cases ({counts}); results in {out}/results.csv", err=True)
     for _, r in df[df["status"] != "ok"].iterrows():
         typer.echo(f"failed: {r['model']} on {r['scene_file']}: {r['message']}", err=True)

@@ -473,12 +473,16 @@ def test_serial_run_with_and_without_the_recorder_writes_the_same_tables(tmp_pat
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
                               'horizon = [2, 3]\n[[runs]]\nmodel = "fem-eb"\npoints = [5, 9, 17]\n'
                               '[[benchmarks]]\nname = "centre"\nscene = "' + str(SCENE) + '"\nmodel = "fem-eb"\npoints = 17\n')
-    frames = {}
+    frames, metas = {}, {}
     for on in (True, False):
         monkeypatch.setattr(recorder.Recorder, "available", on and recorder.usable_cpus() >= 2)
         frames[on] = run_study(load_study(p), tmp_path / f"out-{on}", workers=1, progress=False)
-        meta = json.loads((tmp_path / f"out-{on}" / "meta.json").read_text())
+        meta = metas[on] = json.loads((tmp_path / f"out-{on}" / "meta.json").read_text())
         assert meta["timing"]["recorder"] == ("process" if recorder.Recorder.available else "inline")
+    # meta.json records the same environment (read by the recorder in the one) and counts in both
+    for key in ("python", "platform", "machine", "versions", "counts", "code", "skipped"):
+        assert metas[True][key] == metas[False][key], key
+    assert metas[True]["versions"]["numpy"] == np.__version__ and metas[True]["counts"] == {"ok": len(frames[True])}
     timing = ["assemble_s", "solve_s", "total_s"]
     pd.testing.assert_frame_equal(frames[True].drop(columns=timing), frames[False].drop(columns=timing))
     out = tmp_path / "out-True"

@@ -11,6 +11,7 @@ import platform
 import shutil
 import sys
 import time
+from collections import Counter
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from functools import lru_cache
 from pathlib import Path
@@ -276,8 +277,8 @@ class _Keeper:
         self.clock["store_s"] += time.perf_counter() - t
         return row["status"] == "ok"
 
-    def summary(self) -> tuple[dict, list, dict]:
-        return self.rows, self.mismatched, self.clock
+    def summary(self) -> tuple[dict, list, dict, dict | None]:
+        return self.rows, self.mismatched, self.clock, getattr(self, "env", None)
 
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -323,6 +324,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             for row in done.values():
                 groups.add(row)
             keep.clock["groups_s"] = time.perf_counter() - t
+            keep.env = environment()  # read here, off the solver's core (~18 ms the first time in a process)
 
         def record(message, arrays):  # in the child: measure the i-th case from what the solve returned, store it
             i, solved = _handback(message, arrays)
@@ -346,6 +348,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
             recorder = Recorder(record, keep.summary, derived_tables, start=start)
         except OSError:  # no process to be had (limits): measure and store here instead
             pass
+    env = None  # environment(), when the recorder reads it
     bar = _progress(len(todo), progress)  # after the fork: the bar's thread stays in this process
     artefacts = str(out / "vtu")  # once: a path joined and made a string cost ~35 us a case between solves
     try:
@@ -386,7 +389,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     try:
         if recorder is not None:
             t = time.perf_counter()
-            (rows, mismatched, clock), _ = recorder.close()  # the child's OutputError, if any, is raised here
+            (rows, mismatched, clock, env), _ = recorder.close()  # the child's OutputError, if any, is raised here
             # the bar counted the failed solves as they came; a case can also fail where it is measured
             # (its reference): the final count is the rows'
             bar.set_failed(sum(r["status"] != "ok" for r in rows.values()))
@@ -407,7 +410,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     df = results_frame(study, rows)
     cases_s = time.perf_counter() - t0
     try:
-        write_tables(study, out, df, rows=rows, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
+        write_tables(study, out, df, rows=rows, env=env, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
                      timing={"cases_s": cases_s, "computed_cases": len(todo),
                              "recorder": "process" if recorder else "inline", **keep.clock})
     except OSError as exc:
@@ -611,6 +614,13 @@ def package_versions() -> dict:
     return dict(versions)
 
 
+def environment() -> dict:
+    """Python, platform, machine and the versions of the packages whose code can change a number, as
+    meta.json records them (the first call in a process reads package metadata: ~18 ms)."""
+    return {"python": platform.python_version(), "platform": platform.platform(), "machine": platform.machine(),
+            "versions": package_versions()}
+
+
 def _write_convergence(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:
     conv = convergence_rows(rows, memo)
     if not conv and not any(r.get("status") == "ok" for r in rows):
@@ -647,11 +657,11 @@ def write_derived(study: Study, out: Path, results, parts=tuple(DERIVED), memo: 
 
 def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
                  mismatched: list[str] | None = None, timing: dict | None = None, derived=None,
-                 rows: list[dict] | None = None) -> None:
+                 rows: list[dict] | None = None, env: dict | None = None) -> None:
     """results (:func:`write_results` from ``rows``, the rows of ``df``) and the derived tables
     (:func:`write_derived`; or, when ``derived`` is given, those not in :data:`RECORDER_WRITES`, then
     ``derived()`` waits for the process that writes those and returns timings to record); then study.toml
-    and meta.json, last. ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
+    and meta.json, last (``env``: :func:`environment`, when read elsewhere). ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
     tables' own time."""
     t_tables = time.perf_counter()
     rows = rows if rows is not None else rows_of(df)
@@ -662,11 +672,10 @@ def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed
         write_derived(study, out, rows, [k for k in DERIVED if k not in RECORDER_WRITES])
         timing = {**(timing or {}), "runner_tables_s": time.perf_counter() - t_tables, **derived()}
     shutil.copyfile(study.path, out / "study.toml")
-    versions = package_versions()
     meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
-            "python": platform.python_version(), "platform": platform.platform(), "machine": platform.machine(),
-            "cpu_count": os.cpu_count(), "wall_s": wall, "versions": versions, "resumed_cases": resumed,
-            "counts": df["status"].value_counts().to_dict(), "skipped": study.skipped, "code": code_digest(),
+            **(env or environment()), "cpu_count": os.cpu_count(), "wall_s": wall, "resumed_cases": resumed,
+            "counts": dict(Counter(r.get("status") for r in rows).most_common()),  # (pandas' value_counts: ~15 ms
+            "skipped": study.skipped, "code": code_digest(),                      # on its first call in a process)
             "cases_from_other_code": mismatched or []}
     if timing is not None:
         meta["timing"] = {**timing, "tables_s": time.perf_counter() - t_tables}
