@@ -342,16 +342,20 @@ def test_recorder_handles_every_message_in_order_and_returns_its_finish(tmp_path
     """The serial runner's recorder (a forked child): every message arrives, arrays bit for bit (NaN, -0.0,
     non-contiguous and 2-D arrays included), more than the pipe holds at once; ``close`` returns what the
     child's ``finish`` returned and the child's CPU time."""
-    from pdverify.study.recorder import Recorder
+    import fcntl
+
+    from pdverify.study.recorder import PIPE_BYTES, Recorder
     from pdverify.study.store import decode_record
 
     if not Recorder.available:
         pytest.skip("no fork or a single CPU: the runner measures and stores in its own process")
     seen = []
-    arrays = [np.linspace(0, 1, 5000) * i for i in range(30)]  # 40 kB each: the pipe holds one or two
+    arrays = [np.linspace(0, 1, 5000) * i for i in range(30)]  # 40 kB each, 1.2 MB in all: more than the pipe holds
     arrays[3][7], arrays[4][0] = np.nan, -0.0
     arrays += [np.arange(40.0)[::3], np.arange(12.0).reshape(3, 4)]
     rec = Recorder(lambda m, a: (seen.append(m), _record(tmp_path)(m, a)), lambda: list(seen))
+    if int(Path("/proc/sys/fs/pipe-max-size").read_text()) >= PIPE_BYTES:  # widened: a large case in one write
+        assert fcntl.fcntl(rec._jobs, fcntl.F_GETPIPE_SZ) == PIPE_BYTES
     for i, a in enumerate(arrays):
         rec.put(f"{i}.case", [a])
     order, cpu = rec.close()
