@@ -11,8 +11,9 @@ the runner writes the results table.
 
 Each message's arrays are written as they are, beside the rest, pickled (``encode``). The pipe
 holds up to 1 MB (a few cases; the child, several times faster than the solves, empties it at once): when
-the child falls behind, ``put`` waits, so the cases waiting to be recorded are only ever those in the pipe (a killed run loses them, like the case being solved; if only the runner
-is killed, the child still records them). The child ignores SIGINT: after Ctrl-C it still records what
+the child falls behind, ``put`` waits, so the cases waiting to be recorded are only ever those in the pipe
+(a killed run loses them, like the case being solved; if only the runner is killed, the child still
+records them). The child ignores SIGINT: after Ctrl-C it still records what
 it was given. A failure in the child (a case file that cannot be written) is sent back and raised in the
 runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on one CPU the
 child would take the solver's time instead of an idle core's).
@@ -142,8 +143,8 @@ class Recorder:
     # libdispatch) may crash, which is why multiprocessing spawns there.
     available = sys.platform.startswith("linux") and usable_cpus() >= 2
 
-    def __init__(self, handle: Callable[[Any, list], None], finish: Callable[[], Any], after: Callable[[], Any] | None = None,
-                 start: Callable[[], None] | None = None):
+    def __init__(self, handle: Callable[[Any, list], None], finish: Callable[[], Any],
+                 after: Callable[[], Any] | None = None, start: Callable[[], None] | None = None):
         _reap()
         jobs_r, jobs_w = os.pipe()
         back_r, back_w = os.pipe()

@@ -411,7 +411,8 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     df = results_frame(study, rows, table)
     cases_s = time.perf_counter() - t0
     try:
-        write_tables(study, out, df, rows=rows, table=table, env=env, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, derived=derived,
+        write_tables(study, out, df, rows=rows, table=table, env=env, wall=cases_s, resumed=resumed,
+                     mismatched=keep.mismatched, derived=derived,
                      timing={"cases_s": cases_s, "computed_cases": len(todo),
                              "recorder": "process" if recorder else "inline", **keep.clock})
     except OSError as exc:
