@@ -129,15 +129,15 @@ def _reap() -> None:
 class Recorder:
     """``put(message, arrays)`` in the runner calls ``handle(message, arrays)`` in the child, in order
     (``arrays``: a list of arrays, written to the pipe as they are; ``message``: anything picklable, best
-    small). ``close()`` ends the
-    input and returns ``finish()``'s value from the child; then the child runs ``after()`` (if given) while
-    the runner goes on, and ``join()`` returns its value. ``abort()`` (the runner is stopping: Ctrl-C, an
-    error) lets the child handle what it was given, skips ``after`` and waits for it. ``start()`` (if given)
-    runs in the child before the first message is read (work it can do while the first case is solved).
+    small). ``close()`` ends the input and returns ``finish()``'s value from the child; then the child runs
+    ``after()`` (if given) while the runner goes on, and ``join()`` returns its value. ``abort()`` (the
+    runner is stopping: Ctrl-C, an error) lets the child handle what it was given, skips ``after`` and
+    waits for it. ``start()`` (if given) runs in the child before the first message is read (work it can
+    do while the first case is solved).
 
-    ``start``, ``handle``, ``finish`` and ``after`` run in the forked child: they see the runner's objects as they
-    were at the fork, and whatever they change stays in the child. Their exceptions are sent back and
-    raised in the runner by ``put``, ``close`` or ``join``."""
+    ``start``, ``handle``, ``finish`` and ``after`` run in the forked child: they see the runner's objects
+    as they were at the fork, and whatever they change stays in the child. Their exceptions are sent back
+    and raised in the runner by ``put``, ``close`` or ``join``."""
 
     # Linux only: on macOS a forked child of a process that has used the system's frameworks (Accelerate,
     # libdispatch) may crash, which is why multiprocessing spawns there.

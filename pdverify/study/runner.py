@@ -34,9 +34,8 @@ from .metrics import errors
 from .spec import Case, Study, code_digest
 from .recorder import Recorder
 from .store import SUFFIX, case_file, encode_record, read_case, read_curve, write_atomic
-from .tables import (EMPTY_CONVERGENCE, TRUST_TOLERANCE, Groups, convergence_rows, convergence_table,  # noqa: F401
-                     locking_rows, locking_table, rows_of, speed_error_rows, speed_error_tables, trust_rows,
-                     trust_table)
+from .tables import (EMPTY_CONVERGENCE, Groups, convergence_rows, locking_rows, rows_of, speed_error_rows,
+                     trust_rows, trust_table)  # noqa: F401 (trust_table: re-exported)
 
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
@@ -259,6 +258,7 @@ class _Keeper:
         self.rows: dict = {}
         self.mismatched: list[str] = []
         self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the models' own time; cleaning, encoding, writing
+        self.env: dict | None = None  # environment(), when the recorder reads it
 
     def add(self, rec: dict, cid: str) -> bool:
         """Store one record; whether its case is ok. Raises OutputError when the file cannot be written."""
@@ -278,7 +278,7 @@ class _Keeper:
         return row["status"] == "ok"
 
     def summary(self) -> tuple[dict, list, dict, dict | None]:
-        return self.rows, self.mismatched, self.clock, getattr(self, "env", None)
+        return self.rows, self.mismatched, self.clock, self.env
 
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -411,7 +411,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     df = results_frame(study, rows, table)
     cases_s = time.perf_counter() - t0
     try:
-        write_tables(study, out, df, rows=rows, table=table, env=env, wall=cases_s, resumed=resumed,
+        write_tables(study, out, rows, table=table, env=env, wall=cases_s, resumed=resumed,
                      mismatched=keep.mismatched, derived=derived,
                      timing={"cases_s": cases_s, "computed_cases": len(todo),
                              "recorder": "process" if recorder else "inline", **keep.clock})
@@ -426,18 +426,12 @@ TEXT_OPTIONS = ("variant", "element", "form")  # text options: a text column eve
 
 
 def results_table(study: Study, rows: list[dict]):
-    """The results as an Arrow table: one row per case (``rows``, in the study's order), the study's name
-    first, the text options text columns even when every value is missing; None without pyarrow or when a
-    column's values are of mixed types (then pandas builds it: :func:`results_frame`)."""
-    columns = list(dict.fromkeys(k for r in rows for k in r))
-    if pa is None or not columns:
+    """The results as an Arrow table (:func:`_rows_table`): one row per case (``rows``, in the study's
+    order), the study's name first, the text options text columns even when every value is missing; None
+    without pyarrow or when a column's values are of mixed types (then pandas builds it: :func:`results_frame`)."""
+    if not rows:
         return None
-    try:
-        return pa.table({"study": pa.array([study.name] * len(rows), pa.large_string()),
-                         **{c: pa.array([r.get(c) for r in rows], pa.large_string() if c in TEXT_OPTIONS else None,
-                                        from_pandas=True) for c in columns if c != "study"}})
-    except (pa.ArrowException, TypeError, ValueError):
-        return None
+    return _rows_table([{"study": study.name, **r} for r in rows], ("study", *TEXT_OPTIONS))
 
 
 def write_results(study: Study, out: Path, rows: list[dict], table=None) -> None:
@@ -447,8 +441,7 @@ def write_results(study: Study, out: Path, rows: list[dict], table=None) -> None
     if table is None:
         _save(results_frame(study, rows), out, "results")
         return
-    pa_csv.write_csv(table, out / "results.csv")
-    pa_parquet.write_table(table, out / "results.parquet")
+    _write(table, out, "results")
 
 
 def results_frame(study: Study, rows: list[dict], table=None) -> pd.DataFrame:
@@ -512,45 +505,62 @@ def _arrow(df: pd.DataFrame):
         return None
 
 
-def _save_rows(rows: list[dict], out: Path, name: str, parquet: bool = True) -> None:
-    """:func:`_save` of the table of ``rows`` (dicts; columns in order of first appearance, as pandas makes
-    them), built by Arrow directly (a derived table: ~1 ms each where going through a DataFrame cost 2-6 ms),
-    missing values (None, NaN) written as nulls as pandas' are; through pandas when a column's values are of
-    mixed types or there are no rows (pandas' empty CSV)."""
-    if not rows:  # what pandas writes for an empty table, without building one (~2 ms cold)
-        (out / f"{name}.csv").write_bytes(b"\n")
-        return
+def _rows_table(rows: list[dict], text=()):
+    """The table of ``rows`` (dicts) as Arrow builds it from them: columns in order of first appearance (as
+    pandas makes them), missing values (None, NaN) as nulls (as pandas' are), the columns named in ``text``
+    text even when every value is missing; None without pyarrow, without columns, or when a column's values
+    are of mixed types."""
     columns = list(dict.fromkeys(k for r in rows for k in r))
-    table = None
-    if pa is not None:
-        try:
-            table = pa.table({c: pa.array([r.get(c) for r in rows], from_pandas=True) for c in columns})
-        except (pa.ArrowException, TypeError, ValueError):
-            table = None
-    if table is None:
-        _save(pd.DataFrame(rows), out, name, parquet)
-        return
+    if pa is None or not columns:
+        return None
+    try:
+        return pa.table({c: pa.array([r.get(c) for r in rows], pa.large_string() if c in text else None,
+                                     from_pandas=True) for c in columns})
+    except (pa.ArrowException, TypeError, ValueError):
+        return None
+
+
+def _write(table, out: Path, name: str, parquet: bool = True) -> None:
+    """``name``.csv and (``parquet``) ``name``.parquet from one Arrow table: Arrow's CSV writer takes ~1 ms
+    where pandas' ``to_csv`` took 8-11 ms on a 200-case results table (the tables are on a study's critical
+    path). Arrow quotes every text value and writes an integral float without ``.0`` (``pandas.read_csv``
+    then reads such a column as integers); values are written exactly (shortest round-trip form)."""
     pa_csv.write_csv(table, out / f"{name}.csv")
     if parquet:
         pa_parquet.write_table(table, out / f"{name}.parquet")
 
 
+def _write_empty(out: Path, name: str) -> None:
+    """What pandas writes for a table with neither rows nor columns, without building one and waking its
+    CSV writer (~2-5 ms the first time)."""
+    (out / f"{name}.csv").write_bytes(b"\n")
+
+
+def _save_rows(rows: list[dict], out: Path, name: str, parquet: bool = True) -> None:
+    """:func:`_save` of the table of ``rows``, built by Arrow directly (:func:`_rows_table`; a derived table:
+    ~1 ms each where going through a DataFrame cost 2-6 ms); through pandas when a column's values are of
+    mixed types."""
+    if not rows:
+        _write_empty(out, name)
+        return
+    table = _rows_table(rows)
+    if table is None:
+        _save(pd.DataFrame(rows), out, name, parquet)
+        return
+    _write(table, out, name, parquet)
+
+
 def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
-    """``name``.csv and (``parquet``) ``name``.parquet, both from one Arrow table: Arrow's CSV writer
-    takes ~1 ms where pandas' ``to_csv`` took 8-11 ms on a 200-case results table (the tables are on a
-    study's critical path). Arrow quotes every text value and writes an integral float without ``.0``
-    (``pandas.read_csv`` then reads such a column as integers); values are written exactly (shortest
-    round-trip form)."""
-    if df.columns.empty:  # no rows, no columns: what pandas writes, without waking its CSV writer (~5 ms cold)
-        (out / f"{name}.csv").write_bytes(b"\n")
+    """``name``.csv and (``parquet``) ``name``.parquet of ``df`` (:func:`_write`); pandas' CSV alone when it
+    does not convert to Arrow."""
+    if df.columns.empty:
+        _write_empty(out, name)
         return
     table = _arrow(df)
     if table is None:
         df.to_csv(out / f"{name}.csv", index=False)
         return
-    pa_csv.write_csv(table, out / f"{name}.csv")
-    if parquet:
-        pa_parquet.write_table(table, out / f"{name}.parquet")
+    _write(table, out, name, parquet)
 
 
 def _verdict(ok: bool, expected: str) -> str:
@@ -666,16 +676,15 @@ def write_derived(study: Study, out: Path, results, parts=tuple(DERIVED), memo: 
         DERIVED[name](study, out, rows, memo)
 
 
-def write_tables(study: Study, out: Path, df: pd.DataFrame, wall: float, resumed: int,
+def write_tables(study: Study, out: Path, rows: list[dict], wall: float, resumed: int,
                  mismatched: list[str] | None = None, timing: dict | None = None, derived=None,
-                 rows: list[dict] | None = None, env: dict | None = None, table=None) -> None:
-    """results (:func:`write_results` from ``rows``, the rows of ``df``, or ``table``) and the derived tables
-    (:func:`write_derived`; or, when ``derived`` is given, those not in :data:`RECORDER_WRITES`, then
+                 env: dict | None = None, table=None) -> None:
+    """results (:func:`write_results` from ``rows``, or ``table`` when built already) and the derived
+    tables (:func:`write_derived`; or, when ``derived`` is given, those not in :data:`RECORDER_WRITES`, then
     ``derived()`` waits for the process that writes those and returns timings to record); then study.toml
-    and meta.json, last (``env``: :func:`environment`, when read elsewhere). ``timing`` (from :func:`run_study`): where the run's time went; meta.json adds the
-    tables' own time."""
+    and meta.json, last (``env``: :func:`environment`, when read elsewhere). ``timing`` (from
+    :func:`run_study`): where the run's time went; meta.json adds the tables' own time."""
     t_tables = time.perf_counter()
-    rows = rows if rows is not None else rows_of(df)
     write_results(study, out, rows, table)
     if derived is None:
         write_derived(study, out, rows)

@@ -215,7 +215,7 @@ def grouped(name: str, rows: list[dict], memo: dict | None = None, compute=None)
     return out
 
 
-# ---- the tables: rows (what the runner writes), or DataFrames ---------------------------------------
+# ---- the tables, as rows (what the runner writes) ----------------------------------------------------
 
 def _rows(data) -> list[dict]:
     return rows_of(data) if isinstance(data, pd.DataFrame) else data
@@ -252,26 +252,8 @@ def trust_rows(rows: list[dict], tol: float = TRUST_TOLERANCE, memo: dict | None
     return [o for _, out in grouped("trust", rows, None if compute else memo, compute) for o in out]
 
 
-def convergence_table(results, memo: dict | None = None) -> pd.DataFrame:
-    """Per series (scene, model, options, slenderness): the observed order and the GCI (:func:`_convergence`).
-    ``results``: row dicts or a DataFrame."""
-    rows = _rows(results)
-    if not any(_ok(r) for r in rows):
-        return pd.DataFrame(columns=EMPTY_CONVERGENCE)
-    return pd.DataFrame(convergence_rows(rows, memo))
-
-
-def locking_table(results, memo: dict | None = None) -> pd.DataFrame:
-    """Per (scene, model, options, points): the locking slope (:func:`_locking`)."""
-    return pd.DataFrame(locking_rows(_rows(results), memo))
-
-
-def speed_error_tables(results, memo: dict | None = None) -> tuple[pd.DataFrame, pd.DataFrame]:
-    se, summary = speed_error_rows(_rows(results), memo)
-    return pd.DataFrame(se, columns=list(SPEED_ERROR)) if se else pd.DataFrame(), pd.DataFrame(summary)
-
-
 def trust_table(results, tol: float = TRUST_TOLERANCE, memo: dict | None = None) -> pd.DataFrame:
+    """:func:`trust_rows` as a DataFrame; ``results``: row dicts or a DataFrame."""
     return pd.DataFrame(trust_rows(_rows(results), tol, memo))
 
 
