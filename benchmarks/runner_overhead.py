@@ -12,12 +12,19 @@ solver time.
    cases' ``total_s``), split by the runner's own clock (meta.json ``timing``). No drift between two
    runs can enter this one; it cannot see a runner that slowed the solves down, which (1) does see.
 
-Where it applies (fork, two CPUs), a serial run measures and stores its cases in a forked recorder
-process (``pdverify/study/recorder.py``): that work leaves the solving process's wall time but not the
-machine, so the recorder's CPU time per case is printed too (``recorder_cpu``). The fork has a cost the
-in-run measure cannot see: pages the solver writes after it are copied first (a page fault each, ~3 us
-on the host this was written on); the solving process's minor page faults per run are printed beside
-the bare loop's (``minor_faults``).
+Where it applies (fork, two CPUs), a serial run measures and stores its cases in a recorder process
+(``pdverify/study/recorder.py``): that work leaves the solving process's wall time but not the machine,
+so the recorder's CPU time per case is printed too (``recorder_cpu``). The recorder is a fork of the
+runner, or of the zygote (``pdverify/zygote.py``) in a process that started one. A fork of the runner
+has a cost the in-run measure cannot see: every page the solver writes after it faults once (~3 us
+each on the host this was written on); the solving process's minor page faults per run are printed
+beside the bare loop's (``minor_faults``).
+
+The first repetition is a run as ``pdverify study --workers 1`` makes it (one study in a process: the
+recorder is a fork of the runner, and the process pays what is done once: ``overhead_in_run_first``,
+``overhead_vs_bare_loop_first``). Then the zygote is started and waited for (not timed), as a process
+running several studies does once, and the other repetitions give the best and median figures
+(``--no-zygote``: all repetitions fork, to compare).
 
 The reference caches are emptied before every repetition, so each run pays for its references as a
 single study would. Start-up (importing the model registry: scipy, scikit-fem, pandas; the code digest)
@@ -72,9 +79,12 @@ def main():
                     "like reports/; the file system's cost of creating a file is printed as fs_create_ms)")
     ap.add_argument("--size", choices=list(SIZES), default="small", help="the grids: small (401-2001 points, "
                     "the target's study) or medium (4001-12001 points)")
+    ap.add_argument("--no-zygote", action="store_true", help="no zygote: every repetition's recorder is a fork "
+                    "of this process, as in the first")
     args = ap.parse_args()
     repeat = args.repeat
     t0 = time.perf_counter()
+    from pdverify import zygote
     from pdverify.registry import models, run
     from pdverify.study import load_study, run_study
     from pdverify.study import runner
@@ -89,7 +99,10 @@ def main():
         p.write_text(STUDY.format(root=ROOT, points=SIZES[args.size]))
         cases = load_study(p).cases
         bare, wall, timing, faults = [], [], [], {"bare": [], "run": []}
-        for k in range(repeat):
+        for k in range(repeat + 1):
+            if k == 1 and not args.no_zygote:  # after the first run, as a process running several studies does
+                zygote.start()
+                zygote.ready(wait=120)
             f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
             t0 = time.perf_counter()
             for c in cases:
@@ -107,17 +120,20 @@ def main():
             t["wall_s"] = wall[-1]
             timing.append(t)
     n = len(df)
+    first, first_bare, timing, wall, bare = timing[0], bare[0], timing[1:], wall[1:], bare[1:]
     best = min(timing, key=lambda t: t["wall_s"] - t["solver_s"])  # the run with the least overhead
     over = sorted((t["wall_s"] - t["solver_s"]) / t["solver_s"] for t in timing)
     ms = lambda key: round(1e3 * min(t.get(key, 0.0) for t in timing) / n, 3)  # noqa: E731
     print(json.dumps({
         "cases": n, "size": args.size, "repeat": repeat, "dir": str(args.dir), "fs_create_ms": round(1e3 * fs_create, 3),
         "startup_s": round(startup, 4), "recorder": best["recorder"],
+        "recorder_start": {"first": first.get("recorder_start"), "others": sorted({t.get("recorder_start") for t in timing})},
         "bare_loop_s": round(min(bare), 4), "runner_wall_s": round(min(wall), 4),
         "overhead_vs_bare_loop_median": round(statistics.median(w / b - 1 for w, b in zip(wall, bare)), 4),
         "overhead_in_run": round(over[0], 4), "overhead_in_run_median": round(over[len(over) // 2], 4),
         # the first run in the process, as `pdverify study` makes one: it also pays what is done once per process
-        "overhead_in_run_first": round((timing[0]["wall_s"] - timing[0]["solver_s"]) / timing[0]["solver_s"], 4),
+        "overhead_in_run_first": round((first["wall_s"] - first["solver_s"]) / first["solver_s"], 4),
+        "overhead_vs_bare_loop_first": round(first["wall_s"] / first_bare - 1, 4),
         "per_case_ms": {"solver": round(1e3 * best["solver_s"] / n, 3),
                         "runner_besides_solves": round(1e3 * (best["cases_s"] - best["solver_s"]) / n, 3),
                         "tables_amortised": ms("tables_s"),
@@ -126,7 +142,7 @@ def main():
                         "handoff": ms("handoff_s")},  # the solving process's time to hand a case to the recorder
         "tables_ms": {k: round(1e3 * min(t.get(f"{k}_s", 0.0) for t in timing), 2)  # tables: on the critical
                       for k in ("tables", "runner_tables", "recorder_tables")},  # path; each process's share
-        "minor_faults": {k: int(statistics.median(v)) for k, v in faults.items()},
+        "minor_faults": {k: int(statistics.median(v[1:])) for k, v in faults.items()},  # (the zygote runs)
     }))
 
 

@@ -1,20 +1,20 @@
-"""A forked child that measures and stores the cases a serial run solves, on the machine's other core.
+"""A child process that measures and stores the cases a serial run solves, on the machine's other core.
 
 Why: in a serial run (``--workers 1``) the runner's own work per case (the reference at the model's
 points, the errors, encoding the record, creating its file) cost ~0.6 ms beside a 6-8 ms solve when done
 between solves, about three times its cost in a tight loop, because each solve leaves the caches cold
 (``benchmarks/runner_overhead.py``). Here the solving process only writes what the model returned into a
-pipe; the child, a ``fork`` of the runner made before the first solve (so it has the study, the models and
-every cache the runner has, and computes the same numbers with the same code), does the rest and writes
-each case file at once. At the end it sends back what it recorded, then writes the derived tables while
-the runner writes the results table.
+pipe; the child, a ``fork`` made before the first solve (of the runner: it has the study, the models and
+every cache the runner has; or of the zygote, :mod:`pdverify.zygote`, given its work pickled; either way
+it computes the same numbers with the same code), does the rest and writes each case file at once. At
+the end it sends back what it recorded, then writes the derived tables while the runner writes the
+results table.
 
 Each message's arrays are written as they are, beside the rest, pickled (``encode``). The pipe
 holds up to 1 MB (a few cases; the child, several times faster than the solves, empties it at once): when
 the child falls behind, ``put`` waits, so the cases waiting to be recorded are only ever those in the pipe
 (a killed run loses them, like the case being solved; if only the runner is killed, the child still
-records them). The child ignores SIGINT: after Ctrl-C it still records what
-it was given. A failure in the child (a case file that cannot be written) is sent back and raised in the
+records them). The child ignores SIGINT: after Ctrl-C it still records what it was given. A failure in the child (a case file that cannot be written) is sent back and raised in the
 runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on one CPU the
 child would take the solver's time instead of an idle core's).
 """
@@ -33,6 +33,7 @@ from typing import Any, Callable
 
 import numpy as np
 
+from .. import zygote
 from .store import write_all
 
 HEAD = struct.Struct("<QQ")
@@ -77,7 +78,10 @@ def send(fd: int, obj, arrays=()) -> None:
     """``obj`` and ``arrays`` (:func:`encode`), the arrays' memory written as it is (no copy of a case's
     curves in the runner). Layout: ``<u8 object length> <u8 array count>``, the arrays' lengths (u8
     each), the object, the arrays."""
-    data, arrays = encode(obj, arrays)
+    _write_encoded(fd, *encode(obj, arrays))
+
+
+def _write_encoded(fd: int, data: bytes, arrays=()) -> None:
     head = struct.pack(f"<QQ{len(arrays)}Q", len(data), len(arrays), *(a.nbytes for a in arrays))
     write_all(fd, [head, data, *arrays])
 
@@ -135,9 +139,13 @@ class Recorder:
     waits for it. ``start()`` (if given) runs in the child before the first message is read (work it can
     do while the first case is solved).
 
-    ``start``, ``handle``, ``finish`` and ``after`` run in the forked child: they see the runner's objects
-    as they were at the fork, and whatever they change stays in the child. Their exceptions are sent back
-    and raised in the runner by ``put``, ``close`` or ``join``."""
+    ``start``, ``handle``, ``finish`` and ``after`` run in the child. When they can be pickled (bound
+    methods of a module-level class, say) and the zygote (:mod:`pdverify.zygote`) is ready, they are
+    pickled here and the child is a fork of the zygote: they work on copies of the objects as pickled,
+    and this process is never forked (``started == "zygote"``). Otherwise (closures, no zygote) the child
+    is a fork of this process and sees its objects as they were at the fork (``started == "fork"``).
+    Either way, whatever they change stays in the child, and their exceptions are sent back and raised in
+    the runner by ``put``, ``close`` or ``join``."""
 
     # Linux only: on macOS a forked child of a process that has used the system's frameworks (Accelerate,
     # libdispatch) may crash, which is why multiprocessing spawns there.
@@ -150,25 +158,33 @@ class Recorder:
         back_r, back_w = os.pipe()
         _widen(jobs_w)
         _widen(back_w)
-        with warnings.catch_warnings():
-            # Python >= 3.12 warns when a process with threads forks. The only other threads here are
-            # OpenBLAS's pool, which is fork-safe (its pthread_atfork handler stops the pool before the
-            # fork; the child starts its own on demand). The progress bar's thread starts after the fork.
-            warnings.filterwarnings("ignore", category=DeprecationWarning, message=r".*fork\(\)")
-            pid = os.fork()
-        if pid == 0:  # the child: never returns
-            code = 1
-            try:
-                signal.signal(signal.SIGINT, signal.SIG_IGN)
-                os.close(jobs_w)
-                os.close(back_r)
-                _serve(jobs_r, back_w, handle, finish, after, start)
-                code = 0
-            finally:
-                os._exit(code)  # no atexit handlers, no flushing of the parent's buffers
+        work = (handle, finish, after, start)
+        job = _pickled(work) if zygote.ready() else None
+        if job is not None and zygote.fork([jobs_r, back_w]):
+            pid, self.started = None, "zygote"
+        else:
+            with warnings.catch_warnings():
+                # Python >= 3.12 warns when a process with threads forks. The only other threads here are
+                # OpenBLAS's pool, which is fork-safe (its pthread_atfork handler stops the pool before the
+                # fork; the child starts its own on demand). The progress bar's thread starts after the fork.
+                warnings.filterwarnings("ignore", category=DeprecationWarning, message=r".*fork\(\)")
+                pid = os.fork()
+            if pid == 0:  # the child: never returns
+                code = 1
+                try:
+                    signal.signal(signal.SIGINT, signal.SIG_IGN)
+                    os.close(jobs_w)
+                    os.close(back_r)
+                    _serve(jobs_r, back_w, work)
+                    code = 0
+                finally:
+                    os._exit(code)  # no atexit handlers, no flushing of the parent's buffers
+            self.started = "fork"
         os.close(jobs_r)
         os.close(back_w)
         self._pid, self._jobs, self._back, self._after = pid, jobs_w, back_r, after is not None
+        if job is not None and pid is None:
+            _write_encoded(jobs_w, job)  # the zygote's child reads its work first (serve_job)
 
     @property
     def closed(self) -> bool:
@@ -199,27 +215,33 @@ class Recorder:
         return self._last(self._reply())
 
     def abort(self) -> None:
-        """Stop: the child handles the messages already sent and exits without ``after``; waited for."""
+        """Stop: the child handles the messages already sent and exits without ``after``; waited for (its
+        end of the reply pipe closes when it exits)."""
         if self._back < 0:
             return
         if not self.closed:
             self._end_input()  # end of file without the end message: no after()
-        os.close(self._back)
-        self._back = -1
-        os.waitpid(self._pid, 0)
+        while os.read(self._back, 1 << 16):  # its replies, unread
+            pass
+        self._end_reply()
+        if self._pid is not None:
+            os.waitpid(self._pid, 0)
 
     def _end_input(self) -> None:
         if self._jobs >= 0:
             os.close(self._jobs)
             self._jobs = -1
 
+    def _end_reply(self) -> None:
+        os.close(self._back)
+        self._back = -1
+
     def _reply(self):
         outcome = receive(self._back)
         if outcome is None:
-            os.close(self._back)
-            self._back = -1
-            _, status = os.waitpid(self._pid, 0)
-            raise RuntimeError(f"the recorder process ended without an answer (wait status {status})")
+            self._end_reply()
+            status = f" (wait status {os.waitpid(self._pid, 0)[1]})" if self._pid is not None else ""
+            raise RuntimeError(f"the recorder process ended without an answer{status}")
         (kind, value, cpu), _ = outcome
         if kind == "error":
             self.abort()
@@ -227,20 +249,35 @@ class Recorder:
         return value, cpu
 
     def _last(self, reply):
-        os.close(self._back)
-        self._back = -1
-        _unreaped.append(self._pid)
-        _reap()
+        self._end_reply()
+        if self._pid is not None:
+            _unreaped.append(self._pid)
+            _reap()
         return reply
+
+
+def _pickled(work) -> bytes | None:
+    """``work`` encoded for the zygote's child (:func:`encode`), or None when it cannot be pickled."""
+    try:
+        return encode(work)[0]
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return None
+
+
+def serve_job(jobs: int, back: int) -> None:
+    """A child of the zygote: its work is the first message on ``jobs`` (:class:`Recorder`), then as a
+    forked child."""
+    _serve(jobs, back, None)
 
 
 _JOB, _END = 0, 1
 
 
-def _serve(jobs: int, back: int, handle, finish, after, start=None) -> None:
+def _serve(jobs: int, back: int, work: tuple | None) -> None:
     """The child's loop: handle each job; at the end message (or end of file: the runner stopped) send
     back ``finish()``; after the end message, run ``after()`` and send back its value. The first exception
-    is sent back instead, and ends the child."""
+    is sent back instead, and ends the child. ``work``: (handle, finish, after, start), or None to read it
+    first from ``jobs``."""
 
     def reply(fn):
         try:
@@ -251,10 +288,20 @@ def _serve(jobs: int, back: int, handle, finish, after, start=None) -> None:
         send(back, (*outcome, usage.ru_utime + usage.ru_stime))
         return outcome[0] == "ok"
 
-    ended = False
+    ended, after = False, None
 
     def jobs_then_finish():
-        nonlocal ended
+        nonlocal ended, after
+        if work is None:
+            try:
+                got = receive(jobs)
+            except Exception as exc:  # a function the runner pickled by name that this process cannot find
+                raise RuntimeError(f"the recorder could not load its work from the runner: {exc!r}") from None
+            if got is None:
+                raise RuntimeError("the recorder's work never arrived (the runner stopped)")
+            handle, finish, after, start = got[0]
+        else:
+            handle, finish, after, start = work
         if start is not None:
             start()
         while (message := receive(jobs)) is not None:

@@ -259,6 +259,7 @@ class _Keeper:
         self.mismatched: list[str] = []
         self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the models' own time; cleaning, encoding, writing
         self.env: dict | None = None  # environment(), when the recorder reads it
+        self.write = write_atomic  # as the module has it now (a test may replace it; the recorder is given it)
 
     def add(self, rec: dict, cid: str) -> bool:
         """Store one record; whether its case is ok. Raises OutputError when the file cannot be written."""
@@ -269,7 +270,7 @@ class _Keeper:
             self.mismatched.append(cid)
         row["case_id"] = cid
         try:
-            write_atomic(self.cases_dir / f"{cid}{SUFFIX}", encode_record(rec))
+            self.write(self.cases_dir / f"{cid}{SUFFIX}", encode_record(rec))
         except OSError as exc:  # disk full, permissions: stop with one line; the cases written so far stay
             raise _output_error(self.out, exc) from None
         self.rows[cid] = row
@@ -279,6 +280,56 @@ class _Keeper:
 
     def summary(self) -> tuple[dict, list, dict, dict | None]:
         return self.rows, self.mismatched, self.clock, self.env
+
+
+class _Recording:
+    """The serial run's work in its recorder process (:class:`~.recorder.Recorder`): measure each case
+    from what its solve returned, store it (``keep``), and compute the derived tables' groups as the cases
+    come in; once every case is in, the derived tables. A module-level class, so that it can be pickled
+    for a recorder forked from the zygote; it carries the functions it calls that a caller may have
+    replaced (``measure_case`` here, the keeper's ``write``), so the child runs what the runner would."""
+
+    def __init__(self, study: Study, out: Path, ids: list[str], todo: list[Case], todo_ids: list[str],
+                 done: dict, keep: _Keeper):
+        self.study, self.out, self.ids, self.todo, self.todo_ids = study, out, ids, todo, todo_ids
+        self.done, self.keep, self.measure, self.groups = done, keep, measure_case, None
+
+    def start(self) -> None:
+        """While the first case is solved: each case's groups in the derived tables, and the environment."""
+        keep = self.keep
+        t = time.perf_counter()
+        expected = [self.done.get(cid) or predicted_row(case, cid) for case, cid in zip(self.study.cases, self.ids)]
+        self.groups = Groups(list({r["case_id"]: r for r in expected}.values()))
+        for row in self.done.values():
+            self.groups.add(row)
+        keep.clock["groups_s"] = time.perf_counter() - t
+        keep.env = environment()  # read here, off the solver's core (~18 ms the first time in a process)
+
+    def record(self, message, arrays) -> None:
+        """Measure the i-th case from what the solve returned, store it."""
+        keep = self.keep
+        i, solved = _handback(message, arrays)
+        cid = self.todo_ids[i]
+        t = time.perf_counter()
+        rec = self.measure(self.todo[i], solved, cid)
+        keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
+        keep.add(rec, cid)
+        if i < len(self.todo) - 1:  # the last one's after its row has gone back to the runner (derived_tables)
+            t = time.perf_counter()
+            self.groups.add(keep.rows[cid])  # the derived tables' groups this case completes
+            keep.clock["groups_s"] += time.perf_counter() - t
+
+    def summary(self):
+        return self.keep.summary()
+
+    def derived_tables(self) -> float:
+        """Once every case is in, while the runner writes the results: the derived tables; their seconds."""
+        t = time.perf_counter()
+        self.groups.add(self.keep.rows[self.todo_ids[-1]])  # the last case's groups: after the rows went back
+        rows = {**self.done, **self.keep.rows}
+        write_derived(self.study, self.out, [rows[cid] for cid in dict.fromkeys(self.ids)], RECORDER_WRITES,
+                      self.groups.memo)
+        return time.perf_counter() - t
 
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
@@ -308,44 +359,15 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     resumed = len(done)
 
     keep = _Keeper(out, code_digest())
-    # Serial runs solve here and measure + store in a forked child on the other core (recorder.Recorder);
-    # with workers or Dask this process collects the measured records and writes them itself.
+    # Serial runs solve here and measure + store in a child on the other core (recorder.Recorder: a fork of
+    # the zygote when it is up, else of this process); with workers or Dask this process collects the
+    # measured records and writes them itself.
     serial = not scheduler and ((workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1)
     recorder = None
     if serial and len(todo) > 1 and Recorder.available:
-
-        groups = None
-
-        def start():  # in the child, while the first case is solved: each case's groups in the derived tables
-            nonlocal groups
-            t = time.perf_counter()
-            expected = [done.get(cid) or predicted_row(case, cid) for case, cid in zip(study.cases, ids)]
-            groups = Groups(list({r["case_id"]: r for r in expected}.values()))
-            for row in done.values():
-                groups.add(row)
-            keep.clock["groups_s"] = time.perf_counter() - t
-            keep.env = environment()  # read here, off the solver's core (~18 ms the first time in a process)
-
-        def record(message, arrays):  # in the child: measure the i-th case from what the solve returned, store it
-            i, solved = _handback(message, arrays)
-            t = time.perf_counter()
-            rec = measure_case(todo[i], solved, id_of[id(todo[i])])
-            keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
-            keep.add(rec, id_of[id(todo[i])])
-            if i < len(todo) - 1:  # the last one's after its row has gone back to the runner (derived_tables)
-                t = time.perf_counter()
-                groups.add(keep.rows[id_of[id(todo[i])]])  # the derived tables' groups this case completes
-                keep.clock["groups_s"] += time.perf_counter() - t
-
-        def derived_tables():  # in the child, once every case is in, while the runner writes the results
-            t = time.perf_counter()
-            groups.add(keep.rows[id_of[id(todo[-1])]])  # the last case's groups: after the rows went back
-            rows = {**done, **keep.rows}
-            write_derived(study, out, [rows[cid] for cid in dict.fromkeys(ids)], RECORDER_WRITES, groups.memo)
-            return time.perf_counter() - t
-
+        work = _Recording(study, out, ids, todo, [id_of[id(c)] for c in todo], done, keep)
         try:
-            recorder = Recorder(record, keep.summary, derived_tables, start=start)
+            recorder = Recorder(work.record, work.summary, work.derived_tables, start=work.start)
         except OSError:  # no process to be had (limits): measure and store here instead
             pass
     env = None  # environment(), when the recorder reads it
@@ -414,7 +436,8 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         write_tables(study, out, rows, table=table, env=env, wall=cases_s, resumed=resumed,
                      mismatched=keep.mismatched, derived=derived,
                      timing={"cases_s": cases_s, "computed_cases": len(todo),
-                             "recorder": "process" if recorder else "inline", **keep.clock})
+                             "recorder": "process" if recorder else "inline",
+                             **({"recorder_start": recorder.started} if recorder else {}), **keep.clock})
     except OSError as exc:
         if recorder is not None:
             recorder.abort()
@@ -528,6 +551,16 @@ def _write(table, out: Path, name: str, parquet: bool = True) -> None:
     pa_csv.write_csv(table, out / f"{name}.csv")
     if parquet:
         pa_parquet.write_table(table, out / f"{name}.parquet")
+
+
+def warm_up() -> None:
+    """Write a one-row table (:func:`_save_rows`) to a temporary folder: the first use of Arrow's CSV and
+    Parquet writers in a process costs ~6 ms (measured in a recorder forked from the zygote: its derived
+    tables took 18-19 ms, 12 ms after this)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        _save_rows([{"a": 1.0, "b": "x"}], Path(d), "warm")
 
 
 def _write_empty(out: Path, name: str) -> None:
