@@ -10,13 +10,14 @@ it computes the same numbers with the same code), does the rest and writes each 
 the end it sends back what it recorded, then writes the derived tables while the runner writes the
 results table.
 
-Each message's arrays are written as they are, beside the rest, pickled (``encode``). The pipe
-holds up to 1 MB (a few cases; the child, several times faster than the solves, empties it at once): when
-the child falls behind, ``put`` waits, so the cases waiting to be recorded are only ever those in the pipe
-(a killed run loses them, like the case being solved; if only the runner is killed, the child still
-records them). The child ignores SIGINT: after Ctrl-C it still records what it was given. A failure in the child (a case file that cannot be written) is sent back and raised in the
-runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on one CPU the
-child would take the solver's time instead of an idle core's).
+Each message's arrays are written as they are, beside the rest, pickled (``encode``). The pipe holds
+up to 1 MB (a few cases; the child, several times faster than the solves and polling it every
+millisecond, empties it): when the child falls behind, ``put`` waits, so the cases waiting to be
+recorded are only ever those in the pipe (a killed run loses them, like the case being solved; if only
+the runner is killed, the child still records them). The child ignores SIGINT: after Ctrl-C it still
+records what it was given. A failure in the child (a case file that cannot be written) is sent back and
+raised in the runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on
+one CPU the child would take the solver's time instead of an idle core's).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ import resource
 import signal
 import struct
 import sys
+import time
 import warnings
 from typing import Any, Callable
 
@@ -47,12 +49,17 @@ def usable_cpus() -> int:
         return os.cpu_count() or 1
 
 
-def read_exactly(fd: int, n: int) -> bytearray | None:
-    """``n`` bytes from ``fd`` (writable), or None at end of file (also when it comes in the middle)."""
+def read_exactly(fd: int, n: int, poll: float = 0.0) -> bytearray | None:
+    """``n`` bytes from ``fd`` (writable), or None at end of file (also when it comes in the middle).
+    ``poll``: for a non-blocking ``fd``, the seconds to sleep when nothing is there yet."""
     buf = bytearray(n)
     view, got = memoryview(buf), 0
     while got < n:
-        k = os.readv(fd, [view[got:]])
+        try:
+            k = os.readv(fd, [view[got:]])
+        except BlockingIOError:
+            time.sleep(poll)
+            continue
         if not k:
             return None
         got += k
@@ -86,19 +93,19 @@ def _write_encoded(fd: int, data: bytes, arrays=()) -> None:
     write_all(fd, [head, data, *arrays])
 
 
-def receive(fd: int) -> tuple[Any, list] | None:
+def receive(fd: int, poll: float = 0.0) -> tuple[Any, list] | None:
     """The next (object, arrays), or None at end of file (also inside a message). The arrays are
-    writable, each backed by its own buffer."""
-    head = read_exactly(fd, HEAD.size)
+    writable, each backed by its own buffer. ``poll``: see :func:`read_exactly`."""
+    head = read_exactly(fd, HEAD.size, poll)
     if head is None:
         return None
     n_data, n_buffers = HEAD.unpack(head)
-    sizes = read_exactly(fd, 8 * n_buffers)
+    sizes = read_exactly(fd, 8 * n_buffers, poll)
     if sizes is None:
         return None
     lengths = struct.unpack(f"<{n_buffers}Q", sizes)
-    data = read_exactly(fd, n_data)
-    buffers = [read_exactly(fd, n) for n in lengths]
+    data = read_exactly(fd, n_data, poll)
+    buffers = [read_exactly(fd, n, poll) for n in lengths]
     if data is None or any(b is None for b in buffers):
         return None
     return decode(bytes(data), buffers)
@@ -271,6 +278,12 @@ def serve_job(jobs: int, back: int) -> None:
 
 
 _JOB, _END = 0, 1
+# The child polls its input (non-blocking reads, sleeping POLL_S when empty) instead of blocking on it:
+# writing into a pipe whose reader sleeps in read() wakes that reader, which cost the solving process
+# 45-50 us a case on the host this was written on (a 48 kB write: 78-84 us against 34-41 us to a polling
+# reader, caches cold as after a solve). The price: up to POLL_S more at the end, and ~1,000 wake-ups a
+# second of the child while the cases are solved (~1 % of the otherwise idle core).
+POLL_S = 0.001
 
 
 def _serve(jobs: int, back: int, work: tuple | None) -> None:
@@ -304,7 +317,9 @@ def _serve(jobs: int, back: int, work: tuple | None) -> None:
             handle, finish, after, start = work
         if start is not None:
             start()
-        while (message := receive(jobs)) is not None:
+        if POLL_S:
+            os.set_blocking(jobs, False)
+        while (message := receive(jobs, POLL_S)) is not None:
             (kind, payload), arrays = message
             if kind == _END:
                 ended = True
