@@ -61,6 +61,17 @@ def test_recorder_from_the_zygote_records_what_a_fork_records(tmp_path, running,
     assert sorted(os.listdir(tmp_path / "zygote" / "cases")) == sorted(os.listdir(tmp_path / "fork" / "cases"))
 
 
+def test_zygote_recorder_writes_where_the_runner_is(tmp_path, running, monkeypatch):
+    """A relative output directory is the runner's, not the zygote's: the recorder works in the runner's
+    working directory (changed here after the zygote started)."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101]\n')
+    monkeypatch.chdir(tmp_path)
+    run_study(load_study(p), Path("relative-out"), workers=1, progress=False)
+    assert _timing(tmp_path / "relative-out")["recorder_start"] == "zygote"
+    assert len(list((tmp_path / "relative-out" / "cases").glob("*.case"))) == 2
+    assert (tmp_path / "relative-out" / "convergence.csv").exists()  # written by the recorder
+
+
 def test_code_the_zygote_does_not_run_is_recorded_by_a_fork(tmp_path, running, synthetic):  # noqa: F811
     """A model registered at run time is unknown to the zygote: the runner forks its recorder, and the
     synthetic model's error (exactly 3 dx^2) comes out right. Work that cannot be pickled (closures) is

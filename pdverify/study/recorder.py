@@ -151,6 +151,8 @@ class Recorder:
     pickled here and the child is a fork of the zygote: they work on copies of the objects as pickled,
     and this process is never forked (``started == "zygote"``). Otherwise (closures, no zygote) the child
     is a fork of this process and sees its objects as they were at the fork (``started == "fork"``).
+    The zygote's child works in this process's working directory, with the zygote's environment
+    variables and ``sys.path`` (this process's when it started the zygote).
     Either way, whatever they change stays in the child, and their exceptions are sent back and raised in
     the runner by ``put``, ``close`` or ``join``."""
 
@@ -166,7 +168,7 @@ class Recorder:
         _widen(jobs_w)
         _widen(back_w)
         work = (handle, finish, after, start)
-        job = _pickled(work) if zygote.ready() else None
+        job = _pickled((os.getcwd(), work)) if zygote.ready() else None  # (relative paths: the runner's)
         if job is not None and zygote.fork([jobs_r, back_w]):
             pid, self.started = None, "zygote"
         else:
@@ -272,8 +274,8 @@ def _pickled(work) -> bytes | None:
 
 
 def serve_job(jobs: int, back: int) -> None:
-    """A child of the zygote: its work is the first message on ``jobs`` (:class:`Recorder`), then as a
-    forked child."""
+    """A child of the zygote: its work is the first message on ``jobs`` (:class:`Recorder`: the runner's
+    working directory and the four functions), then as a forked child."""
     _serve(jobs, back, None)
 
 
@@ -312,7 +314,8 @@ def _serve(jobs: int, back: int, work: tuple | None) -> None:
                 raise RuntimeError(f"the recorder could not load its work from the runner: {exc!r}") from None
             if got is None:
                 raise RuntimeError("the recorder's work never arrived (the runner stopped)")
-            handle, finish, after, start = got[0]
+            cwd, (handle, finish, after, start) = got[0]
+            os.chdir(cwd)  # the runner's working directory, not the zygote's
         else:
             handle, finish, after, start = work
         if start is not None:
