@@ -127,7 +127,8 @@ def main():
     print(json.dumps({
         "cases": n, "size": args.size, "repeat": repeat, "dir": str(args.dir), "fs_create_ms": round(1e3 * fs_create, 3),
         "startup_s": round(startup, 4), "recorder": best["recorder"],
-        "recorder_start": {"first": first.get("recorder_start"), "others": sorted({t.get("recorder_start") for t in timing})},
+        "recorder_start": {"first": first.get("recorder_start"),
+                           "others": sorted({t.get("recorder_start") for t in timing})},
         "bare_loop_s": round(min(bare), 4), "runner_wall_s": round(min(wall), 4),
         "overhead_vs_bare_loop_median": round(statistics.median(w / b - 1 for w, b in zip(wall, bare)), 4),
         "overhead_in_run": round(over[0], 4), "overhead_in_run_median": round(over[len(over) // 2], 4),
@@ -142,7 +143,7 @@ def main():
                         "handoff": ms("handoff_s")},  # the solving process's time to hand a case to the recorder
         "tables_ms": {k: round(1e3 * min(t.get(f"{k}_s", 0.0) for t in timing), 2)  # tables: on the critical
                       for k in ("tables", "runner_tables", "recorder_tables")},  # path; each process's share
-        "minor_faults": {k: int(statistics.median(v[1:])) for k, v in faults.items()},  # (the zygote runs)
+        "minor_faults": {k: int(statistics.median(v[1:])) for k, v in faults.items()},  # (repetitions after the first)
     }))
 
 

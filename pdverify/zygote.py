@@ -150,7 +150,7 @@ def main(fd: int) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # children are reaped by the kernel
     sock = socket.socket(fileno=fd)
-    from .study import recorder, runner  # noqa: F401  (the recorder's code, imported once here)
+    from .study import recorder, runner  # the recorder's code, imported once here
 
     body = pickle.dumps(fingerprint())
     sock.sendall(_LEN.pack(len(body)) + body)
