@@ -499,6 +499,31 @@ def test_serial_run_with_and_without_the_recorder_writes_the_same_tables(tmp_pat
         assert (out / name).read_bytes() == (again / name).read_bytes(), name
 
 
+def test_warm_up_failing_leaves_the_run_whole(tmp_path, monkeypatch):
+    """The tables' warm-up (a thread in the runner, the start of a forked recorder) is an optimisation: when
+    it cannot write its one-row table it says so by its value, raises nothing, and the study's tables are
+    written all the same; when it can, it is done once per process."""
+    import tempfile
+
+    from pdverify.study import runner
+
+    def no_tmp(*a, **k):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(runner, "_warm", False)
+    monkeypatch.setattr(tempfile, "TemporaryDirectory", no_tmp)
+    assert runner.warm_up() is False
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert (df["status"] == "ok").all() and len(df) == 6
+    for name in ("results", "convergence", "locking", "speed_error", "trust"):
+        assert (tmp_path / "out" / f"{name}.csv").stat().st_size > 0, name
+    assert runner._warm is False
+    monkeypatch.undo()
+    monkeypatch.setattr(runner, "_warm", False)
+    assert runner.warm_up() is True and runner._warm is True
+
+
 def test_recorder_raises_the_childs_failure(tmp_path):
     """A failure in the child (here a file name the file system refuses) is raised in the runner by a later
     ``put`` or by ``close``, with the child's own exception, never lost."""
