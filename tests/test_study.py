@@ -524,6 +524,37 @@ def test_warm_up_failing_leaves_the_run_whole(tmp_path, monkeypatch):
     assert runner.warm_up() is True and runner._warm is True
 
 
+@pytest.mark.skipif(not __import__("pdverify.study.recorder", fromlist=["Recorder"]).Recorder.available,
+                    reason="no recorder process (one CPU, or not Linux)")
+def test_recorder_killed_mid_run_is_one_output_error_and_the_run_resumes(tmp_path, monkeypatch):
+    """A serial run's recorder killed by the system (SIGKILL, as the out-of-memory killer sends) after
+    storing two cases: the runner stops with one OutputError naming the signal and the way to resume, the
+    two case files stay, and the next run resumes them and completes."""
+    from pdverify import zygote
+    from pdverify.errors import OutputError
+    from pdverify.study import runner
+
+    record = runner._Recording.record
+
+    def record_then_die(self, message, arrays):  # in the recorder (a fork of this process)
+        if len(self.keep.rows) == 2:
+            os.kill(os.getpid(), signal.SIGKILL)
+        record(self, message, arrays)
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
+    with monkeypatch.context() as m:
+        m.setattr(zygote, "ready", lambda wait=0: False)  # a fork of this process: it has the patched class
+        m.setattr(runner._Recording, "record", record_then_die)
+        with pytest.raises(OutputError) as exc:
+            run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    msg = str(exc.value)
+    assert "killed by SIGKILL" in msg and "run the study again to resume" in msg and "\n" not in msg
+    assert len(list((tmp_path / "out" / "cases").iterdir())) == 2
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert len(df) == 6 and (df["status"] == "ok").all()
+    assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == 2
+
+
 def test_recorder_raises_the_childs_failure(tmp_path):
     """A failure in the child (here a file name the file system refuses) is raised in the runner by a later
     ``put`` or by ``close``, with the child's own exception, never lost."""

@@ -124,6 +124,11 @@ def _widen(fd: int) -> None:
         pass
 
 
+class RecorderDied(RuntimeError):
+    """The child ended without sending its answer back: killed (out of memory, a signal) or, for a child of
+    the zygote, never started."""
+
+
 _unreaped: list[int] = []  # finished children not waited for yet (their exit is not waited on: see close)
 
 
@@ -249,8 +254,12 @@ class Recorder:
         outcome = receive(self._back)
         if outcome is None:
             self._end_reply()
-            status = f" (wait status {os.waitpid(self._pid, 0)[1]})" if self._pid is not None else ""
-            raise RuntimeError(f"the recorder process ended without an answer{status}")
+            how = ""
+            if self._pid is not None:
+                status = os.waitpid(self._pid, 0)[1]
+                how = (f" (killed by {signal.Signals(os.WTERMSIG(status)).name})" if os.WIFSIGNALED(status)
+                       else f" (exit status {os.waitstatus_to_exitcode(status)})")
+            raise RecorderDied(f"the recorder process ended without an answer{how}")
         (kind, value, cpu), _ = outcome
         if kind == "error":
             self.abort()

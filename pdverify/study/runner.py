@@ -34,7 +34,7 @@ from ..registry import get_model, run
 from ..result import columns_csv
 from .metrics import errors
 from .spec import Case, Study, code_digest
-from .recorder import Recorder
+from .recorder import Recorder, RecorderDied
 from .store import SUFFIX, case_file, encode_record, read_case, read_curve, write_atomic
 from .tables import (EMPTY_CONVERGENCE, Groups, convergence_rows, locking_rows, rows_of, speed_error_rows,
                      trust_rows, trust_table)  # noqa: F401 (trust_table: re-exported)
@@ -337,7 +337,18 @@ class _Recording:
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
               progress: bool = True) -> pd.DataFrame:
+    """Run the study's cases not yet done in ``out`` (resumed from their case files), write every table and
+    meta.json there; the results table. Raises OutputError (one line, nothing lost that was stored) when
+    ``out`` cannot be written or when a serial run's recorder process dies."""
     out = Path(out)
+    try:
+        return _run_study(study, out, workers, scheduler, progress)
+    except RecorderDied as exc:  # killed by the system (out of memory, a signal): what it stored is kept
+        raise OutputError(f"{exc}; the cases it stored are kept in {out / 'cases'}: run the study again to "
+                          "resume") from None
+
+
+def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | None, progress: bool) -> pd.DataFrame:
     cases_dir = out / "cases"
     try:
         cases_dir.mkdir(parents=True, exist_ok=True)
