@@ -555,6 +555,36 @@ def test_recorder_killed_mid_run_is_one_output_error_and_the_run_resumes(tmp_pat
     assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == 2
 
 
+def _run_case_or_die(case, artefacts=None, case_id=None):
+    """runner.run_case, but a pool worker given the 201-point grid is killed (as by the out-of-memory killer)."""
+    from pdverify.study import runner
+
+    if case.given.get("points") == 201:
+        os.kill(os.getpid(), signal.SIGKILL)
+    return runner.measure_case(case, runner.solve_case(case, artefacts, case_id), case_id)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the pool forks its workers on Linux only")
+def test_pool_worker_killed_is_one_output_error_and_the_run_resumes(tmp_path, monkeypatch):
+    """A pool worker killed mid-run: one OutputError (no BrokenProcessPool traceback) saying how to resume;
+    the cases finished before are kept, and the next run computes only the others."""
+    from pdverify.errors import OutputError
+    from pdverify.study import runner
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
+    with monkeypatch.context() as m:
+        m.setattr(runner, "run_case", _run_case_or_die)
+        with pytest.raises(OutputError) as exc:
+            run_study(load_study(p), tmp_path / "out", workers=2, progress=False)
+    msg = str(exc.value)
+    assert "worker process ended abruptly" in msg and "run the study again to resume" in msg
+    kept = len(list((tmp_path / "out" / "cases").iterdir()))
+    assert kept < 6
+    df = run_study(load_study(p), tmp_path / "out", workers=2, progress=False)
+    assert len(df) == 6 and (df["status"] == "ok").all()
+    assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == kept
+
+
 def test_recorder_raises_the_childs_failure(tmp_path):
     """A failure in the child (here a file name the file system refuses) is raised in the runner by a later
     ``put`` or by ``close``, with the child's own exception, never lost."""

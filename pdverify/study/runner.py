@@ -14,6 +14,7 @@ import threading
 import time
 from collections import Counter
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from functools import lru_cache
 from pathlib import Path
 
@@ -339,13 +340,16 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
               progress: bool = True) -> pd.DataFrame:
     """Run the study's cases not yet done in ``out`` (resumed from their case files), write every table and
     meta.json there; the results table. Raises OutputError (one line, nothing lost that was stored) when
-    ``out`` cannot be written or when a serial run's recorder process dies."""
+    ``out`` cannot be written or when a process storing or solving cases (recorder, worker) dies."""
     out = Path(out)
     try:
         return _run_study(study, out, workers, scheduler, progress)
     except RecorderDied as exc:  # killed by the system (out of memory, a signal): what it stored is kept
         raise OutputError(f"{exc}; the cases it stored are kept in {out / 'cases'}: run the study again to "
                           "resume") from None
+    except BrokenProcessPool:  # a worker killed: the cases it solved before were stored here
+        raise OutputError(f"a worker process ended abruptly (killed: out of memory, a signal); the cases "
+                          f"finished before are kept in {out / 'cases'}: run the study again to resume") from None
 
 
 def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | None, progress: bool) -> pd.DataFrame:
