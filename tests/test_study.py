@@ -172,13 +172,16 @@ def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     a traceback, every case that was finished is on disk (the recorder process ignores SIGINT and writes
     what it was given), no half-written file, no tables for a partial study, no process left behind, and
     a second run resumes every finished case."""
+    # grids up to 8001 points (~1.5 s in all): the run must still be solving when 5 case files are on disk
+    # (60 cases of <= 2001 points once ran to the end before the signal, in a full suite on a busy machine)
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [101, 151, 201, 301, 401, 601, 801, 1201, 1601, 2001]\nhorizon = [2, 3, 4]\n')
+                              'points = [101, 151, 201, 301, 401, 601, 801, 1201, 1601, 2001, 3001, 4001, 6001, 8001]\n'
+                              'horizon = [2, 3, 4]\n')
     out = tmp_path / "out"
     proc, err, cmd = _signal_mid_run(p, out, signal.SIGINT)
     finished = len(list((out / "cases").glob("*.case")))
     assert proc.returncode == 130 and b"Traceback" not in err, err
-    assert 5 <= finished < 60 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
+    assert 5 <= finished < 84 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
     left = []  # processes whose command line names this run's output (the recorder is a fork of the runner)
     for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
         try:
