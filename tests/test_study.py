@@ -537,7 +537,7 @@ def test_recorder_killed_mid_run_is_one_output_error_and_the_run_resumes(tmp_pat
     from pdverify.errors import OutputError
     from pdverify.study import runner
 
-    record = runner._Recording.record
+    record = runner._Recording.record_case
 
     def record_then_die(self, message, arrays):  # in the recorder (a fork of this process)
         if len(self.keep.rows) == 2:
@@ -547,7 +547,7 @@ def test_recorder_killed_mid_run_is_one_output_error_and_the_run_resumes(tmp_pat
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
     with monkeypatch.context() as m:
         m.setattr(zygote, "ready", lambda wait=0: False)  # a fork of this process: it has the patched class
-        m.setattr(runner._Recording, "record", record_then_die)
+        m.setattr(runner._Recording, "record_case", record_then_die)
         with pytest.raises(OutputError) as exc:
             run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
     msg = str(exc.value)
@@ -650,3 +650,35 @@ def test_unwritable_table_is_an_output_error_and_the_cases_stay(tmp_path, synthe
     with pytest.raises(OutputError, match="output directory .*: a table could not be written"):
         run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
     assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 3
+
+
+@pytest.mark.skipif(not __import__("pdverify.study.recorder", fromlist=["Recorder"]).Recorder.available,
+                    reason="no recorder process (one CPU, or not Linux)")
+@pytest.mark.parametrize("handoff_s", [0.0, 60.0])
+def test_ctrl_c_keeps_the_cases_solved_since_the_last_handoff(tmp_path, monkeypatch, handoff_s):
+    """A serial run hands its solved cases to the recorder in batches (runner.HANDOFF_S). Ctrl-C during the
+    sixth solve: the five solved before it are stored whether they were handed over one by one (0 s) or
+    were all still waiting in the runner (60 s: one batch, sent on the way out), and the next run resumes
+    them and completes with the numbers of an uninterrupted run."""
+    from pdverify.study import runner
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201, 401]\nhorizon = [2, 3]\n')
+    solve, calls = runner.solve_case, []
+
+    def interrupted(case, *args):
+        calls.append(case)
+        if len(calls) == 6:
+            raise KeyboardInterrupt
+        return solve(case, *args)
+
+    with monkeypatch.context() as m:
+        m.setattr(runner, "HANDOFF_S", handoff_s)
+        m.setattr(runner, "solve_case", interrupted)
+        with pytest.raises(KeyboardInterrupt):
+            run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 5
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == 5
+    fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
+    assert len(df) == 8 and (df["status"] == "ok").all()
+    assert np.array_equal(_cols(df)[["err_max", "err_l2"]].to_numpy(), _cols(fresh)[["err_max", "err_l2"]].to_numpy())
