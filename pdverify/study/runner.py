@@ -125,8 +125,8 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
         return {"failure": f"{type(exc).__name__}: {exc}"}
 
 
-# The serial runner hands its solved cases to the recorder at most every HANDOFF_S seconds (and after the
-# last): each handoff costs the solving process ~0.1 ms whatever it carries (a pickle and a pipe write
+# The serial runner hands its solved cases to the recorder at most every HANDOFF_S seconds (and the last
+# two one by one): each handoff costs the solving process ~0.1 ms whatever it carries (a pickle and a pipe write
 # between two solves, caches cold), so cases of a few ms go by the handful. A killed runner (SIGKILL) loses
 # at most the cases solved in the last HANDOFF_S beside the one being solved; Ctrl-C loses none.
 HANDOFF_S = 0.02
@@ -435,7 +435,8 @@ def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | No
                 message, arrays = _handoff(i, solved)
                 batch.append(message)
                 batch_arrays += arrays
-                if t - sent >= HANDOFF_S or i == last:
+                if t - sent >= HANDOFF_S or i >= last - 1:  # the last case alone: the recorder's work left
+                    # when the solves end (waited for) is then one case, not a batch
                     full, batch, batch_arrays = (batch, batch_arrays), [], []  # (never sent twice, even
                     recorder.put(*full)  # when Ctrl-C comes in the middle of this write)
                     sent = time.perf_counter()
