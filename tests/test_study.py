@@ -28,10 +28,12 @@ class Synthetic(Model):
     """Exact EB deflection times (1 + C dx^2): its max error is exactly C dx^2."""
 
     name = "synthetic-dx2"
-    options = (Option("points", int, 11, minimum=2), Option("fail", bool, False))
+    options = (Option("points", int, 11, minimum=2), Option("fail", bool, False),
+               Option("fail_after", float, 0.0, minimum=0.0))
 
     def solve(self, scene, params):
         if params["fail"]:
+            time.sleep(params["fail_after"])  # a failure that costs time, as a singular system found late does
             raise np.linalg.LinAlgError("synthetic failure")
         x = np.linspace(0, scene.length, params["points"])
         dx = x[1] - x[0]
@@ -75,6 +77,24 @@ def test_failure_is_recorded_and_the_study_goes_on(tmp_path, synthetic):
     df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
     assert sorted(df["status"]) == ["failed", "failed", "ok", "ok"]
     assert df[df["status"] == "failed"]["message"].str.contains("synthetic failure").all()
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_failed_case_records_what_it_cost(tmp_path, synthetic, workers):
+    """A failed case's row carries the seconds its attempt took, and meta.json counts them as the models'
+    time (before, a study with failures counted the failed solves as the runner's own time); a failed
+    case never enters the speed-vs-error table."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9]\nfail = [false, true]\n'
+                              'fail_after = 0.1\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
+    failed = df[df["status"] == "failed"]
+    assert len(failed) == 2 and (failed["total_s"] >= 0.1).all() and (failed["total_s"] < 5).all()
+    assert failed["err_max"].isna().all()
+    timing = json.loads((tmp_path / "out" / "meta.json").read_text())["timing"]
+    if "solver_s" in timing:  # the serial paths keep the models' time apart
+        assert timing["solver_s"] == pytest.approx(df["total_s"].sum(), rel=1e-9)
+    se = pd.read_csv(tmp_path / "out" / "speed_error.csv")
+    assert set(se["case_id"]) == set(df[df["status"] == "ok"]["case_id"])
 
 
 def test_metrics_units():

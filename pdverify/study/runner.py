@@ -96,7 +96,10 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
     """The solving half of a case: the model's result reduced to what :func:`measure_case` reads (arrays
     and numbers, picklable: it crosses to a worker's parent or to the recorder), or ``{"failure": message}``.
     Never raises. ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG, time
-    histories as CSV), named by ``case_id``: they are written here, where the model's writers live."""
+    histories as CSV), named by ``case_id``: they are written here, where the model's writers live.
+    A failure carries the seconds the attempt took (``timings.total_s``): a failed case's cost is a cost
+    (the models' time in meta.json; without it a study with failures counted their solves as the runner's)."""
+    t0 = time.perf_counter()
     try:
         result = run(case.scene(), case.model, **case.given)
         solved = {"x": np.asarray(result.x, "<f8"), "w": np.asarray(result.w, "<f8"),
@@ -120,9 +123,10 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
                 solved["artefact_message"] = " ".join(exc.lines)
         return solved
     except PdverifyError as exc:
-        return {"failure": " ".join(exc.lines)}
+        message = " ".join(exc.lines)
     except Exception as exc:  # a bug in a model must not stop the study; it is recorded
-        return {"failure": f"{type(exc).__name__}: {exc}"}
+        message = f"{type(exc).__name__}: {exc}"
+    return {"failure": message, "timings": {"total_s": time.perf_counter() - t0}}
 
 
 # The serial runner hands its solved cases to the recorder at most every HANDOFF_S seconds (and the last
@@ -226,12 +230,12 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
             curve["history"] = {"t": np.asarray(hist["t"], "<f8"),
                                 "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
                                 "ylabel": hist.get("ylabel", "displacement")}
-    except _Failed as exc:
-        row["status"], row["message"] = "failed", str(exc)
-    except PdverifyError as exc:
-        row["status"], row["message"] = "failed", " ".join(exc.lines)
-    except Exception as exc:  # a bug must not stop the study; it is recorded
-        row["status"], row["message"] = "failed", f"{type(exc).__name__}: {exc}"
+    except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
+        for k, v in (solved.get("timings") or {}).items():  # what the attempt cost, as far as it went
+            row.setdefault(k, v)
+        row["status"] = "failed"
+        row["message"] = (str(exc) if isinstance(exc, _Failed) else " ".join(exc.lines)
+                          if isinstance(exc, PdverifyError) else f"{type(exc).__name__}: {exc}")
     return {"case": {"scene_file": case.scene_file, "model": case.model, "given": case.given,
                      "slenderness": case.slenderness, "reference": case.reference},
             "row": row, "curve": curve}
