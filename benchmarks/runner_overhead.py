@@ -35,9 +35,11 @@ run) are under the target in this run of the benchmark.
 The reference caches are emptied before every repetition, so each run pays for its references as a
 single study would. Start-up (importing the model registry: scipy, scikit-fem, pandas; the code digest)
 is paid once per process whatever the number of cases, and is printed apart as ``startup_s``.
-Prints one JSON line; run with ``python benchmarks/runner_overhead.py [--repeat N] [--size medium]``
-(medium: the same study on 4001-12001 points, 15-40 ms a case, to see how the overhead falls with the
-cost of a case; the target is judged on the small one).
+Prints one JSON line; run with ``python benchmarks/runner_overhead.py [--repeat N] [--size medium]
+[--model M]`` (medium: the same study on 4001-12001 points, 15-40 ms a case, to see how the overhead falls
+with the cost of a case; the target is judged on the small one, pd-eb's; ``--model`` runs the same sweep with
+pd-timoshenko (a quarter of its cases fail, as the paper's variant does on a simply supported beam),
+pd-bond-pair (2-3 ms a case) or fem-eb (100 grids)).
 """
 
 import argparse
@@ -53,15 +55,31 @@ REPEAT = 7
 
 STUDY = """name = "overhead"
 scenes = ["{root}/studies/paper_diyaroglu/clamped_clamped.toml", "{root}/studies/paper_diyaroglu/simply_supported.toml"]
-reference = "exact-eb"
+reference = "{reference}"
 [[runs]]
-model = "pd-eb"
-variant = ["paper", "corrected"]
-points = {points}
-horizon = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]
-"""
-SIZES = {"small": [401, 801, 1201, 1601, 2001],  # 6-8 ms a case on the 2-core host: the issue's target
-         "medium": [4001, 6001, 8001, 10001, 12001]}  # 15-40 ms a case: how the overhead falls with the case's cost
+model = "{model}"
+{variant}points = {points}
+{horizon}"""
+SWEEP = ('variant = ["paper", "corrected"]\n', 'horizon = [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]\n')  # x 5 grids x 2 scenes
+# model -> (reference, sweep besides the grids, grids by size); 200 cases each
+MODELS = {
+    "pd-eb": ("exact-eb", SWEEP, {"small": [401, 801, 1201, 1601, 2001],  # 5-8 ms a case: the issue's target
+                                  "medium": [4001, 6001, 8001, 10001, 12001]}),  # 15-40 ms a case
+    # (its paper variant fails on the simply supported beam as published: 50 failed cases, timed as well)
+    "pd-timoshenko": ("exact-timoshenko", SWEEP, {"small": [401, 801, 1201, 1601, 2001],
+                                                  "medium": [4001, 6001, 8001, 10001, 12001]}),
+    "pd-bond-pair": ("exact-eb", (SWEEP[0], SWEEP[1].replace("1, 2, 3", "2, 3").replace("10]", "10, 11]")),
+                     {"small": [201, 301, 401, 501, 601], "medium": [1001, 1501, 2001, 2501, 3001]}),
+    "fem-eb": ("exact-eb", ("", ""), {"small": list(range(21, 421, 4)), "medium": list(range(1001, 5001, 40))}),
+}
+SIZES = MODELS["pd-eb"][2]
+
+
+def study_text(model: str = "pd-eb", size: str = "small") -> str:
+    """The benchmark's study of 200 cases for ``model`` at ``size``."""
+    reference, (variant, horizon), sizes = MODELS[model]
+    return STUDY.format(root=ROOT, reference=reference, model=model, variant=variant, horizon=horizon,
+                        points=sizes[size])
 
 
 def create_cost(d: Path, n: int = 200) -> float:
@@ -85,12 +103,15 @@ def main():
                     "like reports/; the file system's cost of creating a file is printed as fs_create_ms)")
     ap.add_argument("--size", choices=list(SIZES), default="small", help="the grids: small (401-2001 points, "
                     "the target's study) or medium (4001-12001 points)")
+    ap.add_argument("--model", choices=list(MODELS), default="pd-eb", help="whose solves (pd-eb: the target's "
+                    "study; the others show how the overhead goes with the cost of a case and with failures)")
     ap.add_argument("--no-zygote", action="store_true", help="no zygote: every repetition's recorder is a fork "
                     "of this process, as in the first")
     args = ap.parse_args()
     repeat = args.repeat
     t0 = time.perf_counter()
     from pdverify import zygote
+    from pdverify.errors import PdverifyError
     from pdverify.registry import models, run
     from pdverify.study import load_study, run_study
     from pdverify.study import runner
@@ -102,7 +123,7 @@ def main():
     with tempfile.TemporaryDirectory(dir=args.dir, prefix=".runner-overhead-") as d:
         fs_create = create_cost(Path(d))
         p = Path(d) / "s.toml"
-        p.write_text(STUDY.format(root=ROOT, points=SIZES[args.size]))
+        p.write_text(study_text(args.model, args.size))
         cases = load_study(p).cases
         bare, bare_solver, wall, timing, faults = [], [], [], [], {"bare": [], "run": []}
         for k in range(repeat + 1):
@@ -114,7 +135,11 @@ def main():
                 f0, solver = resource.getrusage(resource.RUSAGE_SELF).ru_minflt, 0.0
                 t0 = time.perf_counter()
                 for c in cases:
-                    solver += run(c.scene(), c.model, **c.given).timings["total_s"]
+                    t = time.perf_counter()
+                    try:
+                        solver += run(c.scene(), c.model, **c.given).timings["total_s"]
+                    except PdverifyError:  # a failed case (timed, as the runner times it)
+                        solver += time.perf_counter() - t
                 bare.append(time.perf_counter() - t0)
                 bare_solver.append(solver)
                 faults["bare"].append(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0)
@@ -148,7 +173,7 @@ def main():
     over = sorted((t["wall_s"] - t["solver_s"]) / t["solver_s"] for t in timing)
     ms = lambda key: round(1e3 * min(t.get(key, 0.0) for t in timing) / n, 3)  # noqa: E731
     print(json.dumps({
-        "cases": n, "size": args.size, "repeat": repeat, "dir": str(args.dir), "fs_create_ms": round(1e3 * fs_create, 3),
+        "cases": n, "model": args.model, "size": args.size, "repeat": repeat, "dir": str(args.dir), "fs_create_ms": round(1e3 * fs_create, 3),
         "startup_s": round(startup, 4), "recorder": best["recorder"],
         "recorder_start": {"first": first.get("recorder_start"),
                            "others": sorted({t.get("recorder_start") for t in timing})},

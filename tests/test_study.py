@@ -702,3 +702,18 @@ def test_ctrl_c_keeps_the_cases_solved_since_the_last_handoff(tmp_path, monkeypa
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
     assert len(df) == 8 and (df["status"] == "ok").all()
     assert np.array_equal(_cols(df)[["err_max", "err_l2"]].to_numpy(), _cols(fresh)[["err_max", "err_l2"]].to_numpy())
+
+
+def test_the_overhead_benchmarks_studies_are_valid_and_of_200_cases(tmp_path):
+    """benchmarks/runner_overhead.py's studies (every --model and --size) load and hold 200 cases each."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("runner_overhead", ROOT / "benchmarks" / "runner_overhead.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    for model, (_, _, sizes) in bench.MODELS.items():
+        for size in sizes:
+            p = tmp_path / f"{model}-{size}.toml"
+            p.write_text(bench.study_text(model, size))
+            cases = load_study(p).cases
+            assert len(cases) == 200 and {c.model for c in cases} == {model}, (model, size)
