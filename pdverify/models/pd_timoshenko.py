@@ -470,7 +470,8 @@ def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tup
     cond = info.get("cond", 0.0)
     if np.isfinite(cond) and cond * np.finfo(float).eps > 1.0:
         hint = ("variant paper leaves an end's free unknowns (the deflection at a free end, the rotation at "
-                "a pinned or free one) without a traction condition (Section 4 as published); use variant corrected") if "paper" in what else "use fewer points"
+                "a pinned or free one) without a traction condition (Section 4 as published); use variant "
+                "corrected") if "paper" in what else "use fewer points"
         raise SolveError(f"{what}: the system is singular to working precision (condition estimate {cond:.2g}); {hint}")
     for dof, value in held.items():  # their unit rows gave zero
         u[dof] = value

@@ -15,8 +15,8 @@ up to 1 MB (a few cases; the child, several times faster than the solves and pol
 millisecond, empties it): when the child falls behind, ``put`` waits, so the cases waiting to be
 recorded are only ever those in the pipe (a killed run loses them, like the case being solved; if only
 the runner is killed, the child still records them), and those the runner has not handed over yet (it
-hands its cases over in batches of at most ``runner.HANDOFF_S``, 20 ms of solving). The child ignores SIGINT: after Ctrl-C it still
-records what it was given. A failure in the child (a case file that cannot be written) is sent back and
+hands its cases over in batches of at most ``runner.HANDOFF_S``, 20 ms of solving). The child ignores
+SIGINT: after Ctrl-C it still records what it was given (the runner sends its pending batch first). A failure in the child (a case file that cannot be written) is sent back and
 raised in the runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on
 one CPU the child would take the solver's time instead of an idle core's).
 """

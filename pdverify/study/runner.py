@@ -94,7 +94,8 @@ INFO_KEYS = ("horizon", "cond", "load_steps", "history")
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
     """The solving half of a case: the model's result reduced to what :func:`measure_case` reads (arrays
-    and numbers, picklable: it crosses to a worker's parent or to the recorder), or ``{"failure": message}``.
+    and numbers, picklable: it crosses to a worker's parent or to the recorder), or ``{"failure": message,
+    "timings": {"total_s": seconds}}``.
     Never raises. ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG, time
     histories as CSV), named by ``case_id``: they are written here, where the model's writers live.
     A failure carries the seconds the attempt took (``timings.total_s``): a failed case's cost is a cost
@@ -439,10 +440,10 @@ def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | No
                 message, arrays = _handoff(i, solved)
                 batch.append(message)
                 batch_arrays += arrays
-                if t - sent >= HANDOFF_S or i >= last - 1:  # the last case alone: the recorder's work left
-                    # when the solves end (waited for) is then one case, not a batch
-                    full, batch, batch_arrays = (batch, batch_arrays), [], []  # (never sent twice, even
-                    recorder.put(*full)  # when Ctrl-C comes in the middle of this write)
+                # the last case alone: what the recorder has left to do when the solves end is one case
+                if t - sent >= HANDOFF_S or i >= last - 1:
+                    full, batch, batch_arrays = (batch, batch_arrays), [], []  # emptied first: never sent
+                    recorder.put(*full)  # twice, even when Ctrl-C comes in the middle of this write
                     sent = time.perf_counter()
                 handoff += time.perf_counter() - t
                 bar.advance(failed="failure" in solved)
