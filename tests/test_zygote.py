@@ -125,3 +125,19 @@ def _alive(pid: int) -> bool:
         return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
     except OSError:
         return False
+
+
+def test_a_zygote_that_cannot_fork_leaves_the_run_whole(tmp_path, monkeypatch):
+    """The zygote took the request but made no child (its fork failed: it closed the pipes): the runner's
+    first write finds no reader, the recorder's pipes are closed (none leaks) and the run measures and
+    stores its cases in its own process, with the same results."""
+    p = write_study(tmp_path, STUDY)
+    ref = run_study(load_study(p), tmp_path / "ref", workers=1, progress=False)
+    monkeypatch.setattr(zygote, "ready", lambda wait=0.0: True)
+    monkeypatch.setattr(zygote, "fork", lambda fds: True)  # accepted; the caller then closes its copies
+    before = set(os.listdir("/proc/self/fd"))
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert _timing(tmp_path / "out")["recorder"] == "inline"
+    assert set(os.listdir("/proc/self/fd")) <= before
+    timing = ["assemble_s", "solve_s", "total_s"]
+    pd.testing.assert_frame_equal(df.drop(columns=timing), ref.drop(columns=timing))

@@ -199,7 +199,12 @@ class Recorder:
         os.close(back_w)
         self._pid, self._jobs, self._back, self._after = pid, jobs_w, back_r, after is not None
         if job is not None and pid is None:
-            _write_encoded(jobs_w, job)  # the zygote's child reads its work first (serve_job)
+            try:
+                _write_encoded(jobs_w, job)  # the zygote's child reads its work first (serve_job)
+            except OSError:  # no child (the zygote could not fork): the caller measures in its own process
+                os.close(jobs_w)
+                os.close(back_r)
+                raise
 
     @property
     def closed(self) -> bool:
