@@ -16,8 +16,8 @@ millisecond, empties it): when the child falls behind, ``put`` waits, so the cas
 recorded are only ever those in the pipe (a killed run loses them, like the case being solved; if only
 the runner is killed, the child still records them), and those the runner has not handed over yet (it
 hands its cases over in batches of at most ``runner.HANDOFF_S``, 20 ms of solving). The child ignores
-SIGINT: after Ctrl-C it still records what it was given (the runner sends its pending batch first). A failure in the child (a case file that cannot be written) is sent back and
-raised in the runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on
+SIGINT: after Ctrl-C it still records what it was given (the runner sends its pending batch first). A
+failure in the child (a case file that cannot be written) is sent back and raised in the runner. Used only on Linux (``fork``) when the process may run on at least two CPUs (on
 one CPU the child would take the solver's time instead of an idle core's).
 """
 

@@ -98,8 +98,7 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
     "timings": {"total_s": seconds}}``.
     Never raises. ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG, time
     histories as CSV), named by ``case_id``: they are written here, where the model's writers live.
-    A failure carries the seconds the attempt took (``timings.total_s``): a failed case's cost is a cost
-    (the models' time in meta.json; without it a study with failures counted their solves as the runner's)."""
+    A failure's seconds are its cost: meta.json counts them as the models' time, not the runner's."""
     t0 = time.perf_counter()
     try:
         result = run(case.scene(), case.model, **case.given)
@@ -123,11 +122,18 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
             except PdverifyError as exc:  # a failed picture never fails the case
                 solved["artefact_message"] = " ".join(exc.lines)
         return solved
-    except PdverifyError as exc:
-        message = " ".join(exc.lines)
-    except Exception as exc:  # a bug in a model must not stop the study; it is recorded
-        message = f"{type(exc).__name__}: {exc}"
-    return {"failure": message, "timings": {"total_s": time.perf_counter() - t0}}
+    except Exception as exc:  # a bad case, a singular system, a bug in a model: recorded, the study goes on
+        return {"failure": _failure_message(exc), "timings": {"total_s": time.perf_counter() - t0}}
+
+
+def _failure_message(exc: Exception) -> str:
+    """A failed case's message: a PdverifyError's lines, a replayed failure's text, else the exception's type
+    and text (a bug)."""
+    if isinstance(exc, PdverifyError):
+        return " ".join(exc.lines)
+    if isinstance(exc, _Failed):
+        return str(exc)
+    return f"{type(exc).__name__}: {exc}"
 
 
 # The serial runner hands its solved cases to the recorder at most every HANDOFF_S seconds (and the last
@@ -234,9 +240,7 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
     except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
         for k, v in (solved.get("timings") or {}).items():  # what the attempt cost, as far as it went
             row.setdefault(k, v)
-        row["status"] = "failed"
-        row["message"] = (str(exc) if isinstance(exc, _Failed) else " ".join(exc.lines)
-                          if isinstance(exc, PdverifyError) else f"{type(exc).__name__}: {exc}")
+        row["status"], row["message"] = "failed", _failure_message(exc)
     return {"case": {"scene_file": case.scene_file, "model": case.model, "given": case.given,
                      "slenderness": case.slenderness, "reference": case.reference},
             "row": row, "curve": curve}
