@@ -1,3 +1,71 @@
-"""pdverify: how far is a peridynamic beam model from the truth, in numbers."""
+"""pdverify: how far is a peridynamic beam model from the truth, in numbers.
+
+The public Python API (what a notebook uses; the CLI is built on the same three calls)::
+
+    >>> import pdverify
+    >>> scene = pdverify.load_scene("studies/examples/cantilever_tip_load.toml")
+    >>> result = pdverify.run(scene, "exact-eb", points=5)
+    >>> round(float(result.w[-1]), 12)  # P L^3 / (3 EI) = -50 / (3 * 200e9 * 1e-8 / 12)
+    -0.1
+
+- :func:`load_scene` reads and validates a scene file (raises :class:`InputError` naming the field);
+- :func:`run` solves a scene with a model and its options and returns a :class:`Result`;
+- :func:`run_study` runs a study file (or a loaded study) and returns its results as a DataFrame.
+
+Imports are lazy so that ``pdverify --help`` stays fast.
+"""
+
+from __future__ import annotations
 
 __version__ = "0.1.0"
+
+__all__ = ["load_scene", "run", "run_study", "Result", "Scene", "InputError", "__version__"]
+
+
+def load_scene(path):
+    """Read and validate a scene TOML file; a :class:`pdverify.scene.Scene`."""
+    from .scene import load_scene as _load
+
+    return _load(path)
+
+
+def run(scene, model, **options):
+    """Solve ``scene`` (a Scene or a path to a scene file) with ``model`` (a registered name or a Model)."""
+    from .registry import run as _run
+
+    if not hasattr(scene, "length"):
+        scene = load_scene(scene)
+    return _run(scene, model, **options)
+
+
+def run_study(study, out=None, workers=None, scheduler=None, progress=False):
+    """Run a study (a path to a study TOML file or a loaded Study); write its tables to ``out`` (default
+    ``reports/<study file stem>``) and return the results table as a pandas DataFrame."""
+    from pathlib import Path
+
+    from .study import load_study
+    from .study import run_study as _run_study
+
+    if isinstance(study, (str, Path)):
+        path = Path(study)
+        study = load_study(path)
+        out = out if out is not None else Path("reports") / path.stem
+    if out is None:
+        raise TypeError("run_study: give out= (an output folder) with a loaded study")
+    return _run_study(study, Path(out), workers=workers, scheduler=scheduler, progress=progress)
+
+
+def __getattr__(name):
+    if name == "Result":
+        from .result import Result
+
+        return Result
+    if name == "Scene":
+        from .scene import Scene
+
+        return Scene
+    if name == "InputError":
+        from .errors import InputError
+
+        return InputError
+    raise AttributeError(f"module 'pdverify' has no attribute {name!r}")
