@@ -21,7 +21,9 @@ ROOT = Path(__file__).parents[1]
 TABLE1 = load_scene(ROOT / "studies/paper_moyer/cantilever_table1.toml")
 ROD = load_scene(ROOT / "studies/paper_moyer/rod_example1.toml")
 BEAM = load_scene(ROOT / "studies/paper_moyer/beam_example2.toml")
-TIP_EXACT = -1.0424  # the paper's exact Timoshenko tip deflection (Table 1)
+# Table 1's data (P, L, E, I, k, G, A): exact Timoshenko tip deflection P L^3 / (3 E I) + P L / (k G A)
+# = 1.042445 in (the paper plots it in Fig. 13 and prints no number)
+TIP_EXACT = -(975.0 * 20.0**3 / (3 * 3.0e7 * 0.0833) + 975.0 * 20.0 / (0.833 * 1.1538e7 * 1.0))
 
 
 def err(scene, model="pd-timoshenko", **opts):
@@ -43,13 +45,27 @@ def test_kernels_are_consistent(m):
         assert np.sum(a * 2 * s) == pytest.approx(2 * m, rel=1e-14)
 
 
-def test_eq16_index_as_printed_divides_by_zero():
-    """Eq. 16 prints l1 = 1 + k - m (k = 1..m-1): it reaches 0 at k = m - 1. The trapezoid of
-    ∫_{-mΔ}^{-Δ} needs l1 = k - m - 1 in -m..-2 (as Eq. 47/48 index it)."""
-    m = 3
-    k = np.arange(1, m)
-    assert (1 + k - m).max() == 0
-    assert list(k - m - 1) == [-3, -2]
+def _trapezoid_pv(psi, m: int, l1_of_k) -> float:
+    """PV ∫_{-m}^{m} ψ(ε)/ε dε by Eq. 47's recipe, written out with Eq. 16's interval indices: the centre
+    interval [-1, 1] as ψ(1) - ψ(-1), and the trapezoid on [l1, l2] (l2 = l1 + 1) and its mirror for k = 1..m-1."""
+    total = psi(1.0) - psi(-1.0)
+    for k in range(1, m):
+        l1 = l1_of_k(k)
+        l2 = l1 + 1
+        total += 0.5 * (psi(l1) / l1 + psi(l2) / l2) + 0.5 * (psi(-l2) / -l2 + psi(-l1) / -l1)
+    return total
+
+
+@pytest.mark.parametrize("m", [2, 3, 4])
+def test_eq16_index_as_printed_divides_by_zero(m):
+    """Eq. 16 prints l1 = 1 + k - m (k = 1..m-1): at k = m - 1 the interval starts at ε = 0 and ψ/ε divides
+    by zero. With l1 = k - m - 1 (the intervals -m..-2, as Eq. 47/48 index them) the recipe is the
+    implemented paper kernel, checked on a cubic ψ."""
+    psi = np.polynomial.Polynomial([0.3, -1.2, 0.7, 2.1])
+    s, a = shear_kernel(m, "paper")
+    assert _trapezoid_pv(psi, m, lambda k: k - m - 1) == pytest.approx(np.sum(a * (psi(s) - psi(-s))), rel=1e-13)
+    with pytest.raises(ZeroDivisionError):
+        _trapezoid_pv(lambda e: float(psi(e)), m, lambda k: 1 + k - m)
 
 
 # -- Example 3 (Section 4, Table 1) ----------------------------------------------------------
