@@ -198,7 +198,7 @@ def solve(
     if out is not None:
         check_writable(out, "--out")
     sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
-    _SCENE_FILES.append(sc)
+    _SCENE_FILES[:] = [sc]
     given = dict(points=points, spacing=spacing, horizon=horizon, degree=degree, variant=variant,
                  element=element, layers=layers, form=form)
     given.update(parse_options(option))
@@ -396,7 +396,7 @@ def main(argv: list[str] | None = None):  # console-script entry point
         sys.exit(2)
     except click.UsageError as exc:
         hint = f"; see `{exc.ctx.command_path} -h`" if exc.ctx is not None else ""
-        typer.echo(f"error: {exc.format_message().rstrip('.')}{hint}", err=True)
+        typer.echo(f"error: {exc.format_message().replace('Value error, ', '').rstrip('.')}{hint}", err=True)
         sys.exit(2)
     except click.Abort:
         typer.echo("error: aborted", err=True)

@@ -361,7 +361,11 @@ def _message(err: dict, data: dict) -> str:
                    "point_torque": PointTorque}.get(
                 parent[2], Scene
             )
-        return f"{loc}: unknown key '{key}'; allowed keys here: {_allowed_keys(cls)}"
+        import difflib
+
+        close = difflib.get_close_matches(str(key), list(cls.model_fields), n=1, cutoff=0.75)
+        hint = f"did you mean '{close[0]}'? " if close else ""
+        return f"{loc}: unknown key '{key}'; {hint}allowed keys here: {_allowed_keys(cls)}"
     if kind == "missing":
         return f"{loc}: missing; this key is required"
     if kind == "union_tag_invalid" or kind == "union_tag_not_found":
@@ -375,8 +379,34 @@ def _message(err: dict, data: dict) -> str:
     msg = err["msg"]
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, ") :]
-    shown = repr(value) if not isinstance(value, dict) else "{...}"
-    return f"{loc} = {shown}: {msg}"
+    if isinstance(value, dict):  # a rule across the keys of a table: the table's name, then the rule
+        return f"{loc}: {msg}"
+    return f"{loc} = {value!r}: {msg}"
+
+
+def _messages(errors: list[dict], data: dict) -> list[str]:
+    """One line per problem; a misspelt key (``positon``) and the required key it stands for (``position``,
+    then missing) are one problem: the unknown key's line says 'did you mean', the 'missing' line goes."""
+    import difflib
+
+    missing = {tuple(e["loc"]): e for e in errors if e["type"] == "missing"}
+    dropped, hints = set(), {}
+    for i, e in enumerate(errors):
+        if e["type"] != "extra_forbidden":
+            continue
+        parent, key = tuple(e["loc"][:-1]), str(e["loc"][-1])
+        names = [str(loc[-1]) for loc in missing if loc[:-1] == parent and loc not in dropped]
+        close = difflib.get_close_matches(key, names, n=1, cutoff=0.75)
+        if close:
+            dropped.add(parent + (close[0],))
+            hints[i] = close[0]
+    out = []
+    for i, e in enumerate(errors):
+        if tuple(e["loc"]) in dropped and e["type"] == "missing":
+            continue
+        msg = _message(e, data)
+        out.append(msg if i not in hints else msg.split("; ")[0] + f"; did you mean '{hints[i]}'?")
+    return out
 
 
 def _check_loads(scene: Scene) -> list[str]:
@@ -432,7 +462,7 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
     try:
         scene = Scene.model_validate(data)
     except ValidationError as exc:
-        raise InputError([f"{source}: {_message(e, data)}" for e in exc.errors()]) from None
+        raise InputError([f"{source}: {m}" for m in _messages(exc.errors(), data)]) from None
     lines = _check_loads(scene) + _check_dynamics(scene)
     if not scene.is_straight:
         from .geometry import axis_length
