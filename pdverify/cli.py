@@ -185,8 +185,8 @@ def solve(
     layers: Optional[int] = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
     form: Optional[str] = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
     option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="any other model option, key=value"),
-    fmt: Optional[Format] = typer.Option(None, "--format",
-                                         help="output format (default: from the --out extension .csv/.json/.txt, else table)"),
+    fmt: Optional[Format] = typer.Option(
+        None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"),
     out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
 ):
@@ -287,7 +287,9 @@ def advise(
     from .advise import format_advice
     from .scene import load_scene
 
-    typer.echo(format_advice(_advise(load_scene(scene), tolerance, budget)))
+    sc = load_scene(scene)
+    _SCENE_FILES[:] = [sc]
+    typer.echo(format_advice(_advise(sc, tolerance, budget)))
 
 
 @app.command()

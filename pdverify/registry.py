@@ -64,7 +64,8 @@ class Option:
         except (TypeError, ValueError):
             raise InputError(
                 f"{self.name} = {value!r}: model {model} needs "
-                + {int: "an integer", float: "a number", bool: "true or false"}.get(self.kind, self.kind.__name__) + " here"
+                + {int: "an integer", float: "a number", bool: "true or false"}.get(self.kind, self.kind.__name__)
+                + " here"
             ) from None
         if self.choices is not None and v not in self.choices:
             raise InputError(

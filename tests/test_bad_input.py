@@ -96,7 +96,8 @@ CLI_CASES = [
     ("solve-model-cannot-carry-load", ["solve", "{scene}", "-m", "pd-rod"], 2, "loads[0].value"),
     ("solve-straight-model-curved-scene", ["solve", "{curved}", "-m", "pd-eb"], 2, "axis.type = 'arc'"),
     ("solve-out-is-folder", ["solve", "{scene}", "-m", "exact-eb", "--out", "{tmp}"], 4, "is a folder"),
-    ("solve-out-below-file", ["solve", "{scene}", "-m", "exact-eb", "--out", "{file}/r.csv"], 4, "is a file, not a folder"),
+    ("solve-out-below-file", ["solve", "{scene}", "-m", "exact-eb", "--out", "{file}/r.csv"], 4,
+     "is a file, not a folder"),
     ("solve-overflow", ["solve", "{big}", "-m", "exact-eb"], 3, "beam.length = 1e+300"),
     ("study-workers-0", ["study", "{tmp}/s.toml", "--workers", "0"], 2, "--workers"),
     ("study-workers-negative", ["study", "{tmp}/s.toml", "--workers", "-1"], 2, "--workers"),
@@ -131,8 +132,8 @@ def files(tmp_path_factory):
     (d / "big.toml").write_text(text.replace("length = 1.0", "length = 1e300").replace("position = 1.0",
                                                                                        "position = 1e300"))
     (d / "empty").mkdir()
-    for name, results, meta in (("broken_csv", 'a,b\n1,"2\n', "{}"), ("broken_meta", "case_id,scene_file,scene,status\n",
-                                                                      "{not json"),
+    for name, results, meta in (("broken_csv", 'a,b\n1,"2\n', "{}"),
+                                ("broken_meta", "case_id,scene_file,scene,status\n", "{not json"),
                                 ("no_cols", "x,y\n1,2\n", "{}")):
         (d / name).mkdir()
         (d / name / "results.csv").write_text(results)

@@ -172,7 +172,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise OutputError(f"{out}: cannot make the report folder ({exc.strerror or exc}); choose another --out") from None
+        raise OutputError(f"{out}: cannot make the report folder ({exc.strerror or exc}); "
+                          "choose another --out") from None
     res = _read(d, "results")
     for col in ("case_id", "scene_file", "scene", "status") if len(res) else ():
         if col not in res:
@@ -181,7 +182,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     try:
         meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
     except (ValueError, UnicodeDecodeError):
-        raise InputError(f"{d / 'meta.json'}: not valid JSON; run `pdverify study STUDY.toml --out {d}` again") from None
+        raise InputError(f"{d / 'meta.json'}: not valid JSON; run `pdverify study STUDY.toml --out {d}` "
+                         "again") from None
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; run `pdverify study STUDY.toml --out {d}` again")
     unit_of_file, unit_of_scene = _units_of(res, "scene_file"), _units_of(res, "scene")
@@ -253,8 +255,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 groups.append((f"{model} {rest} n={fmt(pts)}", gg["horizon_factor"].to_numpy(float),
                                np.maximum(gg["err_max"].to_numpy(float), 1e-16)))
         if groups:
-            horizon_figs.append((scene, Markup(figures.scatter(groups, "horizon factor m = delta / dx", "max relative error",
-                                                        f"error vs horizon: {scene}", logx=False))))
+            horizon_figs.append((scene, Markup(figures.scatter(
+                groups, "horizon factor m = delta / dx", "max relative error", f"error vs horizon: {scene}",
+                logx=False))))
     lock_figs = []
     if not lock.empty:
         lk = ok[ok["slenderness"].notna()]
@@ -336,8 +339,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         convergence=table(readable_options(conv), ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
         locking_figs=[f for _, f in lock_figs], locking=table(readable_options(lock)), images=images,
-        trust=table(readable_options(trust), ["model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
-                            "points_not", "round_off_from_points", "statement"]),
+        trust=table(readable_options(trust), [
+            "model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
+            "points_not", "round_off_from_points", "statement"]),
         speed_figs=[f for _, f in speed_figs], speed_summary=table(readable_options(sesum), case_link=""),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",

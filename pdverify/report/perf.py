@@ -57,7 +57,8 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
             groups.append((model, g["points"].to_numpy(float), g["total_s"].to_numpy(float)))
             gl = g[g["limit_s"].notna()] if "limit_s" in g else g.iloc[0:0]
             limits.append((model, gl["points"].to_numpy(float), gl["limit_s"].to_numpy(float)))
-    figs = [Markup(figures.cost(groups, limits, "cost vs points (solid) and the banded-solve limit (dashed)"))] if groups else []
+    title = "cost vs points (solid) and the banded-solve limit (dashed)"
+    figs = [Markup(figures.cost(groups, limits, title))] if groups else []
     env = environment()
     meta = {"pdverify": __version__, "python": platform.python_version(), "platform": platform.platform(),
             "cpu_count": os.cpu_count()}
