@@ -364,7 +364,8 @@ def _spread_repeats(argv: list[str], option: str = "--points") -> list[str]:
     """``--points 1000 10000`` (as the README writes it) -> ``--points 1000 --points 10000``: the values that follow
     the option up to the next option. Only for ``bench``, whose --points takes several sizes and which takes no
     other argument."""
-    if "bench" not in argv:
+    command = next((a for a in argv if not a.startswith("-")), None)  # the global options take no values
+    if command != "bench":
         return argv
     out, i = [], 0
     while i < len(argv):
@@ -394,7 +395,9 @@ def main(argv: list[str] | None = None):  # console-script entry point
     try:
         rv = command.main(args=_spread_repeats(argv), prog_name="pdverify", standalone_mode=False)
     except click.NoArgsIsHelpError as exc:
-        typer.echo(exc.ctx.get_help() if exc.ctx is not None else "", err=True)
+        text = exc.ctx.get_help() if exc.ctx is not None else ""  # typer's rich help prints itself, returns ""
+        if text:
+            typer.echo(text)
         sys.exit(2)
     except click.UsageError as exc:
         hint = f"; see `{exc.ctx.command_path} -h`" if exc.ctx is not None else ""

@@ -129,6 +129,7 @@ def test_spread_repeats_only_touches_bench_points():
     assert _spread_repeats(["bench", "--points", "1", "2", "-m", "a"]) == ["bench", "--points", "1", "--points", "2",
                                                                           "-m", "a"]
     assert _spread_repeats(["solve", "s.toml", "--points", "11"]) == ["solve", "s.toml", "--points", "11"]
+    assert _spread_repeats(["solve", "bench", "--points", "11", "x"]) == ["solve", "bench", "--points", "11", "x"]
 
 
 # Peak resident memory of whole static runs measured by `pdverify bench` (reports/bench/bench.jsonl, MB):
