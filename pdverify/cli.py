@@ -403,9 +403,14 @@ def main(argv: list[str] | None = None):  # console-script entry point
         hint = f"; see `{exc.ctx.command_path} -h`" if exc.ctx is not None else ""
         typer.echo(f"error: {exc.format_message().replace('Value error, ', '').rstrip('.')}{hint}", err=True)
         sys.exit(2)
-    except click.Abort:
+    except typer.Abort:
         typer.echo("error: aborted", err=True)
         sys.exit(130)
+    except BrokenPipeError:  # stdout closed early (`pdverify solve ... | head`): stop quietly, as other tools do
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)
     sys.exit(rv if isinstance(rv, int) else 0)
 
 

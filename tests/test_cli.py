@@ -206,3 +206,17 @@ def test_units_key_of_a_scene():
                                                                  points=11)
     assert np.array_equal(a.w, b.w)
 
+
+
+def test_no_arguments_prints_the_help(capsys):
+    code, out, err = cli([], capsys)
+    assert code == 2 and "Usage: pdverify" in out and err == ""
+
+
+def test_closed_stdout_is_no_traceback():
+    """`pdverify -h | head -1`: the reader closes the pipe early; no traceback (was: AttributeError on the way out)."""
+    p = subprocess.Popen([sys.executable, "-m", "pdverify"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=ROOT)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    p.wait(timeout=60)
+    assert "Traceback" not in err and p.returncode in (1, 2)
