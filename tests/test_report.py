@@ -217,13 +217,13 @@ def test_references_and_what_was_run_are_text(study_dir):
     assert f"numpy {meta['versions']['numpy']}" in page
 
 
-def _one_case_study(tmp_path, name, scene_text):
+def _one_case_study(tmp_path, name, scene_text, description=""):
     tmp_path.mkdir(parents=True, exist_ok=True)
     scene = tmp_path / "beam.toml"
     scene.write_text(scene_text)
     study = tmp_path / "s.toml"
-    study.write_text(f'name = {json.dumps(name)}\nscenes = ["beam.toml"]\nreference = "exact-eb"\n'
-                     '[[runs]]\nmodel = "fem-eb"\npoints = [11]\n')
+    study.write_text(f'name = {json.dumps(name)}\ndescription = {json.dumps(description)}\nscenes = ["beam.toml"]\n'
+                     'reference = "exact-eb"\n[[runs]]\nmodel = "fem-eb"\npoints = [11]\n')
     run_study(load_study(study), tmp_path / "run", workers=1, progress=False)
     return build_report(tmp_path / "run").read_text()
 
@@ -231,9 +231,14 @@ def _one_case_study(tmp_path, name, scene_text):
 def test_markup_in_the_study_name_is_escaped(tmp_path):
     """The study's name (and the study file shown) is text: a tag in it is not markup (was: autoescape=False)."""
     tag = "<img src=x onerror=console.log('INJECTED')>"
-    page = _one_case_study(tmp_path, tag, (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
-    assert tag not in page and "<img src=x" not in page
+    scene = (ROOT / "studies/examples/cantilever_tip_load.toml").read_text()
+    scene = scene.replace('name = "cantilever, tip load"', 'name = "<b>bold</b> beam"')
+    page = _one_case_study(tmp_path, tag, scene, description="<script>alert(1)</script>")
+    assert tag not in page and "<img src=x" not in page and "<b>bold" not in page and "<script>alert" not in page
     assert "&lt;img src=x onerror=console.log(&#39;INJECTED&#39;)&gt;" in page
+    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in page and "&lt;b&gt;bold&lt;/b&gt; beam" in page
+    paper = next(p for p in (tmp_path / "run").glob("paper-*.html"))
+    assert "<img src=x" not in paper.read_text() and "<b>bold" not in paper.read_text()
 
 
 def test_axis_labels_carry_the_scene_units(tmp_path):
