@@ -367,19 +367,17 @@ def _spread_repeats(argv: list[str], option: str = "--points") -> list[str]:
     command = next((a for a in argv if not a.startswith("-")), None)  # the global options take no values
     if command != "bench":
         return argv
-    out, i = [], 0
-    while i < len(argv):
-        out.append(argv[i])
-        if argv[i] == option:
-            j = i + 1
-            out.append(argv[j]) if j < len(argv) else None
-            j += 1
-            while j < len(argv) and not argv[j].startswith("-"):
-                out += [option, argv[j]]
-                j += 1
-            i = j
-            continue
-        i += 1
+    out, after = [], 0  # after: how many values the last --points has taken
+    for arg in argv:
+        if arg == option:
+            after = 0
+        elif arg.startswith("-"):
+            after = -1
+        elif after >= 0:
+            after += 1
+            if after > 1:
+                out.append(option)
+        out.append(arg)
     return out
 
 
@@ -390,11 +388,12 @@ def main(argv: list[str] | None = None):  # console-script entry point
     except ImportError:  # pragma: no cover - older typer: click itself
         from click import exceptions as click
 
+    no_args = getattr(click, "NoArgsIsHelpError", ())  # click < 8.2 prints the help itself
     argv = list(sys.argv[1:] if argv is None else argv)
     command = typer.main.get_command(app)
     try:
         rv = command.main(args=_spread_repeats(argv), prog_name="pdverify", standalone_mode=False)
-    except click.NoArgsIsHelpError as exc:
+    except no_args as exc:
         text = exc.ctx.get_help() if exc.ctx is not None else ""  # typer's rich help prints itself, returns ""
         if text:
             typer.echo(text)
