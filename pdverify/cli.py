@@ -1,7 +1,8 @@
 """Command line: ``pdverify solve | models | ...``.
 
-Every user error is printed as ``error: <one line>`` on stderr with exit code 2 (3 for a failed
-computation), never a traceback.
+Every user error is printed as ``error: <one line>`` on stderr, never a traceback. Exit codes (docs/cli.md):
+0 done, 1 a study's verdicts failed, 2 bad input (scene, study, option, file), 3 failed or refused
+computation (singular, overflow, not enough memory), 4 output could not be written.
 """
 
 from __future__ import annotations
@@ -16,14 +17,29 @@ from typing import Optional
 import typer
 
 from . import __version__
-from .errors import InputError, PdverifyError
+from .errors import InputError, OutputError, PdverifyError, SolveError
 
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
     pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
     help="pdverify: how far a peridynamic beam model is from the truth, in numbers.",
 )
+
+
+def _show_version(value: bool):
+    if value:
+        typer.echo(f"pdverify {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(False, "--version", "-V", callback=_show_version, is_eager=True,
+                                 help="print the version and exit"),
+):
+    """pdverify: how far a peridynamic beam model is from the truth, in numbers."""
 
 
 def _fail(exc: PdverifyError) -> None:
@@ -33,7 +49,8 @@ def _fail(exc: PdverifyError) -> None:
 
 
 def user_errors(fn):
-    """Turn PdverifyError into one line per problem and a non-zero exit code."""
+    """Turn PdverifyError into one line per problem and a non-zero exit code; a computation that runs out
+    of memory or out of the floating-point range becomes one line and exit code 3."""
 
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
@@ -41,8 +58,39 @@ def user_errors(fn):
             return fn(*args, **kwargs)
         except PdverifyError as exc:
             _fail(exc)
+        except MemoryError:
+            _fail(SolveError("out of memory during the computation; use fewer points (a larger spacing)"))
+        except (OverflowError, FloatingPointError) as exc:
+            _fail(SolveError(f"the computation left the floating-point range ({exc.__class__.__name__}: "
+                             f"{exc.args[-1] if exc.args else exc}){_extreme_values()}; give the scene in units "
+                             "that keep its numbers within about 1e-100..1e100"))
 
     return wrapper
+
+
+_SCENE_FILES: list = []  # scene files a command read, to name their extreme values when a computation overflows
+
+
+def _extreme_values() -> str:
+    """'; extreme values: beam.length = 1e+300' for the numbers of the scenes read that are far out of range."""
+    import math
+
+    found = []
+
+    def walk(v, where):
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(x, f"{where}.{k}" if where else k)
+        elif isinstance(v, list):
+            for i, x in enumerate(v):
+                walk(x, f"{where}[{i}]")
+        elif isinstance(v, (int, float)) and not isinstance(v, bool) and v != 0 and math.isfinite(v) \
+                and not 1e-100 <= abs(v) <= 1e100:
+            found.append(f"{where} = {v:g}")
+
+    for sc in _SCENE_FILES:
+        walk(sc.model_dump(mode="json", exclude_none=True), "")
+    return f"; extreme values: {', '.join(found)}" if found else ""
 
 
 class Format(str, Enum):
@@ -78,6 +126,51 @@ def _table(result) -> str:
     return "\n".join(lines) + "\n"
 
 
+_SUFFIX_FORMAT = {".csv": Format.csv, ".json": Format.json, ".txt": Format.table}
+
+
+def _out_format(out: Path | None, fmt: Format | None) -> Format:
+    """The output format: --format if given, else the one the --out extension names, else table; a --format that
+    contradicts the extension is an error (``--out r.json --format csv`` would write CSV into a .json file)."""
+    implied = _SUFFIX_FORMAT.get(out.suffix.lower()) if out is not None else None
+    if fmt is not None and implied is not None and fmt != implied:
+        raise InputError(f"--format {fmt.value} and --out {out}: the extension {out.suffix} means {implied.value}; "
+                         f"drop --format or name the file *{next(k for k, v in _SUFFIX_FORMAT.items() if v == fmt)}")
+    return fmt or implied or Format.table
+
+
+def check_writable(out: Path, option: str) -> None:
+    """Before any computation: ``out`` can be created as a file (its folder may be missing: it is made)."""
+    import os
+
+    if out.is_dir():
+        raise OutputError(f"{option} {out}: is a folder; give a file name, e.g. {out / 'result.csv'}")
+    parent = out.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
+
+
+def write_file(out: Path, write, option: str) -> None:
+    """``write(path)`` into a temporary file beside ``out``, then renamed over it: a failed write leaves no empty or
+    partial file (and an existing ``out`` as it was). OSError -> OutputError (exit code 4)."""
+    import os
+
+    tmp = out.parent / f".{out.stem}.tmp-{os.getpid()}{out.suffix}"  # same suffix: writers choose by it
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        write(str(tmp))
+        os.replace(tmp, out)
+    except OSError as exc:
+        raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); nothing was written") from None
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
 @app.command()
 @user_errors
 def solve(
@@ -92,7 +185,8 @@ def solve(
     layers: Optional[int] = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
     form: Optional[str] = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
     option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="any other model option, key=value"),
-    fmt: Format = typer.Option(Format.table, "--format", help="output format"),
+    fmt: Optional[Format] = typer.Option(
+        None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"),
     out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
 ):
@@ -100,7 +194,11 @@ def solve(
     from .registry import get_model, run
     from .scene import load_scene
 
+    fmt = _out_format(out, fmt)
+    if out is not None:
+        check_writable(out, "--out")
     sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
+    _SCENE_FILES[:] = [sc]
     given = dict(points=points, spacing=spacing, horizon=horizon, degree=degree, variant=variant,
                  element=element, layers=layers, form=form)
     given.update(parse_options(option))
@@ -114,15 +212,18 @@ def solve(
         model = choice.model
         given = dict(choice.options, points=choice.points)
     m = get_model(model)
+    from .memguard import check_memory
+
+    check_memory(sc, m, given)
     result = run(sc, m, **given)
     if out is not None and out.suffix in result.writers:
-        result.writers[out.suffix](str(out))
+        write_file(out, result.writers[out.suffix], "--out")
         typer.echo(f"wrote {out}", err=True)
         return
     text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
     if out is not None:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_text(text if text.endswith("\n") else text + "\n")
+        text = text if text.endswith("\n") else text + "\n"
+        write_file(out, lambda path: Path(path).write_text(text, encoding="utf-8"), "--out")
         typer.echo(f"wrote {out}", err=True)
     else:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
@@ -152,7 +253,7 @@ def _slug(name: str) -> str:
 def study(
     study_file: Path = typer.Argument(..., help="study TOML file"),
     out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
+    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="local worker processes (default: all cores)"),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
@@ -186,7 +287,9 @@ def advise(
     from .advise import format_advice
     from .scene import load_scene
 
-    typer.echo(format_advice(_advise(load_scene(scene), tolerance, budget)))
+    sc = load_scene(scene)
+    _SCENE_FILES[:] = [sc]
+    typer.echo(format_advice(_advise(sc, tolerance, budget)))
 
 
 @app.command()
@@ -198,6 +301,8 @@ def report(
     """Turn a study's results into a self-contained HTML report (index.html)."""
     from .report import build_report
 
+    if out is not None:
+        check_writable(out / "index.html", "--out")
     typer.echo(f"report: {build_report(study_dir, out)}")
 
 
@@ -255,8 +360,57 @@ def version():
     typer.echo(__version__)
 
 
-def main():  # console-script entry point
-    app()
+def _spread_repeats(argv: list[str], option: str = "--points") -> list[str]:
+    """``--points 1000 10000`` (as the README writes it) -> ``--points 1000 --points 10000``: the values that follow
+    the option up to the next option. Only for ``bench``, whose --points takes several sizes and which takes no
+    other argument."""
+    command = next((a for a in argv if not a.startswith("-")), None)  # the global options take no values
+    if command != "bench":
+        return argv
+    out, after = [], 0  # after: how many values the last --points has taken
+    for arg in argv:
+        if arg == option:
+            after = 0
+        elif arg.startswith("-"):
+            after = -1
+        elif after >= 0:
+            after += 1
+            if after > 1:
+                out.append(option)
+        out.append(arg)
+    return out
+
+
+def main(argv: list[str] | None = None):  # console-script entry point
+    """Run the CLI; a usage error (unknown option, bad value of an option) is one ``error:`` line, exit code 2."""
+    try:  # typer >= 0.2x carries its own copy of click
+        from typer._click import exceptions as click
+    except ImportError:  # pragma: no cover - older typer: click itself
+        from click import exceptions as click
+
+    no_args = getattr(click, "NoArgsIsHelpError", ())  # click < 8.2 prints the help itself
+    argv = list(sys.argv[1:] if argv is None else argv)
+    command = typer.main.get_command(app)
+    try:
+        rv = command.main(args=_spread_repeats(argv), prog_name="pdverify", standalone_mode=False)
+    except no_args as exc:
+        text = exc.ctx.get_help() if exc.ctx is not None else ""  # typer's rich help prints itself, returns ""
+        if text:
+            typer.echo(text)
+        sys.exit(2)
+    except click.UsageError as exc:
+        hint = f"; see `{exc.ctx.command_path} -h`" if exc.ctx is not None else ""
+        typer.echo(f"error: {exc.format_message().replace('Value error, ', '').rstrip('.')}{hint}", err=True)
+        sys.exit(2)
+    except typer.Abort:
+        typer.echo("error: aborted", err=True)
+        sys.exit(130)
+    except BrokenPipeError:  # stdout closed early (`pdverify solve ... | head`): stop quietly, as other tools do
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)
+    sys.exit(rv if isinstance(rv, int) else 0)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -41,6 +41,8 @@ class Option:
 
     def coerce(self, model: str, value):
         try:
+            if isinstance(value, bool) and self.kind in (int, float):
+                raise ValueError  # numbers never from true/false
             if self.kind is int:
                 f = float(value)
                 if f != int(f):
@@ -50,13 +52,20 @@ class Option:
                 v = float(value)
                 if not np.isfinite(v):
                     raise ValueError
-            elif self.kind is bool:
-                v = value if isinstance(value, bool) else str(value).lower() in ("1", "true", "yes", "on")
+            elif self.kind is bool:  # true/false only: "maybe" or 2 is an error, not False
+                if isinstance(value, bool):
+                    v = value
+                elif str(value).strip().lower() in ("true", "false"):
+                    v = str(value).strip().lower() == "true"
+                else:
+                    raise ValueError
             else:
                 v = self.kind(value)
         except (TypeError, ValueError):
             raise InputError(
-                f"{self.name} = {value!r}: model {model} needs {'an integer' if self.kind is int else 'a number' if self.kind is float else self.kind.__name__} here"
+                f"{self.name} = {value!r}: model {model} needs "
+                + {int: "an integer", float: "a number", bool: "true or false"}.get(self.kind, self.kind.__name__)
+                + " here"
             ) from None
         if self.choices is not None and v not in self.choices:
             raise InputError(

@@ -1,8 +1,9 @@
 """Scenes: the TOML description of one beam problem that every model shares.
 
 The straight-beam keys (``name``, ``[beam]``, ``[section]``, ``[material]``, ``[supports]``,
-``[[loads]]``) are a contract read by other tools: extend, never rename. SI units, z up, x from
-the left end (0) to the right end (``beam.length``).
+``[[loads]]``) are a contract read by other tools: extend, never rename. SI units unless the scene says
+``units = "inch-pound"`` (any consistent set works; the key labels reports), z up, x from the left end (0)
+to the right end (``beam.length``).
 
 ``load_scene(path)`` and ``parse_scene(dict)`` validate everything before any model runs and raise
 :class:`~pdverify.errors.InputError` with one line per problem (field, value, what is allowed).
@@ -15,7 +16,7 @@ import tomllib
 from pathlib import Path
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
 
 from .errors import InputError
 
@@ -23,23 +24,26 @@ SUPPORTS = ("clamped", "pinned", "free", "guided")
 Support = Literal["clamped", "pinned", "free", "guided"]
 
 
+Real = Annotated[float, Strict()]  # a float that an int may give, never a boolean or a string ("true" is not 1.0)
+
+
 class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
 class Beam(_Strict):
-    length: float = Field(gt=0, allow_inf_nan=False)
+    length: Real = Field(gt=0, allow_inf_nan=False)
 
 
 class Section(_Strict):
     """Rectangle (``width``, ``height``) or given ``area``, ``inertia`` (and ``shear_factor``)."""
 
-    width: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    height: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    area: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    inertia: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    shear_factor: float | None = Field(default=None, gt=0, le=1.5, allow_inf_nan=False)
-    torsion_constant: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    width: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    height: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    area: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    inertia: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    shear_factor: Real | None = Field(default=None, gt=0, le=1.5, allow_inf_nan=False)
+    torsion_constant: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
 
     @model_validator(mode="after")
     def _complete(self):
@@ -52,6 +56,10 @@ class Section(_Strict):
             )
         if (self.width is None) != (self.height is None):
             raise ValueError("width and height go together; give both or neither")
+        both = [k for k in ("width", "height", "area", "inertia") if getattr(self, k) is not None]
+        if rect and (self.area is not None or self.inertia is not None):
+            raise ValueError(f"{', '.join(both)} given: a section is a rectangle (width, height) or given by area and "
+                             "inertia, not both (they would disagree); keep one pair")
         return self
 
     @property
@@ -93,10 +101,10 @@ class Section(_Strict):
 
 
 class Material(_Strict):
-    youngs_modulus: float = Field(gt=0, allow_inf_nan=False)
-    poissons_ratio: float = Field(gt=-1.0, lt=0.5, allow_inf_nan=False)
-    density: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    shear_modulus: float | None = Field(default=None, gt=0, allow_inf_nan=False)
+    youngs_modulus: Real = Field(gt=0, allow_inf_nan=False)
+    poissons_ratio: Real = Field(gt=-1.0, lt=0.5, allow_inf_nan=False)
+    density: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    shear_modulus: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
 
     @property
     def E(self) -> float:
@@ -124,26 +132,26 @@ class PointForce(_Strict):
     global x component and ``value`` the global y (= z, up) component. Identical for straight beams."""
 
     type: Literal["point_force"]
-    position: float = Field(allow_inf_nan=False)
-    value: float = Field(allow_inf_nan=False)
-    axial: float = Field(default=0.0, allow_inf_nan=False)
+    position: Real = Field(allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
+    axial: Real = Field(default=0.0, allow_inf_nan=False)
     frame: Frame = "local"
 
 
 class PointMoment(_Strict):
     type: Literal["point_moment"]
-    position: float = Field(allow_inf_nan=False)
-    value: float = Field(allow_inf_nan=False)
+    position: Real = Field(allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
 
 
 class Distributed(_Strict):
     type: Literal["distributed"]
-    value: float = Field(allow_inf_nan=False)
-    start: float | None = Field(default=None, allow_inf_nan=False)
-    end: float | None = Field(default=None, allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
+    start: Real | None = Field(default=None, allow_inf_nan=False)
+    end: Real | None = Field(default=None, allow_inf_nan=False)
     shape: Literal["uniform", "sine"] = "uniform"
-    axial: float = Field(default=0.0, allow_inf_nan=False)
-    torque: float = Field(default=0.0, allow_inf_nan=False)
+    axial: Real = Field(default=0.0, allow_inf_nan=False)
+    torque: Real = Field(default=0.0, allow_inf_nan=False)
     frame: Frame = "local"
 
 
@@ -151,8 +159,8 @@ class PointTorque(_Strict):
     """A twisting moment about the beam axis (right-hand rule about +x); carried by torsion models only."""
 
     type: Literal["point_torque"]
-    position: float = Field(allow_inf_nan=False)
-    value: float = Field(allow_inf_nan=False)
+    position: Real = Field(allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
 
 
 Load = Annotated[Union[PointForce, PointMoment, Distributed, PointTorque], Field(discriminator="type")]
@@ -163,11 +171,11 @@ class Axis(_Strict):
     and the curved plane-stress reference (see their docs for the extra keys)."""
 
     type: Literal["straight", "arc", "polynomial"] = "straight"
-    radius: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    opening_angle_deg: float | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
-    start_angle_deg: float = Field(default=0.0, allow_inf_nan=False)
-    coefficients: list[float] | None = None
-    x_range: tuple[float, float] | None = None
+    radius: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    opening_angle_deg: Real | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
+    start_angle_deg: Real = Field(default=0.0, allow_inf_nan=False)
+    coefficients: list[Real] | None = None
+    x_range: tuple[Real, Real] | None = None
 
     @model_validator(mode="after")
     def _complete(self):
@@ -186,9 +194,9 @@ class Motion(_Strict):
     ``hold_after``, then the value reached there; ``sine`` = amplitude sin(2 pi frequency t); ``step`` = amplitude."""
 
     type: Literal["sine_ramp", "sine", "step"]
-    amplitude: float = Field(allow_inf_nan=False)
-    frequency: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    hold_after: float | None = Field(default=None, ge=0, allow_inf_nan=False)
+    amplitude: Real = Field(allow_inf_nan=False)
+    frequency: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    hold_after: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
 
     @model_validator(mode="after")
     def _complete(self):
@@ -215,12 +223,12 @@ class Dynamics(_Strict):
     translations); or ``damping`` = c_d / rho in 1/s. ``time_step``: default = safety x stable limit.
     ``probes``: positions whose time histories are recorded; ``output_interval``: seconds between records."""
 
-    end_time: float = Field(gt=0, allow_inf_nan=False)
-    time_step: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    damping_ratio: float | None = Field(default=None, ge=0, allow_inf_nan=False)
-    damping: float | None = Field(default=None, ge=0, allow_inf_nan=False)
-    output_interval: float | None = Field(default=None, gt=0, allow_inf_nan=False)
-    probes: list[float] = Field(default_factory=list)
+    end_time: Real = Field(gt=0, allow_inf_nan=False)
+    time_step: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    damping_ratio: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+    damping: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+    output_interval: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    probes: list[Real] = Field(default_factory=list)
     left: EndMotion | None = None
     right: EndMotion | None = None
 
@@ -231,9 +239,16 @@ class Dynamics(_Strict):
         return self
 
 
+UNITS = {"SI": {"length": "m", "force": "N", "stress": "Pa"},
+         "inch-pound": {"length": "in", "force": "lbf", "stress": "psi"}}
+"""The unit systems a scene may declare (``units = "inch-pound"``; default SI). Every model works in whatever
+consistent units the scene uses; the key only labels lengths and forces in reports."""
+
+
 class Scene(_Strict):
     name: str = Field(min_length=1)
     description: str = ""
+    units: Literal["SI", "inch-pound"] = "SI"
     beam: Beam
     section: Section
     material: Material
@@ -243,6 +258,11 @@ class Scene(_Strict):
     dynamics: Dynamics | None = None
 
     # -- derived quantities ------------------------------------------------------------------
+    @property
+    def length_unit(self) -> str:
+        """'m' or 'in': the unit of lengths and deflections (``units``)."""
+        return UNITS[self.units]["length"]
+
     @property
     def length(self) -> float:
         return self.beam.length
@@ -341,18 +361,52 @@ def _message(err: dict, data: dict) -> str:
                    "point_torque": PointTorque}.get(
                 parent[2], Scene
             )
-        return f"{loc}: unknown key '{key}'; allowed keys here: {_allowed_keys(cls)}"
+        import difflib
+
+        close = difflib.get_close_matches(str(key), list(cls.model_fields), n=1, cutoff=0.75)
+        hint = f"did you mean '{close[0]}'? " if close else ""
+        return f"{loc}: unknown key '{key}'; {hint}allowed keys here: {_allowed_keys(cls)}"
     if kind == "missing":
         return f"{loc}: missing; this key is required"
     if kind == "union_tag_invalid" or kind == "union_tag_not_found":
         return f"{loc}.type = {value.get('type') if isinstance(value, dict) else value!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
     if kind == "literal_error" and loc.startswith("supports."):
         return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}"
+    if kind == "float_type" and isinstance(value, bool):
+        return f"{loc} = {str(value).lower()}: a number is needed here, not true/false"
+    if kind == "float_type" and isinstance(value, str):
+        return f"{loc} = {value!r}: a number is needed here (write it without quotes)"
     msg = err["msg"]
     if msg.startswith("Value error, "):
         msg = msg[len("Value error, ") :]
-    shown = repr(value) if not isinstance(value, dict) else "{...}"
-    return f"{loc} = {shown}: {msg}"
+    if isinstance(value, dict):  # a rule across the keys of a table: the table's name, then the rule
+        return f"{loc}: {msg}"
+    return f"{loc} = {value!r}: {msg}"
+
+
+def _messages(errors: list[dict], data: dict) -> list[str]:
+    """One line per problem; a misspelt key (``positon``) and the required key it stands for (``position``,
+    then missing) are one problem: the unknown key's line says 'did you mean', the 'missing' line goes."""
+    import difflib
+
+    missing = {tuple(e["loc"]): e for e in errors if e["type"] == "missing"}
+    dropped, hints = set(), {}
+    for i, e in enumerate(errors):
+        if e["type"] != "extra_forbidden":
+            continue
+        parent, key = tuple(e["loc"][:-1]), str(e["loc"][-1])
+        names = [str(loc[-1]) for loc in missing if loc[:-1] == parent and loc not in dropped]
+        close = difflib.get_close_matches(key, names, n=1, cutoff=0.75)
+        if close:
+            dropped.add(parent + (close[0],))
+            hints[i] = close[0]
+    out = []
+    for i, e in enumerate(errors):
+        if tuple(e["loc"]) in dropped and e["type"] == "missing":
+            continue
+        msg = _message(e, data)
+        out.append(msg if i not in hints else msg.split("; ")[0] + f"; did you mean '{hints[i]}'?")
+    return out
 
 
 def _check_loads(scene: Scene) -> list[str]:
@@ -408,7 +462,7 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
     try:
         scene = Scene.model_validate(data)
     except ValidationError as exc:
-        raise InputError([f"{source}: {_message(e, data)}" for e in exc.errors()]) from None
+        raise InputError([f"{source}: {m}" for m in _messages(exc.errors(), data)]) from None
     lines = _check_loads(scene) + _check_dynamics(scene)
     if not scene.is_straight:
         from .geometry import axis_length
@@ -437,8 +491,15 @@ def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
         raise InputError(f"{path}: no such {what} file; check the path") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError(f"{path}: cannot read the {what} file ({exc.__class__.__name__}: {exc})") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a folder; give a {what} TOML file in it") from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path}: not a text file (byte 0x{exc.object[exc.start]:02x} at offset {exc.start} is not "
+                         f"UTF-8); give a {what} TOML file") from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read the {what} file ({exc.strerror or exc})") from None
+    if "\x00" in text:
+        raise InputError(f"{path}: not a text file (it contains NUL bytes); give a {what} TOML file")
     try:
         return text, tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

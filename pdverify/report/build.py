@@ -15,8 +15,9 @@ from pathlib import Path
 import jinja2
 import numpy as np
 import pandas as pd
+from markupsafe import Markup
 
-from ..errors import InputError
+from ..errors import InputError, OutputError
 from ..study.store import case_file, read_curve
 from . import figures
 
@@ -33,21 +34,34 @@ def fmt(v) -> str:
     return str(v)
 
 
-def table(df: pd.DataFrame, columns: list[str] | None = None, row_class: str | None = None) -> str:
+def case_anchor(case_id) -> str:
+    """The id of a case's row in the 'All results' table of index.html."""
+    return "case-" + "".join(ch for ch in str(case_id) if ch.isalnum() or ch in "-_")
+
+
+def table(df: pd.DataFrame, columns: list[str] | None = None, row_class: str | None = None,
+          case_link: str | None = None, case_rows: bool = False) -> Markup:
+    """An HTML table of ``df`` (every value escaped). ``case_link``: each case id links to its row of the results
+    table at this page prefix ("" on index.html, "index.html" elsewhere); ``case_rows``: rows carry that id."""
     if df is None or df.empty:
-        return ""
+        return Markup("")
     cols = [c for c in (columns or list(df.columns)) if c in df.columns]
     head = "".join(f'<th class="{"l" if df[c].dtype == object else ""}">{html.escape(c)}</th>' for c in cols)
     rows = []
     for _, r in df.iterrows():
         cls = f' class="{html.escape(str(r[row_class]))}"' if row_class and row_class in r else ""
+        if case_rows and "case_id" in r and isinstance(r["case_id"], str):
+            cls += f' id="{case_anchor(r["case_id"])}"'
         cells = []
         for c in cols:
             v = r[c]
             klass = "verdict" if c == "verdict" else ("l" if isinstance(v, str) else "")
-            cells.append(f'<td class="{klass}">{html.escape(fmt(v))}</td>')
+            text = html.escape(fmt(v))
+            if c == "case_id" and case_link is not None and isinstance(v, str) and v:
+                text = f'<a href="{html.escape(case_link)}#{case_anchor(v)}">{text}</a>'
+            cells.append(f'<td class="{klass}">{text}</td>')
         rows.append(f"<tr{cls}>{''.join(cells)}</tr>")
-    return f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>'
+    return Markup(f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>')
 
 
 def _read(d: Path, name: str) -> pd.DataFrame:
@@ -58,6 +72,9 @@ def _read(d: Path, name: str) -> pd.DataFrame:
         return pd.read_csv(p)
     except pd.errors.EmptyDataError:
         return pd.DataFrame()
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        raise InputError(f"{p}: not a readable CSV table ({str(exc).splitlines()[0][:120]}); run "
+                         f"`pdverify study STUDY.toml --out {d}` again") from None
 
 
 def _label(r) -> str:
@@ -88,9 +105,52 @@ def _short_reference(ref) -> str:
     try:
         d = json.loads(ref)
     except (TypeError, ValueError):
-        return "" if ref is None else str(ref)
+        return "" if ref is None or (isinstance(ref, float) and np.isnan(ref)) else str(ref)
+    if not isinstance(d, dict):
+        return str(d)
     model = d.pop("model", "?")
     return f"{model} ({', '.join(f'{k}={v}' for k, v in sorted(d.items()))})" if d else str(model)
+
+
+def _options_text(options) -> str:
+    """'analysis=auto, grid=nodes, horizon=2' for the JSON options of a row."""
+    try:
+        d = json.loads(options)
+    except (TypeError, ValueError):
+        return "" if options is None or (isinstance(options, float) and np.isnan(options)) else str(options)
+    return ", ".join(f"{k}={v}" for k, v in sorted(d.items())) if isinstance(d, dict) else str(d)
+
+
+def _readable(v) -> str:
+    """A value of meta.json as text: 'numpy 2.4.6, scipy 1.17.1' for a table, 'a; b' for a list."""
+    if isinstance(v, dict):
+        sep = " " if all(isinstance(x, str) for x in v.values()) else ": "
+        return ", ".join(f"{k}{sep}{_readable(x)}" for k, x in v.items())
+    if isinstance(v, list):
+        return "; ".join(_readable(x) for x in v) or "none"
+    return fmt(v)
+
+
+def _units_of(res: pd.DataFrame, key: str) -> dict:
+    """Length unit ('m', 'in') of each scene (by ``key``: scene_file or scene), from the rows' ``units``."""
+    from ..scene import UNITS
+
+    if "units" not in res or key not in res:
+        return {}
+    out = {}
+    for k, u in zip(res[key], res["units"]):
+        if isinstance(u, str) and u in UNITS and k not in out:
+            out[k] = UNITS[u]["length"]
+    return out
+
+
+def _curve(d: Path, path: Path) -> dict:
+    """A case's curves, or InputError naming the damaged file (``pdverify study`` recomputes it)."""
+    try:
+        return read_curve(path)
+    except ValueError:
+        raise InputError(f"{path}: a damaged case file (not a whole, readable case record); run "
+                         f"`pdverify study STUDY.toml --out {d}` again, which recomputes it, then the report") from None
 
 
 def _folder(scene_file) -> str:
@@ -109,16 +169,31 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     if not (d / "results.csv").exists():
         raise InputError(f"{d}: no results.csv; run `pdverify study STUDY.toml --out {d}` first")
     out = Path(out_dir) if out_dir else d
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"{out}: cannot make the report folder ({exc.strerror or exc}); "
+                          "choose another --out") from None
     res = _read(d, "results")
-    meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
+    for col in ("case_id", "scene_file", "scene", "status") if len(res) else ():
+        if col not in res:
+            raise InputError(f"{d / 'results.csv'}: no '{col}' column; not a pdverify results table (run "
+                             f"`pdverify study STUDY.toml --out {d}` again)")
+    try:
+        meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
+    except (ValueError, UnicodeDecodeError):
+        raise InputError(f"{d / 'meta.json'}: not valid JSON; run `pdverify study STUDY.toml --out {d}` "
+                         "again") from None
+    if not isinstance(meta, dict):
+        raise InputError(f"{d / 'meta.json'}: not a JSON object; run `pdverify study STUDY.toml --out {d}` again")
+    unit_of_file, unit_of_scene = _units_of(res, "scene_file"), _units_of(res, "scene")
     conv, lock, se, sesum, bench, trust = (_read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary",
                                                                  "benchmarks", "trust"))
     ok = res[res["status"] == "ok"] if "status" in res else res
 
     from functools import lru_cache
 
-    curve_of = lru_cache(maxsize=None)(read_curve)  # each case file decoded once per build
+    curve_of = lru_cache(maxsize=None)(lambda path: _curve(d, path))  # each case file decoded once per build
     scenes = []
     for sfile, g in ok.groupby("scene_file", sort=False):
         figs = []
@@ -143,7 +218,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
             if ref is not None and np.all(np.isnan(ref[1])):  # runs without a reference
                 ref = None
-            figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w"))
+            unit = unit_of_file.get(sfile, "m")
+            figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w", unit))
             for _, r in gs.iterrows():
                 path = case_file(d / "cases", r["case_id"])
                 c = curve_of(path) if path is not None else {}
@@ -152,9 +228,11 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                     figs.append(figures.time_history(h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")))
                 if c.get("load_steps"):
                     exact = [(np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st]
-                    figs.append(figures.deformed_shapes(c["load_steps"], f"{_label(r)}: deformed shapes", exact))
+                    figs.append(figures.deformed_shapes(c["load_steps"], f"{_label(r)}: deformed shapes", exact,
+                                                        unit_of_file.get(sfile, "m")))
         scenes.append({"name": g["scene"].iloc[0], "file": sfile, "folder": _folder(sfile),
-                       "reference": g["reference"].iloc[0], "figures": figs})
+                       "reference": _short_reference(g["reference"].iloc[0]) if "reference" in g else "",
+                       "figures": [Markup(f) for f in figs]})
 
     conv_figs = []
     if not conv.empty:
@@ -164,7 +242,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 h = np.array([float(v) for v in str(r["spacings"]).split()])
                 e = np.array([float(v) for v in str(r["errors"]).split()])
                 series.append((_label(r), h, e, r["observed_order"]))
-            conv_figs.append((scene, figures.convergence(series, str(scene))))
+            conv_figs.append((scene, Markup(figures.convergence(series, str(scene), unit_of_scene.get(scene, "m")))))
     horizon_figs = []
     hz = ok[ok["horizon_factor"].notna() & ok["err_max"].notna()] if "horizon_factor" in ok else ok.iloc[0:0]
     for scene, g in hz.groupby("scene", sort=False):
@@ -177,8 +255,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 groups.append((f"{model} {rest} n={fmt(pts)}", gg["horizon_factor"].to_numpy(float),
                                np.maximum(gg["err_max"].to_numpy(float), 1e-16)))
         if groups:
-            horizon_figs.append((scene, figures.scatter(groups, "horizon factor m = delta / dx", "max relative error",
-                                                        f"error vs horizon: {scene}", logx=False)))
+            horizon_figs.append((scene, Markup(figures.scatter(
+                groups, "horizon factor m = delta / dx", "max relative error", f"error vs horizon: {scene}",
+                logx=False))))
     lock_figs = []
     if not lock.empty:
         lk = ok[ok["slenderness"].notna()]
@@ -188,15 +267,17 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 gg = gg.sort_values("slenderness")
                 groups.append((_label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
                                gg["slenderness"].to_numpy(float), gg["err_max"].to_numpy(float)))
-            lock_figs.append((scene, figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}")))
+            lock_figs.append((scene, Markup(figures.scatter(groups, "slenderness L/h", "max relative error",
+                                                            f"locking: {scene}"))))
     speed_figs = []
     if not se.empty:
         for scene, g in se.groupby("scene", sort=False):
             groups = [(m, gg["total_s"].to_numpy(float), np.maximum(gg["err_max"].to_numpy(float), 1e-16))
                       for m, gg in g.groupby("model")]
             fr = g[g["pareto"].astype(bool)]
-            speed_figs.append((scene, figures.scatter(groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
-                                              front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16)))))
+            speed_figs.append((scene, Markup(figures.scatter(
+                groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
+                front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16))))))
 
     images = []
     for png in sorted((d / "vtu").glob("*.png")) if (d / "vtu").exists() else []:
@@ -207,9 +288,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         images.append({"label": label, "data": base64.b64encode(png.read_bytes()).decode(),
                        "vtu": f"vtu/{png.stem}.vtu"})
     counts = ", ".join(f"{k}: {v}" for k, v in (meta.get("counts") or {}).items())
-    meta_rows = pd.DataFrame([{"item": k, "value": json.dumps(v) if isinstance(v, (dict, list)) else v}
-                              for k, v in meta.items() if k not in ("date",)])
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=False)
+    meta_rows = pd.DataFrame([{"item": k, "value": _readable(v)} for k, v in meta.items() if k not in ("date",)])
+    env = environment()
     generated = time.strftime("%Y-%m-%d %H:%M:%S")
     bench_cols = ["name", "verdict", "model", "variant", "reference", "quantity", "position", "target", "computed", "ratio",
                   "rel_error", "tolerance", "err_max", "observed_order", "case_id"]
@@ -236,13 +316,14 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 "summary": ", ".join(f"{k}: {v}" for k, v in sorted(verdicts.items())) or "no benchmarks",
                 "n_scenes": len(names)}
         html_page = env.get_template("paper.html.j2").render(
-            meta=meta, generated=generated, page=page, benchmarks=table(pb, bench_cols, row_class="verdict"),
+            meta=meta, generated=generated, page=page,
+            benchmarks=table(pb, bench_cols, row_class="verdict", case_link="index.html"),
             scenes=[s for s in scenes if s["folder"] == folder], convergence_figs=pick(conv_figs),
             horizon_figs=pick(horizon_figs), locking_figs=pick(lock_figs), speed_figs=pick(speed_figs),
-            convergence=table(conv[conv["scene"].isin(names)] if "scene" in conv else conv,
+            convergence=table(readable_options(conv[conv["scene"].isin(names)] if "scene" in conv else conv),
                               ["scene", "model", "options", "slenderness", "n_grids", "observed_order", "r2",
                                "gci_order", "gci_fine", "richardson"]))
-        (out / page["href"]).write_text(html_page, encoding="utf-8")
+        _write(out / page["href"], html_page)
         papers.append(page)
     performance = None
     for cand in (out / "bench" / "index.html", out.parent / "bench" / "index.html"):
@@ -251,26 +332,47 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             break
     page = env.get_template("index.html.j2").render(
         meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
-        description=html.escape(description),
+        description=description,
         benchmarks=table(bench.assign(reference=bench["reference"].map(_short_reference)) if "reference" in bench else bench,
-                         bench_cols, row_class="verdict"),
+                         bench_cols, row_class="verdict", case_link=""),
         scenes=scenes, convergence_figs=[f for _, f in conv_figs], horizon_figs=[f for _, f in horizon_figs],
-        convergence=table(conv, ["scene", "model", "options", "slenderness", "n_grids",
+        convergence=table(readable_options(conv), ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
-        locking_figs=[f for _, f in lock_figs], locking=table(lock), images=images,
-        trust=table(trust, ["model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
-                            "points_not", "round_off_from_points", "statement"]),
-        speed_figs=[f for _, f in speed_figs], speed_summary=table(sesum),
+        locking_figs=[f for _, f in lock_figs], locking=table(readable_options(lock)), images=images,
+        trust=table(readable_options(trust), [
+            "model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
+            "points_not", "round_off_from_points", "statement"]),
+        speed_figs=[f for _, f in speed_figs], speed_summary=table(readable_options(sesum), case_link=""),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
-                            "assemble_s", "solve_s", "total_s", "cond", "status", "message"]),
+                            "assemble_s", "solve_s", "total_s", "cond", "status", "message"], case_rows=True),
         meta_table=table(meta_rows),
-        study_text=html.escape(study_file.read_text()) if study_file.exists() else "",
+        study_text=study_file.read_text(encoding="utf-8", errors="replace") if study_file.exists() else "",
     )
     index = out / "index.html"
-    index.write_text(page, encoding="utf-8")
+    _write(index, page)
     if out != d:
-        import shutil
-
-        shutil.copyfile(d / "results.csv", out / "results.csv")
+        _write(out / "results.csv", (d / "results.csv").read_bytes())
     return index
+
+
+def environment() -> jinja2.Environment:
+    """The templates, every value escaped unless it is Markup (tables and figures built here)."""
+    return jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=True)
+
+
+def readable_options(df: pd.DataFrame) -> pd.DataFrame:
+    """``df`` with its JSON ``options`` column as 'key=value, ...' text."""
+    if df is None or df.empty or "options" not in df:
+        return df
+    return df.assign(options=df["options"].map(_options_text))
+
+
+def _write(path: Path, data) -> None:
+    """A report file written whole (temporary file, then renamed) or OutputError naming it (exit code 4)."""
+    from ..study.store import write_atomic
+
+    try:
+        write_atomic(path, data)
+    except OSError as exc:
+        raise OutputError(f"{path}: cannot write the report ({exc.strerror or exc}); choose another --out") from None

@@ -35,25 +35,24 @@ def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major")
 
 
 def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.ndarray, np.ndarray] | None, title: str,
-               ylabel: str = "w") -> str:
-    """Deflection (or another point field) along the axis; lengths in the scene's units (SI unless the
-    scene says otherwise)."""
+               ylabel: str = "w", unit: str = "m") -> str:
+    """Deflection (or another point field) along the axis; lengths in the scene's ``unit`` (Scene.length_unit)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     if ref is not None:
         ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="reference")
     for label, x, w in curves:
         ax.plot(x, w, "-", lw=1.2, marker="o" if len(x) <= 30 else None, ms=3, label=label)
-    return _finish(fig, ax, "x", ylabel, title)
+    return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({unit})", title)
 
 
-def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str) -> str:
+def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
     """log-log error vs spacing, fitted slope printed on each line."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     for label, h, e, p in series:
         line, = ax.loglog(h, e, "o-", ms=4, label=f"{label} (slope {p:.2f})")
         ax.annotate(f"{p:.2f}", (h[len(h) // 2], e[len(e) // 2]), color=line.get_color(), fontsize=8,
                     xytext=(4, 4), textcoords="offset points")
-    return _finish(fig, ax, "spacing (m)", "max relative error", title, which="both")
+    return _finish(fig, ax, f"spacing ({unit})", "max relative error", title, which="both")
 
 
 def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabel: str, title: str,
@@ -70,7 +69,8 @@ def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabe
     return _finish(fig, ax, xlabel, ylabel, title, which="both")
 
 
-def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray, np.ndarray]] | None = None) -> str:
+def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray, np.ndarray]] | None = None,
+                    unit: str = "m") -> str:
     """Deformed axis (x, z) at the recorded load steps of a nonlinear solve, equal axes."""
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for s in steps:
@@ -78,7 +78,7 @@ def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray,
     for i, (xe, ze) in enumerate(exact or []):
         ax.plot(xe, ze, "k:", lw=1, label="exact elastica" if i == 0 else None)
     ax.set_aspect("equal")
-    return _finish(fig, ax, "x (m)", "z (m)", title)
+    return _finish(fig, ax, f"x ({unit})", f"z ({unit})", title)
 
 
 def time_history(t: np.ndarray, series: dict[str, np.ndarray], title: str, ylabel: str = "displacement") -> str:

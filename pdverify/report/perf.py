@@ -10,12 +10,12 @@ import platform
 import time
 from pathlib import Path
 
-import jinja2
 import pandas as pd
+from markupsafe import Markup
 
 from .. import __version__
 from . import figures
-from .build import table
+from .build import environment, table
 
 RATIO_TARGET = 2.0  # total time / banded solve of the same matrix, at the largest size
 UPDATES_TARGET = 5e7  # point-updates per second of explicit dynamics at 10^6 points
@@ -57,8 +57,9 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
             groups.append((model, g["points"].to_numpy(float), g["total_s"].to_numpy(float)))
             gl = g[g["limit_s"].notna()] if "limit_s" in g else g.iloc[0:0]
             limits.append((model, gl["points"].to_numpy(float), gl["limit_s"].to_numpy(float)))
-    figs = [figures.cost(groups, limits, "cost vs points (solid) and the banded-solve limit (dashed)")] if groups else []
-    env = jinja2.Environment(loader=jinja2.FileSystemLoader(Path(__file__).parent / "templates"), autoescape=False)
+    title = "cost vs points (solid) and the banded-solve limit (dashed)"
+    figs = [Markup(figures.cost(groups, limits, title))] if groups else []
+    env = environment()
     meta = {"pdverify": __version__, "python": platform.python_version(), "platform": platform.platform(),
             "cpu_count": os.cpu_count()}
     page = env.get_template("performance.html.j2").render(

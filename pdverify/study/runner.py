@@ -172,6 +172,7 @@ def _describe(case: Case, row: dict):
     the model (``options``: all but the grid, the key of a convergence series). Returns (scene, options)."""
     scene = case.scene()
     row["scene"] = scene.name
+    row["units"] = scene.units  # labels the report's axes (m or in)
     params = get_model(case.model).resolve(scene, case.given)
     row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
     row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
