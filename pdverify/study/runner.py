@@ -33,6 +33,7 @@ from .. import __version__
 from ..errors import OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
+from .checks import write_checks
 from .metrics import errors
 from .spec import Case, Study, code_digest
 from .recorder import Recorder, RecorderDied
@@ -687,6 +688,17 @@ def _verdict(ok: bool, expected: str) -> str:
     return "pass" if ok else "fail"
 
 
+def _missing(b: dict, opts: dict, have: list[dict]) -> str:
+    """Why no case matches benchmark ``b``: the first filter no case of its scene and model has."""
+    if not have:
+        return f"no case of the sweep runs {b['model']} on {b['scene']}"
+    for k, v in opts.items():
+        values = sorted({h.get(k) for h in have}, key=str)
+        if not any(h.get(k) == v for h in have):
+            return f"no case of the sweep has {k} = {v!r} (it has {', '.join(map(repr, values))})"
+    return "no case of the sweep has every option the row names"
+
+
 def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
     """Verification rows. Default quantity: the deflection at the point of largest reference deflection
     (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
@@ -694,16 +706,25 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
     rows = []
     for b in study.benchmarks:
         opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position", "expected")}
-        m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"]) & (df["status"] == "ok")
+        m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"])
 
-        def matches(r):
-            have = dict(json.loads(r["options"]), points=r["points"])
-            return all(k in have and have[k] == v for k, v in opts.items())
+        def have(r):
+            sl = r.get("slenderness")
+            return dict(json.loads(r["options"]), points=r["points"], slenderness=None if pd.isna(sl) else sl)
 
         cand = df[m]
-        hit = cand[cand.apply(matches, axis=1)] if len(cand) else cand
+        haves = [have(r) for _, r in cand.iterrows()]
+        hit = cand.iloc[[i for i, h in enumerate(haves) if all(k in h and h[k] == v for k, v in opts.items())]]
+        if not hit.empty and not (hit["status"] == "ok").any():  # its case failed: a failed verdict, with why
+            r = hit.iloc[0]
+            rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],
+                         "verdict": _verdict(False, b.get("expected", "pass")), "case_id": r["case_id"],
+                         "message": f"its case failed: {r['message']}"})
+            continue
+        hit = hit[hit["status"] == "ok"]
         if hit.empty:
-            rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing"})
+            rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing",
+                         "message": _missing(b, opts, haves)})
             continue
         r = hit.iloc[0]
         target = b.get("target", r["w_ref_at_max"])
@@ -767,6 +788,7 @@ def _write_convergence(study: Study, out: Path, rows: list[dict], memo: dict | N
     if study.benchmarks:  # the verification rows quote the observed order
         _save(benchmark_table(study, pd.DataFrame(rows), pd.DataFrame(conv), out / "cases"), out, "benchmarks",
               parquet=False)
+    write_checks(study, out, rows)  # checks.csv: the study's order checks on the convergence series
 
 
 def _write_speed_error(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:
