@@ -240,12 +240,14 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
             continue
         axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
+        typed = [f"{where}.{why}" for k, v in axes.items() if model.option(k) is not None
+                 for why in dict.fromkeys(strict_type(model.option(k), x) for x in v) if why]
+        if typed:  # not expanded: the coerced values would only add confusing errors
+            errors += typed
+            continue
         for k, v in axes.items():
             if not v:
                 errors.append(f"{where}.{k} = []: an empty sweep runs nothing; give values or drop the key")
-            opt = model.option(k)
-            if opt is not None:
-                errors += [f"{where}.{why}" for why in dict.fromkeys(strict_type(opt, x) for x in v) if why]
         names = list(axes)
         for combo in itertools.product(*(axes[k] for k in names)):
             given = dict(zip(names, combo))
