@@ -183,14 +183,8 @@ def study(
     for _, r in df[df["status"] != "ok"].iterrows():
         typer.echo(f"failed: {r['model']} on {r['scene_file']}: {r['message']}", err=True)
     for line in outcome.failures():
-        if not line.startswith("failed: case"):  # the failed cases are listed above
-            typer.echo(line, err=True)
-    if report:
-        from .report import build_report
-
-        index = build_report(out)
-        typer.echo(f"report: {index}")
-    if junit is not None:
+        typer.echo(line, err=True)
+    if junit is not None:  # before the report: a report that cannot be written loses no verdict
         from .errors import OutputError
         from .study.junit import write_junit
 
@@ -201,6 +195,11 @@ def study(
             raise OutputError(f"--junit {junit}: could not be written ({exc.strerror or exc}); the study's "
                               f"tables are in {out}") from None
         typer.echo(f"junit: {junit}", err=True)
+    if report:
+        from .report import build_report
+
+        index = build_report(out)
+        typer.echo(f"report: {index}")
     typer.echo(outcome.line(), err=True)
     raise typer.Exit(outcome.exit_code)
 

@@ -132,10 +132,12 @@ def _fmt(values, spec=".4g") -> str:
     return " ".join(format(v, spec) for v in values)
 
 
-def _series_row(check: dict, key: tuple, rows: list[dict], conv: list[dict]) -> dict:
-    """One check applied to one series: the rows of its cases, its convergence table output."""
+def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
+    """One check applied to one series (the rows of its cases), its order from the convergence table's."""
+    conv = GROUPINGS["convergence"].compute(key, rows)
     bounds = check["observed_order"]
-    ok = sorted((r for r in rows if r.get("status") == "ok"), key=lambda r: float(r["spacing"]))
+    ok = sorted((r for r in rows if r.get("status") == "ok" and r.get("spacing") is not None),
+                key=lambda r: float(r["spacing"]))
     h = np.array([float(r["spacing"]) for r in ok])
     err = np.array([float(r["err_max"]) if r.get("err_max") is not None else math.nan for r in ok])
     pairwise = [log_slope(h[i:i + 2], err[i:i + 2])[0] for i in range(len(ok) - 1) if h[i + 1] != h[i]]
@@ -159,7 +161,7 @@ def _series_row(check: dict, key: tuple, rows: list[dict], conv: list[dict]) -> 
             "pairwise_orders": _fmt(pairwise, ".3f"), "observed_order": order,
             "r2": conv[0]["r2"] if conv else math.nan, "min": bounds.get("min"), "max": bounds.get("max"),
             "expected": check.get("expected", "pass"), "verdict": verdict, "message": "; ".join(messages),
-            "case_ids": " ".join(r["case_id"] for r in rows)}
+            "case_ids": " ".join(r["case_id"] for r in ok + failed)}
 
 
 def _verdict(ok: bool, expected: str) -> str:
@@ -171,10 +173,10 @@ def _verdict(ok: bool, expected: str) -> str:
 def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
     """The rows of ``checks.csv``: every check against every series it matches (results ``rows`` as dicts,
     None for a missing value), in the checks' order; a check matching no series is one ``missing`` row."""
-    series = grouped("convergence", rows, compute=lambda key, group: (group, GROUPINGS["convergence"].compute(key, group)))
+    series = grouped("convergence", rows, compute=lambda key, group: group)  # the convergence table's series
     out = []
     for check in checks:
-        hits = [_series_row(check, key, group, conv) for key, (group, conv) in series if _matches(check, key, group)]
+        hits = [_series_row(check, key, group) for key, group in series if _matches(check, key, group)]
         out += hits or [{"name": _label(check), "model": check["model"], "scene_file": check.get("scene"),
                          "min": check["observed_order"].get("min"), "max": check["observed_order"].get("max"),
                          "expected": check.get("expected", "pass"), "verdict": "missing",
@@ -228,7 +230,7 @@ class Outcome:
         return 1 if bad or self.unexcused else 0
 
     def failures(self) -> list[str]:
-        """One line per failing benchmark, check and case (what the summary counts)."""
+        """One line per failing benchmark and check."""
         lines = []
         for _, b in self.benchmarks.iterrows():
             if b["verdict"] in FAILING:
@@ -236,8 +238,6 @@ class Outcome:
         for _, c in self.checks.iterrows():
             if c["verdict"] in FAILING:
                 lines.append(f"{c['verdict']}: check {c['name']!r}: {check_message(c)}")
-        for r in self.unexcused:
-            lines.append(f"failed: case {r['case_id']} ({r['model']} on {r['scene_file']}): {r['message']}")
         return lines
 
     def line(self) -> str:
