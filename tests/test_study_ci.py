@@ -279,7 +279,8 @@ def test_study_from_a_ci_script(tmp_path):
     r = subprocess.run(["sh", str(script)], capture_output=True, text=True, env=env, timeout=300)
     assert r.returncode == 1 and "status=1" in r.stdout, r.stderr
     assert "Traceback" not in r.stderr
-    assert r.stderr.strip().splitlines()[-1].startswith("summary: cases 6 ok, 0 failed, 0 suspect; benchmarks 1 pass, 1 fail")
+    last = r.stderr.strip().splitlines()[-1]
+    assert last.startswith("summary: cases 6 ok, 0 failed, 0 suspect; benchmarks 1 pass, 1 fail")
     root = ET.parse(tmp_path / "reports/junit.xml").getroot()
     assert_junit_shape(root)
     failed = [c.get("name") for c in root.iter("testcase") if c.find("failure") is not None]
@@ -304,7 +305,8 @@ BAD = {  # body -> the text the single error line must contain
     "check without bounds": ('[[checks]]\nmodel = "pd-eb"\nobserved_order = 2\n', "checks[0].observed_order = 2"),
     "check bound a boolean": (check("corrected", "{ min = true }"), "min and max are finite numbers"),
     "check min above max": (check("corrected", "{ min = 2.1, max = 1.9 }"), "min is above max"),
-    "check unknown model": ('[[checks]]\nmodel = "fem-eb"\nobserved_order = { min = 2 }\n', "no run of the study uses it"),
+    "check unknown model": ('[[checks]]\nmodel = "fem-eb"\nobserved_order = { min = 2 }\n',
+                            "no run of the study uses it"),
     "check points": (check("corrected", "{ min = 2 }", "points = 41\n"), "drop points/spacing"),
     "check expected": (check("corrected", "{ min = 2 }", 'expected = "maybe"\n'), "checks[0].expected = 'maybe'"),
     "check option typo": (check("corrected", "{ min = 2 }", "horizn = 3\n"), "takes no option 'horizn'"),

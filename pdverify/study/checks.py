@@ -27,6 +27,7 @@ import pandas as pd
 
 from ..errors import InputError
 from .metrics import log_slope
+from .store import write_atomic
 from .tables import GROUPINGS, grouped
 
 CHECK_KEYS = {"name", "model", "observed_order", "expected", "scene", "slenderness"}
@@ -82,7 +83,8 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
             errors.append(f"{where}: model: missing; every check names a model of the study's runs")
             continue
         if c["model"] not in models:
-            errors.append(f"{where}.model = {c['model']!r}: no run of the study uses it; runs: {', '.join(sorted(models))}")
+            errors.append(f"{where}.model = {c['model']!r}: no run of the study uses it; "
+                          f"runs: {', '.join(sorted(models))}")
             continue
         if "name" in c and not (isinstance(c["name"], str) and c["name"]):
             errors.append(f"{where}.name = {c['name']!r}: give a text")
@@ -94,7 +96,8 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
         elif bounds.get("min", -math.inf) > bounds.get("max", math.inf):
             errors.append(f"{where}.observed_order = {bounds!r}: min is above max")
         if c.get("expected", "pass") not in ("pass", "fail"):
-            errors.append(f"{where}.expected = {c['expected']!r}: pass (default) or fail (a known defect the check documents)")
+            errors.append(f"{where}.expected = {c['expected']!r}: pass (default) or fail (a known defect the "
+                          "check documents)")
         if "scene" in c and c["scene"] not in scenes:
             errors.append(f"{where}.scene = {c['scene']!r}: not one of the study's scenes")
         if "slenderness" in c and not (finite_number(c["slenderness"]) and c["slenderness"] > 0):
@@ -185,9 +188,9 @@ def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
 
 
 def write_checks(study, out: Path, rows: list[dict]) -> None:
-    """``checks.csv`` in the output folder (only for a study with checks)."""
+    """``checks.csv`` in the output folder (only for a study with checks), written atomically."""
     if study.checks:
-        pd.DataFrame(check_rows(study.checks, rows)).to_csv(Path(out) / "checks.csv", index=False)
+        write_atomic(Path(out) / "checks.csv", pd.DataFrame(check_rows(study.checks, rows)).to_csv(index=False))
 
 
 # ---- a finished study's verdict ---------------------------------------------------------------------------

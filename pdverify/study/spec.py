@@ -146,7 +146,8 @@ def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
     if "target" not in bench:
         refs = {c.reference["model"] for c in study.cases if c.scene_file == bench["scene"] and c.model == model.name}
         if refs == {"none"}:
-            errors.append(f"{where}.target: missing, and its run has no reference (reference = \"none\"); give a target")
+            errors.append(f"{where}.target: missing, and its run has no reference (reference = \"none\"); "
+                          "give a target")
     filters = {k: v for k, v in bench.items() if k not in BENCH_KEYS | {"points", "slenderness"}}
     errors += option_filter_errors(model, filters, where)
     if "points" in bench and not (isinstance(bench["points"], int) and not isinstance(bench["points"], bool)
