@@ -160,10 +160,10 @@ def study(
 ):
     """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts.
 
-    Exit status: 0 every benchmark and order check passes (an expected-fail row that fails counts as a
-    pass) and every case ran; 1 a benchmark or check fails or is missing, or a case failed outside an
-    expected-fail row; 2 bad input; 3 a failed computation; 4 output could not be written. The last line
-    is the summary (see docs/ci.md).
+    Exit status (docs/ci.md), the last line on stderr is the summary:
+    0 every benchmark and order check passes (an expected-fail row that fails counts) and every case ran;
+    1 a benchmark or check fails or is missing, or a case failed outside an expected-fail row;
+    2 bad input; 3 a failed computation; 4 output could not be written.
     """
     import time
 

@@ -336,3 +336,12 @@ def test_boolean_options_only_from_true_false(tmp_path):
     r = run(study_file(tmp_path, "", runs=runs), tmp_path)
     assert r.exit_code == 2
     assert r.stderr.strip() == f"error: {tmp_path / 'ci.toml'}: runs[0].nonlinear = 'maybe': give true or false"
+
+
+def test_help_documents_the_exit_codes():
+    r = CliRunner().invoke(app, ["study", "--help"], env={"COLUMNS": "200"})
+    assert r.exit_code == 0
+    for code in ("0 every benchmark and order check passes", "1 a benchmark or check fails or is missing",
+                 "2 bad input", "3 a failed computation", "4 output could not be written"):
+        assert code in r.stdout
+    assert "--junit" in r.stdout
