@@ -149,28 +149,64 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     failed = [r for r in rows if r.get("status") != "ok"]
     messages = [f"{len(failed)} of its {len(rows)} cases failed"] if failed else []
     if n_grids < MIN_GRIDS:
-        verdict = "missing"
+        result = "missing"
         messages.insert(0, f"{n_grids} grid(s) with a result; an order needs at least {MIN_GRIDS}")
     elif not math.isfinite(order):
-        verdict = "fail" if check.get("expected", "pass") == "pass" else "expected-fail"
+        result = verdict(False, check.get("expected", "pass"))
         messages.insert(0, "no observed order (errors zero or not finite)")
     else:
         good = bounds.get("min", -math.inf) <= order <= bounds.get("max", math.inf)
-        verdict = _verdict(good, check.get("expected", "pass"))
+        result = verdict(good, check.get("expected", "pass"))
     scene, model, options, slenderness = key
     return {"name": _label(check), "scene": scene, "scene_file": rows[0].get("scene_file"), "model": model,
             "options": options, "slenderness": slenderness, "n_grids": n_grids,
             "points": " ".join(str(r.get("points")) for r in ok), "spacings": _fmt(h), "errors": _fmt(err, ".3e"),
             "pairwise_orders": _fmt(pairwise, ".3f"), "observed_order": order,
             "r2": conv[0]["r2"] if conv else math.nan, "min": bounds.get("min"), "max": bounds.get("max"),
-            "expected": check.get("expected", "pass"), "verdict": verdict, "message": "; ".join(messages),
+            "expected": check.get("expected", "pass"), "verdict": result, "message": "; ".join(messages),
             "case_ids": " ".join(r["case_id"] for r in ok + failed)}
 
 
-def _verdict(ok: bool, expected: str) -> str:
+def verdict(ok: bool, expected: str) -> str:
+    """pass / fail, or for a row that documents a known defect (expected = fail): 'expected-fail' when it
+    still fails and 'unexpected-pass' when it no longer does (then the row's text needs a look)."""
     if expected == "fail":
         return "unexpected-pass" if ok else "expected-fail"
     return "pass" if ok else "fail"
+
+
+BENCH_VALUES = ("name", "scene", "model", "target", "tolerance", "quantity", "position", "expected")
+
+
+def _missing(b: dict, opts: dict, have: list[dict]) -> str:
+    """Why no case matches benchmark ``b``: the first filter no case of its scene and model has."""
+    if not have:
+        return f"no case of the sweep runs {b['model']} on {b['scene']}"
+    for k, v in opts.items():
+        values = sorted({h.get(k) for h in have}, key=str)
+        if not any(h.get(k) == v for h in have):
+            return f"no case of the sweep has {k} = {v!r} (it has {', '.join(map(repr, values))})"
+    return "no case of the sweep has every option the row names"
+
+
+def match_benchmark(b: dict, df: pd.DataFrame):
+    """(the results row a benchmark reads, None), or (None, its verdict row) when no case of the sweep
+    matches (``missing``, with the filter nothing has) or its case failed (``fail`` / ``expected-fail``, with
+    the failure). Filters: every key not a value of the row (options, points, slenderness)."""
+    opts = {k: v for k, v in b.items() if k not in BENCH_VALUES}
+    cand = df[(df["scene_file"] == b["scene"]) & (df["model"] == b["model"])]
+    have = [dict(json.loads(r["options"]), points=r["points"],
+                 slenderness=None if pd.isna(r.get("slenderness")) else r["slenderness"]) for _, r in cand.iterrows()]
+    hit = cand.iloc[[i for i, h in enumerate(have) if all(k in h and h[k] == v for k, v in opts.items())]]
+    ok = hit[hit["status"] == "ok"]
+    if len(ok):
+        return ok.iloc[0], None
+    head = {"name": b["name"], "scene": b["scene"], "scene_file": b["scene"], "model": b["model"]}
+    if hit.empty:
+        return None, {**head, "verdict": "missing", "message": _missing(b, opts, have)}
+    r = hit.iloc[0]
+    return None, {**head, "scene": r["scene"], "verdict": verdict(False, b.get("expected", "pass")),
+                  "case_id": r["case_id"], "message": f"its case failed: {r['message']}"}
 
 
 def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:

@@ -33,7 +33,8 @@ from .. import __version__
 from ..errors import OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
-from .checks import write_checks
+from .checks import match_benchmark, write_checks
+from .checks import verdict as _verdict
 from .metrics import errors
 from .spec import Case, Study, code_digest
 from .recorder import Recorder, RecorderDied
@@ -680,53 +681,16 @@ def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
     _write(table, out, name, parquet)
 
 
-def _verdict(ok: bool, expected: str) -> str:
-    """pass / fail, or for a row that documents a known defect (expected = fail): 'expected-fail' when it
-    still fails and 'unexpected-pass' when it no longer does (then the row's text needs a look)."""
-    if expected == "fail":
-        return "unexpected-pass" if ok else "expected-fail"
-    return "pass" if ok else "fail"
-
-
-def _missing(b: dict, opts: dict, have: list[dict]) -> str:
-    """Why no case matches benchmark ``b``: the first filter no case of its scene and model has."""
-    if not have:
-        return f"no case of the sweep runs {b['model']} on {b['scene']}"
-    for k, v in opts.items():
-        values = sorted({h.get(k) for h in have}, key=str)
-        if not any(h.get(k) == v for h in have):
-            return f"no case of the sweep has {k} = {v!r} (it has {', '.join(map(repr, values))})"
-    return "no case of the sweep has every option the row names"
-
-
 def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
     """Verification rows. Default quantity: the deflection at the point of largest reference deflection
     (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
     point field such as u, theta, M), the case's curve interpolated there (the case file holds it)."""
     rows = []
     for b in study.benchmarks:
-        opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position", "expected")}
-        m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"])
-
-        def have(r):
-            sl = r.get("slenderness")
-            return dict(json.loads(r["options"]), points=r["points"], slenderness=None if pd.isna(sl) else sl)
-
-        cand = df[m]
-        haves = [have(r) for _, r in cand.iterrows()]
-        hit = cand.iloc[[i for i, h in enumerate(haves) if all(k in h and h[k] == v for k, v in opts.items())]]
-        if not hit.empty and not (hit["status"] == "ok").any():  # its case failed: a failed verdict, with why
-            r = hit.iloc[0]
-            rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],
-                         "verdict": _verdict(False, b.get("expected", "pass")), "case_id": r["case_id"],
-                         "message": f"its case failed: {r['message']}"})
+        r, unmatched = match_benchmark(b, df)  # its case, or the row of a missing / failed case
+        if unmatched is not None:
+            rows.append(unmatched)
             continue
-        hit = hit[hit["status"] == "ok"]
-        if hit.empty:
-            rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing",
-                         "message": _missing(b, opts, haves)})
-            continue
-        r = hit.iloc[0]
         target = b.get("target", r["w_ref_at_max"])
         computed = r["w_at_max"]
         quantity = b.get("quantity", "w")
