@@ -146,8 +146,9 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     pairwise = [log_slope(h[i:i + 2], err[i:i + 2])[0] for i in range(len(ok) - 1) if h[i + 1] != h[i]]
     n_grids = len(np.unique(h))
     order = conv[0]["observed_order"] if conv else math.nan
-    failed = [r for r in rows if r.get("status") != "ok"]
-    messages = [f"{len(failed)} of its {len(rows)} cases failed"] if failed else []
+    failed = [r for r in rows if r.get("status") != "ok"]  # failed, or suspect (issue 27): not in the order
+    not_ok = Counter(r.get("status") for r in failed)
+    messages = [f"{', '.join(f'{n} {s}' for s, n in not_ok.items())} of its {len(rows)} cases"] if failed else []
     if n_grids < MIN_GRIDS:
         result = "missing"
         messages.insert(0, f"{n_grids} grid(s) with a result; an order needs at least {MIN_GRIDS}")
@@ -206,7 +207,7 @@ def match_benchmark(b: dict, df: pd.DataFrame):
         return None, {**head, "verdict": "missing", "message": _missing(b, opts, have)}
     r = hit.iloc[0]
     return None, {**head, "scene": r["scene"], "verdict": verdict(False, b.get("expected", "pass")),
-                  "case_id": r["case_id"], "message": f"its case failed: {r['message']}"}
+                  "case_id": r["case_id"], "message": f"its case is {r['status']}: {r['message']}"}
 
 
 def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
