@@ -179,6 +179,12 @@ def verdict(ok: bool, expected: str) -> str:
 BENCH_VALUES = ("name", "scene", "model", "target", "tolerance", "quantity", "position", "expected")
 
 
+def _case_keys(r) -> dict:
+    """What a benchmark or check can filter a results row on: its options, points and slenderness."""
+    sl = r.get("slenderness")
+    return dict(json.loads(r.get("options") or "{}"), points=r.get("points"), slenderness=None if pd.isna(sl) else sl)
+
+
 def _missing(b: dict, opts: dict, have: list[dict]) -> str:
     """Why no case matches benchmark ``b``: the first filter no case of its scene and model has."""
     if not have:
@@ -196,8 +202,7 @@ def match_benchmark(b: dict, df: pd.DataFrame):
     the failure). Filters: every key not a value of the row (options, points, slenderness)."""
     opts = {k: v for k, v in b.items() if k not in BENCH_VALUES}
     cand = df[(df["scene_file"] == b["scene"]) & (df["model"] == b["model"])]
-    have = [dict(json.loads(r["options"]), points=r["points"],
-                 slenderness=None if pd.isna(r.get("slenderness")) else r["slenderness"]) for _, r in cand.iterrows()]
+    have = [_case_keys(r) for _, r in cand.iterrows()]
     hit = cand.iloc[[i for i, h in enumerate(have) if all(k in h and h[k] == v for k, v in opts.items())]]
     ok = hit[hit["status"] == "ok"]
     if len(ok):
@@ -233,15 +238,14 @@ def write_checks(study, out: Path, rows: list[dict]) -> None:
 # ---- a finished study's verdict ---------------------------------------------------------------------------
 
 def _read(path: Path) -> pd.DataFrame:
-    return pd.read_csv(path, keep_default_na=True) if path.is_file() and path.stat().st_size > 1 else pd.DataFrame()
+    return pd.read_csv(path) if path.is_file() and path.stat().st_size > 1 else pd.DataFrame()
 
 
 def _covers(filters: dict, r: dict) -> bool:
     """A results row belongs to an expected-fail benchmark or check (its failure is the documented defect)."""
     if r.get("model") != filters["model"] or ("scene" in filters and r.get("scene_file") != filters["scene"]):
         return False
-    have = dict(json.loads(r.get("options") or "{}"), points=r.get("points"), slenderness=r.get("slenderness"))
-    skip = {"name", "model", "scene", "target", "tolerance", "quantity", "position", "expected", "observed_order"}
+    have, skip = _case_keys(r), {*BENCH_VALUES, "observed_order"}
     return all(k in have and have[k] == v for k, v in filters.items() if k not in skip)
 
 
@@ -259,7 +263,7 @@ class Outcome:
         documented += [c for c in study.checks if c.get("expected") == "fail"]
         rows = results.to_dict("records")
         self.failed_cases = [r for r in rows if r.get("status") == "failed"]
-        self.unexcused = [r for r in self.failed_cases if not any(_covers(d, _clean(r)) for d in documented)]
+        self.unexcused = [r for r in self.failed_cases if not any(_covers(d, r) for d in documented)]
 
     def _verdicts(self, table: pd.DataFrame) -> Counter:
         return Counter(table["verdict"]) if "verdict" in table else Counter()
@@ -290,10 +294,6 @@ class Outcome:
                 f"{b['missing']} missing{extra(b['unexpected-pass'])}; orders checked {n_c} "
                 f"({c['pass']} pass, {c['fail']} fail, {c['expected-fail']} expected-fail, {c['missing']} missing"
                 f"{extra(c['unexpected-pass'])}); exit {self.exit_code}")
-
-
-def _clean(r: dict) -> dict:
-    return {k: (None if isinstance(v, float) and v != v else v) for k, v in r.items()}
 
 
 def _g(v) -> str:
