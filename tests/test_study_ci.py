@@ -302,6 +302,7 @@ BAD = {  # body -> the text the single error line must contain
     "benchmark option typo": (bench("b", 0.01, extra='varaint = "paper"\n'), "takes no option 'varaint'"),
     "benchmark variant unknown": (bench("b", 0.01, variant="corected"), "variant = 'corected'"),
     "benchmark points a boolean": (None, "benchmarks[0].points = True: give a whole number"),
+    "reference option a boolean": (None, "reference.points = True: give a number, not a boolean"),
     "check without bounds": ('[[checks]]\nmodel = "pd-eb"\nobserved_order = 2\n', "checks[0].observed_order = 2"),
     "check bound a boolean": (check("corrected", "{ min = true }"), "min and max are finite numbers"),
     "check min above max": (check("corrected", "{ min = 2.1, max = 1.9 }"), "min is above max"),
@@ -322,6 +323,8 @@ def test_bad_study_file_is_one_line_and_exit_2(tmp_path, case):
         body = f'[[benchmarks]]\nname = "b"\nscene = "{CC}"\nmodel = "pd-eb"\nvariant = "corrected"\npoints = 41\n'
     elif case == "points a boolean":
         runs, body = PD_EB.replace("points = [21, 41, 81]", "points = [21, true]"), ""
+    elif case == "reference option a boolean":
+        runs, body = PD_EB + 'reference = {model = "fem-eb", points = true}\n', ""
     elif case == "benchmark points a boolean":
         body = bench("b", 0.01, points="true")
     r = run(study_file(tmp_path, body, runs=runs), tmp_path)

@@ -278,8 +278,12 @@ def load_study(path: str | Path) -> Study:
                     ref_key = (sfile, sl, repr(sorted(run_ref.items())))
                     if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
                         refs_checked.add(ref_key)
+                        typed = [f"{path}: reference.{why}" for k, v in ref_given.items()
+                                 if ref_model.option(k) is not None and (why := strict_type(ref_model.option(k), v))]
+                        errors += typed
                         try:
-                            ref_model.resolve(scx, ref_given)
+                            if not typed:  # (a coerced value would only add a confusing error)
+                                ref_model.resolve(scx, ref_given)
                         except InputError as exc:
                             errors.append(f"{path}: reference: {exc.lines[0]}")
                         if ref_model.check(scx):
