@@ -257,22 +257,52 @@ def study(
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+    junit: Optional[Path] = typer.Option(None, "--junit", help="also write the verdicts as JUnit XML to FILE"),
 ):
-    """Run a study: every case of the sweep, errors against the reference, derived tables."""
+    """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts.
+
+    Exit status (docs/ci.md), the last line on stderr is the summary:
+    0 every benchmark and order check passes (an expected-fail row that fails counts) and every case ran;
+    1 a benchmark or check fails or is missing, or a case failed outside an expected-fail row;
+    2 bad input; 3 a failed computation; 4 output could not be written.
+    """
+    import time
+
     from .study import load_study, run_study
+    from .study.checks import Outcome
 
     spec = load_study(study_file)
+    if junit is not None and junit.is_dir():
+        raise InputError(f"--junit {junit}: a directory; give a file name, e.g. {junit / 'pdverify.xml'}")
     out = out or Path("reports") / _slug(study_file.stem)
+    t0 = time.perf_counter()
     df = run_study(spec, out, workers=workers, scheduler=scheduler, progress=not quiet)
+    wall = time.perf_counter() - t0
     counts = dict(Counter(df["status"]).most_common())  # (pandas' value_counts: ~15 ms on its first call)
     typer.echo(f"{spec.name}: {len(df)} cases ({counts}); results in {out}/results.csv", err=True)
+    outcome = Outcome(spec, out, df)
     for _, r in df[df["status"] != "ok"].iterrows():
         typer.echo(f"failed: {r['model']} on {r['scene_file']}: {r['message']}", err=True)
+    for line in outcome.failures():
+        typer.echo(line, err=True)
+    if junit is not None:  # before the report: a report that cannot be written loses no verdict
+        from .errors import OutputError
+        from .study.junit import write_junit
+
+        try:
+            junit.parent.mkdir(parents=True, exist_ok=True)
+            write_junit(outcome, junit, wall)
+        except OSError as exc:
+            raise OutputError(f"--junit {junit}: could not be written ({exc.strerror or exc}); the study's "
+                              f"tables are in {out}") from None
+        typer.echo(f"junit: {junit}", err=True)
     if report:
         from .report import build_report
 
         index = build_report(out)
         typer.echo(f"report: {index}")
+    typer.echo(outcome.line(), err=True)
+    raise typer.Exit(outcome.exit_code)
 
 
 @app.command()

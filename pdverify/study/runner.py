@@ -33,6 +33,8 @@ from .. import __version__
 from ..errors import OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
+from .checks import match_benchmark, write_checks
+from .checks import verdict as _verdict
 from .metrics import errors
 from .spec import Case, Study, code_digest
 from .recorder import Recorder, RecorderDied
@@ -680,33 +682,16 @@ def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
     _write(table, out, name, parquet)
 
 
-def _verdict(ok: bool, expected: str) -> str:
-    """pass / fail, or for a row that documents a known defect (expected = fail): 'expected-fail' when it
-    still fails and 'unexpected-pass' when it no longer does (then the row's text needs a look)."""
-    if expected == "fail":
-        return "unexpected-pass" if ok else "expected-fail"
-    return "pass" if ok else "fail"
-
-
 def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
     """Verification rows. Default quantity: the deflection at the point of largest reference deflection
     (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
     point field such as u, theta, M), the case's curve interpolated there (the case file holds it)."""
     rows = []
     for b in study.benchmarks:
-        opts = {k: v for k, v in b.items() if k not in ("name", "scene", "model", "target", "tolerance", "quantity", "position", "expected")}
-        m = (df["scene_file"] == b["scene"]) & (df["model"] == b["model"]) & (df["status"] == "ok")
-
-        def matches(r):
-            have = dict(json.loads(r["options"]), points=r["points"])
-            return all(k in have and have[k] == v for k, v in opts.items())
-
-        cand = df[m]
-        hit = cand[cand.apply(matches, axis=1)] if len(cand) else cand
-        if hit.empty:
-            rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing"})
+        r, unmatched = match_benchmark(b, df)  # its case, or the row of a missing / failed case
+        if unmatched is not None:
+            rows.append(unmatched)
             continue
-        r = hit.iloc[0]
         target = b.get("target", r["w_ref_at_max"])
         computed = r["w_at_max"]
         quantity = b.get("quantity", "w")
@@ -768,6 +753,7 @@ def _write_convergence(study: Study, out: Path, rows: list[dict], memo: dict | N
     if study.benchmarks:  # the verification rows quote the observed order
         _save(benchmark_table(study, pd.DataFrame(rows), pd.DataFrame(conv), out / "cases"), out, "benchmarks",
               parquet=False)
+    write_checks(study, out, rows)  # checks.csv: the study's order checks on the convergence series
 
 
 def _write_speed_error(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:

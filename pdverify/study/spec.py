@@ -19,8 +19,13 @@ model = "pd-eb"
 variant = "corrected"
 points = 101
 target = -0.1                                     # omitted: the reference's value
-tolerance = 0.005
+tolerance = 0.005                                 # relative; default 0.01
+[[checks]]                                        # optional order checks (pdverify/study/checks.py)
+model = "pd-eb"
+variant = "corrected"
+observed_order = { min = 1.9 }
 ```
+Values are typed as TOML types them: a boolean option takes only true/false, a number never a boolean.
 """
 
 from __future__ import annotations
@@ -37,10 +42,11 @@ from .. import __version__
 from ..errors import InputError
 from ..registry import get_model
 from ..scene import Scene, load_scene, read_toml
+from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
 
 RUN_KEYS = {"model", "reference", "scenes"}
 STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
-BENCH_KEYS = {"name", "scene", "model", "target", "tolerance", "quantity", "position", "expected"}
+BENCH_KEYS = set(BENCH_VALUES)  # the values of a benchmark row; its other keys filter the cases
 
 
 PACKAGES = ("pdverify", "reference_fem")
@@ -107,6 +113,7 @@ class Study:
     runs: list[dict]
     slenderness: list
     benchmarks: list[dict] = field(default_factory=list)
+    checks: list[dict] = field(default_factory=list)
     cases: list[Case] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
 
@@ -123,12 +130,40 @@ def _as_list(v):
     return v if isinstance(v, list) else [v]
 
 
+def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
+    """Target, tolerance and option filters of one benchmark row: a number that can pass or fail."""
+    errors = []
+    try:
+        model = get_model(bench["model"])
+    except InputError as exc:
+        return [f"{where}: {exc.lines[0]}"]
+    if "target" in bench and not (finite_number(bench["target"]) and bench["target"] != 0):
+        errors.append(f"{where}.target = {bench['target']!r}: give a non-zero finite number (the tolerance is "
+                      "relative to it)")
+    tol = bench.get("tolerance", 0.01)
+    if not (finite_number(tol) and tol > 0):
+        errors.append(f"{where}.tolerance = {tol!r}: give a positive relative tolerance, e.g. 0.01")
+    if "target" not in bench:
+        refs = {c.reference["model"] for c in study.cases if c.scene_file == bench["scene"] and c.model == model.name}
+        if refs == {"none"}:
+            errors.append(f"{where}.target: missing, and its run has no reference (reference = \"none\"); "
+                          "give a target")
+    filters = {k: v for k, v in bench.items() if k not in BENCH_KEYS | {"points", "slenderness"}}
+    errors += option_filter_errors(model, filters, where)
+    if "points" in bench and not (isinstance(bench["points"], int) and not isinstance(bench["points"], bool)
+                                  and bench["points"] >= 2):
+        errors.append(f"{where}.points = {bench['points']!r}: give a whole number of points of the sweep")
+    if "slenderness" in bench and not (finite_number(bench["slenderness"]) and bench["slenderness"] > 0):
+        errors.append(f"{where}.slenderness = {bench['slenderness']!r}: give a positive number of the sweep")
+    return errors
+
+
 def load_study(path: str | Path) -> Study:
     """Read a study file and validate every scene, model, option and reference. Raises InputError."""
     path = Path(path)
     text, data = read_toml(path, "study")
     errors: list[str] = []
-    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers"}
+    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers", "checks"}
     for key in data:
         if key not in allowed:
             errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
@@ -154,8 +189,8 @@ def load_study(path: str | Path) -> Study:
     if not slen:
         errors.append(f"{path}: sweep.slenderness = []: an empty sweep runs nothing; give values or drop it")
     for s in slen:
-        if s is not None and (not isinstance(s, (int, float)) or s <= 0):
-            errors.append(f"{path}: sweep.slenderness value {s!r}: must be a positive number")
+        if s is not None and not (finite_number(s) and s > 0):
+            errors.append(f"{path}: sweep.slenderness value {s!r}: must be a positive finite number (length / height)")
     try:
         reference = _reference(data.get("reference", "exact-eb"), "")
     except InputError as exc:
@@ -180,7 +215,8 @@ def load_study(path: str | Path) -> Study:
         except InputError as exc:
             errors.append(f"{path}: reference: {exc.lines[0]}")
 
-    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])))
+    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])),
+                  list(data.get("checks", [])) if isinstance(data.get("checks", []), list) else [])
     reasons_of: dict = {}  # (model, scene, slenderness) -> why the model cannot solve it
     refs_checked: set = set()  # (scene, slenderness, reference) validated
     for i, run in enumerate(runs):
@@ -205,6 +241,11 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
             continue
         axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
+        typed = [f"{where}.{why}" for k, v in axes.items() if model.option(k) is not None
+                 for why in dict.fromkeys(strict_type(model.option(k), x) for x in v) if why]
+        if typed:  # not expanded: the coerced values would only add confusing errors
+            errors += typed
+            continue
         for k, v in axes.items():
             if not v:
                 errors.append(f"{where}.{k} = []: an empty sweep runs nothing; give values or drop the key")
@@ -237,8 +278,12 @@ def load_study(path: str | Path) -> Study:
                     ref_key = (sfile, sl, repr(sorted(run_ref.items())))
                     if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
                         refs_checked.add(ref_key)
+                        typed = [f"{path}: reference.{why}" for k, v in ref_given.items()
+                                 if ref_model.option(k) is not None and (why := strict_type(ref_model.option(k), v))]
+                        errors += typed
                         try:
-                            ref_model.resolve(scx, ref_given)
+                            if not typed:  # (a coerced value would only add a confusing error)
+                                ref_model.resolve(scx, ref_given)
                         except InputError as exc:
                             errors.append(f"{path}: reference: {exc.lines[0]}")
                         if ref_model.check(scx):
@@ -252,6 +297,7 @@ def load_study(path: str | Path) -> Study:
         if bench["scene"] not in scene_objs:
             errors.append(f"{where}.scene = {bench['scene']!r}: not one of the study's scenes")
             continue
+        errors += _benchmark_errors(bench, where, study)
         if "position" in bench:
             L = scene_objs[bench["scene"]][1].length
             pos = bench["position"]
@@ -266,6 +312,8 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{where}.quantity = {q!r}: a quantity other than w needs a position")
         elif q != "w" and "target" not in bench:
             errors.append(f"{where}.quantity = {q!r}: the reference gives w only; give a target")
+    errors += validate_checks(data.get("checks", []), scene_objs, {r["model"] for r in runs if isinstance(r, dict)
+                                                                   and isinstance(r.get("model"), str)}, path)
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once
         raise InputError(list(dict.fromkeys(errors)))
