@@ -113,7 +113,9 @@ def solve(
         typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
         model = choice.model
         given = dict(choice.options, points=choice.points)
-    m = get_model(model)
+    from .plugins import model_argument
+
+    m = get_model(model_argument(model))  # a manifest path registers its external model first
     result = run(sc, m, **given)
     if out is not None and out.suffix in result.writers:
         result.writers[out.suffix](str(out))
