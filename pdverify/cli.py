@@ -251,6 +251,34 @@ def bench(
             typer.echo(f"performance page: {page}")
 
 
+@app.command("verify")
+@user_errors
+def verify_cmd(
+    model: str = typer.Argument(..., help="model name, or path to an external model's manifest (.toml)"),
+    option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
+    out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
+    full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
+    order: Optional[float] = typer.Option(None, "--order", help="expected order of convergence (default: the model's, else 2)"),
+    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+):
+    """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
+    Exit code 1 when a check fails."""
+    from .plugins import model_argument
+    from .verify import verify
+
+    name = model_argument(model)
+    options = parse_options(option)
+    out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))
+    card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)
+    for c in card["checks"]:
+        typer.echo(f"{c['verdict']:>5}  {c['check']}: {c['summary']}")
+    typer.echo(f"{card['model']}: {card['verdict']} (suite {card['suite_version']}); card: {out}/card.html")
+    if card["verdict"] == "fail":
+        raise typer.Exit(1)
+
+
 @app.command()
 def version():
     """Print the package version."""
