@@ -218,7 +218,9 @@ def bench(
     from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, cost_slope, default_models
     from .registry import get_model
 
-    names = model or default_models()
+    from .plugins import model_argument
+
+    names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
     for n in names:
         get_model(n)
     rows = []

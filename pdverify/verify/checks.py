@@ -130,11 +130,17 @@ def floor(rows: list[dict]) -> dict:
 
 
 def cost(rows: list[dict]) -> dict:
-    """Median over the scenes of the slope of log(error) vs log(seconds per solve)."""
-    slopes = [log_slope(r["cost_s"], r["errors"])[0] for r in rows if not r["exact"] and len(r["errors"]) > 2]
-    p = float(np.nanmedian(slopes)) if slopes and not np.isnan(slopes).all() else float("nan")
-    return check("cost vs error", "info", f"error ~ cost^{p:.2f} (median over the convergence scenes; "
-                 "small grids are dominated by fixed costs)", slope=p)
+    """Seconds per solve at the finest grid and the slope of log(error) vs log(seconds) between the two finest
+    grids (median over the scenes; coarser grids are dominated by fixed costs)."""
+    live = [r for r in rows if not r["exact"] and len(r["errors"]) >= 2 and min(r["cost_s"][-2:]) > 0]
+    slopes = [math.log(r["errors"][-1] / r["errors"][-2]) / math.log(r["cost_s"][-1] / r["cost_s"][-2])
+              for r in live if r["errors"][-1] > 0 and r["cost_s"][-1] != r["cost_s"][-2]]
+    secs = [r["cost_s"][-1] for r in rows if r["cost_s"]]
+    p = float(np.median(slopes)) if slopes else float("nan")
+    t = float(np.median(secs)) if secs else float("nan")
+    trend = (f"error ~ cost^{p:.2f} between the two finest grids" if t >= 0.01 else
+             "no error-cost slope: solves under 10 ms are timed by their fixed costs")
+    return check("cost vs error", "info", f"{t:.3g} s per solve at the finest grid (median); {trend}", seconds=t, slope=p)
 
 
 def mirrored(a, b) -> float:
