@@ -260,7 +260,7 @@ def verify_cmd(
     option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
     out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
     full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
-    order: Optional[float] = typer.Option(None, "--order", help="expected order of convergence (default: the model's, else 2)"),
+    order: Optional[float] = typer.Option(None, "--order", help="expected order (default: the model's, else 2)"),
     workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),

@@ -59,10 +59,20 @@ def _option(path: Path, name: str, spec) -> Option:
         raise InputError(f"{where}: give a table with type (int, float, str or bool) and default")
     extra = set(spec) - {"type", "default", "help", "choices", "minimum", "maximum"}
     if extra:
-        raise InputError(f"{where}: unknown key {sorted(extra)[0]!r}; allowed: type, default, help, choices, minimum, maximum")
+        raise InputError(
+            f"{where}: unknown key {sorted(extra)[0]!r}; allowed: type, default, help, choices, minimum, maximum"
+        )
     choices = spec.get("choices")
-    return Option(name, KINDS[spec["type"]], spec["default"], spec.get("help", ""),
-                  tuple(choices) if choices else None, spec.get("minimum"), False, spec.get("maximum"))
+    return Option(
+        name,
+        KINDS[spec["type"]],
+        spec["default"],
+        spec.get("help", ""),
+        tuple(choices) if choices else None,
+        spec.get("minimum"),
+        False,
+        spec.get("maximum"),
+    )
 
 
 def load_manifest(path: str | Path) -> "ExternalModel":
@@ -76,25 +86,46 @@ def load_manifest(path: str | Path) -> "ExternalModel":
     if not isinstance(name, str) or not name or any(c.isspace() for c in name):
         raise InputError(f"{path}: name = {name!r}: give the model a name without spaces")
     if not isinstance(command, list) or not command or not all(isinstance(c, str) for c in command):
-        raise InputError(f"{path}: command = {command!r}: give a list of strings, e.g. [\"{{python}}\", \"model.py\"]")
+        raise InputError(f'{path}: command = {command!r}: give a list of strings, e.g. ["{{python}}", "model.py"]')
     timeout = data.get("timeout", 60)
     if not isinstance(timeout, (int, float)) or isinstance(timeout, bool) or not timeout > 0:
         raise InputError(f"{path}: timeout = {timeout!r}: give a positive number of seconds")
     caps = data.get("capabilities", {})
     for key, value in caps.items():
         if key not in CAPABILITIES or not isinstance(value, CAPABILITIES[key]):
-            raise InputError(f"{path}: capabilities.{key} = {value!r}: allowed: "
-                             + ", ".join(f"{k} ({t.__name__})" for k, t in CAPABILITIES.items()))
-    options = tuple(_option(path, k, v) for k, v in data.get("options", {"points": {"type": "int", "default": 101}}).items())
-    return ExternalModel(path, name, data.get("title", f"external command {command[0]}"), data.get("source", str(path)),
-                         list(command), float(timeout), options, caps)
+            raise InputError(
+                f"{path}: capabilities.{key} = {value!r}: allowed: "
+                + ", ".join(f"{k} ({t.__name__})" for k, t in CAPABILITIES.items())
+            )
+    options = tuple(
+        _option(path, k, v) for k, v in data.get("options", {"points": {"type": "int", "default": 101}}).items()
+    )
+    return ExternalModel(
+        path,
+        name,
+        data.get("title", f"external command {command[0]}"),
+        data.get("source", str(path)),
+        list(command),
+        float(timeout),
+        options,
+        caps,
+    )
 
 
 class ExternalModel(Model):
     """A model whose solve runs the manifest's command (see the module docstring for the protocol)."""
 
-    def __init__(self, path: Path, name: str, title: str, source: str, command: list[str], timeout: float,
-                 options: tuple, capabilities: dict):
+    def __init__(
+        self,
+        path: Path,
+        name: str,
+        title: str,
+        source: str,
+        command: list[str],
+        timeout: float,
+        options: tuple,
+        capabilities: dict,
+    ):
         self.path, self.name, self.title, self.source = path, name, title, source
         self.command, self.timeout, self.options = command, timeout, options
         for key, value in capabilities.items():
@@ -108,7 +139,12 @@ class ExternalModel(Model):
         payload = json.dumps({"model": self.name, "scene": scene.to_dict(), "options": params})
         with tempfile.TemporaryDirectory(prefix="pdverify-external-") as tmp:
             inp, outp = Path(tmp) / "input.json", Path(tmp) / "result.json"
-            subst = {"{input}": str(inp), "{output}": str(outp), "{python}": sys.executable, "{dir}": str(self.path.parent)}
+            subst = {
+                "{input}": str(inp),
+                "{output}": str(outp),
+                "{python}": sys.executable,
+                "{dir}": str(self.path.parent),
+            }
             argv = [subst.get(a, a) for a in self.command]
             via_file = "{input}" in self.command
             if via_file:
@@ -129,8 +165,15 @@ class ExternalModel(Model):
 def _run(argv: list[str], stdin: str | None, cwd: Path, timeout: float, case: str) -> tuple[str, str, int]:
     """Run the command in its own process group (a timeout kills its children too)."""
     try:
-        proc = subprocess.Popen(argv, cwd=cwd, stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                text=True, start_new_session=True)
+        proc = subprocess.Popen(
+            argv,
+            cwd=cwd,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            start_new_session=True,
+        )
     except OSError as exc:
         raise SolveError(f"{case}: cannot start {argv[0]!r}: {exc.strerror or exc}") from None
     try:
@@ -150,7 +193,9 @@ def _array(case: str, data: dict, key: str, n: int | None) -> np.ndarray:
     if a.ndim != 1 or (n is not None and len(a) != n):
         raise SolveError(f"{case}: result {key} has {a.size} values, x has {n}; give one value per point")
     if not np.isfinite(a).all():
-        raise SolveError(f"{case}: result {key} holds NaN or infinite values (first at index {int(np.argmin(np.isfinite(a)))})")
+        raise SolveError(
+            f"{case}: result {key} holds NaN or infinite values (first at index {int(np.argmin(np.isfinite(a)))})"
+        )
     return a
 
 
@@ -173,11 +218,23 @@ def _result(case: str, text: str, scene: Scene, name: str, params: dict, wall: f
         raise SolveError(f"{case}: result fields must be an object {{name: list}}")
     fields = {k: _array(case, fields, k, len(x)) for k in fields}
     timings = data.get("timings") or {}
-    if not isinstance(timings, dict) or not all(isinstance(v, (int, float)) and math.isfinite(v) for v in timings.values()):
+    if not isinstance(timings, dict) or not all(
+        isinstance(v, (int, float)) and math.isfinite(v) for v in timings.values()
+    ):
         raise SolveError(f"{case}: result timings must be an object of seconds")
     timings = {k: float(v) for k, v in timings.items()}
     timings.setdefault("command_s", wall)
     info = data.get("info") if isinstance(data.get("info"), dict) else {}
     dofs = data.get("dofs", len(x))
-    return Result(scene.name, name, dict(params), x, w, rot, fields, int(dofs) if isinstance(dofs, (int, float)) else len(x),
-                  timings, info)
+    return Result(
+        scene.name,
+        name,
+        dict(params),
+        x,
+        w,
+        rot,
+        fields,
+        int(dofs) if isinstance(dofs, (int, float)) else len(x),
+        timings,
+        info,
+    )

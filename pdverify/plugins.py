@@ -41,7 +41,9 @@ def _as_models(obj, where: str) -> list:
         if isinstance(item, type) and issubclass(item, Model):
             item = item()
         if not isinstance(item, Model):
-            raise TypeError(f"{where} is {type(item).__name__}, not a pdverify.registry.Model instance, subclass or list")
+            raise TypeError(
+                f"{where} is {type(item).__name__}, not a pdverify.registry.Model instance, subclass or list"
+            )
         if not isinstance(item.name, str) or not item.name:
             raise TypeError(f"{where}: a model without a name")
         out.append(item)
@@ -64,7 +66,11 @@ def entry_point_models(taken: dict) -> dict:
         try:
             loaded = _as_models(ep.load(), where)
         except Exception as exc:  # noqa: BLE001 - any failure of a third-party import is one line, not a crash
-            msg = str(exc) if isinstance(exc, TypeError) and str(exc).startswith(where) else f"{where}: {type(exc).__name__}: {exc}"
+            msg = (
+                str(exc)
+                if isinstance(exc, TypeError) and str(exc).startswith(where)
+                else f"{where}: {type(exc).__name__}: {exc}"
+            )
             warn(f"{msg}; skipped")
             continue
         for m in loaded:

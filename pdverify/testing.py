@@ -73,7 +73,11 @@ def convergence_table(model, scene, grids=(21, 41, 81, 161), reference=None, **o
         e = errors(r.w, _reference_w(ref, sc, np.asarray(r.x), {}))["err_max"]
         h = float(np.diff(r.x).max())
         prev = rows[-1] if rows else None
-        order = (np.log(prev["error"] / e) / np.log(prev["spacing"] / h)) if prev and e > 0 and prev["error"] > 0 else np.nan
+        order = (
+            (np.log(prev["error"] / e) / np.log(prev["spacing"] / h))
+            if prev and e > 0 and prev["error"] > 0
+            else np.nan
+        )
         rows.append({"points": n, "spacing": h, "error": e, "order": float(order)})
     return rows
 
@@ -86,8 +90,9 @@ def format_table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
-def assert_converges(model, scene, order: float = 2.0, grids=(21, 41, 81, 161), tol: float = 0.1, reference=None,
-                     **options) -> list[dict]:
+def assert_converges(
+    model, scene, order: float = 2.0, grids=(21, 41, 81, 161), tol: float = 0.1, reference=None, **options
+) -> list[dict]:
     """Assert that the order fitted over ``grids`` (least squares, pdverify.study.metrics.observed_order) is
     ``order`` within ``tol``. ``reference``: a model (name or Model), a function x -> w, or None for the
     exact solution of the model's theory. Returns the table."""
@@ -95,9 +100,15 @@ def assert_converges(model, scene, order: float = 2.0, grids=(21, 41, 81, 161), 
     rows = convergence_table(m, sc, grids, reference, **options)
     fitted = observed_order([r["spacing"] for r in rows], [r["error"] for r in rows])[0]
     if not abs(fitted - order) <= tol:
-        ref = "the exact solution" if reference is None else getattr(reference, "name", getattr(reference, "__name__", reference))
-        raise AssertionError(f"{m.name} on {sc.name!r} against {ref}: fitted order {fitted:.2f}, expected {order:g} "
-                             f"± {tol:g}\n{format_table(rows)}")
+        ref = (
+            "the exact solution"
+            if reference is None
+            else getattr(reference, "name", getattr(reference, "__name__", reference))
+        )
+        raise AssertionError(
+            f"{m.name} on {sc.name!r} against {ref}: fitted order {fitted:.2f}, expected {order:g} "
+            f"± {tol:g}\n{format_table(rows)}"
+        )
     return rows
 
 
@@ -117,6 +128,8 @@ def assert_matches(model, reference, scene, rtol: float = 1e-3, **options) -> fl
         lines = [f"{'x':>10} {'w':>12} {'w_ref':>12} {'|diff|/max|w_ref|':>18}"]
         lines += [f"{x[i]:>10.4g} {r.w[i]:>12.5e} {w_ref[i]:>12.5e} {rel[i]:>18.3e}" for i in worst]
         name = getattr(ref, "name", getattr(ref, "__name__", "the reference"))
-        raise AssertionError(f"{m.name} on {sc.name!r} against {name}: error {e:.3e} > rtol {rtol:g} "
-                             f"({len(x)} points)\n" + "\n".join(lines))
+        raise AssertionError(
+            f"{m.name} on {sc.name!r} against {name}: error {e:.3e} > rtol {rtol:g} "
+            f"({len(x)} points)\n" + "\n".join(lines)
+        )
     return e

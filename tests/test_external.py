@@ -21,7 +21,7 @@ SCENE = ROOT / "studies" / "examples" / "cantilever_tip_load.toml"
 
 # A script that answers with the cantilever's exact tip-load deflection w = P x^2 (3L - x) / (6 EI)
 # (Timoshenko & Gere), or fails as its `mode` option says.
-SCRIPT = textwrap.dedent('''
+SCRIPT = textwrap.dedent("""
     import json, sys, time
     job = json.load(open(sys.argv[1])) if len(sys.argv) > 1 else json.load(sys.stdin)
     mode, n = job["options"]["mode"], job["options"]["points"]
@@ -47,12 +47,12 @@ SCRIPT = textwrap.dedent('''
         open(sys.argv[2], "w").write(out)
     else:
         print(out)
-''')
+""")
 
 MODES = ["ok", "crash", "garbage", "hang", "nan", "short"]
 
 
-def manifest(tmp_path, name="ext-tip", command=('{python}', 'model.py'), timeout=2.0):
+def manifest(tmp_path, name="ext-tip", command=("{python}", "model.py"), timeout=2.0):
     (tmp_path / "model.py").write_text(SCRIPT)
     cmd = ", ".join(json.dumps(c) for c in command)
     text = f'''name = "{name}"\ncommand = [{cmd}]\ntimeout = {timeout}\n[capabilities]\ntheory = "euler-bernoulli"
@@ -74,13 +74,16 @@ def test_external_model_matches_the_exact_solution(tmp_path, command):
     assert res.timings["solve_s"] == 0.001 and res.timings["command_s"] > 0
 
 
-@pytest.mark.parametrize("mode, words", [
-    ("crash", "exited with status 3: ZeroDivisionError: boom in my solver"),
-    ("garbage", "the result is not JSON (starts 'hello, I am not JSON')"),
-    ("hang", "no result after the timeout of 1 s"),
-    ("nan", "result w holds NaN or infinite values (first at index 2)"),
-    ("short", "result w has 20 values, x has 21"),
-])
+@pytest.mark.parametrize(
+    "mode, words",
+    [
+        ("crash", "exited with status 3: ZeroDivisionError: boom in my solver"),
+        ("garbage", "the result is not JSON (starts 'hello, I am not JSON')"),
+        ("hang", "no result after the timeout of 1 s"),
+        ("nan", "result w holds NaN or infinite values (first at index 2)"),
+        ("short", "result w has 20 values, x has 21"),
+    ],
+)
 def test_each_failure_is_one_line_naming_model_and_case(tmp_path, mode, words):
     model = load_manifest(manifest(tmp_path, timeout=1))
     with pytest.raises(SolveError) as exc:
@@ -101,7 +104,8 @@ def test_cli_solve_with_a_manifest_path(tmp_path):
     assert bad.returncode == 3 and bad.stdout == ""
     assert bad.stderr.splitlines() == [
         "error: model ext-tip on scene 'cantilever, tip load' (points=11, mode=garbage): "
-        "the result is not JSON (starts 'hello, I am not JSON')"]
+        "the result is not JSON (starts 'hello, I am not JSON')"
+    ]
 
 
 def test_bad_manifest_is_one_line(tmp_path):
@@ -116,7 +120,8 @@ def test_study_goes_on_past_every_failure(tmp_path):
     """A study naming the manifest: the good case is measured, each failure is a row, nothing is lost."""
     manifest(tmp_path, timeout=1)
     (tmp_path / "scene.toml").write_text(SCENE.read_text())
-    (tmp_path / "study.toml").write_text(textwrap.dedent(f'''
+    (tmp_path / "study.toml").write_text(
+        textwrap.dedent(f"""
         name = "external"
         scenes = ["scene.toml"]
         external = ["ext-tip.toml"]
@@ -125,16 +130,39 @@ def test_study_goes_on_past_every_failure(tmp_path):
         model = "ext-tip"
         points = 21
         mode = {json.dumps(MODES)}
-    '''))
+    """)
+    )
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     env.pop("PDVERIFY_MODELS_PATH", None)
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "study", str(tmp_path / "study.toml"), "--out", str(out),
-                        "--quiet", "--workers", "2"], capture_output=True, text=True, env=env, timeout=300)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "study",
+            str(tmp_path / "study.toml"),
+            "--out",
+            str(out),
+            "--quiet",
+            "--workers",
+            "2",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=300,
+    )
     assert r.returncode == 0, r.stderr
     df = pd.read_csv(out / "results.csv")
     assert len(df) == len(MODES)
-    by_mode = dict(zip(df["options"].map(lambda o: json.loads(o)["mode"]), zip(df["status"], df["message"].fillna(""))))
+    by_mode = dict(
+        zip(
+            df["options"].map(lambda o: json.loads(o)["mode"]),
+            zip(df["status"], df["message"].fillna(""), strict=True),
+            strict=True,
+        )
+    )
     assert by_mode["ok"][0] == "ok"
     assert df.loc[df["status"] == "ok", "err_max"].iloc[0] < 1e-12  # the exact formula, round-off apart
     for mode in MODES[1:]:

@@ -23,32 +23,42 @@ def site(tmp_path_factory):
     """A site folder holding the example plug-in fd_beam, a module of bad entries and their dist-info."""
     site = tmp_path_factory.mktemp("site")
     shutil.copytree(ROOT / "examples" / "plugin_model" / "src" / "fd_beam", site / "fd_beam")
-    (site / "bad_plugins.py").write_text(textwrap.dedent('''
+    (site / "bad_plugins.py").write_text(
+        textwrap.dedent("""
         from pdverify.registry import Model
 
         class Clash(Model):
             name = "exact-eb"
 
         NOT_A_MODEL = 42
-    '''))
+    """)
+    )
     info = site / "pdverify_fd_beam-0.1.0.dist-info"
     info.mkdir()
     (info / "METADATA").write_text("Metadata-Version: 2.1\nName: pdverify-fd-beam\nVersion: 0.1.0\n")
-    (info / "entry_points.txt").write_text(textwrap.dedent('''
+    (info / "entry_points.txt").write_text(
+        textwrap.dedent("""
         [pdverify.models]
         fd-eb = fd_beam:FDBeam
         broken = no_such_module:Model
         wrong = bad_plugins:NOT_A_MODEL
         clash = bad_plugins:Clash
-    '''))
+    """)
+    )
     return site
 
 
 def cli(site, *args, timeout=300):
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(site), str(ROOT)])}
     env.pop("PDVERIFY_MODELS_PATH", None)
-    return subprocess.run([sys.executable, "-m", "pdverify.cli", *args], capture_output=True, text=True, env=env,
-                          timeout=timeout, cwd=site)
+    return subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=timeout,
+        cwd=site,
+    )
 
 
 def test_models_lists_the_plugin_and_warns_once_per_broken_entry_point(site):
@@ -69,8 +79,10 @@ def test_solve_converges_at_order_2(site):
         r = cli(site, "solve", str(SCENE), "--model", "fd-eb", "--points", str(n), "--format", "json")
         assert r.returncode == 0, r.stderr
         res = json.loads(r.stdout)
-        x, w = np.array(res["x"]), np.array(res["w"])
-        ref = json.loads(cli(site, "solve", str(SCENE), "--model", "exact-eb", "--points", str(n), "--format", "json").stdout)
+        w = np.array(res["w"])
+        ref = json.loads(
+            cli(site, "solve", str(SCENE), "--model", "exact-eb", "--points", str(n), "--format", "json").stdout
+        )
         errs.append(np.abs(w - np.array(ref["w"])).max() / np.abs(ref["w"]).max())
     assert abs(np.log2(errs[0] / errs[1]) - 2) < 0.05  # central differences: second order
 
@@ -78,14 +90,16 @@ def test_solve_converges_at_order_2(site):
 @pytest.mark.slow
 def test_study_and_verify_run_the_plugin(site, tmp_path):
     shutil.copy(SCENE, tmp_path / "scene.toml")
-    (tmp_path / "study.toml").write_text(textwrap.dedent('''
+    (tmp_path / "study.toml").write_text(
+        textwrap.dedent("""
         name = "plug-in"
         scenes = ["scene.toml"]
         reference = "exact-eb"
         [[runs]]
         model = "fd-eb"
         points = [21, 41, 81]
-    '''))
+    """)
+    )
     r = cli(site, "study", str(tmp_path / "study.toml"), "--out", str(tmp_path / "study"), "--quiet", "--workers", "2")
     assert r.returncode == 0, r.stderr
     df = pd.read_csv(tmp_path / "study" / "results.csv").sort_values("points")

@@ -2,10 +2,9 @@
 
 import numpy as np
 import pytest
+from conftest import scene_dict
 
 from pdverify.testing import assert_converges, assert_matches, convergence_table
-
-from conftest import scene_dict
 
 UNIFORM = [{"type": "distributed", "value": -1000.0}]
 
@@ -20,7 +19,7 @@ def test_fem_timoshenko_full_integration_fails_order_2_with_the_table():
     assert msg.startswith("fem-timoshenko on 'test beam' against the exact solution: fitted order")
     lines = msg.splitlines()
     assert lines[1].split() == ["points", "spacing", "error", "order"]
-    for r, line in zip(rows, lines[2:]):  # the table holds each grid's measured error
+    for r, line in zip(rows, lines[2:], strict=True):  # the table holds each grid's measured error
         assert line.split()[:3] == [str(r["points"]), f"{r['spacing']:.3e}", f"{r['error']:.3e}"]
     assert rows[-1]["error"] > 0.1  # locked: far from the answer on every grid
 
@@ -52,5 +51,7 @@ def test_a_function_as_reference():
 
     assert assert_matches("exact-eb", sine_deflection, d, rtol=1e-12, points=11) < 1e-12
     assert_converges("pd-eb", d, order=2, grids=(21, 41, 81), reference=sine_deflection)
-    with pytest.raises(AssertionError, match=r"against sine_deflection: fitted order 1\.9\d, expected 1 ± 0\.1\n +points"):
+    with pytest.raises(
+        AssertionError, match=r"against sine_deflection: fitted order 1\.9\d, expected 1 ± 0\.1\n +points"
+    ):
         assert_converges("pd-eb", d, order=1, grids=(21, 41, 81), reference=sine_deflection)

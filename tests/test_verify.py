@@ -24,7 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def test_suite_scenes_are_valid_toml_and_mirror_is_an_involution():
     p = plan(get_model("pd-curved"))
-    for f, sc in p.scenes.items():
+    for sc in p.scenes.values():
         assert parse_scene(tomllib.loads(toml_text(sc))).to_dict() == parse_scene(sc).to_dict()
     sets = [m["set"] for m in p.meta.values()]
     assert sets.count("convergence") == 5 * len(PAIRS) + sum("free" in pr or "guided" in pr for pr in PAIRS)
@@ -35,8 +35,20 @@ def test_suite_scenes_are_valid_toml_and_mirror_is_an_involution():
 
 
 def _frame(errors_by_points: dict, scene_file="s.toml"):
-    return pd.DataFrame([{"scene_file": scene_file, "points": n, "spacing": 1.0 / (n - 1), "err_max": e,
-                          "total_s": 1e-3 * n, "status": "ok", "message": ""} for n, e in errors_by_points.items()])
+    return pd.DataFrame(
+        [
+            {
+                "scene_file": scene_file,
+                "points": n,
+                "spacing": 1.0 / (n - 1),
+                "err_max": e,
+                "total_s": 1e-3 * n,
+                "status": "ok",
+                "message": "",
+            }
+            for n, e in errors_by_points.items()
+        ]
+    )
 
 
 def test_convergence_judges_the_three_finest_grids():
@@ -61,8 +73,11 @@ def test_floor_fails_when_round_off_grows_above_the_limit():
 
 
 def test_junit_has_a_failure_per_failed_check_and_skips_not_applicable():
-    card = {"model": "m", "wall_s": 1.0, "checks": [C.check("a", "pass", "fine"), C.check("b", "fail", "order 1.0"),
-                                                        C.check("c", "n/a", "no dynamics")]}
+    card = {
+        "model": "m",
+        "wall_s": 1.0,
+        "checks": [C.check("a", "pass", "fine"), C.check("b", "fail", "order 1.0"), C.check("c", "n/a", "no dynamics")],
+    }
     suite = ET.fromstring(junit(card).split("?>", 1)[1])
     assert (suite.get("tests"), suite.get("failures"), suite.get("skipped")) == ("3", "1", "1")
     cases = {c.get("name"): c for c in suite}
@@ -71,12 +86,18 @@ def test_junit_has_a_failure_per_failed_check_and_skips_not_applicable():
 
 def test_verify_a_model_that_solves_no_suite_scene_is_one_line(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "verify", "pd-rod", "--out", str(tmp_path), "--quiet"],
-                       capture_output=True, text=True, env=env, timeout=120)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", "verify", "pd-rod", "--out", str(tmp_path), "--quiet"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
     assert r.returncode == 2 and r.stderr.splitlines() == [
         "error: model pd-rod solves none of the suite's scenes (loads[0].value = -1000.0: model pd-rod carries no "
         "transverse loads (axial only); give the load as loads[i].axial or use a bending model); verify needs a beam "
-        "model that takes straight (or curved) beams with transverse loads"]
+        "model that takes straight (or curved) beams with transverse loads"
+    ]
 
 
 @pytest.mark.slow

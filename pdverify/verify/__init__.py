@@ -20,9 +20,11 @@ from .suite import LOADS, SUITE_VERSION, end_force, mirror, plan, straight, writ
 __all__ = ["verify", "SUITE_VERSION"]
 
 MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
-ASYMMETRIC = {"point force": [{"type": "point_force", "position": 0.25, "value": -1000.0}],
-              "point moment": LOADS["point moment"],
-              "partial": [{"type": "distributed", "value": -1000.0, "start": 0.25, "end": 0.5}]}
+ASYMMETRIC = {
+    "point force": [{"type": "point_force", "position": 0.25, "value": -1000.0}],
+    "point moment": LOADS["point moment"],
+    "partial": [{"type": "distributed", "value": -1000.0, "start": 0.25, "end": 0.5}],
+}
 
 
 def _solve(scene: dict, model, options: dict, points: int):
@@ -40,7 +42,9 @@ def symmetry(model, options: dict, points: int) -> list[tuple[str, float]]:
             sc = straight(left, right, lds, name=f"{left}-{right}, {load}")
             if _declines(model, sc) or _declines(model, mirror(sc)):
                 continue
-            out.append((sc["name"], C.mirrored(_solve(sc, model, options, points), _solve(mirror(sc), model, options, points))))
+            out.append(
+                (sc["name"], C.mirrored(_solve(sc, model, options, points), _solve(mirror(sc), model, options, points)))
+            )
     return out
 
 
@@ -56,8 +60,16 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
     return out
 
 
-def verify(model_name: str, out: Path, options: dict | None = None, full: bool = False, order: float | None = None,
-           workers: int | None = None, scheduler: str | None = None, progress: bool = False) -> dict:
+def verify(
+    model_name: str,
+    out: Path,
+    options: dict | None = None,
+    full: bool = False,
+    order: float | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = False,
+) -> dict:
     """Run the suite on ``model_name`` with ``options``, judge it, write the card into ``out``; the card."""
     from ..study import load_study, run_study
     from .card import write_card
@@ -71,31 +83,63 @@ def verify(model_name: str, out: Path, options: dict | None = None, full: bool =
     declined = {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
     if all(declined.values()):
         first = next(iter(declined.values()))[0]
-        raise InputError(f"model {model.name} solves none of the suite's scenes ({first}); verify needs a beam model "
-                         "that takes straight (or curved) beams with transverse loads")
+        raise InputError(
+            f"model {model.name} solves none of the suite's scenes ({first}); verify needs a beam model "
+            "that takes straight (or curved) beams with transverse loads"
+        )
     study_path = write_study(p, model, options, out / "suite")
     df = run_study(load_study(study_path), out / "study", workers=workers, scheduler=scheduler, progress=progress)
     files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in ("convergence", "locking", "floor", "curved")}
     conv = C.series(df, files["convergence"])
-    found = [C.convergence(conv, expected, "convergence (straight)"), C.accuracy(conv), C.within(conv),
-             C.locking(df, files["locking"], p.meta), C.floor(C.series(df, files["floor"])), C.cost(conv)]
+    found = [
+        C.convergence(conv, expected, "convergence (straight)"),
+        C.accuracy(conv),
+        C.within(conv),
+        C.locking(df, files["locking"], p.meta),
+        C.floor(C.series(df, files["floor"])),
+        C.cost(conv),
+    ]
     if model.bending and model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum"):
         mid = p.grids[min(2, len(p.grids) - 1)]
         found.append(C.identity("symmetry (mirror scenes)", _guarded(symmetry, model, options, mid)))
         found.append(C.identity("superposition (two loads vs their sum)", _guarded(superposition, model, options, mid)))
     curved = C.series(df, files["curved"])
-    found.append(C.convergence(curved, expected, "convergence (curved axes)") if curved else
-                 C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes"))
-    found.append(C.check("dynamics", "n/a", "not in suite " + SUITE_VERSION + " (TODO: dynamic scenes against modal "
-                         "solutions)" + ("" if model.kind == "static" else "; the model declares dynamics")))
+    found.append(
+        C.convergence(curved, expected, "convergence (curved axes)")
+        if curved
+        else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
+    )
+    found.append(
+        C.check(
+            "dynamics",
+            "n/a",
+            "not in suite " + SUITE_VERSION + " (TODO: dynamic scenes against modal "
+            "solutions)" + ("" if model.kind == "static" else "; the model declares dynamics"),
+        )
+    )
     scenes = [{**p.meta[r["scene_file"]], **r} for r in conv + curved]
     skipped = [f"{p.meta[f]['name']}: {why[0]}" for f, why in declined.items() if why]
     verdict = "fail" if any(c["verdict"] == "fail" for c in found) else "pass"
-    card = {"model": model.name, "title": model.title, "options": options, "theory": model.theory,
-            "suite_version": SUITE_VERSION, "pdverify_version": __version__, "reference": p.reference,
-            "curved_reference": p.curved_reference, "grids": list(p.grids), "floor_grids": list(p.floor_grids),
-            "expected_order": expected, "verdict": verdict, "checks": found, "scenes": scenes,
-            "failed_cases": int((df["status"] != "ok").sum()), "skipped": skipped, "cases": len(df), "wall_s": time.perf_counter() - t0}
+    card = {
+        "model": model.name,
+        "title": model.title,
+        "options": options,
+        "theory": model.theory,
+        "suite_version": SUITE_VERSION,
+        "pdverify_version": __version__,
+        "reference": p.reference,
+        "curved_reference": p.curved_reference,
+        "grids": list(p.grids),
+        "floor_grids": list(p.floor_grids),
+        "expected_order": expected,
+        "verdict": verdict,
+        "checks": found,
+        "scenes": scenes,
+        "failed_cases": int((df["status"] != "ok").sum()),
+        "skipped": skipped,
+        "cases": len(df),
+        "wall_s": time.perf_counter() - t0,
+    }
     write_card(card, out)
     return card
 

@@ -23,9 +23,14 @@ def _plain(v):
 
 def junit(card: dict) -> str:
     """One testcase per check: a failure element when it fails, skipped when not applicable."""
-    suite = ET.Element("testsuite", name=f"pdverify.verify.{card['model']}", tests=str(len(card["checks"])),
-                       failures=str(sum(c["verdict"] == "fail" for c in card["checks"])),
-                       skipped=str(sum(c["verdict"] == "n/a" for c in card["checks"])), time=f"{card['wall_s']:.3f}")
+    suite = ET.Element(
+        "testsuite",
+        name=f"pdverify.verify.{card['model']}",
+        tests=str(len(card["checks"])),
+        failures=str(sum(c["verdict"] == "fail" for c in card["checks"])),
+        skipped=str(sum(c["verdict"] == "n/a" for c in card["checks"])),
+        time=f"{card['wall_s']:.3f}",
+    )
     for c in card["checks"]:
         case = ET.SubElement(suite, "testcase", classname=f"pdverify.verify.{card['model']}", name=c["check"])
         if c["verdict"] == "fail":
@@ -44,25 +49,33 @@ def _fmt(v, spec=".2e") -> str:
 def page(card: dict) -> str:
     e = html.escape
     opts = ", ".join(f"{k}={v}" for k, v in card["options"].items()) or "defaults"
-    rows = "".join(f"<tr class='{c['verdict'].replace('/', '')}'><td>{e(c['check'])}</td><td>{c['verdict']}</td>"
-                   f"<td>{e(c['summary'])}</td></tr>" for c in card["checks"])
+    rows = "".join(
+        f"<tr class='{c['verdict'].replace('/', '')}'><td>{e(c['check'])}</td><td>{c['verdict']}</td>"
+        f"<td>{e(c['summary'])}</td></tr>"
+        for c in card["checks"]
+    )
     head = "".join(f"<th>{p}</th>" for p in card["grids"])
     scenes = "".join(
         f"<tr><td>{e(s['name'])}</td><td>{_fmt(s['slenderness'], 'g')}</td>"
-        + "".join(f"<td>{_fmt(dict(zip(s['points'], s['errors'])).get(p))}</td>" for p in card["grids"])
+        + "".join(f"<td>{_fmt(dict(zip(s['points'], s['errors'], strict=True)).get(p))}</td>" for p in card["grids"])
         + f"<td>{' '.join(_fmt(o, '.2f') for o in s['pair_orders'])}</td><td>{_fmt(s['order'], '.2f')}</td>"
-        f"<td>{e('; '.join(s['failed']))}</td></tr>" for s in card["scenes"])
-    skipped = ("<h2>Scenes the model declines</h2><ul>" + "".join(f"<li>{e(x)}</li>" for x in card["skipped"]) + "</ul>"
-               if card.get("skipped") else "")
-    return f"""<!doctype html><html><head><meta charset="utf-8"><title>pdverify verify {e(card['model'])}</title>
+        f"<td>{e('; '.join(s['failed']))}</td></tr>"
+        for s in card["scenes"]
+    )
+    skipped = (
+        "<h2>Scenes the model declines</h2><ul>" + "".join(f"<li>{e(x)}</li>" for x in card["skipped"]) + "</ul>"
+        if card.get("skipped")
+        else ""
+    )
+    return f"""<!doctype html><html><head><meta charset="utf-8"><title>pdverify verify {e(card["model"])}</title>
 <style>body{{font-family:sans-serif;margin:2em}} table{{border-collapse:collapse}} td,th{{border:1px solid #ccc;
 padding:2px 8px;text-align:right}} td:first-child{{text-align:left}} .pass td:nth-child(2){{color:#080}}
 .fail td:nth-child(2){{color:#c00;font-weight:bold}}</style></head><body>
-<h1>{e(card['model'])}: {card['verdict'].upper()}</h1>
-<p>{e(card['title'])} ({e(opts)}); theory {e(card['theory'])}, reference {e(card['reference'])}
-{('and ' + e(card['curved_reference'])) if card['curved_reference'] else ''}. Suite {card['suite_version']},
-pdverify {card['pdverify_version']}; {card['cases']} cases ({card['failed_cases']} failed), {card['wall_s']:.1f} s.
-Expected order {card['expected_order']:g}. Error: max |w - w_exact| / max |w_exact| at the model's points.</p>
+<h1>{e(card["model"])}: {card["verdict"].upper()}</h1>
+<p>{e(card["title"])} ({e(opts)}); theory {e(card["theory"])}, reference {e(card["reference"])}
+{("and " + e(card["curved_reference"])) if card["curved_reference"] else ""}. Suite {card["suite_version"]},
+pdverify {card["pdverify_version"]}; {card["cases"]} cases ({card["failed_cases"]} failed), {card["wall_s"]:.1f} s.
+Expected order {card["expected_order"]:g}. Error: max |w - w_exact| / max |w_exact| at the model's points.</p>
 <h2>Checks</h2><table><tr><th>check</th><th>verdict</th><th>measured</th></tr>{rows}</table>
 <h2>Scenes</h2><table><tr><th>scene</th><th>L/h</th>{head}<th>orders per pair</th><th>fitted</th><th>failures</th></tr>
 {scenes}</table>{skipped}</body></html>
@@ -76,4 +89,6 @@ def write_card(card: dict, out: Path) -> None:
         (out / "card.html").write_text(page(card))
         (out / "junit.xml").write_text(junit(card))
     except OSError as exc:
-        raise OutputError(f"{out}: cannot write the report card ({exc.strerror or exc}); choose another --out") from None
+        raise OutputError(
+            f"{out}: cannot write the report card ({exc.strerror or exc}); choose another --out"
+        ) from None

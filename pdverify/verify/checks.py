@@ -36,17 +36,31 @@ def series(df, files: list[str]) -> list[dict]:
             continue
         ok = rows[rows["status"] == "ok"]
         h, e = ok["spacing"].to_numpy(float), ok["err_max"].to_numpy(float)
-        pair = [math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")
-                for i in range(len(e) - 1)]
+        pair = [
+            math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")
+            for i in range(len(e) - 1)
+        ]
         above = e >= ROUND
         # the three finest grids above round-off level (a coarse grid may be pre-asymptotic)
         fitted = observed_order(h[above][-3:], e[above][-3:])[0] if above.sum() >= 3 else float("nan")
         if above.sum() == 2:
-            fitted = pair[int(np.flatnonzero(above)[0])] if np.flatnonzero(above)[1] - np.flatnonzero(above)[0] == 1 else fitted
-        out.append({"scene_file": f, "points": ok["points"].astype(int).tolist(), "errors": e.tolist(),
-                    "cost_s": ok["total_s"].to_numpy(float).tolist(), "pair_orders": pair, "order": fitted,
-                    "exact": bool(len(e) and above.sum() < 2 and np.nanmax(e) < ROUND),
-                    "failed": [f"{int(r.points)} points: {r.message}" for r in rows[rows["status"] != "ok"].itertuples()]})
+            fitted = (
+                pair[int(np.flatnonzero(above)[0])]
+                if np.flatnonzero(above)[1] - np.flatnonzero(above)[0] == 1
+                else fitted
+            )
+        out.append(
+            {
+                "scene_file": f,
+                "points": ok["points"].astype(int).tolist(),
+                "errors": e.tolist(),
+                "cost_s": ok["total_s"].to_numpy(float).tolist(),
+                "pair_orders": pair,
+                "order": fitted,
+                "exact": bool(len(e) and above.sum() < 2 and np.nanmax(e) < ROUND),
+                "failed": [f"{int(r.points)} points: {r.message}" for r in rows[rows["status"] != "ok"].itertuples()],
+            }
+        )
     return out
 
 
@@ -58,18 +72,27 @@ def convergence(rows: list[dict], expected: float, label: str) -> dict:
     bad = [r for r in rows if r["failed"] or not (r["exact"] or r["order"] >= expected - ORDER_SLACK)]
     worst = min((r["order"] for r in rows if not r["exact"] and not math.isnan(r["order"])), default=float("nan"))
     verdict = "pass" if not bad else "fail"
-    text = (f"fitted order >= {expected - ORDER_SLACK:g} on every scene (lowest {worst:.2f})" if verdict == "pass" else
-            f"{len(bad)} of {len(rows)} scenes below order {expected - ORDER_SLACK:g} or failed (lowest {worst:.2f})")
-    return check(label, verdict, text, expected_order=expected, lowest_order=worst,
-                 failing=[r["scene_file"] for r in bad])
+    text = (
+        f"fitted order >= {expected - ORDER_SLACK:g} on every scene (lowest {worst:.2f})"
+        if verdict == "pass"
+        else f"{len(bad)} of {len(rows)} scenes below order {expected - ORDER_SLACK:g} or failed (lowest {worst:.2f})"
+    )
+    return check(
+        label, verdict, text, expected_order=expected, lowest_order=worst, failing=[r["scene_file"] for r in bad]
+    )
 
 
 def accuracy(rows: list[dict]) -> dict:
     finest = [r["errors"][-1] if r["errors"] else float("inf") for r in rows]
     worst = max(finest)
-    bad = [r["scene_file"] for r, e in zip(rows, finest) if not e <= ACCURACY]
-    return check("error at the finest grid", "pass" if not bad else "fail",
-                 f"largest error at the finest grid {worst:.2e} (limit {ACCURACY:g})", largest=worst, failing=bad)
+    bad = [r["scene_file"] for r, e in zip(rows, finest, strict=True) if not e <= ACCURACY]
+    return check(
+        "error at the finest grid",
+        "pass" if not bad else "fail",
+        f"largest error at the finest grid {worst:.2e} (limit {ACCURACY:g})",
+        largest=worst,
+        failing=bad,
+    )
 
 
 def within(rows: list[dict]) -> dict:
@@ -78,10 +101,12 @@ def within(rows: list[dict]) -> dict:
     for tol in (1e-2, 1e-3):
         need = []
         for r in rows:
-            hit = [p for p, e in zip(r["points"], r["errors"]) if e <= tol]
-            need.append(hit[0] if hit and all(e <= tol for e in r["errors"][r["points"].index(hit[0]):]) else None)
+            hit = [p for p, e in zip(r["points"], r["errors"], strict=True) if e <= tol]
+            need.append(hit[0] if hit and all(e <= tol for e in r["errors"][r["points"].index(hit[0]) :]) else None)
         out[f"{tol:g}"] = max(need) if need and None not in need else None
-    text = ", ".join(f"within {float(k) * 100:g} %: " + (f"{v} points" if v else "not on these grids") for k, v in out.items())
+    text = ", ".join(
+        f"within {float(k) * 100:g} %: " + (f"{v} points" if v else "not on these grids") for k, v in out.items()
+    )
     return check("grids within 1 % and 0.1 %", "info", text, points=out)
 
 
@@ -99,17 +124,29 @@ def locking(df, files: list[str], meta: dict) -> dict:
             s = [meta[f]["slenderness"] for f in g["scene_file"]]
             e = g["err_max"].to_numpy(float)
             slope = 0.0 if np.nanmax(e) < EXACT else locking_slope(s, e)[0]
-            slopes.append({"pair": pair, "points": int(points), "slope": slope,
-                           "errors": dict(zip(map(float, s), e.tolist()))})
+            slopes.append(
+                {
+                    "pair": pair,
+                    "points": int(points),
+                    "slope": slope,
+                    "errors": dict(zip(map(float, s), e.tolist(), strict=True)),
+                }
+            )
         if slopes and slopes[-1]["pair"] == pair:
             errs = slopes[-1]["errors"]
             slender, base = errs.get(max(errs), float("nan")), errs.get(20.0, min(errs.values()))
             if not slender <= max(LOCKING_GROWTH * base, LOCKING_ERROR):
-                bad.append(f"{pair}: {slender:.1e} at L/h = {max(errs):g} vs {base:.1e} at 20 ({slopes[-1]['points']} points)")
+                bad.append(
+                    f"{pair}: {slender:.1e} at L/h = {max(errs):g} vs {base:.1e} at 20 ({slopes[-1]['points']} points)"
+                )
     finest = [s for s in slopes if s["points"] == max((t["points"] for t in slopes), default=0)]
     text = "; ".join(f"{s['pair']}: slope {s['slope']:.2f}, {max(s['errors'].values()):.1e} at most" for s in finest)
-    return check("locking (error vs slenderness 5 ... 10000)", "pass" if slopes and not bad else "fail",
-                 (text + " at the finest grid") if not bad else "locks: " + "; ".join(bad), slopes=slopes)
+    return check(
+        "locking (error vs slenderness 5 ... 10000)",
+        "pass" if slopes and not bad else "fail",
+        (text + " at the finest grid") if not bad else "locks: " + "; ".join(bad),
+        slopes=slopes,
+    )
 
 
 def floor(rows: list[dict]) -> dict:
@@ -123,24 +160,37 @@ def floor(rows: list[dict]) -> dict:
     growth = log_slope(n[i:], e[i:])[0] if len(e) - i >= 2 else float("nan")
     ok = e[-1] <= max(ROUND_OFF * e[i], FLOOR, EXACT)
     rise = f"; rises ~N^{growth:.1f} beyond {int(n[i])} points" if not math.isnan(growth) else ""
-    return check("accuracy floor (round-off)", "pass" if ok else "fail",
-                 f"error {e[-1]:.2e} at {int(n[-1])} points, smallest {e[i]:.2e} at {int(n[i])}{rise}"
-                 + ("" if ok else f": above {FLOOR:g} from round-off"), floor=float(e[i]), finest=float(e[-1]),
-                 growth=growth)
+    return check(
+        "accuracy floor (round-off)",
+        "pass" if ok else "fail",
+        f"error {e[-1]:.2e} at {int(n[-1])} points, smallest {e[i]:.2e} at {int(n[i])}{rise}"
+        + ("" if ok else f": above {FLOOR:g} from round-off"),
+        floor=float(e[i]),
+        finest=float(e[-1]),
+        growth=growth,
+    )
 
 
 def cost(rows: list[dict]) -> dict:
     """Seconds per solve at the finest grid and the slope of log(error) vs log(seconds) between the two finest
     grids (median over the scenes; coarser grids are dominated by fixed costs)."""
     live = [r for r in rows if not r["exact"] and len(r["errors"]) >= 2 and min(r["cost_s"][-2:]) > 0]
-    slopes = [math.log(r["errors"][-1] / r["errors"][-2]) / math.log(r["cost_s"][-1] / r["cost_s"][-2])
-              for r in live if r["errors"][-1] > 0 and r["cost_s"][-1] != r["cost_s"][-2]]
+    slopes = [
+        math.log(r["errors"][-1] / r["errors"][-2]) / math.log(r["cost_s"][-1] / r["cost_s"][-2])
+        for r in live
+        if r["errors"][-1] > 0 and r["cost_s"][-1] != r["cost_s"][-2]
+    ]
     secs = [r["cost_s"][-1] for r in rows if r["cost_s"]]
     p = float(np.median(slopes)) if slopes else float("nan")
     t = float(np.median(secs)) if secs else float("nan")
-    trend = (f"error ~ cost^{p:.2f} between the two finest grids" if t >= 0.01 else
-             "no error-cost slope: solves under 10 ms are timed by their fixed costs")
-    return check("cost vs error", "info", f"{t:.3g} s per solve at the finest grid (median); {trend}", seconds=t, slope=p)
+    trend = (
+        f"error ~ cost^{p:.2f} between the two finest grids"
+        if t >= 0.01
+        else "no error-cost slope: solves under 10 ms are timed by their fixed costs"
+    )
+    return check(
+        "cost vs error", "info", f"{t:.3g} s per solve at the finest grid (median); {trend}", seconds=t, slope=p
+    )
 
 
 def mirrored(a, b) -> float:
@@ -154,8 +204,12 @@ def identity(name: str, diffs: list[tuple[str, float]]) -> dict:
     if not diffs:
         return check(name, "n/a", "no scene")
     worst = max(d for _, d in diffs)
-    return check(name, "pass" if worst <= IDENTITY else "fail",
-                 f"largest relative difference {worst:.1e} (limit {IDENTITY:g})", cases=dict(diffs))
+    return check(
+        name,
+        "pass" if worst <= IDENTITY else "fail",
+        f"largest relative difference {worst:.1e} (limit {IDENTITY:g})",
+        cases=dict(diffs),
+    )
 
 
 def superposition_diff(a, b, ab) -> float:

@@ -30,9 +30,14 @@ PAIRS = [(left, right) for left in SUPPORTS for right in SUPPORTS if not is_mech
 
 def straight(left: str, right: str, loads: list[dict], slenderness: float = SLENDERNESS, name: str = "") -> dict:
     """A straight scene of the suite (length 1 m, width 50 mm, height = length / slenderness)."""
-    return {"name": name or f"{left}-{right}", "beam": {"length": LENGTH},
-            "section": {"width": WIDTH, "height": LENGTH / slenderness}, "material": dict(MATERIAL),
-            "supports": {"left": left, "right": right}, "loads": loads}
+    return {
+        "name": name or f"{left}-{right}",
+        "beam": {"length": LENGTH},
+        "section": {"width": WIDTH, "height": LENGTH / slenderness},
+        "material": dict(MATERIAL),
+        "supports": {"left": left, "right": right},
+        "loads": loads,
+    }
 
 
 LOADS = {
@@ -65,8 +70,12 @@ def mirror(scene: dict) -> dict:
         if ld["type"] == "distributed" and ("start" in ld or "end" in ld):
             ld["start"], ld["end"] = L - ld.get("end", L), L - ld.get("start", 0.0)
         loads.append(ld)
-    return {**scene, "name": scene["name"] + " (mirror)", "loads": loads,
-            "supports": {"left": scene["supports"]["right"], "right": scene["supports"]["left"]}}
+    return {
+        **scene,
+        "name": scene["name"] + " (mirror)",
+        "loads": loads,
+        "supports": {"left": scene["supports"]["right"], "right": scene["supports"]["left"]},
+    }
 
 
 def curved_scenes() -> list[dict]:
@@ -75,13 +84,26 @@ def curved_scenes() -> list[dict]:
     arc = {"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0}
     base = {"beam": {"length": half_pi}, "section": sec, "material": dict(MATERIAL), "axis": arc}
     return [
-        {**base, "name": "quarter circle, clamped-free, tip force", "supports": {"left": "clamped", "right": "free"},
-         "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}]},
-        {**base, "name": "quarter circle, clamped-pinned, uniform", "supports": {"left": "clamped", "right": "pinned"},
-         "loads": [{"type": "distributed", "value": -1000.0}]},
-        {**base, "name": "semicircle, pinned-pinned, force at the crown", "beam": {"length": 2 * half_pi},
-         "axis": {**arc, "opening_angle_deg": 180.0}, "supports": {"left": "pinned", "right": "pinned"},
-         "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}]},
+        {
+            **base,
+            "name": "quarter circle, clamped-free, tip force",
+            "supports": {"left": "clamped", "right": "free"},
+            "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}],
+        },
+        {
+            **base,
+            "name": "quarter circle, clamped-pinned, uniform",
+            "supports": {"left": "clamped", "right": "pinned"},
+            "loads": [{"type": "distributed", "value": -1000.0}],
+        },
+        {
+            **base,
+            "name": "semicircle, pinned-pinned, force at the crown",
+            "beam": {"length": 2 * half_pi},
+            "axis": {**arc, "opening_angle_deg": 180.0},
+            "supports": {"left": "pinned", "right": "pinned"},
+            "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}],
+        },
     ]
 
 
@@ -115,20 +137,46 @@ def plan(model, full: bool = False) -> Plan:
         if end_force(left, right):
             cases["end force"] = end_force(left, right)
         for load, lds in cases.items():
-            add("convergence", straight(left, right, lds, name=f"{left}-{right}, {load}"), pair=f"{left}-{right}", load=load,
-                slenderness=SLENDERNESS)
+            add(
+                "convergence",
+                straight(left, right, lds, name=f"{left}-{right}, {load}"),
+                pair=f"{left}-{right}",
+                load=load,
+                slenderness=SLENDERNESS,
+            )
     for left, right in (("clamped", "free"), ("clamped", "clamped")):
         for s in LOCKING_SLENDERNESS:
-            add("locking", straight(left, right, LOADS["uniform"], s, f"{left}-{right}, uniform, L/h = {s:g}"),
-                pair=f"{left}-{right}", load="uniform", slenderness=s)
-    add("floor", straight("clamped", "free", LOADS["uniform"], name="clamped-free, uniform (fine grids)"),
-        pair="clamped-free", load="uniform", slenderness=SLENDERNESS)
+            add(
+                "locking",
+                straight(left, right, LOADS["uniform"], s, f"{left}-{right}, uniform, L/h = {s:g}"),
+                pair=f"{left}-{right}",
+                load="uniform",
+                slenderness=s,
+            )
+    add(
+        "floor",
+        straight("clamped", "free", LOADS["uniform"], name="clamped-free, uniform (fine grids)"),
+        pair="clamped-free",
+        load="uniform",
+        slenderness=SLENDERNESS,
+    )
     if model.curved:
         for sc in curved_scenes():
-            add("curved", sc, pair=f"{sc['supports']['left']}-{sc['supports']['right']}", load=sc["loads"][0]["type"],
-                slenderness=sc["beam"]["length"] / sc["section"]["height"])
-    return Plan(scenes, meta, FULL_GRIDS if full else GRIDS, FULL_FLOOR_GRIDS if full else FLOOR_GRIDS,
-                reference_for(model.theory), "exact-curved" if model.curved else None)
+            add(
+                "curved",
+                sc,
+                pair=f"{sc['supports']['left']}-{sc['supports']['right']}",
+                load=sc["loads"][0]["type"],
+                slenderness=sc["beam"]["length"] / sc["section"]["height"],
+            )
+    return Plan(
+        scenes,
+        meta,
+        FULL_GRIDS if full else GRIDS,
+        FULL_FLOOR_GRIDS if full else FLOOR_GRIDS,
+        reference_for(model.theory),
+        "exact-curved" if model.curved else None,
+    )
 
 
 def toml_value(v) -> str:
@@ -145,8 +193,11 @@ def toml_value(v) -> str:
 
 def toml_text(data: dict) -> str:
     """A scene or study table as TOML (scalars, tables of scalars, arrays of tables of scalars)."""
-    lines = [f"{k} = {toml_value(v)}" for k, v in data.items() if not isinstance(v, dict)
-             and not (isinstance(v, list) and v and isinstance(v[0], dict))]
+    lines = [
+        f"{k} = {toml_value(v)}"
+        for k, v in data.items()
+        if not isinstance(v, dict) and not (isinstance(v, list) and v and isinstance(v[0], dict))
+    ]
     for k, v in data.items():
         if isinstance(v, dict):
             lines += ["", f"[{k}]"] + [f"{kk} = {toml_value(vv)}" for kk, vv in v.items()]
@@ -165,12 +216,18 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
         (folder / f).write_text(toml_text(scene))
     files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets]  # noqa: E731
     run = {"model": model.name, **{k: v for k, v in options.items()}}
-    runs = [{**run, "points": list(p.grids), "scenes": files("convergence", "locking")},
-            {**run, "points": list(p.floor_grids), "scenes": files("floor")}]
+    runs = [
+        {**run, "points": list(p.grids), "scenes": files("convergence", "locking")},
+        {**run, "points": list(p.floor_grids), "scenes": files("floor")},
+    ]
     if p.curved_reference:
         runs.append({**run, "points": list(p.grids), "scenes": files("curved"), "reference": p.curved_reference})
-    study = {"name": f"pdverify verify {model.name} (suite {SUITE_VERSION})", "scenes": list(p.scenes),
-             "reference": p.reference, "runs": runs}
+    study = {
+        "name": f"pdverify verify {model.name} (suite {SUITE_VERSION})",
+        "scenes": list(p.scenes),
+        "reference": p.reference,
+        "runs": runs,
+    }
     if isinstance(model, ExternalModel):
         study["external"] = [str(model.path)]
     path = folder / "study.toml"

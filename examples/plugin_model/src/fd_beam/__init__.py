@@ -20,7 +20,7 @@ def nodal_loads(scene, x):
             k = min(int(ld.position / h), len(x) - 2)
             t = ld.position / h - k
             if ld.type == "point_force":
-                q[k:k + 2] += ld.value * np.array([1 - t, t]) / h
+                q[k : k + 2] += ld.value * np.array([1 - t, t]) / h
             else:  # a couple on nodes k and k+1, shared as t: each the mean of the hat slopes on both sides
                 j = np.clip([k - 1, k + 1, k, k + 2], 0, len(x) - 1)
                 np.add.at(q, j, ld.value * np.array([-(1 - t), 1 - t, -t, t]) / (2 * h**2))
@@ -52,15 +52,19 @@ class FDBeam(Model):
         rows = [sp.hstack([zero, d2]), sp.hstack([d2, -eye / EI])]  # unknowns [w, m]: m'' = q, w'' - m/EI = 0
         rhs = [q[1:-1], np.zeros(n - 2)]
         for i, s in ((0, 1), (n - 1, -1)):  # left end (inward +1), right end (inward -1)
-            value = sp.lil_matrix((1, n)); value[0, i] = 1.0
-            slope = sp.lil_matrix((1, n)); slope[0, [i, i + s, i + 2 * s]] = np.array([-3.0, 4.0, -1.0]) * s / (2 * h)
+            value = sp.lil_matrix((1, n))
+            value[0, i] = 1.0
+            slope = sp.lil_matrix((1, n))
+            slope[0, [i, i + s, i + 2 * s]] = np.array([-3.0, 4.0, -1.0]) * s / (2 * h)
             force, moment = ends[i]
             support = getattr(scene.supports, "left" if i == 0 else "right")
             empty = sp.csr_matrix((1, n))
-            conds = {"clamped": [(value, empty, 0.0), (slope, empty, 0.0)],
-                     "pinned": [(value, empty, 0.0), (empty, value, -s * moment)],
-                     "free": [(empty, value, -s * moment), (empty, slope, s * force)],
-                     "guided": [(slope, empty, 0.0), (empty, slope, s * force)]}[support]
+            conds = {
+                "clamped": [(value, empty, 0.0), (slope, empty, 0.0)],
+                "pinned": [(value, empty, 0.0), (empty, value, -s * moment)],
+                "free": [(empty, value, -s * moment), (empty, slope, s * force)],
+                "guided": [(slope, empty, 0.0), (empty, slope, s * force)],
+            }[support]
             for cw, cm, r in conds:
                 rows.append(sp.hstack([cw, cm]))
                 rhs.append([r])
