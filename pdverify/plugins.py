@@ -102,10 +102,21 @@ def manifest_models(taken: dict) -> dict:
     return found
 
 
+_discovering = False
+
+
 def discover(builtin: dict) -> dict:
-    """Plug-in and external models to add to the built-in ones (called once by registry.models())."""
-    found = entry_point_models(builtin)
-    found.update(manifest_models({**builtin, **found}))
+    """Plug-in and external models to add to the built-in ones (called once by registry.models()). A plug-in
+    that calls registry.models() while it is imported sees the built-in models only (no recursion)."""
+    global _discovering
+    if _discovering:
+        return {}
+    _discovering = True
+    try:
+        found = entry_point_models(builtin)
+        found.update(manifest_models({**builtin, **found}))
+    finally:
+        _discovering = False
     return found
 
 
