@@ -96,7 +96,7 @@ def manifest_models(taken: dict) -> dict:
         try:
             m = load_manifest(path)
         except PdverifyError as exc:
-            warn(f"external model manifest {path}: {' '.join(exc.lines)}; skipped")
+            warn(f"external model manifest {' '.join(exc.lines)}; skipped")  # the lines name the file
             continue
         _add(found, taken, m, f"external model manifest {path}")
     return found

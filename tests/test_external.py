@@ -169,3 +169,18 @@ def test_study_goes_on_past_every_failure(tmp_path):
         assert by_mode[mode][0] == "failed" and f"mode={mode})" in by_mode[mode][1]
     failed = [line for line in r.stderr.splitlines() if line.startswith("failed: ext-tip")]
     assert len(failed) == len(MODES) - 1
+
+
+def test_models_path_lists_manifests_and_warns_once_for_a_bad_one(tmp_path):
+    manifest(tmp_path)
+    (tmp_path / "bad.toml").write_text('name = "bad one"\ncommand = ["x"]\n')
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "PDVERIFY_MODELS_PATH": str(tmp_path)}
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", "models"], capture_output=True, text=True, env=env, timeout=120
+    )
+    assert r.returncode == 0, r.stderr
+    assert any(line.startswith("ext-tip ") for line in r.stdout.splitlines())
+    assert r.stderr.splitlines() == [
+        f"warning: external model manifest {tmp_path / 'bad.toml'}: name = 'bad one': "
+        "give the model a name without spaces; skipped"
+    ]
