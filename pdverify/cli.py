@@ -211,9 +211,10 @@ def solve(
         typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
         model = choice.model
         given = dict(choice.options, points=choice.points)
-    m = get_model(model)
     from .memguard import check_memory
+    from .plugins import model_argument
 
+    m = get_model(model_argument(model))  # a manifest path registers its external model first
     check_memory(sc, m, given)
     result = run(sc, m, **given)
     if out is not None and out.suffix in result.writers:
@@ -351,7 +352,9 @@ def bench(
     from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, cost_slope, default_models
     from .registry import get_model
 
-    names = model or default_models()
+    from .plugins import model_argument
+
+    names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
     for n in names:
         get_model(n)
     rows = []
@@ -382,6 +385,34 @@ def bench(
         page = build_performance(rows, out, slopes)
         if fmt != Format.json:
             typer.echo(f"performance page: {page}")
+
+
+@app.command("verify")
+@user_errors
+def verify_cmd(
+    model: str = typer.Argument(..., help="model name, or path to an external model's manifest (.toml)"),
+    option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
+    out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
+    full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
+    order: Optional[float] = typer.Option(None, "--order", help="expected order (default: the model's, else 2)"),
+    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+):
+    """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
+    Exit code 1 when a check fails."""
+    from .plugins import model_argument
+    from .verify import verify
+
+    name = model_argument(model)
+    options = parse_options(option)
+    out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))
+    card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)
+    for c in card["checks"]:
+        typer.echo(f"{c['verdict']:>5}  {c['check']}: {c['summary']}")
+    typer.echo(f"{card['model']}: {card['verdict']} (suite {card['suite_version']}); card: {out}/card.html")
+    if card["verdict"] == "fail":
+        raise typer.Exit(1)
 
 
 @app.command()

@@ -196,6 +196,9 @@ def models() -> dict[str, Model]:
                     if m.name in reg:
                         raise RuntimeError(f"model name {m.name!r} registered twice ({mod.__name__})")
                     reg[m.name] = m
+        from .plugins import discover  # plug-ins and external-command models (pdverify.plugins)
+
+        reg.update(discover(reg))
         _REGISTRY = dict(sorted(reg.items()))
     return _REGISTRY
 

@@ -158,12 +158,29 @@ def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
     return errors
 
 
+def _external(path: Path, manifests) -> list[str]:
+    """Register the external models of the study's ``external = ["manifest.toml", ...]`` (relative to the
+    study file; see pdverify.external); the problems as error lines."""
+    from ..plugins import use_manifest
+
+    if not isinstance(manifests, list) or not all(isinstance(m, str) for m in manifests):
+        return [f"{path}: external = {manifests!r}: give a list of manifest files"]
+    errors = []
+    for m in manifests:
+        try:
+            use_manifest(path.parent / m)
+        except InputError as exc:
+            errors.extend(exc.lines)
+    return errors
+
+
 def load_study(path: str | Path) -> Study:
     """Read a study file and validate every scene, model, option and reference. Raises InputError."""
     path = Path(path)
     text, data = read_toml(path, "study")
     errors: list[str] = []
-    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers", "checks"}
+    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers", "checks",
+               "external"}
     for key in data:
         if key not in allowed:
             errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
@@ -196,6 +213,7 @@ def load_study(path: str | Path) -> Study:
     except InputError as exc:
         errors.extend(f"{path}: {l}" for l in exc.lines)
         reference = {"model": "exact-eb"}
+    errors.extend(_external(path, data.get("external", [])))
     if errors:
         raise InputError(errors)
 

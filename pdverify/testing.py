@@ -1,0 +1,135 @@
+"""Assertions for a PD code's own test suite: what pdverify measures, as pytest-friendly checks.
+
+```python
+from pdverify.testing import assert_converges, assert_matches
+
+def test_my_model_is_second_order():
+    assert_converges("my-model", "scenes/cantilever.toml", order=2, grids=(21, 41, 81, 161))
+
+def test_my_model_matches_fem():
+    assert_matches("my-model", "fem-eb", "scenes/cantilever.toml", rtol=1e-3, points=201)
+```
+
+A failing assertion raises AssertionError whose message is the table of grids, errors and orders (or of the
+worst points), so the CI log says what went wrong. ``model`` and ``reference`` are a registered model's
+name (built-in, plug-in, or an external model's manifest path) or a :class:`~pdverify.registry.Model`;
+``scene`` a :class:`~pdverify.scene.Scene`, a scene table (dict) or a scene file.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .registry import Model, get_model, run
+from .scene import Scene, load_scene, parse_scene
+from .study.metrics import errors, observed_order
+
+__all__ = ["assert_converges", "assert_matches", "convergence_table"]
+
+
+def _model(m) -> Model:
+    if isinstance(m, Model):
+        return m
+    from .plugins import model_argument
+
+    return get_model(model_argument(str(m)))
+
+
+def _scene(s) -> Scene:
+    if isinstance(s, Scene):
+        return s
+    if isinstance(s, dict):
+        return parse_scene(s)
+    return load_scene(Path(s))
+
+
+def default_reference(model: Model, scene: Scene) -> Model:
+    """The exact solution of the model's declared theory (curved axes: exact-curved)."""
+    if not scene.is_straight:
+        return get_model("exact-curved")
+    return get_model("exact-eb" if model.theory == "euler-bernoulli" else "exact-timoshenko")
+
+
+def _reference_w(reference, scene: Scene, x: np.ndarray, options: dict) -> np.ndarray:
+    """The reference's deflection at ``x``: its evaluate(), else its solution on its own points interpolated."""
+    if callable(reference) and not isinstance(reference, Model):
+        return np.asarray(reference(x), float)
+    fn = reference.evaluator(scene, reference.resolve(scene, options))
+    if fn is not None:
+        return np.asarray(fn(x)["w"], float)
+    r = run(scene, reference, **options)
+    return np.interp(x, r.x, r.w)
+
+
+def convergence_table(model, scene, grids=(21, 41, 81, 161), reference=None, **options) -> list[dict]:
+    """Rows (points, spacing, error, order vs the previous grid): error = max |w - w_ref| / max |w_ref|."""
+    m, sc = _model(model), _scene(scene)
+    ref = default_reference(m, sc) if reference is None else reference if callable(reference) else _model(reference)
+    rows = []
+    for n in grids:
+        r = run(sc, m, **options, points=n)
+        e = errors(r.w, _reference_w(ref, sc, np.asarray(r.x), {}))["err_max"]
+        h = float(np.diff(r.x).max())
+        prev = rows[-1] if rows else None
+        order = (
+            (np.log(prev["error"] / e) / np.log(prev["spacing"] / h))
+            if prev and e > 0 and prev["error"] > 0
+            else np.nan
+        )
+        rows.append({"points": n, "spacing": h, "error": e, "order": float(order)})
+    return rows
+
+
+def format_table(rows: list[dict]) -> str:
+    lines = [f"{'points':>8} {'spacing':>10} {'error':>10} {'order':>7}"]
+    for r in rows:
+        order = "-" if np.isnan(r["order"]) else f"{r['order']:.2f}"
+        lines.append(f"{r['points']:>8d} {r['spacing']:>10.3e} {r['error']:>10.3e} {order:>7}")
+    return "\n".join(lines)
+
+
+def assert_converges(
+    model, scene, order: float = 2.0, grids=(21, 41, 81, 161), tol: float = 0.1, reference=None, **options
+) -> list[dict]:
+    """Assert that the order fitted over ``grids`` (least squares, pdverify.study.metrics.observed_order) is
+    ``order`` within ``tol``. ``reference``: a model (name or Model), a function x -> w, or None for the
+    exact solution of the model's theory. Returns the table."""
+    m, sc = _model(model), _scene(scene)
+    rows = convergence_table(m, sc, grids, reference, **options)
+    fitted = observed_order([r["spacing"] for r in rows], [r["error"] for r in rows])[0]
+    if not abs(fitted - order) <= tol:
+        ref = (
+            "the exact solution"
+            if reference is None
+            else getattr(reference, "name", getattr(reference, "__name__", reference))
+        )
+        raise AssertionError(
+            f"{m.name} on {sc.name!r} against {ref}: fitted order {fitted:.2f}, expected {order:g} "
+            f"± {tol:g}\n{format_table(rows)}"
+        )
+    return rows
+
+
+def assert_matches(model, reference, scene, rtol: float = 1e-3, **options) -> float:
+    """Assert max |w - w_ref| / max |w_ref| <= ``rtol`` at the model's points (``options``: the model's). The
+    message lists the worst points. Returns the error."""
+    m, sc = _model(model), _scene(scene)
+    ref = reference if callable(reference) and not isinstance(reference, (str, Model)) else _model(reference)
+    r = run(sc, m, **options)
+    x = np.asarray(r.x)
+    w_ref = _reference_w(ref, sc, x, {})
+    e = errors(r.w, w_ref)["err_max"]
+    if not e <= rtol:
+        scale = max(np.abs(w_ref).max(), 1e-300)
+        rel = np.abs(r.w - w_ref) / scale
+        worst = np.sort(np.argsort(rel)[-8:])
+        lines = [f"{'x':>10} {'w':>12} {'w_ref':>12} {'|diff|/max|w_ref|':>18}"]
+        lines += [f"{x[i]:>10.4g} {r.w[i]:>12.5e} {w_ref[i]:>12.5e} {rel[i]:>18.3e}" for i in worst]
+        name = getattr(ref, "name", getattr(ref, "__name__", "the reference"))
+        raise AssertionError(
+            f"{m.name} on {sc.name!r} against {name}: error {e:.3e} > rtol {rtol:g} "
+            f"({len(x)} points)\n" + "\n".join(lines)
+        )
+    return e

@@ -1,0 +1,153 @@
+"""``pdverify verify MODEL``: a fixed, versioned verification suite and its report card.
+
+The suite (:mod:`.suite`) is written as a study and run by :func:`pdverify.study.run_study` (a process
+pool, or Dask with ``scheduler``; resumable). The checks (:mod:`.checks`) judge its results; symmetry and
+superposition solve a handful of scenes here. The card (:mod:`.card`) is JSON, HTML and JUnit XML.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from .. import __version__
+from ..errors import InputError
+from ..registry import get_model, run
+from ..scene import parse_scene
+from . import checks as C
+from .suite import LOADS, SUITE_VERSION, end_force, mirror, plan, straight, write_study
+
+__all__ = ["verify", "SUITE_VERSION"]
+
+MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
+ASYMMETRIC = {
+    "point force": [{"type": "point_force", "position": 0.25, "value": -1000.0}],
+    "point moment": LOADS["point moment"],
+    "partial": [{"type": "distributed", "value": -1000.0, "start": 0.25, "end": 0.5}],
+}
+
+
+def _solve(scene: dict, model, options: dict, points: int):
+    return run(parse_scene(scene), model, **options, points=points)
+
+
+def _declines(model, scene: dict) -> bool:
+    return bool(model.check(parse_scene(scene)))
+
+
+def symmetry(model, options: dict, points: int) -> list[tuple[str, float]]:
+    out = []
+    for left, right in MIRROR_PAIRS:
+        for load, lds in ASYMMETRIC.items():
+            sc = straight(left, right, lds, name=f"{left}-{right}, {load}")
+            if _declines(model, sc) or _declines(model, mirror(sc)):
+                continue
+            out.append(
+                (sc["name"], C.mirrored(_solve(sc, model, options, points), _solve(mirror(sc), model, options, points)))
+            )
+    return out
+
+
+def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
+    out = []
+    for left, right in (("clamped", "clamped"), ("clamped", "free"), ("pinned", "guided")):
+        a = LOADS["point force"] + LOADS["point moment"]
+        b = LOADS["sine"] + (end_force(left, right) or LOADS["partial"])
+        if any(_declines(model, straight(left, right, lds)) for lds in (a, b, a + b)):
+            continue
+        ra, rb, rab = (_solve(straight(left, right, lds), model, options, points) for lds in (a, b, a + b))
+        out.append((f"{left}-{right}: force + moment, sine + end force or partial", C.superposition_diff(ra, rb, rab)))
+    return out
+
+
+def verify(
+    model_name: str,
+    out: Path,
+    options: dict | None = None,
+    full: bool = False,
+    order: float | None = None,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = False,
+) -> dict:
+    """Run the suite on ``model_name`` with ``options``, judge it, write the card into ``out``; the card."""
+    from ..study import load_study, run_study
+    from .card import write_card
+
+    t0 = time.perf_counter()
+    options = dict(options or {})
+    model = get_model(model_name)
+    expected = order if order is not None else getattr(model, "order", 2.0)
+    out = Path(out)
+    p = plan(model, full)
+    declined = {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+    if all(declined.values()):
+        first = next(iter(declined.values()))[0]
+        raise InputError(
+            f"model {model.name} solves none of the suite's scenes ({first}); verify needs a beam model "
+            "that takes straight (or curved) beams with transverse loads"
+        )
+    study_path = write_study(p, model, options, out / "suite")
+    df = run_study(load_study(study_path), out / "study", workers=workers, scheduler=scheduler, progress=progress)
+    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in ("convergence", "locking", "floor", "curved")}
+    conv = C.series(df, files["convergence"])
+    found = [
+        C.convergence(conv, expected, "convergence (straight)"),
+        C.accuracy(conv),
+        C.within(conv),
+        C.locking(df, files["locking"], p.meta),
+        C.floor(C.series(df, files["floor"])),
+        C.cost(conv),
+    ]
+    if model.bending and model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum"):
+        mid = p.grids[min(2, len(p.grids) - 1)]
+        found.append(C.identity("symmetry (mirror scenes)", _guarded(symmetry, model, options, mid)))
+        found.append(C.identity("superposition (two loads vs their sum)", _guarded(superposition, model, options, mid)))
+    curved = C.series(df, files["curved"])
+    found.append(
+        C.convergence(curved, expected, "convergence (curved axes)")
+        if curved
+        else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
+    )
+    found.append(
+        C.check(
+            "dynamics",
+            "n/a",
+            "not in suite " + SUITE_VERSION + " (TODO: dynamic scenes against modal "
+            "solutions)" + ("" if model.kind == "static" else "; the model declares dynamics"),
+        )
+    )
+    scenes = [{**p.meta[r["scene_file"]], **r} for r in conv + curved]
+    skipped = [f"{p.meta[f]['name']}: {why[0]}" for f, why in declined.items() if why]
+    verdict = "fail" if any(c["verdict"] == "fail" for c in found) else "pass"
+    card = {
+        "model": model.name,
+        "title": model.title,
+        "options": options,
+        "theory": model.theory,
+        "suite_version": SUITE_VERSION,
+        "pdverify_version": __version__,
+        "reference": p.reference,
+        "curved_reference": p.curved_reference,
+        "grids": list(p.grids),
+        "floor_grids": list(p.floor_grids),
+        "expected_order": expected,
+        "verdict": verdict,
+        "checks": found,
+        "scenes": scenes,
+        "failed_cases": int((df["status"] != "ok").sum()),
+        "skipped": skipped,
+        "cases": len(df),
+        "wall_s": time.perf_counter() - t0,
+    }
+    write_card(card, out)
+    return card
+
+
+def _guarded(fn, model, options, points) -> list[tuple[str, float]]:
+    """A solve that fails in the direct checks counts as an infinite difference (the check fails, the card is
+    still written)."""
+    try:
+        return fn(model, options, points)
+    except Exception as exc:  # noqa: BLE001 - the model's failure is the finding
+        return [(f"failed: {type(exc).__name__}: {exc}", float("inf"))]

@@ -1,0 +1,216 @@
+"""The judgements of a verification: each check reads the suite's results and returns a verdict.
+
+Orders and slopes come from :mod:`pdverify.study.metrics`. A verdict is ``pass``, ``fail``, ``info``
+(measured, not judged) or ``n/a`` (the model does not declare what the check needs).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..study.metrics import errors, locking_slope, log_slope, observed_order
+
+EXACT = 1e-9  # an error this small at every grid: the model reproduces the solution (orders meaningless)
+ROUND = 1e-7  # errors below this are round-off level (eps x N^3 at a few thousand points): no order fitted there
+ORDER_SLACK = 0.3  # a fitted order this far below the expected one still passes (pre-asymptotic grids)
+ACCURACY = 1e-2  # error at the finest grid that passes
+LOCKING_GROWTH = 10.0  # locking: the most slender scene's error above this times the error at L/h = 20 ...
+LOCKING_ERROR = 1e-3  # ... and above this (at the finest grid)
+ROUND_OFF = 10.0  # error at the finest floor grid more than this times the smallest: round-off grows
+FLOOR = 1e-4  # ... which fails when it also exceeds this (a tenth of the 0.1 % a user may ask for)
+IDENTITY = 1e-8  # symmetry and superposition: relative difference that passes (round-off of the solves)
+
+
+def check(name: str, verdict: str, summary: str, **data) -> dict:
+    return {"check": name, "verdict": verdict, "summary": summary, **data}
+
+
+def series(df, files: list[str]) -> list[dict]:
+    """Per scene file: grids, spacings, errors, costs, pair orders, fitted order (ok rows only)."""
+    out = []
+    for f in files:
+        rows = df[(df["scene_file"] == f)].sort_values("points")
+        if rows.empty:  # the model's check() declined the scene: skipped, not judged
+            continue
+        ok = rows[rows["status"] == "ok"]
+        h, e = ok["spacing"].to_numpy(float), ok["err_max"].to_numpy(float)
+        pair = [
+            math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")
+            for i in range(len(e) - 1)
+        ]
+        above = e >= ROUND
+        # the three finest grids above round-off level (a coarse grid may be pre-asymptotic)
+        fitted = observed_order(h[above][-3:], e[above][-3:])[0] if above.sum() >= 3 else float("nan")
+        if above.sum() == 2:
+            fitted = (
+                pair[int(np.flatnonzero(above)[0])]
+                if np.flatnonzero(above)[1] - np.flatnonzero(above)[0] == 1
+                else fitted
+            )
+        out.append(
+            {
+                "scene_file": f,
+                "points": ok["points"].astype(int).tolist(),
+                "errors": e.tolist(),
+                "cost_s": ok["total_s"].to_numpy(float).tolist(),
+                "pair_orders": pair,
+                "order": fitted,
+                "exact": bool(len(e) and above.sum() < 2 and np.nanmax(e) < ROUND),
+                "failed": [f"{int(r.points)} points: {r.message}" for r in rows[rows["status"] != "ok"].itertuples()],
+            }
+        )
+    return out
+
+
+def convergence(rows: list[dict], expected: float, label: str) -> dict:
+    if not rows:
+        return check(label, "n/a", "the model declines every scene of this set")
+    if all(r["exact"] and not r["failed"] for r in rows):
+        return check(label, "pass", f"exact to round-off (every error < {ROUND:g}) on all {len(rows)} scenes")
+    bad = [r for r in rows if r["failed"] or not (r["exact"] or r["order"] >= expected - ORDER_SLACK)]
+    worst = min((r["order"] for r in rows if not r["exact"] and not math.isnan(r["order"])), default=float("nan"))
+    verdict = "pass" if not bad else "fail"
+    text = (
+        f"fitted order >= {expected - ORDER_SLACK:g} on every scene (lowest {worst:.2f})"
+        if verdict == "pass"
+        else f"{len(bad)} of {len(rows)} scenes below order {expected - ORDER_SLACK:g} or failed (lowest {worst:.2f})"
+    )
+    return check(
+        label, verdict, text, expected_order=expected, lowest_order=worst, failing=[r["scene_file"] for r in bad]
+    )
+
+
+def accuracy(rows: list[dict]) -> dict:
+    finest = [r["errors"][-1] if r["errors"] else float("inf") for r in rows]
+    worst = max(finest)
+    bad = [r["scene_file"] for r, e in zip(rows, finest, strict=True) if not e <= ACCURACY]
+    return check(
+        "error at the finest grid",
+        "pass" if not bad else "fail",
+        f"largest error at the finest grid {worst:.2e} (limit {ACCURACY:g})",
+        largest=worst,
+        failing=bad,
+    )
+
+
+def within(rows: list[dict]) -> dict:
+    """The coarsest grid at which every scene is within 1 % and within 0.1 %."""
+    out = {}
+    for tol in (1e-2, 1e-3):
+        need = []
+        for r in rows:
+            hit = [p for p, e in zip(r["points"], r["errors"], strict=True) if e <= tol]
+            need.append(hit[0] if hit and all(e <= tol for e in r["errors"][r["points"].index(hit[0]) :]) else None)
+        out[f"{tol:g}"] = max(need) if need and None not in need else None
+    text = ", ".join(
+        f"within {float(k) * 100:g} %: " + (f"{v} points" if v else "not on these grids") for k, v in out.items()
+    )
+    return check("grids within 1 % and 0.1 %", "info", text, points=out)
+
+
+def locking(df, files: list[str], meta: dict) -> dict:
+    """Error vs slenderness at each grid (slope of log error vs log slenderness, reported). Judged at the finest
+    grid: locking when the most slender scene's error exceeds both 10x the error at slenderness 20 and 0.1 %."""
+    slopes, bad = [], []
+    for pair in sorted({meta[f]["pair"] for f in files}):
+        fs = [f for f in files if meta[f]["pair"] == pair]
+        rows = df[df["scene_file"].isin(fs)]
+        if (rows["status"] != "ok").any():
+            bad.append(f"{pair}: failed solves")
+        rows = rows[rows["status"] == "ok"]
+        for points, g in rows.groupby("points"):
+            s = [meta[f]["slenderness"] for f in g["scene_file"]]
+            e = g["err_max"].to_numpy(float)
+            slope = 0.0 if np.nanmax(e) < EXACT else locking_slope(s, e)[0]
+            slopes.append(
+                {
+                    "pair": pair,
+                    "points": int(points),
+                    "slope": slope,
+                    "errors": dict(zip(map(float, s), e.tolist(), strict=True)),
+                }
+            )
+        if slopes and slopes[-1]["pair"] == pair:
+            errs = slopes[-1]["errors"]
+            slender, base = errs.get(max(errs), float("nan")), errs.get(20.0, min(errs.values()))
+            if not slender <= max(LOCKING_GROWTH * base, LOCKING_ERROR):
+                bad.append(
+                    f"{pair}: {slender:.1e} at L/h = {max(errs):g} vs {base:.1e} at 20 ({slopes[-1]['points']} points)"
+                )
+    finest = [s for s in slopes if s["points"] == max((t["points"] for t in slopes), default=0)]
+    text = "; ".join(f"{s['pair']}: slope {s['slope']:.2f}, {max(s['errors'].values()):.1e} at most" for s in finest)
+    return check(
+        "locking (error vs slenderness 5 ... 10000)",
+        "pass" if slopes and not bad else "fail",
+        (text + " at the finest grid") if not bad else "locks: " + "; ".join(bad),
+        slopes=slopes,
+    )
+
+
+def floor(rows: list[dict]) -> dict:
+    """Round-off: the fine-grid scene's error should keep falling; where it rises (the condition number grows
+    as N^4 for a fourth-order operator), it must stay below FLOOR at the finest grid."""
+    r = rows[0]
+    if r["failed"]:
+        return check("accuracy floor (round-off)", "fail", "the fine-grid solves failed: " + "; ".join(r["failed"][:2]))
+    e, n = np.asarray(r["errors"]), np.asarray(r["points"], float)
+    i = int(np.argmin(e))
+    growth = log_slope(n[i:], e[i:])[0] if len(e) - i >= 2 else float("nan")
+    ok = e[-1] <= max(ROUND_OFF * e[i], FLOOR, EXACT)
+    rise = f"; rises ~N^{growth:.1f} beyond {int(n[i])} points" if not math.isnan(growth) else ""
+    return check(
+        "accuracy floor (round-off)",
+        "pass" if ok else "fail",
+        f"error {e[-1]:.2e} at {int(n[-1])} points, smallest {e[i]:.2e} at {int(n[i])}{rise}"
+        + ("" if ok else f": above {FLOOR:g} from round-off"),
+        floor=float(e[i]),
+        finest=float(e[-1]),
+        growth=growth,
+    )
+
+
+def cost(rows: list[dict]) -> dict:
+    """Seconds per solve at the finest grid and the slope of log(error) vs log(seconds) between the two finest
+    grids (median over the scenes; coarser grids are dominated by fixed costs)."""
+    live = [r for r in rows if not r["exact"] and len(r["errors"]) >= 2 and min(r["cost_s"][-2:]) > 0]
+    slopes = [
+        math.log(r["errors"][-1] / r["errors"][-2]) / math.log(r["cost_s"][-1] / r["cost_s"][-2])
+        for r in live
+        if r["errors"][-1] > 0 and r["cost_s"][-1] != r["cost_s"][-2]
+    ]
+    secs = [r["cost_s"][-1] for r in rows if r["cost_s"]]
+    p = float(np.median(slopes)) if slopes else float("nan")
+    t = float(np.median(secs)) if secs else float("nan")
+    trend = (
+        f"error ~ cost^{p:.2f} between the two finest grids"
+        if t >= 0.01
+        else "no error-cost slope: solves under 10 ms are timed by their fixed costs"
+    )
+    return check(
+        "cost vs error", "info", f"{t:.3g} s per solve at the finest grid (median); {trend}", seconds=t, slope=p
+    )
+
+
+def mirrored(a, b) -> float:
+    """max |w_b(L - x) - w_a(x)| / max |w_a|: the mirror scene's solution read back on the first one's points."""
+    L = a.x[-1]
+    wb = np.interp(a.x, (L - b.x)[::-1], b.w[::-1])
+    return float(np.abs(wb - a.w).max() / max(np.abs(a.w).max(), 1e-300))
+
+
+def identity(name: str, diffs: list[tuple[str, float]]) -> dict:
+    if not diffs:
+        return check(name, "n/a", "no scene")
+    worst = max(d for _, d in diffs)
+    return check(
+        name,
+        "pass" if worst <= IDENTITY else "fail",
+        f"largest relative difference {worst:.1e} (limit {IDENTITY:g})",
+        cases=dict(diffs),
+    )
+
+
+def superposition_diff(a, b, ab) -> float:
+    return errors(a.w + b.w, ab.w)["err_max"]

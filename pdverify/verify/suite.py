@@ -1,0 +1,235 @@
+"""The verification suite's scenes, written as a study (scene files + study.toml) that ``run_study`` runs.
+
+The suite is fixed and versioned (:data:`SUITE_VERSION`): the same model gives the same card until the
+version changes. Straight scenes: every support pair that holds the beam, with a point force, a point
+moment, a uniform, a partial and a sine load (and a force at a free or guided end), at slenderness 20;
+two uniform-load scenes from thick to very slender (locking); one scene on fine grids (round-off floor).
+Curved scenes (arcs and a parabola) when the model declares ``curved``. Loads sit on grid points of every
+grid (quarter points), so the orders measure the model, not the load placement.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..scene import SUPPORTS, is_mechanism
+
+SUITE_VERSION = "1.0"
+GRIDS = (21, 41, 81, 161)
+FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
+FLOOR_GRIDS = (161, 641, 2561)
+FULL_FLOOR_GRIDS = (161, 641, 2561, 10241)
+SLENDERNESS = 20.0
+LOCKING_SLENDERNESS = (5.0, 20.0, 100.0, 1000.0, 10000.0)
+LENGTH, WIDTH = 1.0, 0.05
+MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.3}
+PAIRS = [(left, right) for left in SUPPORTS for right in SUPPORTS if not is_mechanism(left, right)]
+
+
+def straight(left: str, right: str, loads: list[dict], slenderness: float = SLENDERNESS, name: str = "") -> dict:
+    """A straight scene of the suite (length 1 m, width 50 mm, height = length / slenderness)."""
+    return {
+        "name": name or f"{left}-{right}",
+        "beam": {"length": LENGTH},
+        "section": {"width": WIDTH, "height": LENGTH / slenderness},
+        "material": dict(MATERIAL),
+        "supports": {"left": left, "right": right},
+        "loads": loads,
+    }
+
+
+LOADS = {
+    "point force": [{"type": "point_force", "position": 0.5, "value": -1000.0}],
+    "point moment": [{"type": "point_moment", "position": 0.25, "value": 200.0}],
+    "uniform": [{"type": "distributed", "value": -1000.0}],
+    "partial": [{"type": "distributed", "value": -1000.0, "start": 0.25, "end": 0.75}],
+    "sine": [{"type": "distributed", "value": -1000.0, "shape": "sine"}],
+}
+
+
+def end_force(left: str, right: str) -> list[dict] | None:
+    """A force at the free or guided end of the pair (None when both ends hold the deflection)."""
+    for support, position in ((right, LENGTH), (left, 0.0)):
+        if support in ("free", "guided"):
+            return [{"type": "point_force", "position": position, "value": -1000.0}]
+    return None
+
+
+def mirror(scene: dict) -> dict:
+    """The mirror-image scene (x -> L - x): supports swapped, positions mirrored, moments reversed."""
+    L = scene["beam"]["length"]
+    loads = []
+    for ld in scene["loads"]:
+        ld = dict(ld)
+        if "position" in ld:
+            ld["position"] = L - ld["position"]
+        if ld["type"] == "point_moment":
+            ld["value"] = -ld["value"]
+        if ld["type"] == "distributed" and ("start" in ld or "end" in ld):
+            ld["start"], ld["end"] = L - ld.get("end", L), L - ld.get("start", 0.0)
+        loads.append(ld)
+    return {
+        **scene,
+        "name": scene["name"] + " (mirror)",
+        "loads": loads,
+        "supports": {"left": scene["supports"]["right"], "right": scene["supports"]["left"]},
+    }
+
+
+def curved_scenes() -> list[dict]:
+    """Arcs and a parabola: cantilevers and statically indeterminate ones (reference exact-curved)."""
+    sec, half_pi = {"width": 0.05, "height": 0.05}, 1.5707963267948966
+    arc = {"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0}
+    base = {"beam": {"length": half_pi}, "section": sec, "material": dict(MATERIAL), "axis": arc}
+    return [
+        {
+            **base,
+            "name": "quarter circle, clamped-free, tip force",
+            "supports": {"left": "clamped", "right": "free"},
+            "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}],
+        },
+        {
+            **base,
+            "name": "quarter circle, clamped-pinned, uniform",
+            "supports": {"left": "clamped", "right": "pinned"},
+            "loads": [{"type": "distributed", "value": -1000.0}],
+        },
+        {
+            **base,
+            "name": "semicircle, pinned-pinned, force at the crown",
+            "beam": {"length": 2 * half_pi},
+            "axis": {**arc, "opening_angle_deg": 180.0},
+            "supports": {"left": "pinned", "right": "pinned"},
+            "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}],
+        },
+    ]
+
+
+@dataclass
+class Plan:
+    """The scenes of one verification: ``meta`` maps a scene file to what it tests."""
+
+    scenes: dict[str, dict]
+    meta: dict[str, dict]
+    grids: tuple
+    floor_grids: tuple
+    reference: str
+    curved_reference: str | None
+
+
+def reference_for(theory: str) -> str:
+    """The exact solution of the model's declared theory."""
+    return "exact-eb" if theory == "euler-bernoulli" else "exact-timoshenko"
+
+
+def plan(model, full: bool = False) -> Plan:
+    scenes, meta = {}, {}
+
+    def add(kind: str, scene: dict, **info):
+        f = f"scenes/{len(scenes):03d}.toml"
+        scenes[f] = scene
+        meta[f] = {"set": kind, "name": scene["name"], **info}
+
+    for left, right in PAIRS:
+        cases = dict(LOADS)
+        if end_force(left, right):
+            cases["end force"] = end_force(left, right)
+        for load, lds in cases.items():
+            add(
+                "convergence",
+                straight(left, right, lds, name=f"{left}-{right}, {load}"),
+                pair=f"{left}-{right}",
+                load=load,
+                slenderness=SLENDERNESS,
+            )
+    for left, right in (("clamped", "free"), ("clamped", "clamped")):
+        for s in LOCKING_SLENDERNESS:
+            add(
+                "locking",
+                straight(left, right, LOADS["uniform"], s, f"{left}-{right}, uniform, L/h = {s:g}"),
+                pair=f"{left}-{right}",
+                load="uniform",
+                slenderness=s,
+            )
+    add(
+        "floor",
+        straight("clamped", "free", LOADS["uniform"], name="clamped-free, uniform (fine grids)"),
+        pair="clamped-free",
+        load="uniform",
+        slenderness=SLENDERNESS,
+    )
+    if model.curved:
+        for sc in curved_scenes():
+            add(
+                "curved",
+                sc,
+                pair=f"{sc['supports']['left']}-{sc['supports']['right']}",
+                load=sc["loads"][0]["type"],
+                slenderness=sc["beam"]["length"] / sc["section"]["height"],
+            )
+    return Plan(
+        scenes,
+        meta,
+        FULL_GRIDS if full else GRIDS,
+        FULL_FLOOR_GRIDS if full else FLOOR_GRIDS,
+        reference_for(model.theory),
+        "exact-curved" if model.curved else None,
+    )
+
+
+def toml_value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float)):
+        return repr(v)
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    raise TypeError(f"no TOML for {v!r}")
+
+
+def toml_text(data: dict) -> str:
+    """A scene or study table as TOML (scalars, tables of scalars, arrays of tables of scalars)."""
+    lines = [
+        f"{k} = {toml_value(v)}"
+        for k, v in data.items()
+        if not isinstance(v, dict) and not (isinstance(v, list) and v and isinstance(v[0], dict))
+    ]
+    for k, v in data.items():
+        if isinstance(v, dict):
+            lines += ["", f"[{k}]"] + [f"{kk} = {toml_value(vv)}" for kk, vv in v.items()]
+        elif isinstance(v, list) and v and isinstance(v[0], dict):
+            for item in v:
+                lines += ["", f"[[{k}]]"] + [f"{kk} = {toml_value(vv)}" for kk, vv in item.items()]
+    return "\n".join(lines) + "\n"
+
+
+def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
+    """The plan as scene files and a study file in ``folder``; returns the study file's path."""
+    from ..external import ExternalModel
+
+    for f, scene in p.scenes.items():
+        (folder / f).parent.mkdir(parents=True, exist_ok=True)
+        (folder / f).write_text(toml_text(scene))
+    files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets]  # noqa: E731
+    run = {"model": model.name, **{k: v for k, v in options.items()}}
+    runs = [
+        {**run, "points": list(p.grids), "scenes": files("convergence", "locking")},
+        {**run, "points": list(p.floor_grids), "scenes": files("floor")},
+    ]
+    if p.curved_reference:
+        runs.append({**run, "points": list(p.grids), "scenes": files("curved"), "reference": p.curved_reference})
+    study = {
+        "name": f"pdverify verify {model.name} (suite {SUITE_VERSION})",
+        "scenes": list(p.scenes),
+        "reference": p.reference,
+        "runs": runs,
+    }
+    if isinstance(model, ExternalModel):
+        study["external"] = [str(model.path)]
+    path = folder / "study.toml"
+    path.write_text(toml_text(study))
+    return path

@@ -1,0 +1,125 @@
+"""pdverify verify: the suite's scenes, the checks' judgements, the card, and verdicts on built-in models."""
+
+import json
+import os
+import subprocess
+import sys
+import tomllib
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdverify.registry import get_model
+from pdverify.scene import parse_scene
+from pdverify.verify import checks as C
+from pdverify.verify import verify
+from pdverify.verify.card import junit
+from pdverify.verify.suite import PAIRS, mirror, plan, toml_text
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_suite_scenes_are_valid_toml_and_mirror_is_an_involution():
+    p = plan(get_model("pd-curved"))
+    for sc in p.scenes.values():
+        assert parse_scene(tomllib.loads(toml_text(sc))).to_dict() == parse_scene(sc).to_dict()
+    sets = [m["set"] for m in p.meta.values()]
+    assert sets.count("convergence") == 5 * len(PAIRS) + sum("free" in pr or "guided" in pr for pr in PAIRS)
+    assert sets.count("curved") == 3 and sets.count("floor") == 1
+    for sc in p.scenes.values():
+        back = mirror(mirror(sc))
+        assert parse_scene({**back, "name": sc["name"]}).to_dict() == parse_scene(sc).to_dict()
+
+
+def _frame(errors_by_points: dict, scene_file="s.toml"):
+    return pd.DataFrame(
+        [
+            {
+                "scene_file": scene_file,
+                "points": n,
+                "spacing": 1.0 / (n - 1),
+                "err_max": e,
+                "total_s": 1e-3 * n,
+                "status": "ok",
+                "message": "",
+            }
+            for n, e in errors_by_points.items()
+        ]
+    )
+
+
+def test_convergence_judges_the_three_finest_grids():
+    grids = (21, 41, 81, 161)
+    second = {n: 0.3 * (1.0 / (n - 1)) ** 2 for n in grids}
+    first = {n: 0.3 * (1.0 / (n - 1)) for n in grids}
+    ok = C.convergence(C.series(_frame(second), ["s.toml"]), 2.0, "c")
+    bad = C.convergence(C.series(_frame(first), ["s.toml"]), 2.0, "c")
+    assert ok["verdict"] == "pass" and abs(ok["lowest_order"] - 2) < 1e-12
+    assert bad["verdict"] == "fail" and abs(bad["lowest_order"] - 1) < 1e-12 and bad["failing"] == ["s.toml"]
+    # a pre-asymptotic coarsest grid does not count: only the three finest grids are fitted
+    late = C.series(_frame({**second, 21: 1e-6}), ["s.toml"])
+    assert abs(late[0]["order"] - 2) < 1e-12
+
+
+def test_floor_fails_when_round_off_grows_above_the_limit():
+    rising = C.floor(C.series(_frame({161: 1e-9, 641: 1e-7, 2561: 5e-4}), ["s.toml"]))
+    fit = np.polyfit(np.log([161, 641, 2561]), np.log([1e-9, 1e-7, 5e-4]), 1)[0]
+    assert rising["verdict"] == "fail" and abs(rising["growth"] - fit) < 1e-9
+    small = C.floor(C.series(_frame({161: 1e-9, 641: 1e-7, 2561: 5e-5}), ["s.toml"]))
+    assert small["verdict"] == "pass"
+
+
+def test_junit_has_a_failure_per_failed_check_and_skips_not_applicable():
+    card = {
+        "model": "m",
+        "wall_s": 1.0,
+        "checks": [C.check("a", "pass", "fine"), C.check("b", "fail", "order 1.0"), C.check("c", "n/a", "no dynamics")],
+    }
+    suite = ET.fromstring(junit(card).split("?>", 1)[1])
+    assert (suite.get("tests"), suite.get("failures"), suite.get("skipped")) == ("3", "1", "1")
+    cases = {c.get("name"): c for c in suite}
+    assert cases["b"].find("failure").get("message") == "order 1.0" and cases["c"].find("skipped") is not None
+
+
+def test_verify_a_model_that_solves_no_suite_scene_is_one_line(tmp_path):
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", "verify", "pd-rod", "--out", str(tmp_path), "--quiet"],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=120,
+    )
+    assert r.returncode == 2 and r.stderr.splitlines() == [
+        "error: model pd-rod solves none of the suite's scenes (loads[0].value = -1000.0: model pd-rod carries no "
+        "transverse loads (axial only); give the load as loads[i].axial or use a bending model); verify needs a beam "
+        "model that takes straight (or curved) beams with transverse loads"
+    ]
+
+
+@pytest.mark.slow
+def test_corrected_pd_eb_passes_and_the_paper_variant_fails(tmp_path):
+    """The verdicts of the per-paper study (docs/models/diyaroglu.md): the corrected variant converges at order
+    2 everywhere, the published one does not converge (its error stalls near 1 %)."""
+    good = verify("pd-eb", tmp_path / "corrected", workers=2)
+    bad = verify("pd-eb", tmp_path / "paper", {"variant": "paper"}, workers=2)
+    g = {c["check"]: c for c in good["checks"]}
+    b = {c["check"]: c for c in bad["checks"]}
+    assert good["verdict"] == "pass" and g["convergence (straight)"]["lowest_order"] > 1.9
+    assert bad["verdict"] == "fail"
+    assert b["convergence (straight)"]["verdict"] == "fail" and b["error at the finest grid"]["verdict"] == "fail"
+    assert b["symmetry (mirror scenes)"]["verdict"] == "pass"  # wrong, but mirror-symmetric and linear
+    assert b["superposition (two loads vs their sum)"]["verdict"] == "pass"
+    card = json.loads((tmp_path / "paper" / "card.json").read_text())
+    assert card["options"] == {"variant": "paper"} and card["suite_version"] == "1.0"
+    assert "FAIL" in (tmp_path / "paper" / "card.html").read_text()
+
+
+@pytest.mark.slow
+def test_full_integration_timoshenko_elements_lock(tmp_path):
+    card = verify("fem-timoshenko", tmp_path, {"variant": "full"}, workers=2)
+    lock = {c["check"]: c for c in card["checks"]}["locking (error vs slenderness 5 ... 10000)"]
+    assert lock["verdict"] == "fail" and "clamped-clamped" in lock["summary"]
