@@ -97,7 +97,7 @@ def solve(
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
 ):
     """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
-    from .registry import get_model, run
+    from .registry import as_flag, get_model, run
     from .scene import load_scene
 
     sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
@@ -109,10 +109,10 @@ def solve(
 
         if tolerance is None:
             raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
-        choice = _advise(sc, tolerance).choice
+        choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
         typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
         model = choice.model
-        given = dict(choice.options, points=choice.points)
+        given = dict(choice.options, points=choice.points, static=given.get("static", False))
     m = get_model(model)
     result = run(sc, m, **given)
     if out is not None and out.suffix in result.writers:
@@ -177,16 +177,26 @@ def study(
 @app.command()
 @user_errors
 def advise(
-    scene: Path = typer.Argument(..., help="scene TOML file"),
+    scene: Optional[Path] = typer.Argument(None, help="scene TOML file"),
     tolerance: float = typer.Option(1e-3, "--tolerance", help="relative error you can accept"),
     budget: float = typer.Option(30.0, "--budget", help="seconds per candidate model for the grid search"),
+    static: bool = typer.Option(False, "--static", help="a scene with [dynamics]: advise on its static part"),
+    rebuild_priors: bool = typer.Option(False, "--rebuild-priors",
+                                        help="regenerate pdverify/data/advisor_priors.json (a small study)"),
 ):
     """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
+    from .advise import PRIORS, rebuild_priors as _rebuild
     from .advise import advise as _advise
     from .advise import format_advice
     from .scene import load_scene
 
-    typer.echo(format_advice(_advise(load_scene(scene), tolerance, budget)))
+    if rebuild_priors:
+        data = _rebuild()
+        typer.echo(f"wrote {PRIORS}: {len(data['series'])} series, code digest {data['code_digest']}")
+        return
+    if scene is None:
+        raise InputError("scene: give a scene file (or --rebuild-priors)")
+    typer.echo(format_advice(_advise(load_scene(scene), tolerance, budget, static=static)))
 
 
 @app.command()

@@ -165,6 +165,9 @@ class Rule:
 SUPPORTS = frozenset({"clamped", "pinned", "guided", "free"})  # "roller" where a model declares it
 LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "point_torque" for torsion models
 
+# an end motion of [dynamics.left/right] and the load component (Model attribute) whose unknown it moves
+MOTION_COMPONENT = {"displacement": "bending", "rotation": "bending", "axial": "axial", "twist": "torsion"}
+
 POINTS = Option("points", int, 101, "material points / nodes along the axis, ends included", minimum=2)
 
 
@@ -213,6 +216,13 @@ class Model:
             dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses) or "none installed"
             out.append(f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "
                        f"use a dynamic model ({dyn}) or ask for the static part (-o static=true)")
+        if scene.dynamics is not None and self.end_motions:
+            for side in ("left", "right"):
+                em = getattr(scene.dynamics, side)
+                for k, component in MOTION_COMPONENT.items():
+                    if em is not None and getattr(em, k) is not None and not getattr(self, component):
+                        out.append(f"dynamics.{side}.{k}: model {self.name} has no such unknown to move; "
+                                   "use a model that carries it or drop the motion")
         for i, load in enumerate(scene.loads):
             if load.type not in self.load_types and load.type != "point_torque":  # torques: the twist check below
                 out.append(f"loads[{i}].type = {load.type!r}: model {self.name} takes "
@@ -272,7 +282,7 @@ class Model:
 
     def resolve(self, scene: Scene, given: dict) -> dict:
         """Validate ``given`` options against this model and fill in the defaults."""
-        given = {k: v for k, v in given.items() if v is not None}
+        given = {k: v for k, v in given.items() if v is not None and k != "static"}  # static: a run option (run)
         if "spacing" in given:
             if self.option("points") is None:
                 raise InputError(f"spacing: model {self.name} takes no grid; drop --spacing")
@@ -351,12 +361,13 @@ def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
     d = scene.dynamics
     if d is None:
         return scene, given
-    moved = [f"dynamics.{side}.{k}" for side in ("left", "right") if getattr(d, side) is not None
-             for k in ("displacement", "axial", "rotation", "twist") if getattr(getattr(d, side), k) is not None]
+    moved = [(side, k) for side in ("left", "right") if getattr(d, side) is not None
+             for k in MOTION_COMPONENT if getattr(getattr(d, side), k) is not None]
     if moved and not m.end_motions:
-        raise InputError(f"{moved[0]}: model {m.name} cannot prescribe end motions, so its static part would "
-                         "leave out this one; use a model that can (" +
-                         ", ".join(n for n, x in models().items() if x.end_motions) + ")")
+        side, k = moved[0]
+        can = [n for n, x in models().items() if x.end_motions and getattr(x, MOTION_COMPONENT[k])]
+        raise InputError(f"dynamics.{side}.{k}: model {m.name} cannot prescribe end motions, so its static part "
+                         f"would leave out this one; use a model that can ({', '.join(can) or 'none installed'})")
     return scene.model_copy(update={"dynamics": None}), given
 
 
@@ -376,7 +387,8 @@ def variant_problems(m: Model, params: dict) -> list[str]:
     return [p for p in (r.problem(m.name, params) for r in m.variant_rules) if p]
 
 
-def _flag(value) -> bool:
+def as_flag(value) -> bool:
+    """A yes/no run option given as a bool or a string (``-o static=true``)."""
     if isinstance(value, bool):
         return value
     v = str(value).strip().lower()
@@ -396,7 +408,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     options against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2)."""
     t0 = time.perf_counter()
     m = get_model(model) if isinstance(model, str) else model
-    if _flag(given.pop("static", False)):
+    if as_flag(given.pop("static", False)):
         scene, given = static_part(scene, m, given)
     found = m.check(scene)
     if found:
