@@ -139,6 +139,9 @@ def list_models():
         typer.echo(f"{name:22s} {m.title}  [{opts}]")
         if m.source:
             typer.echo(f"{'':22s} source: {m.source}")
+        c = m.capabilities()
+        typer.echo(f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
+                   f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}")
 
 
 def _slug(name: str) -> str:
