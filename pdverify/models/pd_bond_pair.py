@@ -117,7 +117,8 @@ class PDBondPair(Model):
             K = model.tangent(np.zeros(2 * model.n), 0.0)
             free = model.free
             b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
-            return System(K[free][:, free].tocsr(), b[free], free, {"ghosts_per_end": model.G, "form": "energy tangent"})
+            return System(K[free][:, free].tocsr(), b[free], free,
+                          {"ghosts_per_end": model.G, "form": "energy tangent"})
         K, b, fixed, info = self.assemble_taylor(scene, params)
         return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
 
