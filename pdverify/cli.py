@@ -91,7 +91,9 @@ def solve(
     element: Optional[str] = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
     layers: Optional[int] = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
     form: Optional[str] = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
-    option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="any other model option, key=value"),
+    option: Optional[list[str]] = typer.Option(
+        None, "--option", "-o",
+        help="any other model option, key=value; static=true: the static part of a scene with [dynamics]"),
     fmt: Format = typer.Option(Format.table, "--format", help="output format"),
     out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),

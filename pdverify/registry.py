@@ -212,6 +212,8 @@ class Model:
             if sup not in self.supports:
                 out.append(f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
                            f"{', '.join(sorted(self.supports))}")
+        if scene.dynamics is None and "static" not in self.analyses:
+            out.append(f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table (end_time, ...)")
         if scene.dynamics is not None and "dynamic" not in self.analyses:
             dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses) or "none installed"
             out.append(f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "

@@ -189,6 +189,16 @@ def test_bench_probes_no_attributes():
         assert "hasattr(" not in src and "getattr(m" not in src and "getattr(model" not in src, f
 
 
+def test_dynamic_only_model_needs_a_dynamics_table(monkeypatch):
+    class Transient(type(get_model("pd-timoshenko"))):
+        name = "transient-test"
+        analyses = frozenset({"dynamic"})
+
+    sc = parse_scene(scene_dict("clamped", "free", ONE_LOAD))
+    assert problems(sc, Transient()) == ["dynamics: model transient-test solves transient runs only; add a "
+                                         "[dynamics] table (end_time, ...)"]
+
+
 def test_new_model_defaults_are_the_plain_static_beam():
     m = Model()
     assert m.analyses == {"static"} and not m.assembles and m.straight and not m.curved
