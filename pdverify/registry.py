@@ -213,7 +213,8 @@ class Model:
                 out.append(f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
                            f"{', '.join(sorted(self.supports))}")
         if scene.dynamics is None and "static" not in self.analyses:
-            out.append(f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table (end_time, ...)")
+            out.append(f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table "
+                       "(end_time, ...)")
         if scene.dynamics is not None and "dynamic" not in self.analyses:
             dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses) or "none installed"
             out.append(f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "
@@ -357,7 +358,7 @@ def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
     if "dynamic" in m.analyses:
         if m.option("analysis") is None:
             return scene, given
-        if given.get("analysis", "static") != "static":
+        if given.get("analysis", "static") not in ("static", "auto"):
             raise InputError(f"static = true and analysis = {given['analysis']!r}: give one of them")
         return scene, dict(given, analysis="static")
     d = scene.dynamics
