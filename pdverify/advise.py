@@ -59,6 +59,7 @@ class Advice:
     choice: Candidate | None
     runner_up: Candidate | None
     rejected: list[str] = field(default_factory=list)
+    static: bool = False  # the static part of a [dynamics] scene (solve it with -o static=true)
 
 
 def shear_gap(scene: Scene) -> float:
@@ -325,7 +326,8 @@ def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_referen
     if not found:
         raise SolveError(f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
                          f"{budget:g} s; " + "; ".join(rejected[:3]))
-    return Advice(scene.name, tolerance, needs, found[0], found[1] if len(found) > 1 else None, rejected)
+    return Advice(scene.name, tolerance, needs, found[0], found[1] if len(found) > 1 else None, rejected,
+                  static and scene.dynamics is not None)
 
 
 def format_advice(a: Advice) -> str:
@@ -334,8 +336,8 @@ def format_advice(a: Advice) -> str:
     for label, c in (("choice", a.choice), ("runner-up", a.runner_up)):
         if c is None:
             continue
-        opts = " ".join(f"--{k} {v}" for k, v in c.options.items())
-        lines.append(f"{label}: {c.model} --points {c.points} {opts}".rstrip())
+        opts = [f"--{k} {v}" for k, v in c.options.items()] + (["-o static=true"] if a.static else [])
+        lines.append(" ".join([f"{label}: {c.model} --points {c.points}", *opts]))
         lines.append(f"  estimated error {c.estimate:.2e} ({c.basis})")
         if c.exact_error is not None:
             lines.append(f"  check against the exact solution: {c.exact_error:.2e}")

@@ -126,6 +126,7 @@ def test_dynamics_scene_needs_the_static_part_asked_for():
     assert any(r.startswith("pd-eb: dynamics.right.displacement") for r in a.rejected)
     text = format_advice(a)
     assert "nan" not in text and "0.00e+00" not in text
+    assert f"choice: pd-timoshenko --points {a.choice.points} -o static=true\n" in text  # how to solve it
 
 
 def test_cli_advise_dynamics_scene_exit_2():
