@@ -12,8 +12,9 @@ The contract (docs/contract.md has the version for model authors):
   ``"dynamic"``), ``straight`` / ``curved`` axes, ``supports``, ``load_types``, the load components it
   carries (``bending``, ``axial``, ``torsion``), ``end_motions`` (prescribed end motions of a
   ``[dynamics]`` table) and ``variant_rules`` (:class:`Rule`: the option values a variant's equations
-  define). :func:`run` checks the scene and the options against them before solving (:func:`problems`,
-  :func:`variant_problems`), one line per problem.
+  define). :func:`run` checks the scene and the options against them before solving (:func:`problems`;
+  :meth:`Model.resolve` applies :func:`variant_problems`, so a study file is checked when it is loaded),
+  one line per problem.
 * **Solve** -- :meth:`Model.solve` returns a :class:`~pdverify.result.Result`.
 * **Assembled system** -- a linear static model whose solve factorises one linear system sets
   ``assembles = True`` and implements :meth:`Model.assemble`, which returns that :class:`System`
@@ -283,8 +284,10 @@ class Model:
     def option(self, name: str) -> Option | None:
         return next((o for o in self.options if o.name == name), None)
 
-    def resolve(self, scene: Scene, given: dict) -> dict:
-        """Validate ``given`` options against this model and fill in the defaults."""
+    def resolve(self, scene: Scene, given: dict, rules: bool = True) -> dict:
+        """Validate ``given`` options against this model and fill in the defaults; ``rules``: also against
+        its ``variant_rules`` (:func:`variant_problems`; off only to build a variant's operator with
+        another's option, as a test of the assembly)."""
         given = {k: v for k, v in given.items() if v is not None and k != "static"}  # static: a run option (run)
         if "spacing" in given:
             if self.option("points") is None:
@@ -301,6 +304,9 @@ class Model:
         params = {}
         for opt in self.options:
             params[opt.name] = opt.coerce(self.name, given[opt.name]) if opt.name in given else opt.default
+        found = variant_problems(self, params) if rules else []
+        if found:
+            raise InputError(found)
         return params
 
 
@@ -416,10 +422,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     found = m.check(scene)
     if found:
         raise InputError(found)
-    params = m.resolve(scene, given)
-    found = variant_problems(m, params)
-    if found:
-        raise InputError(found)
+    params = m.resolve(scene, given)  # the options, their variant's rules included
     result = m.solve(scene, params)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)

@@ -137,7 +137,7 @@ def test_end_motion_of_an_unknown_the_model_lacks_is_named():
 @pytest.mark.parametrize("model,given,match", [
     ("pd-eb", {"variant": "paper", "horizon": 2.5}, r"horizon = 2\.5: not defined by variant = paper .*Eq\. 32"),
     ("pd-eb", {"variant": "paper", "form": "mixed"}, r"form = 'mixed': not defined by variant = paper"),
-    ("pd-bond-pair", {"variant": "paper"}, r"ends = 'taylor': not defined by variant = paper .*-o ends=mirror"),
+    ("pd-bond-pair", {"variant": "paper"}, r"ends = 'taylor': not defined by variant = paper .*use ends = mirror"),
     ("pd-bond-pair", {"variant": "paper", "ends": "mirror", "horizon": 2.5}, r"horizon = 2\.5: .*whole"),
     ("pd-higher-order", {"variant": "paper", "ends": "truncated"}, r"ends = 'truncated': .*Appendix B"),
     ("pd-higher-order", {"variant": "paper", "pin": "face"}, r"pin = 'face': .*Eq\. B41"),
@@ -204,3 +204,18 @@ def test_new_model_defaults_are_the_plain_static_beam():
     assert m.analyses == {"static"} and not m.assembles and m.straight and not m.curved
     with pytest.raises(NotImplementedError):
         m.assemble(None, {})
+
+
+def test_study_crossing_a_paper_variant_with_foreign_options_fails_when_loaded(tmp_path):
+    """resolve applies the variant rules, so a study is refused before any case runs (one line per
+    problem, repeated scenes once)."""
+    from pdverify.study import load_study
+
+    p = tmp_path / "s.toml"
+    p.write_text(f'name = "x"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_free.toml", '
+                 f'"{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "exact-eb"\n'
+                 '[[runs]]\nmodel = "pd-bond-pair"\nvariant = ["paper", "corrected"]\nends = ["mirror", "taylor"]\n'
+                 "points = [51, 101]\n")
+    with pytest.raises(InputError) as exc:
+        load_study(p)
+    assert len([line for line in exc.value.lines if "ends = 'taylor': not defined by variant = paper" in line]) == 1

@@ -92,7 +92,7 @@ class PDBondPair(Model):
         Rule((("variant", "paper"),), "horizon", "seed 003 alpha = 3 EI / delta^3 with delta = (m + 0.015) dx over "
              "whole families of m points; use variant = corrected for a fractional horizon", whole=True),
         Rule((("variant", "paper"),), "ends", "the paper's continuous alpha goes with the mirror (reflection) ghosts "
-             "of seed 000; Taylor ghosts carry the true EI (design note §1); add -o ends=mirror", allowed=("mirror",)),
+             "of seed 000; Taylor ghosts carry the true EI (design note §1); use ends = mirror", allowed=("mirror",)),
     )
 
     def energy_model(self, scene: Scene, params: dict):
