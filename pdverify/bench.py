@@ -3,8 +3,9 @@
 For a static model the limit is the banded direct solve of its own assembled matrix
 (``scipy.linalg.solve_banded`` on the same band, timed in the same run). Each (model, points) case runs
 in a fresh subprocess so its peak memory (resident set above the post-import baseline) is its own.
-Models that expose ``assemble(scene, params)`` returning ``(K, b, ...)`` get a limit; dynamic models
-that expose ``bench_dynamics(scene, params, steps)`` (returning point-updates per second) get a rate.
+Models are probed through their declared contract (pdverify/registry.py): a model with ``assembles``
+gets a limit from the :class:`~pdverify.registry.System` its ``assemble`` returns; a model with
+``"dynamic"`` in its ``analyses`` gets a rate from ``bench_dynamics`` (point-updates per second).
 """
 
 from __future__ import annotations
@@ -25,23 +26,17 @@ BENCH_SCENE = EXAMPLES / "cantilever_tip_load.toml"
 def default_scene(model) -> Path:
     """The bench scene a model can solve: its own ``bench_scene`` (a path under studies/) if it names
     one, else the cantilever (bending), the rod (axial) or the shaft (torsion)."""
-    if getattr(model, "bench_scene", None):
+    if model.bench_scene:
         return EXAMPLES.parent / model.bench_scene
-    if getattr(model, "bending", True):
+    if model.bending:
         return BENCH_SCENE
-    if getattr(model, "torsion", False) and not getattr(model, "axial", False):
+    if model.torsion and not model.axial:
         return EXAMPLES / "shaft_tip_torque.toml"
     return EXAMPLES / "rod_tip_load.toml"
 
 
 def _rss_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: kB
-
-
-def _unpack(assembled):
-    if isinstance(assembled, tuple):
-        return assembled[0], assembled[1]
-    return assembled.K, assembled.b
 
 
 def bench_case(model: str, points: int, scene_path: str | None = None, repeat: int = 2) -> dict:
@@ -84,9 +79,11 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
         "mem_per_point_kb": None,
         "updates_per_s": None,
     }
-    if hasattr(m, "assemble"):
-        params = m.resolve(scene, {"points": points})
-        K, b = m.limit_system(scene, params) if hasattr(m, "limit_system") else _unpack(m.assemble(scene, params))
+    params = m.resolve(scene, {"points": points})
+    if m.assembles and m.linear(params):
+        system = m.assemble(scene, params)
+        K, b = system.matrix, system.rhs
+        del system
         B = K if isinstance(K, Band) else Band.from_sparse(K)
         # the same symmetric diagonal scaling solve_linear applies (else LAPACK may call it singular)
         s = diagonal_scaling(B.diag(0))
@@ -101,8 +98,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
             sla.solve_banded((lo, up), ab, rhs, check_finite=False)
             limit = min(limit, time.perf_counter() - t0)
         row.update(limit_s=limit, ratio=total / limit, bandwidth=lo + up + 1)
-    if hasattr(m, "bench_dynamics"):
-        params = m.resolve(scene, {"points": points})
+    if "dynamic" in m.analyses:
         row["updates_per_s"] = float(m.bench_dynamics(scene, params, steps=200))
     row["peak_mem_mb"] = max(peak, 0.0)
     row["mem_per_point_kb"] = max(peak, 0.0) * 1024 / points
@@ -145,4 +141,4 @@ SMALL_MODELS = {"pd-higher-order": 100_000, "pd-curved": 100_000,  # the issue's
 def default_models() -> list[str]:
     from .registry import models
 
-    return [n for n, m in models().items() if hasattr(m, "assemble") or hasattr(m, "bench_dynamics")]
+    return [n for n, m in models().items() if m.assembles or "dynamic" in m.analyses]

@@ -184,14 +184,16 @@ def solve(
     element: Optional[str] = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
     layers: Optional[int] = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
     form: Optional[str] = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
-    option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="any other model option, key=value"),
+    option: Optional[list[str]] = typer.Option(
+        None, "--option", "-o",
+        help="any other model option, key=value; static=true: the static part of a scene with [dynamics]"),
     fmt: Optional[Format] = typer.Option(
         None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"),
     out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
     tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
 ):
     """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
-    from .registry import get_model, run
+    from .registry import as_flag, get_model, run
     from .scene import load_scene
 
     fmt = _out_format(out, fmt)
@@ -207,10 +209,10 @@ def solve(
 
         if tolerance is None:
             raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
-        choice = _advise(sc, tolerance).choice
+        choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
         typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
         model = choice.model
-        given = dict(choice.options, points=choice.points)
+        given = dict(choice.options, points=choice.points, static=given.get("static", False))
     from .memguard import check_memory
     from .plugins import model_argument
 
@@ -241,6 +243,9 @@ def list_models():
         typer.echo(f"{name:22s} {m.title}  [{opts}]")
         if m.source:
             typer.echo(f"{'':22s} source: {m.source}")
+        c = m.capabilities()
+        typer.echo(f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
+                   f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}")
 
 
 def _slug(name: str) -> str:
@@ -309,18 +314,28 @@ def study(
 @app.command()
 @user_errors
 def advise(
-    scene: Path = typer.Argument(..., help="scene TOML file"),
+    scene: Optional[Path] = typer.Argument(None, help="scene TOML file"),
     tolerance: float = typer.Option(1e-3, "--tolerance", help="relative error you can accept"),
     budget: float = typer.Option(30.0, "--budget", help="seconds per candidate model for the grid search"),
+    static: bool = typer.Option(False, "--static", help="a scene with [dynamics]: advise on its static part"),
+    rebuild_priors: bool = typer.Option(False, "--rebuild-priors",
+                                        help="regenerate pdverify/data/advisor_priors.json (a small study)"),
 ):
     """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
+    from .advise import PRIORS, rebuild_priors as _rebuild
     from .advise import advise as _advise
     from .advise import format_advice
     from .scene import load_scene
 
+    if rebuild_priors:
+        data = _rebuild()
+        typer.echo(f"wrote {PRIORS}: {len(data['series'])} series, code digest {data['code_digest']}")
+        return
+    if scene is None:
+        raise InputError("scene: give a scene file (or --rebuild-priors)")
     sc = load_scene(scene)
     _SCENE_FILES[:] = [sc]
-    typer.echo(format_advice(_advise(sc, tolerance, budget)))
+    typer.echo(format_advice(_advise(sc, tolerance, budget, static=static)))
 
 
 @app.command()

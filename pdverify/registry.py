@@ -1,12 +1,38 @@
-"""The model registry: every model of ``pdverify solve`` is a small object found here.
+"""The model registry and the model contract: every model of ``pdverify solve`` is a small object found here.
 
 A model module (in ``pdverify.exact``, ``pdverify.models`` or ``reference_fem``) defines a list
 ``MODELS`` of :class:`Model` instances; the registry imports those packages' modules and collects
 them, so adding a model never means editing a central file.
 
-A model declares its options (name, type, default, allowed values), says which scenes it can solve
-(:meth:`Model.check`) and solves one scene (:meth:`Model.solve`). :func:`run` validates the
-options, times the whole call and returns a :class:`~pdverify.result.Result`.
+The contract (docs/contract.md has the version for model authors):
+
+* **Options** -- a model declares its options (:class:`Option`: name, type, default, allowed values);
+  :meth:`Model.resolve` validates what the user gave and fills in the defaults.
+* **Capabilities, as data** -- each model declares what it can solve: ``analyses`` (``"static"`` and/or
+  ``"dynamic"``), ``straight`` / ``curved`` axes, ``supports``, ``load_types``, the load components it
+  carries (``bending``, ``axial``, ``torsion``), ``end_motions`` (prescribed end motions of a
+  ``[dynamics]`` table) and ``variant_rules`` (:class:`Rule`: the option values a variant's equations
+  define). :func:`run` checks the scene and the options against them before solving (:func:`problems`;
+  :meth:`Model.resolve` applies :func:`variant_problems`, so a study file is checked when it is loaded),
+  one line per problem.
+* **Solve** -- :meth:`Model.solve` returns a :class:`~pdverify.result.Result`.
+* **Assembled system** -- a linear static model whose solve factorises one linear system sets
+  ``assembles = True`` and implements :meth:`Model.assemble`, which returns that :class:`System`
+  (the matrix as a :class:`~pdverify.band.Band` or scipy sparse, the right-hand side, the free unknowns,
+  info). ``pdverify bench`` times the banded solve of exactly that system. Models whose static path is
+  nonlinear for some options declare them in ``nonlinear_when``; models with a time integrator list
+  ``"dynamic"`` in ``analyses`` and implement :meth:`Model.bench_dynamics`.
+
+>>> import numpy as np, scipy.sparse as sp
+>>> K = sp.diags([[-1.0] * 3, [2.0] * 4, [-1.0] * 3], [-1, 0, 1]).tocsr()
+>>> s = System(K, np.ones(4), free=np.arange(4), info={})
+>>> s.unknowns, s.eliminated
+(4, True)
+>>> Kf, bf = System(K, np.ones(4), free=np.array([1, 2]), info={}).reduced()
+>>> Kf.toarray().tolist(), bf.tolist()
+([[2.0, -1.0], [-1.0, 2.0]], [1.0, 1.0])
+>>> sorted(get_model("pd-eb").supports), "dynamic" in get_model("pd-timoshenko").analyses
+(['clamped', 'free', 'guided', 'pinned'], True)
 """
 
 from __future__ import annotations
@@ -14,14 +40,17 @@ from __future__ import annotations
 import importlib
 import pkgutil
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 
+from .band import Band
 from .errors import InputError
 from .result import Result
 from .scene import Scene
+
 
 MODEL_PACKAGES = ("pdverify.exact", "pdverify.models", "reference_fem")
 
@@ -81,6 +110,74 @@ class Option:
         return v
 
 
+@dataclass
+class System:
+    """The linear system a linear static model's solve factorises: ``matrix @ z = rhs``.
+
+    ``matrix``: a :class:`~pdverify.band.Band` or a scipy sparse matrix. ``free``: the indices, in the
+    model's own numbering of its unknowns, of those the supports leave free. Either the held unknowns
+    were eliminated (``matrix`` is ``len(free)`` square and z = u[free]: :attr:`eliminated`), or they
+    keep their place with a unit row and a cleared column (z is the whole u, zero where held).
+    ``info``: what the assembly chose (ghost layers, form, ...), merged into the result's info."""
+
+    matrix: Band | sp.spmatrix
+    rhs: np.ndarray
+    free: np.ndarray
+    info: dict = field(default_factory=dict)
+
+    @property
+    def unknowns(self) -> int:
+        """Free unknowns (the result's ``dofs`` for a single-solve model)."""
+        return len(self.free)
+
+    @property
+    def eliminated(self) -> bool:
+        return self.matrix.shape[0] == len(self.free)
+
+    def reduced(self) -> tuple[sp.csr_matrix, np.ndarray]:
+        """(CSR, rhs) of the free unknowns only: the rows and columns of ``free`` (the held ones dropped)."""
+        K = self.matrix.tocsr() if isinstance(self.matrix, Band) else sp.csr_matrix(self.matrix)
+        if self.eliminated:
+            return K, np.asarray(self.rhs)
+        f = np.asarray(self.free, np.int64)
+        return K[f][:, f].tocsr(), np.asarray(self.rhs)[f]
+
+
+@dataclass(frozen=True)
+class Rule:
+    """An option value a variant's equations define (checked by :func:`run` before solving).
+
+    When every option in ``when`` has the given value, option ``option`` must be one of ``allowed`` (if
+    given) and a whole number (if ``whole``); ``why`` names the equation that defines only those."""
+
+    when: tuple[tuple[str, Any], ...]
+    option: str
+    why: str
+    allowed: tuple | None = None
+    whole: bool = False
+
+    def applies(self, params: dict) -> bool:
+        return all(params.get(k) == v for k, v in self.when)
+
+    def problem(self, model: str, params: dict) -> str | None:
+        if not self.applies(params) or self.option not in params:
+            return None
+        v = params[self.option]
+        bad_value = self.allowed is not None and v not in self.allowed
+        bad_whole = self.whole and float(v) != int(float(v))
+        if not (bad_value or bad_whole):
+            return None
+        cond = ", ".join(f"{k} = {val}" for k, val in self.when)
+        need = "a whole number" if bad_whole else "one of " + ", ".join(map(str, self.allowed))
+        return f"{self.option} = {v!r}: not defined by {cond} of model {model}, which takes {need} ({self.why})"
+
+
+SUPPORTS = frozenset({"clamped", "pinned", "guided", "free"})  # "roller" where a model declares it
+LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "point_torque" for torsion models
+
+# an end motion of [dynamics.left/right] and the load component (Model attribute) whose unknown it moves
+MOTION_COMPONENT = {"displacement": "bending", "rotation": "bending", "axial": "axial", "twist": "torsion"}
+
 POINTS = Option("points", int, 101, "material points / nodes along the axis, ends included", minimum=2)
 
 
@@ -94,8 +191,18 @@ class Model:
     title: str = ""
     source: str = ""
     options: tuple[Option, ...] = (POINTS,)
-    kind: str = "static"  # static | dynamic
+    # -- capabilities: what the model can solve, as data (checked by `run` before solving) --------
+    analyses: frozenset[str] = frozenset({"static"})  # "static" and/or "dynamic" (a time integrator)
+    straight: bool = True  # solves straight axes
     curved: bool = False  # solves curved axes
+    supports: frozenset[str] = SUPPORTS  # end conditions it represents (scene.supports.left/right)
+    load_types: frozenset[str] = LOAD_TYPES  # loads[i].type it applies
+    end_motions: bool = False  # prescribed end motions ([dynamics.left/right]) in its solution
+    variant_rules: tuple[Rule, ...] = ()  # option values each variant's equations define (Rule)
+    # -- the assembled system -------------------------------------------------------------------
+    assembles: bool = False  # a linear static solve of one System: implements assemble()
+    nonlinear_when: tuple[tuple[str, Any], ...] = ()  # options that switch solve() to a nonlinear path
+    bench_scene: str | None = None  # the scene `pdverify bench` times (a path under studies/), if its own
     axial: bool = False  # carries axial loads (loads[i].axial)
     bending: bool = True  # carries transverse loads (loads[i].value)
     torsion: bool = False  # carries torques (point_torque, loads[i].torque)
@@ -103,16 +210,42 @@ class Model:
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
 
     def check(self, scene: Scene) -> list[str]:
-        """Reasons this model cannot solve ``scene`` (empty when it can)."""
+        """Reasons this model cannot solve ``scene`` (empty when it can): its declared capabilities first
+        (subclasses add their own reasons to ``super().check(scene)``)."""
         out = []
         if not scene.is_straight and not self.curved:
             out.append(f"model {self.name} solves straight beams only; axis.type = {scene.axis.type!r}")
+        if scene.is_straight and not self.straight:
+            out.append(f"model {self.name} solves curved beams only; axis.type = 'straight'")
+        for side in ("left", "right"):
+            sup = getattr(scene.supports, side)
+            if sup not in self.supports:
+                out.append(f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
+                           f"{', '.join(sorted(self.supports))}")
+        if scene.dynamics is None and "static" not in self.analyses:
+            out.append(f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table "
+                       "(end_time, ...)")
+        if scene.dynamics is not None and "dynamic" not in self.analyses:
+            dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses) or "none installed"
+            out.append(f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "
+                       f"use a dynamic model ({dyn}) or ask for the static part (-o static=true)")
+        if scene.dynamics is not None and self.end_motions:
+            for side in ("left", "right"):
+                em = getattr(scene.dynamics, side)
+                for k, component in MOTION_COMPONENT.items():
+                    if em is not None and getattr(em, k) is not None and not getattr(self, component):
+                        out.append(f"dynamics.{side}.{k}: model {self.name} has no such unknown to move; "
+                                   "use a model that carries it or drop the motion")
         for i, load in enumerate(scene.loads):
+            if load.type not in self.load_types and load.type != "point_torque":  # torques: the twist check below
+                out.append(f"loads[{i}].type = {load.type!r}: model {self.name} takes "
+                           f"{', '.join(sorted(self.load_types))}")
+                continue
             if getattr(load, "axial", 0.0) != 0.0 and not self.axial:
                 out.append(f"loads[{i}].axial = {load.axial!r}: model {self.name} has no axial displacement; "
                            "use a model with an axial DOF or drop the axial component")
             torque = load.type == "point_torque" or getattr(load, "torque", 0.0) != 0.0
-            if torque and not self.torsion:
+            if torque and not (self.torsion and (load.type != "point_torque" or load.type in self.load_types)):
                 out.append(f"loads[{i}]: a torque: model {self.name} has no twist; use a torsion model (pd-torsion) "
                            "or drop the torque")
             if load.value != 0.0 and not self.bending and load.type != "point_torque":
@@ -123,6 +256,27 @@ class Model:
 
     def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
         raise NotImplementedError
+
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The :class:`System` that :meth:`solve` factorises (models with ``assembles = True``)."""
+        raise NotImplementedError(f"model {self.name} assembles no linear system (assembles = False)")
+
+    def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
+        """Point-updates per second of the time integrator (models with ``"dynamic"`` in ``analyses``)."""
+        raise NotImplementedError(f"model {self.name} has no time integrator")
+
+    def linear(self, params: dict) -> bool:
+        """False when ``params`` select a nonlinear path (``nonlinear_when``)."""
+        return not any(params.get(k) == v for k, v in self.nonlinear_when)
+
+    def capabilities(self) -> dict:
+        """The declared capabilities as plain data (``pdverify models``, docs/contract.md)."""
+        return {"analyses": sorted(self.analyses), "axes": [a for a, ok in (("straight", self.straight),
+                                                                             ("curved", self.curved)) if ok],
+                "supports": sorted(self.supports), "load_types": sorted(self.load_types),
+                "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
+                "end_motions": self.end_motions, "assembles": self.assembles,
+                "variant_rules": [f"{dict(r.when)}: {r.option} ({r.why})" for r in self.variant_rules]}
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray] | None:
         """Fields at arbitrary positions ``x`` (exact models); None when only point values exist."""
@@ -139,9 +293,11 @@ class Model:
     def option(self, name: str) -> Option | None:
         return next((o for o in self.options if o.name == name), None)
 
-    def resolve(self, scene: Scene, given: dict) -> dict:
-        """Validate ``given`` options against this model and fill in the defaults."""
-        given = {k: v for k, v in given.items() if v is not None}
+    def resolve(self, scene: Scene, given: dict, rules: bool = True) -> dict:
+        """Validate ``given`` options against this model and fill in the defaults; ``rules``: also against
+        its ``variant_rules`` (:func:`variant_problems`; off only to build a variant's operator with
+        another's option, as a test of the assembly)."""
+        given = {k: v for k, v in given.items() if v is not None and k != "static"}  # static: a run option (run)
         if "spacing" in given:
             if self.option("points") is None:
                 raise InputError(f"spacing: model {self.name} takes no grid; drop --spacing")
@@ -157,6 +313,9 @@ class Model:
         params = {}
         for opt in self.options:
             params[opt.name] = opt.coerce(self.name, given[opt.name]) if opt.name in given else opt.default
+        found = variant_problems(self, params) if rules else []
+        if found:
+            raise InputError(found)
         return params
 
 
@@ -210,14 +369,72 @@ def get_model(name: str) -> Model:
     return reg[name]
 
 
+def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
+    """The scene and options of the static response to a scene's loads (``static = true``): a dynamic
+    model runs its static analysis (option ``analysis``); a static-only model gets the scene without its
+    ``[dynamics]`` table, which it may drop only when the table prescribes no end motion."""
+    if "dynamic" in m.analyses:
+        if m.option("analysis") is None:
+            return scene, given
+        if given.get("analysis", "static") not in ("static", "auto"):
+            raise InputError(f"static = true and analysis = {given['analysis']!r}: give one of them")
+        return scene, dict(given, analysis="static")
+    d = scene.dynamics
+    if d is None:
+        return scene, given
+    moved = [(side, k) for side in ("left", "right") if getattr(d, side) is not None
+             for k in MOTION_COMPONENT if getattr(getattr(d, side), k) is not None]
+    if moved and not m.end_motions:
+        side, k = moved[0]
+        can = [n for n, x in models().items() if x.end_motions and getattr(x, MOTION_COMPONENT[k])]
+        raise InputError(f"dynamics.{side}.{k}: model {m.name} cannot prescribe end motions, so its static part "
+                         f"would leave out this one; use a model that can ({', '.join(can) or 'none installed'})")
+    return scene.model_copy(update={"dynamics": None}), given
+
+
+def problems(scene: Scene, m: Model, static: bool = False) -> list[str]:
+    """Every reason ``m`` cannot solve ``scene`` (its declared capabilities and its own check), one line
+    each; ``static``: only the static response to the loads is asked for (:func:`static_part`)."""
+    if static:
+        try:
+            scene, _ = static_part(scene, m, {})
+        except InputError as exc:
+            return exc.lines
+    return m.check(scene)
+
+
+def variant_problems(m: Model, params: dict) -> list[str]:
+    """The options in ``params`` that the chosen variant's equations do not define (``variant_rules``)."""
+    return [p for p in (r.problem(m.name, params) for r in m.variant_rules) if p]
+
+
+def as_flag(value) -> bool:
+    """A yes/no run option given as a bool or a string (``-o static=true``)."""
+    if isinstance(value, bool):
+        return value
+    v = str(value).strip().lower()
+    if v in ("1", "true", "yes", "on"):
+        return True
+    if v in ("0", "false", "no", "off"):
+        return False
+    raise InputError(f"static = {value!r}: give true or false")
+
+
 def run(scene: Scene, model: str | Model, **given) -> Result:
-    """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``)."""
+    """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
+
+    ``static = true`` (CLI ``-o static=true``; not a model option): the static response to the loads of a
+    scene that has a ``[dynamics]`` table (:func:`static_part`); without it a static-only model rejects
+    such a scene. Before solving, the scene is checked against the model's declared capabilities and the
+    options against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2)."""
     t0 = time.perf_counter()
     m = get_model(model) if isinstance(model, str) else model
-    problems = m.check(scene)
-    if problems:
-        raise InputError(problems)
-    params = m.resolve(scene, given)
+    if as_flag(given.pop("static", False)):
+        scene, given = static_part(scene, m, given)
+    found = m.check(scene)
+    if found:
+        raise InputError(found)
+    params = m.resolve(scene, given)  # the options, their variant's rules included
     result = m.solve(scene, params)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)

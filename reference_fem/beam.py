@@ -15,7 +15,7 @@ from scipy.interpolate import CubicHermiteSpline
 
 from pdverify.band import Band
 from pdverify.linalg import eliminate, solve_linear
-from pdverify.registry import Model, Option
+from pdverify.registry import Model, Option, System
 from pdverify.result import Result, Timer
 from pdverify.scene import Distributed, PointForce, PointMoment, Scene
 
@@ -147,25 +147,24 @@ class _BeamFE(Model):
     def assemble_band(self, scene: Scene, params: dict):  # pragma: no cover - interface
         raise NotImplementedError
 
-    def assemble(self, scene: Scene, params: dict, **options):
-        """(K_ff, F_f, free, nodes): the sparse system after eliminating the supported DOFs."""
-        K, F, nodes = self.assemble_band(scene, params, **options)
-        return (*reduce_supports(scene, K.tocsr(), F, len(nodes)), nodes)
+    assembles = True
 
-    def limit_system(self, scene: Scene, params: dict):
-        """(matrix, rhs) that ``solve`` factorises (for ``pdverify bench``'s limit)."""
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The system ``solve`` factorises: the band of :meth:`assemble_band` with the supported DOFs held
+        (unit rows, cleared columns); free = the DOFs (w_i, w'_i or theta_i interleaved) not held."""
         K, F, nodes = self.assemble_band(scene, params)
-        return hold_supports(scene, K, F, len(nodes))[:2]
+        fixed = constrained_dofs(scene, len(nodes))
+        K, F, _ = hold_supports(scene, K, F, len(nodes))
+        return System(K, F, np.delete(np.arange(2 * len(nodes)), fixed), {"nodes": nodes})
 
     def solve_nodal(self, scene: Scene, params: dict, what: str):
         """(u, info, free DOF count, nodes, timer): nodal DOFs (w_i, w'_i or theta_i) interleaved."""
         timer = Timer()
         with timer("assemble"):
-            K, F, nodes = self.assemble_band(scene, params)
-            K, F, dofs = hold_supports(scene, K, F, len(nodes))
+            system = self.assemble(scene, params)
         with timer("solve"):
-            u, info = solve_linear(K, F, what=what)
-        return u, info, dofs, nodes, timer
+            u, info = solve_linear(system.matrix, system.rhs, what=what)
+        return u, info, system.unknowns, system.info["nodes"], timer
 
 
 def hermite_shapes(xi, l):

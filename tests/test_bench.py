@@ -25,20 +25,42 @@ def test_bench_json_lines():
 
 
 def test_limit_is_banded_solve_of_the_models_matrix(monkeypatch):
-    """A model with assemble() gets limit_s from the banded solve of exactly that matrix."""
+    """A model that declares ``assembles`` gets limit_s from the banded solve of exactly the System its
+    assemble() returns; one that does not declare it gets none, whatever methods it has."""
     from pdverify import registry
     from pdverify.exact.models import ExactBeam
+    from pdverify.registry import System
 
     class Tridiag(ExactBeam):
+        assembles = True
+
         def assemble(self, scene, params):
             n = params["points"]
             K = sp.diags([-np.ones(n - 1), 2 * np.ones(n), -np.ones(n - 1)], [-1, 0, 1]).tocsr()
-            return K, np.ones(n)
+            return System(K, np.ones(n), np.arange(n), {})
 
     m = Tridiag("tridiag-test", False, "test")
     monkeypatch.setitem(registry.models(), "tridiag-test", m)
     row = bench_case("tridiag-test", 2001)
     assert row["bandwidth"] == 3 and row["limit_s"] > 0 and row["ratio"] == row["total_s"] / row["limit_s"]
+
+    class Undeclared(Tridiag):
+        assembles = False  # a method named assemble is not the contract: the declaration is
+
+    monkeypatch.setitem(registry.models(), "undeclared-test", Undeclared("undeclared-test", False, "test"))
+    row = bench_case("undeclared-test", 101)
+    assert row["limit_s"] is None and row["bandwidth"] is None
+
+
+def test_default_models_are_the_declared_ones():
+    """bench's default list: models declaring an assembled system or a time integrator, nothing probed."""
+    from pdverify.bench import default_models
+    from pdverify.registry import models
+
+    got = set(default_models())
+    assert {"pd-eb", "pd-bond-pair", "pd-timoshenko", "fem-eb", "pd-curved"} <= got
+    assert not got & {n for n, m in models().items() if not m.assembles and "dynamic" not in m.analyses}
+    assert "exact-eb" not in got
 
 
 def test_cost_slope_recovers_power():

@@ -101,8 +101,9 @@ def test_dynamics_settles_to_static_and_detects_blow_up():
     params = {"points": 21}
     static = run(sc, "pd-eb", **params).w
     model = PDEulerBernoulli()
-    Kf, bf, free, _ = model.assemble(sc, model.resolve(sc, params))
-    assert Kf.shape == (len(free), len(free)) and len(free) == 20  # the clamped point is eliminated
+    system = model.assemble(sc, model.resolve(sc, dict(params, form="direct")))
+    Kf, _ = system.reduced()
+    assert Kf.shape == (system.unknowns, system.unknowns) and system.unknowns == 20  # the clamped point eliminated
     # critical damping of the first mode: omega1 = 1.875^2 sqrt(EI / (rho A L^4))
     w1 = 1.875**2 * np.sqrt(sc.EI / (2700.0 * sc.section.A * sc.length**4))
     t, hist, dt, limit = simulate(sc, params, t_end=40 / w1, damping=2 * 2700.0 * w1)

@@ -183,10 +183,13 @@ def test_band_assembly_is_the_whole_grid_sparse_route(pair, opts, points):
     the 9-point grid; at 61 points the stencil fills the interior). Also its load vector."""
     sc = parse_scene(scene_dict(*pair, MIXED_LOADS))
     mdl = PDHigherOrder()
-    params = mdl.resolve(sc, {"points": points, **opts})
-    K, F, T, _ = mdl.assemble(sc, params)
+    params = mdl.resolve(sc, {"points": points, **opts}, rules=False)  # paper + truncated: the assembly only
+    system = mdl.assemble(sc, params)
+    K, F = system.reduced()
+    T = constraint_map(params["points"], sc.supports.left, sc.supports.right, params["variant"],
+                       mdl.choice(params, "pin"), system.info["depth"])
     Kr, Fr = _whole_grid_sparse_route(sc, params)
-    assert K.shape == Kr.shape == (T.shape[1], T.shape[1])
+    assert K.shape == Kr.shape == (T.shape[1], T.shape[1]) == (system.unknowns, system.unknowns)
     assert (K != Kr).nnz == 0
     assert np.array_equal(F, Fr)
 

@@ -19,7 +19,7 @@ PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
 
 
 def static_models():
-    return [m for m in models().values() if m.kind == "static" and m.bending]
+    return [m for m in models().values() if "static" in m.analyses and m.bending]
 
 
 def _opts(m):

@@ -35,7 +35,7 @@ class ExactCurvedManufactured(Model):
     reference = True
 
     def check(self, scene: Scene) -> list[str]:
-        return manufactured_checks(scene)
+        return super().check(scene) + manufactured_checks(scene)
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
         from ..manufactured import fields

@@ -30,8 +30,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import InputError
-from ..linalg import eliminate, solve_linear
-from ..registry import Model, Option
+from ..linalg import solve_linear
+from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Scene
 from .pd_eb import (body_loads, boundary_layer_warnings, end_loads, fixed_points, ghost_stencil_system, partial_volumes,
@@ -86,6 +86,14 @@ class PDBondPair(Model):
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
     )
     axial = True
+    assembles = True
+    nonlinear_when = (("nonlinear", True),)
+    variant_rules = (
+        Rule((("variant", "paper"),), "horizon", "seed 003 alpha = 3 EI / delta^3 with delta = (m + 0.015) dx over "
+             "whole families of m points; use variant = corrected for a fractional horizon", whole=True),
+        Rule((("variant", "paper"),), "ends", "the paper's continuous alpha goes with the mirror (reflection) ghosts "
+             "of seed 000; Taylor ghosts carry the true EI (design note §1); use ends = mirror", allowed=("mirror",)),
+    )
 
     def energy_model(self, scene: Scene, params: dict):
         from ._bond_pair_nonlinear import NonlinearBondPair
@@ -95,28 +103,24 @@ class PDBondPair(Model):
         j, beta = family(params["horizon"], dx, params["variant"])
         return NonlinearBondPair(scene, n, j, beta, self.alpha(scene.EI, params["horizon"], dx, params["variant"]))
 
-    def assemble(self, scene: Scene, params: dict):
-        """(K, b, free, info) after the supports, K sparse.
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The linear system ``solve`` factorises.
 
-        ``ends = taylor``: the strong-form operator on w (one DOF per point, per unit length).
+        ``ends = taylor``: the strong-form operator on w (one DOF per point, per unit length), the band of
+        :meth:`assemble_taylor` with the supported points held (unit rows).
         ``ends = mirror``: the tangent stiffness of the full energy at the undeformed state (u and w per
-        point, forces), i.e. exactly the linearisation of the nonlinear path."""
+        point, forces), i.e. exactly the linearisation of the nonlinear path, reduced to the free DOFs (CSR)."""
+        if not self.linear(params):
+            raise InputError("nonlinear = true: the nonlinear path solves no single linear system")
         if params["ends"] == "mirror":
             model = self.energy_model(scene, params)
             K = model.tangent(np.zeros(2 * model.n), 0.0)
             free = model.free
             b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
-            return K[free][:, free].tocsr(), b[free], free, {"ghosts_per_end": model.G, "form": "energy tangent"}
+            return System(K[free][:, free].tocsr(), b[free], free,
+                          {"ghosts_per_end": model.G, "form": "energy tangent"})
         K, b, fixed, info = self.assemble_taylor(scene, params)
-        Kf, bf, free = eliminate(K.tocsr(), b, fixed)
-        return Kf, bf, free, info
-
-    def limit_system(self, scene: Scene, params: dict):
-        """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
-        if params["ends"] == "mirror":
-            return self.assemble(scene, params)[:2]
-        K, b, *_ = self.assemble_taylor(scene, params)
-        return K, b
+        return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
 
     def assemble_taylor(self, scene: Scene, params: dict):
         """(K, b, fixed, info): the strong-form operator on all real points as a
@@ -201,20 +205,17 @@ class PDBondPair(Model):
         what = f"pd-bond-pair ({params['variant']}, {params['ends']} ends)"
         x = np.linspace(0.0, scene.length, params["points"])
         fields = {}
+        with timer("assemble"):
+            system = self.assemble(scene, params)
+        with timer("solve"):
+            z, info = solve_linear(system.matrix, system.rhs, what=what)
+        free, binfo = system.free, system.info
         if params["ends"] == "mirror":
-            with timer("assemble"):
-                K, b, free, binfo = self.assemble(scene, params)
-            with timer("solve"):
-                u, info = solve_linear(K, b, what=what)
             full = np.zeros(2 * len(x))
-            full[free] = u
+            full[free] = z
             w, fields["u"] = full[1::2], full[0::2]
         else:
-            with timer("assemble"):
-                K, b, fixed, binfo = self.assemble_taylor(scene, params)
-                free = np.delete(np.arange(len(x)), fixed)
-            with timer("solve"):
-                w, info = solve_linear(K, b, what=what)
+            w = z
         dx = x[1] - x[0]
         flags = boundary_layer_warnings(scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4)
         if flags:

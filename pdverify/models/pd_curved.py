@@ -75,7 +75,7 @@ from ..band import Band
 from ..errors import InputError
 from ..geometry import geometry
 from ..linalg import solve_linear
-from ..registry import Model, Option
+from ..registry import Model, Option, System
 from ..result import Result, Timer
 from ..scene import Distributed, PointForce, PointMoment, Scene
 from . import _pddo
@@ -317,6 +317,7 @@ class PDCurved(Model):
     curved = True
     axial = True
     theory = "timoshenko"
+    assembles = True
 
     # ---------------------------------------------------------------------------------------
     def discretise(self, scene: Scene, params: dict):
@@ -333,12 +334,13 @@ class PDCurved(Model):
         segs = segment_grids(scene.length, bps, params["points"], size)
         return segs, inner, ends, m, size
 
-    def assemble(self, scene: Scene, params: dict, body=None):
-        """(K, b, data): K z = b as a CSR matrix, z = (u_t, u_n, φ[, N, Q, M]) interleaved per particle
-        (``data['perm']`` maps to the component-major order). K is ``assemble_band``'s band converted
-        (``Band.tocsr``): the matrix ``solve`` factorises, from one source."""
+    def assemble(self, scene: Scene, params: dict, body=None) -> System:
+        """The collocation system of all the scene's loads as one :class:`~pdverify.band.Band`
+        (:meth:`assemble_band`), z = (u_t, u_n, φ[, N, Q, M]) interleaved per particle; every unknown is
+        free (the end conditions are rows of the system). ``solve`` factorises one such system per group of
+        loads with the same breaks."""
         B, b, data = self.assemble_band(scene, params, body)
-        return B.tocsr(), b, data
+        return System(B, b, np.arange(B.n), data)
 
     def assemble_band(self, scene: Scene, params: dict, body=None):
         """(B, b, data): the collocation system (Eq. 27–35, boundary and interface rows replacing
@@ -548,11 +550,6 @@ class PDCurved(Model):
         Cm = K.tocoo()
         K = sp.csr_matrix((Cm.data, (inv[Cm.row], inv[Cm.col])), shape=K.shape)
         return K, b[perm], np.ones(n_all), dict(Eps=Eps, Gam=Gam, Chi=Chi)
-
-    def limit_system(self, scene: Scene, params: dict):
-        """(band, rhs) that ``solve`` factorises (for ``pdverify bench``)."""
-        B, b, _ = self.assemble_band(scene, params)
-        return B, b
 
     def solve(self, scene: Scene, params: dict, body=None) -> Result:
         """Superposition of single-load solutions: the loads are grouped by the breaks they need (a point

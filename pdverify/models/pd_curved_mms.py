@@ -4,6 +4,7 @@ one command (reference ``exact-curved-manufactured``). Same options and discreti
 
 from __future__ import annotations
 
+from ..registry import System
 from ..result import Result
 from ..scene import Scene
 from .pd_curved import PDCurved
@@ -26,12 +27,11 @@ class PDCurvedMMS(PDCurved):
 
         return super().solve(scene, params, body=mms_body(scene))
 
-    def limit_system(self, scene: Scene, params: dict):
-        """(band, rhs) that ``solve`` factorises, manufactured loads included (for ``pdverify bench``)."""
+    def assemble(self, scene: Scene, params: dict, body=None) -> System:
+        """pd-curved's system with the manufactured loads added (what ``solve`` factorises)."""
         from ..manufactured import body as mms_body
 
-        B, b, _ = self.assemble_band(scene, params, mms_body(scene))
-        return B, b
+        return super().assemble(scene, params, mms_body(scene) if body is None else body)
 
 
 MODELS = [PDCurvedMMS()]

@@ -46,7 +46,7 @@ import scipy.sparse as sp
 from ..band import Band
 from ..errors import InputError, SolveError
 from ..linalg import eliminate, solve_linear
-from ..registry import Model, Option
+from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Distributed, PointForce, PointMoment, Scene
 
@@ -294,16 +294,26 @@ class PDEulerBernoulli(Model):
                "mixed (two second-order equations: round-off floor ~N^2 eps instead of ~N^4 eps; corrected only)",
                choices=("auto", "direct", "mixed")),
     )
+    assembles = True
+    variant_rules = (
+        Rule((("variant", "paper"),), "horizon", "Eq. 32: delta = (m + 0.015) dx, d = 1/(A delta) over whole "
+             "families of m points; use variant = corrected for a fractional horizon", whole=True),
+        Rule((("variant", "paper"),), "form", "Eq. 13-15, 39-42: one fourth-order system; only the corrected "
+             "variant has the two-equation (mixed) form", allowed=("auto", "direct")),
+    )
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
         return np.linspace(0.0, scene.length, params["points"])
 
-    def assemble(self, scene: Scene, params: dict):
-        """(K, b, free, info): the system K w_free = b after the supports (master–slave elimination of
-        the fixed points, Eq. 39–42), K sparse; ``free`` are the indices of the unknown points."""
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The system ``solve`` factorises: ``form = mixed`` the band of :meth:`assemble_mixed` (free: its
+        unknowns not held), else the band of :meth:`assemble_full` with the supported points held at
+        w = 0 (unit rows; free: the unknown points). ``System.reduced()`` gives the master–slave
+        eliminated system of Eq. 39–42."""
+        if self.form(params) == "mixed":
+            return self.assemble_mixed(scene, params)
         K, b, fixed, info = self.assemble_full(scene, params)
-        Kf, bf, free = self.reduced(K.tocsr(), b, fixed)
-        return Kf, bf, free, info
+        return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
 
     def assemble_full(self, scene: Scene, params: dict):
         """(K, b, fixed, info): K w = b on all real points (per unit volume), K a
@@ -386,14 +396,6 @@ class PDEulerBernoulli(Model):
         f = params.get("form", "auto")
         return ("mixed" if params["variant"] == "corrected" else "direct") if f == "auto" else f
 
-    def limit_system(self, scene: Scene, params: dict):
-        """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
-        if self.form(params) == "mixed":
-            M, rhs, *_ = self.assemble_mixed(scene, params)
-            return M, rhs
-        K, b, *_ = self.assemble_full(scene, params)
-        return K, b
-
     def ghosts(self, scene: Scene, n: int, dx: float, G: int):
         """Taylor ghost points of both ends (design note §1): w_ghost = Gm w_real + g0.
         Returns (rows, cols, values) of the ghost rows of E in extended numbering (G ghosts, n real,
@@ -430,8 +432,8 @@ class PDEulerBernoulli(Model):
         Assembled straight into LAPACK's band layout (:class:`~pdverify.band.Band`): positions
         p = -J .. n-1+J, two unknowns each (kappa_p, w_p), interleaved; both equations are Toeplitz block
         stencils, the ghost map adds a few entries at each end, and the w of positions outside the beam
-        and of the supported points are held at zero (unit rows). Returns (M, rhs, J, free, info): w of
-        real point i is unknown 2 (i + J) + 1."""
+        and of the supported points are held at zero (unit rows). Returns the :class:`~pdverify.registry.System`
+        (free: the unknowns not held): w of real point i is unknown 2 (i + J) + 1."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         c = curvature_weights(params["horizon"], dx, "corrected")
@@ -464,11 +466,11 @@ class PDEulerBernoulli(Model):
         np.add.at(rhs, 2 * (p[kq] + J), h2 * st[gp[gi] - p[kq] + J] * e0[gp[gi] + G])
         rhs[2 * J + 1: 2 * (n + J): 2] = body_loads(scene, x, skip_ends=skip) / A * h2 * h2 / a
         fixed = fixed_points(scene, n)
-        free = np.delete(np.arange(n), fixed)
         held = np.r_[2 * np.arange(J) + 1, 2 * (n + J + np.arange(J)) + 1, 2 * (np.asarray(fixed, np.int64) + J) + 1]
         M.fix(held, rhs)
-        return M, rhs, J, free, {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
-                                 "boundary": "Taylor ghost points (degree 4, 4 real points)"}
+        return System(M, rhs, np.delete(np.arange(2 * npos), held),
+                      {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
+                       "boundary": "Taylor ghost points (degree 4, 4 real points)"})
 
     def reduced(self, K, b, fixed):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
@@ -481,18 +483,18 @@ class PDEulerBernoulli(Model):
                 raise InputError("form = 'mixed': only the corrected variant has the two-equation form; "
                                  "use variant = corrected or form = direct")
             with timer("assemble"):
-                M, rhs, J, free, binfo = self.assemble_mixed(scene, params)
+                system = self.assemble(scene, params)
             with timer("solve"):
-                z, info = solve_linear(M, rhs, what="pd-eb (corrected, mixed form)")
+                z, info = solve_linear(system.matrix, system.rhs, what="pd-eb (corrected, mixed form)")
                 n = params["points"]
+                J = (system.matrix.n // 2 - n) // 2  # positions -J .. n-1+J, two unknowns each
                 w = z[2 * J + 1: 2 * (n + J): 2].copy()
-                ndofs = n + 2 * J + len(free)  # kappa on every position, w on the free points
         else:
             with timer("assemble"):
-                K, b, fixed, binfo = self.assemble_full(scene, params)
+                system = self.assemble(scene, params)
             with timer("solve"):
-                w, info = solve_linear(K, b, what=f"pd-eb ({params['variant']})")
-                ndofs = params["points"] - len(fixed)
+                w, info = solve_linear(system.matrix, system.rhs, what=f"pd-eb ({params['variant']})")
+        ndofs, binfo = system.unknowns, system.info  # mixed: kappa on every position, w on the free points
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         rot = np.gradient(w, dx, edge_order=2)
@@ -529,7 +531,9 @@ def simulate(scene: Scene, params: dict, t_end: float, dt: float | None = None, 
     if scene.material.density is None:
         raise InputError("material.density: needed for dynamics; add density (kg/m^3) to the scene")
     rho = scene.material.density
-    Kf, bf, free, _ = model.assemble(scene, params)
+    system = model.assemble(scene, dict(params, form="direct"))  # the fourth-order operator, eliminated
+    Kf, bf = system.reduced()
+    free = system.free
     n_all = params["points"]
     limit = stable_time_step(Kf, rho)
     dt = safety * limit if dt is None else float(dt)

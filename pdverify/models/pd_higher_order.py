@@ -77,8 +77,8 @@ import scipy.sparse as sp
 
 from ..band import Band
 from ..errors import InputError
-from ..linalg import eliminate, solve_linear
-from ..registry import Model, Option
+from ..linalg import solve_linear
+from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Distributed, PointForce, PointMoment, Scene
 from .pd_eb import _cell_integral, partial_volumes
@@ -399,6 +399,19 @@ class PDHigherOrder(Model):
                "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
     )
 
+    assembles = True
+    _PAPER = (("variant", "paper"),)
+    variant_rules = (
+        Rule(_PAPER, "horizon", "Eq. 14: delta = (m + 0.015) dx, full volumes over whole families of m points; "
+             "use variant = corrected for a fractional horizon", whole=True),
+        Rule(_PAPER, "ends", "Appendix B: fictitious mirror layers (Eq. B39-B41), free ends truncated",
+             allowed=("auto", "mirror")),
+        Rule(_PAPER, "pin", "Eq. B41: a simply supported end holds w = w* = 0 at the end point (mid)",
+             allowed=("auto", "mid")),
+        Rule(_PAPER, "shear", "Eq. 14d-f: the shear measures use theta_k xi (point)", allowed=("auto", "point")),
+        Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
+    )
+
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
         return np.linspace(0.0, scene.length, params["points"])
 
@@ -518,26 +531,21 @@ class PDHigherOrder(Model):
         info.update(pin=pin, loads=self.choice(params, "loads"))
         return B, b, (drop, tie), info
 
-    def assemble(self, scene: Scene, params: dict):
-        """(K, F, T, info): K z = F with u = T z; u interleaved (theta, theta*, w, w*) per real point,
-        z the unknowns left by the end conditions. K is the band of :meth:`assemble_band` (one source of
-        the matrix) with the held DOFs' unit rows removed, as CSR."""
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The band of :meth:`assemble_band` (the system ``solve`` factorises): u interleaved (theta, theta*,
+        w, w*) per real point, free = the DOFs not held; ``info["ties"]``: the (slave, master, c) of
+        ``pin = face`` (u_slave = c u_master, restored after the solve)."""
         B, b, (drop, tie), info = self.assemble_band(scene, params)
-        K, F, _ = eliminate(B.tocsr(), b, drop)
-        T = constraint_map(params["points"], scene.supports.left, scene.supports.right, params["variant"],
-                           self.choice(params, "pin"), info["depth"])
-        return K, F, T, info
-
-    def limit_system(self, scene: Scene, params: dict):
-        """(Band, rhs): the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
-        return self.assemble_band(scene, params)[:2]
+        return System(B, b, np.delete(np.arange(B.n), drop), dict(info, ties=tie))
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("assemble"):
-            B, b, (drop, tie), binfo = self.assemble_band(scene, params)
+            system = self.assemble(scene, params)
+            binfo = dict(system.info)
+            tie = binfo.pop("ties")
         with timer("solve"):
-            u, info = solve_linear(B, b, what=f"pd-higher-order ({params['variant']})")
+            u, info = solve_linear(system.matrix, system.rhs, what=f"pd-higher-order ({params['variant']})")
             for slave, master, c in tie:
                 u[slave] = c * u[master]
         n = params["points"]
@@ -548,7 +556,7 @@ class PDHigherOrder(Model):
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=u[:, W].copy(),
-                      rotation=-u[:, TH], fields=fields, dofs=NF * n - len(drop), timings=timer.timings, info=info)
+                      rotation=-u[:, TH], fields=fields, dofs=system.unknowns, timings=timer.timings, info=info)
 
 
 MODELS = [PDHigherOrder()]

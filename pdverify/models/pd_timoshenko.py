@@ -77,7 +77,7 @@ import scipy.sparse as sp
 from ..band import Band
 from ..errors import InputError, SolveError
 from ..linalg import solve_linear
-from ..registry import Model, Option
+from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer, columns_csv
 from ..scene import Scene
 from .pd_eb import boundary_layer_warnings
@@ -800,21 +800,23 @@ _OPTIONS = (
 class _MoyerModel(Model):
     source = "Moyer & Miraglia, Peridynamic solutions for Timoshenko beams (seed 001)"
     options = _OPTIONS
+    analyses = frozenset({"static", "dynamic"})  # the damped leapfrog-Verlet integrator (Eq. 7-11)
+    end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
+    assembles = True
+    variant_rules = (
+        Rule((("variant", "corrected"),), "grid", "the corrections are written for the node grid; grid = cells "
+             "is the paper's Section 4 setup (variant = paper)", allowed=("nodes",)),
+    )
 
     def operator(self, scene: Scene, params: dict) -> Discrete:  # pragma: no cover - interface
         raise NotImplementedError
 
-    def assemble(self, scene: Scene, params: dict):
-        """(K, b, free, info) of the static system after the supports (the rows and columns of the free
-        DOFs of the operator's band, as CSR)."""
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The static system ``solve`` factorises (:func:`static_system`): the operator's band with the
+        prescribed DOFs held (unit rows; a settled end motion moved to the right-hand side)."""
         disc = self.operator(scene, params)
-        free = disc.free
-        return disc.K[free][:, free].tocsr(), disc.b[free], free, disc.info
-
-    def limit_system(self, scene: Scene, params: dict):
-        """(Band, rhs) that ``solve`` factorises (``pdverify bench``'s limit)."""
-        B, rhs, _ = static_system(scene, self.operator(scene, params))
-        return B, rhs
+        B, rhs, _ = static_system(scene, disc)
+        return System(B, rhs, np.asarray(disc.free), dict(disc.info))
 
     def _dynamic(self, scene: Scene, params: dict) -> bool:
         if params["analysis"] == "dynamic" and scene.dynamics is None:
@@ -881,6 +883,7 @@ class PDRod(_MoyerModel):
     axial = True
     bending = False
     theory = "axial"
+    load_types = frozenset({"point_force", "distributed"})  # their axial components
 
     def operator(self, scene, params):
         return rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="axial",
@@ -900,6 +903,7 @@ class PDTorsion(_MoyerModel):
     bending = False
     torsion = True
     theory = "torsion"
+    load_types = frozenset({"point_torque", "distributed"})  # distributed: its torque component
 
     def operator(self, scene, params):
         disc = rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="torsion",
