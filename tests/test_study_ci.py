@@ -348,3 +348,15 @@ def test_help_documents_the_exit_codes():
                  "2 bad input", "3 a failed computation", "4 output could not be written"):
         assert code in r.stdout
     assert "--junit" in r.stdout
+
+
+def test_report_shows_the_order_checks_with_their_verdicts(tmp_path):
+    from pdverify.report import build_report
+
+    p = study_file(tmp_path, check("corrected", "{ min = 1.9 }") + check("paper", "{ min = 1.9 }"))
+    run(p, tmp_path)
+    page = build_report(tmp_path / "out").read_text()
+    checks = page[page.index('id="checks"'):page.index('id="checks"') + 20000]
+    assert "Order checks" in page and '<tr class="pass">' in checks and '<tr class="fail">' in checks
+    fitted = pd.read_csv(tmp_path / "out/checks.csv")["observed_order"]
+    assert all(f">{v:.6g}<" in checks for v in fitted)  # the report's number format (build.fmt)

@@ -187,8 +187,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; run `pdverify study STUDY.toml --out {d}` again")
     unit_of_file, unit_of_scene = _units_of(res, "scene_file"), _units_of(res, "scene")
-    conv, lock, se, sesum, bench, trust = (_read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary",
-                                                                 "benchmarks", "trust"))
+    conv, lock, se, sesum, bench, trust, checks = (
+        _read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust",
+                              "checks"))
     ok = res[res["status"] == "ok"] if "status" in res else res
 
     from functools import lru_cache
@@ -339,6 +340,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         convergence=table(readable_options(conv), ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
         locking_figs=[f for _, f in lock_figs], locking=table(readable_options(lock)), images=images,
+        checks=table(checks, ["name", "scene", "model", "options", "slenderness", "points", "errors", "pairwise_orders",
+                              "observed_order", "min", "max", "expected", "verdict", "message"], row_class="verdict"),
         trust=table(readable_options(trust), [
             "model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
             "points_not", "round_off_from_points", "statement"]),
