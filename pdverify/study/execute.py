@@ -80,8 +80,8 @@ def check_scheduler(address: str) -> None:
 
 
 def connect(address: str):
-    """A Dask client of the scheduler at ``address``, or InputError (exit 2) after
-    :data:`SCHEDULER_TIMEOUT_S` seconds without an answer."""
+    """A Dask client of the scheduler at ``address``; InputError (exit 2) when none is reached there within
+    :data:`SCHEDULER_TIMEOUT_S` seconds (refused, no such host, or another kind of server)."""
     check_scheduler(address)
     try:
         from dask.distributed import Client
@@ -90,9 +90,11 @@ def connect(address: str):
                          "'dask[distributed]' or run without --scheduler") from None
     try:
         return Client(address.strip(), timeout=SCHEDULER_TIMEOUT_S)
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise InputError(f"--scheduler {address}: no Dask scheduler answered within {SCHEDULER_TIMEOUT_S} s "
-                         f"({type(exc).__name__}); start one (dask scheduler) or check the address") from None
+    except Exception as exc:  # noqa: BLE001 - refused, timed out, no such host, or not a Dask scheduler there
+        why = (str(exc).splitlines() or [""])[0][:100]
+        raise InputError(f"--scheduler {address}: no Dask scheduler reached there ({type(exc).__name__}: {why}; "
+                         f"connect timeout {SCHEDULER_TIMEOUT_S} s); start one (dask scheduler) or check the "
+                         "address") from None
 
 
 class ClusterLost(Exception):
