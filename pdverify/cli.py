@@ -152,12 +152,15 @@ def _slug(name: str) -> str:
 def study(
     study_file: Path = typer.Argument(..., help="study TOML file"),
     out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes, 1 or more (default: all "
+                                          "cores; 1: in this process)"),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT "
+                                            "(connect timeout 5 s; exit 2 when none is reached)"),
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
 ):
-    """Run a study: every case of the sweep, errors against the reference, derived tables."""
+    """Run a study: every case of the sweep, errors against the reference, derived tables. The output folder
+    is locked while the run uses it and holds one study (exit 4 otherwise: see docs/performance.md)."""
     from .study import load_study, run_study
 
     spec = load_study(study_file)
