@@ -1,6 +1,7 @@
 """The study runner's processes and its output folder: pool workers die with the main process, a folder is
 locked by the run using it and belongs to one study, a bad --scheduler or --workers is one line."""
 
+import json
 import os
 import signal
 import socket
@@ -84,6 +85,34 @@ def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
     kept = len(list((out / "cases").glob("*.case")))
     assert 1 <= kept < 42 and not (out / "results.csv").exists()
     assert FolderLock(out).release() is None  # the kernel dropped the dead run's lock
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
+    """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) in a run with two pool workers:
+    exit 130 without a traceback, the workers ended (they ignore SIGINT; the main process stops them), no
+    tables for a partial study, and the next run resumes every stored case."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+                              'points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001]\nhorizon = [2, 3, 4]\n')
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
+    proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    deadline = time.time() + 60
+    workers = []
+    while time.time() < deadline and (len(workers) < 2 or len(list((out / "cases").glob("*.case"))) < 3):
+        workers = _children(proc.pid)
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and b"Traceback" not in err, err
+    time.sleep(0.5)
+    assert len(workers) == 2 and [w for w in workers if _alive(w)] == []
+    kept = len(list((out / "cases").glob("*.case")))
+    assert 3 <= kept < 54 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert json.loads((out / "meta.json").read_text())["resumed_cases"] == kept
 
 
 def test_a_locked_folder_is_one_line_exit_4_naming_it_and_the_other_run(tmp_path):
