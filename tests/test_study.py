@@ -224,6 +224,11 @@ def test_dask_local_cluster_matches_local_run(tmp_path):
     a, b = _cols(local), _cols(dist)
     assert list(a["case_id"]) == list(b["case_id"])
     assert np.array_equal(a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy())
+    timing = ["assemble_s", "solve_s", "total_s"]
+    pd.testing.assert_frame_equal(local.drop(columns=timing), dist.drop(columns=timing))
+    for name in ("convergence.csv", "locking.csv", "trust.csv"):  # the tables without timings: same bytes
+        assert (tmp_path / "local" / name).read_bytes() == (tmp_path / "dask" / name).read_bytes(), name
+    assert json.loads((tmp_path / "dask" / "meta.json").read_text())["timing"]["path"] == "dask"
 
 
 def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
