@@ -154,6 +154,7 @@ def _signal_mid_run(p, out, sig):
     return proc, err, cmd
 
 
+@pytest.mark.slow
 def test_resume_after_sigkill(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
                               'points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n')
@@ -186,6 +187,7 @@ def test_resume_after_sigkill(tmp_path):
     assert len(pd.read_csv(out / "convergence.csv")) == 6  # 2 variants x 3 horizons, 7 grids each
 
 
+@pytest.mark.slow
 def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) in a serial run: exit 130 without
     a traceback, every case that was finished is on disk, no half-written file, no tables for a partial
@@ -213,6 +215,7 @@ def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     assert json.loads((out / "meta.json").read_text())["resumed_cases"] == finished
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_matches_local_run(tmp_path):
     from dask.distributed import LocalCluster
 
