@@ -106,11 +106,12 @@ def on_dask(run, todo, ids, scheduler: str):
     from dask.distributed import as_completed as dask_completed
 
     with connect(scheduler) as client:
-        futures = client.map(run, todo, [None] * len(todo), ids, pure=False)
-        by_key = {f.key: cid for f, cid in zip(futures, ids)}
-        for fut in dask_completed(futures):
-            try:
+        try:
+            futures = client.map(run, todo, [None] * len(todo), ids, pure=False)
+            by_key = {f.key: cid for f, cid in zip(futures, ids)}
+            for fut in dask_completed(futures):
                 rec = fut.result()
-            except Exception as exc:  # run never raises: the cluster failed (KilledWorker, connection lost)
-                raise ClusterLost(f"{type(exc).__name__}: {exc}") from None
-            yield by_key[fut.key], rec
+                yield by_key[fut.key], rec
+        except Exception as exc:  # run never raises: the cluster failed (KilledWorker, connection lost)
+            why = (str(exc).splitlines() or [""])[0][:100]
+            raise ClusterLost(f"{type(exc).__name__}: {why}") from None

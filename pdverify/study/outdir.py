@@ -2,9 +2,9 @@
 back (resume) and each new one stored at once and atomically.
 
 - **Lock.** A run holds an exclusive ``fcntl`` lock on ``OUT/.pdverify.lock`` (the file holds its pid)
-  from before it reads the folder until its last table is written. A second run into the same folder
-  does not wait: it stops at once with exit code 4 and one line naming the folder and the other run's
-  pid. The kernel drops the lock when the process ends, however it ends (``kill -9`` included); the file
+  from before it reads the folder until its last table is written (POSIX only: elsewhere nothing is
+  locked). A second run into the same folder does not wait: it stops at once with exit code 4 and one
+  line naming the folder and the other run's pid. The kernel drops the lock when the process ends, however it ends (``kill -9`` included); the file
   itself stays (removing it would race with a run taking it).
 - **One study per folder.** ``OUT/study.toml`` is a copy of the study file, written when the run starts.
   A run of a study whose file differs from it byte for byte (another study, or this one edited) stops
@@ -14,7 +14,6 @@ back (resume) and each new one stored at once and atomically.
 
 from __future__ import annotations
 
-import fcntl
 import os
 import time
 from pathlib import Path
@@ -22,6 +21,11 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import OutputError
+
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - not POSIX: folders are not locked there
+    fcntl = None
 from .spec import Study
 from .store import SUFFIX, case_file, encode_record, read_case, write_atomic
 
@@ -38,7 +42,9 @@ class FolderLock:
     frees it."""
 
     def __init__(self, out: Path):
-        self.path = Path(out) / LOCK_NAME
+        self.path, self.fd = Path(out) / LOCK_NAME, None
+        if fcntl is None:  # pragma: no cover - not POSIX
+            return
         try:
             self.fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:

@@ -285,8 +285,8 @@ class _progress:
         if self.enabled:
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-            self.p = Progress(TextColumn("cases"), BarColumn(), MofNCompleteColumn(), TextColumn("failed {task.fields[failed]}"),
-                              TimeRemainingColumn(), transient=False)
+            self.p = Progress(TextColumn("cases"), BarColumn(), MofNCompleteColumn(),
+                              TextColumn("failed {task.fields[failed]}"), TimeRemainingColumn(), transient=False)
             self.p.start()
             self.task = self.p.add_task("cases", total=total, failed=0)
 
