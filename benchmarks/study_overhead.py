@@ -24,7 +24,7 @@ def measure(study_file: Path, workers: int) -> dict:
         df = run_study(load_study(study_file), Path(d) / "out", workers=workers, progress=False)
         t = json.loads((Path(d) / "out" / "meta.json").read_text())["timing"]
     ok = df[df["status"] == "ok"]
-    rel = ok["err_max"].dropna().to_numpy()  # already relative to max |reference| (metrics.errors)
+    rel = ok["err_max"].dropna().to_numpy()  # relative to max |reference| (metrics.errors)
     wall = t["cases_s"] + t["tables_s"]
     own = wall - t["solver_s"] / workers  # as derived.overhead computes it (meta.json's runner_overhead_s)
     return {"workers": workers, "cases": len(df), "ok": len(ok), "wall_s": wall, "solver_s": t["solver_s"],
@@ -43,8 +43,8 @@ def main() -> None:
         for _ in range(args.repeat):
             m = measure(args.study, w)
             print(f"workers={m['workers']} cases={m['cases']} ok={m['ok']} wall={m['wall_s']:.3f}s "
-                  f"models={m['solver_s']:.3f}s store={m['store_s']:.3f}s tables={m['tables_s']:.3f}s overhead={m['overhead_s']:.3f}s ({100 * m['overhead']:.1f} %) "
-                  f"rel. max error min/median/max={m['rel_err_min']:.2e}/{m['rel_err_median']:.2e}/"
+                  f"models={m['solver_s']:.3f}s store={m['store_s']:.3f}s tables={m['tables_s']:.3f}s "
+                  f"overhead={m['overhead_s']:.3f}s ({100 * m['overhead']:.1f} %) max error min/median/max={m['rel_err_min']:.2e}/{m['rel_err_median']:.2e}/"
                   f"{m['rel_err_max']:.2e}")
 
 

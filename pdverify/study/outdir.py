@@ -4,8 +4,9 @@ back (resume) and each new one stored at once and atomically.
 - **Lock.** A run holds an exclusive ``fcntl`` lock on ``OUT/.pdverify.lock`` (the file holds its pid)
   from before it reads the folder until its last table is written (POSIX only: elsewhere nothing is
   locked). A second run into the same folder does not wait: it stops at once with exit code 4 and one
-  line naming the folder and the other run's pid. The kernel drops the lock when the process ends, however it ends (``kill -9`` included); the file
-  itself stays (removing it would race with a run taking it).
+  line naming the folder and the other run's pid. The kernel drops the lock when the process ends,
+  however it ends (``kill -9`` included); the file itself stays (removing it would race with a run
+  taking it).
 - **One study per folder.** ``OUT/study.toml`` is a copy of the study file, written when the run starts.
   A run of a study whose file differs from it byte for byte (another study, or this one edited) stops
   with exit code 4 before anything is computed or written: give another ``--out`` or remove the folder.

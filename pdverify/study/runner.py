@@ -31,7 +31,6 @@ from .tables import trust_table  # noqa: F401 (re-exported)
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
 
-
 @lru_cache(maxsize=64)
 def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tuple):
     """x -> reference deflection, built once per (scene, slenderness, reference options): the reference
