@@ -44,8 +44,8 @@ def main() -> None:
             m = measure(args.study, w)
             print(f"workers={m['workers']} cases={m['cases']} ok={m['ok']} wall={m['wall_s']:.3f}s "
                   f"models={m['solver_s']:.3f}s store={m['store_s']:.3f}s tables={m['tables_s']:.3f}s "
-                  f"overhead={m['overhead_s']:.3f}s ({100 * m['overhead']:.1f} %) max error min/median/max={m['rel_err_min']:.2e}/{m['rel_err_median']:.2e}/"
-                  f"{m['rel_err_max']:.2e}")
+                  f"overhead={m['overhead_s']:.3f}s ({100 * m['overhead']:.1f} %) "
+                  f"max error min/median/max={m['rel_err_min']:.2e}/{m['rel_err_median']:.2e}/{m['rel_err_max']:.2e}")
 
 
 if __name__ == "__main__":

@@ -94,7 +94,8 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     exit 130 without a traceback, the workers ended (they ignore SIGINT; the main process stops them), no
     tables for a partial study, and the next run resumes every stored case."""
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001]\nhorizon = [2, 3, 4]\n')
+                              'points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001]\n'
+                              'horizon = [2, 3, 4]\n')
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
