@@ -242,3 +242,11 @@ def test_workers_below_one_is_one_line_exit_2(tmp_path, workers):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
     line = one_error_line(cli("study", p, "--out", tmp_path / "out", "--workers", workers, "--quiet"), 2)
     assert f"--workers {workers}" in line and "1 or more" in line, line
+
+
+@pytest.mark.parametrize("workers", [0, -3, True, 2.5, "2"])
+def test_run_study_refuses_workers_that_are_not_a_whole_number_from_1(tmp_path, workers):
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
+    with pytest.raises(InputError, match=f"--workers {workers!r}: give a whole number of processes, 1 or more"):
+        run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
+    assert not (tmp_path / "out").exists()

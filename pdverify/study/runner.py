@@ -6,6 +6,7 @@ a run resumes where it stopped; then the tables (derived.py).
 from __future__ import annotations
 
 import json
+import operator
 import os
 import time
 from contextlib import closing
@@ -215,8 +216,7 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
     Raises InputError for a bad ``workers`` or ``scheduler`` (exit 2), OutputError (exit 4; nothing stored
     is lost) when ``out`` cannot be written, is in use by another run or holds another study's results, or
     when a process solving cases dies."""
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
-        raise InputError(f"--workers {workers}: give a whole number of processes, 1 or more")
+    workers = _whole_workers(workers)
     if scheduler is not None:
         execute.check_scheduler(scheduler)
     out = Path(out)
@@ -236,6 +236,20 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
                           f"before are kept in {out / 'cases'}: run the study again to resume") from None
     finally:
         lock.release()
+
+
+def _whole_workers(workers):
+    """``workers`` as a number of processes (None: every core; numpy integers too); InputError (exit 2)
+    unless a whole number of at least 1."""
+    if workers is None:
+        return None
+    try:
+        n = 0 if isinstance(workers, bool) else operator.index(workers)
+    except TypeError:
+        n = 0
+    if n < 1:
+        raise InputError(f"--workers {workers!r}: give a whole number of processes, 1 or more")
+    return n
 
 
 def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | None, progress: bool) -> pd.DataFrame:
