@@ -83,8 +83,7 @@ INFO_KEYS = ("horizon", "cond", "load_steps", "history")
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
     """The solving half of a case: the model's result reduced to what :func:`measure_case` reads (arrays
-    and numbers, picklable: it crosses to a worker's parent or to the recorder), or ``{"failure": message,
-    "timings": {"total_s": seconds}}``.
+    and numbers), or ``{"failure": message, "timings": {"total_s": seconds}}``.
     Never raises. ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG, time
     histories as CSV), named by ``case_id``: they are written here, where the model's writers live.
     A failure's seconds are its cost: meta.json counts them as the models' time, not the runner's."""
