@@ -5,7 +5,7 @@ in any way keeps every case it received. ``run`` is the function that computes o
 (runner.run_case), given by the caller.
 
 Pool workers are forked on Linux (they start in milliseconds with the models imported), ignore Ctrl-C
-(the main process stops them) and die with the main process: a ``kill -9`` of the run leaves no worker
+(the main process lets the cases in flight finish, stores them and stops) and die with the main process: a ``kill -9`` of the run leaves no worker
 behind (``PR_SET_PDEATHSIG`` on Linux, a watchdog thread elsewhere).
 """
 
@@ -17,6 +17,7 @@ import re
 import signal
 import sys
 import threading
+import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool  # noqa: F401 (what a killed worker raises)
 
@@ -32,18 +33,33 @@ def serial(run, todo, ids, artefacts):
 
 
 def pool(run, todo, ids, artefacts, workers: int):
-    """The cases in ``workers`` processes. On any way out before the end (Ctrl-C, the caller's error, the
-    generator closed) the pending cases are cancelled and the workers ended, their cases in flight lost."""
+    """The cases in ``workers`` processes. Ctrl-C: no further case starts, the cases already handed to the
+    workers (those running and up to ``workers + 1`` queued) finish and are yielded, then
+    KeyboardInterrupt goes on. Any other way out
+    (the caller's error, the generator closed) cancels the cases not started and waits for those in
+    flight, which are dropped. The workers are never killed from here: a worker killed while it sends a
+    record back leaves a partial message that the pool's reader then waits for forever."""
     # fork on Linux whatever the Python version (3.14 made forkserver the default)
     ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
     ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),))
+    futs, given = {}, set()
     try:
-        futs = {ex.submit(run, case, artefacts, cid): cid for case, cid in zip(todo, ids)}
+        for case, cid in zip(todo, ids):
+            futs[ex.submit(run, case, artefacts, cid)] = cid
         for fut in as_completed(futs):
-            yield futs[fut], fut.result()
-    except BaseException:
-        for p in list((getattr(ex, "_processes", None) or {}).values()):  # no public way before Python 3.14
-            p.terminate()
+            rec = fut.result()
+            given.add(fut)
+            yield futs[fut], rec
+    except KeyboardInterrupt:
+        ex.shutdown(wait=False, cancel_futures=True)
+        # polled, not as_completed: a future the pool cancels at shutdown never tells its waiters (3.11)
+        rest = [f for f in futs if f not in given]
+        while rest:
+            for fut in [f for f in rest if f.done()]:
+                rest.remove(fut)
+                if not fut.cancelled() and fut.exception() is None:
+                    yield futs[fut], fut.result()
+            time.sleep(0.02)
         raise
     finally:
         ex.shutdown(wait=True, cancel_futures=True)
@@ -64,8 +80,6 @@ def _worker_start(parent: int) -> None:
 
 
 def _watch(parent: int) -> None:  # pragma: no cover - not Linux
-    import time
-
     while os.getppid() == parent:
         time.sleep(0.5)
     os._exit(1)
