@@ -5,8 +5,9 @@ in any way keeps every case it received. ``run`` is the function that computes o
 (runner.run_case), given by the caller.
 
 Pool workers are forked on Linux (they start in milliseconds with the models imported), ignore Ctrl-C
-(the main process lets the cases in flight finish, stores them and stops) and die with the main process: a ``kill -9`` of the run leaves no worker
-behind (``PR_SET_PDEATHSIG`` on Linux, a watchdog thread elsewhere).
+(the main process lets the cases in flight finish, stores them and stops) and die with the main process:
+a ``kill -9`` of the run leaves no worker behind (``PR_SET_PDEATHSIG`` on Linux, a watchdog thread
+elsewhere).
 """
 
 from __future__ import annotations
