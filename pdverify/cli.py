@@ -259,18 +259,21 @@ def _slug(name: str) -> str:
 def study(
     study_file: Path = typer.Argument(..., help="study TOML file"),
     out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
-    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="local worker processes (default: all cores)"),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="local worker processes, 1 or more "
+                                          "(default: all cores; 1: in this process)"),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT "
+                                            "(connect timeout 5 s; exit 2 when none is reached)"),
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     junit: Optional[Path] = typer.Option(None, "--junit", help="also write the verdicts as JUnit XML to FILE"),
 ):
-    """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts.
+    """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts. The output
+    folder is locked while the run uses it and holds one study (exit 4 otherwise: see docs/studies.md).
 
     Exit status (docs/ci.md), the last line on stderr is the summary:
     0 every benchmark and order check passes (an expected-fail row that fails counts) and every case ran;
     1 a benchmark or check fails or is missing, or a case failed outside an expected-fail row;
-    2 bad input; 3 a failed computation; 4 output could not be written.
+    2 bad input; 3 a failed computation; 4 output could not be written, or the folder is in use.
     """
     import time
 

@@ -154,6 +154,7 @@ def _signal_mid_run(p, out, sig):
     return proc, err, cmd
 
 
+@pytest.mark.slow
 def test_resume_after_sigkill(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
                               'points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n')
@@ -175,7 +176,7 @@ def test_resume_after_sigkill(tmp_path):
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
     assert np.allclose(_cols(pd.read_csv(out / "results.csv"))[["err_max", "err_l2", "w_at_max"]],
                        _cols(fresh)[["err_max", "err_l2", "w_at_max"]], rtol=1e-12)
-    # the derived tables of the resumed run cover the resumed cases too (written by the recorder process)
+    # the derived tables of the resumed run cover the resumed cases too
     from pdverify.study.runner import write_derived
 
     again = tmp_path / "again"
@@ -186,11 +187,11 @@ def test_resume_after_sigkill(tmp_path):
     assert len(pd.read_csv(out / "convergence.csv")) == 6  # 2 variants x 3 horizons, 7 grids each
 
 
+@pytest.mark.slow
 def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) in a serial run: exit 130 without
-    a traceback, every case that was finished is on disk (the recorder process ignores SIGINT and writes
-    what it was given), no half-written file, no tables for a partial study, no process left behind, and
-    a second run resumes every finished case."""
+    a traceback, every case that was finished is on disk, no half-written file, no tables for a partial
+    study, no process left behind, and a second run resumes every finished case."""
     # grids up to 8001 points (~1.5 s in all): the run must still be solving when 5 case files are on disk
     # (60 cases of <= 2001 points once ran to the end before the signal, in a full suite on a busy machine)
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
@@ -201,19 +202,20 @@ def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     finished = len(list((out / "cases").glob("*.case")))
     assert proc.returncode == 130 and b"Traceback" not in err, err
     assert 5 <= finished < 84 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
-    left = []  # processes whose command line names this run's output (the recorder is a fork of the runner)
+    left = []  # processes whose command line names this run's output
     for cmdline in Path("/proc").glob("[0-9]*/cmdline"):
         try:
             if str(out).encode() in cmdline.read_bytes():
                 left.append(cmdline.parent.name)
         except OSError:  # the process ended meanwhile
             pass
-    assert left == [], left  # the recorder was waited for
+    assert left == [], left
     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert json.loads((out / "meta.json").read_text())["resumed_cases"] == finished
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_matches_local_run(tmp_path):
     from dask.distributed import LocalCluster
 
@@ -225,6 +227,11 @@ def test_dask_local_cluster_matches_local_run(tmp_path):
     a, b = _cols(local), _cols(dist)
     assert list(a["case_id"]) == list(b["case_id"])
     assert np.array_equal(a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy())
+    timing = ["assemble_s", "solve_s", "total_s"]
+    pd.testing.assert_frame_equal(local.drop(columns=timing), dist.drop(columns=timing))
+    for name in ("convergence.csv", "locking.csv", "trust.csv"):  # the tables without timings: same bytes
+        assert (tmp_path / "local" / name).read_bytes() == (tmp_path / "dask" / name).read_bytes(), name
+    assert json.loads((tmp_path / "dask" / "meta.json").read_text())["timing"]["path"] == "dask"
 
 
 def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
@@ -343,94 +350,11 @@ def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monk
 
     monkeypatch.setattr(runner, "measure_case", other_code)
     p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31]\n')
-    for workers in (1, 2):  # measured in the serial run's recorder process, and in pool workers
+    for workers in (1, 2):  # measured in this process, and in pool workers
         out = tmp_path / f"out{workers}"
         df = run_study(load_study(p), out, workers=workers, progress=False)
         meta = json.loads((out / "meta.json").read_text())
         assert len(df) == 3 and set(df["case_id"]) == set(meta["cases_from_other_code"]) and "0" * 16 not in set(df["case_id"])
-
-
-def _record(path):
-    """The recorder's handler in these tests: writes each message's array where it says (in the child)."""
-    from pdverify.study.store import encode_record, write_atomic
-
-    def handle(name, arrays):
-        x, = arrays
-        write_atomic(path / name, encode_record({"case": {}, "row": {"status": "ok", "name": name}, "curve": {"x": x}}))
-    return handle
-
-
-def test_recorder_handles_every_message_in_order_and_returns_its_finish(tmp_path):
-    """The serial runner's recorder (a forked child): every message arrives, arrays bit for bit (NaN, -0.0,
-    non-contiguous and 2-D arrays included), more than the pipe holds at once; ``close`` returns what the
-    child's ``finish`` returned and the child's CPU time."""
-    import fcntl
-
-    from pdverify.study.recorder import PIPE_BYTES, Recorder
-    from pdverify.study.store import decode_record
-
-    if not Recorder.available:
-        pytest.skip("no fork or a single CPU: the runner measures and stores in its own process")
-    seen = []
-    arrays = [np.linspace(0, 1, 5000) * i for i in range(30)]  # 40 kB each, 1.2 MB in all: more than the pipe holds
-    arrays[3][7], arrays[4][0] = np.nan, -0.0
-    arrays += [np.arange(40.0)[::3], np.arange(12.0).reshape(3, 4)]
-    rec = Recorder(lambda m, a: (seen.append(m), _record(tmp_path)(m, a)), lambda: list(seen))
-    if int(Path("/proc/sys/fs/pipe-max-size").read_text()) >= PIPE_BYTES:  # widened: a large case in one write
-        assert fcntl.fcntl(rec._jobs, fcntl.F_GETPIPE_SZ) == PIPE_BYTES
-    for i, a in enumerate(arrays):
-        rec.put(f"{i}.case", [a])
-    order, cpu = rec.close()
-    assert order == [f"{i}.case" for i in range(len(arrays))] and cpu >= 0.0 and seen == []  # seen: the child's copy
-    for i, a in enumerate(arrays):
-        back = decode_record((tmp_path / f"{i}.case").read_bytes())["curve"]["x"]
-        assert back.tobytes() == np.ascontiguousarray(a).tobytes() and back.shape == a.shape
-
-
-def test_recorder_message_encoding_is_exact():
-    """A message and the arrays handed over beside it come back exactly: the object as it was (numpy
-    scalars, NaN, arrays inside it, an exception), the arrays with their dtype, shape and bits."""
-    from pdverify.study.recorder import decode, encode
-
-    arrays = [np.array([np.nan, -0.0, 1e-300]), np.arange(12, dtype="<i4").reshape(3, 4), np.arange(9.0)[::2],
-              np.zeros(0)]
-    for obj in [(3, {"timings": {"total_s": 0.25}, "dofs": 7, "info": {"cond": None}}, ["x"], []),
-                {1: (True, 2 + 1j, b"raw", "text")}, {"cond": np.float64(2.0)}, {"cond": float("nan")},
-                {"history": {"t": np.linspace(0, 1, 5)}}, ValueError("bad")]:
-        data, out = encode(obj, arrays)
-        back, back_arrays = decode(data, [bytearray(a.tobytes()) for a in out])
-        if isinstance(obj, Exception):
-            assert type(back) is ValueError and back.args == obj.args
-        else:
-            assert repr(back) == repr(obj) and type(back) is type(obj)
-        assert [(a.dtype, a.shape, a.tobytes()) for a in back_arrays] == \
-               [(a.dtype, a.shape, np.ascontiguousarray(a).tobytes()) for a in arrays]
-
-
-def test_handoff_of_a_solve_round_trips():
-    """What the serial runner hands to its recorder (curves apart, the rest pickled) comes back as the
-    solve returned it: optional rotation, point fields, a failure."""
-    from pdverify.study.recorder import decode, encode
-    from pdverify.study.runner import _handback, _handoff
-
-    x = np.linspace(0, 1, 5)
-    solves = [{"x": x, "w": -x, "rotation": None, "fields": {"M": x * 2, "Q": x * 3}, "timings": {"total_s": 0.1},
-               "dofs": 5, "info": {"horizon": 0.5}},
-              {"x": x, "w": -x, "rotation": x + 1, "fields": {}, "timings": {}, "dofs": 5, "info": {},
-               "artefact_message": "no picture"},
-              {"failure": "singular matrix"}]
-    for solved in solves:
-        message, arrays = _handoff(4, solved)
-        data, out = encode(message, arrays)
-        i, back = _handback(*decode(data, [bytearray(a.tobytes()) for a in out]))
-        assert i == 4 and back.keys() == solved.keys()
-        for key, v in solved.items():
-            if isinstance(v, np.ndarray):
-                assert np.array_equal(back[key], v)
-            elif key == "fields":
-                assert back[key].keys() == v.keys() and all(np.array_equal(back[key][f], v[f]) for f in v)
-            else:
-                assert back[key] == v
 
 
 def test_csv_tables_hold_the_exact_values(tmp_path):
@@ -445,8 +369,8 @@ def test_csv_tables_hold_the_exact_values(tmp_path):
 
 
 def test_groups_computed_along_the_way_give_the_batch_tables(tmp_path):
-    """A serial run's recorder computes each derived table's group as soon as its cases are in
-    (tables.Groups); the tables from those groups equal the tables computed at once, and a group whose
+    """tables.Groups computes each derived table's group as soon as its cases are in (no longer used by
+    the runner, which computes the tables once at the end); the tables from those groups equal the tables computed at once, and a group whose
     cases differ from the final grouping's (a case whose row did not go where it was predicted) is
     computed again, not reused."""
     from pdverify.study.tables import (GROUPINGS, Groups, convergence_rows, grouped, rows_of, speed_error_rows,
@@ -469,112 +393,48 @@ def test_groups_computed_along_the_way_give_the_batch_tables(tmp_path):
     assert any(o == "reused" for _, o in grouped(name, rows, groups.memo))
 
 
-def test_recorder_runs_after_only_when_the_input_is_complete(tmp_path):
-    """``after`` (the derived tables, in the runner) runs in the child once ``close`` has ended the input,
-    and ``join`` returns its value; after ``abort`` (Ctrl-C) the child handles what it was given and stops
-    without running it."""
-    from pdverify.study.recorder import Recorder
-
-    if not Recorder.available:
-        pytest.skip("no fork or a single CPU")
-    for complete in (True, False):
-        marker = tmp_path / f"after-{complete}"
-        rec = Recorder(_record(tmp_path), lambda: "finished", lambda: marker.write_text("x") and "after")
-        rec.put(f"{complete}.case", [np.zeros(4)])
-        if complete:
-            assert rec.close()[0] == "finished" and rec.join()[0] == "after" and marker.exists()
-        else:
-            rec.abort()
-            assert not marker.exists()
-        assert (tmp_path / f"{complete}.case").exists()
-
-
-def test_serial_run_with_and_without_the_recorder_writes_the_same_tables(tmp_path, monkeypatch):
-    """The recorder process measures the cases and writes the derived tables while the runner writes the
-    results; without it (one CPU, no fork) the runner does it all. The results are the same but for the
-    timings, and the recorder's derived tables are, byte for byte, those of the results table beside them."""
-    from pdverify.study import recorder
+def test_serial_and_pool_runs_write_the_same_tables(tmp_path):
+    """A serial run and a run with two pool workers give the same results but for the timings, meta.json
+    records the same environment and counts, and each run's derived tables are, byte for byte, those
+    written again from the results table beside them."""
     from pdverify.study.runner import write_derived
 
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
                               'horizon = [2, 3]\n[[runs]]\nmodel = "fem-eb"\npoints = [5, 9, 17]\n'
                               '[[benchmarks]]\nname = "centre"\nscene = "' + str(SCENE) + '"\nmodel = "fem-eb"\npoints = 17\n')
     frames, metas = {}, {}
-    for on in (True, False):
-        monkeypatch.setattr(recorder.Recorder, "available", on and recorder.usable_cpus() >= 2)
-        frames[on] = run_study(load_study(p), tmp_path / f"out-{on}", workers=1, progress=False)
-        meta = metas[on] = json.loads((tmp_path / f"out-{on}" / "meta.json").read_text())
-        assert meta["timing"]["recorder"] == ("process" if recorder.Recorder.available else "inline")
-    # meta.json records the same environment (read by the recorder in the one) and counts in both
+    for workers in (1, 2):
+        frames[workers] = run_study(load_study(p), tmp_path / f"out-{workers}", workers=workers, progress=False)
+        metas[workers] = json.loads((tmp_path / f"out-{workers}" / "meta.json").read_text())
+        assert metas[workers]["timing"]["path"] == ("serial" if workers == 1 else "pool")
     for key in ("python", "platform", "machine", "versions", "counts", "code", "skipped"):
-        assert metas[True][key] == metas[False][key], key
-    assert metas[True]["versions"]["numpy"] == np.__version__ and metas[True]["counts"] == {"ok": len(frames[True])}
+        assert metas[1][key] == metas[2][key], key
+    assert metas[1]["versions"]["numpy"] == np.__version__ and metas[1]["counts"] == {"ok": len(frames[1])}
     timing = ["assemble_s", "solve_s", "total_s"]
-    pd.testing.assert_frame_equal(frames[True].drop(columns=timing), frames[False].drop(columns=timing))
-    out = tmp_path / "out-True"
-    again = tmp_path / "again"
-    again.mkdir()
-    write_derived(load_study(p), again, pd.read_parquet(out / "results.parquet"))
-    names = sorted(f.name for f in again.iterdir() if f.suffix == ".csv")
-    assert {"convergence.csv", "locking.csv", "speed_error.csv", "trust.csv", "benchmarks.csv"} <= set(names)
-    for name in names:
-        assert (out / name).read_bytes() == (again / name).read_bytes(), name
+    pd.testing.assert_frame_equal(frames[1].drop(columns=timing), frames[2].drop(columns=timing))
+    for name in ("convergence.csv", "locking.csv", "trust.csv", "benchmarks.csv"):  # no timings in them
+        assert (tmp_path / "out-1" / name).read_bytes() == (tmp_path / "out-2" / name).read_bytes(), name
+    for workers in (1, 2):
+        out, again = tmp_path / f"out-{workers}", tmp_path / f"again-{workers}"
+        again.mkdir()
+        write_derived(load_study(p), again, pd.read_parquet(out / "results.parquet"))
+        names = sorted(f.name for f in again.iterdir() if f.suffix == ".csv")
+        assert {"convergence.csv", "locking.csv", "speed_error.csv", "trust.csv", "benchmarks.csv"} <= set(names)
+        for name in names:
+            assert (out / name).read_bytes() == (again / name).read_bytes(), name
 
 
-def test_warm_up_failing_leaves_the_run_whole(tmp_path, monkeypatch):
-    """The tables' warm-up (a thread in the runner, the start of a forked recorder) is an optimisation: when
-    it cannot write its one-row table it says so by its value, raises nothing, and the study's tables are
-    written all the same; when it can, it is done once per process."""
-    import tempfile
-
-    from pdverify.study import runner
-
-    def no_tmp(*a, **k):
-        raise OSError(28, "No space left on device")
-
-    monkeypatch.setattr(runner, "_warm", False)
-    monkeypatch.setattr(tempfile, "TemporaryDirectory", no_tmp)
-    assert runner.warm_up() is False
+def test_meta_json_reports_the_runner_overhead(tmp_path):
+    """meta.json's timing: the models' time (the rows' total_s summed), the runner's own time (the wall
+    time of cases and tables less the models' time) and its fraction of the wall time."""
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
     df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
-    assert (df["status"] == "ok").all() and len(df) == 6
-    for name in ("results", "convergence", "locking", "speed_error", "trust"):
-        assert (tmp_path / "out" / f"{name}.csv").stat().st_size > 0, name
-    assert runner._warm is False
-    monkeypatch.undo()
-    monkeypatch.setattr(runner, "_warm", False)
-    assert runner.warm_up() is True and runner._warm is True
-
-
-@pytest.mark.skipif(not __import__("pdverify.study.recorder", fromlist=["Recorder"]).Recorder.available,
-                    reason="no recorder process (one CPU, or not Linux)")
-def test_recorder_killed_mid_run_is_one_output_error_and_the_run_resumes(tmp_path, monkeypatch):
-    """A serial run's recorder killed by the system (SIGKILL, as the out-of-memory killer sends) after
-    storing two cases: the runner stops with one OutputError naming the signal and the way to resume, the
-    two case files stay, and the next run resumes them and completes."""
-    from pdverify import zygote
-    from pdverify.errors import OutputError
-    from pdverify.study import runner
-
-    record = runner._Recording.record_case
-
-    def record_then_die(self, message, arrays):  # in the recorder (a fork of this process)
-        if len(self.keep.rows) == 2:
-            os.kill(os.getpid(), signal.SIGKILL)
-        record(self, message, arrays)
-
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
-    with monkeypatch.context() as m:
-        m.setattr(zygote, "ready", lambda wait=0: False)  # a fork of this process: it has the patched class
-        m.setattr(runner._Recording, "record_case", record_then_die)
-        with pytest.raises(OutputError) as exc:
-            run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
-    msg = str(exc.value)
-    assert "killed by SIGKILL" in msg and "run the study again to resume" in msg and "\n" not in msg
-    assert len(list((tmp_path / "out" / "cases").iterdir())) == 2
-    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
-    assert len(df) == 6 and (df["status"] == "ok").all()
-    assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == 2
+    t = json.loads((tmp_path / "out" / "meta.json").read_text())["timing"]
+    assert t["solver_s"] == pytest.approx(df["total_s"].sum(), rel=1e-9)
+    wall = t["cases_s"] + t["tables_s"]
+    assert t["runner_overhead_s"] == pytest.approx(wall - t["solver_s"], rel=1e-9)
+    assert t["runner_overhead_fraction"] == pytest.approx(t["runner_overhead_s"] / wall, rel=1e-9)
+    assert 0 < t["runner_overhead_fraction"] < 1 and t["workers"] == 1 and t["computed_cases"] == 6
 
 
 def _run_case_or_die(case, artefacts=None, case_id=None):
@@ -607,22 +467,6 @@ def test_pool_worker_killed_is_one_output_error_and_the_run_resumes(tmp_path, mo
     assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == kept
 
 
-def test_recorder_raises_the_childs_failure(tmp_path):
-    """A failure in the child (here a file name the file system refuses) is raised in the runner by a later
-    ``put`` or by ``close``, with the child's own exception, never lost."""
-    from pdverify.study.recorder import Recorder
-
-    if not Recorder.available:
-        pytest.skip("no fork or a single CPU")
-    rec = Recorder(_record(tmp_path), lambda: None)
-    rec.put("x" * 300 + ".case", [np.zeros(3)])  # name too long for the file system
-    with pytest.raises(OSError, match="File name too long"):
-        for i in range(200):
-            rec.put(f"more{i}.case", [np.zeros(8192)])
-        rec.close()
-    assert rec.closed
-
-
 def test_unwritable_output_is_one_line_exit_4(tmp_path):
     """An output directory that cannot be made (here a file stands where it should go; permissions or a
     full disk end the same way) stops the study with one line naming the directory and the fix."""
@@ -635,23 +479,22 @@ def test_unwritable_output_is_one_line_exit_4(tmp_path):
     assert f"output directory {blocker / 'out'}" in r.stderr and "writable --out" in r.stderr
 
 
-@pytest.mark.parametrize("recorder,workers", [(True, 1), (False, 1), (False, 2)])
-def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypatch, recorder, workers):
+@pytest.mark.parametrize("workers", [1, 2])
+def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypatch, workers):
     """A case file that cannot be written in the middle of a run (a full disk, simulated) stops the study
-    with OutputError naming the directory and the fix, whether the serial run's recorder process, the
-    runner itself or a pool worker writes it; the cases written before it stay."""
+    with OutputError naming the directory and the fix, in a serial run and with pool workers (the main
+    process writes every case file); the cases written before it stay."""
     from pdverify.errors import OutputError
-    from pdverify.study import recorder as rec_mod, runner
+    from pdverify.study import outdir
 
-    monkeypatch.setattr(rec_mod.Recorder, "available", recorder and rec_mod.Recorder.available)
-    real = runner.write_atomic
+    real = outdir.write_atomic
 
-    def full_disk(path, data):  # the disk fills up after two case files (counted on disk: pool workers too)
+    def full_disk(path, data):  # the disk fills up after two case files
         if len(list(Path(path).parent.glob("*.case"))) >= 2:
             raise OSError(28, "No space left on device")
         real(path, data)
 
-    monkeypatch.setattr(runner, "write_atomic", full_disk)
+    monkeypatch.setattr(outdir, "write_atomic", full_disk)
     p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31, 41, 51]\n')
     with pytest.raises(OutputError, match="No space left on device.*writable --out"):
         run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
@@ -671,14 +514,10 @@ def test_unwritable_table_is_an_output_error_and_the_cases_stay(tmp_path, synthe
     assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 3
 
 
-@pytest.mark.skipif(not __import__("pdverify.study.recorder", fromlist=["Recorder"]).Recorder.available,
-                    reason="no recorder process (one CPU, or not Linux)")
-@pytest.mark.parametrize("handoff_s", [0.0, 60.0])
-def test_ctrl_c_keeps_the_cases_solved_since_the_last_handoff(tmp_path, monkeypatch, handoff_s):
-    """A serial run hands its solved cases to the recorder in batches (runner.HANDOFF_S). Ctrl-C during the
-    sixth solve: the five solved before it are stored whether they were handed over one by one (0 s) or
-    were all still waiting in the runner (60 s: one batch, sent on the way out), and the next run resumes
-    them and completes with the numbers of an uninterrupted run."""
+def test_ctrl_c_keeps_every_case_solved_before_it(tmp_path, monkeypatch):
+    """Ctrl-C during the sixth solve of a serial run: the five solved before it are stored (each is
+    written as it finishes), and the next run resumes them and completes with the numbers of an
+    uninterrupted run."""
     from pdverify.study import runner
 
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201, 401]\nhorizon = [2, 3]\n')
@@ -691,7 +530,6 @@ def test_ctrl_c_keeps_the_cases_solved_since_the_last_handoff(tmp_path, monkeypa
         return solve(case, *args)
 
     with monkeypatch.context() as m:
-        m.setattr(runner, "HANDOFF_S", handoff_s)
         m.setattr(runner, "solve_case", interrupted)
         with pytest.raises(KeyboardInterrupt):
             run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
@@ -701,18 +539,3 @@ def test_ctrl_c_keeps_the_cases_solved_since_the_last_handoff(tmp_path, monkeypa
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
     assert len(df) == 8 and (df["status"] == "ok").all()
     assert np.array_equal(_cols(df)[["err_max", "err_l2"]].to_numpy(), _cols(fresh)[["err_max", "err_l2"]].to_numpy())
-
-
-def test_the_overhead_benchmarks_studies_are_valid_and_of_200_cases(tmp_path):
-    """benchmarks/runner_overhead.py's studies (every --model and --size) load and hold 200 cases each."""
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location("runner_overhead", ROOT / "benchmarks" / "runner_overhead.py")
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
-    for model, (_, _, sizes) in bench.MODELS.items():
-        for size in sizes:
-            p = tmp_path / f"{model}-{size}.toml"
-            p.write_text(bench.study_text(model, size))
-            cases = load_study(p).cases
-            assert len(cases) == 200 and {c.model for c in cases} == {model}, (model, size)

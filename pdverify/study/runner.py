@@ -1,46 +1,33 @@
-"""Run a study: cases in parallel (process pool or Dask), each written at once and atomically,
-resumable, failures recorded; then the derived tables (convergence, locking, speed vs error).
+"""Run a study: each case solved and measured (:func:`solve_case`, :func:`measure_case`) in this process,
+a process pool or on a Dask cluster (execute.py), stored as soon as it finishes, atomically (outdir.py), so
+a run resumes where it stopped; then the tables (derived.py).
 """
 
 from __future__ import annotations
 
 import json
-import multiprocessing
+import operator
 import os
-import platform
-import shutil
-import sys
-import threading
 import time
-from collections import Counter
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from concurrent.futures.process import BrokenProcessPool
+from contextlib import closing
 from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-try:  # imported with the runner (its one-time cost belongs to start-up, not to the first study's tables)
-    import pyarrow as pa
-    import pyarrow.csv as pa_csv
-    import pyarrow.parquet as pa_parquet
-    import pyarrow.pandas_compat  # noqa: F401 - else imported by the first pa.array(..., from_pandas=True): 2-12 ms
-except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written (by pandas)
-    pa = None
-
 from .. import __version__
-from ..errors import OutputError, PdverifyError
+from ..errors import InputError, OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
-from .checks import match_benchmark, write_checks
-from .checks import verdict as _verdict
+from . import execute
+from .derived import (_verdict, benchmark_table, results_frame, results_table, write_derived,  # noqa: F401
+                      write_tables)
 from .metrics import errors
+from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .spec import Case, Study, code_digest
-from .recorder import Recorder, RecorderDied
-from .store import SUFFIX, case_file, encode_record, read_case, read_curve, write_atomic
-from .tables import (EMPTY_CONVERGENCE, Groups, convergence_rows, locking_rows, rows_of, speed_error_rows,
-                     trust_rows, trust_table)  # noqa: F401 (trust_table: re-exported)
+from .store import write_atomic
+from .tables import trust_table  # noqa: F401 (re-exported)
 
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
@@ -96,8 +83,7 @@ INFO_KEYS = ("horizon", "cond", "load_steps", "history")
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
     """The solving half of a case: the model's result reduced to what :func:`measure_case` reads (arrays
-    and numbers, picklable: it crosses to a worker's parent or to the recorder), or ``{"failure": message,
-    "timings": {"total_s": seconds}}``.
+    and numbers), or ``{"failure": message, "timings": {"total_s": seconds}}``.
     Never raises. ``artefacts``: a folder for the model's own files (a plane-stress VTU and its PNG, time
     histories as CSV), named by ``case_id``: they are written here, where the model's writers live.
     A failure's seconds are its cost: meta.json counts them as the models' time, not the runner's."""
@@ -141,28 +127,6 @@ def _failure_message(exc: Exception) -> str:
 # The serial runner hands its solved cases to the recorder at most every HANDOFF_S seconds (and the last
 # two one by one): each handoff costs the solving process ~0.1 ms whatever it carries (a pickle and a pipe write
 # between two solves, caches cold), so cases of a few ms go by the handful. A killed runner (SIGKILL) loses
-# at most the cases solved in the last HANDOFF_S beside the one being solved; Ctrl-C loses none.
-HANDOFF_S = 0.02
-
-
-def _handoff(i: int, solved: dict) -> tuple[tuple, list]:
-    """The ``i``-th case's :func:`solve_case` result as it crosses to the recorder process: (message,
-    arrays), its curves apart (written to the pipe as they are), the rest small (pickled: see
-    ``recorder.encode``). :func:`_handback` undoes it."""
-    names = [k for k in ("x", "w", "rotation") if solved.get(k) is not None]
-    fields = solved.get("fields") or {}
-    rest = {k: v for k, v in solved.items() if k not in ("x", "w", "rotation", "fields")}
-    return (i, rest, names, list(fields)), [solved[k] for k in names] + list(fields.values())
-
-
-def _handback(message: tuple, arrays: list) -> tuple[int, dict]:
-    i, rest, names, fields = message
-    solved = {**rest, **dict(zip(names, arrays))}
-    if "failure" not in solved:
-        solved.setdefault("rotation", None)
-        solved["fields"] = dict(zip(fields, arrays[len(names):]))
-    return i, solved
-
 
 def _plain_scalar(v):
     """A numpy scalar as the Python number it equals (pickling a numpy scalar pickles its dtype: ~20 us)."""
@@ -179,18 +143,6 @@ def _describe(case: Case, row: dict):
     row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
     row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
     return scene, params
-
-
-def predicted_row(case: Case, case_id: str) -> dict:
-    """What the derived tables group a case by (scene, model, options, slenderness, points), before it is
-    solved (tables.Groups); as far as it goes when the case cannot even be described (its row will fail)."""
-    row = {"case_id": case_id, "model": case.model, "slenderness": case.slenderness,
-           **{k: case.given.get(k) for k in PARAM_COLUMNS}}
-    try:
-        _describe(case, row)
-    except Exception:  # noqa: BLE001 - its groups are then simply computed at the end
-        pass
-    return row
 
 
 class _Failed(Exception):
@@ -255,309 +207,86 @@ def run_case(case: Case, artefacts: str | None = None, case_id: str | None = Non
     return measure_case(case, solve_case(case, artefacts, case_id), case_id)
 
 
-def _clean(rec: dict) -> dict:
-    """The record with its row's numpy scalars as Python numbers and NaN / inf as None (the tables'
-    missing value)."""
-    row = {}
-    for k, v in rec["row"].items():
-        t = type(v)
-        if t is float or isinstance(v, np.floating):
-            v = float(v) if v - v == 0 else None  # finite
-        elif isinstance(v, np.integer):
-            v = int(v)
-        row[k] = v
-    return {**rec, "row": row}
-
-
-class _Keeper:
-    """Finished cases: each record cleaned, stored under the id this process computed and written at once
-    and atomically (a killed run loses only the cases in flight); the rows kept for the tables. A worker
-    with other code computes other ids: its record is kept under ours and the mismatch reported in
-    meta.json instead of losing the case."""
-
-    def __init__(self, out: Path, code: str):
-        self.out, self.cases_dir, self.code = out, out / "cases", code
-        self.rows: dict = {}
-        self.mismatched: list[str] = []
-        self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the models' own time; cleaning, encoding, writing
-        self.env: dict | None = None  # environment(), when the recorder reads it
-        self.write = write_atomic  # as the module has it now (a test may replace it; the recorder is given it)
-
-    def add(self, rec: dict, cid: str) -> bool:
-        """Store one record; whether its case is ok. Raises OutputError when the file cannot be written."""
-        t = time.perf_counter()
-        rec = _clean(rec)
-        row = rec["row"]
-        if row.get("code") != self.code:
-            self.mismatched.append(cid)
-        row["case_id"] = cid
-        try:
-            self.write(self.cases_dir / f"{cid}{SUFFIX}", encode_record(rec))
-        except OSError as exc:  # disk full, permissions: stop with one line; the cases written so far stay
-            raise _output_error(self.out, exc) from None
-        self.rows[cid] = row
-        self.clock["solver_s"] += row.get("total_s") or 0.0
-        self.clock["store_s"] += time.perf_counter() - t
-        return row["status"] == "ok"
-
-    def summary(self) -> tuple[dict, list, dict, dict | None]:
-        return self.rows, self.mismatched, self.clock, self.env
-
-
-class _Recording:
-    """The serial run's work in its recorder process (:class:`~.recorder.Recorder`): measure each case
-    from what its solve returned, store it (``keep``), and compute the derived tables' groups as the cases
-    come in; once every case is in, the derived tables. A module-level class, so that it can be pickled
-    for a recorder forked from the zygote; it carries the functions it calls that a caller may have
-    replaced (``measure_case`` here, the keeper's ``write``), so the child runs what the runner would."""
-
-    def __init__(self, study: Study, out: Path, ids: list[str], todo: list[Case], todo_ids: list[str],
-                 done: dict, keep: _Keeper):
-        self.study, self.out, self.ids, self.todo, self.todo_ids = study, out, ids, todo, todo_ids
-        self.done, self.keep, self.measure, self.groups = done, keep, measure_case, None
-
-    def start(self) -> None:
-        """While the first case is solved: each case's groups in the derived tables, and the environment."""
-        keep = self.keep
-        t = time.perf_counter()
-        expected = [self.done.get(cid) or predicted_row(case, cid) for case, cid in zip(self.study.cases, self.ids)]
-        self.groups = Groups(list({r["case_id"]: r for r in expected}.values()))
-        for row in self.done.values():
-            self.groups.add(row)
-        keep.clock["groups_s"] = time.perf_counter() - t
-        keep.env = environment()  # read here, off the solver's core (~18 ms the first time in a process)
-        warm_up()  # a fork of a runner that has not written a table yet: for the derived tables at the end
-
-    def record(self, batch, arrays) -> None:
-        """The cases of one handoff (:data:`HANDOFF_S`), in order: :meth:`record_case` each."""
-        k = 0
-        for message in batch:
-            n = len(message[2]) + len(message[3])
-            self.record_case(message, arrays[k:k + n])
-            k += n
-
-    def record_case(self, message, arrays) -> None:
-        """Measure the i-th case from what the solve returned, store it."""
-        keep = self.keep
-        i, solved = _handback(message, arrays)
-        cid = self.todo_ids[i]
-        t = time.perf_counter()
-        rec = self.measure(self.todo[i], solved, cid)
-        keep.clock["measure_s"] = keep.clock.get("measure_s", 0.0) + time.perf_counter() - t
-        keep.add(rec, cid)
-        if i < len(self.todo) - 1:  # the last one's after its row has gone back to the runner (derived_tables)
-            t = time.perf_counter()
-            self.groups.add(keep.rows[cid])  # the derived tables' groups this case completes
-            keep.clock["groups_s"] += time.perf_counter() - t
-
-    def summary(self):
-        return self.keep.summary()
-
-    def derived_tables(self) -> float:
-        """Once every case is in, while the runner writes the results: the derived tables; their seconds."""
-        t = time.perf_counter()
-        self.groups.add(self.keep.rows[self.todo_ids[-1]])  # the last case's groups: after the rows went back
-        rows = {**self.done, **self.keep.rows}
-        write_derived(self.study, self.out, [rows[cid] for cid in dict.fromkeys(self.ids)], RECORDER_WRITES,
-                      self.groups.memo)
-        return time.perf_counter() - t
-
 
 def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
               progress: bool = True) -> pd.DataFrame:
     """Run the study's cases not yet done in ``out`` (resumed from their case files), write every table and
-    meta.json there; the results table. Raises OutputError (one line, nothing lost that was stored) when
-    ``out`` cannot be written or when a process storing or solving cases (recorder, worker) dies."""
+    meta.json there; the results table. ``workers``: local processes (default: every core; 1 runs the
+    cases in this process); ``scheduler``: a Dask scheduler's address (then ``workers`` is not used).
+    Raises InputError for a bad ``workers`` or ``scheduler`` (exit 2), OutputError (exit 4; nothing stored
+    is lost) when ``out`` cannot be written, is in use by another run or holds another study's results, or
+    when a process solving cases dies."""
+    workers = _whole_workers(workers)
+    if scheduler is not None:
+        execute.check_scheduler(scheduler)
     out = Path(out)
     try:
+        (out / "cases").mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise output_error(out, exc) from None
+    lock = FolderLock(out)
+    try:
+        claim(out, study)
         return _run_study(study, out, workers, scheduler, progress)
-    except RecorderDied as exc:  # killed by the system (out of memory, a signal): what it stored is kept
-        raise OutputError(f"{exc}; the cases it stored are kept in {out / 'cases'}: run the study again to "
-                          "resume") from None
-    except BrokenProcessPool:  # a worker killed: the cases it solved before were stored here
+    except execute.BrokenProcessPool:  # a worker killed: the cases it solved before were stored here
         raise OutputError(f"a worker process ended abruptly (killed: out of memory, a signal); the cases "
                           f"finished before are kept in {out / 'cases'}: run the study again to resume") from None
+    except execute.ClusterLost as exc:
+        raise OutputError(f"--scheduler {scheduler}: the Dask cluster lost a case ({exc}); the cases finished "
+                          f"before are kept in {out / 'cases'}: run the study again to resume") from None
+    finally:
+        lock.release()
+
+
+def _whole_workers(workers):
+    """``workers`` as a number of processes (None: every core; numpy integers too); InputError (exit 2)
+    unless a whole number of at least 1."""
+    if workers is None:
+        return None
+    try:
+        n = 0 if isinstance(workers, bool) else operator.index(workers)
+    except TypeError:
+        n = 0
+    if n < 1:
+        raise InputError(f"--workers {workers!r}: give a whole number of processes, 1 or more")
+    return n
 
 
 def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | None, progress: bool) -> pd.DataFrame:
-    cases_dir = out / "cases"
-    try:
-        cases_dir.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise _output_error(out, exc) from None
     t0 = time.perf_counter()
     ids = [c.case_id for c in study.cases]  # hashed once: the key covers the scene text and the code digest
-    id_of = {id(c): cid for c, cid in zip(study.cases, ids)}
-    done, todo = {}, []  # done: case id -> row (the curves stay on disk)
-    seen = set()
-    on_disk = {e.name for e in os.scandir(cases_dir)}  # one listing instead of a look-up per case
-    for case, cid in zip(study.cases, ids):
-        if cid in seen:
-            continue
-        seen.add(cid)
-        path = case_file(cases_dir, cid, on_disk)
-        rec = read_case(path) if path is not None else None
-        if rec is not None:
-            done[cid] = rec["row"]
-        else:
-            todo.append(case)
+    done = finished(out / "cases", ids)  # case id -> row (the curves stay on disk)
     resumed = len(done)
-
-    keep = _Keeper(out, code_digest())
-    # Serial runs solve here and measure + store in a child on the other core (recorder.Recorder: a fork of
-    # the zygote when it is up, else of this process); with workers or Dask this process collects the
-    # measured records and writes them itself.
-    serial = not scheduler and ((workers or os.cpu_count() or 1) <= 1 or len(todo) <= 1)
-    recorder = None
-    if serial and len(todo) > 1 and Recorder.available:
-        work = _Recording(study, out, ids, todo, [id_of[id(c)] for c in todo], done, keep)
-        try:
-            recorder = Recorder(work.record, work.summary, work.derived_tables, start=work.start)
-        except OSError:  # no process to be had (limits): measure and store here instead
-            pass
-    env = None  # environment(), when the recorder reads it
-    bar = _progress(len(todo), progress)  # after the fork: the bar's thread stays in this process
-    warming = None
-    # This process's first tables: Arrow's and pandas' first use (5-15 ms) in a thread while the first cases
-    # are solved. The other core is the recorder's, idle most of the time; the warm-up holds the GIL little
-    # (one-row tables, written by Arrow's C++). First runs in a fresh process, 8 pairs: 4.0-5.7 % runner
-    # overhead, median 4.6 %, against 4.1-6.5 %, median 5.5 %, without it.
-    if recorder is not None and not _warm:
-        warming = threading.Thread(target=warm_up, name="pdverify-warm-up", daemon=True)
-        warming.start()
-    batch, batch_arrays = [], []  # solved, not yet handed to the recorder (HANDOFF_S)
-    artefacts = str(out / "vtu")  # once: a path joined and made a string cost ~35 us a case between solves
+    todo = list({cid: c for c, cid in zip(study.cases, ids) if cid not in done}.items())  # each id once
+    todo_ids, todo_cases = [cid for cid, _ in todo], [c for _, c in todo]
+    n = 1 if scheduler else min(workers or os.cpu_count() or 1, max(1, len(todo)))
+    if scheduler and todo:
+        loop = execute.on_dask(run_case, todo_cases, todo_ids, scheduler)
+    elif n > 1:
+        loop = execute.pool(run_case, todo_cases, todo_ids, str(out / "vtu"), n)
+    else:
+        loop = execute.serial(run_case, todo_cases, todo_ids, str(out / "vtu"))
+    keep = Keeper(out, code_digest())
+    bar = _progress(len(todo), progress)
     try:
-        if scheduler:
-            from dask.distributed import Client, as_completed as dask_completed
-
-            with Client(scheduler) as client:
-                futures = client.map(run_case, todo, [None] * len(todo), [id_of[id(c)] for c in todo],
-                                     pure=False)  # remote workers: no artefact files
-                by_key = {f.key: c for f, c in zip(futures, todo)}
-                for fut in dask_completed(futures):
-                    bar.advance(failed=not keep.add(fut.result(), id_of[id(by_key[fut.key])]))
-        elif recorder is not None:
-            handoff = 0.0  # the solving process's time to hand the cases over
-            last = len(todo) - 1
-            sent = time.perf_counter()
-            for i, case in enumerate(todo):
-                solved = solve_case(case, artefacts, id_of[id(case)])
-                t = time.perf_counter()
-                message, arrays = _handoff(i, solved)
-                batch.append(message)
-                batch_arrays += arrays
-                # the last case alone: what the recorder has left to do when the solves end is one case
-                if t - sent >= HANDOFF_S or i >= last - 1:
-                    full, batch, batch_arrays = (batch, batch_arrays), [], []  # emptied first: never sent
-                    recorder.put(*full)  # twice, even when Ctrl-C comes in the middle of this write
-                    sent = time.perf_counter()
-                handoff += time.perf_counter() - t
-                bar.advance(failed="failure" in solved)
-            keep.clock["handoff_s"] = handoff
-        elif serial:
-            for case in todo:
-                bar.advance(failed=not keep.add(run_case(case, artefacts, id_of[id(case)]), id_of[id(case)]))
-        else:
-            # fork on Linux whatever the Python version (3.14 made forkserver the default): workers start in
-            # milliseconds with the models already imported, as the recorder does
-            ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
-            with ProcessPoolExecutor(max_workers=workers or os.cpu_count(), mp_context=ctx) as pool:
-                futs = {pool.submit(run_case, c, artefacts, id_of[id(c)]): c for c in todo}
-                for fut in as_completed(futs):
-                    bar.advance(failed=not keep.add(fut.result(), id_of[id(futs[fut])]))
-    except BaseException:  # Ctrl-C, a failed write: the child records the cases it was given, no tables
-        bar.close()
-        if warming is not None:
-            warming.join()
-        if recorder is not None:
-            if batch and not recorder.closed:  # Ctrl-C: the cases solved since the last handoff are kept too
-                try:
-                    recorder.put(batch, batch_arrays)
-                except Exception:  # the recorder failed: its error is the one being raised, or will be
-                    pass
-            recorder.abort()
-        raise
-    try:
-        if recorder is not None:
-            t = time.perf_counter()
-            (rows, mismatched, clock, env), _ = recorder.close()  # the child's OutputError, if any, is raised here
-            # the bar counted the failed solves as they came; a case can also fail where it is measured
-            # (its reference): the final count is the rows'
-            bar.set_failed(sum(r["status"] != "ok" for r in rows.values()))
+        with closing(loop):  # closed on any way out: a pool's workers are ended
+            for cid, rec in loop:
+                bar.advance(failed=not keep.add(rec, cid))
     finally:
         bar.close()
-    derived = None
-    if recorder is not None:
-        keep.rows.update(rows)
-        keep.mismatched += mismatched
-        keep.clock.update(clock, recorder_wait_s=time.perf_counter() - t)
-
-        def derived():  # written by the child meanwhile: its time for them, and its CPU time in all
-            tables_s, cpu = recorder.join()
-            return {"recorder_tables_s": tables_s, "recorder_cpu_s": cpu}
-
-    if warming is not None:
-        warming.join()
     done.update(keep.rows)
     rows = [done[cid] for cid in dict.fromkeys(ids)]
     table = results_table(study, rows)
     df = results_frame(study, rows, table)
     cases_s = time.perf_counter() - t0
+    timing = {"cases_s": cases_s, "computed_cases": len(todo), "workers": n,
+              "path": "dask" if scheduler else ("pool" if n > 1 else "serial"), **keep.clock}
     try:
-        write_tables(study, out, rows, table=table, env=env, wall=cases_s, resumed=resumed,
-                     mismatched=keep.mismatched, derived=derived,
-                     timing={"cases_s": cases_s, "computed_cases": len(todo),
-                             "recorder": "process" if recorder else "inline",
-                             **({"recorder_start": recorder.started} if recorder else {}), **keep.clock})
+        write_tables(study, out, rows, table=table, wall=cases_s, resumed=resumed, mismatched=keep.mismatched,
+                     timing=timing)
     except OSError as exc:
-        if recorder is not None:
-            recorder.abort()
-        raise _output_error(out, exc, "a table") from None
+        raise output_error(out, exc, "a table") from None
     return df
-
-
-TEXT_OPTIONS = ("variant", "element", "form")  # text options: a text column even when no case has them
-
-
-def results_table(study: Study, rows: list[dict]):
-    """The results as an Arrow table (:func:`_rows_table`): one row per case (``rows``, in the study's
-    order), the study's name first, the text options text columns even when every value is missing; None
-    without pyarrow or when a column's values are of mixed types (then pandas builds it: :func:`results_frame`)."""
-    if not rows:
-        return None
-    return _rows_table([{"study": study.name, **r} for r in rows], ("study", *TEXT_OPTIONS))
-
-
-def write_results(study: Study, out: Path, rows: list[dict], table=None) -> None:
-    """results.csv and results.parquet from :func:`results_table` (``table``, when built already): the
-    same bytes in every path, ~6 ms for 200 cases where the DataFrame's conversion and writes took ~9 ms."""
-    table = table if table is not None else results_table(study, rows)
-    if table is None:
-        _save(results_frame(study, rows), out, "results")
-        return
-    _write(table, out, "results")
-
-
-def results_frame(study: Study, rows: list[dict], table=None) -> pd.DataFrame:
-    """The results DataFrame (what :func:`run_study` returns): :func:`results_table`'s (``table``, when built
-    already) ``to_pandas`` (3.0-3.8 ms for 200 cases, 5.6-6.6 ms the first time in a process, against
-    3.4-5.4 and 6.8-9.3 ms for pandas from the rows), else pandas' from the rows, the text options as
-    pandas strings."""
-    table = table if table is not None else results_table(study, rows)
-    if table is not None:
-        return table.to_pandas()
-    df = pd.DataFrame(rows)
-    df.insert(0, "study", study.name)
-    for col in TEXT_OPTIONS:
-        if col in df:
-            df[col] = df[col].astype("string")
-    return df
-
-
-def _output_error(out: Path, exc: OSError, what: str = "a case file") -> OutputError:
-    return OutputError(f"output directory {out}: {what} could not be written ({exc}); free disk space or "
-                       "give a writable --out. The cases already written are kept: run the study again to resume.")
 
 
 class _progress:
@@ -569,8 +298,8 @@ class _progress:
         if self.enabled:
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-            self.p = Progress(TextColumn("cases"), BarColumn(), MofNCompleteColumn(), TextColumn("failed {task.fields[failed]}"),
-                              TimeRemainingColumn(), transient=False)
+            self.p = Progress(TextColumn("cases"), BarColumn(), MofNCompleteColumn(),
+                              TextColumn("failed {task.fields[failed]}"), TimeRemainingColumn(), transient=False)
             self.p.start()
             self.task = self.p.add_task("cases", total=total, failed=0)
 
@@ -579,227 +308,6 @@ class _progress:
         if self.enabled:
             self.p.update(self.task, advance=1, failed=self.failed)
 
-    def set_failed(self, n: int):
-        self.failed = n
-        if self.enabled:
-            self.p.update(self.task, failed=n)
-
     def close(self):
         if self.enabled:
             self.p.stop()
-
-
-def _arrow(df: pd.DataFrame):
-    """``df`` as an Arrow table (what ``to_parquet`` writes), or None without pyarrow, without columns, or
-    when a column does not convert (mixed types): then pandas writes the CSV and there is no Parquet."""
-    if pa is None or df.columns.empty:
-        return None
-    try:
-        return pa.Table.from_pandas(df, preserve_index=False)
-    except (pa.ArrowException, TypeError, ValueError):
-        return None
-
-
-def _rows_table(rows: list[dict], text=()):
-    """The table of ``rows`` (dicts) as Arrow builds it from them: columns in order of first appearance (as
-    pandas makes them), missing values (None, NaN) as nulls (as pandas' are), the columns named in ``text``
-    text even when every value is missing; None without pyarrow, without columns, or when a column's values
-    are of mixed types."""
-    columns = list(dict.fromkeys(k for r in rows for k in r))
-    if pa is None or not columns:
-        return None
-    try:
-        return pa.table({c: pa.array([r.get(c) for r in rows], pa.large_string() if c in text else None,
-                                     from_pandas=True) for c in columns})
-    except (pa.ArrowException, TypeError, ValueError):
-        return None
-
-
-def _write(table, out: Path, name: str, parquet: bool = True) -> None:
-    """``name``.csv and (``parquet``) ``name``.parquet from one Arrow table: Arrow's CSV writer takes ~1 ms
-    where pandas' ``to_csv`` took 8-11 ms on a 200-case results table (the tables are on a study's critical
-    path). Arrow quotes every text value and writes an integral float without ``.0`` (``pandas.read_csv``
-    then reads such a column as integers); values are written exactly (shortest round-trip form)."""
-    pa_csv.write_csv(table, out / f"{name}.csv")
-    if parquet:
-        pa_parquet.write_table(table, out / f"{name}.parquet")
-
-
-_warm = False  # whether this process has used Arrow's writers and the table's conversion to pandas
-
-
-def warm_up() -> bool:
-    """Write a one-row table (:func:`_save_rows`) to a temporary folder and convert it to pandas, once per
-    process: the first use of Arrow's CSV and Parquet writers and of ``to_pandas`` in a process costs 5-15 ms
-    (the libraries' code paged in), paid on a study's critical path when its tables are written. Never
-    raises (a failure, say no writable temporary folder, only leaves the first tables slower); whether this
-    process is warm."""
-    global _warm
-    import tempfile
-
-    if not _warm:
-        try:
-            with tempfile.TemporaryDirectory() as d:
-                _save_rows([{"a": 1.0, "b": "x"}], Path(d), "warm")
-                if pa is not None:
-                    _rows_table([{"a": 1.0, "b": "x"}], ("b",)).to_pandas()
-            _warm = True
-        except Exception:  # noqa: BLE001 - an optimisation only: the tables are written (and checked) later
-            pass
-    return _warm
-
-
-def _write_empty(out: Path, name: str) -> None:
-    """What pandas writes for a table with neither rows nor columns, without building one and waking its
-    CSV writer (~2-5 ms the first time)."""
-    (out / f"{name}.csv").write_bytes(b"\n")
-
-
-def _save_rows(rows: list[dict], out: Path, name: str, parquet: bool = True) -> None:
-    """:func:`_save` of the table of ``rows``, built by Arrow directly (:func:`_rows_table`; a derived table:
-    ~1 ms each where going through a DataFrame cost 2-6 ms); through pandas when a column's values are of
-    mixed types."""
-    if not rows:
-        _write_empty(out, name)
-        return
-    table = _rows_table(rows)
-    if table is None:
-        _save(pd.DataFrame(rows), out, name, parquet)
-        return
-    _write(table, out, name, parquet)
-
-
-def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
-    """``name``.csv and (``parquet``) ``name``.parquet of ``df`` (:func:`_write`); pandas' CSV alone when it
-    does not convert to Arrow."""
-    if df.columns.empty:
-        _write_empty(out, name)
-        return
-    table = _arrow(df)
-    if table is None:
-        df.to_csv(out / f"{name}.csv", index=False)
-        return
-    _write(table, out, name, parquet)
-
-
-def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
-    """Verification rows. Default quantity: the deflection at the point of largest reference deflection
-    (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
-    point field such as u, theta, M), the case's curve interpolated there (the case file holds it)."""
-    rows = []
-    for b in study.benchmarks:
-        r, unmatched = match_benchmark(b, df)  # its case, or the row of a missing / failed case
-        if unmatched is not None:
-            rows.append(unmatched)
-            continue
-        target = b.get("target", r["w_ref_at_max"])
-        computed = r["w_at_max"]
-        quantity = b.get("quantity", "w")
-        if "position" in b:
-            path = case_file(cases_dir, r["case_id"]) if cases_dir else None
-            c = read_curve(path) if path is not None else {}
-            arr = c.get(quantity) if quantity in ("w", "rotation") else c.get("fields", {}).get(quantity)
-            if arr is None:
-                rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing",
-                             "message": f"quantity {quantity!r} not among the case's outputs"})
-                continue
-            computed = float(np.interp(float(b["position"]), c["x"], arr))
-            if "target" not in b:
-                target = float(np.interp(float(b["position"]), c["x"], c["w_ref"])) if quantity == "w" else float("nan")
-        rel = abs(computed - target) / abs(target) if target else float("nan")
-        tol = b.get("tolerance", 0.01)
-        order = float("nan")
-        if not conv.empty:
-            c = conv[(conv["scene"] == r["scene"]) & (conv["model"] == r["model"]) & (conv["options"] == r["options"])
-                     & (conv["slenderness"].fillna(-1) == (r["slenderness"] if pd.notna(r["slenderness"]) else -1))]
-            if len(c):
-                order = c["observed_order"].iloc[0]
-        rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],
-                     "variant": r.get("variant"), "reference": r["reference"], "target": target,
-                     "computed": computed, "ratio": computed / target if target else float("nan"), "rel_error": rel,
-                     "err_max": r["err_max"], "tolerance": tol, "verdict": _verdict(rel <= tol, b.get("expected", "pass")),
-                     "quantity": quantity if "position" in b else "w at max", "position": b.get("position"),
-                     "observed_order": order, "case_id": r["case_id"]})
-    return pd.DataFrame(rows)
-
-
-@lru_cache(maxsize=1)
-def package_versions() -> dict:
-    """Versions of the packages whose code can change a number (read once per process: 20 ms)."""
-    import importlib.metadata as md
-
-    versions = {}
-    for pkg in ("numpy", "scipy", "scikit-fem", "pandas", "pyvista", "matplotlib", "dask"):
-        try:
-            versions[pkg] = md.version(pkg)
-        except md.PackageNotFoundError:
-            versions[pkg] = None
-    return dict(versions)
-
-
-def environment() -> dict:
-    """Python, platform, machine and the versions of the packages whose code can change a number, as
-    meta.json records them (the first call in a process reads package metadata: ~18 ms)."""
-    return {"python": platform.python_version(), "platform": platform.platform(), "machine": platform.machine(),
-            "versions": package_versions()}
-
-
-def _write_convergence(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:
-    conv = convergence_rows(rows, memo)
-    if not conv and not any(r.get("status") == "ok" for r in rows):
-        _save(pd.DataFrame(columns=EMPTY_CONVERGENCE), out, "convergence")  # the header: no case is ok
-    else:
-        _save_rows(conv, out, "convergence")
-    if study.benchmarks:  # the verification rows quote the observed order
-        _save(benchmark_table(study, pd.DataFrame(rows), pd.DataFrame(conv), out / "cases"), out, "benchmarks",
-              parquet=False)
-    write_checks(study, out, rows)  # checks.csv: the study's order checks on the convergence series
-
-
-def _write_speed_error(study: Study, out: Path, rows: list[dict], memo: dict | None) -> None:
-    se, summary = speed_error_rows(rows, memo)
-    _save_rows(se, out, "speed_error")
-    _save_rows(summary, out, "speed_error_summary", parquet=False)
-
-
-DERIVED = {  # the derived tables (pdverify/study/tables.py), by the part of the work that writes them together
-    "convergence": _write_convergence,  # convergence.csv/.parquet and benchmarks.csv
-    "locking": lambda study, out, rows, memo: _save_rows(locking_rows(rows, memo), out, "locking"),
-    "speed_error": _write_speed_error,  # speed_error.csv/.parquet and speed_error_summary.csv
-    "trust": lambda study, out, rows, memo: _save_rows(trust_rows(rows, memo=memo), out, "trust", parquet=False),
-}
-RECORDER_WRITES = tuple(DERIVED)  # by a serial run's recorder (computed along the way); the runner writes results
-
-
-def write_derived(study: Study, out: Path, results, parts=tuple(DERIVED), memo: dict | None = None) -> None:
-    """The derived tables (``parts`` of :data:`DERIVED`: all by default) from the results (a DataFrame, or
-    its rows as dicts with None for a missing value). ``memo``: groups already computed (tables.Groups)."""
-    rows = rows_of(results) if isinstance(results, pd.DataFrame) else results
-    for name in parts:
-        DERIVED[name](study, out, rows, memo)
-
-
-def write_tables(study: Study, out: Path, rows: list[dict], wall: float, resumed: int,
-                 mismatched: list[str] | None = None, timing: dict | None = None, derived=None,
-                 env: dict | None = None, table=None) -> None:
-    """results (:func:`write_results` from ``rows``, or ``table`` when built already) and the derived
-    tables (:func:`write_derived`; or, when ``derived`` is given, those not in :data:`RECORDER_WRITES`, then
-    ``derived()`` waits for the process that writes those and returns timings to record); then study.toml
-    and meta.json, last (``env``: :func:`environment`, when read elsewhere). ``timing`` (from
-    :func:`run_study`): where the run's time went; meta.json adds the tables' own time."""
-    t_tables = time.perf_counter()
-    write_results(study, out, rows, table)
-    if derived is None:
-        write_derived(study, out, rows)
-    else:  # the other process writes RECORDER_WRITES meanwhile
-        write_derived(study, out, rows, [k for k in DERIVED if k not in RECORDER_WRITES])
-        timing = {**(timing or {}), "runner_tables_s": time.perf_counter() - t_tables, **derived()}
-    shutil.copyfile(study.path, out / "study.toml")
-    meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
-            **(env or environment()), "cpu_count": os.cpu_count(), "wall_s": wall, "resumed_cases": resumed,
-            "counts": dict(Counter(r.get("status") for r in rows).most_common()),  # (pandas' value_counts: ~15 ms
-            "skipped": study.skipped, "code": code_digest(),                      # on its first call in a process)
-            "cases_from_other_code": mismatched or []}
-    if timing is not None:
-        meta["timing"] = {**timing, "tables_s": time.perf_counter() - t_tables}
-    write_atomic(out / "meta.json", json.dumps(meta, indent=2, default=str))

@@ -12,10 +12,8 @@ table and its curves (x, w, w_ref, rotation, point fields, time histories, load 
 
 Arrays are stored bit for bit (NaN, -0.0, subnormals included). The checksum covers the whole file
 after the lengths, so a truncated file, a flipped bit in a number or in an array, or a file of another
-kind reads as ``None`` and the case is recomputed. The format exists because the first one (JSON with
-base64 arrays) cost ~0.32 ms to encode a 1,200-point case on a 2-core machine; this one costs 56 us in a
-tight loop and ~150 us inside a run, where the caches are cold after each solve (``benchmarks/runner_overhead.py``;
-serial runs encode in the recorder process, ``recorder.py``).
+kind reads as ``None`` and the case is recomputed. The format replaced a first one (JSON with base64
+arrays), which was several times slower to encode.
 Files of that first format (``<case id>.json``) are still read (:func:`case_file`, :func:`read_curve`).
 """
 

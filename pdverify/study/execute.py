@@ -1,0 +1,132 @@
+"""Where a study's cases run: one after another in this process (:func:`serial`), in a local process pool
+(:func:`pool`), or on a Dask cluster (:func:`on_dask`). Each is a generator of ``(case id, record)`` in
+the order the cases finish; the caller stores each record as it comes (outdir.Keeper), so a run stopped
+in any way keeps every case it received. ``run`` is the function that computes one case's record
+(runner.run_case), given by the caller.
+
+Pool workers are forked on Linux (they start in milliseconds with the models imported), ignore Ctrl-C
+(the main process lets the cases in flight finish, stores them and stops) and die with the main process:
+a ``kill -9`` of the run leaves no worker behind (``PR_SET_PDEATHSIG`` on Linux, a watchdog thread
+elsewhere).
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import re
+import signal
+import sys
+import threading
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool  # noqa: F401 (what a killed worker raises)
+
+from ..errors import InputError
+
+SCHEDULER_TIMEOUT_S = 5  # how long to wait for a Dask scheduler to answer before giving up (Dask's own: 30 s)
+_ADDRESS = re.compile(r"(?:(?:tcp|tls|ws|wss|ucx)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):(\d{1,5})")
+
+
+def serial(run, todo, ids, artefacts):
+    for case, cid in zip(todo, ids):
+        yield cid, run(case, artefacts, cid)
+
+
+def pool(run, todo, ids, artefacts, workers: int):
+    """The cases in ``workers`` processes. Ctrl-C: no further case starts, the cases already handed to the
+    workers (those running and up to ``workers + 1`` queued) finish and are yielded, then
+    KeyboardInterrupt goes on. Any other way out
+    (the caller's error, the generator closed) cancels the cases not started and waits for those in
+    flight, which are dropped. The workers are never killed from here: a worker killed while it sends a
+    record back leaves a partial message that the pool's reader then waits for forever."""
+    # fork on Linux whatever the Python version (3.14 made forkserver the default)
+    ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
+    ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),))
+    futs, given = {}, set()
+    try:
+        for case, cid in zip(todo, ids):
+            futs[ex.submit(run, case, artefacts, cid)] = cid
+        for fut in as_completed(futs):
+            rec = fut.result()
+            given.add(fut)
+            yield futs[fut], rec
+    except KeyboardInterrupt:
+        ex.shutdown(wait=False, cancel_futures=True)
+        # polled, not as_completed: a future the pool cancels at shutdown never tells its waiters (3.11)
+        rest = [f for f in futs if f not in given]
+        while rest:
+            for fut in [f for f in rest if f.done()]:
+                rest.remove(fut)
+                if not fut.cancelled() and fut.exception() is None:
+                    yield futs[fut], fut.result()
+            time.sleep(0.02)
+        raise
+    finally:
+        ex.shutdown(wait=True, cancel_futures=True)
+
+
+def _worker_start(parent: int) -> None:
+    """A pool worker's first act: leave Ctrl-C to the main process, and die when it dies."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        PR_SET_PDEATHSIG = 1
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    else:  # pragma: no cover - not Linux
+        threading.Thread(target=_watch, args=(parent,), daemon=True, name="pdverify-parent-watch").start()
+    if os.getppid() != parent:  # the main process died before the line above
+        os._exit(1)
+
+
+def _watch(parent: int) -> None:  # pragma: no cover - not Linux
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(1)
+
+
+def check_scheduler(address: str) -> None:
+    """A Dask scheduler address (tcp://HOST:PORT, or HOST:PORT); InputError (exit 2) otherwise."""
+    m = _ADDRESS.fullmatch(address.strip())
+    if not m or not 0 < int(m.group(1)) < 65536:
+        raise InputError(f"--scheduler {address!r}: not a Dask scheduler address; write tcp://HOST:PORT "
+                         "(e.g. tcp://127.0.0.1:8786)")
+
+
+def connect(address: str):
+    """A Dask client of the scheduler at ``address``; InputError (exit 2) when none is reached there within
+    :data:`SCHEDULER_TIMEOUT_S` seconds (refused, no such host, or another kind of server)."""
+    check_scheduler(address)
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise InputError(f"--scheduler {address}: dask.distributed is not installed; pip install "
+                         "'dask[distributed]' or run without --scheduler") from None
+    try:
+        return Client(address.strip(), timeout=SCHEDULER_TIMEOUT_S)
+    except Exception as exc:  # noqa: BLE001 - refused, timed out, no such host, or not a Dask scheduler there
+        why = (str(exc).splitlines() or [""])[0][:100]
+        raise InputError(f"--scheduler {address}: no Dask scheduler reached there ({type(exc).__name__}: {why}; "
+                         f"connect timeout {SCHEDULER_TIMEOUT_S} s); start one (dask scheduler) or check the "
+                         "address") from None
+
+
+class ClusterLost(Exception):
+    """The Dask cluster could not give a case's record (a worker killed, the scheduler gone)."""
+
+
+def on_dask(run, todo, ids, scheduler: str):
+    """The cases on the Dask cluster at ``scheduler`` (no artefact files: the workers may be remote)."""
+    from dask.distributed import as_completed as dask_completed
+
+    with connect(scheduler) as client:
+        try:
+            futures = client.map(run, todo, [None] * len(todo), ids, pure=False)
+            by_key = {f.key: cid for f, cid in zip(futures, ids)}
+            for fut in dask_completed(futures):
+                rec = fut.result()
+                yield by_key[fut.key], rec
+        except Exception as exc:  # run never raises: the cluster failed (KilledWorker, connection lost)
+            why = (str(exc).splitlines() or [""])[0][:100]
+            raise ClusterLost(f"{type(exc).__name__}: {why}") from None
