@@ -259,7 +259,7 @@ def _slug(name: str) -> str:
 def study(
     study_file: Path = typer.Argument(..., help="study TOML file"),
     out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
-    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="local worker processes, 1 or more "
+    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes, 1 or more "
                                           "(default: all cores; 1: in this process)"),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT "
                                             "(connect timeout 5 s; exit 2 when none is reached)"),
