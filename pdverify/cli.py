@@ -71,6 +71,7 @@ def _table(result) -> str:
     for k, v in result.info.items():
         if not isinstance(v, (list, dict)):
             lines.append(f"# {k}: {v}")
+    lines += [f"# {w}" for w in result.warning_lines()]
     lines.append("".join(f"{n:>16}" for n in names))
     n = len(cols["x"])
     for i in range(n):
@@ -119,6 +120,8 @@ def solve(
         result.writers[out.suffix](str(out))
         typer.echo(f"wrote {out}", err=True)
         return
+    for w in result.warning_lines():  # on stderr too, whatever the format
+        typer.echo(w, err=True)
     text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
     if out is not None:
         out.parent.mkdir(parents=True, exist_ok=True)

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError
-from .result import Result
+from .result import Result, check_finite
 from .scene import Scene
 
 MODEL_PACKAGES = ("pdverify.exact", "pdverify.models", "reference_fem")
@@ -206,7 +206,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if problems:
         raise InputError(problems)
     params = m.resolve(scene, given)
-    result = m.solve(scene, params)
+    result = check_finite(m.solve(scene, params))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)
