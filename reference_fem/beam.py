@@ -118,59 +118,59 @@ def natural_band(l: np.ndarray, EI: float, kGA: float | None = None) -> tuple[Ba
     Przemieniecki, Theory of Matrix Structural Analysis, ch. 6):
         F_e = l/(6 EI) [[2, -1], [-1, 2]] + 1/(kGA l) [[1, 1], [1, 1]]   (the second term Timoshenko's),
     and T^T F^-1 T is exactly the cubic Hermite matrix (Phi = 0) or the IIE matrix (:func:`hermite_stiffness`).
-    The system  [[0, T^T], [T, -F]] [u; m] = [f; 0]  has the same u as K u = f, but first differences
-    (entries 1 and 1/l) instead of K's third: its round-off grows like N^2 eps, not N^4 eps (the
-    second-order conditioning of pd-eb's mixed form). Unknowns per node i: (w_i, r_i, m_a, m_b of element i);
+    Written in the element's symmetric and antisymmetric end moments, m_a = p + q, m_b = p - q, F_e is
+    diagonal, diag(l/(3 EI) + 4/(kGA l), l/EI), and the deformations are d_a + d_b = r_i + r_j - 2 (w_j - w_i)/l
+    and d_a - d_b = r_i - r_j: the bending flexibility l/EI is then never the small difference of two
+    shear-dominated entries (a thick element at 10^6 nodes has Phi ~ 1e8).
+    The system  [[0, T^T], [T, -F]] [u; (p, q)] = [f; 0]  has the same u as K u = f, but first differences
+    (entries 1 and 2/l) instead of K's third: its round-off grows like N^2 eps at most, not N^4 eps (the
+    second-order conditioning of pd-eb's mixed form). Unknowns per node i: (w_i, r_i, p, q of element i);
     the last node has no element: 4 n - 2 unknowns, bandwidths (3, 3).
-    Returns (band, s): s is the symmetric scaling whose largest entry per row and column is 1."""
+    Returns (band, s): s, powers of two, the symmetric scaling whose largest entry per row and column is ~1."""
     ne = len(l)
     K = Band(4 * ne + 2, 3, 3)
-    f11, f12 = flexibility(l, EI, kGA)
+    fp, fq = flexibility(l, EI, kGA)
 
     def put(ra, ca, v):  # entry (4e + ra, 4e + ca) of every element e
         o = ca - ra
         k0 = ra - max(0, -o)
         K.diag(o)[k0: k0 + 4 * ne: 4] += v
 
-    put(2, 2, -f11)
-    put(3, 3, -f11)
-    put(2, 3, -f12)
-    put(3, 2, -f12)
-    for ra, ca, v in ((2, 0, 1 / l), (2, 1, 1.0), (2, 4, -1 / l), (3, 0, 1 / l), (3, 5, 1.0), (3, 4, -1 / l)):
+    put(2, 2, -fp)
+    put(3, 3, -fq)
+    for ra, ca, v in ((2, 0, 2 / l), (2, 1, 1.0), (2, 4, -2 / l), (2, 5, 1.0), (3, 1, 1.0), (3, 5, -1.0)):
         put(ra, ca, v)
         put(ca, ra, v)  # T^T
-    sm = 1 / np.sqrt(f11)
+    sp_, sq = 1 / np.sqrt(fp), 1 / np.sqrt(fq)
     s = np.empty(4 * ne + 2)
-    s[2::4], s[3::4] = sm, sm
+    s[2::4], s[3::4] = sp_, sq
 
     def largest_adjacent(v):  # per node, max of v over the elements left and right of it
         return np.maximum(np.concatenate([[0.0], v]), np.concatenate([v, [0.0]]))
 
-    s[1::4] = 1 / largest_adjacent(sm)  # entries 1 of T
-    s[0::4] = 1 / largest_adjacent(sm / l)  # entries 1/l of T
+    s[1::4] = 1 / largest_adjacent(np.maximum(sp_, sq))  # entries 1 of T
+    s[0::4] = 1 / largest_adjacent(2 * sp_ / l)  # entries 2/l of T
     return K, 2.0 ** np.round(np.log2(s))  # powers of two: the scaling rounds no entry
 
 
 def flexibility(l: np.ndarray, EI: float, kGA: float | None) -> tuple[np.ndarray, np.ndarray]:
-    """(F_11 = F_22, F_12) of each element's flexibility (:func:`natural_band`)."""
-    shear = 0.0 if kGA is None else 1 / (kGA * l)
-    return l / (3 * EI) + shear, -l / (6 * EI) + shear
+    """(F_p, F_q): each element's flexibility for its symmetric and antisymmetric end moments (:func:`natural_band`)."""
+    return l / (3 * EI) + (0.0 if kGA is None else 4 / (kGA * l)), l / EI
 
 
 def natural_magnitude(l: np.ndarray, EI: float, kGA: float | None, b: np.ndarray):
     """u -> the size of each row's independently rounded terms in the system of :func:`natural_band`
-    (for :func:`pdverify.linalg.forward_error_bound`): a row of T holds one rounded 1/l for both w's, so
-    its term is |w_i - w_j| / l, not |w_i| / l + |w_j| / l; the entries 1 are exact; F's entries and the
-    loads are rounded once each."""
-    f11, f12 = flexibility(l, EI, kGA)
+    (for :func:`pdverify.linalg.forward_error_bound`): a row of T holds one rounded 2/l for both w's, so
+    its term is 2 |w_i - w_j| / l, not 2 |w_i| / l + 2 |w_j| / l; the entries 1 are exact; F's entries and
+    the loads are rounded once each."""
+    fp, fq = flexibility(l, EI, kGA)
 
     def magnitude(z):
-        w, ma, mb = z[0::4], z[2::4], z[3::4]
-        chord = np.abs(np.diff(w)) / l
+        w, p, q = z[0::4], z[2::4], z[3::4]
         m = np.abs(b).copy()
-        m[2::4] += chord + np.abs(f11 * ma) + np.abs(f12 * mb)
-        m[3::4] += chord + np.abs(f12 * ma) + np.abs(f11 * mb)
-        pair = np.abs(ma + mb) / l
+        m[2::4] += 2 * np.abs(np.diff(w)) / l + np.abs(fp * p)
+        m[3::4] += np.abs(fq * q)
+        pair = 2 * np.abs(p) / l
         m[0:-2:4] += pair
         m[4::4] += pair
         return m

@@ -263,7 +263,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         speed_figs=[f for _, f in speed_figs], speed_summary=table(sesum),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
-                            "assemble_s", "solve_s", "total_s", "cond", "status", "message"]),
+                            "assemble_s", "solve_s", "total_s", "cond", "error_bound", "status", "message"],
+                      row_class="status"),
         meta_table=table(meta_rows),
         study_text=html.escape(study_file.read_text()) if study_file.exists() else "",
     )
