@@ -75,6 +75,8 @@ def hager_norm1(apply, apply_t, n: int, iterations: int = 5) -> float:
         if k > 0 and est_new <= est:
             break
         est = est_new
+        if k == iterations - 1:  # no next vector to choose: spare the solve
+            break
         z = apply_t(np.where(y >= 0, 1.0, -1.0))
         j = int(np.argmax(np.abs(z)))
         if k > 0 and (j == j_old or abs(z[j]) <= z @ x):
