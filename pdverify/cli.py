@@ -216,7 +216,7 @@ def bench(
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
     import json as _json
 
-    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, cost_slope, default_models
+    from .bench import DEFAULT_POINTS, SMALL_MODELS, accurate, bench_subprocess, cost_slope, default_models
     from .registry import get_model
 
     names = model or default_models()
@@ -235,10 +235,12 @@ def bench(
             else:
                 f = lambda v, spec: "-" if v is None else format(v, spec)  # noqa: E731
                 typer.echo(
-                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} assemble={f(row['assemble_s'], '.3g')}s "
+                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} error={f(row.get('max_error'), '.1e')} "
+                    f"assemble={f(row['assemble_s'], '.3g')}s "
                     f"solve={f(row['solve_s'], '.3g')}s total={row['total_s']:.3g}s limit={f(row['limit_s'], '.3g')}s "
                     f"ratio={f(row['ratio'], '.2f')} mem={row['peak_mem_mb']:.0f}MB "
                     f"updates/s={f(row['updates_per_s'], '.3g')}"
+                    + ("" if accurate(row) else "  (error above 1e-6 or unknown: counts toward no target)")
                 )
     slopes = cost_slope(rows)
     for n, s in slopes.items():
