@@ -350,10 +350,6 @@ def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", con
                 c = condition_estimate(Ks if Ks is not None else scale_symmetric(K, s), solve, solve_t)
         except Exception:  # an estimate only; never fail a solve for it
             c = float("nan")
-        info["cond"] = c
-        if not np.isfinite(c) or c * np.finfo(float).eps > 1e-5:
-            info.setdefault("warnings", []).append(
-                f"condition estimate {c:.3g}: near or past the round-off floor, round-off alone may reach "
-                f"~{c * 1.1e-16:.1g} relative (measured 0.01-1 cond eps for the bending operators); use fewer points"
-            )
+        info["cond"] = c  # for the record: the warning is the error bound's (cond * eps overstates the two-field
+        # forms' round-off by 1e6: fem-eb at 1001 nodes, cond 1.6e11, error 1.7e-14, bound 2.4e-11)
     return u, info
