@@ -47,7 +47,8 @@ def max_error(scene, model, result) -> float | None:
     w = np.asarray(result.w, float)
     if not scene.is_straight or not np.any(w):
         return None
-    exact = solve_straight(scene, getattr(model, "theory", "euler-bernoulli") != "euler-bernoulli").fields(result.x)["w"]
+    shear = getattr(model, "theory", "euler-bernoulli") != "euler-bernoulli"
+    exact = solve_straight(scene, shear).fields(result.x)["w"]
     top = float(np.abs(exact).max())
     return float(np.abs(w - exact).max() / top) if top > 0 else None
 

@@ -42,7 +42,8 @@ def test_limit_is_banded_solve_of_the_models_matrix(monkeypatch):
 
 
 def test_cost_slope_recovers_power():
-    rows = [{"model": "m", "status": "ok", "points": n, "total_s": 1e-6 * n**1.5, "max_error": 1e-9} for n in (10, 100, 1000)]
+    rows = [{"model": "m", "status": "ok", "points": n, "total_s": 1e-6 * n**1.5, "max_error": 1e-9}
+            for n in (10, 100, 1000)]
     assert abs(cost_slope(rows)["m"] - 1.5) < 1e-12
 
 

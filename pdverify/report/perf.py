@@ -125,8 +125,8 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
         meta=meta, generated=time.strftime("%Y-%m-%d %H:%M:%S"), figures=figs,
         targets=table(targets(df, slopes), row_class="verdict") if not df.empty else "",
         cheapest=table(cheapest(df)) if not df.empty else "",
-        rows=table(df, ["model", "points", "dofs", "max_error", "error_bound", "assemble_s", "solve_s", "total_s", "limit_s",
-                        "ratio", "bandwidth",
+        rows=table(df, ["model", "points", "dofs", "max_error", "error_bound", "assemble_s", "solve_s", "total_s",
+                        "limit_s", "ratio", "bandwidth",
                         "peak_mem_mb", "mem_per_point_kb", "updates_per_s", "status", "message"]),
         slopes=table(pd.DataFrame([{"model": m, "cost_slope": s} for m, s in sorted(slopes.items())])))
     (out / "bench.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
