@@ -51,11 +51,11 @@ def test_every_load_type_at_10_000_nodes(model, load):
 @pytest.mark.parametrize("model", MODELS)
 @pytest.mark.parametrize("left,right", PAIRS)
 def test_every_support_pair_at_100_000_nodes(model, left, right):
-    """Issue 27: within 1e-6 at 10^5 nodes (measured 3e-14 fem-eb, 6e-12 fem-timoshenko, propped
-    cantilever; the direct form 1.0 and 6e-5)."""
+    """Issue 27: within 1e-6 at 10^5 nodes (measured, mixed loads, every pair: at most 1.7e-14, bounds at
+    most 6e-9; the direct form on the propped cantilever: 1.0 and 7e-5)."""
     sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
     e, r = error(model, sc, 100_001)
-    assert e < 1e-8, (e, r.info.get("error_bound"))  # 100x the largest measured
+    assert e < 1e-8, (e, r.info.get("error_bound"))  # the bound's scale, not the error's (other BLAS kernels)
     assert e <= r.info["error_bound"] < BOUND_LIMIT
 
 
