@@ -194,12 +194,13 @@ SMALL = 20_000  # up to this many unknowns: condition estimate, refinement and r
 
 
 def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray | None = None,
-               watch=None, magnitude=None) -> tuple[np.ndarray, dict]:
+               watch=None, magnitude=None, refine: bool = False) -> tuple[np.ndarray, dict]:
     """Solve B u = b for a :class:`~pdverify.band.Band` (B is consumed: scaled in place).
 
     The path of large systems: symmetric diagonal scaling diagonal by diagonal (``scaling``, default
-    1/sqrt|diag|), LAPACK gbtrf on one copy, gbtrs; then one step of iterative refinement with the
-    residual in extended precision and :func:`forward_error_bound` (``info["error_bound"]``, over the
+    1/sqrt|diag|), LAPACK gbtrf on one copy, gbtrs; then the correction of a residual computed in extended
+    precision (applied, one or two steps of iterative refinement, when ``refine``; else only measured, so the
+    solution is that of the LU alone) and :func:`forward_error_bound` (``info["error_bound"]``, over the
     unknowns ``watch``; ``magnitude(u)``: the size of each row's independently rounded terms, default
     |B| |u| + |b|): two refinement steps, a few extra banded solves and products, all linear in n."""
     from scipy.linalg import lapack
@@ -228,15 +229,17 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray
         raise SolveError(f"{what}: the solution is not finite; the matrix holds NaN/inf, or the system is "
                          "singular or too ill-conditioned")
     steps, r0 = [], None
-    for _ in range(2):  # iterative refinement, residual in extended precision; a second step only when the
-        r = np.asarray(np.asarray(bs, np.longdouble) - B.matvec(np.asarray(y, np.longdouble)), float)  # first
-        r0 = r if r0 is None else r0  # was large: while it contracts, the last step bounds the error left
-        dy = solve(r)
-        y = y + dy
+    for _ in range(2 if refine else 1):  # the correction from a residual in extended precision: applied when
+        r = np.asarray(np.asarray(bs, np.longdouble) - B.matvec(np.asarray(y, np.longdouble)), float)  # refine,
+        r0 = r if r0 is None else r0  # a second step only when the first was large; while refinement
+        dy = solve(r)  # contracts, the last correction bounds the error it leaves (estimates it when not applied)
+        if refine:
+            y = y + dy
         steps.append(float(np.abs(dy).max() / max(np.abs(y).max(), 1e-300)))
         if steps[-1] <= 0.01 * BOUND_LIMIT:
             break
-    info["refinement"] = steps
+    if refine:
+        info["refinement"] = steps
     with np.errstate(all="ignore"):
         u = s * y
     _require_finite(u, what)
@@ -268,7 +271,7 @@ def _scaled_bound(solve, solve_t, s, correction, magnitude, u, watch, iterations
 
 def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", condition: bool | None = None,
                  banded_max: int = 64, refinement: bool | None = None, scaling: np.ndarray | None = None,
-                 watch=None, magnitude=None) -> tuple[np.ndarray, dict]:
+                 watch=None, magnitude=None, refine_in_place: bool = False) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
     Raises SolveError naming ``what`` when K is singular (a mechanism, missing supports) or the
@@ -282,13 +285,14 @@ def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", con
 
     Every solve carries ``info["error_bound"]``, :func:`forward_error_bound` over the unknowns ``watch``
     (default all; ``magnitude(u)``: the size of each row's independently rounded terms, default
-    |K| |u| + |b|), and a warning when it passes ``BOUND_LIMIT``. ``scaling``: the symmetric scaling s of
+    |K| |u| + |b|), and a warning when it passes ``BOUND_LIMIT``. ``refine_in_place``: refine on the
+    in-place path too (:func:`solve_band`; off by default there, as before, so its solutions are the LU's). ``scaling``: the symmetric scaling s of
     diag(s) K diag(s) (default 1/sqrt|diag K|; a saddle-point system with zero diagonal needs its own).
     """
     if isinstance(K, Band):
         if K.n > SMALL and condition is not True and refinement is not True and K.lower <= banded_max \
                 and K.upper <= banded_max:
-            return solve_band(K, b, what, scaling, watch, magnitude)
+            return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place)
         K = K.tocsr()
     K = canonical_csr(K)
     b = np.asarray(b, dtype=float)

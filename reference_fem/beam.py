@@ -262,7 +262,8 @@ class _BeamFE(Model):
             with timer("assemble"):
                 K, b, nodes, s, magnitude = self.assemble_mixed(scene, params)
             with timer("solve"):
-                z, info = solve_linear(K, b, what=what, scaling=s, watch=np.arange(0, K.n, 4), magnitude=magnitude)
+                z, info = solve_linear(K, b, what=what, scaling=s, watch=np.arange(0, K.n, 4), magnitude=magnitude,
+                                       refine_in_place=True)
             u = np.empty(2 * len(nodes))
             u[0::2], u[1::2] = z[0::4], z[1::4]
             info["form"] = "two-field (displacements and element end moments, K = T^T F^-1 T)"
