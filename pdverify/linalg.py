@@ -202,7 +202,8 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray
     precision (applied, one or two steps of iterative refinement, when ``refine``; else only measured, so the
     solution is that of the LU alone) and :func:`forward_error_bound` (``info["error_bound"]``, over the
     unknowns ``watch``; ``magnitude(u)``: the size of each row's independently rounded terms, default
-    |B| |u| + |b|): two refinement steps, a few extra banded solves and products, all linear in n."""
+    |B| |u| + |b|): a few extra banded solves and products, all linear in n. B's scaled band is kept
+    beside its factors for the residual (one more band of memory than before)."""
     from scipy.linalg import lapack
 
     b = np.asarray(b, dtype=float)
