@@ -231,7 +231,7 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray
                          "singular or too ill-conditioned")
     steps, r0 = [], None
     for _ in range(2 if refine else 1):  # the correction from a residual in extended precision: applied when
-        r = np.asarray(np.asarray(bs, np.longdouble) - B.matvec(np.asarray(y, np.longdouble)), float)  # refine,
+        r = extended_residual(B, bs, y)  # refine,
         r0 = r if r0 is None else r0  # a second step only when the first was large; while refinement
         dy = solve(r)  # contracts, the last correction bounds the error it leaves (estimates it when not applied)
         if refine:
@@ -254,6 +254,24 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray
     _record_bound(info, _scaled_bound(solve, lambda z: solve(z, 1), s, s * dy, m, u, watch, 2))
     B.data = None  # consumed
     return u, info
+
+
+def extended_residual(B: Band, b: np.ndarray, y: np.ndarray, block: int = 1 << 14) -> np.ndarray:
+    """b - B y with every product and sum in extended precision (x87 long double, eps 1.1e-19), rounded
+    once to float64; by blocks of rows, so the long-double temporaries stay in cache (one pass over B)."""
+    n, ld = B.n, np.longdouble
+    r = np.empty(n)
+    offsets = B.offsets.tolist()
+    for i0 in range(0, n, block):  # blocks of rows, not rows: n / block iterations
+        i1 = min(n, i0 + block)
+        acc = np.asarray(b[i0:i1], ld)
+        for o in offsets:
+            lo, hi = max(i0, -o), min(i1, n - o)  # rows whose column i + o exists
+            if hi > lo:
+                k0 = max(0, -o)  # element k of the diagonal is row k + k0
+                acc[lo - i0:hi - i0] -= B.diag(o)[lo - k0:hi - k0].astype(ld) * y[lo + o:hi + o].astype(ld)
+        r[i0:i1] = acc
+    return r
 
 
 def _require_finite(u: np.ndarray, what: str) -> None:
