@@ -119,6 +119,7 @@ def _table(result) -> str:
     for k, v in result.info.items():
         if not isinstance(v, (list, dict)):
             lines.append(f"# {k}: {v}")
+    lines += [f"# {w}" for w in result.warning_lines()]
     lines.append("".join(f"{n:>16}" for n in names))
     n = len(cols["x"])
     for i in range(n):
@@ -223,6 +224,8 @@ def solve(
         write_file(out, result.writers[out.suffix], "--out")
         typer.echo(f"wrote {out}", err=True)
         return
+    for w in result.warning_lines():  # on stderr too, whatever the format
+        typer.echo(w, err=True)
     text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
     if out is not None:
         text = text if text.endswith("\n") else text + "\n"
@@ -367,7 +370,7 @@ def bench(
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
     import json as _json
 
-    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, cost_slope, default_models
+    from .bench import DEFAULT_POINTS, SMALL_MODELS, accurate, bench_subprocess, cost_slope, default_models
     from .registry import get_model
 
     from .plugins import model_argument
@@ -388,10 +391,12 @@ def bench(
             else:
                 f = lambda v, spec: "-" if v is None else format(v, spec)  # noqa: E731
                 typer.echo(
-                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} assemble={f(row['assemble_s'], '.3g')}s "
+                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} error={f(row.get('max_error'), '.1e')} "
+                    f"assemble={f(row['assemble_s'], '.3g')}s "
                     f"solve={f(row['solve_s'], '.3g')}s total={row['total_s']:.3g}s limit={f(row['limit_s'], '.3g')}s "
                     f"ratio={f(row['ratio'], '.2f')} mem={row['peak_mem_mb']:.0f}MB "
                     f"updates/s={f(row['updates_per_s'], '.3g')}"
+                    + ("" if accurate(row) else "  (error above 1e-6 or unknown: counts toward no target)")
                 )
     slopes = cost_slope(rows)
     for n, s in slopes.items():

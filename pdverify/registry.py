@@ -48,7 +48,7 @@ import scipy.sparse as sp
 
 from .band import Band
 from .errors import InputError
-from .result import Result
+from .result import Result, check_finite
 from .scene import Scene
 
 
@@ -435,7 +435,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if found:
         raise InputError(found)
     params = m.resolve(scene, given)  # the options, their variant's rules included
-    result = m.solve(scene, params)
+    result = check_finite(m.solve(scene, params))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

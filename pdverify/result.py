@@ -70,7 +70,32 @@ class Result:
         return cols
 
     def to_csv(self) -> str:
-        return columns_csv(self.columns())
+        """A header line and one row per point; a result that carries warnings starts with one comment
+        line per warning, ``# warning: ...`` (read it back with ``pandas.read_csv(..., comment="#")``)."""
+        return "".join(f"# {line}\n" for line in self.warning_lines()) + columns_csv(self.columns())
+
+    def warning_lines(self) -> list[str]:
+        """``warning: ...`` once per entry of ``info["warnings"]`` (what the table and CSV formats print)."""
+        return [f"warning: {w}" for w in self.info.get("warnings", [])]
+
+
+def check_finite(result: Result) -> Result:
+    """A result holding NaN or inf is a failed computation, never an output: raises SolveError (exit 3)
+    with one line naming the model and the first field that is not finite."""
+    from .errors import SolveError
+
+    arrays = {"x": result.x, "w": result.w, "rotation": result.rotation,
+              **{f"fields.{k}": v for k, v in result.fields.items()}}
+    for name, v in arrays.items():
+        if v is None:
+            continue
+        a = np.asarray(v)
+        if a.dtype.kind in "fc" and not np.all(np.isfinite(a)):
+            bad = int(np.size(a) - np.count_nonzero(np.isfinite(a)))
+            raise SolveError(f"{result.model}: the computed {name} is not finite (NaN/inf at {bad} of {np.size(a)} "
+                             "values): the scene's numbers overflow or underflow this model's arithmetic (e.g. a "
+                             "modulus near 1e-300 or 1e300); give them in units that keep them near 1")
+    return result
 
 
 def columns_csv(cols: dict, fmt: str = "%.17g") -> str:

@@ -348,7 +348,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         speed_figs=[f for _, f in speed_figs], speed_summary=table(readable_options(sesum), case_link=""),
         results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
                             "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
-                            "assemble_s", "solve_s", "total_s", "cond", "status", "message"], case_rows=True),
+                            "assemble_s", "solve_s", "total_s", "cond", "error_bound", "status", "message"],
+                      row_class="status", case_rows=True),
         meta_table=table(meta_rows),
         study_text=study_file.read_text(encoding="utf-8", errors="replace") if study_file.exists() else "",
     )

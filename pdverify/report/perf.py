@@ -1,6 +1,8 @@
 """The performance page: ``pdverify bench --out DIR`` writes ``DIR/bench.jsonl`` (one object per
 line, as printed) and ``DIR/index.html`` (cost vs points per model against the banded-solve limit of
-the same matrix, the ratio table and the targets of the performance issue with their verdicts)."""
+the same matrix, each model's work-precision curve (time vs max error against the exact solution) and
+its cheapest run within 1e-6, the ratio table and the targets of the performance issue with their
+verdicts; a run counts toward a target only when its error is within 1e-6, issue 27)."""
 
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import pandas as pd
 from markupsafe import Markup
 
 from .. import __version__
+from ..bench import ACCURACY, accurate
 from . import figures
 from .build import environment, table
 
@@ -27,6 +30,12 @@ def targets(rows: pd.DataFrame, slopes: dict[str, float]) -> pd.DataFrame:
     out = []
     ok = rows[rows.get("status", "ok") == "ok"] if "status" in rows else rows
     for model, g in ok.groupby("model", sort=True):
+        counted = g[[accurate(r) for r in g.to_dict("records")]]
+        if counted.empty:
+            out.append({"model": model, "target": f"max error <= {ACCURACY:g} (needed to count)",
+                        "points": int(g["points"].max()), "measured": _worst_error(g), "verdict": "fail"})
+            continue
+        g = counted
         big = g.loc[g["points"].idxmax()]
         if pd.notna(big.get("ratio")):
             out.append({"model": model, "target": f"total / limit <= {RATIO_TARGET:g}", "points": int(big["points"]),
@@ -45,6 +54,53 @@ def targets(rows: pd.DataFrame, slopes: dict[str, float]) -> pd.DataFrame:
     return pd.DataFrame(out)
 
 
+def _worst_error(g: pd.DataFrame) -> float:
+    e = pd.to_numeric(g["max_error"], errors="coerce") if "max_error" in g else pd.Series(dtype=float)
+    return float(e.max()) if e.notna().any() else float("nan")
+
+
+def cheapest(rows: pd.DataFrame) -> pd.DataFrame:
+    """Per model: its cheapest run (least total_s) within ``ACCURACY`` of the exact solution, or a row
+    saying none reached it (with the smallest error it did reach)."""
+    out = []
+    ok = rows[rows["status"] == "ok"] if "status" in rows else rows
+    for model, g in ok.groupby("model", sort=True):
+        good = g[[accurate(r) for r in g.to_dict("records")]]
+        if len(good):
+            r = good.loc[good["total_s"].idxmin()]
+            out.append({"model": model, "points": int(r["points"]), "max_error": float(r["max_error"]),
+                        "total_s": float(r["total_s"]), "statement": f"cheapest run within {ACCURACY:g}"})
+        else:
+            e = pd.to_numeric(g["max_error"], errors="coerce") if "max_error" in g else pd.Series(dtype=float)
+            best = f"best {e.min():.2g}" if e.notna().any() else "no exact solution for this scene"
+            out.append({"model": model, "points": None, "max_error": float(e.min()) if e.notna().any() else None,
+                        "total_s": None, "statement": f"no run within {ACCURACY:g} ({best})"})
+    return pd.DataFrame(out)
+
+
+def work_precision(rows: pd.DataFrame) -> list[tuple[str, "np.ndarray", "np.ndarray"]]:
+    """Per model, (label, total seconds, max error) of its measured runs, by size."""
+    groups = []
+    if "max_error" not in rows:
+        return groups
+    ok = rows[rows["status"] == "ok"] if "status" in rows else rows
+    ok = ok[pd.to_numeric(ok["max_error"], errors="coerce").notna()]
+    for model, g in ok.groupby("model", sort=True):
+        g = g.sort_values("points")
+        # an exact error of 0 (the exact model itself) drawn at the plot's floor, 1e-17
+        groups.append((model, g["total_s"].to_numpy(float), g["max_error"].to_numpy(float).clip(min=1e-17)))
+    return groups
+
+
+def work_precision_figure(groups, accuracy: float, title: str) -> str:
+    """log-log max error (y) vs total seconds (x) per model, the accuracy line dashed (SVG)."""
+    fig, ax = figures.plt.subplots(figsize=(6.4, 4.0))
+    for label, t, e in groups:
+        ax.loglog(t, e, "o-", ms=4, label=label)
+    ax.axhline(accuracy, color="k", ls="--", lw=1, label=f"max error {accuracy:g}: counts toward targets below")
+    return figures._finish(fig, ax, "total seconds", "max error vs exact", title, which="both")
+
+
 def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float]) -> Path:
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -57,15 +113,20 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
             groups.append((model, g["points"].to_numpy(float), g["total_s"].to_numpy(float)))
             gl = g[g["limit_s"].notna()] if "limit_s" in g else g.iloc[0:0]
             limits.append((model, gl["points"].to_numpy(float), gl["limit_s"].to_numpy(float)))
-    title = "cost vs points (solid) and the banded-solve limit (dashed)"
-    figs = [Markup(figures.cost(groups, limits, title))] if groups else []
+    figs = [Markup(figures.cost(groups, limits, "cost vs points (solid) and the banded-solve limit (dashed)"))] if groups else []
+    wp = work_precision(df) if not df.empty else []
+    if wp:
+        figs.append(Markup(work_precision_figure(wp, ACCURACY, "work-precision: total seconds vs max error against the "
+                                                            "exact solution (one point per size)")))
     env = environment()
     meta = {"pdverify": __version__, "python": platform.python_version(), "platform": platform.platform(),
             "cpu_count": os.cpu_count()}
     page = env.get_template("performance.html.j2").render(
         meta=meta, generated=time.strftime("%Y-%m-%d %H:%M:%S"), figures=figs,
         targets=table(targets(df, slopes), row_class="verdict") if not df.empty else "",
-        rows=table(df, ["model", "points", "dofs", "assemble_s", "solve_s", "total_s", "limit_s", "ratio", "bandwidth",
+        cheapest=table(cheapest(df)) if not df.empty else "",
+        rows=table(df, ["model", "points", "dofs", "max_error", "error_bound", "assemble_s", "solve_s", "total_s",
+                        "limit_s", "ratio", "bandwidth",
                         "peak_mem_mb", "mem_per_point_kb", "updates_per_s", "status", "message"]),
         slopes=table(pd.DataFrame([{"model": m, "cost_slope": s} for m, s in sorted(slopes.items())])))
     (out / "bench.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))

@@ -23,6 +23,7 @@ from ..result import columns_csv
 from . import execute
 from .derived import (_verdict, benchmark_table, results_frame, results_table, write_derived,  # noqa: F401
                       write_tables)
+from .status import case_status
 from .metrics import errors
 from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .spec import Case, Study, code_digest
@@ -78,7 +79,7 @@ def _reference_text(items: tuple) -> str:
     return json.dumps(dict(items), sort_keys=True)
 
 
-INFO_KEYS = ("horizon", "cond", "load_steps", "history")
+INFO_KEYS = ("horizon", "cond", "error_bound", "load_steps", "history")
 
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
@@ -177,6 +178,7 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
         row["cond"] = info.get("cond")
         row["status"], row["message"] = "ok", ""
+        row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (issue 27)
         if "artefact_message" in solved:
             row["artefact_message"] = solved["artefact_message"]
         # arrays stay arrays here (compact to pickle from a worker); encode_record stores them exactly

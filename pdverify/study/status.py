@@ -1,0 +1,23 @@
+"""A study case's status from its solve's round-off bound (issue 27): ``suspect`` when the bound passes
+:data:`pdverify.linalg.BOUND_LIMIT`, so no table shows such a row as a plain ``ok``."""
+
+from __future__ import annotations
+
+import math
+
+from ..linalg import BOUND_LIMIT
+
+
+def case_status(info: dict) -> dict:
+    """Columns for a solved case's row from the result's ``info``: ``error_bound`` (the relative round-off
+    bound of its linear solve, None when the model made none) and, when that bound passes BOUND_LIMIT or
+    is not finite, ``status = "suspect"`` with a message naming it."""
+    bound = info.get("error_bound")
+    if bound is None:
+        return {"error_bound": None}
+    bound = float(bound)
+    if bound <= BOUND_LIMIT:
+        return {"error_bound": bound}
+    shown = f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
+    return {"error_bound": bound, "status": "suspect",
+            "message": f"round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the solve's"}

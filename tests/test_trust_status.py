@@ -1,0 +1,98 @@
+"""Issue 27, item 1: a result's round-off bound reaches every output: solve's table, CSV and JSON, a
+study row's status (``suspect``), the report; NaN/inf never leaves with exit 0."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pdverify.linalg import BOUND_LIMIT
+from pdverify.study.status import case_status
+
+from conftest import scene_dict
+
+TOML = """name = "propped cantilever"
+[beam]
+length = 1.0
+[section]
+width = 0.01
+height = 0.01
+[material]
+youngs_modulus = {E}
+poissons_ratio = 0.3
+[supports]
+left = "clamped"
+right = "pinned"
+[[loads]]
+type = "point_force"
+position = 0.3
+value = -50.0
+"""
+
+
+def test_case_status_from_the_bound():
+    assert case_status({}) == {"error_bound": None}
+    assert case_status({"error_bound": 0.5 * BOUND_LIMIT}) == {"error_bound": 0.5 * BOUND_LIMIT}
+    s = case_status({"error_bound": 2 * BOUND_LIMIT})
+    assert s["status"] == "suspect" and "2e-06" in s["message"]
+    assert case_status({"error_bound": math.inf})["status"] == "suspect"
+
+
+def _cli(args, tmp_path, E="200e9"):
+    from typer.testing import CliRunner
+
+    from pdverify.cli import app
+
+    scene = tmp_path / "s.toml"
+    scene.write_text(TOML.format(E=E))
+    return CliRunner().invoke(app, ["solve", str(scene), *args])
+
+
+@pytest.mark.parametrize("fmt", ["table", "csv", "json"])
+def test_every_format_shows_the_warning(tmp_path, fmt):
+    """fem-eb's direct form at 20,001 nodes: round-off bound ~1e3 (error 7e-2 measured), in every format."""
+    r = _cli(["-m", "fem-eb", "--form", "direct", "--points", "20001", "--format", fmt], tmp_path)
+    assert r.exit_code == 0
+    out = r.stdout
+    if fmt == "json":
+        info = json.loads(out)["info"]
+        assert info["error_bound"] > BOUND_LIMIT and any("round-off bound" in w for w in info["warnings"])
+    else:
+        assert any(line.startswith("# warning: round-off bound") for line in out.splitlines())
+    if fmt == "csv":
+        df = pd.read_csv(__import__("io").StringIO(out), comment="#")
+        assert list(df.columns) == ["x", "w", "rotation"] and len(df) == 20001
+
+
+def test_no_warning_where_the_bound_holds(tmp_path):
+    r = _cli(["-m", "fem-eb", "--points", "20001", "--format", "csv"], tmp_path)
+    assert r.exit_code == 0 and not r.stdout.startswith("#")
+
+
+@pytest.mark.parametrize("model", ["exact-eb", "fem-eb", "exact-timoshenko", "fem-timoshenko"])
+def test_no_nan_with_exit_0(tmp_path, model):
+    """E = 1e-300: exact-eb and fem-eb printed NaN with exit 0 (issue 27)."""
+    r = _cli(["-m", model, "--points", "11"], tmp_path, E="1e-300")
+    assert r.exit_code == 3
+    assert "nan" not in r.stdout.lower()
+    assert model in r.output and "error:" in r.output
+
+
+def test_a_study_row_is_suspect_and_the_report_marks_it(tmp_path):
+    from pdverify.study import spec
+    from pdverify.study.runner import run_case
+
+    text = TOML.format(E="200e9")
+    bad = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 20001, "form": "direct"},
+                             {"model": "exact-eb"}))["row"]
+    good = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 20001}, {"model": "exact-eb"}))["row"]
+    assert bad["status"] == "suspect" and bad["error_bound"] > BOUND_LIMIT and bad["error_bound"] >= bad["err_max"] / 2
+    assert good["status"] == "ok" and good["error_bound"] < BOUND_LIMIT and good["err_max"] < 1e-10
+
+    from pdverify.report.build import table
+
+    html = table(pd.DataFrame([bad, good]), ["model", "err_max", "error_bound", "status"], row_class="status")
+    assert '<tr class="suspect">' in html and '<tr class="ok">' in html
