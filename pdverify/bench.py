@@ -48,7 +48,7 @@ def max_error(scene, model, result) -> float | None:
     w = np.asarray(result.w, float)
     if not scene.is_straight or not np.any(w):
         return None
-    shear = getattr(model, "theory", "euler-bernoulli") != "euler-bernoulli"
+    shear = model.theory != "euler-bernoulli"
     exact = solve_straight(scene, shear).fields(result.x)["w"]
     top = float(np.abs(exact).max())
     return float(np.abs(w - exact).max() / top) if top > 0 else None
