@@ -340,7 +340,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         convergence=table(readable_options(conv), ["scene", "model", "options", "slenderness", "n_grids",
                                  "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
         locking_figs=[f for _, f in lock_figs], locking=table(readable_options(lock)), images=images,
-        checks=table(checks, ["name", "scene", "model", "options", "slenderness", "points", "errors", "pairwise_orders",
+        checks=table(readable_options(checks), ["name", "scene", "model", "options", "slenderness", "points", "errors", "pairwise_orders",
                               "observed_order", "min", "max", "expected", "verdict", "message"], row_class="verdict"),
         trust=table(readable_options(trust), [
             "model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
