@@ -8,6 +8,7 @@ import pytest
 
 from pdverify.advise import advise, estimate
 from pdverify.errors import InputError
+from pdverify.registry import get_model
 from pdverify.scene import load_scene, parse_scene
 
 from conftest import scene_dict
@@ -18,7 +19,9 @@ ROOT = Path(__file__).parents[1]
 def test_thick_beam_excludes_euler_bernoulli_models():
     """L/h = 5 at 5 %: shear matters (EB off by 34 %), 2D effects (1.6 %) do not -> a Timoshenko model."""
     a = advise(load_scene(ROOT / "studies/paper_yang/cc_uniform.toml"), 5e-2)
-    assert a.choice.model == "fem-timoshenko"
+    # the cheapest Timoshenko-theory model by measured time: fem-timoshenko on an idle machine; under load the
+    # timings of the candidates can swap, so the claim tested is the theory, not the name
+    assert get_model(a.choice.model).theory == "timoshenko", a.choice.model
     assert any("pd-eb" in r and "shear" in r for r in a.rejected)
     assert a.choice.exact_error < 5e-2
 
