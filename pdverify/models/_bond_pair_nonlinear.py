@@ -165,13 +165,19 @@ class NonlinearBondPair:
         centres, offs, kp = [], [], []
         bi, bj, kb, xib = [], [], [], []
         c_a = scene.EA / np.sum(j * dx * beta * dx)
+        real = lambda e: (e >= G) & (e < G + n)  # noqa: E731
         for jj, bb in zip(j, beta):
             k = np.arange(n) + G
             ok = (k - jj >= 0) & (k + jj < N)
-            centres.append(k[ok]), offs.append(np.full(ok.sum(), jj)), kp.append(np.full(ok.sum(), alpha * bb * dx**2))
-            kb_ = np.arange(n) + G
-            ok2 = kb_ + jj < N
-            bi.append(kb_[ok2]), bj.append(kb_[ok2] + jj), kb.append(np.full(ok2.sum(), c_a * bb * dx**2 / (jj * dx))),
+            # trapezoid weights: half the end points' pair energy (the mirror ghosts make the end point's
+            # energy the centre of a symmetric extension, counted once in full otherwise: a first-order error)
+            wk = np.where((k == G) | (k == G + n - 1), 0.5, 1.0)
+            centres.append(k[ok]), offs.append(np.full(ok.sum(), jj)), kp.append(alpha * bb * dx**2 * wk[ok])
+            a = np.arange(N - jj)
+            ra, rc = real(a), real(a + jj)
+            ok2 = ra | rc  # every bond with a real end; half of it when the other end is a ghost
+            wb = np.where(ra & rc, 1.0, 0.5)[ok2]
+            bi.append(a[ok2]), bj.append(a[ok2] + jj), kb.append(c_a * bb * dx**2 / (jj * dx) * wb)
             xib.append(np.full(ok2.sum(), jj * dx))
         self.pc, self.po, self.pk = (np.concatenate(a) for a in (centres, offs, kp))
         self.ba, self.bc, self.bk, self.bxi = (np.concatenate(a) for a in (bi, bj, kb, xib))
@@ -189,11 +195,19 @@ class NonlinearBondPair:
         self.alive = np.zeros(N, bool)
         self.alive[G:G + n] = True
         for side, sup in ((0, self.scene.supports.left), (1, self.scene.supports.right)):
-            if sup == "free":
-                continue
             s = 0 if side == 0 else n - 1  # support point (real index)
             i = np.arange(1, G + 1)
             r = i if side == 0 else n - 1 - i
+            if sup == "free":  # cubic extrapolation of the last four real positions (affine: rigid motions exact)
+                t = np.arange(4)
+                lag = np.prod([np.where(t[:, None] == m, 1.0, (-i[None, :] - t[m]) / np.where(t[:, None] == m, 1.0,
+                              t[:, None] - t[m])) for m in range(4)], axis=0)  # lag[q, i]: weight of point q at -i
+                g = (G - i) if side == 0 else (G + n - 1 + i)
+                src = t if side == 0 else n - 1 - t
+                self.alive[g] = True
+                for d in (0, 1):
+                    rows.append(np.repeat(2 * g + d, 4)), cols.append(np.tile(2 * src + d, G)), vals.append(lag.T.ravel())
+                continue
             i, r = i[(r >= 0) & (r < n)], r[(r >= 0) & (r < n)]
             g = (G - i) if side == 0 else (G + n - 1 + i)
             self.alive[g] = True
@@ -303,8 +317,9 @@ class NonlinearBondPair:
             out = out + o2.ravel()
         return out
 
-    def solve(self, steps: int = 10, tol: float = 1e-12, max_iter: int = 40, snapshots: int = 5):
-        """Newton with load stepping and a backtracking line search on |R|.
+    def solve(self, steps: int = 10, tol: float = 1e-11, max_iter: int = 40, snapshots: int = 5):
+        """Newton with load stepping and a line search on the slope of the energy along the step
+        (shortened by secants while the energy rises steeply at its end).
 
         A step has converged when every residual component is below ``tol`` times the internal forces
         that meet at its DOF (:meth:`force_scale`: the forces whose sum is the residual; a test against
@@ -326,15 +341,16 @@ class NonlinearBondPair:
                     break
                 K = self.tangent(P, lam)[free][:, free]
                 du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False)
-                t = 1.0
-                for _ in range(12):  # backtracking: halve the step until |R| falls
+                t, g0 = 1.0, float(R @ du)  # slope of the energy along du at t = 0 (< 0)
+                for _ in range(12):  # line search on the energy's slope (the gradient is all we have)
                     P_try = P.copy()
                     P_try[free] += t * du
                     R_try = self.gradient(P_try, lam)[free]
-                    rn_try = np.abs(R_try).max()
-                    if rn_try < rn or t < 1e-3:
+                    g1 = float(R_try @ du)
+                    if np.all(np.isfinite(R_try)) and (g0 >= 0 or g1 <= 0.5 * abs(g0)):
                         break
-                    t /= 2
+                    t *= float(np.clip(g0 / (g0 - g1), 0.1, 0.9)) if np.isfinite(g1) else 0.5  # secant on the slope
+                rn_try = np.abs(R_try).max()
                 small = np.abs(t * du).max() <= 1e-10 * max(np.abs(P).max(), 1e-300)
                 if rn_try >= rn and small:  # stagnated at the floor: keep P
                     break
