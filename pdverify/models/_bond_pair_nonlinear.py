@@ -317,52 +317,67 @@ class NonlinearBondPair:
             out = out + o2.ravel()
         return out
 
-    def solve(self, steps: int = 10, tol: float = 1e-11, max_iter: int = 40, snapshots: int = 5):
-        """Newton with load stepping and a line search on the slope of the energy along the step
-        (shortened by secants while the energy rises steeply at its end).
+    def newton(self, P: np.ndarray, lam: float, tol: float = 1e-11, max_iter: int = 30):
+        """Newton iterations at load factor ``lam`` from ``P``: (P, iterations, converged, relative residual).
 
-        A step has converged when every residual component is below ``tol`` times the internal forces
-        that meet at its DOF (:meth:`force_scale`: the forces whose sum is the residual; a test against
-        the load alone asks for less than the round-off floor on fine grids, where the pair forces are
-        ~N² times the nodal loads), or when the residual has stopped falling (at the floor) after an
-        increment below 1e-10 of the displacements."""
-        P = np.zeros(2 * self.n)  # displacements of the real points
+        Converged when every residual component is below ``tol`` times the internal forces that meet at
+        its DOF (:meth:`force_scale`: the forces whose sum is the residual; a test against the load alone
+        asks for less than the round-off floor on fine grids, where the pair forces are ~N² times the
+        nodal loads), or when the residual has stopped falling (at the floor) after an increment below
+        1e-10 of the displacements. Each step is shortened by secants on the slope of the energy along it
+        while the energy rises steeply at its end (a line search that needs the gradient only)."""
         free = self.free
-        eps = np.finfo(float).eps
+        P = P.copy()
+        R = self.gradient(P, lam)[free]
+        rn = np.abs(R).max()
+        floor = max(tol, 64 * np.finfo(float).eps)
+        for it in range(max_iter):
+            scale = self.force_scale(P, lam)[free]
+            if np.all(np.abs(R) <= floor * scale):
+                return P, it, True, 0.0
+            K = self.tangent(P, lam)[free][:, free]
+            du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False)
+            t, g0 = 1.0, float(R @ du)  # slope of the energy along du at t = 0 (< 0)
+            for _ in range(12):
+                P_try = P.copy()
+                P_try[free] += t * du
+                R_try = self.gradient(P_try, lam)[free]
+                g1 = float(R_try @ du)
+                if np.all(np.isfinite(R_try)) and (g0 >= 0 or g1 <= 0.5 * abs(g0)):
+                    break
+                t *= float(np.clip(g0 / (g0 - g1), 0.1, 0.9)) if np.isfinite(g1) else 0.5  # secant on the slope
+            rn_try = np.abs(R_try).max()
+            small = np.abs(t * du).max() <= 1e-10 * max(np.abs(P).max(), 1e-300)
+            if rn_try >= rn and small:  # stagnated at the floor: keep P
+                return P, it + 1, True, 0.0
+            P, R, rn = P_try, R_try, rn_try
+            if small and it > 0:
+                return P, it + 1, True, 0.0
+        return P, max_iter, False, rn / max(scale.max(), 1e-300)
+
+    def solve(self, steps: int = 10, snapshots: int = 5, max_halvings: int = 8):
+        """Load stepping to lam = 1 in ``steps`` equal steps; a step whose Newton iterations do not converge
+        is split in halves (up to ``max_halvings`` times) from the last converged state.
+        Returns (displacements (n, 2), snapshots, Newton iterations per requested step)."""
+        P = np.zeros(2 * self.n)  # displacements of the real points
         shots, iters = [], []
         keep = set(np.linspace(1, steps, min(snapshots, steps)).round().astype(int))
         for s in range(1, steps + 1):
-            lam = s / steps
-            R = self.gradient(P, lam)[free]
-            rn = np.abs(R).max()
-            for it in range(max_iter):
-                scale = self.force_scale(P, lam)[free]
-                if np.all(np.abs(R) <= np.maximum(tol, 64 * eps) * scale):
-                    break
-                K = self.tangent(P, lam)[free][:, free]
-                du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False)
-                t, g0 = 1.0, float(R @ du)  # slope of the energy along du at t = 0 (< 0)
-                for _ in range(12):  # line search on the energy's slope (the gradient is all we have)
-                    P_try = P.copy()
-                    P_try[free] += t * du
-                    R_try = self.gradient(P_try, lam)[free]
-                    g1 = float(R_try @ du)
-                    if np.all(np.isfinite(R_try)) and (g0 >= 0 or g1 <= 0.5 * abs(g0)):
-                        break
-                    t *= float(np.clip(g0 / (g0 - g1), 0.1, 0.9)) if np.isfinite(g1) else 0.5  # secant on the slope
-                rn_try = np.abs(R_try).max()
-                small = np.abs(t * du).max() <= 1e-10 * max(np.abs(P).max(), 1e-300)
-                if rn_try >= rn and small:  # stagnated at the floor: keep P
-                    break
-                P, R, rn = P_try, R_try, rn_try
-                if small and it > 0:
-                    break
-            else:
-                raise SolveError(f"pd-bond-pair nonlinear: Newton did not converge at load step {s}/{steps} "
-                                 f"(residual {rn / max(scale.max(), 1e-300):.2e} of the internal forces); "
-                                 "use more steps (-o steps=...)")
-            iters.append(it)
+            lam0, lam1, n_it, dl = (s - 1) / steps, s / steps, 0, 1.0 / steps
+            while lam0 < lam1 - 1e-15:
+                lam = min(lam0 + dl, lam1)
+                P_new, it, ok, rel = self.newton(P, lam)
+                n_it += it
+                if ok:
+                    P, lam0 = P_new, lam
+                    continue
+                dl /= 2
+                if dl < 1.0 / steps / 2 ** max_halvings:
+                    raise SolveError(f"pd-bond-pair nonlinear: Newton did not converge at load factor {lam:.4g} "
+                                     f"(step {s}/{steps}, split {max_halvings} times; residual {rel:.2e} of the "
+                                     "internal forces); use more steps (-o steps=...)")
+            iters.append(n_it)
             if s in keep:
                 Pr = P.reshape(-1, 2) + self.X0
-                shots.append({"factor": lam, "x": Pr[:, 0].tolist(), "z": Pr[:, 1].tolist()})
+                shots.append({"factor": lam1, "x": Pr[:, 0].tolist(), "z": Pr[:, 1].tolist()})
         return P.reshape(-1, 2), shots, iters
