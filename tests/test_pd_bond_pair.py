@@ -85,7 +85,8 @@ def test_linear_and_nonlinear_paths_agree_for_small_loads():
 
 @pytest.mark.parametrize("frac", [0.5, 1.0])
 def test_large_rotation_tip_moment_elastica(frac):
-    """M L / EI = pi/2 (tip at 90 degrees) and pi (semicircle); measured tip error 0.21 % and 0.30 % of L."""
+    """M L / EI = pi/2 (tip at 90 degrees) and pi (semicircle); measured tip error 9.1e-5 and 3.4e-4 of L
+    (before the second-order ends and couple: 2.1e-3 and 3.0e-3)."""
     L = 2.0
     EI = parse_scene(scene_dict()).EI
     M = frac * np.pi * EI / L
@@ -94,7 +95,7 @@ def test_large_rotation_tip_moment_elastica(frac):
     R = EI / M
     tip = np.array([L + r.fields["u"][-1], r.w[-1]])
     exact = np.array([R * np.sin(L / R), R * (1 - np.cos(L / R))])
-    assert np.hypot(*(tip - exact)) < 0.01 * L
+    assert np.hypot(*(tip - exact)) < 1e-3 * L
     shots = r.info["load_steps"]
     assert len(shots) == 5 and shots[-1]["factor"] == 1.0
 

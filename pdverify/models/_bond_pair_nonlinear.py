@@ -240,6 +240,8 @@ class NonlinearBondPair:
             trib = np.full(n, dx)
             trib[[0, -1]] = dx / 2
             self.F[1::2] += body_loads(sub, self.X0[:, 0]) * trib
+            axial = sub.model_copy(update={"loads": [l.model_copy(update={"value": l.axial}) for l in dist]})
+            self.F[0::2] += body_loads(axial, self.X0[:, 0]) * trib  # the axial components, same cells
         self.F += point_forces(self.scene, n, dx)
         self.ca, self.cc, self.cC = point_couples(self.scene, n, dx)
 

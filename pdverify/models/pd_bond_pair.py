@@ -34,7 +34,7 @@ from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import (body_loads, boundary_layer_warnings, end_loads, fixed_points, ghost_stencil_system, partial_volumes,
+from .pd_eb import (body_loads, boundary_layer_warnings, end_loads, ghost_stencil_system, partial_volumes,
                     stencil_operator, taylor_ghosts)
 
 
@@ -155,29 +155,21 @@ class PDBondPair(Model):
         er, ec, ev = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
         e0 = np.zeros(N)
         skip = {}
-        if params["ends"] == "taylor":
-            P, C = end_loads(scene)
-            for side, sup in ((0, left), (1, right)):
-                M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
-                Gm, g0 = taylor_ghosts(sup, G, dx, M_end, V3, scene.EI, min(4, n))
-                real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
-                ghost = G - 1 - np.arange(G) if side == 0 else G + n + np.arange(G)
-                er.append(np.repeat(ghost, 4)), ec.append(np.tile(real, G)), ev.append(Gm.ravel())
-                e0[ghost] = g0
-                skip[0 if side == 0 else n - 1] = {"point_force", "point_moment"}
-        else:
-            for side, sup in ((0, left), (1, right)):
-                sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "free": 0.0}[sup]
-                if sign == 0.0:
-                    continue
-                i = np.arange(1, G + 1)
-                ghost = G - i if side == 0 else G + n - 1 + i
-                real = np.minimum(i, n - 1) if side == 0 else np.maximum(n - 1 - i, 0)
-                er.append(ghost), ec.append(real), ev.append(np.full(G, sign))
+        # Taylor ghosts (the mirror ends go through the energy form, :meth:`energy_model`)
+        P, C = end_loads(scene)
+        for side, sup in ((0, left), (1, right)):
+            M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
+            # roller: the transverse conditions of pinned (the axial one does not enter this path)
+            Gm, g0 = taylor_ghosts("pinned" if sup == "roller" else sup, G, dx, M_end, V3, scene.EI, min(4, n))
+            real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
+            ghost = G - 1 - np.arange(G) if side == 0 else G + n + np.arange(G)
+            er.append(np.repeat(ghost, 4)), ec.append(np.tile(real, G)), ev.append(Gm.ravel())
+            e0[ghost] = g0
+            skip[0 if side == 0 else n - 1] = {"point_force", "point_moment"}
         cat = lambda v, dt: np.concatenate(v[1:]) if len(v) > 1 else np.zeros(0, dt)  # noqa: E731
         K, r = ghost_stencil_system(*operator_stencil(j, c), G, n, cat(er, int), cat(ec, int), cat(ev, float), e0)
         b = body_loads(scene, x, skip_ends=skip) - r
-        fixed = fixed_points(scene, n)
+        fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned", "roller")]
         K.fix(fixed, b)
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
         return K, b, fixed, info
