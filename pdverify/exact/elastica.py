@@ -84,25 +84,34 @@ class ExactElastica(Model):
     reference = True
     axial = True
 
-    def check(self, scene: Scene) -> tuple[int, object]:
-        """(side, load): the free end (0 left, 1 right) and its single end load, or InputError."""
+    def reasons(self, scene: Scene) -> list[str]:
+        """Why this reference cannot solve ``scene`` (empty when it can)."""
         sup = (scene.supports.left, scene.supports.right)
         if not scene.is_straight or sorted(sup) != ["clamped", "free"]:
-            raise InputError("supports: exact-elastica solves a straight cantilever (clamped-free or free-clamped); "
-                             "use exact-eb for other supports")
-        side = sup.index("free")
-        end = 0.0 if side == 0 else scene.length
+            return [f"supports = {sup[0]}-{sup[1]}: exact-elastica solves a straight cantilever (clamped-free or "
+                    "free-clamped); use exact-eb for other supports"]
+        end = 0.0 if sup[0] == "free" else scene.length
         loads = list(scene.loads)
         ok = len(loads) == 1 and isinstance(loads[0], (PointForce, PointMoment)) \
             and abs(loads[0].position - end) <= 1e-12 * scene.length \
-            and getattr(loads[0], "axial", 0.0) == 0.0 and getattr(loads[0], "torque", 0.0) == 0.0
+            and getattr(loads[0], "axial", 0.0) == 0.0
         if not ok:
-            raise InputError("loads: exact-elastica takes one transverse point force or one point moment at the "
-                             "free end; split other scenes or use a numerical reference")
-        return side, loads[0]
+            return ["loads: exact-elastica takes one transverse point force or one point moment at the free end; "
+                    "use a numerical reference for other loads"]
+        return []
+
+    def check(self, scene: Scene) -> list[str]:
+        return super().check(scene) + self.reasons(scene)
+
+    def case(self, scene: Scene) -> tuple[int, object]:
+        """(side, load): the free end (0 left, 1 right) and its single end load, or InputError."""
+        why = self.reasons(scene)
+        if why:
+            raise InputError(why[0])
+        return (0 if scene.supports.left == "free" else 1), scene.loads[0]
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        side, load = self.check(scene)
+        side, load = self.case(scene)
         L, EI = scene.length, scene.EI
         s = np.asarray(x, float) if side == 1 else scene.length - np.asarray(x, float)
         if isinstance(load, PointMoment):

@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ..band import Band
 from ..errors import InputError
 from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option
@@ -91,6 +92,23 @@ def refine(model, K, b, free, u, sweeps: int = 3) -> np.ndarray:
     return full
 
 
+def factored_stencils(j: np.ndarray, c: np.ndarray, EI: float, dx: float) -> tuple[np.ndarray, np.ndarray]:
+    """(r, s): the operator of :func:`operator_stencil` written as (EI / dx⁴) D1 r D1, D1 = (1, -2, 1).
+
+    w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j} = D_j² w and D_j = D1 T_j with T_j the triangle
+    stencil (1, 2, .., j, .., 2, 1) (offsets 1-j .. j-1), so Σ_j c_j D_j² = D1 (Σ_j c_j T_j²) D1. r =
+    Σ_j c_j T_j² dx⁴ / EI (offsets -2(J-1) .. 2(J-1); its sum is Σ_j c_j j⁴ dx⁴ / EI, 1 for the discrete
+    calibration), s = D1 * r (offsets -(2J-1) .. 2J-1)."""
+    J = int(np.max(j))
+    r = np.zeros(4 * J - 3)
+    for jj, cj in zip(j, c):
+        tri = np.r_[np.arange(1, jj + 1), np.arange(jj - 1, 0, -1)].astype(float)
+        t2 = np.convolve(tri, tri)
+        mid = 2 * (J - 1)
+        r[mid - 2 * (jj - 1): mid + 2 * (jj - 1) + 1] += cj * t2 * dx**4 / EI
+    return r, np.convolve([1.0, -2.0, 1.0], r)
+
+
 class PDBondPair(Model):
     name = "pd-bond-pair"
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
@@ -101,6 +119,9 @@ class PDBondPair(Model):
         Option("variant", str, "corrected", "paper (continuous alpha) | corrected (discrete alpha)",
                choices=("paper", "corrected")),
         Option("ends", str, "taylor", "boundary ghost rule: mirror | taylor", choices=("mirror", "taylor")),
+        Option("form", str, "auto", "taylor ends: auto (= mixed) | direct (one fourth-order system) | mixed (curvature "
+               "and deflection, two second-order equations: round-off ~N^2 eps instead of ~N^4 eps)",
+               choices=("auto", "direct", "mixed")),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
     )
@@ -174,6 +195,68 @@ class PDBondPair(Model):
         info = {"ghosts_per_end": G, "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
         return K, b, fixed, info
 
+    def assemble_mixed(self, scene: Scene, params: dict):
+        """The Taylor-ghost operator split in two second-order equations (``form = mixed``)::
+
+            k_p - (w_{p+1} - 2 w_p + w_{p-1}) = 0          p = -(2J-1) .. n-1+2J-1
+            Σ_o s_o k_{i+o}                  = dx⁴ q_i / EI  (real points i)
+
+        (:func:`factored_stencils`): the same discrete solution as the fourth-order system, but no matrix
+        of fourth differences is formed, so the round-off floor falls from ~N⁴ eps to ~N² eps (as pd-eb's
+        mixed form). Ghost w (outside the beam, up to 2J spacings) enter the first equation through the
+        Taylor map w_g = Gm w_real + g0. Unknowns interleaved (k_p, w_p) in LAPACK's band layout; the w of
+        positions outside the beam and of supported points are held at zero.
+        Returns (M, rhs, Jk, free, info): w of real point i is unknown 2 (i + Jk) + 1."""
+        n = params["points"]
+        x = np.linspace(0.0, scene.length, n)
+        dx = x[1] - x[0]
+        j, _ = family(params["horizon"], dx, params["variant"])
+        c = spring_constants(scene.EI, params["horizon"], dx, params["variant"])
+        J = int(j.max())
+        G, Jk = 2 * J, 2 * J - 1
+        if G + 1 > n:
+            raise InputError(f"horizon = {params['horizon']:g}: the stencil (2 x {J} points) does not fit in "
+                             f"{n} points; use more points or a smaller horizon")
+        _, st = factored_stencils(j, c, scene.EI, dx)
+        left, right = scene.supports.left, scene.supports.right
+        P, C = end_loads(scene)
+        g_pos, g_real, g_val, g_const = [], [], [], []
+        for side, sup in ((0, left), (1, right)):
+            M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
+            Gm, g0 = taylor_ghosts("pinned" if sup == "roller" else sup, G, dx, M_end, V3, scene.EI, min(4, n))
+            real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
+            pos = -1 - np.arange(G) if side == 0 else n + np.arange(G)
+            g_pos.append(np.repeat(pos, 4)), g_real.append(np.tile(real, G)), g_val.append(Gm.ravel())
+            g_const.append(np.stack([pos, g0], axis=1))
+        g_pos, g_real, g_val = np.concatenate(g_pos), np.concatenate(g_real), np.concatenate(g_val)
+        g_const = np.concatenate(g_const)
+        npos = n + 2 * Jk
+        # the k rows (p) whose second difference reaches a ghost position g: |g - p| <= 1, p within the grid
+        d1 = {-1: 1.0, 0: -2.0, 1: 1.0}
+        rows, cols, vals = [], [], []
+        rhs = np.zeros(2 * npos)
+        for o, w_o in d1.items():
+            p = g_pos - o
+            ok = (p >= -Jk) & (p <= n - 1 + Jk)
+            rows.append(2 * (p[ok] + Jk)), cols.append(2 * (g_real[ok] + Jk) + 1), vals.append(-w_o * g_val[ok])
+            pc = g_const[:, 0].astype(np.int64) - o
+            okc = (pc >= -Jk) & (pc <= n - 1 + Jk)
+            np.add.at(rhs, 2 * (pc[okc] + Jk), w_o * g_const[okc, 1])
+        rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+        off = np.r_[cols - rows, -2 * Jk - 1, 2 * Jk + 1]
+        M = Band(2 * npos, int(-off.min()), int(off.max()))
+        blocks = {o: [[1.0 if o == 0 else 0.0, -d1.get(o, 0.0)], [st[o + Jk], 0.0]] for o in range(-Jk, Jk + 1)}
+        M.add_block_stencil(2, blocks)
+        M.add_entries(rows, cols, vals)
+        skip = {0: {"point_force", "point_moment"}, n - 1: {"point_force", "point_moment"}}
+        rhs[2 * Jk + 1: 2 * (n + Jk): 2] = body_loads(scene, x, skip_ends=skip) * dx**4 / scene.EI
+        fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned", "roller")]
+        held = np.r_[2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1, 2 * (np.asarray(fixed, np.int64) + Jk) + 1]
+        M.fix(held, rhs)
+        free = np.delete(np.arange(n), fixed)
+        return M, rhs, Jk, free, {"ghosts_per_end": G, "form": "mixed (curvature and deflection)",
+                                  "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"}
+
     def alpha(self, EI: float, m: float, dx: float, variant: str) -> float:
         j, beta = family(m, dx, variant)
         if variant == "paper":
@@ -220,6 +303,12 @@ class PDBondPair(Model):
                 u, info = solve_linear(K, b, what=what)
                 full = refine(model, K, b, free, u)
             w, fields["u"] = full[1::2], full[0::2]
+        elif params.get("form", "auto") in ("auto", "mixed"):
+            with timer("assemble"):
+                M, rhs, Jk, free, binfo = self.assemble_mixed(scene, params)
+            with timer("solve"):
+                z, info = solve_linear(M, rhs, what=what + ", mixed form")
+                w = z[2 * Jk + 1: 2 * (len(x) + Jk): 2].copy()
         else:
             with timer("assemble"):
                 K, b, fixed, binfo = self.assemble_taylor(scene, params)
