@@ -239,6 +239,8 @@ class PDBondPair(Model):
         _, st = factored_stencils(j, c, scene.EI, dx)
         left, right = scene.supports.left, scene.supports.right
         P, C = end_loads(scene)
+        skip = {0: {"point_force", "point_moment"}, n - 1: {"point_force", "point_moment"}}
+        q = body_loads(scene, x, skip_ends=skip)
         g_pos, g_real, g_val, g_const = [], [], [], []
         k_rows, k_cols, k_vals, k_rhs = [], [], [], []  # the end rows of free and guided ends (on k)
         kidx = lambda p: 2 * (np.asarray(p) + Jk)  # noqa: E731  (unknown k_p)
@@ -249,7 +251,8 @@ class PDBondPair(Model):
                 # dk/dt(0) = dx^3 w'''(0) = dx^3 V / EI (both); ghost k by a degree-4 polynomial through the
                 # first four real k. Written on k, not on w: the shear is a first difference of k (round-off
                 # ~N eps) instead of a third difference of w (~N^3 eps).
-                a0, a1 = dx * dx * M_end / scene.EI, dx**3 * V3 / scene.EI
+                # k = D1 w = dx^2 w'' + dx^4 w''''/12 + ..: the second term (w'''' = q / EI) keeps a quartic exact
+                a0, a1 = (dx * dx * M_end + dx**4 * q[0 if side == 0 else n - 1] / 12) / scene.EI, dx**3 * V3 / scene.EI
                 fix, vals_fixed = ((0, 1), np.array([a0, a1])) if sup == "free" else ((1,), np.array([a1]))
                 Gk, Ck = poly_ghosts(fix, Jk)
                 end, o = (0, -1) if side == 0 else (n - 1, 1)
@@ -296,8 +299,7 @@ class PDBondPair(Model):
             kr = np.concatenate([np.asarray(v, float).reshape(-1, 2) for v in k_rhs])
             rhs[kr[:, 0].astype(np.int64)] = kr[:, 1]
         M.add_entries(rows, cols, vals)
-        skip = {0: {"point_force", "point_moment"}, n - 1: {"point_force", "point_moment"}}
-        rhs[2 * Jk + 1: 2 * (n + Jk): 2] = body_loads(scene, x, skip_ends=skip) * dx**4 / scene.EI
+        rhs[2 * Jk + 1: 2 * (n + Jk): 2] = q * dx**4 / scene.EI
         fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned", "roller")]
         held = np.r_[2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1, 2 * (np.asarray(fixed, np.int64) + Jk) + 1]
         M.fix(held, rhs)
