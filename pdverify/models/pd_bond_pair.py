@@ -359,14 +359,14 @@ class PDBondPair(Model):
             with timer("solve"):
                 # the condition number of the two-equation matrix grows like N^4 but is no bound on its
                 # round-off (measured: 1e-13 at 101 points against a cond eps of 1e-5), so it is not
-                # estimated; the round-off estimate is eps N^2 (measured 0.001-0.1 eps N^2 at 10^5-10^6
+                # estimated; the round-off estimate is 0.1 eps N^2 (measured 0.01-1 of it at 10^5-10^6
                 # points, every support pair, mixed loads: tests/test_bond_pair_large.py)
                 z, info = solve_linear(M, rhs, what=what + ", mixed form", condition=False)
                 w = z[2 * Jk + 1: 2 * (len(x) + Jk): 2].copy()
-            info["roundoff_estimate"] = roundoff = np.finfo(float).eps * len(x) ** 2
+            info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2
             if roundoff > 1e-6:
                 info.setdefault("warnings", []).append(
-                    f"round-off estimate {roundoff:.1g} relative (eps N^2, N = {len(x)} points; measured 0.001-0.1 "
+                    f"round-off estimate {roundoff:.1g} relative (0.1 eps N^2, N = {len(x)} points; measured 0.01-1 "
                     "of it): past 1e-6; use fewer points")
         else:
             with timer("assemble"):

@@ -293,6 +293,10 @@ class PDEulerBernoulli(Model):
         Option("form", str, "auto", "auto (mixed for corrected, direct for paper) | direct (one fourth-order system) | "
                "mixed (two second-order equations: round-off floor ~N^2 eps instead of ~N^4 eps; corrected only)",
                choices=("auto", "direct", "mixed")),
+        Option("reading", str, "energy", "paper variant's boundary reading: energy (the real points' energy with the "
+               "mirror ghosts, Eq. 39-42 on it) | literal (Eq. 37 on the fictitious points too, then Eq. 42) | "
+               "layer (literal, with the 2.015 dx fictitious layer and horizon at simply supported ends)",
+               choices=("energy", "literal", "layer")),
     )
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
@@ -319,13 +323,28 @@ class PDEulerBernoulli(Model):
         a = scene.EI / scene.section.A
         A = scene.section.A
         left, right = scene.supports.left, scene.supports.right
-        assemble = self._assemble_paper if variant == "paper" else self._assemble_corrected
-        K, b, fixed, info = assemble(scene, x, c, a, A, left, right)
+        if variant == "paper":
+            K, b, fixed, info = self._assemble_paper(scene, x, c, a, A, left, right, params.get("reading", "energy"))
+        else:
+            K, b, fixed, info = self._assemble_corrected(scene, x, c, a, A, left, right)
         K.fix(fixed, b)  # master–slave elimination of the supported points (Eq. 39–42): w = 0 there
         return K, b, fixed, info
 
     # paper: energy form with mirror ghosts and Appendix free ends -------------------------
-    def _assemble_paper(self, scene, x, c, a, A, left, right):
+    def _assemble_paper(self, scene, x, c, a, A, left, right, reading="energy"):
+        """The paper's boundary treatment in one of three readings (``reading``):
+
+        * ``energy``: U = Σ over the real points of a kappa² V / 2 (Eq. 2, 10a), kappa (Eq. 11a) using the
+          fictitious points as mirror images of real ones (w = T w_real, Eq. 39-41), K = a (D T)^T (D T):
+          Eq. 42 applied to the real points' energy;
+        * ``literal``: Eq. 37 written for every point of the extended grid, fictitious ones included (their
+          kappa from the points that exist: the family truncated at the layer's outer edge), then
+          K̂ = T^T K T (Eq. 42): the fictitious points' energy counts too;
+        * ``layer``: ``literal`` with the fictitious layer of 2.015 dx at simply supported ends (Section
+          "Simply supported boundary condition": two mirrored points; the real points whose family
+          reaches past them use the horizon 2.015 dx with d = 1 / (A 2.015 dx), as Eq. A10-A12). In the
+          energy reading the layer changes nothing: the only real point whose family reaches past it is
+          the support point, whose curvature is zero under the negative mirror either way."""
         n, dx, J = len(x), x[1] - x[0], len(c)
         G = J
         D = curvature_operator(n, G, n + 2 * G, c).tocoo()
@@ -348,6 +367,17 @@ class PDEulerBernoulli(Model):
                 rr.append(np.full(len(cols), k))
                 cc.append(np.array(cols))
                 vv.append(np.array(vals))
+        layer = {side: reading == "layer" and sup == "pinned" and J > 2 for side, sup in ((0, left), (1, right))}
+        for side in (0, 1):
+            if not layer[side]:
+                continue
+            c2 = curvature_weights(2.0, dx, "paper")  # delta = 2.015 dx, d = 1 / (A delta)
+            for pnt in range(J - 2):  # real points whose family would reach past the two fictitious points
+                k = pnt if side == 0 else n - 1 - pnt
+                keep &= D.row != k
+                e = k + G
+                rr.append(np.full(5, k)), cc.append(np.array([e, e + 1, e - 1, e + 2, e - 2]))
+                vv.append(np.array([-2 * c2.sum(), c2[0], c2[0], c2[1], c2[1]]))
         rr[0], cc[0], vv[0] = D.row[keep], D.col[keep], D.data[keep]
         D = sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=D.shape)
         # master–slave map T: extended (ghost + real) <- real (Eq. 39–41)
@@ -356,17 +386,29 @@ class PDEulerBernoulli(Model):
             sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "free": 0.0}[sup]
             if sign == 0.0:
                 continue
-            j = np.arange(1, G + 1)
+            j = np.arange(1, (2 if layer[side] else G) + 1)
             g = G - j if side == 0 else G + n - 1 + j
             r = j if side == 0 else n - 1 - j
             ok = (r >= 0) & (r < n)
             tr.append(g[ok]), tc.append(r[ok]), tv.append(np.full(ok.sum(), sign))
         T = sp.csr_matrix((np.concatenate(tv), (np.concatenate(tr), np.concatenate(tc))), shape=(n + 2 * G, n))
+        if reading in ("literal", "layer"):  # Eq. 37 on the fictitious points of supported ends as well
+            alive = np.zeros(n + 2 * G, bool)
+            alive[np.unique(T.tocoo().row)] = True  # the real points and the fictitious points that exist
+            ghosts = np.flatnonzero(alive & ((np.arange(n + 2 * G) < G) | (np.arange(n + 2 * G) >= G + n)))
+            jj = np.arange(1, J + 1)
+            cols = np.c_[ghosts, ghosts[:, None] - jj, ghosts[:, None] + jj]
+            vals = np.broadcast_to(np.r_[-2 * c.sum(), c, c], cols.shape)
+            ok = (cols >= 0) & (cols < n + 2 * G)
+            ok[ok] = alive[cols[ok]]  # the family truncated at the layer's outer edge
+            Dg = sp.csr_matrix((vals[ok], (np.broadcast_to(np.arange(len(ghosts))[:, None], cols.shape)[ok], cols[ok])),
+                               shape=(len(ghosts), n + 2 * G))
+            D = sp.vstack([D, Dg]).tocsr()
         DT = D @ T
         K = Band.from_sparse(a * (DT.T @ DT))
         b = body_loads(scene, x) / A
         fixed = fixed_points(scene, n)
-        return K, b, fixed, {"ghosts_per_end": G, "boundary": "mirror images, Appendix free ends"}
+        return K, b, fixed, {"ghosts_per_end": G, "boundary": "mirror images, Appendix free ends", "reading": reading}
 
     # corrected: strong form with Taylor ghosts -----------------------------------------------
     def _assemble_corrected(self, scene, x, c, a, A, left, right):
@@ -476,6 +518,9 @@ class PDEulerBernoulli(Model):
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
+        if params.get("reading", "energy") != "energy" and params["variant"] != "paper":
+            raise InputError(f"reading = {params['reading']!r}: a reading of the paper's boundary treatment "
+                             "(Eq. 37-42); use variant = paper or reading = energy")
         if self.form(params) == "mixed":
             if params["variant"] != "corrected":
                 raise InputError("form = 'mixed': only the corrected variant has the two-equation form; "
