@@ -88,16 +88,16 @@ class ExactElastica(Model):
         """Why this reference cannot solve ``scene`` (empty when it can)."""
         sup = (scene.supports.left, scene.supports.right)
         if not scene.is_straight or sorted(sup) != ["clamped", "free"]:
-            return [f"supports = {sup[0]}-{sup[1]}: exact-elastica solves a straight cantilever (clamped-free or "
-                    "free-clamped); use exact-eb for other supports"]
+            return [(f"supports = {sup[0]}-{sup[1]}: exact-elastica solves a straight cantilever (clamped-free or "
+                     "free-clamped); use exact-eb for other supports")]
         end = 0.0 if sup[0] == "free" else scene.length
         loads = list(scene.loads)
         ok = len(loads) == 1 and isinstance(loads[0], (PointForce, PointMoment)) \
             and abs(loads[0].position - end) <= 1e-12 * scene.length \
             and getattr(loads[0], "axial", 0.0) == 0.0
         if not ok:
-            return ["loads: exact-elastica takes one transverse point force or one point moment at the free end; "
-                    "use a numerical reference for other loads"]
+            return [("loads: exact-elastica takes one transverse point force or one point moment at the free end; "
+                     "use a numerical reference for other loads")]
         return []
 
     def check(self, scene: Scene) -> list[str]:

@@ -7,9 +7,11 @@ with cos theta = u·v / (|u||v|), u = r_{k+j} - r_k, v = r_{k-j} - r_k. Every te
 angles only, so a rigid motion gives zero force. Forces are the exact gradient (closed form per
 element); element tangents by complex-step differentiation of that gradient (exact to round-off).
 Everything is written in displacements (reference offsets added exactly), so small loads lose no
-digits to the cancellation of positions. Ghost points are linear images of real points: clamped = reflection through the line normal to the
-clamp at the support, pinned = point reflection through the support, guided = reflection through the
-vertical line of the support, free = none (truncated families).
+digits to the cancellation of positions. Ghost points are linear images of real points: clamped =
+reflection through the line normal to the clamp at the support, pinned and roller = point reflection
+through the support, guided = reflection through the vertical line of the support, free = cubic
+extrapolation of the last four points (affine, so rigid motions stay exact). The end points' pair energy
+counts half (trapezoid rule) and bonds to ghost points half, so every end is second order (docs/models/ogrady.md).
 """
 
 from __future__ import annotations
@@ -206,7 +208,8 @@ class NonlinearBondPair:
                 src = t if side == 0 else n - 1 - t
                 self.alive[g] = True
                 for d in (0, 1):
-                    rows.append(np.repeat(2 * g + d, 4)), cols.append(np.tile(2 * src + d, G)), vals.append(lag.T.ravel())
+                    rows.append(np.repeat(2 * g + d, 4)), cols.append(np.tile(2 * src + d, G))
+                    vals.append(lag.T.ravel())
                 continue
             i, r = i[(r >= 0) & (r < n)], r[(r >= 0) & (r < n)]
             g = (G - i) if side == 0 else (G + n - 1 + i)

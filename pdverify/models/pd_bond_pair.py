@@ -19,9 +19,10 @@ under uniform curvature (reconstructed in the design note, the seed is truncated
 The stencil reaches 2J points past an end. Ends (``ends`` option):
 ``mirror`` (the energy form: clamped = reflection of the real points through the normal to the clamp,
 pinned = point reflection through the support, guided = reflection through the support's vertical,
-free = no ghosts, truncated families; the linear path is the tangent stiffness of that energy at the
-undeformed state, the nonlinear path its Newton solution) or ``taylor`` (the degree-4 polynomial ghost points of
-``pd_eb.taylor_ghosts``: end loads enter through the moment and shear at the end).
+free = cubic extrapolation, end points' energy halved; the linear path is the tangent stiffness of that
+energy at the undeformed state, the nonlinear path its Newton solution) or ``taylor`` (the degree-4
+polynomial ghost points of ``pd_eb.taylor_ghosts``, end loads through the moment and shear at the end;
+solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
 """
 
 from __future__ import annotations
@@ -301,7 +302,8 @@ class PDBondPair(Model):
         M.add_entries(rows, cols, vals)
         rhs[2 * Jk + 1: 2 * (n + Jk): 2] = q * dx**4 / scene.EI
         fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned", "roller")]
-        held = np.r_[2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1, 2 * (np.asarray(fixed, np.int64) + Jk) + 1]
+        held = np.r_[2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1,
+                     2 * (np.asarray(fixed, np.int64) + Jk) + 1]
         M.fix(held, rhs)
         free = np.delete(np.arange(n), fixed)
         return M, rhs, Jk, free, {"ghosts_per_end": G, "form": "mixed (curvature and deflection)",
