@@ -175,6 +175,8 @@ class PDBondPair(Model):
         """(matrix, rhs) of the linear system ``solve`` factorises (for ``pdverify bench``'s limit)."""
         if params["ends"] == "mirror":
             return self.assemble(scene, params)[:2]
+        if params.get("form", "auto") in ("auto", "mixed"):
+            return self.assemble_mixed(scene, params)[:2]
         K, b, *_ = self.assemble_taylor(scene, params)
         return K, b
 
