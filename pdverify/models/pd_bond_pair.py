@@ -27,9 +27,6 @@ solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
 
 from __future__ import annotations
 
-from fractions import Fraction
-from functools import lru_cache
-
 import numpy as np
 import scipy.sparse as sp
 
@@ -39,7 +36,7 @@ from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import (_solve_exact, body_loads, boundary_layer_warnings, end_loads, ghost_stencil_system, partial_volumes,
+from .pd_eb import (body_loads, curvature_end_rows, boundary_layer_warnings, end_loads, ghost_stencil_system, partial_volumes,
                     stencil_operator, taylor_ghosts)
 
 
@@ -111,22 +108,6 @@ def factored_stencils(j: np.ndarray, c: np.ndarray, EI: float, dx: float) -> tup
         mid = 2 * (J - 1)
         r[mid - 2 * (jj - 1): mid + 2 * (jj - 1) + 1] += cj * t2 * dx**4 / EI
     return r, np.convolve([1.0, -2.0, 1.0], r)
-
-
-@lru_cache(maxsize=None)
-def poly_ghosts(fixed: tuple[int, ...], n_ghost: int, p: int = 4) -> tuple[np.ndarray, np.ndarray]:
-    """(G, C): values at t = 1..n_ghost of the degree-4 polynomial in t whose coefficients ``fixed`` are
-    given and the others fitted by least squares to the values at t = 0, -1, .., -(p-1):
-    v_ghost = G v[:p] + C c_fixed (exact rationals, rounded once, as :func:`pd_eb.ghost_maps`)."""
-    free = [q for q in range(5) if q not in fixed]
-    Vr = [[Fraction(-i) ** q for q in range(5)] for i in range(p)]
-    Vg = [[Fraction(t) ** q for q in range(5)] for t in range(1, n_ghost + 1)]
-    A = [[row[q] for q in free] for row in Vr]
-    At = [list(col) for col in zip(*A)]
-    X = _solve_exact([[sum(a * b for a, b in zip(r1, r2)) for r2 in At] for r1 in At], At)
-    G = [[sum(row[q] * X[a][i] for a, q in enumerate(free)) for i in range(p)] for row in Vg]
-    C = [[row[f] - sum(G[g][i] * Vr[i][f] for i in range(p)) for f in fixed] for g, row in enumerate(Vg)]
-    return np.array(G, dtype=float), np.array(C, dtype=float)
 
 
 class PDBondPair(Model):
@@ -250,27 +231,12 @@ class PDBondPair(Model):
         for side, sup in ((0, left), (1, right)):
             M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
             if sup in ("free", "guided"):
-                # end conditions on k = dx^2 w'' (outward t = s / dx): k(0) = dx^2 M / EI (free),
-                # dk/dt(0) = dx^3 w'''(0) = dx^3 V / EI (both); ghost k by a degree-4 polynomial through the
-                # first four real k. Written on k, not on w: the shear is a first difference of k (round-off
-                # ~N eps) instead of a third difference of w (~N^3 eps).
-                # k = D1 w = dx^2 w'' + dx^4 w''''/12 + ..: the second term (w'''' = q / EI) keeps a quartic exact
-                a0, a1 = (dx * dx * M_end + dx**4 * q[0 if side == 0 else n - 1] / 12) / scene.EI, dx**3 * V3 / scene.EI
-                fix, vals_fixed = ((0, 1), np.array([a0, a1])) if sup == "free" else ((1,), np.array([a1]))
-                Gk, Ck = poly_ghosts(fix, Jk)
-                end, o = (0, -1) if side == 0 else (n - 1, 1)
-                inner = end - o * np.arange(4)
-                outer = end + o * np.arange(1, Jk + 1)
-                k_rows.append(np.repeat(kidx(outer), 5))
-                k_cols.append(np.c_[kidx(outer), np.tile(kidx(inner), (Jk, 1))].ravel())
-                k_vals.append(np.c_[np.ones(Jk), -Gk].ravel())
-                k_rhs.append(np.stack([kidx(outer), Ck @ vals_fixed], axis=1))
-                if sup == "free":  # k at the end point: the end moment
-                    k_rows.append([kidx(end)]), k_cols.append([kidx(end)]), k_vals.append([1.0])
-                    k_rhs.append([[kidx(end), a0]])
-                else:  # w' = 0: w(dx) = w(-dx) + dx^3 w'''/3 + O(dx^5) in the end point's second difference
-                    k_rows.append(np.full(3, kidx(end))), k_cols.append([kidx(end), kidx(end - o) + 1, kidx(end) + 1])
-                    k_vals.append([1.0, -2.0, 2.0]), k_rhs.append([[kidx(end), a1 / 3]])
+                # end conditions on k = D1 w (the curvature stencil c = 1/dx²): moment and shear on k, not
+                # through Taylor ghosts of w (round-off ~N eps instead of ~N³ eps; pd_eb.curvature_end_rows)
+                er_, ec_, ev_, rr_, rv_ = curvature_end_rows(sup, side, n, dx, np.array([1 / dx**2]), M_end, V3,
+                                                             scene.EI, q[0 if side == 0 else n - 1], Jk, kidx,
+                                                             lambda p_: kidx(p_) + 1)
+                k_rows.append(er_), k_cols.append(ec_), k_vals.append(ev_), k_rhs.append(np.c_[rr_, rv_])
                 continue
             Gm, g0 = taylor_ghosts("pinned" if sup == "roller" else sup, G, dx, M_end, V3, scene.EI, min(4, n))
             real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
