@@ -187,12 +187,12 @@ def test_reading_is_a_paper_variant_option():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("left,right", [("clamped", "free"), ("free", "clamped"), ("clamped", "guided"),
-                                        ("pinned", "guided")])
+                                        ("pinned", "guided"), ("guided", "clamped"), ("guided", "pinned")])
 def test_mixed_form_free_and_guided_ends_at_100001_points(left, right):
     """The moment and shear of free and guided ends as conditions on the curvature (round-off ~N eps)
-    instead of Taylor ghosts of w (~N^3 eps). Mixed loads, measured at 100,001 points: 2.7e-7, 3.2e-8,
-    3.0e-7, 1.0e-6 (before: 1.3e-2, -, 3.4e-3, 2.4e-3). Not yet for a guided LEFT end with these loads
-    (guided-clamped 1.6e-3, guided-pinned 6.4e-3; before 1.3e-2, 5.2e-2)."""
+    instead of Taylor ghosts of w (~N^3 eps), a guided left end solved as the mirror scene (the banded LU
+    eliminates from the left). Mixed loads, measured at 100,001 points: 2.7e-7, 3.2e-8, 3.0e-7, 1.0e-6,
+    3.0e-7, 1.2e-6 (before: 1.3e-2, -, 3.4e-3, 2.4e-3, 1.3e-2, 5.2e-2)."""
     sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
     r = run(sc, "pd-eb", points=100_001)
     ex = solve_straight(sc, False).fields(r.x)["w"]
