@@ -206,8 +206,10 @@ class PDBondPair(Model):
 
         (:func:`factored_stencils`): the same discrete solution as the fourth-order system, but no matrix
         of fourth differences is formed, so the round-off floor falls from ~N⁴ eps to ~N² eps (as pd-eb's
-        mixed form). Ghost w (outside the beam, up to 2J spacings) enter the first equation through the
-        Taylor map w_g = Gm w_real + g0. Unknowns interleaved (k_p, w_p) in LAPACK's band layout; the w of
+        mixed form). At clamped, pinned and roller ends ghost w (outside the beam, up to 2J spacings) enter
+        the first equation through the Taylor map w_g = Gm w_real + g0; at free and guided ends the first
+        equation of the end point and of the positions outside is replaced by the end conditions on k
+        (:func:`pd_eb.curvature_end_rows`). Unknowns interleaved (k_p, w_p) in LAPACK's band layout; the w of
         positions outside the beam and of supported points are held at zero.
         Returns (M, rhs, Jk, free, info): w of real point i is unknown 2 (i + Jk) + 1."""
         n = params["points"]
@@ -243,8 +245,9 @@ class PDBondPair(Model):
             pos = -1 - np.arange(G) if side == 0 else n + np.arange(G)
             g_pos.append(np.repeat(pos, 4)), g_real.append(np.tile(real, G)), g_val.append(Gm.ravel())
             g_const.append(np.stack([pos, g0], axis=1))
-        g_pos, g_real, g_val = np.concatenate(g_pos), np.concatenate(g_real), np.concatenate(g_val)
-        g_const = np.concatenate(g_const)
+        g_pos, g_real = (np.concatenate(v) if v else np.zeros(0, np.int64) for v in (g_pos, g_real))
+        g_val = np.concatenate(g_val) if g_val else np.zeros(0)
+        g_const = np.concatenate(g_const) if g_const else np.zeros((0, 2))
         npos = n + 2 * Jk
         # the k rows (p) whose second difference reaches a ghost position g: |g - p| <= 1, p within the grid
         d1 = {-1: 1.0, 0: -2.0, 1: 1.0}
