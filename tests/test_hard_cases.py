@@ -19,7 +19,7 @@ def err(sc, model, **o):
     return np.abs(r.w - ex).max() / np.abs(ex).max(), r
 
 
-@pytest.mark.parametrize("model,opts", [("pd-eb", {"form": "direct"}), ("pd-bond-pair", {}),
+@pytest.mark.parametrize("model,opts", [("pd-eb", {"form": "direct"}), ("pd-bond-pair", {"form": "direct"}),
                                         ("fem-eb", {"form": "direct"})])
 def test_round_off_floor_grows_like_cond_and_is_warned(model, opts):
     """Tip-loaded cantilever: every model reproduces the cubic exactly, so the error is round-off.

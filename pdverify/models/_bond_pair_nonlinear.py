@@ -7,9 +7,11 @@ with cos theta = u·v / (|u||v|), u = r_{k+j} - r_k, v = r_{k-j} - r_k. Every te
 angles only, so a rigid motion gives zero force. Forces are the exact gradient (closed form per
 element); element tangents by complex-step differentiation of that gradient (exact to round-off).
 Everything is written in displacements (reference offsets added exactly), so small loads lose no
-digits to the cancellation of positions. Ghost points are linear images of real points: clamped = reflection through the line normal to the
-clamp at the support, pinned = point reflection through the support, guided = reflection through the
-vertical line of the support, free = none (truncated families).
+digits to the cancellation of positions. Ghost points are linear images of real points: clamped =
+reflection through the line normal to the clamp at the support, pinned and roller = point reflection
+through the support, guided = reflection through the vertical line of the support, free = cubic
+extrapolation of the last four points (affine, so rigid motions stay exact). The end points' pair energy
+counts half (trapezoid rule) and bonds to ghost points half, so every end is second order (docs/models/ogrady.md).
 """
 
 from __future__ import annotations
@@ -77,6 +79,79 @@ def element_tangent(grad_fn, pts: list[np.ndarray], *args):
     return H
 
 
+AXIAL_HELD = {"clamped": True, "pinned": True, "guided": True, "roller": False, "free": False}
+"""Axial condition of each support (the same at both ends): clamped and pinned hold both displacements,
+guided holds the axial one (a symmetry plane: rotation and axial displacement zero, transverse free),
+roller and free leave it free."""
+
+
+def held_dofs(left: str, right: str, n: int) -> list[int]:
+    """Held real DOFs (2 i = axial u, 2 i + 1 = transverse w of point i) of supports ``left``/``right``.
+    When no end holds the axial displacement the middle point does (it removes the axial rigid motion
+    only: every transverse load gives no axial reaction there, and a mirror scene holds the same point)."""
+    held = []
+    for s, sup in ((0, left), (n - 1, right)):
+        if sup in ("clamped", "pinned", "roller"):
+            held.append(2 * s + 1)
+        if AXIAL_HELD[sup]:
+            held.append(2 * s)
+    if not (AXIAL_HELD[left] or AXIAL_HELD[right]):
+        held.append(2 * (n // 2))
+    return held
+
+
+def _split(position: float, n: int, dx: float) -> tuple[int, float]:
+    """(i, t): position = (i + t) dx with 0 <= t < 1 (t = 0 at the last point)."""
+    pos = position / dx
+    i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
+    t = pos - i
+    if abs(t) < 1e-9 or i == n - 1:
+        t = 0.0
+    return i, t
+
+
+def point_forces(scene: Scene, n: int, dx: float) -> np.ndarray:
+    """Nodal forces (u, w interleaved) of the point forces, split linearly between the two nearest
+    points (the consistent load of a linear interpolant: second order for a force anywhere)."""
+    F = np.zeros(2 * n)
+    for load in scene.loads:
+        if isinstance(load, PointForce):
+            i, t = _split(load.position, n, dx)
+            for node, wgt in ((i, 1.0 - t), (i + 1, t)):
+                if wgt:
+                    F[2 * node + 1] += wgt * load.value
+                    F[2 * node] += wgt * load.axial
+    return F
+
+
+def point_couples(scene: Scene, n: int, dx: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(a, c, C): follower couples C on the chords a -> c whose sum represents the point moments.
+
+    A moment at (i + t) dx is split linearly between points i and i + 1 (weights 1 - t, t); at an
+    interior point k it acts on the centred chord (k - 1, k + 1), whose direction is the rotation at k
+    to second order; at an end point on 2 x chord (0, 1) - chord (0, 2) (the one-sided second-order
+    slope (-3 w_0 + 4 w_1 - w_2) / (2 dx); mirrored at the right end)."""
+    a, c, C = [], [], []
+    for load in scene.loads:
+        if not isinstance(load, PointMoment):
+            continue
+        i, t = _split(load.position, n, dx)
+        for node, wgt in ((i, 1.0 - t), (i + 1, t)):
+            if not wgt:
+                continue
+            if 0 < node < n - 1:
+                a.append(node - 1), c.append(node + 1), C.append(wgt * load.value)
+            elif node == 0:
+                a += [0, 0]
+                c += [1, 2]
+                C += [2 * wgt * load.value, -wgt * load.value]
+            else:
+                a += [n - 2, n - 3]
+                c += [n - 1, n - 1]
+                C += [2 * wgt * load.value, -wgt * load.value]
+    return np.array(a, int), np.array(c, int), np.array(C, float)
+
+
 class NonlinearBondPair:
     """Assembled on the extended grid (ghosts + real points); ``T`` maps real positions to it."""
 
@@ -92,13 +167,19 @@ class NonlinearBondPair:
         centres, offs, kp = [], [], []
         bi, bj, kb, xib = [], [], [], []
         c_a = scene.EA / np.sum(j * dx * beta * dx)
+        real = lambda e: (e >= G) & (e < G + n)  # noqa: E731
         for jj, bb in zip(j, beta):
             k = np.arange(n) + G
             ok = (k - jj >= 0) & (k + jj < N)
-            centres.append(k[ok]), offs.append(np.full(ok.sum(), jj)), kp.append(np.full(ok.sum(), alpha * bb * dx**2))
-            kb_ = np.arange(n) + G
-            ok2 = kb_ + jj < N
-            bi.append(kb_[ok2]), bj.append(kb_[ok2] + jj), kb.append(np.full(ok2.sum(), c_a * bb * dx**2 / (jj * dx))),
+            # trapezoid weights: half the end points' pair energy (the mirror ghosts make the end point's
+            # energy the centre of a symmetric extension, counted once in full otherwise: a first-order error)
+            wk = np.where((k == G) | (k == G + n - 1), 0.5, 1.0)
+            centres.append(k[ok]), offs.append(np.full(ok.sum(), jj)), kp.append(alpha * bb * dx**2 * wk[ok])
+            a = np.arange(N - jj)
+            ra, rc = real(a), real(a + jj)
+            ok2 = ra | rc  # every bond with a real end; half of it when the other end is a ghost
+            wb = np.where(ra & rc, 1.0, 0.5)[ok2]
+            bi.append(a[ok2]), bj.append(a[ok2] + jj), kb.append(c_a * bb * dx**2 / (jj * dx) * wb)
             xib.append(np.full(ok2.sum(), jj * dx))
         self.pc, self.po, self.pk = (np.concatenate(a) for a in (centres, offs, kp))
         self.ba, self.bc, self.bk, self.bxi = (np.concatenate(a) for a in (bi, bj, kb, xib))
@@ -108,51 +189,46 @@ class NonlinearBondPair:
     # ghosts ----------------------------------------------------------------------------------
     def _ghost_map(self):
         n, G, N = self.n, self.G, self.N
-        rows, cols, vals = [], [], []
-        const = np.zeros(2 * N)
+        rows, cols, vals = [2 * G + np.arange(2 * n)], [np.arange(2 * n)], [np.ones(2 * n)]
 
         def put(r, c, v):
-            rows.append(r), cols.append(c), vals.append(v)
+            rows.append(r), cols.append(c), vals.append(np.full(len(r), v))
 
-        for i in range(n):
-            for d in (0, 1):
-                put(2 * (i + G) + d, 2 * i + d, 1.0)
         self.alive = np.zeros(N, bool)
         self.alive[G:G + n] = True
         for side, sup in ((0, self.scene.supports.left), (1, self.scene.supports.right)):
-            if sup == "free":
-                continue
             s = 0 if side == 0 else n - 1  # support point (real index)
-            for i in range(1, G + 1):
-                r = i if side == 0 else n - 1 - i
-                if not 0 <= r < n:
-                    continue
+            i = np.arange(1, G + 1)
+            r = i if side == 0 else n - 1 - i
+            if sup == "free":  # cubic extrapolation of the last four real positions (affine: rigid motions exact)
+                t = np.arange(4)
+                lag = np.prod([np.where(t[:, None] == m, 1.0, (-i[None, :] - t[m]) / np.where(t[:, None] == m, 1.0,
+                              t[:, None] - t[m])) for m in range(4)], axis=0)  # lag[q, i]: weight of point q at -i
                 g = (G - i) if side == 0 else (G + n - 1 + i)
+                src = t if side == 0 else n - 1 - t
                 self.alive[g] = True
-                # x: reflection through the vertical line of the support: 2 x_s - x_r
-                put(2 * g, 2 * s, 2.0), put(2 * g, 2 * r, -1.0)
-                if sup == "pinned":  # point reflection: 2 z_s - z_r
-                    put(2 * g + 1, 2 * s + 1, 2.0), put(2 * g + 1, 2 * r + 1, -1.0)
-                else:  # clamped, guided: z_r (zero slope)
-                    put(2 * g + 1, 2 * r + 1, 1.0)
+                for d in (0, 1):
+                    rows.append(np.repeat(2 * g + d, 4)), cols.append(np.tile(2 * src + d, G))
+                    vals.append(lag.T.ravel())
+                continue
+            i, r = i[(r >= 0) & (r < n)], r[(r >= 0) & (r < n)]
+            g = (G - i) if side == 0 else (G + n - 1 + i)
+            self.alive[g] = True
+            # x: reflection through the vertical line of the support: 2 x_s - x_r
+            put(2 * g, np.full(len(g), 2 * s), 2.0), put(2 * g, 2 * r, -1.0)
+            if sup in ("pinned", "roller"):  # point reflection: 2 z_s - z_r
+                put(2 * g + 1, np.full(len(g), 2 * s + 1), 2.0), put(2 * g + 1, 2 * r + 1, -1.0)
+            else:  # clamped, guided: z_r (zero slope)
+                put(2 * g + 1, 2 * r + 1, 1.0)
+        rows, cols, vals = (np.concatenate(v) for v in (rows, cols, vals))
         self.T = sp.csr_matrix((vals, (rows, cols)), shape=(2 * N, 2 * n))
+        self.T_abs = abs(self.T)
         # element lists only where every point exists
         ok = self.alive[self.pc - self.po] & self.alive[self.pc + self.po]
         self.pc, self.po, self.pk = self.pc[ok], self.po[ok], self.pk[ok]
         okb = self.alive[self.ba] & self.alive[self.bc]
         self.ba, self.bc, self.bk, self.bxi = self.ba[okb], self.bc[okb], self.bk[okb], self.bxi[okb]
-        # constrained real DOFs: support points (x and z for clamped/pinned at the left; the right
-        # pinned end is a roller: z only); guided: x fixed
-        fixed = []
-        for side, sup in ((0, self.scene.supports.left), (1, self.scene.supports.right)):
-            s = 0 if side == 0 else n - 1
-            if sup in ("clamped", "pinned"):
-                fixed += [2 * s + 1] + ([2 * s] if (side == 0 or sup == "clamped") else [])
-            if sup == "guided":
-                fixed += [2 * s]
-        if self.scene.supports.left == "free" and self.scene.supports.right in ("pinned", "guided"):
-            fixed += [2 * (n - 1)]  # someone must hold the axial rigid motion
-        self.free = np.setdiff1d(np.arange(2 * n), fixed)
+        self.free = np.setdiff1d(np.arange(2 * n), held_dofs(self.scene.supports.left, self.scene.supports.right, n))
 
     # loads -----------------------------------------------------------------------------------
     def _loads(self):
@@ -167,23 +243,16 @@ class NonlinearBondPair:
             trib = np.full(n, dx)
             trib[[0, -1]] = dx / 2
             self.F[1::2] += body_loads(sub, self.X0[:, 0]) * trib
-        couples_a, couples_c, couples = [], [], []
-        for load in self.scene.loads:
-            if isinstance(load, PointForce):
-                i = int(np.argmin(np.abs(self.X0[:, 0] - load.position)))
-                self.F[2 * i + 1] += load.value
-                self.F[2 * i] += load.axial
-            elif isinstance(load, PointMoment):
-                i = int(np.argmin(np.abs(self.X0[:, 0] - load.position)))
-                a, c = (i, i + 1) if i < n - 1 else (i - 1, i)
-                couples_a.append(a), couples_c.append(c), couples.append(load.value)
-        self.ca, self.cc, self.cC = np.array(couples_a, int), np.array(couples_c, int), np.array(couples, float)
+            axial = sub.model_copy(update={"loads": [l.model_copy(update={"value": l.axial}) for l in dist]})
+            self.F[0::2] += body_loads(axial, self.X0[:, 0]) * trib  # the axial components, same cells
+        self.F += point_forces(self.scene, n, dx)
+        self.ca, self.cc, self.cC = point_couples(self.scene, n, dx)
 
     # residual and tangent --------------------------------------------------------------------
     def gradient(self, P: np.ndarray, lam: float) -> np.ndarray:
         """∂Π/∂(real displacements) at load factor lam (P: displacements of the real points)."""
         Xe = (self.T @ P).reshape(-1, 2)
-        g = np.zeros((self.N, 2))
+        g = np.zeros((self.N, 2), dtype=Xe.dtype)
         gp = pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx)
         for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
             np.add.at(g, idx, gp[:, 2 * t:2 * t + 2])
@@ -194,7 +263,7 @@ class NonlinearBondPair:
         if len(self.cC):
             Pr = P.reshape(-1, 2)
             gc = couple_grad(Pr[self.ca], Pr[self.cc], lam * self.cC, (self.cc - self.ca) * self.dx)
-            o2 = np.zeros((self.n, 2))
+            o2 = np.zeros((self.n, 2), dtype=Pr.dtype)
             np.add.at(o2, self.ca, gc[:, :2])
             np.add.at(o2, self.cc, gc[:, 2:])
             out = out + o2.ravel()
@@ -224,26 +293,96 @@ class NonlinearBondPair:
                                                                       np.tile(dofs, (1, 4)).ravel())), shape=K.shape)
         return K
 
-    def solve(self, steps: int = 10, tol: float = 1e-10, max_iter: int = 40, snapshots: int = 5):
-        P = np.zeros(2 * self.n)  # displacements of the real points
+    def apply_linear(self, P: np.ndarray) -> np.ndarray:
+        """K P with K the tangent at rest, evaluated element by element (a complex step of
+        :meth:`gradient` at zero load): no assembled fourth differences, so its round-off is that of the
+        element forces (~N² times smaller than that of the assembled K times P)."""
+        h = 1e-30 / max(np.abs(P).max(), 1e-300)
+        return self.gradient(1j * h * np.asarray(P, float), 0.0).imag / h
+
+    def force_scale(self, P: np.ndarray, lam: float) -> np.ndarray:
+        """Per real DOF, the sum of the magnitudes of every force that meets there (pair and bond forces
+        through |T|, couples, loads): the size of the terms whose sum is the residual, so eps times it is
+        the residual's round-off floor."""
+        Xe = (self.T @ P).reshape(-1, 2)
+        g = np.zeros((self.N, 2))
+        gp = np.abs(pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx))
+        for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
+            np.add.at(g, idx, gp[:, 2 * t:2 * t + 2])
+        gb = np.abs(bond_grad(Xe[self.ba], Xe[self.bc], self.bk, self.bxi))
+        np.add.at(g, self.ba, gb[:, :2])
+        np.add.at(g, self.bc, gb[:, 2:])
+        out = self.T_abs.T @ g.ravel() + np.abs(lam * self.F)
+        if len(self.cC):
+            Pr = P.reshape(-1, 2)
+            gc = np.abs(couple_grad(Pr[self.ca], Pr[self.cc], lam * self.cC, (self.cc - self.ca) * self.dx))
+            o2 = np.zeros((self.n, 2))
+            np.add.at(o2, self.ca, gc[:, :2])
+            np.add.at(o2, self.cc, gc[:, 2:])
+            out = out + o2.ravel()
+        return out
+
+    def newton(self, P: np.ndarray, lam: float, tol: float = 1e-11, max_iter: int = 30):
+        """Newton iterations at load factor ``lam`` from ``P``: (P, iterations, converged, relative residual).
+
+        Converged when every residual component is below ``tol`` times the internal forces that meet at
+        its DOF (:meth:`force_scale`: the forces whose sum is the residual; a test against the load alone
+        asks for less than the round-off floor on fine grids, where the pair forces are ~N² times the
+        nodal loads), or when the residual has stopped falling (at the floor) after an increment below
+        1e-10 of the displacements. Each step is shortened by secants on the slope of the energy along it
+        while the energy rises steeply at its end (a line search that needs the gradient only)."""
         free = self.free
-        ref = max(np.abs(self.F).max(), np.abs(self.cC).max() / self.dx if len(self.cC) else 0.0, 1e-300)
+        P = P.copy()
+        R = self.gradient(P, lam)[free]
+        rn = np.abs(R).max()
+        floor = max(tol, 64 * np.finfo(float).eps)
+        for it in range(max_iter):
+            scale = self.force_scale(P, lam)[free]
+            if np.all(np.abs(R) <= floor * scale):
+                return P, it, True, 0.0
+            K = self.tangent(P, lam)[free][:, free]
+            du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False)
+            t, g0 = 1.0, float(R @ du)  # slope of the energy along du at t = 0 (< 0)
+            for _ in range(12):
+                P_try = P.copy()
+                P_try[free] += t * du
+                R_try = self.gradient(P_try, lam)[free]
+                g1 = float(R_try @ du)
+                if np.all(np.isfinite(R_try)) and (g0 >= 0 or g1 <= 0.5 * abs(g0)):
+                    break
+                t *= float(np.clip(g0 / (g0 - g1), 0.1, 0.9)) if np.isfinite(g1) else 0.5  # secant on the slope
+            rn_try = np.abs(R_try).max()
+            small = np.abs(t * du).max() <= 1e-10 * max(np.abs(P).max(), 1e-300)
+            if rn_try >= rn and small:  # stagnated at the floor: keep P
+                return P, it + 1, True, 0.0
+            P, R, rn = P_try, R_try, rn_try
+            if small and it > 0:
+                return P, it + 1, True, 0.0
+        return P, max_iter, False, rn / max(scale.max(), 1e-300)
+
+    def solve(self, steps: int = 10, snapshots: int = 5, max_halvings: int = 8):
+        """Load stepping to lam = 1 in ``steps`` equal steps; a step whose Newton iterations do not converge
+        is split in halves (up to ``max_halvings`` times) from the last converged state.
+        Returns (displacements (n, 2), snapshots, Newton iterations per requested step)."""
+        P = np.zeros(2 * self.n)  # displacements of the real points
         shots, iters = [], []
         keep = set(np.linspace(1, steps, min(snapshots, steps)).round().astype(int))
         for s in range(1, steps + 1):
-            lam = s / steps
-            for it in range(max_iter):
-                R = self.gradient(P, lam)[free]
-                if np.abs(R).max() <= tol * ref:
-                    break
-                K = self.tangent(P, lam)[free][:, free]
-                du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False)
-                P[free] += du
-            else:
-                raise SolveError(f"pd-bond-pair nonlinear: Newton did not converge at load step {s}/{steps} "
-                                 f"(residual {np.abs(R).max() / ref:.2e} relative); use more steps (-o steps=...)")
-            iters.append(it)
+            lam0, lam1, n_it, dl = (s - 1) / steps, s / steps, 0, 1.0 / steps
+            while lam0 < lam1 - 1e-15:
+                lam = min(lam0 + dl, lam1)
+                P_new, it, ok, rel = self.newton(P, lam)
+                n_it += it
+                if ok:
+                    P, lam0 = P_new, lam
+                    continue
+                dl /= 2
+                if dl < 1.0 / steps / 2 ** max_halvings:
+                    raise SolveError(f"pd-bond-pair nonlinear: Newton did not converge at load factor {lam:.4g} "
+                                     f"(step {s}/{steps}, split {max_halvings} times; residual {rel:.2e} of the "
+                                     "internal forces); use more steps (-o steps=...)")
+            iters.append(n_it)
             if s in keep:
                 Pr = P.reshape(-1, 2) + self.X0
-                shots.append({"factor": lam, "x": Pr[:, 0].tolist(), "z": Pr[:, 1].tolist()})
+                shots.append({"factor": lam1, "x": Pr[:, 0].tolist(), "z": Pr[:, 1].tolist()})
         return P.reshape(-1, 2), shots, iters
