@@ -10,6 +10,7 @@ import sys
 import time
 from pathlib import Path
 
+import pandas as pd
 import pytest
 
 from pdverify.errors import InputError, OutputError
@@ -181,6 +182,20 @@ def test_another_study_never_overwrites_a_folders_tables(tmp_path):
     assert len(list((out / "cases").glob("*.case"))) == 2
     assert run_study(load_study(a), out, workers=1, progress=False)["status"].eq("ok").all()  # the same study
     assert json.loads((out / "meta.json").read_text())["resumed_cases"] == 2
+
+
+def test_the_same_study_edited_takes_its_folder_over_and_resumes(tmp_path):
+    """An edited study (same name, a grid added) is the same study: the run resumes the cases it shares with
+    the earlier one, solves the new grid and writes every table anew, with the new study file's copy."""
+    a = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101]\n', "first")
+    out = tmp_path / "out"
+    run_study(load_study(a), out, workers=1, progress=False)
+    a.write_text(a.read_text().replace("[51, 101]", "[51, 101, 201]"))
+    df = run_study(load_study(a), out, workers=1, progress=False)
+    assert sorted(df["points"]) == [51, 101, 201] and df["status"].eq("ok").all()
+    assert json.loads((out / "meta.json").read_text())["resumed_cases"] == 2
+    assert (out / "study.toml").read_bytes() == a.read_bytes()
+    assert sorted(pd.read_csv(out / "results.csv")["points"]) == [51, 101, 201]
 
 
 def test_a_killed_runs_folder_still_belongs_to_its_study(tmp_path, monkeypatch):

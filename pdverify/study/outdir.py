@@ -8,9 +8,10 @@ back (resume) and each new one stored at once and atomically.
   however it ends (``kill -9`` included); the file itself stays (removing it would race with a run
   taking it).
 - **One study per folder.** ``OUT/study.toml`` is a copy of the study file, written when the run starts.
-  A run of a study whose file differs from it byte for byte (another study, or this one edited) stops
-  with exit code 4 before anything is computed or written: give another ``--out`` or remove the folder.
-  The case files are keyed by their content, so copying ``cases/`` into the new folder reuses them.
+  A run of another study (its ``name`` differs from the copy's) stops with exit code 4 before anything is
+  computed or written: give another ``--out`` or remove the folder. The same study edited (same name: a
+  run added, a grid refined) takes the folder over: its copy is replaced, the cases it shares with the
+  earlier run are resumed (case files are keyed by their content) and every table is written anew.
 """
 
 from __future__ import annotations
@@ -67,8 +68,8 @@ class FolderLock:
 
 
 def claim(out: Path, study: Study) -> None:
-    """Make ``out`` this study's folder: refuse it when its study.toml is another study file's copy
-    (module docstring), else write the copy. Raises OutputError."""
+    """Make ``out`` this study's folder: refuse it when its study.toml names another study (module
+    docstring), else write (or replace) the copy. Raises OutputError."""
     mine = Path(study.path).read_bytes()
     there = Path(out) / "study.toml"
     try:
@@ -78,10 +79,10 @@ def claim(out: Path, study: Study) -> None:
     except OSError as exc:
         raise OutputError(f"output directory {out}: {there.name} could not be read ({exc}); give another "
                           "--out") from None
-    if theirs is not None and theirs != mine:
-        raise OutputError(f"output directory {out} holds the results of another study ({_name(theirs)}; its "
-                          f"study.toml differs from {study.path}): give another --out or remove {out}")
-    if theirs is None:
+    if theirs is not None and _name(theirs) != repr(study.name):
+        raise OutputError(f"output directory {out} holds the results of another study ({_name(theirs)}, not "
+                          f"{study.name!r}): give another --out or remove {out}")
+    if theirs != mine:
         try:
             write_atomic(there, mine)
         except OSError as exc:
