@@ -19,8 +19,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 
 from .errors import InputError
 
-SUPPORTS = ("clamped", "pinned", "roller", "free", "guided")
-Support = Literal["clamped", "pinned", "roller", "free", "guided"]
+SUPPORTS = ("clamped", "pinned", "free", "guided", "roller")
+Support = Literal["clamped", "pinned", "free", "guided", "roller"]
 # What each support holds, per end, in the axis frame (tangential displacement, normal displacement, rotation):
 # one meaning on every axis and in every model (docs/supports.md). Straight models without an axial unknown
 # see only (normal, rotation), so there roller = pinned.
