@@ -124,7 +124,8 @@ def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals,
 
 def fixed_points(scene: Scene, n: int) -> list[int]:
     """End points held at w = 0 (clamped and pinned supports) of a grid of n points."""
-    return [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in ("clamped", "pinned", "roller")]
+    held = ("clamped", "pinned", "roller")  # no axial unknown: roller = pinned
+    return [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in held]
 
 
 # -- loads -----------------------------------------------------------------------------------
@@ -219,7 +220,8 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
 
 # -- Taylor ghost points (corrected variant) -------------------------------------------------
 
-_FIXED = {"clamped": (0, 1), "pinned": (0, 2), "roller": (0, 2), "free": (2, 3), "guided": (1, 3)}  # roller = pinned in w
+# roller = pinned: no axial unknown
+_FIXED = {"clamped": (0, 1), "pinned": (0, 2), "roller": (0, 2), "free": (2, 3), "guided": (1, 3)}
 
 
 def _solve_exact(A: list[list[Fraction]], B: list[list[Fraction]]) -> list[list[Fraction]]:

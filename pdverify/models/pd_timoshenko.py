@@ -891,8 +891,8 @@ class PDRod(_MoyerModel):
         out = super().check(scene)
         sup = (scene.supports.left, scene.supports.right)
         if not set(sup) & set(ROD_HELD["axial"]):
-            out.append(f"supports = {sup[0]}-{sup[1]}: neither end holds the axial displacement (a roller or guided end "
-                       "slides along the axis), so the rod is a mechanism; make one end clamped or pinned")
+            out.append(f"supports = {sup[0]}-{sup[1]}: neither end holds the axial displacement (a roller or guided "
+                       "end slides along the axis), so the rod is a mechanism; make one end clamped or pinned")
         return out
 
     def operator(self, scene, params):

@@ -200,7 +200,8 @@ def _trust(key: tuple, rows: list[dict], tol: float = TRUST_TOLERANCE) -> list[d
         n, e, c = min(growth)
         why = (f"far above cond·eps = {c * EPS:.2g}: not round-off" if c == c else
                "no condition estimate: not shown to be round-off")
-        parts.append(f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: error {e:.2g}, {why})")
+        parts.append(f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: error {e:.2g}, "
+                     f"{why})")
     row["statement"] = " ".join(parts)
     return [row]
 
