@@ -323,9 +323,10 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
 
 def test_face_pin_converges_on_a_curved_arch(record_property):
     """Quarter-circle two-pinned arch (R = 1, R/h = 10), global downward uniform load, pin = face, q8
-    20x2 .. 160x16: the mid-line deflection converges at a high rate (no point reaction); measured
-    differences 7.6e-8, 4.8e-9, 3.1e-10 m, orders 3.98, 3.99 — while pin = node changes by a constant
-    7.2e-8 m per halving (orders 0.83, 0.02)."""
+    20x2 .. 160x16: the mid-line deflection converges at a high rate (no point reaction); measured (both
+    ends held in t and n) differences 1.0e-8, 6.6e-10, 4.1e-11 m, orders 3.98, 3.99 — while pin = node
+    changes by ~2e-7 m per halving (orders -0.15, -0.02). Before pinned meant one thing at both ends (the
+    right pin was a roller): 7.6e-8, 4.8e-9, 3.1e-10 m; node 7.2e-8 m per halving."""
     d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -1000.0, "frame": "global"}],
                    beam={"length": np.pi / 2}, section={"width": 0.05, "height": 0.1},
                    axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0})
