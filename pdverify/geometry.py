@@ -125,8 +125,8 @@ def constraint_rows(scene) -> np.ndarray:
 
     A rigid motion is u(r) = (a - ω y, b + ω x), φ = ω (r relative to the left end). A held displacement along
     d at the end point r gives the row (d_x, d_y, (x d_y - y d_x) / L) acting on (a, b, ω L); a held rotation
-    gives (0, 0, 1 / L · L) = (0, 0, 1). Which directions each support holds: :data:`pdverify.scene.HELD`
-    (tangential, normal, rotation)."""
+    the row (0, 0, 1) (φ = ω, scaled by L; scaling a row keeps the rank). Which directions each support
+    holds: :data:`pdverify.scene.HELD` (tangential, normal, rotation)."""
     from .scene import HELD
 
     geo = geometry(scene)
