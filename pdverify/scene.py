@@ -115,6 +115,9 @@ class Material(_Strict):
 
 
 class Supports(_Strict):
+    """One support per end; each name holds the same end quantities on every axis and in every model
+    (:data:`HELD`, docs/supports.md)."""
+
     left: Support
     right: Support
 
