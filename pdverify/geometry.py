@@ -166,6 +166,7 @@ def _describe(mode: np.ndarray, scene) -> str:
     L = scene.length
     if abs(wl) < RANK_TOL:
         d = np.where(np.abs([a, b]) < RANK_TOL, 0.0, [a, b])
+        d = (d if d[np.argmax(np.abs(d))] > 0 else -d) + 0.0  # the sign is arbitrary: show it positive (no -0)
         return f"a rigid translation along ({d[0]:.4g}, {d[1]:.4g})"
     centre = geometry(scene).position(np.array([0.0]))[0] + np.array([-b, a]) * L / wl
     centre = np.where(np.abs(centre) < RANK_TOL * L, 0.0, centre)

@@ -132,7 +132,7 @@ def test_rank_test_finds_the_rigid_motions():
     arc_rr = Scene.model_validate(ring("roller", "roller", 120.0))
     assert "rigid rotation about (0, 0)" in mechanism_message(arc_rr)  # the normals meet at the centre
     straight_rr = Scene.model_validate(scene_dict("roller", "roller"))
-    assert "rigid translation along (1, 0)" in mechanism_message(straight_rr).replace("-1", "1")
+    assert "rigid translation along (1, 0)" in mechanism_message(straight_rr)
     for left, right in (("pinned", "pinned"), ("roller", "pinned"), ("clamped", "free"), ("pinned", "guided")):
         assert mechanism_message(Scene.model_validate(ring(left, right, 120.0))) is None, (left, right)
     assert constraint_rows(Scene.model_validate(scene_dict("free", "clamped"))).shape == (3, 3)
