@@ -115,3 +115,74 @@ class AxisGeometry:
 
 def geometry(scene) -> AxisGeometry:
     return AxisGeometry(scene.axis, scene.length)
+
+
+# -- supports against the rigid-body motions of the plane ----------------------------------------------
+
+
+def constraint_rows(scene) -> np.ndarray:
+    """Rows (k, 3): what the two ends' supports hold, applied to the plane's rigid-body motions.
+
+    A rigid motion is u(r) = (a - ω y, b + ω x), φ = ω (r relative to the left end). A held displacement along
+    d at the end point r gives the row (d_x, d_y, (x d_y - y d_x) / L) acting on (a, b, ω L); a held rotation
+    the row (0, 0, 1) (φ = ω, scaled by L; scaling a row keeps the rank). Which directions each support
+    holds: :data:`pdverify.scene.HELD` (tangential, normal, rotation)."""
+    from .scene import HELD
+
+    geo = geometry(scene)
+    L = scene.length
+    s = np.array([0.0, L])
+    r = geo.position(s)
+    r = r - r[:1]
+    t, n = geo.frame(s)
+    rows = []
+    for k, sup in enumerate((scene.supports.left, scene.supports.right)):
+        held_t, held_n, held_phi = HELD[sup]
+        for held, d in ((held_t, t[k]), (held_n, n[k])):
+            if held:
+                rows.append([d[0], d[1], (r[k, 0] * d[1] - r[k, 1] * d[0]) / L])
+        if held_phi:
+            rows.append([0.0, 0.0, 1.0])
+    return np.array(rows, float).reshape(-1, 3)
+
+
+RANK_TOL = 1e-8  # singular values below RANK_TOL x the largest count as zero: geometry is known to round-off,
+# and a near-mechanism this close would amplify the loads by > 1e8 anyway
+
+
+def rigid_body_modes(scene) -> np.ndarray:
+    """The rigid-body motions (a, b, ω L) the supports leave free, one per row (an orthonormal basis of the
+    null space of :func:`constraint_rows`; empty when the supports hold the beam in the plane)."""
+    C = constraint_rows(scene)
+    if C.shape[0] == 0:
+        return np.eye(3)
+    _, sv, Vt = np.linalg.svd(C)
+    rank = int(np.sum(sv > RANK_TOL * sv[0]))
+    return Vt[rank:]
+
+
+def _describe(mode: np.ndarray, scene) -> str:
+    a, b, wl = mode
+    L = scene.length
+    if abs(wl) < RANK_TOL:
+        d = np.where(np.abs([a, b]) < RANK_TOL, 0.0, [a, b])
+        d = (d if d[np.argmax(np.abs(d))] > 0 else -d) + 0.0  # the sign is arbitrary: show it positive (no -0)
+        return f"a rigid translation along ({d[0]:.4g}, {d[1]:.4g})"
+    centre = geometry(scene).position(np.array([0.0]))[0] + np.array([-b, a]) * L / wl
+    centre = np.where(np.abs(centre) < RANK_TOL * L, 0.0, centre)
+    return f"a rigid rotation about ({centre[0]:.6g}, {centre[1]:.6g})"
+
+
+def mechanism_message(scene) -> str | None:
+    """One line naming the supports and the rigid-body motion they leave free, or None when there is none.
+
+    The 3-column rank test of :func:`constraint_rows`: e.g. a ring (360° arc) pinned at both ends (both pins
+    at one point: the rotation about it is free), roller ends on an arc (their normals meet at the centre),
+    a straight beam on two rollers (the axial translation is free)."""
+    modes = rigid_body_modes(scene)
+    if len(modes) == 0:
+        return None
+    what = _describe(modes[0], scene) if len(modes) == 1 else f"{len(modes)} independent rigid-body motions"
+    return (f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism on this {scene.axis.type} axis "
+            f"({what} is not held by the supports' displacement and rotation conditions); hold more at one end "
+            "(e.g. clamped, or pinned instead of roller)")

@@ -20,8 +20,13 @@ from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, mode
 
 from .errors import InputError
 
-SUPPORTS = ("clamped", "pinned", "free", "guided")
-Support = Literal["clamped", "pinned", "free", "guided"]
+SUPPORTS = ("clamped", "pinned", "free", "guided", "roller")
+Support = Literal["clamped", "pinned", "free", "guided", "roller"]
+# What each support holds, per end, in the axis frame (tangential displacement, normal displacement, rotation):
+# one meaning on every axis and in every model (docs/supports.md). Straight models without an axial unknown
+# see only (normal, rotation), so there roller = pinned.
+HELD = {"clamped": (True, True, True), "pinned": (True, True, False), "roller": (False, True, False),
+        "guided": (False, False, True), "free": (False, False, False)}
 
 
 Real = Annotated[float, Strict()]  # a float that an int may give, never a boolean or a string ("true" is not 1.0)
@@ -118,6 +123,9 @@ class Material(_Strict):
 
 
 class Supports(_Strict):
+    """One support per end; each name holds the same end quantities on every axis and in every model
+    (:data:`HELD`, docs/supports.md)."""
+
     left: Support
     right: Support
 
@@ -316,11 +324,11 @@ class Scene(_Strict):
 
 
 def is_mechanism(left: str, right: str) -> bool:
-    """True when the supports leave a rigid-body mode of the transverse deflection w = a + b x."""
-    translation_fixed = left in ("clamped", "pinned") or right in ("clamped", "pinned")
-    rotation_fixed = (
-        "clamped" in (left, right) or "guided" in (left, right) or (left == "pinned" and right == "pinned")
-    )
+    """True when the supports leave a rigid-body mode of the transverse deflection w = a + b x (the axial
+    displacement, where a model has one, is checked by :func:`pdverify.geometry.rigid_body_modes`)."""
+    held = ("clamped", "pinned", "roller")
+    translation_fixed = left in held or right in held
+    rotation_fixed = "clamped" in (left, right) or "guided" in (left, right) or (left in held[1:] and right in held[1:])
     return not (translation_fixed and rotation_fixed)
 
 
@@ -431,8 +439,8 @@ def _check_loads(scene: Scene) -> list[str]:
     return lines
 
 
-_FIXES = {"displacement": ("clamped", "pinned"), "axial": ("clamped", "pinned"), "rotation": ("clamped", "guided"),
-          "twist": ("clamped", "pinned")}
+_FIXES = {"displacement": ("clamped", "pinned", "roller"), "axial": ("clamped", "pinned"),
+          "rotation": ("clamped", "guided"), "twist": ("clamped", "pinned", "roller")}
 
 
 def _check_dynamics(scene: Scene) -> list[str]:
@@ -477,8 +485,13 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
         lines.append(
             f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism (the beam can move as a rigid "
             "body) that cannot carry the loads; fix the deflection at one end and the rotation somewhere "
-            "(clamped, or pinned at both ends, or pinned with guided)"
+            "(clamped, or pinned/roller at both ends, or pinned with guided)"
         )
+    elif not scene.is_straight and not lines:
+        from .geometry import mechanism_message
+
+        if (why := mechanism_message(scene)) is not None:
+            lines.append(why)
     if lines:
         raise InputError([f"{source}: {line}" for line in lines])
     return scene

@@ -195,7 +195,7 @@ def assemble_elements(ke: np.ndarray, fe: np.ndarray, n_nodes: int):
 
 
 def constrained_dofs(scene: Scene, n_nodes: int) -> np.ndarray:
-    fix = {"clamped": (0, 1), "pinned": (0,), "guided": (1,), "free": ()}
+    fix = {"clamped": (0, 1), "pinned": (0,), "roller": (0,), "guided": (1,), "free": ()}  # roller = pinned in w
     out = [2 * 0 + d for d in fix[scene.supports.left]]
     out += [2 * (n_nodes - 1) + d for d in fix[scene.supports.right]]
     return np.array(out, dtype=int)

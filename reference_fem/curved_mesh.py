@@ -166,11 +166,3 @@ def constraint_basis(C: np.ndarray) -> sp.csr_matrix:
     vals = np.concatenate([np.ones(len(slaves)), Gs.data])
     return sp.csr_matrix((vals, (rows, cols)), shape=(n, n - m))
 
-
-def rigid_modes_left(scene, constraints: list[tuple[np.ndarray, np.ndarray]]) -> int:
-    """Number of rigid-body motions (of 3) the point constraints [(point, direction), ...] leave free."""
-    if not constraints:
-        return 3
-    L = scene.length
-    rows = [[d[0], d[1], (p[0] * d[1] - p[1] * d[0]) / L] for p, d in constraints]
-    return 3 - int(np.linalg.matrix_rank(np.asarray(rows, float), tol=1e-9))

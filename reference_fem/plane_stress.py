@@ -11,16 +11,17 @@ by X(s) + t n(s); a straight axis gives [0, L] x [-h/2, h/2] exactly; an arc or 
 nodes lie on the mapped curves. The "top" face is t = +h/2 (the +n side; for a counter-clockwise arc the
 inner face). t and n below are the axis tangent and normal at the station concerned.
 
-Supports on the end faces (s = 0, L): clamped = whole face fixed; pinned = the mid-height node, both
-directions at the left, only the normal (n) direction at the right (a roller along the end tangent; for a
-straight beam: vertical only). That point reaction is a 2D point force: the deflection grows like
-log(1/element size) (q8, L/h = 5: +1 % of w per mesh halving, never converging); option ``pin = face``
-instead makes the parabola-weighted mean normal displacement of the end face zero (and its mean tangential
-displacement at the left), a parabolic shear reaction: converges at order ~4 and matches Timoshenko &
-Goodier's 2D simply supported beam to 4e-4 (L/h = 5). guided = the tangential displacement of every
-face node fixed (a symmetry plane: zero rotation, free to move along n); free = nothing. On a curved axis a support pair can leave a
-rigid-body motion (e.g. pinned-pinned on a semicircle, whose right roller slides along the rotation about
-the left pin): ``check`` rejects it.
+Supports on the end faces (s = 0, L), the same meaning at both ends and in every model (docs/supports.md):
+clamped = whole face fixed; pinned = both displacements (t and n) of the mid-height node held; roller = its
+normal (n) displacement only (slides along the end tangent; for a straight beam: vertical only). That point
+reaction is a 2D point force: the deflection grows like log(1/element size) (q8, L/h = 5: +1 % of w per mesh
+halving, never converging); option ``pin = face`` (default) instead makes the parabola-weighted mean normal
+displacement of the end face zero (pinned: and its mean tangential displacement), a parabolic shear
+reaction: converges at order ~4 and matches Timoshenko & Goodier's 2D simply supported beam to 4e-4
+(L/h = 5). guided = the end face cannot rotate: every face node's tangential displacement equals the
+mid-height node's (the face stays straight and normal to the axis, it slides freely along t and n); free =
+nothing. A support pair that leaves a rigid-body motion (two rollers on a straight axis or on an arc, a
+ring pinned at both ends) is rejected by ``check`` (:func:`pdverify.geometry.mechanism_message`).
 Loads (value along n, axial along t; ``frame = "global"``: (axial, value) = global (x, y), decomposed into
 the local t and n at each point): a distributed load's normal part is a traction on the top face, its
 tangential part a line load on the mid-line (no eccentric moment, as in the beam models), both per unit
@@ -68,26 +69,6 @@ def _local(load, tan: np.ndarray, nor: np.ndarray):
     return np.full(tan.shape[:-1], float(load.axial)), np.full(tan.shape[:-1], float(load.value))
 
 
-def _support_constraints(scene: Scene, sup: str, end: int):
-    """[(point, direction)] of a support at end 0 (left) or 1 (right), points relative to the left end."""
-    from pdverify.geometry import geometry
-
-    geo = geometry(scene)
-    h = scene.section.depth
-    s = 0.0 if end == 0 else scene.length
-    X0 = geo.position(np.array([0.0]))[0]
-    X = geo.position(np.array([s]))[0] - X0
-    tan, nor = (v[0] for v in geo.frame(np.array([s])))
-    face = [X + e * nor for e in (-h / 2, 0.0, h / 2)]
-    if sup == "clamped":
-        return [(p, d) for p in face for d in (tan, nor)]
-    if sup == "guided":
-        return [(p, tan) for p in face]
-    if sup == "pinned":
-        return [(X, tan), (X, nor)] if end == 0 else [(X, nor)]
-    return []
-
-
 class FemPlaneStress(Model):
     name = "fem-plane-stress"
     title = "2D plane-stress continuum (scikit-fem; PLANE182 analogue with q4), straight or curved axis"
@@ -111,23 +92,16 @@ class FemPlaneStress(Model):
         if scene.section.height is None:
             out.append("section: the plane-stress reference needs a rectangle (width and height)")
             return out
-        if not scene.is_straight:
-            from pdverify.geometry import geometry
-            from reference_fem.curved_mesh import rigid_modes_left
+        from pdverify.geometry import geometry, mechanism_message
 
+        if not scene.is_straight:
             h = scene.section.height
             kmax = float(np.max(np.abs(geometry(scene).curvature(np.linspace(0, scene.length, 401)))))
             if kmax * h / 2 >= 1:
                 out.append(f"section.height = {h!r}: the face on the concave side would cross the centre of "
                            f"curvature (smallest radius {1 / kmax:.6g} <= h/2); give height < {2 / kmax:.6g}")
-            cons = (_support_constraints(scene, scene.supports.left, 0)
-                    + _support_constraints(scene, scene.supports.right, 1))
-            free = rigid_modes_left(scene, cons)
-            if free:
-                out.append(f"supports = {scene.supports.left}-{scene.supports.right}: on this {scene.axis.type} axis "
-                           f"they leave {free} rigid-body motion(s) (pinned at the right is a roller along the end "
-                           "tangent, guided fixes only the tangential displacement); clamp one end or change the pair")
-        return out
+        why = mechanism_message(scene)  # also the axial slide of two rollers on a straight axis
+        return out + ([why] if why is not None else [])
 
     def solve(self, scene: Scene, params: dict) -> Result:
         import skfem as fem
@@ -220,27 +194,31 @@ class FemPlaneStress(Model):
                 i = 0 if side == 0 else ns - 1
                 if sup == "free":
                     continue
-                if sup == "pinned" and params["pin"] == "face":
+                if sup in ("pinned", "roller") and params["pin"] == "face":
                     # weighted means of the face displacement: ∫ φ u·d dt = 0 (consistent line integrals)
                     dirs = [(nor_s[i], lambda tq: 1.5 / h * (1 - (2 * tq / h) ** 2))]
-                    if side == 0:
+                    if sup == "pinned":
                         dirs.append((tan_s[i], lambda tq: np.full_like(tq, 1.0 / h)))
                     for d, phi in dirs:
                         crows.append(cm.line_forces(bm, basis, *cm.face_edges(bm, i),
                                                     lambda sq, tq, d=d, phi=phi: d[:, None, None] * phi(tq)[None]))
                     continue
-                if sup == "pinned":
+                if sup in ("pinned", "roller"):
                     face = basis.nodal_dofs[:, [bm.vid[i, jm]]]
                 else:
                     face = cm.face_node_pairs(bm, basis, i)
                 pairs.append(face)
                 tangents.append(np.repeat(tan_s[i][:, None], face.shape[1], axis=1))
-                if sup == "clamped" or (sup == "pinned" and side == 0):
+                if sup in ("clamped", "pinned"):
                     fixed.append(face.ravel())
-                elif sup == "guided":
-                    fixed.append(face[0])  # u' x-slot = tangential component
-                else:  # pinned at the right: the normal component
-                    fixed.append(face[1])
+                elif sup == "roller":
+                    fixed.append(face[1])  # u' y-slot = normal component
+                else:  # guided: every face node's tangential component equals the first one's (no rotation)
+                    for k in range(1, face.shape[1]):
+                        row = np.zeros(basis.N)
+                        row[face[:, k]] += tan_s[i]
+                        row[face[:, 0]] -= tan_s[i]
+                        crows.append(row)
             T = None
             if pairs:
                 pr, tg = np.hstack(pairs), np.hstack(tangents)

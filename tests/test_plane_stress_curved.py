@@ -181,19 +181,19 @@ def test_parabolic_axis_converges(record_property):
 @pytest.mark.parametrize("over,needle", [
     ({"section": {"area": 0.005, "inertia": 4e-6}}, "section: the plane-stress reference needs a rectangle"),
     ({"section": {"width": 0.05, "height": 2.5}}, "section.height = 2.5"),
-    ({"supports": {"left": "pinned", "right": "pinned"}}, "rigid-body"),
-    ({"supports": {"left": "free", "right": "pinned"}}, "rigid-body"),
+    ({"supports": {"left": "pinned", "right": "roller"}}, "rigid rotation about (1, 0)"),
+    ({"supports": {"left": "free", "right": "pinned"}}, "rigid rotation about (-1, 0)"),
 ])
 def test_unsupported_curved_inputs_rejected(over, needle):
-    """A semicircle (R = 1) with a section given by area/inertia, a height reaching past the centre of
-    curvature, or a support pair leaving a rigid-body motion (pinned-pinned: the right roller slides along
-    the rotation about the left pin) is rejected before solving, with the field named."""
+    """A semicircle (R = 1, from (1, 0) to (-1, 0)) with a section given by area/inertia, a height reaching
+    past the centre of curvature, or a support pair leaving a rigid-body motion (pinned-roller: the right
+    roller's normal is the diameter, through the left pin, so the rotation about the pin is free) is
+    rejected before solving, with the field named (mechanisms already by the scene validator)."""
     d = scene_dict("clamped", "free", [{"type": "point_force", "position": np.pi, "value": -100.0}],
                    beam={"length": np.pi}, axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 180.0})
     d.update(over)
-    sc = parse_scene(d)
     with pytest.raises(InputError) as exc:
-        run(sc, "fem-plane-stress", points=21, layers=2)
+        run(parse_scene(d), "fem-plane-stress", points=21, layers=2)
     assert needle in str(exc.value)
 
 
@@ -308,7 +308,8 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
     halving here, 1 % of w at L/h = 5, so at 320 x 32 it is 5 % off (asserted below). pin = face is the default."""
     from conftest import scene_dict as sd
 
-    sc = parse_scene(sd("pinned", "pinned", [{"type": "distributed", "value": -1000.0}])).with_slenderness(sl)
+    # their beam is free to extend axially: pinned-roller (two pins would add the Poisson-induced axial force)
+    sc = parse_scene(sd("pinned", "roller", [{"type": "distributed", "value": -1000.0}])).with_slenderness(sl)
     L, h, nu = sc.length, sc.section.height, sc.material.poissons_ratio
     exact = 5 * -1000.0 * L**4 / (384 * sc.EI) * (1 + 12 / 5 * (h / L) ** 2 * (4 / 5 + nu / 2))
     r = run(sc, "fem-plane-stress", element="q8", points=161, layers=16, pin="face")
@@ -322,9 +323,10 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
 
 def test_face_pin_converges_on_a_curved_arch(record_property):
     """Quarter-circle two-pinned arch (R = 1, R/h = 10), global downward uniform load, pin = face, q8
-    20x2 .. 160x16: the mid-line deflection converges at a high rate (no point reaction); measured
-    differences 7.6e-8, 4.8e-9, 3.1e-10 m, orders 3.98, 3.99 — while pin = node changes by a constant
-    7.2e-8 m per halving (orders 0.83, 0.02)."""
+    20x2 .. 160x16: the mid-line deflection converges at a high rate (no point reaction); measured (both
+    ends held in t and n) differences 1.0e-8, 6.6e-10, 4.1e-11 m, orders 3.98, 3.99 — while pin = node
+    changes by ~2e-7 m per halving (orders -0.15, -0.02). Before pinned meant one thing at both ends (the
+    right pin was a roller): 7.6e-8, 4.8e-9, 3.1e-10 m; node 7.2e-8 m per halving."""
     d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -1000.0, "frame": "global"}],
                    beam={"length": np.pi / 2}, section={"width": 0.05, "height": 0.1},
                    axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0})

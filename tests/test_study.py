@@ -291,16 +291,44 @@ def test_trust_table_states_ranges_and_the_round_off_grid():
 
     ref = json.dumps({"model": "exact-eb"})
     rows = []
-    for s, errs in ((10, [1e-2 * 4, 1e-3, 2e-4, 5e-3]), (1000, [0.5, 0.2, 0.1, 0.3])):
+    moderate = [1e-2 * 4, 1e-3, 2e-4, 5e-3]
+    for s, errs in ((10, moderate), (20, moderate), (1000, [0.5, 0.2, 0.1, 0.3])):
         for n, e in zip([11, 21, 41, 81], errs):
-            rows.append(dict(model="m", options="{}", scene="a", slenderness=s, points=n, err_max=e, status="ok", reference=ref))
-    t = trust_table(pd.DataFrame(rows), tol=0.01).iloc[0]
-    assert t["slenderness_trusted"] == "10" and t["slenderness_not"] == "1000"
+            rows.append(dict(model="m", options="{}", scene="a", slenderness=s, points=n, err_max=e, status="ok",
+                             reference=ref, cond=1e12 if n == 81 else 1e8))  # cond·eps 2.2e-4 at 81 points
+    table = trust_table(pd.DataFrame(rows), tol=0.01)
+    t, slender = table.iloc[0], table.iloc[1]  # thick and slender scenes are judged apart, by band
+    assert t["slenderness_band"].startswith("moderate") and slender["slenderness_band"].startswith("slender")
+    assert t["slenderness_trusted"] == "10 – 20" and t["slenderness_not"] == ""
+    assert slender["slenderness_trusted"] == "" and slender["slenderness_not"] == "1000"
     assert t["points_trusted"] == "21 – 81" and t["points_not"] == "11"
-    assert t["round_off_from_points"] == 81  # 2e-4 -> 5e-3 at L/h 10 (and 0.1 -> 0.3 at 1000)
-    assert "L/h 10" in t["statement"] and "from 81 points" in t["statement"]
+    # 2e-4 -> 5e-3 at L/h 10: within 100 cond·eps (2.2e-4), so round-off; 0.1 -> 0.3 at 1000 is far above it
+    assert t["round_off_from_points"] == 81 and pd.isna(t["growth_from_points"])
+    assert slender["growth_from_points"] == 81 and pd.isna(slender["round_off_from_points"])
+    assert "L/h 10 – 20" in t["statement"] and "from 81 points" in t["statement"] and "round-off" in t["statement"]
+    assert "not round-off" in slender["statement"]
     small = pd.DataFrame([dict(r, err_max=r["err_max"] * 1e-6) for r in rows])  # growth below 1e-6 is not trouble
     assert pd.isna(trust_table(small).iloc[0]["round_off_from_points"])
+
+
+def test_trust_calls_a_growth_round_off_only_where_cond_eps_explains_it():
+    """The pd-eb paper variant's case (issue 27): its error grows to 6e-3 under refinement while cond·eps is
+    4e-7: a discretisation defect, not round-off. Without a condition estimate the cause is not claimed."""
+    from pdverify.study.runner import trust_table
+
+    ref = json.dumps({"model": "exact-eb"})
+    eps = np.finfo(float).eps
+    rows = [dict(model="pd-eb", options='{"variant": "paper"}', scene="a", slenderness=20, points=n, err_max=e,
+                 status="ok", reference=ref, cond=c / eps)
+            for n, e, c in ((21, 1e-3, 1e-10), (41, 1.5e-3, 1e-8), (81, 6e-3, 4e-7))]
+    t = trust_table(pd.DataFrame(rows)).iloc[0]
+    assert pd.isna(t["round_off_from_points"]) and t["growth_from_points"] == 81
+    assert "error 0.006, far above cond·eps = 4e-07: not round-off" in t["statement"]
+    t = trust_table(pd.DataFrame([dict(r, cond=None) for r in rows])).iloc[0]
+    assert t["growth_from_points"] == 81 and "no condition estimate" in t["statement"]
+    explained = [dict(r, cond=0.1 * r["err_max"] / eps) for r in rows]  # error = 10 cond·eps: explained
+    t = trust_table(pd.DataFrame(explained)).iloc[0]
+    assert t["round_off_from_points"] == 81 and pd.isna(t["growth_from_points"])
 
 
 def test_benchmark_at_a_position_of_a_field(tmp_path, synthetic):

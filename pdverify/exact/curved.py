@@ -31,7 +31,7 @@ from numpy.polynomial import legendre as leg
 from ..geometry import geometry
 from ..registry import POINTS, Model
 from ..result import Result, Timer
-from ..scene import Distributed, PointMoment, Scene
+from ..scene import HELD, Distributed, PointMoment, Scene
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -182,8 +182,7 @@ class Cantilever:
         return {"u": ut, "w": un, "rotation": phi, "N": N, "Q": Q, "M": M, "ux": u[:, 0], "uy": u[:, 1]}
 
 
-_KINEMATIC = {"clamped": (True, True, True), "pinned": (True, True, False), "free": (False, False, False),
-              "guided": (False, False, True)}  # per slot (t, n, φ), as in pd-curved
+_KINEMATIC = HELD  # per slot (t, n, φ): held (kinematic) or loaded (resultant), as in pd-curved
 
 
 class Indeterminate:
@@ -268,6 +267,14 @@ class ExactCurved(Model):
     reference = True
 
     solver = Indeterminate  # the exact solution object: .fields(s)
+
+    def check(self, scene: Scene) -> list[str]:
+        """The scene checks plus the rigid-body test on straight axes (e.g. two rollers slide along x)."""
+        from ..geometry import mechanism_message
+
+        out = super().check(scene)
+        why = mechanism_message(scene)
+        return out + ([why] if why is not None else [])
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
         return self.solver(scene).fields(x)

@@ -138,7 +138,7 @@ def _rows(support: str, x: float, scene: Scene, r: float) -> list[tuple[np.ndarr
     phi = (np.array([x, x**2 / 2, 1.0, 0.0]), -I1 / EI)
     M = (np.array([1.0, x, 0.0, 0.0]), -Mp / EI)
     V = (np.array([0.0, 1.0, 0.0, 0.0]), -dMp / EI)
-    return {"clamped": [w, phi], "pinned": [w, M], "free": [M, V], "guided": [phi, V]}[support]
+    return {"clamped": [w, phi], "pinned": [w, M], "roller": [w, M], "free": [M, V], "guided": [phi, V]}[support]
 
 
 def solve_straight(scene: Scene, shear: bool) -> StraightSolution:

@@ -32,7 +32,8 @@ at the ends. Two forms:
 
 At each end particle the three boundary equations replace the three equilibrium equations (slot t
 takes u_t or N, slot n takes u_n or Q, slot φ takes φ or M): clamped u_t = u_n = φ = 0; pinned
-u_t = u_n = 0, M = ±C̄; free N, Q, M = ±(F·t, F·n, C̄); guided φ = 0, N, Q = ±(F·t, F·n).
+u_t = u_n = 0, M = ±C̄; roller u_n = 0, N, M = ±(F·t, C̄); free N, Q, M = ±(F·t, F·n, C̄); guided φ = 0,
+N, Q = ±(F·t, F·n) (docs/supports.md).
 
 Point loads inside the beam and the ends of a distributed load's span split the axis into segments
 (each with its own uniform particles and families; a PDDO function never reaches across a load
@@ -284,6 +285,7 @@ class _Extent:
 _SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is prescribed, False = the resultant
     "clamped": (True, True, True),
     "pinned": (True, True, False),
+    "roller": (False, True, False),
     "free": (False, False, False),
     "guided": (False, False, True),
 }
@@ -318,6 +320,14 @@ class PDCurved(Model):
     axial = True
     theory = "timoshenko"
     assembles = True
+
+    def check(self, scene: Scene) -> list[str]:
+        """The scene checks plus the axial rigid-body test on straight axes (e.g. two rollers slide along x)."""
+        from ..geometry import mechanism_message
+
+        out = super().check(scene)
+        why = mechanism_message(scene)
+        return out + ([why] if why is not None else [])
 
     # ---------------------------------------------------------------------------------------
     def discretise(self, scene: Scene, params: dict):

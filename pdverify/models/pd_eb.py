@@ -124,7 +124,8 @@ def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals,
 
 def fixed_points(scene: Scene, n: int) -> list[int]:
     """End points held at w = 0 (clamped and pinned supports) of a grid of n points."""
-    return [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in ("clamped", "pinned")]
+    held = ("clamped", "pinned", "roller")  # no axial unknown: roller = pinned
+    return [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in held]
 
 
 # -- loads -----------------------------------------------------------------------------------
@@ -240,7 +241,8 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
 
 # -- Taylor ghost points (corrected variant) -------------------------------------------------
 
-_FIXED = {"clamped": (0, 1), "pinned": (0, 2), "free": (2, 3), "guided": (1, 3)}
+# roller = pinned: no axial unknown
+_FIXED = {"clamped": (0, 1), "pinned": (0, 2), "roller": (0, 2), "free": (2, 3), "guided": (1, 3)}
 
 
 def _solve_exact(A: list[list[Fraction]], B: list[list[Fraction]]) -> list[list[Fraction]]:
@@ -465,7 +467,7 @@ class PDEulerBernoulli(Model):
         # master–slave map T: extended (ghost + real) <- real (Eq. 39–41)
         tr, tc, tv = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
         for side, sup in ((0, left), (1, right)):
-            sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "free": 0.0}[sup]
+            sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "roller": -1.0, "free": 0.0}[sup]
             if sign == 0.0:
                 continue
             j = np.arange(1, (2 if layer[side] else G) + 1)

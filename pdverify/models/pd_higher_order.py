@@ -89,6 +89,7 @@ MIRROR = {  # (sign of theta, theta*, w, w*) of the fictitious images, Appendix 
     "clamped": np.array([-1.0, -1.0, 1.0, 1.0]),
     "guided": np.array([-1.0, -1.0, 1.0, 1.0]),
     "pinned": np.array([1.0, 1.0, -1.0, -1.0]),
+    "roller": np.array([1.0, 1.0, -1.0, -1.0]),  # no axial unknown: roller = pinned
 }
 
 # -- kernels (arrays in, arrays out) ---------------------------------------------------------
@@ -289,7 +290,7 @@ def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: flo
             drop += [NF * k + f for f in (TH, TS, W, WS)]
         elif sup == "guided":
             drop += [NF * k + f for f in (TH, TS)]
-        elif sup == "pinned":
+        elif sup in ("pinned", "roller"):  # no axial unknown: roller = pinned
             if variant == "paper":
                 drop += [NF * k + W, NF * k + WS]
             elif pin == "face":

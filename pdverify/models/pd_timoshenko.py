@@ -153,7 +153,11 @@ def _ghost_index(n: int, G: int, side: int) -> np.ndarray:
     return G - 1 - t if side == 0 else G + n + t
 
 
-DIRICHLET = {"clamped": (True, True), "pinned": (True, False), "free": (False, False), "guided": (False, True)}
+DIRICHLET = {"clamped": (True, True), "pinned": (True, False), "roller": (True, False), "free": (False, False),
+             "guided": (False, True)}  # (w, γ) held; no axial unknown: roller = pinned
+# ends whose axial displacement (pd-rod) or twist (pd-torsion) is held: a roller slides axially, but holds the
+# twist as a pinned (fork) support does (docs/supports.md)
+ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "roller")}
 
 
 def _extension(n: int, G: int, nf: int, blocks) -> tuple[sp.csr_matrix, np.ndarray]:
@@ -190,7 +194,8 @@ def _check_grid(n: int, m: int, name: str):
 def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial", grid: str = "nodes") -> Discrete:
     """Static operator of the PD rod: K u = b with u the axial displacement (``kind = "axial"``: stiffness
     EA, mass ρA, loads.axial) or the twist θ (``kind = "torsion"``, Section 5 Eq. 54–56: the same
-    kernel with GJ, mass ρ I_p, torques). Fixed ends: clamped and pinned; free and guided carry N̄ (T̄).
+    kernel with GJ, mass ρ I_p, torques). Fixed ends: :data:`ROD_HELD` (clamped, pinned; pd-torsion: roller
+too); the others carry N̄ (T̄).
     Assembled in full on a short grid (:func:`_rod_core`) and extended by its stencil (Eq. 19)."""
     name = "pd-rod" if kind == "axial" else "pd-torsion"
     n, x = _grid(scene, n, grid, variant, name)
@@ -210,9 +215,9 @@ def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial"
     q, _, ends = node_loads(scene, x, component, ends_apart=(variant == "corrected"))
     prescribed = {}
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        if grid == "nodes" and sup in ("clamped", "pinned"):
+        if grid == "nodes" and sup in ROD_HELD[kind]:
             prescribed[0 if side == 0 else n - 1] = (key, side)
-    Kc, bc = _rod_core(scene, min(n, _core_points(m)), dx, m, variant, stiff, ends, grid)
+    Kc, bc = _rod_core(scene, min(n, _core_points(m)), dx, m, variant, stiff, ends, grid, kind)
     op = EndPatched.from_core(Kc, 1, 1, n)
     b = EndPatched.add_ends(q, bc, 1)
     if variant == "paper":
@@ -223,7 +228,7 @@ def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial"
 
 
 def _rod_core(scene: Scene, n: int, dx: float, m: int, variant: str, stiff: float, ends: dict,
-              grid: str) -> tuple[sp.csr_matrix, np.ndarray]:
+              grid: str, kind: str = "axial") -> tuple[sp.csr_matrix, np.ndarray]:
     """(K, ghost part of b) of the rod on n points of spacing dx, assembled as written: K = -B I E with
     the extension E to G = m ghosts per end (Eq. 20–21 or the constrained polynomial) and the PD sum I
     (Eq. 19, c_j of ``rod_kernel``), B = 2 stiff/δ² (Eq. 3)."""
@@ -231,7 +236,7 @@ def _rod_core(scene: Scene, n: int, dx: float, m: int, variant: str, stiff: floa
     G = m
     blocks = {}
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        fixed = sup in ("clamped", "pinned")
+        fixed = sup in ROD_HELD[kind]
         if grid == "cells":
             blocks[side] = (taylor_ghosts_cells(G, 1 if fixed else 2, fixed), np.zeros(G), 4)
             continue
@@ -884,6 +889,14 @@ class PDRod(_MoyerModel):
     bending = False
     theory = "axial"
     load_types = frozenset({"point_force", "distributed"})  # their axial components
+
+    def check(self, scene: Scene) -> list[str]:
+        out = super().check(scene)
+        sup = (scene.supports.left, scene.supports.right)
+        if not set(sup) & set(ROD_HELD["axial"]):
+            out.append(f"supports = {sup[0]}-{sup[1]}: neither end holds the axial displacement (a roller or guided "
+                       "end slides along the axis), so the rod is a mechanism; make one end clamped or pinned")
+        return out
 
     def operator(self, scene, params):
         return rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="axial",

@@ -25,7 +25,27 @@ SHOWN = ("variant", "horizon_factor", "degree")  # columns repeated from the ser
 LOCKING = ("scene", "model", "options", "points")
 SPEED_ERROR = ("scene", "model", "variant", "case_id", "points", "total_s", "err_max", "pareto")
 TRUST_TOLERANCE = 0.01
-ROUND_OFF_VISIBLE = 1e-6  # an error that grows under refinement counts as round-off trouble above this
+ROUND_OFF_VISIBLE = 1e-6  # an error that grows under refinement counts as trouble above this
+EPS = float(np.finfo(float).eps)
+# a growing error is called round-off only when it is within this factor of cond·eps: the estimate bounds the
+# relative error of the solve up to the norm's dimension factor (1-norm estimate against a max-norm error)
+ROUND_OFF_FACTOR = 100.0
+# trust is judged per slenderness band (a model that is right for slender beams may be wrong for thick
+# ones and vice versa): thick, where the shear deformation ~ (h/L)² is above the 1 % trust tolerance for
+# any shear-flexible section; moderate; slender, where (L/h)² conditioning starts to matter
+SLENDERNESS_BANDS = (("thick", 0.0, 10.0), ("moderate", 10.0, 100.0), ("slender", 100.0, float("inf")))
+
+
+def slenderness_band(slenderness) -> str:
+    """'thick (L/h < 10)', 'moderate (10 <= L/h < 100)', 'slender (L/h >= 100)', or '' when unknown."""
+    if slenderness is None:
+        return ""
+    for name, lo, hi in SLENDERNESS_BANDS:
+        if lo <= float(slenderness) < hi:
+            if lo == 0.0:
+                return f"{name} (L/h < {hi:g})"
+            return f"{name} ({lo:g} <= L/h < {hi:g})" if hi < float("inf") else f"{name} (L/h >= {lo:g})"
+    return ""
 
 
 def _none(v):
@@ -125,13 +145,15 @@ def _ranges(values, ok) -> str:
 
 
 def _trust(key: tuple, rows: list[dict], tol: float = TRUST_TOLERANCE) -> list[dict]:
-    """For one model and option set: the slenderness values and grids at which every scene is within
-    ``tol`` of its reference, and the grid from which refining makes the error grow past
-    ``ROUND_OFF_VISIBLE`` (round-off dominates). A failed case counts as not trustworthy."""
+    """For one model, option set and slenderness band: the slenderness values and grids at which every scene
+    is within ``tol`` of its reference, and the grid from which refining makes the error grow past
+    ``ROUND_OFF_VISIBLE``: ``round_off_from_points`` when that error is within ``ROUND_OFF_FACTOR`` of the
+    case's cond·eps (round-off explains it), ``growth_from_points`` otherwise (far above cond·eps, or no
+    condition estimate: not shown to be round-off). A failed case counts as not trustworthy."""
     rows = [r for r in rows if '"model": "none"' not in (r.get("reference") or "")]
     if not rows:
         return []
-    model, options = key
+    model, options, band = key
     ok = [_ok(r) for r in rows]
     err = [_float(r.get("err_max")) for r in rows]
     good = [o and e <= tol for o, e in zip(ok, err)]  # NaN errors compare False
@@ -151,25 +173,35 @@ def _trust(key: tuple, rows: list[dict], tol: float = TRUST_TOLERANCE) -> list[d
     series: dict = {}
     for i, r in enumerate(rows):
         if ok[i]:
-            series.setdefault((r.get("scene"), slen[i]), []).append((points[i], err[i]))
-    floor = []
+            series.setdefault((r.get("scene"), slen[i]), []).append((points[i], err[i], _float(r.get("cond"))))
+    floor, growth = [], []
     for e in series.values():
         e = sorted(e, key=lambda t: t[0])  # stable: equal grids keep their row order
-        rise = [int(e[k][0]) for k in range(1, len(e)) if e[k][1] > 2.0 * e[k - 1][1] and e[k][1] > ROUND_OFF_VISIBLE]
+        rise = [k for k in range(1, len(e)) if e[k][1] > 2.0 * e[k - 1][1] and e[k][1] > ROUND_OFF_VISIBLE]
         if rise:
-            floor.append(rise[0])
-    row = {"model": model, "options": options, "tolerance": tol,
+            n, err_k, cond = e[rise[0]]
+            (floor if cond == cond and err_k <= ROUND_OFF_FACTOR * cond * EPS else growth).append((int(n), err_k, cond))
+    row = {"model": model, "options": options, "slenderness_band": band, "tolerance": tol,
            "slenderness_trusted": _ranges([s for s, _ in sl], [g for _, g in sl]) if sl else "",
            "slenderness_not": ", ".join(f"{s:g}" for s, g in sl if not g),
            "points_trusted": _ranges(list(by_n), list(by_n.values())),
            "points_not": ", ".join(str(int(n)) for n, g in by_n.items() if not g),
-           "round_off_from_points": min(floor) if floor else None}
-    parts = [f"{model}"]
+           "round_off_from_points": min(floor)[0] if floor else None,
+           "growth_from_points": min(growth)[0] if growth else None}
+    parts = [f"{model}" + (f" [{band}]" if band else "")]
     if sl:
         parts.append(f"within {tol:.0%} for L/h {row['slenderness_trusted'] or 'none of the values tried'}")
     parts.append(f"on grids of {row['points_trusted'] or 'none of the sizes tried'} points")
     if floor:
-        parts.append(f"(from {min(floor)} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off)")
+        n, e, c = min(floor)
+        parts.append(f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off, "
+                     f"error {e:.2g} within {ROUND_OFF_FACTOR:g} cond·eps = {c * EPS:.2g})")
+    if growth:
+        n, e, c = min(growth)
+        why = (f"far above cond·eps = {c * EPS:.2g}: not round-off" if c == c else
+               "no condition estimate: not shown to be round-off")
+        parts.append(f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: error {e:.2g}, "
+                     f"{why})")
     row["statement"] = " ".join(parts)
     return [row]
 
@@ -191,7 +223,8 @@ GROUPINGS = {
     "locking": Grouping(_columns(*LOCKING), _locking),
     "pareto": Grouping(_columns("scene"), _pareto),
     "cheapest": Grouping(_columns("scene", "model"), _cheapest),
-    "trust": Grouping(lambda r: (_none(r.get("model")), _none(r.get("options")) or ""), _trust),
+    "trust": Grouping(lambda r: (_none(r.get("model")), _none(r.get("options")) or "",
+                                 slenderness_band(_none(r.get("slenderness")))), _trust),
 }
 
 
