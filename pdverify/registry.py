@@ -32,7 +32,7 @@ The contract (docs/contract.md has the version for model authors):
 >>> Kf.toarray().tolist(), bf.tolist()
 ([[2.0, -1.0], [-1.0, 2.0]], [1.0, 1.0])
 >>> sorted(get_model("pd-eb").supports), "dynamic" in get_model("pd-timoshenko").analyses
-(['clamped', 'free', 'guided', 'pinned'], True)
+(['clamped', 'free', 'guided', 'pinned', 'roller'], True)
 """
 
 from __future__ import annotations
@@ -172,7 +172,7 @@ class Rule:
         return f"{self.option} = {v!r}: not defined by {cond} of model {model}, which takes {need} ({self.why})"
 
 
-SUPPORTS = frozenset({"clamped", "pinned", "guided", "free"})  # "roller" where a model declares it
+SUPPORTS = frozenset({"clamped", "pinned", "roller", "guided", "free"})  # docs/supports.md: one meaning each
 LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "point_torque" for torsion models
 
 # an end motion of [dynamics.left/right] and the load component (Model attribute) whose unknown it moves

@@ -68,6 +68,9 @@ def _scenes():
         out.append((f"torsion-{left}-{right}", scene_dict(left, right, TORSION)))
         out.append((f"arc-{left}-{right}", scene_dict(left, right, CURVED, axis=ARC,
                                                         section={"width": 0.05, "height": 0.05})))
+    for kind, value in (("point_force", -300.0), ("point_moment", 150.0)):  # one end load: exact-elastica takes these
+        out.append((f"cantilever-tip-{kind}", scene_dict("clamped", "free", [{"type": kind, "position": 2.0,
+                                                                                "value": value}])))
     L = 2.0
     poly = {"type": "polynomial", "coefficients": [0.0, 0.3, -0.1], "x_range": [0.0, 1.0]}
     from pdverify.geometry import axis_length
@@ -93,9 +96,7 @@ def _cases():
             continue  # no loads: the manufactured problem is its own input, not a scene to mirror
         out.append(pytest.param(name, name, {}, id=name))
     for label, (name, opts) in OPTIONS.items():
-        out.append(pytest.param(label, name, opts, id=label, marks=pytest.mark.xfail(
-            strict=True, reason="pd-bond-pair nonlinear holds a pinned right end as a roller and every other "
-            "held end axially (issue 33.3; being fixed in pd_bond_pair / _bond_pair_nonlinear)")))
+        out.append(pytest.param(label, name, opts, id=label))  # the nonlinear path: one axial meaning per end
     return out
 
 

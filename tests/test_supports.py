@@ -179,10 +179,6 @@ def test_two_rollers_on_a_straight_axis_slide_in_axial_models(name):
         run(sc, name)
 
 
-@pytest.mark.xfail(strict=True, reason="pd-bond-pair ends = mirror builds its ghosts and held ends in "
-                   "_bond_pair_nonlinear.py (another helper's file), which knows no roller: the end is left free "
-                   "with clamped-like reflections (w(0) = -4.8e-4 m instead of 0); it must hold w as pinned does "
-                   "and leave the axial displacement free")
 def test_bond_pair_mirror_ends_roller_is_pinned_in_w():
     loads = [{"type": "point_force", "position": 0.7, "value": -300.0}]
     roller = run(parse_scene(scene_dict("roller", "clamped", loads)), "pd-bond-pair", points=61, ends="mirror")
