@@ -25,22 +25,32 @@ minus the counter-clockwise rotation: gamma = theta + w' vanishes for w' = ccw r
 
 Variants
 --------
-``paper`` (faithful): delta = (m + 0.015) dx, full volumes V_j = A dx, omega = 1/(delta^2 A |xi|) V_j
-for j = 1..floor(delta/dx) each side; clamped and simply supported ends by fictitious layers of
-floor(delta/dx) points mirrored about the end point (Appendix B: clamped w, w* symmetric and theta,
-theta* antisymmetric, w = w* = 0 at the end point, Eq. B39–B40; simply supported the opposite,
-Eq. B41; guided, not in the paper: the clamped mirror without w = 0); a free end has no fictitious
-layer (truncated families). The equations are those of Eq. 22 at the real points, the fictitious
-DOFs substituted by their images (a non-symmetric system).
-Measured defect: with full volumes Σ_j omega xi^2 = 2 dx^2 (1 + 2 + 3) / (3.015 dx)^2 = 1.320, not 1
-(the continuous integral of Eq. A30 is δ^2 but the volumes of the outer members reach 3.5 dx): the
-model is 32 % too stiff everywhere and does not converge under refinement at fixed m.
+``paper`` (faithful): delta = (m + 0.015) dx, omega = 1/(delta^2 A |xi|) V_j (Eq. 14) for the members
+j = 1..J each side. Family volumes (option ``volumes``): ``partial`` (default) is the authors' convention
+(Oterkus/Madenci, reference [17] and the sister paper seed 000's "volume correction"): a member with
+delta - dx/2 < xi < delta + dx/2 gets the volume fraction beta = (delta + dx/2 - xi)/dx, so at 3.015 dx the
+third neighbour carries 0.515 and Σ_j omega xi^2 = 2 Σ beta_d d / (delta/dx)^2 = 9.09/9.090225, i.e. the
+continuous integral of Eq. A30 (δ^2) to 2.5e-5; ``full`` gives every member inside delta a whole cell,
+2 (1 + 2 + 3) / 3.015^2 = 12/9.090225 = 1.320: a uniformly 32 % stiffer operator (not the paper's).
+Boundaries (Appendix B) by fictitious layers of J points mirrored (option ``mirror``): ``point`` (default)
+about the end point, which is a material point and is held (clamped: w, w* symmetric and theta, theta*
+antisymmetric, w = w* = 0 at the end point, Eq. B39–B40; simply supported: the opposite, Eq. B41, w and w*
+held); read from the text: the conditions are "for the material point adjacent to the clamped end" (zero
+w and rotation there; zero w and curvature for the simple support), which an image about that point gives,
+and the sister paper mirrors "with respect to the first adjacent material point which is fixed".
+``boundary``: cell-centred points x = (k + 1/2) dx, dx = L / points, images i' of the real points i = 1..J
+about the boundary between 1 and 1' (Eq. B39–B41 with 1' a point of the fictitious layer), clamped
+w(1) = w*(1) = 0 (theta(1) then not zero), pinned and guided nothing held. Guided, not in the paper: the
+clamped mirror without w = 0. A free end has no fictitious layer (truncated families). The equations are
+those of Eq. 22 at the real points, the fictitious DOFs substituted by their images (a non-symmetric
+system). Loads on the mid-surface (Eq. 16b) while the plane-stress reference loads the top face: the
+simply supported benchmarks differ from it by that, not by the operator (option ``loads = faces``).
 
 ``corrected`` (default), each change measured in tests/test_pd_higher_order.py:
 1. micro-modulus calibrated on the discrete family of each point: omega_kj = beta_j / (|xi| S_k),
    S_k = Σ_j beta_j |xi_j| over the actual family (partial volume beta = 1/2 for the member at
    delta = m dx), so every W_k is exact for linear fields, also on truncated families near the ends
-   (removes the paper's factor 1.32: -24 % -> within 0.22 % of converged plane stress at dx = 1 mm);
+   (the same operator as the paper's partial volumes in the interior, exact also on truncated families);
 2. bond-centred shear measures g = w_j - w_k + xi (theta_k + theta_j)/2, e = w*_j - w*_k +
    3 xi (theta*_k + theta*_j)/2 (option ``shear``): with theta_k alone a pure bending field leaves
    g = -theta' xi^2 / 2, a spurious shear energy G h theta'^2 delta^2 / 8 next to E h^3 theta'^2 / 12, i.e.
@@ -132,23 +142,30 @@ def bond_block(C: np.ndarray, xi: float, centred: bool = False) -> np.ndarray:
     return M.T @ C @ M
 
 
-def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
-    """Offsets d = 1..J and their volume fractions beta_d (paper: full volumes inside (m + 0.015) dx)."""
+def family(m: float, dx: float, variant: str, volumes: str = "partial") -> tuple[np.ndarray, np.ndarray]:
+    """Offsets d = 1..J and their volume fractions beta_d. Paper, delta = (m + 0.015) dx: ``volumes = "partial"``
+    the Oterkus/Madenci convention (a member with delta - dx/2 < xi < delta + dx/2 gets (delta + dx/2 - xi)/dx:
+    0.515 for the third neighbour at 3.015 dx), ``"full"`` every member inside delta a whole cell. Corrected:
+    the cells' parts inside m dx (beta = 1/2 at xi = m dx)."""
     if variant == "paper":
-        J = int(np.floor(m + 0.015 + 1e-12))
-        return np.arange(1, J + 1), np.ones(J)
+        if volumes == "full":
+            J = int(np.floor(m + 0.015 + 1e-12))
+            return np.arange(1, J + 1), np.ones(J)
+        return partial_volumes(m + 0.015)
     return partial_volumes(m)
 
 
 def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray,
-                 calibrate: str = "point", points: np.ndarray | None = None) -> dict[int, np.ndarray]:
+                 calibrate: str = "point", points: np.ndarray | None = None,
+                 fractions: str = "partial") -> dict[int, np.ndarray]:
     """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
     is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
     on the discrete family so that Σ_j omega_kj xi^2 = 1, per point on its actual (possibly truncated)
     family (``calibrate = "point"``) or on the full family (``"family"``, grids with ghost points).
     ``points``: the indices k (of the n-point grid) whose weights are wanted, ``volumes`` given on them
-    (default all points); each weight is computed point by point, so a subset gets the same bits."""
-    d, beta = family(m, dx, variant)
+    (default all points); each weight is computed point by point, so a subset gets the same bits.
+    ``fractions``: the paper's family volumes (:func:`family`)."""
+    d, beta = family(m, dx, variant, fractions)
     k = np.arange(n) if points is None else np.asarray(points, np.int64)
     raw = {}
     for sgn in (1, -1):
@@ -258,7 +275,7 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
             if faces:
                 F[:, WS] += q * h * h / 4
             continue
-        pos = load.position / dx
+        pos = float(np.clip((load.position - x[0]) / dx, 0.0, n - 1))  # cell-centred grids: beyond the end points
         i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
         t = pos - i
         if abs(t) < 1e-9 or i == n - 1:
@@ -278,13 +295,20 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
     return F / A
 
 
-def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: float) -> tuple[list, list]:
+def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: float,
+                   about: str = "point") -> tuple[list, list]:
     """(drop, tie): the DOFs held at zero and the ties (slave, master, c), u_slave = c u_master, of the end
     conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed); guided: theta = theta* = 0;
     pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's antisymmetric w*); ``pin = face``: w = -h^2/20 w*
-    instead (zero parabola-weighted mean deflection of the end face); free: nothing."""
+    instead (zero parabola-weighted mean deflection of the end face); free: nothing. Paper mirrored about the
+    boundary (``about = "boundary"``): clamped w(1) = w*(1) = 0 on the first point (Eq. B39; theta, theta*
+    follow from the antisymmetric images, Eq. B40), pinned and guided nothing (the images carry them)."""
     drop, tie = [], []
     for sup, k in ((left, 0), (right, n - 1)):
+        if variant == "paper" and about == "boundary":
+            if sup == "clamped":
+                drop += [NF * k + W, NF * k + WS]
+            continue
         if sup == "clamped":
             drop += [NF * k + f for f in (TH, TS, W, WS)]
         elif sup == "guided":
@@ -301,11 +325,11 @@ def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: flo
 
 
 def constraint_map(n: int, left: str, right: str, variant: str, pin: str, h: float,
-                   numbering: str = "unknowns") -> sp.csr_matrix:
+                   numbering: str = "unknowns", about: str = "point") -> sp.csr_matrix:
     """T: u = T z with the end conditions built in (:func:`end_conditions`). ``numbering = "unknowns"``:
     T is 4n x unknowns (the held DOFs eliminated); ``"points"``: 4n x 4n, the numbering of u kept and the
     columns of the held DOFs zero (the band's form: unit rows added by ``Band.fix``)."""
-    drop, tie = end_conditions(n, left, right, variant, pin, h)
+    drop, tie = end_conditions(n, left, right, variant, pin, h, about)
     keep = np.ones(NF * n, bool)
     keep[drop] = False
     free = np.flatnonzero(keep)
@@ -317,9 +341,12 @@ def constraint_map(n: int, left: str, right: str, variant: str, pin: str, h: flo
     return sp.csr_matrix((vals, (rows, cols)), shape=(NF * n, NF * n if numbering == "points" else len(free)))
 
 
-def mirror_map(n: int, G: tuple[int, int], left: str, right: str) -> sp.csr_matrix:
+def mirror_map(n: int, G: tuple[int, int], left: str, right: str, about: str = "point") -> sp.csr_matrix:
     """P: extended DOFs (G[0] ghosts, n real, G[1] ghosts) <- real DOFs; ghost i' = sign * real i
-    (mirror about the end point, Appendix B)."""
+    (Appendix B, Eq. B39-B41). ``about = "point"``: mirror about the end point (ghost j spacings out is the
+    image of real point j spacings in); ``"boundary"``: mirror about the boundary half a spacing beyond the
+    first point (cell-centred points: ghost i' at -(i - 1/2) dx is the image of real i at (i - 1/2) dx)."""
+    shift = 1 if about == "boundary" else 0
     N = G[0] + n + G[1]
     rows = [NF * (G[0] + np.arange(n))[:, None] + np.arange(NF)]
     cols = [NF * np.arange(n)[:, None] + np.arange(NF)]
@@ -329,7 +356,7 @@ def mirror_map(n: int, G: tuple[int, int], left: str, right: str) -> sp.csr_matr
             continue
         j = np.arange(1, g + 1)
         ghost = G[0] - j if side == 0 else G[0] + n - 1 + j
-        real = j if side == 0 else n - 1 - j
+        real = j - shift if side == 0 else n - 1 - j + shift
         rows.append(NF * ghost[:, None] + np.arange(NF))
         cols.append(NF * real[:, None] + np.arange(NF))
         vals.append(np.broadcast_to(MIRROR[sup], (g, NF)))
@@ -397,10 +424,28 @@ class PDHigherOrder(Model):
                choices=("auto", "point", "centred")),
         Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
                "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
+        Option("volumes", str, "partial", "paper variant's family volumes: partial (the authors' convention: the member "
+               "at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells inside delta)",
+               choices=("partial", "full")),
+        Option("mirror", str, "point", "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
+               "images about the end point, which is held: the material point at the support, as in Appendix B's text "
+               "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond point 1, "
+               "clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
+               choices=("boundary", "point")),
     )
 
+    def about(self, params: dict) -> str:
+        """The mirror of the paper's fictitious layers: "boundary" or "point" (every other variant/end: "point")."""
+        if params["variant"] == "paper" and self.ends(params) == "mirror":
+            return params.get("mirror", "point")
+        return "point"
+
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
-        return np.linspace(0.0, scene.length, params["points"])
+        """x_k = k dx, ends included; mirrored about the boundary: cell centres (k + 1/2) dx, dx = L / points."""
+        n = params["points"]
+        if self.about(params) == "boundary":
+            return (np.arange(n) + 0.5) * (scene.length / n)
+        return np.linspace(0.0, scene.length, n)
 
     def constants(self, scene: Scene):
         mat = scene.material
@@ -433,7 +478,8 @@ class PDHigherOrder(Model):
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         m, variant, ends = params["horizon"], params["variant"], self.ends(params)
-        d, _ = family(m, dx, variant)
+        fractions, about = params.get("volumes", "partial"), self.about(params)
+        d, _ = family(m, dx, variant, fractions)
         J = int(d.max())
         p = params["ghost_degree"]
         if 2 * J + 1 > n or (ends == "taylor" and p + 1 > n):
@@ -450,8 +496,9 @@ class PDHigherOrder(Model):
         symmetric = not (ends == "mirror" and variant == "paper")  # paper: Eq. 22 at the real points, images substituted
         if ends == "mirror":
             G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
-            fold = lambda nw, Gw: mirror_map(nw, Gw, left, right)  # noqa: E731
-            info.update(boundary="fictitious mirror layers (Appendix B), free ends truncated", ghosts_per_end=list(G))
+            fold = lambda nw, Gw: mirror_map(nw, Gw, left, right, about)  # noqa: E731
+            info.update(boundary=f"fictitious mirror layers (Appendix B) about the "
+                        f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated", ghosts_per_end=list(G))
         elif ends == "taylor":
             G, calibrate, reach = (J, J), "family", p
             fold = lambda nw, Gw: taylor_map(nw, Gw, p)  # noqa: E731
@@ -463,7 +510,8 @@ class PDHigherOrder(Model):
         N = n + G[0] + G[1]
 
         def weights(k):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
-            return bond_weights(N, m, dx, variant, extended_volumes(k, n, G, dx, ends, variant), calibrate, points=k)
+            return bond_weights(N, m, dx, variant, extended_volumes(k, n, G, dx, ends, variant), calibrate, points=k,
+                                fractions=fractions)
 
         def window(r0: int, r1: int) -> np.ndarray:
             """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
@@ -480,11 +528,12 @@ class PDHigherOrder(Model):
             else:
                 K = (Kx[NF * g[0]: NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
             T = constraint_map(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h,
-                               numbering="points")
+                               numbering="points", about=about)
             if symmetric:
                 return (T.T @ K @ T).toarray()
             D = (K @ T).toarray()
-            D[end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h)[0]] = 0.0
+            D[end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h,
+                             about)[0]] = 0.0
             return D
 
         rows_end = max(2 * J, reach + 1) + 1  # rows of each end from its window (beyond 2J: uniform; one spare)
@@ -506,16 +555,18 @@ class PDHigherOrder(Model):
             B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred))
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
-        drop, tie = end_conditions(n, left, right, variant, pin, h)
+        drop, tie = end_conditions(n, left, right, variant, pin, h, about)
         F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
         b = F.copy()
         if symmetric:  # T^T F: the slave's load acts on its master (the paper variant has no ties)
             for slave, master, c in tie:
                 b[master] += c * F[slave]
         B.fix(drop, b)
-        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family")
+        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family", fractions=fractions)
         info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
         info.update(pin=pin, loads=self.choice(params, "loads"))
+        if variant == "paper":
+            info.update(volumes=fractions, mirror=about)
         return B, b, (drop, tie), info
 
     def assemble(self, scene: Scene, params: dict):
@@ -525,7 +576,7 @@ class PDHigherOrder(Model):
         B, b, (drop, tie), info = self.assemble_band(scene, params)
         K, F, _ = eliminate(B.tocsr(), b, drop)
         T = constraint_map(params["points"], scene.supports.left, scene.supports.right, params["variant"],
-                           self.choice(params, "pin"), info["depth"])
+                           self.choice(params, "pin"), info["depth"], about=self.about(params))
         return K, F, T, info
 
     def limit_system(self, scene: Scene, params: dict):
