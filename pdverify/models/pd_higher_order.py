@@ -51,10 +51,15 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    S_k = Σ_j beta_j |xi_j| over the actual family (partial volume beta = 1/2 for the member at
    delta = m dx), so every W_k is exact for linear fields, also on truncated families near the ends
    (the same operator as the paper's partial volumes in the interior, exact also on truncated families);
-2. bond-centred shear measures g = w_j - w_k + xi (theta_k + theta_j)/2, e = w*_j - w*_k +
-   3 xi (theta*_k + theta*_j)/2 (option ``shear``): with theta_k alone a pure bending field leaves
-   g = -theta' xi^2 / 2, a spurious shear energy G h theta'^2 delta^2 / 8 next to E h^3 theta'^2 / 12, i.e.
-   a stiffening of ~ (G/E) 1.5 (delta/h)^2 (measured 5 % at dx = h/10, m = 3: a locking-like defect);
+2. shear measures along the bond (option ``shear = path``, :func:`path_measures`): g = w_j - w_k + the
+   trapezoid of theta over the bond's nearest-neighbour segments, e likewise with 3 theta*. With theta_k
+   alone (Eq. 14d-f, ``shear = point``) a pure bending field leaves g = -theta' xi^2 / 2, a spurious shear
+   energy G h theta'^2 delta^2 / 8 next to E h^3 theta'^2 / 12, a stiffening of ~ (G/E) 1.5 (delta/h)^2;
+   with the bond-mean rotations (theta_k + theta_j)/2 (``shear = centred``) that is gone, but the J bonds'
+   measures cannot all vanish for a cubic w (trapezoid errors ~ xi^3 w'''/12 that differ bond by bond), a
+   penalty ~ (G/E) xi^4 / (h L)^2 times the bending energy: shear locking once dx is many depths. Summed over
+   the segments every bond's g is a sum of nearest-neighbour measures, which can all vanish together
+   (no locking); for smooth fields g = xi (w' + theta) + O(xi dx^2) as before;
 3. no fictitious points (option ``ends = truncated``): the discrete energy U = Σ_k V_k W_k with
    trapezoidal volumes (dx/2 at the ends) is minimised with the essential conditions on the end point
    (clamped theta = theta* = w = w* = 0: the whole end face fixed; guided theta = theta* = 0; pinned
@@ -133,6 +138,28 @@ def bond_measures(xi: float, centred: bool = False) -> np.ndarray:
     else:
         M[3, [TH, W, NF + W]] = xi, -1.0, 1.0  # g
         M[4, [TS, WS, NF + WS]] = 3.0 * xi, -1.0, 1.0  # e
+    return M
+
+
+def path_measures(off: int, dx: float) -> np.ndarray:
+    """M (5 x 4(|off| + 1)): the bond measures of k -> k + off on the points k + sign(off) a, a = 0..|off|, with
+    the shear measures summed over the bond's nearest-neighbour segments (``shear = path``):
+    g = w_j - w_k + Σ_a c_a theta_a, e = w*_j - w*_k + 3 Σ_a c_a theta*_a, c_a = xi/|off| (1/2 at the ends), the
+    trapezoid rule of the rotation along the bond; one bond (|off| = 1) is the centred measure. If every
+    nearest-neighbour shear measure vanishes so do all: no over-constraint of the J bonds (no locking)."""
+    d = abs(off)
+    xi = off * dx
+    c = np.full(d + 1, xi / d)
+    c[[0, d]] /= 2
+    M = np.zeros((5, NF * (d + 1)))
+    j = NF * d
+    M[0, [TH, j + TH]] = -1.0, 1.0  # a
+    M[1, WS] = 2.0 * xi  # s
+    M[2, [TS, j + TS]] = -1.0, 1.0  # c
+    M[3, [W, j + W]] = -1.0, 1.0  # g
+    M[3, NF * np.arange(d + 1) + TH] += c
+    M[4, [WS, j + WS]] = -1.0, 1.0  # e
+    M[4, NF * np.arange(d + 1) + TS] += 3 * c
     return M
 
 
@@ -217,15 +244,24 @@ def taylor_map(n: int, G: int | tuple[int, int], p: int) -> sp.csr_matrix:
 
 
 def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
-                    centred: bool = False) -> sp.csr_matrix:
+                    centred: bool = False, path: bool = False) -> sp.csr_matrix:
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
-    filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR."""
+    filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
+    ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it)."""
     J = max(abs(o) for o in weights)
     Kb = np.zeros((n, 2 * J + 1, NF, NF))
     for off, wt in weights.items():
-        B = bond_block(C, off * dx, centred) / h
         lo, hi = max(0, -off), min(n, n - off)
         t = wt[lo:hi, None, None]
+        if path:
+            M = path_measures(off, dx)
+            B = M.T @ C @ M / h
+            sg, d = (1 if off > 0 else -1), abs(off)
+            for a in range(d + 1):
+                for b in range(d + 1):
+                    Kb[lo + sg * a:hi + sg * a, J + sg * (b - a)] += t * B[NF * a:NF * a + NF, NF * b:NF * b + NF]
+            continue
+        B = bond_block(C, off * dx, centred) / h
         Kb[lo:hi, J] += t * B[:NF, :NF]
         Kb[lo:hi, J + off] += t * B[:NF, NF:]
         Kb[lo + off:hi + off, J - off] += t * B[NF:, :NF]
@@ -238,7 +274,7 @@ def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndar
 
 
 def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
-           centred: bool = False) -> float:
+           centred: bool = False, path: bool = False) -> float:
     """Strain energy U = Σ_k V_k W_k (Eq. 13, 15) evaluated directly from the bond measures (for the
     gradient checks: K must equal the Hessian of this function)."""
     u = np.asarray(u, float).reshape(-1, NF)
@@ -251,6 +287,13 @@ def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.nd
         xi = off * dx
         th = (uk[:, TH] + uj[:, TH]) / 2 if centred else uk[:, TH]
         ts = (uk[:, TS] + uj[:, TS]) / 2 if centred else uk[:, TS]
+        if path:  # trapezoid of the rotations along the bond (path_measures), as a mean rotation
+            d, sg = abs(off), (1 if off > 0 else -1)
+            along = [u[lo + sg * a:hi + sg * a] for a in range(d + 1)]
+            c = np.full(d + 1, 1.0 / d)
+            c[[0, d]] /= 2
+            th = sum(ca * ua[:, TH] for ca, ua in zip(c, along))
+            ts = sum(ca * ua[:, TS] for ca, ua in zip(c, along))
         m = np.stack([uj[:, TH] - uk[:, TH], 2 * xi * uk[:, WS], uj[:, TS] - uk[:, TS],
                       uj[:, W] - uk[:, W] + xi * th, uj[:, WS] - uk[:, WS] + 3 * xi * ts])
         U += 0.5 / h * np.sum(wt[lo:hi] * np.einsum("pb,pq,qb->b", m, C, m))
@@ -366,13 +409,21 @@ def mirror_map(n: int, G: tuple[int, int], left: str, right: str, about: str = "
 
 
 def uniform_blocks(C: np.ndarray, dx: float, weights: dict[int, float], h: float,
-                   centred: bool = False) -> dict[int, np.ndarray]:
+                   centred: bool = False, path: bool = False) -> dict[int, np.ndarray]:
     """{point offset o: 4x4 block K[p, p + o]} of a row p whose own bonds and whose partners' bonds all
     carry the interior weights ``weights`` (offset -> V omega): Eq. 15's Hessian summed bond by bond in
     the order of :func:`assemble_blocks` (the same bits as its interior rows)."""
     J = max(abs(o) for o in weights)
     blocks = {o: np.zeros((NF, NF)) for o in range(-J, J + 1)}
     for off, wt in weights.items():
+        if path:
+            M = path_measures(off, dx)
+            B = M.T @ C @ M / h
+            sg, d = (1 if off > 0 else -1), abs(off)
+            for a in range(d + 1):
+                for b in range(d + 1):
+                    blocks[sg * (b - a)] += wt * B[NF * a:NF * a + NF, NF * b:NF * b + NF]
+            continue
         B = bond_block(C, off * dx, centred) / h
         blocks[0] += wt * B[:NF, :NF]
         blocks[off] += wt * B[:NF, NF:]
@@ -419,9 +470,10 @@ class PDHigherOrder(Model):
         Option("pin", str, "auto", "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | face (parabola-weighted mean of "
                "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
                choices=("auto", "mid", "face")),
-        Option("shear", str, "auto", "auto (point for paper, centred for corrected) | point (Eq. 14d-f: theta_k xi) | "
-               "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy)",
-               choices=("auto", "point", "centred")),
+        Option("shear", str, "auto", "auto (point for paper, path for corrected) | point (Eq. 14d-f: theta_k xi) | "
+               "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy) | path "
+               "(the rotations' trapezoid along the bond's segments: no shear locking of slender beams)",
+               choices=("auto", "point", "centred", "path")),
         Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
                "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
         Option("volumes", str, "partial", "paper variant's family volumes: partial (the authors' convention: the member "
@@ -490,9 +542,10 @@ class PDHigherOrder(Model):
         pin = self.choice(params, "pin")
         info = {"depth": h, "ends": ends, "section": "rectangle" if scene.section.height is not None else
                 f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m"}
-        centred = params.get("shear", "auto") == "centred" or (params.get("shear", "auto") == "auto"
-                                                               and variant != "paper")
-        info["shear"] = "centred" if centred else "point"
+        shear = params.get("shear", "auto")
+        path = shear == "path" or (shear == "auto" and variant != "paper")
+        centred = shear == "centred"
+        info["shear"] = "path" if path else "centred" if centred else "point"
         symmetric = not (ends == "mirror" and variant == "paper")  # paper: Eq. 22 at the real points, images substituted
         if ends == "mirror":
             G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
@@ -519,7 +572,7 @@ class PDHigherOrder(Model):
             g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
             nw = r1 - r0
             k = np.arange(G[0] + r0 - g[0], G[0] + r1 + g[1])
-            Kx = assemble_blocks(len(k), dx, C, weights(k), h, centred)
+            Kx = assemble_blocks(len(k), dx, C, weights(k), h, centred, path)
             if fold is None:
                 K = Kx
             elif symmetric:
@@ -552,7 +605,7 @@ class PDHigherOrder(Model):
         if len(parts) > 1:
             mid = G[0] + n // 2
             interior = {off: float(wt[0]) for off, wt in weights(np.array([mid])).items()}
-            B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred))
+            B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
         drop, tie = end_conditions(n, left, right, variant, pin, h, about)
