@@ -289,7 +289,8 @@ class FemPlaneStress(Model):
                     load_resultant=resultant)
         if not scene.is_straight:
             info.update(axis=scene.axis.type,
-                        geometry="quadratic edges on the mapped curves" if not el.startswith("q4") else "straight-edged q4")
+                        geometry=("quadratic edges on the mapped curves" if not el.startswith("q4")
+                                  else "straight-edged q4"))
 
         def write_vtu(path, mesh=mesh, u=u, basis=basis, E=E, nu=nu, lam=lam, mu=mu):
             import meshio

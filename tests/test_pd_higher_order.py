@@ -197,7 +197,8 @@ def _whole_grid_sparse_route(scene, params):
             V[:G[0]] = 0.0
             V[N - G[1]:] = 0.0
             V[[G[0], G[0] + n - 1]] = dx / 2
-        Kx = assemble_blocks(N, dx, C, bond_weights(N, m, dx, variant, V, calibrate="family", fractions=fr), h, centred, path)
+        wts = bond_weights(N, m, dx, variant, V, calibrate="family", fractions=fr)
+        Kx = assemble_blocks(N, dx, C, wts, h, centred, path)
         P = mirror_map(n, G, left, right, about)
         if variant == "paper":
             K, symmetric = (Kx[NF * G[0]: NF * (G[0] + n)] @ P).tocsr(), False
@@ -208,13 +209,15 @@ def _whole_grid_sparse_route(scene, params):
         V = np.zeros(N)
         V[J:J + n] = dx
         V[[J, J + n - 1]] = dx / 2
-        Kx = assemble_blocks(N, dx, C, bond_weights(N, m, dx, variant, V, calibrate="family", fractions=fr), h, centred, path)
+        wts = bond_weights(N, m, dx, variant, V, calibrate="family", fractions=fr)
+        Kx = assemble_blocks(N, dx, C, wts, h, centred, path)
         E = taylor_map(n, J, params["ghost_degree"])
         K = (E.T @ Kx @ E).tocsr()
     else:
         V = np.full(n, dx)
         V[[0, -1]] = dx / 2
-        K = assemble_blocks(n, dx, C, bond_weights(n, m, dx, variant, V, calibrate="point", fractions=fr), h, centred, path)
+        wts = bond_weights(n, m, dx, variant, V, calibrate="point", fractions=fr)
+        K = assemble_blocks(n, dx, C, wts, h, centred, path)
     F = load_vector(scene, x, mdl.choice(params, "loads") == "faces").ravel()
     T = constraint_map(n, left, right, variant, mdl.choice(params, "pin"), h, about=about)
     if symmetric:

@@ -476,13 +476,14 @@ class PDHigherOrder(Model):
                choices=("auto", "point", "centred", "path")),
         Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
                "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
-        Option("volumes", str, "partial", "paper variant's family volumes: partial (the authors' convention: the member "
-               "at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells inside delta)",
+        Option("volumes", str, "partial", "paper variant's family volumes: partial (the authors' convention: the "
+               "member at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells "
+               "inside delta)",
                choices=("partial", "full")),
         Option("mirror", str, "point", "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
                "images about the end point, which is held: the material point at the support, as in Appendix B's text "
-               "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond point 1, "
-               "clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
+               "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
+               "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
                choices=("boundary", "point")),
     )
 
@@ -551,7 +552,8 @@ class PDHigherOrder(Model):
             G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
             fold = lambda nw, Gw: mirror_map(nw, Gw, left, right, about)  # noqa: E731
             info.update(boundary=f"fictitious mirror layers (Appendix B) about the "
-                        f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated", ghosts_per_end=list(G))
+                        f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated",
+                        ghosts_per_end=list(G))
         elif ends == "taylor":
             G, calibrate, reach = (J, J), "family", p
             fold = lambda nw, Gw: taylor_map(nw, Gw, p)  # noqa: E731
