@@ -267,7 +267,7 @@ class FemPlaneStress(Model):
                 S = cm.constraint_basis(C[:, free])
                 Kf, Ff = (S.T @ Kf @ S).tocsr(), S.T @ Ff
         with timer("solve"):
-            uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=False)
+            uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"))
             if S is not None:
                 uf = S @ uf
             u = np.zeros(basis.N)
