@@ -48,7 +48,8 @@ from pdverify.registry import Model, Option
 from pdverify.result import Result, Timer
 from pdverify.scene import Distributed, PointForce, Scene
 
-ELEMENTS = {"q4": "ElementQuad1", "q8": "ElementQuadS2", "q9": "ElementQuad2"}
+ELEMENTS = {"q4": "ElementQuad1", "q8": "ElementQuadS2", "q9": "ElementQuad2",
+            "q4-bbar": "ElementQuad1", "q4-qm6": "ElementQuad1"}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3 (q4_variants)
 
 
 def mesh_lines(scene: Scene, points: int, layers: int):
@@ -80,7 +81,9 @@ class FemPlaneStress(Model):
     options = (
         Option("points", int, 101, "nodes along the beam (elements + 1), load positions added", minimum=2),
         Option("layers", int, 8, "elements through the thickness (even: the mid-line is a node row)", minimum=2),
-        Option("element", str, "q4", "q4 (full integration) | q8 | q9", choices=tuple(ELEMENTS)),
+        Option("element", str, "q4", "q4 (full integration, 3x3 Gauss) | q8 | q9 | q4-bbar (2x2 with B-bar: PLANE182 "
+               "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3)",
+               choices=tuple(ELEMENTS)),
         Option("pin", str, "face", "pinned support: node = the mid-height node (PLANE182 practice; its point "
                "reaction makes the 2D deflection grow like log(1/element size)) | face = parabola-weighted mean "
                "normal (and, at the left, mean tangential) displacement of the end face zero (converges)",
@@ -115,14 +118,19 @@ class FemPlaneStress(Model):
         with timer("assemble"):
             el = params["element"]
             s, tt = mesh_lines(scene, params["points"], params["layers"])
-            bm = cm.build_mesh(scene, s, tt, quadratic_geometry=(not scene.is_straight and el != "q4"))
+            bm = cm.build_mesh(scene, s, tt, quadratic_geometry=(not scene.is_straight and not el.startswith("q4")))
             mesh, geo = bm.mesh, bm.geo
             elem = fem.ElementVector(getattr(fem, ELEMENTS[el])())
             basis = fem.Basis(mesh, elem)
             E, nu, width = scene.material.E, scene.material.poissons_ratio, scene.section.width
             lam, mu = lame_parameters(E, nu)
             lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress
-            K = width * linear_elasticity(lam, mu).assemble(basis)
+            if el.startswith("q4-"):
+                from reference_fem import q4_variants
+
+                K = width * q4_variants.assemble(mesh, basis, E, nu, el[3:])
+            else:
+                K = width * linear_elasticity(lam, mu).assemble(basis)
             L, h, I = scene.length, scene.section.depth, scene.section.I
             ns, nt = len(s), len(tt)
             jm = nt // 2  # mid-line row
@@ -237,7 +245,7 @@ class FemPlaneStress(Model):
                 S = cm.constraint_basis(C[:, free])
                 Kf, Ff = (S.T @ Kf @ S).tocsr(), S.T @ Ff
         with timer("solve"):
-            uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=False)
+            uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"))
             if S is not None:
                 uf = S @ uf
             u = np.zeros(basis.N)
@@ -259,7 +267,8 @@ class FemPlaneStress(Model):
                     load_resultant=resultant)
         if not scene.is_straight:
             info.update(axis=scene.axis.type,
-                        geometry="quadratic edges on the mapped curves" if el != "q4" else "straight-edged q4")
+                        geometry=("quadratic edges on the mapped curves" if not el.startswith("q4")
+                                  else "straight-edged q4"))
 
         def write_vtu(path, mesh=mesh, u=u, basis=basis, E=E, nu=nu, lam=lam, mu=mu):
             import meshio

@@ -25,26 +25,41 @@ minus the counter-clockwise rotation: gamma = theta + w' vanishes for w' = ccw r
 
 Variants
 --------
-``paper`` (faithful): delta = (m + 0.015) dx, full volumes V_j = A dx, omega = 1/(delta^2 A |xi|) V_j
-for j = 1..floor(delta/dx) each side; clamped and simply supported ends by fictitious layers of
-floor(delta/dx) points mirrored about the end point (Appendix B: clamped w, w* symmetric and theta,
-theta* antisymmetric, w = w* = 0 at the end point, Eq. B39–B40; simply supported the opposite,
-Eq. B41; guided, not in the paper: the clamped mirror without w = 0); a free end has no fictitious
-layer (truncated families). The equations are those of Eq. 22 at the real points, the fictitious
-DOFs substituted by their images (a non-symmetric system).
-Measured defect: with full volumes Σ_j omega xi^2 = 2 dx^2 (1 + 2 + 3) / (3.015 dx)^2 = 1.320, not 1
-(the continuous integral of Eq. A30 is δ^2 but the volumes of the outer members reach 3.5 dx): the
-model is 32 % too stiff everywhere and does not converge under refinement at fixed m.
+``paper`` (faithful): delta = (m + 0.015) dx, omega = 1/(delta^2 A |xi|) V_j (Eq. 14) for the members
+j = 1..J each side. Family volumes (option ``volumes``): ``partial`` (default) is the authors' convention
+(Oterkus/Madenci, reference [17] and the sister paper seed 000's "volume correction"): a member with
+delta - dx/2 < xi < delta + dx/2 gets the volume fraction beta = (delta + dx/2 - xi)/dx, so at 3.015 dx the
+third neighbour carries 0.515 and Σ_j omega xi^2 = 2 Σ beta_d d / (delta/dx)^2 = 9.09/9.090225, i.e. the
+continuous integral of Eq. A30 (δ^2) to 2.5e-5; ``full`` gives every member inside delta a whole cell,
+2 (1 + 2 + 3) / 3.015^2 = 12/9.090225 = 1.320: a uniformly 32 % stiffer operator (not the paper's).
+Boundaries (Appendix B) by fictitious layers of J points mirrored (option ``mirror``): ``point`` (default)
+about the end point, which is a material point and is held (clamped: w, w* symmetric and theta, theta*
+antisymmetric, w = w* = 0 at the end point, Eq. B39–B40; simply supported: the opposite, Eq. B41, w and w*
+held); read from the text: the conditions are "for the material point adjacent to the clamped end" (zero
+w and rotation there; zero w and curvature for the simple support), which an image about that point gives,
+and the sister paper mirrors "with respect to the first adjacent material point which is fixed".
+``boundary``: cell-centred points x = (k + 1/2) dx, dx = L / points, images i' of the real points i = 1..J
+about the boundary between 1 and 1' (Eq. B39–B41 with 1' a point of the fictitious layer), clamped
+w(1) = w*(1) = 0 (theta(1) then not zero), pinned and guided nothing held. Guided, not in the paper: the
+clamped mirror without w = 0. A free end has no fictitious layer (truncated families). The equations are
+those of Eq. 22 at the real points, the fictitious DOFs substituted by their images (a non-symmetric
+system). Loads on the mid-surface (Eq. 16b) while the plane-stress reference loads the top face: the
+simply supported benchmarks differ from it by that, not by the operator (option ``loads = faces``).
 
 ``corrected`` (default), each change measured in tests/test_pd_higher_order.py:
 1. micro-modulus calibrated on the discrete family of each point: omega_kj = beta_j / (|xi| S_k),
    S_k = Σ_j beta_j |xi_j| over the actual family (partial volume beta = 1/2 for the member at
    delta = m dx), so every W_k is exact for linear fields, also on truncated families near the ends
-   (removes the paper's factor 1.32: -24 % -> within 0.22 % of converged plane stress at dx = 1 mm);
-2. bond-centred shear measures g = w_j - w_k + xi (theta_k + theta_j)/2, e = w*_j - w*_k +
-   3 xi (theta*_k + theta*_j)/2 (option ``shear``): with theta_k alone a pure bending field leaves
-   g = -theta' xi^2 / 2, a spurious shear energy G h theta'^2 delta^2 / 8 next to E h^3 theta'^2 / 12, i.e.
-   a stiffening of ~ (G/E) 1.5 (delta/h)^2 (measured 5 % at dx = h/10, m = 3: a locking-like defect);
+   (the same operator as the paper's partial volumes in the interior, exact also on truncated families);
+2. shear measures along the bond (option ``shear = path``, :func:`path_measures`): g = w_j - w_k + the
+   trapezoid of theta over the bond's nearest-neighbour segments, e likewise with 3 theta*. With theta_k
+   alone (Eq. 14d-f, ``shear = point``) a pure bending field leaves g = -theta' xi^2 / 2, a spurious shear
+   energy G h theta'^2 delta^2 / 8 next to E h^3 theta'^2 / 12, a stiffening of ~ (G/E) 1.5 (delta/h)^2;
+   with the bond-mean rotations (theta_k + theta_j)/2 (``shear = centred``) that is gone, but the J bonds'
+   measures cannot all vanish for a cubic w (trapezoid errors ~ xi^3 w'''/12 that differ bond by bond), a
+   penalty ~ (G/E) xi^4 / (h L)^2 times the bending energy: shear locking once dx is many depths. Summed over
+   the segments every bond's g is a sum of nearest-neighbour measures, which can all vanish together
+   (no locking); for smooth fields g = xi (w' + theta) + O(xi dx^2) as before;
 3. no fictitious points (option ``ends = truncated``): the discrete energy U = Σ_k V_k W_k with
    trapezoidal volumes (dx/2 at the ends) is minimised with the essential conditions on the end point
    (clamped theta = theta* = w = w* = 0: the whole end face fixed; guided theta = theta* = 0; pinned
@@ -127,29 +142,58 @@ def bond_measures(xi: float, centred: bool = False) -> np.ndarray:
     return M
 
 
+def path_measures(off: int, dx: float) -> np.ndarray:
+    """M (5 x 4(|off| + 1)): the bond measures of k -> k + off on the points k + sign(off) a, a = 0..|off|, with
+    the shear measures summed over the bond's nearest-neighbour segments (``shear = path``):
+    g = w_j - w_k + Σ_a c_a theta_a, e = w*_j - w*_k + 3 Σ_a c_a theta*_a, c_a = xi/|off| (1/2 at the ends), the
+    trapezoid rule of the rotation along the bond; one bond (|off| = 1) is the centred measure. If every
+    nearest-neighbour shear measure vanishes so do all: no over-constraint of the J bonds (no locking)."""
+    d = abs(off)
+    xi = off * dx
+    c = np.full(d + 1, xi / d)
+    c[[0, d]] /= 2
+    M = np.zeros((5, NF * (d + 1)))
+    j = NF * d
+    M[0, [TH, j + TH]] = -1.0, 1.0  # a
+    M[1, WS] = 2.0 * xi  # s
+    M[2, [TS, j + TS]] = -1.0, 1.0  # c
+    M[3, [W, j + W]] = -1.0, 1.0  # g
+    M[3, NF * np.arange(d + 1) + TH] += c
+    M[4, [WS, j + WS]] = -1.0, 1.0  # e
+    M[4, NF * np.arange(d + 1) + TS] += 3 * c
+    return M
+
+
 def bond_block(C: np.ndarray, xi: float, centred: bool = False) -> np.ndarray:
     """Hessian (8x8) of Q(M u) / 2 = the stiffness of one bond for unit weight."""
     M = bond_measures(xi, centred)
     return M.T @ C @ M
 
 
-def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
-    """Offsets d = 1..J and their volume fractions beta_d (paper: full volumes inside (m + 0.015) dx)."""
+def family(m: float, dx: float, variant: str, volumes: str = "partial") -> tuple[np.ndarray, np.ndarray]:
+    """Offsets d = 1..J and their volume fractions beta_d. Paper, delta = (m + 0.015) dx: ``volumes = "partial"``
+    the Oterkus/Madenci convention (a member with delta - dx/2 < xi < delta + dx/2 gets (delta + dx/2 - xi)/dx:
+    0.515 for the third neighbour at 3.015 dx), ``"full"`` every member inside delta a whole cell. Corrected:
+    the cells' parts inside m dx (beta = 1/2 at xi = m dx)."""
     if variant == "paper":
-        J = int(np.floor(m + 0.015 + 1e-12))
-        return np.arange(1, J + 1), np.ones(J)
+        if volumes == "full":
+            J = int(np.floor(m + 0.015 + 1e-12))
+            return np.arange(1, J + 1), np.ones(J)
+        return partial_volumes(m + 0.015)
     return partial_volumes(m)
 
 
 def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray,
-                 calibrate: str = "point", points: np.ndarray | None = None) -> dict[int, np.ndarray]:
+                 calibrate: str = "point", points: np.ndarray | None = None,
+                 fractions: str = "partial") -> dict[int, np.ndarray]:
     """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
     is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
     on the discrete family so that Σ_j omega_kj xi^2 = 1, per point on its actual (possibly truncated)
     family (``calibrate = "point"``) or on the full family (``"family"``, grids with ghost points).
     ``points``: the indices k (of the n-point grid) whose weights are wanted, ``volumes`` given on them
-    (default all points); each weight is computed point by point, so a subset gets the same bits."""
-    d, beta = family(m, dx, variant)
+    (default all points); each weight is computed point by point, so a subset gets the same bits.
+    ``fractions``: the paper's family volumes (:func:`family`)."""
+    d, beta = family(m, dx, variant, fractions)
     k = np.arange(n) if points is None else np.asarray(points, np.int64)
     raw = {}
     for sgn in (1, -1):
@@ -201,15 +245,24 @@ def taylor_map(n: int, G: int | tuple[int, int], p: int) -> sp.csr_matrix:
 
 
 def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
-                    centred: bool = False) -> sp.csr_matrix:
+                    centred: bool = False, path: bool = False) -> sp.csr_matrix:
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
-    filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR."""
+    filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
+    ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it)."""
     J = max(abs(o) for o in weights)
     Kb = np.zeros((n, 2 * J + 1, NF, NF))
     for off, wt in weights.items():
-        B = bond_block(C, off * dx, centred) / h
         lo, hi = max(0, -off), min(n, n - off)
         t = wt[lo:hi, None, None]
+        if path:
+            M = path_measures(off, dx)
+            B = M.T @ C @ M / h
+            sg, d = (1 if off > 0 else -1), abs(off)
+            for a in range(d + 1):
+                for b in range(d + 1):
+                    Kb[lo + sg * a:hi + sg * a, J + sg * (b - a)] += t * B[NF * a:NF * a + NF, NF * b:NF * b + NF]
+            continue
+        B = bond_block(C, off * dx, centred) / h
         Kb[lo:hi, J] += t * B[:NF, :NF]
         Kb[lo:hi, J + off] += t * B[:NF, NF:]
         Kb[lo + off:hi + off, J - off] += t * B[NF:, :NF]
@@ -222,7 +275,7 @@ def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndar
 
 
 def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
-           centred: bool = False) -> float:
+           centred: bool = False, path: bool = False) -> float:
     """Strain energy U = Σ_k V_k W_k (Eq. 13, 15) evaluated directly from the bond measures (for the
     gradient checks: K must equal the Hessian of this function)."""
     u = np.asarray(u, float).reshape(-1, NF)
@@ -235,6 +288,13 @@ def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.nd
         xi = off * dx
         th = (uk[:, TH] + uj[:, TH]) / 2 if centred else uk[:, TH]
         ts = (uk[:, TS] + uj[:, TS]) / 2 if centred else uk[:, TS]
+        if path:  # trapezoid of the rotations along the bond (path_measures), as a mean rotation
+            d, sg = abs(off), (1 if off > 0 else -1)
+            along = [u[lo + sg * a:hi + sg * a] for a in range(d + 1)]
+            c = np.full(d + 1, 1.0 / d)
+            c[[0, d]] /= 2
+            th = sum(ca * ua[:, TH] for ca, ua in zip(c, along))
+            ts = sum(ca * ua[:, TS] for ca, ua in zip(c, along))
         m = np.stack([uj[:, TH] - uk[:, TH], 2 * xi * uk[:, WS], uj[:, TS] - uk[:, TS],
                       uj[:, W] - uk[:, W] + xi * th, uj[:, WS] - uk[:, WS] + 3 * xi * ts])
         U += 0.5 / h * np.sum(wt[lo:hi] * np.einsum("pb,pq,qb->b", m, C, m))
@@ -259,7 +319,7 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
             if faces:
                 F[:, WS] += q * h * h / 4
             continue
-        pos = load.position / dx
+        pos = float(np.clip((load.position - x[0]) / dx, 0.0, n - 1))  # cell-centred grids: beyond the end points
         i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
         t = pos - i
         if abs(t) < 1e-9 or i == n - 1:
@@ -279,13 +339,20 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
     return F / A
 
 
-def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: float) -> tuple[list, list]:
+def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: float,
+                   about: str = "point") -> tuple[list, list]:
     """(drop, tie): the DOFs held at zero and the ties (slave, master, c), u_slave = c u_master, of the end
     conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed); guided: theta = theta* = 0;
     pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's antisymmetric w*); ``pin = face``: w = -h^2/20 w*
-    instead (zero parabola-weighted mean deflection of the end face); free: nothing."""
+    instead (zero parabola-weighted mean deflection of the end face); free: nothing. Paper mirrored about the
+    boundary (``about = "boundary"``): clamped w(1) = w*(1) = 0 on the first point (Eq. B39; theta, theta*
+    follow from the antisymmetric images, Eq. B40), pinned and guided nothing (the images carry them)."""
     drop, tie = [], []
     for sup, k in ((left, 0), (right, n - 1)):
+        if variant == "paper" and about == "boundary":
+            if sup == "clamped":
+                drop += [NF * k + W, NF * k + WS]
+            continue
         if sup == "clamped":
             drop += [NF * k + f for f in (TH, TS, W, WS)]
         elif sup == "guided":
@@ -302,11 +369,11 @@ def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: flo
 
 
 def constraint_map(n: int, left: str, right: str, variant: str, pin: str, h: float,
-                   numbering: str = "unknowns") -> sp.csr_matrix:
+                   numbering: str = "unknowns", about: str = "point") -> sp.csr_matrix:
     """T: u = T z with the end conditions built in (:func:`end_conditions`). ``numbering = "unknowns"``:
     T is 4n x unknowns (the held DOFs eliminated); ``"points"``: 4n x 4n, the numbering of u kept and the
     columns of the held DOFs zero (the band's form: unit rows added by ``Band.fix``)."""
-    drop, tie = end_conditions(n, left, right, variant, pin, h)
+    drop, tie = end_conditions(n, left, right, variant, pin, h, about)
     keep = np.ones(NF * n, bool)
     keep[drop] = False
     free = np.flatnonzero(keep)
@@ -318,9 +385,12 @@ def constraint_map(n: int, left: str, right: str, variant: str, pin: str, h: flo
     return sp.csr_matrix((vals, (rows, cols)), shape=(NF * n, NF * n if numbering == "points" else len(free)))
 
 
-def mirror_map(n: int, G: tuple[int, int], left: str, right: str) -> sp.csr_matrix:
+def mirror_map(n: int, G: tuple[int, int], left: str, right: str, about: str = "point") -> sp.csr_matrix:
     """P: extended DOFs (G[0] ghosts, n real, G[1] ghosts) <- real DOFs; ghost i' = sign * real i
-    (mirror about the end point, Appendix B)."""
+    (Appendix B, Eq. B39-B41). ``about = "point"``: mirror about the end point (ghost j spacings out is the
+    image of real point j spacings in); ``"boundary"``: mirror about the boundary half a spacing beyond the
+    first point (cell-centred points: ghost i' at -(i - 1/2) dx is the image of real i at (i - 1/2) dx)."""
+    shift = 1 if about == "boundary" else 0
     N = G[0] + n + G[1]
     rows = [NF * (G[0] + np.arange(n))[:, None] + np.arange(NF)]
     cols = [NF * np.arange(n)[:, None] + np.arange(NF)]
@@ -330,7 +400,7 @@ def mirror_map(n: int, G: tuple[int, int], left: str, right: str) -> sp.csr_matr
             continue
         j = np.arange(1, g + 1)
         ghost = G[0] - j if side == 0 else G[0] + n - 1 + j
-        real = j if side == 0 else n - 1 - j
+        real = j - shift if side == 0 else n - 1 - j + shift
         rows.append(NF * ghost[:, None] + np.arange(NF))
         cols.append(NF * real[:, None] + np.arange(NF))
         vals.append(np.broadcast_to(MIRROR[sup], (g, NF)))
@@ -340,13 +410,21 @@ def mirror_map(n: int, G: tuple[int, int], left: str, right: str) -> sp.csr_matr
 
 
 def uniform_blocks(C: np.ndarray, dx: float, weights: dict[int, float], h: float,
-                   centred: bool = False) -> dict[int, np.ndarray]:
+                   centred: bool = False, path: bool = False) -> dict[int, np.ndarray]:
     """{point offset o: 4x4 block K[p, p + o]} of a row p whose own bonds and whose partners' bonds all
     carry the interior weights ``weights`` (offset -> V omega): Eq. 15's Hessian summed bond by bond in
     the order of :func:`assemble_blocks` (the same bits as its interior rows)."""
     J = max(abs(o) for o in weights)
     blocks = {o: np.zeros((NF, NF)) for o in range(-J, J + 1)}
     for off, wt in weights.items():
+        if path:
+            M = path_measures(off, dx)
+            B = M.T @ C @ M / h
+            sg, d = (1 if off > 0 else -1), abs(off)
+            for a in range(d + 1):
+                for b in range(d + 1):
+                    blocks[sg * (b - a)] += wt * B[NF * a:NF * a + NF, NF * b:NF * b + NF]
+            continue
         B = bond_block(C, off * dx, centred) / h
         blocks[0] += wt * B[:NF, :NF]
         blocks[off] += wt * B[:NF, NF:]
@@ -393,11 +471,21 @@ class PDHigherOrder(Model):
         Option("pin", str, "auto", "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | face (parabola-weighted mean of "
                "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
                choices=("auto", "mid", "face")),
-        Option("shear", str, "auto", "auto (point for paper, centred for corrected) | point (Eq. 14d-f: theta_k xi) | "
-               "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy)",
-               choices=("auto", "point", "centred")),
+        Option("shear", str, "auto", "auto (point for paper, path for corrected) | point (Eq. 14d-f: theta_k xi) | "
+               "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy) | path "
+               "(the rotations' trapezoid along the bond's segments: no shear locking of slender beams)",
+               choices=("auto", "point", "centred", "path")),
         Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
                "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
+        Option("volumes", str, "partial", "paper variant's family volumes: partial (the authors' convention: the "
+               "member at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells "
+               "inside delta)",
+               choices=("partial", "full")),
+        Option("mirror", str, "point", "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
+               "images about the end point, which is held: the material point at the support, as in Appendix B's text "
+               "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
+               "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
+               choices=("boundary", "point")),
     )
 
     assembles = True
@@ -413,8 +501,18 @@ class PDHigherOrder(Model):
         Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
     )
 
+    def about(self, params: dict) -> str:
+        """The mirror of the paper's fictitious layers: "boundary" or "point" (every other variant/end: "point")."""
+        if params["variant"] == "paper" and self.ends(params) == "mirror":
+            return params.get("mirror", "point")
+        return "point"
+
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
-        return np.linspace(0.0, scene.length, params["points"])
+        """x_k = k dx, ends included; mirrored about the boundary: cell centres (k + 1/2) dx, dx = L / points."""
+        n = params["points"]
+        if self.about(params) == "boundary":
+            return (np.arange(n) + 0.5) * (scene.length / n)
+        return np.linspace(0.0, scene.length, n)
 
     def constants(self, scene: Scene):
         mat = scene.material
@@ -447,7 +545,8 @@ class PDHigherOrder(Model):
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         m, variant, ends = params["horizon"], params["variant"], self.ends(params)
-        d, _ = family(m, dx, variant)
+        fractions, about = params.get("volumes", "partial"), self.about(params)
+        d, _ = family(m, dx, variant, fractions)
         J = int(d.max())
         p = params["ghost_degree"]
         if 2 * J + 1 > n or (ends == "taylor" and p + 1 > n):
@@ -458,14 +557,17 @@ class PDHigherOrder(Model):
         pin = self.choice(params, "pin")
         info = {"depth": h, "ends": ends, "section": "rectangle" if scene.section.height is not None else
                 f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m"}
-        centred = params.get("shear", "auto") == "centred" or (params.get("shear", "auto") == "auto"
-                                                               and variant != "paper")
-        info["shear"] = "centred" if centred else "point"
+        shear = params.get("shear", "auto")
+        path = shear == "path" or (shear == "auto" and variant != "paper")
+        centred = shear == "centred"
+        info["shear"] = "path" if path else "centred" if centred else "point"
         symmetric = not (ends == "mirror" and variant == "paper")  # paper: Eq. 22 at the real points, images substituted
         if ends == "mirror":
             G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
-            fold = lambda nw, Gw: mirror_map(nw, Gw, left, right)  # noqa: E731
-            info.update(boundary="fictitious mirror layers (Appendix B), free ends truncated", ghosts_per_end=list(G))
+            fold = lambda nw, Gw: mirror_map(nw, Gw, left, right, about)  # noqa: E731
+            info.update(boundary=f"fictitious mirror layers (Appendix B) about the "
+                        f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated",
+                        ghosts_per_end=list(G))
         elif ends == "taylor":
             G, calibrate, reach = (J, J), "family", p
             fold = lambda nw, Gw: taylor_map(nw, Gw, p)  # noqa: E731
@@ -477,7 +579,8 @@ class PDHigherOrder(Model):
         N = n + G[0] + G[1]
 
         def weights(k):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
-            return bond_weights(N, m, dx, variant, extended_volumes(k, n, G, dx, ends, variant), calibrate, points=k)
+            return bond_weights(N, m, dx, variant, extended_volumes(k, n, G, dx, ends, variant), calibrate, points=k,
+                                fractions=fractions)
 
         def window(r0: int, r1: int) -> np.ndarray:
             """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
@@ -485,7 +588,7 @@ class PDHigherOrder(Model):
             g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
             nw = r1 - r0
             k = np.arange(G[0] + r0 - g[0], G[0] + r1 + g[1])
-            Kx = assemble_blocks(len(k), dx, C, weights(k), h, centred)
+            Kx = assemble_blocks(len(k), dx, C, weights(k), h, centred, path)
             if fold is None:
                 K = Kx
             elif symmetric:
@@ -494,11 +597,12 @@ class PDHigherOrder(Model):
             else:
                 K = (Kx[NF * g[0]: NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
             T = constraint_map(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h,
-                               numbering="points")
+                               numbering="points", about=about)
             if symmetric:
                 return (T.T @ K @ T).toarray()
             D = (K @ T).toarray()
-            D[end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h)[0]] = 0.0
+            D[end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h,
+                             about)[0]] = 0.0
             return D
 
         rows_end = max(2 * J, reach + 1) + 1  # rows of each end from its window (beyond 2J: uniform; one spare)
@@ -517,19 +621,21 @@ class PDHigherOrder(Model):
         if len(parts) > 1:
             mid = G[0] + n // 2
             interior = {off: float(wt[0]) for off, wt in weights(np.array([mid])).items()}
-            B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred))
+            B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
-        drop, tie = end_conditions(n, left, right, variant, pin, h)
+        drop, tie = end_conditions(n, left, right, variant, pin, h, about)
         F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
         b = F.copy()
         if symmetric:  # T^T F: the slave's load acts on its master (the paper variant has no ties)
             for slave, master, c in tie:
                 b[master] += c * F[slave]
         B.fix(drop, b)
-        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family")
+        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family", fractions=fractions)
         info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
         info.update(pin=pin, loads=self.choice(params, "loads"))
+        if variant == "paper":
+            info.update(volumes=fractions, mirror=about)
         return B, b, (drop, tie), info
 
     def assemble(self, scene: Scene, params: dict) -> System:
