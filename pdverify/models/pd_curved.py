@@ -18,7 +18,8 @@ For a straight beam Q = kGA(w' - φ) = -dM/dx: ``exact-timoshenko``'s V is -Q (R
 
 Collocation (Eq. 27–35): three equations per particle, every derivative replaced by PDDO functions of
 degree P (:mod:`pdverify.models._pddo`), families of 2 m + 1 particles (m = ``horizon``, default
-⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P; see :func:`default_horizon`), shifted inward
+⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P, mixed form at even P >= 6: P + 1; see
+:func:`default_horizon`), shifted inward
 at the ends. Two forms:
 
 * ``primal`` (the paper, Eq. 14–16): constitutive law substituted, second derivatives by g²:
@@ -52,9 +53,10 @@ L/h = 10, 41 -> 321 particles, observed order per doubling):
 * ``primal``: order 2⌊P/2⌋: P = 2/3/4/5/6 -> 2.0/2.0/4.0/4.0/6.0 (straight sine), 2.0/2.0/4.0/4.3-4.5/6.1
   (semicircle), 2.0/2.0/4.0/4.0/6.0 (quintic): an odd degree converges like the even degree below it.
 * ``mixed``: order 2⌈P/2⌉: 2.0/4.0/4.0/5.9/(6 until a floor) (straight), 2.0/4.0/4.0/6.0/6.0 (semicircle),
-  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with 9 members has a mode
-  controlled only by the end families (condition ~ n^4 instead of n^2): on the straight beam its error
-  stops near 2e-9 at 81 particles and grows to 4e-8 at 641 (``horizon = 5``: 4e-12; see default_horizon).
+  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with 9 members had a band of
+  modes held only by the end families (condition ~ n^4 instead of n^2): error floor growing with n, 3.9e-8 /
+  2.2e-7 / 1.2e-6 at 401 / 1601 / 6401 particles on the straight beam; the default is now 7 members
+  (4.0e-13 / 5.3e-13 / 1.8e-12; see default_horizon).
 * Locking (201 particles, error vs L/h = 10, 100, 1000, 10^4): ``primal`` error ~ (L/h)^2 for every
   degree until it saturates at ~1 (slope 2.0 for P >= 4; P = 2, 3 saturate by L/h = 1000); a higher
   degree lowers the constant (P = 6 straight 3.5e-11 -> 4.0e-7 at L/h = 1000), not the slope. ``mixed``
@@ -290,12 +292,21 @@ _SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is pres
 
 
 def default_horizon(degree: int, form: str = "primal") -> int:
-    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P). Mixed form, P = 6: with these 9 members the
-    operator has a mode held only by the end families (condition ~ n^4): straight sine, clamped-clamped,
-    error 1.8e-9 at 81 particles growing to 3.9e-8 at 321; a force 0.123 m from a pinned end 1e-9 ->
-    4.5e-7 from 51 to 201 particles. ``horizon = 5`` (11 members) gives 4e-12 and 1e-11 there, but on the
-    manufactured quintic 8.3 / 2.5e-3 / 4.4e-3 / 4.6e-6 at 41 / 81 / 161 / 321 particles (9 members:
-    9.8e-2 / 2.9e-4 / 1.3e-6 / 8.2e-9), so the default stays."""
+    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P), except the mixed form at even P >= 6: P/2
+    (P + 1 members, the interpolating central stencil).
+
+    Why: the mixed form applies the first-derivative function g^1 only, and every antisymmetric interior
+    stencil annihilates the sawtooth (-1)^k; what keeps the neighbouring high-frequency modes away from zero
+    is the slope of the stencil's symbol σ(θ) = Σ_j c_j sin(jθ) at θ = π, 2 Σ_j (-1)^(j+1) j c_j (h = 1).
+    With P + 3 members the two spare coefficients are set by the Gaussian weight, and that slope collapses
+    at P = 6 (0.017, against 0.67 / 0.45 at P = 2 / 4 and 2.2 for the 7-member stencil) and changes sign
+    at P = 8 and 10 (-0.41, -0.82: a spurious interior null mode). The modes near θ = π are then held only
+    by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
+    P + 1 members give the interpolating stencil (slope 2.2 / 2.66 / 3.06 at P = 6 / 8 / 10), whose weights do
+    not depend on w. The primal form keeps ⌊P/2⌋ + 1: its g^2 symbol Σ_j c_j cos(jθ) stays negative at P = 6
+    (-0.096 at θ = π) but is positive there at P = 8 and 10 (0.32, 0.62; not changed, see docs/models/curved.md)."""
+    if form == "mixed" and degree % 2 == 0 and degree >= 6:
+        return degree // 2
     return degree // 2 + 1
 
 
@@ -306,8 +317,8 @@ class PDCurved(Model):
     options = (
         Option("points", int, 101, "particles along the axis, ends included", minimum=5),
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
-        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1",
-               minimum=0),
+        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1 "
+               "(mixed form, even P >= 6: P/2)", minimum=0),
         Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
                "functions applied twice)", choices=("primal", "mixed")),
         Option("unknowns", str, "resultants", "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
