@@ -180,15 +180,47 @@ def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
     return np.array(bps), loads, ends
 
 
-def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int) -> list[np.ndarray]:
-    """Uniform particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all (a uniform
-    grid of ``points`` particles when the breaks fall on it), at least ``min_points`` per segment."""
+def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, density=None) -> list[np.ndarray]:
+    """Particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all, at least ``min_points``
+    per segment. ``density`` None: uniform (a uniform grid of ``points`` particles when the breaks fall on
+    it). Else a pair (s_table, cumulative) of a non-decreasing measure m(s) (m(0) = 0, m(L) = 1): the
+    intervals of a segment are shared by its measure, and its particles sit at equal steps of m (the seed's
+    non-uniform particles: spacing ∝ 1/ρ for m = ∫ρ ds / ∫ρ ds)."""
     edges = np.concatenate([[0.0], bps, [L]])
     out = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
-        out.append(np.linspace(a, b, k + 1))
+    if density is not None:
+        st, cm = density
+        me = np.interp(edges, st, cm)
+    for i, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
+        if density is None:
+            k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
+            out.append(np.linspace(a, b, k + 1))
+            continue
+        k = max(min_points - 1, int(np.floor((points - 1) * (me[i + 1] - me[i]) + 0.5 + 1e-9)))
+        g = np.interp(np.linspace(me[i], me[i + 1], k + 1), cm, st)
+        g[0], g[-1] = a, b
+        out.append(g)
     return out
+
+
+def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
+    """(s_table, m(s)) for :func:`segment_grids`: density ρ = 1 + (ratio - 1) f(s), f in [0, 1], so the
+    largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
+    particles gather where the axis bends; the square root spreads them over the bend's flanks, which on
+    y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance to the nearer end or to a
+    point load inside the beam: particles gather at the supports and at point loads)."""
+    L = scene.length
+    s = np.linspace(0.0, L, samples)
+    if by == "curvature":
+        kap = np.abs(axis_frame(scene, s)[2])
+        f = np.sqrt(kap / kap.max()) if kap.max() > 0 else np.zeros_like(s)
+    else:
+        marks = [0.0, L] + [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment))]
+        d = np.min(np.abs(s[:, None] - np.array(marks)[None, :]), axis=1)
+        f = np.exp(-d / (0.1 * L))
+    rho = 1.0 + (ratio - 1.0) * f
+    m = np.concatenate([[0.0], np.cumsum((rho[1:] + rho[:-1]) * np.diff(s) / 2)])
+    return s, m / m[-1]
 
 
 def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
@@ -319,6 +351,10 @@ class PDCurved(Model):
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
         Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1 "
                "(mixed form, even P >= 6: P/2)", minimum=0),
+        Option("grading", float, 1.0, "largest / smallest particle spacing (1 = uniform particles; see graded_by)",
+               minimum=1.0, maximum=1e3),
+        Option("graded_by", str, "curvature", "where particles gather when grading > 1: curvature (where the axis "
+               "bends) | ends (at the supports and at point loads)", choices=("curvature", "ends")),
         Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
                "functions applied twice)", choices=("primal", "mixed")),
         Option("unknowns", str, "resultants", "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
@@ -342,7 +378,9 @@ class PDCurved(Model):
             raise InputError(f"points = {params['points']}: fewer than one family ({size} particles for "
                              f"degree {P}, horizon {m}); use more points")
         bps, inner, ends = breakpoints(scene)
-        segs = segment_grids(scene.length, bps, params["points"], size)
+        ratio = params.get("grading", 1.0)
+        density = None if ratio == 1.0 else grading_density(scene, ratio, params.get("graded_by", "curvature"))
+        segs = segment_grids(scene.length, bps, params["points"], size, density)
         return segs, inner, ends, m, size
 
     def assemble(self, scene: Scene, params: dict, body=None) -> System:
