@@ -207,8 +207,8 @@ def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
     """(s_table, m(s)) for :func:`segment_grids`: density ρ = 1 + (ratio - 1) f(s), f in [0, 1], so the
     largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
     particles gather where the axis bends; the square root spreads them over the bend's flanks, which on
-    y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance to the nearer end or to a
-    point load inside the beam: particles gather at the supports and at point loads)."""
+    y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance
+    to the nearer end or to a point load inside the beam: particles gather at the supports and at point loads)."""
     L = scene.length
     s = np.linspace(0.0, L, samples)
     if by == "curvature":
