@@ -526,3 +526,35 @@ def test_graded_segment_grids_follow_the_density():
     h = np.diff(s)[np.diff(s) > 0]
     assert np.all(h > 0) and len(s) == 202
     assert 10 < h.max() / h.min() <= 20 * (1 + 1e-9)
+
+
+def test_given_positions_reproduce_the_uniform_and_the_graded_particles():
+    """positions = the particles' arc lengths (as a study or the CLI gives them): the uniform grid written out gives
+    the same bits as points = 81; the graded grid written out gives the graded run; with a point load inside the
+    beam the break is added to the given positions."""
+    from pdverify.models.pd_curved import grading_density, segment_grids
+
+    sc = load_scene("studies/paper_curved/semicircle_normal.toml")
+    text = lambda s: ", ".join(repr(float(v)) for v in s)  # noqa: E731
+    a = run(sc, "pd-curved", points=81, degree=4)
+    b = run(sc, "pd-curved", points=81, degree=4, positions=text(np.linspace(0, sc.length, 81)))
+    assert np.array_equal(a.fields["ux"], b.fields["ux"]) and np.array_equal(a.fields["N"], b.fields["N"])
+    st = load_scene("studies/paper_curved/steep_quintic_uniform.toml")
+    g = segment_grids(st.length, np.array([]), 53, 7, grading_density(st, 20.0, "curvature"))[0]
+    a = run(st, "pd-curved", points=53, grading=20.0)
+    b = run(st, "pd-curved", points=53, positions=text(g))
+    assert np.array_equal(a.fields["ux"], b.fields["ux"])
+    d = sc.to_dict()
+    d["loads"] = [{"type": "point_force", "position": 1.0, "value": -1000.0}]
+    r = run(parse_scene(d), "pd-curved", points=81, degree=4, positions=text(np.linspace(0, sc.length, 41)))
+    assert r.info["segments"] == 2 and r.info["particles"] == 43  # 41 given + the break on both sides
+
+
+@pytest.mark.parametrize("positions, match", [
+    ("0, 0.5, x", "separated by commas"), ("0, 0.5, 9", r"\[0, L\]"), ("0, 0.5, 0.4, 1", "increase strictly"),
+    ("0, 1, 2", "fewer than one family")])
+def test_bad_positions_are_refused_with_one_line_naming_the_option(positions, match):
+    sc = load_scene("studies/paper_curved/semicircle_normal.toml")
+    with pytest.raises(InputError, match=match) as exc:
+        run(sc, "pd-curved", points=81, degree=4, positions=positions)
+    assert str(exc.value).startswith("positions") and "\n" not in str(exc.value)

@@ -203,6 +203,38 @@ def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, densi
     return out
 
 
+def parse_positions(text: str, L: float) -> np.ndarray:
+    """The ``positions`` option: arc lengths (m) separated by commas or spaces, strictly increasing, in [0, L]
+    (0 and L are added when missing). Raises InputError naming the option."""
+    try:
+        s = np.array([float(v) for v in text.replace(",", " ").split()], float)
+    except ValueError:
+        raise InputError(f"positions = {text!r}: give arc lengths in m separated by commas, e.g. \"0, 0.1, 0.25\"") \
+            from None
+    tol = 1e-12 * L
+    if not np.all(np.isfinite(s)) or s.min(initial=0.0) < -tol or s.max(initial=0.0) > L + tol:
+        raise InputError(f"positions: every arc length must lie in [0, L] = [0, {L:g}] m; remove the others")
+    if np.any(np.diff(s) <= 0):
+        raise InputError("positions: the arc lengths must increase strictly; sort them and remove repeats")
+    s = np.clip(s, 0.0, L)
+    return np.unique(np.concatenate([[0.0], s, [L]]))
+
+
+def given_grids(L: float, bps: np.ndarray, s: np.ndarray, min_points: int) -> list[np.ndarray]:
+    """The particles s (from :func:`parse_positions`) split at the breaks: each segment [a, b] takes the given
+    positions strictly inside it (those within 1e-9 L of a break dropped) and its two ends."""
+    edges = np.concatenate([[0.0], bps, [L]])
+    tol = 1e-9 * L
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        g = np.concatenate([[a], s[(s > a + tol) & (s < b - tol)], [b]])
+        if len(g) < min_points:
+            raise InputError(f"positions: {len(g)} particles on [{a:g}, {b:g}] m (between supports, point loads and "
+                             f"load ends), fewer than one family ({min_points}); add positions there")
+        out.append(g)
+    return out
+
+
 def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
     """(s_table, m(s)) for :func:`segment_grids`: density ρ = 1 + (ratio - 1) f(s), f in [0, 1], so the
     largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
@@ -355,6 +387,9 @@ class PDCurved(Model):
                minimum=1.0, maximum=1e3),
         Option("graded_by", str, "curvature", "where particles gather when grading > 1: curvature (where the axis "
                "bends) | ends (at the supports and at point loads)", choices=("curvature", "ends")),
+        Option("positions", str, "", "particle arc lengths in m, comma-separated (0 and L added; breaks at point "
+               "loads and load ends added): overrides the particles of points and grading (points still sets the "
+               "output grid)"),
         Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
                "functions applied twice)", choices=("primal", "mixed")),
         Option("unknowns", str, "resultants", "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
@@ -378,6 +413,9 @@ class PDCurved(Model):
             raise InputError(f"points = {params['points']}: fewer than one family ({size} particles for "
                              f"degree {P}, horizon {m}); use more points")
         bps, inner, ends = breakpoints(scene)
+        if params.get("positions"):
+            segs = given_grids(scene.length, bps, parse_positions(params["positions"], scene.length), size)
+            return segs, inner, ends, m, size
         ratio = params.get("grading", 1.0)
         density = None if ratio == 1.0 else grading_density(scene, ratio, params.get("graded_by", "curvature"))
         segs = segment_grids(scene.length, bps, params["points"], size, density)
