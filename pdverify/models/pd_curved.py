@@ -35,8 +35,12 @@ At each end particle the three boundary equations replace the three equilibrium 
 takes u_t or N, slot n takes u_n or Q, slot φ takes φ or M): clamped u_t = u_n = φ = 0; pinned
 u_t = u_n = 0, M = ±C̄; free N, Q, M = ±(F·t, F·n, C̄); guided φ = 0, N, Q = ±(F·t, F·n).
 
+Particles are uniform by default; ``grading`` (largest / smallest spacing, ``graded_by`` curvature or ends) or
+``positions`` (arc lengths) place them non-uniformly (the seed: "not limited to uniform distributions of material
+particles"), the families keep 2m + 1 members, so each particle's horizon follows its spacing.
+
 Point loads inside the beam and the ends of a distributed load's span split the axis into segments
-(each with its own uniform particles and families; a PDDO function never reaches across a load
+(each with its own particles and families; a PDDO function never reaches across a load
 discontinuity). At an interface the two coincident particles carry continuity of u_t, u_n, φ and the
 jumps N⁺ - N⁻ = -F·t, Q⁺ - Q⁻ = -F·n, M⁺ - M⁻ = -C (a counter-clockwise couple C). Distributed loads are
 collocated point-wise (value along n, axial along t; ``frame = global``: (axial, value) = global
