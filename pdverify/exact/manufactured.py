@@ -7,10 +7,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry import geometry
+from ..manufactured import FIELDS
 from ..registry import POINTS, Model
 from ..result import Result, Timer
 from ..scene import Scene
-from ..manufactured import FIELDS
 
 
 def manufactured_checks(scene: Scene) -> list[str]:
