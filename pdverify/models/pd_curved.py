@@ -372,7 +372,8 @@ def default_horizon(degree: int, form: str = "primal") -> int:
     by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
     P + 1 members give the interpolating stencil (slope 2.2 / 2.66 / 3.06 at P = 6 / 8 / 10), whose weights do
     not depend on w. The primal form keeps ⌊P/2⌋ + 1: its g^2 symbol Σ_j c_j cos(jθ) stays negative at P = 6
-    (-0.096 at θ = π) but is positive there at P = 8 and 10 (0.32, 0.62; not changed, see docs/models/curved.md)."""
+    (-0.096 at θ = π) and is positive there at P = 8 and 10 (0.32, 0.62), without a measured floor (straight sine,
+    P = 8: 1.2e-10 at 1601 particles; see docs/models/curved.md)."""
     if form == "mixed" and degree % 2 == 0 and degree >= 6:
         return degree // 2
     return degree // 2 + 1
