@@ -366,7 +366,7 @@ def default_horizon(degree: int, form: str = "primal") -> int:
     Why: the mixed form applies the first-derivative function g^1 only, and every antisymmetric interior
     stencil annihilates the sawtooth (-1)^k; what keeps the neighbouring high-frequency modes away from zero
     is the slope of the stencil's symbol σ(θ) = Σ_j c_j sin(jθ) at θ = π, 2 Σ_j (-1)^(j+1) j c_j (h = 1).
-    With P + 3 members the two spare coefficients are set by the Gaussian weight, and that slope collapses
+    With P + 3 members the spare (two more than P + 1) coefficients are set by the weight, and that slope collapses
     at P = 6 (0.017, against 0.67 / 0.45 at P = 2 / 4 and 2.2 for the 7-member stencil) and changes sign
     at P = 8 and 10 (-0.41, -0.82: a spurious interior null mode). The modes near θ = π are then held only
     by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
