@@ -5,6 +5,7 @@ directly on a few grids so they stay fast. References: exact-timoshenko (straigh
 Measured numbers quoted in the comments are from the full studies (pd-curved defaults: family 2m+1 with
 m = floor(P/2) + 1, uniform particles)."""
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -54,7 +55,8 @@ def quintic(sl, P, n, form):
 # -- the study files ----------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name, cases", [("straight", 200), ("semicircle", 240), ("quintic", 160)])
+@pytest.mark.parametrize("name, cases", [("straight", 200), ("semicircle", 240), ("quintic", 160),
+                                         ("quintic_bending", 160)])
 def test_study_files_expand_without_skips(name, cases):
     st = load_study(STUDIES / f"paper_curved_{name}.toml")
     assert len(st.cases) == cases and not st.skipped
@@ -63,7 +65,8 @@ def test_study_files_expand_without_skips(name, cases):
 # -- references ---------------------------------------------------------------------------------
 
 
-def test_manufactured_loads_satisfy_the_equilibrium_equations():
+@pytest.mark.parametrize("kind", ["trig", "bending"])
+def test_manufactured_loads_satisfy_the_equilibrium_equations(kind):
     """Independent of sympy: differentiate the chosen fields numerically (splines on a fine arc-length grid)
     and check N' - kappa Q + p_t = 0, Q' + kappa N + p_n = 0, M' + Q + m = 0."""
     from scipy.interpolate import CubicSpline
@@ -73,7 +76,7 @@ def test_manufactured_loads_satisfy_the_equilibrium_equations():
 
     sc = scene("quintic_manufactured")
     s = np.linspace(0, sc.length, 4001)
-    f = fields(sc, s)
+    f = fields(sc, s, kind=kind)
     kap = geometry(sc).curvature(s)
     d = {k: CubicSpline(s, f[k])(s, 1) for k in ("N", "Q", "M")}
     inner = slice(50, -50)
@@ -86,6 +89,75 @@ def test_manufactured_loads_satisfy_the_equilibrium_equations():
     assert rel((ut(s, 1) - kap * f["u_n"])[inner] * sc.EA, f["N"][inner]) < 1e-6
     assert rel((un(s, 1) + kap * f["u_t"] - f["phi"])[inner] * sc.kGA, f["Q"][inner]) < 1e-6
     assert rel(phi(s, 1)[inner] * sc.EI, f["M"][inner]) < 1e-6
+
+
+def test_bending_manufactured_solution_is_beam_like():
+    """fields = bending: clamped ends, and every resultant and load scales with EI at fixed displacements (the
+    membrane and shear strains are O(h^2/L^2) of the bending ones, as in a slender beam), so N L / M stays O(1)
+    from L/h = 10 to 10^4; the trig fields' N L / M grows like (L/h)^2."""
+    from pdverify.manufactured import fields
+
+    s = np.linspace(0, scene("quintic_manufactured").length, 801)
+
+    def ratio(sl, kind):
+        sc = scene("quintic_manufactured", sl)
+        f = fields(sc, s, kind=kind)
+        for k in ("u_t", "u_n", "phi"):
+            assert np.abs(f[k][[0, -1]]).max() < 1e-12 * np.abs(f[k]).max()  # clamped at both ends
+        return (np.abs(f["N"]).max() * sc.length / np.abs(f["M"]).max(),
+                np.abs(f["Q"]).max() * sc.length / np.abs(f["M"]).max(), {k: f[k] / sc.EI for k in ("p_t", "p_n", "m")})
+
+    n10, q10, p10 = ratio(10, "bending")
+    n1e4, q1e4, p1e4 = ratio(1e4, "bending")
+    assert 0.01 < n10 < 10 and 0.01 < q10 < 10
+    # phi's shear part (EI/(kGA L^2) ~ 3e-3 at L/h = 10, -> 0) moves M by 2.3e-4 at L/h = 10 (measured)
+    assert abs(n1e4 / n10 - 1) < 2e-3 and abs(q1e4 / q10 - 1) < 0.05
+    for k in p10:
+        assert rel(p1e4[k], p10[k]) < 0.05
+    t10, t1e3 = ratio(10, "trig")[0], ratio(1000, "trig")[0]
+    assert 0.9e4 < t1e3 / t10 < 1.1e4
+
+
+@functools.lru_cache(maxsize=2)
+def _bending_sweep(form):
+    """{degree: errors at L/h = 10, 100, 1000, 10^4}, 201 particles, fields = bending."""
+    out = {}
+    for P in (2, 3, 4, 5, 6):
+        errs = []
+        for sl in SLENDER:
+            sc = scene("quintic_manufactured", sl)
+            r = run(sc, "pd-curved-mms", points=201, degree=P, form=form, fields="bending")
+            e = get_model("exact-curved-manufactured").evaluate(sc, {"fields": "bending"}, r.x)
+            errs.append(rel(r.w, e["w"]))
+        out[P] = np.array(errs)
+    return out
+
+
+SLENDER = np.array([10.0, 100.0, 1000.0, 1e4])
+
+
+@pytest.mark.slow
+def test_mixed_form_is_locking_free_on_the_bending_manufactured_quintic():
+    """fields = bending, 201 points: the mixed form's error is flat from L/h = 10 to 10^4 for every degree
+    (measured: P = 2: 6.2e-4 -> 6.4e-4, 3: 2.4e-7 -> 2.6e-7, 4: 9.8e-7 -> 9.7e-7, 5: 2.4e-9 -> 2.8e-9,
+    6: 1.0e-8 -> 1.0e-8; slopes 0.00-0.02). With the resultants computed from the full fields (EA times the
+    round-off of the inextensible part's ε) the loads carried an error ~ (L/h)^2 eps: P = 6 reached 1.3e-4."""
+    for P, e in _bending_sweep("mixed").items():
+        slope = locking_slope(SLENDER, e)[0]
+        assert abs(slope) < 0.1, (P, e)
+        assert e.max() < 1e-3
+
+
+@pytest.mark.slow
+def test_primal_form_locks_like_slenderness_squared_on_the_bending_manufactured_quintic():
+    """The paper's primal form on the same fields, 201 points: slope over L/h = 10 -> 100 per degree (measured
+    P = 2..6: 1.91, 2.16, 1.99, 1.96, 1.98; errors at L/h = 10^4: 1.0, 1.0, 0.73, 1.8, 2.3e-2): locking ~ (L/h)^2
+    for every degree, a higher degree lowering the constant (L/h = 10: 2.5e-3 at P = 2, 2.7e-8 at P = 6)."""
+    errs = _bending_sweep("primal")
+    for P, e in errs.items():
+        slope = locking_slope(SLENDER[:2], e[:2])[0]
+        assert 1.8 < slope < 2.3, (P, e)
+    assert errs[6][0] < 1e-4 * errs[2][0]
 
 
 def test_semicircle_reference_matches_thin_ring_closed_form_and_clapeyron():

@@ -109,3 +109,25 @@ def test_vectorised_householder_equals_batched_lapack_to_round_off(P, kind):
     got, ref = pddo_weights(s, fam, P, (0, 1, 2)), _lapack_reference(s, fam, P, (0, 1, 2))
     worst = max(np.abs(got[r] - ref[r]).max() / np.abs(ref[r]).max() for r in (0, 1, 2))
     assert worst <= 10 * VS_LAPACK[P][kind == "random"], worst
+
+
+def _symbol_slope_at_pi(P, m):
+    """2 sum_j (-1)^(j+1) j c_j of the interior first-derivative stencil (spacing 1): the slope of its symbol
+    sum_j c_j sin(j theta) at theta = pi, which keeps the modes next to the sawtooth away from zero."""
+    s = np.arange(41.0)
+    c = pddo_weights(s, families(41, 2 * m + 1), P, (1,))[1][20]
+    j = np.arange(1, m + 1)
+    return 2 * float(np.sum((-1.0) ** (j + 1) * j * c[m + j]))
+
+
+@pytest.mark.parametrize("P", [2, 3, 4, 5, 6, 7, 8, 9, 10])
+def test_default_mixed_families_keep_the_first_derivative_symbol_away_from_zero_near_pi(P):
+    """The cause of the P = 6 error floor of the mixed form (issue #31): with P + 3 members the Gaussian weight
+    sets the stencil's spare coefficients and the symbol's slope at pi collapses (P = 6: 0.017) or turns
+    negative (P = 8, 10: -0.41, -0.82, a spurious null mode); default_horizon's families keep it >= 0.44
+    (measured 0.67, 1.67, 0.45, 2.2, 2.2, 2.66, 2.66, 3.06, 3.06 for P = 2..10)."""
+    from pdverify.models.pd_curved import default_horizon
+
+    assert _symbol_slope_at_pi(P, default_horizon(P, "mixed")) > 0.4
+    if P in (6, 8, 10):
+        assert _symbol_slope_at_pi(P, P // 2 + 1) < 0.02

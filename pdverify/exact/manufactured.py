@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry import geometry
+from ..manufactured import FIELDS
 from ..registry import POINTS, Model
 from ..result import Result, Timer
 from ..scene import Scene
@@ -27,8 +28,9 @@ def manufactured_checks(scene: Scene) -> list[str]:
 class ExactCurvedManufactured(Model):
     name = "exact-curved-manufactured"
     title = "manufactured solution of the curved Timoshenko–Ehrenfest beam (chosen fields)"
-    source = "pdverify/manufactured.py: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x)"
-    options = (POINTS,)
+    source = ("pdverify/manufactured.py: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x) "
+              "(fields = trig) or a beam-like bending field (fields = bending)")
+    options = (POINTS, FIELDS)
     theory = "timoshenko"
     curved = True
     axial = True
@@ -41,7 +43,7 @@ class ExactCurvedManufactured(Model):
         from ..manufactured import fields
 
         x = np.asarray(x, float)
-        f = fields(scene, x)
+        f = fields(scene, x, kind=params.get("fields", "trig"))
         t, n = geometry(scene).frame(x)
         U = f["u_t"][:, None] * t + f["u_n"][:, None] * n
         return {"w": f["u_n"], "rotation": f["phi"], "u": f["u_t"], "ux": U[:, 0], "uy": U[:, 1],

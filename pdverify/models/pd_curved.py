@@ -18,7 +18,8 @@ For a straight beam Q = kGA(w' - φ) = -dM/dx: ``exact-timoshenko``'s V is -Q (R
 
 Collocation (Eq. 27–35): three equations per particle, every derivative replaced by PDDO functions of
 degree P (:mod:`pdverify.models._pddo`), families of 2 m + 1 particles (m = ``horizon``, default
-⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P; see :func:`default_horizon`), shifted inward
+⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P, mixed form at even P >= 6: P + 1; see
+:func:`default_horizon`), shifted inward
 at the ends. Two forms:
 
 * ``primal`` (the paper, Eq. 14–16): constitutive law substituted, second derivatives by g²:
@@ -35,8 +36,12 @@ takes u_t or N, slot n takes u_n or Q, slot φ takes φ or M): clamped u_t = u_n
 u_t = u_n = 0, M = ±C̄; roller u_n = 0, N, M = ±(F·t, C̄); free N, Q, M = ±(F·t, F·n, C̄); guided φ = 0,
 N, Q = ±(F·t, F·n) (docs/supports.md).
 
+Particles are uniform by default; ``grading`` (largest / smallest spacing, ``graded_by`` curvature or ends) or
+``positions`` (arc lengths) place them non-uniformly (the seed: "not limited to uniform distributions of material
+particles"), the families keep 2m + 1 members, so each particle's horizon follows its spacing.
+
 Point loads inside the beam and the ends of a distributed load's span split the axis into segments
-(each with its own uniform particles and families; a PDDO function never reaches across a load
+(each with its own particles and families; a PDDO function never reaches across a load
 discontinuity). At an interface the two coincident particles carry continuity of u_t, u_n, φ and the
 jumps N⁺ - N⁻ = -F·t, Q⁺ - Q⁻ = -F·n, M⁺ - M⁻ = -C (a counter-clockwise couple C). Distributed loads are
 collocated point-wise (value along n, axial along t; ``frame = global``: (axial, value) = global
@@ -53,9 +58,10 @@ L/h = 10, 41 -> 321 particles, observed order per doubling):
 * ``primal``: order 2⌊P/2⌋: P = 2/3/4/5/6 -> 2.0/2.0/4.0/4.0/6.0 (straight sine), 2.0/2.0/4.0/4.3-4.5/6.1
   (semicircle), 2.0/2.0/4.0/4.0/6.0 (quintic): an odd degree converges like the even degree below it.
 * ``mixed``: order 2⌈P/2⌉: 2.0/4.0/4.0/5.9/(6 until a floor) (straight), 2.0/4.0/4.0/6.0/6.0 (semicircle),
-  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with 9 members has a mode
-  controlled only by the end families (condition ~ n^4 instead of n^2): on the straight beam its error
-  stops near 2e-9 at 81 particles and grows to 4e-8 at 641 (``horizon = 5``: 4e-12; see default_horizon).
+  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with 9 members had a band of
+  modes held only by the end families (condition ~ n^4 instead of n^2): error floor growing with n, 3.9e-8 /
+  2.2e-7 / 1.2e-6 at 401 / 1601 / 6401 particles on the straight beam; the default is now 7 members
+  (4.0e-13 / 5.3e-13 / 1.8e-12; see default_horizon).
 * Locking (201 particles, error vs L/h = 10, 100, 1000, 10^4): ``primal`` error ~ (L/h)^2 for every
   degree until it saturates at ~1 (slope 2.0 for P >= 4; P = 2, 3 saturate by L/h = 1000); a higher
   degree lowers the constant (P = 6 straight 3.5e-11 -> 4.0e-7 at L/h = 1000), not the slope. ``mixed``
@@ -179,15 +185,79 @@ def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
     return np.array(bps), loads, ends
 
 
-def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int) -> list[np.ndarray]:
-    """Uniform particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all (a uniform
-    grid of ``points`` particles when the breaks fall on it), at least ``min_points`` per segment."""
+def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, density=None) -> list[np.ndarray]:
+    """Particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all, at least ``min_points``
+    per segment. ``density`` None: uniform (a uniform grid of ``points`` particles when the breaks fall on
+    it). Else a pair (s_table, cumulative) of a non-decreasing measure m(s) (m(0) = 0, m(L) = 1): the
+    intervals of a segment are shared by its measure, and its particles sit at equal steps of m (the seed's
+    non-uniform particles: spacing ∝ 1/ρ for m = ∫ρ ds / ∫ρ ds)."""
     edges = np.concatenate([[0.0], bps, [L]])
     out = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
-        out.append(np.linspace(a, b, k + 1))
+    if density is not None:
+        st, cm = density
+        me = np.interp(edges, st, cm)
+    for i, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
+        if density is None:
+            k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
+            out.append(np.linspace(a, b, k + 1))
+            continue
+        k = max(min_points - 1, int(np.floor((points - 1) * (me[i + 1] - me[i]) + 0.5 + 1e-9)))
+        g = np.interp(np.linspace(me[i], me[i + 1], k + 1), cm, st)
+        g[0], g[-1] = a, b
+        out.append(g)
     return out
+
+
+def parse_positions(text: str, L: float) -> np.ndarray:
+    """The ``positions`` option: arc lengths (m) separated by commas or spaces, strictly increasing, in [0, L]
+    (0 and L are added when missing). Raises InputError naming the option."""
+    try:
+        s = np.array([float(v) for v in text.replace(",", " ").split()], float)
+    except ValueError:
+        raise InputError(f"positions = {text!r}: give arc lengths in m separated by commas, e.g. \"0, 0.1, 0.25\"") \
+            from None
+    tol = 1e-12 * L
+    if not np.all(np.isfinite(s)) or s.min(initial=0.0) < -tol or s.max(initial=0.0) > L + tol:
+        raise InputError(f"positions: every arc length must lie in [0, L] = [0, {L:g}] m; remove the others")
+    if np.any(np.diff(s) <= 0):
+        raise InputError("positions: the arc lengths must increase strictly; sort them and remove repeats")
+    s = np.clip(s, 0.0, L)
+    return np.unique(np.concatenate([[0.0], s, [L]]))
+
+
+def given_grids(L: float, bps: np.ndarray, s: np.ndarray, min_points: int) -> list[np.ndarray]:
+    """The particles s (from :func:`parse_positions`) split at the breaks: each segment [a, b] takes the given
+    positions strictly inside it (those within 1e-9 L of a break dropped) and its two ends."""
+    edges = np.concatenate([[0.0], bps, [L]])
+    tol = 1e-9 * L
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        g = np.concatenate([[a], s[(s > a + tol) & (s < b - tol)], [b]])
+        if len(g) < min_points:
+            raise InputError(f"positions: {len(g)} particles on [{a:g}, {b:g}] m (between supports, point loads and "
+                             f"load ends), fewer than one family ({min_points}); add positions there")
+        out.append(g)
+    return out
+
+
+def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
+    """(s_table, m(s)) for :func:`segment_grids`: density ρ = 1 + (ratio - 1) f(s), f in [0, 1], so the
+    largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
+    particles gather where the axis bends; the square root spreads them over the bend's flanks, which on
+    y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance
+    to the nearer end or to a point load inside the beam: particles gather at the supports and at point loads)."""
+    L = scene.length
+    s = np.linspace(0.0, L, samples)
+    if by == "curvature":
+        kap = np.abs(axis_frame(scene, s)[2])
+        f = np.sqrt(kap / kap.max()) if kap.max() > 0 else np.zeros_like(s)
+    else:
+        marks = [0.0, L] + [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment))]
+        d = np.min(np.abs(s[:, None] - np.array(marks)[None, :]), axis=1)
+        f = np.exp(-d / (0.1 * L))
+    rho = 1.0 + (ratio - 1.0) * f
+    m = np.concatenate([[0.0], np.cumsum((rho[1:] + rho[:-1]) * np.diff(s) / 2)])
+    return s, m / m[-1]
 
 
 def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
@@ -292,12 +362,22 @@ _SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is pres
 
 
 def default_horizon(degree: int, form: str = "primal") -> int:
-    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P). Mixed form, P = 6: with these 9 members the
-    operator has a mode held only by the end families (condition ~ n^4): straight sine, clamped-clamped,
-    error 1.8e-9 at 81 particles growing to 3.9e-8 at 321; a force 0.123 m from a pinned end 1e-9 ->
-    4.5e-7 from 51 to 201 particles. ``horizon = 5`` (11 members) gives 4e-12 and 1e-11 there, but on the
-    manufactured quintic 8.3 / 2.5e-3 / 4.4e-3 / 4.6e-6 at 41 / 81 / 161 / 321 particles (9 members:
-    9.8e-2 / 2.9e-4 / 1.3e-6 / 8.2e-9), so the default stays."""
+    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P), except the mixed form at even P >= 6: P/2
+    (P + 1 members, the interpolating central stencil).
+
+    Why: the mixed form applies the first-derivative function g^1 only, and every antisymmetric interior
+    stencil annihilates the sawtooth (-1)^k; what keeps the neighbouring high-frequency modes away from zero
+    is the slope of the stencil's symbol σ(θ) = Σ_j c_j sin(jθ) at θ = π, 2 Σ_j (-1)^(j+1) j c_j (h = 1).
+    With P + 3 members the spare (two more than P + 1) coefficients are set by the weight, and that slope collapses
+    at P = 6 (0.017, against 0.67 / 0.45 at P = 2 / 4 and 2.2 for the 7-member stencil) and changes sign
+    at P = 8 and 10 (-0.41, -0.82: a spurious interior null mode). The modes near θ = π are then held only
+    by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
+    P + 1 members give the interpolating stencil (slope 2.2 / 2.66 / 3.06 at P = 6 / 8 / 10), whose weights do
+    not depend on w. The primal form keeps ⌊P/2⌋ + 1: its g^2 symbol Σ_j c_j cos(jθ) stays negative at P = 6
+    (-0.096 at θ = π) and is positive there at P = 8 and 10 (0.32, 0.62), without a measured floor (straight sine,
+    P = 8: 1.2e-10 at 1601 particles; see docs/models/curved.md)."""
+    if form == "mixed" and degree % 2 == 0 and degree >= 6:
+        return degree // 2
     return degree // 2 + 1
 
 
@@ -308,8 +388,15 @@ class PDCurved(Model):
     options = (
         Option("points", int, 101, "particles along the axis, ends included", minimum=5),
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
-        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1",
-               minimum=0),
+        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1 "
+               "(mixed form, even P >= 6: P/2)", minimum=0),
+        Option("grading", float, 1.0, "largest / smallest particle spacing (1 = uniform particles; see graded_by)",
+               minimum=1.0, maximum=1e3),
+        Option("graded_by", str, "curvature", "where particles gather when grading > 1: curvature (where the axis "
+               "bends) | ends (at the supports and at point loads)", choices=("curvature", "ends")),
+        Option("positions", str, "", "particle arc lengths in m, comma-separated (0 and L added; breaks at point "
+               "loads and load ends added): overrides the particles of points and grading (points still sets the "
+               "output grid)"),
         Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
                "functions applied twice)", choices=("primal", "mixed")),
         Option("unknowns", str, "resultants", "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
@@ -341,7 +428,12 @@ class PDCurved(Model):
             raise InputError(f"points = {params['points']}: fewer than one family ({size} particles for "
                              f"degree {P}, horizon {m}); use more points")
         bps, inner, ends = breakpoints(scene)
-        segs = segment_grids(scene.length, bps, params["points"], size)
+        if params.get("positions"):
+            segs = given_grids(scene.length, bps, parse_positions(params["positions"], scene.length), size)
+            return segs, inner, ends, m, size
+        ratio = params.get("grading", 1.0)
+        density = None if ratio == 1.0 else grading_density(scene, ratio, params.get("graded_by", "curvature"))
+        segs = segment_grids(scene.length, bps, params["points"], size, density)
         return segs, inner, ends, m, size
 
     def assemble(self, scene: Scene, params: dict, body=None) -> System:
