@@ -283,6 +283,8 @@ def study(
     from .study import load_study, run_study
     from .study.checks import Outcome
 
+    if workers is not None and workers < 1:  # an option is checked before the files it applies to
+        raise InputError(f"--workers {workers}: give a whole number of processes, 1 or more")
     spec = load_study(study_file)
     if junit is not None and junit.is_dir():
         raise InputError(f"--junit {junit}: a directory; give a file name, e.g. {junit / 'pdverify.xml'}")

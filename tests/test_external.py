@@ -153,7 +153,7 @@ def test_study_goes_on_past_every_failure(tmp_path):
         env=env,
         timeout=300,
     )
-    assert r.returncode == 0, r.stderr
+    assert r.returncode == 1, r.stderr  # the study ran to its end; failed cases make it exit 1 (docs/ci.md)
     df = pd.read_csv(out / "results.csv")
     assert len(df) == len(MODES)
     by_mode = dict(

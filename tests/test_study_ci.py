@@ -143,9 +143,9 @@ def test_failed_case_exits_1_unless_an_expected_fail_row_covers_it(tmp_path, fai
     documented = (f'[[benchmarks]]\nname = "fails on demand"\nexpected = "fail"\nscene = "{CC}"\n'
                   f'model = "failing-eb"\nfail = true\ntarget = {CC_CENTRE}\ntolerance = 0.01\n')
     p = study_file(tmp_path, documented, runs=runs, name="documented")
-    r = run(p, tmp_path)
+    r = run(p, tmp_path / "documented")  # another study: its own output folder
     assert r.exit_code == 0, r.stderr
-    row = pd.read_csv(tmp_path / "out/benchmarks.csv").iloc[0]
+    row = pd.read_csv(tmp_path / "documented/out/benchmarks.csv").iloc[0]
     assert row["verdict"] == "expected-fail" and "singular matrix (on demand)" in row["message"]
 
 

@@ -62,6 +62,7 @@ class FDBeam(Model):
             conds = {
                 "clamped": [(value, empty, 0.0), (slope, empty, 0.0)],
                 "pinned": [(value, empty, 0.0), (empty, value, -s * moment)],
+                "roller": [(value, empty, 0.0), (empty, value, -s * moment)],  # no axial unknown: as pinned
                 "free": [(empty, value, -s * moment), (empty, slope, s * force)],
                 "guided": [(slope, empty, 0.0), (empty, slope, s * force)],
             }[support]
