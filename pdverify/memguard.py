@@ -2,9 +2,10 @@
 
 Generic over models: a large grid is first solved at two small sizes with the same options, which gives the
 unknowns per point and the bandwidth of the assembled system (``Result.dofs``, ``info["bandwidth_lower/upper"]``);
-the banded LU needs ``dofs x (2 lower + upper + 1)`` float64 values, and the peak resident set of a whole
-static run measured by ``pdverify bench`` (reports/bench/bench.jsonl, 10^5-10^6 points, every banded model)
-is 2.5-3.7 x ``8 dofs (lower + upper + 1)`` bytes: the estimate takes 4 x that.
+the banded LU needs ``dofs x (2 lower + upper + 1)`` float64 values. A whole static run also holds the band it
+assembled, the copies of the round-off bound (residual in long double, Hager's solves) and the fields: its
+peak resident set is up to ~6 x ``8 dofs (lower + upper + 1)`` bytes (fem-eb's two-field form; the tests give
+each measured peak), and the estimate takes 6 x that.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from .errors import SolveError
 
 PROBE_FROM = 200_001  # points; below this a run needs < ~1 GB for every model (bench.jsonl) and is not probed
 PROBES = (201, 401)
-BYTES_PER_BAND_ENTRY = 4 * 8  # float64 entries, x4 the banded matrix for the copies and workspaces of a run
+BYTES_PER_BAND_ENTRY = 6 * 8  # float64 entries, x6 the banded matrix for the copies and workspaces of a run
 
 
 def available_bytes() -> int | None:
