@@ -75,6 +75,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..band import Band
+from ..dynamics import LEDGER_COLUMNS, EnergyLedger, symbol_max
 from ..errors import InputError, SolveError
 from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
@@ -497,9 +498,12 @@ class History:
     damping: float  # c_d / rho (1/s)
     stabilisation: float
     omega1: float | None
+    energy: dict = field(default_factory=dict)  # the ledger at the times t: LEDGER_COLUMNS -> array
+    energy_drift: float = 0.0  # max |balance| / max(stored energy, work put in)
 
     def to_csv(self) -> str:
-        cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)}}
+        cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)},
+                **{f"energy_{k}": self.energy[k] for k in LEDGER_COLUMNS if k in self.energy}}
         return columns_csv(cols, fmt="%.12g")
 
 
@@ -507,44 +511,42 @@ def _mass_scaled(disc: Discrete, free: np.ndarray) -> sp.csr_matrix:
     return sp.diags(1.0 / disc.mass[free]) @ disc.K[free][:, free]
 
 
+EIG_DOFS = 5000  # up to this many free DOFs the largest eigenvalue is computed on the whole operator
+
+
 def stable_time_step(disc: Discrete) -> float:
     """dt_limit = 2 / ω_max, ω_max² the largest |eigenvalue| of M⁻¹K on the free DOFs (ARPACK up to
-    5,000 DOFs, else the Gershgorin bound max row sum |M⁻¹K|, which is safe)."""
-    free = disc.free
-    if len(free) <= 5000:
-        import scipy.sparse.linalg as spla
-
-        A = _mass_scaled(disc, free)
-        if A.shape[0] < 20:
-            lam = float(np.abs(np.linalg.eigvals(A.toarray())).max())
-        else:
-            # fixed start vector: ARPACK's default is random, which made dt (and every transient) differ
-            # between runs in the 11th digit
-            lam = float(np.abs(spla.eigs(A, k=1, which="LM", return_eigenvectors=False, tol=1e-6,
-                                         v0=np.ones(A.shape[0]))[0]))
-    else:
-        lam = _gershgorin(disc)
-    return 2.0 / np.sqrt(lam)
+    ``EIG_DOFS`` free DOFs; above, :func:`largest_eigenvalue`)."""
+    return 2.0 / np.sqrt(largest_eigenvalue(disc))
 
 
-def _gershgorin(disc: Discrete) -> float:
-    """max over the free rows of Σ_free columns |K_rc| / m_r, from the stencil (one value per field for
-    the interior rows, whose families hold no supported point) and the explicit rows near the ends."""
-    op, nf, n = disc.op, disc.nf, len(disc.x)
-    inv_m = 1.0 / np.asarray(disc.field_mass, float)
-    head, tail = max(op.L, op.reach + 1), max(op.R, op.reach + 1)
-    lam = 0.0
-    if n > head + tail:  # interior rows
-        for a in range(nf):
-            lam = max(lam, float(sum(np.abs(C[a] * inv_m[a]).sum() for C in op.blocks.values())))
-    pts = np.unique(np.r_[0:min(n, head), max(0, n - tail):n])
-    M = op.rows_csr(pts)
-    pres = np.array(sorted(disc.prescribed), dtype=np.int64)
-    M.data[np.isin(M.indices, pres)] = 0.0  # the supported columns
-    dofs = (nf * pts[:, None] + np.arange(nf)[None, :]).ravel()
-    rowsum = np.asarray(abs(M).sum(axis=1)).ravel() * inv_m[dofs % nf]
-    keep = ~np.isin(dofs, pres)
-    return max(lam, float(rowsum[keep].max()))
+def _eig_max(disc: Discrete) -> float:
+    import scipy.sparse.linalg as spla
+
+    A = _mass_scaled(disc, disc.free)
+    if A.shape[0] < 20:
+        return float(np.abs(np.linalg.eigvals(A.toarray())).max())
+    # fixed start vector: ARPACK's default is random, which made dt (and every transient) differ
+    # between runs in the 11th digit
+    return float(np.abs(spla.eigs(A, k=1, which="LM", return_eigenvectors=False, tol=1e-6,
+                                  v0=np.ones(A.shape[0]))[0]))
+
+
+def largest_eigenvalue(disc: Discrete) -> float:
+    """The largest |eigenvalue| of M⁻¹K on the free DOFs. Above ``EIG_DOFS`` free DOFs the operator is a
+    stencil away from its end rows: its spectrum is the end modes, which are those of the same operator
+    shortened to ``EIG_DOFS`` DOFs (same end rows and stencil; ARPACK), and the interior modes, bounded by
+    the maximum of the stencil's symbol over the wavenumbers (:func:`pdverify.dynamics.symbol_max`).
+    (The Gershgorin row-sum bound used before was 1.95x too large in ω_max² at m = 3.)"""
+    if disc.n_free <= EIG_DOFS:
+        return _eig_max(disc)
+    nf, n = disc.nf, len(disc.x)
+    ns = EIG_DOFS // nf
+    op = disc.op.shortened(ns)
+    shift = nf * (n - ns)
+    pres = {(d if d < nf * n // 2 else d - shift): v for d, v in disc.prescribed.items()}
+    short = Discrete(disc.x[:ns], op, np.zeros(nf * ns), disc.field_mass, disc.field_translational, pres, nf)
+    return max(_eig_max(short), symbol_max(op.blocks, 1.0 / np.asarray(disc.field_mass, float)))
 
 
 def first_frequency(disc: Discrete) -> float:
@@ -602,6 +604,18 @@ class _WholeStep:
     def field(self, f: int) -> np.ndarray:
         return self.u[f::self.nf]
 
+    @property
+    def flat(self) -> np.ndarray:
+        return self.u
+
+    def on_state(self, M: sp.csr_matrix) -> sp.csr_matrix:
+        """M (columns: interleaved DOFs) acting on ``flat``."""
+        return sp.csr_matrix(M)
+
+    def velocity(self) -> np.ndarray:
+        """V = dt v^{j-1/2} (interleaved)."""
+        return self.V.copy()
+
     def set(self, dof: int, value: float):
         self.u[dof] = value
 
@@ -626,7 +640,7 @@ class _StencilStep:
         n, h = op.n, op.reach
         self.n, self.nf, self.h = n, nf, h
         U, V, Y = (np.zeros((nf, n + 2 * h)) for _ in range(3))
-        self.U = U
+        self.U, self.V = U, V
         BG = bG.reshape(n, nf).T.copy()
         need = max(op.L, op.R) + 2 * h + 1
         P = max(chunk, need)
@@ -696,6 +710,23 @@ class _StencilStep:
     def field(self, f: int) -> np.ndarray:
         return self.U[f, self.h: self.h + self.n]
 
+    @property
+    def flat(self) -> np.ndarray:
+        return self.U.reshape(-1)
+
+    def on_state(self, M: sp.csr_matrix) -> sp.csr_matrix:
+        """M (columns: interleaved DOFs) acting on ``flat`` (fields apart, padded by the reach)."""
+        M = sp.csr_matrix(M)
+        c = M.indices
+        cols = (c % self.nf) * (self.n + 2 * self.h) + self.h + c // self.nf
+        return sp.csr_matrix((M.data, cols, M.indptr), shape=(M.shape[0], self.U.size))
+
+    def velocity(self) -> np.ndarray:
+        """V = dt v^{j-1/2} (interleaved)."""
+        out = np.empty(self.nf * self.n)
+        out.reshape(self.n, self.nf)[...] = self.V[:, self.h: self.h + self.n].T
+        return out
+
     def set(self, dof: int, value: float):
         self.U[dof % self.nf, self.h + dof // self.nf] = value
 
@@ -711,13 +742,14 @@ class _StencilStep:
 def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | None = None, damping: float = 0.0,
               damping_ratio: float | None = None, safety: float = 0.9, probes=None,
               record_every: int | None = None, output_interval: float | None = None,
-              damp_rotations: bool = False, stabilisation: float = STABILISATION, steps: int | None = None) -> History:
+              damp_rotations: bool = False, stabilisation: float = STABILISATION, steps: int | None = None,
+              context: str = "") -> History:
     """Damped leapfrog velocity-Verlet (Eq. 7–11 / 38–44) from rest (Eq. 12), loads as steps at t = 0.
 
     Per step: a^j = (b - K u^j)/m (one product with K); v̂ = v^{j-1/2} + dt (a^j - D v^{j-1/2});
     û^{j+1} = u^j + dt v̂; v^j = (û^{j+1} - u^{j-1})/(2dt); v^{j+1/2} = v^{j-1/2} + dt (a^j - D v^j);
     u^{j+1} = u^j + dt v^{j+1/2}. D = c_d/ρ acts on the translations only (Eq. 36–37: γ undamped).
-    Prescribed DOFs follow their motions. Raises SolveError when the response blows up.
+    Prescribed DOFs follow their motions.
     ``damp_rotations``: the same D on the rotations too (not in the paper; without it the high
     shear-rotation modes are damped only through their coupling to w and ring for long).
     ``stabilisation`` κ: stiffness-proportional damping β K v^{j-1/2} with β = κ dt (not in the paper).
@@ -725,7 +757,11 @@ def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | No
     (measured step-map spectral radius 1 + 2e-2 on the Table 1 cantilever, 101 points, m = 3); κ = 0.2
     gives the highest mode ~18 % of critical and the first ~1e-4 %, and costs no extra product
     (K (u + β v)). The stable limit becomes 2 / (ω_max sqrt(1 + 2κ)). ``steps``: run this many steps
-    (instead of up to ``t_end``).
+    (instead of up to ``t_end``). ``output_interval`` (s) or ``record_every`` (steps): the sampling of
+    the histories and of the energy ledger (:class:`pdverify.dynamics.EnergyLedger`, v^j the mean of the
+    half-step velocities around the sample). Raises SolveError when the stored energy outgrows the work
+    put in (a growing mode; :meth:`~pdverify.dynamics.EnergyLedger.blown_up`); ``context`` (supports,
+    horizon) goes into that message.
 
     Implementation: with V = dt v^{j+1/2} the step is y = u + κ V, V <- α V + G (b - K y), u <- u + V
     with G = (1 - c/2) dt²/m per DOF (zero on prescribed DOFs); K y is one CSR product up to
@@ -756,31 +792,73 @@ def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | No
     pres_dofs = np.array(sorted(disc.prescribed), dtype=np.int64)
     gd[pres_dofs] = 0.0
     bG = gd * disc.b
+    alpha_dof = np.tile(np.asarray(alpha), n)
     if nf * n <= WHOLE_DOFS:
-        st = _WholeStep(disc, gd, np.tile(np.asarray(alpha), n), stabilisation, bG)
+        st = _WholeStep(disc, gd, alpha_dof, stabilisation, bG)
+        apply_K = disc.K.__matmul__
     else:
         st = _StencilStep(disc, gd, alpha, stabilisation, bG, gd_field)
+        apply_K = disc.op.matvec
+    free = np.ones(nf * n, bool)
+    free[pres_dofs] = False
+    ledger = EnergyLedger(apply_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n),
+                          stabilisation * dt)
     pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
+    moving = np.array([dof for dof, _ in pres], dtype=np.int64)
+    if len(moving):  # the support work ∫ (K u - b)_p du_p, one small product per step
+        Kp = st.on_state(disc.op.rows_csr(moving // nf)[nf * np.arange(len(moving)) + moving % nf])
+        bp = disc.b[moving]
+        react = Kp @ st.flat - bp
+        up = np.zeros(len(moving))
     times, vals, rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
-    scale = max([abs(m.amplitude) for _, m in pres] + [0.0])
-    for s in range(1, steps + 1):
-        st.step()
-        t = s * dt
-        for dof, mot in pres:
-            st.set(dof, float(motion_value(mot, t)))
-        if s % record_every == 0 or s == steps:
-            amp = st.amax()
-            if not np.isfinite(amp) or (scale > 0 and amp > 1e6 * scale) or (scale == 0 and amp > 1e100):
-                raise SolveError(f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s); "
-                                 f"the stable limit is {limit:.4g} s; use a time step below it")
-            if scale == 0 and amp > 0:
-                scale = amp
-            times.append(t)
-            vals.append(Pm @ st.field(0))
-            if nf == 2:
-                rots.append(Pm @ st.field(1))
+    ledger.sample(0.0, np.zeros(nf * n), np.zeros(nf * n))
+    with np.errstate(over="ignore", invalid="ignore"):
+        for s in range(1, steps + 1):
+            st.step()
+            t = s * dt
+            up_new = [float(motion_value(mot, t)) for _, mot in pres]
+            for (dof, _), value in zip(pres, up_new):
+                st.set(dof, value)
+            if len(moving):
+                r_new = Kp @ st.flat - bp
+                up_new = np.array(up_new)
+                ledger.add_support_step(0.5 * (react + r_new), up_new - up)
+                react, up = r_new, up_new
+            if s % record_every == 0 or s == steps:
+                u, V = st.state(), st.velocity()
+                Vn = alpha_dof * V + gd * (disc.b - apply_K(u + stabilisation * V))
+                row = ledger.sample(t, u, (V + Vn) / (2 * dt))
+                ratio = ledger.blown_up(row)
+                if ratio is not None:
+                    raise SolveError(_blow_up_message(disc, dt, limit, s, t, ratio, stabilisation, context))
+                times.append(t)
+                vals.append(Pm @ st.field(0))
+                if nf == 2:
+                    rots.append(Pm @ st.field(1))
     return History(np.array(times), probes, np.array(vals), np.array(rots) if nf == 2 else None, st.state(), disc.x,
-                   dt, limit, steps, damping, stabilisation, omega1)
+                   dt, limit, steps, damping, stabilisation, omega1, ledger.arrays(), ledger.drift())
+
+
+def _blow_up_message(disc: Discrete, dt: float, limit: float, s: int, t: float, ratio: float, kappa: float,
+                     context: str) -> str:
+    """One line: the step, the limit, what grew and what to change."""
+    head = (f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s; stored energy "
+            f"{ratio:.2g} x the work put in)")
+    where = f" ({context})" if context else ""
+    if dt > limit * (1 + 1e-9):
+        return f"{head}; the stable limit is {limit:.4g} s; use time_step <= {limit:.4g} s or leave time_step out"
+    detail = ""
+    if disc.n_free <= 1500:  # a dense eigenvalue solve of a few seconds at most
+        lam = np.linalg.eigvals(_mass_scaled(disc, disc.free).toarray())
+        k = int(np.argmin(lam.real))
+        if lam[k].real < 0:
+            detail = f": M^-1 K has the eigenvalue {lam[k].real:.3g} (negative real part)"
+        else:
+            k = int(np.argmax(np.abs(lam.imag) / np.abs(lam)))
+            detail = f": M^-1 K has complex eigenvalues ({lam[k]:.3g})"
+    return (f"{head}; dt is below the stable limit {limit:.4g} s, so a smaller step does not help: the operator's "
+            f"boundary closures{where} have a growing mode{detail}; change the horizon or the number of points, "
+            f"or add damping (damping_ratio)")
 
 
 # -- the models -------------------------------------------------------------------------------
@@ -854,15 +932,16 @@ class _MoyerModel(Model):
             d = scene.dynamics
             with timer("solve"):
                 h = integrate(disc, prescribed_motions(scene, disc), d.end_time, dt=d.time_step, damping=d.damping or 0.0,
-                              damping_ratio=d.damping_ratio, probes=d.probes, output_interval=d.output_interval)
+                              damping_ratio=d.damping_ratio, probes=d.probes, output_interval=d.output_interval,
+                              context=_context(scene, params))
             u = h.final
             label = "w" if self.bending else ("u" if self.axial else "twist")
             series = {f"{label}(x={p:g})": h.values[:, k] for k, p in enumerate(h.probes)}
             if h.rotations is not None:
                 series.update({f"rotation(x={p:g})": h.rotations[:, k] for k, p in enumerate(h.probes)})
             info.update(analysis="dynamic", dt=h.dt, dt_limit=h.dt_limit, steps=h.steps, damping=h.damping,
-                        omega1=h.omega1, stabilisation=h.stabilisation,
-                        history={"t": h.t, "series": series,
+                        omega1=h.omega1, stabilisation=h.stabilisation, energy_drift=h.energy_drift,
+                        history={"t": h.t, "series": series, "energy": h.energy,
                                  "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label]})
             writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
         else:
@@ -947,7 +1026,7 @@ def simulate(scene: Scene, params: dict | None = None, t_end: float | None = Non
              damp_rotations: bool = False, stabilisation: float = STABILISATION) -> History:
     """Transient run of ``pd-timoshenko`` (or ``model = "pd-rod"`` / ``"pd-torsion"``) on ``scene``: the scene's
     [dynamics] table gives the defaults (end time, damping, probes, prescribed end motions); the
-    arguments override them. Returns a :class:`History`."""
+    arguments override them (``record_every`` overrides the table's output_interval). Returns a :class:`History`."""
     m = {"pd-timoshenko": PDTimoshenko(), "pd-rod": PDRod(), "pd-torsion": PDTorsion()}[model]
     params = m.resolve(scene, params or {})
     if scene.material.density is None:
@@ -962,10 +1041,18 @@ def simulate(scene: Scene, params: dict | None = None, t_end: float | None = Non
         if damping is None and damping_ratio is None:
             damping, damping_ratio = d.damping, d.damping_ratio
         probes = d.probes if probes is None else probes
+    output_interval = d.output_interval if (d is not None and record_every is None) else None
     disc = m.operator(scene, params)
     return integrate(disc, prescribed_motions(scene, disc), t_end, dt=dt, damping=damping or 0.0,
                      damping_ratio=damping_ratio, safety=safety, probes=probes, record_every=record_every,
-                     damp_rotations=damp_rotations, stabilisation=stabilisation)
+                     output_interval=output_interval, damp_rotations=damp_rotations, stabilisation=stabilisation,
+                     context=_context(scene, params))
+
+
+def _context(scene: Scene, params: dict) -> str:
+    """Where a growing mode comes from, for the blow-up message."""
+    return (f"supports {scene.supports.left}-{scene.supports.right}, horizon = {params['horizon']}, "
+            f"points = {params['points']}, variant {params['variant']}")
 
 
 MODELS = [PDRod(), PDTimoshenko(), PDTorsion()]
