@@ -9,9 +9,12 @@ energy E = T + U, T = ½ v_f·M v_f, U = ½ u·K u, changes as (K symmetric)
 
 the power of the loads, of the support reactions (K u - b)_p on the prescribed motions, minus the
 dissipated power P_d. The ledger records T, U, the load work b·u (loads are steps at t = 0, from rest),
-the support work ∫ (K u - b)_p du_p (trapezoid per step), the dissipated work ∫ P_d dt (trapezoid over
-the recorded samples) and the balance T + U + D - W_loads - W_supports, which is zero up to the time
-discretisation error (and the non-symmetric part of K).
+the support work ∫ (K u - b)_p du_p (trapezoid per step), the dissipated work ∫ P_d dt of the damping
+and of the stabilisation (trapezoid over the recorded samples: exact to O(dt²) when every step is
+recorded, coarser with a coarser output interval) and the balance T + U + D - W_loads - W_supports, which
+is zero up to the time discretisation error (and the non-symmetric part of K). With moving supports the
+rows of K at the moving DOFs are replaced by their columns (the symmetric completion) in U and in the
+reactions, so that the identity holds whenever the free block of K is symmetric.
 """
 
 from __future__ import annotations
@@ -21,7 +24,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 BLOW_UP_RATIO = 1e6  # stored energy over the work put in at which a run counts as blown up (amplitudes ~1e6 x)
-LEDGER_COLUMNS = ("kinetic", "strain", "load_work", "support_work", "dissipated", "balance")
+LEDGER_COLUMNS = ("kinetic", "strain", "load_work", "support_work", "damping", "stabilisation", "balance")
+"""Columns of the ledger: ``damping`` the work dissipated by the scene's damping (c_d on the translations),
+``stabilisation`` that of the scheme's stiffness-proportional damping β K v (not in the paper)."""
 
 
 @dataclass
@@ -41,7 +46,7 @@ class EnergyLedger:
     t: list = field(default_factory=list)
     cols: dict = field(default_factory=lambda: {k: [] for k in LEDGER_COLUMNS})
     support_work: float = 0.0
-    _power: float = 0.0
+    _power: np.ndarray = field(default_factory=lambda: np.zeros(2))
     _work_in: float = 0.0  # largest |work put in| so far
 
     def add_support_step(self, reaction_mid: np.ndarray, du_p: np.ndarray):
@@ -57,13 +62,16 @@ class EnergyLedger:
         T = 0.5 * float(np.sum(self.mass[f] * vf[f] ** 2))
         U = 0.5 * float(u @ Ku)
         W = float(self.b @ u)
-        P = float(np.sum(self.damping[f] * self.mass[f] * vf[f] ** 2))
-        if self.beta:
-            P += self.beta * float(vf[f] @ self.apply_K(vf)[f])
-        D = (self.cols["dissipated"][-1] + 0.5 * (self._power + P) * (t - self.t[-1])) if self.t else 0.0
+        P = np.array([float(np.sum(self.damping[f] * self.mass[f] * vf[f] ** 2)),
+                      self.beta * float(vf[f] @ self.apply_K(vf)[f]) if self.beta else 0.0])
+        if self.t:  # trapezoid over the samples
+            D = np.array([self.cols["damping"][-1], self.cols["stabilisation"][-1]])
+            D += 0.5 * (self._power + P) * (t - self.t[-1])
+        else:
+            D = np.zeros(2)
         self._power = P
-        row = {"kinetic": T, "strain": U, "load_work": W, "support_work": self.support_work, "dissipated": D,
-               "balance": T + U + D - W - self.support_work}
+        row = {"kinetic": T, "strain": U, "load_work": W, "support_work": self.support_work, "damping": float(D[0]),
+               "stabilisation": float(D[1]), "balance": T + U + float(D.sum()) - W - self.support_work}
         self.t.append(t)
         for k, val in row.items():
             self.cols[k].append(val)
