@@ -29,8 +29,8 @@ def _scene(left="clamped", right="clamped", height=0.1, loads=LOADS, **dyn):
 
 def test_undamped_energy_is_conserved_at_order_two():
     """The rod with clamped ends and m = 1 has a symmetric K (the second difference): the undamped
-    velocity-Verlet run (κ = 0) keeps T + U - W_loads to O(dt²). Measured drift 7.3e-5, 1.8e-5, 4.6e-6 at
-    0.4, 0.2, 0.1 of the stable step (ratios 3.96, 3.99)."""
+    velocity-Verlet run (κ = 0) keeps T + U - W_loads to O(dt²). Measured drift 5.8e-5, 1.5e-5, 3.7e-6 at
+    0.4, 0.2, 0.1 of the stable step (ratios 3.89, 4.01)."""
     sc = _scene(loads=AXIAL)
     disc = T.rod_operator(sc, 41, 1, "corrected")
     limit = T.stable_time_step(disc)
@@ -48,9 +48,9 @@ def test_undamped_energy_is_conserved_at_order_two():
 @pytest.mark.parametrize("kappa,ratio,gain", [(T.STABILISATION, None, 4.0), (0.0, 0.05, 10.0)])
 def test_damped_ledger_balances(kappa, ratio, gain):
     """The dissipated work closes the balance when every step is sampled. Mass damping (5 %, Eq. 7-11's
-    predictor-corrector): order 2, measured drift 8.4e-5 / 2.1e-5 / 5.3e-6 at 0.4 / 0.2 / 0.1 of the stable
+    predictor-corrector): order 2, measured drift 8.6e-5 / 2.1e-5 / 5.4e-6 at 0.4 / 0.2 / 0.1 of the stable
     step. Stabilisation (β = κ dt_ref, fixed): order 1, as the scheme applies β K v^{j-1/2} (lagged by half
-    a step): measured 5.3e-5 / 2.0e-5 / 9.2e-6; it dissipates 0.0574 of the load's 0.177 (32 %, the high
+    a step): measured 4.9e-5 / 1.2e-5 / 5.9e-6; it dissipates 0.0574 of the load's 0.177 (32 %, the high
     modes a step load excites) at every dt."""
     sc = _scene(loads=AXIAL)
     disc = T.rod_operator(sc, 41, 1, "corrected")
@@ -64,7 +64,8 @@ def test_damped_ledger_balances(kappa, ratio, gain):
         drift.append(h.energy_drift)
         dissipated.append(h.energy[key][-1])
     assert drift[0] / drift[1] > gain and drift[1] < 1e-5
-    assert dissipated[1] == pytest.approx(dissipated[0], rel=1e-4)  # the same damping at every step
+    # the same damping at every step: measured 2.2e-4 apart (first order in dt)
+    assert dissipated[1] == pytest.approx(dissipated[0], rel=1e-3)
 
 
 def test_support_work_of_a_prescribed_motion():
@@ -96,6 +97,36 @@ def test_history_csv_and_info_carry_the_ledger(tmp_path):
     r.writers[".csv"](path)
     head = path.read_text().splitlines()[0].split(",")
     assert [f"energy_{k}" for k in T.LEDGER_COLUMNS] == head[-len(T.LEDGER_COLUMNS):]
+
+
+def test_rod_transient_converges_to_the_modal_solution():
+    """Clamped rod, m = 1 (the second difference), a sine axial load q sin(πx/L) applied at t = 0: the exact
+    response is its one mode, u = q L²/(π² EA) sin(πx/L) (1 - cos ω1 t), ω1 = π c / L. At 3.3 periods, mid-
+    span, κ = 0: the error converges at order 2 in dx (measured 1.06e-2, 2.65e-3, 6.62e-4 at 21, 41, 81
+    points, dt = 0.5 of the limit) and the step-halving differences at order 2 in dt (2.9e-3, 7.3e-4 at 21
+    points). With Eq. 12's start (v^{-1/2} = 0) the dt part was first order."""
+    q = 3000.0
+    sc = parse_scene(scene_dict("clamped", "clamped", [{"type": "distributed", "value": 0.0, "axial": q, "shape": "sine"}],
+                                section={"width": 0.05, "height": 0.1}, material=MATERIAL))
+    L, EA = sc.length, sc.EA
+    w1 = np.pi / L * np.sqrt(EA / (MATERIAL["density"] * sc.section.A))
+    t_end = 3.3 * 2 * np.pi / w1
+    exact = q * L**2 / (np.pi**2 * EA) * (1 - np.cos(w1 * t_end))
+    err, dts = [], []
+    for points in (21, 41, 81):
+        disc = T.rod_operator(sc, points, 1, "corrected")
+        limit = T.stable_time_step(disc)
+        got = []
+        for f in (0.5, 0.25, 0.125) if points == 21 else (0.5,):
+            steps = int(np.ceil(t_end / (f * limit)))
+            h = T.integrate(disc, {}, None, dt=t_end / steps, steps=steps, stabilisation=0.0, probes=[L / 2],
+                            record_every=steps)
+            got.append(h.values[-1, 0])
+        err.append(abs(got[0] - exact) / exact)
+        if points == 21:
+            dts = np.abs(np.diff(got)) / exact
+    assert np.all(np.abs(np.log2(np.array(err[:-1]) / np.array(err[1:])) - 2) < 0.1), err
+    assert abs(np.log2(dts[0] / dts[1]) - 2) < 0.1, dts
 
 
 # -- sampling and blow-up ------------------------------------------------------------------------

@@ -622,6 +622,9 @@ class _WholeStep:
         """V = dt v^{j-1/2} (interleaved)."""
         return self.V.copy()
 
+    def start(self, V0: np.ndarray):
+        self.V[:] = V0
+
     def set(self, dof: int, value: float):
         self.u[dof] = value
 
@@ -727,6 +730,9 @@ class _StencilStep:
         cols = (c % self.nf) * (self.n + 2 * self.h) + self.h + c // self.nf
         return sp.csr_matrix((M.data, cols, M.indptr), shape=(M.shape[0], self.U.size))
 
+    def start(self, V0: np.ndarray):
+        self.V[:, self.h: self.h + self.n] = V0.reshape(self.n, self.nf).T
+
     def velocity(self) -> np.ndarray:
         """V = dt v^{j-1/2} (interleaved)."""
         out = np.empty(self.nf * self.n)
@@ -830,6 +836,12 @@ def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | No
         bp = disc.b[moving]
         react = Kp @ st.flat - bp
         up = np.zeros(len(moving))
+    # from rest: v^0 = 0 with the loads acting from t = 0, so v^{-1/2} = -dt/2 a^0 (second order; Eq. 12's
+    # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state:
+    # measured 2.5e-3 at 0.1 of the step on a clamped rod, first order in dt)
+    V0 = -0.5 * dt * dt * disc.b / disc.mass
+    V0[pres_dofs] = 0.0
+    st.start(V0)
     times, vals, rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
     ledger.sample(0.0, np.zeros(nf * n), np.zeros(nf * n))
     with np.errstate(over="ignore", invalid="ignore"):
