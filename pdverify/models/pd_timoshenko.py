@@ -93,6 +93,11 @@ STABILISATION = 0.2  # κ of the stiffness-proportional damping β = κ dt_ref o
 DEFAULT_SAFETY = 0.9  # default dt = this x the stable limit; dt_ref of the stabilisation
 FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
 SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS = 2, 4  # ψ̄ ghosts at free/guided ends
+# rod (torsion) ghosts at a traction end for m >= 2: quartic through 5 points. The cubic through 4 gives M⁻¹K
+# complex eigenvalues at m = 2 (growth 3.4e-2 of ω_max, every slenderness); the quartic's spectrum is real for
+# m = 2..10, the cubic's is at m = 1 (the quartic's is not: 4.8e-2); static results agree to the horizon's
+# own error (measured 2.0e-3 / 6.0e-3 at m = 2 / 3 with both, tests/test_dynamics.py)
+ROD_TRACTION_FIT = (4, 5)
 
 
 @dataclass
@@ -248,8 +253,9 @@ def _rod_core(scene: Scene, n: int, dx: float, m: int, variant: str, stiff: floa
                 con = [({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0)]
             else:  # EA u_s(0) = N̄ (outward force at this end); GJ θ_s(0) = T̄
                 con = [({(0, 1): 1.0}, {}, dx * ends[side][0] / stiff)]
-            R, r0 = constrained_ghosts(1, FIT_DEGREE, FIT_POINTS, G, con)
-            blocks[side] = (R, r0, FIT_POINTS)
+            deg, npts = (FIT_DEGREE, FIT_POINTS) if (fixed or m == 1) else ROD_TRACTION_FIT
+            R, r0 = constrained_ghosts(1, deg, npts, G, con)
+            blocks[side] = (R, r0, npts)
     E, e0 = _extension(n, G, 1, blocks)
     c = rod_kernel(m)
     j = np.arange(1, m + 1)
@@ -756,7 +762,8 @@ def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | No
               record_every: int | None = None, output_interval: float | None = None,
               damp_rotations: bool = False, stabilisation: float = STABILISATION, steps: int | None = None,
               context: str = "") -> History:
-    """Damped leapfrog velocity-Verlet (Eq. 7–11 / 38–44) from rest (Eq. 12), loads as steps at t = 0.
+    """Damped leapfrog velocity-Verlet (Eq. 7–11 / 38–44) from rest, loads as steps at t = 0 (v^{-1/2} =
+    -dt/2 a^0 so that v^0 = 0; Eq. 12 sets v^{-1/2} = 0, which is first order for a step load).
 
     Per step: a^j = (b - K u^j)/m (one product with K); v̂ = v^{j-1/2} + dt (a^j - D v^{j-1/2});
     û^{j+1} = u^j + dt v̂; v^j = (û^{j+1} - u^{j-1})/(2dt); v^{j+1/2} = v^{j-1/2} + dt (a^j - D v^j);
