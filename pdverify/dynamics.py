@@ -49,6 +49,9 @@ class EnergyLedger:
     _power: np.ndarray = field(default_factory=lambda: np.zeros(2))
     _work_in: float = 0.0  # largest |work put in| so far
 
+    def __post_init__(self):
+        self._free = np.asarray(self.free, float)
+
     def add_support_step(self, reaction_mid: np.ndarray, du_p: np.ndarray):
         """One step of ∫ (K u - b)_p du_p: the reaction at mid step (trapezoid) times the motion's increment."""
         self.support_work += float(reaction_mid @ du_p)
@@ -56,14 +59,13 @@ class EnergyLedger:
     def sample(self, t: float, u: np.ndarray, v: np.ndarray) -> dict:
         """Record the energy at time t for displacements u (all DOFs) and velocities v (free DOFs;
         others ignored). Returns the new row."""
-        f = self.free
-        vf = np.where(f, v, 0.0)
+        vf = v * self._free
         Ku = self.apply_K(u)
-        T = 0.5 * float(np.sum(self.mass[f] * vf[f] ** 2))
+        mv2 = self.mass * vf * vf
+        T = 0.5 * float(mv2.sum())
         U = 0.5 * float(u @ Ku)
         W = float(self.b @ u)
-        P = np.array([float(np.sum(self.damping[f] * self.mass[f] * vf[f] ** 2)),
-                      self.beta * float(vf[f] @ self.apply_K(vf)[f]) if self.beta else 0.0])
+        P = np.array([float(self.damping @ mv2), self.beta * float(vf @ self.apply_K(vf)) if self.beta else 0.0])
         if self.t:  # trapezoid over the samples
             D = np.array([self.cols["damping"][-1], self.cols["stabilisation"][-1]])
             D += 0.5 * (self._power + P) * (t - self.t[-1])
@@ -90,11 +92,12 @@ class EnergyLedger:
         return None
 
     def arrays(self) -> dict:
-        return {k: np.asarray(v, float) for k, v in self.cols.items()}
+        return {"t": np.asarray(self.t, float), **{k: np.asarray(v, float) for k, v in self.cols.items()}}
 
     def drift(self) -> float:
         """max |balance| over the run relative to the largest of the stored energy and the work put in."""
-        a = self.arrays()
+        a = self.cols
+        a = {k: np.asarray(v, float) for k, v in a.items()}
         scale = max(np.abs(a["kinetic"]).max(initial=0.0) + np.abs(a["strain"]).max(initial=0.0), self._work_in)
         return float(np.abs(a["balance"]).max(initial=0.0) / scale) if scale > 0 else 0.0
 
