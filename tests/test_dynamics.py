@@ -202,7 +202,7 @@ def test_table1_cantilever_runs_at_smaller_steps():
 
 
 @pytest.mark.parametrize("model", ["pd-timoshenko", "pd-rod"])
-def test_stable_step_above_5000_unknowns_is_the_threshold(model):
+def test_stable_step_on_large_grids_is_the_threshold(model):
     """3,001 points (6,000 DOFs for the beam; the rod at 6,001 points): the computed limit is within 5 %
     of the blow-up threshold, 0.97 of it runs 3,000 steps, 1.03 blows up (the Gershgorin bound used
     before gave a dt 1.13x (m = 2) and 1.32x (m = 3) too small here). Clamped ends, m = 2: a closure whose spectrum
