@@ -82,13 +82,14 @@ class EnergyLedger:
 
     def blown_up(self, row: dict) -> float | None:
         """The ratio (stored energy) / (largest work put in so far) when it exceeds BLOW_UP_RATIO or is not
-        finite, else None. A stable passive system stores at most what was put in; a growing mode's energy
-        grows with the square of its amplitude, the work of the loads on it only linearly."""
+        finite, else None (nothing put in yet: only a non-finite state counts). A stable passive system
+        stores at most what was put in; a growing mode's energy grows with the square of its amplitude, the
+        work of the loads on it only linearly."""
         stored = max(row["kinetic"], abs(row["strain"]))
         if not (np.isfinite(stored) and np.isfinite(row["load_work"]) and np.isfinite(row["support_work"])):
             return float("inf")
-        if stored > BLOW_UP_RATIO * self._work_in:
-            return stored / self._work_in if self._work_in > 0 else float("inf")
+        if self._work_in > 0 and stored > BLOW_UP_RATIO * self._work_in:
+            return stored / self._work_in
         return None
 
     def arrays(self) -> dict:
