@@ -303,6 +303,18 @@ class EndPatched:
         """{point offset: coefficient} of the block (a, b) of the interior stencil (zeros left out)."""
         return {o: float(C[a, b]) * scale for o, C in self.blocks.items() if C[a, b] != 0.0}
 
+    def shortened(self, n: int) -> "EndPatched":
+        """The same operator on ``n`` <= self.n points: the same end rows and stencil (the right end's
+        rows and columns moved by the difference); its end modes are those of the long grid."""
+        if n >= self.n:
+            return self
+        if n < self.L + self.R + 2 * self.reach + 1:
+            raise ValueError(f"shortened({n}): too short for the end rows (L = {self.L}, R = {self.R})")
+        right = self.rows >= self.nr * (self.n - self.R)
+        rows = np.where(right, self.rows - self.nr * (self.n - n), self.rows)
+        cols = np.where(right, self.cols - self.nf * (self.n - n), self.cols)
+        return EndPatched(n, self.nr, self.nf, self.blocks, self.L, self.R, rows, cols, self.vals)
+
     # -- conversions ---------------------------------------------------------------------------
     def band(self) -> Band:
         """The (square) operator as a :class:`~pdverify.band.Band`: the interior rows by
