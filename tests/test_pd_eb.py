@@ -113,9 +113,18 @@ def test_dynamics_settles_to_static_and_detects_blow_up():
         simulate(sc, params, t_end=400 * limit, dt=1.5 * limit)
 
 
+# max error / max |w| at the paper's dx = 0.01 m (101 points), measured 2026-11-25: the paper variant's bias
+# (it does not converge: docs/models/diyaroglu.md) and the corrected one's O(dx^2) error (the cantilever's cubic is
+# reproduced: round-off)
+MEASURED_101 = {("clamped_free", "paper"): 2.566e-3, ("clamped_clamped", "paper"): 5.474e-3,
+                ("simply_supported", "paper"): 1.098e-2, ("clamped_free", "corrected"): 2.8e-14,
+                ("clamped_clamped", "corrected"): 1.550e-3, ("simply_supported", "corrected"): 7.674e-4}
+
+
 @pytest.mark.parametrize("name", list(PAPER))
 def test_errors_against_exact_and_fem_eb_recorded(name, record_property):
-    """Both variants against exact-eb and fem-eb (BEAM3 stand-in) at the paper's dx = 0.01 m."""
+    """Both variants against exact-eb and fem-eb (BEAM3 stand-in) at the paper's dx = 0.01 m: the errors are the
+    measured ones (within 2 %; the corrected cantilever below 1e-10, round-off), and the same against either."""
     sc = PAPER[name]
     fem = run(sc, "fem-eb", points=101)
     exact = solve_straight(sc, False).fields(fem.x)["w"]
@@ -126,7 +135,13 @@ def test_errors_against_exact_and_fem_eb_recorded(name, record_property):
         e_tip = abs(r.w[np.argmax(np.abs(fem.w))] / fem.w[np.argmax(np.abs(fem.w))] - 1)
         record_property(f"{variant}_max_err_vs_fem", e_fem)
         record_property(f"{variant}_err_at_max_vs_fem", e_tip)
-        assert abs(e_fem - err(sc, points=101, variant=variant)) < 1e-8  # fem-eb is exact to ~1e-10
+        e = err(sc, points=101, variant=variant)
+        assert abs(e_fem - e) < 1e-8  # fem-eb is exact to ~1e-10
+        measured = MEASURED_101[name, variant]
+        if measured < 1e-10:
+            assert e < 1e-10, e
+        else:
+            assert e == pytest.approx(measured, rel=2e-2), e
 
 
 @pytest.mark.parametrize("model", ["pd-eb", "pd-bond-pair"])
