@@ -57,6 +57,7 @@ def test_bad_tolerance():
         advise(parse_scene(scene_dict("clamped", "free")), 2.0)
 
 
+@pytest.mark.slow
 def test_solve_model_auto():
     r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", "studies/paper_yang/cantilever_tip_force.toml",
                         "--model", "auto", "--tolerance", "5e-2", "--format", "json"], capture_output=True, text=True, cwd=ROOT)

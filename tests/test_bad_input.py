@@ -157,6 +157,7 @@ def test_bad_cli_input(args, code, text, files, capsys):
 
 @pytest.mark.parametrize("case", ["solve-bool-maybe", "solve-scene-binary", "solve-overflow", "study-workers-0",
                                   "solve-out-is-folder", "unknown-command"])
+@pytest.mark.slow
 def test_bad_cli_input_in_a_process(case, files):
     """A sample as real processes (``python -m pdverify``): the same line and code, no traceback."""
     _, args, code, text = next(c for c in CLI_CASES if c[0] == case)

@@ -8,12 +8,14 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 import pandas as pd
+import pytest
 
 from pdverify.bench import bench_case, cost_slope
 
 ROOT = Path(__file__).parents[1]
 
 
+@pytest.mark.slow
 def test_bench_json_lines():
     r = subprocess.run([sys.executable, "-m", "pdverify.cli", "bench", "-m", "exact-eb", "--points", "101",
                         "--points", "1001", "--format", "json"], capture_output=True, text=True, cwd=ROOT)

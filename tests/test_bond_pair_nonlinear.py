@@ -54,6 +54,7 @@ def nonlinear(scene, n, steps=10):
 
 
 @pytest.mark.parametrize("left,right", PAIRS)
+@pytest.mark.slow
 def test_newton_converges_with_large_mixed_loads(left, right):
     """Mixed loads x 300 (max |w| 0.017-1.1 m on a 2 m beam: rotations up to ~60 degrees) at 201 points.
     Before: the stopping test tol * max(nodal load) sat below the round-off floor (exit 3 from 101 points)."""
@@ -108,6 +109,7 @@ def test_roller_frees_the_membrane_action():
 
 
 @pytest.mark.parametrize("left,right", PAIRS)
+@pytest.mark.slow
 def test_mirror_image_scenes_give_mirror_image_results(left, right):
     """Linear (mirror and Taylor ends) and nonlinear (large loads). Before: a pinned right end was a roller
     in the nonlinear path, every other supported end held axially."""

@@ -66,6 +66,7 @@ def test_study_files_expand_without_skips(name, cases):
 
 
 @pytest.mark.parametrize("kind", ["trig", "bending"])
+@pytest.mark.slow
 def test_manufactured_loads_satisfy_the_equilibrium_equations(kind):
     """Independent of sympy: differentiate the chosen fields numerically (splines on a fine arc-length grid)
     and check N' - kappa Q + p_t = 0, Q' + kappa N + p_n = 0, M' + Q + m = 0."""

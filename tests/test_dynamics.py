@@ -46,6 +46,7 @@ def test_undamped_energy_is_conserved_at_order_two():
 
 
 @pytest.mark.parametrize("kappa,ratio,gain", [(T.STABILISATION, None, 4.0), (0.0, 0.05, 10.0)])
+@pytest.mark.slow
 def test_damped_ledger_balances(kappa, ratio, gain):
     """The dissipated work closes the balance when every step is sampled. Mass damping (5 %, Eq. 7-11's
     predictor-corrector): order 2, measured drift 8.6e-5 / 2.1e-5 / 5.4e-6 at 0.4 / 0.2 / 0.1 of the stable
@@ -202,6 +203,7 @@ def test_table1_cantilever_runs_at_smaller_steps():
 
 
 @pytest.mark.parametrize("model", ["pd-timoshenko", "pd-rod"])
+@pytest.mark.slow
 def test_stable_step_on_large_grids_is_the_threshold(model):
     """3,001 points (6,000 DOFs for the beam; the rod at 6,001 points): the computed limit is within 5 %
     of the blow-up threshold, 0.97 of it runs 3,000 steps, 1.03 blows up (the Gershgorin bound used
@@ -261,6 +263,7 @@ def test_closure_spectrum_has_no_growing_mode(record_property):
 
 
 @pytest.mark.parametrize("m", [1, 2, 3])
+@pytest.mark.slow
 def test_damped_rod_settles_to_the_static_solve_for_every_support_pair(m):
     """Issue 30: damped runs settle to the direct solve on the same grid. pd-rod, 61 points, critical damping
     of the first mode (ζ = 1), 8 ms: every support pair within 1e-8 of the static solution (issue 30's criterion;

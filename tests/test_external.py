@@ -93,6 +93,7 @@ def test_each_failure_is_one_line_naming_model_and_case(tmp_path, mode, words):
     assert words in line and "\n" not in line
 
 
+@pytest.mark.slow
 def test_cli_solve_with_a_manifest_path(tmp_path):
     path = manifest(tmp_path)
     env = {**os.environ, "PYTHONPATH": str(ROOT)}

@@ -20,6 +20,7 @@ def test_arc_semicircle():
     assert np.allclose(g.curvature(s), 0.5)
 
 
+@pytest.mark.slow
 def test_polynomial_axis_arclength_and_curvature():
     # y = x^2 on [0, 1]: s(1) = (2 sqrt5 + asinh 2) / 4
     ax = Axis(type="polynomial", coefficients=[0.0, 0.0, 1.0], x_range=(0.0, 1.0))

@@ -47,6 +47,7 @@ def test_golden(scene, model, options):
         assert np.abs(u - u0).max() <= rtol * np.abs(u0).max()
 
 
+@pytest.mark.slow
 def test_same_inputs_same_numbers_bitwise():
     """Reproducibility: the stable time step comes from an eigenvalue solve (ARPACK, whose default start
     vector is random); two runs of a transient and of a static solve give identical bits."""

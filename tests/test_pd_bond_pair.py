@@ -84,6 +84,7 @@ def test_linear_and_nonlinear_paths_agree_for_small_loads():
 
 
 @pytest.mark.parametrize("frac", [0.5, 1.0])
+@pytest.mark.slow
 def test_large_rotation_tip_moment_elastica(frac):
     """M L / EI = pi/2 (tip at 90 degrees) and pi (semicircle); measured tip error 9.1e-5 and 3.4e-4 of L
     (before the second-order ends and couple: 2.1e-3 and 3.0e-3)."""

@@ -306,6 +306,7 @@ def test_exact_curved_matches_exact_timoshenko_for_every_support_pair():
 
 
 @pytest.mark.parametrize("pair", PAIRS)
+@pytest.mark.slow
 def test_quintic_axis_every_support_pair_partial_load(pair):
     """Quintic axis (L/h = 10), uniform load on [0.874, 1.098] m and an oblique force, vs exact-curved;
     measured P = 4, mixed, 41 / 161 / 321 particles: worst over the pairs 1.2e-1 / 1.4e-4 / 4.8e-6 (pinned-
@@ -383,6 +384,7 @@ def _groups(sc):
 
 
 @pytest.mark.parametrize("P, points", [(2, 41), (4, 61), (5, 41), (6, 81)])
+@pytest.mark.slow
 def test_band_assembly_equals_the_sparse_route_bit_for_bit(P, points):
     """The band (block stencils, boundary and interface entries, row and column equilibration on the written
     diagonals only) holds the same numbers as the sparse products it replaced: every support pair with
@@ -428,6 +430,7 @@ def test_band_solve_above_small_equals_the_csr_route_and_is_the_bench_limit():
 
 @pytest.mark.parametrize("coefficients, x_range", [([0.0, 0.75, -2.25, 2.25, -2.25, 1.5], [0.0, 1.0]),
                                                    ([0.3, -1.0, 0.0, 2.0], [-1.0, 1.5])])
+@pytest.mark.slow
 def test_axis_abscissae_is_the_geometry_inversion(coefficients, x_range):
     """pd-curved inverts s(x) once per assembly, integrating each Newton step from a table node: the root
     of s(x) = s to round-off, like geometry's inversion (from x0). Measured against 40-digit roots (mpmath)

@@ -100,6 +100,7 @@ def test_slender_beams_do_not_lock(slenderness):
         assert run(sc, "pd-higher-order", points=201, shear="centred").w[100] / ex - 1 < -0.4
 
 
+@pytest.mark.slow
 def test_euler_lagrange_equations_by_symbolic_differentiation():
     """Eq. 15 written term by term in sympy on a 7-point grid (m = 2, paper weights 1/(delta^2 A |xi|) V),
     differentiated by Eq. 21 (statics): the Hessian equals the assembled K entry by entry. This
@@ -234,6 +235,7 @@ def _whole_grid_sparse_route(scene, params):
                                   {"variant": "paper", "horizon": 2.5, "mirror": "boundary"}, {"shear": "centred"},
                                   {"shear": "path", "ends": "mirror"}, {"shear": "path", "variant": "paper"}])
 @pytest.mark.parametrize("pair", PAIRS, ids=["-".join(p) for p in PAIRS])
+@pytest.mark.slow
 def test_band_assembly_is_the_whole_grid_sparse_route(pair, opts, points):
     """The band (interior block stencil + exact end windows + unit rows for the held DOFs), reduced to the
     unknowns, equals the whole-grid sparse route entry by entry, in the same bits (one window covers
@@ -254,6 +256,7 @@ def test_band_assembly_is_the_whole_grid_sparse_route(pair, opts, points):
 # -- paper benchmarks --------------------------------------------------------------------------
 
 @pytest.mark.parametrize("name", NAMES)
+@pytest.mark.slow
 def test_benchmark_within_2_percent_of_converged_plane_stress(name):
     """Corrected variant at the paper's dx = 1 mm (1001 points, delta = 3 dx) vs q8 plane stress 201 x 16
     (q9 401 x 32 differs by < 3e-4), at the reference's peak (the load point, the centre or the tip), not
@@ -281,6 +284,7 @@ def _paper(name, **opts):
 
 
 @pytest.mark.parametrize("name", NAMES)
+@pytest.mark.slow
 def test_paper_variant_with_the_authors_partial_volumes_matches_plane_stress(name):
     """As published with the authors' partial volumes (delta = 3.015 dx, third neighbour 0.515, mirror about the
     end point, loads on the mid-surface, dx = 1 mm) vs q8 201 x 16. Measured +1.494, +2.649, +0.009, -0.057,
@@ -367,6 +371,7 @@ def test_paper_plane_182_mesh_is_close_to_converged():
 
 @pytest.mark.parametrize("slenderness", [2, 3, 5, 10])
 @pytest.mark.parametrize("case", ["cc_uniform", "cantilever_tip_force", "ss_uniform"])
+@pytest.mark.slow
 def test_thick_beams_closer_to_plane_stress_than_timoshenko(case, slenderness):
     """L/h = 2, 3, 5, 10, peak deflection vs q8 201 x 16 (401 x 32 differs by < 4e-4), PD at 801 points.
     Measured PD / Timoshenko errors: cc_uniform -0.73/+6.0, -0.48/+3.1, -0.11/+1.5, +0.18/+0.63 %;
@@ -481,6 +486,7 @@ def test_nearest_neighbour_family_is_second_order(name):
     assert np.all(orders > 1.8), orders
 
 
+@pytest.mark.slow
 def test_hundred_thousand_points_in_seconds():
     import time
 

@@ -274,6 +274,7 @@ def test_rod_rejects_transverse_loads():
 # -- Example 1: rod dynamics --------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_example1_rod_settles_and_larger_horizon_disperses():
     """δ = 1 in as δ = dx (101 points) and δ = 10 dx (1001 points): the centre settles at 0.05 in (measured
     5.6e-10 / 6.0e-10 off). Dispersion, same grid dx = 0.1 in, δ = 10 dx vs δ = dx (local): measured
@@ -318,6 +319,7 @@ def timoshenko_cc_frequency(scene) -> float:
     return brentq(det, 0.9 * w_eb, 1.0 * w_eb) / (2 * np.pi)
 
 
+@pytest.mark.slow
 def test_example2_follows_drive_rings_at_resonance_and_settles():
     """101 points, δ = dx = 1 in (the paper's CCM approximation). Measured: analytic f1 = 82.307 Hz
     (paper ~82.4), operator 82.307 Hz, ring-down zero crossings 82.20 Hz (= f1 sqrt(1 - 0.05²)),
@@ -348,6 +350,7 @@ def test_example2_static_state_independent_of_grid_at_fixed_horizon():
 
 
 @pytest.mark.parametrize("variant", ["corrected", "paper"])
+@pytest.mark.slow
 def test_damped_dynamics_reach_the_direct_solve(variant, record_property):
     """The same operator: damped leapfrog (ζ = 0.2 on w, 0.6 s) and the sparse direct solve agree to 1e-6
     (measured 6e-14). As published (no stabilisation, damping on w only, Eq. 36-37) the shear-rotation
@@ -438,6 +441,7 @@ def test_bad_inputs():
         parse_scene(bad)
 
 
+@pytest.mark.slow
 def test_cli_dynamic_scene_writes_time_history(tmp_path):
     out = tmp_path / "rod.csv"
     r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", str(ROOT / "studies/paper_moyer/rod_example1.toml"),

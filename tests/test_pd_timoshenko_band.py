@@ -94,6 +94,7 @@ def test_short_core_is_refused():
 
 
 @pytest.mark.parametrize("left,right", [("clamped", "free"), ("pinned", "guided"), ("free", "clamped")])
+@pytest.mark.slow
 def test_largest_eigenvalue_from_the_short_grid_and_the_symbol(monkeypatch, left, right):
     """The large-grid time step: the end modes from the operator shortened to EIG_DOFS (same end rows), the
     interior from the stencil's symbol, against ARPACK on the whole operator (1400-1800 DOFs, EIG_DOFS
@@ -108,6 +109,7 @@ def test_largest_eigenvalue_from_the_short_grid_and_the_symbol(monkeypatch, left
 
 
 @pytest.mark.parametrize("model,scene,horizon", [("pd-timoshenko", "beam_example2", 3), ("pd-rod", "rod_example1", 2)])
+@pytest.mark.slow
 def test_matrix_free_step_equals_the_csr_step(monkeypatch, model, scene, horizon):
     """The blockwise stencil step (small blocks: many of them, end rows in the first and last) against one
     CSR product per step: prescribed end motion, damping ratio, 3000 steps. Measured 8e-14 (rounding of

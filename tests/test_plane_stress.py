@@ -39,6 +39,7 @@ def test_plane_stress_not_plane_strain():
     assert abs(r.w[-1] / ex - 1) < 5e-3
 
 
+@pytest.mark.slow
 def test_convergence_orders_q4_q8(record_property):
     """Tip deflection of the clamped cantilever (L/h = 10), meshes 12x2 .. 48x8, against q9 200 x 32 (2e-5 from 400 x 64).
     Measured: q4 errors 2.3e-1, 7.0e-2, 1.9e-2 (order 1.9, as expected); q8 3.6e-3, 1.1e-3, 3.7e-4

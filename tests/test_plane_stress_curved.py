@@ -31,6 +31,7 @@ def _rot(deg):
 
 @pytest.mark.parametrize("tilt", [0.0, 30.0])
 @pytest.mark.parametrize("left,right", PAIRS)
+@pytest.mark.slow
 def test_huge_radius_arc_equals_straight(left, right, tilt):
     """An arc of radius 1e7 m (L/R = 2e-7) starting with tangent angle `tilt` is the straight beam, turned:
     local w, u and rotation equal the straight ones, global (ux, uy) are the straight (u, w) turned by `tilt`
@@ -261,6 +262,7 @@ def beam_load_resultant(scene):
 
 @pytest.mark.parametrize("axis", ["arc", "parabola"])
 @pytest.mark.parametrize("element", ["q4", "q8", "q9"])
+@pytest.mark.slow
 def test_assembled_loads_have_the_beam_resultant(axis, element):
     """Every load type (local and global frame, partial uniform and sine spans, off-grid forces, interior and
     end moments, axial parts) on a curved axis: the assembled nodal forces have the force and moment of the
@@ -299,6 +301,7 @@ def test_assembled_loads_have_the_beam_resultant(axis, element):
 
 
 @pytest.mark.parametrize("sl,tol", [(5, 1e-3), (20, 1e-4)])
+@pytest.mark.slow
 def test_face_pin_matches_timoshenko_goodier(sl, tol):
     """Option pin = face (straight beam, pinned-pinned, uniform load q on the top face) against the 2D
     elasticity solution of Timoshenko & Goodier (Theory of Elasticity, §22, plane stress, span 2l = L,
@@ -321,6 +324,7 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
         assert (wn[1] - wn[0]) / exact > 5e-3  # the node pin keeps moving by ~1 % per halving
 
 
+@pytest.mark.slow
 def test_face_pin_converges_on_a_curved_arch(record_property):
     """Quarter-circle two-pinned arch (R = 1, R/h = 10), global downward uniform load, pin = face, q8
     20x2 .. 160x16: the mid-line deflection converges at a high rate (no point reaction); measured (both

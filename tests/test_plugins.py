@@ -73,6 +73,7 @@ def test_models_lists_the_plugin_and_warns_once_per_broken_entry_point(site):
     assert "wrong = bad_plugins:NOT_A_MODEL (pdverify-fd-beam) is int, not a pdverify.registry.Model" in warnings[2]
 
 
+@pytest.mark.slow
 def test_solve_converges_at_order_2(site):
     errs = []
     for n in (41, 81):

@@ -89,6 +89,7 @@ def _common(ra, rb, rab):
 @settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture,
                                                                    HealthCheck.filter_too_much])
 @given(data=st.data(), la=loads_st, lb=loads_st, c=st.floats(-3, 3).filter(lambda c: abs(c) > 0.1))
+@pytest.mark.slow
 def test_superposition_and_mirror(model, data, la, lb, c):
     from pdverify.registry import get_model
 

@@ -49,6 +49,7 @@ def test_patch_test_on_distorted_quads(variant):
 
 
 @pytest.mark.parametrize("slenderness", [20, 100])
+@pytest.mark.slow
 def test_only_incompatible_modes_do_not_lock(slenderness):
     """Cantilever, tip force, the paper's mesh (100 x 8), tip deflection vs q8 201 x 16. Measured at L/h = 20 / 100:
     q4 (3x3) -1.71 / -27.4 %, q4-bbar -0.55 / -26.8 %, q4-qm6 -0.04 / -0.07 % (L/h = 1000: -97.5, -97.5, -3.4 %)."""

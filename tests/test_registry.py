@@ -169,6 +169,7 @@ def test_rule_applies_only_to_its_variant():
     assert "Eq. 32" in rule.problem("pd-eb", {"variant": "paper", "horizon": 2.5})
 
 
+@pytest.mark.slow
 def test_cli_exit_2_one_line():
     for args in (["studies/paper_moyer/beam_example2.toml", "--model", "pd-eb"],
                  ["studies/examples/cantilever_tip_load.toml", "--model", "pd-eb", "--variant", "paper", "--horizon",

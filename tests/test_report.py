@@ -55,6 +55,7 @@ def resolves(study_dir, page, href) -> bool:
     return not frag or f'id="{frag}"' in text
 
 
+@pytest.mark.slow
 def test_links_resolve_and_figures_present(study_dir):
     page = (study_dir / "index.html").read_text()
     p = Links()
@@ -66,6 +67,7 @@ def test_links_resolve_and_figures_present(study_dir):
     assert not re.search(r'(src|href)="(https?:)?//', page) and "url(http" not in page
 
 
+@pytest.mark.slow
 def test_one_page_per_paper_linked_both_ways(study_dir):
     index = (study_dir / "index.html").read_text()
     page_file = study_dir / "paper-paper-diyaroglu.html"
@@ -122,6 +124,7 @@ def test_numbers_trace_to_results(study_dir):
         assert f">{fmt(row['w_at_max'])}<" in page and f">{fmt(row['err_max'])}<" in page
 
 
+@pytest.mark.slow
 def test_rebuild_is_identical_apart_from_timestamp(study_dir, tmp_path):
     a = (study_dir / "index.html").read_text()
     b = build_report(study_dir, tmp_path).read_text()
@@ -152,6 +155,7 @@ def test_browser_test_skips_or_fails_by_the_environment(monkeypatch):
         find_chromium()
 
 
+@pytest.mark.slow
 def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
     chromium = find_chromium()
     shot = ROOT / "reports" / "_scratch" / "report_screenshot.png"
@@ -175,6 +179,7 @@ def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
     assert not console and r.stdout.count("<svg") >= 6, console
 
 
+@pytest.mark.slow
 def test_plane_stress_images_and_vtu_links(tmp_path):
     """A study with a plane-stress case writes its VTU and an off-screen PNG; the report inlines the
     picture and links the VTU."""
@@ -251,6 +256,7 @@ def test_axis_labels_carry_the_scene_units(tmp_path):
     assert "x (m)" in page and "w (m)" in page and "(in)" not in page
 
 
+@pytest.mark.slow
 def test_damaged_case_file_is_named(tmp_path):
     """`pdverify report` on a folder with a damaged case file: one line naming it, exit code 2, no traceback."""
     _one_case_study(tmp_path, "damaged", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
@@ -262,6 +268,7 @@ def test_damaged_case_file_is_named(tmp_path):
     assert r.stderr.count("\n") == 1 and r.stderr.startswith(f"error: {case}:") and "pdverify study" in r.stderr
 
 
+@pytest.mark.slow
 def test_unwritable_report_out(tmp_path):
     """`report --out` below a file: exit code 4, one line naming the path, nothing written."""
     _one_case_study(tmp_path, "unwritable", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())

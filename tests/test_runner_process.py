@@ -168,6 +168,7 @@ def test_the_lock_is_held_during_a_run_and_released_after(tmp_path, monkeypatch)
     FolderLock(out).release()  # and after a whole one
 
 
+@pytest.mark.slow
 def test_another_study_never_overwrites_a_folders_tables(tmp_path):
     """A different study file run into a folder that holds a study's results stops (exit 4, one line naming
     the folder, the other study and the fix) before writing anything; the same study resumes there."""
@@ -253,6 +254,7 @@ def test_an_unreachable_scheduler_is_one_line_exit_2_within_the_connect_timeout(
 
 
 @pytest.mark.parametrize("workers", [0, -1])
+@pytest.mark.slow
 def test_workers_below_one_is_one_line_exit_2(tmp_path, workers):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
     line = one_error_line(cli("study", p, "--out", tmp_path / "out", "--workers", workers, "--quiet"), 2)

@@ -135,6 +135,7 @@ def test_cli_option_the_model_does_not_take():
     assert r.returncode == 2 and "takes no option 'horizon'" in r.stderr
 
 
+@pytest.mark.slow
 def test_cli_spacing_must_divide_length():
     r = cli("solve", "studies/examples/cantilever_tip_load.toml", "--model", "exact-eb", "--spacing", "0.3")
     assert r.returncode == 2 and "spacing = 0.3" in r.stderr

@@ -117,6 +117,7 @@ BAD_STUDIES = {
 
 
 @pytest.mark.parametrize("what", list(BAD_STUDIES))
+@pytest.mark.slow
 def test_bad_study_one_line_exit_2(tmp_path, what):
     body, msg = BAD_STUDIES[what]
     p = write_study(tmp_path, body)
@@ -495,6 +496,7 @@ def test_pool_worker_killed_is_one_output_error_and_the_run_resumes(tmp_path, mo
     assert json.loads((tmp_path / "out" / "meta.json").read_text())["resumed_cases"] == kept
 
 
+@pytest.mark.slow
 def test_unwritable_output_is_one_line_exit_4(tmp_path):
     """An output directory that cannot be made (here a file stands where it should go; permissions or a
     full disk end the same way) stops the study with one line naming the directory and the fix."""

@@ -268,6 +268,7 @@ def test_junit_path_errors(tmp_path):
     assert (tmp_path / "out/benchmarks.csv").is_file()  # the study's tables are kept
 
 
+@pytest.mark.slow
 def test_study_from_a_ci_script(tmp_path):
     """What a CI job does: run the study, keep its status, let the CI read the JUnit file."""
     p = study_file(tmp_path, bench("centre", 0.02) + bench("too tight", 1e-4) + check("corrected", "{ min = 1.9 }"))

@@ -157,6 +157,7 @@ def _toml(d: dict) -> str:
     ("roller", "pinned", "rigid rotation about (1, 0)"),
     ("guided", "guided", "2 independent rigid-body motions"),
 ])
+@pytest.mark.slow
 def test_ring_mechanisms_exit_2_naming_the_supports(tmp_path, left, right, needle):
     path = tmp_path / "ring.toml"
     path.write_text(_toml(ring(left, right)))

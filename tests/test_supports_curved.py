@@ -72,6 +72,7 @@ def test_the_pairs_cover_every_support():
 
 @pytest.mark.parametrize("axis,left,right", CASES, ids=IDS)
 @pytest.mark.parametrize("form", ["mixed", "primal"])
+@pytest.mark.slow
 def test_pd_curved_converges_to_exact_curved(axis, left, right, form, record_property):
     """pd-curved (P = 4) at 81 / 161 / 321 particles (L/h ~ 100): the error against exact-curved falls at
     order >= 3 (measured ~4 on both forms from 81 to 161: 3.6-4.4) and is below the form's bound at 321:

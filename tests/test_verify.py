@@ -84,6 +84,7 @@ def test_junit_has_a_failure_per_failed_check_and_skips_not_applicable():
     assert cases["b"].find("failure").get("message") == "order 1.0" and cases["c"].find("skipped") is not None
 
 
+@pytest.mark.slow
 def test_verify_a_model_that_solves_no_suite_scene_is_one_line(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run(
