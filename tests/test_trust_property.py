@@ -173,12 +173,12 @@ def predicted(scene, model, results: list, n: int) -> tuple[float, float]:
     f = get_model(reference(scene, model)).evaluator(scene, {})(results[-1].x)
     scale = max(np.abs(f[k]).max() for k in keys)
 
-    def diff(a, b):  # the finer grid at the coarser one's nodes (nested: every second node)
-        return max(np.abs(_values(a, k) - _values(b, k)[::2]).max() for k in keys) / scale
+    def diff(a, b):  # the finer grid at the coarser one's points (nested grids: at its own nodes)
+        return max(np.abs(_values(a, k) - np.interp(a.x, b.x, _values(b, k))).max() for k in keys) / scale
 
     d1, d2 = diff(results[0], results[1]), diff(results[1], results[2])
     p = math.log2(d1 / d2) if d1 > 0 and d2 > 0 else float("inf")
-    at = [len(r.x) for r in results].index(n)
+    at = grids(n).index(n)
     if d2 == 0.0:  # the finer pair agree to the last bit
         return 0.0, p
     if not p > 0.5:  # not converging in itself on these grids: only the largest difference
@@ -203,7 +203,7 @@ def check_case(scene, name: str, n: int):
             if arr is not None:
                 assert np.all(np.isfinite(np.asarray(arr, float))), (name, g, scene.to_dict())
         results.append(res)
-    res = results[[len(r.x) for r in results].index(n)]
+    res = results[grids(n).index(n)]
     err = error(scene, model, res)
     est, p = predicted(scene, model, results, n)
     floor = max(FLOOR, BOUND_FACTOR * float(res.info.get("error_bound") or 0.0))
