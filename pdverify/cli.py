@@ -299,6 +299,12 @@ def study(
         typer.echo(f"failed: {r['model']} on {r['scene_file']}: {r['message']}", err=True)
     for line in outcome.failures():
         typer.echo(line, err=True)
+    from .verify.published import run_cards
+
+    cards = run_cards(spec, out, workers=workers, scheduler=scheduler, progress=not quiet,
+                      echo=lambda line: typer.echo(line, err=True))
+    failed_cards = sum(c["verdict"] == "fail" for c in cards)
+    code = 1 if outcome.exit_code == 0 and spec.verify_required and failed_cards else outcome.exit_code
     if junit is not None:  # before the report: a report that cannot be written loses no verdict
         from .errors import OutputError
         from .study.junit import write_junit
@@ -315,8 +321,13 @@ def study(
 
         index = build_report(out)
         typer.echo(f"report: {index}")
-    typer.echo(outcome.line(), err=True)
-    raise typer.Exit(outcome.exit_code)
+    line = outcome.line()
+    if cards:  # the cards' verdicts before the exit code they may change (verify_required)
+        head, _, _ = line.rpartition("; exit ")
+        line = (f"{head}; cards {len(cards) - failed_cards} pass, {failed_cards} fail "
+                f"({'required' if spec.verify_required else 'not required'}); exit {code}")
+    typer.echo(line, err=True)
+    raise typer.Exit(code)
 
 
 @app.command()

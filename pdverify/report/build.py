@@ -332,7 +332,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             performance = cand.relative_to(out).as_posix() if cand.is_relative_to(out) else "../bench/index.html"
             break
     page = env.get_template("index.html.j2").render(
-        meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
+        cards=cards_table(d, out), meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
         description=description,
         benchmarks=table(bench.assign(reference=bench["reference"].map(_short_reference)) if "reference" in bench else bench,
                          bench_cols, row_class="verdict", case_link=""),
@@ -358,6 +358,36 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     if out != d:
         _write(out / "results.csv", (d / "results.csv").read_bytes())
     return index
+
+
+def cards_table(d: Path, out: Path) -> dict | None:
+    """The study's verification cards (``d/verify/cards.json``, pdverify.verify.published): one row per card,
+    its verdict, each check's verdict and a link to its card.html (relative to the report in ``out``)."""
+    import os
+
+    from ..verify.published import read_index
+
+    index = read_index(d)
+    if not index or not index["cards"]:
+        return None
+    checks = list(dict.fromkeys(c["check"] for card in index["cards"] for c in card.get("checks", [])))
+    head = "".join(f"<th>{html.escape(h)}</th>" for h in ["model", "options", "verdict", *checks, "cases", "card"])
+    rows = []
+    for card in index["cards"]:
+        got = {c["check"]: c["verdict"] for c in card.get("checks", [])}
+        link = Path(os.path.relpath(d / "verify" / card["folder"] / "card.html", out)).as_posix()
+        opts = ", ".join(f"{k}={v}" for k, v in card.get("options", {}).items()) or "defaults"
+        cells = [f'<td class="l">{html.escape(str(card["model"]))}</td>', f'<td class="l">{html.escape(opts)}</td>',
+                 f'<td class="verdict">{html.escape(card["verdict"])}</td>']
+        cells += [f'<td class="chk-{html.escape(got.get(c, "none").replace("/", ""))}">{html.escape(got.get(c, ""))}</td>'
+                  for c in checks]
+        cells.append(f'<td>{int(card.get("cases", 0))} ({int(card.get("failed_cases", 0))} failed)</td>')
+        cells.append(f'<td class="l"><a href="{html.escape(link)}">card.html</a></td>')
+        rows.append(f'<tr class="{html.escape(card["verdict"])}">{"".join(cells)}</tr>')
+    n_fail = sum(c["verdict"] == "fail" for c in index["cards"])
+    return {"table": Markup(f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}'
+                            '</tbody></table>'),
+            "required": bool(index.get("required")), "n": len(index["cards"]), "n_fail": n_fail}
 
 
 def environment() -> jinja2.Environment:

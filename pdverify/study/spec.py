@@ -25,6 +25,13 @@ model = "pd-eb"
 variant = "corrected"
 observed_order = { min = 1.9 }
 ```
+Optional verification cards (``pdverify verify``, docs/verify.md), run after the study's cases into
+``OUT/verify/<model>[_options]/`` and listed in the report; their failures change the exit status only with
+``verify_required = true``:
+```toml
+verify = ["pd-eb", "pd-eb variant=paper"]         # model and options (key=value), or {model = ..., ...}
+verify_required = false                           # default
+```
 Values are typed as TOML types them: a boolean option takes only true/false, a number never a boolean.
 """
 
@@ -114,6 +121,8 @@ class Study:
     slenderness: list
     benchmarks: list[dict] = field(default_factory=list)
     checks: list[dict] = field(default_factory=list)
+    verify: list[dict] = field(default_factory=list)  # {"model", "options", "folder"}: the verification cards
+    verify_required: bool = False
     cases: list[Case] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
 
@@ -174,13 +183,43 @@ def _external(path: Path, manifests) -> list[str]:
     return errors
 
 
+def _verify_entries(data: dict, path: Path) -> tuple[list[dict], bool, list[str]]:
+    """The study's ``verify`` cards (model, options, folder), ``verify_required`` and their error lines."""
+    from ..verify import card_folder, entry_errors, parse_entry
+
+    entries, errors = data.get("verify", []), []
+    required = data.get("verify_required", False)
+    if not isinstance(required, bool):
+        errors.append(f"{path}: verify_required = {required!r}: give true or false")
+    if not isinstance(entries, list):
+        return [], False, errors + [f"{path}: verify = {entries!r}: give a list of models, e.g. "
+                                    "[\"pd-eb\", \"pd-eb variant=paper\"]"]
+    cards, folders = [], set()
+    for i, entry in enumerate(entries):
+        where = f"{path}: verify[{i}] = {entry!r}"
+        try:
+            name, options = parse_entry(entry)
+        except InputError as exc:
+            errors.append(f"{path}: verify[{i}] = {exc.lines[0]}")
+            continue
+        found = entry_errors(name, options)
+        errors += [f"{where}: {line}" for line in found]
+        folder = card_folder(get_model(name).name if not found else name, options)
+        if not found and folder in folders:
+            errors.append(f"{where}: listed twice; drop one")
+        elif not found:
+            folders.add(folder)
+            cards.append({"model": name, "options": options, "folder": folder})
+    return cards, required is True, errors
+
+
 def load_study(path: str | Path) -> Study:
     """Read a study file and validate every scene, model, option and reference. Raises InputError."""
     path = Path(path)
     text, data = read_toml(path, "study")
     errors: list[str] = []
     allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers", "checks",
-               "external"}
+               "external", "verify", "verify_required"}
     for key in data:
         if key not in allowed:
             errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
@@ -332,6 +371,8 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{where}.quantity = {q!r}: the reference gives w only; give a target")
     errors += validate_checks(data.get("checks", []), scene_objs, {r["model"] for r in runs if isinstance(r, dict)
                                                                    and isinstance(r.get("model"), str)}, path)
+    study.verify, study.verify_required, found = _verify_entries(data, path)
+    errors += found
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once
         raise InputError(list(dict.fromkeys(errors)))

@@ -17,7 +17,7 @@ from ..scene import parse_scene
 from . import checks as C
 from .suite import LOADS, SUITE_VERSION, end_force, mirror, plan, straight, write_study
 
-__all__ = ["verify", "SUITE_VERSION"]
+__all__ = ["verify", "SUITE_VERSION", "parse_entry", "entry_errors", "card_folder"]
 
 MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
 ASYMMETRIC = {
@@ -60,6 +60,72 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
     return out
 
 
+def parse_entry(entry) -> tuple[str, dict]:
+    """A study file's ``verify`` entry: ``"pd-eb variant=paper horizon=3"`` (values typed as TOML types them:
+    ``3`` a number, ``true`` a boolean, anything else a string) or a table ``{model = "pd-eb", variant = "paper"}``.
+    Raises InputError (one line) for an entry of neither form."""
+    import tomllib
+
+    if isinstance(entry, dict) and isinstance(entry.get("model"), str):
+        return entry["model"], {k: v for k, v in entry.items() if k != "model"}
+    if not isinstance(entry, str) or not entry.split():
+        raise InputError(f"{entry!r}: give a model and its options, e.g. \"pd-eb variant=paper\"")
+    name, *pairs = entry.split()
+    options = {}
+    for item in pairs:
+        k, eq, v = item.partition("=")
+        if not eq or not k or not v:
+            raise InputError(f"{entry!r}: option {item!r}: write key=value")
+        try:
+            options[k] = tomllib.loads(f"v = {v}")["v"]
+        except tomllib.TOMLDecodeError:
+            options[k] = v
+    return name, options
+
+
+def card_folder(model_name: str, options: dict) -> str:
+    """The card's folder name, as ``pdverify verify`` names it: ``pd_eb_variant_paper``."""
+    import re
+
+    text = (model_name + "".join(f"_{k}_{v}" for k, v in options.items())).lower()
+    return re.sub(r"[^a-z0-9]+", "_", text).strip("_") or "model"
+
+
+def _declined(model, p) -> dict:
+    """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out)."""
+    return {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+
+
+def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str]:
+    """What stops ``verify(model_name, ..., options)`` before it runs anything: an unknown model or option, a
+    value of the wrong type, a grid option (the suite sets the grids), a model that solves none of the
+    suite's scenes. One line each (without the caller's prefix)."""
+    from ..study.checks import strict_type
+
+    try:
+        model = get_model(model_name)
+    except InputError as exc:
+        return [exc.lines[0]]
+    errors = [f"{k}: the suite sets the grids; drop it" for k in options if k in ("points", "spacing")]
+    for k, v in options.items():
+        opt = model.option(k)
+        if opt is not None and (why := strict_type(opt, v)):
+            errors.append(why)
+    if errors:
+        return errors
+    p = plan(model, full)
+    declined = _declined(model, p)
+    solved = [f for f, why in declined.items() if not why]
+    if not solved:
+        return [f"model {model.name} solves none of the suite's scenes ({next(iter(declined.values()))[0]}); "
+                "verify needs a beam model that takes straight (or curved) beams with transverse loads"]
+    try:
+        model.resolve(parse_scene(p.scenes[solved[0]]), options)
+    except InputError as exc:
+        return list(exc.lines)
+    return []
+
+
 def verify(
     model_name: str,
     out: Path,
@@ -80,7 +146,7 @@ def verify(
     expected = order if order is not None else getattr(model, "order", 2.0)
     out = Path(out)
     p = plan(model, full)
-    declined = {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+    declined = _declined(model, p)
     if all(declined.values()):
         first = next(iter(declined.values()))[0]
         raise InputError(
@@ -135,7 +201,8 @@ def verify(
         "verdict": verdict,
         "checks": found,
         "scenes": scenes,
-        "failed_cases": int((df["status"] != "ok").sum()),
+        "failed_cases": int((~df["status"].isin(C.SOLVED)).sum()),
+        "suspect_cases": int((df["status"] == "suspect").sum()),
         "skipped": skipped,
         "cases": len(df),
         "wall_s": time.perf_counter() - t0,

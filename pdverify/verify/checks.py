@@ -23,6 +23,11 @@ FLOOR = 1e-4  # ... which fails when it also exceeds this (a tenth of the 0.1 % 
 IDENTITY = 1e-8  # symmetry and superposition: relative difference that passes (round-off of the solves)
 
 
+# a "suspect" case (round-off bound > 1e-6, docs/trust.md) solved: its error against the exact solution is measured and
+# judged (round-off is what the floor check measures); the card counts such cases (card.json "suspect_cases")
+SOLVED = ("ok", "suspect")
+
+
 def check(name: str, verdict: str, summary: str, **data) -> dict:
     return {"check": name, "verdict": verdict, "summary": summary, **data}
 
@@ -34,7 +39,7 @@ def series(df, files: list[str]) -> list[dict]:
         rows = df[(df["scene_file"] == f)].sort_values("points")
         if rows.empty:  # the model's check() declined the scene: skipped, not judged
             continue
-        ok = rows[rows["status"] == "ok"]
+        ok = rows[rows["status"].isin(SOLVED)]
         h, e = ok["spacing"].to_numpy(float), ok["err_max"].to_numpy(float)
         pair = [
             math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")
@@ -58,7 +63,7 @@ def series(df, files: list[str]) -> list[dict]:
                 "pair_orders": pair,
                 "order": fitted,
                 "exact": bool(len(e) and above.sum() < 2 and np.nanmax(e) < ROUND),
-                "failed": [f"{int(r.points)} points: {r.message}" for r in rows[rows["status"] != "ok"].itertuples()],
+                "failed": [f"{int(r.points)} points: {r.message}" for r in rows[~rows["status"].isin(SOLVED)].itertuples()],
             }
         )
     return out
@@ -117,9 +122,9 @@ def locking(df, files: list[str], meta: dict) -> dict:
     for pair in sorted({meta[f]["pair"] for f in files}):
         fs = [f for f in files if meta[f]["pair"] == pair]
         rows = df[df["scene_file"].isin(fs)]
-        if (rows["status"] != "ok").any():
+        if (~rows["status"].isin(SOLVED)).any():
             bad.append(f"{pair}: failed solves")
-        rows = rows[rows["status"] == "ok"]
+        rows = rows[rows["status"].isin(SOLVED)]
         for points, g in rows.groupby("points"):
             s = [meta[f]["slenderness"] for f in g["scene_file"]]
             e = g["err_max"].to_numpy(float)
