@@ -203,3 +203,59 @@ class Band:
         ab[: self.lower] = 0.0
         ab[self.lower:] = self.data
         return ab
+
+
+class Extent:
+    """The diagonals of a :class:`~pdverify.band.Band` that were written and, per diagonal, the stretch of
+    its elements that was, so the row and column maxima and scales touch those only (the mixed form's band
+    has 2 x 36 + 1 diagonals at P = 4, of which 10 are filled along the beam and the outer ones near the
+    ends only; :class:`Band` itself would read and scale all its diagonals)."""
+
+    def __init__(self, B: Band):
+        self.B = B
+        self.span: dict[int, list[tuple[int, int]]] = {}  # offset -> [(first, stop)] elements of B.diag(offset)
+
+    def _mark(self, off: int, k0: int, k1: int):
+        self.span.setdefault(off, []).append((k0, k1))
+
+    def block(self, ndof: int, o: int, C, p0: int, p1: int):
+        """``B.add_block_stencil(ndof, {o: C}, points=(p0, p1))`` and the stretches it wrote."""
+        self.B.add_block_stencil(ndof, {o: C}, points=(p0, p1))
+        for off, sl, _, _ in self.B.block_stretches(ndof, {o: C}, (p0, p1)):
+            self._mark(off, sl.start, sl.stop)
+
+    def entries(self, rows: np.ndarray, cols: np.ndarray):
+        """The stretches of entries written by ``B.add_entries(rows, cols, ...)``."""
+        off = cols - rows
+        k = rows - np.maximum(0, -off)
+        for o in np.unique(off).tolist():
+            sel = k[off == o]
+            self._mark(o, int(sel.min()), int(sel.max()) + 1)
+
+    def _each(self, rows: bool):
+        """(diagonal stretch, slice of its rows or columns), every written element exactly once: the
+        stretches of one diagonal merged where they overlap or touch (the outer family offsets are written
+        near the two ends of each segment only)."""
+        for off, spans in self.span.items():
+            merged: list[list[int]] = []
+            for k0, k1 in sorted(spans):
+                if merged and k0 <= merged[-1][1]:
+                    merged[-1][1] = max(merged[-1][1], k1)
+                else:
+                    merged.append([k0, k1])
+            d = self.B.diag(off)
+            shift = max(0, -off) if rows else max(0, off)  # element k: row k + max(0, -off), column k + max(0, off)
+            for k0, k1 in merged:
+                yield d[k0:k1], slice(k0 + shift, k1 + shift)
+
+    def abs_max(self, rows: bool) -> np.ndarray:
+        """Largest |entry| of every row (``rows``) or column."""
+        out = np.zeros(self.B.n)
+        for d, sl in self._each(rows):
+            np.maximum(out[sl], np.abs(d), out=out[sl])
+        return out
+
+    def scale(self, f: np.ndarray, rows: bool):
+        """In place: row i (``rows``) or column i multiplied by f[i]."""
+        for d, sl in self._each(rows):
+            d *= f[sl]

@@ -439,7 +439,7 @@ def test_axis_abscissae_is_the_geometry_inversion(coefficients, x_range):
     import mpmath as mp
 
     from pdverify.geometry import AxisGeometry, axis_length
-    from pdverify.models.pd_curved import axis_abscissae
+    from pdverify.geometry import axis_abscissae
     from pdverify.scene import Axis
 
     axis = Axis(type="polynomial", coefficients=coefficients, x_range=x_range)

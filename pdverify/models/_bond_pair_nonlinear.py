@@ -232,7 +232,7 @@ class NonlinearBondPair:
 
     # loads -----------------------------------------------------------------------------------
     def _loads(self):
-        from .pd_eb import body_loads
+        from .pd_common import body_loads
 
         n, dx = self.n, self.dx
         self.F = np.zeros(2 * n)

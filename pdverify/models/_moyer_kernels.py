@@ -12,7 +12,7 @@ import scipy.sparse as sp
 
 from ..band import Band
 from ..scene import Distributed, PointForce, PointMoment, PointTorque, Scene
-from .pd_eb import _cell_integral, stencil_operator
+from .pd_common import cell_integral, stencil_operator
 
 
 def trapezoid_weights(m: int) -> np.ndarray:
@@ -169,7 +169,7 @@ def node_loads(scene: Scene, x: np.ndarray, component: str, ends_apart: bool):
             if v != 0.0:
                 if lo is None:
                     lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
-                q += _cell_integral(load, scene, lo, hi, v) / (hi - lo)
+                q += cell_integral(load, scene, lo, hi, v) / (hi - lo)
             continue
         if isinstance(load, PointTorque):
             if component != "torque":

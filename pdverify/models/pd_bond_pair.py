@@ -21,7 +21,7 @@ The stencil reaches 2J points past an end. Ends (``ends`` option):
 pinned = point reflection through the support, guided = reflection through the support's vertical,
 free = cubic extrapolation, end points' energy halved; the linear path is the tangent stiffness of that
 energy at the undeformed state, the nonlinear path its Newton solution) or ``taylor`` (the degree-4
-polynomial ghost points of ``pd_eb.taylor_ghosts``, end loads through the moment and shear at the end;
+polynomial ghost points of ``pd_common.taylor_ghosts``, end loads through the moment and shear at the end;
 solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
 """
 
@@ -36,17 +36,8 @@ from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_eb import (body_loads, curvature_end_rows, boundary_layer_warnings, end_loads, ghost_stencil_system, partial_volumes,
-                    stencil_operator, taylor_ghosts)
-
-
-def family(m: float, dx: float, variant: str) -> tuple[np.ndarray, np.ndarray]:
-    """Offsets j = 1..J and volume factors beta_j (paper: full volumes within (m + 0.015) dx)."""
-    if variant == "paper":
-        J = int(np.floor(m + 0.015 + 1e-12))
-        j = np.arange(1, J + 1)
-        return j, np.ones(J)
-    return partial_volumes(m)
+from .pd_common import (body_loads, boundary_layer_warnings, curvature_end_rows, end_loads, family,
+                        ghost_stencil_system, stencil_operator, taylor_ghosts)
 
 
 def spring_constants(EI: float, m: float, dx: float, variant: str) -> np.ndarray:
@@ -213,7 +204,7 @@ class PDBondPair(Model):
         mixed form). At clamped, pinned and roller ends ghost w (outside the beam, up to 2J spacings) enter
         the first equation through the Taylor map w_g = Gm w_real + g0; at free and guided ends the first
         equation of the end point and of the positions outside is replaced by the end conditions on k
-        (:func:`pd_eb.curvature_end_rows`). Unknowns interleaved (k_p, w_p) in LAPACK's band layout; the w of
+        (:func:`pd_common.curvature_end_rows`). Unknowns interleaved (k_p, w_p) in LAPACK's band layout; the w of
         positions outside the beam and of supported points are held at zero.
         Returns the :class:`~pdverify.registry.System` (free: the unknowns not held; ``info["Jk"]``): w of real
         point i is unknown 2 (i + Jk) + 1."""
@@ -239,7 +230,7 @@ class PDBondPair(Model):
             M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
             if sup in ("free", "guided"):
                 # end conditions on k = D1 w (the curvature stencil c = 1/dx²): moment and shear on k, not
-                # through Taylor ghosts of w (round-off ~N eps instead of ~N³ eps; pd_eb.curvature_end_rows)
+                # through Taylor ghosts of w (round-off ~N eps instead of ~N³ eps; pd_common.curvature_end_rows)
                 er_, ec_, ev_, rr_, rv_ = curvature_end_rows(sup, side, n, dx, np.array([1 / dx**2]), M_end, V3,
                                                              scene.EI, q[0 if side == 0 else n - 1], Jk, kidx,
                                                              lambda p_: kidx(p_) + 1)

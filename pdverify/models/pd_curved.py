@@ -78,9 +78,9 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..band import Band
+from ..band import Band, Extent
 from ..errors import InputError
-from ..geometry import geometry
+from ..geometry import axis_abscissae, geometry
 from ..linalg import solve_linear
 from ..registry import Model, Option, System
 from ..result import Result, Timer
@@ -93,38 +93,6 @@ from . import _pddo
 def curvature_slope(scene: Scene, s: np.ndarray) -> np.ndarray:
     """dκ/ds (0 for straight and arc axes; polynomial: (1/J) d/dx [y''/J³], J = sqrt(1 + y'²))."""
     return axis_frame(scene, s)[3]
-
-
-def axis_abscissae(scene: Scene, s: np.ndarray) -> np.ndarray:
-    """x(s) on a polynomial axis y(x): the arc length s(x) = ∫ sqrt(1 + y'²) dx of :mod:`pdverify.geometry`
-    (16-point Gauss–Legendre panels) inverted by Newton from a table start, as ``AxisGeometry._x_of_s``
-    does, with one difference: each step integrates from the table node below the start (one panel over
-    about 1/2000 of the axis; the arc length of the nodes used by geometry's composite 32-panel rule from x0)
-    instead of from x0 (32 panels per particle and step). Same root to round-off (within 2 ulp of 40-digit
-    roots, tests/test_pd_curved.py); 16 instead of 512 integrand values per particle and step, and bounded
-    temporaries. A local helper: geometry.py is not this model's to change."""
-    from numpy.polynomial import polynomial as Pn
-
-    from ..geometry import _arclength, _arclength_pairs
-
-    c = np.asarray(scene.axis.coefficients, float)
-    x0, x1 = (float(v) for v in scene.axis.x_range)
-    dc = Pn.polyder(c)
-    s = np.asarray(s, float)
-    sv = s.ravel()
-    nodes = np.linspace(x0, x1, 2001)
-    start = np.concatenate([[0.0], np.cumsum(_arclength_pairs(c, nodes[:-1], nodes[1:]))])  # geometry's start table
-    x = np.interp(sv, start, nodes)
-    j = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 1)
-    used, inv = np.unique(j, return_inverse=True)
-    base = _arclength(c, x0, nodes[used])[inv]  # s(node j) by the composite rule, at the nodes used only
-    a = nodes[j]
-    for _ in range(30):  # Newton iterations (converged in 2-3)
-        step = (base + _arclength_pairs(c, a, x) - sv) / np.sqrt(1 + Pn.polyval(x, dc) ** 2)
-        x = x - step
-        if np.max(np.abs(step), initial=0.0) < 1e-15 * max(1.0, abs(x1 - x0)):
-            break
-    return x.reshape(s.shape)
 
 
 def axis_frame(scene: Scene, s: np.ndarray):
@@ -289,65 +257,6 @@ def distributed_loads(scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray,
             pt += f * load.axial
             pn += f * load.value
     return pt, pn
-
-
-# -- band bookkeeping -------------------------------------------------------------------------
-
-
-class _Extent:
-    """The diagonals of a :class:`~pdverify.band.Band` that were written and, per diagonal, the stretch of
-    its elements that was, so the row and column maxima and scales touch those only (the mixed form's band
-    has 2 x 36 + 1 diagonals at P = 4, of which 10 are filled along the beam and the outer ones near the
-    ends only). A local helper: Band has no such bookkeeping (it would read and scale all its diagonals)."""
-
-    def __init__(self, B: Band):
-        self.B = B
-        self.span: dict[int, list[tuple[int, int]]] = {}  # offset -> [(first, stop)] elements of B.diag(offset)
-
-    def _mark(self, off: int, k0: int, k1: int):
-        self.span.setdefault(off, []).append((k0, k1))
-
-    def block(self, ndof: int, o: int, C, p0: int, p1: int):
-        """``B.add_block_stencil(ndof, {o: C}, points=(p0, p1))`` and the stretches it wrote."""
-        self.B.add_block_stencil(ndof, {o: C}, points=(p0, p1))
-        for off, sl, _, _ in self.B.block_stretches(ndof, {o: C}, (p0, p1)):
-            self._mark(off, sl.start, sl.stop)
-
-    def entries(self, rows: np.ndarray, cols: np.ndarray):
-        """The stretches of entries written by ``B.add_entries(rows, cols, ...)``."""
-        off = cols - rows
-        k = rows - np.maximum(0, -off)
-        for o in np.unique(off).tolist():
-            sel = k[off == o]
-            self._mark(o, int(sel.min()), int(sel.max()) + 1)
-
-    def _each(self, rows: bool):
-        """(diagonal stretch, slice of its rows or columns), every written element exactly once: the
-        stretches of one diagonal merged where they overlap or touch (the outer family offsets are written
-        near the two ends of each segment only)."""
-        for off, spans in self.span.items():
-            merged: list[list[int]] = []
-            for k0, k1 in sorted(spans):
-                if merged and k0 <= merged[-1][1]:
-                    merged[-1][1] = max(merged[-1][1], k1)
-                else:
-                    merged.append([k0, k1])
-            d = self.B.diag(off)
-            shift = max(0, -off) if rows else max(0, off)  # element k: row k + max(0, -off), column k + max(0, off)
-            for k0, k1 in merged:
-                yield d[k0:k1], slice(k0 + shift, k1 + shift)
-
-    def abs_max(self, rows: bool) -> np.ndarray:
-        """Largest |entry| of every row (``rows``) or column."""
-        out = np.zeros(self.B.n)
-        for d, sl in self._each(rows):
-            np.maximum(out[sl], np.abs(d), out=out[sl])
-        return out
-
-    def scale(self, f: np.ndarray, rows: bool):
-        """In place: row i (``rows``) or column i multiplied by f[i]."""
-        for d, sl in self._each(rows):
-            d *= f[sl]
 
 
 # -- the model --------------------------------------------------------------------------------
@@ -555,7 +464,7 @@ class PDCurved(Model):
         EA, kGA, EI = scene.EA, scene.kGA, scene.EI
         bw = nf * (size - 1)  # the end families reach size - 1 particles
         B = Band(nf * N, bw, bw)
-        ext = _Extent(B)
+        ext = Extent(B)
         # particle's own block (offset 0): curvature couplings, compliances, Q in the moment equation
         C0 = [[0.0] * nf for _ in range(nf)]
         C0[0][1], C0[0][3] = -kap, -(1 / EA)

@@ -96,7 +96,7 @@ from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Distributed, PointForce, PointMoment, Scene
-from .pd_eb import _cell_integral, partial_volumes
+from .pd_common import cell_integral, family
 
 NF = 4  # DOFs per point: theta, theta*, w, w*
 TH, TS, W, WS = range(NF)
@@ -168,19 +168,6 @@ def bond_block(C: np.ndarray, xi: float, centred: bool = False) -> np.ndarray:
     """Hessian (8x8) of Q(M u) / 2 = the stiffness of one bond for unit weight."""
     M = bond_measures(xi, centred)
     return M.T @ C @ M
-
-
-def family(m: float, dx: float, variant: str, volumes: str = "partial") -> tuple[np.ndarray, np.ndarray]:
-    """Offsets d = 1..J and their volume fractions beta_d. Paper, delta = (m + 0.015) dx: ``volumes = "partial"``
-    the Oterkus/Madenci convention (a member with delta - dx/2 < xi < delta + dx/2 gets (delta + dx/2 - xi)/dx:
-    0.515 for the third neighbour at 3.015 dx), ``"full"`` every member inside delta a whole cell. Corrected:
-    the cells' parts inside m dx (beta = 1/2 at xi = m dx)."""
-    if variant == "paper":
-        if volumes == "full":
-            J = int(np.floor(m + 0.015 + 1e-12))
-            return np.arange(1, J + 1), np.ones(J)
-        return partial_volumes(m + 0.015)
-    return partial_volumes(m)
 
 
 def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray,
@@ -314,7 +301,7 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
     lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
     for load in scene.loads:
         if isinstance(load, Distributed):
-            q = _cell_integral(load, scene, lo, hi)
+            q = cell_integral(load, scene, lo, hi)
             F[:, W] += q
             if faces:
                 F[:, WS] += q * h * h / 4

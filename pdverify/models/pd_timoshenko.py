@@ -85,7 +85,7 @@ from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer, columns_csv
 from ..scene import Scene
-from .pd_eb import boundary_layer_warnings
+from .pd_common import boundary_layer_warnings
 from ._moyer_kernels import (EndPatched, average_ghosts, constrained_ghosts, motion_final, motion_value, node_loads, rod_kernel,
                              shear_kernel, stencil_ops, taylor_ghosts, taylor_ghosts_cells, toeplitz)
 
