@@ -205,9 +205,11 @@ class Indeterminate:
         self.units = [Cantilever(scene.model_copy(update=dict(base, loads=[u]))) for u in units]
         ends = [[], []]
         for load in scene.loads:
-            if not isinstance(load, Distributed) and load.position <= 1e-9 * L:
+            # an end load is one the cantilever part takes at the end itself (Cantilever.resultants: a <= 0 on
+            # the left, a >= L on the right); a load a hair inside is the part's, not the end condition's too
+            if not isinstance(load, Distributed) and load.position <= 0.0:
                 ends[0].append(load)
-            elif not isinstance(load, Distributed) and load.position >= L * (1 - 1e-9):
+            elif not isinstance(load, Distributed) and load.position >= L:
                 ends[1].append(load)
         r0 = self.geo.position(np.array([0.0]))[0]
         self.r0 = r0
