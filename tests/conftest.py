@@ -45,3 +45,14 @@ def make_scene():
         return parse_scene(scene_dict(left, right, loads, **over))
 
     return make
+
+
+def cli(args, capsys) -> tuple[int, str, str]:
+    """(exit code, stdout, stderr) of ``pdverify ARGS`` run in this process."""
+    from pdverify.cli import main
+
+    capsys.readouterr()
+    with pytest.raises(SystemExit) as exc:
+        main([str(a) for a in args])
+    out, err = capsys.readouterr()
+    return exc.value.code, out, err

@@ -13,6 +13,8 @@ import tomllib
 from pathlib import Path
 
 import pytest
+
+from conftest import cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -27,17 +29,6 @@ def expected(path):
     first = path.read_text().splitlines()[0]
     assert first.startswith("# expect: ")
     return first[len("# expect: "):]
-
-
-def cli(args, capsys) -> tuple[int, str, str]:
-    """(exit code, stdout, stderr) of ``pdverify ARGS`` run in this process."""
-    from pdverify.cli import main
-
-    capsys.readouterr()
-    with pytest.raises(SystemExit) as exc:
-        main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return exc.value.code, out, err
 
 
 def assert_one_error_line(code, out, err, want_code, want_text):

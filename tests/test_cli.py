@@ -12,21 +12,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import cli
+
 from pdverify import __version__
 
 ROOT = Path(__file__).parents[1]
 SCENE = ROOT / "studies/examples/cantilever_tip_load.toml"
 COMMANDS = ["solve", "models", "study", "advise", "report", "bench", "version"]
-
-
-def cli(args, capsys) -> tuple[int, str, str]:
-    from pdverify.cli import main
-
-    capsys.readouterr()
-    with pytest.raises(SystemExit) as exc:
-        main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return exc.value.code, out, err
 
 
 def test_version_flag_and_command(capsys):
