@@ -27,10 +27,20 @@ def measure(study_file: Path, workers: int) -> dict:
     rel = ok["err_max"].dropna().to_numpy()  # relative to max |reference| (metrics.errors)
     wall = t["cases_s"] + t["tables_s"]
     own = wall - t["solver_s"] / workers  # as derived.overhead computes it (meta.json's runner_overhead_s)
-    return {"workers": workers, "cases": len(df), "ok": len(ok), "wall_s": wall, "solver_s": t["solver_s"],
-            "store_s": t["store_s"], "tables_s": t["tables_s"], "overhead_s": own, "overhead": own / wall,
-            "rel_err_min": float(rel.min()),
-            "rel_err_median": float(np.median(rel)), "rel_err_max": float(rel.max())}
+    return {
+        "workers": workers,
+        "cases": len(df),
+        "ok": len(ok),
+        "wall_s": wall,
+        "solver_s": t["solver_s"],
+        "store_s": t["store_s"],
+        "tables_s": t["tables_s"],
+        "overhead_s": own,
+        "overhead": own / wall,
+        "rel_err_min": float(rel.min()),
+        "rel_err_median": float(np.median(rel)),
+        "rel_err_max": float(rel.max()),
+    }
 
 
 def main() -> None:
@@ -42,10 +52,12 @@ def main() -> None:
     for w in args.workers:
         for _ in range(args.repeat):
             m = measure(args.study, w)
-            print(f"workers={m['workers']} cases={m['cases']} ok={m['ok']} wall={m['wall_s']:.3f}s "
-                  f"models={m['solver_s']:.3f}s store={m['store_s']:.3f}s tables={m['tables_s']:.3f}s "
-                  f"overhead={m['overhead_s']:.3f}s ({100 * m['overhead']:.1f} %) "
-                  f"max error min/median/max={m['rel_err_min']:.2e}/{m['rel_err_median']:.2e}/{m['rel_err_max']:.2e}")
+            print(
+                f"workers={m['workers']} cases={m['cases']} ok={m['ok']} wall={m['wall_s']:.3f}s "
+                f"models={m['solver_s']:.3f}s store={m['store_s']:.3f}s tables={m['tables_s']:.3f}s "
+                f"overhead={m['overhead_s']:.3f}s ({100 * m['overhead']:.1f} %) "
+                f"max error min/median/max={m['rel_err_min']:.2e}/{m['rel_err_median']:.2e}/{m['rel_err_max']:.2e}"
+            )
 
 
 if __name__ == "__main__":

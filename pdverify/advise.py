@@ -35,8 +35,11 @@ from .scene import Scene
 
 PRIORS = Path(__file__).parent / "data" / "advisor_priors.json"
 # the options advise tries per model (others: their defaults); the priors are fitted for the same
-CANDIDATE_OPTIONS = {"pd-eb": {"variant": "corrected"}, "pd-bond-pair": {"variant": "corrected", "ends": "taylor"},
-                     "fem-plane-stress": {"element": "q8"}}
+CANDIDATE_OPTIONS = {
+    "pd-eb": {"variant": "corrected"},
+    "pd-bond-pair": {"variant": "corrected", "ends": "taylor"},
+    "fem-plane-stress": {"element": "q8"},
+}
 
 
 @dataclass
@@ -97,8 +100,11 @@ def predicted_points(model: str, options: dict, tol: float, priors: dict | None 
     """Points the priors say this model needs for tol: each clean series' err = C (dx / L)^p solved for
     dx, the most pessimistic series taken. (None, why) without a series."""
     priors = load_priors() if priors is None else priors
-    needs = [int(np.ceil((tol / s["constant"]) ** (-1.0 / s["order"]))) + 1 for s in priors.get("series", [])
-             if s["model"] == model and _matches(s["options"], options)]
+    needs = [
+        int(np.ceil((tol / s["constant"]) ** (-1.0 / s["order"]))) + 1
+        for s in priors.get("series", [])
+        if s["model"] == model and _matches(s["options"], options)
+    ]
     if not needs:
         return None, "no clean prior convergence series for these options"
     n = max(needs)
@@ -122,23 +128,44 @@ def fit_series(results) -> list[dict]:
         p, c = np.polyfit(lh, le, 1)
         r2 = 1 - np.sum((le - (p * lh + c)) ** 2) / max(np.sum((le - le.mean()) ** 2), 1e-300)
         if p > 0.5 and r2 > 0.9:
-            out.append({"model": model, "options": json.loads(options), "scene": scene,
-                        "constant": float(np.exp(c)), "order": float(p), "r2": float(r2),
-                        "points": sorted(int(n) for n in g["points"])})
+            out.append(
+                {
+                    "model": model,
+                    "options": json.loads(options),
+                    "scene": scene,
+                    "constant": float(np.exp(c)),
+                    "order": float(p),
+                    "r2": float(r2),
+                    "points": sorted(int(n) for n in g["points"]),
+                }
+            )
     return out
 
 
-PRIOR_SCENES = {"euler-bernoulli": ("exact-eb", ("paper_diyaroglu/clamped_clamped.toml",
-                                                 "paper_diyaroglu/simply_supported.toml",
-                                                 "paper_diyaroglu/clamped_free.toml")),
-                "timoshenko": ("exact-timoshenko", ("paper_diyaroglu/clamped_clamped.toml",
-                                                    "paper_diyaroglu/clamped_free.toml",
-                                                    "paper_yang/cc_uniform.toml"))}  # per theory: reference, scenes
+PRIOR_SCENES = {
+    "euler-bernoulli": (
+        "exact-eb",
+        (
+            "paper_diyaroglu/clamped_clamped.toml",
+            "paper_diyaroglu/simply_supported.toml",
+            "paper_diyaroglu/clamped_free.toml",
+        ),
+    ),
+    "timoshenko": (
+        "exact-timoshenko",
+        ("paper_diyaroglu/clamped_clamped.toml", "paper_diyaroglu/clamped_free.toml", "paper_yang/cc_uniform.toml"),
+    ),
+}  # per theory: reference, scenes
 PRIOR_POINTS = (21, 41, 81, 161)
 
 
-def rebuild_priors(out: Path | str | None = None, names: list[str] | None = None, points=PRIOR_POINTS,
-                   studies: Path | None = None, workdir: Path | None = None) -> dict:
+def rebuild_priors(
+    out: Path | str | None = None,
+    names: list[str] | None = None,
+    points=PRIOR_POINTS,
+    studies: Path | None = None,
+    workdir: Path | None = None,
+) -> dict:
     """Regenerate the priors (``pdverify advise --rebuild-priors``): a small study (every advise candidate
     that bends, with :data:`CANDIDATE_OPTIONS`, on the scenes of :data:`PRIOR_SCENES` against their exact
     solution, at ``points``), fitted by :func:`fit_series`, written with the code digest it was made from.
@@ -150,10 +177,19 @@ def rebuild_priors(out: Path | str | None = None, names: list[str] | None = None
 
     studies = Path(studies) if studies is not None else Path(__file__).resolve().parents[1] / "studies"
     if not studies.is_dir():
-        raise InputError(f"studies = {str(studies)!r}: the scenes of the priors study are not there; run "
-                         "--rebuild-priors from a source checkout of pdverify")
-    cands = [m for m in models().values() if not m.reference and "static" in m.analyses and m.bending
-             and m.option("points") is not None and (names is None or m.name in names)]
+        raise InputError(
+            f"studies = {str(studies)!r}: the scenes of the priors study are not there; run "
+            "--rebuild-priors from a source checkout of pdverify"
+        )
+    cands = [
+        m
+        for m in models().values()
+        if not m.reference
+        and "static" in m.analyses
+        and m.bending
+        and m.option("points") is not None
+        and (names is None or m.name in names)
+    ]
     if not cands:
         raise InputError(f"models = {names!r}: no advise candidate among them")
     runs, used = [], set()
@@ -162,8 +198,10 @@ def rebuild_priors(out: Path | str | None = None, names: list[str] | None = None
         used.update(scenes)
         opts = "".join(f"{k} = {json.dumps(v)}\n" for k, v in CANDIDATE_OPTIONS.get(m.name, {}).items())
         listed = ", ".join(f'"{(studies / sc).as_posix()}"' for sc in scenes)
-        runs.append(f'[[runs]]\nmodel = "{m.name}"\nscenes = [{listed}]\nreference = {{model = "{ref}"}}\n'
-                    f"points = {list(points)}\n{opts}")
+        runs.append(
+            f'[[runs]]\nmodel = "{m.name}"\nscenes = [{listed}]\nreference = {{model = "{ref}"}}\n'
+            f"points = {list(points)}\n{opts}"
+        )
     head = ", ".join(f'"{(studies / sc).as_posix()}"' for sc in sorted(used))
     with tempfile.TemporaryDirectory(dir=workdir) as tmp:
         spec = Path(tmp) / "priors.toml"
@@ -171,10 +209,16 @@ def rebuild_priors(out: Path | str | None = None, names: list[str] | None = None
         df = run_study(load_study(spec), Path(tmp) / "run", workers=1, progress=False)
     series = fit_series(df)
     for one in series:  # scene files relative to studies/ (the file is versioned: no machine's paths)
-        one["scene"] = Path(one["scene"]).relative_to(studies).as_posix() if Path(one["scene"]).is_absolute() \
-            else one["scene"]
-    data = {"format": 1, "code_digest": code_digest(), "points": list(points),
-            "made_by": "pdverify advise --rebuild-priors", "series": series}
+        one["scene"] = (
+            Path(one["scene"]).relative_to(studies).as_posix() if Path(one["scene"]).is_absolute() else one["scene"]
+        )
+    data = {
+        "format": 1,
+        "code_digest": code_digest(),
+        "points": list(points),
+        "made_by": "pdverify advise --rebuild-priors",
+        "series": series,
+    }
     target = Path(out) if out is not None else PRIORS
     try:
         target.parent.mkdir(parents=True, exist_ok=True)
@@ -187,12 +231,24 @@ def rebuild_priors(out: Path | str | None = None, names: list[str] | None = None
 def moves_ends(scene: Scene) -> bool:
     """True when the scene's [dynamics] table prescribes an end motion (the exact solutions leave it out)."""
     d = scene.dynamics
-    return d is not None and any(getattr(em, k) is not None for em in (d.left, d.right) if em is not None
-                                 for k in ("displacement", "axial", "rotation", "twist"))
+    return d is not None and any(
+        getattr(em, k) is not None
+        for em in (d.left, d.right)
+        if em is not None
+        for k in ("displacement", "axial", "rotation", "twist")
+    )
 
 
-def estimate(scene: Scene, name: str, options: dict, tol: float, budget: float, start: int = 11,
-             max_points: int = 20_001, static: bool = False) -> Candidate | None:
+def estimate(
+    scene: Scene,
+    name: str,
+    options: dict,
+    tol: float,
+    budget: float,
+    start: int = 11,
+    max_points: int = 20_001,
+    static: bool = False,
+) -> Candidate | None:
     """Refine nested grids until the Richardson estimate is below tol (or the budget/size runs out).
     ``static``: the static part of a scene with a [dynamics] table (``run(..., static=True)``)."""
     if static:
@@ -233,9 +289,16 @@ def estimate(scene: Scene, name: str, options: dict, tol: float, budget: float, 
         exw = solve_straight(scene, models()[name].theory != "euler-bernoulli").fields(r_best.x)["w"]
         scale = np.abs(exw).max()
         ex = float(np.abs(r_best.w - exw).max() / scale) if scale > 0 else None
-    return Candidate(name, options, n_best, float(est), order, dt_best, ex,
-                     f"three-grid Richardson on this scene (N = {sols[-3][0]}, {sols[-2][0]}, {n_best}; "
-                     f"p = {order:.2f}); {prior}")
+    return Candidate(
+        name,
+        options,
+        n_best,
+        float(est),
+        order,
+        dt_best,
+        ex,
+        f"three-grid Richardson on this scene (N = {sols[-3][0]}, {sols[-2][0]}, {n_best}; p = {order:.2f}); {prior}",
+    )
 
 
 def continuum_gap(scene: Scene) -> float:
@@ -246,16 +309,19 @@ def continuum_gap(scene: Scene) -> float:
     return float(abs(r.w[i] / ex[i] - 1)) if ex[i] else 0.0
 
 
-def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_reference: bool = False,
-           static: bool = False) -> Advice:
+def advise(
+    scene: Scene, tolerance: float, budget: float = 30.0, include_reference: bool = False, static: bool = False
+) -> Advice:
     """``static``: advise on the static part of a scene with a [dynamics] table (without it such a scene
     is refused: the estimates are of static solutions)."""
     if not 0 < tolerance < 1:
         raise InputError(f"tolerance = {tolerance!r}: give a relative tolerance between 0 and 1, e.g. 1e-3")
     if scene.dynamics is not None and not static:
         dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses)
-        raise InputError("dynamics: the scene asks for a transient run and advise estimates the error of static "
-                         f"solutions only; give --static to advise on its static part, or run a dynamic model ({dyn})")
+        raise InputError(
+            "dynamics: the scene asks for a transient run and advise estimates the error of static "
+            f"solutions only; give --static to advise on its static part, or run a dynamic model ({dyn})"
+        )
     if not scene.loads and not moves_ends(scene):
         raise InputError("loads: the scene carries no load (its static response is zero); nothing to advise on")
     needs, rejected, unable = [], [], []
@@ -276,7 +342,10 @@ def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_referen
     else:
         gap = shear_gap(scene)
         if gap <= tolerance / 2:
-            needs.append(f"Euler–Bernoulli is enough: the shear deflection is {gap:.2e} of the deflection (tolerance {tolerance:g})")
+            needs.append(
+                f"Euler–Bernoulli is enough: the shear deflection is {gap:.2e} of the deflection "
+                f"(tolerance {tolerance:g})"
+            )
         else:
             needs.append(f"shear matters: Timoshenko and EB differ by {gap:.2e} > tolerance/2; EB models excluded")
             for m in cands:
@@ -289,16 +358,20 @@ def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_referen
         elif "fem-plane-stress" in models() and not models()["fem-plane-stress"].check(scene):
             gap2 = continuum_gap(scene)
             if gap2 > tolerance / 2:
-                needs.append(f"2D effects matter: Timoshenko and a q8 plane-stress solution differ by {gap2:.2e} > "
-                             "tolerance/2; only the continuum model qualifies")
+                needs.append(
+                    f"2D effects matter: Timoshenko and a q8 plane-stress solution differ by {gap2:.2e} > "
+                    "tolerance/2; only the continuum model qualifies"
+                )
                 for m in cands:
                     rejected.append(f"{m.name}: beam theory misses 2D effects ({gap2:.1e})")
                 cands = [models()["fem-plane-stress"]]
             else:
                 needs.append(f"beam theory is enough: Timoshenko and q8 plane stress differ by {gap2:.2e}")
     if scene.dynamics is not None:
-        needs.append("static part (--static): the response to the loads and settled end motions; the transient "
-                     "run is not estimated")
+        needs.append(
+            "static part (--static): the response to the loads and settled end motions; the transient "
+            "run is not estimated"
+        )
     else:
         needs.append("static: the scene has no [dynamics] table")
     options = CANDIDATE_OPTIONS
@@ -324,10 +397,19 @@ def advise(scene: Scene, tolerance: float, budget: float = 30.0, include_referen
     found.sort(key=lambda c: c.seconds)
     rejected += unable
     if not found:
-        raise SolveError(f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
-                         f"{budget:g} s; " + "; ".join(rejected[:3]))
-    return Advice(scene.name, tolerance, needs, found[0], found[1] if len(found) > 1 else None, rejected,
-                  static and scene.dynamics is not None)
+        raise SolveError(
+            f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
+            f"{budget:g} s; " + "; ".join(rejected[:3])
+        )
+    return Advice(
+        scene.name,
+        tolerance,
+        needs,
+        found[0],
+        found[1] if len(found) > 1 else None,
+        rejected,
+        static and scene.dynamics is not None,
+    )
 
 
 def format_advice(a: Advice) -> str:

@@ -64,10 +64,10 @@ class Band:
         """Writable view of the diagonal A[i, i + offset]; element k is row k + max(0, -offset)."""
         if not -self.lower <= offset <= self.upper:
             raise ValueError(f"offset {offset} outside the band (-{self.lower}, {self.upper})")
-        return self.data[self.upper - offset, max(0, offset): self.n + min(0, offset)]
+        return self.data[self.upper - offset, max(0, offset) : self.n + min(0, offset)]
 
     # -- assembly -----------------------------------------------------------------------------
-    def add_stencil(self, offsets, coefs, rows: tuple[int, int] | None = None) -> "Band":
+    def add_stencil(self, offsets, coefs, rows: tuple[int, int] | None = None) -> Band:
         """Toeplitz part: every row i in ``rows`` = (first, stop) gets ``coefs`` at columns i + ``offsets``
         (repeated offsets add up; entries outside the matrix are dropped, as for a truncated family)."""
         r0, r1 = (0, self.n) if rows is None else rows
@@ -78,7 +78,7 @@ class Band:
             lo, hi = max(r0, -o, 0), min(r1, self.n - o, self.n)  # rows whose column i + o exists
             if hi > lo and c != 0.0:
                 k0 = max(0, -o)
-                self.diag(o)[lo - k0: hi - k0] += c
+                self.diag(o)[lo - k0 : hi - k0] += c
         return self
 
     def block_stretches(self, ndof: int, blocks: dict, points: tuple[int, int] | None = None):
@@ -99,7 +99,9 @@ class Band:
                     k0 = max(0, -off)  # element k of the diagonal is row k + k0
                     yield off, slice(ndof * lo + a - k0, ndof * (hi - 1) + a - k0 + 1, ndof), c, (lo - p0, hi - p0)
 
-    def add_block_stencil(self, ndof: int, blocks: dict[int, np.ndarray], points: tuple[int, int] | None = None) -> "Band":
+    def add_block_stencil(
+        self, ndof: int, blocks: dict[int, np.ndarray], points: tuple[int, int] | None = None
+    ) -> Band:
         """Interleaved unknowns (``ndof`` per point, point-major): for every point p in ``points`` =
         (first, stop), row ndof p + a gets ``blocks[o][a, b]`` at column ndof (p + o) + b. A block entry may be
         a scalar or an array over the points of ``points`` (position-dependent coefficients). Entries
@@ -108,18 +110,24 @@ class Band:
             self.diag(off)[sl] += c if np.isscalar(c) else np.asarray(c, float)[i0:i1]
         return self
 
-    def add_entries(self, rows, cols, vals) -> "Band":
+    def add_entries(self, rows, cols, vals) -> Band:
         """Scatter-add a few entries (boundary rows, ghost corrections); repeated (row, col) add up."""
         rows, cols = np.asarray(rows, np.int64).ravel(), np.asarray(cols, np.int64).ravel()
         vals = np.broadcast_to(np.asarray(vals, float), rows.shape).ravel()
         off = cols - rows
-        if len(off) and (off.min() < -self.lower or off.max() > self.upper or rows.min() < 0 or rows.max() >= self.n
-                         or cols.min() < 0 or cols.max() >= self.n):
+        if len(off) and (
+            off.min() < -self.lower
+            or off.max() > self.upper
+            or rows.min() < 0
+            or rows.max() >= self.n
+            or cols.min() < 0
+            or cols.max() >= self.n
+        ):
             raise ValueError("entries outside the matrix or its band")
         np.add.at(self.data, (self.upper - off, cols), vals)
         return self
 
-    def clear_rows(self, rows) -> "Band":
+    def clear_rows(self, rows) -> Band:
         """Zero every entry of the given rows."""
         rows = np.asarray(rows, np.int64).ravel()
         if len(rows):
@@ -129,7 +137,7 @@ class Band:
             self.data[(self.upper - np.broadcast_to(off, cols.shape))[ok], cols[ok]] = 0.0
         return self
 
-    def fix(self, dofs, rhs: np.ndarray | None = None) -> "Band":
+    def fix(self, dofs, rhs: np.ndarray | None = None) -> Band:
         """Unknowns held at zero: their rows and columns cleared and a unit diagonal (elimination that
         keeps the numbering); ``rhs``, the right-hand side, is set to zero there in place."""
         dofs = np.asarray(dofs, np.int64).ravel()
@@ -151,7 +159,7 @@ class Band:
         return self.tocsr().toarray()
 
     @classmethod
-    def from_sparse(cls, K: sp.spmatrix, lower: int | None = None, upper: int | None = None) -> "Band":
+    def from_sparse(cls, K: sp.spmatrix, lower: int | None = None, upper: int | None = None) -> Band:
         """Scatter a sparse matrix into a band (blocks of rows: bounded temporaries)."""
         K = canonical_csr(K)
         n = K.shape[0]
@@ -162,7 +170,7 @@ class Band:
         for r0 in range(0, n, step):  # blocks of rows, not points: ~nnz / 1e6 iterations
             r1 = min(n, r0 + step)
             a, b = K.indptr[r0], K.indptr[r1]
-            rows = np.repeat(np.arange(r0, r1, dtype=np.int64), np.diff(K.indptr[r0:r1 + 1]))
+            rows = np.repeat(np.arange(r0, r1, dtype=np.int64), np.diff(K.indptr[r0 : r1 + 1]))
             cols = K.indices[a:b]
             B.data[B.upper + rows - cols, cols] = K.data[a:b]
         return B
@@ -181,7 +189,7 @@ class Band:
     def __matmul__(self, x):
         return self.matvec(x)
 
-    def scale(self, s: np.ndarray) -> "Band":
+    def scale(self, s: np.ndarray) -> Band:
         """In place: diag(s) A diag(s), diagonal by diagonal."""
         for o in self.offsets.tolist():
             d = self.diag(o)
@@ -191,7 +199,7 @@ class Band:
                 d *= s[-o:] * s[: self.n + o]
         return self
 
-    def copy(self) -> "Band":
+    def copy(self) -> Band:
         B = Band(self.n, self.lower, self.upper)
         B.data[...] = self.data
         return B
@@ -201,7 +209,7 @@ class Band:
         pivoting) on top of ``data``; one copy."""
         ab = np.empty((2 * self.lower + self.upper + 1, self.n), order="F")
         ab[: self.lower] = 0.0
-        ab[self.lower:] = self.data
+        ab[self.lower :] = self.data
         return ab
 
 

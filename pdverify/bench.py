@@ -162,8 +162,11 @@ def cost_slope(rows: list[dict]) -> dict[str, float]:
 
 
 DEFAULT_POINTS = (1_000, 10_000, 100_000, 1_000_000)
-SMALL_MODELS = {"pd-higher-order": 100_000, "pd-curved": 100_000,  # the size for 4-DOF / PDDO models
-                "pd-curved-mms": 10_000}  # a verification harness: its sympy-built loads cost 14 s at 1e5
+SMALL_MODELS = {
+    "pd-higher-order": 100_000,
+    "pd-curved": 100_000,  # the size for 4-DOF / PDDO models
+    "pd-curved-mms": 10_000,
+}  # a verification harness: its sympy-built loads cost 14 s at 1e5
 
 
 def default_models() -> list[str]:

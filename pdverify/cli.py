@@ -8,11 +8,10 @@ computation (singular, overflow, not enough memory), 4 output could not be writt
 from __future__ import annotations
 
 import functools
-from collections import Counter
 import sys
+from collections import Counter
 from enum import Enum
 from pathlib import Path
-from typing import Optional
 
 import typer
 
@@ -36,8 +35,9 @@ def _show_version(value: bool):
 
 @app.callback()
 def _root(
-    version: bool = typer.Option(False, "--version", "-V", callback=_show_version, is_eager=True,
-                                 help="print the version and exit"),
+    version: bool = typer.Option(
+        False, "--version", "-V", callback=_show_version, is_eager=True, help="print the version and exit"
+    ),
 ):
     """pdverify: how far a peridynamic beam model is from the truth, in numbers."""
 
@@ -61,9 +61,13 @@ def user_errors(fn):
         except MemoryError:
             _fail(SolveError("out of memory during the computation; use fewer points (a larger spacing)"))
         except (OverflowError, FloatingPointError) as exc:
-            _fail(SolveError(f"the computation left the floating-point range ({exc.__class__.__name__}: "
-                             f"{exc.args[-1] if exc.args else exc}){_extreme_values()}; give the scene in units "
-                             "that keep its numbers within about 1e-100..1e100"))
+            _fail(
+                SolveError(
+                    f"the computation left the floating-point range ({exc.__class__.__name__}: "
+                    f"{exc.args[-1] if exc.args else exc}){_extreme_values()}; give the scene in units "
+                    "that keep its numbers within about 1e-100..1e100"
+                )
+            )
 
     return wrapper
 
@@ -84,8 +88,13 @@ def _extreme_values() -> str:
         elif isinstance(v, list):
             for i, x in enumerate(v):
                 walk(x, f"{where}[{i}]")
-        elif isinstance(v, (int, float)) and not isinstance(v, bool) and v != 0 and math.isfinite(v) \
-                and not 1e-100 <= abs(v) <= 1e100:
+        elif (
+            isinstance(v, (int, float))
+            and not isinstance(v, bool)
+            and v != 0
+            and math.isfinite(v)
+            and not 1e-100 <= abs(v) <= 1e100
+        ):
             found.append(f"{where} = {v:g}")
 
     for sc in _SCENE_FILES:
@@ -93,7 +102,7 @@ def _extreme_values() -> str:
     return f"; extreme values: {', '.join(found)}" if found else ""
 
 
-class Format(str, Enum):
+class Format(str, Enum):  # noqa: UP042 (typer reads str-Enum choices)
     table = "table"
     json = "json"
     csv = "csv"
@@ -135,8 +144,10 @@ def _out_format(out: Path | None, fmt: Format | None) -> Format:
     contradicts the extension is an error (``--out r.json --format csv`` would write CSV into a .json file)."""
     implied = _SUFFIX_FORMAT.get(out.suffix.lower()) if out is not None else None
     if fmt is not None and implied is not None and fmt != implied:
-        raise InputError(f"--format {fmt.value} and --out {out}: the extension {out.suffix} means {implied.value}; "
-                         f"drop --format or name the file *{next(k for k, v in _SUFFIX_FORMAT.items() if v == fmt)}")
+        raise InputError(
+            f"--format {fmt.value} and --out {out}: the extension {out.suffix} means {implied.value}; "
+            f"drop --format or name the file *{next(k for k, v in _SUFFIX_FORMAT.items() if v == fmt)}"
+        )
     return fmt or implied or Format.table
 
 
@@ -177,21 +188,25 @@ def write_file(out: Path, write, option: str) -> None:
 def solve(
     scene: Path = typer.Argument(..., help="scene TOML file"),
     model: str = typer.Option(..., "--model", "-m", help="model name (see `pdverify models`)"),
-    points: Optional[int] = typer.Option(None, help="material points / nodes along the axis, ends included"),
-    spacing: Optional[float] = typer.Option(None, help="grid spacing in metres (instead of --points)"),
-    horizon: Optional[float] = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
-    degree: Optional[int] = typer.Option(None, help="PD-function degree (models that have one)"),
-    variant: Optional[str] = typer.Option(None, help="model variant, e.g. paper | corrected"),
-    element: Optional[str] = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
-    layers: Optional[int] = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
-    form: Optional[str] = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
-    option: Optional[list[str]] = typer.Option(
-        None, "--option", "-o",
-        help="any other model option, key=value; static=true: the static part of a scene with [dynamics]"),
-    fmt: Optional[Format] = typer.Option(
-        None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"),
-    out: Optional[Path] = typer.Option(None, "--out", help="write the output here instead of stdout"),
-    tolerance: Optional[float] = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
+    points: int | None = typer.Option(None, help="material points / nodes along the axis, ends included"),
+    spacing: float | None = typer.Option(None, help="grid spacing in metres (instead of --points)"),
+    horizon: float | None = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
+    degree: int | None = typer.Option(None, help="PD-function degree (models that have one)"),
+    variant: str | None = typer.Option(None, help="model variant, e.g. paper | corrected"),
+    element: str | None = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
+    layers: int | None = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
+    form: str | None = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
+    option: list[str] | None = typer.Option(
+        None,
+        "--option",
+        "-o",
+        help="any other model option, key=value; static=true: the static part of a scene with [dynamics]",
+    ),
+    fmt: Format | None = typer.Option(
+        None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"
+    ),
+    out: Path | None = typer.Option(None, "--out", help="write the output here instead of stdout"),
+    tolerance: float | None = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
 ):
     """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
     from .registry import as_flag, get_model, run
@@ -202,8 +217,16 @@ def solve(
         check_writable(out, "--out")
     sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
     _SCENE_FILES[:] = [sc]
-    given = dict(points=points, spacing=spacing, horizon=horizon, degree=degree, variant=variant,
-                 element=element, layers=layers, form=form)
+    given = dict(
+        points=points,
+        spacing=spacing,
+        horizon=horizon,
+        degree=degree,
+        variant=variant,
+        element=element,
+        layers=layers,
+        form=form,
+    )
     given.update(parse_options(option))
     if model == "auto":
         from .advise import advise as _advise
@@ -247,8 +270,10 @@ def list_models():
         if m.source:
             typer.echo(f"{'':22s} source: {m.source}")
         c = m.capabilities()
-        typer.echo(f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
-                   f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}")
+        typer.echo(
+            f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
+            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}"
+        )
 
 
 def _slug(name: str) -> str:
@@ -261,14 +286,18 @@ def _slug(name: str) -> str:
 @user_errors
 def study(
     study_file: Path = typer.Argument(..., help="study TOML file"),
-    out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes, 1 or more "
-                                          "(default: all cores; 1: in this process)"),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT "
-                                            "(connect timeout 5 s; exit 2 when none is reached)"),
+    out: Path | None = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
+    workers: int | None = typer.Option(
+        None, "--workers", help="local worker processes, 1 or more (default: all cores; 1: in this process)"
+    ),
+    scheduler: str | None = typer.Option(
+        None,
+        "--scheduler",
+        help="Dask scheduler address tcp://HOST:PORT (connect timeout 5 s; exit 2 when none is reached)",
+    ),
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
-    junit: Optional[Path] = typer.Option(None, "--junit", help="also write the verdicts as JUnit XML to FILE"),
+    junit: Path | None = typer.Option(None, "--junit", help="also write the verdicts as JUnit XML to FILE"),
 ):
     """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts. The output
     folder is locked while the run uses it and holds one study (exit 4 otherwise: see docs/studies.md).
@@ -301,8 +330,14 @@ def study(
         typer.echo(line, err=True)
     from .verify.published import run_cards
 
-    cards = run_cards(spec, out, workers=workers, scheduler=scheduler, progress=not quiet,
-                      echo=lambda line: typer.echo(line, err=True))
+    cards = run_cards(
+        spec,
+        out,
+        workers=workers,
+        scheduler=scheduler,
+        progress=not quiet,
+        echo=lambda line: typer.echo(line, err=True),
+    )
     failed_cards = sum(c["verdict"] == "fail" for c in cards)
     code = 1 if outcome.exit_code == 0 and spec.verify_required and failed_cards else outcome.exit_code
     if junit is not None:  # before the report: a report that cannot be written loses no verdict
@@ -313,8 +348,9 @@ def study(
             junit.parent.mkdir(parents=True, exist_ok=True)
             write_junit(outcome, junit, wall)
         except OSError as exc:
-            raise OutputError(f"--junit {junit}: could not be written ({exc.strerror or exc}); the study's "
-                              f"tables are in {out}") from None
+            raise OutputError(
+                f"--junit {junit}: could not be written ({exc.strerror or exc}); the study's tables are in {out}"
+            ) from None
         typer.echo(f"junit: {junit}", err=True)
     if report:
         from .report import build_report
@@ -324,8 +360,10 @@ def study(
     line = outcome.line()
     if cards:  # the cards' verdicts before the exit code they may change (verify_required)
         head, _, _ = line.rpartition("; exit ")
-        line = (f"{head}; cards {len(cards) - failed_cards} pass, {failed_cards} fail "
-                f"({'required' if spec.verify_required else 'not required'}); exit {code}")
+        line = (
+            f"{head}; cards {len(cards) - failed_cards} pass, {failed_cards} fail "
+            f"({'required' if spec.verify_required else 'not required'}); exit {code}"
+        )
     typer.echo(line, err=True)
     raise typer.Exit(code)
 
@@ -333,17 +371,18 @@ def study(
 @app.command()
 @user_errors
 def advise(
-    scene: Optional[Path] = typer.Argument(None, help="scene TOML file"),
+    scene: Path | None = typer.Argument(None, help="scene TOML file"),
     tolerance: float = typer.Option(1e-3, "--tolerance", help="relative error you can accept"),
     budget: float = typer.Option(30.0, "--budget", help="seconds per candidate model for the grid search"),
     static: bool = typer.Option(False, "--static", help="a scene with [dynamics]: advise on its static part"),
-    rebuild_priors: bool = typer.Option(False, "--rebuild-priors",
-                                        help="regenerate pdverify/data/advisor_priors.json (a small study)"),
+    rebuild_priors: bool = typer.Option(
+        False, "--rebuild-priors", help="regenerate pdverify/data/advisor_priors.json (a small study)"
+    ),
 ):
     """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
-    from .advise import PRIORS, rebuild_priors as _rebuild
+    from .advise import PRIORS, format_advice
     from .advise import advise as _advise
-    from .advise import format_advice
+    from .advise import rebuild_priors as _rebuild
     from .scene import load_scene
 
     if rebuild_priors:
@@ -361,7 +400,7 @@ def advise(
 @user_errors
 def report(
     study_dir: Path = typer.Argument(..., help="a study output directory (holds results.csv)"),
-    out: Optional[Path] = typer.Option(None, "--out", help="write the report here (default: the study directory)"),
+    out: Path | None = typer.Option(None, "--out", help="write the report here (default: the study directory)"),
 ):
     """Turn a study's results into a self-contained HTML report (index.html)."""
     from .report import build_report
@@ -374,19 +413,24 @@ def report(
 @app.command()
 @user_errors
 def bench(
-    model: Optional[list[str]] = typer.Option(None, "--model", "-m", help="model(s) to time; default: all with an assembled system"),
-    points: Optional[list[int]] = typer.Option(None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"),
+    model: list[str] | None = typer.Option(
+        None, "--model", "-m", help="model(s) to time; default: all with an assembled system"
+    ),
+    points: list[int] | None = typer.Option(
+        None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"
+    ),
     fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
-    scene: Optional[Path] = typer.Option(None, help="scene to time (default: the example cantilever)"),
-    out: Optional[Path] = typer.Option(None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"),
+    scene: Path | None = typer.Option(None, help="scene to time (default: the example cantilever)"),
+    out: Path | None = typer.Option(
+        None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"
+    ),
 ):
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
     import json as _json
 
     from .bench import DEFAULT_POINTS, SMALL_MODELS, accurate, bench_subprocess, cost_slope, default_models
-    from .registry import get_model
-
     from .plugins import model_argument
+    from .registry import get_model
 
     names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
     for n in names:
@@ -427,12 +471,12 @@ def bench(
 @user_errors
 def verify_cmd(
     model: str = typer.Argument(..., help="model name, or path to an external model's manifest (.toml)"),
-    option: Optional[list[str]] = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
-    out: Optional[Path] = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
+    option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
+    out: Path | None = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
     full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
-    order: Optional[float] = typer.Option(None, "--order", help="expected order (default: the model's, else 2)"),
-    workers: Optional[int] = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    order: float | None = typer.Option(None, "--order", help="expected order (default: the model's, else 2)"),
+    workers: int | None = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
+    scheduler: str | None = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
 ):
     """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).

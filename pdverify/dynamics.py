@@ -72,8 +72,15 @@ class EnergyLedger:
         else:
             D = np.zeros(2)
         self._power = P
-        row = {"kinetic": T, "strain": U, "load_work": W, "support_work": self.support_work, "damping": float(D[0]),
-               "stabilisation": float(D[1]), "balance": T + U + float(D.sum()) - W - self.support_work}
+        row = {
+            "kinetic": T,
+            "strain": U,
+            "load_work": W,
+            "support_work": self.support_work,
+            "damping": float(D[0]),
+            "stabilisation": float(D[1]),
+            "balance": T + U + float(D.sum()) - W - self.support_work,
+        }
         self.t.append(t)
         for k, val in row.items():
             self.cols[k].append(val)

@@ -75,7 +75,7 @@ def _option(path: Path, name: str, spec) -> Option:
     )
 
 
-def load_manifest(path: str | Path) -> "ExternalModel":
+def load_manifest(path: str | Path) -> ExternalModel:
     """Read and check a manifest; InputError naming the file and the field otherwise."""
     path = Path(path).resolve()
     _, data = read_toml(path, "external model manifest")

@@ -206,6 +206,8 @@ def mechanism_message(scene) -> str | None:
     if len(modes) == 0:
         return None
     what = _describe(modes[0], scene) if len(modes) == 1 else f"{len(modes)} independent rigid-body motions"
-    return (f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism on this {scene.axis.type} axis "
-            f"({what} is not held by the supports' displacement and rotation conditions); hold more at one end "
-            "(e.g. clamped, or pinned instead of roller)")
+    return (
+        f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism on this {scene.axis.type} axis "
+        f"({what} is not held by the supports' displacement and rotation conditions); hold more at one end "
+        "(e.g. clamped, or pinned instead of roller)"
+    )

@@ -21,27 +21,50 @@ GOLDEN = ROOT / "tests" / "golden"
 
 # (scene, model, options): the configurations the papers' benchmarks use
 CASES = [
-    *[(f"paper_diyaroglu/{s}.toml", "pd-eb", {"variant": v, "points": 101})
-      for s in ("clamped_free", "clamped_clamped", "simply_supported") for v in ("paper", "corrected")],
-    *[(f"paper_diyaroglu/{s}.toml", "fem-eb", {"points": 101}) for s in ("clamped_free", "clamped_clamped", "simply_supported")],
-    *[(f"paper_diyaroglu/{s}.toml", "pd-bond-pair", {"variant": v, "ends": e, "points": 201})
-      for s in ("clamped_free", "clamped_clamped", "simply_supported") for v, e in (("paper", "mirror"), ("corrected", "taylor"))],
-    *[(f"paper_yang/{s}.toml", "fem-timoshenko", {"points": 101})
-      for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")],
+    *[
+        (f"paper_diyaroglu/{s}.toml", "pd-eb", {"variant": v, "points": 101})
+        for s in ("clamped_free", "clamped_clamped", "simply_supported")
+        for v in ("paper", "corrected")
+    ],
+    *[
+        (f"paper_diyaroglu/{s}.toml", "fem-eb", {"points": 101})
+        for s in ("clamped_free", "clamped_clamped", "simply_supported")
+    ],
+    *[
+        (f"paper_diyaroglu/{s}.toml", "pd-bond-pair", {"variant": v, "ends": e, "points": 201})
+        for s in ("clamped_free", "clamped_clamped", "simply_supported")
+        for v, e in (("paper", "mirror"), ("corrected", "taylor"))
+    ],
+    *[
+        (f"paper_yang/{s}.toml", "fem-timoshenko", {"points": 101})
+        for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")
+    ],
     ("paper_moyer/cantilever_table1.toml", "fem-timoshenko", {"points": 101}),
-    *[(f"paper_yang/{s}.toml", "pd-higher-order", {"variant": v, "points": 1001})
-      for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")
-      for v in ("paper", "corrected")],
-    *[(f"paper_yang/{s}.toml", "fem-plane-stress", {"element": "q4", "points": 101, "layers": 8})
-      for s in ("ss_uniform", "cantilever_tip_force")],
-    *[("paper_moyer/cantilever_table1.toml", "pd-timoshenko", {"variant": v, "horizon": m, "points": 101})
-      for v in ("paper", "corrected") for m in (2, 3, 4)],
+    *[
+        (f"paper_yang/{s}.toml", "pd-higher-order", {"variant": v, "points": 1001})
+        for s in ("ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment")
+        for v in ("paper", "corrected")
+    ],
+    *[
+        (f"paper_yang/{s}.toml", "fem-plane-stress", {"element": "q4", "points": 101, "layers": 8})
+        for s in ("ss_uniform", "cantilever_tip_force")
+    ],
+    *[
+        ("paper_moyer/cantilever_table1.toml", "pd-timoshenko", {"variant": v, "horizon": m, "points": 101})
+        for v in ("paper", "corrected")
+        for m in (2, 3, 4)
+    ],
     ("paper_moyer/rod_example1.toml", "pd-rod", {"points": 101, "horizon": 1}),
     ("paper_moyer/beam_example2.toml", "pd-timoshenko", {"points": 101, "horizon": 1}),
-    *[(f"paper_curved/{s}.toml", "pd-curved", {"form": f, "degree": 4, "points": 401})
-      for s in ("semicircle_tangential", "semicircle_normal", "straight_sine") for f in ("primal", "mixed")],
-    *[("paper_curved/quintic_manufactured.toml", "pd-curved-mms", {"form": f, "degree": 4, "points": 401})
-      for f in ("primal", "mixed")],
+    *[
+        (f"paper_curved/{s}.toml", "pd-curved", {"form": f, "degree": 4, "points": 401})
+        for s in ("semicircle_tangential", "semicircle_normal", "straight_sine")
+        for f in ("primal", "mixed")
+    ],
+    *[
+        ("paper_curved/quintic_manufactured.toml", "pd-curved-mms", {"form": f, "degree": 4, "points": 401})
+        for f in ("primal", "mixed")
+    ],
 ]
 
 

@@ -130,8 +130,10 @@ def forward_error_bound(solve, solve_t, correction, magnitude, x, watch=None, it
 
 def bound_warning(bound: float) -> str:
     """The one-line warning a result carries when its round-off bound passes ``BOUND_LIMIT``."""
-    return (f"round-off bound {bound:.2g} (relative error) exceeds {BOUND_LIMIT:g}: at this size the linear solve "
-            "may be wrong to that degree; use fewer points or a better-conditioned form")
+    return (
+        f"round-off bound {bound:.2g} (relative error) exceeds {BOUND_LIMIT:g}: at this size the linear solve "
+        "may be wrong to that degree; use fewer points or a better-conditioned form"
+    )
 
 
 def _record_bound(info: dict, bound: float) -> None:
@@ -193,8 +195,15 @@ def eliminate(K: sp.spmatrix, b: np.ndarray, fixed) -> tuple[sp.csr_matrix, np.n
 SMALL = 20_000  # up to this many unknowns: condition estimate, refinement and residual by default
 
 
-def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray | None = None,
-               watch=None, magnitude=None, refine: bool = False) -> tuple[np.ndarray, dict]:
+def solve_band(
+    B: Band,
+    b: np.ndarray,
+    what: str = "system",
+    scaling: np.ndarray | None = None,
+    watch=None,
+    magnitude=None,
+    refine: bool = False,
+) -> tuple[np.ndarray, dict]:
     """Solve B u = b for a :class:`~pdverify.band.Band` (B is consumed: scaled in place).
 
     The path of large systems: symmetric diagonal scaling diagonal by diagonal (``scaling``, default
@@ -214,12 +223,19 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray
     s = diagonal_scaling(B.diag(0)) if scaling is None else np.asarray(scaling, float)
     B.scale(s)
     lo, up = B.lower, B.upper
-    info: dict = {"dofs": B.n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal",
-                  "solver": "banded LU (LAPACK gbtrf/gbtrs, assembled in place)"}
+    info: dict = {
+        "dofs": B.n,
+        "bandwidth_lower": lo,
+        "bandwidth_upper": up,
+        "scaling": "symmetric diagonal",
+        "solver": "banded LU (LAPACK gbtrf/gbtrs, assembled in place)",
+    }
     lu, piv, inf = lapack.dgbtrf(B.lapack(), lo, up, overwrite_ab=1)
     if inf > 0:
-        raise SolveError(f"{what}: the system matrix is singular (zero pivot at unknown {inf - 1}); the supports do "
-                         "not hold the beam (a mechanism) or the discretisation is degenerate")
+        raise SolveError(
+            f"{what}: the system matrix is singular (zero pivot at unknown {inf - 1}); the supports do "
+            "not hold the beam (a mechanism) or the discretisation is degenerate"
+        )
 
     def solve(y, trans=0):
         return lapack.dgbtrs(lu, lo, up, y, piv, trans=trans)[0]
@@ -227,8 +243,10 @@ def solve_band(B: Band, b: np.ndarray, what: str = "system", scaling: np.ndarray
     bs = s * b
     y = solve(bs)
     if not np.all(np.isfinite(y)):
-        raise SolveError(f"{what}: the solution is not finite; the matrix holds NaN/inf, or the system is "
-                         "singular or too ill-conditioned")
+        raise SolveError(
+            f"{what}: the solution is not finite; the matrix holds NaN/inf, or the system is "
+            "singular or too ill-conditioned"
+        )
     steps, r0 = [], None
     for _ in range(2 if refine else 1):  # the correction from a residual in extended precision: applied when
         r = extended_residual(B, bs, y)  # refine,
@@ -269,28 +287,40 @@ def extended_residual(B: Band, b: np.ndarray, y: np.ndarray, block: int = 1 << 1
             lo, hi = max(i0, -o), min(i1, n - o)  # rows whose column i + o exists
             if hi > lo:
                 k0 = max(0, -o)  # element k of the diagonal is row k + k0
-                acc[lo - i0:hi - i0] -= B.diag(o)[lo - k0:hi - k0].astype(ld) * y[lo + o:hi + o].astype(ld)
+                acc[lo - i0 : hi - i0] -= B.diag(o)[lo - k0 : hi - k0].astype(ld) * y[lo + o : hi + o].astype(ld)
         r[i0:i1] = acc
     return r
 
 
 def _require_finite(u: np.ndarray, what: str) -> None:
     if not np.all(np.isfinite(u)):
-        raise SolveError(f"{what}: the solution overflows float64 (NaN/inf); the scene's numbers are too far from 1 "
-                         "in these units (e.g. a modulus near 1e-300): rescale them")
+        raise SolveError(
+            f"{what}: the solution overflows float64 (NaN/inf); the scene's numbers are too far from 1 "
+            "in these units (e.g. a modulus near 1e-300): rescale them"
+        )
 
 
 def _scaled_bound(solve, solve_t, s, correction, magnitude, u, watch, iterations: int = 3) -> float:
     """:func:`forward_error_bound` for u = S y where (S A S) y = S b was solved (``solve``, ``solve_t``:
     with S A S and its transpose; ``magnitude``: of the scaled rows; ``correction`` in u's units): the
     bound on y's errors, each weighted by s, relative to max |u| over ``watch``."""
-    return forward_error_bound(lambda z: s * solve(z), lambda z: solve_t(s * z), correction, magnitude, u, watch,
-                               iterations)
+    return forward_error_bound(
+        lambda z: s * solve(z), lambda z: solve_t(s * z), correction, magnitude, u, watch, iterations
+    )
 
 
-def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", condition: bool | None = None,
-                 banded_max: int = 64, refinement: bool | None = None, scaling: np.ndarray | None = None,
-                 watch=None, magnitude=None, refine_in_place: bool = False) -> tuple[np.ndarray, dict]:
+def solve_linear(
+    K: sp.spmatrix | Band,
+    b: np.ndarray,
+    what: str = "system",
+    condition: bool | None = None,
+    banded_max: int = 64,
+    refinement: bool | None = None,
+    scaling: np.ndarray | None = None,
+    watch=None,
+    magnitude=None,
+    refine_in_place: bool = False,
+) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
     Raises SolveError naming ``what`` when K is singular (a mechanism, missing supports) or the
@@ -305,12 +335,18 @@ def solve_linear(K: sp.spmatrix | Band, b: np.ndarray, what: str = "system", con
     Every solve carries ``info["error_bound"]``, :func:`forward_error_bound` over the unknowns ``watch``
     (default all; ``magnitude(u)``: the size of each row's independently rounded terms, default
     |K| |u| + |b|), and a warning when it passes ``BOUND_LIMIT``. ``refine_in_place``: refine on the
-    in-place path too (:func:`solve_band`; off by default there, as before, so its solutions are the LU's). ``scaling``: the symmetric scaling s of
+    in-place path too (:func:`solve_band`; off by default there, as before, so its solutions are the LU's).
+    ``scaling``: the symmetric scaling s of
     diag(s) K diag(s) (default 1/sqrt|diag K|; a saddle-point system with zero diagonal needs its own).
     """
     if isinstance(K, Band):
-        if K.n > SMALL and condition is not True and refinement is not True and K.lower <= banded_max \
-                and K.upper <= banded_max:
+        if (
+            K.n > SMALL
+            and condition is not True
+            and refinement is not True
+            and K.lower <= banded_max
+            and K.upper <= banded_max
+        ):
             return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place)
         K = K.tocsr()
     K = canonical_csr(K)

@@ -45,8 +45,14 @@ NAMES = ("u_t", "u_n", "phi", "N", "Q", "M", "p_t", "p_n", "m")
 
 
 KINDS = ("trig", "bending")
-FIELDS = Option("fields", str, "trig", "manufactured fields: trig (u_t, u_n, phi sines, membrane strains O(U/L)) | "
-                "bending (beam-like: membrane and shear strains O(h^2/L^2) of the bending ones)", choices=KINDS)
+FIELDS = Option(
+    "fields",
+    str,
+    "trig",
+    "manufactured fields: trig (u_t, u_n, phi sines, membrane strains O(U/L)) | "
+    "bending (beam-like: membrane and shear strains O(h^2/L^2) of the bending ones)",
+    choices=KINDS,
+)
 
 
 def _bending_shape(y, x, xh):
@@ -112,12 +118,13 @@ def axis_data(scene) -> tuple[tuple, float, float]:
         return tuple(float(c) for c in a.coefficients), float(a.x_range[0]), float(a.x_range[1])
     if a.type == "straight":
         return (0.0,), 0.0, float(scene.length)
-    raise InputError(f"axis.type = {a.type!r}: the manufactured solution is written for a polynomial (or straight) "
-                     "axis; use one of those")
+    raise InputError(
+        f"axis.type = {a.type!r}: the manufactured solution is written for a polynomial (or straight) "
+        "axis; use one of those"
+    )
 
 
-def fields(scene, s: np.ndarray, x: np.ndarray | None = None, names=NAMES,
-           kind: str = "trig") -> dict[str, np.ndarray]:
+def fields(scene, s: np.ndarray, x: np.ndarray | None = None, names=NAMES, kind: str = "trig") -> dict[str, np.ndarray]:
     """The chosen fields (``kind``: trig | bending), resultants and the loads they need (``names``: those of
     :data:`NAMES` wanted) at
     arc lengths s (``x``: their axis abscissae on a polynomial axis when the caller has them; else s is

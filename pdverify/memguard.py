@@ -71,5 +71,5 @@ def check_memory(scene, model, given: dict) -> None:
         fits = int(have / (BYTES_PER_BAND_ENTRY * band * dofs / points))
         raise SolveError(
             f"points = {points}: model {model.name} would need about {need / 2**30:.1f} GiB ({dofs:.3g} unknowns x "
-            f"bandwidth {band}), {have / 2**30:.1f} GiB is available; use at most about {fits} points")
-
+            f"bandwidth {band}), {have / 2**30:.1f} GiB is available; use at most about {fits} points"
+        )

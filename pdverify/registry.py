@@ -51,7 +51,6 @@ from .errors import InputError
 from .result import Result, check_finite
 from .scene import Scene
 
-
 MODEL_PACKAGES = ("pdverify.exact", "pdverify.models", "reference_fem")
 
 
@@ -102,7 +101,8 @@ class Option:
             )
         if self.minimum is not None and (v < self.minimum or (self.strict and v == self.minimum)):
             raise InputError(
-                f"{self.name} = {value!r}: model {model} needs {self.name} {'>' if self.strict else '>='} {self.minimum:g}"
+                f"{self.name} = {value!r}: model {model} needs {self.name} "
+                f"{'>' if self.strict else '>='} {self.minimum:g}"
                 + (" (the horizon must cover at least one spacing)" if self.name == "horizon" else "")
             )
         if self.maximum is not None and v > self.maximum:
@@ -220,38 +220,52 @@ class Model:
         for side in ("left", "right"):
             sup = getattr(scene.supports, side)
             if sup not in self.supports:
-                out.append(f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
-                           f"{', '.join(sorted(self.supports))}")
+                out.append(
+                    f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
+                    f"{', '.join(sorted(self.supports))}"
+                )
         if scene.dynamics is None and "static" not in self.analyses:
-            out.append(f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table "
-                       "(end_time, ...)")
+            out.append(
+                f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table (end_time, ...)"
+            )
         if scene.dynamics is not None and "dynamic" not in self.analyses:
             dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses) or "none installed"
-            out.append(f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "
-                       f"use a dynamic model ({dyn}) or ask for the static part (-o static=true)")
+            out.append(
+                f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "
+                f"use a dynamic model ({dyn}) or ask for the static part (-o static=true)"
+            )
         if scene.dynamics is not None and self.end_motions:
             for side in ("left", "right"):
                 em = getattr(scene.dynamics, side)
                 for k, component in MOTION_COMPONENT.items():
                     if em is not None and getattr(em, k) is not None and not getattr(self, component):
-                        out.append(f"dynamics.{side}.{k}: model {self.name} has no such unknown to move; "
-                                   "use a model that carries it or drop the motion")
+                        out.append(
+                            f"dynamics.{side}.{k}: model {self.name} has no such unknown to move; "
+                            "use a model that carries it or drop the motion"
+                        )
         for i, load in enumerate(scene.loads):
             if load.type not in self.load_types and load.type != "point_torque":  # torques: the twist check below
-                out.append(f"loads[{i}].type = {load.type!r}: model {self.name} takes "
-                           f"{', '.join(sorted(self.load_types))}")
+                out.append(
+                    f"loads[{i}].type = {load.type!r}: model {self.name} takes {', '.join(sorted(self.load_types))}"
+                )
                 continue
             if getattr(load, "axial", 0.0) != 0.0 and not self.axial:
-                out.append(f"loads[{i}].axial = {load.axial!r}: model {self.name} has no axial displacement; "
-                           "use a model with an axial DOF or drop the axial component")
+                out.append(
+                    f"loads[{i}].axial = {load.axial!r}: model {self.name} has no axial displacement; "
+                    "use a model with an axial DOF or drop the axial component"
+                )
             torque = load.type == "point_torque" or getattr(load, "torque", 0.0) != 0.0
             if torque and not (self.torsion and (load.type != "point_torque" or load.type in self.load_types)):
-                out.append(f"loads[{i}]: a torque: model {self.name} has no twist; use a torsion model (pd-torsion) "
-                           "or drop the torque")
+                out.append(
+                    f"loads[{i}]: a torque: model {self.name} has no twist; use a torsion model (pd-torsion) "
+                    "or drop the torque"
+                )
             if load.value != 0.0 and not self.bending and load.type != "point_torque":
                 what = "moments" if load.type == "point_moment" else "transverse loads"
-                out.append(f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} (axial only); "
-                           "give the load as loads[i].axial or use a bending model")
+                out.append(
+                    f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} (axial only); "
+                    "give the load as loads[i].axial or use a bending model"
+                )
         return out
 
     def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
@@ -271,12 +285,16 @@ class Model:
 
     def capabilities(self) -> dict:
         """The declared capabilities as plain data (``pdverify models``, docs/contract.md)."""
-        return {"analyses": sorted(self.analyses), "axes": [a for a, ok in (("straight", self.straight),
-                                                                             ("curved", self.curved)) if ok],
-                "supports": sorted(self.supports), "load_types": sorted(self.load_types),
-                "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
-                "end_motions": self.end_motions, "assembles": self.assembles,
-                "variant_rules": [f"{dict(r.when)}: {r.option} ({r.why})" for r in self.variant_rules]}
+        return {
+            "analyses": sorted(self.analyses),
+            "axes": [a for a, ok in (("straight", self.straight), ("curved", self.curved)) if ok],
+            "supports": sorted(self.supports),
+            "load_types": sorted(self.load_types),
+            "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
+            "end_motions": self.end_motions,
+            "assembles": self.assembles,
+            "variant_rules": [f"{dict(r.when)}: {r.option} ({r.why})" for r in self.variant_rules],
+        }
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray] | None:
         """Fields at arbitrary positions ``x`` (exact models); None when only point values exist."""
@@ -382,13 +400,20 @@ def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
     d = scene.dynamics
     if d is None:
         return scene, given
-    moved = [(side, k) for side in ("left", "right") if getattr(d, side) is not None
-             for k in MOTION_COMPONENT if getattr(getattr(d, side), k) is not None]
+    moved = [
+        (side, k)
+        for side in ("left", "right")
+        if getattr(d, side) is not None
+        for k in MOTION_COMPONENT
+        if getattr(getattr(d, side), k) is not None
+    ]
     if moved and not m.end_motions:
         side, k = moved[0]
         can = [n for n, x in models().items() if x.end_motions and getattr(x, MOTION_COMPONENT[k])]
-        raise InputError(f"dynamics.{side}.{k}: model {m.name} cannot prescribe end motions, so its static part "
-                         f"would leave out this one; use a model that can ({', '.join(can) or 'none installed'})")
+        raise InputError(
+            f"dynamics.{side}.{k}: model {m.name} cannot prescribe end motions, so its static part "
+            f"would leave out this one; use a model that can ({', '.join(can) or 'none installed'})"
+        )
     return scene.model_copy(update={"dynamics": None}), given
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import io
 import json
 import time
+from collections.abc import Callable
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 
@@ -84,17 +84,23 @@ def check_finite(result: Result) -> Result:
     with one line naming the model and the first field that is not finite."""
     from .errors import SolveError
 
-    arrays = {"x": result.x, "w": result.w, "rotation": result.rotation,
-              **{f"fields.{k}": v for k, v in result.fields.items()}}
+    arrays = {
+        "x": result.x,
+        "w": result.w,
+        "rotation": result.rotation,
+        **{f"fields.{k}": v for k, v in result.fields.items()},
+    }
     for name, v in arrays.items():
         if v is None:
             continue
         a = np.asarray(v)
         if a.dtype.kind in "fc" and not np.all(np.isfinite(a)):
             bad = int(np.size(a) - np.count_nonzero(np.isfinite(a)))
-            raise SolveError(f"{result.model}: the computed {name} is not finite (NaN/inf at {bad} of {np.size(a)} "
-                             "values): the scene's numbers overflow or underflow this model's arithmetic (e.g. a "
-                             "modulus near 1e-300 or 1e300); give them in units that keep them near 1")
+            raise SolveError(
+                f"{result.model}: the computed {name} is not finite (NaN/inf at {bad} of {np.size(a)} "
+                "values): the scene's numbers overflow or underflow this model's arithmetic (e.g. a "
+                "modulus near 1e-300 or 1e300); give them in units that keep them near 1"
+            )
     return result
 
 

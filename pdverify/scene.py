@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import tomllib
 from pathlib import Path
-from typing import Annotated, Literal, Union
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
 
@@ -25,8 +25,13 @@ Support = Literal["clamped", "pinned", "free", "guided", "roller"]
 # What each support holds, per end, in the axis frame (tangential displacement, normal displacement, rotation):
 # one meaning on every axis and in every model (docs/supports.md). Straight models without an axial unknown
 # see only (normal, rotation), so there roller = pinned.
-HELD = {"clamped": (True, True, True), "pinned": (True, True, False), "roller": (False, True, False),
-        "guided": (False, False, True), "free": (False, False, False)}
+HELD = {
+    "clamped": (True, True, True),
+    "pinned": (True, True, False),
+    "roller": (False, True, False),
+    "guided": (False, False, True),
+    "free": (False, False, False),
+}
 
 
 Real = Annotated[float, Strict()]  # a float that an int may give, never a boolean or a string ("true" is not 1.0)
@@ -63,8 +68,10 @@ class Section(_Strict):
             raise ValueError("width and height go together; give both or neither")
         both = [k for k in ("width", "height", "area", "inertia") if getattr(self, k) is not None]
         if rect and (self.area is not None or self.inertia is not None):
-            raise ValueError(f"{', '.join(both)} given: a section is a rectangle (width, height) or given by area and "
-                             "inertia, not both (they would disagree); keep one pair")
+            raise ValueError(
+                f"{', '.join(both)} given: a section is a rectangle (width, height) or given by area and "
+                "inertia, not both (they would disagree); keep one pair"
+            )
         return self
 
     @property
@@ -171,7 +178,7 @@ class PointTorque(_Strict):
     value: Real = Field(allow_inf_nan=False)
 
 
-Load = Annotated[Union[PointForce, PointMoment, Distributed, PointTorque], Field(discriminator="type")]
+Load = Annotated[PointForce | PointMoment | Distributed | PointTorque, Field(discriminator="type")]
 
 
 class Axis(_Strict):
@@ -247,8 +254,10 @@ class Dynamics(_Strict):
         return self
 
 
-UNITS = {"SI": {"length": "m", "force": "N", "stress": "Pa"},
-         "inch-pound": {"length": "in", "force": "lbf", "stress": "psi"}}
+UNITS = {
+    "SI": {"length": "m", "force": "N", "stress": "Pa"},
+    "inch-pound": {"length": "in", "force": "lbf", "stress": "psi"},
+}
 """The unit systems a scene may declare (``units = "inch-pound"``; default SI). Every model works in whatever
 consistent units the scene uses; the key only labels lengths and forces in reports."""
 
@@ -305,7 +314,7 @@ class Scene(_Strict):
         b = self.length if load.end is None else load.end
         return a, b
 
-    def with_slenderness(self, slenderness: float) -> "Scene":
+    def with_slenderness(self, slenderness: float) -> Scene:
         """The same scene with the section height set to length / slenderness.
 
         A rectangle keeps its width; a section given by area and inertia is scaled as the
@@ -348,8 +357,14 @@ def _allowed_keys(model_cls) -> str:
     return ", ".join(model_cls.model_fields)
 
 
-_TABLES = {"beam": Beam, "section": Section, "material": Material, "supports": Supports, "axis": Axis,
-           "dynamics": Dynamics}
+_TABLES = {
+    "beam": Beam,
+    "section": Section,
+    "material": Material,
+    "supports": Supports,
+    "axis": Axis,
+    "dynamics": Dynamics,
+}
 
 
 def _message(err: dict, data: dict) -> str:
@@ -365,10 +380,12 @@ def _message(err: dict, data: dict) -> str:
         elif parent and parent[0] in _TABLES:
             cls = _TABLES[parent[0]]
         elif parent and parent[0] == "loads" and len(parent) >= 3:
-            cls = {"point_force": PointForce, "point_moment": PointMoment, "distributed": Distributed,
-                   "point_torque": PointTorque}.get(
-                parent[2], Scene
-            )
+            cls = {
+                "point_force": PointForce,
+                "point_moment": PointMoment,
+                "distributed": Distributed,
+                "point_torque": PointTorque,
+            }.get(parent[2], Scene)
         import difflib
 
         close = difflib.get_close_matches(str(key), list(cls.model_fields), n=1, cutoff=0.75)
@@ -377,7 +394,10 @@ def _message(err: dict, data: dict) -> str:
     if kind == "missing":
         return f"{loc}: missing; this key is required"
     if kind == "union_tag_invalid" or kind == "union_tag_not_found":
-        return f"{loc}.type = {value.get('type') if isinstance(value, dict) else value!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
+        given = value.get("type") if isinstance(value, dict) else value
+        return (
+            f"{loc}.type = {given!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
+        )
     if kind == "literal_error" and loc.startswith("supports."):
         return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}"
     if kind == "float_type" and isinstance(value, bool):
@@ -439,8 +459,12 @@ def _check_loads(scene: Scene) -> list[str]:
     return lines
 
 
-_FIXES = {"displacement": ("clamped", "pinned", "roller"), "axial": ("clamped", "pinned"),
-          "rotation": ("clamped", "guided"), "twist": ("clamped", "pinned", "roller")}
+_FIXES = {
+    "displacement": ("clamped", "pinned", "roller"),
+    "axial": ("clamped", "pinned"),
+    "rotation": ("clamped", "guided"),
+    "twist": ("clamped", "pinned", "roller"),
+}
 
 
 def _check_dynamics(scene: Scene) -> list[str]:
@@ -450,7 +474,9 @@ def _check_dynamics(scene: Scene) -> list[str]:
     lines = []
     for i, p in enumerate(d.probes):
         if not 0.0 <= p <= scene.length:
-            lines.append(f"dynamics.probes[{i}] = {p!r}: outside the beam [0, {scene.length}]; give positions on the beam")
+            lines.append(
+                f"dynamics.probes[{i}] = {p!r}: outside the beam [0, {scene.length}]; give positions on the beam"
+            )
     for side in ("left", "right"):
         em = getattr(d, side)
         if em is None:
@@ -458,8 +484,10 @@ def _check_dynamics(scene: Scene) -> list[str]:
         sup = getattr(scene.supports, side)
         for key, allowed in _FIXES.items():
             if getattr(em, key) is not None and sup not in allowed:
-                lines.append(f"dynamics.{side}.{key}: a {sup} end leaves this motion free, so it cannot be prescribed; "
-                             f"set supports.{side} to {' or '.join(allowed)}")
+                lines.append(
+                    f"dynamics.{side}.{key}: a {sup} end leaves this motion free, so it cannot be prescribed; "
+                    f"set supports.{side} to {' or '.join(allowed)}"
+                )
     return lines
 
 
@@ -507,8 +535,10 @@ def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
     except IsADirectoryError:
         raise InputError(f"{path}: is a folder; give a {what} TOML file in it") from None
     except UnicodeDecodeError as exc:
-        raise InputError(f"{path}: not a text file (byte 0x{exc.object[exc.start]:02x} at offset {exc.start} is not "
-                         f"UTF-8); give a {what} TOML file") from None
+        raise InputError(
+            f"{path}: not a text file (byte 0x{exc.object[exc.start]:02x} at offset {exc.start} is not "
+            f"UTF-8); give a {what} TOML file"
+        ) from None
     except OSError as exc:
         raise InputError(f"{path}: cannot read the {what} file ({exc.strerror or exc})") from None
     if "\x00" in text:

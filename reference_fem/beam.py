@@ -14,7 +14,6 @@ By default (``form = mixed``) both solve their elements' stiffness as the two-fi
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.interpolate import CubicHermiteSpline
 
 from pdverify.band import Band
@@ -65,7 +64,7 @@ def element_loads(scene: Scene, nodes: np.ndarray, shape_fns, chunk: int = 1 << 
     xi = (_GX + 1) / 2
     for e0 in range(0, len(fe), chunk):  # blocks of elements, not a loop over elements
         e1 = min(e0 + chunk, len(fe))
-        x0, l = nodes[e0:e1, None], np.diff(nodes[e0:e1 + 1])[:, None]
+        x0, l = nodes[e0:e1, None], np.diff(nodes[e0 : e1 + 1])[:, None]
         q = line_load(scene, x0 + l * xi[None, :])
         N = shape_fns(xi[None, :], l)  # (4, n_el, nq)
         fe[e0:e1] = np.einsum("ieq,eq,q->ei", N, q * l, _GW / 2)
@@ -95,7 +94,7 @@ def element_band(ke: np.ndarray, n_nodes: int) -> Band:
             b = a + k
             if 0 <= b <= 3:
                 row0 = a if k >= 0 else b  # index along the diagonal = min(row, col)
-                d[row0:row0 + 2 * n_el:2] += ke[:, a, b]
+                d[row0 : row0 + 2 * n_el : 2] += ke[:, a, b]
     return K
 
 
@@ -138,7 +137,7 @@ def natural_band(l: np.ndarray, EI: float, kGA: float | None = None) -> tuple[Ba
     def put(ra, ca, v):  # entry (4e + ra, 4e + ca) of every element e
         o = ca - ra
         k0 = ra - max(0, -o)
-        K.diag(o)[k0: k0 + 4 * ne: 4] += v
+        K.diag(o)[k0 : k0 + 4 * ne : 4] += v
 
     put(2, 2, -fp)
     put(3, 3, -fq)
@@ -178,6 +177,7 @@ def natural_magnitude(l: np.ndarray, EI: float, kGA: float | None, b: np.ndarray
         m[0:-2:4] += pair
         m[4::4] += pair
         return m
+
     return magnitude
 
 
@@ -185,7 +185,7 @@ def element_vector(fe: np.ndarray, n_nodes: int) -> np.ndarray:
     """(n_el, 4) element vectors summed into the global vector (DOFs 2e .. 2e + 3)."""
     F = np.zeros(2 * n_nodes)
     for a in range(4):
-        F[a: a + 2 * len(fe): 2] += fe[:, a]
+        F[a : a + 2 * len(fe) : 2] += fe[:, a]
     return F
 
 
@@ -228,8 +228,7 @@ class _BeamFE(Model):
         if self.mixed(params):
             K, b, nodes, s, magnitude = self.assemble_mixed(scene, params)
             held = 4 * (constrained_dofs(scene, len(nodes)) // 2) + constrained_dofs(scene, len(nodes)) % 2
-            return System(K, b, np.delete(np.arange(K.n), held),
-                          {"nodes": nodes, "scaling": s, "magnitude": magnitude})
+            return System(K, b, np.delete(np.arange(K.n), held), {"nodes": nodes, "scaling": s, "magnitude": magnitude})
         K, F, nodes = self.assemble_band(scene, params)
         fixed = constrained_dofs(scene, len(nodes))
         K, F, _ = hold_supports(scene, K, F, len(nodes))
@@ -267,8 +266,15 @@ class _BeamFE(Model):
                 system = self.assemble(scene, params)
             K, b, nodes = system.matrix, system.rhs, system.info["nodes"]
             with timer("solve"):
-                z, info = solve_linear(K, b, what=what, scaling=system.info["scaling"], watch=np.arange(0, K.n, 4),
-                                       magnitude=system.info["magnitude"], refine_in_place=True)
+                z, info = solve_linear(
+                    K,
+                    b,
+                    what=what,
+                    scaling=system.info["scaling"],
+                    watch=np.arange(0, K.n, 4),
+                    magnitude=system.info["magnitude"],
+                    refine_in_place=True,
+                )
             u = np.empty(2 * len(nodes))
             u[0::2], u[1::2] = z[0::4], z[1::4]
             info["form"] = "two-field (displacements and element end moments, K = T^T F^-1 T)"
@@ -283,21 +289,31 @@ class _BeamFE(Model):
 
 def hermite_shapes(xi, l):
     """Cubic Hermite shape functions (w1, w1', w2, w2') on [0, l], xi = s / l."""
-    return np.stack(np.broadcast_arrays(1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3),
-                                        3 * xi**2 - 2 * xi**3, l * (-(xi**2) + xi**3)))
+    return np.stack(
+        np.broadcast_arrays(
+            1 - 3 * xi**2 + 2 * xi**3, l * (xi - 2 * xi**2 + xi**3), 3 * xi**2 - 2 * xi**3, l * (-(xi**2) + xi**3)
+        )
+    )
 
 
-FORM = Option("form", str, "mixed", "mixed (two-field: displacements and element end moments, the same element's "
-              "K = T^T F^-1 T; round-off ~N^2 eps at most) | direct (K itself; ~N^4 eps)", choices=("mixed", "direct"))
+FORM = Option(
+    "form",
+    str,
+    "mixed",
+    "mixed (two-field: displacements and element end moments, the same element's "
+    "K = T^T F^-1 T; round-off ~N^2 eps at most) | direct (K itself; ~N^4 eps)",
+    choices=("mixed", "direct"),
+)
 
 
 class FemEulerBernoulli(_BeamFE):
     name = "fem-eb"
     title = "Euler–Bernoulli beam, cubic Hermite elements (scikit-fem; BEAM3 analogue)"
-    source = ("cubic Hermite element, two-field K = T^T F^-1 T (form=direct: scikit-fem ElementLineHermite up to "
-              "20,001 nodes); nodally exact (loads on nodes)")
-    options = (Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),
-               FORM)
+    source = (
+        "cubic Hermite element, two-field K = T^T F^-1 T (form=direct: scikit-fem ElementLineHermite up to "
+        "20,001 nodes); nodally exact (loads on nodes)"
+    )
+    options = (Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2), FORM)
 
     SKFEM_MAX_NODES = 20_001  # ElementLineHermite inverts a global-coordinate Vandermonde per element:
     # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there
@@ -345,19 +361,34 @@ class FemEulerBernoulli(_BeamFE):
     def solve(self, scene: Scene, params: dict) -> Result:
         u, info, dofs, nodes, timer = self.solve_nodal(scene, params, "fem-eb")
         info.update(element="ElementLineHermite", elements=len(nodes) - 1)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=nodes, w=u[0::2],
-                      rotation=u[1::2], dofs=dofs, timings=timer.timings, info=info)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=nodes,
+            w=u[0::2],
+            rotation=u[1::2],
+            dofs=dofs,
+            timings=timer.timings,
+            info=info,
+        )
 
 
 def iie_shapes(phi):
     """Interdependent-interpolation Timoshenko element: w shape functions with Phi = 12EI/(kGA l²)."""
+
     def shapes(xi, l):
         f = phi(l)
         c = 1 / (1 + f)
-        return c * np.array([1 - 3 * xi**2 + 2 * xi**3 + f * (1 - xi),
-                             l * (xi - 2 * xi**2 + xi**3 + f / 2 * (xi - xi**2)),
-                             3 * xi**2 - 2 * xi**3 + f * xi,
-                             l * (-(xi**2) + xi**3 + f / 2 * (-xi + xi**2))])
+        return c * np.array(
+            [
+                1 - 3 * xi**2 + 2 * xi**3 + f * (1 - xi),
+                l * (xi - 2 * xi**2 + xi**3 + f / 2 * (xi - xi**2)),
+                3 * xi**2 - 2 * xi**3 + f * xi,
+                l * (-(xi**2) + xi**3 + f / 2 * (-xi + xi**2)),
+            ]
+        )
+
     return shapes
 
 
@@ -372,8 +403,13 @@ class FemTimoshenko(_BeamFE):
     source = "IIE element (exact homogeneous solutions, nodally exact); 'reduced'/'full' linear for contrast"
     options = (
         Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),
-        Option("variant", str, "iie", "iie | reduced (linear, 1-point shear) | full (linear, locks)",
-               choices=("iie", "reduced", "full")),
+        Option(
+            "variant",
+            str,
+            "iie",
+            "iie | reduced (linear, 1-point shear) | full (linear, locks)",
+            choices=("iie", "reduced", "full"),
+        ),
         FORM,
     )
 
@@ -407,10 +443,25 @@ class FemTimoshenko(_BeamFE):
 
     def solve(self, scene: Scene, params: dict) -> Result:
         u, info, dofs, nodes, timer = self.solve_nodal(scene, params, f"fem-timoshenko ({params['variant']})")
-        info.update(element={"iie": "interdependent interpolation (IIE)", "reduced": "linear, reduced shear",
-                             "full": "linear, full integration"}[params["variant"]], elements=len(nodes) - 1)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=nodes, w=u[0::2],
-                      rotation=u[1::2], dofs=dofs, timings=timer.timings, info=info)
+        info.update(
+            element={
+                "iie": "interdependent interpolation (IIE)",
+                "reduced": "linear, reduced shear",
+                "full": "linear, full integration",
+            }[params["variant"]],
+            elements=len(nodes) - 1,
+        )
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=nodes,
+            w=u[0::2],
+            rotation=u[1::2],
+            dofs=dofs,
+            timings=timer.timings,
+            info=info,
+        )
 
 
 MODELS = [FemEulerBernoulli(), FemTimoshenko()]

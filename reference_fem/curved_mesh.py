@@ -86,7 +86,9 @@ def edge_dofs(bm: BeamMesh, basis, a: np.ndarray, b: np.ndarray) -> list[np.ndar
     return out
 
 
-def line_forces(bm: BeamMesh, basis, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, density) -> np.ndarray:
+def line_forces(
+    bm: BeamMesh, basis, a: np.ndarray, b: np.ndarray, pa: np.ndarray, pb: np.ndarray, density
+) -> np.ndarray:
     """Work-equivalent nodal forces of a line density on the edges (a[k], b[k]) with parameter end points
     pa, pb (2, ne) = (s, t). ``density(s, t)`` -> (2, ne, nq): global force per unit parameter length."""
     F = np.zeros(basis.N)
@@ -155,7 +157,7 @@ def constraint_basis(C: np.ndarray) -> sp.csr_matrix:
         k = int(np.argmax(np.abs(R[r])))
         masters.append(k)
         if r + 1 < m:
-            R[r + 1:] -= np.outer(R[r + 1:, k] / R[r, k], R[r])
+            R[r + 1 :] -= np.outer(R[r + 1 :, k] / R[r, k], R[r])
     masters = np.array(masters)
     slaves = np.setdiff1d(np.arange(n), masters)
     G = -np.linalg.solve(C[:, masters], C[:, slaves])  # (m, n - m), nonzero only on the constrained faces
@@ -165,4 +167,3 @@ def constraint_basis(C: np.ndarray) -> sp.csr_matrix:
     cols = np.concatenate([np.arange(len(slaves)), Gs.col])
     vals = np.concatenate([np.ones(len(slaves)), Gs.data])
     return sp.csr_matrix((vals, (rows, cols)), shape=(n, n - m))
-

@@ -48,8 +48,13 @@ from pdverify.registry import Model, Option
 from pdverify.result import Result, Timer
 from pdverify.scene import Distributed, PointForce, Scene
 
-ELEMENTS = {"q4": "ElementQuad1", "q8": "ElementQuadS2", "q9": "ElementQuad2",
-            "q4-bbar": "ElementQuad1", "q4-qm6": "ElementQuad1"}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3 (q4_variants)
+ELEMENTS = {
+    "q4": "ElementQuad1",
+    "q8": "ElementQuadS2",
+    "q9": "ElementQuad2",
+    "q4-bbar": "ElementQuad1",
+    "q4-qm6": "ElementQuad1",
+}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3 (q4_variants)
 
 
 def mesh_lines(scene: Scene, points: int, layers: int):
@@ -81,13 +86,23 @@ class FemPlaneStress(Model):
     options = (
         Option("points", int, 101, "nodes along the beam (elements + 1), load positions added", minimum=2),
         Option("layers", int, 8, "elements through the thickness (even: the mid-line is a node row)", minimum=2),
-        Option("element", str, "q4", "q4 (full integration, 3x3 Gauss) | q8 | q9 | q4-bbar (2x2 with B-bar: PLANE182 "
-               "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3)",
-               choices=tuple(ELEMENTS)),
-        Option("pin", str, "face", "pinned support: node = the mid-height node (PLANE182 practice; its point "
-               "reaction makes the 2D deflection grow like log(1/element size)) | face = parabola-weighted mean "
-               "normal (and, at the left, mean tangential) displacement of the end face zero (converges)",
-               choices=("node", "face")),
+        Option(
+            "element",
+            str,
+            "q4",
+            "q4 (full integration, 3x3 Gauss) | q8 | q9 | q4-bbar (2x2 with B-bar: PLANE182 "
+            "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3)",
+            choices=tuple(ELEMENTS),
+        ),
+        Option(
+            "pin",
+            str,
+            "face",
+            "pinned support: node = the mid-height node (PLANE182 practice; its point "
+            "reaction makes the 2D deflection grow like log(1/element size)) | face = parabola-weighted mean "
+            "normal (and, at the left, mean tangential) displacement of the end face zero (converges)",
+            choices=("node", "face"),
+        ),
     )
 
     def check(self, scene: Scene) -> list[str]:
@@ -101,8 +116,10 @@ class FemPlaneStress(Model):
             h = scene.section.height
             kmax = float(np.max(np.abs(geometry(scene).curvature(np.linspace(0, scene.length, 401)))))
             if kmax * h / 2 >= 1:
-                out.append(f"section.height = {h!r}: the face on the concave side would cross the centre of "
-                           f"curvature (smallest radius {1 / kmax:.6g} <= h/2); give height < {2 / kmax:.6g}")
+                out.append(
+                    f"section.height = {h!r}: the face on the concave side would cross the centre of "
+                    f"curvature (smallest radius {1 / kmax:.6g} <= h/2); give height < {2 / kmax:.6g}"
+                )
         why = mechanism_message(scene)  # also the axial slide of two rollers on a straight axis
         return out + ([why] if why is not None else [])
 
@@ -192,8 +209,16 @@ class FemPlaneStress(Model):
                     F[basis.nodal_dofs[:, hi]] += load.value / arm * perp
             # resultant of the assembled loads (force, moment about the left end of the axis): a check of
             # the load assembly against the scene's beam loads
-            xd = np.concatenate([basis.nodal_dofs[0], basis.facet_dofs[0]]) if basis.facet_dofs.shape[0] else basis.nodal_dofs[0]
-            yd = np.concatenate([basis.nodal_dofs[1], basis.facet_dofs[1]]) if basis.facet_dofs.shape[0] else basis.nodal_dofs[1]
+            xd = (
+                np.concatenate([basis.nodal_dofs[0], basis.facet_dofs[0]])
+                if basis.facet_dofs.shape[0]
+                else basis.nodal_dofs[0]
+            )
+            yd = (
+                np.concatenate([basis.nodal_dofs[1], basis.facet_dofs[1]])
+                if basis.facet_dofs.shape[0]
+                else basis.nodal_dofs[1]
+            )
             rel = basis.doflocs[:, xd] - geo.position(np.array([0.0]))[0][:, None]
             resultant = [float(F[xd].sum()), float(F[yd].sum()), float(np.sum(rel[0] * F[yd] - rel[1] * F[xd]))]
             # supports: constraints on tangential / normal components of the end-face nodes
@@ -208,8 +233,14 @@ class FemPlaneStress(Model):
                     if sup == "pinned":
                         dirs.append((tan_s[i], lambda tq: np.full_like(tq, 1.0 / h)))
                     for d, phi in dirs:
-                        crows.append(cm.line_forces(bm, basis, *cm.face_edges(bm, i),
-                                                    lambda sq, tq, d=d, phi=phi: d[:, None, None] * phi(tq)[None]))
+                        crows.append(
+                            cm.line_forces(
+                                bm,
+                                basis,
+                                *cm.face_edges(bm, i),
+                                lambda sq, tq, d=d, phi=phi: d[:, None, None] * phi(tq)[None],
+                            )
+                        )
                     continue
                 if sup in ("pinned", "roller"):
                     face = basis.nodal_dofs[:, [bm.vid[i, jm]]]
@@ -262,13 +293,18 @@ class FemPlaneStress(Model):
             return u[vx[nodes]] * tan_s[:, 0] + u[vy[nodes]] * tan_s[:, 1]
 
         rot = (tangential(botn) - tangential(topn)) / h
-        info.update(element=el, mesh=f"{ns - 1} x {params['layers']} {el}",
-                    nodes=mesh.p.shape[1], plane_stress_lambda=lam,
-                    load_resultant=resultant)
+        info.update(
+            element=el,
+            mesh=f"{ns - 1} x {params['layers']} {el}",
+            nodes=mesh.p.shape[1],
+            plane_stress_lambda=lam,
+            load_resultant=resultant,
+        )
         if not scene.is_straight:
-            info.update(axis=scene.axis.type,
-                        geometry=("quadratic edges on the mapped curves" if not el.startswith("q4")
-                                  else "straight-edged q4"))
+            info.update(
+                axis=scene.axis.type,
+                geometry=("quadratic edges on the mapped curves" if not el.startswith("q4") else "straight-edged q4"),
+            )
 
         def write_vtu(path, mesh=mesh, u=u, basis=basis, E=E, nu=nu, lam=lam, mu=mu):
             import meshio
@@ -283,9 +319,15 @@ class FemPlaneStress(Model):
             sxy = 2 * mu * exy
             vm = np.sqrt(sxx**2 - sxx * syy + syy**2 + 3 * sxy**2).mean(axis=1)
             pts = np.column_stack([mesh.p[0, :nv], mesh.p[1, :nv], np.zeros(nv)])
-            meshio.write(path, meshio.Mesh(pts, [("quad", mesh.t[:4].T)],
-                                           point_data={"displacement": np.column_stack([pux, puy, 0 * pux])},
-                                           cell_data={"von_mises": [vm]}))
+            meshio.write(
+                path,
+                meshio.Mesh(
+                    pts,
+                    [("quad", mesh.t[:4].T)],
+                    point_data={"displacement": np.column_stack([pux, puy, 0 * pux])},
+                    cell_data={"von_mises": [vm]},
+                ),
+            )
 
         def write_png(path):
             import os
@@ -302,9 +344,19 @@ class FemPlaneStress(Model):
             finally:
                 os.unlink(tmp)
 
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=w, rotation=rot,
-                      fields={"u": ut, "ux": ux, "uy": uy}, dofs=len(free), timings=timer.timings, info=info,
-                      writers={".vtu": write_vtu, ".png": write_png})
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=s,
+            w=w,
+            rotation=rot,
+            fields={"u": ut, "ux": ux, "uy": uy},
+            dofs=len(free),
+            timings=timer.timings,
+            info=info,
+            writers={".vtu": write_vtu, ".png": write_png},
+        )
 
 
 MODELS = [FemPlaneStress()]

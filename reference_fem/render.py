@@ -29,8 +29,12 @@ p.screenshot(png)
 
 
 def render_png(vtu_path: str, png_path: str, scale: float) -> None:
-    proc = subprocess.run([sys.executable, "-c", _SCRIPT, vtu_path, png_path, repr(float(scale))],
-                          capture_output=True, text=True, timeout=120)
+    proc = subprocess.run(
+        [sys.executable, "-c", _SCRIPT, vtu_path, png_path, repr(float(scale))],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     if proc.returncode != 0:
         last = (proc.stderr.strip().splitlines() or ["no message"])[-1]
         raise SolveError(f"{png_path}: off-screen rendering failed ({last}); the VTU file is still written")

@@ -5,13 +5,12 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import scene_dict
 
 from pdverify.advise import advise, estimate
 from pdverify.errors import InputError
 from pdverify.registry import get_model
 from pdverify.scene import load_scene, parse_scene
-
-from conftest import scene_dict
 
 ROOT = Path(__file__).parents[1]
 
@@ -41,12 +40,18 @@ def test_slender_beam_loose_tolerance_admits_euler_bernoulli():
     assert models & {"pd-eb", "pd-bond-pair", "fem-eb"}
 
 
-@pytest.mark.parametrize("model,opts", [("pd-eb", {"variant": "corrected"}),
-                                        ("pd-bond-pair", {"variant": "corrected", "ends": "taylor"})])
+@pytest.mark.parametrize(
+    "model,opts", [("pd-eb", {"variant": "corrected"}), ("pd-bond-pair", {"variant": "corrected", "ends": "taylor"})]
+)
 def test_richardson_estimate_brackets_the_true_error(model, opts):
     """The three-grid estimate is within a factor 3 of the true error (second-order models)."""
-    sc = parse_scene(scene_dict("clamped", "pinned", [{"type": "distributed", "value": -800.0},
-                                                      {"type": "point_force", "position": 1.0, "value": -300.0}]))
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            "pinned",
+            [{"type": "distributed", "value": -800.0}, {"type": "point_force", "position": 1.0, "value": -300.0}],
+        )
+    )
     c = estimate(sc, model, opts, tol=1e-4, budget=30)
     assert c is not None and 1.7 < c.order < 2.3
     assert c.estimate < 1e-4 and c.exact_error / 3 < c.estimate < 3 * c.exact_error
@@ -59,12 +64,40 @@ def test_bad_tolerance():
 
 @pytest.mark.slow
 def test_solve_model_auto():
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", "studies/paper_yang/cantilever_tip_force.toml",
-                        "--model", "auto", "--tolerance", "5e-2", "--format", "json"], capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "solve",
+            "studies/paper_yang/cantilever_tip_force.toml",
+            "--model",
+            "auto",
+            "--tolerance",
+            "5e-2",
+            "--format",
+            "json",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 0, r.stderr
     assert "auto: fem-timoshenko" in r.stderr and '"model": "fem-timoshenko"' in r.stdout
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", "studies/paper_yang/cantilever_tip_force.toml",
-                        "--model", "auto"], capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "solve",
+            "studies/paper_yang/cantilever_tip_force.toml",
+            "--model",
+            "auto",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 2 and "needs --tolerance" in r.stderr
 
 
@@ -134,7 +167,11 @@ def test_dynamics_scene_needs_the_static_part_asked_for():
 
 
 def test_cli_advise_dynamics_scene_exit_2():
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "advise", "studies/paper_moyer/beam_example2.toml"],
-                       capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", "advise", "studies/paper_moyer/beam_example2.toml"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 2 and r.stderr.startswith("error: dynamics:") and "--static" in r.stderr
     assert "Traceback" not in r.stderr

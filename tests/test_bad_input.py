@@ -13,7 +13,6 @@ import tomllib
 from pathlib import Path
 
 import pytest
-
 from conftest import cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -28,7 +27,7 @@ BAD = sorted((ROOT / "tests" / "bad_inputs").glob("scene_*.toml"))
 def expected(path):
     first = path.read_text().splitlines()[0]
     assert first.startswith("# expect: ")
-    return first[len("# expect: "):]
+    return first[len("# expect: ") :]
 
 
 def assert_one_error_line(code, out, err, want_code, want_text):
@@ -62,8 +61,12 @@ CLI_CASES = [
     ("solve-horizon-nan", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "nan"], 2, "horizon = nan"),
     ("solve-spacing-not-dividing", ["solve", "{scene}", "-m", "pd-eb", "--spacing", "0.3"], 2, "spacing = 0.3"),
     ("solve-spacing-negative", ["solve", "{scene}", "-m", "pd-eb", "--spacing", "-1"], 2, "spacing = -1"),
-    ("solve-points-and-spacing", ["solve", "{scene}", "-m", "pd-eb", "--points", "11", "--spacing", "0.1"], 2,
-     "points and spacing"),
+    (
+        "solve-points-and-spacing",
+        ["solve", "{scene}", "-m", "pd-eb", "--points", "11", "--spacing", "0.1"],
+        2,
+        "points and spacing",
+    ),
     ("solve-bool-maybe", ["solve", "{scene}", "-m", "pd-bond-pair", "-o", "nonlinear=maybe"], 2, "nonlinear = 'maybe'"),
     ("solve-bool-2", ["solve", "{scene}", "-m", "pd-bond-pair", "-o", "nonlinear=2"], 2, "nonlinear = '2'"),
     ("solve-bool-yes", ["solve", "{scene}", "-m", "pd-bond-pair", "-o", "nonlinear=yes"], 2, "nonlinear = 'yes'"),
@@ -75,8 +78,12 @@ CLI_CASES = [
     ("solve-layers-0", ["solve", "{scene}", "-m", "fem-plane-stress", "--layers", "0"], 2, "layers = 0"),
     ("solve-degree-fraction", ["solve", "{scene}", "-m", "pd-higher-order", "--degree", "1.5"], 2, "--degree"),
     ("solve-format-unknown", ["solve", "{scene}", "-m", "exact-eb", "--format", "xml"], 2, "--format"),
-    ("solve-format-conflicts-out", ["solve", "{scene}", "-m", "exact-eb", "--format", "csv", "--out", "{tmp}/r.json"],
-     2, "--format csv and --out"),
+    (
+        "solve-format-conflicts-out",
+        ["solve", "{scene}", "-m", "exact-eb", "--format", "csv", "--out", "{tmp}/r.json"],
+        2,
+        "--format csv and --out",
+    ),
     ("solve-auto-no-tolerance", ["solve", "{scene}", "-m", "auto"], 2, "--tolerance"),
     ("solve-unknown-option", ["solve", "{scene}", "-m", "exact-eb", "--bogus"], 2, "--bogus"),
     ("solve-no-scene", ["solve"], 2, "scene"),
@@ -87,8 +94,12 @@ CLI_CASES = [
     ("solve-model-cannot-carry-load", ["solve", "{scene}", "-m", "pd-rod"], 2, "loads[0].value"),
     ("solve-straight-model-curved-scene", ["solve", "{curved}", "-m", "pd-eb"], 2, "axis.type = 'arc'"),
     ("solve-out-is-folder", ["solve", "{scene}", "-m", "exact-eb", "--out", "{tmp}"], 4, "is a folder"),
-    ("solve-out-below-file", ["solve", "{scene}", "-m", "exact-eb", "--out", "{file}/r.csv"], 4,
-     "is a file, not a folder"),
+    (
+        "solve-out-below-file",
+        ["solve", "{scene}", "-m", "exact-eb", "--out", "{file}/r.csv"],
+        4,
+        "is a file, not a folder",
+    ),
     ("solve-overflow", ["solve", "{big}", "-m", "exact-eb"], 3, "beam.length = 1e+300"),
     ("study-workers-0", ["study", "{tmp}/s.toml", "--workers", "0"], 2, "--workers"),
     ("study-workers-negative", ["study", "{tmp}/s.toml", "--workers", "-1"], 2, "--workers"),
@@ -120,18 +131,31 @@ def files(tmp_path_factory):
     (d / "scene.bin").write_bytes(bytes([0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A, 0xFF, 0x00]))
     (d / "nul.toml").write_text('name = "x"\x00\n')
     text = SCENE.read_text()
-    (d / "big.toml").write_text(text.replace("length = 1.0", "length = 1e300").replace("position = 1.0",
-                                                                                       "position = 1e300"))
+    (d / "big.toml").write_text(
+        text.replace("length = 1.0", "length = 1e300").replace("position = 1.0", "position = 1e300")
+    )
     (d / "empty").mkdir()
-    for name, results, meta in (("broken_csv", 'a,b\n1,"2\n', "{}"),
-                                ("broken_meta", "case_id,scene_file,scene,status\n", "{not json"),
-                                ("no_cols", "x,y\n1,2\n", "{}")):
+    for name, results, meta in (
+        ("broken_csv", 'a,b\n1,"2\n', "{}"),
+        ("broken_meta", "case_id,scene_file,scene,status\n", "{not json"),
+        ("no_cols", "x,y\n1,2\n", "{}"),
+    ):
         (d / name).mkdir()
         (d / name / "results.csv").write_text(results)
         (d / name / "meta.json").write_text(meta)
-    return {"scene": SCENE, "curved": CURVED, "tmp": d, "file": d / "file", "bin": d / "scene.bin",
-            "nul": d / "nul.toml", "big": d / "big.toml", "empty": d / "empty", "broken_csv": d / "broken_csv",
-            "broken_meta": d / "broken_meta", "no_cols": d / "no_cols"}
+    return {
+        "scene": SCENE,
+        "curved": CURVED,
+        "tmp": d,
+        "file": d / "file",
+        "bin": d / "scene.bin",
+        "nul": d / "nul.toml",
+        "big": d / "big.toml",
+        "empty": d / "empty",
+        "broken_csv": d / "broken_csv",
+        "broken_meta": d / "broken_meta",
+        "no_cols": d / "no_cols",
+    }
 
 
 def test_corpus_is_large_enough():
@@ -146,20 +170,36 @@ def test_bad_cli_input(args, code, text, files, capsys):
     assert not list(files["tmp"].glob("*.json")) and not list(files["tmp"].glob(".*tmp*"))  # nothing half-written
 
 
-@pytest.mark.parametrize("case", ["solve-bool-maybe", "solve-scene-binary", "solve-overflow", "study-workers-0",
-                                  "solve-out-is-folder", "unknown-command"])
+@pytest.mark.parametrize(
+    "case",
+    [
+        "solve-bool-maybe",
+        "solve-scene-binary",
+        "solve-overflow",
+        "study-workers-0",
+        "solve-out-is-folder",
+        "unknown-command",
+    ],
+)
 @pytest.mark.slow
 def test_bad_cli_input_in_a_process(case, files):
     """A sample as real processes (``python -m pdverify``): the same line and code, no traceback."""
     _, args, code, text = next(c for c in CLI_CASES if c[0] == case)
-    r = subprocess.run([sys.executable, "-m", "pdverify", *[a.format(**files) for a in args]], capture_output=True,
-                       text=True, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify", *[a.format(**files) for a in args]], capture_output=True, text=True, cwd=ROOT
+    )
     assert_one_error_line(r.returncode, r.stdout, r.stderr, code, text.format(**files))
 
 
 VALID = tomllib.loads((ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
-atoms = st.one_of(st.none(), st.booleans(), st.integers(-10, 10), st.floats(allow_nan=True, allow_infinity=True),
-                  st.text(max_size=8), st.lists(st.integers(), max_size=3))
+atoms = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(-10, 10),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.text(max_size=8),
+    st.lists(st.integers(), max_size=3),
+)
 
 
 def mutate(data, path, value):
@@ -175,10 +215,27 @@ def mutate(data, path, value):
     return d
 
 
-PATHS = [("name",), ("beam",), ("beam", "length"), ("section", "width"), ("section", "height"), ("section", "area"),
-         ("material", "youngs_modulus"), ("material", "poissons_ratio"), ("material", "density"),
-         ("supports", "left"), ("supports", "right"), ("loads",), ("loads", "type"), ("loads", "position"),
-         ("loads", "value"), ("loads", "start"), ("loads", "shape"), ("axis",), ("extra",)]
+PATHS = [
+    ("name",),
+    ("beam",),
+    ("beam", "length"),
+    ("section", "width"),
+    ("section", "height"),
+    ("section", "area"),
+    ("material", "youngs_modulus"),
+    ("material", "poissons_ratio"),
+    ("material", "density"),
+    ("supports", "left"),
+    ("supports", "right"),
+    ("loads",),
+    ("loads", "type"),
+    ("loads", "position"),
+    ("loads", "value"),
+    ("loads", "start"),
+    ("loads", "shape"),
+    ("axis",),
+    ("extra",),
+]
 
 
 @settings(max_examples=300, deadline=None)
@@ -192,7 +249,11 @@ def test_fuzz_scene_parser_never_crashes(path, value):
 
 
 @settings(max_examples=200, deadline=None)
-@given(st.recursive(atoms, lambda c: st.dictionaries(st.text(max_size=6), c, max_size=4) | st.lists(c, max_size=3), max_leaves=12))
+@given(
+    st.recursive(
+        atoms, lambda c: st.dictionaries(st.text(max_size=6), c, max_size=4) | st.lists(c, max_size=3), max_leaves=12
+    )
+)
 def test_fuzz_arbitrary_documents(doc):
     try:
         parse_scene(doc if isinstance(doc, dict) else {"x": doc})

@@ -74,8 +74,9 @@ def test_in_place_solve_equals_sparse_solve_and_detects_singular():
     rng = np.random.default_rng(3)
     n = 30_000  # above the size where solve_linear converts to CSR
     main = 4.0 + rng.uniform(size=n)
-    K = sp.diags([-np.ones(n - 2), -np.ones(n - 1), main, -np.ones(n - 1), 0.5 * np.ones(n - 3)], [-2, -1, 0, 1, 3],
-                 format="csr")
+    K = sp.diags(
+        [-np.ones(n - 2), -np.ones(n - 1), main, -np.ones(n - 1), 0.5 * np.ones(n - 3)], [-2, -1, 0, 1, 3], format="csr"
+    )
     b = rng.normal(size=n)
     u, info = solve_linear(Band.from_sparse(K), b)
     assert "in place" in info["solver"]

@@ -6,9 +6,9 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import scipy.sparse as sp
 import pandas as pd
 import pytest
+import scipy.sparse as sp
 
 from pdverify.bench import bench_case, cost_slope
 
@@ -17,8 +17,25 @@ ROOT = Path(__file__).parents[1]
 
 @pytest.mark.slow
 def test_bench_json_lines():
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "bench", "-m", "exact-eb", "--points", "101",
-                        "--points", "1001", "--format", "json"], capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "bench",
+            "-m",
+            "exact-eb",
+            "--points",
+            "101",
+            "--points",
+            "1001",
+            "--format",
+            "json",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 0, r.stderr
     rows = [json.loads(l) for l in r.stdout.splitlines()]
     assert [row.get("points") for row in rows[:2]] == [101, 1001]
@@ -66,8 +83,10 @@ def test_default_models_are_the_declared_ones():
 
 
 def test_cost_slope_recovers_power():
-    rows = [{"model": "m", "status": "ok", "points": n, "total_s": 1e-6 * n**1.5, "max_error": 1e-9}
-            for n in (10, 100, 1000)]
+    rows = [
+        {"model": "m", "status": "ok", "points": n, "total_s": 1e-6 * n**1.5, "max_error": 1e-9}
+        for n in (10, 100, 1000)
+    ]
     assert abs(cost_slope(rows)["m"] - 1.5) < 1e-12
 
 
@@ -75,9 +94,39 @@ def test_performance_page_states_targets_and_verdicts(tmp_path):
     from pdverify.report.perf import build_performance, targets
 
     rows = [
-        {"model": "a", "points": 1000, "total_s": 0.01, "limit_s": 0.004, "ratio": 2.5, "peak_mem_mb": 5.0, "updates_per_s": None, "status": "ok", "max_error": 1e-9},
-        {"model": "a", "points": 1_000_000, "total_s": 3.0, "limit_s": 1.0, "ratio": 3.0, "peak_mem_mb": 900.0, "updates_per_s": None, "status": "ok", "max_error": 1e-9},
-        {"model": "b", "points": 1_000_000, "total_s": 1.0, "limit_s": 0.6, "ratio": 1.6, "peak_mem_mb": 2500.0, "updates_per_s": 6e7, "status": "ok", "max_error": 1e-9},
+        {
+            "model": "a",
+            "points": 1000,
+            "total_s": 0.01,
+            "limit_s": 0.004,
+            "ratio": 2.5,
+            "peak_mem_mb": 5.0,
+            "updates_per_s": None,
+            "status": "ok",
+            "max_error": 1e-9,
+        },
+        {
+            "model": "a",
+            "points": 1_000_000,
+            "total_s": 3.0,
+            "limit_s": 1.0,
+            "ratio": 3.0,
+            "peak_mem_mb": 900.0,
+            "updates_per_s": None,
+            "status": "ok",
+            "max_error": 1e-9,
+        },
+        {
+            "model": "b",
+            "points": 1_000_000,
+            "total_s": 1.0,
+            "limit_s": 0.6,
+            "ratio": 1.6,
+            "peak_mem_mb": 2500.0,
+            "updates_per_s": 6e7,
+            "status": "ok",
+            "max_error": 1e-9,
+        },
     ]
     t = targets(pd.DataFrame(rows), {"a": 1.05})
     got = {(r.model, r.target.split()[0]): r.verdict for r in t.itertuples()}
@@ -102,14 +151,46 @@ def test_inaccurate_runs_count_toward_no_target(tmp_path):
     from pdverify.report.perf import build_performance, cheapest, targets
 
     rows = [
-        {"model": "a", "points": 1000, "total_s": 0.01, "limit_s": 0.008, "ratio": 1.25, "peak_mem_mb": 5.0,
-         "status": "ok", "max_error": 1e-9},
-        {"model": "a", "points": 10_000, "total_s": 0.05, "limit_s": 0.04, "ratio": 1.25, "peak_mem_mb": 9.0,
-         "status": "ok", "max_error": 2e-7},
-        {"model": "a", "points": 1_000_000, "total_s": 1.0, "limit_s": 0.1, "ratio": 10.0, "peak_mem_mb": 900.0,
-         "status": "ok", "max_error": 0.5},
-        {"model": "c", "points": 1_000_000, "total_s": 0.5, "limit_s": 0.5, "ratio": 1.0, "peak_mem_mb": 90.0,
-         "status": "ok", "max_error": 1.6},
+        {
+            "model": "a",
+            "points": 1000,
+            "total_s": 0.01,
+            "limit_s": 0.008,
+            "ratio": 1.25,
+            "peak_mem_mb": 5.0,
+            "status": "ok",
+            "max_error": 1e-9,
+        },
+        {
+            "model": "a",
+            "points": 10_000,
+            "total_s": 0.05,
+            "limit_s": 0.04,
+            "ratio": 1.25,
+            "peak_mem_mb": 9.0,
+            "status": "ok",
+            "max_error": 2e-7,
+        },
+        {
+            "model": "a",
+            "points": 1_000_000,
+            "total_s": 1.0,
+            "limit_s": 0.1,
+            "ratio": 10.0,
+            "peak_mem_mb": 900.0,
+            "status": "ok",
+            "max_error": 0.5,
+        },
+        {
+            "model": "c",
+            "points": 1_000_000,
+            "total_s": 0.5,
+            "limit_s": 0.5,
+            "ratio": 1.0,
+            "peak_mem_mb": 90.0,
+            "status": "ok",
+            "max_error": 1.6,
+        },
         {"model": "d", "points": 1000, "total_s": 0.5, "limit_s": 0.5, "ratio": 1.0, "status": "ok", "max_error": None},
     ]
     assert [accurate(r) for r in rows] == [True, True, False, False, False]

@@ -3,13 +3,12 @@ conditions of free and guided ends written on the curvature) keeps the round-off
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.exact.straight import solve_straight
 from pdverify.models.pd_bond_pair import factored_stencils, family, operator_stencil, spring_constants
 from pdverify.registry import run
 from pdverify.scene import parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 
 def err(scene, **opts):

@@ -4,6 +4,7 @@ support, mirror-image scenes, and the exact elastica (pdverify/exact/elastica.py
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
@@ -11,8 +12,6 @@ from pdverify.exact.elastica import ExactElastica, tip_force_tip
 from pdverify.models._bond_pair_nonlinear import held_dofs
 from pdverify.registry import run
 from pdverify.scene import parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 L = 2.0  # conftest's beam
 
@@ -132,6 +131,7 @@ def test_mirror_image_scenes_give_mirror_image_results(left, right):
 def shooting_tip(alpha):
     """The tip (x/L, z/L, theta_0) of theta'' = -alpha cos theta, theta(0) = theta'(1) = 0, by shooting:
     an independent check of the elliptic-integral formulas."""
+
     def end(slope):
         f = lambda s, y: [y[1], -alpha * np.cos(y[0]), np.cos(y[0]), np.sin(y[0])]  # noqa: E731
         return solve_ivp(f, [0, 1], [0, slope, 0, 0], rtol=1e-12, atol=1e-13).y[:, -1]
@@ -159,8 +159,11 @@ def test_elastica_reference_is_mirror_symmetric():
     assert np.allclose(fa["w"], fb["w"], atol=1e-14) and np.allclose(fa["u"], -fb["u"], atol=1e-14)
 
 
-SLENDER = {"beam": {"length": 1.0}, "section": {"width": 0.01, "height": 0.01},
-           "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3}}  # studies/paper_ogrady
+SLENDER = {
+    "beam": {"length": 1.0},
+    "section": {"width": 0.01, "height": 0.01},
+    "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+}  # studies/paper_ogrady
 
 
 def tip_error(load, n):

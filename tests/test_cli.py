@@ -11,7 +11,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-
 from conftest import cli
 
 from pdverify import __version__
@@ -43,12 +42,15 @@ def test_help_everywhere(command, flag, capsys):
         assert f"pdverify {command}" in out
 
 
-@pytest.mark.parametrize("suffix,check", [
-    (".csv", lambda p: list(pd.read_csv(p).columns)[:2] == ["x", "w"]),
-    (".json", lambda p: json.loads(p.read_text())["model"] == "exact-eb"),
-    (".txt", lambda p: p.read_text().startswith("# scene: cantilever, tip load")),
-    (".dat", lambda p: p.read_text().startswith("# scene: cantilever, tip load")),  # unknown extension: table
-])
+@pytest.mark.parametrize(
+    "suffix,check",
+    [
+        (".csv", lambda p: list(pd.read_csv(p).columns)[:2] == ["x", "w"]),
+        (".json", lambda p: json.loads(p.read_text())["model"] == "exact-eb"),
+        (".txt", lambda p: p.read_text().startswith("# scene: cantilever, tip load")),
+        (".dat", lambda p: p.read_text().startswith("# scene: cantilever, tip load")),  # unknown extension: table
+    ],
+)
 def test_format_from_the_out_extension(suffix, check, tmp_path, capsys):
     out = tmp_path / f"r{suffix}"
     code, stdout, err = cli(["solve", SCENE, "-m", "exact-eb", "--points", "11", "--out", out], capsys)
@@ -104,8 +106,11 @@ def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
         return {"model": model, "points": points, "status": "failed", "message": "not run"}
 
     monkeypatch.setattr(pdverify.bench, "bench_subprocess", fake)
-    for args in (["--points", "101", "201"], ["--points", "101", "--points", "201"],
-                 ["--points", "101", "201", "-m", "pd-eb"]):
+    for args in (
+        ["--points", "101", "201"],
+        ["--points", "101", "--points", "201"],
+        ["--points", "101", "201", "-m", "pd-eb"],
+    ):
         calls.clear()
         code, out, err = cli(["bench", "-m", "exact-eb", *args], capsys)
         assert code == 0, err
@@ -118,8 +123,15 @@ def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
 def test_spread_repeats_only_touches_bench_points():
     from pdverify.cli import _spread_repeats
 
-    assert _spread_repeats(["bench", "--points", "1", "2", "-m", "a"]) == ["bench", "--points", "1", "--points", "2",
-                                                                          "-m", "a"]
+    assert _spread_repeats(["bench", "--points", "1", "2", "-m", "a"]) == [
+        "bench",
+        "--points",
+        "1",
+        "--points",
+        "2",
+        "-m",
+        "a",
+    ]
     assert _spread_repeats(["solve", "s.toml", "--points", "11"]) == ["solve", "s.toml", "--points", "11"]
     assert _spread_repeats(["solve", "bench", "--points", "11", "x"]) == ["solve", "bench", "--points", "11", "x"]
 
@@ -127,8 +139,13 @@ def test_spread_repeats_only_touches_bench_points():
 # Peak resident memory of whole static runs measured by `pdverify bench` (reports/bench/bench.jsonl, MB):
 # maximum resident set of `pdverify solve SCENE --model M --points N --format json` (/usr/bin/time -v, 2026-11-25,
 # with the round-off bound of every solve): the whole process, interpreter and imports included
-MEASURED_PEAK_MB = {("pd-eb", 1_000_000): 1378.8, ("pd-timoshenko", 1_000_000): 1174.0, ("fem-eb", 1_000_000): 1246.4,
-                    ("pd-curved", 100_000): 1032.7, ("pd-higher-order", 100_000): 391.0}
+MEASURED_PEAK_MB = {
+    ("pd-eb", 1_000_000): 1378.8,
+    ("pd-timoshenko", 1_000_000): 1174.0,
+    ("fem-eb", 1_000_000): 1246.4,
+    ("pd-curved", 100_000): 1032.7,
+    ("pd-higher-order", 100_000): 391.0,
+}
 
 
 @pytest.mark.parametrize("model,points", list(MEASURED_PEAK_MB), ids=[m for m, _ in MEASURED_PEAK_MB])
@@ -154,8 +171,10 @@ def test_memory_guard_refuses_pd_curved_at_ten_million_points(capsys):
     have = available_bytes()
     if have is None or have > 200 * 2**30:
         pytest.skip("needs a Linux machine with less than 200 GiB available for the refusal")
-    code, out, err = cli(["solve", ROOT / "studies/paper_curved/semicircle_normal.toml", "-m", "pd-curved",
-                          "--points", "10000000"], capsys)
+    code, out, err = cli(
+        ["solve", ROOT / "studies/paper_curved/semicircle_normal.toml", "-m", "pd-curved", "--points", "10000000"],
+        capsys,
+    )
     assert code == 3 and out == "" and err.count("\n") == 1
     assert err.startswith("error: points = 10000000: model pd-curved would need about ") and "GiB" in err
     need = float(err.split("about ")[1].split(" GiB")[0])
@@ -196,10 +215,11 @@ def test_units_key_of_a_scene():
     # the numbers do not depend on the label
     from pdverify.registry import run
 
-    a, b = run(parse_scene(data), "exact-eb", points=11), run(parse_scene(dict(data, units="inch-pound")), "exact-eb",
-                                                                 points=11)
+    a, b = (
+        run(parse_scene(data), "exact-eb", points=11),
+        run(parse_scene(dict(data, units="inch-pound")), "exact-eb", points=11),
+    )
     assert np.array_equal(a.w, b.w)
-
 
 
 def test_no_arguments_prints_the_help(capsys):

@@ -55,8 +55,9 @@ def quintic(sl, P, n, form):
 # -- the study files ----------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name, cases", [("straight", 200), ("semicircle", 240), ("quintic", 160),
-                                         ("quintic_bending", 160)])
+@pytest.mark.parametrize(
+    "name, cases", [("straight", 200), ("semicircle", 240), ("quintic", 160), ("quintic_bending", 160)]
+)
 def test_study_files_expand_without_skips(name, cases):
     st = load_study(STUDIES / f"paper_curved_{name}.toml")
     assert len(st.cases) == cases and not st.skipped
@@ -81,9 +82,11 @@ def test_manufactured_loads_satisfy_the_equilibrium_equations(kind):
     kap = geometry(sc).curvature(s)
     d = {k: CubicSpline(s, f[k])(s, 1) for k in ("N", "Q", "M")}
     inner = slice(50, -50)
-    for res, scale in ((d["N"] - kap * f["Q"] + f["p_t"], np.abs(f["p_t"]).max()),
-                       (d["Q"] + kap * f["N"] + f["p_n"], np.abs(f["p_n"]).max()),
-                       (d["M"] + f["Q"] + f["m"], np.abs(f["m"]).max())):
+    for res, scale in (
+        (d["N"] - kap * f["Q"] + f["p_t"], np.abs(f["p_t"]).max()),
+        (d["Q"] + kap * f["N"] + f["p_n"], np.abs(f["p_n"]).max()),
+        (d["M"] + f["Q"] + f["m"], np.abs(f["m"]).max()),
+    ):
         assert np.abs(res[inner]).max() < 1e-6 * scale
     # the resultants are the constitutive law applied to the chosen fields
     ut, un, phi = (CubicSpline(s, f[k]) for k in ("u_t", "u_n", "phi"))
@@ -105,8 +108,11 @@ def test_bending_manufactured_solution_is_beam_like():
         f = fields(sc, s, kind=kind)
         for k in ("u_t", "u_n", "phi"):
             assert np.abs(f[k][[0, -1]]).max() < 1e-12 * np.abs(f[k]).max()  # clamped at both ends
-        return (np.abs(f["N"]).max() * sc.length / np.abs(f["M"]).max(),
-                np.abs(f["Q"]).max() * sc.length / np.abs(f["M"]).max(), {k: f[k] / sc.EI for k in ("p_t", "p_n", "m")})
+        return (
+            np.abs(f["N"]).max() * sc.length / np.abs(f["M"]).max(),
+            np.abs(f["Q"]).max() * sc.length / np.abs(f["M"]).max(),
+            {k: f[k] / sc.EI for k in ("p_t", "p_n", "m")},
+        )
 
     n10, q10, p10 = ratio(10, "bending")
     n1e4, q1e4, p1e4 = ratio(1e4, "bending")
@@ -181,7 +187,8 @@ def test_semicircle_reference_matches_thin_ring_closed_form_and_clapeyron():
 
 @pytest.mark.parametrize("form", ["primal", "mixed"])
 def test_slenderness_10_401_points_degree_4_below_1e_4(form):
-    """Measured: semicircle 9.4e-7 / 1.5e-6 (primal), 1.5e-9 / 1.1e-9 (mixed); quintic 5.6e-8 (primal), 4.1e-7 (mixed)."""
+    """Measured: semicircle 9.4e-7 / 1.5e-6 (primal), 1.5e-9 / 1.1e-9 (mixed);
+    quintic 5.6e-8 (primal), 4.1e-7 (mixed)."""
     for which in ("tangential", "normal"):
         r, e = semicircle(which, 10, 4, 401, form)
         assert disp_error(r, e) < 1e-4
@@ -248,9 +255,12 @@ def test_highest_degree_error_grows_far_less_in_absolute_terms():
     assert growth[6] * 1e3 < growth[2]
 
 
-@pytest.mark.xfail(strict=True, reason="refuted: the locking slope d log(err)/d log(L/h) of P = 6 (1.9) is not "
-                   "10x smaller than P = 2's (0.9, which saturates at error 1); higher degree lowers the constant, "
-                   "not the slope (error ~ (L/h)^2 h^P until it saturates)")
+@pytest.mark.xfail(
+    strict=True,
+    reason="refuted: the locking slope d log(err)/d log(L/h) of P = 6 (1.9) is not "
+    "10x smaller than P = 2's (0.9, which saturates at error 1); higher degree lowers the constant, "
+    "not the slope (error ~ (L/h)^2 h^P until it saturates)",
+)
 def test_highest_degree_locking_slope_ten_times_smaller():
     _, _, slope = _slopes("primal")
     assert slope[6] <= slope[2] / 10

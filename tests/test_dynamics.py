@@ -5,13 +5,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import PAIRS, scene_dict
 
 from pdverify.errors import SolveError
 from pdverify.models import pd_timoshenko as T
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
-
-from conftest import PAIRS, scene_dict
 
 ROOT = Path(__file__).parents[1]
 MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
@@ -20,8 +19,16 @@ AXIAL = [{"type": "distributed", "value": 0.0, "axial": 3000.0, "start": 0.3, "e
 
 
 def _scene(left="clamped", right="clamped", height=0.1, loads=LOADS, **dyn):
-    return parse_scene(scene_dict(left, right, loads, section={"width": 0.05, "height": height}, material=MATERIAL,
-                                  dynamics=dict({"end_time": 0.02}, **dyn)))
+    return parse_scene(
+        scene_dict(
+            left,
+            right,
+            loads,
+            section={"width": 0.05, "height": height},
+            material=MATERIAL,
+            dynamics=dict({"end_time": 0.02}, **dyn),
+        )
+    )
 
 
 # -- energy ledger -------------------------------------------------------------------------------
@@ -36,8 +43,9 @@ def test_undamped_energy_is_conserved_at_order_two():
     limit = T.stable_time_step(disc)
     drift = []
     for f in (0.4, 0.2, 0.1):
-        h = T.simulate(sc, {"points": 41, "horizon": 1}, model="pd-rod", dt=f * limit, stabilisation=0.0,
-                       record_every=1)
+        h = T.simulate(
+            sc, {"points": 41, "horizon": 1}, model="pd-rod", dt=f * limit, stabilisation=0.0, record_every=1
+        )
         assert h.energy["damping"][-1] == 0.0 and h.energy["stabilisation"][-1] == 0.0
         drift.append(h.energy_drift)
     order = np.log2(np.array(drift[:-1]) / np.array(drift[1:]))
@@ -58,8 +66,15 @@ def test_damped_ledger_balances(kappa, ratio, gain):
     limit = T.stable_time_step(disc) / np.sqrt(1 + 2 * kappa)
     drift, dissipated = [], []
     for f in (0.4, 0.1):
-        h = T.simulate(sc, {"points": 41, "horizon": 1}, model="pd-rod", dt=f * limit, stabilisation=kappa,
-                       damping_ratio=ratio, record_every=1)
+        h = T.simulate(
+            sc,
+            {"points": 41, "horizon": 1},
+            model="pd-rod",
+            dt=f * limit,
+            stabilisation=kappa,
+            damping_ratio=ratio,
+            record_every=1,
+        )
         key = "stabilisation" if kappa else "damping"
         assert h.energy[key][-1] > 0.05 * h.energy["load_work"][-1]
         drift.append(h.energy_drift)
@@ -79,8 +94,16 @@ def test_support_work_of_a_prescribed_motion():
     limit = T.stable_time_step(disc)
     bal = []
     for f in (0.8, 0.4):
-        h = T.simulate(sc, {"points": 101, "horizon": 1}, model="pd-rod", t_end=5e-4, damping_ratio=0.0,
-                       record_every=1, stabilisation=0.0, dt=f * limit)
+        h = T.simulate(
+            sc,
+            {"points": 101, "horizon": 1},
+            model="pd-rod",
+            t_end=5e-4,
+            damping_ratio=0.0,
+            record_every=1,
+            stabilisation=0.0,
+            dt=f * limit,
+        )
         e = h.energy
         assert np.all(e["load_work"] == 0.0) and np.all(e["damping"] == 0.0)
         assert e["support_work"][-1] > 0 and e["strain"].min() >= 0
@@ -97,7 +120,7 @@ def test_history_csv_and_info_carry_the_ledger(tmp_path):
     path = tmp_path / "h.csv"
     r.writers[".csv"](path)
     head = path.read_text().splitlines()[0].split(",")
-    assert [f"energy_{k}" for k in T.LEDGER_COLUMNS] == head[-len(T.LEDGER_COLUMNS):]
+    assert [f"energy_{k}" for k in T.LEDGER_COLUMNS] == head[-len(T.LEDGER_COLUMNS) :]
 
 
 def test_rod_transient_converges_to_the_modal_solution():
@@ -108,8 +131,7 @@ def test_rod_transient_converges_to_the_modal_solution():
     points). With Eq. 12's start (v^{-1/2} = 0) the dt part was first order."""
     q = 3000.0
     sine = [{"type": "distributed", "value": 0.0, "axial": q, "shape": "sine"}]
-    sc = parse_scene(scene_dict("clamped", "clamped", sine,
-                                section={"width": 0.05, "height": 0.1}, material=MATERIAL))
+    sc = parse_scene(scene_dict("clamped", "clamped", sine, section={"width": 0.05, "height": 0.1}, material=MATERIAL))
     L, EA = sc.length, sc.EA
     w1 = np.pi / L * np.sqrt(EA / (MATERIAL["density"] * sc.section.A))
     t_end = 3.3 * 2 * np.pi / w1
@@ -121,8 +143,9 @@ def test_rod_transient_converges_to_the_modal_solution():
         got = []
         for f in (0.5, 0.25, 0.125) if points == 21 else (0.5,):
             steps = int(np.ceil(t_end / (f * limit)))
-            h = T.integrate(disc, {}, None, dt=t_end / steps, steps=steps, stabilisation=0.0, probes=[L / 2],
-                            record_every=steps)
+            h = T.integrate(
+                disc, {}, None, dt=t_end / steps, steps=steps, stabilisation=0.0, probes=[L / 2], record_every=steps
+            )
             got.append(h.values[-1, 0])
         err.append(abs(got[0] - exact) / exact)
         if points == 21:
@@ -175,8 +198,11 @@ def test_blow_up_message_names_step_limit_and_cause():
     with pytest.raises(SolveError, match=r"the stable limit is .* use time_step <= "):
         T.simulate(sc, {"points": 41, "horizon": 1}, dt=1.1 * limit)
     sc = _scene("pinned", "pinned", height=0.02)
-    with pytest.raises(SolveError, match=r"below the stable limit .* does not help.*pinned-pinned, horizon = 1.*"
-                                         r"eigenvalue -"):
+    with pytest.raises(
+        SolveError,
+        match=r"below the stable limit .* does not help.*pinned-pinned, horizon = 1.*"
+        r"eigenvalue -",
+    ):
         T.simulate(sc, {"points": 41, "horizon": 1}, t_end=0.01)
 
 
@@ -224,12 +250,14 @@ def test_stable_step_on_large_grids_is_the_threshold(model):
 
 # -- the closures' spectrum ------------------------------------------------------------------------
 
+
 def closure_growth(model: str, left: str, right: str, m: int, slenderness: float, points: int = 41) -> float:
     """max over the modes of |Im sqrt(λ)| / sqrt(λ_max), λ the eigenvalues of M⁻¹K on the free DOFs: the
     growth rate of the fastest growing mode of the undamped semi-discrete system in units of the highest
     frequency (0 when every eigenvalue is real and positive)."""
-    sc = parse_scene(scene_dict(left, right, [], section={"width": 0.05, "height": 2.0 / slenderness},
-                                material=MATERIAL))
+    sc = parse_scene(
+        scene_dict(left, right, [], section={"width": 0.05, "height": 2.0 / slenderness}, material=MATERIAL)
+    )
     disc = (T.beam_operator if model == "pd-timoshenko" else T.rod_operator)(sc, points, m, "corrected")
     lam = np.linalg.eigvals(T._mass_scaled(disc, disc.free).toarray()).astype(complex)
     return float(np.abs(np.sqrt(lam).imag).max() / np.sqrt(np.abs(lam).max()))
@@ -239,14 +267,20 @@ def test_rod_closures_have_a_real_spectrum():
     """pd-rod (and pd-torsion, the same kernel): every support pair x horizons 1-10 (41-81 points) has a real
     positive spectrum, so undamped runs are conservative (growth 0). Before the quartic traction fit
     (ROD_TRACTION_FIT) m = 2 with a free or guided end grew at 3.4e-2 of ω_max (6 of 10 pairs)."""
-    growth = {(left, right, m): closure_growth("pd-rod", left, right, m, 20, points=41 if m <= 4 else 81)
-              for left, right in PAIRS for m in range(1, 11)}
+    growth = {
+        (left, right, m): closure_growth("pd-rod", left, right, m, 20, points=41 if m <= 4 else 81)
+        for left, right in PAIRS
+        for m in range(1, 11)
+    }
     assert max(growth.values()) == 0.0, {k: v for k, v in growth.items() if v}
 
 
-@pytest.mark.xfail(strict=True, reason="issue 30 item 1 (open): the corrected beam closures have growing modes; "
-                   "measured at 41 points: 119 of 160 cases (worst 0.137: eigenvalue -1.9e-2 λ_max at pinned ends, "
-                   "m = 1, L/h = 100; complex eigenvalues up to Im/λ_max = 0.11)")
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 30 item 1 (open): the corrected beam closures have growing modes; "
+    "measured at 41 points: 119 of 160 cases (worst 0.137: eigenvalue -1.9e-2 λ_max at pinned ends, "
+    "m = 1, L/h = 100; complex eigenvalues up to Im/λ_max = 0.11)",
+)
 def test_closure_spectrum_has_no_growing_mode(record_property):
     """Every support pair x horizons 1-4 x L/h in {4, 20, 100, 1e4}: M⁻¹K of pd-timoshenko should have real
     positive eigenvalues (growth 0; 1e-6 allows the rounding of the dense eigenvalue solve: the stable cases
@@ -270,8 +304,13 @@ def test_damped_rod_settles_to_the_static_solve_for_every_support_pair(m):
     measured <= 8.1e-13; m = 2 with a free end grew before the quartic traction fit)."""
     worst = 0.0
     for left, right in PAIRS:
-        sc = _scene(left, right, loads=AXIAL + [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 500.0}],
-                    end_time=0.008, damping_ratio=1.0)
+        sc = _scene(
+            left,
+            right,
+            loads=AXIAL + [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 500.0}],
+            end_time=0.008,
+            damping_ratio=1.0,
+        )
         static = run(sc, "pd-rod", points=61, horizon=m, analysis="static").fields["u"]
         h = T.simulate(sc, {"points": 61, "horizon": m}, model="pd-rod")
         worst = max(worst, np.abs(h.final - static).max() / np.abs(static).max())
@@ -288,7 +327,8 @@ def test_undamped_rod_runs_at_the_limit_for_every_support_pair():
     for left, right in PAIRS:
         for m in (1, 2, 3, 4):
             disc = T.rod_operator(_scene(left, right, loads=AXIAL), 41, m, "corrected")
-            h = T.integrate(disc, {}, None, dt=0.99 * T.stable_time_step(disc), steps=10_000, stabilisation=0.0,
-                            record_every=10)
+            h = T.integrate(
+                disc, {}, None, dt=0.99 * T.stable_time_step(disc), steps=10_000, stabilisation=0.0, record_every=10
+            )
             drift.append(h.energy_drift)
     assert max(drift) < 0.05

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from pdverify.exact.straight import solve_straight
+from pdverify.scene import is_mechanism
 
 L, P, C, q = 2.0, -350.0, 120.0, -900.0
 
@@ -38,40 +39,91 @@ xl = x[x <= L / 2]
 
 # (supports, loads, x, textbook EB deflection w(x; EI), textbook shear part w_s(x; kGA) or None)
 CASES = {
-    "cantilever tip force": (("clamped", "free"), [pf(L)], x,
-                             lambda x, EI: P * x**2 * (3 * L - x) / (6 * EI), lambda x, kGA: P * x / kGA),
-    "cantilever tip moment": (("clamped", "free"), [pm(L)], x,
-                              lambda x, EI: C * x**2 / (2 * EI), lambda x, kGA: 0 * x),
-    "cantilever uniform load": (("clamped", "free"), [udl()], x,
-                                lambda x, EI: q * x**2 * (6 * L**2 - 4 * L * x + x**2) / (24 * EI),
-                                lambda x, kGA: q * (L * x - x**2 / 2) / kGA),
-    "simply supported centre force": (("pinned", "pinned"), [pf(L / 2)], xl,
-                                      lambda x, EI: P * x * (3 * L**2 - 4 * x**2) / (48 * EI),
-                                      lambda x, kGA: P * x / (2 * kGA)),
-    "simply supported uniform load": (("pinned", "pinned"), [udl()], x,
-                                      lambda x, EI: q * x * (L**3 - 2 * L * x**2 + x**3) / (24 * EI),
-                                      lambda x, kGA: q * x * (L - x) / (2 * kGA)),
-    "clamped-clamped centre force": (("clamped", "clamped"), [pf(L / 2)], xl,
-                                     lambda x, EI: P * x**2 * (3 * L - 4 * x) / (48 * EI),
-                                     lambda x, kGA: P * x / (2 * kGA)),
-    "clamped-clamped uniform load": (("clamped", "clamped"), [udl()], x,
-                                     lambda x, EI: q * x**2 * (L - x) ** 2 / (24 * EI),
-                                     lambda x, kGA: q * x * (L - x) / (2 * kGA)),
-    "simply supported off-centre force": (("pinned", "pinned"), [pf(0.5)], x[x <= 0.5],
-                                          lambda x, EI: P * (L - 0.5) * x * (L**2 - (L - 0.5) ** 2 - x**2) / (6 * L * EI),
-                                          None),
-    "simply supported end moment": (("pinned", "pinned"), [pm(0.0)], x,
-                                    lambda x, EI: C * x * (2 * L**2 - 3 * L * x + x**2) / (6 * L * EI),
-                                    lambda x, kGA: 0 * x),
-    "propped cantilever uniform load": (("clamped", "pinned"), [udl()], x,
-                                        lambda x, EI: q * x**2 * (3 * L**2 - 5 * L * x + 2 * x**2) / (48 * EI), None),
-    "clamped-guided end force": (("clamped", "guided"), [pf(L)], x,
-                                 lambda x, EI: P * x**2 * (3 * L - 2 * x) / (12 * EI), lambda x, kGA: P * x / kGA),
-    "pinned-guided uniform load": (("pinned", "guided"), [udl()], x,
-                                   lambda x, EI: q * x * ((2 * L) ** 3 - 2 * (2 * L) * x**2 + x**3) / (24 * EI), None),
-    "simply supported sine load": (("pinned", "pinned"), [udl(shape="sine")], x,
-                                   lambda x, EI: q * L**4 / (np.pi**4 * EI) * np.sin(np.pi * x / L),
-                                   lambda x, kGA: q * L**2 / (np.pi**2 * kGA) * np.sin(np.pi * x / L)),
+    "cantilever tip force": (
+        ("clamped", "free"),
+        [pf(L)],
+        x,
+        lambda x, EI: P * x**2 * (3 * L - x) / (6 * EI),
+        lambda x, kGA: P * x / kGA,
+    ),
+    "cantilever tip moment": (("clamped", "free"), [pm(L)], x, lambda x, EI: C * x**2 / (2 * EI), lambda x, kGA: 0 * x),
+    "cantilever uniform load": (
+        ("clamped", "free"),
+        [udl()],
+        x,
+        lambda x, EI: q * x**2 * (6 * L**2 - 4 * L * x + x**2) / (24 * EI),
+        lambda x, kGA: q * (L * x - x**2 / 2) / kGA,
+    ),
+    "simply supported centre force": (
+        ("pinned", "pinned"),
+        [pf(L / 2)],
+        xl,
+        lambda x, EI: P * x * (3 * L**2 - 4 * x**2) / (48 * EI),
+        lambda x, kGA: P * x / (2 * kGA),
+    ),
+    "simply supported uniform load": (
+        ("pinned", "pinned"),
+        [udl()],
+        x,
+        lambda x, EI: q * x * (L**3 - 2 * L * x**2 + x**3) / (24 * EI),
+        lambda x, kGA: q * x * (L - x) / (2 * kGA),
+    ),
+    "clamped-clamped centre force": (
+        ("clamped", "clamped"),
+        [pf(L / 2)],
+        xl,
+        lambda x, EI: P * x**2 * (3 * L - 4 * x) / (48 * EI),
+        lambda x, kGA: P * x / (2 * kGA),
+    ),
+    "clamped-clamped uniform load": (
+        ("clamped", "clamped"),
+        [udl()],
+        x,
+        lambda x, EI: q * x**2 * (L - x) ** 2 / (24 * EI),
+        lambda x, kGA: q * x * (L - x) / (2 * kGA),
+    ),
+    "simply supported off-centre force": (
+        ("pinned", "pinned"),
+        [pf(0.5)],
+        x[x <= 0.5],
+        lambda x, EI: P * (L - 0.5) * x * (L**2 - (L - 0.5) ** 2 - x**2) / (6 * L * EI),
+        None,
+    ),
+    "simply supported end moment": (
+        ("pinned", "pinned"),
+        [pm(0.0)],
+        x,
+        lambda x, EI: C * x * (2 * L**2 - 3 * L * x + x**2) / (6 * L * EI),
+        lambda x, kGA: 0 * x,
+    ),
+    "propped cantilever uniform load": (
+        ("clamped", "pinned"),
+        [udl()],
+        x,
+        lambda x, EI: q * x**2 * (3 * L**2 - 5 * L * x + 2 * x**2) / (48 * EI),
+        None,
+    ),
+    "clamped-guided end force": (
+        ("clamped", "guided"),
+        [pf(L)],
+        x,
+        lambda x, EI: P * x**2 * (3 * L - 2 * x) / (12 * EI),
+        lambda x, kGA: P * x / kGA,
+    ),
+    "pinned-guided uniform load": (
+        ("pinned", "guided"),
+        [udl()],
+        x,
+        lambda x, EI: q * x * ((2 * L) ** 3 - 2 * (2 * L) * x**2 + x**3) / (24 * EI),
+        None,
+    ),
+    "simply supported sine load": (
+        ("pinned", "pinned"),
+        [udl(shape="sine")],
+        x,
+        lambda x, EI: q * L**4 / (np.pi**4 * EI) * np.sin(np.pi * x / L),
+        lambda x, kGA: q * L**2 / (np.pi**2 * kGA) * np.sin(np.pi * x / L),
+    ),
 }
 
 
@@ -112,8 +164,6 @@ def test_rotation_is_slope_for_euler_bernoulli(make_scene):
     assert np.max(np.abs(slope - f["rotation"])) < 1e-7 * np.max(np.abs(f["rotation"]))
 
 
-from pdverify.scene import is_mechanism
-
 ALL = ("clamped", "pinned", "free", "guided")
 SUPPORT_PAIRS = [(l, r) for l in ALL for r in ALL if not is_mechanism(l, r)]
 
@@ -121,7 +171,15 @@ SUPPORT_PAIRS = [(l, r) for l in ALL for r in ALL if not is_mechanism(l, r)]
 @pytest.mark.parametrize("left,right", SUPPORT_PAIRS)
 @pytest.mark.parametrize("shear", [False, True])
 def test_equilibrium_and_boundary_conditions(left, right, shear, make_scene):
-    loads = [pf(0.0, 40.0), pf(0.37), pm(0.8), pm(L, -55.0), udl(start=0.4, end=1.3), udl(-300.0, shape="sine", start=0.9), pf(L, 75.0)]
+    loads = [
+        pf(0.0, 40.0),
+        pf(0.37),
+        pm(0.8),
+        pm(L, -55.0),
+        udl(start=0.4, end=1.3),
+        udl(-300.0, shape="sine", start=0.9),
+        pf(L, 75.0),
+    ]
     scene = make_scene(left, right, loads)
     sol = solve_straight(scene, shear)
     r = sol.reactions()
@@ -160,9 +218,22 @@ def test_models_registered_and_solve_cli_json(tmp_path):
     import sys
 
     out = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "solve", "studies/examples/cantilever_tip_load.toml",
-         "--model", "exact-eb", "--points", "11", "--format", "json"],
-        capture_output=True, text=True, cwd=__import__("pathlib").Path(__file__).parents[1],
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "solve",
+            "studies/examples/cantilever_tip_load.toml",
+            "--model",
+            "exact-eb",
+            "--points",
+            "11",
+            "--format",
+            "json",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=__import__("pathlib").Path(__file__).parents[1],
     )
     assert out.returncode == 0, out.stderr
     d = json.loads(out.stdout)

@@ -1,12 +1,10 @@
 import numpy as np
 import pytest
-
-from pdverify.geometry import AxisGeometry, axis_length
-from pdverify.scene import Axis
-from pdverify.errors import InputError
-from pdverify.scene import parse_scene
-
 from conftest import scene_dict
+
+from pdverify.errors import InputError
+from pdverify.geometry import AxisGeometry, axis_length
+from pdverify.scene import Axis, parse_scene
 
 
 def test_arc_semicircle():

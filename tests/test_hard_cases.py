@@ -3,14 +3,13 @@ limit, singular systems, large horizons, loads on or next to supports and within
 
 import numpy as np
 import pytest
+from conftest import scene_dict
 
 from pdverify.errors import SolveError
 from pdverify.exact.straight import solve_straight
 from pdverify.models.pd_eb import simulate
 from pdverify.registry import run
 from pdverify.scene import parse_scene
-
-from conftest import scene_dict
 
 
 def err(sc, model, **o):
@@ -19,8 +18,9 @@ def err(sc, model, **o):
     return np.abs(r.w - ex).max() / np.abs(ex).max(), r
 
 
-@pytest.mark.parametrize("model,opts", [("pd-eb", {"form": "direct"}), ("pd-bond-pair", {"form": "direct"}),
-                                        ("fem-eb", {"form": "direct"})])
+@pytest.mark.parametrize(
+    "model,opts", [("pd-eb", {"form": "direct"}), ("pd-bond-pair", {"form": "direct"}), ("fem-eb", {"form": "direct"})]
+)
 def test_round_off_floor_grows_like_cond_and_is_warned(model, opts):
     """Tip-loaded cantilever: every model reproduces the cubic exactly, so the error is round-off.
     Measured: ~1e-9 at 101 points, ~5e-5 at 1601, ~1e-2 at 6401 (cond ~ N^4 reaching 1e15)."""
@@ -32,11 +32,14 @@ def test_round_off_floor_grows_like_cond_and_is_warned(model, opts):
     assert any("round-off" in w for w in r.info.get("warnings", []))
 
 
-@pytest.mark.parametrize("left,right,load", [
-    ("clamped", "clamped", {"type": "distributed", "shape": "sine", "value": -1000.0}),
-    ("pinned", "pinned", {"type": "distributed", "shape": "sine", "value": -1000.0}),
-    ("clamped", "free", {"type": "point_force", "position": 2.0, "value": -10.0}),
-])
+@pytest.mark.parametrize(
+    "left,right,load",
+    [
+        ("clamped", "clamped", {"type": "distributed", "shape": "sine", "value": -1000.0}),
+        ("pinned", "pinned", {"type": "distributed", "shape": "sine", "value": -1000.0}),
+        ("clamped", "free", {"type": "point_force", "position": 2.0, "value": -10.0}),
+    ],
+)
 def test_mixed_form_cures_the_round_off_floor(left, right, load):
     """pd-eb corrected split in two second-order equations (form = mixed, the default of the corrected
     variant) never forms the fourth-difference matrix: at 6401 and 25601 points the direct form is at
@@ -57,8 +60,14 @@ def test_mixed_form_cures_the_round_off_floor(left, right, load):
 
 
 def _dyn_scene():
-    return parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -100.0}],
-                                  material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}))
+    return parse_scene(
+        scene_dict(
+            "clamped",
+            "free",
+            [{"type": "point_force", "position": 2.0, "value": -100.0}],
+            material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0},
+        )
+    )
 
 
 def test_explicit_dynamics_at_the_stability_limit():
@@ -74,8 +83,9 @@ def test_explicit_dynamics_at_the_stability_limit():
 
 
 def test_singular_system_one_message_no_nan():
-    from pdverify.linalg import solve_linear
     import scipy.sparse as sp
+
+    from pdverify.linalg import solve_linear
 
     K = sp.csr_matrix(np.array([[1.0, -1.0], [-1.0, 1.0]]))
     with pytest.raises(SolveError, match="singular"):
@@ -94,8 +104,13 @@ def test_large_horizons(model, m):
 @pytest.mark.parametrize("pos", [0.0, 2.0, 1.0])
 @pytest.mark.parametrize("model", ["pd-eb", "pd-bond-pair", "fem-eb"])
 def test_loads_on_supports_and_at_the_free_end(model, pos):
-    sc = parse_scene(scene_dict("pinned", "guided", [{"type": "point_force", "position": pos, "value": -100.0},
-                                                     {"type": "distributed", "value": -50.0}]))
+    sc = parse_scene(
+        scene_dict(
+            "pinned",
+            "guided",
+            [{"type": "point_force", "position": pos, "value": -100.0}, {"type": "distributed", "value": -50.0}],
+        )
+    )
     e, r = err(sc, model, points=101)
     assert e < 1e-2 and not r.info.get("warnings")
 

@@ -12,28 +12,38 @@ u_t'(L - s) = -u_t(s), (ux', uy')(L - s) = (-ux, uy)(s), twist'(L - s) = twist(s
 
 import numpy as np
 import pytest
+from conftest import scene_dict
 from numpy.polynomial import Polynomial
 
 from pdverify.registry import models, run
 from pdverify.scene import parse_scene
 
-from conftest import scene_dict
-
-BENDING = [{"type": "point_force", "position": 0.7, "value": -300.0},
-           {"type": "point_moment", "position": 1.3, "value": 150.0},
-           {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
-           {"type": "distributed", "value": 400.0, "shape": "sine"},
-           {"type": "point_force", "position": 2.0, "value": 80.0},
-           {"type": "point_moment", "position": 0.0, "value": -60.0}]
-AXIAL = [{"type": "point_force", "position": 0.7, "value": 0.0, "axial": 4000.0},
-         {"type": "distributed", "value": 0.0, "axial": -3000.0, "start": 0.4, "end": 1.7}]
-TORSION = [{"type": "point_torque", "position": 0.7, "value": 30.0},
-           {"type": "distributed", "value": 0.0, "torque": -20.0, "start": 0.4, "end": 1.7}]
+BENDING = [
+    {"type": "point_force", "position": 0.7, "value": -300.0},
+    {"type": "point_moment", "position": 1.3, "value": 150.0},
+    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
+    {"type": "distributed", "value": 400.0, "shape": "sine"},
+    {"type": "point_force", "position": 2.0, "value": 80.0},
+    {"type": "point_moment", "position": 0.0, "value": -60.0},
+]
+AXIAL = [
+    {"type": "point_force", "position": 0.7, "value": 0.0, "axial": 4000.0},
+    {"type": "distributed", "value": 0.0, "axial": -3000.0, "start": 0.4, "end": 1.7},
+]
+TORSION = [
+    {"type": "point_torque", "position": 0.7, "value": 30.0},
+    {"type": "distributed", "value": 0.0, "torque": -20.0, "start": 0.4, "end": 1.7},
+]
 ARC = {"type": "arc", "radius": 2.0 / np.deg2rad(120.0), "opening_angle_deg": 120.0, "start_angle_deg": 30.0}
-CURVED = BENDING + AXIAL + [{"type": "point_force", "position": 1.1, "value": 50.0, "axial": 70.0,
-                             "frame": "global"}]
-PAIRS = [("clamped", "pinned"), ("clamped", "free"), ("pinned", "guided"), ("roller", "clamped"),
-         ("clamped", "guided"), ("pinned", "roller")]
+CURVED = BENDING + AXIAL + [{"type": "point_force", "position": 1.1, "value": 50.0, "axial": 70.0, "frame": "global"}]
+PAIRS = [
+    ("clamped", "pinned"),
+    ("clamped", "free"),
+    ("pinned", "guided"),
+    ("roller", "clamped"),
+    ("clamped", "guided"),
+    ("pinned", "roller"),
+]
 
 
 def mirror(d: dict) -> dict:
@@ -66,21 +76,33 @@ def _scenes():
         out.append((f"bending-{left}-{right}", scene_dict(left, right, BENDING)))
         out.append((f"axial-{left}-{right}", scene_dict(left, right, AXIAL)))
         out.append((f"torsion-{left}-{right}", scene_dict(left, right, TORSION)))
-        out.append((f"arc-{left}-{right}", scene_dict(left, right, CURVED, axis=ARC,
-                                                        section={"width": 0.05, "height": 0.05})))
+        out.append(
+            (f"arc-{left}-{right}", scene_dict(left, right, CURVED, axis=ARC, section={"width": 0.05, "height": 0.05}))
+        )
     for kind, value in (("point_force", -300.0), ("point_moment", 150.0)):  # one end load: exact-elastica takes these
-        out.append((f"cantilever-tip-{kind}", scene_dict("clamped", "free", [{"type": kind, "position": 2.0,
-                                                                                "value": value}])))
+        out.append(
+            (f"cantilever-tip-{kind}", scene_dict("clamped", "free", [{"type": kind, "position": 2.0, "value": value}]))
+        )
     L = 2.0
     poly = {"type": "polynomial", "coefficients": [0.0, 0.3, -0.1], "x_range": [0.0, 1.0]}
     from pdverify.geometry import axis_length
     from pdverify.scene import Axis
 
     Lp = axis_length(Axis(**poly))
-    loads = [dict(l, position=l["position"] * Lp / L) if "position" in l else
-             dict(l, **{k: l[k] * Lp / L for k in ("start", "end") if k in l}) for l in CURVED]
-    out.append(("polynomial-clamped-pinned", scene_dict("clamped", "pinned", loads, axis=poly, beam={"length": Lp},
-                                                        section={"width": 0.05, "height": 0.05})))
+    loads = [
+        dict(l, position=l["position"] * Lp / L)
+        if "position" in l
+        else dict(l, **{k: l[k] * Lp / L for k in ("start", "end") if k in l})
+        for l in CURVED
+    ]
+    out.append(
+        (
+            "polynomial-clamped-pinned",
+            scene_dict(
+                "clamped", "pinned", loads, axis=poly, beam={"length": Lp}, section={"width": 0.05, "height": 0.05}
+            ),
+        )
+    )
     return out
 
 
@@ -91,7 +113,7 @@ SMALL = {"points": 41}
 
 def _cases():
     out = []
-    for name, model in models().items():
+    for name in models():
         if name in ("exact-curved-manufactured", "pd-curved-mms"):
             continue  # no loads: the manufactured problem is its own input, not a scene to mirror
         out.append(pytest.param(name, name, {}, id=name))
@@ -130,8 +152,9 @@ def test_mirror_image_scenes_give_mirror_image_results(label, name, opts, record
                 pairs.append((a.fields[key], b.fields[key], sign))
         # one scale per kind, so that a field that is zero by symmetry (w under axial loads: 1e-18 m) is
         # judged against the scene's displacements, not against its own round-off
-        disp = max(np.abs(np.asarray(v, float)).max() for i, (v, _, _) in enumerate(pairs) if i != 1 or
-                   a.rotation is None)
+        disp = max(
+            np.abs(np.asarray(v, float)).max() for i, (v, _, _) in enumerate(pairs) if i != 1 or a.rotation is None
+        )
         for i, (va, vb, sign) in enumerate(pairs):
             va, vb = np.asarray(va, float), np.asarray(vb, float)
             rot = i == 1 and a.rotation is not None

@@ -2,13 +2,12 @@
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.exact.straight import solve_straight
 from pdverify.models.pd_bond_pair import family, spring_constants
 from pdverify.registry import run
 from pdverify.scene import parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 LOADS = MIXED_LOADS
 
@@ -48,9 +47,11 @@ def test_paper_variant_is_stiff_by_the_continuous_calibration():
     assert 0.3 < e1 < 0.4 and abs(e1 - e2) < 0.01
 
 
-OFF_GRID = {"moment": [{"type": "point_moment", "position": 1.013, "value": 150.0}],
-            "force": [{"type": "point_force", "position": 0.713, "value": -300.0}],
-            "udl": [{"type": "distributed", "value": -500.0}]}
+OFF_GRID = {
+    "moment": [{"type": "point_moment", "position": 1.013, "value": 150.0}],
+    "force": [{"type": "point_force", "position": 0.713, "value": -300.0}],
+    "udl": [{"type": "distributed", "value": -500.0}],
+}
 
 
 @pytest.mark.parametrize("left,right", PAIRS)
@@ -74,9 +75,17 @@ def _nl():
 
 
 def test_linear_and_nonlinear_paths_agree_for_small_loads():
-    sc = parse_scene(scene_dict("clamped", "pinned", [{"type": "point_force", "position": 0.9, "value": -1e-3},
-                                                      {"type": "point_moment", "position": 1.4, "value": 2e-4},
-                                                      {"type": "distributed", "value": -1e-3, "start": 0.3}]))
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            "pinned",
+            [
+                {"type": "point_force", "position": 0.9, "value": -1e-3},
+                {"type": "point_moment", "position": 1.4, "value": 2e-4},
+                {"type": "distributed", "value": -1e-3, "start": 0.3},
+            ],
+        )
+    )
     lin = run(sc, "pd-bond-pair", points=61, ends="mirror")
     nl = run(sc, "pd-bond-pair", points=61, nonlinear=True, steps=1, ends="mirror")
     assert np.abs(np.gradient(lin.w, lin.x)).max() < 1e-4  # rotations below 1e-4 rad
@@ -109,7 +118,6 @@ def _model(left="clamped", right="free", loads=(), n=21):
 
 def test_rigid_rotation_produces_no_force():
     model = _model("free", "clamped", n=31)
-    X0 = model.X0
     th = np.deg2rad(30.0)
     Rm = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
     # rotate the whole extended grid, then evaluate the element forces without the support map

@@ -5,8 +5,8 @@ quadrature), itself checked against a sympy closed form of the semicircle and Cl
 
 import numpy as np
 import pytest
-
 from conftest import MIXED_LOADS, PAIRS, scene_dict
+
 from pdverify.errors import InputError
 from pdverify.exact.curved import Cantilever
 from pdverify.registry import get_model, run
@@ -50,8 +50,10 @@ def test_straight_every_support_pair_and_load_type(pair, form, tol):
 
 
 def test_straight_loads_off_the_grid_and_unequal_segments():
-    loads = [{"type": "point_force", "position": 0.123, "value": -300.0},
-             {"type": "distributed", "value": 700.0, "start": 0.4567, "end": 1.9, "shape": "sine"}]
+    loads = [
+        {"type": "point_force", "position": 0.123, "value": -300.0},
+        {"type": "distributed", "value": 700.0, "start": 0.4567, "end": 1.9, "shape": "sine"},
+    ]
     sc = parse_scene(scene_dict("pinned", "clamped", loads))
     res = run(sc, "pd-curved", points=101, degree=5)  # measured 1.6e-13 (force) and 7.5e-10 (load)
     f = EXACT_T.evaluate(sc, {}, res.x)
@@ -62,9 +64,11 @@ def test_straight_loads_off_the_grid_and_unequal_segments():
 def test_straight_axial_loads():
     """Axial point force (local and global frame) and a uniform axial load on a cantilever:
     u = P x / EA + p (L x - x²/2) / EA."""
-    loads = [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 5e4},
-             {"type": "point_force", "position": 1.0, "value": 0.0, "axial": -2e4, "frame": "global"},
-             {"type": "distributed", "value": 0.0, "axial": 3e4}]
+    loads = [
+        {"type": "point_force", "position": 2.0, "value": 0.0, "axial": 5e4},
+        {"type": "point_force", "position": 1.0, "value": 0.0, "axial": -2e4, "frame": "global"},
+        {"type": "distributed", "value": 0.0, "axial": 3e4},
+    ]
     sc = parse_scene(scene_dict("clamped", "free", loads))
     res = run(sc, "pd-curved", points=101, degree=4)
     x, L, EA = res.x, sc.length, sc.EA
@@ -76,8 +80,10 @@ def test_straight_axial_loads():
 
 
 # measured relative L2 error of w at 81 points (straight_sine.toml, slenderness 10), x 3 as the bound
-SINE_81 = {"mixed": {2: 2.6e-3, 3: 1.3e-6, 4: 1.9e-6, 5: 1.2e-9, 6: 1.7e-10},  # P = 6: 7 members (default_horizon)
-           "primal": {2: 1.5e-2, 3: 1.5e-2, 4: 1.2e-5, 5: 8.1e-6, 6: 8.0e-9}}
+SINE_81 = {
+    "mixed": {2: 2.6e-3, 3: 1.3e-6, 4: 1.9e-6, 5: 1.2e-9, 6: 1.7e-10},  # P = 6: 7 members (default_horizon)
+    "primal": {2: 1.5e-2, 3: 1.5e-2, 4: 1.2e-5, 5: 8.1e-6, 6: 8.0e-9},
+}
 
 
 @pytest.mark.parametrize("form", ["mixed", "primal"])
@@ -151,8 +157,10 @@ def test_exact_cantilever_clapeyron_on_a_quintic_axis():
 
     L = axis_length(Axis(**d["axis"]))
     d["beam"] = {"length": L}
-    d["loads"] = [{"type": "point_force", "position": L, "value": -800.0, "axial": 300.0, "frame": "global"},
-                  {"type": "point_moment", "position": L, "value": 120.0}]
+    d["loads"] = [
+        {"type": "point_force", "position": L, "value": -800.0, "axial": 300.0, "frame": "global"},
+        {"type": "point_moment", "position": L, "value": 120.0},
+    ]
     sc = parse_scene(d)
     c = Cantilever(sc)
     s = np.linspace(0, L, 2001)
@@ -164,12 +172,17 @@ def test_exact_cantilever_clapeyron_on_a_quintic_axis():
 
 
 def test_exact_cantilever_matches_exact_timoshenko_on_straight_scenes():
-    loads = [{"type": "point_force", "position": 0.7, "value": -300.0},
-             {"type": "point_moment", "position": 1.3, "value": 150.0},
-             {"type": "point_force", "position": 2.0, "value": 80.0}]
+    loads = [
+        {"type": "point_force", "position": 0.7, "value": -300.0},
+        {"type": "point_moment", "position": 1.3, "value": 150.0},
+        {"type": "point_force", "position": 2.0, "value": 80.0},
+    ]
     for pair in (("clamped", "free"), ("free", "clamped")):
-        sc = parse_scene(scene_dict(*pair, [dict(l, position=(l["position"] if pair[1] == "free" else 2.0 - l["position"]))
-                                            for l in loads]))
+        sc = parse_scene(
+            scene_dict(
+                *pair, [dict(l, position=(l["position"] if pair[1] == "free" else 2.0 - l["position"])) for l in loads]
+            )
+        )
         x = np.linspace(0, 2, 41)
         f, g = EXACT_T.evaluate(sc, {}, x), EXACT_C.evaluate(sc, {}, x)
         assert rel(g["w"], f["w"]) < 1e-13 and rel(g["rotation"], f["rotation"]) < 1e-13
@@ -315,8 +328,10 @@ def test_quintic_axis_every_support_pair_partial_load(pair):
     d = load_scene("studies/paper_curved/quintic_manufactured.toml").to_dict()
     L = d["beam"]["length"]
     d["supports"] = {"left": pair[0], "right": pair[1]}
-    d["loads"] = [{"type": "distributed", "value": -2000.0, "start": 2.5 * L / np.pi, "end": L},
-                  {"type": "point_force", "position": 0.4 * L, "value": 300.0, "axial": 200.0}]
+    d["loads"] = [
+        {"type": "distributed", "value": -2000.0, "start": 2.5 * L / np.pi, "end": L},
+        {"type": "point_force", "position": 0.4 * L, "value": 300.0, "axial": 200.0},
+    ]
     sc = parse_scene(d)
     res = run(sc, "pd-curved", points=321, degree=4)
     assert disp_error(res, get_model("exact-curved").evaluate(sc, {}, res.x)) < 2e-5
@@ -352,8 +367,9 @@ def _sparse_resultant_system(model, sc, params, body=None):
         bt, bn, bm = body(s, xa)
         pt, pn, mm = pt + bt, pn + bn, mm + bm
     b = np.concatenate([np.zeros(3 * N), -pt, -pn, -mm])
-    rows, vals, (rr, rc, rv) = model._conditions(sc, N, offs, segs, inner, ends, t, nv, 3 * N, True,
-                                                 lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0])))
+    rows, vals, (rr, rc, rv) = model._conditions(
+        sc, N, offs, segs, inner, ends, t, nv, 3 * N, True, lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0]))
+    )
     keep = np.ones(6 * N)
     keep[rows] = 0.0
     K = (sp.diags(keep) @ K + sp.csr_matrix((rv, (rr, rc)), shape=K.shape)).tocsr()
@@ -428,8 +444,9 @@ def test_band_solve_above_small_equals_the_csr_route_and_is_the_bench_limit():
     assert np.array_equal(u_band, u_csr)
 
 
-@pytest.mark.parametrize("coefficients, x_range", [([0.0, 0.75, -2.25, 2.25, -2.25, 1.5], [0.0, 1.0]),
-                                                   ([0.3, -1.0, 0.0, 2.0], [-1.0, 1.5])])
+@pytest.mark.parametrize(
+    "coefficients, x_range", [([0.0, 0.75, -2.25, 2.25, -2.25, 1.5], [0.0, 1.0]), ([0.3, -1.0, 0.0, 2.0], [-1.0, 1.5])]
+)
 @pytest.mark.slow
 def test_axis_abscissae_is_the_geometry_inversion(coefficients, x_range):
     """pd-curved inverts s(x) once per assembly, integrating each Newton step from a table node: the root
@@ -438,8 +455,7 @@ def test_axis_abscissae_is_the_geometry_inversion(coefficients, x_range):
     checked here at 12; the two inversions differ by up to 4 ulp on 3,000 positions."""
     import mpmath as mp
 
-    from pdverify.geometry import AxisGeometry, axis_length
-    from pdverify.geometry import axis_abscissae
+    from pdverify.geometry import AxisGeometry, axis_abscissae, axis_length
     from pdverify.scene import Axis
 
     axis = Axis(type="polynomial", coefficients=coefficients, x_range=x_range)
@@ -453,7 +469,7 @@ def test_axis_abscissae_is_the_geometry_inversion(coefficients, x_range):
     c = [mp.mpf(v) for v in coefficients]
     ds = lambda v: mp.sqrt(1 + sum(i * c[i] * v ** (i - 1) for i in range(1, len(c))) ** 2)  # noqa: E731
     k = np.linspace(0, len(s) - 1, 12).astype(int)
-    root = [float(mp.findroot(lambda v: mp.quad(ds, [x_range[0], v]) - mp.mpf(s[i]), mp.mpf(x[i]))) for i in k]
+    root = [float(mp.findroot(lambda v, si=mp.mpf(s[i]): mp.quad(ds, [x_range[0], v]) - si, mp.mpf(x[i]))) for i in k]
     assert np.abs(x[k] - root).max() <= 2 * ulp
 
 
@@ -492,8 +508,11 @@ def test_graded_particles_reach_1e_3_with_four_times_fewer_on_the_steep_quintic(
 @pytest.mark.parametrize("form", ["mixed", "primal"])
 def test_grading_ratio_1_is_the_uniform_discretisation_bit_for_bit(form):
     """grading = 1 (the default) places the particles as before: the three paper examples give the same bits."""
-    for name, model in (("straight_sine", "pd-curved"), ("semicircle_normal", "pd-curved"),
-                        ("quintic_manufactured", "pd-curved-mms")):
+    for name, model in (
+        ("straight_sine", "pd-curved"),
+        ("semicircle_normal", "pd-curved"),
+        ("quintic_manufactured", "pd-curved-mms"),
+    ):
         sc = load_scene(f"studies/paper_curved/{name}.toml")
         a = run(sc, model, points=81, degree=4, form=form)
         b = run(sc, model, points=81, degree=4, form=form, grading=1.0, graded_by="ends")
@@ -553,9 +572,15 @@ def test_given_positions_reproduce_the_uniform_and_the_graded_particles():
     assert r.info["segments"] == 2 and r.info["particles"] == 43  # 41 given + the break on both sides
 
 
-@pytest.mark.parametrize("positions, match", [
-    ("0, 0.5, x", "separated by commas"), ("0, 0.5, 9", r"\[0, L\]"), ("0, 0.5, 0.4, 1", "increase strictly"),
-    ("0, 1, 2", "fewer than one family")])
+@pytest.mark.parametrize(
+    "positions, match",
+    [
+        ("0, 0.5, x", "separated by commas"),
+        ("0, 0.5, 9", r"\[0, L\]"),
+        ("0, 0.5, 0.4, 1", "increase strictly"),
+        ("0, 1, 2", "fewer than one family"),
+    ],
+)
 def test_bad_positions_are_refused_with_one_line_naming_the_option(positions, match):
     sc = load_scene("studies/paper_curved/semicircle_normal.toml")
     with pytest.raises(InputError, match=match) as exc:

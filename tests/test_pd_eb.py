@@ -4,6 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.errors import SolveError
 from pdverify.exact.straight import solve_straight
@@ -11,10 +12,11 @@ from pdverify.models.pd_eb import PDEulerBernoulli, curvature_weights, simulate
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
 
-from conftest import MIXED_LOADS, PAIRS, scene_dict
-
 ROOT = Path(__file__).parents[1]
-PAPER = {f: load_scene(ROOT / f"studies/paper_diyaroglu/{f}.toml") for f in ("clamped_free", "clamped_clamped", "simply_supported")}
+PAPER = {
+    f: load_scene(ROOT / f"studies/paper_diyaroglu/{f}.toml")
+    for f in ("clamped_free", "clamped_clamped", "simply_supported")
+}
 
 
 def err(scene, **opts):
@@ -87,7 +89,11 @@ def test_horizon_below_one_spacing_rejected(make_scene):
     from pdverify.errors import InputError
 
     with pytest.raises(InputError, match="horizon = 0.5"):
-        run(make_scene("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -1.0}]), "pd-eb", horizon=0.5)
+        run(
+            make_scene("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -1.0}]),
+            "pd-eb",
+            horizon=0.5,
+        )
 
 
 def test_large_horizon_still_converges():
@@ -96,8 +102,14 @@ def test_large_horizon_still_converges():
 
 
 def test_dynamics_settles_to_static_and_detects_blow_up():
-    sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -100.0}],
-                                material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}))
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            "free",
+            [{"type": "point_force", "position": 2.0, "value": -100.0}],
+            material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0},
+        )
+    )
     params = {"points": 21}
     static = run(sc, "pd-eb", **params).w
     model = PDEulerBernoulli()
@@ -116,9 +128,14 @@ def test_dynamics_settles_to_static_and_detects_blow_up():
 # max error / max |w| at the paper's dx = 0.01 m (101 points), measured 2026-11-25: the paper variant's bias
 # (it does not converge: docs/models/diyaroglu.md) and the corrected one's O(dx^2) error (the cantilever's cubic is
 # reproduced: round-off)
-MEASURED_101 = {("clamped_free", "paper"): 2.566e-3, ("clamped_clamped", "paper"): 5.474e-3,
-                ("simply_supported", "paper"): 1.098e-2, ("clamped_free", "corrected"): 2.8e-14,
-                ("clamped_clamped", "corrected"): 1.550e-3, ("simply_supported", "corrected"): 7.674e-4}
+MEASURED_101 = {
+    ("clamped_free", "paper"): 2.566e-3,
+    ("clamped_clamped", "paper"): 5.474e-3,
+    ("simply_supported", "paper"): 1.098e-2,
+    ("clamped_free", "corrected"): 2.8e-14,
+    ("clamped_clamped", "corrected"): 1.550e-3,
+    ("simply_supported", "corrected"): 7.674e-4,
+}
 
 
 @pytest.mark.parametrize("name", list(PAPER))
@@ -148,10 +165,17 @@ def test_errors_against_exact_and_fem_eb_recorded(name, record_property):
 def test_loads_between_points_converge_at_order_two(model):
     """Force, moment and span ends off the grid points: measured 6.6e-4 / 1.1e-3 at 101 points and
     order 2 for both models (a moment placed at the midpoint of its interval would give order 1)."""
-    sc = parse_scene(scene_dict("clamped", "pinned", [
-        {"type": "point_force", "position": 0.733, "value": -100.0},
-        {"type": "point_moment", "position": 1.417, "value": 40.0},
-        {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29}]))
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            "pinned",
+            [
+                {"type": "point_force", "position": 0.733, "value": -100.0},
+                {"type": "point_moment", "position": 1.417, "value": 40.0},
+                {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29},
+            ],
+        )
+    )
     e = []
     for n in (201, 401, 801):
         r = run(sc, model, points=n)
@@ -173,11 +197,14 @@ def test_mixed_form_equals_direct_form_and_rejects_the_paper_variant():
         run(PAPER["clamped_free"], "pd-eb", variant="paper", form="mixed")
 
 
-@pytest.mark.parametrize("scene,energy,literal,layer", [
-    ("clamped_free", 2.6e-3, 3.8e-2, 3.8e-2),
-    ("clamped_clamped", 5.5e-3, 8.3e-2, 8.3e-2),
-    ("simply_supported", 1.1e-2, 0.77, 0.75),
-])
+@pytest.mark.parametrize(
+    "scene,energy,literal,layer",
+    [
+        ("clamped_free", 2.6e-3, 3.8e-2, 3.8e-2),
+        ("clamped_clamped", 5.5e-3, 8.3e-2, 8.3e-2),
+        ("simply_supported", 1.1e-2, 0.77, 0.75),
+    ],
+)
 def test_paper_readings_of_the_boundary_treatment(scene, energy, literal, layer):
     """The paper variant's three readings of Eq. 37-42 on the paper's benchmarks (dx = 0.01 m, 101 points),
     max error / max |w| against exact-eb (measured values in the parameters, 10 % margin). Only the energy
@@ -202,8 +229,17 @@ def test_reading_is_a_paper_variant_option():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("left,right", [("clamped", "free"), ("free", "clamped"), ("clamped", "guided"),
-                                        ("pinned", "guided"), ("guided", "clamped"), ("guided", "pinned")])
+@pytest.mark.parametrize(
+    "left,right",
+    [
+        ("clamped", "free"),
+        ("free", "clamped"),
+        ("clamped", "guided"),
+        ("pinned", "guided"),
+        ("guided", "clamped"),
+        ("guided", "pinned"),
+    ],
+)
 def test_mixed_form_free_and_guided_ends_at_100001_points(left, right):
     """The moment and shear of free and guided ends as conditions on the curvature (round-off ~N eps)
     instead of Taylor ghosts of w (~N^3 eps), a guided left end solved as the mirror scene (the banded LU

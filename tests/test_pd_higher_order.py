@@ -1,25 +1,35 @@
 """pd-higher-order (Yang, Oterkus & Oterkus 2020): equations from the energy, paper benchmarks against
 converged plane stress, any scene, thick beams, convergence, cost."""
 
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-from pdverify.models.pd_higher_order import (NF, PDHigherOrder, assemble_blocks, bond_weights, coefficients,
-                                             constraint_map, energy, family, load_vector, mirror_map, taylor_map)
+from pdverify.models.pd_higher_order import (
+    NF,
+    PDHigherOrder,
+    assemble_blocks,
+    bond_weights,
+    coefficients,
+    constraint_map,
+    energy,
+    family,
+    load_vector,
+    mirror_map,
+    taylor_map,
+)
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 ROOT = Path(__file__).parents[1]
 NAMES = ["ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment"]
 PAPER = {f: load_scene(ROOT / f"studies/paper_yang/{f}.toml") for f in NAMES}
 
 
-@lru_cache(maxsize=None)
+@cache
 def plane_stress(name, element="q8", points=201, layers=16):
     r = run(PAPER[name], "fem-plane-stress", element=element, points=points, layers=layers)
     return r.x, r.w
@@ -30,6 +40,7 @@ def peak(w):
 
 
 # -- the equations are the gradient of the energy (Eq. 15, 20-21) ---------------------------
+
 
 def _small(n=9, m=2.0, variant="paper", fractions="full"):
     """A 9-point grid's constants and weights; the paper's equations as printed (V_j = A dx: ``full``)."""
@@ -82,8 +93,12 @@ def test_path_shear_stiffness_is_the_hessian_of_the_energy():
     assert np.abs(g - K @ u).max() <= 1e-6 * np.abs(K @ u).max()
     # one-segment bonds are the centred measure
     w1 = {o: w for o, w in wts.items() if abs(o) == 1}
-    assert np.allclose(assemble_blocks(len(x), dx, C, w1, h, path=True).toarray(),
-                       assemble_blocks(len(x), dx, C, w1, h, centred=True).toarray(), rtol=1e-13, atol=0)
+    assert np.allclose(
+        assemble_blocks(len(x), dx, C, w1, h, path=True).toarray(),
+        assemble_blocks(len(x), dx, C, w1, h, centred=True).toarray(),
+        rtol=1e-13,
+        atol=0,
+    )
 
 
 @pytest.mark.parametrize("slenderness", [100, 1e3, 1e4, 1e5])
@@ -141,7 +156,7 @@ def test_paper_equations_22c_22d_are_rows_of_K():
     delta = (m + 0.015) * dx
     K = assemble_blocks(n, dx, C, wts, h)
     rng = np.random.default_rng(1)
-    u = (rng.standard_normal((n, NF)) * [1e-3, 1e-1, 1e-3, 1e-2])
+    u = rng.standard_normal((n, NF)) * [1e-3, 1e-1, 1e-3, 1e-2]
     th, ts, w, ws = u.T
     f = -(K @ u.ravel()).reshape(n, NF) / dx  # force per unit volume (per unit A here)
     Ep = E / (1 - nu**2)
@@ -153,9 +168,10 @@ def test_paper_equations_22c_22d_are_rows_of_K():
         s1 = np.sum(((w[j] - w[k]) / ax + (th[k] + th[j]) / 2 * sg) * V)
         s2 = np.sum(((ws[j] - ws[k]) / ax + 1.5 * (ts[k] + ts[j]) * sg) * V)
         eq22c = G / h * 2 / delta**2 * (h * s1 + h**3 / 12 * s2)
-        eq22d = (-1 / h * Ep * 2 / delta**2 * (h**3 / 12 * np.sum((nu * (th[j] - th[k]) * sg + 2 * ws[k] * ax) * V)
-                                               + h**5 / 80 * np.sum(nu * (ts[j] - ts[k]) * sg * V))
-                 + G / h / delta**2 * (h**3 / 6 * s1 + h**5 / 40 * s2))
+        eq22d = -1 / h * Ep * 2 / delta**2 * (
+            h**3 / 12 * np.sum((nu * (th[j] - th[k]) * sg + 2 * ws[k] * ax) * V)
+            + h**5 / 80 * np.sum(nu * (ts[j] - ts[k]) * sg * V)
+        ) + G / h / delta**2 * (h**3 / 6 * s1 + h**5 / 40 * s2)
         assert eq22c == pytest.approx(f[k, 2], rel=1e-9, abs=1e-12 * np.abs(f[:, 2]).max())
         assert eq22d == pytest.approx(f[k, 3], rel=1e-9, abs=1e-12 * np.abs(f[:, 3]).max())
 
@@ -164,6 +180,7 @@ def test_paper_family_stiffness_factor_partial_and_full_volumes():
     """Σ omega xi^2 / delta-integral = 2 Σ beta_d d / (delta/dx)^2 at delta = 3.015 dx. The authors' partial
     volumes (beta_3 = delta/dx + 1/2 - 3 = 0.515): 2 (1 + 2 + 3 * 0.515) / 3.015^2 = 1 - 2.5e-5; whole cells
     inside delta: 12 / 3.015^2 = 1.320. The corrected calibration is 1 by construction."""
+
     def factor(**o):
         return run(PAPER["cc_uniform"], "pd-higher-order", points=101, **o).info["stiffness_factor"]
 
@@ -195,20 +212,20 @@ def _whole_grid_sparse_route(scene, params):
         N = n + sum(G)
         V = np.full(N, dx)
         if variant != "paper":
-            V[:G[0]] = 0.0
-            V[N - G[1]:] = 0.0
+            V[: G[0]] = 0.0
+            V[N - G[1] :] = 0.0
             V[[G[0], G[0] + n - 1]] = dx / 2
         wts = bond_weights(N, m, dx, variant, V, calibrate="family", fractions=fr)
         Kx = assemble_blocks(N, dx, C, wts, h, centred, path)
         P = mirror_map(n, G, left, right, about)
         if variant == "paper":
-            K, symmetric = (Kx[NF * G[0]: NF * (G[0] + n)] @ P).tocsr(), False
+            K, symmetric = (Kx[NF * G[0] : NF * (G[0] + n)] @ P).tocsr(), False
         else:
             K = (P.T @ Kx @ P).tocsr()
     elif ends == "taylor":
         N = n + 2 * J
         V = np.zeros(N)
-        V[J:J + n] = dx
+        V[J : J + n] = dx
         V[[J, J + n - 1]] = dx / 2
         wts = bond_weights(N, m, dx, variant, V, calibrate="family", fractions=fr)
         Kx = assemble_blocks(N, dx, C, wts, h, centred, path)
@@ -228,12 +245,25 @@ def _whole_grid_sparse_route(scene, params):
 
 
 @pytest.mark.parametrize("points", [9, 61])
-@pytest.mark.parametrize("opts", [{}, {"variant": "paper"}, {"ends": "mirror"}, {"ends": "taylor", "ghost_degree": 6},
-                                  {"variant": "paper", "ends": "truncated"}, {"pin": "mid", "shear": "point"},
-                                  {"horizon": 2.5, "ends": "taylor"}, {"horizon": 1.0, "ends": "mirror"},
-                                  {"variant": "paper", "mirror": "boundary"}, {"variant": "paper", "volumes": "full"},
-                                  {"variant": "paper", "horizon": 2.5, "mirror": "boundary"}, {"shear": "centred"},
-                                  {"shear": "path", "ends": "mirror"}, {"shear": "path", "variant": "paper"}])
+@pytest.mark.parametrize(
+    "opts",
+    [
+        {},
+        {"variant": "paper"},
+        {"ends": "mirror"},
+        {"ends": "taylor", "ghost_degree": 6},
+        {"variant": "paper", "ends": "truncated"},
+        {"pin": "mid", "shear": "point"},
+        {"horizon": 2.5, "ends": "taylor"},
+        {"horizon": 1.0, "ends": "mirror"},
+        {"variant": "paper", "mirror": "boundary"},
+        {"variant": "paper", "volumes": "full"},
+        {"variant": "paper", "horizon": 2.5, "mirror": "boundary"},
+        {"shear": "centred"},
+        {"shear": "path", "ends": "mirror"},
+        {"shear": "path", "variant": "paper"},
+    ],
+)
 @pytest.mark.parametrize("pair", PAIRS, ids=["-".join(p) for p in PAIRS])
 @pytest.mark.slow
 def test_band_assembly_is_the_whole_grid_sparse_route(pair, opts, points):
@@ -245,8 +275,15 @@ def test_band_assembly_is_the_whole_grid_sparse_route(pair, opts, points):
     params = mdl.resolve(sc, {"points": points, **opts}, rules=False)  # paper + truncated: the assembly only
     system = mdl.assemble(sc, params)
     K, F = system.reduced()
-    T = constraint_map(params["points"], sc.supports.left, sc.supports.right, params["variant"],
-                       mdl.choice(params, "pin"), system.info["depth"], about=mdl.about(params))
+    T = constraint_map(
+        params["points"],
+        sc.supports.left,
+        sc.supports.right,
+        params["variant"],
+        mdl.choice(params, "pin"),
+        system.info["depth"],
+        about=mdl.about(params),
+    )
     Kr, Fr = _whole_grid_sparse_route(sc, params)
     assert K.shape == Kr.shape == (T.shape[1], T.shape[1]) == (system.unknowns, system.unknowns)
     assert (K != Kr).nnz == 0
@@ -254,6 +291,7 @@ def test_band_assembly_is_the_whole_grid_sparse_route(pair, opts, points):
 
 
 # -- paper benchmarks --------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("name", NAMES)
 @pytest.mark.slow
@@ -369,6 +407,7 @@ def test_paper_plane_182_mesh_is_close_to_converged():
 
 # -- thick beams: closer to plane stress than Timoshenko ---------------------------------------
 
+
 @pytest.mark.parametrize("slenderness", [2, 3, 5, 10])
 @pytest.mark.parametrize("case", ["cc_uniform", "cantilever_tip_force", "ss_uniform"])
 @pytest.mark.slow
@@ -388,6 +427,7 @@ def test_thick_beams_closer_to_plane_stress_than_timoshenko(case, slenderness):
 
 # -- any straight scene ----------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("pair", PAIRS, ids=["-".join(p) for p in PAIRS])
 @pytest.mark.parametrize("variant", ["corrected", "paper"])
 def test_any_support_pair_and_load_mix(pair, variant):
@@ -405,12 +445,15 @@ def test_any_support_pair_and_load_mix(pair, variant):
         assert e < 0.5, e
 
 
-@pytest.mark.parametrize("load", [
-    {"type": "point_force", "position": 0.7037, "value": -300.0},
-    {"type": "point_moment", "position": 1.2911, "value": 150.0},
-    {"type": "distributed", "value": -500.0, "start": 0.2033, "end": 1.1071},
-    {"type": "distributed", "value": 400.0, "shape": "sine"},
-])
+@pytest.mark.parametrize(
+    "load",
+    [
+        {"type": "point_force", "position": 0.7037, "value": -300.0},
+        {"type": "point_moment", "position": 1.2911, "value": 150.0},
+        {"type": "distributed", "value": -500.0, "start": 0.2033, "end": 1.1071},
+        {"type": "distributed", "value": 400.0, "shape": "sine"},
+    ],
+)
 def test_loads_between_grid_points_converge(load):
     """Off-grid loads (pinned-clamped, L/h = 20): the error against the model's own 3201-point solution
     (on the 101-point grid, shared by all grids) falls under refinement, and the limit is within 1 % of
@@ -421,7 +464,7 @@ def test_loads_between_grid_points_converge(load):
     ref = fine.w[::32]
     errs = []
     for n in (101, 201, 401):
-        w = run(sc, "pd-higher-order", points=n).w[::(n - 1) // 100]
+        w = run(sc, "pd-higher-order", points=n).w[:: (n - 1) // 100]
         errs.append(np.abs(w - ref).max() / np.abs(ref).max())
     # measured first order (as test_convergence_at_fixed_m_is_first_order): 0.77/0.42/0.22 % (force),
     # 0.81/0.44/0.23 % (uniform), 1.07/0.58/0.30 % (sine); the moment 0.27/0.13/0.06 %
@@ -458,6 +501,7 @@ def test_family_must_fit():
 
 
 # -- convergence and cost -------------------------------------------------------------------
+
 
 def _peaks(name, ns, **opts):
     return np.array([peak(run(PAPER[name], "pd-higher-order", points=int(n), **opts).w) for n in ns])

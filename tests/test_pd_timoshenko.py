@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 from scipy.optimize import brentq
 
 from pdverify.errors import InputError, SolveError
@@ -14,8 +15,6 @@ from pdverify.models._moyer_kernels import rod_kernel, shear_kernel
 from pdverify.models.pd_timoshenko import STABILISATION, beam_operator, integrate, simulate, stable_time_step
 from pdverify.registry import run
 from pdverify.scene import Distributed, PointForce, load_scene, parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 ROOT = Path(__file__).parents[1]
 TABLE1 = load_scene(ROOT / "studies/paper_moyer/cantilever_table1.toml")
@@ -146,17 +145,32 @@ def test_rotation_moment_and_shear_fields(left, right):
 
 
 def test_loads_between_points():
-    sc = parse_scene(scene_dict("clamped", "pinned", [
-        {"type": "point_force", "position": 0.733, "value": -100.0},
-        {"type": "point_moment", "position": 1.417, "value": 40.0},
-        {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29}]))
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            "pinned",
+            [
+                {"type": "point_force", "position": 0.733, "value": -100.0},
+                {"type": "point_moment", "position": 1.417, "value": 40.0},
+                {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29},
+            ],
+        )
+    )
     for s in (4, 100):
         assert err(sc.with_slenderness(s), points=201) < 5e-3
 
 
 def test_smooth_loads_converge_at_order_two():
-    sc = parse_scene(scene_dict("clamped", "free", [{"type": "distributed", "value": 400.0, "shape": "sine"},
-                                                    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1}]))
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            "free",
+            [
+                {"type": "distributed", "value": 400.0, "shape": "sine"},
+                {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
+            ],
+        )
+    )
     e = [err(sc.with_slenderness(10), points=n) for n in (101, 201, 401)]
     assert np.log2(e[0] / e[1]) > 1.8 and np.log2(e[1] / e[2]) > 1.8, e
 
@@ -178,7 +192,9 @@ def test_paper_variant_odd_even_decoupling():
     sc = parse_scene(scene_dict("clamped", "clamped", MIXED_LOADS[:1])).with_slenderness(4)
     e = [err(sc, points=n, horizon=1, variant="paper") for n in (101, 401)]
     assert min(e) > 0.3
-    smooth = parse_scene(scene_dict("clamped", "clamped", [{"type": "distributed", "value": -500.0}])).with_slenderness(25)
+    smooth = parse_scene(scene_dict("clamped", "clamped", [{"type": "distributed", "value": -500.0}])).with_slenderness(
+        25
+    )
     e = [err(smooth, points=n, horizon=1, variant="paper") for n in (101, 201)]
     assert e[0] < 1e-3 and np.log2(e[0] / e[1]) > 1.8
 
@@ -189,7 +205,9 @@ def test_no_shear_locking_at_high_slenderness(slenderness, record_property):
     extrapolated separately) measured errors were 27 % / 13 % / 1.8 % (m = 1, 3, 6) at L/h = 1000 and
     2700 % / 98 % / 1.9 % at 1e4 (a larger horizon only dilutes the kGA-amplified ghost error); now
     3e-8 .. 4e-6 at 1000 and 3e-6 .. 1e-4 at 1e4 (round-off: cond ~1e13)."""
-    sc = parse_scene(scene_dict("clamped", "free", [{"type": "distributed", "value": -500.0}])).with_slenderness(slenderness)
+    sc = parse_scene(scene_dict("clamped", "free", [{"type": "distributed", "value": -500.0}])).with_slenderness(
+        slenderness
+    )
     for m in (1, 3, 6):
         e = err(sc, points=201, horizon=m)
         record_property(f"err_m{m}", e)
@@ -229,17 +247,23 @@ def rod_reference(sc, x):
     return u
 
 
-ROD_LOADS = [{"type": "point_force", "position": 0.733, "value": 0.0, "axial": 3e5},
-             {"type": "distributed", "value": 0.0, "axial": -7e5, "start": 0.311, "end": 1.29},
-             {"type": "distributed", "value": 0.0, "axial": 4e5, "shape": "sine"}]
+ROD_LOADS = [
+    {"type": "point_force", "position": 0.733, "value": 0.0, "axial": 3e5},
+    {"type": "distributed", "value": 0.0, "axial": -7e5, "start": 0.311, "end": 1.29},
+    {"type": "distributed", "value": 0.0, "axial": 4e5, "shape": "sine"},
+]
 
 
-@pytest.mark.parametrize("left,right,end", [("clamped", "free", 2.0), ("free", "clamped", 0.0),
-                                            ("clamped", "pinned", None), ("pinned", "guided", 2.0)])
+@pytest.mark.parametrize(
+    "left,right,end",
+    [("clamped", "free", 2.0), ("free", "clamped", 0.0), ("clamped", "pinned", None), ("pinned", "guided", 2.0)],
+)
 def test_rod_static_any_supports(left, right, end):
     """Axial point forces (off-grid, at a free end), partial uniform and sine loads: measured at 201
     points 3e-5 .. 9e-5 (m = 1, order 2), 3e-3 .. 2e-2 (m = 3, order ~1.3: point force smeared)."""
-    loads = ROD_LOADS + ([{"type": "point_force", "position": end, "value": 0.0, "axial": -2e5}] if end is not None else [])
+    loads = ROD_LOADS + (
+        [{"type": "point_force", "position": end, "value": 0.0, "axial": -2e5}] if end is not None else []
+    )
     sc = parse_scene(scene_dict(left, right, loads))
     e = {}
     for m in (1, 3):
@@ -254,7 +278,9 @@ def test_rod_static_any_supports(left, right, end):
 def test_rod_paper_variant_free_end_is_singular():
     """Section 4's recipe for a free rod end (end force as body force, second-order extrapolation) sets no
     traction condition: condition estimate 1.6e18, reported as a SolveError instead of a number."""
-    sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 10.0}]))
+    sc = parse_scene(
+        scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 10.0}])
+    )
     with pytest.raises(SolveError, match="singular to working precision"):
         run(sc, "pd-rod", points=101, variant="paper")
     assert run(sc, "pd-rod", points=101).fields["u"][-1] == pytest.approx(10.0 * 2.0 / sc.EA, rel=1e-9)
@@ -298,7 +324,8 @@ def test_example1_rod_settles_and_larger_horizon_disperses():
 
 def timoshenko_cc_frequency(scene) -> float:
     """First natural frequency (Hz) of the clamped-clamped Timoshenko beam: root of the 4x4 boundary
-    determinant of w = cosh/sinh(αx), cos/sin(βx) with λ² from EI kGA λ⁴ + ω²(kGA ρI + EI ρA) λ² + ρA ω²(ρI ω² - kGA) = 0."""
+    determinant of w = cosh/sinh(αx), cos/sin(βx) with λ² from
+    EI kGA λ⁴ + ω²(kGA ρI + EI ρA) λ² + ρA ω²(ρI ω² - kGA) = 0."""
     EI, kGA, L = scene.EI, scene.kGA, scene.length
     rho = scene.material.density
     rA, rI = rho * scene.section.A, rho * scene.section.I
@@ -394,8 +421,13 @@ def test_time_stepping_is_stable_with_the_non_symmetric_closures(right, n, m, re
     1 + 1.9e-2, 2.0e-2, 2.4e-3, 1.3e-3; with κ = 0.2 it is <= 1."""
     from pdverify.models.pd_timoshenko import _mass_scaled
 
-    sc = parse_scene(dict(TABLE1.to_dict(), material=dict(TABLE1.to_dict()["material"], density=7.324e-4),
-                          supports={"left": "clamped", "right": right}))
+    sc = parse_scene(
+        dict(
+            TABLE1.to_dict(),
+            material=dict(TABLE1.to_dict()["material"], density=7.324e-4),
+            supports={"left": "clamped", "right": right},
+        )
+    )
     disc = beam_operator(sc, n, m, "corrected")
     A = _mass_scaled(disc, disc.free).toarray()
     w_max = np.sqrt(np.abs(np.linalg.eigvals(A)).max())
@@ -436,7 +468,9 @@ def test_bad_inputs():
         run(TABLE1, "pd-timoshenko", analysis="dynamic")
     with pytest.raises(InputError, match="material.density"):
         simulate(TABLE1, {}, t_end=1.0)
-    bad = scene_dict("clamped", "free", [], dynamics={"end_time": 1.0, "right": {"displacement": {"type": "step", "amplitude": 1.0}}})
+    bad = scene_dict(
+        "clamped", "free", [], dynamics={"end_time": 1.0, "right": {"displacement": {"type": "step", "amplitude": 1.0}}}
+    )
     with pytest.raises(InputError, match="dynamics.right.displacement: a free end"):
         parse_scene(bad)
 
@@ -444,8 +478,24 @@ def test_bad_inputs():
 @pytest.mark.slow
 def test_cli_dynamic_scene_writes_time_history(tmp_path):
     out = tmp_path / "rod.csv"
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", str(ROOT / "studies/paper_moyer/rod_example1.toml"),
-                        "--model", "pd-rod", "--horizon", "1", "--out", str(out)], capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "solve",
+            str(ROOT / "studies/paper_moyer/rod_example1.toml"),
+            "--model",
+            "pd-rod",
+            "--horizon",
+            "1",
+            "--out",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 0, r.stderr
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     assert out.read_text().startswith("t,x=50")
@@ -459,15 +509,24 @@ def test_torsion_matches_the_rod_solution_with_GJ():
     """Point torques (off-grid, at the free end) and a partial distributed torque: the twist is the rod
     solution with EA -> GJ (J of the 2:1 rectangle: 0.229 a b³). Measured at 201 points 5e-7 (m = 1),
     1.4e-3 (m = 3; 5.7e-4 at 401)."""
-    loads = [{"type": "point_torque", "position": 0.733, "value": 300.0},
-             {"type": "distributed", "value": 0.0, "torque": -700.0, "start": 0.311, "end": 1.29},
-             {"type": "point_torque", "position": 2.0, "value": -200.0}]
+    loads = [
+        {"type": "point_torque", "position": 0.733, "value": 300.0},
+        {"type": "distributed", "value": 0.0, "torque": -700.0, "start": 0.311, "end": 1.29},
+        {"type": "point_torque", "position": 2.0, "value": -200.0},
+    ]
     sc = parse_scene(scene_dict("clamped", "free", loads))
     assert sc.section.J == pytest.approx(0.2289 * 0.1 * 0.05**3, rel=1e-3)
-    axial = parse_scene(scene_dict("clamped", "free", [
-        {"type": "point_force", "position": 0.733, "value": 0.0, "axial": 300.0},
-        {"type": "distributed", "value": 0.0, "axial": -700.0, "start": 0.311, "end": 1.29},
-        {"type": "point_force", "position": 2.0, "value": 0.0, "axial": -200.0}]))
+    axial = parse_scene(
+        scene_dict(
+            "clamped",
+            "free",
+            [
+                {"type": "point_force", "position": 0.733, "value": 0.0, "axial": 300.0},
+                {"type": "distributed", "value": 0.0, "axial": -700.0, "start": 0.311, "end": 1.29},
+                {"type": "point_force", "position": 2.0, "value": 0.0, "axial": -200.0},
+            ],
+        )
+    )
     e = {}
     for m, n in ((1, 201), (3, 201), (3, 401)):
         r = run(sc, "pd-torsion", points=n, horizon=m)

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.linalg import solve_linear
 from pdverify.models import pd_timoshenko as T
@@ -12,13 +13,13 @@ from pdverify.models._moyer_kernels import EndPatched, node_loads
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
 
-from conftest import MIXED_LOADS, PAIRS, scene_dict
-
 ROOT = Path(__file__).parents[1]
-AXIAL_LOADS = [{"type": "point_force", "position": 0.7, "value": 0.0, "axial": 300.0},
-               {"type": "distributed", "value": 0.0, "axial": -70.0, "start": 0.2, "end": 1.1},
-               {"type": "point_force", "position": 2.0, "value": 0.0, "axial": 50.0},
-               {"type": "point_force", "position": 0.0, "value": 0.0, "axial": -20.0}]
+AXIAL_LOADS = [
+    {"type": "point_force", "position": 0.7, "value": 0.0, "axial": 300.0},
+    {"type": "distributed", "value": 0.0, "axial": -70.0, "start": 0.2, "end": 1.1},
+    {"type": "point_force", "position": 2.0, "value": 0.0, "axial": 50.0},
+    {"type": "point_force", "position": 0.0, "value": 0.0, "axial": -20.0},
+]
 FORMS = [("corrected", "nodes"), ("paper", "nodes"), ("paper", "cells")]
 
 
@@ -68,14 +69,19 @@ def test_rod_operator_is_the_whole_grid_assembly_bit_for_bit(variant, grid, kind
     for m in (1, 3, 10):
         n = 3 * T._core_points(m) + 5
         for left, right in PAIRS:
-            loads = AXIAL_LOADS if kind == "axial" else [
-                {"type": "point_torque", "position": p, "value": 30.0} for p in (0.0, 0.7, 2.0)]
+            loads = (
+                AXIAL_LOADS
+                if kind == "axial"
+                else [{"type": "point_torque", "position": p, "value": 30.0} for p in (0.0, 0.7, 2.0)]
+            )
             sc = parse_scene(scene_dict(left, right, loads))
             d = T.rod_operator(sc, n, m, variant, kind, grid)
             nn, x = T._grid(sc, n, grid, variant, "pd-rod")
             dx = x[1] - x[0]
             stiff = sc.EA if kind == "axial" else sc.material.G * sc.section.J
-            q, _, ends = node_loads(sc, x, "axial" if kind == "axial" else "torque", ends_apart=(variant == "corrected"))
+            q, _, ends = node_loads(
+                sc, x, "axial" if kind == "axial" else "torque", ends_apart=(variant == "corrected")
+            )
             K, bb = T._rod_core(sc, nn, dx, m, variant, stiff, ends, grid)
             b = q + bb
             if variant == "paper":
@@ -99,8 +105,11 @@ def test_largest_eigenvalue_from_the_short_grid_and_the_symbol(monkeypatch, left
     """The large-grid time step: the end modes from the operator shortened to EIG_DOFS (same end rows), the
     interior from the stencil's symbol, against ARPACK on the whole operator (1400-1800 DOFs, EIG_DOFS
     lowered to 400 for the comparison). Measured agreement 1e-6 or better (ARPACK's tol = 1e-6)."""
-    sc = parse_scene(scene_dict(left, right, MIXED_LOADS, material={"youngs_modulus": 2e11, "poissons_ratio": 0.3,
-                                                                    "density": 7850.0}))
+    sc = parse_scene(
+        scene_dict(
+            left, right, MIXED_LOADS, material={"youngs_modulus": 2e11, "poissons_ratio": 0.3, "density": 7850.0}
+        )
+    )
     for d in (T.beam_operator(sc, 700, 3, "corrected"), T.rod_operator(sc, 1800, 2, "corrected")):
         whole = T._eig_max(d)
         with monkeypatch.context() as mp:
@@ -123,8 +132,9 @@ def test_matrix_free_step_equals_the_csr_step(monkeypatch, model, scene, horizon
     for whole, chunk in ((10**9, T.CHUNK), (0, 7)):
         monkeypatch.setattr(T, "WHOLE_DOFS", whole)
         monkeypatch.setattr(T, "CHUNK", chunk)
-        out[whole] = T.integrate(disc, motions, None, steps=3000, damping_ratio=0.05, record_every=50,
-                                 damp_rotations=True)
+        out[whole] = T.integrate(
+            disc, motions, None, steps=3000, damping_ratio=0.05, record_every=50, damp_rotations=True
+        )
     a, b = out[10**9], out[0]
     assert a.dt == b.dt and len(a.t) == len(b.t)
     assert np.abs(a.values - b.values).max() <= 1e-12 * np.abs(a.values).max()

@@ -31,7 +31,7 @@ def test_polynomials_up_to_the_degree_are_exact(P, kind):
             got = (w[r] * f[fam]).sum(axis=1)
             # round-off grows like cond(A) / h^r; h = the local family size
             h = np.abs(s[fam] - s[:, None]).max(axis=1)
-            tol = 1e-7 * (2.0 ** q) / h**r  # cond(A) reaches 4e8 at P = 6
+            tol = 1e-7 * (2.0**q) / h**r  # cond(A) reaches 4e8 at P = 6
             assert np.all(np.abs(got - exact) <= tol), (P, q, r, np.abs(got - exact).max())
 
 
@@ -61,7 +61,7 @@ def test_second_derivative_converges_at_the_expected_order(P, order):
     for n in (41, 81):
         s = np.linspace(0, 1, n)
         D = derivative_matrices(s, P, 2 * (P // 2) + 3, (2,))[2]
-        errs.append(np.abs(D @ np.sin(3 * s) + 9 * np.sin(3 * s))[n // 4: 3 * n // 4].max())
+        errs.append(np.abs(D @ np.sin(3 * s) + 9 * np.sin(3 * s))[n // 4 : 3 * n // 4].max())
     assert math.log2(errs[0] / errs[1]) > order - 0.3
 
 
@@ -81,7 +81,7 @@ def _lapack_reference(s, fam, P, orders):
     xi = s[fam] - s[:, None]
     delta = np.abs(xi).max(axis=1)
     z = xi / delta[:, None]
-    sw = np.sqrt(np.exp(-(2.0 * z) ** 2) * V[fam] / delta[:, None])
+    sw = np.sqrt(np.exp(-((2.0 * z) ** 2)) * V[fam] / delta[:, None])
     Qm, R = np.linalg.qr(sw[:, :, None] * np.polynomial.legendre.legvander(z, P))
     T = np.zeros((P + 1, P + 1))
     for p in range(P + 1):
@@ -95,16 +95,24 @@ def _lapack_reference(s, fam, P, orders):
 
 # measured largest difference relative to the largest weight, over r = 0, 1, 2 (uniform / random grid of
 # 2,001 particles): round-off of the two summation orders, amplified by the conditioning of the family
-VS_LAPACK = {2: (1.8e-15, 7.3e-15), 3: (5.3e-15, 2.7e-13), 4: (1.5e-14, 2.9e-13), 5: (5.3e-14, 2.1e-11),
-             6: (2.5e-13, 5.8e-11)}
+VS_LAPACK = {
+    2: (1.8e-15, 7.3e-15),
+    3: (5.3e-15, 2.7e-13),
+    4: (1.5e-14, 2.9e-13),
+    5: (5.3e-14, 2.1e-11),
+    6: (2.5e-13, 5.8e-11),
+}
 
 
 @pytest.mark.parametrize("kind", ["uniform", "random"])
 @pytest.mark.parametrize("P", [2, 3, 4, 5, 6])
 def test_vectorised_householder_equals_batched_lapack_to_round_off(P, kind):
     n = 2001
-    s = np.linspace(0.0, 2.0, n) if kind == "uniform" else np.sort(
-        np.r_[0.0, np.random.default_rng(3).uniform(0, 2, n - 2), 2.0])
+    s = (
+        np.linspace(0.0, 2.0, n)
+        if kind == "uniform"
+        else np.sort(np.r_[0.0, np.random.default_rng(3).uniform(0, 2, n - 2), 2.0])
+    )
     fam = families(n, 2 * (P // 2) + 3)
     got, ref = pddo_weights(s, fam, P, (0, 1, 2)), _lapack_reference(s, fam, P, (0, 1, 2))
     worst = max(np.abs(got[r] - ref[r]).max() / np.abs(ref[r]).max() for r in (0, 1, 2))

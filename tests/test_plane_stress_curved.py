@@ -6,13 +6,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.errors import InputError
 from pdverify.geometry import axis_length
 from pdverify.registry import run
 from pdverify.scene import Axis, load_scene, parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 ROOT = Path(__file__).parents[1]
 
@@ -40,11 +39,35 @@ def test_huge_radius_arc_equals_straight(left, right, tilt):
     floor ~1e-5 at 1e8)."""
     R, L = 1.0e7, 2.0
     gx, gy = _rot(tilt) @ np.array(GLOBAL_TIP)
-    straight = parse_scene(scene_dict(left, right, LOADS + [
-        {"type": "point_force", "position": L, "axial": GLOBAL_TIP[0], "value": GLOBAL_TIP[1], "frame": "global"}]))
-    arc = parse_scene(scene_dict(left, right, LOADS + [
-        {"type": "point_force", "position": L, "axial": gx, "value": gy, "frame": "global"}],
-        axis={"type": "arc", "radius": R, "opening_angle_deg": float(np.rad2deg(L / R)), "start_angle_deg": tilt - 90.0}))
+    straight = parse_scene(
+        scene_dict(
+            left,
+            right,
+            LOADS
+            + [
+                {
+                    "type": "point_force",
+                    "position": L,
+                    "axial": GLOBAL_TIP[0],
+                    "value": GLOBAL_TIP[1],
+                    "frame": "global",
+                }
+            ],
+        )
+    )
+    arc = parse_scene(
+        scene_dict(
+            left,
+            right,
+            LOADS + [{"type": "point_force", "position": L, "axial": gx, "value": gy, "frame": "global"}],
+            axis={
+                "type": "arc",
+                "radius": R,
+                "opening_angle_deg": float(np.rad2deg(L / R)),
+                "start_angle_deg": tilt - 90.0,
+            },
+        )
+    )
     a = run(straight, "fem-plane-stress", element="q8", points=41, layers=4)
     b = run(arc, "fem-plane-stress", element="q8", points=41, layers=4)
     assert np.allclose(a.x, b.x, rtol=0, atol=1e-12)
@@ -102,9 +125,16 @@ def castigliano_tip(R, h, b, E, G, k, theta, F, thin=False):
 
 def arc_cantilever(R, h, degrees, load):
     L = R * np.deg2rad(degrees)
-    return parse_scene(scene_dict("clamped", "free", [dict(load, position=L)], beam={"length": L},
-                                  section={"width": 0.05, "height": h},
-                                  axis={"type": "arc", "radius": R, "opening_angle_deg": degrees}))
+    return parse_scene(
+        scene_dict(
+            "clamped",
+            "free",
+            [dict(load, position=L)],
+            beam={"length": L},
+            section={"width": 0.05, "height": h},
+            axis={"type": "arc", "radius": R, "opening_angle_deg": degrees},
+        )
+    )
 
 
 @pytest.mark.parametrize("kind", ["radial", "tangential"])
@@ -114,8 +144,11 @@ def test_thick_quarter_circle_against_castigliano(kind):
     (tangential) of |δ| (2D clamp and shear distribution; 6e-4 / 9e-4 at 320 x 16). Thin-ring theory is
     4.6e-3 / 2.0e-2 off here, so the axial, coupling and shear terms are what the 3e-3 tolerance checks."""
     R, h, th = 1.0, 0.2, np.pi / 2
-    load = {"type": "point_force", "value": -1000.0 if kind == "radial" else 0.0,
-            "axial": 1000.0 if kind == "tangential" else 0.0}
+    load = {
+        "type": "point_force",
+        "value": -1000.0 if kind == "radial" else 0.0,
+        "axial": 1000.0 if kind == "tangential" else 0.0,
+    }
     sc = arc_cantilever(R, h, 90.0, load)
     tip_t, tip_n = np.array([-np.sin(th), np.cos(th)]), -np.array([np.cos(th), np.sin(th)])
     F = load["value"] * tip_n + load["axial"] * tip_t
@@ -127,7 +160,9 @@ def test_thick_quarter_circle_against_castigliano(kind):
     err = np.linalg.norm(tip - full) / np.linalg.norm(full)
     assert err < 3e-3, (tip, full, err)
     # local outputs agree with the global ones at the tip
-    assert r.w[-1] == pytest.approx(tip @ tip_n, rel=1e-12) and r.fields["u"][-1] == pytest.approx(tip @ tip_t, rel=1e-12)
+    assert r.w[-1] == pytest.approx(tip @ tip_n, rel=1e-12) and r.fields["u"][-1] == pytest.approx(
+        tip @ tip_t, rel=1e-12
+    )
     if kind == "tangential":
         assert np.linalg.norm(thin - full) / np.linalg.norm(full) > 1e-2  # the thick-beam terms matter here
 
@@ -141,8 +176,9 @@ def test_semicircle_thin_ring():
     Px = -100.0 * 1.0  # tip normal = (1, 0)
     EI = sc.material.E * 0.05 * h**3 / 12
     exact = np.array([np.pi * Px * R**3 / (2 * EI), -2 * Px * R**3 / EI])
-    assert castigliano_tip(R, h, 0.05, sc.material.E, sc.material.G, 5 / 6, np.pi, [Px, 0.0], thin=True) \
-        == pytest.approx(exact, rel=1e-12)
+    assert castigliano_tip(
+        R, h, 0.05, sc.material.E, sc.material.G, 5 / 6, np.pi, [Px, 0.0], thin=True
+    ) == pytest.approx(exact, rel=1e-12)
     r = run(sc, "fem-plane-stress", element="q8", points=161, layers=8)
     tip = np.array([r.fields["ux"][-1], r.fields["uy"][-1]])
     assert np.linalg.norm(tip - exact) / np.linalg.norm(exact) < 2e-3
@@ -158,10 +194,12 @@ def test_parabolic_axis_converges(record_property):
     observed orders 2.07, 1.70: the clamped face's corner singularities cap the rate near
     1.5 as for the straight beam (tests/test_plane_stress.py)."""
     L = axis_length(Axis(**PARABOLA))
-    loads = [{"type": "distributed", "value": -400.0, "frame": "global"},
-             {"type": "distributed", "value": 300.0, "shape": "sine", "start": L / 4, "end": 3 * L / 4},
-             {"type": "point_force", "position": L, "value": -200.0, "axial": 500.0},
-             {"type": "point_moment", "position": L, "value": 80.0}]
+    loads = [
+        {"type": "distributed", "value": -400.0, "frame": "global"},
+        {"type": "distributed", "value": 300.0, "shape": "sine", "start": L / 4, "end": 3 * L / 4},
+        {"type": "point_force", "position": L, "value": -200.0, "axial": 500.0},
+        {"type": "point_moment", "position": L, "value": 80.0},
+    ]
     sc = parse_scene(scene_dict("clamped", "free", loads, beam={"length": L}, axis=PARABOLA))
     stations = np.linspace(0, L, 17)
     ws = []
@@ -179,19 +217,27 @@ def test_parabolic_axis_converges(record_property):
     assert d[-1] < 1e-3 * np.abs(ws[-1]).max()
 
 
-@pytest.mark.parametrize("over,needle", [
-    ({"section": {"area": 0.005, "inertia": 4e-6}}, "section: the plane-stress reference needs a rectangle"),
-    ({"section": {"width": 0.05, "height": 2.5}}, "section.height = 2.5"),
-    ({"supports": {"left": "pinned", "right": "roller"}}, "rigid rotation about (1, 0)"),
-    ({"supports": {"left": "free", "right": "pinned"}}, "rigid rotation about (-1, 0)"),
-])
+@pytest.mark.parametrize(
+    "over,needle",
+    [
+        ({"section": {"area": 0.005, "inertia": 4e-6}}, "section: the plane-stress reference needs a rectangle"),
+        ({"section": {"width": 0.05, "height": 2.5}}, "section.height = 2.5"),
+        ({"supports": {"left": "pinned", "right": "roller"}}, "rigid rotation about (1, 0)"),
+        ({"supports": {"left": "free", "right": "pinned"}}, "rigid rotation about (-1, 0)"),
+    ],
+)
 def test_unsupported_curved_inputs_rejected(over, needle):
     """A semicircle (R = 1, from (1, 0) to (-1, 0)) with a section given by area/inertia, a height reaching
     past the centre of curvature, or a support pair leaving a rigid-body motion (pinned-roller: the right
     roller's normal is the diameter, through the left pin, so the rotation about the pin is free) is
     rejected before solving, with the field named (mechanisms already by the scene validator)."""
-    d = scene_dict("clamped", "free", [{"type": "point_force", "position": np.pi, "value": -100.0}],
-                   beam={"length": np.pi}, axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 180.0})
+    d = scene_dict(
+        "clamped",
+        "free",
+        [{"type": "point_force", "position": np.pi, "value": -100.0}],
+        beam={"length": np.pi},
+        axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 180.0},
+    )
     d.update(over)
     with pytest.raises(InputError) as exc:
         run(parse_scene(d), "fem-plane-stress", points=21, layers=2)
@@ -200,8 +246,13 @@ def test_unsupported_curved_inputs_rejected(over, needle):
 
 def test_quarter_circle_pinned_pinned_solves():
     """Pinned-pinned on a quarter circle is stable (the roller's normal is not across the pin rotation)."""
-    d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -100.0, "frame": "global"}],
-                   beam={"length": np.pi / 2}, axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0})
+    d = scene_dict(
+        "pinned",
+        "pinned",
+        [{"type": "distributed", "value": -100.0, "frame": "global"}],
+        beam={"length": np.pi / 2},
+        axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0},
+    )
     r = run(parse_scene(d), "fem-plane-stress", element="q8", points=41, layers=4, pin="node")
     assert np.all(np.isfinite(r.w)) and abs(r.w[0]) < 1e-15 and abs(r.w[-1]) < 1e-15
 
@@ -272,7 +323,10 @@ def test_assembled_loads_have_the_beam_resultant(axis, element):
     moment of work-equivalent nodal forces differs from the continuous one by the lumping error, measured
     q4 (straight chords) 2.5e-4, 6.6e-5 (31, 61 points; order 2), q8/q9 5.7e-9, 3.9e-10 (order ~4)."""
     if axis == "arc":
-        L, ax = 2.0, {"type": "arc", "radius": 1.5, "opening_angle_deg": float(np.rad2deg(2.0 / 1.5)), "start_angle_deg": -60.0}
+        L, ax = (
+            2.0,
+            {"type": "arc", "radius": 1.5, "opening_angle_deg": float(np.rad2deg(2.0 / 1.5)), "start_angle_deg": -60.0},
+        )
     else:
         L, ax = axis_length(Axis(**PARABOLA)), PARABOLA
     loads = [dict(l) for l in LOADS if l.get("position", 0.0) <= L and l.get("end", 0.0) <= L] + [
@@ -281,7 +335,8 @@ def test_assembled_loads_have_the_beam_resultant(axis, element):
         {"type": "point_force", "position": 1.37, "value": 90.0, "axial": -30.0, "frame": "global"},
         {"type": "point_force", "position": L, "value": -60.0, "axial": 25.0},
         {"type": "point_force", "position": 0.0, "value": 45.0, "axial": 15.0, "frame": "global"},
-        {"type": "point_moment", "position": L, "value": 33.0}]
+        {"type": "point_moment", "position": L, "value": 33.0},
+    ]
 
     def errors(sel, points):
         sc = parse_scene(scene_dict("clamped", "free", [l for l in loads if sel(l)], beam={"length": L}, axis=ax))
@@ -319,7 +374,9 @@ def test_face_pin_matches_timoshenko_goodier(sl, tol):
     w = r.w[np.argmin(np.abs(r.x - L / 2))]
     assert abs(w / exact - 1) < tol, w / exact - 1
     if sl == 5:
-        rn = [run(sc, "fem-plane-stress", element="q8", points=n + 1, layers=k, pin="node") for n, k in ((40, 4), (80, 8))]
+        rn = [
+            run(sc, "fem-plane-stress", element="q8", points=n + 1, layers=k, pin="node") for n, k in ((40, 4), (80, 8))
+        ]
         wn = [x.w[np.argmin(np.abs(x.x - L / 2))] for x in rn]
         assert (wn[1] - wn[0]) / exact > 5e-3  # the node pin keeps moving by ~1 % per halving
 
@@ -331,9 +388,14 @@ def test_face_pin_converges_on_a_curved_arch(record_property):
     ends held in t and n) differences 1.0e-8, 6.6e-10, 4.1e-11 m, orders 3.98, 3.99 — while pin = node
     changes by ~2e-7 m per halving (orders -0.15, -0.02). Before pinned meant one thing at both ends (the
     right pin was a roller): 7.6e-8, 4.8e-9, 3.1e-10 m; node 7.2e-8 m per halving."""
-    d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -1000.0, "frame": "global"}],
-                   beam={"length": np.pi / 2}, section={"width": 0.05, "height": 0.1},
-                   axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0})
+    d = scene_dict(
+        "pinned",
+        "pinned",
+        [{"type": "distributed", "value": -1000.0, "frame": "global"}],
+        beam={"length": np.pi / 2},
+        section={"width": 0.05, "height": 0.1},
+        axis={"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0},
+    )
     sc = parse_scene(d)
     stations = np.linspace(0, sc.length, 21)
     out = {}

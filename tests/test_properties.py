@@ -6,13 +6,12 @@ checked without touching this file: linearity in the load (superposition) and mi
 
 import numpy as np
 import pytest
+from conftest import scene_dict
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from pdverify.registry import models, run
 from pdverify.scene import is_mechanism, parse_scene
-
-from conftest import scene_dict
 
 SUPPORTS = ("clamped", "pinned", "roller", "free", "guided")
 PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
@@ -26,8 +25,14 @@ def _probe(left, right):
 
 
 def static_models():
-    return [m for m in models().values() if "static" in m.analyses and m.bending
-            and m.name not in NOT_LINEAR_IN_THE_LOAD and m.name not in NO_SCENE_LOADS]
+    return [
+        m
+        for m in models().values()
+        if "static" in m.analyses
+        and m.bending
+        and m.name not in NOT_LINEAR_IN_THE_LOAD
+        and m.name not in NO_SCENE_LOADS
+    ]
 
 
 def pairs_of(m):
@@ -50,15 +55,25 @@ def _opts(m):
 
 loads_st = st.lists(
     st.one_of(
-        st.builds(lambda a, v: {"type": "point_force", "position": a, "value": v},
-                  st.sampled_from([0.0, 0.25, 0.5, 1.0, 1.5, 2.0]), st.floats(-500, 500).filter(lambda v: abs(v) > 1)),
-        st.builds(lambda a, v: {"type": "point_moment", "position": a, "value": v},
-                  st.sampled_from([0.5, 1.0, 2.0]), st.floats(-200, 200).filter(lambda v: abs(v) > 1)),
-        st.builds(lambda ab, v, sh: {"type": "distributed", "value": v, "start": ab[0], "end": ab[1], "shape": sh},
-                  st.sampled_from([(0.0, 2.0), (0.5, 1.5), (0.0, 1.0)]), st.floats(-900, 900).filter(lambda v: abs(v) > 1),
-                  st.sampled_from(["uniform", "sine"])),
+        st.builds(
+            lambda a, v: {"type": "point_force", "position": a, "value": v},
+            st.sampled_from([0.0, 0.25, 0.5, 1.0, 1.5, 2.0]),
+            st.floats(-500, 500).filter(lambda v: abs(v) > 1),
+        ),
+        st.builds(
+            lambda a, v: {"type": "point_moment", "position": a, "value": v},
+            st.sampled_from([0.5, 1.0, 2.0]),
+            st.floats(-200, 200).filter(lambda v: abs(v) > 1),
+        ),
+        st.builds(
+            lambda ab, v, sh: {"type": "distributed", "value": v, "start": ab[0], "end": ab[1], "shape": sh},
+            st.sampled_from([(0.0, 2.0), (0.5, 1.5), (0.0, 1.0)]),
+            st.floats(-900, 900).filter(lambda v: abs(v) > 1),
+            st.sampled_from(["uniform", "sine"]),
+        ),
     ),
-    min_size=1, max_size=3,
+    min_size=1,
+    max_size=3,
 )
 
 
@@ -86,8 +101,11 @@ def _common(ra, rb, rab):
 
 
 @pytest.mark.parametrize("model", [m.name for m in static_models()])
-@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture,
-                                                                   HealthCheck.filter_too_much])
+@settings(
+    max_examples=6,
+    deadline=None,
+    suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.filter_too_much],
+)
 @given(data=st.data(), la=loads_st, lb=loads_st, c=st.floats(-3, 3).filter(lambda c: abs(c) > 0.1))
 @pytest.mark.slow
 def test_superposition_and_mirror(model, data, la, lb, c):
@@ -103,8 +121,13 @@ def test_superposition_and_mirror(model, data, la, lb, c):
     ra, rb, rab = (run(s, m, **_opts(m)) for s in (sa, sb, sab))
     L, EI = sa.length, sa.EI
     # a deflection scale of the loads (loads at a clamped end give w = 0 up to round-off)
-    floor = sum(abs(l["value"]) * L ** {"point_force": 3, "point_moment": 2, "distributed": 4}[l["type"]]
-                for l in la + scaled_b) / EI
+    floor = (
+        sum(
+            abs(l["value"]) * L ** {"point_force": 3, "point_moment": 2, "distributed": 4}[l["type"]]
+            for l in la + scaled_b
+        )
+        / EI
+    )
     ia, ib, iab = _common(ra, rb, rab)
     assert len(iab) >= min(len(ra.x), 11), (len(ra.x), len(rb.x), len(rab.x))  # the shared nodes: a real check
     scale = max(np.abs(ra.w).max(), np.abs(c * rb.w).max(), floor)

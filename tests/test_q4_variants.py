@@ -55,8 +55,10 @@ def test_only_incompatible_modes_do_not_lock(slenderness):
     q4 (3x3) -1.71 / -27.4 %, q4-bbar -0.55 / -26.8 %, q4-qm6 -0.04 / -0.07 % (L/h = 1000: -97.5, -97.5, -3.4 %)."""
     sc = load_scene(ROOT / "studies/paper_yang/cantilever_tip_force.toml").with_slenderness(slenderness)
     ref = run(sc, "fem-plane-stress", element="q8", points=201, layers=16).w[-1]
-    e = {el: run(sc, "fem-plane-stress", element=el, points=101, layers=8).w[-1] / ref - 1
-         for el in ("q4", "q4-bbar", "q4-qm6")}
+    e = {
+        el: run(sc, "fem-plane-stress", element=el, points=101, layers=8).w[-1] / ref - 1
+        for el in ("q4", "q4-bbar", "q4-qm6")
+    }
     assert abs(e["q4-qm6"]) < 2e-3, e
     lock = 0.01 if slenderness == 20 else 0.2
     assert e["q4"] < -lock and e["q4-bbar"] < -lock / 2, e

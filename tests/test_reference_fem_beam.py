@@ -2,12 +2,11 @@
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.exact.straight import solve_straight
 from pdverify.registry import get_model, run
 from pdverify.scene import parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 LOADS = MIXED_LOADS + [{"type": "distributed", "value": -250.0, "shape": "sine", "start": 0.35, "end": 1.7}]
 
@@ -15,7 +14,9 @@ LOADS = MIXED_LOADS + [{"type": "distributed", "value": -250.0, "shape": "sine",
 def rel(model, scene, shear, **opts):
     r = run(scene, model, **opts)
     ex = solve_straight(scene, shear).fields(r.x)
-    return np.abs(r.w - ex["w"]).max() / np.abs(ex["w"]).max(), np.abs(r.rotation - ex["rotation"]).max() / np.abs(ex["rotation"]).max()
+    return np.abs(r.w - ex["w"]).max() / np.abs(ex["w"]).max(), np.abs(r.rotation - ex["rotation"]).max() / np.abs(
+        ex["rotation"]
+    ).max()
 
 
 @pytest.mark.parametrize("left,right", PAIRS)
@@ -73,8 +74,9 @@ def test_diagonal_assembly_equals_triplet_assembly():
     ke, fe = rng.normal(size=(ne, 4, 4)), rng.normal(size=(ne, 4))
     K, F = assemble_elements(ke, fe, ne + 1)
     dofs = 2 * np.arange(ne)[:, None] + np.arange(4)[None, :]
-    K0 = sp.csr_matrix((ke.reshape(ne, -1).ravel(), (np.repeat(dofs, 4, axis=1).ravel(), np.tile(dofs, (1, 4)).ravel())),
-                       shape=K.shape)
+    K0 = sp.csr_matrix(
+        (ke.reshape(ne, -1).ravel(), (np.repeat(dofs, 4, axis=1).ravel(), np.tile(dofs, (1, 4)).ravel())), shape=K.shape
+    )
     assert abs(K - K0).max() < 1e-15 and np.allclose(F, np.bincount(dofs.ravel(), fe.ravel()))
 
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import scene_dict
 
 from pdverify import registry
 from pdverify.band import Band
@@ -15,8 +16,6 @@ from pdverify.errors import InputError
 from pdverify.linalg import solve_linear
 from pdverify.registry import Model, System, get_model, models, problems, run
 from pdverify.scene import load_scene, parse_scene
-
-from conftest import scene_dict
 
 ROOT = Path(__file__).parents[1]
 EXAMPLE2 = ROOT / "studies/paper_moyer/beam_example2.toml"
@@ -43,10 +42,21 @@ def test_assemble_returns_the_system_solve_factorises(name):
     """Every model declaring ``assembles`` returns a System whose free unknowns are the result's dofs
     (one load: one solve, also for pd-curved); solving it gives the model's own deflection."""
     m = get_model(name)
-    sc = load_scene(ROOT / "studies/paper_curved/quintic_manufactured.toml") if name == "pd-curved-mms" else \
-        parse_scene(scene_dict("clamped", "pinned", ONE_LOAD if m.bending else
-                               [{"type": "point_force", "position": 1.3, "value": 0.0, "axial": 200.0}]
-                               if m.axial else [{"type": "point_torque", "position": 1.3, "value": 50.0}]))
+    sc = (
+        load_scene(ROOT / "studies/paper_curved/quintic_manufactured.toml")
+        if name == "pd-curved-mms"
+        else parse_scene(
+            scene_dict(
+                "clamped",
+                "pinned",
+                ONE_LOAD
+                if m.bending
+                else [{"type": "point_force", "position": 1.3, "value": 0.0, "axial": 200.0}]
+                if m.axial
+                else [{"type": "point_torque", "position": 1.3, "value": 50.0}],
+            )
+        )
+    )
     params = m.resolve(sc, {"points": 41})
     s = m.assemble(sc, params)
     assert isinstance(s, System) and isinstance(s.info, dict)
@@ -65,8 +75,9 @@ def test_assemble_returns_the_system_solve_factorises(name):
 
 
 def test_system_reduced_eliminated_and_held():
-    B = Band.from_sparse(__import__("scipy.sparse", fromlist=["diags"]).diags(
-        [[-1.0] * 4, [2.0] * 5, [-1.0] * 4], [-1, 0, 1]).tocsr())
+    B = Band.from_sparse(
+        __import__("scipy.sparse", fromlist=["diags"]).diags([[-1.0] * 4, [2.0] * 5, [-1.0] * 4], [-1, 0, 1]).tocsr()
+    )
     rhs = np.arange(5.0)
     B.fix([0, 4], rhs)
     s = System(B, rhs, np.array([1, 2, 3]))
@@ -88,13 +99,15 @@ def test_declared_supports_and_load_types_are_checked_before_solving(monkeypatch
         def solve(self, scene, params):  # pragma: no cover - must not be reached
             raise AssertionError("solved a scene it declared it cannot")
 
-    sc = parse_scene(scene_dict("guided", "pinned", ONE_LOAD + [{"type": "point_moment", "position": 1.0,
-                                                                 "value": 5.0}]))
+    sc = parse_scene(
+        scene_dict("guided", "pinned", ONE_LOAD + [{"type": "point_moment", "position": 1.0, "value": 5.0}])
+    )
     with pytest.raises(InputError) as exc:
         run(sc, Narrow())
     assert exc.value.lines == [
         "supports.left = 'guided': model narrow-test does not represent it; it takes clamped, free, pinned",
-        "loads[1].type = 'point_moment': model narrow-test takes distributed, point_force"]
+        "loads[1].type = 'point_moment': model narrow-test takes distributed, point_force",
+    ]
 
 
 def test_static_model_rejects_a_dynamics_scene_unless_the_static_part_is_asked():
@@ -103,12 +116,16 @@ def test_static_model_rejects_a_dynamics_scene_unless_the_static_part_is_asked()
     with pytest.raises(InputError, match=r"^dynamics: model pd-eb solves statics only .*-o static=true"):
         run(sc, "pd-eb")
     # its static part is the settled end offset, which pd-eb cannot prescribe: named, not dropped
-    with pytest.raises(InputError, match=r"^dynamics.right.displacement: model pd-eb cannot prescribe end motions"
-                                         r".*\(pd-timoshenko\)"):
+    with pytest.raises(
+        InputError,
+        match=r"^dynamics.right.displacement: model pd-eb cannot prescribe end motions"
+        r".*\(pd-timoshenko\)",
+    ):
         run(sc, "pd-eb", static="true")
     # a dynamics table that moves nothing: the static part is the scene without it
-    loaded = scene_dict("clamped", "free", ONE_LOAD, material={"youngs_modulus": 70e9, "poissons_ratio": 0.33,
-                                                                "density": 2700.0})
+    loaded = scene_dict(
+        "clamped", "free", ONE_LOAD, material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
+    )
     dyn = parse_scene(dict(loaded, dynamics={"end_time": 0.1}))
     a = run(dyn, "pd-eb", points=41, static=True)
     b = run(parse_scene(loaded), "pd-eb", points=41)
@@ -134,29 +151,41 @@ def test_end_motion_of_an_unknown_the_model_lacks_is_named():
         run(load_scene(EXAMPLE2), "pd-rod")
 
 
-@pytest.mark.parametrize("model,given,match", [
-    ("pd-eb", {"variant": "paper", "horizon": 2.5}, r"horizon = 2\.5: not defined by variant = paper .*Eq\. 32"),
-    ("pd-eb", {"variant": "paper", "form": "mixed"}, r"form = 'mixed': not defined by variant = paper"),
-    ("pd-bond-pair", {"variant": "paper"}, r"ends = 'taylor': not defined by variant = paper .*use ends = mirror"),
-    ("pd-bond-pair", {"variant": "paper", "ends": "mirror", "horizon": 2.5}, r"horizon = 2\.5: .*whole"),
-    ("pd-higher-order", {"variant": "paper", "ends": "truncated"}, r"ends = 'truncated': .*Appendix B"),
-    ("pd-higher-order", {"variant": "paper", "pin": "face"}, r"pin = 'face': .*Eq\. B41"),
-    ("pd-higher-order", {"variant": "paper", "shear": "centred"}, r"shear = 'centred': .*Eq\. 14d-f"),
-    ("pd-higher-order", {"variant": "paper", "loads": "faces"}, r"loads = 'faces': .*Eq\. 16b"),
-    ("pd-higher-order", {"variant": "paper", "horizon": 2.5}, r"horizon = 2\.5: .*Eq\. 14"),
-    ("pd-timoshenko", {"variant": "corrected", "grid": "cells"}, r"grid = 'cells': not defined by variant = corrected"),
-])
+@pytest.mark.parametrize(
+    "model,given,match",
+    [
+        ("pd-eb", {"variant": "paper", "horizon": 2.5}, r"horizon = 2\.5: not defined by variant = paper .*Eq\. 32"),
+        ("pd-eb", {"variant": "paper", "form": "mixed"}, r"form = 'mixed': not defined by variant = paper"),
+        ("pd-bond-pair", {"variant": "paper"}, r"ends = 'taylor': not defined by variant = paper .*use ends = mirror"),
+        ("pd-bond-pair", {"variant": "paper", "ends": "mirror", "horizon": 2.5}, r"horizon = 2\.5: .*whole"),
+        ("pd-higher-order", {"variant": "paper", "ends": "truncated"}, r"ends = 'truncated': .*Appendix B"),
+        ("pd-higher-order", {"variant": "paper", "pin": "face"}, r"pin = 'face': .*Eq\. B41"),
+        ("pd-higher-order", {"variant": "paper", "shear": "centred"}, r"shear = 'centred': .*Eq\. 14d-f"),
+        ("pd-higher-order", {"variant": "paper", "loads": "faces"}, r"loads = 'faces': .*Eq\. 16b"),
+        ("pd-higher-order", {"variant": "paper", "horizon": 2.5}, r"horizon = 2\.5: .*Eq\. 14"),
+        (
+            "pd-timoshenko",
+            {"variant": "corrected", "grid": "cells"},
+            r"grid = 'cells': not defined by variant = corrected",
+        ),
+    ],
+)
 def test_variant_rules_reject_values_the_equations_do_not_define(model, given, match):
     sc = parse_scene(scene_dict("clamped", "pinned", ONE_LOAD))
     with pytest.raises(InputError, match=match):
         run(sc, model, points=41, **given)
 
 
-@pytest.mark.parametrize("model,given", [("pd-eb", {"variant": "paper", "horizon": 2}),
-                                         ("pd-bond-pair", {"variant": "paper", "ends": "mirror"}),
-                                         ("pd-higher-order", {"variant": "paper", "ends": "mirror", "pin": "mid"}),
-                                         ("pd-timoshenko", {"variant": "paper", "grid": "cells"}),
-                                         ("pd-eb", {"variant": "corrected", "horizon": 2.5})])
+@pytest.mark.parametrize(
+    "model,given",
+    [
+        ("pd-eb", {"variant": "paper", "horizon": 2}),
+        ("pd-bond-pair", {"variant": "paper", "ends": "mirror"}),
+        ("pd-higher-order", {"variant": "paper", "ends": "mirror", "pin": "mid"}),
+        ("pd-timoshenko", {"variant": "paper", "grid": "cells"}),
+        ("pd-eb", {"variant": "corrected", "horizon": 2.5}),
+    ],
+)
 def test_variant_rules_accept_what_the_equations_define(model, given):
     sc = parse_scene(scene_dict("clamped", "pinned", ONE_LOAD))
     assert np.isfinite(run(sc, model, points=41, **given).w).all()
@@ -171,15 +200,34 @@ def test_rule_applies_only_to_its_variant():
 
 @pytest.mark.slow
 def test_cli_exit_2_one_line():
-    for args in (["studies/paper_moyer/beam_example2.toml", "--model", "pd-eb"],
-                 ["studies/examples/cantilever_tip_load.toml", "--model", "pd-eb", "--variant", "paper", "--horizon",
-                  "2.5"]):
-        r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", *args], capture_output=True, text=True,
-                           cwd=ROOT)
+    for args in (
+        ["studies/paper_moyer/beam_example2.toml", "--model", "pd-eb"],
+        ["studies/examples/cantilever_tip_load.toml", "--model", "pd-eb", "--variant", "paper", "--horizon", "2.5"],
+    ):
+        r = subprocess.run(
+            [sys.executable, "-m", "pdverify.cli", "solve", *args], capture_output=True, text=True, cwd=ROOT
+        )
         assert r.returncode == 2 and r.stderr.startswith("error: ") and r.stderr.count("\n") == 1, r.stderr
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", "studies/paper_moyer/beam_example2.toml",
-                        "--model", "pd-timoshenko", "--points", "21", "-o", "static=true", "--format", "csv"],
-                       capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify.cli",
+            "solve",
+            "studies/paper_moyer/beam_example2.toml",
+            "--model",
+            "pd-timoshenko",
+            "--points",
+            "21",
+            "-o",
+            "static=true",
+            "--format",
+            "csv",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 0, r.stderr
 
 
@@ -196,8 +244,9 @@ def test_dynamic_only_model_needs_a_dynamics_table(monkeypatch):
         analyses = frozenset({"dynamic"})
 
     sc = parse_scene(scene_dict("clamped", "free", ONE_LOAD))
-    assert problems(sc, Transient()) == ["dynamics: model transient-test solves transient runs only; add a "
-                                         "[dynamics] table (end_time, ...)"]
+    assert problems(sc, Transient()) == [
+        "dynamics: model transient-test solves transient runs only; add a [dynamics] table (end_time, ...)"
+    ]
 
 
 def test_new_model_defaults_are_the_plain_static_beam():
@@ -213,10 +262,12 @@ def test_study_crossing_a_paper_variant_with_foreign_options_fails_when_loaded(t
     from pdverify.study import load_study
 
     p = tmp_path / "s.toml"
-    p.write_text(f'name = "x"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_free.toml", '
-                 f'"{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "exact-eb"\n'
-                 '[[runs]]\nmodel = "pd-bond-pair"\nvariant = ["paper", "corrected"]\nends = ["mirror", "taylor"]\n'
-                 "points = [51, 101]\n")
+    p.write_text(
+        f'name = "x"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_free.toml", '
+        f'"{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "exact-eb"\n'
+        '[[runs]]\nmodel = "pd-bond-pair"\nvariant = ["paper", "corrected"]\nends = ["mirror", "taylor"]\n'
+        "points = [51, 101]\n"
+    )
     with pytest.raises(InputError) as exc:
         load_study(p)
     assert len([line for line in exc.value.lines if "ends = 'taylor': not defined by variant = paper" in line]) == 1

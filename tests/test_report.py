@@ -26,8 +26,12 @@ ROOT = Path(__file__).parents[1]
 def study_dir(tmp_path_factory):
     out = tmp_path_factory.mktemp("study")
     p = out / "study.toml.in"
-    p.write_text((ROOT / "studies/paper_diyaroglu.toml").read_text().replace('"paper_diyaroglu/', f'"{ROOT}/studies/paper_diyaroglu/')
-                 + '\n[papers]\npaper_diyaroglu = "Diyaroglu, Oterkus and Oterkus"\n')
+    p.write_text(
+        (ROOT / "studies/paper_diyaroglu.toml")
+        .read_text()
+        .replace('"paper_diyaroglu/', f'"{ROOT}/studies/paper_diyaroglu/')
+        + '\n[papers]\npaper_diyaroglu = "Diyaroglu, Oterkus and Oterkus"\n'
+    )
     p = p.rename(out / "diy.toml")
     run_study(load_study(p), out / "run", workers=1, progress=False)
     build_report(out / "run")
@@ -98,13 +102,22 @@ def test_time_histories_plotted_and_written_as_csv(tmp_path, monkeypatch):
             x = np.linspace(0, scene.length, params["points"])
             t = np.linspace(0, 1, 201)
             mid = 0.1 * (1 - np.cos(2 * np.pi * 5 * t) * np.exp(-t))
-            return Result(scene.name, self.name, dict(params), x, 0 * x, dofs=len(x),
-                          info={"history": {"t": t, "series": {"midpoint": mid}}})
+            return Result(
+                scene.name,
+                self.name,
+                dict(params),
+                x,
+                0 * x,
+                dofs=len(x),
+                info={"history": {"t": t, "series": {"midpoint": mid}}},
+            )
 
     monkeypatch.setitem(registry.models(), "ringing-test", Ringing())
     p = tmp_path / "dyn.toml"
-    p.write_text(f'name = "dyn"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "none"\n'
-                 '[[runs]]\nmodel = "ringing-test"\npoints = [11, 21]\n')  # two cases: a serial run's recorder path
+    p.write_text(
+        f'name = "dyn"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "none"\n'
+        '[[runs]]\nmodel = "ringing-test"\npoints = [11, 21]\n'
+    )  # two cases: a serial run's recorder path
     df = run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
     for case_id in df["case_id"]:
         h = pd.read_csv(tmp_path / "run" / "histories" / f"{case_id}.csv")
@@ -140,8 +153,10 @@ def find_chromium() -> str:
         return chromium
     if os.environ.get("PDVERIFY_REQUIRE_BROWSER") == "1":
         pytest.fail("PDVERIFY_REQUIRE_BROWSER=1 but no chromium or chromium-browser on PATH (.ci/run installs it)")
-    pytest.skip("Chromium is not installed (apt-get install chromium, or run .ci/run); the report's rendering "
-                "in a browser is not checked")
+    pytest.skip(
+        "Chromium is not installed (apt-get install chromium, or run .ci/run); the report's rendering "
+        "in a browser is not checked"
+    )
 
 
 def test_browser_test_skips_or_fails_by_the_environment(monkeypatch):
@@ -160,12 +175,26 @@ def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
     chromium = find_chromium()
     shot = ROOT / "reports" / "_scratch" / "report_screenshot.png"
     shot.parent.mkdir(parents=True, exist_ok=True)
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / 'profile'}", "--enable-logging=stderr", "--v=0"]
+    flags = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={tmp_path / 'profile'}",
+        "--enable-logging=stderr",
+        "--v=0",
+    ]
     url = (study_dir / "index.html").as_uri()
-    r = subprocess.run([chromium, *flags, f"--screenshot={shot}", "--window-size=1280,2400", url],
-                       capture_output=True, text=True, timeout=120)
+    r = subprocess.run(
+        [chromium, *flags, f"--screenshot={shot}", "--window-size=1280,2400", url],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert shot.exists() and shot.stat().st_size > 10_000
     console = [l for l in r.stderr.splitlines() if "CONSOLE" in l or "Uncaught" in l]
     assert not console, console
@@ -227,8 +256,10 @@ def _one_case_study(tmp_path, name, scene_text, description=""):
     scene = tmp_path / "beam.toml"
     scene.write_text(scene_text)
     study = tmp_path / "s.toml"
-    study.write_text(f'name = {json.dumps(name)}\ndescription = {json.dumps(description)}\nscenes = ["beam.toml"]\n'
-                     'reference = "exact-eb"\n[[runs]]\nmodel = "fem-eb"\npoints = [11]\n')
+    study.write_text(
+        f'name = {json.dumps(name)}\ndescription = {json.dumps(description)}\nscenes = ["beam.toml"]\n'
+        'reference = "exact-eb"\n[[runs]]\nmodel = "fem-eb"\npoints = [11]\n'
+    )
     run_study(load_study(study), tmp_path / "run", workers=1, progress=False)
     return build_report(tmp_path / "run").read_text()
 
@@ -262,8 +293,9 @@ def test_damaged_case_file_is_named(tmp_path):
     _one_case_study(tmp_path, "damaged", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
     case = next((tmp_path / "run" / "cases").iterdir())
     case.write_bytes(case.read_bytes()[:-7])
-    r = subprocess.run([sys.executable, "-m", "pdverify", "report", str(tmp_path / "run")], capture_output=True,
-                       text=True, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify", "report", str(tmp_path / "run")], capture_output=True, text=True, cwd=ROOT
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert r.stderr.count("\n") == 1 and r.stderr.startswith(f"error: {case}:") and "pdverify study" in r.stderr
 
@@ -274,8 +306,12 @@ def test_unwritable_report_out(tmp_path):
     _one_case_study(tmp_path, "unwritable", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
     blocker = tmp_path / "file"
     blocker.write_text("x")
-    r = subprocess.run([sys.executable, "-m", "pdverify", "report", str(tmp_path / "run"), "--out",
-                        str(blocker / "rep")], capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify", "report", str(tmp_path / "run"), "--out", str(blocker / "rep")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 4 and "Traceback" not in r.stderr and r.stderr.count("\n") == 1
     assert str(blocker) in r.stderr and blocker.read_text() == "x"
     with pytest.raises(pdverify.errors.OutputError, match="rep"):

@@ -28,8 +28,13 @@ def write_study(tmp_path, body, name="s"):
 
 
 def cli(*args, timeout=120):
-    return subprocess.run([sys.executable, "-m", "pdverify.cli", *map(str, args)], cwd=ROOT, capture_output=True,
-                          text=True, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", *map(str, args)],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
 
 
 def one_error_line(r, code):
@@ -64,12 +69,19 @@ def _alive(pid: int) -> bool:
 def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
     """``kill -9`` of a study's main process while two pool workers solve: no worker is left after 5 s
     (they were left stuck on their queues for over 60 s before), and the cases stored so far resume."""
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [2001, 3001, 4001, 6001, 8001, 12001, 16001]\nhorizon = [2, 3, 4]\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+        "points = [2001, 3001, 4001, 6001, 8001, 12001, 16001]\nhorizon = [2, 3, 4]\n",
+    )
     out = tmp_path / "out"
-    proc = subprocess.Popen([sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2",
-                             "--quiet"], cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                            start_new_session=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"],
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
     deadline = time.time() + 60
     workers = []
     while time.time() < deadline and (len(workers) < 2 or not list((out / "cases").glob("*.case"))):
@@ -94,9 +106,12 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) in a run with two pool workers:
     exit 130 without a traceback, the workers ended (they ignore SIGINT; the main process stops them), no
     tables for a partial study, and the next run resumes every stored case."""
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001]\n'
-                              'horizon = [2, 3, 4]\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+        "points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001]\n"
+        "horizon = [2, 3, 4]\n",
+    )
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
     proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
@@ -123,10 +138,18 @@ def test_a_locked_folder_is_one_line_exit_4_naming_it_and_the_other_run(tmp_path
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101]\n')
     out = tmp_path / "out"
     out.mkdir()
-    holder = subprocess.Popen([sys.executable, "-c", "import fcntl, os, sys, time\n"
-                               f"fd = os.open({str(out / LOCK_NAME)!r}, os.O_RDWR | os.O_CREAT)\n"
-                               "fcntl.flock(fd, fcntl.LOCK_EX)\nos.write(fd, f'{os.getpid()}\\n'.encode())\n"
-                               "print('held', flush=True)\ntime.sleep(60)\n"], stdout=subprocess.PIPE, text=True)
+    holder = subprocess.Popen(
+        [
+            sys.executable,
+            "-c",
+            "import fcntl, os, sys, time\n"
+            f"fd = os.open({str(out / LOCK_NAME)!r}, os.O_RDWR | os.O_CREAT)\n"
+            "fcntl.flock(fd, fcntl.LOCK_EX)\nos.write(fd, f'{os.getpid()}\\n'.encode())\n"
+            "print('held', flush=True)\ntime.sleep(60)\n",
+        ],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
     try:
         assert holder.stdout.readline().strip() == "held"
         line = one_error_line(cli("study", p, "--out", out, "--quiet"), 4)
@@ -219,8 +242,9 @@ def test_a_killed_runs_folder_still_belongs_to_its_study(tmp_path, monkeypatch):
         run_study(load_study(b), tmp_path / "out", workers=1, progress=False)
 
 
-@pytest.mark.parametrize("address", ["nonsense", "tcp://127.0.0.1", "tcp://127.0.0.1:99999", "http://h:1:2",
-                                     "tcp://127.0.0.1:80 x"])
+@pytest.mark.parametrize(
+    "address", ["nonsense", "tcp://127.0.0.1", "tcp://127.0.0.1:99999", "http://h:1:2", "tcp://127.0.0.1:80 x"]
+)
 def test_a_malformed_scheduler_address_is_one_line_exit_2(tmp_path, address):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
     with pytest.raises(InputError, match="not a Dask scheduler address; write tcp://HOST:PORT"):

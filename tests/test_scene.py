@@ -5,11 +5,10 @@ import sys
 from pathlib import Path
 
 import pytest
+from conftest import scene_dict
 
 from pdverify.errors import InputError
 from pdverify.scene import load_scene, parse_scene
-
-from conftest import scene_dict
 
 ROOT = Path(__file__).parents[1]
 
@@ -39,7 +38,12 @@ BAD = [
     ("poisson too large", ("material", "poissons_ratio"), 0.5, ["material.poissons_ratio", "0.5", "less than 0.5"]),
     ("poisson too small", ("material", "poissons_ratio"), -1.0, ["material.poissons_ratio", "greater than -1"]),
     ("typo at top", ("lenght",), 1.0, ["unknown key 'lenght'", "allowed keys"]),
-    ("typo in table", ("material", "youngs_modulos"), 1.0, ["material.youngs_modulos", "unknown key", "youngs_modulus"]),
+    (
+        "typo in table",
+        ("material", "youngs_modulos"),
+        1.0,
+        ["material.youngs_modulos", "unknown key", "youngs_modulus"],
+    ),
     ("string for number", ("beam", "length"), "long", ["beam.length", "'long'"]),
     ("negative height", ("section", "height"), -0.1, ["section.height", "greater than 0"]),
 ]
@@ -54,14 +58,28 @@ def test_rejects_field(what, path, value, words):
 
 
 LOAD_BAD = [
-    ("load outside the beam", {"type": "point_force", "position": 2.5, "value": 1.0},
-     ["loads[0].position", "2.5", "outside the beam [0, 2.0]"]),
+    (
+        "load outside the beam",
+        {"type": "point_force", "position": 2.5, "value": 1.0},
+        ["loads[0].position", "2.5", "outside the beam [0, 2.0]"],
+    ),
     ("load before the beam", {"type": "point_moment", "position": -0.1, "value": 1.0}, ["loads[0].position", "-0.1"]),
-    ("start >= end", {"type": "distributed", "value": 1.0, "start": 1.5, "end": 0.5},
-     ["loads[0].start = 1.5, end = 0.5", "start must be below end"]),
+    (
+        "start >= end",
+        {"type": "distributed", "value": 1.0, "start": 1.5, "end": 0.5},
+        ["loads[0].start = 1.5, end = 0.5", "start must be below end"],
+    ),
     ("span beyond the beam", {"type": "distributed", "value": 1.0, "end": 3.0}, ["loads[0].end = 3.0", "outside"]),
-    ("unknown load type", {"type": "pressure", "value": 1.0}, ["loads[0].type", "'pressure'", "point_force, point_moment, distributed"]),
-    ("unknown shape", {"type": "distributed", "value": 1.0, "shape": "cosine"}, ["loads[0].shape", "'cosine'", "uniform"]),
+    (
+        "unknown load type",
+        {"type": "pressure", "value": 1.0},
+        ["loads[0].type", "'pressure'", "point_force, point_moment, distributed"],
+    ),
+    (
+        "unknown shape",
+        {"type": "distributed", "value": 1.0, "shape": "cosine"},
+        ["loads[0].shape", "'cosine'", "uniform"],
+    ),
     ("typo in load", {"type": "point_force", "positon": 1.0, "value": 1.0}, ["loads[0]", "positon"]),
 ]
 
@@ -74,7 +92,9 @@ def test_rejects_load(what, load, words):
         assert w in text, (w, text)
 
 
-@pytest.mark.parametrize("left,right", [("free", "free"), ("pinned", "free"), ("free", "pinned"), ("guided", "guided"), ("guided", "free")])
+@pytest.mark.parametrize(
+    "left,right", [("free", "free"), ("pinned", "free"), ("free", "pinned"), ("guided", "guided"), ("guided", "free")]
+)
 def test_rejects_mechanism(left, right):
     lines = rejects(scene_dict(left, right, [{"type": "point_force", "position": 1.0, "value": -1.0}]))
     assert len(lines) == 1 and f"supports = {left}-{right}" in lines[0] and "mechanism" in lines[0]
@@ -127,7 +147,9 @@ def test_cli_toml_syntax_error_and_missing_file(tmp_path):
 
 def test_cli_unknown_model_lists_available():
     r = cli("solve", "studies/examples/cantilever_tip_load.toml", "--model", "pd-nothing")
-    assert r.returncode == 2 and "unknown model" in r.stderr and "exact-eb" in r.stderr and "exact-timoshenko" in r.stderr
+    assert (
+        r.returncode == 2 and "unknown model" in r.stderr and "exact-eb" in r.stderr and "exact-timoshenko" in r.stderr
+    )
 
 
 def test_cli_option_the_model_does_not_take():
@@ -139,7 +161,16 @@ def test_cli_option_the_model_does_not_take():
 def test_cli_spacing_must_divide_length():
     r = cli("solve", "studies/examples/cantilever_tip_load.toml", "--model", "exact-eb", "--spacing", "0.3")
     assert r.returncode == 2 and "spacing = 0.3" in r.stderr
-    r = cli("solve", "studies/examples/cantilever_tip_load.toml", "--model", "exact-eb", "--spacing", "0.25", "--format", "csv")
+    r = cli(
+        "solve",
+        "studies/examples/cantilever_tip_load.toml",
+        "--model",
+        "exact-eb",
+        "--spacing",
+        "0.25",
+        "--format",
+        "csv",
+    )
     assert r.returncode == 0 and len(r.stdout.strip().splitlines()) == 6
 
 

@@ -28,8 +28,11 @@ class Synthetic(Model):
     """Exact EB deflection times (1 + C dx^2): its max error is exactly C dx^2."""
 
     name = "synthetic-dx2"
-    options = (Option("points", int, 11, minimum=2), Option("fail", bool, False),
-               Option("fail_after", float, 0.0, minimum=0.0))
+    options = (
+        Option("points", int, 11, minimum=2),
+        Option("fail", bool, False),
+        Option("fail_after", float, 0.0, minimum=0.0),
+    )
 
     def solve(self, scene, params):
         if params["fail"]:
@@ -38,7 +41,9 @@ class Synthetic(Model):
         x = np.linspace(0, scene.length, params["points"])
         dx = x[1] - x[0]
         w = solve_straight(scene, False).fields(x)["w"] * (1 + 3.0 * dx**2)
-        return Result(scene.name, self.name, dict(params), x, w, dofs=len(x), timings={"assemble_s": 0.0, "solve_s": 0.0})
+        return Result(
+            scene.name, self.name, dict(params), x, w, dofs=len(x), timings={"assemble_s": 0.0, "solve_s": 0.0}
+        )
 
 
 @pytest.fixture
@@ -84,8 +89,9 @@ def test_a_failed_case_records_what_it_cost(tmp_path, synthetic, workers):
     """A failed case's row carries the seconds its attempt took, and meta.json counts them as the models'
     time (before, a study with failures counted the failed solves as the runner's own time); a failed
     case never enters the speed-vs-error table."""
-    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9]\nfail = [false, true]\n'
-                              'fail_after = 0.1\n')
+    p = write_study(
+        tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9]\nfail = [false, true]\nfail_after = 0.1\n'
+    )
     df = run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
     failed = df[df["status"] == "failed"]
     assert len(failed) == 2 and (failed["total_s"] >= 0.1).all() and (failed["total_s"] < 5).all()
@@ -121,8 +127,12 @@ BAD_STUDIES = {
 def test_bad_study_one_line_exit_2(tmp_path, what):
     body, msg = BAD_STUDIES[what]
     p = write_study(tmp_path, body)
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(tmp_path / "o")],
-                       capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(tmp_path / "o")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 2 and "Traceback" not in r.stderr and msg in r.stderr, r.stderr
     assert not (tmp_path / "o").exists()  # validated before running anything
 
@@ -157,8 +167,11 @@ def _signal_mid_run(p, out, sig):
 
 @pytest.mark.slow
 def test_resume_after_sigkill(tmp_path):
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+        "points = [101, 151, 201, 301, 401, 601, 801]\nhorizon = [2, 3, 4]\n",
+    )
     out = tmp_path / "out"
     _, _, cmd = _signal_mid_run(p, out, signal.SIGKILL)
     partial = len(list((out / "cases").glob("*.case")))
@@ -175,8 +188,11 @@ def test_resume_after_sigkill(tmp_path):
     meta = json.loads((out / "meta.json").read_text())
     assert meta["resumed_cases"] == partial - 2
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
-    assert np.allclose(_cols(pd.read_csv(out / "results.csv"))[["err_max", "err_l2", "w_at_max"]],
-                       _cols(fresh)[["err_max", "err_l2", "w_at_max"]], rtol=1e-12)
+    assert np.allclose(
+        _cols(pd.read_csv(out / "results.csv"))[["err_max", "err_l2", "w_at_max"]],
+        _cols(fresh)[["err_max", "err_l2", "w_at_max"]],
+        rtol=1e-12,
+    )
     # the derived tables of the resumed run cover the resumed cases too
     from pdverify.study.runner import write_derived
 
@@ -195,9 +211,12 @@ def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
     study, no process left behind, and a second run resumes every finished case."""
     # grids up to 8001 points (~1.5 s in all): the run must still be solving when 5 case files are on disk
     # (60 cases of <= 2001 points once ran to the end before the signal, in a full suite on a busy machine)
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-                              'points = [101, 151, 201, 301, 401, 601, 801, 1201, 1601, 2001, 3001, 4001, 6001, 8001]\n'
-                              'horizon = [2, 3, 4]\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
+        "points = [101, 151, 201, 301, 401, 601, 801, 1201, 1601, 2001, 3001, 4001, 6001, 8001]\n"
+        "horizon = [2, 3, 4]\n",
+    )
     out = tmp_path / "out"
     proc, err, cmd = _signal_mid_run(p, out, signal.SIGINT)
     finished = len(list((out / "cases").glob("*.case")))
@@ -220,14 +239,19 @@ def test_ctrl_c_keeps_the_finished_cases_and_leaves_no_process(tmp_path):
 def test_dask_local_cluster_matches_local_run(tmp_path):
     from dask.distributed import LocalCluster
 
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101]\n'
-                              '[[runs]]\nmodel = "fem-eb"\npoints = [11]\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101]\n'
+        '[[runs]]\nmodel = "fem-eb"\npoints = [11]\n',
+    )
     local = run_study(load_study(p), tmp_path / "local", workers=2, progress=False)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
         dist = run_study(load_study(p), tmp_path / "dask", scheduler=cluster.scheduler_address, progress=False)
     a, b = _cols(local), _cols(dist)
     assert list(a["case_id"]) == list(b["case_id"])
-    assert np.array_equal(a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy())
+    assert np.array_equal(
+        a[["err_max", "err_l2", "w_at_max"]].to_numpy(), b[["err_max", "err_l2", "w_at_max"]].to_numpy()
+    )
     timing = ["assemble_s", "solve_s", "total_s"]
     pd.testing.assert_frame_equal(local.drop(columns=timing), dist.drop(columns=timing))
     for name in ("convergence.csv", "locking.csv", "trust.csv"):  # the tables without timings: same bytes
@@ -241,13 +265,27 @@ def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
     from pdverify.study.store import decode_record, encode_record, read_case, write_atomic
 
     a = np.array([0.1, -1e-300, 1e300, np.pi, -0.0, np.nan, 5e-324])
-    rec = {"case": {"model": "m", "given": {"points": 7}}, "row": {"status": "ok", "err_max": 0.5, "n": 3},
-           "curve": {"x": a, "w": a[::-1].copy(), "fields": {"M": 2 * a}, "history": {"t": a, "series": {"p": a}},
-                     "load_steps": [{"factor": 0.5, "x": [0.0, 1.0]}], "grid": np.arange(6.0).reshape(2, 3)}}
+    rec = {
+        "case": {"model": "m", "given": {"points": 7}},
+        "row": {"status": "ok", "err_max": 0.5, "n": 3},
+        "curve": {
+            "x": a,
+            "w": a[::-1].copy(),
+            "fields": {"M": 2 * a},
+            "history": {"t": a, "series": {"p": a}},
+            "load_steps": [{"factor": 0.5, "x": [0.0, 1.0]}],
+            "grid": np.arange(6.0).reshape(2, 3),
+        },
+    }
     back = decode_record(encode_record(rec))
     assert back["row"] == rec["row"] and back["case"] == rec["case"]
-    for got, want in ((back["curve"]["x"], a), (back["curve"]["w"], a[::-1]), (back["curve"]["fields"]["M"], 2 * a),
-                      (back["curve"]["history"]["series"]["p"], a), (back["curve"]["grid"], np.arange(6.0).reshape(2, 3))):
+    for got, want in (
+        (back["curve"]["x"], a),
+        (back["curve"]["w"], a[::-1]),
+        (back["curve"]["fields"]["M"], 2 * a),
+        (back["curve"]["history"]["series"]["p"], a),
+        (back["curve"]["grid"], np.arange(6.0).reshape(2, 3)),
+    ):
         assert got.tobytes() == np.ascontiguousarray(want).tobytes() and got.shape == want.shape
     assert back["curve"]["load_steps"] == rec["curve"]["load_steps"]
     raw = encode_record(rec)
@@ -269,8 +307,11 @@ def test_first_format_case_files_still_read(tmp_path):
 
     a = np.array([0.0, 0.5, 1.0])
     b64 = {"dtype": "<f8", "shape": [3], "b64": base64.b64encode(a.tobytes()).decode()}
-    (tmp_path / "abc.json").write_text(json.dumps({"case": {}, "row": {"status": "ok"},
-                                                   "curve": {"x": b64, "w": [1.0, 2.5, 3.0], "fields": {"u": b64}}}))
+    (tmp_path / "abc.json").write_text(
+        json.dumps(
+            {"case": {}, "row": {"status": "ok"}, "curve": {"x": b64, "w": [1.0, 2.5, 3.0], "fields": {"u": b64}}}
+        )
+    )
     c = read_curve(case_file(tmp_path, "abc"))
     assert np.array_equal(c["x"], a) and np.array_equal(c["w"], [1.0, 2.5, 3.0]) and np.array_equal(c["fields"]["u"], a)
     assert case_file(tmp_path, "nope") is None
@@ -295,8 +336,19 @@ def test_trust_table_states_ranges_and_the_round_off_grid():
     moderate = [1e-2 * 4, 1e-3, 2e-4, 5e-3]
     for s, errs in ((10, moderate), (20, moderate), (1000, [0.5, 0.2, 0.1, 0.3])):
         for n, e in zip([11, 21, 41, 81], errs):
-            rows.append(dict(model="m", options="{}", scene="a", slenderness=s, points=n, err_max=e, status="ok",
-                             reference=ref, cond=1e12 if n == 81 else 1e8))  # cond·eps 2.2e-4 at 81 points
+            rows.append(
+                dict(
+                    model="m",
+                    options="{}",
+                    scene="a",
+                    slenderness=s,
+                    points=n,
+                    err_max=e,
+                    status="ok",
+                    reference=ref,
+                    cond=1e12 if n == 81 else 1e8,
+                )
+            )  # cond·eps 2.2e-4 at 81 points
     table = trust_table(pd.DataFrame(rows), tol=0.01)
     t, slender = table.iloc[0], table.iloc[1]  # thick and slender scenes are judged apart, by band
     assert t["slenderness_band"].startswith("moderate") and slender["slenderness_band"].startswith("slender")
@@ -319,9 +371,20 @@ def test_trust_calls_a_growth_round_off_only_where_cond_eps_explains_it():
 
     ref = json.dumps({"model": "exact-eb"})
     eps = np.finfo(float).eps
-    rows = [dict(model="pd-eb", options='{"variant": "paper"}', scene="a", slenderness=20, points=n, err_max=e,
-                 status="ok", reference=ref, cond=c / eps)
-            for n, e, c in ((21, 1e-3, 1e-10), (41, 1.5e-3, 1e-8), (81, 6e-3, 4e-7))]
+    rows = [
+        dict(
+            model="pd-eb",
+            options='{"variant": "paper"}',
+            scene="a",
+            slenderness=20,
+            points=n,
+            err_max=e,
+            status="ok",
+            reference=ref,
+            cond=c / eps,
+        )
+        for n, e, c in ((21, 1e-3, 1e-10), (41, 1.5e-3, 1e-8), (81, 6e-3, 4e-7))
+    ]
     t = trust_table(pd.DataFrame(rows)).iloc[0]
     assert pd.isna(t["round_off_from_points"]) and t["growth_from_points"] == 81
     assert "error 0.006, far above cond·eps = 4e-07: not round-off" in t["statement"]
@@ -334,16 +397,19 @@ def test_trust_calls_a_growth_round_off_only_where_cond_eps_explains_it():
 
 def test_benchmark_at_a_position_of_a_field(tmp_path, synthetic):
     """A benchmark row may name a position and a quantity: the case's curve is interpolated there."""
-    p = write_study(tmp_path, '''[[runs]]
+    p = write_study(
+        tmp_path,
+        f"""[[runs]]
 model = "synthetic-dx2"
 points = 11
 [[benchmarks]]
 name = "quarter point"
-scene = "%s"
+scene = "{SCENE}"
 model = "synthetic-dx2"
 points = 11
 position = 0.5
-''' % SCENE)
+""",
+    )
     run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
     b = pd.read_csv(tmp_path / "out" / "benchmarks.csv").iloc[0]
     sc = load_study(p).cases[0].scene()
@@ -351,18 +417,28 @@ position = 0.5
     want = np.interp(0.5, x, solve_straight(sc, False).fields(x)["w"] * (1 + 3.0 * (x[1] - x[0]) ** 2))
     assert b["computed"] == pytest.approx(want, rel=1e-12) and b["position"] == 0.5
     assert b["target"] == pytest.approx(np.interp(0.5, x, solve_straight(sc, False).fields(x)["w"]), rel=1e-12)
-    bad = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\n[[benchmarks]]\nname = "b"\nscene = "%s"\n'
-                      'model = "synthetic-dx2"\nquantity = "u"\nposition = 99.0\n' % SCENE, name="bad")
+    bad = write_study(
+        tmp_path,
+        f'[[runs]]\nmodel = "synthetic-dx2"\n[[benchmarks]]\nname = "b"\nscene = "{SCENE}"\n'
+        'model = "synthetic-dx2"\nquantity = "u"\nposition = 99.0\n',
+        name="bad",
+    )
     with pytest.raises(InputError) as e:
         load_study(bad)
-    assert any("position = 99.0" in l for l in e.value.lines) and any("needs" in l or "target" in l for l in e.value.lines)
+    assert any("position = 99.0" in l for l in e.value.lines) and any(
+        "needs" in l or "target" in l for l in e.value.lines
+    )
 
 
 def test_expected_fail_verdicts():
-    from pdverify.study.runner import _verdict
+    from pdverify.study.checks import verdict
 
-    assert [_verdict(True, "pass"), _verdict(False, "pass"), _verdict(False, "fail"), _verdict(True, "fail")] == \
-        ["pass", "fail", "expected-fail", "unexpected-pass"]
+    assert [verdict(True, "pass"), verdict(False, "pass"), verdict(False, "fail"), verdict(True, "fail")] == [
+        "pass",
+        "fail",
+        "expected-fail",
+        "unexpected-pass",
+    ]
 
 
 def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monkeypatch):
@@ -383,7 +459,11 @@ def test_records_from_other_code_are_kept_and_reported(tmp_path, synthetic, monk
         out = tmp_path / f"out{workers}"
         df = run_study(load_study(p), out, workers=workers, progress=False)
         meta = json.loads((out / "meta.json").read_text())
-        assert len(df) == 3 and set(df["case_id"]) == set(meta["cases_from_other_code"]) and "0" * 16 not in set(df["case_id"])
+        assert (
+            len(df) == 3
+            and set(df["case_id"]) == set(meta["cases_from_other_code"])
+            and "0" * 16 not in set(df["case_id"])
+        )
 
 
 def test_csv_tables_hold_the_exact_values(tmp_path):
@@ -391,7 +471,10 @@ def test_csv_tables_hold_the_exact_values(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n')
     run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
     for name in ("results", "convergence", "speed_error"):
-        csv, parquet = (pd.read_csv(tmp_path / "out" / f"{name}.csv"), pd.read_parquet(tmp_path / "out" / f"{name}.parquet"))
+        csv, parquet = (
+            pd.read_csv(tmp_path / "out" / f"{name}.csv"),
+            pd.read_parquet(tmp_path / "out" / f"{name}.parquet"),
+        )
         assert list(csv.columns) == list(parquet.columns) and len(csv) == len(parquet) > 0
         for col in parquet.select_dtypes("number").columns:
             assert np.array_equal(csv[col].to_numpy(float), parquet[col].to_numpy(float), equal_nan=True), (name, col)
@@ -399,14 +482,25 @@ def test_csv_tables_hold_the_exact_values(tmp_path):
 
 def test_groups_computed_along_the_way_give_the_batch_tables(tmp_path):
     """tables.Groups computes each derived table's group as soon as its cases are in (no longer used by
-    the runner, which computes the tables once at the end); the tables from those groups equal the tables computed at once, and a group whose
+    the runner, which computes the tables once at the end); the tables from those groups equal the tables
+    computed at once, and a group whose
     cases differ from the final grouping's (a case whose row did not go where it was predicted) is
     computed again, not reused."""
-    from pdverify.study.tables import (GROUPINGS, Groups, convergence_rows, grouped, rows_of, speed_error_rows,
-                                       trust_rows)
+    from pdverify.study.tables import (
+        GROUPINGS,
+        Groups,
+        convergence_rows,
+        grouped,
+        rows_of,
+        speed_error_rows,
+        trust_rows,
+    )
 
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
-                              'horizon = [2, 3]\n[sweep]\nslenderness = [10, 100]\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
+        "horizon = [2, 3]\n[sweep]\nslenderness = [10, 100]\n",
+    )
     rows = rows_of(run_study(load_study(p), tmp_path / "out", workers=2, progress=False))
     groups = Groups(rows)
     for r in rows[:-1]:
@@ -428,9 +522,12 @@ def test_serial_and_pool_runs_write_the_same_tables(tmp_path):
     written again from the results table beside them."""
     from pdverify.study.runner import write_derived
 
-    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
-                              'horizon = [2, 3]\n[[runs]]\nmodel = "fem-eb"\npoints = [5, 9, 17]\n'
-                              '[[benchmarks]]\nname = "centre"\nscene = "' + str(SCENE) + '"\nmodel = "fem-eb"\npoints = 17\n')
+    p = write_study(
+        tmp_path,
+        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
+        'horizon = [2, 3]\n[[runs]]\nmodel = "fem-eb"\npoints = [5, 9, 17]\n'
+        '[[benchmarks]]\nname = "centre"\nscene = "' + str(SCENE) + '"\nmodel = "fem-eb"\npoints = 17\n',
+    )
     frames, metas = {}, {}
     for workers in (1, 2):
         frames[workers] = run_study(load_study(p), tmp_path / f"out-{workers}", workers=workers, progress=False)
@@ -503,8 +600,12 @@ def test_unwritable_output_is_one_line_exit_4(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [11, 21]\n')
     blocker = tmp_path / "taken"
     blocker.write_text("a file, not a directory")
-    r = subprocess.run([sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(blocker / "out"), "--quiet"],
-                       capture_output=True, text=True, cwd=ROOT)
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(blocker / "out"), "--quiet"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert r.returncode == 4 and "Traceback" not in r.stderr, r.stderr
     assert f"output directory {blocker / 'out'}" in r.stderr and "writable --out" in r.stderr
 

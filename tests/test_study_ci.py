@@ -1,8 +1,6 @@
 """pdverify in CI (issue 28): the study's exit status and summary line, order checks, JUnit output and the
 study-file validation that keeps a verdict from passing or failing silently."""
 
-import json
-import math
 import os
 import subprocess
 import sys
@@ -36,8 +34,15 @@ class Failing(Model):
         if params["fail"]:
             raise np.linalg.LinAlgError("singular matrix (on demand)")
         x = np.linspace(0, scene.length, params["points"])
-        return Result(scene.name, self.name, dict(params), x, solve_straight(scene, False).fields(x)["w"],
-                      dofs=len(x), timings={"assemble_s": 0.0, "solve_s": 0.0})
+        return Result(
+            scene.name,
+            self.name,
+            dict(params),
+            x,
+            solve_straight(scene, False).fields(x)["w"],
+            dofs=len(x),
+            timings={"assemble_s": 0.0, "solve_s": 0.0},
+        )
 
 
 @pytest.fixture
@@ -52,8 +57,10 @@ def study_file(tmp_path, body, runs=PD_EB, name="ci"):
 
 
 def bench(name, tolerance, points=41, variant="corrected", target=CC_CENTRE, extra=""):
-    return (f'[[benchmarks]]\nname = "{name}"\nscene = "{CC}"\nmodel = "pd-eb"\nvariant = "{variant}"\n'
-            f'points = {points}\ntarget = {target}\ntolerance = {tolerance}\n{extra}')
+    return (
+        f'[[benchmarks]]\nname = "{name}"\nscene = "{CC}"\nmodel = "pd-eb"\nvariant = "{variant}"\n'
+        f"points = {points}\ntarget = {target}\ntolerance = {tolerance}\n{extra}"
+    )
 
 
 def check(variant, bounds, extra=""):
@@ -74,13 +81,16 @@ def summary(r) -> str:
 
 # ---- exit status and summary ------------------------------------------------------------------------
 
+
 def test_passing_study_exits_0_with_one_summary_line(tmp_path):
     # corrected pd-eb at 41 points: 0.996 % from the exact centre deflection (measured), within 2 %
     p = study_file(tmp_path, bench("centre", 0.02) + check("corrected", "{ min = 1.9, max = 2.2 }"))
     r = run(p, tmp_path)
     assert r.exit_code == 0, r.stderr
-    assert summary(r) == ("summary: cases 6 ok, 0 failed, 0 suspect; benchmarks 1 pass, 0 fail, 0 expected-fail, "
-                          "0 missing; orders checked 1 (1 pass, 0 fail, 0 expected-fail, 0 missing); exit 0")
+    assert summary(r) == (
+        "summary: cases 6 ok, 0 failed, 0 suspect; benchmarks 1 pass, 0 fail, 0 expected-fail, "
+        "0 missing; orders checked 1 (1 pass, 0 fail, 0 expected-fail, 0 missing); exit 0"
+    )
     assert sum(line.startswith("summary:") for line in r.stderr.splitlines()) == 1
 
 
@@ -116,8 +126,9 @@ def test_unexpected_pass_does_not_fail_the_run_but_is_reported(tmp_path):
 def test_benchmark_picks_its_slenderness(tmp_path):
     # the same grid at two slenderness values: each row reads its own case (Euler-Bernoulli: same deflection
     # shape, w scales with 1/I, so the computed values differ by (100/10)^3)
-    body = (bench("L/h 10", 0.02, target=1, extra="slenderness = 10\n")
-            + bench("L/h 100", 0.02, target=1, extra="slenderness = 100\n"))
+    body = bench("L/h 10", 0.02, target=1, extra="slenderness = 10\n") + bench(
+        "L/h 100", 0.02, target=1, extra="slenderness = 100\n"
+    )
     r = run(study_file(tmp_path, body + "[sweep]\nslenderness = [10, 100]\n"), tmp_path)
     assert r.exit_code == 1  # target 1 is far off: both rows fail, with their own cases
     b = pd.read_csv(tmp_path / "out/benchmarks.csv")
@@ -140,8 +151,10 @@ def test_failed_case_exits_1_unless_an_expected_fail_row_covers_it(tmp_path, fai
     r = run(p, tmp_path)
     assert r.exit_code == 1
     assert summary(r).startswith("summary: cases 1 ok, 1 failed, 0 suspect;")
-    documented = (f'[[benchmarks]]\nname = "fails on demand"\nexpected = "fail"\nscene = "{CC}"\n'
-                  f'model = "failing-eb"\nfail = true\ntarget = {CC_CENTRE}\ntolerance = 0.01\n')
+    documented = (
+        f'[[benchmarks]]\nname = "fails on demand"\nexpected = "fail"\nscene = "{CC}"\n'
+        f'model = "failing-eb"\nfail = true\ntarget = {CC_CENTRE}\ntolerance = 0.01\n'
+    )
     p = study_file(tmp_path, documented, runs=runs, name="documented")
     r = run(p, tmp_path / "documented")  # another study: its own output folder
     assert r.exit_code == 0, r.stderr
@@ -151,8 +164,9 @@ def test_failed_case_exits_1_unless_an_expected_fail_row_covers_it(tmp_path, fai
 
 def test_benchmark_whose_case_failed_is_a_failure_with_the_reason(tmp_path, failing):
     runs = 'model = "failing-eb"\npoints = 11\nfail = true\n'
-    body = (f'[[benchmarks]]\nname = "ran?"\nscene = "{CC}"\nmodel = "failing-eb"\ntarget = {CC_CENTRE}\n'
-            'tolerance = 0.01\n')
+    body = (
+        f'[[benchmarks]]\nname = "ran?"\nscene = "{CC}"\nmodel = "failing-eb"\ntarget = {CC_CENTRE}\ntolerance = 0.01\n'
+    )
     r = run(study_file(tmp_path, body, runs=runs), tmp_path)
     assert r.exit_code == 1
     assert "benchmarks 0 pass, 1 fail" in summary(r)
@@ -160,6 +174,7 @@ def test_benchmark_whose_case_failed_is_a_failure_with_the_reason(tmp_path, fail
 
 
 # ---- order checks ----------------------------------------------------------------------------------------
+
 
 def test_order_check_reports_pairwise_and_fitted_orders(tmp_path):
     p = study_file(tmp_path, check("corrected", "{ min = 1.9 }") + check("paper", "{ min = 1.9 }"))
@@ -183,8 +198,9 @@ def test_order_check_reports_pairwise_and_fitted_orders(tmp_path):
 
 def test_order_check_below_three_grids_or_matching_nothing_is_missing(tmp_path):
     runs = 'model = "pd-eb"\nvariant = "corrected"\npoints = [21, 41]\nhorizon = 3\n'
-    p = study_file(tmp_path, check("corrected", "{ min = 1.9 }") + check("corrected", "{ min = 1.9 }", 'horizon = 2\n'),
-                   runs=runs)
+    p = study_file(
+        tmp_path, check("corrected", "{ min = 1.9 }") + check("corrected", "{ min = 1.9 }", "horizon = 2\n"), runs=runs
+    )
     r = run(p, tmp_path)
     assert r.exit_code == 1
     assert "orders checked 2 (0 pass, 0 fail, 0 expected-fail, 2 missing)" in summary(r)
@@ -201,6 +217,7 @@ def test_expected_fail_check(tmp_path):
 
 
 # ---- JUnit --------------------------------------------------------------------------------------------------
+
 
 def assert_junit_shape(root: ET.Element) -> None:
     """The common JUnit schema (Jenkins' junit-10.xsd, as GitLab, GitHub and Azure read it): testsuites >
@@ -234,9 +251,13 @@ def assert_junit_shape(root: ET.Element) -> None:
 
 def test_junit_file(tmp_path, failing):
     runs = PD_EB + '[[runs]]\nmodel = "failing-eb"\npoints = 11\nfail = true\n'
-    body = (bench("passes", 0.02) + bench("too tight", 1e-4) + bench("paper", 1e-3, variant="paper",
-                                                                       extra='expected = "fail"\n')
-            + bench("not swept", 0.02, points=77) + check("corrected", "{ min = 1.9 }"))
+    body = (
+        bench("passes", 0.02)
+        + bench("too tight", 1e-4)
+        + bench("paper", 1e-3, variant="paper", extra='expected = "fail"\n')
+        + bench("not swept", 0.02, points=77)
+        + check("corrected", "{ min = 1.9 }")
+    )
     p = study_file(tmp_path, body, runs=runs)
     r = run(p, tmp_path, "--junit", str(tmp_path / "ci/junit.xml"))
     assert r.exit_code == 1
@@ -249,8 +270,12 @@ def test_junit_file(tmp_path, failing):
     assert cases["passes"].find("failure") is None
     row = pd.read_csv(tmp_path / "out/benchmarks.csv").set_index("name").loc["too tight"]
     msg = cases["too tight"].find("failure").get("message")
-    for part in (f"target {row['target']:.6g}", f"computed {row['computed']:.6g}", f"ratio {row['ratio']:.6g}",
-                 f"case {row['case_id']}"):
+    for part in (
+        f"target {row['target']:.6g}",
+        f"computed {row['computed']:.6g}",
+        f"ratio {row['ratio']:.6g}",
+        f"case {row['case_id']}",
+    ):
         assert part in msg
     assert cases["paper"].find("failure") is None and "expected-fail" in cases["paper"].find("system-out").text
     assert cases["not swept"].find("failure").get("type") == "missing"
@@ -273,9 +298,11 @@ def test_study_from_a_ci_script(tmp_path):
     """What a CI job does: run the study, keep its status, let the CI read the JUnit file."""
     p = study_file(tmp_path, bench("centre", 0.02) + bench("too tight", 1e-4) + check("corrected", "{ min = 1.9 }"))
     script = tmp_path / "ci.sh"
-    script.write_text(f'#!/bin/sh\n"{sys.executable}" -m pdverify.cli study "{p}" --out "{tmp_path}/out" --quiet '
-                      f'--workers 1 --junit "{tmp_path}/reports/junit.xml"\nstatus=$?\necho "status=$status"\n'
-                      'exit $status\n')
+    script.write_text(
+        f'#!/bin/sh\n"{sys.executable}" -m pdverify.cli study "{p}" --out "{tmp_path}/out" --quiet '
+        f'--workers 1 --junit "{tmp_path}/reports/junit.xml"\nstatus=$?\necho "status=$status"\n'
+        "exit $status\n"
+    )
     env = dict(os.environ, PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     r = subprocess.run(["sh", str(script)], capture_output=True, text=True, env=env, timeout=300)
     assert r.returncode == 1 and "status=1" in r.stdout, r.stderr
@@ -307,8 +334,10 @@ BAD = {  # body -> the text the single error line must contain
     "check without bounds": ('[[checks]]\nmodel = "pd-eb"\nobserved_order = 2\n', "checks[0].observed_order = 2"),
     "check bound a boolean": (check("corrected", "{ min = true }"), "min and max are finite numbers"),
     "check min above max": (check("corrected", "{ min = 2.1, max = 1.9 }"), "min is above max"),
-    "check unknown model": ('[[checks]]\nmodel = "fem-eb"\nobserved_order = { min = 2 }\n',
-                            "no run of the study uses it"),
+    "check unknown model": (
+        '[[checks]]\nmodel = "fem-eb"\nobserved_order = { min = 2 }\n',
+        "no run of the study uses it",
+    ),
     "check points": (check("corrected", "{ min = 2 }", "points = 41\n"), "drop points/spacing"),
     "check expected": (check("corrected", "{ min = 2 }", 'expected = "maybe"\n'), "checks[0].expected = 'maybe'"),
     "check option typo": (check("corrected", "{ min = 2 }", "horizn = 3\n"), "takes no option 'horizn'"),
@@ -336,7 +365,7 @@ def test_bad_study_file_is_one_line_and_exit_2(tmp_path, case):
 
 
 def test_boolean_options_only_from_true_false(tmp_path):
-    runs = ('model = "pd-bond-pair"\nvariant = "corrected"\npoints = [21]\nhorizon = 3\nnonlinear = "maybe"\n')
+    runs = 'model = "pd-bond-pair"\nvariant = "corrected"\npoints = [21]\nhorizon = 3\nnonlinear = "maybe"\n'
     r = run(study_file(tmp_path, "", runs=runs), tmp_path)
     assert r.exit_code == 2
     assert r.stderr.strip() == f"error: {tmp_path / 'ci.toml'}: runs[0].nonlinear = 'maybe': give true or false"
@@ -345,8 +374,13 @@ def test_boolean_options_only_from_true_false(tmp_path):
 def test_help_documents_the_exit_codes():
     r = CliRunner().invoke(app, ["study", "--help"], env={"COLUMNS": "200"})
     assert r.exit_code == 0
-    for code in ("0 every benchmark and order check passes", "1 a benchmark or check fails or is missing",
-                 "2 bad input", "3 a failed computation", "4 output could not be written"):
+    for code in (
+        "0 every benchmark and order check passes",
+        "1 a benchmark or check fails or is missing",
+        "2 bad input",
+        "3 a failed computation",
+        "4 output could not be written",
+    ):
         assert code in r.stdout
     assert "--junit" in r.stdout
 
@@ -357,7 +391,7 @@ def test_report_shows_the_order_checks_with_their_verdicts(tmp_path):
     p = study_file(tmp_path, check("corrected", "{ min = 1.9 }") + check("paper", "{ min = 1.9 }"))
     run(p, tmp_path)
     page = build_report(tmp_path / "out").read_text()
-    checks = page[page.index('id="checks"'):page.index('id="checks"') + 20000]
+    checks = page[page.index('id="checks"') : page.index('id="checks"') + 20000]
     assert "Order checks" in page and '<tr class="pass">' in checks and '<tr class="fail">' in checks
     fitted = pd.read_csv(tmp_path / "out/checks.csv")["observed_order"]
     assert all(f">{v:.6g}<" in checks for v in fitted)  # the report's number format (build.fmt)

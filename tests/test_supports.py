@@ -6,24 +6,36 @@ import sys
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, scene_dict
 
 from pdverify.errors import InputError
 from pdverify.geometry import constraint_rows, mechanism_message, rigid_body_modes
 from pdverify.registry import models, run
 from pdverify.scene import HELD, SUPPORTS, Scene, is_mechanism, parse_scene
 
-from conftest import MIXED_LOADS, scene_dict
-
-TRANSVERSE = ("exact-eb", "exact-timoshenko", "fem-eb", "fem-timoshenko", "pd-eb", "pd-higher-order",
-              "pd-timoshenko", "pd-bond-pair")
+TRANSVERSE = (
+    "exact-eb",
+    "exact-timoshenko",
+    "fem-eb",
+    "fem-timoshenko",
+    "pd-eb",
+    "pd-higher-order",
+    "pd-timoshenko",
+    "pd-bond-pair",
+)
 AXIAL_MODELS = ("exact-curved", "pd-curved", "fem-plane-stress")
 EA_LOAD = 4000.0  # N, an axial point force at mid-span
 
 
 def ring(left, right, degrees=360.0):
     L = 2 * np.pi * degrees / 360.0
-    return scene_dict(left, right, [{"type": "point_force", "position": 0.3 * L, "value": -100.0}],
-                      beam={"length": L}, axis={"type": "arc", "radius": 1.0, "opening_angle_deg": degrees})
+    return scene_dict(
+        left,
+        right,
+        [{"type": "point_force", "position": 0.3 * L, "value": -100.0}],
+        beam={"length": L},
+        axis={"type": "arc", "radius": 1.0, "opening_angle_deg": degrees},
+    )
 
 
 # -- the vocabulary -------------------------------------------------------------------------------
@@ -103,8 +115,11 @@ def test_every_model_takes_or_rejects_roller(name):
     """Each registered model either solves a roller scene it can represent (finite numbers) or rejects it
     with an InputError (exit 2): never another exception."""
     model = models()[name]
-    for d in (scene_dict("roller", "clamped", MIXED_LOADS), scene_dict("pinned", "roller", MIXED_LOADS),
-              ring("roller", "clamped", 120.0)):
+    for d in (
+        scene_dict("roller", "clamped", MIXED_LOADS),
+        scene_dict("pinned", "roller", MIXED_LOADS),
+        ring("roller", "clamped", 120.0),
+    ):
         sc = parse_scene(d)
         if model.check(sc):
             continue
@@ -140,6 +155,7 @@ def test_rank_test_finds_the_rigid_motions():
 
 def _toml(d: dict) -> str:
     """A scene dict as TOML (tables of scalars and one array of load tables: all a scene needs)."""
+
     def value(v):
         return f'"{v}"' if isinstance(v, str) else repr(float(v)) if isinstance(v, float) else repr(v)
 
@@ -152,18 +168,22 @@ def _toml(d: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-@pytest.mark.parametrize("left,right,needle", [
-    ("pinned", "pinned", "rigid rotation about (1, 0)"),  # pd-curved gave |u| = 144 m, exact-curved 6e29 m
-    ("roller", "pinned", "rigid rotation about (1, 0)"),
-    ("guided", "guided", "2 independent rigid-body motions"),
-])
+@pytest.mark.parametrize(
+    "left,right,needle",
+    [
+        ("pinned", "pinned", "rigid rotation about (1, 0)"),  # pd-curved gave |u| = 144 m, exact-curved 6e29 m
+        ("roller", "pinned", "rigid rotation about (1, 0)"),
+        ("guided", "guided", "2 independent rigid-body motions"),
+    ],
+)
 @pytest.mark.slow
 def test_ring_mechanisms_exit_2_naming_the_supports(tmp_path, left, right, needle):
     path = tmp_path / "ring.toml"
     path.write_text(_toml(ring(left, right)))
     for model in ("pd-curved", "exact-curved"):
-        r = subprocess.run([sys.executable, "-m", "pdverify.cli", "solve", str(path), "--model", model],
-                           capture_output=True, text=True)
+        r = subprocess.run(
+            [sys.executable, "-m", "pdverify.cli", "solve", str(path), "--model", model], capture_output=True, text=True
+        )
         assert r.returncode == 2, r.stderr
         lines = r.stderr.strip().splitlines()
         assert len(lines) == 1 and lines[0].startswith("error: ") and f"supports = {left}-{right}" in lines[0]

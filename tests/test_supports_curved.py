@@ -18,12 +18,11 @@ and a gap below 2 h/L (measured: see the values recorded per case).
 
 import numpy as np
 import pytest
+from conftest import scene_dict
 
 from pdverify.geometry import axis_length, mechanism_message
 from pdverify.registry import get_model, run
 from pdverify.scene import SUPPORTS, Axis, Scene, parse_scene
-
-from conftest import scene_dict
 
 ARC = {"type": "arc", "radius": 1.0, "opening_angle_deg": 120.0, "start_angle_deg": 30.0}
 POLY = {"type": "polynomial", "coefficients": [0.0, 0.4, -0.3], "x_range": [0.0, 1.6]}
@@ -32,11 +31,13 @@ AXES = {"arc": ARC, "polynomial": POLY}
 
 def curved_scene(axis: dict, left: str, right: str, h: float = 0.02) -> dict:
     L = axis_length(Axis(**axis))
-    loads = [{"type": "distributed", "value": -1000.0, "frame": "global"},
-             {"type": "distributed", "value": 200.0, "axial": 150.0, "start": 0.2 * L, "end": 0.6 * L},
-             {"type": "point_force", "position": 0.4 * L, "value": 300.0, "axial": -200.0},
-             {"type": "point_moment", "position": 0.7 * L, "value": 50.0},
-             {"type": "point_force", "position": L, "value": -40.0, "axial": 30.0, "frame": "global"}]
+    loads = [
+        {"type": "distributed", "value": -1000.0, "frame": "global"},
+        {"type": "distributed", "value": 200.0, "axial": 150.0, "start": 0.2 * L, "end": 0.6 * L},
+        {"type": "point_force", "position": 0.4 * L, "value": 300.0, "axial": -200.0},
+        {"type": "point_moment", "position": 0.7 * L, "value": 50.0},
+        {"type": "point_force", "position": L, "value": -40.0, "axial": 30.0, "frame": "global"},
+    ]
     return scene_dict(left, right, loads, beam={"length": L}, section={"width": 0.05, "height": h}, axis=axis)
 
 

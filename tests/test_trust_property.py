@@ -45,8 +45,12 @@ FLOOR = 1e-9  # relative errors below this always pass (round-off of a float64 s
 BOUND_FACTOR = 100.0  # ... and below this many times the result's own round-off bound (info["error_bound"])
 
 # The exact solution each declared theory is measured against (straight axes; curved axes: exact-curved).
-REFERENCE = {"euler-bernoulli": "exact-eb", "timoshenko": "exact-timoshenko", "higher-order": "exact-timoshenko",
-             "axial": "exact-curved"}
+REFERENCE = {
+    "euler-bernoulli": "exact-eb",
+    "timoshenko": "exact-timoshenko",
+    "higher-order": "exact-timoshenko",
+    "axial": "exact-curved",
+}
 # Static models left out, each with the reason (the others are swept):
 EXCLUDED = {
     "exact-eb": "the reference itself (exact-curved on straight axes is checked against exact-timoshenko)",
@@ -56,13 +60,14 @@ EXCLUDED = {
     "pd-curved-mms": "pd-curved with manufactured loads: its reference is exact-curved-manufactured",
     "exact-elastica": "large rotations under one end load: a nonlinear reference, not a linear scene's",
     "fem-plane-stress": "the 2D continuum differs from the beam by the thickness gap, O(h/L) (docs/supports.md); "
-                        "its convergence to exact-curved is test_supports_curved.py's slow test (12 min)",
+    "its convergence to exact-curved is test_supports_curved.py's slow test (12 min)",
     "pd-torsion": "no exact twist reference is registered (torsion is checked by tests/test_pd_timoshenko.py)",
 }
 STATIC = sorted(n for n, m in models().items() if "static" in m.analyses and n not in EXCLUDED)
 
 
 # -- scenes ------------------------------------------------------------------------------------------------
+
 
 def _loads(draw, length: float, bending: bool, axial: bool, moments: bool) -> list[dict]:
     """1-4 loads anywhere on [0, length], ends included: forces, moments, uniform / partial / sine loads."""
@@ -109,12 +114,19 @@ def straight_scenes(draw, model: str):
 def curved_scenes(draw):
     if draw(st.booleans()):
         opening = draw(st.floats(10.0, 359.0))  # one direction: the scene takes opening_angle_deg > 0 only
-        axis = {"type": "arc", "radius": draw(st.floats(0.3, 5.0)), "opening_angle_deg": opening,
-                "start_angle_deg": draw(st.floats(-180.0, 180.0))}
+        axis = {
+            "type": "arc",
+            "radius": draw(st.floats(0.3, 5.0)),
+            "opening_angle_deg": opening,
+            "start_angle_deg": draw(st.floats(-180.0, 180.0)),
+        }
     else:
         degree = draw(st.integers(1, 3))
-        axis = {"type": "polynomial", "coefficients": [draw(st.floats(-1.0, 1.0)) for _ in range(degree + 1)],
-                "x_range": [0.0, draw(st.floats(0.5, 3.0))]}
+        axis = {
+            "type": "polynomial",
+            "coefficients": [draw(st.floats(-1.0, 1.0)) for _ in range(degree + 1)],
+            "x_range": [0.0, draw(st.floats(0.5, 3.0))],
+        }
     length = axis_length(Axis(**axis))
     left, right = draw(st.sampled_from([(a, b) for a in SUPPORTS for b in SUPPORTS]))
     loads = _loads(draw, length, True, True, True)
@@ -134,6 +146,7 @@ def points(low: int, high: int):
 
 
 # -- the error and its prediction --------------------------------------------------------------------------
+
 
 def _keys(scene, model) -> tuple[str, ...]:
     if not scene.is_straight:
@@ -211,8 +224,10 @@ def check_case(scene, name: str, n: int):
     est, p = predicted(scene, model, results, n)
     floor = max(FLOOR, BOUND_FACTOR * float(res.info.get("error_bound") or 0.0))
     ok = err <= floor or err <= SAFETY * est or bool(res.info.get("warnings"))
-    assert ok, (f"{name} at {n} points: error {err:.3g} > {SAFETY:g} x predicted {est:.3g} (observed order "
-                f"{p:.2f}, floor {floor:.3g}) with no warning; grids {grids(n)}; scene {scene.to_dict()}")
+    assert ok, (
+        f"{name} at {n} points: error {err:.3g} > {SAFETY:g} x predicted {est:.3g} (observed order "
+        f"{p:.2f}, floor {floor:.3g}) with no warning; grids {grids(n)}; scene {scene.to_dict()}"
+    )
     return err, est, p
 
 
@@ -239,14 +254,22 @@ def test_curved_scenes(name, scene, n):
     check_case(scene, name, n)
 
 
-@pytest.mark.parametrize("pair,position", [(("pinned", "clamped"), 1e-12), (("pinned", "clamped"), 0.0),
-                                           (("clamped", "pinned"), 1.0 - 1e-12), (("clamped", "pinned"), 1.0)])
+@pytest.mark.parametrize(
+    "pair,position",
+    [
+        (("pinned", "clamped"), 1e-12),
+        (("pinned", "clamped"), 0.0),
+        (("clamped", "pinned"), 1.0 - 1e-12),
+        (("clamped", "pinned"), 1.0),
+    ],
+)
 def test_exact_curved_end_moment_near_the_end(pair, position):
     """Found by the sweep: exact-curved, pinned-clamped, a point moment -100 N m 1e-12 m from the pinned end gave
     max|w| 2.577e-5 against 1.288e-5 (exact-timoshenko; exact-curved itself with the moment at 0.0 or 1e-3): the
     moment was both the end condition's and the cantilever part's. Fixed: an end load is one exactly at the end."""
-    sc = parse_scene(scene_dict(*pair, [{"type": "point_moment", "position": position, "value": -100.0}],
-                                beam={"length": 1.0}))
+    sc = parse_scene(
+        scene_dict(*pair, [{"type": "point_moment", "position": position, "value": -100.0}], beam={"length": 1.0})
+    )
     a, b = run(sc, "exact-curved", points=21), run(sc, "exact-timoshenko", points=21)
     assert np.abs(a.w - b.w).max() <= 1e-9 * np.abs(b.w).max()
 

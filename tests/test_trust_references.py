@@ -4,13 +4,12 @@ bound (info.error_bound, issue 27 item 1) holds their error without crying wolf.
 
 import numpy as np
 import pytest
+from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.exact.straight import solve_straight
 from pdverify.linalg import BOUND_LIMIT
 from pdverify.registry import run
 from pdverify.scene import parse_scene
-
-from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 MODELS = ("fem-eb", "fem-timoshenko")
 LOADS = {  # one of each load type, off-centre (a load on a node of the uniform grid or between two)

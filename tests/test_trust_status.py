@@ -3,16 +3,12 @@ study row's status (``suspect``), the report; NaN/inf never leaves with exit 0."
 
 import json
 import math
-from pathlib import Path
 
-import numpy as np
 import pandas as pd
 import pytest
 
 from pdverify.linalg import BOUND_LIMIT
 from pdverify.study.status import case_status
-
-from conftest import scene_dict
 
 TOML = """name = "propped cantilever"
 [beam]
@@ -86,8 +82,9 @@ def test_a_study_row_is_suspect_and_the_report_marks_it(tmp_path):
     from pdverify.study.runner import run_case
 
     text = TOML.format(E="200e9")
-    bad = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 20001, "form": "direct"},
-                             {"model": "exact-eb"}))["row"]
+    bad = run_case(
+        spec.Case("s.toml", text, None, "fem-eb", {"points": 20001, "form": "direct"}, {"model": "exact-eb"})
+    )["row"]
     good = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 20001}, {"model": "exact-eb"}))["row"]
     assert bad["status"] == "suspect" and bad["error_bound"] > BOUND_LIMIT and bad["error_bound"] >= bad["err_max"] / 2
     assert good["status"] == "ok" and good["error_bound"] < BOUND_LIMIT and good["err_max"] < 1e-10

@@ -25,13 +25,22 @@ def _study(tmp_path: Path, extra: str) -> Path:
 
 def _pdverify(*args, cwd: Path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run([sys.executable, "-m", "pdverify.cli", *map(str, args)], capture_output=True, text=True,
-                          env=env, cwd=cwd, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", *map(str, args)],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=cwd,
+        timeout=300,
+    )
 
 
 def test_bad_verify_entries_are_one_line_each_and_nothing_runs(tmp_path):
-    study = _study(tmp_path, 'verify = ["no-such-model", "pd-eb colour=red", "pd-eb points=11", "pd-rod", 5, '
-                             '"pd-eb variant=paper", "pd-eb variant=paper", "pd-eb variant"]\nverify_required = "yes"')
+    study = _study(
+        tmp_path,
+        'verify = ["no-such-model", "pd-eb colour=red", "pd-eb points=11", "pd-rod", 5, '
+        '"pd-eb variant=paper", "pd-eb variant=paper", "pd-eb variant"]\nverify_required = "yes"',
+    )
     r = _pdverify("study", study, "--out", tmp_path / "out", "--quiet", cwd=tmp_path)
     assert r.returncode == 2 and "Traceback" not in r.stderr
     lines = r.stderr.splitlines()
@@ -70,8 +79,10 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
         assert json.loads((out / "verify" / folder / "card.json").read_text())["model"] == model
     cards = json.loads((out / "verify" / "cards.json").read_text())
     assert cards["required"] is True
-    assert [(c["folder"], c["verdict"]) for c in cards["cards"]] == [("exact_eb", "pass"),
-                                                                      ("fem_timoshenko_variant_full", "fail")]
+    assert [(c["folder"], c["verdict"]) for c in cards["cards"]] == [
+        ("exact_eb", "pass"),
+        ("fem_timoshenko_variant_full", "fail"),
+    ]
     locking = {c["check"].split(" (")[0]: c["verdict"] for c in cards["cards"][1]["checks"]}["locking"]
     assert locking == "fail"
     index = (out / "index.html").read_text()

@@ -104,8 +104,9 @@ class Cantilever:
         p = self._line_load(sig, np.broadcast_to(mid[:, None], sig.shape))
         self.G = self._cumulative(np.concatenate([p, _cross(r, p)[..., None]], axis=-1))  # (panels, nodes, 3)
         self.GL = self.G[-1, -1]
-        N, Q, M, t, n, r = self.resultants(sig.ravel(), G=self.G.reshape(-1, 3),
-                                           panel=np.broadcast_to(mid[:, None], sig.shape).ravel())
+        N, Q, M, t, n, r = self.resultants(
+            sig.ravel(), G=self.G.reshape(-1, 3), panel=np.broadcast_to(mid[:, None], sig.shape).ravel()
+        )
         EA, kGA, EI = scene.EA, scene.kGA, scene.EI
         eps, gam, chi = N / EA, Q / kGA, M / EI
         f = np.column_stack([eps[:, None] * t + gam[:, None] * n, chi, chi[:, None] * r])
@@ -199,9 +200,11 @@ class Indeterminate:
         self.scene = scene
         self.geo = geometry(scene)
         self.part = Cantilever(scene.model_copy(update=base))
-        units = [PointForce(type="point_force", position=L, value=0.0, axial=1.0, frame="global"),
-                 PointForce(type="point_force", position=L, value=1.0, axial=0.0, frame="global"),
-                 PointMoment(type="point_moment", position=L, value=1.0)]
+        units = [
+            PointForce(type="point_force", position=L, value=0.0, axial=1.0, frame="global"),
+            PointForce(type="point_force", position=L, value=1.0, axial=0.0, frame="global"),
+            PointMoment(type="point_moment", position=L, value=1.0),
+        ]
         self.units = [Cantilever(scene.model_copy(update=dict(base, loads=[u]))) for u in units]
         ends = [[], []]
         for load in scene.loads:
@@ -247,8 +250,18 @@ class Indeterminate:
         out = [self.part.fields(s)]
         for v, th in ((np.array([1.0, 0.0]), 0.0), (np.array([0.0, 1.0]), 0.0), (np.zeros(2), 1.0)):
             u = v[None, :] + th * _ez(r - self.r0[None, :])
-            out.append({"ux": u[:, 0], "uy": u[:, 1], "u": np.sum(u * t, axis=-1), "w": np.sum(u * n, axis=-1),
-                        "rotation": zero + th, "N": zero, "Q": zero, "M": zero})
+            out.append(
+                {
+                    "ux": u[:, 0],
+                    "uy": u[:, 1],
+                    "u": np.sum(u * t, axis=-1),
+                    "w": np.sum(u * n, axis=-1),
+                    "rotation": zero + th,
+                    "N": zero,
+                    "Q": zero,
+                    "M": zero,
+                }
+            )
         out += [c.fields(s) for c in self.units]
         return out
 
@@ -286,9 +299,18 @@ class ExactCurved(Model):
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             f = self.solver(scene).fields(s)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=f["w"],
-                      rotation=f["rotation"], fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
-                      dofs=0, timings=timer.timings, info={})
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=s,
+            w=f["w"],
+            rotation=f["rotation"],
+            fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
+            dofs=0,
+            timings=timer.timings,
+            info={},
+        )
 
 
 class ExactCurvedCantilever(ExactCurved):
@@ -301,8 +323,10 @@ class ExactCurvedCantilever(ExactCurved):
         out = super().check(scene)
         sup = (scene.supports.left, scene.supports.right)
         if sorted(sup) != ["clamped", "free"]:
-            out.append(f"supports = {sup}: model {self.name} solves cantilevers only (one end clamped, the other "
-                       "free); use pd-curved or fem-plane-stress")
+            out.append(
+                f"supports = {sup}: model {self.name} solves cantilevers only (one end clamped, the other "
+                "free); use pd-curved or fem-plane-stress"
+            )
         return out
 
 

@@ -34,6 +34,7 @@ from ..scene import PointForce, PointMoment, Scene
 
 def tip_force_parameters(alpha: float) -> tuple[float, float, float]:
     """(k, phi_1, theta_0) of the cantilever elastica under a dead tip force, alpha = P L² / EI > 0."""
+
     def kphi(theta0):  # tan phi_1 = 1 / sqrt(sin theta_0): no cancellation near phi_1 = pi / 2
         return np.sqrt((1 + np.sin(theta0)) / 2), np.arctan2(1.0, np.sqrt(np.sin(theta0)))
 
@@ -88,16 +89,27 @@ class ExactElastica(Model):
         """Why this reference cannot solve ``scene`` (empty when it can)."""
         sup = (scene.supports.left, scene.supports.right)
         if not scene.is_straight or sorted(sup) != ["clamped", "free"]:
-            return [(f"supports = {sup[0]}-{sup[1]}: exact-elastica solves a straight cantilever (clamped-free or "
-                     "free-clamped); use exact-eb for other supports")]
+            return [
+                (
+                    f"supports = {sup[0]}-{sup[1]}: exact-elastica solves a straight cantilever (clamped-free or "
+                    "free-clamped); use exact-eb for other supports"
+                )
+            ]
         end = 0.0 if sup[0] == "free" else scene.length
         loads = list(scene.loads)
-        ok = len(loads) == 1 and isinstance(loads[0], (PointForce, PointMoment)) \
-            and abs(loads[0].position - end) <= 1e-12 * scene.length \
+        ok = (
+            len(loads) == 1
+            and isinstance(loads[0], (PointForce, PointMoment))
+            and abs(loads[0].position - end) <= 1e-12 * scene.length
             and getattr(loads[0], "axial", 0.0) == 0.0
+        )
         if not ok:
-            return [("loads: exact-elastica takes one transverse point force or one point moment at the free end; "
-                     "use a numerical reference for other loads")]
+            return [
+                (
+                    "loads: exact-elastica takes one transverse point force or one point moment at the free end; "
+                    "use a numerical reference for other loads"
+                )
+            ]
         return []
 
     def check(self, scene: Scene) -> list[str]:
@@ -128,9 +140,17 @@ class ExactElastica(Model):
         with timer("solve"):
             x = np.linspace(0.0, scene.length, params["points"])
             f = self.evaluate(scene, params, x)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=f["w"],
-                      fields={"u": f["u"]}, dofs=1, timings=timer.timings,
-                      info={"theory": "inextensible Euler elastica (large rotations)"})
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=f["w"],
+            fields={"u": f["u"]},
+            dofs=1,
+            timings=timer.timings,
+            info={"theory": "inextensible Euler elastica (large rotations)"},
+        )
 
 
 MODELS = [ExactElastica()]

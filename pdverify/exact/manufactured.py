@@ -18,18 +18,24 @@ def manufactured_checks(scene: Scene) -> list[str]:
     if scene.axis.type != "polynomial":
         out.append(f"axis.type = {scene.axis.type!r}: the manufactured solution is written for a polynomial axis")
     if (scene.supports.left, scene.supports.right) != ("clamped", "clamped"):
-        out.append(f"supports = {scene.supports.left}-{scene.supports.right}: the manufactured fields vanish at "
-                   "both ends; set both supports to clamped")
+        out.append(
+            f"supports = {scene.supports.left}-{scene.supports.right}: the manufactured fields vanish at "
+            "both ends; set both supports to clamped"
+        )
     if scene.loads:
-        out.append("loads: the manufactured solution brings its own loads (pd-curved-mms adds them); remove the [[loads]]")
+        out.append(
+            "loads: the manufactured solution brings its own loads (pd-curved-mms adds them); remove the [[loads]]"
+        )
     return out
 
 
 class ExactCurvedManufactured(Model):
     name = "exact-curved-manufactured"
     title = "manufactured solution of the curved Timoshenko–Ehrenfest beam (chosen fields)"
-    source = ("pdverify/manufactured.py: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x) "
-              "(fields = trig) or a beam-like bending field (fields = bending)")
+    source = (
+        "pdverify/manufactured.py: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x) "
+        "(fields = trig) or a beam-like bending field (fields = bending)"
+    )
     options = (POINTS, FIELDS)
     theory = "timoshenko"
     curved = True
@@ -46,17 +52,34 @@ class ExactCurvedManufactured(Model):
         f = fields(scene, x, kind=params.get("fields", "trig"))
         t, n = geometry(scene).frame(x)
         U = f["u_t"][:, None] * t + f["u_n"][:, None] * n
-        return {"w": f["u_n"], "rotation": f["phi"], "u": f["u_t"], "ux": U[:, 0], "uy": U[:, 1],
-                "N": f["N"], "Q": f["Q"], "M": f["M"]}
+        return {
+            "w": f["u_n"],
+            "rotation": f["phi"],
+            "u": f["u_t"],
+            "ux": U[:, 0],
+            "uy": U[:, 1],
+            "N": f["N"],
+            "Q": f["Q"],
+            "M": f["M"],
+        }
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             f = self.evaluate(scene, params, s)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=s, w=f["w"],
-                      rotation=f["rotation"], fields={k: v for k, v in f.items() if k not in ("w", "rotation")},
-                      dofs=0, timings=timer.timings, info={})
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=s,
+            w=f["w"],
+            rotation=f["rotation"],
+            fields={k: v for k, v in f.items() if k not in ("w", "rotation")},
+            dofs=0,
+            timings=timer.timings,
+            info={},
+        )
 
 
 MODELS = [ExactCurvedManufactured()]

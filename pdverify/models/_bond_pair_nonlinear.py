@@ -74,7 +74,7 @@ def element_tangent(grad_fn, pts: list[np.ndarray], *args):
     for i in range(m):
         Xi = X.copy()
         Xi[:, i] += 1j * _H
-        parts = [Xi[:, 2 * p:2 * p + 2] for p in range(m // 2)]
+        parts = [Xi[:, 2 * p : 2 * p + 2] for p in range(m // 2)]
         H[:, :, i] = grad_fn(*parts, *args).imag / _H
     return H
 
@@ -195,15 +195,24 @@ class NonlinearBondPair:
             rows.append(r), cols.append(c), vals.append(np.full(len(r), v))
 
         self.alive = np.zeros(N, bool)
-        self.alive[G:G + n] = True
+        self.alive[G : G + n] = True
         for side, sup in ((0, self.scene.supports.left), (1, self.scene.supports.right)):
             s = 0 if side == 0 else n - 1  # support point (real index)
             i = np.arange(1, G + 1)
             r = i if side == 0 else n - 1 - i
             if sup == "free":  # cubic extrapolation of the last four real positions (affine: rigid motions exact)
                 t = np.arange(4)
-                lag = np.prod([np.where(t[:, None] == m, 1.0, (-i[None, :] - t[m]) / np.where(t[:, None] == m, 1.0,
-                              t[:, None] - t[m])) for m in range(4)], axis=0)  # lag[q, i]: weight of point q at -i
+                lag = np.prod(
+                    [
+                        np.where(
+                            t[:, None] == m,
+                            1.0,
+                            (-i[None, :] - t[m]) / np.where(t[:, None] == m, 1.0, t[:, None] - t[m]),
+                        )
+                        for m in range(4)
+                    ],
+                    axis=0,
+                )  # lag[q, i]: weight of point q at -i
                 g = (G - i) if side == 0 else (G + n - 1 + i)
                 src = t if side == 0 else n - 1 - t
                 self.alive[g] = True
@@ -255,7 +264,7 @@ class NonlinearBondPair:
         g = np.zeros((self.N, 2), dtype=Xe.dtype)
         gp = pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx)
         for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
-            np.add.at(g, idx, gp[:, 2 * t:2 * t + 2])
+            np.add.at(g, idx, gp[:, 2 * t : 2 * t + 2])
         gb = bond_grad(Xe[self.ba], Xe[self.bc], self.bk, self.bxi)
         np.add.at(g, self.ba, gb[:, :2])
         np.add.at(g, self.bc, gb[:, 2:])
@@ -282,15 +291,20 @@ class NonlinearBondPair:
         a, b, c = self.pc - self.po, self.pc, self.pc + self.po
         scatter(element_tangent(pair_grad, [Xe[a], Xe[b], Xe[c]], self.pk, self.po * self.dx), [a, b, c])
         scatter(element_tangent(bond_grad, [Xe[self.ba], Xe[self.bc]], self.bk, self.bxi), [self.ba, self.bc])
-        K = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(2 * self.N, 2 * self.N))
+        K = sp.csr_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(2 * self.N, 2 * self.N)
+        )
         K = (self.T.T @ K @ self.T).tocsr()
         if len(self.cC):
             Pr = P.reshape(-1, 2)
             Hc = element_tangent(couple_grad, [Pr[self.ca], Pr[self.cc]], lam * self.cC, (self.cc - self.ca) * self.dx)
-            r, cl, v = [], [], []
-            dofs = np.concatenate([np.stack([2 * self.ca, 2 * self.ca + 1], 1), np.stack([2 * self.cc, 2 * self.cc + 1], 1)], 1)
-            K = K + sp.csr_matrix((Hc.reshape(len(Hc), -1).ravel(), (np.repeat(dofs, 4, axis=1).ravel(),
-                                                                      np.tile(dofs, (1, 4)).ravel())), shape=K.shape)
+            dofs = np.concatenate(
+                [np.stack([2 * self.ca, 2 * self.ca + 1], 1), np.stack([2 * self.cc, 2 * self.cc + 1], 1)], 1
+            )
+            K = K + sp.csr_matrix(
+                (Hc.reshape(len(Hc), -1).ravel(), (np.repeat(dofs, 4, axis=1).ravel(), np.tile(dofs, (1, 4)).ravel())),
+                shape=K.shape,
+            )
         return K
 
     def apply_linear(self, P: np.ndarray) -> np.ndarray:
@@ -308,7 +322,7 @@ class NonlinearBondPair:
         g = np.zeros((self.N, 2))
         gp = np.abs(pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx))
         for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
-            np.add.at(g, idx, gp[:, 2 * t:2 * t + 2])
+            np.add.at(g, idx, gp[:, 2 * t : 2 * t + 2])
         gb = np.abs(bond_grad(Xe[self.ba], Xe[self.bc], self.bk, self.bxi))
         np.add.at(g, self.ba, gb[:, :2])
         np.add.at(g, self.bc, gb[:, 2:])
@@ -377,10 +391,12 @@ class NonlinearBondPair:
                     P, lam0 = P_new, lam
                     continue
                 dl /= 2
-                if dl < 1.0 / steps / 2 ** max_halvings:
-                    raise SolveError(f"pd-bond-pair nonlinear: Newton did not converge at load factor {lam:.4g} "
-                                     f"(step {s}/{steps}, split {max_halvings} times; residual {rel:.2e} of the "
-                                     "internal forces); use more steps (-o steps=...)")
+                if dl < 1.0 / steps / 2**max_halvings:
+                    raise SolveError(
+                        f"pd-bond-pair nonlinear: Newton did not converge at load factor {lam:.4g} "
+                        f"(step {s}/{steps}, split {max_halvings} times; residual {rel:.2e} of the "
+                        "internal forces); use more steps (-o steps=...)"
+                    )
             iters.append(n_it)
             if s in keep:
                 Pr = P.reshape(-1, 2) + self.X0

@@ -93,8 +93,9 @@ def taylor_ghosts_cells(n_ghost: int, order: int, anchored: bool) -> np.ndarray:
     return G
 
 
-def constrained_ghosts(n_fields: int, degree: int, npts: int, n_ghost: int,
-                       constraints: list[tuple[dict, dict, float]]) -> tuple[np.ndarray, np.ndarray]:
+def constrained_ghosts(
+    n_fields: int, degree: int, npts: int, n_ghost: int, constraints: list[tuple[dict, dict, float]]
+) -> tuple[np.ndarray, np.ndarray]:
     """Ghost values as an affine map of the real values near an end: ghosts = R d + r0.
 
     Each field is a polynomial p_f(t) = Σ_q c_{f,q} t^q in the outward coordinate t = s/Δ (t = 0 at
@@ -121,7 +122,7 @@ def constrained_ghosts(n_fields: int, degree: int, npts: int, n_ghost: int,
     nk = len(constraints)
     KKT = np.block([[V.T @ V, C.T], [C, np.zeros((nk, nk))]])
     Z = np.linalg.inv(KKT)
-    Z11, Z12 = Z[: n_fields * nc, : n_fields * nc], Z[: n_fields * nc, n_fields * nc:]
+    Z11, Z12 = Z[: n_fields * nc, : n_fields * nc], Z[: n_fields * nc, n_fields * nc :]
     Rc = Z11 @ V.T + Z12 @ D
     c0 = Z12 @ r
     return Vgh @ Rc, Vgh @ c0
@@ -252,7 +253,7 @@ class EndPatched:
         return (self.n * self.nr, self.n * self.nf)
 
     @classmethod
-    def from_core(cls, core: sp.spmatrix, nr: int, nf: int, n: int) -> "EndPatched":
+    def from_core(cls, core: sp.spmatrix, nr: int, nf: int, n: int) -> EndPatched:
         """The operator on ``n`` points from its assembly ``core`` on nc <= n points of the same spacing
         (n = nc: every row explicit). The stencil is the middle row of the core; L and R count the rows
         at each end that differ from it (compared bit for bit: equal rows come out of the same sums);
@@ -276,11 +277,13 @@ class EndPatched:
         L = int(bad[bad < mid].max()) + 1 if np.any(bad < mid) else 0
         R = nc - int(bad[bad > mid].min()) if np.any(bad > mid) else 0
         if L + R + 2 * reach + 1 > nc or n < L + R:
-            raise RuntimeError(f"EndPatched: a core of {nc} points holds no stencil rows (L = {L}, R = {R}, "
-                               f"reach = {reach}); assemble a longer core")
+            raise RuntimeError(
+                f"EndPatched: a core of {nc} points holds no stencil rows (L = {L}, R = {R}, "
+                f"reach = {reach}); assemble a longer core"
+            )
         blocks = {k - reach: W[mid, :, k, :].copy() for k in range(2 * reach + 1) if W[mid, :, k, :].any()}
         left = core[: nr * L].tocoo()
-        right = core[nr * (nc - R):].tocoo()
+        right = core[nr * (nc - R) :].tocoo()
         shift_r, shift_c = nr * (n - nc), nf * (n - nc)
         rows = np.r_[left.row, right.row + nr * (nc - R) + shift_r]
         cols = np.r_[left.col, right.col + shift_c]
@@ -296,14 +299,14 @@ class EndPatched:
             return target + v_core
         h = per * (len(v_core) // per // 2)
         target[:h] += v_core[:h]
-        target[len(target) - (len(v_core) - h):] += v_core[h:]
+        target[len(target) - (len(v_core) - h) :] += v_core[h:]
         return target
 
     def stencil(self, a: int, b: int, scale: float = 1.0) -> dict:
         """{point offset: coefficient} of the block (a, b) of the interior stencil (zeros left out)."""
         return {o: float(C[a, b]) * scale for o, C in self.blocks.items() if C[a, b] != 0.0}
 
-    def shortened(self, n: int) -> "EndPatched":
+    def shortened(self, n: int) -> EndPatched:
         """The same operator on ``n`` <= self.n points: the same end rows and stencil (the right end's
         rows and columns moved by the difference); its end modes are those of the long grid."""
         if n >= self.n:
@@ -343,7 +346,11 @@ class EndPatched:
                 for a in range(self.nr):
                     for b in range(self.nf):
                         if C[a, b] != 0.0:
-                            rr.append(self.nr * p + a), cc.append(self.nf * (p + o) + b), vv.append(np.full(len(p), C[a, b]))
+                            (
+                                rr.append(self.nr * p + a),
+                                cc.append(self.nf * (p + o) + b),
+                                vv.append(np.full(len(p), C[a, b])),
+                            )
             K = K + sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=self.shape)
         return K.tocsr()
 
@@ -361,8 +368,14 @@ class EndPatched:
             for a in range(self.nr):
                 for b in range(self.nf):
                     if C[a, b] != 0.0:
-                        rr.append(pos[self.nr * p + a]), cc.append(self.nf * (p + o) + b), vv.append(np.full(len(p), C[a, b]))
-        return sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=(len(sel), self.shape[1]))
+                        (
+                            rr.append(pos[self.nr * p + a]),
+                            cc.append(self.nf * (p + o) + b),
+                            vv.append(np.full(len(p), C[a, b])),
+                        )
+        return sp.csr_matrix(
+            (np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=(len(sel), self.shape[1])
+        )
 
     # -- products ------------------------------------------------------------------------------
     def matvec(self, u: np.ndarray) -> np.ndarray:
@@ -371,7 +384,7 @@ class EndPatched:
         u = np.asarray(u, float)
         n, nr, nf, h = self.n, self.nr, self.nf, self.reach
         src = np.zeros((nf, n + 2 * h))
-        src[:, h: h + n] = u.reshape(n, nf).T
+        src[:, h : h + n] = u.reshape(n, nf).T
         lo, hi = self.L, n - self.R
         out = np.zeros((nr, n))
         if hi > lo:
@@ -392,8 +405,9 @@ class EndPatched:
         return self.matvec(u)
 
 
-def stencil_ops(ops: list, dst: np.ndarray, src: np.ndarray, lo: int, hi: int, st: dict, tmp: np.ndarray,
-                first: bool) -> bool:
+def stencil_ops(
+    ops: list, dst: np.ndarray, src: np.ndarray, lo: int, hi: int, st: dict, tmp: np.ndarray, first: bool
+) -> bool:
     """Append to ``ops`` the numpy calls (ufunc, args) that add Σ_o st[o] src[lo + o: hi + o] to ``dst``
     (``first``: write it instead). Offsets ±o with equal (opposite) coefficients are summed (differenced)
     first and multiplied once: the PD kernels are even or odd. Returns the new ``first``."""
@@ -402,10 +416,10 @@ def stencil_ops(ops: list, dst: np.ndarray, src: np.ndarray, lo: int, hi: int, s
         if o in done:
             continue
         c = st[o]
-        a = src[lo + o: hi + o]
+        a = src[lo + o : hi + o]
         if o and st.get(-o) in (c, -c):
             done |= {o, -o}
-            ops.append((np.add if st[-o] == c else np.subtract, (a, src[lo - o: hi - o], tmp)))
+            ops.append((np.add if st[-o] == c else np.subtract, (a, src[lo - o : hi - o], tmp)))
             a = tmp
         else:
             done.add(o)

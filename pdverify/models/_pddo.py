@@ -73,7 +73,7 @@ def householder_solve(A: np.ndarray, d: np.ndarray) -> np.ndarray:
         tau = np.where(zero, 0.0, (beta - alpha) / np.where(zero, 1.0, beta))
         v = x[1:] / den
         if k + 1 < p:  # apply H to the remaining columns
-            Y = A[k:, k + 1:]
+            Y = A[k:, k + 1 :]
             w = Y[0] + np.einsum("in,ijn->jn", v, Y[1:])
             tw = tau * w
             Y[0] -= tw
@@ -91,15 +91,21 @@ def householder_solve(A: np.ndarray, d: np.ndarray) -> np.ndarray:
     # Q [y; 0] = H_0 H_1 ... H_(p-1) [y; 0]
     for k in range(p - 1, -1, -1):
         v, tau = vs[k], taus[k]
-        w = y[k] + np.einsum("in,ijn->jn", v, y[k + 1:])
+        w = y[k] + np.einsum("in,ijn->jn", v, y[k + 1 :])
         tw = tau * w
         y[k] -= tw
-        y[k + 1:] -= v[:, None, :] * tw[None]
+        y[k + 1 :] -= v[:, None, :] * tw[None]
     return y
 
 
-def pddo_weights(s: np.ndarray, fam: np.ndarray, degree: int, orders=(0, 1, 2),
-                 volumes: np.ndarray | None = None, centers: np.ndarray | None = None) -> dict[int, np.ndarray]:
+def pddo_weights(
+    s: np.ndarray,
+    fam: np.ndarray,
+    degree: int,
+    orders=(0, 1, 2),
+    volumes: np.ndarray | None = None,
+    centers: np.ndarray | None = None,
+) -> dict[int, np.ndarray]:
     """PDDO coefficients: {r: (n, size) array c} with f^(r)(x_k) ≈ Σ_j c[k, j] f(s[fam[k, j]]), x_k = s_k
     (or ``centers[k]``: any point, e.g. output positions between particles).
 
@@ -117,7 +123,7 @@ def pddo_weights(s: np.ndarray, fam: np.ndarray, degree: int, orders=(0, 1, 2),
     xi = s[famT] - x[None, :]
     delta = np.abs(xi).max(axis=0)  # (n,)
     z = xi / delta[None, :]
-    wV = np.exp(-(2.0 * z) ** 2) * V[famT] / delta[None, :]  # weight x volume, volumes in units of delta
+    wV = np.exp(-((2.0 * z) ** 2)) * V[famT] / delta[None, :]  # weight x volume, volumes in units of delta
     # Solved as a weighted least-squares problem instead of the normal equations A a = r! e_r (A = B^T W B,
     # cond(A) = 4e8 at P = 6, which left a 4e-8 consistency floor): with the Legendre basis L_q(z) and the
     # QR factors of W^(1/2) L, g^r = W^(1/2) Q y with R^T y = T^(-T) r! e_r (T: monomials in Legendre
@@ -153,7 +159,9 @@ def operator(fam: np.ndarray, coef: np.ndarray, n_cols: int | None = None) -> sp
     return sp.csr_matrix((np.ravel(coef), (rows, np.ravel(fam))), shape=(n, n_cols))
 
 
-def derivative_weights(s: np.ndarray, degree: int, size: int, orders=(1, 2)) -> tuple[np.ndarray, dict[int, np.ndarray]]:
+def derivative_weights(
+    s: np.ndarray, degree: int, size: int, orders=(1, 2)
+) -> tuple[np.ndarray, dict[int, np.ndarray]]:
     """(fam, {r: c}): the families of the particles s (one segment) and their PDDO derivative weights
     (:func:`pddo_weights`). Weights below 1e-10 of their row's largest are round-off of exact zeros (g^1(0)
     of a symmetric family) and are set to 0."""

@@ -36,8 +36,16 @@ from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Scene
-from .pd_common import (body_loads, boundary_layer_warnings, curvature_end_rows, end_loads, family,
-                        ghost_stencil_system, stencil_operator, taylor_ghosts)
+from .pd_common import (
+    body_loads,
+    boundary_layer_warnings,
+    curvature_end_rows,
+    end_loads,
+    family,
+    ghost_stencil_system,
+    stencil_operator,
+    taylor_ghosts,
+)
 
 
 def spring_constants(EI: float, m: float, dx: float, variant: str) -> np.ndarray:
@@ -97,7 +105,7 @@ def factored_stencils(j: np.ndarray, c: np.ndarray, EI: float, dx: float) -> tup
         tri = np.r_[np.arange(1, jj + 1), np.arange(jj - 1, 0, -1)].astype(float)
         t2 = np.convolve(tri, tri)
         mid = 2 * (J - 1)
-        r[mid - 2 * (jj - 1): mid + 2 * (jj - 1) + 1] += cj * t2 * dx**4 / EI
+        r[mid - 2 * (jj - 1) : mid + 2 * (jj - 1) + 1] += cj * t2 * dx**4 / EI
     return r, np.convolve([1.0, -2.0, 1.0], r)
 
 
@@ -108,12 +116,22 @@ class PDBondPair(Model):
     options = (
         Option("points", int, 201, "material points along the beam, ends included", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing", minimum=1.0),
-        Option("variant", str, "corrected", "paper (continuous alpha) | corrected (discrete alpha)",
-               choices=("paper", "corrected")),
+        Option(
+            "variant",
+            str,
+            "corrected",
+            "paper (continuous alpha) | corrected (discrete alpha)",
+            choices=("paper", "corrected"),
+        ),
         Option("ends", str, "taylor", "boundary ghost rule: mirror | taylor", choices=("mirror", "taylor")),
-        Option("form", str, "auto", "taylor ends: auto (= mixed) | direct (one fourth-order system) | mixed (curvature "
-               "and deflection, two second-order equations: round-off ~N^2 eps instead of ~N^4 eps)",
-               choices=("auto", "direct", "mixed")),
+        Option(
+            "form",
+            str,
+            "auto",
+            "taylor ends: auto (= mixed) | direct (one fourth-order system) | mixed (curvature "
+            "and deflection, two second-order equations: round-off ~N^2 eps instead of ~N^4 eps)",
+            choices=("auto", "direct", "mixed"),
+        ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
     )
@@ -121,10 +139,20 @@ class PDBondPair(Model):
     assembles = True
     nonlinear_when = (("nonlinear", True),)
     variant_rules = (
-        Rule((("variant", "paper"),), "horizon", "seed 003 alpha = 3 EI / delta^3 with delta = (m + 0.015) dx over "
-             "whole families of m points; use variant = corrected for a fractional horizon", whole=True),
-        Rule((("variant", "paper"),), "ends", "the paper's continuous alpha goes with the mirror (reflection) ghosts "
-             "of seed 000; Taylor ghosts carry the true EI (design note §1); use ends = mirror", allowed=("mirror",)),
+        Rule(
+            (("variant", "paper"),),
+            "horizon",
+            "seed 003 alpha = 3 EI / delta^3 with delta = (m + 0.015) dx over "
+            "whole families of m points; use variant = corrected for a fractional horizon",
+            whole=True,
+        ),
+        Rule(
+            (("variant", "paper"),),
+            "ends",
+            "the paper's continuous alpha goes with the mirror (reflection) ghosts "
+            "of seed 000; Taylor ghosts carry the true EI (design note §1); use ends = mirror",
+            allowed=("mirror",),
+        ),
     )
 
     def energy_model(self, scene: Scene, params: dict):
@@ -149,8 +177,9 @@ class PDBondPair(Model):
             K = model.tangent(np.zeros(2 * model.n), 0.0)
             free = model.free
             b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
-            return System(K[free][:, free].tocsr(), b[free], free,
-                          {"ghosts_per_end": model.G, "form": "energy tangent"})
+            return System(
+                K[free][:, free].tocsr(), b[free], free, {"ghosts_per_end": model.G, "form": "energy tangent"}
+            )
         if params.get("form", "auto") in ("auto", "mixed"):
             return self.assemble_mixed(scene, params)
         K, b, fixed, info = self.assemble_taylor(scene, params)
@@ -167,8 +196,10 @@ class PDBondPair(Model):
         c = spring_constants(scene.EI, params["horizon"], dx, params["variant"])
         G = 2 * int(j.max())
         if G + 1 > n:
-            raise InputError(f"horizon = {params['horizon']:g}: the stencil (2 x {j.max()} points) does not fit in "
-                             f"{n} points; use more points or a smaller horizon")
+            raise InputError(
+                f"horizon = {params['horizon']:g}: the stencil (2 x {j.max()} points) does not fit in "
+                f"{n} points; use more points or a smaller horizon"
+            )
         N = n + 2 * G
         left, right = scene.supports.left, scene.supports.right
         er, ec, ev = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
@@ -216,8 +247,10 @@ class PDBondPair(Model):
         J = int(j.max())
         G, Jk = 2 * J, 2 * J - 1
         if G + 1 > n:
-            raise InputError(f"horizon = {params['horizon']:g}: the stencil (2 x {J} points) does not fit in "
-                             f"{n} points; use more points or a smaller horizon")
+            raise InputError(
+                f"horizon = {params['horizon']:g}: the stencil (2 x {J} points) does not fit in "
+                f"{n} points; use more points or a smaller horizon"
+            )
         _, st = factored_stencils(j, c, scene.EI, dx)
         left, right = scene.supports.left, scene.supports.right
         P, C = end_loads(scene)
@@ -231,9 +264,20 @@ class PDBondPair(Model):
             if sup in ("free", "guided"):
                 # end conditions on k = D1 w (the curvature stencil c = 1/dx²): moment and shear on k, not
                 # through Taylor ghosts of w (round-off ~N eps instead of ~N³ eps; pd_common.curvature_end_rows)
-                er_, ec_, ev_, rr_, rv_ = curvature_end_rows(sup, side, n, dx, np.array([1 / dx**2]), M_end, V3,
-                                                             scene.EI, q[0 if side == 0 else n - 1], Jk, kidx,
-                                                             lambda p_: kidx(p_) + 1)
+                er_, ec_, ev_, rr_, rv_ = curvature_end_rows(
+                    sup,
+                    side,
+                    n,
+                    dx,
+                    np.array([1 / dx**2]),
+                    M_end,
+                    V3,
+                    scene.EI,
+                    q[0 if side == 0 else n - 1],
+                    Jk,
+                    kidx,
+                    lambda p_: kidx(p_) + 1,
+                )
                 k_rows.append(er_), k_cols.append(ec_), k_vals.append(ev_), k_rhs.append(np.c_[rr_, rv_])
                 continue
             Gm, g0 = taylor_ghosts("pinned" if sup == "roller" else sup, G, dx, M_end, V3, scene.EI, min(4, n))
@@ -267,14 +311,23 @@ class PDBondPair(Model):
             kr = np.concatenate([np.asarray(v, float).reshape(-1, 2) for v in k_rhs])
             rhs[kr[:, 0].astype(np.int64)] = kr[:, 1]
         M.add_entries(rows, cols, vals)
-        rhs[2 * Jk + 1: 2 * (n + Jk): 2] = q * dx**4 / scene.EI
+        rhs[2 * Jk + 1 : 2 * (n + Jk) : 2] = q * dx**4 / scene.EI
         fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned", "roller")]
-        held = np.r_[2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1,
-                     2 * (np.asarray(fixed, np.int64) + Jk) + 1]
+        held = np.r_[
+            2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1, 2 * (np.asarray(fixed, np.int64) + Jk) + 1
+        ]
         M.fix(held, rhs)
-        return System(M, rhs, np.delete(np.arange(2 * npos), held),
-                      {"ghosts_per_end": G, "form": "mixed (curvature and deflection)", "Jk": Jk,
-                       "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete"})
+        return System(
+            M,
+            rhs,
+            np.delete(np.arange(2 * npos), held),
+            {
+                "ghosts_per_end": G,
+                "form": "mixed (curvature and deflection)",
+                "Jk": Jk,
+                "alpha_calibration": "continuous" if params["variant"] == "paper" else "discrete",
+            },
+        )
 
     def alpha(self, EI: float, m: float, dx: float, variant: str) -> float:
         j, beta = family(m, dx, variant)
@@ -284,8 +337,10 @@ class PDBondPair(Model):
 
     def solve_nonlinear(self, scene: Scene, params: dict) -> Result:
         if params["ends"] != "mirror":
-            raise InputError("ends = taylor: the nonlinear path uses the reflection (mirror) ghosts of the energy "
-                             "form; give -o ends=mirror with -o nonlinear=true")
+            raise InputError(
+                "ends = taylor: the nonlinear path uses the reflection (mirror) ghosts of the energy "
+                "form; give -o ends=mirror with -o nonlinear=true"
+            )
         timer = Timer()
         dx = scene.length / (params["points"] - 1)
         with timer("assemble"):
@@ -294,18 +349,34 @@ class PDBondPair(Model):
             P, shots, iters = model.solve(steps=params["steps"])
         X0 = model.X0
         moments = [l for l in scene.loads if l.type == "point_moment"]
-        if (scene.supports.left, scene.supports.right) == ("clamped", "free") and len(moments) == len(scene.loads) == 1 \
-                and abs(moments[0].position - scene.length) < 1e-12 * scene.length:
+        if (
+            (scene.supports.left, scene.supports.right) == ("clamped", "free")
+            and len(moments) == len(scene.loads) == 1
+            and abs(moments[0].position - scene.length) < 1e-12 * scene.length
+        ):
             s_ = np.linspace(0, scene.length, 201)  # exact elastica: circles of radius EI / (factor M)
             for shot in shots:
                 k = shot["factor"] * moments[0].value / scene.EI
                 xs = np.sin(k * s_) / k if k else s_
                 zs = (1 - np.cos(k * s_)) / k if k else 0 * s_
                 shot["exact_x"], shot["exact_z"] = xs.tolist(), zs.tolist()
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=X0[:, 0], w=P[:, 1],
-                      fields={"u": P[:, 0]}, dofs=len(model.free), timings=timer.timings,
-                      info={"load_steps": shots, "newton_iterations": iters, "ends": "mirror (nonlinear reflections)",
-                            "spacing": dx, "horizon_factor": params["horizon"]})
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=X0[:, 0],
+            w=P[:, 1],
+            fields={"u": P[:, 0]},
+            dofs=len(model.free),
+            timings=timer.timings,
+            info={
+                "load_steps": shots,
+                "newton_iterations": iters,
+                "ends": "mirror (nonlinear reflections)",
+                "spacing": dx,
+                "horizon_factor": params["horizon"],
+            },
+        )
 
     def solve(self, scene: Scene, params: dict) -> Result:
         if params["nonlinear"]:
@@ -331,23 +402,40 @@ class PDBondPair(Model):
                 # estimated; the round-off estimate is 0.1 eps N^2 (measured 0.01-1 of it at 10^5-10^6
                 # points, every support pair, mixed loads: tests/test_bond_pair_large.py)
                 z, info = solve_linear(system.matrix, system.rhs, what=what + ", mixed form", condition=False)
-                w = z[2 * Jk + 1: 2 * (len(x) + Jk): 2].copy()
+                w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
             info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2
             if roundoff > 1e-6:
                 info.setdefault("warnings", []).append(
                     f"round-off estimate {roundoff:.1g} relative (0.1 eps N^2, N = {len(x)} points; measured 0.01-1 "
-                    "of it): past 1e-6; use fewer points")
+                    "of it): past 1e-6; use fewer points"
+                )
         else:
             with timer("solve"):
                 w, info = solve_linear(system.matrix, system.rhs, what=what)
         dx = x[1] - x[0]
-        flags = boundary_layer_warnings(scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4)
+        flags = boundary_layer_warnings(
+            scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4
+        )
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        info.update(binfo, spacing=dx, horizon_factor=params["horizon"],
-                    horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, fields=fields,
-                      rotation=np.gradient(w, dx, edge_order=2), dofs=system.unknowns, timings=timer.timings, info=info)
+        info.update(
+            binfo,
+            spacing=dx,
+            horizon_factor=params["horizon"],
+            horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx,
+        )
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=w,
+            fields=fields,
+            rotation=np.gradient(w, dx, edge_order=2),
+            dofs=system.unknowns,
+            timings=timer.timings,
+            info=info,
+        )
 
 
 MODELS = [PDBondPair()]

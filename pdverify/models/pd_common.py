@@ -10,7 +10,7 @@ arrays out; each model module imports these and holds only its own paper's equat
 from __future__ import annotations
 
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -45,8 +45,9 @@ def family(m: float, dx: float, variant: str, volumes: str = "full") -> tuple[np
 # -- operators ------------------------------------------------------------------------------
 
 
-def stencil_operator(n_rows: int, row0: int, n_cols: int, offsets: np.ndarray, coefs: np.ndarray,
-                     truncate: bool = False) -> sp.csr_matrix:
+def stencil_operator(
+    n_rows: int, row0: int, n_cols: int, offsets: np.ndarray, coefs: np.ndarray, truncate: bool = False
+) -> sp.csr_matrix:
     """Sparse Toeplitz operator: row r holds ``coefs`` at columns r + row0 + ``offsets`` (repeated
     offsets add up). Built diagonal by diagonal (``scipy.sparse.diags``, C speed: 25x faster than COO
     triplets at 10^6 points). ``truncate``: drop entries outside the grid instead of raising."""
@@ -68,7 +69,7 @@ def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals,
     offsets = np.asarray(offsets, dtype=np.int64)
     coefs = np.asarray(coefs, dtype=float)
     g_rows, g_cols, g_vals = (np.asarray(v) for v in (g_rows, g_cols, g_vals))
-    band = np.unique(np.r_[0:min(n, G), max(0, n - G):n])  # rows whose family reaches a ghost
+    band = np.unique(np.r_[0 : min(n, G), max(0, n - G) : n])  # rows whose family reaches a ghost
     cols = band[:, None] + G + offsets[None, :]
     ghost = (cols < G) | (cols >= G + n)
     rr = np.broadcast_to(band[:, None], cols.shape)[ghost]
@@ -90,8 +91,9 @@ def ghost_stencil_system(offsets, coefs, G: int, n: int, g_rows, g_cols, g_vals,
 # -- loads -----------------------------------------------------------------------------------
 
 
-def cell_integral(load: Distributed, scene: Scene, lo: np.ndarray, hi: np.ndarray,
-                   value: float | None = None) -> np.ndarray:
+def cell_integral(
+    load: Distributed, scene: Scene, lo: np.ndarray, hi: np.ndarray, value: float | None = None
+) -> np.ndarray:
     """∫ over [lo, hi] ∩ span of the load's shape times ``value`` (default: the transverse
     ``load.value``; pass ``load.axial`` or ``load.torque`` for the other components)."""
     v = load.value if value is None else value
@@ -171,9 +173,11 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
         if hasattr(load, "position"):
             d = min(load.position, scene.length - load.position)
             if 1e-12 * scene.length < d < reach * dx:
-                out.append(f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the "
-                           f"boundary layer of {reach} spacings: expect large errors; use at least "
-                           f"{int(np.ceil(reach * scene.length / d)) + 1} points")
+                out.append(
+                    f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the "
+                    f"boundary layer of {reach} spacings: expect large errors; use at least "
+                    f"{int(np.ceil(reach * scene.length / d)) + 1} points"
+                )
     return out
 
 
@@ -198,7 +202,7 @@ def _solve_exact(A: list[list[Fraction]], B: list[list[Fraction]]) -> list[list[
     return [row[n:] for row in M]
 
 
-@lru_cache(maxsize=None)
+@cache
 def ghost_maps(support: str, n_ghost: int, p: int = 4) -> tuple[np.ndarray, np.ndarray]:
     """(G, C): ghost values w(t) at t = 1..n_ghost spacings outside the end, for a degree-4 polynomial
     in t = s/dx with the support's coefficients fixed (``_FIXED``), fitted by least squares to the
@@ -224,7 +228,7 @@ def ghost_maps(support: str, n_ghost: int, p: int = 4) -> tuple[np.ndarray, np.n
     return Gf, Cf
 
 
-@lru_cache(maxsize=None)
+@cache
 def poly_ghosts(fixed: tuple[int, ...], n_ghost: int, p: int = 4) -> tuple[np.ndarray, np.ndarray]:
     """(G, C): values at t = 1..n_ghost of the degree-4 polynomial in t whose coefficients ``fixed`` are
     given and the others fitted by least squares to the values at t = 0, -1, .., -(p-1):
@@ -240,8 +244,20 @@ def poly_ghosts(fixed: tuple[int, ...], n_ghost: int, p: int = 4) -> tuple[np.nd
     return np.array(G, dtype=float), np.array(C, dtype=float)
 
 
-def curvature_end_rows(support: str, side: int, n: int, dx: float, c: np.ndarray, M_end: float, V3: float,
-                       EI: float, q_end: float, reach: int, kidx, widx):
+def curvature_end_rows(
+    support: str,
+    side: int,
+    n: int,
+    dx: float,
+    c: np.ndarray,
+    M_end: float,
+    V3: float,
+    EI: float,
+    q_end: float,
+    reach: int,
+    kidx,
+    widx,
+):
     """End conditions of a free or guided end written on k = dx² kappa (kappa = Σ_j c_j (w_{+j} + w_{-j}
     - 2 w), so k = dx² (w'' + mu w'''') + .., mu = Σ_j c_j (j dx)⁴ / 12), replacing the curvature rows of
     the end point and the ``reach`` positions outside it: (rows, cols, vals, rhs_rows, rhs_vals).
@@ -275,8 +291,9 @@ def curvature_end_rows(support: str, side: int, n: int, dx: float, c: np.ndarray
     return cat(rows, np.int64), cat(cols, np.int64), cat(vals, float), cat(rr, np.int64), cat(rv, float)
 
 
-def taylor_ghosts(support: str, n_ghost: int, dx: float, M_end: float, V_coef: float, EI: float,
-                  p: int = 4) -> tuple[np.ndarray, np.ndarray]:
+def taylor_ghosts(
+    support: str, n_ghost: int, dx: float, M_end: float, V_coef: float, EI: float, p: int = 4
+) -> tuple[np.ndarray, np.ndarray]:
     """Ghost values as an affine map of the first p real points: w_g = G w_real[:p] + g0.
 
     s is the distance from the end into the ghost region (ghost i at s = i dx, real point i at

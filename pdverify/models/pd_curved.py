@@ -182,8 +182,9 @@ def parse_positions(text: str, L: float) -> np.ndarray:
     try:
         s = np.array([float(v) for v in text.replace(",", " ").split()], float)
     except ValueError:
-        raise InputError(f"positions = {text!r}: give arc lengths in m separated by commas, e.g. \"0, 0.1, 0.25\"") \
-            from None
+        raise InputError(
+            f'positions = {text!r}: give arc lengths in m separated by commas, e.g. "0, 0.1, 0.25"'
+        ) from None
     tol = 1e-12 * L
     if not np.all(np.isfinite(s)) or s.min(initial=0.0) < -tol or s.max(initial=0.0) > L + tol:
         raise InputError(f"positions: every arc length must lie in [0, L] = [0, {L:g}] m; remove the others")
@@ -202,8 +203,10 @@ def given_grids(L: float, bps: np.ndarray, s: np.ndarray, min_points: int) -> li
     for a, b in zip(edges[:-1], edges[1:]):
         g = np.concatenate([[a], s[(s > a + tol) & (s < b - tol)], [b]])
         if len(g) < min_points:
-            raise InputError(f"positions: {len(g)} particles on [{a:g}, {b:g}] m (between supports, point loads and "
-                             f"load ends), fewer than one family ({min_points}); add positions there")
+            raise InputError(
+                f"positions: {len(g)} particles on [{a:g}, {b:g}] m (between supports, point loads and "
+                f"load ends), fewer than one family ({min_points}); add positions there"
+            )
         out.append(g)
     return out
 
@@ -238,8 +241,9 @@ def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, 
     return load.axial, load.value, 0.0
 
 
-def distributed_loads(scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray,
-                      inside: float) -> tuple[np.ndarray, np.ndarray]:
+def distributed_loads(
+    scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray, inside: float
+) -> tuple[np.ndarray, np.ndarray]:
     """(p_t, p_n) per unit arc length at the particles s of one segment (``inside``: a position strictly
     inside the segment, to decide which spans cover it)."""
     pt, pn = np.zeros_like(s), np.zeros_like(s)
@@ -297,20 +301,53 @@ class PDCurved(Model):
     options = (
         Option("points", int, 101, "particles along the axis, ends included", minimum=5),
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
-        Option("horizon", int, 0, "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1 "
-               "(mixed form, even P >= 6: P/2)", minimum=0),
-        Option("grading", float, 1.0, "largest / smallest particle spacing (1 = uniform particles; see graded_by)",
-               minimum=1.0, maximum=1e3),
-        Option("graded_by", str, "curvature", "where particles gather when grading > 1: curvature (where the axis "
-               "bends) | ends (at the supports and at point loads)", choices=("curvature", "ends")),
-        Option("positions", str, "", "particle arc lengths in m, comma-separated (0 and L added; breaks at point "
-               "loads and load ends added): overrides the particles of points and grading (points still sets the "
-               "output grid)"),
-        Option("form", str, "mixed", "primal (the paper: second-derivative functions) | mixed (first-derivative "
-               "functions applied twice)", choices=("primal", "mixed")),
-        Option("unknowns", str, "resultants", "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
-               "condition number free of the slenderness) | displacements (N, Q, M substituted: 3 per particle, "
-               "the same discrete solution, condition ~ (L/h)^2)", choices=("resultants", "displacements")),
+        Option(
+            "horizon",
+            int,
+            0,
+            "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1 (mixed form, even P >= 6: P/2)",
+            minimum=0,
+        ),
+        Option(
+            "grading",
+            float,
+            1.0,
+            "largest / smallest particle spacing (1 = uniform particles; see graded_by)",
+            minimum=1.0,
+            maximum=1e3,
+        ),
+        Option(
+            "graded_by",
+            str,
+            "curvature",
+            "where particles gather when grading > 1: curvature (where the axis "
+            "bends) | ends (at the supports and at point loads)",
+            choices=("curvature", "ends"),
+        ),
+        Option(
+            "positions",
+            str,
+            "",
+            "particle arc lengths in m, comma-separated (0 and L added; breaks at point "
+            "loads and load ends added): overrides the particles of points and grading (points still sets the "
+            "output grid)",
+        ),
+        Option(
+            "form",
+            str,
+            "mixed",
+            "primal (the paper: second-derivative functions) | mixed (first-derivative functions applied twice)",
+            choices=("primal", "mixed"),
+        ),
+        Option(
+            "unknowns",
+            str,
+            "resultants",
+            "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
+            "condition number free of the slenderness) | displacements (N, Q, M substituted: 3 per particle, "
+            "the same discrete solution, condition ~ (L/h)^2)",
+            choices=("resultants", "displacements"),
+        ),
     )
     curved = True
     axial = True
@@ -331,11 +368,15 @@ class PDCurved(Model):
         m = params["horizon"] or default_horizon(P, params["form"])
         size = 2 * m + 1
         if size < P + 1:
-            raise InputError(f"horizon = {m}: a family of {size} particles cannot carry degree {P}; "
-                             f"use horizon >= {int(np.ceil(P / 2))} or a lower degree")
+            raise InputError(
+                f"horizon = {m}: a family of {size} particles cannot carry degree {P}; "
+                f"use horizon >= {int(np.ceil(P / 2))} or a lower degree"
+            )
         if size > params["points"]:
-            raise InputError(f"points = {params['points']}: fewer than one family ({size} particles for "
-                             f"degree {P}, horizon {m}); use more points")
+            raise InputError(
+                f"points = {params['points']}: fewer than one family ({size} particles for "
+                f"degree {P}, horizon {m}); use more points"
+            )
         bps, inner, ends = breakpoints(scene)
         if params.get("positions"):
             segs = given_grids(scene.length, bps, parse_positions(params["positions"], scene.length), size)
@@ -370,7 +411,6 @@ class PDCurved(Model):
         N = len(s)
         t, nv, kap, dkap, xa = axis_frame(scene, s)
         offs = np.cumsum([0] + [len(g) for g in segs])
-        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
         six = params["form"] == "mixed" and params.get("unknowns", "resultants") == "resultants"
         pt, pn, mm = np.zeros(N), np.zeros(N), np.zeros(N)
         for i, g in enumerate(segs):
@@ -385,15 +425,17 @@ class PDCurved(Model):
             nf = 6
             data.update(Eps=None, Gam=None, Chi=None)
         else:
-            K, b, cs, ops = self._assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap, dkap,
-                                                         t, nv, (pt, pn, mm))
+            K, b, cs, ops = self._assemble_displacements(
+                scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, (pt, pn, mm)
+            )
             B = Band.from_sparse(K)
             nf = 3
             data.update(ops)
         # perm: interleaved index i -> component-major index perm[i]; cscale (component-major) and cscale_i
         # (interleaved): the column scales, z = cscale_i * (solution of B)
-        data.update(nf=nf, perm=np.arange(nf * N).reshape(nf, N).T.ravel(), cscale=cs.reshape(N, nf).T.ravel(),
-                    cscale_i=cs)
+        data.update(
+            nf=nf, perm=np.arange(nf * N).reshape(nf, N).T.ravel(), cscale=cs.reshape(N, nf).T.ravel(), cscale_i=cs
+        )
         return B, b, data
 
     def _conditions(self, scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, six: bool, resultant):
@@ -483,12 +525,23 @@ class PDCurved(Model):
                     continue
                 k1, k2 = int(k[0]), int(k[-1]) + 1
                 c = W[np.arange(k1, k2), j[k1:k2]]
-                ext.block(nf, o, [[c if a == b else 0.0 for b in range(nf)] for a in range(nf)],
-                          offs[i] + k1, offs[i] + k2)
+                ext.block(
+                    nf, o, [[c if a == b else 0.0 for b in range(nf)] for a in range(nf)], offs[i] + k1, offs[i] + k2
+                )
         # boundary and interface rows (component-major numbering -> interleaved)
         rows, vals, (rr, rc, rv) = self._conditions(
-            scene, N, offs, segs, inner, ends, t, nv, 3 * N, True,
-            lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0])))
+            scene,
+            N,
+            offs,
+            segs,
+            inner,
+            ends,
+            t,
+            nv,
+            3 * N,
+            True,
+            lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0])),
+        )
         inter = lambda i: (i % N) * nf + i // N  # noqa: E731
         rows, rr, rc = inter(rows), inter(rr), inter(rc)
         B.clear_rows(rows)
@@ -590,8 +643,18 @@ class PDCurved(Model):
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
         w, rot = total.pop("w"), total.pop("rotation")
         x = total.pop("x") / len(infos)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=rot,
-                      fields=total, dofs=dofs, timings=timer.timings, info=info)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=w,
+            rotation=rot,
+            fields=total,
+            dofs=dofs,
+            timings=timer.timings,
+            info=info,
+        )
 
     def _solve_once(self, scene: Scene, params: dict, body, timer: Timer):
         """Fields on the uniform output grid, solver info and unknowns of one discretisation."""
@@ -615,12 +678,28 @@ class PDCurved(Model):
         t, nv = d["t"], d["n"]
         ux = ut * t[:, 0] + un * nv[:, 0]
         uy = ut * t[:, 1] + un * nv[:, 1]
-        fields = {"x": d["x"], "w": T @ un, "rotation": T @ phi, "u": T @ ut, "N": T @ Nf, "Q": T @ Qf,
-                  "M": T @ Mf, "ux": T @ ux, "uy": T @ uy}
+        fields = {
+            "x": d["x"],
+            "w": T @ un,
+            "rotation": T @ phi,
+            "u": T @ ut,
+            "N": T @ Nf,
+            "Q": T @ Qf,
+            "M": T @ Mf,
+            "ux": T @ ux,
+            "uy": T @ uy,
+        }
         if scene.is_straight:
             fields["V"] = -fields["Q"]
-        info.update(degree=params["degree"], horizon=d["horizon"], family=d["family"], form=params["form"],
-                    unknowns_per_particle=d["nf"], segments=len(d["segs"]), particles=N)
+        info.update(
+            degree=params["degree"],
+            horizon=d["horizon"],
+            family=d["family"],
+            form=params["form"],
+            unknowns_per_particle=d["nf"],
+            segments=len(d["segs"]),
+            particles=N,
+        )
         return fields, info, d["nf"] * N
 
     @staticmethod
@@ -646,8 +725,9 @@ class PDCurved(Model):
                 fam = _pddo.nearest_families(g, xo, size)
                 c = _pddo.pddo_weights(g, fam, degree, (0,), centers=xo)[0]
                 rows.append(np.repeat(k[~on], size)), cols.append((offs[i] + fam).ravel()), vals.append(c.ravel())
-        return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                             shape=(points, offs[-1]))
+        return sp.csr_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(points, offs[-1])
+        )
 
 
 MODELS = [PDCurved()]

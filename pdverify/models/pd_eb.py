@@ -46,8 +46,17 @@ from ..linalg import eliminate, solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Distributed, PointMoment, Scene
-from .pd_common import (body_loads, boundary_layer_warnings, curvature_end_rows, end_loads, ghost_stencil_system,
-                        partial_volumes, poly_ghosts, stencil_operator, taylor_ghosts)
+from .pd_common import (
+    body_loads,
+    boundary_layer_warnings,
+    curvature_end_rows,
+    end_loads,
+    ghost_stencil_system,
+    partial_volumes,
+    poly_ghosts,
+    stencil_operator,
+    taylor_ghosts,
+)
 
 # -- kernels (arrays in, arrays out) ---------------------------------------------------------
 
@@ -109,20 +118,39 @@ class PDEulerBernoulli(Model):
         Option("points", int, 101, "material points along the beam, ends included", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
         Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
-        Option("form", str, "auto", "auto (mixed for corrected, direct for paper) | direct (one fourth-order system) | "
-               "mixed (two second-order equations: round-off floor ~N^2 eps instead of ~N^4 eps; corrected only)",
-               choices=("auto", "direct", "mixed")),
-        Option("reading", str, "energy", "paper variant's boundary reading: energy (the real points' energy with the "
-               "mirror ghosts, Eq. 39-42 on it) | literal (Eq. 37 on the fictitious points too, then Eq. 42) | "
-               "layer (literal, with the 2.015 dx fictitious layer and horizon at simply supported ends)",
-               choices=("energy", "literal", "layer")),
+        Option(
+            "form",
+            str,
+            "auto",
+            "auto (mixed for corrected, direct for paper) | direct (one fourth-order system) | "
+            "mixed (two second-order equations: round-off floor ~N^2 eps instead of ~N^4 eps; corrected only)",
+            choices=("auto", "direct", "mixed"),
+        ),
+        Option(
+            "reading",
+            str,
+            "energy",
+            "paper variant's boundary reading: energy (the real points' energy with the "
+            "mirror ghosts, Eq. 39-42 on it) | literal (Eq. 37 on the fictitious points too, then Eq. 42) | "
+            "layer (literal, with the 2.015 dx fictitious layer and horizon at simply supported ends)",
+            choices=("energy", "literal", "layer"),
+        ),
     )
     assembles = True
     variant_rules = (
-        Rule((("variant", "paper"),), "horizon", "Eq. 32: delta = (m + 0.015) dx, d = 1/(A delta) over whole "
-             "families of m points; use variant = corrected for a fractional horizon", whole=True),
-        Rule((("variant", "paper"),), "form", "Eq. 13-15, 39-42: one fourth-order system; only the corrected "
-             "variant has the two-equation (mixed) form", allowed=("auto", "direct")),
+        Rule(
+            (("variant", "paper"),),
+            "horizon",
+            "Eq. 32: delta = (m + 0.015) dx, d = 1/(A delta) over whole "
+            "families of m points; use variant = corrected for a fractional horizon",
+            whole=True,
+        ),
+        Rule(
+            (("variant", "paper"),),
+            "form",
+            "Eq. 13-15, 39-42: one fourth-order system; only the corrected variant has the two-equation (mixed) form",
+            allowed=("auto", "direct"),
+        ),
     )
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
@@ -147,8 +175,10 @@ class PDEulerBernoulli(Model):
         c = curvature_weights(m, dx, variant)
         J = len(c)
         if 2 * J + 1 > n:
-            raise InputError(f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
-                             "use more points or a smaller horizon")
+            raise InputError(
+                f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
+                "use more points or a smaller horizon"
+            )
         a = scene.EI / scene.section.A
         A = scene.section.A
         left, right = scene.supports.left, scene.supports.right
@@ -230,8 +260,10 @@ class PDEulerBernoulli(Model):
             vals = np.broadcast_to(np.r_[-2 * c.sum(), c, c], cols.shape)
             ok = (cols >= 0) & (cols < n + 2 * G)
             ok[ok] = alive[cols[ok]]  # the family truncated at the layer's outer edge
-            Dg = sp.csr_matrix((vals[ok], (np.broadcast_to(np.arange(len(ghosts))[:, None], cols.shape)[ok], cols[ok])),
-                               shape=(len(ghosts), n + 2 * G))
+            Dg = sp.csr_matrix(
+                (vals[ok], (np.broadcast_to(np.arange(len(ghosts))[:, None], cols.shape)[ok], cols[ok])),
+                shape=(len(ghosts), n + 2 * G),
+            )
             D = sp.vstack([D, Dg]).tocsr()
         DT = D @ T
         K = Band.from_sparse(a * (DT.T @ DT))
@@ -307,8 +339,10 @@ class PDEulerBernoulli(Model):
         J = len(c)
         G = 2 * J
         if 2 * J + 1 > n:
-            raise InputError(f"horizon = {params['horizon']:g}: the family ({J} points each side) does not fit in "
-                             f"{n} points; use more points or a smaller horizon")
+            raise InputError(
+                f"horizon = {params['horizon']:g}: the family ({J} points each side) does not fit in "
+                f"{n} points; use more points or a smaller horizon"
+            )
         A = scene.section.A
         a = scene.EI / A
         h2 = dx * dx
@@ -326,11 +360,27 @@ class PDEulerBernoulli(Model):
         for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
             if sup in ("free", "guided"):
                 M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
-                ends.append(curvature_end_rows(sup, side, n, dx, c, M_end, V3, scene.EI, q[0 if side == 0 else -1], J,
-                                               lambda p_: 2 * (np.asarray(p_) + J),
-                                               lambda p_: 2 * (np.asarray(p_) + J) + 1))
-        off = np.r_[cols - rows, -2 * J - 1, 2 * J + 1] if not ends else \
-            np.r_[cols - rows, -2 * J - 1, 2 * J + 1, np.concatenate([e[1] - e[0] for e in ends])]
+                ends.append(
+                    curvature_end_rows(
+                        sup,
+                        side,
+                        n,
+                        dx,
+                        c,
+                        M_end,
+                        V3,
+                        scene.EI,
+                        q[0 if side == 0 else -1],
+                        J,
+                        lambda p_: 2 * (np.asarray(p_) + J),
+                        lambda p_: 2 * (np.asarray(p_) + J) + 1,
+                    )
+                )
+        off = (
+            np.r_[cols - rows, -2 * J - 1, 2 * J + 1]
+            if not ends
+            else np.r_[cols - rows, -2 * J - 1, 2 * J + 1, np.concatenate([e[1] - e[0] for e in ends])]
+        )
         M = Band(2 * npos, int(-off.min()), int(off.max()))
         # unknowns k_p = h² kappa_p and w_p (entries of order one): kappa rows (dof 0) k_p - h² Σ_o st_o w_{p+o},
         # w rows (dof 1) h² Σ_o st_o k_{p+o}
@@ -341,7 +391,7 @@ class PDEulerBernoulli(Model):
         gp = np.unique(gpos)
         gi, kq = np.nonzero(np.abs(gp[:, None] - p[None, :]) <= J)
         np.add.at(rhs, 2 * (p[kq] + J), h2 * st[gp[gi] - p[kq] + J] * e0[gp[gi] + G])
-        rhs[2 * J + 1: 2 * (n + J): 2] = q / A * h2 * h2 / a
+        rhs[2 * J + 1 : 2 * (n + J) : 2] = q / A * h2 * h2 / a
         for e_rows, e_cols, e_vals, r_rows, r_vals in ends:
             M.clear_rows(np.unique(e_rows))
             M.add_entries(e_rows, e_cols, e_vals)
@@ -349,9 +399,16 @@ class PDEulerBernoulli(Model):
         fixed = fixed_points(scene, n)
         held = np.r_[2 * np.arange(J) + 1, 2 * (n + J + np.arange(J)) + 1, 2 * (np.asarray(fixed, np.int64) + J) + 1]
         M.fix(held, rhs)
-        return System(M, rhs, np.delete(np.arange(2 * npos), held),
-                      {"ghosts_per_end": G, "form": "mixed (two second-order equations)",
-                       "boundary": "Taylor ghost points (degree 4, 4 real points)"})
+        return System(
+            M,
+            rhs,
+            np.delete(np.arange(2 * npos), held),
+            {
+                "ghosts_per_end": G,
+                "form": "mixed (two second-order equations)",
+                "boundary": "Taylor ghost points (degree 4, 4 real points)",
+            },
+        )
 
     def reduced(self, K, b, fixed):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
@@ -360,12 +417,16 @@ class PDEulerBernoulli(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         if params.get("reading", "energy") != "energy" and params["variant"] != "paper":
-            raise InputError(f"reading = {params['reading']!r}: a reading of the paper's boundary treatment "
-                             "(Eq. 37-42); use variant = paper or reading = energy")
+            raise InputError(
+                f"reading = {params['reading']!r}: a reading of the paper's boundary treatment "
+                "(Eq. 37-42); use variant = paper or reading = energy"
+            )
         if self.form(params) == "mixed":
             if params["variant"] != "corrected":
-                raise InputError("form = 'mixed': only the corrected variant has the two-equation form; "
-                                 "use variant = corrected or form = direct")
+                raise InputError(
+                    "form = 'mixed': only the corrected variant has the two-equation form; "
+                    "use variant = corrected or form = direct"
+                )
             # the banded LU eliminates from the left end: a guided end there amplifies round-off (measured,
             # guided-clamped, mixed loads, 10,001 points: 1.5e-6 in this order, 2.2e-8 reversed; 100,001:
             # 1.6e-3 against 3.0e-7), so such a scene is solved as its mirror image and flipped back
@@ -376,7 +437,7 @@ class PDEulerBernoulli(Model):
                 z, info = solve_linear(system.matrix, system.rhs, what="pd-eb (corrected, mixed form)")
                 n = params["points"]
                 J = (system.matrix.n // 2 - n) // 2  # positions -J .. n-1+J, two unknowns each
-                w = z[2 * J + 1: 2 * (n + J): 2].copy()
+                w = z[2 * J + 1 : 2 * (n + J) : 2].copy()
                 if flip:
                     w = w[::-1].copy()
         else:
@@ -390,11 +451,22 @@ class PDEulerBernoulli(Model):
         rot = np.gradient(w, dx, edge_order=2)
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
-        flags = boundary_layer_warnings(scene, x, 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4)
+        flags = boundary_layer_warnings(
+            scene, x, 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4
+        )
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=rot,
-                      dofs=ndofs, timings=timer.timings, info=info)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=w,
+            rotation=rot,
+            dofs=ndofs,
+            timings=timer.timings,
+            info=info,
+        )
 
 
 def stable_time_step(K: sp.spmatrix, density: float) -> float:
@@ -403,15 +475,23 @@ def stable_time_step(K: sp.spmatrix, density: float) -> float:
     if K.shape[0] <= 5000:
         import scipy.sparse.linalg as spla
 
-        lam = float(np.abs(spla.eigs(K.astype(float), k=1, which="LM", return_eigenvectors=False,
-                                     v0=np.ones(K.shape[0]))[0]))  # fixed start: reproducible dt
+        lam = float(
+            np.abs(spla.eigs(K.astype(float), k=1, which="LM", return_eigenvectors=False, v0=np.ones(K.shape[0]))[0])
+        )  # fixed start: reproducible dt
     else:
         lam = float(np.abs(K).sum(axis=1).max())
     return 2.0 / np.sqrt(lam / density)
 
 
-def simulate(scene: Scene, params: dict, t_end: float, dt: float | None = None, damping: float = 0.0,
-             safety: float = 0.9, record_every: int = 10):
+def simulate(
+    scene: Scene,
+    params: dict,
+    t_end: float,
+    dt: float | None = None,
+    damping: float = 0.0,
+    safety: float = 0.9,
+    record_every: int = 10,
+):
     """Explicit central differences for rho w_tt + c w_t + K w = b (Eq. 15 with damping), from rest.
 
     Shares the static operator; returns (t, w history at the recorded steps, dt, dt_limit).
@@ -442,8 +522,10 @@ def simulate(scene: Scene, params: dict, t_end: float, dt: float | None = None, 
             if scale is None and amp > 0:
                 scale = amp
             if not np.isfinite(amp) or (scale and amp > 1e8 * scale):
-                raise SolveError(f"dt = {dt:.4g} s: the explicit integration blew up at step {s}; "
-                                 f"the stable limit is {limit:.4g} s (use dt below it)")
+                raise SolveError(
+                    f"dt = {dt:.4g} s: the explicit integration blew up at step {s}; "
+                    f"the stable limit is {limit:.4g} s (use dt below it)"
+                )
             full = np.zeros(n_all)
             full[free] = w
             hist.append(full)

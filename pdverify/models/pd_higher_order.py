@@ -170,9 +170,16 @@ def bond_block(C: np.ndarray, xi: float, centred: bool = False) -> np.ndarray:
     return M.T @ C @ M
 
 
-def bond_weights(n: int, m: float, dx: float, variant: str, volumes: np.ndarray,
-                 calibrate: str = "point", points: np.ndarray | None = None,
-                 fractions: str = "partial") -> dict[int, np.ndarray]:
+def bond_weights(
+    n: int,
+    m: float,
+    dx: float,
+    variant: str,
+    volumes: np.ndarray,
+    calibrate: str = "point",
+    points: np.ndarray | None = None,
+    fractions: str = "partial",
+) -> dict[int, np.ndarray]:
     """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
     is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
     on the discrete family so that Σ_j omega_kj xi^2 = 1, per point on its actual (possibly truncated)
@@ -226,13 +233,24 @@ def taylor_map(n: int, G: int | tuple[int, int], p: int) -> sp.csr_matrix:
         rows.append(np.broadcast_to(r, (g_n, p + 1, NF)))
         cols.append(np.broadcast_to(c, (g_n, p + 1, NF)))
         vals.append(np.broadcast_to(X[:, :, None], (g_n, p + 1, NF)))
-    return sp.csr_matrix((np.concatenate([v.ravel() for v in vals]),
-                          (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols]))),
-                         shape=(NF * (n + G[0] + G[1]), NF * n))
+    return sp.csr_matrix(
+        (
+            np.concatenate([v.ravel() for v in vals]),
+            (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols])),
+        ),
+        shape=(NF * (n + G[0] + G[1]), NF * n),
+    )
 
 
-def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
-                    centred: bool = False, path: bool = False) -> sp.csr_matrix:
+def assemble_blocks(
+    n: int,
+    dx: float,
+    C: np.ndarray,
+    weights: dict[int, np.ndarray],
+    h: float,
+    centred: bool = False,
+    path: bool = False,
+) -> sp.csr_matrix:
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
     filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
     ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it)."""
@@ -247,13 +265,13 @@ def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndar
             sg, d = (1 if off > 0 else -1), abs(off)
             for a in range(d + 1):
                 for b in range(d + 1):
-                    Kb[lo + sg * a:hi + sg * a, J + sg * (b - a)] += t * B[NF * a:NF * a + NF, NF * b:NF * b + NF]
+                    Kb[lo + sg * a : hi + sg * a, J + sg * (b - a)] += t * B[NF * a : NF * a + NF, NF * b : NF * b + NF]
             continue
         B = bond_block(C, off * dx, centred) / h
         Kb[lo:hi, J] += t * B[:NF, :NF]
         Kb[lo:hi, J + off] += t * B[:NF, NF:]
-        Kb[lo + off:hi + off, J - off] += t * B[NF:, :NF]
-        Kb[lo + off:hi + off, J] += t * B[NF:, NF:]
+        Kb[lo + off : hi + off, J - off] += t * B[NF:, :NF]
+        Kb[lo + off : hi + off, J] += t * B[NF:, NF:]
     cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
     ok = (cols >= 0) & (cols < n)
     indptr = np.r_[0, np.cumsum(ok.sum(axis=1))]
@@ -261,8 +279,15 @@ def assemble_blocks(n: int, dx: float, C: np.ndarray, weights: dict[int, np.ndar
     return K.tocsr()
 
 
-def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.ndarray], h: float,
-           centred: bool = False, path: bool = False) -> float:
+def energy(
+    u: np.ndarray,
+    x: np.ndarray,
+    C: np.ndarray,
+    weights: dict[int, np.ndarray],
+    h: float,
+    centred: bool = False,
+    path: bool = False,
+) -> float:
     """Strain energy U = Σ_k V_k W_k (Eq. 13, 15) evaluated directly from the bond measures (for the
     gradient checks: K must equal the Hessian of this function)."""
     u = np.asarray(u, float).reshape(-1, NF)
@@ -271,19 +296,26 @@ def energy(u: np.ndarray, x: np.ndarray, C: np.ndarray, weights: dict[int, np.nd
     U = 0.0
     for off, wt in weights.items():
         lo, hi = max(0, -off), min(n, n - off)
-        uk, uj = u[lo:hi], u[lo + off:hi + off]
+        uk, uj = u[lo:hi], u[lo + off : hi + off]
         xi = off * dx
         th = (uk[:, TH] + uj[:, TH]) / 2 if centred else uk[:, TH]
         ts = (uk[:, TS] + uj[:, TS]) / 2 if centred else uk[:, TS]
         if path:  # trapezoid of the rotations along the bond (path_measures), as a mean rotation
             d, sg = abs(off), (1 if off > 0 else -1)
-            along = [u[lo + sg * a:hi + sg * a] for a in range(d + 1)]
+            along = [u[lo + sg * a : hi + sg * a] for a in range(d + 1)]
             c = np.full(d + 1, 1.0 / d)
             c[[0, d]] /= 2
             th = sum(ca * ua[:, TH] for ca, ua in zip(c, along))
             ts = sum(ca * ua[:, TS] for ca, ua in zip(c, along))
-        m = np.stack([uj[:, TH] - uk[:, TH], 2 * xi * uk[:, WS], uj[:, TS] - uk[:, TS],
-                      uj[:, W] - uk[:, W] + xi * th, uj[:, WS] - uk[:, WS] + 3 * xi * ts])
+        m = np.stack(
+            [
+                uj[:, TH] - uk[:, TH],
+                2 * xi * uk[:, WS],
+                uj[:, TS] - uk[:, TS],
+                uj[:, W] - uk[:, W] + xi * th,
+                uj[:, WS] - uk[:, WS] + 3 * xi * ts,
+            ]
+        )
         U += 0.5 / h * np.sum(wt[lo:hi] * np.einsum("pb,pq,qb->b", m, C, m))
     return U
 
@@ -326,8 +358,9 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
     return F / A
 
 
-def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: float,
-                   about: str = "point") -> tuple[list, list]:
+def end_conditions(
+    n: int, left: str, right: str, variant: str, pin: str, h: float, about: str = "point"
+) -> tuple[list, list]:
     """(drop, tie): the DOFs held at zero and the ties (slave, master, c), u_slave = c u_master, of the end
     conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed); guided: theta = theta* = 0;
     pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's antisymmetric w*); ``pin = face``: w = -h^2/20 w*
@@ -355,8 +388,9 @@ def end_conditions(n: int, left: str, right: str, variant: str, pin: str, h: flo
     return drop, tie
 
 
-def constraint_map(n: int, left: str, right: str, variant: str, pin: str, h: float,
-                   numbering: str = "unknowns", about: str = "point") -> sp.csr_matrix:
+def constraint_map(
+    n: int, left: str, right: str, variant: str, pin: str, h: float, numbering: str = "unknowns", about: str = "point"
+) -> sp.csr_matrix:
     """T: u = T z with the end conditions built in (:func:`end_conditions`). ``numbering = "unknowns"``:
     T is 4n x unknowns (the held DOFs eliminated); ``"points"``: 4n x 4n, the numbering of u kept and the
     columns of the held DOFs zero (the band's form: unit rows added by ``Band.fix``)."""
@@ -391,13 +425,18 @@ def mirror_map(n: int, G: tuple[int, int], left: str, right: str, about: str = "
         rows.append(NF * ghost[:, None] + np.arange(NF))
         cols.append(NF * real[:, None] + np.arange(NF))
         vals.append(np.broadcast_to(MIRROR[sup], (g, NF)))
-    return sp.csr_matrix((np.concatenate([v.ravel() for v in vals]),
-                          (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols]))),
-                         shape=(NF * N, NF * n))
+    return sp.csr_matrix(
+        (
+            np.concatenate([v.ravel() for v in vals]),
+            (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols])),
+        ),
+        shape=(NF * N, NF * n),
+    )
 
 
-def uniform_blocks(C: np.ndarray, dx: float, weights: dict[int, float], h: float,
-                   centred: bool = False, path: bool = False) -> dict[int, np.ndarray]:
+def uniform_blocks(
+    C: np.ndarray, dx: float, weights: dict[int, float], h: float, centred: bool = False, path: bool = False
+) -> dict[int, np.ndarray]:
     """{point offset o: 4x4 block K[p, p + o]} of a row p whose own bonds and whose partners' bonds all
     carry the interior weights ``weights`` (offset -> V omega): Eq. 15's Hessian summed bond by bond in
     the order of :func:`assemble_blocks` (the same bits as its interior rows)."""
@@ -410,7 +449,7 @@ def uniform_blocks(C: np.ndarray, dx: float, weights: dict[int, float], h: float
             sg, d = (1 if off > 0 else -1), abs(off)
             for a in range(d + 1):
                 for b in range(d + 1):
-                    blocks[sg * (b - a)] += wt * B[NF * a:NF * a + NF, NF * b:NF * b + NF]
+                    blocks[sg * (b - a)] += wt * B[NF * a : NF * a + NF, NF * b : NF * b + NF]
             continue
         B = bond_block(C, off * dx, centred) / h
         blocks[0] += wt * B[:NF, :NF]
@@ -448,42 +487,91 @@ class PDHigherOrder(Model):
     source = "Yang, Oterkus & Oterkus 2020, Peridynamic higher-order beam formulation (seed 002)"
     theory = "higher-order"
     options = (
-        Option("points", int, 201, "material points along the beam, ends included (paper: 1001 for dx = 1 mm)", minimum=5),
+        Option(
+            "points", int, 201, "material points along the beam, ends included (paper: 1001 for dx = 1 mm)", minimum=5
+        ),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
         Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
-        Option("ends", str, "auto", "auto (mirror for paper, truncated for corrected) | mirror (Appendix B fictitious "
-               "layers) | truncated (no ghosts, per-point calibration) | taylor (ghosts extrapolated by a polynomial "
-               "of the real points, energy of the real points only)", choices=("auto", "mirror", "truncated", "taylor")),
+        Option(
+            "ends",
+            str,
+            "auto",
+            "auto (mirror for paper, truncated for corrected) | mirror (Appendix B fictitious "
+            "layers) | truncated (no ghosts, per-point calibration) | taylor (ghosts extrapolated by a polynomial "
+            "of the real points, energy of the real points only)",
+            choices=("auto", "mirror", "truncated", "taylor"),
+        ),
         Option("ghost_degree", int, 3, "degree of the ghost extrapolation (ends = taylor)", minimum=1, maximum=6),
-        Option("pin", str, "auto", "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | face (parabola-weighted mean of "
-               "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
-               choices=("auto", "mid", "face")),
-        Option("shear", str, "auto", "auto (point for paper, path for corrected) | point (Eq. 14d-f: theta_k xi) | "
-               "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy) | path "
-               "(the rotations' trapezoid along the bond's segments: no shear locking of slender beams)",
-               choices=("auto", "point", "centred", "path")),
-        Option("loads", str, "auto", "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | faces (where the plane-stress "
-               "reference puts them: top face, parabolic end shear, linear end traction)", choices=("auto", "mid", "faces")),
-        Option("volumes", str, "partial", "paper variant's family volumes: partial (the authors' convention: the "
-               "member at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells "
-               "inside delta)",
-               choices=("partial", "full")),
-        Option("mirror", str, "point", "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
-               "images about the end point, which is held: the material point at the support, as in Appendix B's text "
-               "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
-               "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
-               choices=("boundary", "point")),
+        Option(
+            "pin",
+            str,
+            "auto",
+            "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | "
+            "face (parabola-weighted mean of "
+            "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
+            choices=("auto", "mid", "face"),
+        ),
+        Option(
+            "shear",
+            str,
+            "auto",
+            "auto (point for paper, path for corrected) | point (Eq. 14d-f: theta_k xi) | "
+            "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy) | path "
+            "(the rotations' trapezoid along the bond's segments: no shear locking of slender beams)",
+            choices=("auto", "point", "centred", "path"),
+        ),
+        Option(
+            "loads",
+            str,
+            "auto",
+            "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | "
+            "faces (where the plane-stress "
+            "reference puts them: top face, parabolic end shear, linear end traction)",
+            choices=("auto", "mid", "faces"),
+        ),
+        Option(
+            "volumes",
+            str,
+            "partial",
+            "paper variant's family volumes: partial (the authors' convention: the "
+            "member at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells "
+            "inside delta)",
+            choices=("partial", "full"),
+        ),
+        Option(
+            "mirror",
+            str,
+            "point",
+            "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
+            "images about the end point, which is held: the material point at the support, as in Appendix B's text "
+            "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
+            "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
+            choices=("boundary", "point"),
+        ),
     )
 
     assembles = True
     _PAPER = (("variant", "paper"),)
     variant_rules = (
-        Rule(_PAPER, "horizon", "Eq. 14: delta = (m + 0.015) dx, full volumes over whole families of m points; "
-             "use variant = corrected for a fractional horizon", whole=True),
-        Rule(_PAPER, "ends", "Appendix B: fictitious mirror layers (Eq. B39-B41), free ends truncated",
-             allowed=("auto", "mirror")),
-        Rule(_PAPER, "pin", "Eq. B41: a simply supported end holds w = w* = 0 at the end point (mid)",
-             allowed=("auto", "mid")),
+        Rule(
+            _PAPER,
+            "horizon",
+            "Eq. 14: delta = (m + 0.015) dx, full volumes over whole families of m points; "
+            "use variant = corrected for a fractional horizon",
+            whole=True,
+        ),
+        Rule(
+            _PAPER,
+            "ends",
+            "Appendix B: fictitious mirror layers (Eq. B39-B41), free ends truncated",
+            allowed=("auto", "mirror"),
+        ),
+        Rule(
+            _PAPER,
+            "pin",
+            "Eq. B41: a simply supported end holds w = w* = 0 at the end point (mid)",
+            allowed=("auto", "mid"),
+        ),
         Rule(_PAPER, "shear", "Eq. 14d-f: the shear measures use theta_k xi (point)", allowed=("auto", "point")),
         Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
     )
@@ -537,37 +625,58 @@ class PDHigherOrder(Model):
         J = int(d.max())
         p = params["ghost_degree"]
         if 2 * J + 1 > n or (ends == "taylor" and p + 1 > n):
-            raise InputError(f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
-                             "use more points or a smaller horizon")
+            raise InputError(
+                f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
+                "use more points or a smaller horizon"
+            )
         C, h = self.constants(scene)
         left, right = scene.supports.left, scene.supports.right
         pin = self.choice(params, "pin")
-        info = {"depth": h, "ends": ends, "section": "rectangle" if scene.section.height is not None else
-                f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m"}
+        info = {
+            "depth": h,
+            "ends": ends,
+            "section": "rectangle"
+            if scene.section.height is not None
+            else f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m",
+        }
         shear = params.get("shear", "auto")
         path = shear == "path" or (shear == "auto" and variant != "paper")
         centred = shear == "centred"
         info["shear"] = "path" if path else "centred" if centred else "point"
-        symmetric = not (ends == "mirror" and variant == "paper")  # paper: Eq. 22 at the real points, images substituted
+        symmetric = not (
+            ends == "mirror" and variant == "paper"
+        )  # paper: Eq. 22 at the real points, images substituted
         if ends == "mirror":
             G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
             fold = lambda nw, Gw: mirror_map(nw, Gw, left, right, about)  # noqa: E731
-            info.update(boundary=f"fictitious mirror layers (Appendix B) about the "
-                        f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated",
-                        ghosts_per_end=list(G))
+            info.update(
+                boundary=f"fictitious mirror layers (Appendix B) about the "
+                f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated",
+                ghosts_per_end=list(G),
+            )
         elif ends == "taylor":
             G, calibrate, reach = (J, J), "family", p
             fold = lambda nw, Gw: taylor_map(nw, Gw, p)  # noqa: E731
-            info.update(boundary=f"ghosts extrapolated (degree {p}), energy of the real points, "
-                        "essential end conditions", ghosts_per_end=[J, J])
+            info.update(
+                boundary=f"ghosts extrapolated (degree {p}), energy of the real points, essential end conditions",
+                ghosts_per_end=[J, J],
+            )
         else:
             G, calibrate, reach, fold = (0, 0), "point", 0, None
             info.update(boundary="truncated families (per-point calibration), essential end conditions")
         N = n + G[0] + G[1]
 
         def weights(k):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
-            return bond_weights(N, m, dx, variant, extended_volumes(k, n, G, dx, ends, variant), calibrate, points=k,
-                                fractions=fractions)
+            return bond_weights(
+                N,
+                m,
+                dx,
+                variant,
+                extended_volumes(k, n, G, dx, ends, variant),
+                calibrate,
+                points=k,
+                fractions=fractions,
+            )
 
         def window(r0: int, r1: int) -> np.ndarray:
             """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
@@ -582,14 +691,23 @@ class PDHigherOrder(Model):
                 P = fold(nw, g)
                 K = (P.T @ Kx @ P).tocsr()
             else:
-                K = (Kx[NF * g[0]: NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
-            T = constraint_map(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h,
-                               numbering="points", about=about)
+                K = (Kx[NF * g[0] : NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
+            T = constraint_map(
+                nw,
+                left if r0 == 0 else "free",
+                right if r1 == n else "free",
+                variant,
+                pin,
+                h,
+                numbering="points",
+                about=about,
+            )
             if symmetric:
                 return (T.T @ K @ T).toarray()
             D = (K @ T).toarray()
-            D[end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h,
-                             about)[0]] = 0.0
+            D[
+                end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h, about)[0]
+            ] = 0.0
             return D
 
         rows_end = max(2 * J, reach + 1) + 1  # rows of each end from its window (beyond 2J: uniform; one spare)
@@ -598,9 +716,9 @@ class PDHigherOrder(Model):
             parts = [(0, span, 0, rows_end), (n - span, n, span - rows_end, span)]
         else:  # a small grid: one window is the whole matrix
             parts = [(0, n, 0, n)]
-        dense = [(r0, a, window(r0, r1)[NF * a: NF * b]) for r0, r1, a, b in parts]
+        dense = [(r0, a, window(r0, r1)[NF * a : NF * b]) for r0, r1, a, b in parts]
         bw = NF * J + NF - 1
-        for r0, a, D in dense:
+        for _r0, a, D in dense:
             i, j = np.nonzero(D)
             if len(i):
                 bw = max(bw, int(np.abs(j - (i + NF * a)).max()))
@@ -649,8 +767,18 @@ class PDHigherOrder(Model):
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=u[:, W].copy(),
-                      rotation=-u[:, TH], fields=fields, dofs=system.unknowns, timings=timer.timings, info=info)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=u[:, W].copy(),
+            rotation=-u[:, TH],
+            fields=fields,
+            dofs=system.unknowns,
+            timings=timer.timings,
+            info=info,
+        )
 
 
 MODELS = [PDHigherOrder()]

@@ -85,9 +85,21 @@ from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer, columns_csv
 from ..scene import Scene
+from ._moyer_kernels import (
+    EndPatched,
+    average_ghosts,
+    constrained_ghosts,
+    motion_final,
+    motion_value,
+    node_loads,
+    rod_kernel,
+    shear_kernel,
+    stencil_ops,
+    taylor_ghosts,
+    taylor_ghosts_cells,
+    toeplitz,
+)
 from .pd_common import boundary_layer_warnings
-from ._moyer_kernels import (EndPatched, average_ghosts, constrained_ghosts, motion_final, motion_value, node_loads, rod_kernel,
-                             shear_kernel, stencil_ops, taylor_ghosts, taylor_ghosts_cells, toeplitz)
 
 STABILISATION = 0.2  # κ of the stiffness-proportional damping β = κ dt_ref of the time stepping (see integrate)
 DEFAULT_SAFETY = 0.9  # default dt = this x the stable limit; dt_ref of the stabilisation
@@ -164,8 +176,13 @@ def _ghost_index(n: int, G: int, side: int) -> np.ndarray:
     return G - 1 - t if side == 0 else G + n + t
 
 
-DIRICHLET = {"clamped": (True, True), "pinned": (True, False), "roller": (True, False), "free": (False, False),
-             "guided": (False, True)}  # (w, γ) held; no axial unknown: roller = pinned
+DIRICHLET = {
+    "clamped": (True, True),
+    "pinned": (True, False),
+    "roller": (True, False),
+    "free": (False, False),
+    "guided": (False, True),
+}  # (w, γ) held; no axial unknown: roller = pinned
 # ends whose axial displacement (pd-rod) or twist (pd-torsion) is held: a roller slides axially, but holds the
 # twist as a pinned (fork) support does (docs/supports.md)
 ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "roller")}
@@ -184,19 +201,21 @@ def _extension(n: int, G: int, nf: int, blocks) -> tuple[sp.csr_matrix, np.ndarr
         ghost = _ghost_index(n, G, side)
         for f in range(nf):
             for g in range(nf):
-                blk = R[f * G:(f + 1) * G, g * npts:(g + 1) * npts]
+                blk = R[f * G : (f + 1) * G, g * npts : (g + 1) * npts]
                 rr = np.repeat(f * N + ghost, npts)
                 cc = np.tile(nf * real + g, G)
                 rows.append(rr), cols.append(cc), vals.append(blk.ravel())
-            e0[f * N + ghost] = r0[f * G:(f + 1) * G]
+            e0[f * N + ghost] = r0[f * G : (f + 1) * G]
     E = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nf * N, nf * n))
     return E, e0
 
 
 def _check_grid(n: int, m: int, name: str):
     if n < max(2 * m + 2, FIT_POINTS + 1):
-        raise InputError(f"points = {n}: model {name} with horizon = {m} needs at least {max(2 * m + 2, FIT_POINTS + 1)} "
-                         "points; use more points or a smaller horizon")
+        raise InputError(
+            f"points = {n}: model {name} with horizon = {m} needs at least {max(2 * m + 2, FIT_POINTS + 1)} "
+            "points; use more points or a smaller horizon"
+        )
 
 
 # -- rod --------------------------------------------------------------------------------------
@@ -204,10 +223,10 @@ def _check_grid(n: int, m: int, name: str):
 
 def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial", grid: str = "nodes") -> Discrete:
     """Static operator of the PD rod: K u = b with u the axial displacement (``kind = "axial"``: stiffness
-    EA, mass ρA, loads.axial) or the twist θ (``kind = "torsion"``, Section 5 Eq. 54–56: the same
-    kernel with GJ, mass ρ I_p, torques). Fixed ends: :data:`ROD_HELD` (clamped, pinned; pd-torsion: roller
-too); the others carry N̄ (T̄).
-    Assembled in full on a short grid (:func:`_rod_core`) and extended by its stencil (Eq. 19)."""
+        EA, mass ρA, loads.axial) or the twist θ (``kind = "torsion"``, Section 5 Eq. 54–56: the same
+        kernel with GJ, mass ρ I_p, torques). Fixed ends: :data:`ROD_HELD` (clamped, pinned; pd-torsion: roller
+    too); the others carry N̄ (T̄).
+        Assembled in full on a short grid (:func:`_rod_core`) and extended by its stencil (Eq. 19)."""
     name = "pd-rod" if kind == "axial" else "pd-torsion"
     n, x = _grid(scene, n, grid, variant, name)
     _check_grid(n, m, name)
@@ -219,8 +238,10 @@ too); the others carry N̄ (T̄).
     else:
         J = scene.section.J
         if J is None:
-            raise InputError("section.torsion_constant: pd-torsion needs the torsion constant J of a section given by "
-                             "area and inertia; add torsion_constant (or give width and height)")
+            raise InputError(
+                "section.torsion_constant: pd-torsion needs the torsion constant J of a section given by "
+                "area and inertia; add torsion_constant (or give width and height)"
+            )
         stiff, component, key = scene.material.G * J, "torque", "twist"
         inertia = scene.section.polar if scene.section.polar is not None else np.nan
     q, _, ends = node_loads(scene, x, component, ends_apart=(variant == "corrected"))
@@ -234,12 +255,14 @@ too); the others carry N̄ (T̄).
     if variant == "paper":
         for side in (0, 1):
             b[0 if side == 0 else n - 1] += ends[side][0] / dx
-    return Discrete(x, op, b, (rho * inertia,), (True,), prescribed, 1,
-                    {"ghosts_per_end": m, "spacing": dx, "horizon": delta})
+    return Discrete(
+        x, op, b, (rho * inertia,), (True,), prescribed, 1, {"ghosts_per_end": m, "spacing": dx, "horizon": delta}
+    )
 
 
-def _rod_core(scene: Scene, n: int, dx: float, m: int, variant: str, stiff: float, ends: dict,
-              grid: str, kind: str = "axial") -> tuple[sp.csr_matrix, np.ndarray]:
+def _rod_core(
+    scene: Scene, n: int, dx: float, m: int, variant: str, stiff: float, ends: dict, grid: str, kind: str = "axial"
+) -> tuple[sp.csr_matrix, np.ndarray]:
     """(K, ghost part of b) of the rod on n points of spacing dx, assembled as written: K = -B I E with
     the extension E to G = m ghosts per end (Eq. 20–21 or the constrained polynomial) and the PD sum I
     (Eq. 19, c_j of ``rod_kernel``), B = 2 stiff/δ² (Eq. 3)."""
@@ -279,8 +302,10 @@ def _grid(scene: Scene, n: int, grid: str, variant: str, name: str) -> tuple[int
     if grid == "nodes":
         return n, np.linspace(0.0, L, n)
     if variant != "paper":
-        raise InputError(f"grid = 'cells': model {name} uses the cell-centred grid of Section 4 only in variant "
-                         "paper; use grid = nodes or variant = paper")
+        raise InputError(
+            f"grid = 'cells': model {name} uses the cell-centred grid of Section 4 only in variant "
+            "paper; use grid = nodes or variant = paper"
+        )
     nc = n - 1
     return nc, (np.arange(nc) + 0.5) * (L / nc)
 
@@ -322,10 +347,14 @@ def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes
     psi_nodes = (EndPatched.from_core(Pc, 1, 2, n), EndPatched.add_ends(np.zeros(n), p0c, 1))
     info = {"ghosts_per_end": m + 1, "spacing": dx, "horizon": delta}
     if rho:  # the paper's constants (Eq. 50)
-        info.update(C1=kGA / (2 * delta * rho * scene.section.A), C2=2 * scene.material.E / (rho * delta**2),
-                    C3=kGA / (2 * rho * delta * scene.section.I))
-    return Discrete(x, op, b, (rho * scene.section.A, rho * scene.section.I), (True, False), prescribed, 2,
-                    psi=psi_nodes, info=info)
+        info.update(
+            C1=kGA / (2 * delta * rho * scene.section.A),
+            C2=2 * scene.material.E / (rho * delta**2),
+            C3=kGA / (2 * rho * delta * scene.section.I),
+        )
+    return Discrete(
+        x, op, b, (rho * scene.section.A, rho * scene.section.I), (True, False), prescribed, 2, psi=psi_nodes, info=info
+    )
 
 
 def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str, ends: dict):
@@ -434,7 +463,9 @@ def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
         return psi_u, psi_0
     keep = np.flatnonzero(~replaced)
     rep_r.append(keep), rep_c.append(keep), rep_v.append(np.ones(len(keep)))
-    Rep = sp.csr_matrix((np.concatenate(rep_v), (np.concatenate(rep_r), np.concatenate(rep_c))), shape=(rows_all, rows_all))
+    Rep = sp.csr_matrix(
+        (np.concatenate(rep_v), (np.concatenate(rep_r), np.concatenate(rep_c))), shape=(rows_all, rows_all)
+    )
     return (Rep @ psi_u).tocsr(), Rep @ psi_0 + c0
 
 
@@ -458,8 +489,9 @@ def static_system(scene: Scene, disc: Discrete) -> tuple[Band, np.ndarray, dict]
     row, cleared column) and their settled values ``held`` {dof: value} (zero for plain supports; the
     final value of a prescribed end motion) moved to the right-hand side."""
     end_time = scene.dynamics.end_time if scene.dynamics else 0.0
-    held = {dof: 0.0 if mot is None else motion_final(mot, end_time)
-            for dof, mot in prescribed_motions(scene, disc).items()}
+    held = {
+        dof: 0.0 if mot is None else motion_final(mot, end_time) for dof, mot in prescribed_motions(scene, disc).items()
+    }
     B = disc.band()
     rhs = disc.b.copy()
     moved = sorted(d for d, v in held.items() if v != 0.0)
@@ -486,9 +518,15 @@ def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tup
     u, info = solve_linear(B, rhs, what=what)
     cond = info.get("cond", 0.0)
     if np.isfinite(cond) and cond * np.finfo(float).eps > 1.0:
-        hint = ("variant paper leaves an end's free unknowns (the deflection at a free end, the rotation at "
+        hint = (
+            (
+                "variant paper leaves an end's free unknowns (the deflection at a free end, the rotation at "
                 "a pinned or free one) without a traction condition (Section 4 as published); use variant "
-                "corrected") if "paper" in what else "use fewer points"
+                "corrected"
+            )
+            if "paper" in what
+            else "use fewer points"
+        )
         raise SolveError(f"{what}: the system is singular to working precision (condition estimate {cond:.2g}); {hint}")
     for dof, value in held.items():  # their unit rows gave zero
         u[dof] = value
@@ -552,8 +590,9 @@ def _eig_max(disc: Discrete) -> float:
     # between runs in the 11th digit. Not the ones vector, and k = 4: with v0 = ones and k = 1 ARPACK
     # missed an end mode of the rod's traction closure (m = 2, 61 points: 5.72e10 for 7.49e10)
     v0 = np.random.default_rng(0).standard_normal(A.shape[0])
-    return float(np.abs(spla.eigs(A, k=min(4, A.shape[0] - 2), which="LM", return_eigenvectors=False, tol=1e-6,
-                                  v0=v0)).max())
+    return float(
+        np.abs(spla.eigs(A, k=min(4, A.shape[0] - 2), which="LM", return_eigenvectors=False, tol=1e-6, v0=v0)).max()
+    )
 
 
 def largest_eigenvalue(disc: Discrete) -> float:
@@ -635,7 +674,7 @@ class _WholeStep:
         self.u += self.V
 
     def field(self, f: int) -> np.ndarray:
-        return self.u[f::self.nf]
+        return self.u[f :: self.nf]
 
     @property
     def flat(self) -> np.ndarray:
@@ -670,8 +709,16 @@ class _StencilStep:
     step instead of one per operation and the matrix's ~25 values per point). The y of a block are
     formed one block ahead, before the update of u and V reaches the points they depend on."""
 
-    def __init__(self, disc: Discrete, gd: np.ndarray, alpha: tuple, kappa: float, bG: np.ndarray,
-                 gd_field: tuple, chunk: int = CHUNK):
+    def __init__(
+        self,
+        disc: Discrete,
+        gd: np.ndarray,
+        alpha: tuple,
+        kappa: float,
+        bG: np.ndarray,
+        gd_field: tuple,
+        chunk: int = CHUNK,
+    ):
         op, nf = disc.op, disc.nf
         n, h = op.n, op.reach
         self.n, self.nf, self.h = n, nf, h
@@ -689,7 +736,7 @@ class _StencilStep:
         # end rows: dense blocks, rows and columns field-major, scaled by -gd of the row
         patches = []
         if op.L or op.R:
-            rp, cp = op.rows // nf, op.cols // nf
+            rp = op.rows // nf
             for side, sel in ((0, rp < op.L), (1, rp >= n - op.R)):
                 if not sel.any():
                     continue
@@ -706,13 +753,14 @@ class _StencilStep:
         def y_ops(p0, p1):
             out = []
             for f in range(nf):
-                out.append((np.multiply, (V[f, h + p0: h + p1], kappa, Y[f, h + p0: h + p1])))
-                out.append((np.add, (Y[f, h + p0: h + p1], U[f, h + p0: h + p1], Y[f, h + p0: h + p1])))
+                out.append((np.multiply, (V[f, h + p0 : h + p1], kappa, Y[f, h + p0 : h + p1])))
+                out.append((np.add, (Y[f, h + p0 : h + p1], U[f, h + p0 : h + p1], Y[f, h + p0 : h + p1])))
             return out
 
         def patch_op(pr0, npr, pc0, npc, Dm, Rv):
             def run():
-                Rv[...] = (Dm @ Y[:, h + pc0: h + pc0 + npc].ravel()).reshape(nf, npr)
+                Rv[...] = (Dm @ Y[:, h + pc0 : h + pc0 + npc].ravel()).reshape(nf, npr)
+
             return run, ()
 
         ops = y_ops(*bounds[0])
@@ -723,14 +771,16 @@ class _StencilStep:
             for a in range(nf):
                 first = True
                 for b in range(nf):
-                    first = stencil_ops(ops, R[a, :w], Y[b], h + p0, h + p1, op.stencil(a, b, -gd_field[a]), T[:w], first)
+                    first = stencil_ops(
+                        ops, R[a, :w], Y[b], h + p0, h + p1, op.stencil(a, b, -gd_field[a]), T[:w], first
+                    )
                 if first:
                     ops.append((R[a, :w].fill, (0.0,)))
-            for side, pr0, npr, pc0, npc, Dm in patches:
+            for _side, pr0, npr, pc0, npc, Dm in patches:
                 if p0 <= pr0 and pr0 + npr <= p1:
-                    ops.append(patch_op(pr0, npr, pc0, npc, Dm, R[:, pr0 - p0: pr0 - p0 + npr]))
+                    ops.append(patch_op(pr0, npr, pc0, npc, Dm, R[:, pr0 - p0 : pr0 - p0 + npr]))
             for f in range(nf):
-                Rf, Vf, Uf = R[f, :w], V[f, h + p0: h + p1], U[f, h + p0: h + p1]
+                Rf, Vf, Uf = R[f, :w], V[f, h + p0 : h + p1], U[f, h + p0 : h + p1]
                 if np.any(BG[f, p0:p1]):
                     ops.append((np.add, (Rf, BG[f, p0:p1], Rf)))
                 if alpha[f] != 1.0:
@@ -744,7 +794,7 @@ class _StencilStep:
             f(*args)
 
     def field(self, f: int) -> np.ndarray:
-        return self.U[f, self.h: self.h + self.n]
+        return self.U[f, self.h : self.h + self.n]
 
     @property
     def flat(self) -> np.ndarray:
@@ -758,12 +808,12 @@ class _StencilStep:
         return sp.csr_matrix((M.data, cols, M.indptr), shape=(M.shape[0], self.U.size))
 
     def start(self, V0: np.ndarray):
-        self.V[:, self.h: self.h + self.n] = V0.reshape(self.n, self.nf).T
+        self.V[:, self.h : self.h + self.n] = V0.reshape(self.n, self.nf).T
 
     def velocity(self) -> np.ndarray:
         """V = dt v^{j-1/2} (interleaved)."""
         out = np.empty(self.nf * self.n)
-        out.reshape(self.n, self.nf)[...] = self.V[:, self.h: self.h + self.n].T
+        out.reshape(self.n, self.nf)[...] = self.V[:, self.h : self.h + self.n].T
         return out
 
     def set(self, dof: int, value: float):
@@ -774,15 +824,27 @@ class _StencilStep:
 
     def state(self) -> np.ndarray:
         out = np.empty(self.nf * self.n)
-        out.reshape(self.n, self.nf)[...] = self.U[:, self.h: self.h + self.n].T
+        out.reshape(self.n, self.nf)[...] = self.U[:, self.h : self.h + self.n].T
         return out
 
 
-def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | None = None, damping: float = 0.0,
-              damping_ratio: float | None = None, safety: float = 0.9, probes=None,
-              record_every: int | None = None, output_interval: float | None = None,
-              damp_rotations: bool = False, stabilisation: float = STABILISATION, steps: int | None = None,
-              context: str = "", ledger_every: int | None = None) -> History:
+def integrate(
+    disc: Discrete,
+    motions: dict,
+    t_end: float | None,
+    dt: float | None = None,
+    damping: float = 0.0,
+    damping_ratio: float | None = None,
+    safety: float = 0.9,
+    probes=None,
+    record_every: int | None = None,
+    output_interval: float | None = None,
+    damp_rotations: bool = False,
+    stabilisation: float = STABILISATION,
+    steps: int | None = None,
+    context: str = "",
+    ledger_every: int | None = None,
+) -> History:
     """Damped leapfrog velocity-Verlet (Eq. 7–11 / 38–44) from rest, loads as steps at t = 0 (v^{-1/2} =
     -dt/2 a^0 so that v^0 = 0; Eq. 12 sets v^{-1/2} = 0, which is first order for a step load).
 
@@ -864,6 +926,7 @@ def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | No
             y = apply_K(u)
             y[moving] = Kcols @ u
             return y
+
     ledger = EnergyLedger(ledger_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n), kappa * dt)
     if len(moving):  # the support work ∫ (K u - b)_p du_p, one small product per step
         Kp = st.on_state(Kcols)
@@ -904,8 +967,22 @@ def integrate(disc: Discrete, motions: dict, t_end: float | None, dt: float | No
                 vals.append(Pm @ st.field(0))
                 if nf == 2:
                     rots.append(Pm @ st.field(1))
-    return History(np.array(times), probes, np.array(vals), np.array(rots) if nf == 2 else None, st.state(), disc.x,
-                   dt, limit, steps, damping, stabilisation, omega1, ledger.arrays(), ledger.drift())
+    return History(
+        np.array(times),
+        probes,
+        np.array(vals),
+        np.array(rots) if nf == 2 else None,
+        st.state(),
+        disc.x,
+        dt,
+        limit,
+        steps,
+        damping,
+        stabilisation,
+        omega1,
+        ledger.arrays(),
+        ledger.drift(),
+    )
 
 
 def _columns(disc: Discrete, dofs: np.ndarray) -> sp.csr_matrix:
@@ -929,11 +1006,14 @@ def _columns(disc: Discrete, dofs: np.ndarray) -> sp.csr_matrix:
     return out.tocsr()
 
 
-def _blow_up_message(disc: Discrete, dt: float, limit: float, s: int, t: float, ratio: float, kappa: float,
-                     context: str) -> str:
+def _blow_up_message(
+    disc: Discrete, dt: float, limit: float, s: int, t: float, ratio: float, kappa: float, context: str
+) -> str:
     """One line: the step, the limit, what grew and what to change."""
-    head = (f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s; stored energy "
-            f"{ratio:.2g} x the work put in)")
+    head = (
+        f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s; stored energy "
+        f"{ratio:.2g} x the work put in)"
+    )
     where = f" ({context})" if context else ""
     if dt > limit * (1 + 1e-9):
         return f"{head}; the stable limit is {limit:.4g} s; use time_step <= {limit:.4g} s or leave time_step out"
@@ -943,24 +1023,39 @@ def _blow_up_message(disc: Discrete, dt: float, limit: float, s: int, t: float, 
         growth = np.abs(np.sqrt(lam.astype(complex)).imag)  # mode ~ exp(±i sqrt(λ) t)
         k = int(np.argmax(growth))
         if growth[k] > 0:
-            detail = (f": M^-1 K has the eigenvalue {lam[k]:.3g} (the mode grows like exp({growth[k]:.3g} t), "
-                      "a real part below zero or an imaginary part)")
-    return (f"{head}; dt is below the stable limit {limit:.4g} s, so a smaller step does not help: the operator's "
-            f"boundary closures{where} have a growing mode{detail}; change the horizon or the number of points, "
-            f"or damp more (damping_ratio)")
+            detail = (
+                f": M^-1 K has the eigenvalue {lam[k]:.3g} (the mode grows like exp({growth[k]:.3g} t), "
+                "a real part below zero or an imaginary part)"
+            )
+    return (
+        f"{head}; dt is below the stable limit {limit:.4g} s, so a smaller step does not help: the operator's "
+        f"boundary closures{where} have a growing mode{detail}; change the horizon or the number of points, "
+        f"or damp more (damping_ratio)"
+    )
 
 
 # -- the models -------------------------------------------------------------------------------
 
 _OPTIONS = (
-    Option("points", int, 101, "material points along the beam, ends included (grid = cells: points - 1 cells)",
-           minimum=6),
+    Option(
+        "points", int, 101, "material points along the beam, ends included (grid = cells: points - 1 cells)", minimum=6
+    ),
     Option("horizon", int, 3, "horizon delta = m dx, m an integer (1 = nearest neighbours)", minimum=1),
     Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
-    Option("analysis", str, "auto", "auto (dynamic when the scene has [dynamics]) | static | dynamic",
-           choices=("auto", "static", "dynamic")),
-    Option("grid", str, "nodes", "nodes (ends included) | cells (Section 4 cell centres; variant paper, static)",
-           choices=("nodes", "cells")),
+    Option(
+        "analysis",
+        str,
+        "auto",
+        "auto (dynamic when the scene has [dynamics]) | static | dynamic",
+        choices=("auto", "static", "dynamic"),
+    ),
+    Option(
+        "grid",
+        str,
+        "nodes",
+        "nodes (ends included) | cells (Section 4 cell centres; variant paper, static)",
+        choices=("nodes", "cells"),
+    ),
 )
 
 
@@ -971,8 +1066,13 @@ class _MoyerModel(Model):
     end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
     assembles = True
     variant_rules = (
-        Rule((("variant", "corrected"),), "grid", "the corrections are written for the node grid; grid = cells "
-             "is the paper's Section 4 setup (variant = paper)", allowed=("nodes",)),
+        Rule(
+            (("variant", "corrected"),),
+            "grid",
+            "the corrections are written for the node grid; grid = cells "
+            "is the paper's Section 4 setup (variant = paper)",
+            allowed=("nodes",),
+        ),
     )
 
     def operator(self, scene: Scene, params: dict) -> Discrete:  # pragma: no cover - interface
@@ -987,15 +1087,22 @@ class _MoyerModel(Model):
 
     def _dynamic(self, scene: Scene, params: dict) -> bool:
         if params["analysis"] == "dynamic" and scene.dynamics is None:
-            raise InputError("analysis = 'dynamic': the scene has no [dynamics] table; add one (end_time, ...) "
-                             "or use analysis = static")
+            raise InputError(
+                "analysis = 'dynamic': the scene has no [dynamics] table; add one (end_time, ...) "
+                "or use analysis = static"
+            )
         dyn = params["analysis"] == "dynamic" or (params["analysis"] == "auto" and scene.dynamics is not None)
         moving = scene.dynamics is not None and any(
-            getattr(em, k) is not None for em in (scene.dynamics.left, scene.dynamics.right) if em is not None
-            for k in ("displacement", "axial", "rotation", "twist"))
+            getattr(em, k) is not None
+            for em in (scene.dynamics.left, scene.dynamics.right)
+            if em is not None
+            for k in ("displacement", "axial", "rotation", "twist")
+        )
         if params.get("grid") == "cells" and (dyn or moving):
-            raise InputError("grid = 'cells': the cell-centred grid takes no dynamics or prescribed end motions here "
-                             "(its end faces carry no points); use grid = nodes")
+            raise InputError(
+                "grid = 'cells': the cell-centred grid takes no dynamics or prescribed end motions here "
+                "(its end faces carry no points); use grid = nodes"
+            )
         return dyn
 
     def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
@@ -1020,18 +1127,38 @@ class _MoyerModel(Model):
         if self._dynamic(scene, params):
             d = scene.dynamics
             with timer("solve"):
-                h = integrate(disc, prescribed_motions(scene, disc), d.end_time, dt=d.time_step, damping=d.damping or 0.0,
-                              damping_ratio=d.damping_ratio, probes=d.probes, output_interval=d.output_interval,
-                              context=_context(scene, params))
+                h = integrate(
+                    disc,
+                    prescribed_motions(scene, disc),
+                    d.end_time,
+                    dt=d.time_step,
+                    damping=d.damping or 0.0,
+                    damping_ratio=d.damping_ratio,
+                    probes=d.probes,
+                    output_interval=d.output_interval,
+                    context=_context(scene, params),
+                )
             u = h.final
             label = "w" if self.bending else ("u" if self.axial else "twist")
             series = {f"{label}(x={p:g})": h.values[:, k] for k, p in enumerate(h.probes)}
             if h.rotations is not None:
                 series.update({f"rotation(x={p:g})": h.rotations[:, k] for k, p in enumerate(h.probes)})
-            info.update(analysis="dynamic", dt=h.dt, dt_limit=h.dt_limit, steps=h.steps, damping=h.damping,
-                        omega1=h.omega1, stabilisation=h.stabilisation, energy_drift=h.energy_drift,
-                        history={"t": h.t, "series": series, "energy": h.energy,
-                                 "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label]})
+            info.update(
+                analysis="dynamic",
+                dt=h.dt,
+                dt_limit=h.dt_limit,
+                steps=h.steps,
+                damping=h.damping,
+                omega1=h.omega1,
+                stabilisation=h.stabilisation,
+                energy_drift=h.energy_drift,
+                history={
+                    "t": h.t,
+                    "series": series,
+                    "energy": h.energy,
+                    "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label],
+                },
+            )
             writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
         else:
             with timer("assemble"):  # the band of K and the supports
@@ -1057,20 +1184,33 @@ class PDRod(_MoyerModel):
         out = super().check(scene)
         sup = (scene.supports.left, scene.supports.right)
         if not set(sup) & set(ROD_HELD["axial"]):
-            out.append(f"supports = {sup[0]}-{sup[1]}: neither end holds the axial displacement (a roller or guided "
-                       "end slides along the axis), so the rod is a mechanism; make one end clamped or pinned")
+            out.append(
+                f"supports = {sup[0]}-{sup[1]}: neither end holds the axial displacement (a roller or guided "
+                "end slides along the axis), so the rod is a mechanism; make one end clamped or pinned"
+            )
         return out
 
     def operator(self, scene, params):
-        return rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="axial",
-                            grid=params["grid"])
+        return rod_operator(
+            scene, params["points"], params["horizon"], params["variant"], kind="axial", grid=params["grid"]
+        )
 
     def result(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         N = scene.EA * np.gradient(u, x[1] - x[0], edge_order=2)
         fields = dict(fields, u=u, N=N)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=np.zeros_like(x),
-                      fields=fields, dofs=disc.n_free, timings=timer.timings, info=info, writers=writers)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=np.zeros_like(x),
+            fields=fields,
+            dofs=disc.n_free,
+            timings=timer.timings,
+            info=info,
+            writers=writers,
+        )
 
 
 class PDTorsion(_MoyerModel):
@@ -1082,18 +1222,31 @@ class PDTorsion(_MoyerModel):
     load_types = frozenset({"point_torque", "distributed"})  # distributed: its torque component
 
     def operator(self, scene, params):
-        disc = rod_operator(scene, params["points"], params["horizon"], params["variant"], kind="torsion",
-                            grid=params["grid"])
+        disc = rod_operator(
+            scene, params["points"], params["horizon"], params["variant"], kind="torsion", grid=params["grid"]
+        )
         if self._dynamic(scene, params) and not np.all(np.isfinite(disc.mass)):
-            raise InputError("section: pd-torsion dynamics needs the polar moment of a rectangle; give width and height")
+            raise InputError(
+                "section: pd-torsion dynamics needs the polar moment of a rectangle; give width and height"
+            )
         return disc
 
     def result(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         T = scene.material.G * scene.section.J * np.gradient(u, x[1] - x[0], edge_order=2)
         fields = dict(fields, twist=u, T=T)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=np.zeros_like(x),
-                      fields=fields, dofs=disc.n_free, timings=timer.timings, info=info, writers=writers)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=np.zeros_like(x),
+            fields=fields,
+            dofs=disc.n_free,
+            timings=timer.timings,
+            info=info,
+            writers=writers,
+        )
 
 
 class PDTimoshenko(_MoyerModel):
@@ -1113,14 +1266,35 @@ class PDTimoshenko(_MoyerModel):
         # np.gradient(w) - γ would carry the O(Δ²) error of w' multiplied by kGA
         psi = disc.psi[0] @ u + disc.psi[1]
         fields = dict(fields, M=M, V=-scene.kGA * psi, psi=psi)
-        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, rotation=g,
-                      fields=fields, dofs=disc.n_free, timings=timer.timings, info=info, writers=writers)
+        return Result(
+            scene=scene.name,
+            model=self.name,
+            parameters=dict(params),
+            x=x,
+            w=w,
+            rotation=g,
+            fields=fields,
+            dofs=disc.n_free,
+            timings=timer.timings,
+            info=info,
+            writers=writers,
+        )
 
 
-def simulate(scene: Scene, params: dict | None = None, t_end: float | None = None, dt: float | None = None,
-             damping: float | None = None, damping_ratio: float | None = None, safety: float = 0.9,
-             probes=None, record_every: int | None = None, model: str = "pd-timoshenko",
-             damp_rotations: bool = False, stabilisation: float = STABILISATION) -> History:
+def simulate(
+    scene: Scene,
+    params: dict | None = None,
+    t_end: float | None = None,
+    dt: float | None = None,
+    damping: float | None = None,
+    damping_ratio: float | None = None,
+    safety: float = 0.9,
+    probes=None,
+    record_every: int | None = None,
+    model: str = "pd-timoshenko",
+    damp_rotations: bool = False,
+    stabilisation: float = STABILISATION,
+) -> History:
     """Transient run of ``pd-timoshenko`` (or ``model = "pd-rod"`` / ``"pd-torsion"``) on ``scene``: the scene's
     [dynamics] table gives the defaults (end time, damping, probes, prescribed end motions); the
     arguments override them (``record_every`` overrides the table's output_interval). Returns a :class:`History`."""
@@ -1140,16 +1314,29 @@ def simulate(scene: Scene, params: dict | None = None, t_end: float | None = Non
         probes = d.probes if probes is None else probes
     output_interval = d.output_interval if (d is not None and record_every is None) else None
     disc = m.operator(scene, params)
-    return integrate(disc, prescribed_motions(scene, disc), t_end, dt=dt, damping=damping or 0.0,
-                     damping_ratio=damping_ratio, safety=safety, probes=probes, record_every=record_every,
-                     output_interval=output_interval, damp_rotations=damp_rotations, stabilisation=stabilisation,
-                     context=_context(scene, params))
+    return integrate(
+        disc,
+        prescribed_motions(scene, disc),
+        t_end,
+        dt=dt,
+        damping=damping or 0.0,
+        damping_ratio=damping_ratio,
+        safety=safety,
+        probes=probes,
+        record_every=record_every,
+        output_interval=output_interval,
+        damp_rotations=damp_rotations,
+        stabilisation=stabilisation,
+        context=_context(scene, params),
+    )
 
 
 def _context(scene: Scene, params: dict) -> str:
     """Where a growing mode comes from, for the blow-up message."""
-    return (f"supports {scene.supports.left}-{scene.supports.right}, horizon = {params['horizon']}, "
-            f"points = {params['points']}, variant {params['variant']}")
+    return (
+        f"supports {scene.supports.left}-{scene.supports.right}, horizon = {params['horizon']}, "
+        f"points = {params['points']}, variant {params['variant']}"
+    )
 
 
 MODELS = [PDRod(), PDTimoshenko(), PDTorsion()]

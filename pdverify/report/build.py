@@ -39,8 +39,13 @@ def case_anchor(case_id) -> str:
     return "case-" + "".join(ch for ch in str(case_id) if ch.isalnum() or ch in "-_")
 
 
-def table(df: pd.DataFrame, columns: list[str] | None = None, row_class: str | None = None,
-          case_link: str | None = None, case_rows: bool = False) -> Markup:
+def table(
+    df: pd.DataFrame,
+    columns: list[str] | None = None,
+    row_class: str | None = None,
+    case_link: str | None = None,
+    case_rows: bool = False,
+) -> Markup:
     """An HTML table of ``df`` (every value escaped). ``case_link``: each case id links to its row of the results
     table at this page prefix ("" on index.html, "index.html" elsewhere); ``case_rows``: rows carry that id."""
     if df is None or df.empty:
@@ -73,8 +78,10 @@ def _read(d: Path, name: str) -> pd.DataFrame:
     except pd.errors.EmptyDataError:
         return pd.DataFrame()
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
-        raise InputError(f"{p}: not a readable CSV table ({str(exc).splitlines()[0][:120]}); run "
-                         f"`pdverify study STUDY.toml --out {d}` again") from None
+        raise InputError(
+            f"{p}: not a readable CSV table ({str(exc).splitlines()[0][:120]}); run "
+            f"`pdverify study STUDY.toml --out {d}` again"
+        ) from None
 
 
 def _label(r) -> str:
@@ -149,8 +156,10 @@ def _curve(d: Path, path: Path) -> dict:
     try:
         return read_curve(path)
     except ValueError:
-        raise InputError(f"{path}: a damaged case file (not a whole, readable case record); run "
-                         f"`pdverify study STUDY.toml --out {d}` again, which recomputes it, then the report") from None
+        raise InputError(
+            f"{path}: a damaged case file (not a whole, readable case record); run "
+            f"`pdverify study STUDY.toml --out {d}` again, which recomputes it, then the report"
+        ) from None
 
 
 def _folder(scene_file) -> str:
@@ -172,24 +181,29 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise OutputError(f"{out}: cannot make the report folder ({exc.strerror or exc}); "
-                          "choose another --out") from None
+        raise OutputError(
+            f"{out}: cannot make the report folder ({exc.strerror or exc}); choose another --out"
+        ) from None
     res = _read(d, "results")
     for col in ("case_id", "scene_file", "scene", "status") if len(res) else ():
         if col not in res:
-            raise InputError(f"{d / 'results.csv'}: no '{col}' column; not a pdverify results table (run "
-                             f"`pdverify study STUDY.toml --out {d}` again)")
+            raise InputError(
+                f"{d / 'results.csv'}: no '{col}' column; not a pdverify results table (run "
+                f"`pdverify study STUDY.toml --out {d}` again)"
+            )
     try:
         meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
     except (ValueError, UnicodeDecodeError):
-        raise InputError(f"{d / 'meta.json'}: not valid JSON; run `pdverify study STUDY.toml --out {d}` "
-                         "again") from None
+        raise InputError(
+            f"{d / 'meta.json'}: not valid JSON; run `pdverify study STUDY.toml --out {d}` again"
+        ) from None
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; run `pdverify study STUDY.toml --out {d}` again")
     unit_of_file, unit_of_scene = _units_of(res, "scene_file"), _units_of(res, "scene")
     conv, lock, se, sesum, bench, trust, checks = (
-        _read(d, n) for n in ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust",
-                              "checks"))
+        _read(d, n)
+        for n in ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust", "checks")
+    )
     ok = res[res["status"] == "ok"] if "status" in res else res
 
     from functools import lru_cache
@@ -226,14 +240,29 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 c = curve_of(path) if path is not None else {}
                 if c.get("history"):
                     h = c["history"]
-                    figs.append(figures.time_history(h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")))
+                    figs.append(
+                        figures.time_history(
+                            h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")
+                        )
+                    )
                 if c.get("load_steps"):
-                    exact = [(np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st]
-                    figs.append(figures.deformed_shapes(c["load_steps"], f"{_label(r)}: deformed shapes", exact,
-                                                        unit_of_file.get(sfile, "m")))
-        scenes.append({"name": g["scene"].iloc[0], "file": sfile, "folder": _folder(sfile),
-                       "reference": _short_reference(g["reference"].iloc[0]) if "reference" in g else "",
-                       "figures": [Markup(f) for f in figs]})
+                    exact = [
+                        (np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st
+                    ]
+                    figs.append(
+                        figures.deformed_shapes(
+                            c["load_steps"], f"{_label(r)}: deformed shapes", exact, unit_of_file.get(sfile, "m")
+                        )
+                    )
+        scenes.append(
+            {
+                "name": g["scene"].iloc[0],
+                "file": sfile,
+                "folder": _folder(sfile),
+                "reference": _short_reference(g["reference"].iloc[0]) if "reference" in g else "",
+                "figures": [Markup(f) for f in figs],
+            }
+        )
 
     conv_figs = []
     if not conv.empty:
@@ -248,37 +277,75 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     hz = ok[ok["horizon_factor"].notna() & ok["err_max"].notna()] if "horizon_factor" in ok else ok.iloc[0:0]
     for scene, g in hz.groupby("scene", sort=False):
         groups = []
-        others = g["options"].map(lambda o: " ".join(f"{v}" for k, v in sorted(json.loads(o).items())
-                                                      if k != "horizon" and isinstance(v, str)))
+        others = g["options"].map(
+            lambda o: " ".join(
+                f"{v}" for k, v in sorted(json.loads(o).items()) if k != "horizon" and isinstance(v, str)
+            )
+        )
         for (model, rest, pts), gg in g.groupby(["model", others, "points"], sort=True):
             if gg["horizon_factor"].nunique() >= 2 and pts == g[g["model"] == model]["points"].max():
                 gg = gg.sort_values("horizon_factor")
-                groups.append((f"{model} {rest} n={fmt(pts)}", gg["horizon_factor"].to_numpy(float),
-                               np.maximum(gg["err_max"].to_numpy(float), 1e-16)))
+                groups.append(
+                    (
+                        f"{model} {rest} n={fmt(pts)}",
+                        gg["horizon_factor"].to_numpy(float),
+                        np.maximum(gg["err_max"].to_numpy(float), 1e-16),
+                    )
+                )
         if groups:
-            horizon_figs.append((scene, Markup(figures.scatter(
-                groups, "horizon factor m = delta / dx", "max relative error", f"error vs horizon: {scene}",
-                logx=False))))
+            horizon_figs.append(
+                (
+                    scene,
+                    Markup(
+                        figures.scatter(
+                            groups,
+                            "horizon factor m = delta / dx",
+                            "max relative error",
+                            f"error vs horizon: {scene}",
+                            logx=False,
+                        )
+                    ),
+                )
+            )
     lock_figs = []
     if not lock.empty:
         lk = ok[ok["slenderness"].notna()]
         for scene, g in lk.groupby("scene", sort=False):
             groups = []
-            for key, gg in g.groupby(["model", g["options"].fillna(""), g["points"].fillna(-1)]):
+            for _key, gg in g.groupby(["model", g["options"].fillna(""), g["points"].fillna(-1)]):
                 gg = gg.sort_values("slenderness")
-                groups.append((_label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
-                               gg["slenderness"].to_numpy(float), gg["err_max"].to_numpy(float)))
-            lock_figs.append((scene, Markup(figures.scatter(groups, "slenderness L/h", "max relative error",
-                                                            f"locking: {scene}"))))
+                groups.append(
+                    (
+                        _label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
+                        gg["slenderness"].to_numpy(float),
+                        gg["err_max"].to_numpy(float),
+                    )
+                )
+            lock_figs.append(
+                (scene, Markup(figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}")))
+            )
     speed_figs = []
     if not se.empty:
         for scene, g in se.groupby("scene", sort=False):
-            groups = [(m, gg["total_s"].to_numpy(float), np.maximum(gg["err_max"].to_numpy(float), 1e-16))
-                      for m, gg in g.groupby("model")]
+            groups = [
+                (m, gg["total_s"].to_numpy(float), np.maximum(gg["err_max"].to_numpy(float), 1e-16))
+                for m, gg in g.groupby("model")
+            ]
             fr = g[g["pareto"].astype(bool)]
-            speed_figs.append((scene, Markup(figures.scatter(
-                groups, "total time (s)", "max relative error", f"speed vs error: {scene}",
-                front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16))))))
+            speed_figs.append(
+                (
+                    scene,
+                    Markup(
+                        figures.scatter(
+                            groups,
+                            "total time (s)",
+                            "max relative error",
+                            f"speed vs error: {scene}",
+                            front=(fr["total_s"].to_numpy(float), np.maximum(fr["err_max"].to_numpy(float), 1e-16)),
+                        )
+                    ),
+                )
+            )
 
     images = []
     for png in sorted((d / "vtu").glob("*.png")) if (d / "vtu").exists() else []:
@@ -286,14 +353,30 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
 
         r = res[res["case_id"] == png.stem]
         label = f"{r['scene'].iloc[0]}: {_label(r.iloc[0])}" if len(r) else png.stem
-        images.append({"label": label, "data": base64.b64encode(png.read_bytes()).decode(),
-                       "vtu": f"vtu/{png.stem}.vtu"})
+        images.append(
+            {"label": label, "data": base64.b64encode(png.read_bytes()).decode(), "vtu": f"vtu/{png.stem}.vtu"}
+        )
     counts = ", ".join(f"{k}: {v}" for k, v in (meta.get("counts") or {}).items())
     meta_rows = pd.DataFrame([{"item": k, "value": _readable(v)} for k, v in meta.items() if k not in ("date",)])
     env = environment()
     generated = time.strftime("%Y-%m-%d %H:%M:%S")
-    bench_cols = ["name", "verdict", "model", "variant", "reference", "quantity", "position", "target", "computed", "ratio",
-                  "rel_error", "tolerance", "err_max", "observed_order", "case_id"]
+    bench_cols = [
+        "name",
+        "verdict",
+        "model",
+        "variant",
+        "reference",
+        "quantity",
+        "position",
+        "target",
+        "computed",
+        "ratio",
+        "rel_error",
+        "tolerance",
+        "err_max",
+        "observed_order",
+        "case_id",
+    ]
     study_file = d / "study.toml"
     titles, description = {}, ""
     if study_file.exists():
@@ -308,22 +391,44 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     papers = []
     for folder in dict.fromkeys(s["folder"] for s in scenes):
         names = {s["name"] for s in scenes if s["folder"] == folder}
-        pick = lambda figs: [f for sc, f in figs if sc in names]  # noqa: E731
+        pick = lambda figs, names=names: [f for sc, f in figs if sc in names]  # noqa: E731
         pb = bench[bench["scene_file"].map(_folder) == folder] if "scene_file" in bench else bench.iloc[0:0]
         if "reference" in pb:
             pb = pb.assign(reference=pb["reference"].map(_short_reference))
         verdicts = pb["verdict"].value_counts().to_dict() if "verdict" in pb else {}
-        page = {"folder": folder, "title": titles.get(folder, folder), "href": f"paper-{_slug(folder)}.html",
-                "summary": ", ".join(f"{k}: {v}" for k, v in sorted(verdicts.items())) or "no benchmarks",
-                "n_scenes": len(names)}
+        page = {
+            "folder": folder,
+            "title": titles.get(folder, folder),
+            "href": f"paper-{_slug(folder)}.html",
+            "summary": ", ".join(f"{k}: {v}" for k, v in sorted(verdicts.items())) or "no benchmarks",
+            "n_scenes": len(names),
+        }
         html_page = env.get_template("paper.html.j2").render(
-            meta=meta, generated=generated, page=page,
+            meta=meta,
+            generated=generated,
+            page=page,
             benchmarks=table(pb, bench_cols, row_class="verdict", case_link="index.html"),
-            scenes=[s for s in scenes if s["folder"] == folder], convergence_figs=pick(conv_figs),
-            horizon_figs=pick(horizon_figs), locking_figs=pick(lock_figs), speed_figs=pick(speed_figs),
-            convergence=table(readable_options(conv[conv["scene"].isin(names)] if "scene" in conv else conv),
-                              ["scene", "model", "options", "slenderness", "n_grids", "observed_order", "r2",
-                               "gci_order", "gci_fine", "richardson"]))
+            scenes=[s for s in scenes if s["folder"] == folder],
+            convergence_figs=pick(conv_figs),
+            horizon_figs=pick(horizon_figs),
+            locking_figs=pick(lock_figs),
+            speed_figs=pick(speed_figs),
+            convergence=table(
+                readable_options(conv[conv["scene"].isin(names)] if "scene" in conv else conv),
+                [
+                    "scene",
+                    "model",
+                    "options",
+                    "slenderness",
+                    "n_grids",
+                    "observed_order",
+                    "r2",
+                    "gci_order",
+                    "gci_fine",
+                    "richardson",
+                ],
+            ),
+        )
         _write(out / page["href"], html_page)
         papers.append(page)
     performance = None
@@ -332,24 +437,105 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             performance = cand.relative_to(out).as_posix() if cand.is_relative_to(out) else "../bench/index.html"
             break
     page = env.get_template("index.html.j2").render(
-        cards=cards_table(d, out), meta=meta, counts=counts, generated=generated, papers=papers, performance=performance,
+        cards=cards_table(d, out),
+        meta=meta,
+        counts=counts,
+        generated=generated,
+        papers=papers,
+        performance=performance,
         description=description,
-        benchmarks=table(bench.assign(reference=bench["reference"].map(_short_reference)) if "reference" in bench else bench,
-                         bench_cols, row_class="verdict", case_link=""),
-        scenes=scenes, convergence_figs=[f for _, f in conv_figs], horizon_figs=[f for _, f in horizon_figs],
-        convergence=table(readable_options(conv), ["scene", "model", "options", "slenderness", "n_grids",
-                                 "observed_order", "r2", "gci_order", "gci_fine", "richardson"]),
-        locking_figs=[f for _, f in lock_figs], locking=table(readable_options(lock)), images=images,
-        checks=table(readable_options(checks), ["name", "scene", "model", "options", "slenderness", "points", "errors", "pairwise_orders",
-                              "observed_order", "min", "max", "expected", "verdict", "message"], row_class="verdict"),
-        trust=table(readable_options(trust), [
-            "model", "options", "tolerance", "slenderness_trusted", "slenderness_not", "points_trusted",
-            "points_not", "round_off_from_points", "statement"]),
-        speed_figs=[f for _, f in speed_figs], speed_summary=table(readable_options(sesum), case_link=""),
-        results=table(res, ["case_id", "scene", "model", "variant", "points", "spacing", "horizon_factor", "degree",
-                            "slenderness", "dofs", "err_max", "err_l2", "err_at_max", "w_at_max", "w_ref_at_max",
-                            "assemble_s", "solve_s", "total_s", "cond", "error_bound", "status", "message"],
-                      row_class="status", case_rows=True),
+        benchmarks=table(
+            bench.assign(reference=bench["reference"].map(_short_reference)) if "reference" in bench else bench,
+            bench_cols,
+            row_class="verdict",
+            case_link="",
+        ),
+        scenes=scenes,
+        convergence_figs=[f for _, f in conv_figs],
+        horizon_figs=[f for _, f in horizon_figs],
+        convergence=table(
+            readable_options(conv),
+            [
+                "scene",
+                "model",
+                "options",
+                "slenderness",
+                "n_grids",
+                "observed_order",
+                "r2",
+                "gci_order",
+                "gci_fine",
+                "richardson",
+            ],
+        ),
+        locking_figs=[f for _, f in lock_figs],
+        locking=table(readable_options(lock)),
+        images=images,
+        checks=table(
+            readable_options(checks),
+            [
+                "name",
+                "scene",
+                "model",
+                "options",
+                "slenderness",
+                "points",
+                "errors",
+                "pairwise_orders",
+                "observed_order",
+                "min",
+                "max",
+                "expected",
+                "verdict",
+                "message",
+            ],
+            row_class="verdict",
+        ),
+        trust=table(
+            readable_options(trust),
+            [
+                "model",
+                "options",
+                "tolerance",
+                "slenderness_trusted",
+                "slenderness_not",
+                "points_trusted",
+                "points_not",
+                "round_off_from_points",
+                "statement",
+            ],
+        ),
+        speed_figs=[f for _, f in speed_figs],
+        speed_summary=table(readable_options(sesum), case_link=""),
+        results=table(
+            res,
+            [
+                "case_id",
+                "scene",
+                "model",
+                "variant",
+                "points",
+                "spacing",
+                "horizon_factor",
+                "degree",
+                "slenderness",
+                "dofs",
+                "err_max",
+                "err_l2",
+                "err_at_max",
+                "w_at_max",
+                "w_ref_at_max",
+                "assemble_s",
+                "solve_s",
+                "total_s",
+                "cond",
+                "error_bound",
+                "status",
+                "message",
+            ],
+            row_class="status",
+            case_rows=True,
+        ),
         meta_table=table(meta_rows),
         study_text=study_file.read_text(encoding="utf-8", errors="replace") if study_file.exists() else "",
     )
@@ -377,17 +563,27 @@ def cards_table(d: Path, out: Path) -> dict | None:
         got = {c["check"]: c["verdict"] for c in card.get("checks", [])}
         link = Path(os.path.relpath(d / "verify" / card["folder"] / "card.html", out)).as_posix()
         opts = ", ".join(f"{k}={v}" for k, v in card.get("options", {}).items()) or "defaults"
-        cells = [f'<td class="l">{html.escape(str(card["model"]))}</td>', f'<td class="l">{html.escape(opts)}</td>',
-                 f'<td class="verdict">{html.escape(card["verdict"])}</td>']
-        cells += [f'<td class="chk-{html.escape(got.get(c, "none").replace("/", ""))}">{html.escape(got.get(c, ""))}</td>'
-                  for c in checks]
-        cells.append(f'<td>{int(card.get("cases", 0))} ({int(card.get("failed_cases", 0))} failed)</td>')
+        cells = [
+            f'<td class="l">{html.escape(str(card["model"]))}</td>',
+            f'<td class="l">{html.escape(opts)}</td>',
+            f'<td class="verdict">{html.escape(card["verdict"])}</td>',
+        ]
+        cells += [
+            f'<td class="chk-{html.escape(got.get(c, "none").replace("/", ""))}">{html.escape(got.get(c, ""))}</td>'
+            for c in checks
+        ]
+        cells.append(f"<td>{int(card.get('cases', 0))} ({int(card.get('failed_cases', 0))} failed)</td>")
         cells.append(f'<td class="l"><a href="{html.escape(link)}">card.html</a></td>')
         rows.append(f'<tr class="{html.escape(card["verdict"])}">{"".join(cells)}</tr>')
     n_fail = sum(c["verdict"] == "fail" for c in index["cards"])
-    return {"table": Markup(f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}'
-                            '</tbody></table>'),
-            "required": bool(index.get("required")), "n": len(index["cards"]), "n_fail": n_fail}
+    return {
+        "table": Markup(
+            f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>'
+        ),
+        "required": bool(index.get("required")),
+        "n": len(index["cards"]),
+        "n_fail": n_fail,
+    }
 
 
 def environment() -> jinja2.Environment:

@@ -21,7 +21,7 @@ def _svg(fig) -> str:
     plt.close(fig)
     text = buf.getvalue()
     text = re.sub(r"<metadata>.*?</metadata>", "", text, flags=re.S)  # RDF namespaces, no content
-    return text[text.index("<svg"):]
+    return text[text.index("<svg") :]
 
 
 def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major") -> str:
@@ -34,8 +34,13 @@ def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major")
     return _svg(fig)
 
 
-def deflection(curves: list[tuple[str, np.ndarray, np.ndarray]], ref: tuple[np.ndarray, np.ndarray] | None, title: str,
-               ylabel: str = "w", unit: str = "m") -> str:
+def deflection(
+    curves: list[tuple[str, np.ndarray, np.ndarray]],
+    ref: tuple[np.ndarray, np.ndarray] | None,
+    title: str,
+    ylabel: str = "w",
+    unit: str = "m",
+) -> str:
     """Deflection (or another point field) along the axis; lengths in the scene's ``unit`` (Scene.length_unit)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     if ref is not None:
@@ -49,14 +54,26 @@ def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: 
     """log-log error vs spacing, fitted slope printed on each line."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     for label, h, e, p in series:
-        line, = ax.loglog(h, e, "o-", ms=4, label=f"{label} (slope {p:.2f})")
-        ax.annotate(f"{p:.2f}", (h[len(h) // 2], e[len(e) // 2]), color=line.get_color(), fontsize=8,
-                    xytext=(4, 4), textcoords="offset points")
+        (line,) = ax.loglog(h, e, "o-", ms=4, label=f"{label} (slope {p:.2f})")
+        ax.annotate(
+            f"{p:.2f}",
+            (h[len(h) // 2], e[len(e) // 2]),
+            color=line.get_color(),
+            fontsize=8,
+            xytext=(4, 4),
+            textcoords="offset points",
+        )
     return _finish(fig, ax, f"spacing ({unit})", "max relative error", title, which="both")
 
 
-def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabel: str, title: str,
-            front: tuple[np.ndarray, np.ndarray] | None = None, logx=True) -> str:
+def scatter(
+    groups: list[tuple[str, np.ndarray, np.ndarray]],
+    xlabel: str,
+    ylabel: str,
+    title: str,
+    front: tuple[np.ndarray, np.ndarray] | None = None,
+    logx=True,
+) -> str:
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     for label, x, y in groups:
         ax.plot(x, y, "o", ms=4, label=label)
@@ -69,8 +86,9 @@ def scatter(groups: list[tuple[str, np.ndarray, np.ndarray]], xlabel: str, ylabe
     return _finish(fig, ax, xlabel, ylabel, title, which="both")
 
 
-def deformed_shapes(steps: list[dict], title: str, exact: list[tuple[np.ndarray, np.ndarray]] | None = None,
-                    unit: str = "m") -> str:
+def deformed_shapes(
+    steps: list[dict], title: str, exact: list[tuple[np.ndarray, np.ndarray]] | None = None, unit: str = "m"
+) -> str:
     """Deformed axis (x, z) at the recorded load steps of a nonlinear solve, equal axes."""
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for s in steps:
@@ -89,11 +107,13 @@ def time_history(t: np.ndarray, series: dict[str, np.ndarray], title: str, ylabe
     return _finish(fig, ax, "t (s)", ylabel, title)
 
 
-def cost(groups: list[tuple[str, np.ndarray, np.ndarray]], limits: list[tuple[str, np.ndarray, np.ndarray]], title: str) -> str:
+def cost(
+    groups: list[tuple[str, np.ndarray, np.ndarray]], limits: list[tuple[str, np.ndarray, np.ndarray]], title: str
+) -> str:
     """log-log total seconds vs points per model; dashed: the banded-solve limit of the same matrix."""
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
     for label, n, t in groups:
-        line, = ax.loglog(n, t, "o-", ms=4, label=label)
+        (line,) = ax.loglog(n, t, "o-", ms=4, label=label)
         for lab, nl, tl in limits:
             if lab == label and len(nl):
                 ax.loglog(nl, tl, "--", lw=1, color=line.get_color(), label=f"{label}: banded-solve limit")

@@ -12,6 +12,7 @@ import platform
 import time
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
@@ -32,25 +33,58 @@ def targets(rows: pd.DataFrame, slopes: dict[str, float]) -> pd.DataFrame:
     for model, g in ok.groupby("model", sort=True):
         counted = g[[accurate(r) for r in g.to_dict("records")]]
         if counted.empty:
-            out.append({"model": model, "target": f"max error <= {ACCURACY:g} (needed to count)",
-                        "points": int(g["points"].max()), "measured": _worst_error(g), "verdict": "fail"})
+            out.append(
+                {
+                    "model": model,
+                    "target": f"max error <= {ACCURACY:g} (needed to count)",
+                    "points": int(g["points"].max()),
+                    "measured": _worst_error(g),
+                    "verdict": "fail",
+                }
+            )
             continue
         g = counted
         big = g.loc[g["points"].idxmax()]
         if pd.notna(big.get("ratio")):
-            out.append({"model": model, "target": f"total / limit <= {RATIO_TARGET:g}", "points": int(big["points"]),
-                        "measured": float(big["ratio"]), "verdict": "pass" if big["ratio"] <= RATIO_TARGET else "fail"})
+            out.append(
+                {
+                    "model": model,
+                    "target": f"total / limit <= {RATIO_TARGET:g}",
+                    "points": int(big["points"]),
+                    "measured": float(big["ratio"]),
+                    "verdict": "pass" if big["ratio"] <= RATIO_TARGET else "fail",
+                }
+            )
         if pd.notna(big.get("updates_per_s")):
-            out.append({"model": model, "target": f"updates/s >= {UPDATES_TARGET:.0e}", "points": int(big["points"]),
-                        "measured": float(big["updates_per_s"]),
-                        "verdict": "pass" if big["updates_per_s"] >= UPDATES_TARGET else "fail"})
+            out.append(
+                {
+                    "model": model,
+                    "target": f"updates/s >= {UPDATES_TARGET:.0e}",
+                    "points": int(big["points"]),
+                    "measured": float(big["updates_per_s"]),
+                    "verdict": "pass" if big["updates_per_s"] >= UPDATES_TARGET else "fail",
+                }
+            )
         if pd.notna(big.get("peak_mem_mb")) and big["points"] >= 1_000_000:
-            out.append({"model": model, "target": f"peak memory < {MEMORY_TARGET_MB:g} MB", "points": int(big["points"]),
-                        "measured": float(big["peak_mem_mb"]),
-                        "verdict": "pass" if big["peak_mem_mb"] < MEMORY_TARGET_MB else "fail"})
+            out.append(
+                {
+                    "model": model,
+                    "target": f"peak memory < {MEMORY_TARGET_MB:g} MB",
+                    "points": int(big["points"]),
+                    "measured": float(big["peak_mem_mb"]),
+                    "verdict": "pass" if big["peak_mem_mb"] < MEMORY_TARGET_MB else "fail",
+                }
+            )
         if model in slopes:
-            out.append({"model": model, "target": "cost ~ N^1 (slope <= 1.2)", "points": int(big["points"]),
-                        "measured": slopes[model], "verdict": "pass" if slopes[model] <= 1.2 else "fail"})
+            out.append(
+                {
+                    "model": model,
+                    "target": "cost ~ N^1 (slope <= 1.2)",
+                    "points": int(big["points"]),
+                    "measured": slopes[model],
+                    "verdict": "pass" if slopes[model] <= 1.2 else "fail",
+                }
+            )
     return pd.DataFrame(out)
 
 
@@ -68,17 +102,31 @@ def cheapest(rows: pd.DataFrame) -> pd.DataFrame:
         good = g[[accurate(r) for r in g.to_dict("records")]]
         if len(good):
             r = good.loc[good["total_s"].idxmin()]
-            out.append({"model": model, "points": int(r["points"]), "max_error": float(r["max_error"]),
-                        "total_s": float(r["total_s"]), "statement": f"cheapest run within {ACCURACY:g}"})
+            out.append(
+                {
+                    "model": model,
+                    "points": int(r["points"]),
+                    "max_error": float(r["max_error"]),
+                    "total_s": float(r["total_s"]),
+                    "statement": f"cheapest run within {ACCURACY:g}",
+                }
+            )
         else:
             e = pd.to_numeric(g["max_error"], errors="coerce") if "max_error" in g else pd.Series(dtype=float)
             best = f"best {e.min():.2g}" if e.notna().any() else "no exact solution for this scene"
-            out.append({"model": model, "points": None, "max_error": float(e.min()) if e.notna().any() else None,
-                        "total_s": None, "statement": f"no run within {ACCURACY:g} ({best})"})
+            out.append(
+                {
+                    "model": model,
+                    "points": None,
+                    "max_error": float(e.min()) if e.notna().any() else None,
+                    "total_s": None,
+                    "statement": f"no run within {ACCURACY:g} ({best})",
+                }
+            )
     return pd.DataFrame(out)
 
 
-def work_precision(rows: pd.DataFrame) -> list[tuple[str, "np.ndarray", "np.ndarray"]]:
+def work_precision(rows: pd.DataFrame) -> list[tuple[str, np.ndarray, np.ndarray]]:
     """Per model, (label, total seconds, max error) of its measured runs, by size."""
     groups = []
     if "max_error" not in rows:
@@ -113,22 +161,58 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
             groups.append((model, g["points"].to_numpy(float), g["total_s"].to_numpy(float)))
             gl = g[g["limit_s"].notna()] if "limit_s" in g else g.iloc[0:0]
             limits.append((model, gl["points"].to_numpy(float), gl["limit_s"].to_numpy(float)))
-    figs = [Markup(figures.cost(groups, limits, "cost vs points (solid) and the banded-solve limit (dashed)"))] if groups else []
+    figs = (
+        [Markup(figures.cost(groups, limits, "cost vs points (solid) and the banded-solve limit (dashed)"))]
+        if groups
+        else []
+    )
     wp = work_precision(df) if not df.empty else []
     if wp:
-        figs.append(Markup(work_precision_figure(wp, ACCURACY, "work-precision: total seconds vs max error against the "
-                                                            "exact solution (one point per size)")))
+        figs.append(
+            Markup(
+                work_precision_figure(
+                    wp,
+                    ACCURACY,
+                    "work-precision: total seconds vs max error against the exact solution (one point per size)",
+                )
+            )
+        )
     env = environment()
-    meta = {"pdverify": __version__, "python": platform.python_version(), "platform": platform.platform(),
-            "cpu_count": os.cpu_count()}
+    meta = {
+        "pdverify": __version__,
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "cpu_count": os.cpu_count(),
+    }
     page = env.get_template("performance.html.j2").render(
-        meta=meta, generated=time.strftime("%Y-%m-%d %H:%M:%S"), figures=figs,
+        meta=meta,
+        generated=time.strftime("%Y-%m-%d %H:%M:%S"),
+        figures=figs,
         targets=table(targets(df, slopes), row_class="verdict") if not df.empty else "",
         cheapest=table(cheapest(df)) if not df.empty else "",
-        rows=table(df, ["model", "points", "dofs", "max_error", "error_bound", "assemble_s", "solve_s", "total_s",
-                        "limit_s", "ratio", "bandwidth",
-                        "peak_mem_mb", "mem_per_point_kb", "updates_per_s", "status", "message"]),
-        slopes=table(pd.DataFrame([{"model": m, "cost_slope": s} for m, s in sorted(slopes.items())])))
+        rows=table(
+            df,
+            [
+                "model",
+                "points",
+                "dofs",
+                "max_error",
+                "error_bound",
+                "assemble_s",
+                "solve_s",
+                "total_s",
+                "limit_s",
+                "ratio",
+                "bandwidth",
+                "peak_mem_mb",
+                "mem_per_point_kb",
+                "updates_per_s",
+                "status",
+                "message",
+            ],
+        ),
+        slopes=table(pd.DataFrame([{"model": m, "cost_slope": s} for m, s in sorted(slopes.items())])),
+    )
     (out / "bench.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
     index = out / "index.html"
     index.write_text(page, encoding="utf-8")

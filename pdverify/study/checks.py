@@ -83,8 +83,9 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
             errors.append(f"{where}: model: missing; every check names a model of the study's runs")
             continue
         if c["model"] not in models:
-            errors.append(f"{where}.model = {c['model']!r}: no run of the study uses it; "
-                          f"runs: {', '.join(sorted(models))}")
+            errors.append(
+                f"{where}.model = {c['model']!r}: no run of the study uses it; runs: {', '.join(sorted(models))}"
+            )
             continue
         if "name" in c and not (isinstance(c["name"], str) and c["name"]):
             errors.append(f"{where}.name = {c['name']!r}: give a text")
@@ -96,8 +97,9 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
         elif bounds.get("min", -math.inf) > bounds.get("max", math.inf):
             errors.append(f"{where}.observed_order = {bounds!r}: min is above max")
         if c.get("expected", "pass") not in ("pass", "fail"):
-            errors.append(f"{where}.expected = {c['expected']!r}: pass (default) or fail (a known defect the "
-                          "check documents)")
+            errors.append(
+                f"{where}.expected = {c['expected']!r}: pass (default) or fail (a known defect the check documents)"
+            )
         if "scene" in c and c["scene"] not in scenes:
             errors.append(f"{where}.scene = {c['scene']!r}: not one of the study's scenes")
         if "slenderness" in c and not (finite_number(c["slenderness"]) and c["slenderness"] > 0):
@@ -114,8 +116,10 @@ def _label(check: dict) -> str:
     if check.get("name"):
         return check["name"]
     filters = ", ".join(f"{k} = {v}" for k, v in check.items() if k not in ("name", "observed_order", "expected"))
-    bounds = " and ".join(f"{'>=' if k == 'min' else '<='} {v:g}" for k, v in sorted(check["observed_order"].items(),
-                                                                                    key=lambda kv: kv[0] != "min"))
+    bounds = " and ".join(
+        f"{'>=' if k == 'min' else '<='} {v:g}"
+        for k, v in sorted(check["observed_order"].items(), key=lambda kv: kv[0] != "min")
+    )
     return f"{filters}: observed order {bounds}"
 
 
@@ -139,11 +143,12 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     """One check applied to one series (the rows of its cases), its order from the convergence table's."""
     conv = GROUPINGS["convergence"].compute(key, rows)
     bounds = check["observed_order"]
-    ok = sorted((r for r in rows if r.get("status") == "ok" and r.get("spacing") is not None),
-                key=lambda r: float(r["spacing"]))
+    ok = sorted(
+        (r for r in rows if r.get("status") == "ok" and r.get("spacing") is not None), key=lambda r: float(r["spacing"])
+    )
     h = np.array([float(r["spacing"]) for r in ok])
     err = np.array([float(r["err_max"]) if r.get("err_max") is not None else math.nan for r in ok])
-    pairwise = [log_slope(h[i:i + 2], err[i:i + 2])[0] for i in range(len(ok) - 1) if h[i + 1] != h[i]]
+    pairwise = [log_slope(h[i : i + 2], err[i : i + 2])[0] for i in range(len(ok) - 1) if h[i + 1] != h[i]]
     n_grids = len(np.unique(h))
     order = conv[0]["observed_order"] if conv else math.nan
     failed = [r for r in rows if r.get("status") != "ok"]  # failed, or suspect (issue 27): not in the order
@@ -159,13 +164,27 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
         good = bounds.get("min", -math.inf) <= order <= bounds.get("max", math.inf)
         result = verdict(good, check.get("expected", "pass"))
     scene, model, options, slenderness = key
-    return {"name": _label(check), "scene": scene, "scene_file": rows[0].get("scene_file"), "model": model,
-            "options": options, "slenderness": slenderness, "n_grids": n_grids,
-            "points": " ".join(str(r.get("points")) for r in ok), "spacings": _fmt(h), "errors": _fmt(err, ".3e"),
-            "pairwise_orders": _fmt(pairwise, ".3f"), "observed_order": order,
-            "r2": conv[0]["r2"] if conv else math.nan, "min": bounds.get("min"), "max": bounds.get("max"),
-            "expected": check.get("expected", "pass"), "verdict": result, "message": "; ".join(messages),
-            "case_ids": " ".join(r["case_id"] for r in ok + failed)}
+    return {
+        "name": _label(check),
+        "scene": scene,
+        "scene_file": rows[0].get("scene_file"),
+        "model": model,
+        "options": options,
+        "slenderness": slenderness,
+        "n_grids": n_grids,
+        "points": " ".join(str(r.get("points")) for r in ok),
+        "spacings": _fmt(h),
+        "errors": _fmt(err, ".3e"),
+        "pairwise_orders": _fmt(pairwise, ".3f"),
+        "observed_order": order,
+        "r2": conv[0]["r2"] if conv else math.nan,
+        "min": bounds.get("min"),
+        "max": bounds.get("max"),
+        "expected": check.get("expected", "pass"),
+        "verdict": result,
+        "message": "; ".join(messages),
+        "case_ids": " ".join(r["case_id"] for r in ok + failed),
+    }
 
 
 def verdict(ok: bool, expected: str) -> str:
@@ -211,8 +230,13 @@ def match_benchmark(b: dict, df: pd.DataFrame):
     if hit.empty:
         return None, {**head, "verdict": "missing", "message": _missing(b, opts, have)}
     r = hit.iloc[0]
-    return None, {**head, "scene": r["scene"], "verdict": verdict(False, b.get("expected", "pass")),
-                  "case_id": r["case_id"], "message": f"its case is {r['status']}: {r['message']}"}
+    return None, {
+        **head,
+        "scene": r["scene"],
+        "verdict": verdict(False, b.get("expected", "pass")),
+        "case_id": r["case_id"],
+        "message": f"its case is {r['status']}: {r['message']}",
+    }
 
 
 def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
@@ -222,10 +246,18 @@ def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
     out = []
     for check in checks:
         hits = [_series_row(check, key, group) for key, group in series if _matches(check, key, group)]
-        out += hits or [{"name": _label(check), "model": check["model"], "scene_file": check.get("scene"),
-                         "min": check["observed_order"].get("min"), "max": check["observed_order"].get("max"),
-                         "expected": check.get("expected", "pass"), "verdict": "missing",
-                         "message": "no series of the sweep matches the check's model and filters"}]
+        out += hits or [
+            {
+                "name": _label(check),
+                "model": check["model"],
+                "scene_file": check.get("scene"),
+                "min": check["observed_order"].get("min"),
+                "max": check["observed_order"].get("max"),
+                "expected": check.get("expected", "pass"),
+                "verdict": "missing",
+                "message": "no series of the sweep matches the check's model and filters",
+            }
+        ]
     return out
 
 
@@ -236,6 +268,7 @@ def write_checks(study, out: Path, rows: list[dict]) -> None:
 
 
 # ---- a finished study's verdict ---------------------------------------------------------------------------
+
 
 def _read(path: Path) -> pd.DataFrame:
     return pd.read_csv(path) if path.is_file() and path.stat().st_size > 1 else pd.DataFrame()
@@ -289,11 +322,13 @@ class Outcome:
         b, c = self._verdicts(self.benchmarks), self._verdicts(self.checks)
         n_c = sum(c.values())
         extra = lambda n: f", {n} unexpected-pass" if n else ""  # noqa: E731
-        return (f"summary: cases {status['ok']} ok, {status['failed']} failed, {status['suspect']} suspect; "
-                f"benchmarks {b['pass']} pass, {b['fail']} fail, {b['expected-fail']} expected-fail, "
-                f"{b['missing']} missing{extra(b['unexpected-pass'])}; orders checked {n_c} "
-                f"({c['pass']} pass, {c['fail']} fail, {c['expected-fail']} expected-fail, {c['missing']} missing"
-                f"{extra(c['unexpected-pass'])}); exit {self.exit_code}")
+        return (
+            f"summary: cases {status['ok']} ok, {status['failed']} failed, {status['suspect']} suspect; "
+            f"benchmarks {b['pass']} pass, {b['fail']} fail, {b['expected-fail']} expected-fail, "
+            f"{b['missing']} missing{extra(b['unexpected-pass'])}; orders checked {n_c} "
+            f"({c['pass']} pass, {c['fail']} fail, {c['expected-fail']} expected-fail, {c['missing']} missing"
+            f"{extra(c['unexpected-pass'])}); exit {self.exit_code}"
+        )
 
 
 def _g(v) -> str:
@@ -305,9 +340,12 @@ def benchmark_message(b) -> str:
     if b.get("verdict") == "missing" or pd.isna(b.get("computed")):
         msg = b.get("message")
         return (msg if isinstance(msg, str) and msg else "no case of the sweep matches") + (
-            f" (case {b['case_id']})" if isinstance(b.get("case_id"), str) else "")
-    return (f"target {_g(b.get('target'))}, computed {_g(b.get('computed'))}, ratio {_g(b.get('ratio'))}, "
-            f"relative error {_g(b.get('rel_error'))} (tolerance {_g(b.get('tolerance'))}), case {b.get('case_id')}")
+            f" (case {b['case_id']})" if isinstance(b.get("case_id"), str) else ""
+        )
+    return (
+        f"target {_g(b.get('target'))}, computed {_g(b.get('computed'))}, ratio {_g(b.get('ratio'))}, "
+        f"relative error {_g(b.get('rel_error'))} (tolerance {_g(b.get('tolerance'))}), case {b.get('case_id')}"
+    )
 
 
 def check_message(c) -> str:

@@ -20,8 +20,8 @@ import pandas as pd
 try:  # imported with the runner (its one-time cost belongs to start-up, not to the first study's tables)
     import pyarrow as pa
     import pyarrow.csv as pa_csv
-    import pyarrow.parquet as pa_parquet
     import pyarrow.pandas_compat  # noqa: F401 - else imported by the first pa.array(..., from_pandas=True): 2-12 ms
+    import pyarrow.parquet as pa_parquet
 except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written (by pandas)
     pa = None
 
@@ -31,7 +31,6 @@ from .checks import verdict as _verdict
 from .spec import Study, code_digest
 from .store import case_file, read_curve, write_atomic
 from .tables import EMPTY_CONVERGENCE, convergence_rows, locking_rows, rows_of, speed_error_rows, trust_rows
-
 
 TEXT_OPTIONS = ("variant", "element", "form")  # text options: a text column even when no case has them
 
@@ -91,8 +90,12 @@ def _rows_table(rows: list[dict], text=()):
     if pa is None or not columns:
         return None
     try:
-        return pa.table({c: pa.array([r.get(c) for r in rows], pa.large_string() if c in text else None,
-                                     from_pandas=True) for c in columns})
+        return pa.table(
+            {
+                c: pa.array([r.get(c) for r in rows], pa.large_string() if c in text else None, from_pandas=True)
+                for c in columns
+            }
+        )
     except (pa.ArrowException, TypeError, ValueError):
         return None
 
@@ -105,7 +108,6 @@ def _write(table, out: Path, name: str, parquet: bool = True) -> None:
     pa_csv.write_csv(table, out / f"{name}.csv")
     if parquet:
         pa_parquet.write_table(table, out / f"{name}.parquet")
-
 
 
 def _write_empty(out: Path, name: str) -> None:
@@ -159,8 +161,15 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
             c = read_curve(path) if path is not None else {}
             arr = c.get(quantity) if quantity in ("w", "rotation") else c.get("fields", {}).get(quantity)
             if arr is None:
-                rows.append({"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing",
-                             "message": f"quantity {quantity!r} not among the case's outputs"})
+                rows.append(
+                    {
+                        "name": b["name"],
+                        "scene": b["scene"],
+                        "model": b["model"],
+                        "verdict": "missing",
+                        "message": f"quantity {quantity!r} not among the case's outputs",
+                    }
+                )
                 continue
             computed = float(np.interp(float(b["position"]), c["x"], arr))
             if "target" not in b:
@@ -169,16 +178,35 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
         tol = b.get("tolerance", 0.01)
         order = float("nan")
         if not conv.empty:
-            c = conv[(conv["scene"] == r["scene"]) & (conv["model"] == r["model"]) & (conv["options"] == r["options"])
-                     & (conv["slenderness"].fillna(-1) == (r["slenderness"] if pd.notna(r["slenderness"]) else -1))]
+            c = conv[
+                (conv["scene"] == r["scene"])
+                & (conv["model"] == r["model"])
+                & (conv["options"] == r["options"])
+                & (conv["slenderness"].fillna(-1) == (r["slenderness"] if pd.notna(r["slenderness"]) else -1))
+            ]
             if len(c):
                 order = c["observed_order"].iloc[0]
-        rows.append({"name": b["name"], "scene": r["scene"], "scene_file": b["scene"], "model": b["model"],
-                     "variant": r.get("variant"), "reference": r["reference"], "target": target,
-                     "computed": computed, "ratio": computed / target if target else float("nan"), "rel_error": rel,
-                     "err_max": r["err_max"], "tolerance": tol, "verdict": _verdict(rel <= tol, b.get("expected", "pass")),
-                     "quantity": quantity if "position" in b else "w at max", "position": b.get("position"),
-                     "observed_order": order, "case_id": r["case_id"]})
+        rows.append(
+            {
+                "name": b["name"],
+                "scene": r["scene"],
+                "scene_file": b["scene"],
+                "model": b["model"],
+                "variant": r.get("variant"),
+                "reference": r["reference"],
+                "target": target,
+                "computed": computed,
+                "ratio": computed / target if target else float("nan"),
+                "rel_error": rel,
+                "err_max": r["err_max"],
+                "tolerance": tol,
+                "verdict": _verdict(rel <= tol, b.get("expected", "pass")),
+                "quantity": quantity if "position" in b else "w at max",
+                "position": b.get("position"),
+                "observed_order": order,
+                "case_id": r["case_id"],
+            }
+        )
     return pd.DataFrame(rows)
 
 
@@ -199,8 +227,12 @@ def package_versions() -> dict:
 def environment() -> dict:
     """Python, platform, machine and the versions of the packages whose code can change a number, as
     meta.json records them (the first call in a process reads package metadata: ~18 ms)."""
-    return {"python": platform.python_version(), "platform": platform.platform(), "machine": platform.machine(),
-            "versions": package_versions()}
+    return {
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "machine": platform.machine(),
+        "versions": package_versions(),
+    }
 
 
 def _write_convergence(study: Study, out: Path, rows: list[dict]) -> None:
@@ -210,8 +242,12 @@ def _write_convergence(study: Study, out: Path, rows: list[dict]) -> None:
     else:
         _save_rows(conv, out, "convergence")
     if study.benchmarks:  # the verification rows quote the observed order
-        _save(benchmark_table(study, pd.DataFrame(rows), pd.DataFrame(conv), out / "cases"), out, "benchmarks",
-              parquet=False)
+        _save(
+            benchmark_table(study, pd.DataFrame(rows), pd.DataFrame(conv), out / "cases"),
+            out,
+            "benchmarks",
+            parquet=False,
+        )
     write_checks(study, out, rows)  # checks.csv: the study's order checks on the convergence series
 
 
@@ -237,8 +273,16 @@ def write_derived(study: Study, out: Path, results, parts=tuple(DERIVED)) -> Non
         DERIVED[name](study, out, rows)
 
 
-def write_tables(study: Study, out: Path, rows: list[dict], wall: float, resumed: int,
-                 mismatched: list[str] | None = None, timing: dict | None = None, table=None) -> None:
+def write_tables(
+    study: Study,
+    out: Path,
+    rows: list[dict],
+    wall: float,
+    resumed: int,
+    mismatched: list[str] | None = None,
+    timing: dict | None = None,
+    table=None,
+) -> None:
     """results (:func:`write_results` from ``rows``, or ``table`` when built already) and the derived
     tables (:func:`write_derived`); then study.toml and meta.json, last. ``timing`` (from
     :func:`~.runner.run_study`): where the run's time went; meta.json adds the tables' own time and the
@@ -247,10 +291,19 @@ def write_tables(study: Study, out: Path, rows: list[dict], wall: float, resumed
     write_results(study, out, rows, table)
     write_derived(study, out, rows)
     shutil.copyfile(study.path, out / "study.toml")
-    meta = {"study": study.name, "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "pdverify": __version__,
-            **environment(), "cpu_count": os.cpu_count(), "wall_s": wall, "resumed_cases": resumed,
-            "counts": dict(Counter(r.get("status") for r in rows).most_common()),
-            "skipped": study.skipped, "code": code_digest(), "cases_from_other_code": mismatched or []}
+    meta = {
+        "study": study.name,
+        "date": time.strftime("%Y-%m-%d %H:%M:%S %Z"),
+        "pdverify": __version__,
+        **environment(),
+        "cpu_count": os.cpu_count(),
+        "wall_s": wall,
+        "resumed_cases": resumed,
+        "counts": dict(Counter(r.get("status") for r in rows).most_common()),
+        "skipped": study.skipped,
+        "code": code_digest(),
+        "cases_from_other_code": mismatched or [],
+    }
     if timing is not None:
         timing = {**timing, "tables_s": time.perf_counter() - t_tables}
         meta["timing"] = {**timing, **overhead(timing)}

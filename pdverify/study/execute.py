@@ -90,8 +90,9 @@ def check_scheduler(address: str) -> None:
     """A Dask scheduler address (tcp://HOST:PORT, or HOST:PORT); InputError (exit 2) otherwise."""
     m = _ADDRESS.fullmatch(address.strip())
     if not m or not 0 < int(m.group(1)) < 65536:
-        raise InputError(f"--scheduler {address!r}: not a Dask scheduler address; write tcp://HOST:PORT "
-                         "(e.g. tcp://127.0.0.1:8786)")
+        raise InputError(
+            f"--scheduler {address!r}: not a Dask scheduler address; write tcp://HOST:PORT (e.g. tcp://127.0.0.1:8786)"
+        )
 
 
 def connect(address: str):
@@ -101,15 +102,19 @@ def connect(address: str):
     try:
         from dask.distributed import Client
     except ImportError:
-        raise InputError(f"--scheduler {address}: dask.distributed is not installed; pip install "
-                         "'dask[distributed]' or run without --scheduler") from None
+        raise InputError(
+            f"--scheduler {address}: dask.distributed is not installed; pip install "
+            "'dask[distributed]' or run without --scheduler"
+        ) from None
     try:
         return Client(address.strip(), timeout=SCHEDULER_TIMEOUT_S)
     except Exception as exc:  # noqa: BLE001 - refused, timed out, no such host, or not a Dask scheduler there
         why = (str(exc).splitlines() or [""])[0][:100]
-        raise InputError(f"--scheduler {address}: no Dask scheduler reached there ({type(exc).__name__}: {why}; "
-                         f"connect timeout {SCHEDULER_TIMEOUT_S} s); start one (dask scheduler) or check the "
-                         "address") from None
+        raise InputError(
+            f"--scheduler {address}: no Dask scheduler reached there ({type(exc).__name__}: {why}; "
+            f"connect timeout {SCHEDULER_TIMEOUT_S} s); start one (dask scheduler) or check the "
+            "address"
+        ) from None
 
 
 class ClusterLost(Exception):

@@ -22,8 +22,13 @@ def errors(w: np.ndarray, w_ref: np.ndarray) -> dict[str, float]:
     i = int(np.argmax(a))
     scale = float(a[i])
     if scale == 0:
-        return {"err_max": float(np.abs(w).max()), "err_l2": _norm(w), "err_at_max": float(abs(w[i])),
-                "w_at_max": float(w[i]), "w_ref_at_max": 0.0}
+        return {
+            "err_max": float(np.abs(w).max()),
+            "err_l2": _norm(w),
+            "err_at_max": float(abs(w[i])),
+            "w_at_max": float(w[i]),
+            "w_ref_at_max": 0.0,
+        }
     d = w - w_ref
     return {
         "err_max": float(np.abs(d).max() / scale),
@@ -91,8 +96,11 @@ def gci(spacing, value, safety: float = 1.25) -> dict[str, float]:
         rich = (r21**p * f1 - f2) / (r21**p - 1)
     except (OverflowError, ZeroDivisionError):
         return nan
-    return {"gci_order": float(p), "gci_fine": float(safety * abs(e21 / f1) / (r21**p - 1)) if f1 else float("nan"),
-            "richardson": float(rich)}
+    return {
+        "gci_order": float(p),
+        "gci_fine": float(safety * abs(e21 / f1) / (r21**p - 1)) if f1 else float("nan"),
+        "richardson": float(rich),
+    }
 
 
 def locking_slope(slenderness, error) -> tuple[float, float]:

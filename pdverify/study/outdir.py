@@ -35,8 +35,10 @@ LOCK_NAME = ".pdverify.lock"
 
 
 def output_error(out: Path, exc: OSError, what: str = "a case file") -> OutputError:
-    return OutputError(f"output directory {out}: {what} could not be written ({exc}); free disk space or "
-                       "give a writable --out. The cases already written are kept: run the study again to resume.")
+    return OutputError(
+        f"output directory {out}: {what} could not be written ({exc}); free disk space or "
+        "give a writable --out. The cases already written are kept: run the study again to resume."
+    )
 
 
 class FolderLock:
@@ -56,8 +58,10 @@ class FolderLock:
         except BlockingIOError:
             other = os.pread(self.fd, 32, 0).decode("ascii", "replace").strip() or "unknown"
             os.close(self.fd)
-            raise OutputError(f"output directory {out} is in use by another pdverify run (pid {other}); wait for "
-                              "it to end or give another --out") from None
+            raise OutputError(
+                f"output directory {out} is in use by another pdverify run (pid {other}); wait for "
+                "it to end or give another --out"
+            ) from None
         os.ftruncate(self.fd, 0)
         os.pwrite(self.fd, f"{os.getpid()}\n".encode(), 0)
 
@@ -77,11 +81,14 @@ def claim(out: Path, study: Study) -> None:
     except FileNotFoundError:
         theirs = None
     except OSError as exc:
-        raise OutputError(f"output directory {out}: {there.name} could not be read ({exc}); give another "
-                          "--out") from None
+        raise OutputError(
+            f"output directory {out}: {there.name} could not be read ({exc}); give another --out"
+        ) from None
     if theirs is not None and _name(theirs) != repr(study.name):
-        raise OutputError(f"output directory {out} holds the results of another study ({_name(theirs)}, not "
-                          f"{study.name!r}): give another --out or remove {out}")
+        raise OutputError(
+            f"output directory {out} holds the results of another study ({_name(theirs)}, not "
+            f"{study.name!r}): give another --out or remove {out}"
+        )
     if theirs != mine:
         try:
             write_atomic(there, mine)

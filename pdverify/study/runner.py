@@ -21,12 +21,16 @@ from ..errors import InputError, OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
 from . import execute
-from .derived import (_verdict, benchmark_table, results_frame, results_table, write_derived,  # noqa: F401
-                      write_tables)
-from .status import case_status
+from .derived import (
+    results_frame,
+    results_table,
+    write_derived,  # noqa: F401
+    write_tables,
+)
 from .metrics import errors
 from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .spec import Case, Study, code_digest
+from .status import case_status
 from .store import write_atomic
 from .tables import trust_table  # noqa: F401 (re-exported)
 
@@ -91,16 +95,22 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
     t0 = time.perf_counter()
     try:
         result = run(case.scene(), case.model, **case.given)
-        solved = {"x": np.asarray(result.x, "<f8"), "w": np.asarray(result.w, "<f8"),
-                  "rotation": None if result.rotation is None else np.asarray(result.rotation, "<f8"),
-                  "fields": {k: np.asarray(v, "<f8") for k, v in result.fields.items() if np.shape(v) == np.shape(result.x)},
-                  "timings": {k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")},
-                  "dofs": int(result.dofs), "info": {k: _plain_scalar(result.info[k]) for k in INFO_KEYS if k in result.info}}
+        solved = {
+            "x": np.asarray(result.x, "<f8"),
+            "w": np.asarray(result.w, "<f8"),
+            "rotation": None if result.rotation is None else np.asarray(result.rotation, "<f8"),
+            "fields": {k: np.asarray(v, "<f8") for k, v in result.fields.items() if np.shape(v) == np.shape(result.x)},
+            "timings": {k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")},
+            "dofs": int(result.dofs),
+            "info": {k: _plain_scalar(result.info[k]) for k in INFO_KEYS if k in result.info},
+        }
         hist = result.info.get("history")
         if artefacts and isinstance(hist, dict) and "t" in hist:  # the time histories as CSV, for other tools
             hdir = Path(artefacts).parent / "histories"
             hdir.mkdir(parents=True, exist_ok=True)
-            write_atomic(hdir / f"{case_id or case.case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})}))
+            write_atomic(
+                hdir / f"{case_id or case.case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})})
+            )
         if artefacts and ".vtu" in result.writers:
             base = Path(artefacts) / (case_id or case.case_id)
             base.parent.mkdir(parents=True, exist_ok=True)
@@ -129,6 +139,7 @@ def _failure_message(exc: Exception) -> str:
 # two one by one): each handoff costs the solving process ~0.1 ms whatever it carries (a pickle and a pipe write
 # between two solves, caches cold), so cases of a few ms go by the handful. A killed runner (SIGKILL) loses
 
+
 def _plain_scalar(v):
     """A numpy scalar as the Python number it equals (pickling a numpy scalar pickles its dtype: ~20 us)."""
     return v.item() if isinstance(v, np.generic) else v
@@ -154,9 +165,15 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
     """The measuring half of a case: its row (parameters, errors against the reference at the model's
     points, timings, dofs, status) and its curves, from what :func:`solve_case` returned. Never raises."""
     case_id = case_id or case.case_id
-    row = {"case_id": case_id, "code": code_digest(), "scene_file": case.scene_file, "model": case.model,
-           "slenderness": case.slenderness, "reference": _reference_text(tuple(sorted(case.reference.items()))),
-           "version": __version__}
+    row = {
+        "case_id": case_id,
+        "code": code_digest(),
+        "scene_file": case.scene_file,
+        "model": case.model,
+        "slenderness": case.slenderness,
+        "reference": _reference_text(tuple(sorted(case.reference.items()))),
+        "version": __version__,
+    }
     row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
     curve = {}
     try:
@@ -166,8 +183,13 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         x, w, info = solved["x"], solved["w"], solved["info"]
         if case.reference.get("model") == "none":
             w_ref = np.full_like(x, np.nan)
-            row.update(err_max=np.nan, err_l2=np.nan, err_at_max=np.nan,
-                       w_at_max=float(w[np.argmax(np.abs(w))]), w_ref_at_max=np.nan)
+            row.update(
+                err_max=np.nan,
+                err_l2=np.nan,
+                err_at_max=np.nan,
+                w_at_max=float(w[np.argmax(np.abs(w))]),
+                w_ref_at_max=np.nan,
+            )
         else:
             w_ref = reference_at(case, scene, x)
             row.update(errors(w, w_ref))
@@ -190,17 +212,29 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         if "load_steps" in info:  # deformed shapes of a nonlinear path, for the report
             curve["load_steps"] = info["load_steps"]
         hist = info.get("history")
-        if isinstance(hist, dict) and "t" in hist:  # time histories of a dynamic run: {"t": [...], "series": {label: [...]}}
-            curve["history"] = {"t": np.asarray(hist["t"], "<f8"),
-                                "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
-                                "ylabel": hist.get("ylabel", "displacement")}
+        if (
+            isinstance(hist, dict) and "t" in hist
+        ):  # time histories of a dynamic run: {"t": [...], "series": {label: [...]}}
+            curve["history"] = {
+                "t": np.asarray(hist["t"], "<f8"),
+                "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
+                "ylabel": hist.get("ylabel", "displacement"),
+            }
     except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
         for k, v in (solved.get("timings") or {}).items():  # what the attempt cost, as far as it went
             row.setdefault(k, v)
         row["status"], row["message"] = "failed", _failure_message(exc)
-    return {"case": {"scene_file": case.scene_file, "model": case.model, "given": case.given,
-                     "slenderness": case.slenderness, "reference": case.reference},
-            "row": row, "curve": curve}
+    return {
+        "case": {
+            "scene_file": case.scene_file,
+            "model": case.model,
+            "given": case.given,
+            "slenderness": case.slenderness,
+            "reference": case.reference,
+        },
+        "row": row,
+        "curve": curve,
+    }
 
 
 def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
@@ -209,9 +243,9 @@ def run_case(case: Case, artefacts: str | None = None, case_id: str | None = Non
     return measure_case(case, solve_case(case, artefacts, case_id), case_id)
 
 
-
-def run_study(study: Study, out: Path, workers: int | None = None, scheduler: str | None = None,
-              progress: bool = True) -> pd.DataFrame:
+def run_study(
+    study: Study, out: Path, workers: int | None = None, scheduler: str | None = None, progress: bool = True
+) -> pd.DataFrame:
     """Run the study's cases not yet done in ``out`` (resumed from their case files), write every table and
     meta.json there; the results table. ``workers``: local processes (default: every core; 1 runs the
     cases in this process); ``scheduler``: a Dask scheduler's address (then ``workers`` is not used).
@@ -231,11 +265,15 @@ def run_study(study: Study, out: Path, workers: int | None = None, scheduler: st
         claim(out, study)
         return _run_study(study, out, workers, scheduler, progress)
     except execute.BrokenProcessPool:  # a worker killed: the cases it solved before were stored here
-        raise OutputError(f"a worker process ended abruptly (killed: out of memory, a signal); the cases "
-                          f"finished before are kept in {out / 'cases'}: run the study again to resume") from None
+        raise OutputError(
+            f"a worker process ended abruptly (killed: out of memory, a signal); the cases "
+            f"finished before are kept in {out / 'cases'}: run the study again to resume"
+        ) from None
     except execute.ClusterLost as exc:
-        raise OutputError(f"--scheduler {scheduler}: the Dask cluster lost a case ({exc}); the cases finished "
-                          f"before are kept in {out / 'cases'}: run the study again to resume") from None
+        raise OutputError(
+            f"--scheduler {scheduler}: the Dask cluster lost a case ({exc}); the cases finished "
+            f"before are kept in {out / 'cases'}: run the study again to resume"
+        ) from None
     finally:
         lock.release()
 
@@ -281,11 +319,17 @@ def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | No
     table = results_table(study, rows)
     df = results_frame(study, rows, table)
     cases_s = time.perf_counter() - t0
-    timing = {"cases_s": cases_s, "computed_cases": len(todo), "workers": n,
-              "path": "dask" if scheduler else ("pool" if n > 1 else "serial"), **keep.clock}
+    timing = {
+        "cases_s": cases_s,
+        "computed_cases": len(todo),
+        "workers": n,
+        "path": "dask" if scheduler else ("pool" if n > 1 else "serial"),
+        **keep.clock,
+    }
     try:
-        write_tables(study, out, rows, table=table, wall=cases_s, resumed=resumed, mismatched=keep.mismatched,
-                     timing=timing)
+        write_tables(
+            study, out, rows, table=table, wall=cases_s, resumed=resumed, mismatched=keep.mismatched, timing=timing
+        )
     except OSError as exc:
         raise output_error(out, exc, "a table") from None
     return df
@@ -300,8 +344,14 @@ class _progress:
         if self.enabled:
             from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-            self.p = Progress(TextColumn("cases"), BarColumn(), MofNCompleteColumn(),
-                              TextColumn("failed {task.fields[failed]}"), TimeRemainingColumn(), transient=False)
+            self.p = Progress(
+                TextColumn("cases"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TextColumn("failed {task.fields[failed]}"),
+                TimeRemainingColumn(),
+                transient=False,
+            )
             self.p.start()
             self.task = self.p.add_task("cases", total=total, failed=0)
 

@@ -87,8 +87,20 @@ class Case:
 
     @property
     def case_id(self) -> str:
-        key = json.dumps([_text_digest(self.scene_text), self.model, sorted(self.given.items()), self.slenderness,
-                          sorted(self.reference.items()), __version__, STORE_SCHEMA, code_digest()], sort_keys=True, default=str)
+        key = json.dumps(
+            [
+                _text_digest(self.scene_text),
+                self.model,
+                sorted(self.given.items()),
+                self.slenderness,
+                sorted(self.reference.items()),
+                __version__,
+                STORE_SCHEMA,
+                code_digest(),
+            ],
+            sort_keys=True,
+            default=str,
+        )
         return hashlib.sha256(key.encode()).hexdigest()[:16]
 
     def scene(self) -> Scene:
@@ -147,20 +159,21 @@ def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
     except InputError as exc:
         return [f"{where}: {exc.lines[0]}"]
     if "target" in bench and not (finite_number(bench["target"]) and bench["target"] != 0):
-        errors.append(f"{where}.target = {bench['target']!r}: give a non-zero finite number (the tolerance is "
-                      "relative to it)")
+        errors.append(
+            f"{where}.target = {bench['target']!r}: give a non-zero finite number (the tolerance is relative to it)"
+        )
     tol = bench.get("tolerance", 0.01)
     if not (finite_number(tol) and tol > 0):
         errors.append(f"{where}.tolerance = {tol!r}: give a positive relative tolerance, e.g. 0.01")
     if "target" not in bench:
         refs = {c.reference["model"] for c in study.cases if c.scene_file == bench["scene"] and c.model == model.name}
         if refs == {"none"}:
-            errors.append(f"{where}.target: missing, and its run has no reference (reference = \"none\"); "
-                          "give a target")
+            errors.append(f'{where}.target: missing, and its run has no reference (reference = "none"); give a target')
     filters = {k: v for k, v in bench.items() if k not in BENCH_KEYS | {"points", "slenderness"}}
     errors += option_filter_errors(model, filters, where)
-    if "points" in bench and not (isinstance(bench["points"], int) and not isinstance(bench["points"], bool)
-                                  and bench["points"] >= 2):
+    if "points" in bench and not (
+        isinstance(bench["points"], int) and not isinstance(bench["points"], bool) and bench["points"] >= 2
+    ):
         errors.append(f"{where}.points = {bench['points']!r}: give a whole number of points of the sweep")
     if "slenderness" in bench and not (finite_number(bench["slenderness"]) and bench["slenderness"] > 0):
         errors.append(f"{where}.slenderness = {bench['slenderness']!r}: give a positive number of the sweep")
@@ -192,8 +205,11 @@ def _verify_entries(data: dict, path: Path) -> tuple[list[dict], bool, list[str]
     if not isinstance(required, bool):
         errors.append(f"{path}: verify_required = {required!r}: give true or false")
     if not isinstance(entries, list):
-        return [], False, errors + [f"{path}: verify = {entries!r}: give a list of models, e.g. "
-                                    "[\"pd-eb\", \"pd-eb variant=paper\"]"]
+        return (
+            [],
+            False,
+            errors + [f'{path}: verify = {entries!r}: give a list of models, e.g. ["pd-eb", "pd-eb variant=paper"]'],
+        )
     cards, folders = [], set()
     for i, entry in enumerate(entries):
         where = f"{path}: verify[{i}] = {entry!r}"
@@ -218,8 +234,20 @@ def load_study(path: str | Path) -> Study:
     path = Path(path)
     text, data = read_toml(path, "study")
     errors: list[str] = []
-    allowed = {"name", "description", "scenes", "reference", "runs", "sweep", "benchmarks", "papers", "checks",
-               "external", "verify", "verify_required"}
+    allowed = {
+        "name",
+        "description",
+        "scenes",
+        "reference",
+        "runs",
+        "sweep",
+        "benchmarks",
+        "papers",
+        "checks",
+        "external",
+        "verify",
+        "verify_required",
+    }
     for key in data:
         if key not in allowed:
             errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
@@ -236,7 +264,7 @@ def load_study(path: str | Path) -> Study:
         runs = []
     papers = data.get("papers", {})
     if not isinstance(papers, dict) or not all(isinstance(v, str) for v in papers.values()):
-        errors.append(f"{path}: papers = {papers!r}: give a table {{scene folder = \"page title\"}}")
+        errors.append(f'{path}: papers = {papers!r}: give a table {{scene folder = "page title"}}')
     sweep = data.get("sweep", {})
     if not isinstance(sweep, dict) or set(sweep) - {"slenderness"}:
         errors.append(f"{path}: sweep = {sweep!r}: only 'slenderness' (a list) can be swept here")
@@ -272,8 +300,17 @@ def load_study(path: str | Path) -> Study:
         except InputError as exc:
             errors.append(f"{path}: reference: {exc.lines[0]}")
 
-    study = Study(name or "", path, text, scenes, reference, runs, slen, list(data.get("benchmarks", [])),
-                  list(data.get("checks", [])) if isinstance(data.get("checks", []), list) else [])
+    study = Study(
+        name or "",
+        path,
+        text,
+        scenes,
+        reference,
+        runs,
+        slen,
+        list(data.get("benchmarks", [])),
+        list(data.get("checks", [])) if isinstance(data.get("checks", []), list) else [],
+    )
     reasons_of: dict = {}  # (model, scene, slenderness) -> why the model cannot solve it
     refs_checked: set = set()  # (scene, slenderness, reference) validated
     for i, run in enumerate(runs):
@@ -298,8 +335,13 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
             continue
         axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
-        typed = [f"{where}.{why}" for k, v in axes.items() if model.option(k) is not None
-                 for why in dict.fromkeys(strict_type(model.option(k), x) for x in v) if why]
+        typed = [
+            f"{where}.{why}"
+            for k, v in axes.items()
+            if model.option(k) is not None
+            for why in dict.fromkeys(strict_type(model.option(k), x) for x in v)
+            if why
+        ]
         if typed:  # not expanded: the coerced values would only add confusing errors
             errors += typed
             continue
@@ -322,7 +364,7 @@ def load_study(path: str | Path) -> Study:
                 for sl in slen:
                     scx = sc.with_slenderness(sl) if sl else sc
                     try:
-                        params = model.resolve(scx, given)
+                        model.resolve(scx, given)
                     except InputError as exc:
                         errors.append(f"{where}: {exc.lines[0]}")
                         continue
@@ -335,8 +377,11 @@ def load_study(path: str | Path) -> Study:
                     ref_key = (sfile, sl, repr(sorted(run_ref.items())))
                     if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
                         refs_checked.add(ref_key)
-                        typed = [f"{path}: reference.{why}" for k, v in ref_given.items()
-                                 if ref_model.option(k) is not None and (why := strict_type(ref_model.option(k), v))]
+                        typed = [
+                            f"{path}: reference.{why}"
+                            for k, v in ref_given.items()
+                            if ref_model.option(k) is not None and (why := strict_type(ref_model.option(k), v))
+                        ]
                         errors += typed
                         try:
                             if not typed:  # (a coerced value would only add a confusing error)
@@ -344,7 +389,9 @@ def load_study(path: str | Path) -> Study:
                         except InputError as exc:
                             errors.append(f"{path}: reference: {exc.lines[0]}")
                         if ref_model.check(scx):
-                            errors.append(f"{path}: reference {ref_model.name} cannot solve {sfile}: {ref_model.check(scx)[0]}")
+                            errors.append(
+                                f"{path}: reference {ref_model.name} cannot solve {sfile}: {ref_model.check(scx)[0]}"
+                            )
                     study.cases.append(Case(sfile, stext, sl, model.name, dict(given), dict(run_ref)))
     for j, bench in enumerate(study.benchmarks):
         where = f"{path}: benchmarks[{j}]"
@@ -361,7 +408,9 @@ def load_study(path: str | Path) -> Study:
             if not isinstance(pos, (int, float)) or isinstance(pos, bool) or not 0 <= pos <= L:
                 errors.append(f"{where}.position = {pos!r}: give a number between 0 and the beam length {L:g}")
         if bench.get("expected", "pass") not in ("pass", "fail"):
-            errors.append(f"{where}.expected = {bench['expected']!r}: pass (default) or fail (a known defect the row documents)")
+            errors.append(
+                f"{where}.expected = {bench['expected']!r}: pass (default) or fail (a known defect the row documents)"
+            )
         q = bench.get("quantity", "w")
         if not isinstance(q, str):
             errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
@@ -369,13 +418,19 @@ def load_study(path: str | Path) -> Study:
             errors.append(f"{where}.quantity = {q!r}: a quantity other than w needs a position")
         elif q != "w" and "target" not in bench:
             errors.append(f"{where}.quantity = {q!r}: the reference gives w only; give a target")
-    errors += validate_checks(data.get("checks", []), scene_objs, {r["model"] for r in runs if isinstance(r, dict)
-                                                                   and isinstance(r.get("model"), str)}, path)
+    errors += validate_checks(
+        data.get("checks", []),
+        scene_objs,
+        {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)},
+        path,
+    )
     study.verify, study.verify_required, found = _verify_entries(data, path)
     errors += found
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once
         raise InputError(list(dict.fromkeys(errors)))
     if not study.cases:
-        raise InputError(f"{path}: the study expands to no case a model can solve; skipped: {'; '.join(study.skipped[:3])}")
+        raise InputError(
+            f"{path}: the study expands to no case a model can solve; skipped: {'; '.join(study.skipped[:3])}"
+        )
     return study

@@ -19,5 +19,8 @@ def case_status(info: dict) -> dict:
     if bound <= BOUND_LIMIT:
         return {"error_bound": bound}
     shown = f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
-    return {"error_bound": bound, "status": "suspect",
-            "message": f"round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the solve's"}
+    return {
+        "error_bound": bound,
+        "status": "suspect",
+        "message": f"round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the solve's",
+    }

@@ -29,7 +29,6 @@ from pathlib import Path
 
 import numpy as np
 
-
 MAGIC = b"PDVCASE1"
 _LENGTHS = struct.Struct("<QQI")
 SUFFIX = ".case"
@@ -70,8 +69,9 @@ def encode_record(rec: dict) -> bytes:
         return v
 
     curve = pack(rec.get("curve", {}))
-    header = json.dumps({"case": rec["case"], "row": rec["row"], "curve": curve}, default=_scalar,
-                        separators=(",", ":"), allow_nan=True).encode("utf-8")
+    header = json.dumps(
+        {"case": rec["case"], "row": rec["row"], "curve": curve}, default=_scalar, separators=(",", ":"), allow_nan=True
+    ).encode("utf-8")
     data = b"".join(chunks)
     crc = zlib.crc32(data, zlib.crc32(header))
     return b"".join((MAGIC, _LENGTHS.pack(len(header), len(data), crc), header, data))
@@ -80,13 +80,13 @@ def encode_record(rec: dict) -> bytes:
 def decode_record(raw: bytes) -> dict | None:
     """Inverse of :func:`encode_record`; None when the bytes are not a whole, intact record."""
     start = len(MAGIC) + _LENGTHS.size
-    if len(raw) < start or raw[:len(MAGIC)] != MAGIC:
+    if len(raw) < start or raw[: len(MAGIC)] != MAGIC:
         return None
     n_header, n_data, crc = _LENGTHS.unpack_from(raw, len(MAGIC))
     if len(raw) != start + n_header + n_data:
         return None
     view = memoryview(raw)
-    header, data = view[start:start + n_header], view[start + n_header:]
+    header, data = view[start : start + n_header], view[start + n_header :]
     if zlib.crc32(data, zlib.crc32(header)) != crc:
         return None
     try:
@@ -167,8 +167,12 @@ def read_case(path: Path) -> dict | None:
     except OSError:
         return None
     rec = _read_legacy(raw) if path.suffix == LEGACY_SUFFIX else decode_record(raw)
-    if not isinstance(rec, dict) or any(k not in rec for k in ROW_KEYS) or not isinstance(rec["row"], dict) \
-            or "status" not in rec["row"]:
+    if (
+        not isinstance(rec, dict)
+        or any(k not in rec for k in ROW_KEYS)
+        or not isinstance(rec["row"], dict)
+        or "status" not in rec["row"]
+    ):
         return None
     return rec
 
@@ -182,6 +186,7 @@ def read_curve(path: Path) -> dict:
 
 
 # -- the first format: JSON with arrays as base64 (read only) --------------------------------------------
+
 
 def decode_array(v) -> np.ndarray:
     """A first-format array ({"dtype", "shape", "b64"}) or a plain JSON list, as a float array."""
@@ -205,6 +210,9 @@ def _read_legacy(raw: bytes) -> dict | None:
         c["fields"] = {k: decode_array(v) for k, v in c["fields"].items()}
     if isinstance(c.get("history"), dict):
         h = c["history"]
-        c["history"] = {"t": decode_array(h["t"]), "series": {k: decode_array(v) for k, v in h.get("series", {}).items()},
-                        "ylabel": h.get("ylabel", "displacement")}
+        c["history"] = {
+            "t": decode_array(h["t"]),
+            "series": {k: decode_array(v) for k, v in h.get("series", {}).items()},
+            "ylabel": h.get("ylabel", "displacement"),
+        }
     return rec

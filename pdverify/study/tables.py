@@ -12,8 +12,9 @@ Rows are dicts with None for a missing value (:func:`rows_of` turns a results Da
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -70,6 +71,7 @@ def _ok(r: dict) -> bool:
 
 # ---- one group each ---------------------------------------------------------------------------------
 
+
 def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
     """The observed order of one series (fit of log error vs log spacing over its grids, R^2) and the GCI of
     its three finest grids; nothing below three distinct grids (never an order from two points)."""
@@ -85,9 +87,18 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
     if n_grids < 3:
         return []
     p, r2 = observed_order(h, err)
-    return [dict(zip(GROUP, key), **{c: rows[0].get(c) for c in SHOWN}, n_grids=int(n_grids),
-                 spacings=" ".join(f"{v:.4g}" for v in h), errors=" ".join(f"{v:.3e}" for v in err),
-                 observed_order=p, r2=r2, **gci(h, w))]
+    return [
+        dict(
+            zip(GROUP, key),
+            **{c: rows[0].get(c) for c in SHOWN},
+            n_grids=int(n_grids),
+            spacings=" ".join(f"{v:.4g}" for v in h),
+            errors=" ".join(f"{v:.3e}" for v in err),
+            observed_order=p,
+            r2=r2,
+            **gci(h, w),
+        )
+    ]
 
 
 def _locking(key: tuple, rows: list[dict]) -> list[dict]:
@@ -98,8 +109,15 @@ def _locking(key: tuple, rows: list[dict]) -> list[dict]:
     if len(np.unique(s)) < 2:
         return []
     slope, at1 = locking_slope(s, np.array([_float(r.get("err_max")) for r in rows]))
-    return [dict(zip(LOCKING, key), **{c: rows[0].get(c) for c in SHOWN}, n=len(rows),
-                 locking_slope=slope, slenderness_at_1pct=at1)]
+    return [
+        dict(
+            zip(LOCKING, key),
+            **{c: rows[0].get(c) for c in SHOWN},
+            n=len(rows),
+            locking_slope=slope,
+            slenderness_at_1pct=at1,
+        )
+    ]
 
 
 def _with_error(rows: list[dict]) -> list[dict]:
@@ -181,32 +199,44 @@ def _trust(key: tuple, rows: list[dict], tol: float = TRUST_TOLERANCE) -> list[d
         if rise:
             n, err_k, cond = e[rise[0]]
             (floor if cond == cond and err_k <= ROUND_OFF_FACTOR * cond * EPS else growth).append((int(n), err_k, cond))
-    row = {"model": model, "options": options, "slenderness_band": band, "tolerance": tol,
-           "slenderness_trusted": _ranges([s for s, _ in sl], [g for _, g in sl]) if sl else "",
-           "slenderness_not": ", ".join(f"{s:g}" for s, g in sl if not g),
-           "points_trusted": _ranges(list(by_n), list(by_n.values())),
-           "points_not": ", ".join(str(int(n)) for n, g in by_n.items() if not g),
-           "round_off_from_points": min(floor)[0] if floor else None,
-           "growth_from_points": min(growth)[0] if growth else None}
+    row = {
+        "model": model,
+        "options": options,
+        "slenderness_band": band,
+        "tolerance": tol,
+        "slenderness_trusted": _ranges([s for s, _ in sl], [g for _, g in sl]) if sl else "",
+        "slenderness_not": ", ".join(f"{s:g}" for s, g in sl if not g),
+        "points_trusted": _ranges(list(by_n), list(by_n.values())),
+        "points_not": ", ".join(str(int(n)) for n, g in by_n.items() if not g),
+        "round_off_from_points": min(floor)[0] if floor else None,
+        "growth_from_points": min(growth)[0] if growth else None,
+    }
     parts = [f"{model}" + (f" [{band}]" if band else "")]
     if sl:
         parts.append(f"within {tol:.0%} for L/h {row['slenderness_trusted'] or 'none of the values tried'}")
     parts.append(f"on grids of {row['points_trusted'] or 'none of the sizes tried'} points")
     if floor:
         n, e, c = min(floor)
-        parts.append(f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off, "
-                     f"error {e:.2g} within {ROUND_OFF_FACTOR:g} cond·eps = {c * EPS:.2g})")
+        parts.append(
+            f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: round-off, "
+            f"error {e:.2g} within {ROUND_OFF_FACTOR:g} cond·eps = {c * EPS:.2g})"
+        )
     if growth:
         n, e, c = min(growth)
-        why = (f"far above cond·eps = {c * EPS:.2g}: not round-off" if c == c else
-               "no condition estimate: not shown to be round-off")
-        parts.append(f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: error {e:.2g}, "
-                     f"{why})")
+        why = (
+            f"far above cond·eps = {c * EPS:.2g}: not round-off"
+            if c == c
+            else "no condition estimate: not shown to be round-off"
+        )
+        parts.append(
+            f"(from {n} points refining makes the error grow past {ROUND_OFF_VISIBLE:g}: error {e:.2g}, {why})"
+        )
     row["statement"] = " ".join(parts)
     return [row]
 
 
 # ---- groupings --------------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Grouping:
@@ -223,8 +253,10 @@ GROUPINGS = {
     "locking": Grouping(_columns(*LOCKING), _locking),
     "pareto": Grouping(_columns("scene"), _pareto),
     "cheapest": Grouping(_columns("scene", "model"), _cheapest),
-    "trust": Grouping(lambda r: (_none(r.get("model")), _none(r.get("options")) or "",
-                                 slenderness_band(_none(r.get("slenderness")))), _trust),
+    "trust": Grouping(
+        lambda r: (_none(r.get("model")), _none(r.get("options")) or "", slenderness_band(_none(r.get("slenderness")))),
+        _trust,
+    ),
 }
 
 
@@ -249,6 +281,7 @@ def grouped(name: str, rows: list[dict], memo: dict | None = None, compute=None)
 
 
 # ---- the tables, as rows (what the runner writes) ----------------------------------------------------
+
 
 def _rows(data) -> list[dict]:
     return rows_of(data) if isinstance(data, pd.DataFrame) else data

@@ -69,7 +69,7 @@ def parse_entry(entry) -> tuple[str, dict]:
     if isinstance(entry, dict) and isinstance(entry.get("model"), str):
         return entry["model"], {k: v for k, v in entry.items() if k != "model"}
     if not isinstance(entry, str) or not entry.split():
-        raise InputError(f"{entry!r}: give a model and its options, e.g. \"pd-eb variant=paper\"")
+        raise InputError(f'{entry!r}: give a model and its options, e.g. "pd-eb variant=paper"')
     name, *pairs = entry.split()
     options = {}
     for item in pairs:
@@ -117,8 +117,10 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
     declined = _declined(model, p)
     solved = [f for f, why in declined.items() if not why]
     if not solved:
-        return [f"model {model.name} solves none of the suite's scenes ({next(iter(declined.values()))[0]}); "
-                "verify needs a beam model that takes straight (or curved) beams with transverse loads"]
+        return [
+            f"model {model.name} solves none of the suite's scenes ({next(iter(declined.values()))[0]}); "
+            "verify needs a beam model that takes straight (or curved) beams with transverse loads"
+        ]
     try:
         model.resolve(parse_scene(p.scenes[solved[0]]), options)
     except InputError as exc:

@@ -74,7 +74,8 @@ padding:2px 8px;text-align:right}} td:first-child{{text-align:left}} .pass td:nt
 <h1>{e(card["model"])}: {card["verdict"].upper()}</h1>
 <p>{e(card["title"])} ({e(opts)}); theory {e(card["theory"])}, reference {e(card["reference"])}
 {("and " + e(card["curved_reference"])) if card["curved_reference"] else ""}. Suite {card["suite_version"]},
-pdverify {card["pdverify_version"]}; {card["cases"]} cases ({card["failed_cases"]} failed, {card.get("suspect_cases", 0)} suspect: round-off
+pdverify {card["pdverify_version"]}; {card["cases"]} cases ({card["failed_cases"]} failed,
+{card.get("suspect_cases", 0)} suspect: round-off
 bound above 1e-6, their measured errors judged), {card["wall_s"]:.1f} s.
 Expected order {card["expected_order"]:g}. Error: max |w - w_exact| / max |w_exact| at the model's points.</p>
 <h2>Checks</h2><table><tr><th>check</th><th>verdict</th><th>measured</th></tr>{rows}</table>

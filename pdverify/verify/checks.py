@@ -63,7 +63,9 @@ def series(df, files: list[str]) -> list[dict]:
                 "pair_orders": pair,
                 "order": fitted,
                 "exact": bool(len(e) and above.sum() < 2 and np.nanmax(e) < ROUND),
-                "failed": [f"{int(r.points)} points: {r.message}" for r in rows[~rows["status"].isin(SOLVED)].itertuples()],
+                "failed": [
+                    f"{int(r.points)} points: {r.message}" for r in rows[~rows["status"].isin(SOLVED)].itertuples()
+                ],
             }
         )
     return out

@@ -12,8 +12,9 @@ from ..errors import OutputError
 INDEX = "cards.json"
 
 
-def run_cards(study, out: Path, workers: int | None = None, scheduler: str | None = None,
-              progress: bool = False, echo=None) -> list[dict]:
+def run_cards(
+    study, out: Path, workers: int | None = None, scheduler: str | None = None, progress: bool = False, echo=None
+) -> list[dict]:
     """Run ``study.verify``'s cards into ``out / "verify"``; their summaries (model, options, folder, verdict,
     the checks' verdicts). ``echo``: called with one line per card as it ends."""
     from . import verify
@@ -24,8 +25,14 @@ def run_cards(study, out: Path, workers: int | None = None, scheduler: str | Non
         return []
     done = []
     for entry in study.verify:
-        card = verify(entry["model"], root / entry["folder"], entry["options"], workers=workers,
-                      scheduler=scheduler, progress=progress)
+        card = verify(
+            entry["model"],
+            root / entry["folder"],
+            entry["options"],
+            workers=workers,
+            scheduler=scheduler,
+            progress=progress,
+        )
         row = {
             "model": card["model"],
             "options": entry["options"],
@@ -39,8 +46,11 @@ def run_cards(study, out: Path, workers: int | None = None, scheduler: str | Non
         done.append(row)
         if echo is not None:
             failed = [c["check"] for c in card["checks"] if c["verdict"] == "fail"]
-            echo(f"card: {entry['folder']}: {card['verdict']}" + (f" ({', '.join(failed)})" if failed else "")
-                 + f"; {root / entry['folder'] / 'card.html'}")
+            echo(
+                f"card: {entry['folder']}: {card['verdict']}"
+                + (f" ({', '.join(failed)})" if failed else "")
+                + f"; {root / entry['folder'] / 'card.html'}"
+            )
     write_index(root, done, study.verify_required)
     return done
 
@@ -52,8 +62,10 @@ def write_index(root: Path, cards: list[dict], required: bool) -> None:
         root.mkdir(parents=True, exist_ok=True)
         write_atomic(root / INDEX, json.dumps({"required": required, "cards": cards}, indent=1) + "\n")
     except OSError as exc:
-        raise OutputError(f"{root / INDEX}: the list of cards could not be written ({exc.strerror or exc}); the "
-                          "cards themselves are in their folders") from None
+        raise OutputError(
+            f"{root / INDEX}: the list of cards could not be written ({exc.strerror or exc}); the "
+            "cards themselves are in their folders"
+        ) from None
 
 
 def read_index(out: Path) -> dict | None:
