@@ -1,8 +1,9 @@
 """The model registry and the model contract: every model of ``pdverify solve`` is a small object found here.
 
-A model module (in ``pdverify.exact``, ``pdverify.models`` or ``reference_fem``) defines a list
-``MODELS`` of :class:`Model` instances; the registry imports those packages' modules and collects
-them, so adding a model never means editing a central file.
+A model module (in ``pdverify.exact`` or ``pdverify.models``) defines a list ``MODELS`` of
+:class:`Model` instances; the registry imports those packages' modules and collects them, so adding a
+model never means editing a central file. Models of other packages (the finite-element references of
+``reference_fem`` too) arrive through the entry-point group ``pdverify.models`` (:mod:`pdverify.plugins`).
 
 The contract (docs/contract.md has the version for model authors):
 
@@ -51,7 +52,7 @@ from .errors import InputError
 from .result import Result, check_finite
 from .scene import Scene
 
-MODEL_PACKAGES = ("pdverify.exact", "pdverify.models", "reference_fem")
+MODEL_PACKAGES = ("pdverify.exact", "pdverify.models")
 
 
 @dataclass(frozen=True)

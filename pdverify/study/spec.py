@@ -56,20 +56,36 @@ STORE_SCHEMA = 4  # bump when a case record's content or format changes: older c
 BENCH_KEYS = set(BENCH_VALUES)  # the values of a benchmark row; its other keys filter the cases
 
 
-PACKAGES = ("pdverify", "reference_fem")
+def code_packages() -> list[str]:
+    """The packages whose code can change a number: pdverify and the top-level package of every
+    ``pdverify.models`` entry point (reference_fem's finite elements and any installed plug-in)."""
+    from importlib.metadata import entry_points
+
+    from ..plugins import GROUP
+
+    tops = sorted({ep.value.split(":")[0].split(".")[0] for ep in entry_points(group=GROUP)})
+    return ["pdverify", *(t for t in tops if t != "pdverify")]
 
 
 @lru_cache(maxsize=1)
 def code_digest() -> str:
-    """A digest of every source file of the packages whose code can change a number (pdverify,
-    reference_fem): part of each case's key, so editing a model recomputes its cases instead of
-    resuming stale ones (conservative: any code change recomputes every case)."""
+    """A digest of every source file of :func:`code_packages`: part of each case's key, so editing a model
+    recomputes its cases instead of resuming stale ones (conservative: any code change recomputes every
+    case). A plug-in that cannot be found is left out (the registry warns about it)."""
     import importlib.util
 
     h = hashlib.sha256()
-    for pkg in PACKAGES:
-        spec = importlib.util.find_spec(pkg)
+    for pkg in code_packages():
+        try:
+            spec = importlib.util.find_spec(pkg)
+        except (ImportError, ValueError):
+            spec = None
+        if spec is None or spec.origin is None:
+            continue
         root = Path(spec.origin).parent
+        if Path(spec.origin).name != "__init__.py":  # a single-module plug-in
+            h.update(Path(spec.origin).read_bytes())
+            continue
         for f in sorted(root.rglob("*.py")):
             h.update(str(f.relative_to(root)).encode())
             h.update(f.read_bytes())
