@@ -272,7 +272,8 @@ def load_study(path: str | Path) -> Study:
         errors.append(f"{path}: name: missing; give the study a name")
     scenes = data.get("scenes")
     if not isinstance(scenes, list) or not scenes or not all(isinstance(s, str) for s in scenes):
-        errors.append(f"{path}: scenes = {scenes!r}: give a non-empty list of scene files")
+        given = "missing" if scenes is None else f"= {scenes!r}"
+        errors.append(f"{path}: scenes {given}: give a non-empty list of scene files (a run's scenes pick from it)")
         scenes = []
     runs = data.get("runs")
     if not isinstance(runs, list) or not runs:
