@@ -12,7 +12,9 @@ expected = "fail"                   # optional: a known defect the check documen
 A series is what the convergence table groups (tables.GROUP: scene, model, every option but the grid,
 slenderness). Each series a check matches is one row of ``checks.csv``: its grids, errors, pairwise observed
 orders and the least-squares order of the convergence table, which the bounds are applied to. A series with
-fewer than three grids whose cases ran, or a check matching no series, is ``missing`` (a failure).
+fewer than three grids whose cases ran, or a check matching no series, is ``missing`` (a failure). A series
+whose every error is below the round-off level (``metrics.ROUND_OFF_LEVEL``: the model reproduces the
+solution) has no order to measure and passes with "exact to round-off", as ``pdverify verify`` judges it.
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import InputError
-from .metrics import log_slope
+from .metrics import ROUND_OFF_LEVEL, log_slope
 from .store import write_atomic
 from .tables import GROUPINGS, grouped
 
@@ -157,6 +159,9 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     if n_grids < MIN_GRIDS:
         result = "missing"
         messages.insert(0, f"{n_grids} grid(s) with a result; an order needs at least {MIN_GRIDS}")
+    elif len(err) and np.all(np.abs(err) < ROUND_OFF_LEVEL):  # also all-zero errors (no order either)
+        result = verdict(True, check.get("expected", "pass"))
+        messages.insert(0, f"exact to round-off (every error < {ROUND_OFF_LEVEL:g}): no order to measure")
     elif not math.isfinite(order):
         result = verdict(False, check.get("expected", "pass"))
         messages.insert(0, "no observed order (errors zero or not finite)")

@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 
+ROUND_OFF_LEVEL = 1e-7  # relative errors below this are round-off (eps x N^3 at a few thousand points): no order there
+
 
 def _norm(v: np.ndarray) -> float:
     """Euclidean norm by numpy's pairwise sum, not BLAS: the same bits whatever the number of BLAS threads,

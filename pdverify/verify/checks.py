@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 
-from ..study.metrics import errors, locking_slope, log_slope, observed_order
+from ..study.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
 
 EXACT = 1e-9  # an error this small at every grid: the model reproduces the solution (orders meaningless)
-ROUND = 1e-7  # errors below this are round-off level (eps x N^3 at a few thousand points): no order fitted there
+ROUND = ROUND_OFF_LEVEL  # errors below this are round-off level: no order fitted there
 ORDER_SLACK = 0.3  # a fitted order this far below the expected one still passes (pre-asymptotic grids)
 ACCURACY = 1e-2  # error at the finest grid that passes
 LOCKING_GROWTH = 10.0  # locking: the most slender scene's error above this times the error at L/h = 20 ...
