@@ -480,42 +480,6 @@ def test_csv_tables_hold_the_exact_values(tmp_path):
             assert np.array_equal(csv[col].to_numpy(float), parquet[col].to_numpy(float), equal_nan=True), (name, col)
 
 
-def test_groups_computed_along_the_way_give_the_batch_tables(tmp_path):
-    """tables.Groups computes each derived table's group as soon as its cases are in (no longer used by
-    the runner, which computes the tables once at the end); the tables from those groups equal the tables
-    computed at once, and a group whose
-    cases differ from the final grouping's (a case whose row did not go where it was predicted) is
-    computed again, not reused."""
-    from pdverify.study.tables import (
-        GROUPINGS,
-        Groups,
-        convergence_rows,
-        grouped,
-        rows_of,
-        speed_error_rows,
-        trust_rows,
-    )
-
-    p = write_study(
-        tmp_path,
-        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\npoints = [51, 101, 201]\n'
-        "horizon = [2, 3]\n[sweep]\nslenderness = [10, 100]\n",
-    )
-    rows = rows_of(run_study(load_study(p), tmp_path / "out", workers=2, progress=False))
-    groups = Groups(rows)
-    for r in rows[:-1]:
-        groups.add(r)
-    assert len(groups.memo) > 10  # most groups were complete before the last case
-    assert not any((name, g.key(rows[-1])) in groups.memo for name, g in GROUPINGS.items())  # the last case's
-    for table in (convergence_rows, trust_rows, lambda r, memo=None: speed_error_rows(r, memo)):
-        assert table(rows, memo=groups.memo) == table(rows)
-    (name, key), (ids, out) = next(iter(groups.memo.items()))
-    groups.memo[(name, key)] = (ids[:-1], "stale")  # cases differ: not reused
-    assert all(o != "stale" for _, o in grouped(name, rows, groups.memo))
-    groups.memo[(name, key)] = (ids, "reused")
-    assert any(o == "reused" for _, o in grouped(name, rows, groups.memo))
-
-
 def test_serial_and_pool_runs_write_the_same_tables(tmp_path):
     """A serial run and a run with two pool workers give the same results but for the timings, meta.json
     records the same environment and counts, and each run's derived tables are, byte for byte, those

@@ -135,11 +135,6 @@ def _failure_message(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
-# The serial runner hands its solved cases to the recorder at most every HANDOFF_S seconds (and the last
-# two one by one): each handoff costs the solving process ~0.1 ms whatever it carries (a pickle and a pipe write
-# between two solves, caches cold), so cases of a few ms go by the handful. A killed runner (SIGKILL) loses
-
-
 def _plain_scalar(v):
     """A numpy scalar as the Python number it equals (pickling a numpy scalar pickles its dtype: ~20 us)."""
     return v.item() if isinstance(v, np.generic) else v

@@ -1,17 +1,12 @@
 """The derived tables of a study (convergence, locking, speed vs error, trust), from its results rows.
 
 Each table groups the rows by a few of their columns and computes one output per group from that group's
-rows alone (in the study's order), the groups sorted by key (missing values last). :class:`Groups`
-computes a group as soon as its cases are all in, while a serial run is still solving the others (in
-the recorder process, which is otherwise idle): at the end only the groups of the last cases remain.
-A group computed early is used only if its cases are exactly those of the final grouping; the tables are
-therefore the same whether they were built at once or along the way (a test compares them byte for byte).
-Rows are dicts with None for a missing value (:func:`rows_of` turns a results DataFrame into them).
+rows alone (in the study's order), the groups sorted by key (missing values last). Rows are dicts with
+None for a missing value (:func:`rows_of` turns a results DataFrame into them).
 """
 
 from __future__ import annotations
 
-from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -264,20 +259,14 @@ def _order(key: tuple):
     return tuple((v is None, v if v is not None else 0) for v in key)  # missing last, as pandas sorts
 
 
-def grouped(name: str, rows: list[dict], memo: dict | None = None, compute=None) -> list[tuple[tuple, Any]]:
-    """(key, output) of every group of ``rows`` under grouping ``name``, keys sorted. A group found in
-    ``memo`` (see :class:`Groups`) with exactly the same cases is not computed again."""
+def grouped(name: str, rows: list[dict], compute=None) -> list[tuple[tuple, Any]]:
+    """(key, output) of every group of ``rows`` under grouping ``name``, keys sorted."""
     g = GROUPINGS[name]
     compute = compute or g.compute
     members: dict = {}
     for r in rows:
         members.setdefault(g.key(r), []).append(r)
-    out = []
-    for key in sorted(members, key=_order):
-        hit = memo.get((name, key)) if memo else None
-        ids = tuple(r.get("case_id") for r in members[key])
-        out.append((key, hit[1] if hit is not None and hit[0] == ids else compute(key, members[key])))
-    return out
+    return [(key, compute(key, members[key])) for key in sorted(members, key=_order)]
 
 
 # ---- the tables, as rows (what the runner writes) ----------------------------------------------------
@@ -290,56 +279,34 @@ def _rows(data) -> list[dict]:
 EMPTY_CONVERGENCE = [*GROUP, "n_grids", "observed_order", "r2"]  # the header when no case is ok
 
 
-def convergence_rows(rows: list[dict], memo: dict | None = None) -> list[dict]:
-    return [o for _, out in grouped("convergence", rows, memo) for o in out]
+def convergence_rows(rows: list[dict]) -> list[dict]:
+    return [o for _, out in grouped("convergence", rows) for o in out]
 
 
-def locking_rows(rows: list[dict], memo: dict | None = None) -> list[dict]:
-    return [o for _, out in grouped("locking", rows, memo) for o in out]
+def locking_rows(rows: list[dict]) -> list[dict]:
+    return [o for _, out in grouped("locking", rows) for o in out]
 
 
-def speed_error_rows(rows: list[dict], memo: dict | None = None) -> tuple[list[dict], list[dict]]:
+def speed_error_rows(rows: list[dict]) -> tuple[list[dict], list[dict]]:
     """Every case with an error: (total seconds, error) and whether it is on its scene's Pareto front (in
     the study's order); per scene and model, the cheapest case reaching 1 % and 0.1 %."""
     kept = _with_error(rows)
     if not kept:
         return [], []
-    front = {cid: f for _, flags in grouped("pareto", rows, memo) for cid, f in flags.items()}
+    front = {cid: f for _, flags in grouped("pareto", rows) for cid, f in flags.items()}
     se = [{**{c: r.get(c) for c in SPEED_ERROR[:-1]}, "pareto": front[r["case_id"]]} for r in kept]
-    return se, [o for _, out in grouped("cheapest", rows, memo) for o in out]
+    return se, [o for _, out in grouped("cheapest", rows) for o in out]
 
 
-def trust_rows(rows: list[dict], tol: float = TRUST_TOLERANCE, memo: dict | None = None) -> list[dict]:
+def trust_rows(rows: list[dict], tol: float = TRUST_TOLERANCE) -> list[dict]:
     """Per model and option set: where every scene is within ``tol`` of its reference (:func:`_trust`); none
     when no case has an error at all (every one failed before it was measured)."""
     if not any("err_max" in r for r in rows):
         return []
     compute = None if tol == TRUST_TOLERANCE else (lambda key, group: _trust(key, group, tol))
-    return [o for _, out in grouped("trust", rows, None if compute else memo, compute) for o in out]
+    return [o for _, out in grouped("trust", rows, compute) for o in out]
 
 
-def trust_table(results, tol: float = TRUST_TOLERANCE, memo: dict | None = None) -> pd.DataFrame:
+def trust_table(results, tol: float = TRUST_TOLERANCE) -> pd.DataFrame:
     """:func:`trust_rows` as a DataFrame; ``results``: row dicts or a DataFrame."""
-    return pd.DataFrame(trust_rows(_rows(results), tol, memo))
-
-
-class Groups:
-    """The groups of a study computed along the way: ``expected`` holds every case's predicted row (the
-    columns known before it is solved: scene, model, options, slenderness, points; or its finished row for
-    a resumed case), in the study's order; :meth:`add` takes each finished row and computes the groups it
-    completes. :attr:`memo` is for :func:`grouped`."""
-
-    def __init__(self, expected: list[dict]):
-        self.position = {r["case_id"]: i for i, r in enumerate(expected)}
-        self.expected = {name: Counter(g.key(r) for r in expected) for name, g in GROUPINGS.items()}
-        self.members: dict = {name: {} for name in GROUPINGS}
-        self.memo: dict = {}
-
-    def add(self, row: dict) -> None:
-        for name, g in GROUPINGS.items():
-            key = g.key(row)
-            group = self.members[name].setdefault(key, [])
-            group.append(row)
-            if len(group) == self.expected[name].get(key):
-                group.sort(key=lambda r: self.position.get(r["case_id"], len(self.position)))
-                self.memo[(name, key)] = (tuple(r["case_id"] for r in group), g.compute(key, group))
+    return pd.DataFrame(trust_rows(_rows(results), tol))
