@@ -224,7 +224,7 @@ def solve_band(
     B.scale(s)
     lo, up = B.lower, B.upper
     info: dict = {
-        "dofs": B.n,
+        "system_unknowns": B.n,
         "bandwidth_lower": lo,
         "bandwidth_upper": up,
         "scaling": "symmetric diagonal",
@@ -358,7 +358,7 @@ def solve_linear(
     # between mixed DOFs from the condition number
     s = diagonal_scaling(K.diagonal()) if scaling is None else np.asarray(scaling, float)
     lo, up = bandwidths(K)
-    info: dict = {"dofs": n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal"}
+    info: dict = {"system_unknowns": n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal"}
     bs = s * b
     Ks = None
     try:
