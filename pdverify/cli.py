@@ -56,6 +56,9 @@ def user_errors(fn):
     def wrapper(*args, **kwargs):
         try:
             return fn(*args, **kwargs)
+        except SolveError as exc:  # a failed computation on far-out numbers: name them (E = 1e-300 reads singular)
+            extreme = _extreme_values()
+            _fail(SolveError([exc.lines[0] + extreme, *exc.lines[1:]]) if extreme else exc)
         except PdverifyError as exc:
             _fail(exc)
         except MemoryError:

@@ -101,6 +101,11 @@ CLI_CASES = [
         "is a file, not a folder",
     ),
     ("solve-overflow", ["solve", "{big}", "-m", "exact-eb"], 3, "beam.length = 1e+300"),
+    # E = 1e-300 overflows the assembly (numpy warned on stderr) and reads as a singular system: the line names E
+    *(
+        (f"solve-tiny-modulus-{m}", ["solve", "{tiny_E}", "-m", m], 3, "youngs_modulus = 1e-300")
+        for m in ("exact-eb", "fem-eb", "pd-eb", "pd-bond-pair", "pd-higher-order", "pd-timoshenko")
+    ),
     ("study-workers-0", ["study", "{tmp}/s.toml", "--workers", "0"], 2, "--workers"),
     ("study-workers-negative", ["study", "{tmp}/s.toml", "--workers", "-1"], 2, "--workers"),
     ("study-workers-text", ["study", "{tmp}/s.toml", "--workers", "two"], 2, "--workers"),
@@ -134,6 +139,7 @@ def files(tmp_path_factory):
     (d / "big.toml").write_text(
         text.replace("length = 1.0", "length = 1e300").replace("position = 1.0", "position = 1e300")
     )
+    (d / "tiny_E.toml").write_text(text.replace("youngs_modulus = 200e9", "youngs_modulus = 1e-300"))
     (d / "empty").mkdir()
     for name, results, meta in (
         ("broken_csv", 'a,b\n1,"2\n', "{}"),
@@ -151,6 +157,7 @@ def files(tmp_path_factory):
         "bin": d / "scene.bin",
         "nul": d / "nul.toml",
         "big": d / "big.toml",
+        "tiny_E": d / "tiny_E.toml",
         "empty": d / "empty",
         "broken_csv": d / "broken_csv",
         "broken_meta": d / "broken_meta",
