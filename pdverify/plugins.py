@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import os
 import sys
-from importlib.metadata import entry_points
+from importlib.metadata import PackageNotFoundError, distribution, entry_points
 from pathlib import Path
 
 GROUP = "pdverify.models"
@@ -102,6 +102,15 @@ def manifest_models(taken: dict) -> dict:
     return found
 
 
+def own_entry_points_missing() -> bool:
+    """Whether pdverify runs without its installed metadata (a source tree on ``sys.path``, an install under
+    way): then its own entry points, which register the finite-element references, are missing too."""
+    try:
+        return not any(ep.group == GROUP for ep in distribution("pdverify").entry_points)
+    except PackageNotFoundError:
+        return True
+
+
 _discovering = False
 
 
@@ -113,6 +122,11 @@ def discover(builtin: dict) -> dict:
         return {}
     _discovering = True
     try:
+        if own_entry_points_missing():
+            warn(
+                "pdverify's entry points are not installed, so its finite-element references (fem-eb, "
+                'fem-timoshenko, fem-plane-stress) are missing: install it (pip install -e ".")'
+            )
         found = entry_point_models(builtin)
         found.update(manifest_models({**builtin, **found}))
     finally:

@@ -117,3 +117,20 @@ def test_study_and_verify_run_the_plugin(site, tmp_path):
     suite = ET.parse(tmp_path / "card" / "junit.xml").getroot()
     assert suite.get("failures") == "0" and int(suite.get("tests")) == len(card["checks"])
     assert "fd-eb: pass" in r.stdout
+
+
+def test_missing_own_metadata_is_one_warning_naming_the_fem_references(monkeypatch, capsys):
+    """Without pdverify's installed metadata its entry points are gone, and with them the finite-element
+    references: the registry says so (one warning line) instead of leaving 'unknown model fem-eb' to explain it."""
+    from importlib.metadata import PackageNotFoundError
+
+    from pdverify import plugins, registry
+
+    def absent(name):
+        raise PackageNotFoundError(name)
+
+    monkeypatch.setattr(plugins, "distribution", absent)
+    monkeypatch.setattr(registry, "_REGISTRY", None)
+    registry.models()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "fem-eb" in err[0] and "pip install" in err[0], err
