@@ -3,6 +3,9 @@
 Every user error is printed as ``error: <one line>`` on stderr, never a traceback. Exit codes (docs/cli.md):
 0 done, 1 a study's verdicts failed, 2 bad input (scene, study, option, file), 3 failed or refused
 computation (singular, overflow, not enough memory), 4 output could not be written.
+
+One file of ~560 lines on purpose: each command is a thin typer function over the library (solve, study,
+report, verify, advise, bench, models), and they share the option parsing and error wrapping kept here.
 """
 
 from __future__ import annotations

@@ -5,6 +5,10 @@ The straight-beam keys (``name``, ``[beam]``, ``[section]``, ``[material]``, ``[
 ``units = "inch-pound"`` (any consistent set works; the key labels reports), z up, x from the left end (0)
 to the right end (``beam.length``).
 
+One file of ~550 lines on purpose: the scene is one pydantic model tree, and its validators (supports,
+loads, axes, units, dynamics, strict types, error wording) read the neighbouring fields; split, the rules
+of one key would live in several places.
+
 ``load_scene(path)`` and ``parse_scene(dict)`` validate everything before any model runs and raise
 :class:`~pdverify.errors.InputError` with one line per problem (field, value, what is allowed).
 """

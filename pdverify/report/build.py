@@ -3,6 +3,9 @@
 Every number in a table is the value of the results table, formatted with ``fmt`` (6 significant
 digits), so it can be traced to its row; re-running on the same results gives the same HTML apart
 from the one ``generated`` line.
+
+~600 lines: one builder per page section (results, convergence, locking, benchmarks, checks, trust, papers,
+cards) feeding one template; figures are in :mod:`figures`, the performance page in :mod:`perf`.
 """
 
 from __future__ import annotations
