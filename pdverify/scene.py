@@ -190,7 +190,7 @@ class Axis(_Strict):
     radius: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
     opening_angle_deg: Real | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
     start_angle_deg: Real = Field(default=0.0, allow_inf_nan=False)
-    direction: Literal["counterclockwise", "clockwise"] = "counterclockwise"
+    direction: Literal["counterclockwise", "clockwise"] | None = None  # arcs only; None = counterclockwise
     coefficients: list[Real] | None = None
     x_range: tuple[Real, Real] | None = None
 
@@ -198,7 +198,7 @@ class Axis(_Strict):
     def _complete(self):
         if self.type == "arc" and (self.radius is None or self.opening_angle_deg is None):
             raise ValueError("an arc axis needs radius and opening_angle_deg")
-        if self.type != "arc" and "direction" in self.model_fields_set:
+        if self.type != "arc" and self.direction is not None:
             raise ValueError(f"direction applies to arc axes only (a {self.type} axis bends as its coefficients say)")
         if self.type == "polynomial":
             if not self.coefficients or self.x_range is None:

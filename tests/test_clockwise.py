@@ -99,6 +99,9 @@ def test_direction_is_for_arcs_only_and_spelt_out():
         with pytest.raises(InputError, match="direction") as exc:
             parse_scene(dict(d, axis=axis))
         assert "\n" not in str(exc.value)
+    for d in (curved(POLY, "clamped", "free"), reflected(curved(ARC, "clamped", "free"), "y")):  # to_dict round trip
+        sc = parse_scene(d)
+        assert parse_scene(sc.to_dict()) == sc
 
 
 PAIRS = [("clamped", "free"), ("pinned", "roller"), ("clamped", "guided"), ("pinned", "pinned"), ("roller", "clamped")]
