@@ -40,14 +40,19 @@ def deflection(
     title: str,
     ylabel: str = "w",
     unit: str = "m",
+    yunit: str | None = None,
+    ylim: tuple[float, float] | None = None,
 ) -> str:
-    """Deflection (or another point field) along the axis; lengths in the scene's ``unit`` (Scene.length_unit)."""
+    """Deflection (or another point field) along the axis; lengths in the scene's ``unit`` (Scene.length_unit),
+    the field in ``yunit`` (default: ``unit``); ``ylim``: the vertical range drawn (curves beyond it leave it)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     if ref is not None:
         ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="reference")
     for label, x, w in curves:
         ax.plot(x, w, "-", lw=1.2, marker="o" if len(x) <= 30 else None, ms=3, label=label)
-    return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({unit})", title)
+    if ylim is not None:
+        ax.set_ylim(*ylim)
+    return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({yunit or unit})", title)
 
 
 def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
