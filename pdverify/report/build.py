@@ -353,7 +353,14 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                     )
                 )
             lock_figs.append(
-                (scene, Markup(figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}")))
+                (
+                    scene,
+                    Markup(
+                        figures.scatter(
+                            groups, "slenderness L/h", "max relative error", f"locking: {scene}", connect=True
+                        )
+                    ),
+                )
             )
     speed_figs = []
     if not se.empty:

@@ -30,7 +30,10 @@ def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major")
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
     ax.grid(alpha=0.3, which=which)
-    ax.legend(fontsize=7)
+    if len(ax.get_legend_handles_labels()[0]) > 6:  # many curves: the legend beside the axes, not over the data
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    else:
+        ax.legend(fontsize=7)
     return _svg(fig)
 
 
@@ -78,10 +81,12 @@ def scatter(
     title: str,
     front: tuple[np.ndarray, np.ndarray] | None = None,
     logx=True,
+    connect: bool = False,
 ) -> str:
+    """Points per group (``connect``: joined in the given order, e.g. a sweep)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     for label, x, y in groups:
-        ax.plot(x, y, "o", ms=4, label=label)
+        ax.plot(x, y, "o-" if connect else "o", ms=4, lw=1, label=label)
     if front is not None and len(front[0]):
         o = np.argsort(front[0])
         ax.plot(front[0][o], front[1][o], "k--", lw=1, label="Pareto front")
