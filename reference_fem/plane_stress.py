@@ -11,9 +11,8 @@ by X(s) + t n(s); a straight axis gives [0, L] x [-h/2, h/2] exactly; an arc or 
 nodes lie on the mapped curves. The "top" face is t = +h/2 (the +n side; for a counter-clockwise arc the
 inner face), except on a clockwise arc (``direction = "clockwise"``), where it is t = -h/2, again the inner
 face: a clockwise arc is then the mirror image of the counter-clockwise one, normal loads on the mirrored face
-(the +n face of a clockwise arc is the outer one; loading it moves the 2D solution by a thickness effect,
-1e-6 .. 2e-4 of the displacements on a 120° arc, L/h = 105). t and n below are the axis tangent and normal at
-the station concerned.
+(the +n face of a clockwise arc is the outer one, and the face a load acts on moves the 2D solution:
+docs/models/curved.md). t and n below are the axis tangent and normal at the station concerned.
 
 Supports on the end faces (s = 0, L), the same meaning at both ends and in every model (docs/supports.md):
 clamped = whole face fixed; pinned = both displacements (t and n) of the mid-height node held; roller = its
