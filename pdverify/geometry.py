@@ -3,8 +3,10 @@
 Axis types (scene ``[axis]``):
 
 * ``straight``: r(s) = (s, 0) for s in [0, beam.length];
-* ``arc``: r = R (cos a, sin a) with a = start_angle + s / R (counter-clockwise), opening angle Θ,
-  length R Θ; curvature 1/R;
+* ``arc``: r = R (cos a, sin a) with a = start_angle + σ s / R, σ = +1 (``direction = "counterclockwise"``,
+  the default) or -1 (``"clockwise"``), opening angle Θ, length R Θ; tangent angle a + σ π/2, curvature σ/R
+  (signed: κ = dθ/ds). The clockwise arc from start angle 180° - a0 is the mirror image about x = 0 of the
+  counter-clockwise one from a0, with the same s at mirrored points;
 * ``polynomial``: y(x) = Σ c_i x^i on x_range = [x0, x1]; s(x) = ∫ sqrt(1 + y'²) dx (Gauss–Legendre),
   inverted by Newton; curvature y'' / (1 + y'²)^(3/2).
 
@@ -46,6 +48,11 @@ def axis_length(axis: Axis, straight_length: float | None = None) -> float:
     c = np.asarray(axis.coefficients, float)
     x0, x1 = axis.x_range
     return float(arclength(c, x0, np.array([x1]))[0])
+
+
+def _turn(axis: Axis) -> float:
+    """σ = +1 for a counter-clockwise arc, -1 for a clockwise one (the sign of its curvature)."""
+    return -1.0 if axis.direction == "clockwise" else 1.0
 
 
 @dataclass(frozen=True)
@@ -94,7 +101,7 @@ class AxisGeometry:
         if a.type == "straight":
             return np.stack([s, np.zeros_like(s)], axis=-1)
         if a.type == "arc":
-            ang = np.deg2rad(a.start_angle_deg) + s / a.radius
+            ang = np.deg2rad(a.start_angle_deg) + _turn(a) * s / a.radius
             return a.radius * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
         x = self._x_of_s(s)
         return np.stack([x, P.polyval(x, np.asarray(a.coefficients, float))], axis=-1)
@@ -106,7 +113,8 @@ class AxisGeometry:
         if a.type == "straight":
             return np.zeros_like(s)
         if a.type == "arc":
-            return np.deg2rad(a.start_angle_deg) + s / a.radius + np.pi / 2
+            sigma = _turn(a)
+            return np.deg2rad(a.start_angle_deg) + sigma * (s / a.radius + np.pi / 2)
         x = self._x_of_s(s)
         return np.arctan(P.polyval(x, P.polyder(np.asarray(a.coefficients, float))))
 
@@ -116,7 +124,7 @@ class AxisGeometry:
         if a.type == "straight":
             return np.zeros_like(s)
         if a.type == "arc":
-            return np.full_like(s, 1.0 / a.radius)
+            return np.full_like(s, _turn(a) / a.radius)
         c = np.asarray(a.coefficients, float)
         x = self._x_of_s(s)
         d1, d2 = P.polyval(x, P.polyder(c)), P.polyval(x, P.polyder(c, 2))

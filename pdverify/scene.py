@@ -187,12 +187,14 @@ Load = Annotated[PointForce | PointMoment | Distributed | PointTorque, Field(dis
 
 class Axis(_Strict):
     """Shape of the beam axis. ``straight`` is the default; curved axes are read by ``pd-curved``
-    and the curved plane-stress reference (see their docs for the extra keys)."""
+    and the curved plane-stress reference (see their docs for the extra keys). An arc turns
+    ``counterclockwise`` (curvature +1/R, the default) or ``clockwise`` (curvature -1/R) from its start angle."""
 
     type: Literal["straight", "arc", "polynomial"] = "straight"
     radius: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
     opening_angle_deg: Real | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
     start_angle_deg: Real = Field(default=0.0, allow_inf_nan=False)
+    direction: Literal["counterclockwise", "clockwise"] | None = None  # arcs only; None = counterclockwise
     coefficients: list[Real] | None = None
     x_range: tuple[Real, Real] | None = None
 
@@ -200,6 +202,8 @@ class Axis(_Strict):
     def _complete(self):
         if self.type == "arc" and (self.radius is None or self.opening_angle_deg is None):
             raise ValueError("an arc axis needs radius and opening_angle_deg")
+        if self.type != "arc" and self.direction is not None:
+            raise ValueError(f"direction applies to arc axes only (a {self.type} axis bends as its coefficients say)")
         if self.type == "polynomial":
             if not self.coefficients or self.x_range is None:
                 raise ValueError("a polynomial axis needs coefficients (of y(x), constant first) and x_range")

@@ -9,7 +9,10 @@ Geometry (``reference_fem.curved_mesh``): the parameter rectangle (s, t) in [0, 
 by X(s) + t n(s); a straight axis gives [0, L] x [-h/2, h/2] exactly; an arc or a polynomial axis y = f(x)
 (scene ``[axis]``, beam.length = arc length) gives a curved strip of constant height whose q8/q9 mid-side
 nodes lie on the mapped curves. The "top" face is t = +h/2 (the +n side; for a counter-clockwise arc the
-inner face). t and n below are the axis tangent and normal at the station concerned.
+inner face), except on a clockwise arc (``direction = "clockwise"``), where it is t = -h/2, again the inner
+face: a clockwise arc is then the mirror image of the counter-clockwise one, normal loads on the mirrored face
+(the +n face of a clockwise arc is the outer one, and the face a load acts on moves the 2D solution:
+docs/models/curved.md). t and n below are the axis tangent and normal at the station concerned.
 
 Supports on the end faces (s = 0, L), the same meaning at both ends and in every model (docs/supports.md):
 clamped = whole face fixed; pinned = both displacements (t and n) of the mid-height node held; roller = its
@@ -151,6 +154,7 @@ class FemPlaneStress(Model):
             L, h, I = scene.length, scene.section.depth, scene.section.I
             ns, nt = len(s), len(tt)
             jm = nt // 2  # mid-line row
+            top = 0 if scene.axis.type == "arc" and scene.axis.direction == "clockwise" else nt - 1  # loaded face
             F = np.zeros(basis.N)
             tan_s, nor_s = geo.frame(s)
             for load in scene.loads:
@@ -170,7 +174,7 @@ class FemPlaneStress(Model):
                         qt, _ = _local(load, tq_, nq_)
                         return np.moveaxis(tq_ * (qt * profile(sq))[..., None], -1, 0)
 
-                    F += cm.line_forces(bm, basis, *cm.row_edges(bm, nt - 1, a, b), normal_part)
+                    F += cm.line_forces(bm, basis, *cm.row_edges(bm, top, a, b), normal_part)
                     if load.axial != 0.0 or load.frame == "global":
                         F += cm.line_forces(bm, basis, *cm.row_edges(bm, jm, a, b), tangential_part)
                     continue
@@ -196,8 +200,8 @@ class FemPlaneStress(Model):
                 k = int(np.argmin(np.abs(s - load.position)))
                 if isinstance(load, PointForce):
                     ft, fn = _local(load, tan_s[k], nor_s[k])
-                    top, midn = bm.vid[k, nt - 1], bm.vid[k, jm]
-                    F[basis.nodal_dofs[:, top]] += fn * nor_s[k]
+                    topk, midn = bm.vid[k, top], bm.vid[k, jm]
+                    F[basis.nodal_dofs[:, topk]] += fn * nor_s[k]
                     if ft != 0.0:
                         F[basis.nodal_dofs[:, midn]] += ft * tan_s[k]
                 else:

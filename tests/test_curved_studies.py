@@ -56,11 +56,14 @@ def quintic(sl, P, n, form):
 
 
 @pytest.mark.parametrize(
-    "name, cases", [("straight", 200), ("semicircle", 240), ("quintic", 160), ("quintic_bending", 160)]
+    "name, cases",
+    [("straight", 200), ("semicircle", 240), ("quintic", 160), ("quintic_bending", 160), ("steep", 48)],
 )
 def test_study_files_expand_without_skips(name, cases):
     st = load_study(STUDIES / f"paper_curved_{name}.toml")
     assert len(st.cases) == cases and not st.skipped
+    if name == "steep":  # grading is a sweep axis like any option: 1, 5, 20 at every form, degree and grid
+        assert sorted({c.given["grading"] for c in st.cases}) == [1.0, 5.0, 20.0]
 
 
 # -- references ---------------------------------------------------------------------------------

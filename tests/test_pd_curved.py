@@ -346,7 +346,8 @@ def _sparse_resultant_system(model, sc, params, body=None):
     import scipy.sparse as sp
 
     from pdverify.models import _pddo
-    from pdverify.models.pd_curved import axis_frame, distributed_loads
+    from pdverify.models._curved_assembly import conditions
+    from pdverify.models._curved_particles import axis_frame, distributed_loads
 
     segs, inner, ends, m, size = model.discretise(sc, params)
     s = np.concatenate(segs)
@@ -367,7 +368,7 @@ def _sparse_resultant_system(model, sc, params, body=None):
         bt, bn, bm = body(s, xa)
         pt, pn, mm = pt + bt, pn + bn, mm + bm
     b = np.concatenate([np.zeros(3 * N), -pt, -pn, -mm])
-    rows, vals, (rr, rc, rv) = model._conditions(
+    rows, vals, (rr, rc, rv) = conditions(
         sc, N, offs, segs, inner, ends, t, nv, 3 * N, True, lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0]))
     )
     keep = np.ones(6 * N)
@@ -390,7 +391,7 @@ def _sparse_resultant_system(model, sc, params, body=None):
 
 def _groups(sc):
     """The scenes solve() assembles: one per group of loads needing the same breaks."""
-    from pdverify.models.pd_curved import breakpoints
+    from pdverify.models._curved_particles import breakpoints
 
     groups = {}
     for load in sc.loads:
@@ -538,7 +539,7 @@ def test_graded_segment_grids_follow_the_density():
     """segment_grids with a density: the segment ends are kept, particles increase, and the spacing ratio is the
     grading ratio: ρ lies in [1, ratio], so no two spacings differ by more than the ratio, and a narrow bend
     comes close to it (curvature grading on the steep quintic, ratio 20: measured 14.6 at 201 particles)."""
-    from pdverify.models.pd_curved import grading_density, segment_grids
+    from pdverify.models._curved_particles import grading_density, segment_grids
 
     sc = load_scene("studies/paper_curved/steep_quintic_uniform.toml")
     L = sc.length
@@ -554,7 +555,7 @@ def test_given_positions_reproduce_the_uniform_and_the_graded_particles():
     """positions = the particles' arc lengths (as a study or the CLI gives them): the uniform grid written out gives
     the same bits as points = 81; the graded grid written out gives the graded run; with a point load inside the
     beam the break is added to the given positions."""
-    from pdverify.models.pd_curved import grading_density, segment_grids
+    from pdverify.models._curved_particles import grading_density, segment_grids
 
     sc = load_scene("studies/paper_curved/semicircle_normal.toml")
     text = lambda s: ", ".join(repr(float(v)) for v in s)  # noqa: E731

@@ -324,3 +324,42 @@ def test_ci_requires_the_browser():
     assert "apt-get install" in text and "chromium" in text
     run_line = next(i for i, l in enumerate(text.splitlines()) if "pytest" in l)
     assert any("export PDVERIFY_REQUIRE_BROWSER=1" in l for l in text.splitlines()[:run_line])
+
+
+def test_curved_page_draws_axial_and_shear_forces_and_its_locking_table(tmp_path):
+    """Seed 004's page: N and Q beside the deflection for the curves that return them (pd-curved and the exact
+    curved beam, whose range sets the axes), and the page's own locking table; a grid run at one slenderness
+    draws no locking line, an exact model (error 0) none either."""
+    p = tmp_path / "c.toml"
+    p.write_text(f'''name = "c"
+scenes = ["{ROOT}/studies/paper_curved/semicircle_normal.toml"]
+reference = "exact-curved-cantilever"
+[papers]
+paper_curved = "seed 004"
+[[runs]]
+model = "pd-curved"
+degree = 2
+form = ["primal", "mixed"]
+points = 41
+slenderness = [10, 100]
+[[runs]]
+model = "pd-curved"
+degree = 2
+points = 21
+slenderness = [10]
+[[runs]]
+model = "exact-curved-cantilever"
+points = 41
+slenderness = [10, 100]
+''')
+    run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
+    build_report(tmp_path / "run")
+    page = (tmp_path / "run" / "paper-paper-curved.html").read_text()
+    for sl in ("10", "100"):
+        for name in ("axial force N", "shear force Q"):
+            assert f"semicircle, normal tip force, L/h = {sl}: {name}" in page
+    assert "locking_slope" in page and page.count("pd-curved primal n=41") >= 3  # deflection, N, Q (+ locking)
+    lock = page[page.index('id="locking"') :]
+    lock = lock[: lock.index("</svg>")]
+    assert "pd-curved primal n=41" in lock and "pd-curved n=41" in lock
+    assert "n=21" not in lock and "exact-curved-cantilever" not in lock

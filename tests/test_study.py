@@ -634,3 +634,21 @@ def test_ctrl_c_keeps_every_case_solved_before_it(tmp_path, monkeypatch):
     fresh = run_study(load_study(p), tmp_path / "fresh", workers=1, progress=False)
     assert len(df) == 8 and (df["status"] == "ok").all()
     assert np.array_equal(_cols(df)[["err_max", "err_l2"]].to_numpy(), _cols(fresh)[["err_max", "err_l2"]].to_numpy())
+
+
+def test_a_run_sweeps_its_own_slenderness(tmp_path):
+    """runs[i].slenderness replaces [sweep]'s list for that run only (the main job sweeps the locking of one
+    model without multiplying the others); a bad value is one error line naming the run."""
+    body = (
+        "[sweep]\nslenderness = [20]\n"
+        '[[runs]]\nmodel = "pd-eb"\npoints = [21, 41]\nslenderness = [10, 100, 1000]\n'
+        '[[runs]]\nmodel = "fem-eb"\npoints = 21\n'
+    )
+    st = load_study(write_study(tmp_path, body))
+    got = sorted((c.model, c.slenderness) for c in st.cases)
+    assert got == sorted([("pd-eb", s) for s in (10, 100, 1000) for _ in (21, 41)] + [("fem-eb", 20)])
+    for bad in ("[]", "[10, -1]", '["10"]'):
+        p = write_study(tmp_path, f'[[runs]]\nmodel = "pd-eb"\nslenderness = {bad}\n')
+        with pytest.raises(InputError) as exc:
+            load_study(p)
+        assert len(exc.value.lines) == 1 and "runs[0].slenderness" in exc.value.lines[0], exc.value.lines

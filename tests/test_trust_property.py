@@ -113,12 +113,13 @@ def straight_scenes(draw, model: str):
 @st.composite
 def curved_scenes(draw):
     if draw(st.booleans()):
-        opening = draw(st.floats(10.0, 359.0))  # one direction: the scene takes opening_angle_deg > 0 only
+        opening = draw(st.floats(10.0, 359.0))  # opening_angle_deg > 0; the turn is direction's
         axis = {
             "type": "arc",
             "radius": draw(st.floats(0.3, 5.0)),
             "opening_angle_deg": opening,
             "start_angle_deg": draw(st.floats(-180.0, 180.0)),
+            "direction": draw(st.sampled_from(["counterclockwise", "clockwise"])),
         }
     else:
         degree = draw(st.integers(1, 3))

@@ -52,25 +52,11 @@ written straight into a :class:`~pdverify.band.Band` (6 x 6 block stencils, one 
 offset; :meth:`PDCurved.assemble_band`), which ``solve_linear`` factorises in place above 20,000 unknowns;
 ``assemble`` returns the same band as CSR.
 
-Measured (tests/test_pd_curved.py, tests/test_curved_studies.py; max-norm relative displacement error,
-L/h = 10, 41 -> 321 particles, observed order per doubling):
-
-* ``primal``: order 2⌊P/2⌋: P = 2/3/4/5/6 -> 2.0/2.0/4.0/4.0/6.0 (straight sine), 2.0/2.0/4.0/4.3-4.5/6.1
-  (semicircle), 2.0/2.0/4.0/4.0/6.0 (quintic): an odd degree converges like the even degree below it.
-* ``mixed``: order 2⌈P/2⌉: 2.0/4.0/4.0/5.9/(6 until a floor) (straight), 2.0/4.0/4.0/6.0/6.0 (semicircle),
-  2.0/4.0/4.0/6.0/6.9 (quintic): an odd degree gains one order. P = 6 with 9 members had a band of
-  modes held only by the end families (condition ~ n^4 instead of n^2): error floor growing with n, 3.9e-8 /
-  2.2e-7 / 1.2e-6 at 401 / 1601 / 6401 particles on the straight beam; the default is now 7 members
-  (4.0e-13 / 5.3e-13 / 1.8e-12; see default_horizon).
-* Locking (201 particles, error vs L/h = 10, 100, 1000, 10^4): ``primal`` error ~ (L/h)^2 for every
-  degree until it saturates at ~1 (slope 2.0 for P >= 4; P = 2, 3 saturate by L/h = 1000); a higher
-  degree lowers the constant (P = 6 straight 3.5e-11 -> 4.0e-7 at L/h = 1000), not the slope. ``mixed``
-  is locking-free on the load-driven examples (straight P = 2: 4.4e-4 -> 4.8e-4; semicircle P = 4: 2.0e-8
-  at every L/h) but not on the manufactured quintic, whose loads scale with EA and kGA (slope 2.0).
-* 10^5 particles (clamped-free, six load types: four solves): 1.9 / 3.3 / 4.5 s in all at P = 2 / 4 / 6
-  (resultant unknowns; the sparse assembly it replaced: 8.6-10 s at P = 4 on the same shared machine), of
-  which the banded LU takes 75-80 %. ``pdverify bench`` (one tip load, 10^5 particles, P = 4): 0.74 s
-  against 0.64 s for ``solve_banded`` on the same band (ratio 1.1-1.2; assembly 0.11 s).
+Three modules, one idea each: the particles (axis frame, segments, uniform / graded / given distributions,
+family size, loads at the particles: :mod:`pdverify.models._curved_particles`), the collocation system
+(:mod:`pdverify.models._curved_assembly`), and here the model: its options, the superposed solves and the output
+map. PDDO functions: :mod:`pdverify.models._pddo`. Measured errors, orders, locking and cost:
+docs/models/curved.md.
 """
 
 from __future__ import annotations
@@ -78,220 +64,24 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..band import Band, Extent
+from ..band import Band
 from ..errors import InputError
-from ..geometry import axis_abscissae, geometry
 from ..linalg import solve_linear
 from ..registry import Model, Option, System
 from ..result import Result, Timer
-from ..scene import Distributed, PointForce, PointMoment, Scene
+from ..scene import Scene
 from . import _pddo
-
-# -- geometry ---------------------------------------------------------------------------------
-
-
-def curvature_slope(scene: Scene, s: np.ndarray) -> np.ndarray:
-    """dκ/ds (0 for straight and arc axes; polynomial: (1/J) d/dx [y''/J³], J = sqrt(1 + y'²))."""
-    return axis_frame(scene, s)[3]
-
-
-def axis_frame(scene: Scene, s: np.ndarray):
-    """(t, n, κ, dκ/ds, x) at arc lengths s: tangent and normal (each (len(s), 2)), curvature, its slope and
-    the axis abscissae x(s) (polynomial axes; None otherwise). On a polynomial axis s is inverted once
-    (:func:`axis_abscissae`) and t, n, κ are the formulas of :mod:`pdverify.geometry` evaluated at that x
-    (``geometry.frame`` and ``geometry.curvature`` would each invert s again: 0.37 s per call at 10^4
-    particles, 8 s and 2 GB of temporaries at 10^5)."""
-    s = np.asarray(s, float)
-    geo = geometry(scene)
-    if scene.axis.type != "polynomial":
-        t, n = geo.frame(s)
-        return t, n, geo.curvature(s), np.zeros_like(s), None
-    from numpy.polynomial import polynomial as Pn
-
-    c = np.asarray(scene.axis.coefficients, float)
-    x = axis_abscissae(scene, s)
-    th = np.arctan(Pn.polyval(x, Pn.polyder(c)))
-    t = np.stack([np.cos(th), np.sin(th)], axis=-1)
-    n = np.stack([-np.sin(th), np.cos(th)], axis=-1)
-    d1, d2, d3 = (Pn.polyval(x, Pn.polyder(c, k)) for k in (1, 2, 3))
-    kap = d2 / (1 + d1**2) ** 1.5
-    J2 = 1 + d1**2
-    dkap = (d3 / J2**1.5 - 3 * d1 * d2**2 / J2**2.5) / np.sqrt(J2)
-    return t, n, kap, dkap, x
-
-
-# -- segments and loads -----------------------------------------------------------------------
-
-
-def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
-    """Interior break positions (sorted), the point loads there {index: [loads]} and the end point
-    loads {0: [...], 1: [...]} (loads exactly at s = 0 or s = L)."""
-    L = scene.length
-    tol = 1e-9 * L
-    pos, at = [], []
-    ends = {0: [], 1: []}
-    for load in scene.loads:
-        if isinstance(load, (PointForce, PointMoment)):
-            if load.position <= tol:
-                ends[0].append(load)
-            elif load.position >= L - tol:
-                ends[1].append(load)
-            else:
-                pos.append(load.position), at.append(load)
-        elif isinstance(load, Distributed):
-            for v in scene.span(load):
-                if tol < v < L - tol:
-                    pos.append(v), at.append(None)
-    bps: list[float] = []
-    loads: dict[int, list] = {}
-    for p, load in sorted(zip(pos, at), key=lambda t: t[0]):
-        if not bps or p - bps[-1] > tol:
-            bps.append(p)
-            loads[len(bps) - 1] = []
-        if load is not None:
-            loads[len(bps) - 1].append(load)
-    return np.array(bps), loads, ends
-
-
-def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, density=None) -> list[np.ndarray]:
-    """Particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all, at least ``min_points``
-    per segment. ``density`` None: uniform (a uniform grid of ``points`` particles when the breaks fall on
-    it). Else a pair (s_table, cumulative) of a non-decreasing measure m(s) (m(0) = 0, m(L) = 1): the
-    intervals of a segment are shared by its measure, and its particles sit at equal steps of m (the seed's
-    non-uniform particles: spacing ∝ 1/ρ for m = ∫ρ ds / ∫ρ ds)."""
-    edges = np.concatenate([[0.0], bps, [L]])
-    out = []
-    if density is not None:
-        st, cm = density
-        me = np.interp(edges, st, cm)
-    for i, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
-        if density is None:
-            k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
-            out.append(np.linspace(a, b, k + 1))
-            continue
-        k = max(min_points - 1, int(np.floor((points - 1) * (me[i + 1] - me[i]) + 0.5 + 1e-9)))
-        g = np.interp(np.linspace(me[i], me[i + 1], k + 1), cm, st)
-        g[0], g[-1] = a, b
-        out.append(g)
-    return out
-
-
-def parse_positions(text: str, L: float) -> np.ndarray:
-    """The ``positions`` option: arc lengths (m) separated by commas or spaces, strictly increasing, in [0, L]
-    (0 and L are added when missing). Raises InputError naming the option."""
-    try:
-        s = np.array([float(v) for v in text.replace(",", " ").split()], float)
-    except ValueError:
-        raise InputError(
-            f'positions = {text!r}: give arc lengths in m separated by commas, e.g. "0, 0.1, 0.25"'
-        ) from None
-    tol = 1e-12 * L
-    if not np.all(np.isfinite(s)) or s.min(initial=0.0) < -tol or s.max(initial=0.0) > L + tol:
-        raise InputError(f"positions: every arc length must lie in [0, L] = [0, {L:g}] m; remove the others")
-    if np.any(np.diff(s) <= 0):
-        raise InputError("positions: the arc lengths must increase strictly; sort them and remove repeats")
-    s = np.clip(s, 0.0, L)
-    return np.unique(np.concatenate([[0.0], s, [L]]))
-
-
-def given_grids(L: float, bps: np.ndarray, s: np.ndarray, min_points: int) -> list[np.ndarray]:
-    """The particles s (from :func:`parse_positions`) split at the breaks: each segment [a, b] takes the given
-    positions strictly inside it (those within 1e-9 L of a break dropped) and its two ends."""
-    edges = np.concatenate([[0.0], bps, [L]])
-    tol = 1e-9 * L
-    out = []
-    for a, b in zip(edges[:-1], edges[1:]):
-        g = np.concatenate([[a], s[(s > a + tol) & (s < b - tol)], [b]])
-        if len(g) < min_points:
-            raise InputError(
-                f"positions: {len(g)} particles on [{a:g}, {b:g}] m (between supports, point loads and "
-                f"load ends), fewer than one family ({min_points}); add positions there"
-            )
-        out.append(g)
-    return out
-
-
-def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
-    """(s_table, m(s)) for :func:`segment_grids`: density ρ = 1 + (ratio - 1) f(s), f in [0, 1], so the
-    largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
-    particles gather where the axis bends; the square root spreads them over the bend's flanks, which on
-    y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance
-    to the nearer end or to a point load inside the beam: particles gather at the supports and at point loads)."""
-    L = scene.length
-    s = np.linspace(0.0, L, samples)
-    if by == "curvature":
-        kap = np.abs(axis_frame(scene, s)[2])
-        f = np.sqrt(kap / kap.max()) if kap.max() > 0 else np.zeros_like(s)
-    else:
-        marks = [0.0, L] + [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment))]
-        d = np.min(np.abs(s[:, None] - np.array(marks)[None, :]), axis=1)
-        f = np.exp(-d / (0.1 * L))
-    rho = 1.0 + (ratio - 1.0) * f
-    m = np.concatenate([[0.0], np.cumsum((rho[1:] + rho[:-1]) * np.diff(s) / 2)])
-    return s, m / m[-1]
-
-
-def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
-    """(F·t, F·n, C) of a point load at a point with unit tangent t and normal n."""
-    if isinstance(load, PointMoment):
-        return 0.0, 0.0, load.value
-    if load.frame == "global":
-        F = np.array([load.axial, load.value])
-        return float(F @ t), float(F @ n), 0.0
-    return load.axial, load.value, 0.0
-
-
-def distributed_loads(
-    scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray, inside: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """(p_t, p_n) per unit arc length at the particles s of one segment (``inside``: a position strictly
-    inside the segment, to decide which spans cover it)."""
-    pt, pn = np.zeros_like(s), np.zeros_like(s)
-    for load in scene.loads:
-        if not isinstance(load, Distributed):
-            continue
-        a, b = scene.span(load)
-        if not a <= inside <= b:
-            continue
-        f = np.ones_like(s) if load.shape == "uniform" else np.sin(np.pi * s / scene.length)
-        if load.frame == "global":
-            pt += f * (load.axial * t[:, 0] + load.value * t[:, 1])
-            pn += f * (load.axial * n[:, 0] + load.value * n[:, 1])
-        else:
-            pt += f * load.axial
-            pn += f * load.value
-    return pt, pn
-
-
-# -- the model --------------------------------------------------------------------------------
-
-_SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is prescribed, False = the resultant
-    "clamped": (True, True, True),
-    "pinned": (True, True, False),
-    "roller": (False, True, False),
-    "free": (False, False, False),
-    "guided": (False, False, True),
-}
-
-
-def default_horizon(degree: int, form: str = "primal") -> int:
-    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P), except the mixed form at even P >= 6: P/2
-    (P + 1 members, the interpolating central stencil).
-
-    Why: the mixed form applies the first-derivative function g^1 only, and every antisymmetric interior
-    stencil annihilates the sawtooth (-1)^k; what keeps the neighbouring high-frequency modes away from zero
-    is the slope of the stencil's symbol σ(θ) = Σ_j c_j sin(jθ) at θ = π, 2 Σ_j (-1)^(j+1) j c_j (h = 1).
-    With P + 3 members the spare (two more than P + 1) coefficients are set by the weight, and that slope collapses
-    at P = 6 (0.017, against 0.67 / 0.45 at P = 2 / 4 and 2.2 for the 7-member stencil) and changes sign
-    at P = 8 and 10 (-0.41, -0.82: a spurious interior null mode). The modes near θ = π are then held only
-    by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
-    P + 1 members give the interpolating stencil (slope 2.2 / 2.66 / 3.06 at P = 6 / 8 / 10), whose weights do
-    not depend on w. The primal form keeps ⌊P/2⌋ + 1: its g^2 symbol Σ_j c_j cos(jθ) stays negative at P = 6
-    (-0.096 at θ = π) and is positive there at P = 8 and 10 (0.32, 0.62), without a measured floor (straight sine,
-    P = 8: 1.2e-10 at 1601 particles; see docs/models/curved.md)."""
-    if form == "mixed" and degree % 2 == 0 and degree >= 6:
-        return degree // 2
-    return degree // 2 + 1
+from ._curved_assembly import assemble_displacements, assemble_resultants
+from ._curved_particles import (
+    axis_frame,
+    breakpoints,
+    default_horizon,
+    distributed_loads,
+    given_grids,
+    grading_density,
+    parse_positions,
+    segment_grids,
+)
 
 
 class PDCurved(Model):
@@ -421,11 +211,11 @@ class PDCurved(Model):
             pt, pn, mm = pt + bt, pn + bn, mm + bm
         data = dict(s=s, segs=segs, offs=offs, N=N, t=t, n=nv, horizon=m, family=size)
         if six:
-            B, b, cs = self._assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, (pt, pn, mm))
+            B, b, cs = assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, (pt, pn, mm))
             nf = 6
             data.update(Eps=None, Gam=None, Chi=None)
         else:
-            K, b, cs, ops = self._assemble_displacements(
+            K, b, cs, ops = assemble_displacements(
                 scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, (pt, pn, mm)
             )
             B = Band.from_sparse(K)
@@ -437,183 +227,6 @@ class PDCurved(Model):
             nf=nf, perm=np.arange(nf * N).reshape(nf, N).T.ravel(), cscale=cs.reshape(N, nf).T.ravel(), cscale_i=cs
         )
         return B, b, data
-
-    def _conditions(self, scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, six: bool, resultant):
-        """Boundary (Eq. 11–13) and interface rows, component-major numbering (unknown c N + k, constitutive row
-        c N + k, equilibrium row eq0 + c N + k): (rows replaced, their right-hand sides, (rows, cols, values)
-        of their entries)."""
-        # Boundary and interface conditions replace the equilibrium rows of the segment-end particles; with
-        # N, Q, M as unknowns and one kinematic end in a slot, the continuity at an interface replaces the
-        # constitutive row instead, on the side away from that end (else a segment between a load and a free end
-        # has only resultant conditions and a spurious discrete compatibility condition: quintic
-        # cantilever, load ending 0.22 m before the free end, 41 particles, P = 4: 170 % error). Dropping a
-        # constitutive row at the outer ends too was measured worse (clamped-clamped straight sine, P = 4,
-        # 81 particles: 7.5e-6 instead of 1.9e-6), so the outer conditions stay in the equilibrium rows.
-        rr, rc, rv = [], [], []
-        rb = {}
-
-        def add(row, cols, vals):
-            rr.append(np.full(len(cols), row)), rc.append(np.asarray(cols)), rv.append(np.asarray(vals, float))
-
-        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-            k = 0 if side == 0 else N - 1
-            sign = -1.0 if side == 0 else 1.0
-            F = np.zeros(3)
-            for load in ends[side]:
-                F += force_components(load, t[k], nv[k])
-            for c, kin in enumerate(_SUPPORT_SLOTS[sup]):
-                row = eq0 + c * N + k
-                if kin:
-                    add(row, [c * N + k], [1.0])
-                    rb[row] = 0.0
-                else:
-                    add(row, *resultant(c, k))
-                    rb[row] = sign * F[c]
-        for i in range(len(segs) - 1):
-            ka, kb = offs[i + 1] - 1, offs[i + 1]
-            F = np.zeros(3)
-            for load in inner.get(i, []):
-                F += force_components(load, t[ka], nv[ka])
-            for c in range(3):
-                kl, kr = _SUPPORT_SLOTS[scene.supports.left][c], _SUPPORT_SLOTS[scene.supports.right][c]
-                if six and kl != kr:  # one kinematic end: continuity into the constitutive row away from it
-                    kc, kj = (kb, ka) if kl else (ka, kb)
-                    row = c * N + kc
-                else:  # both or neither (mirror-symmetric): both conditions replace equilibrium rows
-                    kc, kj = ka, kb
-                    row = eq0 + c * N + kc
-                add(row, [c * N + ka, c * N + kb], [1.0, -1.0])
-                rb[row] = 0.0
-                cb, vb = resultant(c, kb)
-                ca, va = resultant(c, ka)
-                add(eq0 + c * N + kj, np.r_[cb, ca], np.r_[vb, -va])
-                rb[eq0 + c * N + kj] = -F[c]
-        rows = np.array(sorted(rb))
-        return rows, np.array([rb[r] for r in rows]), (np.concatenate(rr), np.concatenate(rc), np.concatenate(rv))
-
-    def _assemble_resultants(self, scene, segs, offs, inner, ends, size, P, kap, t, nv, loads):
-        """Mixed form with N, Q, M as unknowns, straight into a band: (B, b, column scales), unknowns
-        (u_t, u_n, φ, N, Q, M) and rows (constitutive t, n, φ; equilibrium t, n, φ) interleaved per particle:
-
-            ε(u) - N/EA = 0,  γ(u) - Q/kGA = 0,  χ(u) - M/EI = 0        (Eq. 3–4)
-            D1 N - κ Q + p_t = 0,  D1 Q + κ N + p_n = 0,  D1 M + Q + m = 0   (Eq. 8–10)
-
-        with ε = D1 u_t - κ u_n, γ = D1 u_n + κ u_t - φ, χ = D1 φ. Every entry is written once (no sums), then
-        each row is divided by its largest coefficient and each column by its largest after that: the same
-        numbers, bit for bit, as the sparse assembly this replaced (scipy's products by diagonal matrices
-        round each entry once, as here)."""
-        N, nf = len(kap), 6
-        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
-        bw = nf * (size - 1)  # the end families reach size - 1 particles
-        B = Band(nf * N, bw, bw)
-        ext = Extent(B)
-        # particle's own block (offset 0): curvature couplings, compliances, Q in the moment equation
-        C0 = [[0.0] * nf for _ in range(nf)]
-        C0[0][1], C0[0][3] = -kap, -(1 / EA)
-        C0[1][0], C0[1][2], C0[1][4] = kap, -1.0, -(1 / kGA)
-        C0[2][5] = -(1 / EI)
-        C0[3][4], C0[4][3], C0[5][4] = -kap, kap, 1.0
-        ext.block(nf, 0, C0, 0, N)
-        for i, g in enumerate(segs):  # a few segments (load discontinuities), never a loop over particles
-            fam, W = _pddo.derivative_weights(g, P, size, (1,))
-            W = W[1]
-            first = fam[:, 0] - np.arange(len(g))  # offset of each family's first member (non-increasing)
-            for o in range(-(size - 1), size):  # one band diagonal per family offset and unknown
-                j = o - first
-                k = np.flatnonzero((j >= 0) & (j < size))  # the particles reaching offset o: contiguous
-                if not len(k):
-                    continue
-                k1, k2 = int(k[0]), int(k[-1]) + 1
-                c = W[np.arange(k1, k2), j[k1:k2]]
-                ext.block(
-                    nf, o, [[c if a == b else 0.0 for b in range(nf)] for a in range(nf)], offs[i] + k1, offs[i] + k2
-                )
-        # boundary and interface rows (component-major numbering -> interleaved)
-        rows, vals, (rr, rc, rv) = self._conditions(
-            scene,
-            N,
-            offs,
-            segs,
-            inner,
-            ends,
-            t,
-            nv,
-            3 * N,
-            True,
-            lambda c, k: (np.array([(3 + c) * N + k]), np.array([1.0])),
-        )
-        inter = lambda i: (i % N) * nf + i // N  # noqa: E731
-        rows, rr, rc = inter(rows), inter(rr), inter(rc)
-        B.clear_rows(rows)
-        B.add_entries(rr, rc, rv)
-        ext.entries(rr, rc)
-        b = np.zeros((N, nf))
-        b[:, 3], b[:, 4], b[:, 5] = -loads[0], -loads[1], -loads[2]
-        b = b.ravel()
-        b[rows] = vals
-        # equilibrate: each row divided by its largest coefficient, then each column
-        rs = 1.0 / ext.abs_max(rows=True)
-        ext.scale(rs, rows=True)
-        b *= rs
-        cs = 1.0 / ext.abs_max(rows=False)
-        ext.scale(cs, rows=False)
-        return B, b, cs
-
-    def _assemble_displacements(self, scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, loads):
-        """Three unknowns (u_t, u_n, φ) per particle: ``primal`` (Eq. 14–16) or ``mixed`` with the resultants
-        substituted. Sparse assembly: (K interleaved CSR, b, column scales (ones), strain operators)."""
-        N = len(kap)
-        D1s, D2s = [], []
-        for g in segs:  # a few segments (load discontinuities), never a loop over particles
-            D = _pddo.derivative_matrices(g, P, size, (1, 2))
-            D1s.append(D[1]), D2s.append(D[2])
-        D1 = sp.block_diag(D1s, format="csr")
-        D2 = sp.block_diag(D2s, format="csr")
-        I = sp.identity(N, format="csr")
-        Z = sp.csr_matrix((N, N))
-        K_ = sp.diags(kap)
-        Kp = sp.diags(dkap)
-        EA, kGA, EI = scene.EA, scene.kGA, scene.EI
-        # strain operators (rows: particles; block columns u_t, u_n, φ)
-        Eps = sp.hstack([D1, -K_, Z], format="csr")
-        Gam = sp.hstack([K_, D1, -I], format="csr")
-        Chi = sp.hstack([Z, Z, D1], format="csr")
-        if params["form"] == "mixed":  # condensed: the resultants substituted, D1 applied twice
-            dEps, dGam, dChi = D1 @ Eps, D1 @ Gam, D1 @ Chi
-        else:  # primal: the derivative of each strain written out, second derivatives by g^2
-            dEps = sp.hstack([D2, -Kp - K_ @ D1, Z], format="csr")
-            dGam = sp.hstack([Kp + K_ @ D1, D2, -D1], format="csr")
-            dChi = sp.hstack([Z, Z, D2], format="csr")
-        Kt = EA * dEps - kGA * (K_ @ Gam)
-        Kn = kGA * dGam + EA * (K_ @ Eps)
-        Kf = EI * dChi + kGA * Gam
-        K = sp.vstack([Kt, Kn, Kf], format="csr")
-        b = -np.concatenate(loads)
-        res = [(EA * Eps).tocsr(), (kGA * Gam).tocsr(), (EI * Chi).tocsr()]  # N, Q, M
-
-        def resultant(c, k):
-            r = res[c].getrow(k).tocoo()
-            return r.col, r.data
-
-        rows, vals, (rr, rc, rv) = self._conditions(scene, N, offs, segs, inner, ends, t, nv, 0, False, resultant)
-        n_all = 3 * N
-        keep = np.ones(n_all)
-        keep[rows] = 0.0
-        R = sp.csr_matrix((rv, (rr, rc)), shape=(n_all, n_all))
-        K = (sp.diags(keep) @ K + R).tocsr()
-        b = b * keep
-        b[rows] = vals
-        # equilibrate: each row divided by its largest coefficient
-        scale = 1.0 / abs(K).max(axis=1).toarray().ravel()
-        K = (sp.diags(scale) @ K).tocsr()
-        b = b * scale
-        # interleave (particle-major) so the matrix is banded
-        perm = np.arange(n_all).reshape(3, N).T.ravel()  # new index i -> old index perm[i]
-        inv = np.empty_like(perm)
-        inv[perm] = np.arange(n_all)
-        Cm = K.tocoo()
-        K = sp.csr_matrix((Cm.data, (inv[Cm.row], inv[Cm.col])), shape=K.shape)
-        return K, b[perm], np.ones(n_all), dict(Eps=Eps, Gam=Gam, Chi=Chi)
 
     def solve(self, scene: Scene, params: dict, body=None) -> Result:
         """Superposition of single-load solutions: the loads are grouped by the breaks they need (a point

@@ -141,8 +141,9 @@ def _readable(v) -> str:
     return fmt(v)
 
 
-def _units_of(res: pd.DataFrame, key: str) -> dict:
-    """Length unit ('m', 'in') of each scene (by ``key``: scene_file or scene), from the rows' ``units``."""
+def _units_of(res: pd.DataFrame, key: str, kind: str = "length") -> dict:
+    """Length unit ('m', 'in'; ``kind = "force"``: 'N', 'lbf') of each scene (by ``key``: scene_file or scene),
+    from the rows' ``units``."""
     from ..scene import UNITS
 
     if "units" not in res or key not in res:
@@ -150,8 +151,31 @@ def _units_of(res: pd.DataFrame, key: str) -> dict:
     out = {}
     for k, u in zip(res[key], res["units"]):
         if isinstance(u, str) and u in UNITS and k not in out:
-            out[k] = UNITS[u]["length"]
+            out[k] = UNITS[u][kind]
     return out
+
+
+RESULTANTS = (("N", "axial force N"), ("Q", "shear force Q"))  # curved-beam fields drawn beside the deflection
+
+
+def resultant_figures(curves: list[tuple[str, dict]], title: str, unit: str, force: str) -> list[str]:
+    """Axial force N and shear force Q along the axis, one figure each, of the curves that return them
+    (pd-curved and the exact curved beams: ``fields`` N and Q). The vertical range is the exact curves' (labels
+    starting with ``exact-``) widened by half its span, so that a locked run's resultants (the primal form's N
+    can be off by 50x) leave the axes instead of hiding the others; without an exact curve every curve sets it."""
+    figs = []
+    for key, name in RESULTANTS:
+        got = [(label, c["x"], c["fields"][key]) for label, c in curves if key in c.get("fields", {})]
+        if not got:
+            continue
+        exact = [y for label, _, y in got if label.startswith("exact-")]
+        ylim = None
+        if exact:
+            lo, hi = min(float(np.min(y)) for y in exact), max(float(np.max(y)) for y in exact)
+            pad = 0.5 * (hi - lo) or 0.5 * max(abs(lo), abs(hi), 1e-300)
+            ylim = (lo - pad, hi + pad)
+        figs.append(figures.deflection(got, None, f"{title}: {name}", key, unit, yunit=force, ylim=ylim))
+    return figs
 
 
 def _curve(d: Path, path: Path) -> dict:
@@ -203,6 +227,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; run `pdverify study STUDY.toml --out {d}` again")
     unit_of_file, unit_of_scene = _units_of(res, "scene_file"), _units_of(res, "scene")
+    force_of_file = _units_of(res, "scene_file", "force")
     conv, lock, se, sesum, bench, trust, checks = (
         _read(d, n)
         for n in ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust", "checks")
@@ -216,7 +241,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     for sfile, g in ok.groupby("scene_file", sort=False):
         figs = []
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
-            curves, ref, ylabels = [], None, set()
+            curves, ref, ylabels, resultant_curves = [], None, set(), []
             # at most one curve per (model, variant): the finest grid
             for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
@@ -231,6 +256,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 else:
                     ylabels.add("w")
                 curves.append((_label(r), c["x"], y))
+                if {"N", "Q"} <= set(c.get("fields", {})):
+                    resultant_curves.append((_label(r), c))
                 if ref is None or len(c["x"]) > len(ref[0]):
                     ref = (c["x"], c["w_ref"])
             title = g["scene"].iloc[0] + ("" if sl == -1 else f", L/h = {fmt(sl)}")
@@ -238,6 +265,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 ref = None
             unit = unit_of_file.get(sfile, "m")
             figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w", unit))
+            force = force_of_file.get(sfile, "N")
+            figs.extend(resultant_figures(resultant_curves, title, unit, force))
             for _, r in gs.iterrows():
                 path = case_file(d / "cases", r["case_id"])
                 c = curve_of(path) if path is not None else {}
@@ -317,6 +346,8 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             groups = []
             for _key, gg in g.groupby(["model", g["options"].fillna(""), g["points"].fillna(-1)]):
                 gg = gg.sort_values("slenderness")
+                if gg["slenderness"].nunique() < 2 or not (gg["err_max"] > 0).any():
+                    continue  # one slenderness is no sweep; a zero error (an exact model) has no log
                 groups.append(
                     (
                         _label(gg.iloc[0]).replace(f" L/h={fmt(gg.iloc[0]['slenderness'])}", ""),
@@ -325,7 +356,14 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                     )
                 )
             lock_figs.append(
-                (scene, Markup(figures.scatter(groups, "slenderness L/h", "max relative error", f"locking: {scene}")))
+                (
+                    scene,
+                    Markup(
+                        figures.scatter(
+                            groups, "slenderness L/h", "max relative error", f"locking: {scene}", connect=True
+                        )
+                    ),
+                )
             )
     speed_figs = []
     if not se.empty:
@@ -415,6 +453,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             convergence_figs=pick(conv_figs),
             horizon_figs=pick(horizon_figs),
             locking_figs=pick(lock_figs),
+            locking=table(readable_options(lock[lock["scene"].isin(names)] if "scene" in lock else lock)),
             speed_figs=pick(speed_figs),
             convergence=table(
                 readable_options(conv[conv["scene"].isin(names)] if "scene" in conv else conv),

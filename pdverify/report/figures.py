@@ -30,7 +30,10 @@ def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major")
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
     ax.grid(alpha=0.3, which=which)
-    ax.legend(fontsize=7)
+    if len(ax.get_legend_handles_labels()[0]) > 6:  # many curves: the legend beside the axes, not over the data
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    else:
+        ax.legend(fontsize=7)
     return _svg(fig)
 
 
@@ -40,14 +43,19 @@ def deflection(
     title: str,
     ylabel: str = "w",
     unit: str = "m",
+    yunit: str | None = None,
+    ylim: tuple[float, float] | None = None,
 ) -> str:
-    """Deflection (or another point field) along the axis; lengths in the scene's ``unit`` (Scene.length_unit)."""
+    """Deflection (or another point field) along the axis; lengths in the scene's ``unit`` (Scene.length_unit),
+    the field in ``yunit`` (default: ``unit``); ``ylim``: the vertical range drawn (curves beyond it leave it)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
     if ref is not None:
         ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="reference")
     for label, x, w in curves:
         ax.plot(x, w, "-", lw=1.2, marker="o" if len(x) <= 30 else None, ms=3, label=label)
-    return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({unit})", title)
+    if ylim is not None:
+        ax.set_ylim(*ylim)
+    return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({yunit or unit})", title)
 
 
 def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
@@ -73,10 +81,12 @@ def scatter(
     title: str,
     front: tuple[np.ndarray, np.ndarray] | None = None,
     logx=True,
+    connect: bool = False,
 ) -> str:
+    """Points per group (``connect``: joined in the given order, e.g. a sweep)."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     for label, x, y in groups:
-        ax.plot(x, y, "o", ms=4, label=label)
+        ax.plot(x, y, "o-" if connect else "o", ms=4, lw=1, label=label)
     if front is not None and len(front[0]):
         o = np.argsort(front[0])
         ax.plot(front[0][o], front[1][o], "k--", lw=1, label="Pareto front")

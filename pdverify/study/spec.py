@@ -4,7 +4,8 @@
 name = "pd-eb convergence"
 scenes = ["paper_diyaroglu/clamped_free.toml"]   # relative to the study file
 reference = "exact-eb"                            # or {model = "fem-eb", points = 401}
-[[runs]]                                          # a run may set its own reference and scenes (a subset)
+[[runs]]                                          # a run may set its own reference, scenes (a subset) and
+                                                  # slenderness list (instead of [sweep]'s)
 model = "pd-eb"
 variant = ["paper", "corrected"]                  # every list is a sweep axis
 points = [51, 101, 201]
@@ -51,7 +52,7 @@ from ..registry import get_model
 from ..scene import Scene, load_scene, read_toml
 from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
 
-RUN_KEYS = {"model", "reference", "scenes"}
+RUN_KEYS = {"model", "reference", "scenes", "slenderness"}
 STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
 BENCH_KEYS = set(BENCH_VALUES)  # the values of a benchmark row; its other keys filter the cases
 
@@ -351,6 +352,15 @@ def load_study(path: str | Path) -> Study:
         if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
             errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
             continue
+        run_slen = slen
+        if "slenderness" in run:  # this run's own slenderness sweep, in place of [sweep]'s
+            run_slen = _as_list(run["slenderness"])
+            bad = [v for v in run_slen if not (finite_number(v) and v > 0)]
+            if bad or not run_slen:
+                errors.append(
+                    f"{where}.slenderness = {run['slenderness']!r}: give positive finite numbers (length / height)"
+                )
+                continue
         axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
         typed = [
             f"{where}.{why}"
@@ -378,7 +388,7 @@ def load_study(path: str | Path) -> Study:
                     except InputError as exc:
                         errors.append(f"{where}: reference: {exc.lines[0]}")
                         continue
-                for sl in slen:
+                for sl in run_slen:
                     scx = sc.with_slenderness(sl) if sl else sc
                     try:
                         model.resolve(scx, given)
