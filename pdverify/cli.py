@@ -331,7 +331,7 @@ def study(
     typer.echo(f"{spec.name}: {len(df)} cases ({counts}); results in {out}/results.csv", err=True)
     outcome = Outcome(spec, out, df)
     for _, r in df[df["status"] != "ok"].iterrows():
-        typer.echo(f"failed: {r['model']} on {r['scene_file']}: {r['message']}", err=True)
+        typer.echo(f"{r['status']}: {r['model']} on {r['scene_file']}: {r['message']}", err=True)  # failed / suspect
     for line in outcome.failures():
         typer.echo(line, err=True)
     from .verify.published import run_cards
