@@ -19,9 +19,9 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import SolveError
+from ..errors import InputError, SolveError
 from ..linalg import solve_linear
-from ..scene import Distributed, PointForce, PointMoment, Scene
+from ..scene import HELD, Distributed, PointForce, PointMoment, Scene
 
 _H = 1e-30  # complex step
 
@@ -79,16 +79,18 @@ def element_tangent(grad_fn, pts: list[np.ndarray], *args):
     return H
 
 
-AXIAL_HELD = {"clamped": True, "pinned": True, "guided": True, "roller": False, "free": False}
-"""Axial condition of each support (the same at both ends): clamped and pinned hold both displacements,
-guided holds the axial one (a symmetry plane: rotation and axial displacement zero, transverse free),
-roller and free leave it free."""
+AXIAL_HELD = {sup: held[0] for sup, held in HELD.items()}
+"""Axial condition of each support, the same at both ends: the scene's vocabulary (``pdverify.scene.HELD``,
+docs/supports.md): clamped and pinned hold the axial displacement; roller, guided (a sleeve: rotation held,
+slides along and across the axis) and free leave it free."""
 
 
 def held_dofs(left: str, right: str, n: int) -> list[int]:
     """Held real DOFs (2 i = axial u, 2 i + 1 = transverse w of point i) of supports ``left``/``right``.
-    When no end holds the axial displacement the middle point does (it removes the axial rigid motion
-    only: every transverse load gives no axial reaction there, and a mirror scene holds the same point)."""
+    When no end holds the axial displacement the middle point does: it removes the axial rigid motion only,
+    since dead transverse loads and couples have no axial resultant, so its reaction is zero (scenes with
+    axial loads and no end holding them are refused, :func:`axial_mechanism`); a mirror scene holds the same
+    point."""
     held = []
     for s, sup in ((0, left), (n - 1, right)):
         if sup in ("clamped", "pinned", "roller"):
@@ -98,6 +100,22 @@ def held_dofs(left: str, right: str, n: int) -> list[int]:
     if not (AXIAL_HELD[left] or AXIAL_HELD[right]):
         held.append(2 * (n // 2))
     return held
+
+
+def axial_mechanism(scene: Scene) -> str | None:
+    """The one-line reason a scene cannot be solved with an axial unknown, or None: no end holds the
+    axial displacement (roller, guided, free) while a load has an axial component."""
+    left, right = scene.supports.left, scene.supports.right
+    if AXIAL_HELD[left] or AXIAL_HELD[right]:
+        return None
+    axial = [i for i, l in enumerate(scene.loads) if getattr(l, "axial", 0.0)]
+    if not axial:
+        return None
+    return (
+        f"supports = {left}-{right}: no end holds the axial displacement (roller and guided slide, free is "
+        f"free), so the axial load of loads[{axial[0]}] has no reaction (a mechanism along the axis; ends = "
+        "mirror and the nonlinear path carry u); hold one end axially (clamped or pinned)"
+    )
 
 
 def _split(position: float, n: int, dx: float) -> tuple[int, float]:
@@ -156,6 +174,8 @@ class NonlinearBondPair:
     """Assembled on the extended grid (ghosts + real points); ``T`` maps real positions to it."""
 
     def __init__(self, scene: Scene, n: int, j: np.ndarray, beta: np.ndarray, alpha: float):
+        if (why := axial_mechanism(scene)) is not None:
+            raise InputError(why)
         self.scene, self.n = scene, n
         L = scene.length
         self.dx = dx = L / (n - 1)
@@ -168,6 +188,7 @@ class NonlinearBondPair:
         bi, bj, kb, xib = [], [], [], []
         c_a = scene.EA / np.sum(j * dx * beta * dx)
         real = lambda e: (e >= G) & (e < G + n)  # noqa: E731
+        ra_free = (scene.supports.left == "free", scene.supports.right == "free")
         for jj, bb in zip(j, beta):
             k = np.arange(n) + G
             ok = (k - jj >= 0) & (k + jj < N)
@@ -177,8 +198,13 @@ class NonlinearBondPair:
             centres.append(k[ok]), offs.append(np.full(ok.sum(), jj)), kp.append(alpha * bb * dx**2 * wk[ok])
             a = np.arange(N - jj)
             ra, rc = real(a), real(a + jj)
-            ok2 = ra | rc  # every bond with a real end; half of it when the other end is a ghost
-            wb = np.where(ra & rc, 1.0, 0.5)[ok2]
+            # each bond weighted by the fraction of its reference length inside [0, L] (a bond from point k to
+            # the ghost at k - jj counts k / jj): the weighted bond lengths of each offset sum to L, so a
+            # uniform strain carries exactly EA (half of every ghost bond overcounted L by dx: first order)
+            inside = np.clip(np.minimum(a + jj, G + n - 1) - np.maximum(a, G), 0, None) / jj
+            inside[(a < G) & ra_free[0] | (a + jj > G + n - 1) & ra_free[1]] = 0.5  # free ends: half (below)
+            ok2 = (ra | rc) & (inside > 0)
+            wb = inside[ok2]
             bi.append(a[ok2]), bj.append(a[ok2] + jj), kb.append(c_a * bb * dx**2 / (jj * dx) * wb)
             xib.append(np.full(ok2.sum(), jj * dx))
         self.pc, self.po, self.pk = (np.concatenate(a) for a in (centres, offs, kp))
