@@ -57,6 +57,23 @@ def test_roller_is_pinned_without_an_axial_unknown(name, other):
     assert np.array_equal(roller.w, pinned.w)
 
 
+@pytest.mark.parametrize(
+    "opts",
+    [
+        {"variant": "paper", "reading": "energy"},
+        {"variant": "paper", "reading": "literal"},
+        {"variant": "paper", "reading": "layer"},
+        {"form": "direct"},
+    ],
+)
+def test_roller_is_pinned_in_every_pd_eb_reading(opts):
+    """The same for pd-eb's other paths; before, reading = layer put the 2.015 dx layer at pinned ends only
+    (a roller-pinned simply supported beam 4.0 % off the pinned-pinned one at 101 points)."""
+    roller = run(parse_scene(scene_dict("roller", "roller", MIXED_LOADS)), "pd-eb", **opts)
+    pinned = run(parse_scene(scene_dict("pinned", "pinned", MIXED_LOADS)), "pd-eb", **opts)
+    assert np.array_equal(roller.w, pinned.w)
+
+
 def test_torsion_roller_holds_the_twist():
     loads = [{"type": "point_torque", "position": 0.7, "value": 30.0}]
     a = run(parse_scene(scene_dict("roller", "guided", loads)), "pd-torsion")

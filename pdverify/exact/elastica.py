@@ -18,16 +18,29 @@ Large rotations of a straight cantilever (clamped at one end, free at the other)
 
 Fields are given at the material coordinate x (arc length from the left end), as the nonlinear models
 report them: w = vertical displacement, u = axial displacement. Shear and stretching are neglected (EB).
+
+``extensible = true``: the extensible elastica (Reissner 1972, "On one-dimensional finite-strain beam
+theory", ZAMP 23, 795-804, without shear): the axis stretches by eps = N / EA, N the force along the
+tangent, and with s the reference arc length::
+
+    EI theta'' = -(1 + eps) P cos theta,   eps = P sin theta / EA,
+    x' = (1 + eps) cos theta,   z' = (1 + eps) sin theta
+
+with theta(0) = 0, theta'(L) = 0, solved by shooting on theta'(0) (no closed form; integration tolerance
+1e-12). Under an end couple N = 0 and the circle is unchanged. This is the reference for a model that
+carries axial stiffness (pd-bond-pair's nonlinear path): the inextensible tip differs from it by
+~ alpha h² / (12 L²) of L for a rectangle.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipeinc, ellipj, ellipk, ellipkinc
 
 from ..errors import InputError
-from ..registry import POINTS, Model
+from ..registry import POINTS, Model, Option
 from ..result import Result, Timer
 from ..scene import PointForce, PointMoment, Scene
 
@@ -59,6 +72,26 @@ def tip_force_shape(s: np.ndarray, L: float, P: float, EI: float) -> tuple[np.nd
     return x, z
 
 
+def extensible_tip_force_shape(
+    s: np.ndarray, L: float, P: float, EI: float, EA: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """(x, z) of the extensible elastica (module docstring) at reference arc lengths ``s``, force P > 0
+    towards +z, by shooting on theta'(0) in units of L (alpha = P L² / EI, stretch number P / EA)."""
+    alpha, e = P * L * L / EI, P / EA
+
+    def rhs(_, y):
+        th, dth = y[0], y[1]
+        st = 1 + e * np.sin(th)
+        return [dth, -alpha * st * np.cos(th), st * np.cos(th), st * np.sin(th)]
+
+    def shoot(q, dense=False):
+        return solve_ivp(rhs, [0, 1], [0.0, q, 0.0, 0.0], rtol=1e-12, atol=1e-14, dense_output=dense)
+
+    q = brentq(lambda q: shoot(q).y[1, -1], 0.0, alpha * (1 + e) * 1.01, xtol=1e-15, rtol=1e-15, maxiter=200)
+    y = shoot(q, dense=True).sol(np.asarray(s, float) / L)
+    return L * y[2], L * y[3]
+
+
 def tip_force_tip(alpha: float) -> tuple[float, float, float]:
     """(x_tip / L, z_tip / L, theta_0) for alpha = P L² / EI (the columns of Bisshopp & Drucker's table)."""
     if alpha == 0:
@@ -81,7 +114,15 @@ class ExactElastica(Model):
     name = "exact-elastica"
     title = "exact large-rotation cantilever (Euler elastica) under one end force or couple"
     source = "Bisshopp & Drucker 1945 (tip force, elliptic integrals); circular arc (tip couple)"
-    options = (POINTS,)
+    options = (
+        POINTS,
+        Option(
+            "extensible",
+            bool,
+            False,
+            "include the axial strain N / EA (Reissner's extensible elastica; tip force by shooting)",
+        ),
+    )
     reference = True
     axial = True
 
@@ -130,7 +171,12 @@ class ExactElastica(Model):
             # a ccw couple at the right end bends towards +z; at the left end (mirror image) towards -z
             X, Z = tip_moment_shape(s, load.value if side == 1 else -load.value, EI)
         else:
-            X, Z = tip_force_shape(s, L, abs(load.value), EI) if load.value else (s, 0 * s)
+            if not load.value:
+                X, Z = s, 0 * s
+            elif params.get("extensible"):
+                X, Z = extensible_tip_force_shape(s, L, abs(load.value), EI, scene.EA)
+            else:
+                X, Z = tip_force_shape(s, L, abs(load.value), EI)
             Z = np.sign(load.value) * Z
         u = X - s
         return {"w": Z, "u": u if side == 1 else -u}
@@ -149,7 +195,10 @@ class ExactElastica(Model):
             fields={"u": f["u"]},
             dofs=1,
             timings=timer.timings,
-            info={"theory": "inextensible Euler elastica (large rotations)"},
+            info={
+                "theory": ("extensible (Reissner)" if params.get("extensible") else "inextensible Euler")
+                + " elastica (large rotations)"
+            },
         )
 
 

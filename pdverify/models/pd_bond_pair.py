@@ -348,18 +348,18 @@ class PDBondPair(Model):
         with timer("solve"):
             P, shots, iters = model.solve(steps=params["steps"])
         X0 = model.X0
-        moments = [l for l in scene.loads if l.type == "point_moment"]
-        if (
-            (scene.supports.left, scene.supports.right) == ("clamped", "free")
-            and len(moments) == len(scene.loads) == 1
-            and abs(moments[0].position - scene.length) < 1e-12 * scene.length
-        ):
-            s_ = np.linspace(0, scene.length, 201)  # exact elastica: circles of radius EI / (factor M)
+        from ..exact.elastica import ExactElastica
+
+        elastica = ExactElastica()
+        if not elastica.reasons(scene):  # a cantilever under one end load: the exact elastica of each load step
+            s_ = np.linspace(0, scene.length, 201)
+            (load,) = scene.loads
             for shot in shots:
-                k = shot["factor"] * moments[0].value / scene.EI
-                xs = np.sin(k * s_) / k if k else s_
-                zs = (1 - np.cos(k * s_)) / k if k else 0 * s_
-                shot["exact_x"], shot["exact_z"] = xs.tolist(), zs.tolist()
+                at = scene.model_copy(
+                    update={"loads": [load.model_copy(update={"value": shot["factor"] * load.value})]}
+                )
+                f = elastica.evaluate(at, {"extensible": True}, s_)
+                shot["exact_x"], shot["exact_z"] = (s_ + f["u"]).tolist(), f["w"].tolist()
         return Result(
             scene=scene.name,
             model=self.name,

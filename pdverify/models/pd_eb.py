@@ -226,7 +226,9 @@ class PDEulerBernoulli(Model):
                 rr.append(np.full(len(cols), k))
                 cc.append(np.array(cols))
                 vv.append(np.array(vals))
-        layer = {side: reading == "layer" and sup == "pinned" and J > 2 for side, sup in ((0, left), (1, right))}
+        layer = {
+            side: reading == "layer" and sup in ("pinned", "roller") and J > 2 for side, sup in ((0, left), (1, right))
+        }
         for side in (0, 1):
             if not layer[side]:
                 continue
