@@ -54,7 +54,8 @@ ELEMENTS = {
     "q9": "ElementQuad2",
     "q4-bbar": "ElementQuad1",
     "q4-qm6": "ElementQuad1",
-}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3 (q4_variants)
+    "q4-reduced": "ElementQuad1",
+}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3, 1 (q4_variants)
 
 
 def mesh_lines(scene: Scene, points: int, layers: int):
@@ -91,7 +92,9 @@ class FemPlaneStress(Model):
             str,
             "q4",
             "q4 (full integration, 3x3 Gauss) | q8 | q9 | q4-bbar (2x2 with B-bar: PLANE182 "
-            "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3)",
+            "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3) | "
+            "q4-reduced (1-point quadrature + Flanagan-Belytschko hourglass vectors with bending stiffness: "
+            "PLANE182 KEYOPT(1)=1)",
             choices=tuple(ELEMENTS),
         ),
         Option(
