@@ -47,6 +47,7 @@ from pdverify.linalg import solve_linear
 from pdverify.registry import Model, Option
 from pdverify.result import Result, Timer
 from pdverify.scene import Distributed, PointForce, Scene
+from pdverify.stations import STATIONS_HELP, parse_stations
 
 ELEMENTS = {
     "q4": "ElementQuad1",
@@ -74,6 +75,37 @@ def _local(load, tan: np.ndarray, nor: np.ndarray):
         g = np.array([load.axial, load.value])
         return tan @ g, nor @ g
     return np.full(tan.shape[:-1], float(load.axial)), np.full(tan.shape[:-1], float(load.value))
+
+
+def _reactions(r: np.ndarray, basis, geo, length: float) -> dict[str, float]:
+    """Support reactions from r = K u - F (the nodal forces the supports put on the strip; round-off elsewhere),
+    summed over the nodes nearer each end: force along the end normal (+z for a straight beam), axial along the
+    end tangent, moment counter-clockwise about the end of the axis."""
+    ends = geo.position(np.array([0.0, length]))
+    tan, nor = geo.frame(np.array([0.0, length]))
+    xd, yd = _dofs(basis)
+    loc = basis.doflocs[:, xd]
+    near_left = np.hypot(*(loc - ends[0][:, None])) <= np.hypot(*(loc - ends[1][:, None]))
+    out = {}
+    for k, side in enumerate(("left", "right")):
+        sel = near_left if k == 0 else ~near_left
+        fx, fy = r[xd[sel]], r[yd[sel]]
+        arm = loc[:, sel] - ends[k][:, None]
+        f = np.array([fx.sum(), fy.sum()])
+        out[f"force_{side}"] = float(f @ nor[k])
+        out[f"axial_{side}"] = float(f @ tan[k])
+        out[f"moment_{side}"] = float(np.sum(arm[0] * fy - arm[1] * fx))
+    return out
+
+
+def _dofs(basis) -> tuple[np.ndarray, np.ndarray]:
+    """(x-DOFs, y-DOFs) of every node (vertices, and the mid-side / centre nodes of q8 / q9), paired."""
+    xs, ys = [basis.nodal_dofs[0]], [basis.nodal_dofs[1]]
+    for d in (basis.facet_dofs, basis.interior_dofs):
+        if d.shape[0]:
+            xs.append(d[0])
+            ys.append(d[1])
+    return np.concatenate(xs), np.concatenate(ys)
 
 
 class FemPlaneStress(Model):
@@ -106,6 +138,7 @@ class FemPlaneStress(Model):
             "normal (and, at the left, mean tangential) displacement of the end face zero (converges)",
             choices=("node", "face"),
         ),
+        Option("stations", str, "", STATIONS_HELP + " (straight axes)"),
     )
 
     def check(self, scene: Scene) -> list[str]:
@@ -134,6 +167,9 @@ class FemPlaneStress(Model):
 
         if params["layers"] % 2:
             raise InputError(f"layers = {params['layers']}: give an even number so the mid-line is a row of nodes")
+        stations = parse_stations(params.get("stations", ""), scene.length)
+        if len(stations) and not scene.is_straight:
+            raise InputError("stations: through-section stresses are given for straight axes only")
         timer = Timer()
         with timer("assemble"):
             el = params["element"]
@@ -261,6 +297,7 @@ class FemPlaneStress(Model):
                         row[face[:, k]] += tan_s[i]
                         row[face[:, 0]] -= tan_s[i]
                         crows.append(row)
+            K0, F0 = K, F.copy()  # before the supports' rotation: the reactions are K0 u - F0
             T = None
             if pairs:
                 pr, tg = np.hstack(pairs), np.hstack(tangents)
@@ -303,6 +340,11 @@ class FemPlaneStress(Model):
             plane_stress_lambda=lam,
             load_resultant=resultant,
         )
+        info["reactions"] = _reactions(K0 @ u - F0, basis, geo, scene.length)
+        if len(stations):
+            from reference_fem.stresses import through_section
+
+            info["sections"] = through_section(basis, u, stations, h, 4 * params["layers"] + 1, lam, mu)
         if not scene.is_straight:
             info.update(
                 axis=scene.axis.type,

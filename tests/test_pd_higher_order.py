@@ -8,19 +8,10 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-from pdverify.models.pd_higher_order import (
-    NF,
-    PDHigherOrder,
-    assemble_blocks,
-    bond_weights,
-    coefficients,
-    constraint_map,
-    energy,
-    family,
-    load_vector,
-    mirror_map,
-    taylor_map,
-)
+from pdverify.models._higher_order_bonds import NF, assemble_blocks, bond_weights, coefficients, energy
+from pdverify.models._higher_order_ends import constraint_map, load_vector, mirror_map, taylor_map
+from pdverify.models.pd_common import family
+from pdverify.models.pd_higher_order import PDHigherOrder
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
 
