@@ -351,28 +351,10 @@ class FemPlaneStress(Model):
                 geometry=("quadratic edges on the mapped curves" if not el.startswith("q4") else "straight-edged q4"),
             )
 
-        def write_vtu(path, mesh=mesh, u=u, basis=basis, E=E, nu=nu, lam=lam, mu=mu):
-            import meshio
+        def write_vtu(path, u=u, basis=basis, lam=lam, mu=mu):
+            from reference_fem import vtu
 
-            nv = mesh.nvertices
-            pux, puy = u[vx], u[vy]
-            ip = basis.interpolate(u)
-            g = ip.grad  # (2, 2, nelems, nqp)
-            exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
-            sxx = lam * (exx + eyy) + 2 * mu * exx
-            syy = lam * (exx + eyy) + 2 * mu * eyy
-            sxy = 2 * mu * exy
-            vm = np.sqrt(sxx**2 - sxx * syy + syy**2 + 3 * sxy**2).mean(axis=1)
-            pts = np.column_stack([mesh.p[0, :nv], mesh.p[1, :nv], np.zeros(nv)])
-            meshio.write(
-                path,
-                meshio.Mesh(
-                    pts,
-                    [("quad", mesh.t[:4].T)],
-                    point_data={"displacement": np.column_stack([pux, puy, 0 * pux])},
-                    cell_data={"von_mises": [vm]},
-                ),
-            )
+            vtu.write(path, basis, u, lam, mu)
 
         def write_png(path):
             import os
