@@ -33,9 +33,12 @@ forces perpendicular to the chord of the neighbouring mid-height nodes (for a st
 vertical forces).
 Output: at the mid-line vertices (t = 0), x = arc length s, w = u·n, fields u = u·t (tangential),
 ux, uy (global), rotation of the section line = (u_t(bottom) - u_t(top)) / h; ``--out result.vtu``
-writes the 2D displacement and cell von Mises stress (meshio), ``--out result.png`` a picture;
+writes the element's own cells (quad / quad8 / quad9) with the displacement and the nodal stresses
+(reference_fem/vtu.py), ``--out result.png`` a picture (colour bar and displacement scale stated);
 ``info.load_resultant`` = (Fx, Fy, Mz about the axis' left end) of the assembled load vector (every
-load above is placed so that it equals the beam load's resultant).
+load above is placed so that it equals the beam load's resultant); ``info.reactions`` = K u - F summed over
+each end's nodes (force along the end normal, axial, moment ccw about the end of the axis); option
+``stations``: ``info.sections``, sigma_xx(z), sigma_zz(z), tau_xz(z) at those x (reference_fem/stresses.py).
 """
 
 from __future__ import annotations
