@@ -189,3 +189,17 @@ def test_vtu_quadratic_cells_and_nodal_stresses(element, cell, nodes, tmp_path):
     assert np.all(m.point_data["von_mises"] >= 0)
     if element != "q4":
         assert np.abs(m.point_data["displacement"][:, 1] - ex["w"]).max() < 1e-4 * np.abs(ex["w"]).max()
+
+
+def test_solve_csv_and_table_carry_the_sections_as_comment_lines(tmp_path, capsys):
+    import pandas as pd
+
+    scene = ROOT / "studies/examples/sine_strip.toml"
+    out = tmp_path / "r.csv"
+    args = ["solve", scene, "-m", "pd-higher-order", "--points", "51", "-o", "stations=0.25,0.5"]
+    assert cli([*args, "--out", out], capsys)[0] == 0
+    text = out.read_text().splitlines()
+    assert "# section x = 0.25: z, sigma_xx, sigma_zz, tau_xz" in text and text[0].startswith("# reactions: ")
+    assert pd.read_csv(out, comment="#").shape == (51, 6)
+    code, table, _ = cli(args, capsys)
+    assert code == 0 and "# section x = 0.5: z, sigma_xx, sigma_zz, tau_xz" in table
