@@ -309,8 +309,7 @@ class FemPlaneStress(Model):
                     K = (T.T @ K @ T).tocsr()
                     F = T.T @ F
             fixed = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
-            free = np.setdiff1d(np.arange(basis.N), fixed)
-            Kf, Ff = K[free][:, free], F[free]
+            Kf, Ff, _, free = fem.condense(K, F, D=fixed)  # the held DOFs (zero) eliminated
             S = None
             if crows:  # eliminate one master dof per face-mean constraint: u_f = S v
                 C = np.vstack(crows)
