@@ -6,6 +6,8 @@ its variants and their reasons are in pd_higher_order.py."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -88,7 +90,8 @@ def bond_weights(
     """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
     is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
     on the discrete family so that Σ_j omega_kj xi^2 = 1, per point on its actual (possibly truncated)
-    family (``calibrate = "point"``) or on the full family (``"family"``, grids with ghost points).
+    family (``calibrate = "point"``), with the end layers' weights of :func:`end_layer_weights` (``"patch"``),
+    or on the full family (``"family"``, grids with ghost points).
     ``points``: the indices k (of the n-point grid) whose weights are wanted, ``volumes`` given on them
     (default all points); each weight is computed point by point, so a subset gets the same bits.
     ``fractions``: the paper's family volumes (:func:`family`)."""
@@ -103,11 +106,71 @@ def bond_weights(
     if variant == "paper":
         delta = (m + 0.015) * dx
         return {off: volumes * r * dx / delta**2 for off, r in raw.items()}
-    if calibrate == "point":
+    if calibrate in ("point", "patch"):
         S = sum(r * (abs(off) * dx) ** 2 for off, r in raw.items())  # Σ beta |xi| over the actual family
     else:
         S = 2.0 * float(np.sum(beta * d * dx))
-    return {off: volumes * r / S for off, r in raw.items()}
+    out = {off: volumes * r / S for off, r in raw.items()}
+    if calibrate == "patch":
+        for (kk, off), wv in end_layer_weights(n, float(m), float(dx), fractions).items():
+            out[off] = np.where(k == kk, wv, out[off])
+    return out
+
+
+@functools.lru_cache(maxsize=64)
+def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> dict[tuple[int, int], float]:
+    """{(k, offset): V_k omega} of the bonds of the points within 2J of either end (corrected variant, truncated
+    families, trapezoidal volumes V = dx, dx/2 at the ends), replacing the per-point calibration there.
+
+    Why: with the along-the-bond measures every bond measure is xi times the mean of nearest-neighbour segment
+    measures (a, c, g, e) or xi times a point value (s = 2 xi w*_k), so U = Σ_k Σ_j w_kj xi^2 Q^(mean segment
+    strain, 2 w*_k) / 2h. A uniform state is in equilibrium (the patch test) only if every segment s carries the
+    same total R_s = Σ_{bonds over s} w_kj xi^2 / d = dx, and it has the right energy only if every point keeps
+    Σ_j w_kj xi^2 = V_k. The per-point calibration gives the second but not the first in the end layers (ghost
+    forces: first order at m >= 2). Here both hold: the weights are the least change of the per-point ones,
+    weighted by their size (min Σ ((w - w0) / w0)^2), subject to those linear conditions (a small dense
+    solve per end layer; the interior keeps its weights, where both hold already). Mirror-symmetric by
+    construction; for m = 1 the per-point weights already satisfy both (no change)."""
+    d, beta = family(m, dx, "corrected", fractions)
+    J = int(d.max())
+    KL = min(2 * J, (n - 1) // 2)  # layer points per end (a short grid: the two layers meet)
+    offs = [(int(sg * dd), bb) for sg in (1, -1) for dd, bb in zip(d, beta)]
+    layer = sorted(set(range(KL + 1)) | set(range(n - 1 - KL, n)))
+    near = sorted(set(range(min(n, KL + 2 * J + 1))) | set(range(max(0, n - 1 - KL - 2 * J), n)))
+    V = np.full(n, dx)
+    V[[0, n - 1]] = dx / 2
+    w0 = {}  # per-point calibrated weights of the points near the ends
+    for k in near:
+        fam = [(o, bb / (abs(o) * dx)) for o, bb in offs if 0 <= k + o < n]
+        S = sum(r * (abs(o) * dx) ** 2 for o, r in fam)
+        w0.update({(k, o): V[k] * r / S for o, r in fam})
+    var = [b for b in w0 if b[0] in set(layer)]
+    col = {b: i for i, b in enumerate(var)}
+    rows, rhs = [], []
+    for k in layer:  # the point's calibration
+        a = np.zeros(len(var))
+        for o, _ in offs:
+            if (k, o) in col:
+                a[col[(k, o)]] = (abs(o) * dx) ** 2
+        rows.append(a)
+        rhs.append(V[k])
+    segs = sorted({sg for k, o in var for sg in range(min(k, k + o), max(k, k + o))})
+    for sg in segs:  # the segment's total: R_s = dx
+        a, c = np.zeros(len(var)), 0.0
+        for (k, o), wv in w0.items():
+            if min(k, k + o) <= sg < max(k, k + o):
+                if (k, o) in col:
+                    a[col[(k, o)]] += abs(o) * dx * dx
+                else:
+                    c += wv * abs(o) * dx * dx
+        rows.append(a)
+        rhs.append(dx - c)
+    A, b = np.array(rows), np.array(rhs)
+    x0 = np.array([w0[v] for v in var])
+    W = x0 * x0
+    lam = np.linalg.lstsq((A * W) @ A.T, b - A @ x0, rcond=None)[0]
+    x = x0 + W * (A.T @ lam)
+    return {v: float(xv) for v, xv in zip(var, x)}
 
 
 def assemble_blocks(

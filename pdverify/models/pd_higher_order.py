@@ -68,12 +68,14 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    end (zero shear strain where the shear force is largest);
 4. loads where the plane-stress reference applies them (option ``loads = faces``): distributed loads and
    interior forces on the top face (work on w + h^2/4 w*), end forces as a parabolic shear traction
-   (w + h^2/20 w*), end moments as a linear normal traction (theta + 3 h^2/20 theta*).
-Observed order at fixed m = 3: 1.0 (the per-point calibration leaves the bond weights V_k omega_kj
-unsymmetric in the end layers: a linear field is not in equilibrium there, ghost forces as in
-quasicontinuum coupling; ghost points extrapolated by polynomials, ``ends = taylor``, do the same). With
-m = 1 the weights are symmetric and the order is 2.0. A linear-programming search for end-layer bond
-weights with the patch test and trapezoidal volumes found none for m = 2, 3.
+   (w + h^2/20 w*), end moments as a linear normal traction (theta + 3 h^2/20 theta*);
+5. end layers that pass the patch test (option ``end_layer = patch``,
+   :func:`~pdverify.models._higher_order_bonds.end_layer_weights`): the per-point
+   calibration alone (``end_layer = point``) leaves a uniform state out of equilibrium in the end layers (ghost
+   forces, as in quasicontinuum coupling; ``ends = taylor`` does the same): first order at m >= 2. The bonds of
+   the 2J + 1 points at each end get the least change of the per-point weights for which every point stays
+   calibrated and every nearest-neighbour segment carries the same total weight (the patch test of the segment
+   form of the energy with the along-the-bond measures); m = 1 is unchanged.
 
 Cost: the operator is assembled straight into LAPACK's band layout (:meth:`PDHigherOrder.assemble_band`):
 the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
@@ -179,6 +181,15 @@ class PDHigherOrder(Model):
             "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
             "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
             choices=("boundary", "point"),
+        ),
+        Option(
+            "end_layer",
+            str,
+            "patch",
+            "bond weights of the points within 2J of an end (ends = truncated): patch (each point calibrated and "
+            "every segment carrying the same total, so a uniform state is in equilibrium: second order at any m) | "
+            "point (per-point calibration only: ghost forces, first order at m >= 2)",
+            choices=("patch", "point"),
         ),
         Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
     )
@@ -295,7 +306,7 @@ class PDHigherOrder(Model):
                 ghosts_per_end=[J, J],
             )
         else:
-            G, calibrate, reach, fold = (0, 0), "point", 0, None
+            G, calibrate, reach, fold = (0, 0), params.get("end_layer", "patch"), 0, None
             info.update(boundary="truncated families (per-point calibration), essential end conditions")
         N = n + G[0] + G[1]
 
@@ -346,7 +357,9 @@ class PDHigherOrder(Model):
             ] = 0.0
             return D
 
-        rows_end = max(2 * J, reach + 1) + 1  # rows of each end from its window (beyond 2J: uniform; one spare)
+        # rows of each end from its window (beyond 2J: uniform; one spare); the patch-test end layer changes the
+        # bonds of the first 2J + 1 points, which reach J further
+        rows_end = max(2 * J + (J if calibrate == "patch" else 0), reach + 1) + 1
         span = rows_end + J  # window points: those rows and their partners
         if n >= 2 * span:
             parts = [(0, span, 0, rows_end), (n - span, n, span - rows_end, span)]
