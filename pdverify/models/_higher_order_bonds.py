@@ -86,6 +86,7 @@ def bond_weights(
     calibrate: str = "point",
     points: np.ndarray | None = None,
     fractions: str = "partial",
+    cuts: tuple[int, ...] = (),
 ) -> dict[int, np.ndarray]:
     """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
     is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
@@ -94,7 +95,11 @@ def bond_weights(
     or on the full family (``"family"``, grids with ghost points).
     ``points``: the indices k (of the n-point grid) whose weights are wanted, ``volumes`` given on them
     (default all points); each weight is computed point by point, so a subset gets the same bits.
-    ``fractions``: the paper's family volumes (:func:`family`)."""
+    ``fractions``: the paper's family volumes (:func:`family`). ``cuts`` (``"patch"`` only): interior points where
+    the beam is treated as two sub-beams sharing that point (no bond crosses it; each side has its own patch-test
+    end layer and half the point's volume): the weights are the sub-beams' weights added."""
+    if cuts and calibrate == "patch" and variant != "paper":
+        return _cut_weights(n, m, dx, variant, points, fractions, tuple(sorted(cuts)))
     d, beta = family(m, dx, variant, fractions)
     k = np.arange(n) if points is None else np.asarray(points, np.int64)
     raw = {}
@@ -114,6 +119,23 @@ def bond_weights(
     if calibrate == "patch":
         for (kk, off), wv in end_layer_weights(n, float(m), float(dx), fractions).items():
             out[off] = np.where(k == kk, wv, out[off])
+    return out
+
+
+def _cut_weights(n, m, dx, variant, points, fractions, cuts) -> dict[int, np.ndarray]:
+    """:func:`bond_weights` of a grid cut at the points ``cuts``: the sum over the sub-beams [0, c1], [c1, c2], ...,
+    [c_last, n - 1] of their own patch-calibrated weights (trapezoidal volumes on each sub-beam)."""
+    k = np.arange(n) if points is None else np.asarray(points, np.int64)
+    bounds = [0, *cuts, n - 1]
+    out: dict[int, np.ndarray] = {}
+    for lo, hi in zip(bounds[:-1], bounds[1:]):
+        inside = (k >= lo) & (k <= hi)
+        kl = k[inside] - lo
+        nn = hi - lo + 1
+        V = np.where((kl == 0) | (kl == nn - 1), dx / 2, dx)
+        for off, wt in bond_weights(nn, m, dx, variant, V, "patch", points=kl, fractions=fractions).items():
+            full = out.setdefault(off, np.zeros(len(k)))
+            full[inside] += wt
     return out
 
 

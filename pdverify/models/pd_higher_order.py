@@ -96,7 +96,7 @@ from ..errors import InputError
 from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
-from ..scene import Scene
+from ..scene import PointForce, PointMoment, Scene
 from ..stations import STATIONS_HELP, parse_stations
 from ._higher_order_bonds import NF, TH, TS, WS, W, assemble_blocks, bond_weights, coefficients, uniform_blocks
 from ._higher_order_ends import constraint_map, end_conditions, extended_volumes, load_vector, mirror_map, taylor_map
@@ -190,6 +190,14 @@ class PDHigherOrder(Model):
             "every segment carrying the same total, so a uniform state is in equilibrium: second order at any m) | "
             "point (per-point calibration only: ghost forces, first order at m >= 2)",
             choices=("patch", "point"),
+        ),
+        Option(
+            "cuts",
+            str,
+            "loads",
+            "with end_layer = patch: loads (no bond crosses a point that carries an interior point force or moment; "
+            "each side gets its own patch-test layer: second order under point loads) | none",
+            choices=("loads", "none"),
         ),
         Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
     )
@@ -310,7 +318,11 @@ class PDHigherOrder(Model):
             info.update(boundary="truncated families (per-point calibration), essential end conditions")
         N = n + G[0] + G[1]
 
-        def weights(k):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
+        cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
+        if cuts:
+            info["cuts"] = [float(x[c]) for c in cuts]
+
+        def weights(k, cuts=cuts):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
             return bond_weights(
                 N,
                 m,
@@ -320,6 +332,7 @@ class PDHigherOrder(Model):
                 calibrate,
                 points=k,
                 fractions=fractions,
+                cuts=cuts,
             )
 
         def window(r0: int, r1: int, constrained: bool = True) -> np.ndarray:
@@ -363,6 +376,10 @@ class PDHigherOrder(Model):
         span = rows_end + J  # window points: those rows and their partners
         if n >= 2 * span:
             parts = [(0, span, 0, rows_end), (n - span, n, span - rows_end, span)]
+            R = 3 * J + 2  # rows changed by a cut: its two end layers (2J + 1 points each side) and their bonds
+            for c in cuts:
+                r0, r1 = max(0, c - R - J), min(n, c + R + J + 1)
+                parts.insert(-1, (r0, r1, c - R - r0, c + R + 1 - r0))
         else:  # a small grid: one window is the whole matrix
             parts = [(0, n, 0, n)]
         dense = [(r0, a, window(r0, r1)[NF * a : NF * b]) for r0, r1, a, b in parts]
@@ -379,7 +396,7 @@ class PDHigherOrder(Model):
         B = Band(NF * n, bw, bw)
         if len(parts) > 1:
             mid = G[0] + n // 2
-            interior = {off: float(wt[0]) for off, wt in weights(np.array([mid])).items()}
+            interior = {off: float(wt[0]) for off, wt in weights(np.array([mid]), cuts=()).items()}
             B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
@@ -397,6 +414,26 @@ class PDHigherOrder(Model):
         if variant == "paper":
             info.update(volumes=fractions, mirror=about)
         return B, b, (drop, tie), info
+
+    @staticmethod
+    def cut_points(scene: Scene, params: dict, x: np.ndarray, J: int) -> tuple[int, ...]:
+        """Interior grid points carrying a point force or moment where the corrected variant cuts the bonds
+        (option ``cuts = loads``; ends = truncated, end_layer = patch): loads exactly on a point, at least 4J + 1
+        spacings from either end and from every other such load (a symmetric rule: mirror scenes cut alike)."""
+        if params.get("cuts", "loads") != "loads":
+            return ()
+        n, dx = len(x), x[1] - x[0]
+        cand = set()
+        for load in scene.loads:
+            if isinstance(load, (PointForce, PointMoment)):
+                p = (load.position - x[0]) / dx
+                i = int(round(p))
+                if abs(p - i) < 1e-9 and 0 < i < n - 1:
+                    cand.add(i)
+        gap = 4 * J + 1
+        return tuple(
+            sorted(c for c in cand if min(c, n - 1 - c) >= gap and all(abs(c - o) >= gap for o in cand if o != c))
+        )
 
     def assemble(self, scene: Scene, params: dict) -> System:
         """The band of :meth:`assemble_band` (the system ``solve`` factorises): u interleaved (theta, theta*,
