@@ -75,7 +75,12 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    forces, as in quasicontinuum coupling; ``ends = taylor`` does the same): first order at m >= 2. The bonds of
    the 2J + 1 points at each end get the least change of the per-point weights for which every point stays
    calibrated and every nearest-neighbour segment carries the same total weight (the patch test of the segment
-   form of the energy with the along-the-bond measures); m = 1 is unchanged.
+   form of the energy with the along-the-bond measures); m = 1 is unchanged;
+6. bonds cut at interior point loads (option ``cuts = loads``, :meth:`PDHigherOrder.cut_points`): the beam is
+   the sum of sub-beams sharing each loaded point, each with its own patch-test end layers, so no bond averages
+   the kink of w* (and of the shear) under a concentrated load; loads exactly on a point, at least 4J + 1
+   spacings from the ends and from each other.
+Measured orders: docs/models/yang.md.
 
 Cost: the operator is assembled straight into LAPACK's band layout (:meth:`PDHigherOrder.assemble_band`):
 the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
