@@ -135,6 +135,7 @@ def _table(result) -> str:
         if not isinstance(v, (list, dict)):
             lines.append(f"# {k}: {v}")
     lines += [f"# {w}" for w in result.warning_lines()]
+    lines += [f"# {w}" for w in result.output_lines()]
     lines.append("".join(f"{n:>16}" for n in names))
     n = len(cols["x"])
     for i in range(n):

@@ -466,6 +466,19 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         solved = m.solve(scene, params)
     result = check_finite(solved)
+    if (
+        "reactions" not in result.info
+        and scene.is_straight
+        and scene.dynamics is None
+        and m.bending
+        and m.theory in ("euler-bernoulli", "timoshenko")
+        and len(result.x) >= 4
+    ):
+        from .reactions import equilibrium_reactions
+
+        result.info["reactions"] = equilibrium_reactions(
+            scene, result.x, result.w, result.rotation, result.fields.get("M")
+        )
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

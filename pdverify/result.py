@@ -71,8 +71,25 @@ class Result:
 
     def to_csv(self) -> str:
         """A header line and one row per point; a result that carries warnings starts with one comment
-        line per warning, ``# warning: ...`` (read it back with ``pandas.read_csv(..., comment="#")``)."""
-        return "".join(f"# {line}\n" for line in self.warning_lines()) + columns_csv(self.columns())
+        line per warning, ``# warning: ...``, and, when through-section stresses were asked for (option
+        ``stations``), the lines of :meth:`output_lines` (read it back with ``pandas.read_csv(..., comment="#")``;
+        without either it is a plain table)."""
+        head = self.warning_lines() + (self.output_lines() if self.info.get("sections") else [])
+        return "".join(f"# {line}\n" for line in head) + columns_csv(self.columns())
+
+    def output_lines(self) -> list[str]:
+        """``reactions: force_left=...`` and, per station of ``info["sections"]``, ``section x = ...: z,
+        sigma_xx, sigma_zz, tau_xz`` followed by one line of those four numbers per z (the CSV's comment lines
+        and the table's header; JSON carries them in ``info``)."""
+        out = []
+        r = self.info.get("reactions")
+        if r:
+            out.append("reactions: " + ", ".join(f"{k}={v:.8g}" for k, v in r.items() if not isinstance(v, str)))
+        for sec in self.info.get("sections", []):
+            out.append(f"section x = {sec['x']:.8g}: z, sigma_xx, sigma_zz, tau_xz")
+            rows = zip(sec["z"], sec["sigma_xx"], sec["sigma_zz"], sec["tau_xz"])
+            out += [", ".join(f"{v:.8g}" for v in row) for row in rows]
+        return out
 
     def warning_lines(self) -> list[str]:
         """``warning: ...`` once per entry of ``info["warnings"]`` (what the table and CSV formats print)."""

@@ -9,7 +9,8 @@ so every element edge is the quadratic interpolant of the mapped curve (isoparam
 every straight beam use ``MeshQuad1`` (straight edges; for a straight axis the map is the identity, bit for
 bit, so the straight results are unchanged).
 
-Loads are assembled edge by edge in the parameter: a density f(s, t) (force per unit parameter length, a
+Loads are assembled edge by edge in the parameter (on a straight axis, where parameter = physical coordinates,
+by scikit-fem's ``FacetBasis`` + ``LinearForm``): a density f(s, t) (force per unit parameter length, a
 global vector) on a row of edges t = t_j (or a column s = s_i) gives work-equivalent nodal forces
 ∫ f N_k dξ |dp/dξ| with the edge's Lagrange trace functions N_k (2 nodes, or 3 with the mid-side dof of
 q8/q9) and 8-point Gauss. Loads per unit length of the axis therefore keep their beam resultants on the
@@ -94,6 +95,8 @@ def line_forces(
     F = np.zeros(basis.N)
     if len(a) == 0:
         return F
+    if bm.geo.axis.type == "straight":  # parameter (s, t) = physical (x, y): scikit-fem's facet integration
+        return _facet_forces(bm, basis, a, b, density)
     xi = (_GX + 1) / 2
     sq = pa[0][:, None] + (pb[0] - pa[0])[:, None] * xi[None, :]
     tq = pa[1][:, None] + (pb[1] - pa[1])[:, None] * xi[None, :]
@@ -109,6 +112,21 @@ def line_forces(
         np.add.at(F, d[0], contrib[0])
         np.add.at(F, d[1], contrib[1])
     return F
+
+
+def _facet_forces(bm: BeamMesh, basis, a: np.ndarray, b: np.ndarray, density) -> np.ndarray:
+    """:func:`line_forces` on a straight axis with scikit-fem's idiom: a ``FacetBasis`` on the edges and a
+    ``LinearForm`` of the density (per unit physical length there), the same 8-point Gauss rule (intorder 15)."""
+    import skfem as fem
+    from skfem.helpers import dot
+
+    fb = fem.FacetBasis(bm.mesh, basis.elem, facets=bm.facet_ids(a, b), intorder=15)
+
+    @fem.LinearForm
+    def work(v, w):
+        return dot(density(w.x[0], w.x[1]), v)
+
+    return work.assemble(fb)
 
 
 def row_edges(bm: BeamMesh, j: int, lo: float = -np.inf, hi: float = np.inf):

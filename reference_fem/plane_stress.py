@@ -36,9 +36,12 @@ forces perpendicular to the chord of the neighbouring mid-height nodes (for a st
 vertical forces).
 Output: at the mid-line vertices (t = 0), x = arc length s, w = u·n, fields u = u·t (tangential),
 ux, uy (global), rotation of the section line = (u_t(bottom) - u_t(top)) / h; ``--out result.vtu``
-writes the 2D displacement and cell von Mises stress (meshio), ``--out result.png`` a picture;
+writes the element's own cells (quad / quad8 / quad9) with the displacement and the nodal stresses
+(reference_fem/vtu.py), ``--out result.png`` a picture (colour bar and displacement scale stated);
 ``info.load_resultant`` = (Fx, Fy, Mz about the axis' left end) of the assembled load vector (every
-load above is placed so that it equals the beam load's resultant).
+load above is placed so that it equals the beam load's resultant); ``info.reactions`` = K u - F summed over
+each end's nodes (force along the end normal, axial, moment ccw about the end of the axis); option
+``stations``: ``info.sections``, sigma_xx(z), sigma_zz(z), tau_xz(z) at those x (reference_fem/stresses.py).
 """
 
 from __future__ import annotations
@@ -50,6 +53,7 @@ from pdverify.linalg import solve_linear
 from pdverify.registry import Model, Option
 from pdverify.result import Result, Timer
 from pdverify.scene import Distributed, PointForce, Scene
+from pdverify.stations import STATIONS_HELP, parse_stations
 
 ELEMENTS = {
     "q4": "ElementQuad1",
@@ -57,7 +61,8 @@ ELEMENTS = {
     "q9": "ElementQuad2",
     "q4-bbar": "ElementQuad1",
     "q4-qm6": "ElementQuad1",
-}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3 (q4_variants)
+    "q4-reduced": "ElementQuad1",
+}  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3, 1 (q4_variants)
 
 
 def mesh_lines(scene: Scene, points: int, layers: int):
@@ -78,6 +83,37 @@ def _local(load, tan: np.ndarray, nor: np.ndarray):
     return np.full(tan.shape[:-1], float(load.axial)), np.full(tan.shape[:-1], float(load.value))
 
 
+def _reactions(r: np.ndarray, basis, geo, length: float) -> dict[str, float]:
+    """Support reactions from r = K u - F (the nodal forces the supports put on the strip; round-off elsewhere),
+    summed over the nodes nearer each end: force along the end normal (+z for a straight beam), axial along the
+    end tangent, moment counter-clockwise about the end of the axis."""
+    ends = geo.position(np.array([0.0, length]))
+    tan, nor = geo.frame(np.array([0.0, length]))
+    xd, yd = _dofs(basis)
+    loc = basis.doflocs[:, xd]
+    near_left = np.hypot(*(loc - ends[0][:, None])) <= np.hypot(*(loc - ends[1][:, None]))
+    out = {}
+    for k, side in enumerate(("left", "right")):
+        sel = near_left if k == 0 else ~near_left
+        fx, fy = r[xd[sel]], r[yd[sel]]
+        arm = loc[:, sel] - ends[k][:, None]
+        f = np.array([fx.sum(), fy.sum()])
+        out[f"force_{side}"] = float(f @ nor[k])
+        out[f"axial_{side}"] = float(f @ tan[k])
+        out[f"moment_{side}"] = float(np.sum(arm[0] * fy - arm[1] * fx))
+    return out
+
+
+def _dofs(basis) -> tuple[np.ndarray, np.ndarray]:
+    """(x-DOFs, y-DOFs) of every node (vertices, and the mid-side / centre nodes of q8 / q9), paired."""
+    xs, ys = [basis.nodal_dofs[0]], [basis.nodal_dofs[1]]
+    for d in (basis.facet_dofs, basis.interior_dofs):
+        if d.shape[0]:
+            xs.append(d[0])
+            ys.append(d[1])
+    return np.concatenate(xs), np.concatenate(ys)
+
+
 class FemPlaneStress(Model):
     name = "fem-plane-stress"
     title = "2D plane-stress continuum (scikit-fem; PLANE182 analogue with q4), straight or curved axis"
@@ -94,7 +130,9 @@ class FemPlaneStress(Model):
             str,
             "q4",
             "q4 (full integration, 3x3 Gauss) | q8 | q9 | q4-bbar (2x2 with B-bar: PLANE182 "
-            "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3)",
+            "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3) | "
+            "q4-reduced (1-point quadrature + Flanagan-Belytschko hourglass vectors with bending stiffness: "
+            "PLANE182 KEYOPT(1)=1)",
             choices=tuple(ELEMENTS),
         ),
         Option(
@@ -106,6 +144,7 @@ class FemPlaneStress(Model):
             "normal (and, at the left, mean tangential) displacement of the end face zero (converges)",
             choices=("node", "face"),
         ),
+        Option("stations", str, "", STATIONS_HELP + " (straight axes)"),
     )
 
     def check(self, scene: Scene) -> list[str]:
@@ -134,6 +173,9 @@ class FemPlaneStress(Model):
 
         if params["layers"] % 2:
             raise InputError(f"layers = {params['layers']}: give an even number so the mid-line is a row of nodes")
+        stations = parse_stations(params.get("stations", ""), scene.length)
+        if len(stations) and not scene.is_straight:
+            raise InputError("stations: through-section stresses are given for straight axes only")
         timer = Timer()
         with timer("assemble"):
             el = params["element"]
@@ -262,6 +304,7 @@ class FemPlaneStress(Model):
                         row[face[:, k]] += tan_s[i]
                         row[face[:, 0]] -= tan_s[i]
                         crows.append(row)
+            K0, F0 = K, F.copy()  # before the supports' rotation: the reactions are K0 u - F0
             T = None
             if pairs:
                 pr, tg = np.hstack(pairs), np.hstack(tangents)
@@ -270,8 +313,7 @@ class FemPlaneStress(Model):
                     K = (T.T @ K @ T).tocsr()
                     F = T.T @ F
             fixed = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
-            free = np.setdiff1d(np.arange(basis.N), fixed)
-            Kf, Ff = K[free][:, free], F[free]
+            Kf, Ff, _, free = fem.condense(K, F, D=fixed)  # the held DOFs (zero) eliminated
             S = None
             if crows:  # eliminate one master dof per face-mean constraint: u_f = S v
                 C = np.vstack(crows)
@@ -304,34 +346,21 @@ class FemPlaneStress(Model):
             plane_stress_lambda=lam,
             load_resultant=resultant,
         )
+        info["reactions"] = _reactions(K0 @ u - F0, basis, geo, scene.length)
+        if len(stations):
+            from reference_fem.stresses import through_section
+
+            info["sections"] = through_section(basis, u, stations, h, 4 * params["layers"] + 1, lam, mu)
         if not scene.is_straight:
             info.update(
                 axis=scene.axis.type,
                 geometry=("quadratic edges on the mapped curves" if not el.startswith("q4") else "straight-edged q4"),
             )
 
-        def write_vtu(path, mesh=mesh, u=u, basis=basis, E=E, nu=nu, lam=lam, mu=mu):
-            import meshio
+        def write_vtu(path, u=u, basis=basis, lam=lam, mu=mu):
+            from reference_fem import vtu
 
-            nv = mesh.nvertices
-            pux, puy = u[vx], u[vy]
-            ip = basis.interpolate(u)
-            g = ip.grad  # (2, 2, nelems, nqp)
-            exx, eyy, exy = g[0, 0], g[1, 1], 0.5 * (g[0, 1] + g[1, 0])
-            sxx = lam * (exx + eyy) + 2 * mu * exx
-            syy = lam * (exx + eyy) + 2 * mu * eyy
-            sxy = 2 * mu * exy
-            vm = np.sqrt(sxx**2 - sxx * syy + syy**2 + 3 * sxy**2).mean(axis=1)
-            pts = np.column_stack([mesh.p[0, :nv], mesh.p[1, :nv], np.zeros(nv)])
-            meshio.write(
-                path,
-                meshio.Mesh(
-                    pts,
-                    [("quad", mesh.t[:4].T)],
-                    point_data={"displacement": np.column_stack([pux, puy, 0 * pux])},
-                    cell_data={"von_mises": [vm]},
-                ),
-            )
+            vtu.write(path, basis, u, lam, mu)
 
         def write_png(path):
             import os

@@ -9,7 +9,18 @@ Gauss points, element matrices computed for all elements at once (arrays, no loo
   mean (Hughes 1980); in plane stress it does not touch shear locking;
 - ``qm6`` (KEYOPT(1) = 2/3, "enhanced strain"): Wilson's incompatible modes 1 - xi^2, 1 - eta^2 per direction
   with Taylor's correction (their derivatives through the centre Jacobian J0, weighted det J0 / det J, so the
-  patch test passes on distorted quads), condensed element by element (Taylor, Beresford & Wilson 1976).
+  patch test passes on distorted quads), condensed element by element (Taylor, Beresford & Wilson 1976);
+- ``reduced`` (KEYOPT(1) = 1, "uniform reduced integration with hourglass control"): one Gauss point at the
+  centre, K_1 = A B0^T D B0, plus a stiffness for the two hourglass modes. The modes are Flanagan &
+  Belytschko's (1981) orthogonal hourglass vectors gamma = (h - (h.x) b_x - (h.y) b_y) / 4, h = (1, -1, 1, -1),
+  b = dN/dx at the centre (gamma is orthogonal to every linear field, so the patch test holds on any quad);
+  the hourglass amplitudes q_i = gamma . u_i carry K_hg = (4/3) E A gamma gamma^T (x) (b b^T): the energy of
+  the mode's pure-bending strain with Young's modulus and without its parasitic shear, the "quintessential
+  bending" stabilisation of Belytschko & Bindeman (1993, plane stress: nu-bar = nu). For a rectangle
+  2a x 2b (b b^T = diag(1/4a^2, 1/4b^2), A = 4ab) the x mode u = q xi eta has e_xx = q eta / a and
+  K_hg = E (4ab/3) / a^2, which is also what Wilson's incompatible modes leave after condensation (they cancel
+  the parasitic shear and give the anticlastic e_yy = -nu e_xx), so on rectangles ``reduced`` is QM6's
+  matrix (tests/test_q4_variants.py); on distorted quads the two differ.
 """
 
 from __future__ import annotations
@@ -20,7 +31,7 @@ import scipy.sparse as sp
 XI = np.array([-1.0, 1.0, 1.0, -1.0])
 ETA = np.array([-1.0, -1.0, 1.0, 1.0])
 GAUSS = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]]) / np.sqrt(3.0)
-VARIANTS = ("full", "bbar", "qm6")
+VARIANTS = ("full", "bbar", "qm6", "reduced")
 
 
 def _plane_stress(E: float, nu: float) -> np.ndarray:
@@ -44,9 +55,26 @@ def _strain_matrix(dNx: np.ndarray) -> np.ndarray:
     return B
 
 
+def _reduced(X: np.ndarray, D: np.ndarray, E: float) -> np.ndarray:
+    """One-point quadrature + Flanagan-Belytschko hourglass vectors with the bending stiffness (module doc)."""
+    J0, dN = _jacobian(X, 0.0, 0.0)
+    b = np.einsum("eab,bk->eak", np.linalg.inv(J0), dN)  # ne x 2 x 4: dN/dx, dN/dy at the centre
+    area = 4.0 * np.linalg.det(J0)  # exact for a bilinear quad (det J is linear in xi, eta)
+    B0 = _strain_matrix(b)
+    K = np.einsum("eia,ij,ejb->eab", B0, D, B0) * np.abs(area)[:, None, None]
+    h = XI * ETA  # (1, -1, 1, -1) at the corners
+    hx = np.einsum("k,ekd->ed", h, X)  # (h.x, h.y) per element
+    gamma = 0.25 * (h[None, :] - np.einsum("ed,edk->ek", hx, b))
+    H = 4.0 / 3.0 * E * np.abs(area)[:, None, None] * np.einsum("eik,ejk->eij", b, b)  # 2 x 2 per element
+    Khg = np.einsum("ek,el,eij->ekilj", gamma, gamma, H).reshape(len(X), 8, 8)  # DOFs (x, y) node by node
+    return K + Khg
+
+
 def element_matrices(X: np.ndarray, E: float, nu: float, variant: str) -> np.ndarray:
     """K_e (ne x 8 x 8) per unit thickness; X: ne x 4 x 2 corner coordinates in cyclic order."""
     D = _plane_stress(E, nu)
+    if variant == "reduced":
+        return _reduced(X, D, E)
     J0, _ = _jacobian(X, 0.0, 0.0)
     det0 = np.linalg.det(J0)
     inv0 = np.linalg.inv(J0)

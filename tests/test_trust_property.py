@@ -18,7 +18,8 @@ tolerance: the model also solves the nested grids around n (n-1 halved twice, or
 twice), the differences d1, d2 of successive grids give the observed order p = log2(d1 / d2) and the
 Richardson estimate of the error at n (d / (2^p - 1) from the finer pair); the error must be at most
 SAFETY x that estimate, or under the round-off floor (FLOOR relative, or 100 x the result's own
-``info["error_bound"]``). A model converging to something other than the exact solution (a support read as
+``info["error_bound"]``), plus, for a theory other than the reference's (higher-order), its own distance from it
+(:data:`THEORY_GAP` x (h/L)^2). A model converging to something other than the exact solution (a support read as
 another structure, a wrong constant) converges in itself, so its error exceeds that estimate; a model whose
 solve breaks down with size stops converging in itself and fails the same way. A case beyond its prediction
 must carry a warning in ``info["warnings"]`` (every output format shows those), else the test fails with the
@@ -43,6 +44,12 @@ from pdverify.scene import SUPPORTS, Axis, is_mechanism, parse_scene
 SAFETY = 4.0  # the error may exceed the Richardson estimate by this factor (pre-asymptotic grids, off-grid loads)
 FLOOR = 1e-9  # relative errors below this always pass (round-off of a float64 solve at these sizes)
 BOUND_FACTOR = 100.0  # ... and below this many times the result's own round-off bound (info["error_bound"])
+# A theory other than its reference's converges to its own limit: the gap allowed on top of the prediction, times
+# (h/L)^2. higher-order vs exact Timoshenko: measured 0.09-0.43 (h/L)^2 on Yang's five benchmarks (L/h = 5:
+# +0.35..+1.70 %), 0.54 (0.99 %) and 1.27 (2.32 %: a centre force, whose local field counts most against the
+# small deflection of a clamped-clamped beam) on clamped-clamped strips at L/h = 7.4; it showed once the model's
+# first-order end-layer error was removed (issue #32), which had kept its self-convergence estimate above the gap.
+THEORY_GAP = {"higher-order": 3.0}
 
 # The exact solution each declared theory is measured against (straight axes; curved axes: exact-curved).
 REFERENCE = {
@@ -224,7 +231,8 @@ def check_case(scene, name: str, n: int):
     err = error(scene, model, res)
     est, p = predicted(scene, model, results, n)
     floor = max(FLOOR, BOUND_FACTOR * float(res.info.get("error_bound") or 0.0))
-    ok = err <= floor or err <= SAFETY * est or bool(res.info.get("warnings"))
+    gap = THEORY_GAP.get(model.theory, 0.0) * (scene.section.depth / scene.length) ** 2
+    ok = err <= floor or err <= SAFETY * est + gap or bool(res.info.get("warnings"))
     assert ok, (
         f"{name} at {n} points: error {err:.3g} > {SAFETY:g} x predicted {est:.3g} (observed order "
         f"{p:.2f}, floor {floor:.3g}) with no warning; grids {grids(n)}; scene {scene.to_dict()}"

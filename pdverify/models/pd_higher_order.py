@@ -68,12 +68,19 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    end (zero shear strain where the shear force is largest);
 4. loads where the plane-stress reference applies them (option ``loads = faces``): distributed loads and
    interior forces on the top face (work on w + h^2/4 w*), end forces as a parabolic shear traction
-   (w + h^2/20 w*), end moments as a linear normal traction (theta + 3 h^2/20 theta*).
-Observed order at fixed m = 3: 1.0 (the per-point calibration leaves the bond weights V_k omega_kj
-unsymmetric in the end layers: a linear field is not in equilibrium there, ghost forces as in
-quasicontinuum coupling; ghost points extrapolated by polynomials, ``ends = taylor``, do the same). With
-m = 1 the weights are symmetric and the order is 2.0. A linear-programming search for end-layer bond
-weights with the patch test and trapezoidal volumes found none for m = 2, 3.
+   (w + h^2/20 w*), end moments as a linear normal traction (theta + 3 h^2/20 theta*);
+5. end layers that pass the patch test (option ``end_layer = patch``,
+   :func:`~pdverify.models._higher_order_bonds.end_layer_weights`): the per-point
+   calibration alone (``end_layer = point``) leaves a uniform state out of equilibrium in the end layers (ghost
+   forces, as in quasicontinuum coupling; ``ends = taylor`` does the same): first order at m >= 2. The bonds of
+   the 2J + 1 points at each end get the least change of the per-point weights for which every point stays
+   calibrated and every nearest-neighbour segment carries the same total weight (the patch test of the segment
+   form of the energy with the along-the-bond measures); m = 1 is unchanged;
+6. bonds cut at interior point loads (option ``cuts = loads``, :meth:`PDHigherOrder.cut_points`): the beam is
+   the sum of sub-beams sharing each loaded point, each with its own patch-test end layers, so no bond averages
+   the kink of w* (and of the shear) under a concentrated load; loads exactly on a point, at least 4J + 1
+   spacings from the ends and from each other.
+Measured orders: docs/models/yang.md.
 
 Cost: the operator is assembled straight into LAPACK's band layout (:meth:`PDHigherOrder.assemble_band`):
 the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
@@ -88,386 +95,18 @@ whole-grid sparse route (tests/test_pd_higher_order.py).
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..band import Band
 from ..errors import InputError
 from ..linalg import solve_linear
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
-from ..scene import Distributed, PointForce, PointMoment, Scene
-from .pd_common import cell_integral, family
-
-NF = 4  # DOFs per point: theta, theta*, w, w*
-TH, TS, W, WS = range(NF)
-MIRROR = {  # (sign of theta, theta*, w, w*) of the fictitious images, Appendix B
-    "clamped": np.array([-1.0, -1.0, 1.0, 1.0]),
-    "guided": np.array([-1.0, -1.0, 1.0, 1.0]),
-    "pinned": np.array([1.0, 1.0, -1.0, -1.0]),
-    "roller": np.array([1.0, 1.0, -1.0, -1.0]),  # no axial unknown: roller = pinned
-}
-
-# -- kernels (arrays in, arrays out) ---------------------------------------------------------
-
-
-def coefficients(E: float, nu: float, G: float, h: float) -> np.ndarray:
-    """C (5x5) of Q = m^T C m for the bond measures m = (a, s, c, g, e): Eq. 9 / Eq. 15."""
-    Ep = E / (1.0 - nu * nu)
-    C = np.zeros((5, 5))
-    C[0, 0] = C[1, 1] = Ep * h**3 / 12
-    C[0, 1] = C[1, 0] = Ep * h**3 / 12 * nu
-    C[2, 0] = C[0, 2] = Ep * h**5 / 80
-    C[2, 1] = C[1, 2] = Ep * h**5 / 80 * nu
-    C[2, 2] = Ep * h**7 / 448
-    C[3, 3] = G * h
-    C[4, 4] = G * h**5 / 80
-    C[3, 4] = C[4, 3] = G * h**3 / 12
-    return C
-
-
-def bond_measures(xi: float, centred: bool = False) -> np.ndarray:
-    """M (5x8): m = M (u_k, u_j), u = (theta, theta*, w, w*) of the points k and j = k + xi.
-    ``centred``: the shear measures take the bond-mean rotations, g = w_j - w_k + xi (theta_k + theta_j)/2,
-    e = w*_j - w*_k + 3 xi (theta*_k + theta*_j)/2 (corrected variant: no shear locking)."""
-    M = np.zeros((5, 8))
-    M[0, [TH, NF + TH]] = -1.0, 1.0  # a
-    M[1, WS] = 2.0 * xi  # s
-    M[2, [TS, NF + TS]] = -1.0, 1.0  # c
-    if centred:
-        M[3, [TH, W, NF + TH, NF + W]] = xi / 2, -1.0, xi / 2, 1.0  # g
-        M[4, [TS, WS, NF + TS, NF + WS]] = 1.5 * xi, -1.0, 1.5 * xi, 1.0  # e
-    else:
-        M[3, [TH, W, NF + W]] = xi, -1.0, 1.0  # g
-        M[4, [TS, WS, NF + WS]] = 3.0 * xi, -1.0, 1.0  # e
-    return M
-
-
-def path_measures(off: int, dx: float) -> np.ndarray:
-    """M (5 x 4(|off| + 1)): the bond measures of k -> k + off on the points k + sign(off) a, a = 0..|off|, with
-    the shear measures summed over the bond's nearest-neighbour segments (``shear = path``):
-    g = w_j - w_k + Σ_a c_a theta_a, e = w*_j - w*_k + 3 Σ_a c_a theta*_a, c_a = xi/|off| (1/2 at the ends), the
-    trapezoid rule of the rotation along the bond; one bond (|off| = 1) is the centred measure. If every
-    nearest-neighbour shear measure vanishes so do all: no over-constraint of the J bonds (no locking)."""
-    d = abs(off)
-    xi = off * dx
-    c = np.full(d + 1, xi / d)
-    c[[0, d]] /= 2
-    M = np.zeros((5, NF * (d + 1)))
-    j = NF * d
-    M[0, [TH, j + TH]] = -1.0, 1.0  # a
-    M[1, WS] = 2.0 * xi  # s
-    M[2, [TS, j + TS]] = -1.0, 1.0  # c
-    M[3, [W, j + W]] = -1.0, 1.0  # g
-    M[3, NF * np.arange(d + 1) + TH] += c
-    M[4, [WS, j + WS]] = -1.0, 1.0  # e
-    M[4, NF * np.arange(d + 1) + TS] += 3 * c
-    return M
-
-
-def bond_block(C: np.ndarray, xi: float, centred: bool = False) -> np.ndarray:
-    """Hessian (8x8) of Q(M u) / 2 = the stiffness of one bond for unit weight."""
-    M = bond_measures(xi, centred)
-    return M.T @ C @ M
-
-
-def bond_weights(
-    n: int,
-    m: float,
-    dx: float,
-    variant: str,
-    volumes: np.ndarray,
-    calibrate: str = "point",
-    points: np.ndarray | None = None,
-    fractions: str = "partial",
-) -> dict[int, np.ndarray]:
-    """{offset d (+-1..+-J): per-point weight V_k omega_kd} for the bonds k -> k + d (zero where k + d
-    is outside the grid). Paper: omega = dx / (delta^2 |xi|) (Eq. 14, V_j = A dx); corrected: calibrated
-    on the discrete family so that Σ_j omega_kj xi^2 = 1, per point on its actual (possibly truncated)
-    family (``calibrate = "point"``) or on the full family (``"family"``, grids with ghost points).
-    ``points``: the indices k (of the n-point grid) whose weights are wanted, ``volumes`` given on them
-    (default all points); each weight is computed point by point, so a subset gets the same bits.
-    ``fractions``: the paper's family volumes (:func:`family`)."""
-    d, beta = family(m, dx, variant, fractions)
-    k = np.arange(n) if points is None else np.asarray(points, np.int64)
-    raw = {}
-    for sgn in (1, -1):
-        for dd, bb in zip(d, beta):
-            off = int(sgn * dd)
-            inside = ((k + off) >= 0) & ((k + off) < n)
-            raw[off] = np.where(inside, bb / (dd * dx), 0.0)  # beta / |xi| (volume dx factored out below)
-    if variant == "paper":
-        delta = (m + 0.015) * dx
-        return {off: volumes * r * dx / delta**2 for off, r in raw.items()}
-    if calibrate == "point":
-        S = sum(r * (abs(off) * dx) ** 2 for off, r in raw.items())  # Σ beta |xi| over the actual family
-    else:
-        S = 2.0 * float(np.sum(beta * d * dx))
-    return {off: volumes * r / S for off, r in raw.items()}
-
-
-def extrapolation(G: int, p: int) -> np.ndarray:
-    """X (G x (p+1)): values at s = -1..-G (spacings beyond the end) of the degree-p polynomial through
-    the first p+1 real points s = 0..p (Lagrange extrapolation, the same for the four fields)."""
-    s_real = np.arange(p + 1, dtype=float)
-    s_g = -np.arange(1, G + 1, dtype=float)
-    V = s_real[:, None] ** np.arange(p + 1)
-    return (s_g[:, None] ** np.arange(p + 1)) @ np.linalg.inv(V)
-
-
-def taylor_map(n: int, G: int | tuple[int, int], p: int) -> sp.csr_matrix:
-    """E: extended DOFs (G ghosts, n real, G ghosts) <- real DOFs; ghosts by polynomial extrapolation.
-    ``G = (G_left, G_right)`` gives each end its own number of ghosts (0: none, a window at the other end)."""
-    G = (G, G) if np.isscalar(G) else tuple(G)
-    rows = [NF * (G[0] + np.arange(n))[:, None] + np.arange(NF)]
-    cols = [NF * np.arange(n)[:, None] + np.arange(NF)]
-    vals = [np.ones((n, NF))]
-    for side, g_n in ((0, G[0]), (1, G[1])):
-        if g_n == 0:
-            continue
-        X = extrapolation(g_n, p)
-        g = np.arange(1, g_n + 1)
-        ghost = G[0] - g if side == 0 else G[0] + n - 1 + g
-        real = np.arange(p + 1) if side == 0 else n - 1 - np.arange(p + 1)
-        r = NF * ghost[:, None, None] + np.arange(NF)[None, None, :]
-        c = NF * real[None, :, None] + np.arange(NF)[None, None, :]
-        rows.append(np.broadcast_to(r, (g_n, p + 1, NF)))
-        cols.append(np.broadcast_to(c, (g_n, p + 1, NF)))
-        vals.append(np.broadcast_to(X[:, :, None], (g_n, p + 1, NF)))
-    return sp.csr_matrix(
-        (
-            np.concatenate([v.ravel() for v in vals]),
-            (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols])),
-        ),
-        shape=(NF * (n + G[0] + G[1]), NF * n),
-    )
-
-
-def assemble_blocks(
-    n: int,
-    dx: float,
-    C: np.ndarray,
-    weights: dict[int, np.ndarray],
-    h: float,
-    centred: bool = False,
-    path: bool = False,
-) -> sp.csr_matrix:
-    """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
-    filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
-    ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it)."""
-    J = max(abs(o) for o in weights)
-    Kb = np.zeros((n, 2 * J + 1, NF, NF))
-    for off, wt in weights.items():
-        lo, hi = max(0, -off), min(n, n - off)
-        t = wt[lo:hi, None, None]
-        if path:
-            M = path_measures(off, dx)
-            B = M.T @ C @ M / h
-            sg, d = (1 if off > 0 else -1), abs(off)
-            for a in range(d + 1):
-                for b in range(d + 1):
-                    Kb[lo + sg * a : hi + sg * a, J + sg * (b - a)] += t * B[NF * a : NF * a + NF, NF * b : NF * b + NF]
-            continue
-        B = bond_block(C, off * dx, centred) / h
-        Kb[lo:hi, J] += t * B[:NF, :NF]
-        Kb[lo:hi, J + off] += t * B[:NF, NF:]
-        Kb[lo + off : hi + off, J - off] += t * B[NF:, :NF]
-        Kb[lo + off : hi + off, J] += t * B[NF:, NF:]
-    cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
-    ok = (cols >= 0) & (cols < n)
-    indptr = np.r_[0, np.cumsum(ok.sum(axis=1))]
-    K = sp.bsr_matrix((Kb[ok], cols[ok], indptr), shape=(NF * n, NF * n))
-    return K.tocsr()
-
-
-def energy(
-    u: np.ndarray,
-    x: np.ndarray,
-    C: np.ndarray,
-    weights: dict[int, np.ndarray],
-    h: float,
-    centred: bool = False,
-    path: bool = False,
-) -> float:
-    """Strain energy U = Σ_k V_k W_k (Eq. 13, 15) evaluated directly from the bond measures (for the
-    gradient checks: K must equal the Hessian of this function)."""
-    u = np.asarray(u, float).reshape(-1, NF)
-    n = len(x)
-    dx = x[1] - x[0]
-    U = 0.0
-    for off, wt in weights.items():
-        lo, hi = max(0, -off), min(n, n - off)
-        uk, uj = u[lo:hi], u[lo + off : hi + off]
-        xi = off * dx
-        th = (uk[:, TH] + uj[:, TH]) / 2 if centred else uk[:, TH]
-        ts = (uk[:, TS] + uj[:, TS]) / 2 if centred else uk[:, TS]
-        if path:  # trapezoid of the rotations along the bond (path_measures), as a mean rotation
-            d, sg = abs(off), (1 if off > 0 else -1)
-            along = [u[lo + sg * a : hi + sg * a] for a in range(d + 1)]
-            c = np.full(d + 1, 1.0 / d)
-            c[[0, d]] /= 2
-            th = sum(ca * ua[:, TH] for ca, ua in zip(c, along))
-            ts = sum(ca * ua[:, TS] for ca, ua in zip(c, along))
-        m = np.stack(
-            [
-                uj[:, TH] - uk[:, TH],
-                2 * xi * uk[:, WS],
-                uj[:, TS] - uk[:, TS],
-                uj[:, W] - uk[:, W] + xi * th,
-                uj[:, WS] - uk[:, WS] + 3 * xi * ts,
-            ]
-        )
-        U += 0.5 / h * np.sum(wt[lo:hi] * np.einsum("pb,pq,qb->b", m, C, m))
-    return U
-
-
-def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
-    """F (n x 4): generalised forces (per unit area) on (theta, theta*, w, w*) of the real points.
-    Distributed loads: cell integrals (cells [x_k -+ dx/2] within the beam); point forces and moments
-    split linearly between the two nearest points (any position); Eq. 16b: F_w = b_z V, F_theta = b_theta V."""
-    n = len(x)
-    dx = x[1] - x[0]
-    L = scene.length
-    h = scene.section.depth
-    A = scene.section.A
-    F = np.zeros((n, NF))
-    lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
-    for load in scene.loads:
-        if isinstance(load, Distributed):
-            q = cell_integral(load, scene, lo, hi)
-            F[:, W] += q
-            if faces:
-                F[:, WS] += q * h * h / 4
-            continue
-        pos = float(np.clip((load.position - x[0]) / dx, 0.0, n - 1))  # cell-centred grids: beyond the end points
-        i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
-        t = pos - i
-        if abs(t) < 1e-9 or i == n - 1:
-            t = 0.0
-        at_end = t == 0.0 and i in (0, n - 1)
-        for node, wgt in ((i, 1.0 - t), (i + 1, t)):
-            if wgt == 0.0:
-                continue
-            if isinstance(load, PointForce):
-                F[node, W] += wgt * load.value
-                if faces:
-                    F[node, WS] += wgt * load.value * h * h * (1 / 20 if at_end else 1 / 4)
-            elif isinstance(load, PointMoment):
-                F[node, TH] -= wgt * load.value
-                if faces and at_end:
-                    F[node, TS] -= wgt * load.value * 3 * h * h / 20
-    return F / A
-
-
-def end_conditions(
-    n: int, left: str, right: str, variant: str, pin: str, h: float, about: str = "point"
-) -> tuple[list, list]:
-    """(drop, tie): the DOFs held at zero and the ties (slave, master, c), u_slave = c u_master, of the end
-    conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed); guided: theta = theta* = 0;
-    pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's antisymmetric w*); ``pin = face``: w = -h^2/20 w*
-    instead (zero parabola-weighted mean deflection of the end face); free: nothing. Paper mirrored about the
-    boundary (``about = "boundary"``): clamped w(1) = w*(1) = 0 on the first point (Eq. B39; theta, theta*
-    follow from the antisymmetric images, Eq. B40), pinned and guided nothing (the images carry them)."""
-    drop, tie = [], []
-    for sup, k in ((left, 0), (right, n - 1)):
-        if variant == "paper" and about == "boundary":
-            if sup == "clamped":
-                drop += [NF * k + W, NF * k + WS]
-            continue
-        if sup == "clamped":
-            drop += [NF * k + f for f in (TH, TS, W, WS)]
-        elif sup == "guided":
-            drop += [NF * k + f for f in (TH, TS)]
-        elif sup in ("pinned", "roller"):  # no axial unknown: roller = pinned
-            if variant == "paper":
-                drop += [NF * k + W, NF * k + WS]
-            elif pin == "face":
-                tie.append((NF * k + W, NF * k + WS, -h * h / 20))
-                drop.append(NF * k + W)
-            else:
-                drop.append(NF * k + W)
-    return drop, tie
-
-
-def constraint_map(
-    n: int, left: str, right: str, variant: str, pin: str, h: float, numbering: str = "unknowns", about: str = "point"
-) -> sp.csr_matrix:
-    """T: u = T z with the end conditions built in (:func:`end_conditions`). ``numbering = "unknowns"``:
-    T is 4n x unknowns (the held DOFs eliminated); ``"points"``: 4n x 4n, the numbering of u kept and the
-    columns of the held DOFs zero (the band's form: unit rows added by ``Band.fix``)."""
-    drop, tie = end_conditions(n, left, right, variant, pin, h, about)
-    keep = np.ones(NF * n, bool)
-    keep[drop] = False
-    free = np.flatnonzero(keep)
-    col = np.full(NF * n, -1)
-    col[free] = free if numbering == "points" else np.arange(len(free))
-    rows, cols, vals = list(free), list(col[free]), [1.0] * len(free)
-    for slave, master, c in tie:
-        rows.append(slave), cols.append(col[master]), vals.append(c)
-    return sp.csr_matrix((vals, (rows, cols)), shape=(NF * n, NF * n if numbering == "points" else len(free)))
-
-
-def mirror_map(n: int, G: tuple[int, int], left: str, right: str, about: str = "point") -> sp.csr_matrix:
-    """P: extended DOFs (G[0] ghosts, n real, G[1] ghosts) <- real DOFs; ghost i' = sign * real i
-    (Appendix B, Eq. B39-B41). ``about = "point"``: mirror about the end point (ghost j spacings out is the
-    image of real point j spacings in); ``"boundary"``: mirror about the boundary half a spacing beyond the
-    first point (cell-centred points: ghost i' at -(i - 1/2) dx is the image of real i at (i - 1/2) dx)."""
-    shift = 1 if about == "boundary" else 0
-    N = G[0] + n + G[1]
-    rows = [NF * (G[0] + np.arange(n))[:, None] + np.arange(NF)]
-    cols = [NF * np.arange(n)[:, None] + np.arange(NF)]
-    vals = [np.ones((n, NF))]
-    for side, sup, g in ((0, left, G[0]), (1, right, G[1])):
-        if g == 0:
-            continue
-        j = np.arange(1, g + 1)
-        ghost = G[0] - j if side == 0 else G[0] + n - 1 + j
-        real = j - shift if side == 0 else n - 1 - j + shift
-        rows.append(NF * ghost[:, None] + np.arange(NF))
-        cols.append(NF * real[:, None] + np.arange(NF))
-        vals.append(np.broadcast_to(MIRROR[sup], (g, NF)))
-    return sp.csr_matrix(
-        (
-            np.concatenate([v.ravel() for v in vals]),
-            (np.concatenate([r.ravel() for r in rows]), np.concatenate([c.ravel() for c in cols])),
-        ),
-        shape=(NF * N, NF * n),
-    )
-
-
-def uniform_blocks(
-    C: np.ndarray, dx: float, weights: dict[int, float], h: float, centred: bool = False, path: bool = False
-) -> dict[int, np.ndarray]:
-    """{point offset o: 4x4 block K[p, p + o]} of a row p whose own bonds and whose partners' bonds all
-    carry the interior weights ``weights`` (offset -> V omega): Eq. 15's Hessian summed bond by bond in
-    the order of :func:`assemble_blocks` (the same bits as its interior rows)."""
-    J = max(abs(o) for o in weights)
-    blocks = {o: np.zeros((NF, NF)) for o in range(-J, J + 1)}
-    for off, wt in weights.items():
-        if path:
-            M = path_measures(off, dx)
-            B = M.T @ C @ M / h
-            sg, d = (1 if off > 0 else -1), abs(off)
-            for a in range(d + 1):
-                for b in range(d + 1):
-                    blocks[sg * (b - a)] += wt * B[NF * a : NF * a + NF, NF * b : NF * b + NF]
-            continue
-        B = bond_block(C, off * dx, centred) / h
-        blocks[0] += wt * B[:NF, :NF]
-        blocks[off] += wt * B[:NF, NF:]
-        blocks[-off] += wt * B[NF:, :NF]
-        blocks[0] += wt * B[NF:, NF:]
-    return blocks
-
-
-def extended_volumes(k: np.ndarray, n: int, G: tuple[int, int], dx: float, ends: str, variant: str) -> np.ndarray:
-    """V_k / A of the extended points k (G[0] ghosts, the n real points, G[1] ghosts): the paper's mirror
-    layers carry full volumes (Appendix B); otherwise ghosts carry none and the two end points dx/2."""
-    k = np.asarray(k)
-    if ends == "mirror" and variant == "paper":
-        return np.full(k.shape, dx)
-    real = (k >= G[0]) & (k < G[0] + n)
-    end = (k == G[0]) | (k == G[0] + n - 1)
-    return np.where(real, np.where(end, dx / 2, dx), 0.0)
+from ..scene import PointForce, PointMoment, Scene
+from ..stations import STATIONS_HELP, parse_stations
+from ._higher_order_bonds import NF, TH, TS, WS, W, assemble_blocks, bond_weights, coefficients, uniform_blocks
+from ._higher_order_ends import constraint_map, end_conditions, extended_volumes, load_vector, mirror_map, taylor_map
+from ._higher_order_outputs import reactions, section_stresses
+from .pd_common import family
 
 
 def put_rows(B: Band, r0: int, c0: int, D: np.ndarray) -> Band:
@@ -548,6 +187,24 @@ class PDHigherOrder(Model):
             "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
             choices=("boundary", "point"),
         ),
+        Option(
+            "end_layer",
+            str,
+            "patch",
+            "bond weights of the points within 2J of an end (ends = truncated): patch (each point calibrated and "
+            "every segment carrying the same total, so a uniform state is in equilibrium: second order at any m) | "
+            "point (per-point calibration only: ghost forces, first order at m >= 2)",
+            choices=("patch", "point"),
+        ),
+        Option(
+            "cuts",
+            str,
+            "loads",
+            "with end_layer = patch: loads (no bond crosses a point that carries an interior point force or moment; "
+            "each side gets its own patch-test layer: second order under point loads) | none",
+            choices=("loads", "none"),
+        ),
+        Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
     )
 
     assembles = True
@@ -662,11 +319,15 @@ class PDHigherOrder(Model):
                 ghosts_per_end=[J, J],
             )
         else:
-            G, calibrate, reach, fold = (0, 0), "point", 0, None
+            G, calibrate, reach, fold = (0, 0), params.get("end_layer", "patch"), 0, None
             info.update(boundary="truncated families (per-point calibration), essential end conditions")
         N = n + G[0] + G[1]
 
-        def weights(k):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
+        cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
+        if cuts:
+            info["cuts"] = [float(x[c]) for c in cuts]
+
+        def weights(k, cuts=cuts):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
             return bond_weights(
                 N,
                 m,
@@ -676,11 +337,13 @@ class PDHigherOrder(Model):
                 calibrate,
                 points=k,
                 fractions=fractions,
+                cuts=cuts,
             )
 
-        def window(r0: int, r1: int) -> np.ndarray:
+        def window(r0: int, r1: int, constrained: bool = True) -> np.ndarray:
             """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
-            window reaches: exact in the rows whose bonds and ghost images lie in the window."""
+            window reaches: exact in the rows whose bonds and ghost images lie in the window. ``constrained =
+            False``: before the end conditions (the rows of the held DOFs kept: the reactions K u - b)."""
             g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
             nw = r1 - r0
             k = np.arange(G[0] + r0 - g[0], G[0] + r1 + g[1])
@@ -692,6 +355,8 @@ class PDHigherOrder(Model):
                 K = (P.T @ Kx @ P).tocsr()
             else:
                 K = (Kx[NF * g[0] : NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
+            if not constrained:
+                return K.toarray()
             T = constraint_map(
                 nw,
                 left if r0 == 0 else "free",
@@ -710,13 +375,24 @@ class PDHigherOrder(Model):
             ] = 0.0
             return D
 
-        rows_end = max(2 * J, reach + 1) + 1  # rows of each end from its window (beyond 2J: uniform; one spare)
+        # rows of each end from its window (beyond 2J: uniform; one spare); the patch-test end layer changes the
+        # bonds of the first 2J + 1 points, which reach J further
+        rows_end = max(2 * J + (J if calibrate == "patch" else 0), reach + 1) + 1
         span = rows_end + J  # window points: those rows and their partners
         if n >= 2 * span:
             parts = [(0, span, 0, rows_end), (n - span, n, span - rows_end, span)]
+            R = 3 * J + 2  # rows changed by a cut: its two end layers (2J + 1 points each side) and their bonds
+            for c in cuts:
+                r0, r1 = max(0, c - R - J), min(n, c + R + J + 1)
+                parts.insert(-1, (r0, r1, c - R - r0, c + R + 1 - r0))
         else:  # a small grid: one window is the whole matrix
             parts = [(0, n, 0, n)]
         dense = [(r0, a, window(r0, r1)[NF * a : NF * b]) for r0, r1, a, b in parts]
+        # the unconstrained rows of the two end points (reactions = those rows times u, minus the load)
+        ends_rows = []  # mirror ends: the images carry part of the reaction, no held row gives it
+        for k_end, (r0, r1, _, _) in ((0, parts[0]), (n - 1, parts[-1])) if ends != "mirror" else ():
+            D = window(r0, r1, constrained=False)
+            ends_rows.append((k_end, NF * r0, D[NF * (k_end - r0) : NF * (k_end - r0 + 1)]))
         bw = NF * J + NF - 1
         for _r0, a, D in dense:
             i, j = np.nonzero(D)
@@ -725,12 +401,13 @@ class PDHigherOrder(Model):
         B = Band(NF * n, bw, bw)
         if len(parts) > 1:
             mid = G[0] + n // 2
-            interior = {off: float(wt[0]) for off, wt in weights(np.array([mid])).items()}
+            interior = {off: float(wt[0]) for off, wt in weights(np.array([mid]), cuts=()).items()}
             B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
         drop, tie = end_conditions(n, left, right, variant, pin, h, about)
         F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
+        info["end_rows"] = [(k, c0, D, F[NF * k : NF * k + NF].copy()) for k, c0, D in ends_rows]
         b = F.copy()
         if symmetric:  # T^T F: the slave's load acts on its master (the paper variant has no ties)
             for slave, master, c in tie:
@@ -742,6 +419,26 @@ class PDHigherOrder(Model):
         if variant == "paper":
             info.update(volumes=fractions, mirror=about)
         return B, b, (drop, tie), info
+
+    @staticmethod
+    def cut_points(scene: Scene, params: dict, x: np.ndarray, J: int) -> tuple[int, ...]:
+        """Interior grid points carrying a point force or moment where the corrected variant cuts the bonds
+        (option ``cuts = loads``; ends = truncated, end_layer = patch): loads exactly on a point, at least 4J + 1
+        spacings from either end and from every other such load (a symmetric rule: mirror scenes cut alike)."""
+        if params.get("cuts", "loads") != "loads":
+            return ()
+        n, dx = len(x), x[1] - x[0]
+        cand = set()
+        for load in scene.loads:
+            if isinstance(load, (PointForce, PointMoment)):
+                p = (load.position - x[0]) / dx
+                i = int(round(p))
+                if abs(p - i) < 1e-9 and 0 < i < n - 1:
+                    cand.add(i)
+        gap = 4 * J + 1
+        return tuple(
+            sorted(c for c in cand if min(c, n - 1 - c) >= gap and all(abs(c - o) >= gap for o in cand if o != c))
+        )
 
     def assemble(self, scene: Scene, params: dict) -> System:
         """The band of :meth:`assemble_band` (the system ``solve`` factorises): u interleaved (theta, theta*,
@@ -756,6 +453,7 @@ class PDHigherOrder(Model):
             system = self.assemble(scene, params)
             binfo = dict(system.info)
             tie = binfo.pop("ties")
+            end_rows = binfo.pop("end_rows")
         with timer("solve"):
             u, info = solve_linear(system.matrix, system.rhs, what=f"pd-higher-order ({params['variant']})")
             for slave, master, c in tie:
@@ -767,6 +465,12 @@ class PDHigherOrder(Model):
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
+        if end_rows:
+            info["reactions"] = reactions(end_rows, u.ravel(), scene.section.A)
+        stations = parse_stations(params.get("stations", ""), scene.length)
+        if len(stations):
+            mat = scene.material
+            info["sections"] = section_stresses(x, u, stations, binfo["depth"], mat.E, mat.poissons_ratio)
         return Result(
             scene=scene.name,
             model=self.name,

@@ -1,0 +1,62 @@
+"""Engineering outputs of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020, seed 002): stresses through the
+section at chosen stations (Eq. 6a-c) and the support reactions (K u - b at the held DOFs). Kept apart from the
+model's assembly (pd_higher_order.py) because they only read a solution.
+
+Stresses (Eq. 6a-c, plane stress, E' = E / (1 - nu^2), G = E / (2 (1 + nu)))::
+
+    sigma_xx = E' z (theta' + 2 nu w*) + E' z^3 theta*'
+    sigma_zz = E' z (nu theta' + 2 w*) + E' z^3 nu theta*'
+    tau_xz   = G (theta + w') + G z^2 (3 theta* + w*')
+
+with the point values of theta, theta*, w, w* and their x-derivatives by second-order finite differences on the
+grid (numpy.gradient, one-sided second order at the ends), linearly interpolated to the station. sigma_zz of
+Eq. 6b is odd in z (e_zz = 2 z w*, Eq. 4b): the theory cannot carry a top-face load's even part, so sigma_zz is
+not compared with the 2D solution (docs/models/yang.md).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def section_stresses(
+    x: np.ndarray, u: np.ndarray, stations: np.ndarray, h: float, E: float, nu: float, samples: int = 33
+) -> list[dict]:
+    """[{"x", "z", "sigma_xx", "sigma_zz", "tau_xz"}] at each station; u (n x 4) = (theta, theta*, w, w*)."""
+    th, ts, w, ws = (u[:, k] for k in range(4))
+    d = {k: np.gradient(f, x, edge_order=2) for k, f in (("th", th), ("ts", ts), ("w", w), ("ws", ws))}
+    Ep, G = E / (1 - nu * nu), E / (2 * (1 + nu))
+    z = np.linspace(-h / 2, h / 2, samples)
+    out = []
+    for xs in np.asarray(stations, float):
+
+        def at(f, xs=xs):
+            return float(np.interp(xs, x, f))
+
+        a, c = at(d["th"]) + 2 * nu * at(ws), at(d["ts"])
+        sxx = Ep * z * a + Ep * z**3 * c
+        szz = Ep * z * (nu * at(d["th"]) + 2 * at(ws)) + Ep * z**3 * nu * c
+        txz = G * (at(th) + at(d["w"])) + G * z**2 * (3 * at(ts) + at(d["ws"]))
+        out.append(
+            {
+                "x": float(xs),
+                "z": z.tolist(),
+                "sigma_xx": sxx.tolist(),
+                "sigma_zz": szz.tolist(),
+                "tau_xz": txz.tolist(),
+            }
+        )
+    return out
+
+
+def reactions(end_rows: list, u: np.ndarray, area: float) -> dict[str, float]:
+    """Support reactions from the end points' unconstrained rows: R = K u - b on (theta, theta*, w, w*) of the
+    end point (the force the support puts on the beam, per unit area, times A). force = R_w (+z), moment
+    (counter-clockwise) = -R_theta (a ccw moment C works on theta as -C, Eq. 16b); zero at a free end.
+    ``end_rows``: [(point, first column, rows (4 x m), load (4,))] for the left and the right end."""
+    out = {}
+    for (_, c0, D, F), side in zip(end_rows, ("left", "right")):
+        R = (D @ u[c0 : c0 + D.shape[1]] - F) * area
+        out[f"force_{side}"] = float(R[2])
+        out[f"moment_{side}"] = float(-R[0])
+    return out
