@@ -63,6 +63,7 @@ ELEMENTS = {
     "q4-qm6": "ElementQuad1",
     "q4-reduced": "ElementQuad1",
 }  # q4-*: PLANE182 KEYOPT(1) = 0, 2/3, 1 (q4_variants)
+LOCKING_ELEMENTS = ("q4", "q4-bbar")  # full integration: parasitic shear in bending (a warning on every result)
 
 
 def mesh_lines(scene: Scene, points: int, layers: int):
@@ -116,7 +117,7 @@ def _dofs(basis) -> tuple[np.ndarray, np.ndarray]:
 
 class FemPlaneStress(Model):
     name = "fem-plane-stress"
-    title = "2D plane-stress continuum (scikit-fem; PLANE182 analogue with q4), straight or curved axis"
+    title = "2D plane-stress continuum (scikit-fem; q8 by default, PLANE182 stand-ins q4-*), straight or curved axis"
     source = "scikit-fem linear elasticity, plane-stress Lame constants; mesh mapped onto the axis"
     theory = "continuum"
     reference = True
@@ -128,9 +129,10 @@ class FemPlaneStress(Model):
         Option(
             "element",
             str,
-            "q4",
-            "q4 (full integration, 3x3 Gauss) | q8 | q9 | q4-bbar (2x2 with B-bar: PLANE182 "
-            "KEYOPT(1)=0) | q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3) | "
+            "q8",
+            "q8 (default: no locking in bending) | q9 | q4 (full integration, 3x3 Gauss; locks in bending) | "
+            "q4-bbar (2x2 with B-bar: PLANE182 KEYOPT(1)=0; locks in bending) | "
+            "q4-qm6 (incompatible modes, Taylor's QM6: as PLANE182's enhanced strain, KEYOPT(1)=2/3) | "
             "q4-reduced (1-point quadrature + Flanagan-Belytschko hourglass vectors with bending stiffness: "
             "PLANE182 KEYOPT(1)=1)",
             choices=tuple(ELEMENTS),
@@ -339,6 +341,13 @@ class FemPlaneStress(Model):
             return u[vx[nodes]] * tan_s[:, 0] + u[vy[nodes]] * tan_s[:, 1]
 
         rot = (tangential(botn) - tangential(topn)) / h
+        if el in LOCKING_ELEMENTS:
+            aspect = (scene.length / (ns - 1)) / (h / params["layers"])
+            info.setdefault("warnings", []).append(
+                f"element = {el}: full integration locks in bending (parasitic shear), here with elements "
+                f"{aspect:.3g} times as long as they are thick; the deflection may be far too small (-27 % on a "
+                "100 x 8 cantilever at L/h = 100, docs/models/yang.md): use q8, q4-qm6 or q4-reduced"
+            )
         info.update(
             element=el,
             mesh=f"{ns - 1} x {params['layers']} {el}",

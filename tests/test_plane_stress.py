@@ -67,7 +67,7 @@ def test_convergence_orders_q4_q8(record_property):
 )
 def test_yang_scenes_solve_with_paper_mesh(name, tmp_path):
     sc = load_scene(ROOT / f"studies/paper_yang/{name}.toml")
-    r = run(sc, "fem-plane-stress")  # 100 x 8 q4, the paper's PLANE182 mesh
+    r = run(sc, "fem-plane-stress", element="q4")  # 100 x 8 q4, the paper's PLANE182 mesh
     assert r.info["mesh"] == "100 x 8 q4" or r.info["mesh"].endswith("x 8 q4")
     ex = solve_straight(sc, True).fields(r.x)["w"]
     i = np.argmax(np.abs(ex))

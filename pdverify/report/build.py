@@ -574,6 +574,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 "error_bound",
                 "status",
                 "message",
+                "warnings",
             ],
             row_class="status",
             case_rows=True,

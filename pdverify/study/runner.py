@@ -103,6 +103,7 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
             "timings": {k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")},
             "dofs": int(result.dofs),
             "info": {k: _plain_scalar(result.info[k]) for k in INFO_KEYS if k in result.info},
+            "warnings": "; ".join(str(w) for w in result.info.get("warnings", [])),
         }
         hist = result.info.get("history")
         if artefacts and isinstance(hist, dict) and "t" in hist:  # the time histories as CSV, for other tools
@@ -196,6 +197,7 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         row["cond"] = info.get("cond")
         row["status"], row["message"] = "ok", ""
         row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (issue 27)
+        row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
         if "artefact_message" in solved:
             row["artefact_message"] = solved["artefact_message"]
         # arrays stay arrays here (compact to pickle from a worker); encode_record stores them exactly
