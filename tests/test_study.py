@@ -652,3 +652,18 @@ def test_a_run_sweeps_its_own_slenderness(tmp_path):
         with pytest.raises(InputError) as exc:
             load_study(p)
         assert len(exc.value.lines) == 1 and "runs[0].slenderness" in exc.value.lines[0], exc.value.lines
+
+
+@pytest.mark.slow
+def test_a_models_warnings_reach_its_row_and_the_report(tmp_path):
+    """A locking q4 run warns (reference_fem.plane_stress): the warning is in results.csv and in the report's
+    results table, beside the number it qualifies; a run without warnings has an empty cell."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "fem-plane-stress"\nelement = ["q4", "q8"]\npoints = 21\nlayers = 2\n')
+    run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    res = pd.read_csv(tmp_path / "out/results.csv").set_index("element")
+    assert "locks in bending" in res.loc["q4", "warnings"]
+    assert pd.isna(res.loc["q8", "warnings"]) or "locks" not in res.loc["q8", "warnings"]
+    from pdverify.report.build import build_report
+
+    html_text = build_report(tmp_path / "out").read_text()
+    assert "element = q4: full integration locks in bending" in html_text
