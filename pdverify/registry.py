@@ -272,6 +272,11 @@ class Model:
     def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
         raise NotImplementedError
 
+    def result(self, scene: Scene, params: dict, x, w, **parts) -> Result:
+        """The :class:`~pdverify.result.Result` of this model's solve of ``scene`` with ``params``: the scene's
+        and model's names and a copy of the options filled in; ``parts``: rotation, fields, dofs, timings, info."""
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, **parts)
+
     def assemble(self, scene: Scene, params: dict) -> System:
         """The :class:`System` that :meth:`solve` factorises (models with ``assembles = True``)."""
         raise NotImplementedError(f"model {self.name} assembles no linear system (assembles = False)")

@@ -361,12 +361,11 @@ class FemEulerBernoulli(_BeamFE):
     def solve(self, scene: Scene, params: dict) -> Result:
         u, info, dofs, nodes, timer = self.solve_nodal(scene, params, "fem-eb")
         info.update(element="ElementLineHermite", elements=len(nodes) - 1)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=nodes,
-            w=u[0::2],
+        return self.result(
+            scene,
+            params,
+            nodes,
+            u[0::2],
             rotation=u[1::2],
             dofs=dofs,
             timings=timer.timings,
@@ -451,12 +450,11 @@ class FemTimoshenko(_BeamFE):
             }[params["variant"]],
             elements=len(nodes) - 1,
         )
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=nodes,
-            w=u[0::2],
+        return self.result(
+            scene,
+            params,
+            nodes,
+            u[0::2],
             rotation=u[1::2],
             dofs=dofs,
             timings=timer.timings,

@@ -386,12 +386,11 @@ class FemPlaneStress(Model):
             finally:
                 os.unlink(tmp)
 
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=s,
-            w=w,
+        return self.result(
+            scene,
+            params,
+            s,
+            w,
             rotation=rot,
             fields={"u": ut, "ux": ux, "uy": uy},
             dofs=len(free),

@@ -299,12 +299,11 @@ class ExactCurved(Model):
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             f = self.solver(scene).fields(s)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=s,
-            w=f["w"],
+        return self.result(
+            scene,
+            params,
+            s,
+            f["w"],
             rotation=f["rotation"],
             fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
             dofs=0,

@@ -186,12 +186,11 @@ class ExactElastica(Model):
         with timer("solve"):
             x = np.linspace(0.0, scene.length, params["points"])
             f = self.evaluate(scene, params, x)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=f["w"],
+        return self.result(
+            scene,
+            params,
+            x,
+            f["w"],
             fields={"u": f["u"]},
             dofs=1,
             timings=timer.timings,

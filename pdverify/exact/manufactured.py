@@ -68,12 +68,11 @@ class ExactCurvedManufactured(Model):
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             f = self.evaluate(scene, params, s)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=s,
-            w=f["w"],
+        return self.result(
+            scene,
+            params,
+            s,
+            f["w"],
             rotation=f["rotation"],
             fields={k: v for k, v in f.items() if k not in ("w", "rotation")},
             dofs=0,

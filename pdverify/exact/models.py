@@ -33,12 +33,11 @@ class ExactBeam(Model):
         with timer("solve"):
             sol = solve_straight(scene, self.shear)
             f = sol.fields(x)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=f["w"],
+        return self.result(
+            scene,
+            params,
+            x,
+            f["w"],
             rotation=f["rotation"],
             fields={"M": f["M"], "V": f["V"]},
             dofs=4,

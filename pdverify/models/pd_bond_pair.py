@@ -360,12 +360,11 @@ class PDBondPair(Model):
                 )
                 f = elastica.evaluate(at, {"extensible": True}, s_)
                 shot["exact_x"], shot["exact_z"] = (s_ + f["u"]).tolist(), f["w"].tolist()
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=X0[:, 0],
-            w=P[:, 1],
+        return self.result(
+            scene,
+            params,
+            X0[:, 0],
+            P[:, 1],
             fields={"u": P[:, 0]},
             dofs=len(model.free),
             timings=timer.timings,
@@ -424,12 +423,11 @@ class PDBondPair(Model):
             horizon_factor=params["horizon"],
             horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx,
         )
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=w,
+        return self.result(
+            scene,
+            params,
+            x,
+            w,
             fields=fields,
             rotation=np.gradient(w, dx, edge_order=2),
             dofs=system.unknowns,

@@ -256,12 +256,11 @@ class PDCurved(Model):
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
         w, rot = total.pop("w"), total.pop("rotation")
         x = total.pop("x") / len(infos)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=w,
+        return self.result(
+            scene,
+            params,
+            x,
+            w,
             rotation=rot,
             fields=total,
             dofs=dofs,

@@ -458,12 +458,11 @@ class PDEulerBernoulli(Model):
         )
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=w,
+        return self.result(
+            scene,
+            params,
+            x,
+            w,
             rotation=rot,
             dofs=ndofs,
             timings=timer.timings,

@@ -471,12 +471,11 @@ class PDHigherOrder(Model):
         if len(stations):
             mat = scene.material
             info["sections"] = section_stresses(x, u, stations, binfo["depth"], mat.E, mat.poissons_ratio)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=u[:, W].copy(),
+        return self.result(
+            scene,
+            params,
+            x,
+            u[:, W].copy(),
             rotation=-u[:, TH],
             fields=fields,
             dofs=system.unknowns,
