@@ -12,7 +12,10 @@ from scipy.optimize import brentq
 from pdverify.errors import InputError, SolveError
 from pdverify.exact.straight import solve_straight
 from pdverify.models._moyer_kernels import rod_kernel, shear_kernel
-from pdverify.models.pd_timoshenko import STABILISATION, beam_operator, integrate, simulate, stable_time_step
+from pdverify.models.moyer_operator import beam_operator
+from pdverify.models.moyer_spectrum import stable_time_step
+from pdverify.models.moyer_transient import STABILISATION, integrate
+from pdverify.models.pd_timoshenko import simulate
 from pdverify.registry import run
 from pdverify.scene import Distributed, PointForce, load_scene, parse_scene
 
@@ -419,7 +422,7 @@ def test_time_stepping_is_stable_with_the_non_symmetric_closures(right, n, m, re
     """Spectral radius of the undamped one-step map (u, v) -> (u', v') on the free DOFs. Without the
     stabilisation (κ = 0) the complex eigenvalues of the boundary closures make it grow: measured
     1 + 1.9e-2, 2.0e-2, 2.4e-3, 1.3e-3; with κ = 0.2 it is <= 1."""
-    from pdverify.models.pd_timoshenko import _mass_scaled
+    from pdverify.models.moyer_spectrum import mass_scaled
 
     sc = parse_scene(
         dict(
@@ -429,7 +432,7 @@ def test_time_stepping_is_stable_with_the_non_symmetric_closures(right, n, m, re
         )
     )
     disc = beam_operator(sc, n, m, "corrected")
-    A = _mass_scaled(disc, disc.free).toarray()
+    A = mass_scaled(disc, disc.free).toarray()
     w_max = np.sqrt(np.abs(np.linalg.eigvals(A)).max())
     N = len(A)
     I = np.eye(N)
