@@ -68,10 +68,11 @@ class WholeStep:
 class StencilStep:
     """One step of :func:`integrate`'s scheme with K applied matrix-free: fields stored apart (padded by
     the family's reach), the interior rows by the operator's stencil with the gains folded into its
-    coefficients, the few end rows by small dense products, block by block of ``chunk`` points so that
-    y = u + κV, the PD sums and the update of u and V run on data in cache (one pass over memory per
-    step instead of one per operation and the matrix's ~25 values per point). The y of a block are
-    formed one block ahead, before the update of u and V reaches the points they depend on."""
+    coefficients, the few end rows by small dense products, block by block of ``chunk`` points (default
+    :data:`CHUNK`, read at each call) so that y = u + κV, the PD sums and the update of u and V run on
+    data in cache (one pass over memory per step instead of one per operation and the matrix's ~25 values
+    per point). The y of a block are formed one block ahead, before the update of u and V reaches the
+    points they depend on."""
 
     def __init__(
         self,
@@ -81,7 +82,7 @@ class StencilStep:
         kappa: float,
         bG: np.ndarray,
         gd_field: tuple,
-        chunk: int = CHUNK,
+        chunk: int | None = None,
     ):
         op, nf = disc.op, disc.nf
         n, h = op.n, op.reach
@@ -90,7 +91,7 @@ class StencilStep:
         self.U, self.V = U, V
         BG = bG.reshape(n, nf).T.copy()
         need = max(op.L, op.R) + 2 * h + 1
-        P = max(chunk, need)
+        P = max(CHUNK if chunk is None else chunk, need)  # CHUNK read here: a test lowers it
         starts = list(range(0, n, P))
         if len(starts) > 1 and n - starts[-1] < need:
             starts.pop()
