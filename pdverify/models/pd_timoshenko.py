@@ -100,6 +100,17 @@ class _MoyerModel(Model):
             )
         return dyn
 
+    def eigenproblem(self, scene: Scene, params: dict) -> tuple:
+        """(K, mass) on the free DOFs: K φ = ω² diag(mass) φ, the operator of the transient (``pdverify
+        modes``); K is not symmetric (the boundary closures), so ω² may be complex."""
+        if scene.material.density is None:
+            raise InputError("material.density: needed for natural frequencies; add density to the scene")
+        disc = self.operator(scene, params)
+        if not np.all(np.isfinite(disc.mass)):
+            raise InputError("section: pd-torsion needs the polar moment of a rectangle; give width and height")
+        free = disc.free
+        return disc.K[free][:, free], disc.mass[free]
+
     def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
         """Point-updates per second of the explicit integration (``pdverify bench``)."""
         import time
