@@ -71,7 +71,7 @@ def _semi_discrete(disc, t):
 
 def test_pd_rod_history_converges_at_order_two_in_dx():
     """Sine load (smooth; clamped-free), m = 3, dt = 0.5 of the stable step (the time error falls as dx² with
-    it and is ~5 % of the total), the history at two probes against exact-modal-rod: measured max errors
+    it and is ~7 % of the total), the history at two probes against exact-modal-rod: measured max errors
     3.2e-3, 8.3e-4, 2.1e-4, 5.3e-5 at 41..321 points, orders 1.96, 1.98, 2.00. (A load with a jump, or one
     not zero at the clamped end, starts wave fronts: orders 1.2-1.35, docs/models/moyer.md.)"""
     sc = _scene(SINE)
