@@ -1,6 +1,8 @@
 """The exact modal transient of the rod (exact-modal-rod, issue 30 item 4) and pd-rod's time-history error
 against it: order 2 in dx and in dt."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from conftest import scene_dict
@@ -105,3 +107,27 @@ def test_pd_rod_history_converges_at_order_two_in_dt(loads):
         err.append(np.sqrt(((h.values - ref) ** 2).mean() / (ref**2).mean()))
     rate = np.log2(np.array(err[:-1]) / np.array(err[1:]))
     assert np.all(np.abs(rate - 2) < 0.3), (err, rate)
+
+
+def test_transient_study_measures_the_histories(tmp_path):
+    """studies/paper_moyer_transient.toml: the runner measures a transient against exact-modal-rod on the
+    histories (study.runner.history_errors), not on the final w (0 for a rod). The dx series converges at
+    order 1 with the default stabilisation (measured 0.98-0.99: its damping vanishes like dx; the row is an
+    expected fail) and the dt series is flat (7.151e-3 .. 7.165e-3: the space error)."""
+    import pandas as pd
+
+    from pdverify import run_study
+    from pdverify.models.pd_timoshenko import simulate
+    from pdverify.scene import load_scene
+
+    root = Path(__file__).parents[1] / "studies"
+    df = run_study(root / "paper_moyer_transient.toml", out=tmp_path / "s", workers=1, progress=False)
+    sc = load_scene(root / "paper_moyer" / "rod_transient.toml")
+    h = simulate(sc, {"points": 81, "horizon": 3}, model="pd-rod")
+    ref, _ = rod_response(sc, PROBES, h.t)
+    row = df[(df.scene_file == "paper_moyer/rod_transient.toml") & (df.points == 81)].iloc[0]
+    assert row.err_max == pytest.approx(np.abs(h.values - ref).max() / np.abs(ref).max(), rel=1e-9)
+    dt_rows = df[df.scene_file.str.contains("_dt")].err_max
+    assert len(dt_rows) == 3 and dt_rows.max() / dt_rows.min() < 1.01
+    checks = pd.read_csv(tmp_path / "s" / "checks.csv")
+    assert list(checks.verdict) == ["expected-fail"] and 0.9 < checks.observed_order[0] < 1.1

@@ -169,6 +169,10 @@ class ExactModalRod(Model):
             out.append("dynamics: give damping or damping_ratio, not both")
         return out
 
+    def history_at(self, scene: Scene, params: dict, probes, times) -> np.ndarray:
+        """u at ``probes`` and ``times`` (len(times), len(probes)): the study runner's transient reference."""
+        return rod_response(scene, probes, times, params["tolerance"])[0]
+
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         d = scene.dynamics
