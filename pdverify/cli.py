@@ -265,6 +265,29 @@ def solve(
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
 
 
+@app.command()
+@user_errors
+def modes(
+    scene: Path = typer.Argument(..., help="scene TOML file (its supports, section and material; density needed)"),
+    model: str = typer.Option(..., "--model", "-m", help="a model with a mass operator: pd-rod, pd-timoshenko, ..."),
+    option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
+    count: int = typer.Option(5, "--count", help="how many modes, lowest first"),
+    fmt: Format = typer.Option(Format.table, "--format", help="table | json | csv"),
+):
+    """The first natural frequencies of a model's discrete operator against the analytic ones, with the
+    relative error per mode (rod and torsion bar: closed form; Timoshenko beam: characteristic determinant)."""
+    from .modes import modes as _modes
+    from .scene import load_scene
+
+    sc = load_scene(scene)
+    _SCENE_FILES[:] = [sc]
+    table = _modes(sc, model, parse_options(option), count)
+    for w in table.warnings:
+        typer.echo(f"warning: {w}", err=True)
+    text = {Format.json: table.to_json, Format.csv: table.to_csv, Format.table: table.to_table}[fmt]()
+    sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
 @app.command("models")
 @user_errors
 def list_models():

@@ -42,18 +42,18 @@ class Result:
         out = {
             "scene": self.scene,
             "model": self.model,
-            "parameters": _plain(self.parameters),
-            "x": _plain(self.x),
-            "w": _plain(self.w),
+            "parameters": plain_json(self.parameters),
+            "x": plain_json(self.x),
+            "w": plain_json(self.w),
         }
         if self.rotation is not None:
-            out["rotation"] = _plain(self.rotation)
+            out["rotation"] = plain_json(self.rotation)
         if self.fields:
-            out["fields"] = {k: _plain(v) for k, v in self.fields.items()}
+            out["fields"] = {k: plain_json(v) for k, v in self.fields.items()}
         out["dofs"] = int(self.dofs)
         out["timings"] = {k: float(v) for k, v in self.timings.items()}
         if self.info:
-            out["info"] = _plain(self.info)
+            out["info"] = plain_json(self.info)
         out["version"] = self.version
         return out
 
@@ -129,14 +129,14 @@ def columns_csv(cols: dict, fmt: str = "%.17g") -> str:
     return buf.getvalue()
 
 
-def _plain(v):
+def plain_json(v):
     """numpy -> JSON-able Python (NaN/inf become None so the JSON stays valid)."""
     if isinstance(v, dict):
-        return {str(k): _plain(x) for k, x in v.items()}
+        return {str(k): plain_json(x) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
+        return [plain_json(x) for x in v]
     if isinstance(v, np.ndarray):
-        return _plain(v.tolist())
+        return plain_json(v.tolist())
     if isinstance(v, (np.floating, float)):
         f = float(v)
         return f if np.isfinite(f) else None

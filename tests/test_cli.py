@@ -17,7 +17,7 @@ from pdverify import __version__
 
 ROOT = Path(__file__).parents[1]
 SCENE = ROOT / "studies/examples/cantilever_tip_load.toml"
-COMMANDS = ["solve", "models", "study", "advise", "report", "bench", "version"]
+COMMANDS = ["solve", "modes", "models", "study", "advise", "report", "bench", "version"]
 
 
 def test_version_flag_and_command(capsys):

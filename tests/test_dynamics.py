@@ -7,7 +7,11 @@ import numpy as np
 import pytest
 from conftest import PAIRS, scene_dict
 
+from pdverify.dynamics import LEDGER_COLUMNS
 from pdverify.errors import SolveError
+from pdverify.models import moyer_operator as O
+from pdverify.models import moyer_spectrum as S
+from pdverify.models import moyer_transient as TR
 from pdverify.models import pd_timoshenko as T
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
@@ -39,8 +43,8 @@ def test_undamped_energy_is_conserved_at_order_two():
     velocity-Verlet run (κ = 0) keeps T + U - W_loads to O(dt²). Measured drift 5.8e-5, 1.5e-5, 3.7e-6 at
     0.4, 0.2, 0.1 of the stable step (ratios 3.89, 4.01)."""
     sc = _scene(loads=AXIAL)
-    disc = T.rod_operator(sc, 41, 1, "corrected")
-    limit = T.stable_time_step(disc)
+    disc = O.rod_operator(sc, 41, 1, "corrected")
+    limit = S.stable_time_step(disc)
     drift = []
     for f in (0.4, 0.2, 0.1):
         h = T.simulate(
@@ -53,7 +57,7 @@ def test_undamped_energy_is_conserved_at_order_two():
     assert drift[-1] < 1e-5
 
 
-@pytest.mark.parametrize("kappa,ratio,gain", [(T.STABILISATION, None, 4.0), (0.0, 0.05, 10.0)])
+@pytest.mark.parametrize("kappa,ratio,gain", [(TR.STABILISATION, None, 4.0), (0.0, 0.05, 10.0)])
 @pytest.mark.slow
 def test_damped_ledger_balances(kappa, ratio, gain):
     """The dissipated work closes the balance when every step is sampled. Mass damping (5 %, Eq. 7-11's
@@ -62,8 +66,8 @@ def test_damped_ledger_balances(kappa, ratio, gain):
     a step): measured 4.9e-5 / 1.2e-5 / 5.9e-6; it dissipates 0.0574 of the load's 0.177 (32 %, the high
     modes a step load excites) at every dt."""
     sc = _scene(loads=AXIAL)
-    disc = T.rod_operator(sc, 41, 1, "corrected")
-    limit = T.stable_time_step(disc) / np.sqrt(1 + 2 * kappa)
+    disc = O.rod_operator(sc, 41, 1, "corrected")
+    limit = S.stable_time_step(disc) / np.sqrt(1 + 2 * kappa)
     drift, dissipated = [], []
     for f in (0.4, 0.1):
         h = T.simulate(
@@ -90,8 +94,8 @@ def test_support_work_of_a_prescribed_motion():
     support work 1.1e5 at 0.8, 0.4, 0.2 of the step). The beam of Example 2 (m = 1) keeps a residual of
     -42 of 2146 at every dt: the energy flow through the non-symmetric part of its closures."""
     sc = load_scene(ROOT / "studies/paper_moyer/rod_example1.toml")
-    disc = T.rod_operator(sc, 101, 1, "corrected")
-    limit = T.stable_time_step(disc)
+    disc = O.rod_operator(sc, 101, 1, "corrected")
+    limit = S.stable_time_step(disc)
     bal = []
     for f in (0.8, 0.4):
         h = T.simulate(
@@ -115,12 +119,12 @@ def test_history_csv_and_info_carry_the_ledger(tmp_path):
     sc = _scene(output_interval=1e-3)
     r = run(sc, "pd-timoshenko", points=41, horizon=1)
     hist = r.info["history"]
-    assert set(T.LEDGER_COLUMNS) <= set(hist["energy"]) and len(hist["energy"]["kinetic"]) == len(hist["t"])
+    assert set(LEDGER_COLUMNS) <= set(hist["energy"]) and len(hist["energy"]["kinetic"]) == len(hist["t"])
     assert "energy_drift" in r.info
     path = tmp_path / "h.csv"
     r.writers[".csv"](path)
     head = path.read_text().splitlines()[0].split(",")
-    assert [f"energy_{k}" for k in T.LEDGER_COLUMNS] == head[-len(T.LEDGER_COLUMNS) :]
+    assert [f"energy_{k}" for k in LEDGER_COLUMNS] == head[-len(LEDGER_COLUMNS) :]
 
 
 def test_rod_transient_converges_to_the_modal_solution():
@@ -138,12 +142,12 @@ def test_rod_transient_converges_to_the_modal_solution():
     exact = q * L**2 / (np.pi**2 * EA) * (1 - np.cos(w1 * t_end))
     err, dts = [], []
     for points in (21, 41, 81):
-        disc = T.rod_operator(sc, points, 1, "corrected")
-        limit = T.stable_time_step(disc)
+        disc = O.rod_operator(sc, points, 1, "corrected")
+        limit = S.stable_time_step(disc)
         got = []
         for f in (0.5, 0.25, 0.125) if points == 21 else (0.5,):
             steps = int(np.ceil(t_end / (f * limit)))
-            h = T.integrate(
+            h = TR.integrate(
                 disc, {}, None, dt=t_end / steps, steps=steps, stabilisation=0.0, probes=[L / 2], record_every=steps
             )
             got.append(h.values[-1, 0])
@@ -159,8 +163,8 @@ def test_ledger_is_thinned_on_large_grids():
     steps, the histories at every sample (measured: 1e5 points, 1000 steps, 100 samples: 2.2 s against 1.9 s
     without samples; 7.4 s with the ledger at every sample); the CSV leaves the other rows empty (nan)."""
     sc = _scene()
-    disc = T.beam_operator(sc, 2500, 1, "corrected")
-    h = T.integrate(disc, {}, None, steps=450, record_every=1)
+    disc = O.beam_operator(sc, 2500, 1, "corrected")
+    h = TR.integrate(disc, {}, None, steps=450, record_every=1)
     assert len(h.t) == 451 and list(h.energy["t"]) == [h.t[0], h.t[200], h.t[400], h.t[450]]
     csv = np.genfromtxt(h.to_csv().splitlines(), delimiter=",", names=True)
     assert np.isfinite(csv["energy_kinetic"]).sum() == 4 and np.isnan(csv["energy_kinetic"][1])
@@ -193,8 +197,8 @@ def test_blow_up_message_names_step_limit_and_cause():
     negative eigenvalue at the support rotations, measured -1.9e-2 of the largest): the message says a
     smaller step does not help and names the eigenvalue."""
     sc = _scene()
-    disc = T.beam_operator(sc, 41, 1, "corrected")
-    limit = T.stable_time_step(disc) / np.sqrt(1 + 2 * T.STABILISATION)
+    disc = O.beam_operator(sc, 41, 1, "corrected")
+    limit = S.stable_time_step(disc) / np.sqrt(1 + 2 * TR.STABILISATION)
     with pytest.raises(SolveError, match=r"the stable limit is .* use time_step <= "):
         T.simulate(sc, {"points": 41, "horizon": 1}, dt=1.1 * limit)
     sc = _scene("pinned", "pinned", height=0.02)
@@ -215,8 +219,8 @@ def test_table1_cantilever_runs_at_smaller_steps():
     d["material"]["density"] = 7.324e-4
     d["dynamics"] = {"end_time": 0.01}
     sc = parse_scene(d)
-    disc = T.beam_operator(sc, 101, 3, "corrected")
-    limit = T.stable_time_step(disc) / np.sqrt(1 + 2 * T.STABILISATION)
+    disc = O.beam_operator(sc, 101, 3, "corrected")
+    limit = S.stable_time_step(disc) / np.sqrt(1 + 2 * TR.STABILISATION)
     share = []
     for f in (0.5, 0.3):
         h = T.simulate(sc, {"points": 101}, dt=f * limit)
@@ -237,15 +241,15 @@ def test_stable_step_on_large_grids_is_the_threshold(model):
     is real (with complex modes the run grows at any step, test_closure_spectrum)."""
     sc = _scene("clamped", "clamped", loads=LOADS if model == "pd-timoshenko" else AXIAL)
     n = 3001 if model == "pd-timoshenko" else 6001
-    disc = (T.beam_operator if model == "pd-timoshenko" else T.rod_operator)(sc, n, 2, "corrected")
-    assert disc.n_free > T.EIG_DOFS
-    limit = T.stable_time_step(disc) / np.sqrt(1 + 2 * T.STABILISATION)
+    disc = (O.beam_operator if model == "pd-timoshenko" else O.rod_operator)(sc, n, 2, "corrected")
+    assert disc.n_free > S.EIG_DOFS
+    limit = S.stable_time_step(disc) / np.sqrt(1 + 2 * TR.STABILISATION)
     # a band of random loads excites the highest modes as a step load would
     disc.b[:] = np.random.default_rng(0).standard_normal(len(disc.b)) * 1e3
-    ok = T.integrate(disc, {}, None, dt=0.97 * limit, steps=3000, record_every=100)
+    ok = TR.integrate(disc, {}, None, dt=0.97 * limit, steps=3000, record_every=100)
     assert np.all(np.isfinite(ok.final))
     with pytest.raises(SolveError, match="stable limit"):
-        T.integrate(disc, {}, None, dt=1.03 * limit, steps=3000, record_every=100)
+        TR.integrate(disc, {}, None, dt=1.03 * limit, steps=3000, record_every=100)
 
 
 # -- the closures' spectrum ------------------------------------------------------------------------
@@ -258,8 +262,8 @@ def closure_growth(model: str, left: str, right: str, m: int, slenderness: float
     sc = parse_scene(
         scene_dict(left, right, [], section={"width": 0.05, "height": 2.0 / slenderness}, material=MATERIAL)
     )
-    disc = (T.beam_operator if model == "pd-timoshenko" else T.rod_operator)(sc, points, m, "corrected")
-    lam = np.linalg.eigvals(T._mass_scaled(disc, disc.free).toarray()).astype(complex)
+    disc = (O.beam_operator if model == "pd-timoshenko" else O.rod_operator)(sc, points, m, "corrected")
+    lam = np.linalg.eigvals(S.mass_scaled(disc, disc.free).toarray()).astype(complex)
     return float(np.abs(np.sqrt(lam).imag).max() / np.sqrt(np.abs(lam).max()))
 
 
@@ -326,9 +330,9 @@ def test_undamped_rod_runs_at_the_limit_for_every_support_pair():
     drift = []
     for left, right in PAIRS:
         for m in (1, 2, 3, 4):
-            disc = T.rod_operator(_scene(left, right, loads=AXIAL), 41, m, "corrected")
-            h = T.integrate(
-                disc, {}, None, dt=0.99 * T.stable_time_step(disc), steps=10_000, stabilisation=0.0, record_every=10
+            disc = O.rod_operator(_scene(left, right, loads=AXIAL), 41, m, "corrected")
+            h = TR.integrate(
+                disc, {}, None, dt=0.99 * S.stable_time_step(disc), steps=10_000, stabilisation=0.0, record_every=10
             )
             drift.append(h.energy_drift)
     assert max(drift) < 0.05

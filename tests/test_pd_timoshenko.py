@@ -7,12 +7,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
-from scipy.optimize import brentq
 
 from pdverify.errors import InputError, SolveError
 from pdverify.exact.straight import solve_straight
+from pdverify.exact.vibration import TimoshenkoBeam
 from pdverify.models._moyer_kernels import rod_kernel, shear_kernel
-from pdverify.models.pd_timoshenko import STABILISATION, beam_operator, integrate, simulate, stable_time_step
+from pdverify.models.moyer_operator import beam_operator
+from pdverify.models.moyer_spectrum import stable_time_step
+from pdverify.models.moyer_transient import STABILISATION, integrate
+from pdverify.models.pd_timoshenko import simulate
 from pdverify.registry import run
 from pdverify.scene import Distributed, PointForce, load_scene, parse_scene
 
@@ -323,27 +326,13 @@ def test_example1_rod_settles_and_larger_horizon_disperses():
 
 
 def timoshenko_cc_frequency(scene) -> float:
-    """First natural frequency (Hz) of the clamped-clamped Timoshenko beam: root of the 4x4 boundary
-    determinant of w = cosh/sinh(αx), cos/sin(βx) with λ² from
-    EI kGA λ⁴ + ω²(kGA ρI + EI ρA) λ² + ρA ω²(ρI ω² - kGA) = 0."""
-    EI, kGA, L = scene.EI, scene.kGA, scene.length
+    """First natural frequency (Hz) of the clamped-clamped Timoshenko beam (the characteristic determinant
+    of pdverify.exact.vibration)."""
     rho = scene.material.density
-    rA, rI = rho * scene.section.A, rho * scene.section.I
-
-    def det(omega):
-        w2 = omega**2
-        r = np.roots([EI * kGA, w2 * (kGA * rI + EI * rA), rA * w2 * (rI * w2 - kGA)])
-        al, be = np.sqrt(r.real.max()), np.sqrt(-r.real.min())
-        ra = (kGA * al**2 + rA * w2) / (kGA * al)  # γ = ra sinh for w = cosh
-        sb = (rA * w2 - kGA * be**2) / (kGA * be)  # γ = sb sin for w = cos
-        cols = []
-        for x in (0.0, L):
-            cols.append([np.cosh(al * x), np.sinh(al * x), np.cos(be * x), np.sin(be * x)])
-            cols.append([ra * np.sinh(al * x), ra * np.cosh(al * x), sb * np.sin(be * x), -sb * np.cos(be * x)])
-        return np.linalg.det(np.array(cols))
-
-    w_eb = 4.730041**2 * np.sqrt(EI / (rA * L**4))
-    return brentq(det, 0.9 * w_eb, 1.0 * w_eb) / (2 * np.pi)
+    beam = TimoshenkoBeam(
+        scene.EI, scene.kGA, rho * scene.section.A, rho * scene.section.I, scene.length, (True, True), (True, True)
+    )
+    return beam.frequencies(1)[0] / (2 * np.pi)
 
 
 @pytest.mark.slow
@@ -419,7 +408,7 @@ def test_time_stepping_is_stable_with_the_non_symmetric_closures(right, n, m, re
     """Spectral radius of the undamped one-step map (u, v) -> (u', v') on the free DOFs. Without the
     stabilisation (κ = 0) the complex eigenvalues of the boundary closures make it grow: measured
     1 + 1.9e-2, 2.0e-2, 2.4e-3, 1.3e-3; with κ = 0.2 it is <= 1."""
-    from pdverify.models.pd_timoshenko import _mass_scaled
+    from pdverify.models.moyer_spectrum import mass_scaled
 
     sc = parse_scene(
         dict(
@@ -429,7 +418,7 @@ def test_time_stepping_is_stable_with_the_non_symmetric_closures(right, n, m, re
         )
     )
     disc = beam_operator(sc, n, m, "corrected")
-    A = _mass_scaled(disc, disc.free).toarray()
+    A = mass_scaled(disc, disc.free).toarray()
     w_max = np.sqrt(np.abs(np.linalg.eigvals(A)).max())
     N = len(A)
     I = np.eye(N)

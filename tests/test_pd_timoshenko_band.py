@@ -8,6 +8,11 @@ import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.linalg import solve_linear
+from pdverify.models import moyer_operator as O
+from pdverify.models import moyer_spectrum as S
+from pdverify.models import moyer_steps as ST
+from pdverify.models import moyer_system as SY
+from pdverify.models import moyer_transient as TR
 from pdverify.models import pd_timoshenko as T
 from pdverify.models._moyer_kernels import EndPatched, node_loads
 from pdverify.registry import run
@@ -25,10 +30,10 @@ FORMS = [("corrected", "nodes"), ("paper", "nodes"), ("paper", "cells")]
 
 def _whole_beam(sc, n, m, variant, grid):
     """K, b, ψ op and constant of the beam assembled on the whole grid (the route of the paper's notation)."""
-    nn, x = T._grid(sc, n, grid, variant, "pd-timoshenko")
+    nn, x = O._grid(sc, n, grid, variant, "pd-timoshenko")
     dx = x[1] - x[0]
     q, mu, ends = node_loads(sc, x, "transverse", ends_apart=(variant == "corrected"))
-    K, bw_parts, bg_parts, P, p0 = T._beam_core(sc, nn, dx, m, variant, grid, ends)
+    K, bw_parts, bg_parts, P, p0 = O._beam_core(sc, nn, dx, m, variant, grid, ends)
     bw, bg = q, mu
     for v in bw_parts:
         bw = bw + v
@@ -49,10 +54,10 @@ def _whole_beam(sc, n, m, variant, grid):
 def test_beam_operator_is_the_whole_grid_assembly_bit_for_bit(variant, grid, m):
     """Every support pair with mixed loads (also at the ends) on a grid three times the short one: the
     stencil-extended K, b and ψ operator equal the whole-grid sparse assembly exactly."""
-    n = 3 * T._core_points(m) + 7
+    n = 3 * O._core_points(m) + 7
     for left, right in PAIRS:
         sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
-        d = T.beam_operator(sc, n, m, variant, grid)
+        d = O.beam_operator(sc, n, m, variant, grid)
         assert d.op.L > 0 and d.op.R > 0 and d.op.blocks  # the long grid does use the stencil
         K, b, P, p0 = _whole_beam(sc, n, m, variant, grid)
         assert (d.K != K).nnz == 0, (left, right)
@@ -67,7 +72,7 @@ def test_beam_operator_is_the_whole_grid_assembly_bit_for_bit(variant, grid, m):
 @pytest.mark.parametrize("variant,grid", FORMS)
 def test_rod_operator_is_the_whole_grid_assembly_bit_for_bit(variant, grid, kind):
     for m in (1, 3, 10):
-        n = 3 * T._core_points(m) + 5
+        n = 3 * O._core_points(m) + 5
         for left, right in PAIRS:
             loads = (
                 AXIAL_LOADS
@@ -75,14 +80,14 @@ def test_rod_operator_is_the_whole_grid_assembly_bit_for_bit(variant, grid, kind
                 else [{"type": "point_torque", "position": p, "value": 30.0} for p in (0.0, 0.7, 2.0)]
             )
             sc = parse_scene(scene_dict(left, right, loads))
-            d = T.rod_operator(sc, n, m, variant, kind, grid)
-            nn, x = T._grid(sc, n, grid, variant, "pd-rod")
+            d = O.rod_operator(sc, n, m, variant, kind, grid)
+            nn, x = O._grid(sc, n, grid, variant, "pd-rod")
             dx = x[1] - x[0]
             stiff = sc.EA if kind == "axial" else sc.material.G * sc.section.J
             q, _, ends = node_loads(
                 sc, x, "axial" if kind == "axial" else "torque", ends_apart=(variant == "corrected")
             )
-            K, bb = T._rod_core(sc, nn, dx, m, variant, stiff, ends, grid)
+            K, bb = O._rod_core(sc, nn, dx, m, variant, stiff, ends, grid)
             b = q + bb
             if variant == "paper":
                 for side in (0, 1):
@@ -92,9 +97,9 @@ def test_rod_operator_is_the_whole_grid_assembly_bit_for_bit(variant, grid, kind
 
 def test_short_core_is_refused():
     sc = parse_scene(scene_dict("clamped", "free", MIXED_LOADS))
-    _, x = T._grid(sc, 14, "nodes", "corrected", "x")  # m = 3: 4 end rows each side, reach 4: 19 points needed
+    _, x = O._grid(sc, 14, "nodes", "corrected", "x")  # m = 3: 4 end rows each side, reach 4: 19 points needed
     _, _, ends = node_loads(sc, x, "transverse", ends_apart=True)
-    K, *_ = T._beam_core(sc, 14, x[1] - x[0], 3, "corrected", "nodes", ends)
+    K, *_ = O._beam_core(sc, 14, x[1] - x[0], 3, "corrected", "nodes", ends)
     with pytest.raises(RuntimeError, match="holds no stencil rows"):
         EndPatched.from_core(K, 2, 2, 1000)
 
@@ -110,11 +115,11 @@ def test_largest_eigenvalue_from_the_short_grid_and_the_symbol(monkeypatch, left
             left, right, MIXED_LOADS, material={"youngs_modulus": 2e11, "poissons_ratio": 0.3, "density": 7850.0}
         )
     )
-    for d in (T.beam_operator(sc, 700, 3, "corrected"), T.rod_operator(sc, 1800, 2, "corrected")):
-        whole = T._eig_max(d)
+    for d in (O.beam_operator(sc, 700, 3, "corrected"), O.rod_operator(sc, 1800, 2, "corrected")):
+        whole = S._eig_max(d)
         with monkeypatch.context() as mp:
-            mp.setattr(T, "EIG_DOFS", 400)
-            assert T.largest_eigenvalue(d) == pytest.approx(whole, rel=1e-5)
+            mp.setattr(S, "EIG_DOFS", 400)
+            assert S.largest_eigenvalue(d) == pytest.approx(whole, rel=1e-5)
 
 
 @pytest.mark.parametrize("model,scene,horizon", [("pd-timoshenko", "beam_example2", 3), ("pd-rod", "rod_example1", 2)])
@@ -126,13 +131,13 @@ def test_matrix_free_step_equals_the_csr_step(monkeypatch, model, scene, horizon
     m = {"pd-timoshenko": T.PDTimoshenko(), "pd-rod": T.PDRod()}[model]
     sc = load_scene(ROOT / "studies" / "paper_moyer" / f"{scene}.toml")
     disc = m.operator(sc, m.resolve(sc, {"points": 301, "horizon": horizon}))
-    motions = T.prescribed_motions(sc, disc)
+    motions = SY.prescribed_motions(sc, disc)
     assert any(v is not None for v in motions.values())
     out = {}
-    for whole, chunk in ((10**9, T.CHUNK), (0, 7)):
-        monkeypatch.setattr(T, "WHOLE_DOFS", whole)
-        monkeypatch.setattr(T, "CHUNK", chunk)
-        out[whole] = T.integrate(
+    for whole, chunk in ((10**9, ST.CHUNK), (0, 7)):
+        monkeypatch.setattr(TR, "WHOLE_DOFS", whole)
+        monkeypatch.setattr(ST, "CHUNK", chunk)
+        out[whole] = TR.integrate(
             disc, motions, None, steps=3000, damping_ratio=0.05, record_every=50, damp_rotations=True
         )
     a, b = out[10**9], out[0]

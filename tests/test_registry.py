@@ -34,7 +34,12 @@ def test_capabilities_are_declared_data():
         assert m.straight or m.curved, m.name
         assert all(isinstance(r, registry.Rule) for r in m.variant_rules), m.name
         assert not hasattr(m, "limit_system") and not hasattr(m, "kind"), m.name  # one contract: assemble()
-    assert {n for n, m in models().items() if "dynamic" in m.analyses} == {"pd-rod", "pd-timoshenko", "pd-torsion"}
+    assert {n for n, m in models().items() if "dynamic" in m.analyses} == {
+        "exact-modal-rod",
+        "pd-rod",
+        "pd-timoshenko",
+        "pd-torsion",
+    }
 
 
 @pytest.mark.parametrize("name", [n for n, m in models().items() if m.assembles])

@@ -136,6 +136,23 @@ def _failure_message(exc: Exception) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
+def history_errors(case: Case, scene, hist) -> dict | None:
+    """The errors of a case's time histories (every probe's translation, stacked) against a reference model
+    that gives histories (``history_at(scene, params, probes, t)``: exact-modal-rod) at the case's own
+    sample times, as :func:`~.metrics.errors` measures w; None when either has none."""
+    if not isinstance(hist, dict) or "t" not in hist or scene.dynamics is None:
+        return None
+    ref = dict(case.reference)
+    model = get_model(ref.pop("model"))
+    history_at = getattr(model, "history_at", None)
+    if history_at is None:
+        return None
+    probes = list(scene.dynamics.probes) or [scene.length / 2]  # the integrators' default probe
+    got = np.column_stack(list(hist["series"].values())[: len(probes)])  # translations first, then rotations
+    want = history_at(scene, model.resolve(scene, ref), probes, np.asarray(hist["t"], float))
+    return errors(got.ravel(), want.ravel())
+
+
 def _plain_scalar(v):
     """A numpy scalar as the Python number it equals (pickling a numpy scalar pickles its dtype: ~20 us)."""
     return v.item() if isinstance(v, np.generic) else v
@@ -189,6 +206,9 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         else:
             w_ref = reference_at(case, scene, x)
             row.update(errors(w, w_ref))
+            hist_err = history_errors(case, scene, info.get("history"))
+            if hist_err is not None:  # a transient against a transient reference: the histories, not the final w
+                row.update(hist_err)
         row.update(solved["timings"])
         row["dofs"] = solved["dofs"]
         row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
