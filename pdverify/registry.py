@@ -272,7 +272,7 @@ class Model:
     def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
         raise NotImplementedError
 
-    def result(self, scene: Scene, params: dict, x, w, **parts) -> Result:
+    def new_result(self, scene: Scene, params: dict, x, w, **parts) -> Result:
         """The :class:`~pdverify.result.Result` of this model's solve of ``scene`` with ``params``: the scene's
         and model's names and a copy of the options filled in; ``parts``: rotation, fields, dofs, timings, info."""
         return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, **parts)

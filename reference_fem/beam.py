@@ -361,7 +361,7 @@ class FemEulerBernoulli(_BeamFE):
     def solve(self, scene: Scene, params: dict) -> Result:
         u, info, dofs, nodes, timer = self.solve_nodal(scene, params, "fem-eb")
         info.update(element="ElementLineHermite", elements=len(nodes) - 1)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             nodes,
@@ -450,7 +450,7 @@ class FemTimoshenko(_BeamFE):
             }[params["variant"]],
             elements=len(nodes) - 1,
         )
-        return self.result(
+        return self.new_result(
             scene,
             params,
             nodes,

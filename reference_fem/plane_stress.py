@@ -386,7 +386,7 @@ class FemPlaneStress(Model):
             finally:
                 os.unlink(tmp)
 
-        return self.result(
+        return self.new_result(
             scene,
             params,
             s,

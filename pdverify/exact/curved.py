@@ -299,7 +299,7 @@ class ExactCurved(Model):
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             f = self.solver(scene).fields(s)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             s,

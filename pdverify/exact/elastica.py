@@ -186,7 +186,7 @@ class ExactElastica(Model):
         with timer("solve"):
             x = np.linspace(0.0, scene.length, params["points"])
             f = self.evaluate(scene, params, x)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             x,

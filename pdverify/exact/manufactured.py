@@ -68,7 +68,7 @@ class ExactCurvedManufactured(Model):
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             f = self.evaluate(scene, params, s)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             s,

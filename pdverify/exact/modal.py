@@ -195,12 +195,11 @@ class ExactModalRod(Model):
             "ylabel": "axial displacement",
         }
         series = info["history"]["series"]
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=np.zeros_like(x),
+        return self.new_result(
+            scene,
+            params,
+            x,
+            np.zeros_like(x),
             fields={"u": final[0]},
             dofs=info["modes"],
             timings=timer.timings,

@@ -33,7 +33,7 @@ class ExactBeam(Model):
         with timer("solve"):
             sol = solve_straight(scene, self.shear)
             f = sol.fields(x)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             x,

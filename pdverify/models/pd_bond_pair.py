@@ -360,7 +360,7 @@ class PDBondPair(Model):
                 )
                 f = elastica.evaluate(at, {"extensible": True}, s_)
                 shot["exact_x"], shot["exact_z"] = (s_ + f["u"]).tolist(), f["w"].tolist()
-        return self.result(
+        return self.new_result(
             scene,
             params,
             X0[:, 0],
@@ -423,7 +423,7 @@ class PDBondPair(Model):
             horizon_factor=params["horizon"],
             horizon=(params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx,
         )
-        return self.result(
+        return self.new_result(
             scene,
             params,
             x,

@@ -256,7 +256,7 @@ class PDCurved(Model):
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
         w, rot = total.pop("w"), total.pop("rotation")
         x = total.pop("x") / len(infos)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             x,

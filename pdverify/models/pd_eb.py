@@ -458,7 +458,7 @@ class PDEulerBernoulli(Model):
         )
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             x,

@@ -471,7 +471,7 @@ class PDHigherOrder(Model):
         if len(stations):
             mat = scene.material
             info["sections"] = section_stresses(x, u, stations, binfo["depth"], mat.E, mat.poissons_ratio)
-        return self.result(
+        return self.new_result(
             scene,
             params,
             x,

@@ -175,7 +175,7 @@ class _MoyerModel(Model):
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m)
             if flags:
                 info.setdefault("warnings", []).extend(flags)
-        return self.result(scene, params, disc, u, fields, info, timer, writers)
+        return self.from_solution(scene, params, disc, u, fields, info, timer, writers)
 
 
 class PDRod(_MoyerModel):
@@ -201,16 +201,15 @@ class PDRod(_MoyerModel):
             scene, params["points"], params["horizon"], params["variant"], kind="axial", grid=params["grid"]
         )
 
-    def result(self, scene, params, disc, u, fields, info, timer, writers):
+    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         N = scene.EA * np.gradient(u, x[1] - x[0], edge_order=2)
         fields = dict(fields, u=u, N=N)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=np.zeros_like(x),
+        return self.new_result(
+            scene,
+            params,
+            x,
+            np.zeros_like(x),
             fields=fields,
             dofs=disc.n_free,
             timings=timer.timings,
@@ -237,16 +236,15 @@ class PDTorsion(_MoyerModel):
             )
         return disc
 
-    def result(self, scene, params, disc, u, fields, info, timer, writers):
+    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         T = scene.material.G * scene.section.J * np.gradient(u, x[1] - x[0], edge_order=2)
         fields = dict(fields, twist=u, T=T)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=np.zeros_like(x),
+        return self.new_result(
+            scene,
+            params,
+            x,
+            np.zeros_like(x),
             fields=fields,
             dofs=disc.n_free,
             timings=timer.timings,
@@ -263,7 +261,7 @@ class PDTimoshenko(_MoyerModel):
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
 
-    def result(self, scene, params, disc, u, fields, info, timer, writers):
+    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         dx = x[1] - x[0]
         w, g = u[0::2], u[1::2]
@@ -272,12 +270,11 @@ class PDTimoshenko(_MoyerModel):
         # np.gradient(w) - γ would carry the O(Δ²) error of w' multiplied by kGA
         psi = disc.psi[0] @ u + disc.psi[1]
         fields = dict(fields, M=M, V=-scene.kGA * psi, psi=psi)
-        return Result(
-            scene=scene.name,
-            model=self.name,
-            parameters=dict(params),
-            x=x,
-            w=w,
+        return self.new_result(
+            scene,
+            params,
+            x,
+            w,
             rotation=g,
             fields=fields,
             dofs=disc.n_free,
