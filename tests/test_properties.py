@@ -118,7 +118,12 @@ def test_superposition_and_mirror(model, data, la, lb, c):
     scaled_b = [dict(l, value=c * l["value"]) for l in lb]
     sab = parse_scene(scene_dict(left, right, la + scaled_b))
     assume(not (m.check(sa) or m.check(sb) or m.check(sab)))  # loads it declines (a cantilever reference's ends)
-    ra, rb, rab = (run(s, m, **_opts(m)) for s in (sa, sb, sab))
+    # pd-higher-order's default cuts the bonds at interior point loads, so its operator depends on where the
+    # loads are (like an FE mesh with nodes at the loads): three load sets, three operators, superposition only
+    # to the discretisation error (measured 3.7e-8 of the deflection, clamped-clamped, 41 points). Linearity
+    # is a property of one operator: checked with the cuts off; the mirror below runs the defaults.
+    same_operator = {"cuts": "none"} if m.option("cuts") is not None else {}
+    ra, rb, rab = (run(s, m, **_opts(m), **same_operator) for s in (sa, sb, sab))
     L, EI = sa.length, sa.EI
     # a deflection scale of the loads (loads at a clamped end give w = 0 up to round-off)
     floor = (
@@ -136,6 +141,7 @@ def test_superposition_and_mirror(model, data, la, lb, c):
     sm = parse_scene(scene_dict(right, left, [_mirror(l, L) for l in la]))
     assert not m.check(sm), m.check(sm)  # a model that takes a scene takes its mirror image
     rm = run(sm, m, **_opts(m))
+    ra = run(sa, m, **_opts(m))
     assert len(rm.x) == len(ra.x) and np.allclose(L - rm.x[::-1], ra.x, atol=1e-12 * L)
     scale = max(np.abs(ra.w).max(), floor)
     assert np.abs(rm.w[::-1] - ra.w).max() <= 1e-8 * scale
