@@ -25,6 +25,11 @@ DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (0.05 s);
 ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
 
 
+def gives_modes(model) -> bool:
+    """Whether ``model`` gives the mass and stiffness of its transient (a ``eigenproblem`` method)."""
+    return callable(getattr(model, "eigenproblem", None))
+
+
 def discrete_eigenvalues(K: sp.spmatrix, mass: np.ndarray, count: int) -> tuple[np.ndarray, float]:
     """(λ, ||M⁻¹K||_∞): the ``count`` eigenvalues of M⁻¹K smallest in modulus, ordered by modulus."""
     import scipy.linalg as la
@@ -143,10 +148,10 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
     """The first ``count`` natural frequencies of ``model``'s discrete operator on ``scene`` (its supports,
     section and material; loads and [dynamics] play no part) against the analytic ones."""
     m = get_model(model)
-    if getattr(m, "eigenproblem", None) is None:
+    if not gives_modes(m):
         from .registry import models
 
-        can = ", ".join(n for n, x in models().items() if getattr(x, "eigenproblem", None) is not None)
+        can = ", ".join(n for n, x in models().items() if gives_modes(x))
         raise InputError(f"model {m.name}: gives no mass and stiffness operator for natural frequencies; use {can}")
     if count < 1:
         raise InputError(f"--count {count}: give a number of modes, 1 or more")

@@ -15,6 +15,7 @@ from ..errors import InputError
 from ..registry import get_model, run
 from ..scene import parse_scene
 from . import checks as C
+from .dynamics import dynamics_check
 from .suite import LOADS, SUITE_VERSION, end_force, mirror, plan, straight, write_study
 
 __all__ = ["verify", "SUITE_VERSION", "parse_entry", "entry_errors", "card_folder"]
@@ -177,14 +178,7 @@ def verify(
         if curved
         else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
     )
-    found.append(
-        C.check(
-            "dynamics",
-            "n/a",
-            "not in suite " + SUITE_VERSION + " (TODO: dynamic scenes against modal "
-            "solutions)" + ("; the model declares dynamics" if "dynamic" in model.analyses else ""),
-        )
-    )
+    found.append(dynamics_check(model, options, p.grids, expected))
     scenes = [{**p.meta[r["scene_file"]], **r} for r in conv + curved]
     skipped = [f"{p.meta[f]['name']}: {why[0]}" for f, why in declined.items() if why]
     verdict = "fail" if any(c["verdict"] == "fail" for c in found) else "pass"

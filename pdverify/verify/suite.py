@@ -16,7 +16,7 @@ from pathlib import Path
 
 from ..scene import SUPPORTS, is_mechanism
 
-SUITE_VERSION = "1.0"
+SUITE_VERSION = "1.1"  # 1.1: natural frequencies of models that declare dynamics (verify.dynamics)
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
