@@ -7,7 +7,7 @@ from conftest import scene_dict
 
 from pdverify.errors import SolveError
 from pdverify.exact.straight import solve_straight
-from pdverify.models.pd_eb import simulate
+from pdverify.models.pd_eb_transient import simulate_eb as simulate
 from pdverify.registry import run
 from pdverify.scene import parse_scene
 

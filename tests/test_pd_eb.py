@@ -8,7 +8,8 @@ from conftest import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.errors import SolveError
 from pdverify.exact.straight import solve_straight
-from pdverify.models.pd_eb import PDEulerBernoulli, curvature_weights, simulate
+from pdverify.models.pd_eb import PDEulerBernoulli, curvature_weights
+from pdverify.models.pd_eb_transient import simulate_eb as simulate
 from pdverify.registry import run
 from pdverify.scene import load_scene, parse_scene
 

@@ -56,7 +56,7 @@ def toeplitz(n_rows: int, row0: int, n_cols: int, offsets, coefs) -> sp.csr_matr
 # -- ghost points --------------------------------------------------------------------------
 
 
-def taylor_ghosts(n_ghost: int, order: int) -> np.ndarray:
+def taylor_rows(n_ghost: int, order: int) -> np.ndarray:
     """Ghost values f(t), t = 1..n_ghost spacings outside the end, from the first four real values
     (f_0 at the end, f_k k spacings inside): f(t) = f_0 + t f'(0) + t² f''(0)/2 (``order`` 1 or 2),
     the derivatives by second-order one-sided differences (Eq. 20–21, 53)."""
@@ -71,7 +71,7 @@ def taylor_ghosts(n_ghost: int, order: int) -> np.ndarray:
     return G
 
 
-def taylor_ghosts_cells(n_ghost: int, order: int, anchored: bool) -> np.ndarray:
+def taylor_rows_cells(n_ghost: int, order: int, anchored: bool) -> np.ndarray:
     """Section 4 ghost cells: f(s) = f(0) + f'(0) s + f''(0) s²/2 (``order`` 1 or 2) about the end face
     s = 0, ghosts at s = (t - 1/2)Δ, the real cells at s = -(k + 1/2)Δ. The face value and derivatives
     come from the polynomial of degree order + 1 through the face value (``anchored``: the support

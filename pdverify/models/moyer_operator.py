@@ -72,8 +72,8 @@ from ._moyer_kernels import (
     node_loads,
     rod_kernel,
     shear_kernel,
-    taylor_ghosts,
-    taylor_ghosts_cells,
+    taylor_rows,
+    taylor_rows_cells,
     toeplitz,
 )
 from .moyer_system import Discrete
@@ -202,10 +202,10 @@ def _rod_core(
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
         fixed = sup in ROD_HELD[kind]
         if grid == "cells":
-            blocks[side] = (taylor_ghosts_cells(G, 1 if fixed else 2, fixed), np.zeros(G), 4)
+            blocks[side] = (taylor_rows_cells(G, 1 if fixed else 2, fixed), np.zeros(G), 4)
             continue
         if variant == "paper":
-            blocks[side] = (taylor_ghosts(G, 1 if fixed else 2), np.zeros(G), 4)
+            blocks[side] = (taylor_rows(G, 1 if fixed else 2), np.zeros(G), 4)
         else:
             if fixed:
                 con = [({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0)]
@@ -303,12 +303,12 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
         if grid == "cells":  # the end faces are not points: Dirichlet values enter the ghost cells
             order = 1 if (fix_w and fix_g) else 2
             R = np.zeros((2 * G, 8))
-            R[:G, :4] = taylor_ghosts_cells(G, order, fix_w)
-            R[G:, 4:] = taylor_ghosts_cells(G, order, fix_g)
+            R[:G, :4] = taylor_rows_cells(G, order, fix_w)
+            R[G:, 4:] = taylor_rows_cells(G, order, fix_g)
             blocks[side] = (R, np.zeros(2 * G), 4)
             continue
         if variant == "paper":
-            T = taylor_ghosts(G, 1 if (fix_w and fix_g) else 2)
+            T = taylor_rows(G, 1 if (fix_w and fix_g) else 2)
             R = np.kron(np.eye(2), T)
             blocks[side] = (R, np.zeros(2 * G), 4)
             continue

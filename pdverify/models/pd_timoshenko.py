@@ -178,7 +178,32 @@ class _MoyerModel(Model):
         return self.from_solution(scene, params, disc, u, fields, info, timer, writers)
 
 
-class PDRod(_MoyerModel):
+class _RodModel(_MoyerModel):
+    """The rod kernel's models (axial and torsion): one field and its resultant, stiffness x the field's slope."""
+
+    field, resultant = "u", "N"
+
+    def stiffness(self, scene) -> float:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
+        x = disc.x
+        slope = np.gradient(u, x[1] - x[0], edge_order=2)
+        fields = dict(fields, **{self.field: u, self.resultant: self.stiffness(scene) * slope})
+        return self.new_result(
+            scene,
+            params,
+            x,
+            np.zeros_like(x),
+            fields=fields,
+            dofs=disc.n_free,
+            timings=timer.timings,
+            info=info,
+            writers=writers,
+        )
+
+
+class PDRod(_RodModel):
     name = "pd-rod"
     title = "micro-elastic PD rod (axial), trapezoidal kernel"
     axial = True
@@ -201,24 +226,12 @@ class PDRod(_MoyerModel):
             scene, params["points"], params["horizon"], params["variant"], kind="axial", grid=params["grid"]
         )
 
-    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
-        x = disc.x
-        N = scene.EA * np.gradient(u, x[1] - x[0], edge_order=2)
-        fields = dict(fields, u=u, N=N)
-        return self.new_result(
-            scene,
-            params,
-            x,
-            np.zeros_like(x),
-            fields=fields,
-            dofs=disc.n_free,
-            timings=timer.timings,
-            info=info,
-            writers=writers,
-        )
+    def stiffness(self, scene) -> float:
+        """EA: the resultant N = EA u' of the solved field u."""
+        return scene.EA
 
 
-class PDTorsion(_MoyerModel):
+class PDTorsion(_RodModel):
     name = "pd-torsion"
     title = "micro-elastic PD torsion (twist), the rod kernel with GJ (Section 5)"
     bending = False
@@ -236,21 +249,11 @@ class PDTorsion(_MoyerModel):
             )
         return disc
 
-    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
-        x = disc.x
-        T = scene.material.G * scene.section.J * np.gradient(u, x[1] - x[0], edge_order=2)
-        fields = dict(fields, twist=u, T=T)
-        return self.new_result(
-            scene,
-            params,
-            x,
-            np.zeros_like(x),
-            fields=fields,
-            dofs=disc.n_free,
-            timings=timer.timings,
-            info=info,
-            writers=writers,
-        )
+    field, resultant = "twist", "T"
+
+    def stiffness(self, scene) -> float:
+        """GJ: the torque T = GJ twist'."""
+        return scene.material.G * scene.section.J
 
 
 class PDTimoshenko(_MoyerModel):
