@@ -27,7 +27,7 @@ ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a w
 
 def gives_modes(model) -> bool:
     """Whether ``model`` gives the mass and stiffness of its transient (a ``eigenproblem`` method)."""
-    return callable(getattr(model, "eigenproblem", None))
+    return model.modes
 
 
 def discrete_eigenvalues(K: sp.spmatrix, mass: np.ndarray, count: int) -> tuple[np.ndarray, float]:

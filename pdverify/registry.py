@@ -209,6 +209,9 @@ class Model:
     torsion: bool = False  # carries torques (point_torque, loads[i].torque)
     theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum (what it can represent)
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
+    order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
+    modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
+    histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
 
     def check(self, scene: Scene) -> list[str]:
         """Reasons this model cannot solve ``scene`` (empty when it can): its declared capabilities first
@@ -280,6 +283,14 @@ class Model:
     def assemble(self, scene: Scene, params: dict) -> System:
         """The :class:`System` that :meth:`solve` factorises (models with ``assembles = True``)."""
         raise NotImplementedError(f"model {self.name} assembles no linear system (assembles = False)")
+
+    def eigenproblem(self, scene: Scene, params: dict) -> tuple:
+        """(K on the free DOFs, lumped mass): K phi = omega^2 M phi of its transient (models with ``modes``)."""
+        raise NotImplementedError(f"model {self.name} gives no eigenproblem (modes = False)")
+
+    def history_at(self, scene: Scene, params: dict, probes, t):
+        """Translations at ``probes`` (columns) and times ``t`` (rows), for references with ``histories``."""
+        raise NotImplementedError(f"model {self.name} gives no time histories (histories = False)")
 
     def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
         """Point-updates per second of the time integrator (models with ``"dynamic"`` in ``analyses``)."""

@@ -147,6 +147,7 @@ class ExactModalRod(Model):
     name = "exact-modal-rod"
     title = "exact transient of the elastic rod from rest: sum of its modes (step loads, mass-proportional damping)"
     source = "modal superposition (textbook); the transient reference of pd-rod"
+    histories = True  # history_at(): the exact translations at any probes and times
     options = (
         POINTS,
         Option("tolerance", float, 1e-6, "truncation error estimate, relative to max |u_static|", minimum=1e-14),

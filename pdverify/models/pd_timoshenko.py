@@ -60,6 +60,7 @@ class _MoyerModel(Model):
     analyses = frozenset({"static", "dynamic"})  # the damped leapfrog-Verlet integrator (Eq. 7-11)
     end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
     assembles = True
+    modes = True  # eigenproblem(): the operator of the transient and its lumped mass
     variant_rules = (
         Rule(
             (("variant", "corrected"),),

@@ -144,12 +144,11 @@ def history_errors(case: Case, scene, hist) -> dict | None:
         return None
     ref = dict(case.reference)
     model = get_model(ref.pop("model"))
-    history_at = getattr(model, "history_at", None)
-    if history_at is None:
+    if not model.histories:
         return None
     probes = list(scene.dynamics.probes) or [scene.length / 2]  # the integrators' default probe
     got = np.column_stack(list(hist["series"].values())[: len(probes)])  # translations first, then rotations
-    want = history_at(scene, model.resolve(scene, ref), probes, np.asarray(hist["t"], float))
+    want = model.history_at(scene, model.resolve(scene, ref), probes, np.asarray(hist["t"], float))
     return errors(got.ravel(), want.ravel())
 
 

@@ -146,7 +146,7 @@ def verify(
     t0 = time.perf_counter()
     options = dict(options or {})
     model = get_model(model_name)
-    expected = order if order is not None else getattr(model, "order", 2.0)
+    expected = order if order is not None else model.order
     out = Path(out)
     p = plan(model, full)
     declined = _declined(model, p)
