@@ -34,6 +34,9 @@ The contract (docs/contract.md has the version for model authors):
 ([[2.0, -1.0], [-1.0, 2.0]], [1.0, 1.0])
 >>> sorted(get_model("pd-eb").supports), "dynamic" in get_model("pd-timoshenko").analyses
 (['clamped', 'free', 'guided', 'pinned', 'roller'], True)
+
+~500 lines in one file on purpose: the contract (Option, Rule, System, Model and its capability checks) and
+the two functions every caller uses (``models``, ``run``) are read together by a model author.
 """
 
 from __future__ import annotations

@@ -1,5 +1,8 @@
 """Model ``pd-higher-order``: PD higher-order beam (Yang, Oterkus & Oterkus 2020, seed 002).
 
+(~500 lines: this docstring of the paper's equations and the two variants' option list are most of it; the
+bond kernels, end conditions and outputs live in ``_higher_order_bonds``, ``_ends`` and ``_outputs``.)
+
 Kinematics (Eq. 2–3): u(x, z) = z theta + z^3 theta*, w(x, z) = w + z^2 w*; four DOFs per material
 point, ordered (theta, theta*, w, w*) as in Eq. 16a. Node grid x_k = k dx, k = 0..n-1 (ends included).
 A section given by area/inertia is treated as the equivalent rectangle of height ``Section.depth``
