@@ -34,7 +34,7 @@ def test_every_support_pair_at_10_000_nodes(model, left, right):
     propped cantilever), the round-off floor ~N^4 eps the two-field form removes."""
     sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
     e, r = error(model, sc, 10_001)
-    assert e < 1e-10, (e, r.info.get("error_bound"))
+    assert e < 1e-12, (e, r.info.get("error_bound"))  # 10x the measured 1e-13: round-off, not discretisation
     assert e <= r.info["error_bound"] < BOUND_LIMIT and "warnings" not in r.info
 
 
@@ -43,7 +43,7 @@ def test_every_support_pair_at_10_000_nodes(model, left, right):
 def test_every_load_type_at_10_000_nodes(model, load):
     sc = parse_scene(scene_dict("clamped", "pinned", [LOADS[load]]))
     e, r = error(model, sc, 10_001)
-    assert e < 1e-10 and e <= r.info["error_bound"] < BOUND_LIMIT
+    assert e < 1e-12 and e <= r.info["error_bound"] < BOUND_LIMIT  # measured <= 1e-13 (as above)
 
 
 @pytest.mark.slow
@@ -65,6 +65,8 @@ def test_a_million_nodes(model):
     fem-timoshenko was 6.7e-8 here, its bending flexibility the difference of two shear-dominated entries)."""
     sc = parse_scene(scene_dict("clamped", "pinned", [LOADS["force"], LOADS["sine"]]))
     e, r = error(model, sc, 1_000_001)
+    # 1e-12, over 100x the measured 8e-15: the round-off of a 10^6-node solve depends on the BLAS and processor;
+    # the bound holding the error is the sharp check here, and 1e-12 is still 10^8 below the issue's 1e-4
     assert e < 1e-12 and e <= r.info["error_bound"] < BOUND_LIMIT
 
 
