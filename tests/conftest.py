@@ -35,6 +35,15 @@ MIXED_LOADS = [
 ]
 
 
+def as_from_a_terminal() -> None:
+    """``preexec_fn`` of a subprocess that must take Ctrl-C as a terminal's foreground job does: SIGINT at its
+    default. A process started in the background by a non-interactive shell (``cmd &``, e.g. a CI runner)
+    inherits SIGINT ignored, and Python then installs no KeyboardInterrupt handler."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def scene_dict(left="clamped", right="free", loads=(), **over):
     d = copy.deepcopy(BASE)
     d["supports"] = {"left": left, "right": right}
