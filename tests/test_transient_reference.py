@@ -111,9 +111,10 @@ def test_pd_rod_history_converges_at_order_two_in_dt(loads):
 
 def test_transient_study_measures_the_histories(tmp_path):
     """studies/paper_moyer_transient.toml: the runner measures a transient against exact-modal-rod on the
-    histories (study.runner.history_errors), not on the final w (0 for a rod). The dx series converges at
-    order 1 with the default stabilisation (measured 0.98-0.99: its damping vanishes like dx; the row is an
-    expected fail) and the dt series is flat (7.151e-3 .. 7.165e-3: the space error)."""
+    histories (study.runner.history_errors), not on the final w (0 for a rod). pd-rod runs without the
+    stabilisation (its closures have a real spectrum), so the dx series converges at second order (measured
+    3.1e-3, 7.9e-4, 2.0e-4, 5.0e-5: orders 1.98-1.99; with the stabilisation it was 0.98-0.99) and the dt series
+    is the space error of 81 points (8.1e-4 .. 8.5e-4 from 4 us to 1 us: the time error is a few % of it)."""
     import pandas as pd
 
     from pdverify import run_study
@@ -128,6 +129,6 @@ def test_transient_study_measures_the_histories(tmp_path):
     row = df[(df.scene_file == "paper_moyer/rod_transient.toml") & (df.points == 81)].iloc[0]
     assert row.err_max == pytest.approx(np.abs(h.values - ref).max() / np.abs(ref).max(), rel=1e-9)
     dt_rows = df[df.scene_file.str.contains("_dt")].err_max
-    assert len(dt_rows) == 3 and dt_rows.max() / dt_rows.min() < 1.01
+    assert len(dt_rows) == 3 and dt_rows.max() / dt_rows.min() < 1.1  # measured 1.04
     checks = pd.read_csv(tmp_path / "s" / "checks.csv")
-    assert list(checks.verdict) == ["expected-fail"] and 0.9 < checks.observed_order[0] < 1.1
+    assert list(checks.verdict) == ["pass"] and abs(checks.observed_order[0] - 2) < 0.1, checks
