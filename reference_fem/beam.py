@@ -258,6 +258,28 @@ class _BeamFE(Model):
         s[held] = 1.0
         return K, b, nodes, s, natural_magnitude(np.diff(nodes), scene.EI, self.shear_stiffness(scene), b)
 
+    def element(self, params: dict) -> str:  # pragma: no cover - interface
+        """The element's name, in info["element"]."""
+        raise NotImplementedError
+
+    def what(self, params: dict) -> str:
+        """The solve's name in its messages."""
+        return self.name
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        u, info, dofs, nodes, timer = self.solve_nodal(scene, params, self.what(params))
+        info.update(element=self.element(params), elements=len(nodes) - 1)
+        return self.new_result(
+            scene,
+            params,
+            nodes,
+            u[0::2],
+            rotation=u[1::2],
+            dofs=dofs,
+            timings=timer.timings,
+            info=info,
+        )
+
     def solve_nodal(self, scene: Scene, params: dict, what: str):
         """(u, info, free DOF count, nodes, timer): nodal DOFs (w_i, w'_i or theta_i) interleaved."""
         timer = Timer()
@@ -358,19 +380,8 @@ class FemEulerBernoulli(_BeamFE):
         spline = CubicHermiteSpline(r.x, r.w, r.rotation)
         return {"w": spline(x), "rotation": spline(x, 1)}
 
-    def solve(self, scene: Scene, params: dict) -> Result:
-        u, info, dofs, nodes, timer = self.solve_nodal(scene, params, "fem-eb")
-        info.update(element="ElementLineHermite", elements=len(nodes) - 1)
-        return self.new_result(
-            scene,
-            params,
-            nodes,
-            u[0::2],
-            rotation=u[1::2],
-            dofs=dofs,
-            timings=timer.timings,
-            info=info,
-        )
+    def element(self, params: dict) -> str:
+        return "ElementLineHermite"
 
 
 def iie_shapes(phi):
@@ -440,26 +451,15 @@ class FemTimoshenko(_BeamFE):
             fe = element_loads(scene, nodes, linear_shapes)
         return element_band(ke, len(nodes)), element_vector(fe, len(nodes)) + nodal_point_loads(scene, nodes, 2), nodes
 
-    def solve(self, scene: Scene, params: dict) -> Result:
-        u, info, dofs, nodes, timer = self.solve_nodal(scene, params, f"fem-timoshenko ({params['variant']})")
-        info.update(
-            element={
-                "iie": "interdependent interpolation (IIE)",
-                "reduced": "linear, reduced shear",
-                "full": "linear, full integration",
-            }[params["variant"]],
-            elements=len(nodes) - 1,
-        )
-        return self.new_result(
-            scene,
-            params,
-            nodes,
-            u[0::2],
-            rotation=u[1::2],
-            dofs=dofs,
-            timings=timer.timings,
-            info=info,
-        )
+    def element(self, params: dict) -> str:
+        return {
+            "iie": "interdependent interpolation (IIE)",
+            "reduced": "linear, reduced shear",
+            "full": "linear, full integration",
+        }[params["variant"]]
+
+    def what(self, params: dict) -> str:
+        return f"fem-timoshenko ({params['variant']})"
 
 
 MODELS = [FemEulerBernoulli(), FemTimoshenko()]

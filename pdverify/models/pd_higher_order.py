@@ -469,9 +469,9 @@ class PDHigherOrder(Model):
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
         reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
-        info.setdefault("warnings", []).extend(boundary_layer_warnings(scene, x, reach))
-        if not info["warnings"]:
-            del info["warnings"]
+        flags = boundary_layer_warnings(scene, x, reach)
+        if flags:
+            info.setdefault("warnings", []).extend(flags)
         faces = info.get("loads") == "faces"
         local = [
             ld.position

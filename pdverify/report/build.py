@@ -24,6 +24,20 @@ from ..errors import InputError, OutputError
 from ..study.store import case_file, read_curve
 from . import figures
 
+# the convergence table's columns, on the index page and on each paper's page
+CONVERGENCE_COLUMNS = [
+    "scene",
+    "model",
+    "options",
+    "slenderness",
+    "n_grids",
+    "observed_order",
+    "r2",
+    "gci_order",
+    "gci_fine",
+    "richardson",
+]
+
 
 def fmt(v) -> str:
     if v is None or (isinstance(v, float) and not np.isfinite(v)) or v is pd.NA:
@@ -457,18 +471,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             speed_figs=pick(speed_figs),
             convergence=table(
                 readable_options(conv[conv["scene"].isin(names)] if "scene" in conv else conv),
-                [
-                    "scene",
-                    "model",
-                    "options",
-                    "slenderness",
-                    "n_grids",
-                    "observed_order",
-                    "r2",
-                    "gci_order",
-                    "gci_fine",
-                    "richardson",
-                ],
+                CONVERGENCE_COLUMNS,
             ),
         )
         _write(out / page["href"], html_page)
@@ -497,18 +500,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         horizon_figs=[f for _, f in horizon_figs],
         convergence=table(
             readable_options(conv),
-            [
-                "scene",
-                "model",
-                "options",
-                "slenderness",
-                "n_grids",
-                "observed_order",
-                "r2",
-                "gci_order",
-                "gci_fine",
-                "richardson",
-            ],
+            CONVERGENCE_COLUMNS,
         ),
         locking_figs=[f for _, f in lock_figs],
         locking=table(readable_options(lock)),

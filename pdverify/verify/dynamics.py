@@ -42,8 +42,16 @@ def frequency_series(model, options: dict, grids: tuple) -> list[dict]:
         above = np.isfinite(e) & (e >= ROUND_OFF_LEVEL)
         order = observed_order(h[above][-3:], e[above][-3:])[0] if above.sum() >= 3 else float("nan")
         exact = bool(np.all(np.isfinite(e)) and np.all(e < ROUND_OFF_LEVEL))
-        out.append({"pair": f"{left}-{right}", "points": list(grids), "errors": errors, "order": order,
-                    "exact": exact, "failed": failed})  # fmt: skip
+        out.append(
+            {
+                "pair": f"{left}-{right}",
+                "points": list(grids),
+                "errors": errors,
+                "order": order,
+                "exact": exact,
+                "failed": failed,
+            }
+        )
     return out
 
 
