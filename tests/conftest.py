@@ -1,4 +1,6 @@
 import copy
+import subprocess
+from pathlib import Path
 
 import pytest
 from hypothesis import settings
@@ -35,13 +37,25 @@ MIXED_LOADS = [
 ]
 
 
-def as_from_a_terminal() -> None:
-    """``preexec_fn`` of a subprocess that must take Ctrl-C as a terminal's foreground job does: SIGINT at its
-    default. A process started in the background by a non-interactive shell (``cmd &``, e.g. a CI runner)
-    inherits SIGINT ignored, and Python then installs no KeyboardInterrupt handler."""
+def _sigint_default() -> None:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def start_in_own_group(cmd: list[str]) -> subprocess.Popen:
+    """``cmd`` in a process group of its own (a test signals the whole group, as a terminal sends Ctrl-C), run
+    from the repository, pipes for its output, SIGINT at its default as for a terminal's foreground job: a
+    process started in the background by a non-interactive shell (``cmd &``, e.g. a CI runner) inherits
+    SIGINT ignored, and Python then installs no KeyboardInterrupt handler."""
+    return subprocess.Popen(
+        cmd,
+        cwd=Path(__file__).resolve().parents[1],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        start_new_session=True,
+        preexec_fn=_sigint_default,
+    )
 
 
 def scene_dict(left="clamped", right="free", loads=(), **over):

@@ -12,21 +12,14 @@ u_t'(L - s) = -u_t(s), (ux', uy')(L - s) = (-ux, uy)(s), twist'(L - s) = twist(s
 
 import numpy as np
 import pytest
-from conftest import scene_dict
+from conftest import MIXED_LOADS, scene_dict
 from numpy.polynomial import Polynomial
 
 from pdverify.errors import SolveError
 from pdverify.registry import models, run
 from pdverify.scene import parse_scene
 
-BENDING = [
-    {"type": "point_force", "position": 0.7, "value": -300.0},
-    {"type": "point_moment", "position": 1.3, "value": 150.0},
-    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
-    {"type": "distributed", "value": 400.0, "shape": "sine"},
-    {"type": "point_force", "position": 2.0, "value": 80.0},
-    {"type": "point_moment", "position": 0.0, "value": -60.0},
-]
+BENDING = MIXED_LOADS  # forces and moments anywhere and at the ends, partial and sine loads
 AXIAL = [
     {"type": "point_force", "position": 0.7, "value": 0.0, "axial": 4000.0},
     {"type": "distributed", "value": 0.0, "axial": -3000.0, "start": 0.4, "end": 1.7},

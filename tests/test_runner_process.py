@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from conftest import as_from_a_terminal
+from conftest import start_in_own_group
 
 from pdverify.errors import InputError, OutputError
 from pdverify.study import load_study, run_study
@@ -115,14 +115,7 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     )
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
-    proc = subprocess.Popen(
-        cmd,
-        cwd=ROOT,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        start_new_session=True,
-        preexec_fn=as_from_a_terminal,
-    )
+    proc = start_in_own_group(cmd)
     deadline = time.time() + 60
     workers = []
     while time.time() < deadline and (len(workers) < 2 or len(list((out / "cases").glob("*.case"))) < 3):

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import as_from_a_terminal
+from conftest import start_in_own_group
 
 from pdverify import registry
 from pdverify.errors import InputError
@@ -157,14 +157,7 @@ def _signal_mid_run(p, out, sig):
     files are on disk (as a terminal sends Ctrl-C to the whole group) and wait; the process, its stderr
     and the CLI command (to run the study again)."""
     cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
-    proc = subprocess.Popen(
-        cmd,
-        cwd=ROOT,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        start_new_session=True,
-        preexec_fn=as_from_a_terminal,
-    )
+    proc = start_in_own_group(cmd)
     deadline = time.time() + 60
     while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
         time.sleep(0.02)
