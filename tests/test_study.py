@@ -300,6 +300,24 @@ def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
     assert read_case(p)["row"] == rec["row"] and read_case(tmp_path / "missing.case") is None
 
 
+def test_a_write_stopped_by_ctrl_c_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
+    """Ctrl-C while a case file is written (the main process stores records as they come): the old file is
+    intact and no ``.tmp-*`` file is left in the directory (a CI run once found one after Ctrl-C)."""
+    from pdverify.study import store
+
+    p = tmp_path / "c.case"
+    store.write_atomic(p, b"old")
+
+    def interrupted(fd, parts):
+        os.write(fd, b"ne")
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(store, "write_all", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        store.write_atomic(p, b"new")
+    assert p.read_bytes() == b"old" and sorted(f.name for f in tmp_path.iterdir()) == ["c.case"]
+
+
 def test_first_format_case_files_still_read(tmp_path):
     """Studies run before the binary records (``<id>.json``, arrays as base64) still build reports."""
     import base64

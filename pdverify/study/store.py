@@ -20,6 +20,7 @@ Files of that first format (``<case id>.json``) are still read (:func:`case_file
 from __future__ import annotations
 
 import base64
+import contextlib
 import json
 import os
 import struct
@@ -112,7 +113,8 @@ def decode_record(raw: bytes) -> dict | None:
 
 def write_atomic(path, data) -> None:
     """Write to a temporary file beside ``path`` and rename it over ``path`` (atomic on POSIX): a killed
-    process leaves the old file or the new one, never a partial one. No fsync: the rename is atomic
+    process leaves the old file or the new one, never a partial one; an exception (Ctrl-C) mid-write
+    removes the temporary file. No fsync: the rename is atomic
     against a killed process, which is what resume needs. The temporary name is unique per process and
     thread (mkstemp's random names cost 0.25 ms a file here)."""
     path = os.fspath(path)
@@ -121,15 +123,20 @@ def write_atomic(path, data) -> None:
     if isinstance(data, str):
         data = data.encode("utf-8")
     try:
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-    except FileNotFoundError:
-        os.makedirs(head or ".", exist_ok=True)
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
-    try:
-        write_all(fd, [data])
-    finally:
-        os.close(fd)
-    os.replace(tmp, path)
+        try:
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        except FileNotFoundError:
+            os.makedirs(head or ".", exist_ok=True)
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        try:
+            write_all(fd, [data])
+        finally:
+            os.close(fd)
+        os.replace(tmp, path)
+    except BaseException:  # Ctrl-C or a full disk mid-write: no temporary file is left behind
+        with contextlib.suppress(OSError):
+            os.unlink(tmp)
+        raise
 
 
 def write_all(fd: int, parts) -> None:
