@@ -146,7 +146,8 @@ class Keeper:
         self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the models' own time; cleaning, encoding, writing
 
     def add(self, rec: dict, cid: str) -> bool:
-        """Store one record; whether its case is ok. Raises OutputError when the file cannot be written."""
+        """Store one record; whether its case failed (a suspect case solved: the progress bar does not count it).
+        Raises OutputError when the file cannot be written."""
         t = time.perf_counter()
         rec = _clean(rec)
         row = rec["row"]
@@ -160,4 +161,4 @@ class Keeper:
         self.rows[cid] = row
         self.clock["solver_s"] += row.get("total_s") or 0.0
         self.clock["store_s"] += time.perf_counter() - t
-        return row["status"] == "ok"
+        return row["status"] == "failed"

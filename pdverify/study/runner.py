@@ -327,7 +327,7 @@ def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | No
     try:
         with closing(loop):  # closed on any way out: a pool's workers are ended
             for cid, rec in loop:
-                bar.advance(failed=not keep.add(rec, cid))
+                bar.advance(failed=keep.add(rec, cid))
     finally:
         bar.close()
     done.update(keep.rows)

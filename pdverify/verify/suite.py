@@ -6,6 +6,11 @@ moment, a uniform, a partial and a sine load (and a force at a free or guided en
 two uniform-load scenes from thick to very slender (locking); one scene on fine grids (round-off floor).
 Curved scenes (arcs and a parabola) when the model declares ``curved``. Loads sit on grid points of every
 grid (quarter points), so the orders measure the model, not the load placement.
+
+A theory pdverify has no exact solution of (``higher-order``, ``continuum``) is judged by self-convergence:
+the reference is the model itself, with the same options, on a grid :data:`SELF_REFINEMENT` times finer than
+the set's finest (nested, so the grids' points are its points), and the distance of that solution from exact
+Timoshenko theory is reported as the theory gap (run as one more set, not judged).
 """
 
 from __future__ import annotations
@@ -16,7 +21,9 @@ from pathlib import Path
 
 from ..scene import SUPPORTS, is_mechanism
 
-SUITE_VERSION = "1.1"  # 1.1: natural frequencies of models that declare dynamics (verify.dynamics)
+# 1.1: natural frequencies of models that declare dynamics (verify.dynamics); 1.2: self-convergence for theories
+# without an exact solution here, and superposition with the point-load positions shared by the three solves
+SUITE_VERSION = "1.2"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -25,6 +32,8 @@ SLENDERNESS = 20.0
 LOCKING_SLENDERNESS = (5.0, 20.0, 100.0, 1000.0, 10000.0)
 LENGTH, WIDTH = 1.0, 0.05
 MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.3}
+SELF_REFINEMENT = 4  # self-convergence: the reference grid has this many times the spacings of the finest grid
+GAP_REFERENCE = "exact-timoshenko"  # what a self-converged model's theory gap is measured against
 PAIRS = [(left, right) for left in SUPPORTS for right in SUPPORTS if not is_mechanism(left, right)]
 
 
@@ -115,13 +124,25 @@ class Plan:
     meta: dict[str, dict]
     grids: tuple
     floor_grids: tuple
-    reference: str
+    reference: str | None  # None: self-convergence (:func:`finer`)
     curved_reference: str | None
 
 
-def reference_for(theory: str) -> str:
-    """The exact solution of the model's declared theory."""
-    return "exact-eb" if theory == "euler-bernoulli" else "exact-timoshenko"
+def reference_for(theory: str) -> str | None:
+    """The exact solution of the model's declared theory; None for a theory pdverify has none of (higher-order,
+    continuum): the model is judged against itself on a finer grid."""
+    return {"euler-bernoulli": "exact-eb", "timoshenko": "exact-timoshenko"}.get(theory)
+
+
+def finer(grids) -> int:
+    """The self-convergence reference grid of a set of grids: :data:`SELF_REFINEMENT` times the finest one's
+    spacings (nested: every grid point of the finest grid is one of its points)."""
+    return SELF_REFINEMENT * (max(grids) - 1) + 1
+
+
+def self_reference(model, options: dict, grids) -> dict:
+    """The model itself, with the card's options, on the grid :func:`finer` than ``grids``."""
+    return {"model": model.name, **options, "points": finer(grids)}
 
 
 def plan(model, full: bool = False) -> Plan:
@@ -188,6 +209,8 @@ def toml_value(v) -> str:
         return json.dumps(v)
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):  # an inline table (a run's reference)
+        return "{" + ", ".join(f"{k} = {toml_value(x)}" for k, x in v.items()) + "}"
     raise TypeError(f"no TOML for {v!r}")
 
 
@@ -215,17 +238,20 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
         (folder / f).parent.mkdir(parents=True, exist_ok=True)
         (folder / f).write_text(toml_text(scene))
     files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets]  # noqa: E731
-    run = {"model": model.name, **{k: v for k, v in options.items()}}
+    run = {"model": model.name, **options}
+    ref = lambda grids: p.reference or self_reference(model, options, grids)  # noqa: E731
     runs = [
-        {**run, "points": list(p.grids), "scenes": files("convergence", "locking")},
-        {**run, "points": list(p.floor_grids), "scenes": files("floor")},
+        {**run, "points": list(p.grids), "scenes": files("convergence", "locking"), "reference": ref(p.grids)},
+        {**run, "points": list(p.floor_grids), "scenes": files("floor"), "reference": ref(p.floor_grids)},
     ]
+    if p.reference is None:  # the theory gap: the self-convergence reference against exact Timoshenko theory
+        runs.append({**run, "points": [finer(p.grids)], "scenes": files("convergence"), "reference": GAP_REFERENCE})
     if p.curved_reference:
         runs.append({**run, "points": list(p.grids), "scenes": files("curved"), "reference": p.curved_reference})
     study = {
         "name": f"pdverify verify {model.name} (suite {SUITE_VERSION})",
         "scenes": list(p.scenes),
-        "reference": p.reference,
+        "reference": p.reference or GAP_REFERENCE,
         "runs": runs,
     }
     if isinstance(model, ExternalModel):
