@@ -30,6 +30,17 @@ def test_pd_eb_converges_at_order_2():
     assert all(abs(r["order"] - 2) < 0.1 for r in rows[1:])
 
 
+def test_a_higher_order_theory_converges_against_itself_by_default():
+    """pd-higher-order has no exact solution here: the default reference is the model on a 4x finer nested grid
+    (as pdverify verify), where it is second order on a pinned-pinned beam; against exact Timoshenko it would
+    stall at the theories' O((h/L)^2) difference."""
+    scene = scene_dict("pinned", "pinned", UNIFORM)
+    rows = assert_converges("pd-higher-order", scene, order=2, grids=(21, 41, 81, 161))
+    assert rows[-1]["error"] < 1e-4
+    gap = convergence_table("pd-higher-order", scene, (21, 41, 81, 161), reference="exact-timoshenko")
+    assert gap[-1]["error"] > 10 * rows[-1]["error"] and abs(gap[-1]["order"]) < 1  # stalls at the gap
+
+
 def test_assert_matches_passes_and_fails_with_the_worst_points():
     scene = scene_dict("pinned", "pinned", UNIFORM)
     e = assert_matches("fem-eb", "exact-eb", scene, rtol=1e-8, points=41)
