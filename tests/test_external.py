@@ -185,3 +185,26 @@ def test_models_path_lists_manifests_and_warns_once_for_a_bad_one(tmp_path):
         f"warning: external model manifest {tmp_path / 'bad.toml'}: name = 'bad one': "
         "give the model a name without spaces; skipped"
     ]
+
+
+def test_the_example_command_reads_plain_json_without_pdverify(tmp_path):
+    """examples/external_model: the command runs with pdverify not importable (the scene is plain JSON, as any
+    language reads it), and the manifest's model gives the example plug-in's numbers through pdverify."""
+    example = ROOT / "examples" / "external_model"
+    scene = load_scene(SCENE)
+    job = json.dumps({"model": "fd-eb-command", "scene": scene.to_dict(), "options": {"points": 41}})
+    blocked = "import sys, runpy; sys.modules['pdverify'] = None; runpy.run_path(sys.argv[1], run_name='__main__')"
+    out = subprocess.run(
+        [sys.executable, "-c", blocked, str(example / "fd_beam_command.py")],
+        input=job,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        cwd=example,
+    )
+    assert out.returncode == 0, out.stderr
+    got = json.loads(out.stdout)
+    res = run(scene, load_manifest(example / "fd_beam_command.toml"), points=41)
+    ref = run(scene, "exact-eb", points=41)
+    assert got["w"] == res.w.tolist() and len(got["x"]) == 41
+    assert 0 < np.abs(res.w - ref.w).max() / np.abs(ref.w).max() < 1e-2  # second-order FD, not the exact formula

@@ -79,6 +79,20 @@ def test_convergence_judges_the_three_finest_grids():
     assert abs(late[0]["order"] - 2) < 1e-12
 
 
+def test_cost_slope_only_where_the_grid_sets_the_cost():
+    """Error-cost slope between the two finest grids: reported when the finest solve costs >= 1.5x the next
+    (here 2x: second order in error, cost ~ n, slope -2); an external command's 0.36 s process start-up
+    (costs 0.36 and 0.37 s) gave 'error ~ cost^-21' before: now no slope."""
+    grids = (21, 41, 81, 161)
+    second = {n: 0.3 * (1.0 / (n - 1)) ** 2 for n in grids}
+    grows = C.cost(C.series(_frame(second), ["s.toml"]))
+    assert abs(grows["slope"] + 2) < 0.05 and "error ~ cost^-2" in grows["summary"]
+    flat = _frame(second)
+    flat["total_s"] = [0.35, 0.355, 0.36, 0.37]
+    fixed = C.cost(C.series(flat, ["s.toml"]))
+    assert np.isnan(fixed["slope"]) and "fixed costs" in fixed["summary"]
+
+
 def test_floor_fails_when_round_off_grows_above_the_limit():
     rising = C.floor(C.series(_frame({161: 1e-9, 641: 1e-7, 2561: 5e-4}), ["s.toml"]))
     fit = np.polyfit(np.log([161, 641, 2561]), np.log([1e-9, 1e-7, 5e-4]), 1)[0]

@@ -1,28 +1,30 @@
-"""An external pdverify model: reads {"scene", "options"} as JSON on stdin, writes {"x", "w", ...} on stdout.
+"""An external pdverify model: reads {"model", "scene", "options"} as JSON on stdin, writes {"x", "w", ...} on
+stdout. It does not import pdverify: the scene arrives as plain JSON (beam.length, section, material,
+supports.left/right, loads[] with type, value, position or start/end/shape), so any language works the same
+way. This one is Python and uses the finite-difference solver of the example plug-in (fd_beam/fd.py, numpy and
+scipy only), loaded as a file."""
 
-Any language works the same way; this one is Python and solves with the fd-eb example plug-in's code.
-"""
-
+import importlib.util
 import json
 import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "plugin_model" / "src"))
-
-from fd_beam import FDBeam  # noqa: E402
-
-from pdverify.scene import parse_scene  # noqa: E402
+spec = importlib.util.spec_from_file_location(
+    "fd", Path(__file__).resolve().parents[1] / "plugin_model" / "src" / "fd_beam" / "fd.py"
+)
+fd = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(fd)
 
 job = json.load(sys.stdin)
 t0 = time.perf_counter()
-result = FDBeam().solve(parse_scene(job["scene"]), job["options"])
+result = fd.solve(job["scene"], int(job["options"]["points"]))
 json.dump(
     {
-        "x": result.x.tolist(),
-        "w": result.w.tolist(),
-        "rotation": result.rotation.tolist(),
-        "fields": {"M": result.fields["M"].tolist()},
+        "x": result["x"].tolist(),
+        "w": result["w"].tolist(),
+        "rotation": result["rotation"].tolist(),
+        "fields": {"M": result["M"].tolist()},
         "timings": {"solve_s": time.perf_counter() - t0},
     },
     sys.stdout,

@@ -181,22 +181,27 @@ def floor(rows: list[dict]) -> dict:
     )
 
 
+COST_GROWTH = 1.5  # the finest grid must cost this many times the next one for an error-cost slope to mean anything
+
+
 def cost(rows: list[dict]) -> dict:
     """Seconds per solve at the finest grid and the slope of log(error) vs log(seconds) between the two finest
-    grids (median over the scenes; coarser grids are dominated by fixed costs)."""
+    grids (median over the scenes where the finest solve costs at least COST_GROWTH times the next one: where
+    it does not, fixed costs (start-up, an external command's process) time the solve, not the grid)."""
     live = [r for r in rows if not r["exact"] and len(r["errors"]) >= 2 and min(r["cost_s"][-2:]) > 0]
     slopes = [
         math.log(r["errors"][-1] / r["errors"][-2]) / math.log(r["cost_s"][-1] / r["cost_s"][-2])
         for r in live
-        if r["errors"][-1] > 0 and r["cost_s"][-1] != r["cost_s"][-2]
+        if r["errors"][-1] > 0 and r["cost_s"][-1] >= COST_GROWTH * r["cost_s"][-2]
     ]
     secs = [r["cost_s"][-1] for r in rows if r["cost_s"]]
     p = float(np.median(slopes)) if slopes else float("nan")
     t = float(np.median(secs)) if secs else float("nan")
     trend = (
-        f"error ~ cost^{p:.2f} between the two finest grids"
-        if t >= 0.01
-        else "no error-cost slope: solves under 10 ms are timed by their fixed costs"
+        f"error ~ cost^{p:.2f} between the two finest grids ({len(slopes)} scenes)"
+        if slopes and t >= 0.01
+        else "no error-cost slope: the solves are timed by their fixed costs (under 10 ms, or the finest grid "
+        f"costs less than {COST_GROWTH:g}x the next)"
     )
     return check(
         "cost vs error", "info", f"{t:.3g} s per solve at the finest grid (median); {trend}", seconds=t, slope=p
