@@ -406,11 +406,34 @@ def linear_shapes(xi, l):
     return np.array([1 - xi, 0 * xi, xi, 0 * xi]) * np.ones_like(l)
 
 
+def linear_timoshenko(nodes: np.ndarray, EI: float, kGA: float, variant: str) -> Band:
+    """The linear Timoshenko element in scikit-fem: w and theta both ElementLineP1, the energy
+    EI theta' phi' + kGA (w' - theta)(v' - phi) integrated with one Gauss point (``reduced``: the shear term
+    underintegrated, no locking) or two (``full``: exact, locks when slender). DOFs (w_i, theta_i) interleaved.
+    scikit-fem's line rules have at least two points, so the one-point rule is given explicitly."""
+    import skfem as fem
+
+    one_point = (np.array([[0.5]]), np.array([1.0]))
+    kind = {"quadrature": one_point} if variant == "reduced" else {"intorder": 2}
+    basis = fem.Basis(fem.MeshLine(nodes), fem.ElementLineP1() * fem.ElementLineP1(), **kind)
+
+    @fem.BilinearForm
+    def energy(w, theta, v, phi, _):
+        return EI * theta.grad[0] * phi.grad[0] + kGA * (w.grad[0] - theta) * (v.grad[0] - phi)
+
+    order = basis.nodal_dofs.T.ravel()  # (w_i, theta_i) per node
+    return Band.from_sparse(energy.assemble(basis).tocsr()[order][:, order])
+
+
 class FemTimoshenko(_BeamFE):
     theory = "timoshenko"
     name = "fem-timoshenko"
     title = "Timoshenko beam element (interdependent interpolation; locking-free)"
-    source = "IIE element (exact homogeneous solutions, nodally exact); 'reduced'/'full' linear for contrast"
+    source = (
+        "IIE element (exact homogeneous solutions, nodally exact; closed form: its shape functions depend on "
+        "12EI/(kGA l^2), which no scikit-fem element has); 'reduced'/'full': scikit-fem ElementLineP1 x "
+        "ElementLineP1, one / two Gauss points, for contrast"
+    )
     options = (
         Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),
         Option(
@@ -428,8 +451,8 @@ class FemTimoshenko(_BeamFE):
 
     def nodal_loads(self, scene: Scene, params: dict, nodes: np.ndarray) -> np.ndarray:
         EI, kGA = scene.EI, scene.kGA
-        fe = element_loads(scene, nodes, iie_shapes(lambda ll: 12 * EI / (kGA * ll**2)))
-        return element_vector(fe, len(nodes)) + nodal_point_loads(scene, nodes, 2)
+        shapes = iie_shapes(lambda ll: 12 * EI / (kGA * ll**2)) if params["variant"] == "iie" else linear_shapes
+        return element_vector(element_loads(scene, nodes, shapes), len(nodes)) + nodal_point_loads(scene, nodes, 2)
 
     def assemble_band(self, scene: Scene, params: dict):
         """(K, F, nodes) before the supports, K a :class:`Band`."""
@@ -441,21 +464,14 @@ class FemTimoshenko(_BeamFE):
             ke = hermite_stiffness(l, EI / ((1 + f) * l**3), f)
             fe = element_loads(scene, nodes, iie_shapes(lambda ll: 12 * EI / (kGA * ll**2)))
         else:
-            kb = np.array([[0, 0, 0, 0], [0, 1, 0, -1], [0, 0, 0, 0], [0, -1, 0, 1]], float)
-            ke = EI / l[:, None, None] * kb
-            pts = np.array([0.5]) if params["variant"] == "reduced" else (np.array([-1, 1]) / np.sqrt(3) + 1) / 2
-            wts = np.array([1.0]) if params["variant"] == "reduced" else np.array([0.5, 0.5])
-            for xi, wt in zip(pts, wts):
-                B = np.stack([-1 / l, -(1 - xi) * np.ones_like(l), 1 / l, -xi * np.ones_like(l)], axis=1)
-                ke = ke + kGA * wt * l[:, None, None] * B[:, :, None] * B[:, None, :]
-            fe = element_loads(scene, nodes, linear_shapes)
+            return linear_timoshenko(nodes, EI, kGA, params["variant"]), self.nodal_loads(scene, params, nodes), nodes
         return element_band(ke, len(nodes)), element_vector(fe, len(nodes)) + nodal_point_loads(scene, nodes, 2), nodes
 
     def element(self, params: dict) -> str:
         return {
             "iie": "interdependent interpolation (IIE)",
-            "reduced": "linear, reduced shear",
-            "full": "linear, full integration",
+            "reduced": "ElementLineP1 x ElementLineP1, one Gauss point (reduced shear)",
+            "full": "ElementLineP1 x ElementLineP1, two Gauss points (full integration)",
         }[params["variant"]]
 
     def what(self, params: dict) -> str:

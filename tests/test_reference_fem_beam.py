@@ -63,6 +63,23 @@ def test_closed_form_hermite_equals_scikit_fem():
     assert np.abs(F1 - F2).max() < 1e-10 * np.abs(F1).max()
 
 
+@pytest.mark.parametrize("variant, gauss", [("reduced", [0.5]), ("full", [0.5 - 0.5 / 3**0.5, 0.5 + 0.5 / 3**0.5])])
+def test_linear_timoshenko_in_scikit_fem_is_the_textbook_element(variant, gauss):
+    """The scikit-fem form of the linear variants equals the element matrix written out (uneven elements):
+    EI/l [theta' theta'] + kGA l sum_g wt_g B_g B_g^T, B = (-1/l, -(1 - xi), 1/l, -xi), DOFs (w, theta) per node."""
+    from reference_fem.beam import element_band, linear_timoshenko
+
+    nodes = np.array([0.0, 0.3, 0.45, 1.0, 1.2])
+    EI, kGA, l = 3.0, 700.0, np.diff(nodes)
+    ke = EI / l[:, None, None] * np.array([[0, 0, 0, 0], [0, 1, 0, -1], [0, 0, 0, 0], [0, -1, 0, 1]], float)
+    for xi in gauss:
+        B = np.stack([-1 / l, -(1 - xi) * np.ones_like(l), 1 / l, -xi * np.ones_like(l)], axis=1)
+        ke = ke + kGA / len(gauss) * l[:, None, None] * B[:, :, None] * B[:, None, :]
+    want = element_band(ke, len(nodes)).tocsr().toarray()
+    got = linear_timoshenko(nodes, EI, kGA, variant).tocsr().toarray()
+    assert np.abs(got - want).max() < 1e-13 * np.abs(want).max()
+
+
 def test_diagonal_assembly_equals_triplet_assembly():
     """assemble_elements accumulates diagonals by strided slices; it must equal the COO scatter."""
     import scipy.sparse as sp
