@@ -20,7 +20,6 @@ hold w and neither holds γ (pinned–pinned).
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..scene import HELD
 
@@ -50,8 +49,8 @@ class TimoshenkoBeam:
         """ω_c = sqrt(kGA / ρI): above it the second spectrum (both roots r < 0)."""
         return float(np.sqrt(self.kGA / self.rI))
 
-    def _columns(self, omega: np.ndarray, x: float) -> np.ndarray:
-        """(len(omega), 4 [w, w', γ, γ'], 4 functions) at x."""
+    def _columns(self, omega: np.ndarray, x) -> np.ndarray:
+        """(len(omega), 4 [w, w', γ, γ'], 4 functions) at a point x, or (..., len(x)) at the points x."""
         w2 = omega**2
         a, b = self.EI * self.kGA, w2 * (self.kGA * self.rI + self.EI * self.rA)
         c = self.rA * w2 * (self.rI * w2 - self.kGA)
@@ -59,38 +58,31 @@ class TimoshenkoBeam:
         r1 = 2 * c / (-b - disc)  # = (-b + disc) / 2a without its cancellation; changes sign at the cut-off
         r2 = (-b - disc) / (2 * a)
         q = self.rA * w2 / self.kGA
-        out = np.empty((len(omega), 4, 4))
-        out[:, :, 2:] = self._trig(np.sqrt(-r2), q, x)
-        hyper = r1 > 0
+        xs = np.atleast_1d(np.asarray(x, float))
+        col = lambda v: v[:, None, None]  # noqa: E731 - per frequency, broadcast over (function, x)
+        out = np.empty((len(omega), 4, 4, len(xs)))
+        out[:, :, 2:] = self._trig(col(np.sqrt(-r2)), col(q), xs)
         s = np.sqrt(np.abs(r1))
-        out[:, :, :2] = np.where(hyper[:, None, None], self._hyper(s, q, x), self._trig(s, q, x))
-        return out
+        hyper = col(r1 > 0)[..., None]
+        out[:, :, :2] = np.where(hyper, self._hyper(col(s), col(q), xs), self._trig(col(s), col(q), xs))
+        return out if np.ndim(x) else out[..., 0]
 
     def _hyper(self, s, q, x):
-        """w = e^{-s x}, e^{-s(L - x)}: γ = -ra w, +ra w with ra = (s² + q)/s."""
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        """w = e^{-s x}, e^{-s(L - x)}: γ = -ra w, +ra w with ra = (s² + q)/s. (n, 4, 2, len(x))."""
+        sign = np.array([-1.0, 1.0])[:, None]
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # s = 0 at the cut-off: NaN, unused
             ra = (s * s + q) / s
-            g1, g2 = np.exp(-s * x), np.exp(-s * (self.L - x))
-        return np.stack(
-            [np.stack([g1, g2], -1), np.stack([-s * g1, s * g2], -1), np.stack([-ra * g1, ra * g2], -1)]
-            + [np.stack([ra * s * g1, ra * s * g2], -1)],
-            1,
-        )
+            g = np.concatenate([np.exp(-s * x), np.exp(-s * (self.L - x))], 1)  # (n, 2, len(x))
+            return np.stack([g, sign * s * g, sign * ra * g, ra * s * g], 1)
 
     def _trig(self, s, q, x):
-        """w = cos s x, sin s x: γ = sb sin, -sb cos with sb = (q - s²)/s."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            sb = (q - s * s) / s
+        """w = cos s x, sin s x: γ = sb sin, -sb cos with sb = (q - s²)/s. (n, 4, 2, len(x))."""
         cs, sn = np.cos(s * x), np.sin(s * x)
-        return np.stack(
-            [
-                np.stack([cs, sn], -1),
-                np.stack([-s * sn, s * cs], -1),
-                np.stack([sb * sn, -sb * cs], -1),
-                np.stack([sb * s * cs, sb * s * sn], -1),
-            ],
-            1,
-        )
+        w = np.concatenate([cs, sn], 1)
+        dw = np.concatenate([-s * sn, s * cs], 1)
+        with np.errstate(divide="ignore", invalid="ignore"):  # s = 0 at the cut-off: NaN, unused
+            sb = (q - s * s) / s
+            return np.stack([w, dw, np.concatenate([sb * sn, -sb * cs], 1), sb * s * w], 1)
 
     def determinant(self, omega) -> np.ndarray:
         """The characteristic determinant at ``omega`` (rad/s), each function's column scaled by the norm of
@@ -103,28 +95,60 @@ class TimoshenkoBeam:
             scale = scale + (C * C).sum(1)
             rows.append(C[:, 0] if w_held else C[:, 1] - C[:, 2])  # w = 0, else the shear w' - γ = 0
             rows.append(C[:, 2] if g_held else C[:, 3])  # γ = 0, else the moment γ' = 0
-        return np.linalg.det(np.stack(rows, 1) / np.sqrt(scale)[:, None, :])
+        with np.errstate(invalid="ignore"):  # NaN at the cut-off's s = 0: no sign change is read there
+            return np.linalg.det(np.stack(rows, 1) / np.sqrt(scale)[:, None, :])
 
     def frequencies(self, count: int, resolution: int = 256) -> np.ndarray:
-        """The first ``count`` circular frequencies (rad/s): sign changes of :meth:`determinant` on a scan
-        of z = L (ρA ω² / EI)^{1/4} (Euler–Bernoulli's βL, mode spacing ~π) in steps of π/``resolution``,
-        each refined by Brent's method and kept when the determinant vanishes there (|det| below 1e-6 of its
-        values at the bracket: a jump of the basis at the cut-off changes the sign too)."""
+        """The first ``count`` circular frequencies (rad/s): sign changes of :meth:`determinant` on a scan, all
+        brackets refined at once by bisection to the last bits, kept when the determinant vanishes there (|det|
+        below 1e-6 of its values at the bracket: a jump of the basis at the cut-off changes the sign too); close
+        pairs are found by :meth:`_brackets`.
+        The scan steps by π/``resolution`` in z = L (ρA ω² / EI)^{1/4} (Euler–Bernoulli's βL, mode spacing
+        ~π) while that is finer than π c / (L ``resolution``) in ω, c the lower of the shear and bending wave
+        speeds (the spacing of each spectrum where shear dominates), and by the latter above."""
         to_omega = lambda z: (z / self.L) ** 2 * np.sqrt(self.EI / self.rA)  # noqa: E731
-        found = []
-        if self.left[0] and self.right[0] and not self.left[1] and not self.right[1]:
-            found.append(self.cutoff)
-        z0, span = 1e-3, np.pi * (count + 2)
-        while True:
-            z = np.linspace(z0, z0 + span, int(resolution * span / np.pi) + 1)
-            d = self.determinant(to_omega(z))
-            for i in np.flatnonzero(np.sign(d[1:]) * np.sign(d[:-1]) < 0):
-                lo, hi = to_omega(z[i]), to_omega(z[i + 1])
-                root = brentq(lambda w: self.determinant(w)[0], lo, hi, xtol=1e-14 * hi, rtol=4 * np.finfo(float).eps)
-                jump = abs(self.determinant(root)[0]) > 1e-6 * max(abs(d[i]), abs(d[i + 1]))
-                if not jump and not np.isclose(root, self.cutoff, rtol=1e-9):
-                    found.append(root)
-            found = sorted(set(found))
-            if len(found) >= count:
-                return np.array(found[:count])
-            z0 += span
+        to_z = lambda w: self.L * (self.rA * w * w / self.EI) ** 0.25  # noqa: E731
+        wave_step = np.pi * min(np.sqrt(self.kGA / self.rA), np.sqrt(self.EI / self.rI)) / (self.L * resolution)
+        # where the z step, d omega = 2 omega / z dz, reaches wave_step: z = L^2 wave_step / (2 sqrt(EI/rhoA) dz)
+        z_cross = self.L**2 * wave_step * resolution / (2 * np.pi * np.sqrt(self.EI / self.rA))
+        found = [self.cutoff] if self.left[0] and self.right[0] and not self.left[1] and not self.right[1] else []
+        z0, chunk = 1e-3, 8192
+        while len(found) < count:
+            if z0 < z_cross:
+                z = np.minimum(z0 + np.pi / resolution * np.arange(chunk + 1), z_cross)
+                omega = to_omega(np.unique(z))
+            else:
+                omega = to_omega(z0) + wave_step * np.arange(chunk + 1)
+            lo, hi, d_lo, d_hi = self._brackets(omega[None, :])
+            root = self._bisect(lo, hi, d_lo)
+            real = np.abs(self.determinant(root)) <= 1e-6 * np.maximum(np.abs(d_lo), np.abs(d_hi))
+            found += [w for w in root[real] if not np.isclose(w, self.cutoff, rtol=1e-9)]
+            z0 = to_z(omega[-1])
+        return np.array(sorted(found)[:count])
+
+    def _brackets(self, omega: np.ndarray, depth: int = 3, sub: int = 64) -> tuple:
+        """(lo, hi, det(lo), det(hi)) of the sign changes of the determinant along each row of the grid ``omega``
+        (rows x points). Two roots closer than a step (the two spectra cross) change no sign: where |det| has a
+        local minimum between values of one sign, that step pair is scanned again ``sub`` times finer, down to
+        ``depth`` levels (pairs ~1e-7 of the step apart are still found)."""
+        d = self.determinant(omega.ravel()).reshape(omega.shape)
+        sign, size = np.sign(d), np.abs(d)
+        r, i = np.nonzero(sign[:, 1:] * sign[:, :-1] < 0)
+        out = [omega[r, i], omega[r, i + 1], d[r, i], d[r, i + 1]]
+        hidden = (size[:, 1:-1] < size[:, :-2]) & (size[:, 1:-1] < size[:, 2:])
+        hidden &= (sign[:, :-2] == sign[:, 1:-1]) & (sign[:, 1:-1] == sign[:, 2:])
+        r, k = np.nonzero(hidden)
+        if depth and r.size:
+            a, b = omega[r, k], omega[r, k + 2]
+            finer = self._brackets(a[:, None] + (b - a)[:, None] * np.linspace(0.0, 1.0, sub + 1), depth - 1, sub)
+            out = [np.concatenate(pair) for pair in zip(out, finer, strict=True)]
+        return tuple(out)
+
+    def _bisect(self, lo: np.ndarray, hi: np.ndarray, d_lo: np.ndarray) -> np.ndarray:
+        """Bisection of every bracket [lo, hi] of a sign change at once, until each is one float wide."""
+        s_lo = np.sign(d_lo)
+        for _ in range(64):  # 64 halvings of a bracket of relative width < 1 reach the spacing of floats
+            mid = 0.5 * (lo + hi)
+            left = np.sign(self.determinant(mid)) == s_lo
+            lo, hi = np.where(left, mid, lo), np.where(left, hi, mid)
+        return 0.5 * (lo + hi)
