@@ -175,38 +175,48 @@ class ExactModalRod(Model):
         return rod_response(scene, probes, times, params["tolerance"])[0]
 
     def solve(self, scene: Scene, params: dict) -> Result:
-        timer = Timer()
-        d = scene.dynamics
-        x = np.linspace(0.0, scene.length, params["points"])
-        probes = list(d.probes) or [scene.length / 2]
-        n_out = int(round(d.end_time / d.output_interval)) if d.output_interval else 2000
-        t = np.linspace(0.0, d.end_time, n_out + 1)
-        with timer("solve"):
-            hist, info = rod_response(scene, np.concatenate([probes, x]), np.append(t, d.end_time), params["tolerance"])
-            final, hist = hist[-1:, len(probes) :], hist[:-1, : len(probes)]
-        info = dict(info, analysis="dynamic")
-        if info["truncation_error"] > params["tolerance"]:
-            info["warnings"] = [
-                f"truncation error estimate {info['truncation_error']:.2g} above tolerance {params['tolerance']:g} "
-                f"with {info['modes']} modes (a point force converges like 1/modes)"
-            ]
-        info["history"] = {
-            "t": t,
-            "series": {f"u(x={p_:g})": hist[:, k] for k, p_ in enumerate(probes)},
-            "ylabel": "axial displacement",
-        }
-        series = info["history"]["series"]
-        return self.new_result(
-            scene,
-            params,
-            x,
-            np.zeros_like(x),
-            fields={"u": final[0]},
-            dofs=info["modes"],
-            timings=timer.timings,
-            info=info,
-            writers={".csv": lambda path: Path(path).write_text(columns_csv({"t": t, **series}, fmt="%.12g"))},
-        )
+        def response(positions, times):
+            u, info = rod_response(scene, positions, times, params["tolerance"])
+            return u, {}, info
+
+        return modal_result(self, scene, params, Timer(), response, "u", "axial displacement")
+
+
+def modal_result(model: Model, scene: Scene, params: dict, timer: Timer, response, key: str, ylabel: str) -> Result:
+    """The result of a modal reference on the scene's grid (``params["points"]``): ``response(positions, times)``
+    gives (values, {other field: values}, info), each (len(times), len(positions)); the histories at the scene's
+    probes (every ``output_interval``, else 2000 samples) and the values at ``end_time`` on the grid: ``w`` and
+    ``rotation`` when ``key`` is "w", else the field ``key`` (w = 0)."""
+    d = scene.dynamics
+    x = np.linspace(0.0, scene.length, params["points"])
+    probes = list(d.probes) or [scene.length / 2]
+    n_out = int(round(d.end_time / d.output_interval)) if d.output_interval else 2000
+    t = np.linspace(0.0, d.end_time, n_out + 1)
+    with timer("solve"):
+        values, more, info = response(np.concatenate([probes, x]), np.append(t, d.end_time))
+    n = len(probes)
+    final, hist = values[-1, n:], values[:-1, :n]
+    info = dict(info, analysis="dynamic")
+    if info["truncation_error"] > params["tolerance"]:
+        info["warnings"] = [
+            f"truncation error estimate {info['truncation_error']:.2g} above tolerance {params['tolerance']:g} "
+            f"with {info['modes']} modes (a point force converges like 1/modes)"
+        ]
+    series = {f"{key}(x={p_:g})": hist[:, k] for k, p_ in enumerate(probes)}
+    info["history"] = {"t": t, "series": series, "ylabel": ylabel}
+    beam = key == "w"
+    return model.new_result(
+        scene,
+        params,
+        x,
+        final if beam else np.zeros_like(x),
+        rotation=more["rotation"][-1, n:] if beam else None,
+        fields={} if beam else {key: final},
+        dofs=info["modes"],
+        timings=timer.timings,
+        info=info,
+        writers={".csv": lambda path: Path(path).write_text(columns_csv({"t": t, **series}, fmt="%.12g"))},
+    )
 
 
 MODELS = [ExactModalRod()]

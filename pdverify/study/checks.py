@@ -12,7 +12,8 @@ expected = "fail"                   # optional: a known defect the check documen
 A series is what the convergence table groups (tables.GROUP: scene, model, every option but the grid,
 slenderness). Each series a check matches is one row of ``checks.csv``: its grids, errors, pairwise observed
 orders and the least-squares order of the convergence table, which the bounds are applied to. A series with
-fewer than three grids whose cases ran, or a check matching no series, is ``missing`` (a failure). A series
+fewer than three grids whose cases ran, or a check matching no series, is ``missing`` (a failure), unless the
+check documents a defect (``expected = "fail"``) and the series' cases failed: then ``expected-fail``. A series
 whose every error is below the round-off level (``metrics.ROUND_OFF_LEVEL``: the model reproduces the
 solution) has no order to measure and passes with "exact to round-off", as ``pdverify verify`` judges it.
 """
@@ -156,7 +157,12 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     failed = [r for r in rows if r.get("status") != "ok"]  # failed, or suspect (issue 27): not in the order
     not_ok = Counter(r.get("status") for r in failed)
     messages = [f"{', '.join(f'{n} {s}' for s, n in not_ok.items())} of its {len(rows)} cases"] if failed else []
-    if n_grids < MIN_GRIDS:
+    if n_grids < MIN_GRIDS and failed and check.get("expected") == "fail":  # the documented defect: cases fail
+        result = "expected-fail"
+        messages.insert(
+            0, f"{n_grids} grid(s) with a result (an order needs {MIN_GRIDS}): its cases fail as documented"
+        )
+    elif n_grids < MIN_GRIDS:
         result = "missing"
         messages.insert(0, f"{n_grids} grid(s) with a result; an order needs at least {MIN_GRIDS}")
     elif len(err) and np.all(np.abs(err) < ROUND_OFF_LEVEL):  # also all-zero errors (no order either)

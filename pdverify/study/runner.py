@@ -165,6 +165,8 @@ def _describe(case: Case, row: dict):
     row["units"] = scene.units  # labels the report's axes (m or in)
     params = get_model(case.model).resolve(scene, case.given)
     row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
+    # the option is the horizon factor; the horizon in length units is known once solved (a failed case has none)
+    row["horizon_factor"], row["horizon"] = row.get("horizon"), None
     row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
     return scene, params
 

@@ -1,0 +1,191 @@
+"""Model ``exact-modal-timoshenko``: the exact transient of the Timoshenko beam under the scene's step loads from
+rest, a sum over its modes (the transient reference of ``pd-timoshenko``; Moyer & Miraglia Section 3 without
+the horizon).
+
+    ρA w_tt = kGA (w'' - γ') + q(x) H(t),   ρI γ_tt = EI γ'' + kGA (w' - γ) + μ(x) H(t),   w = γ = 0 at t = 0.
+
+The modes (ω_k, w_k, γ_k) are those of :class:`pdverify.exact.vibration.TimoshenkoBeam`: ω_k the roots of the
+characteristic determinant, (w_k, γ_k) its general solution with the null vector of the end conditions at ω_k,
+scaled to unit modal mass ∫ ρA w_k² + ρI γ_k² dx = 1 (composite Gauss–Legendre, 8 points per panel, two panels
+per mode of the sum). With the modal loads F_k = ∫ q w_k dx + Σ P w_k(a) + Σ C γ_k(a),
+
+    w(x, t) = Σ_k p_k w_k(x) (1 - cos ω_k t),   p_k = F_k / ω_k²,   and γ alike,
+
+which at t -> ∞ on average is the static solution Σ p_k w_k (tested against exact-timoshenko). Undamped only:
+the PD beam damps its translations alone, which couples the modes. Truncation as ``exact-modal-rod``: modes in
+octaves (64, 128, ...) until the estimate of what the rest adds, 2 Σ_{k>N} |p_k| max|w_k| with the octave sums
+extrapolated geometrically, is below ``tolerance`` x max |w_static|, at most :data:`MAX_MODES` in the sum
+(``info["truncation_error"]``; a point force converges like 1/N in the shear range).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+
+from ..errors import InputError
+from ..registry import POINTS, Model, Option
+from ..result import Result, Timer
+from ..scene import PointForce, PointMoment, Scene
+from .modal import modal_result, modal_sum
+from .vibration import TimoshenkoBeam, beam_end
+
+MAX_MODES = 1024  # the sum's modes at most (their octave above them is computed for the estimate)
+GAUSS = np.polynomial.legendre.leggauss(8)
+BLOCK = 16  # modes evaluated together (a block's (modes x 4 x 4 x points) stays ~70 MB at 1024 modes)
+
+
+class BeamModes:
+    """The Timoshenko beam's modes and the scene's modal loads (see the module docstring)."""
+
+    def __init__(self, scene: Scene):
+        rho = scene.material.density
+        if rho is None:
+            raise InputError("material.density: needed for dynamics; add density to the scene")
+        self.scene, self.L = scene, scene.length
+        self.beam = TimoshenkoBeam(
+            scene.EI,
+            scene.kGA,
+            rho * scene.section.A,
+            rho * scene.section.I,
+            scene.length,
+            beam_end(scene.supports.left),
+            beam_end(scene.supports.right),
+        )
+
+    def coefficients(self, omega: np.ndarray) -> np.ndarray:
+        """(len(omega), 4): the general solution's coefficients at each ω_k (null vector of the end conditions,
+        as :meth:`TimoshenkoBeam.determinant` writes them); NaN at the cut-off mode (w = 0, γ = const)."""
+        rows, scale = [], 0.0
+        for x, (w_held, g_held) in ((0.0, self.beam.left), (self.L, self.beam.right)):
+            C = self.beam._columns(omega, x)
+            scale = scale + (C * C).sum(1)
+            rows.append(C[:, 0] if w_held else C[:, 1] - C[:, 2])
+            rows.append(C[:, 2] if g_held else C[:, 3])
+        cutoff = np.isclose(omega, self.beam.cutoff, rtol=1e-9)
+        M = np.stack(rows, 1) / np.sqrt(scale)[:, None, :]
+        M[cutoff] = np.eye(4)
+        coef = np.linalg.svd(M)[2][:, -1, :] / np.sqrt(scale)
+        coef[cutoff] = np.nan
+        return coef
+
+    def fields(self, omega: np.ndarray, coef: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """w_k(x), γ_k(x), each (len(omega), len(x)); the cut-off mode is w = 0, γ = 1."""
+        C = self.beam._columns(omega, np.asarray(x, float))  # (modes, 4, 4, points)
+        with np.errstate(invalid="ignore"):
+            w = np.einsum("kfx,kf->kx", C[:, 0], coef)
+            g = np.einsum("kfx,kf->kx", C[:, 2], coef)
+        cut = np.isnan(coef[:, 0])
+        w[cut], g[cut] = 0.0, 1.0
+        return w, g
+
+    def participations(self, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """(ω_k, coefficients scaled to unit modal mass, p_k = F_k / ω_k², max |w_k|) of the first ``count``
+        modes."""
+        omega = self.beam.frequencies(count)
+        coef = self.coefficients(omega)
+        edges = np.linspace(0.0, self.L, 2 * count + 17)
+        xq, wq = _composite(edges)
+        loads = [ld for ld in self.scene.loads if not isinstance(ld, (PointForce, PointMoment))]
+        spans = [(ld, *self.scene.span(ld)) for ld in loads]
+        mass, force, peak = (np.empty(count) for _ in range(3))
+        for b0 in range(0, count, BLOCK):
+            blk = slice(b0, b0 + BLOCK)
+            w, g = self.fields(omega[blk], coef[blk], xq)
+            mass[blk] = (self.beam.rA * w * w + self.beam.rI * g * g) @ wq
+            peak[blk] = np.abs(w).max(1)
+            F = np.zeros(w.shape[0])
+            for ld, a, b in spans:
+                xd, wd = _composite(np.linspace(a, b, max(2, int(np.ceil((b - a) / self.L * (2 * count + 16)))) + 1))
+                shape = np.sin(np.pi * xd / self.L) if ld.shape == "sine" else 1.0
+                F += self.fields(omega[blk], coef[blk], xd)[0] @ (ld.value * shape * wd)
+            for ld in self.scene.loads:
+                if isinstance(ld, (PointForce, PointMoment)):
+                    w1, g1 = self.fields(omega[blk], coef[blk], np.array([ld.position]))
+                    F += ld.value * (w1 if isinstance(ld, PointForce) else g1)[:, 0]
+            force[blk] = F
+        norm = 1 / np.sqrt(mass)
+        return omega, coef * norm[:, None], force * norm / omega**2, peak * norm
+
+    def truncated(self, tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+        """(ω, coefficients, p, truncation error estimate relative to max |w_static|), the fewest octaves that
+        meet it."""
+        N = 64
+        while True:
+            omega, coef, p, peak = self.participations(4 * N)
+            size = np.abs(p) * peak
+            s1, s2 = size[N : 2 * N].sum(), size[2 * N :].sum()
+            ratio = min(s2 / s1, 0.99) if s1 > 0 else 0.0
+            tail = s1 / (1 - ratio)
+            x = np.linspace(0.0, self.L, 401)
+            scale = np.abs(p[:N] @ self.fields(omega[:N], coef[:N], x)[0]).max()
+            est = 2 * tail / scale if scale > 0 else 0.0
+            if est <= tolerance or 4 * N >= MAX_MODES:
+                return omega[:N], coef[:N], p[:N], float(est)
+            N *= 2
+
+
+def _composite(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre points and weights of :data:`GAUSS` on each panel between ``edges``."""
+    h, mid = np.diff(edges) / 2, (edges[1:] + edges[:-1]) / 2
+    return (mid[:, None] + h[:, None] * GAUSS[0]).ravel(), (h[:, None] * GAUSS[1]).ravel()
+
+
+@lru_cache(maxsize=16)
+def _truncated(scene_json: str, tolerance: float) -> tuple:
+    """The modes of a scene, kept: a study measures every case of a series against the same scene."""
+    modes = BeamModes(Scene.model_validate_json(scene_json))
+    return modes, *modes.truncated(tolerance)
+
+
+def beam_response(scene: Scene, positions, times, tolerance: float = 1e-5) -> tuple:
+    """w and γ at ``positions`` and ``times``, each (len(times), len(positions)), and info (modes, truncation)."""
+    modes, omega, coef, p, est = _truncated(scene.model_dump_json(), tolerance)
+    w, g = modes.fields(omega, coef, np.asarray(positions, float))
+    both = modal_sum(np.concatenate([w, g], 1) * p[:, None], omega, 0.0, times)
+    n = len(positions)
+    return both[:, :n], both[:, n:], {"modes": len(omega), "truncation_error": est, "damping": 0.0}
+
+
+class ExactModalTimoshenko(Model):
+    name = "exact-modal-timoshenko"
+    title = "exact transient of the Timoshenko beam from rest: sum of its modes (step loads, undamped)"
+    source = "modal superposition, modes from the characteristic determinant; the transient reference of pd-timoshenko"
+    histories = True  # history_at(): the exact deflections at any probes and times
+    options = (
+        POINTS,
+        Option("tolerance", float, 1e-5, "truncation error estimate, relative to max |w_static|", minimum=1e-12),
+    )
+    analyses = frozenset({"dynamic"})
+    theory = "timoshenko"
+    reference = True
+    load_types = frozenset({"point_force", "point_moment", "distributed"})
+
+    def check(self, scene: Scene) -> list[str]:
+        out = super().check(scene)
+        if scene.material.density is None:
+            out.append("material.density: needed for dynamics; add density to the scene")
+        d = scene.dynamics
+        if d is not None and any(em is not None for em in (d.left, d.right)):
+            out.append("dynamics.left/right: exact-modal-timoshenko takes step loads only, no prescribed end motions")
+        if d is not None and (d.damping or d.damping_ratio):
+            out.append(
+                "dynamics: exact-modal-timoshenko is undamped (a damping of the translations alone, as the PD "
+                "beam applies it, couples the modes); drop damping / damping_ratio"
+            )
+        return out
+
+    def history_at(self, scene: Scene, params: dict, probes, times) -> np.ndarray:
+        """w at ``probes`` and ``times`` (len(times), len(probes)): the study runner's transient reference."""
+        return beam_response(scene, probes, times, params["tolerance"])[0]
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        def response(positions, times):
+            w, g, info = beam_response(scene, positions, times, params["tolerance"])
+            return w, {"rotation": g}, info
+
+        return modal_result(self, scene, params, Timer(), response, "w", "deflection")
+
+
+MODELS = [ExactModalTimoshenko()]
