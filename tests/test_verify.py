@@ -153,8 +153,8 @@ def test_higher_order_card_measures_the_model_not_the_theory_gap(tmp_path):
     """pd-higher-order against exact Timoshenko measured the theories' difference (7.8e-3, orders -1.9..1.0 on
     suite 1.1); against itself it converges: second order on every scene without a clamped end, and with one
     the error falls from 41 to 161 points to below 1e-3 though the fitted order (41..161, lowest 1.35) is
-    pre-asymptotic (docs/verify.md). Superposition holds to round-off once the three solves share the point-load positions
-    (the default cuts = loads makes the operator depend on them: 1.9e-5 apart without)."""
+    pre-asymptotic (docs/verify.md). Superposition holds to round-off once the three solves share the point-load
+    positions (the default cuts = loads makes the operator depend on them: 1.9e-5 apart without)."""
     card = verify("pd-higher-order", tmp_path, workers=2)
     got = {c["check"]: c for c in card["checks"]}
     assert "self-convergence" in card["reference"] and card["suite_version"] == SUITE_VERSION
