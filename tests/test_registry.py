@@ -36,6 +36,7 @@ def test_capabilities_are_declared_data():
         assert not hasattr(m, "limit_system") and not hasattr(m, "kind"), m.name  # one contract: assemble()
     assert {n for n, m in models().items() if "dynamic" in m.analyses} == {
         "exact-modal-rod",
+        "exact-modal-timoshenko",
         "pd-rod",
         "pd-timoshenko",
         "pd-torsion",
