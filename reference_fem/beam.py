@@ -446,8 +446,24 @@ class FemTimoshenko(_BeamFE):
         FORM,
     )
 
+    analyses = frozenset({"static", "dynamic"})
+
     def shear_stiffness(self, scene: Scene) -> float | None:
         return scene.kGA
+
+    def check(self, scene: Scene) -> list[str]:
+        out = super().check(scene)
+        d = scene.dynamics
+        if d is not None and any(em is not None for em in (d.left, d.right)):
+            out.append("dynamics.left/right: fem-timoshenko's transient takes step loads, not prescribed end motions")
+        return out
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        if scene.dynamics is not None:
+            from .beam_transient import transient
+
+            return transient(self, scene, params)
+        return super().solve(scene, params)
 
     def nodal_loads(self, scene: Scene, params: dict, nodes: np.ndarray) -> np.ndarray:
         EI, kGA = scene.EI, scene.kGA

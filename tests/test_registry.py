@@ -37,6 +37,7 @@ def test_capabilities_are_declared_data():
     assert {n for n, m in models().items() if "dynamic" in m.analyses} == {
         "exact-modal-rod",
         "exact-modal-timoshenko",
+        "fem-timoshenko",
         "pd-rod",
         "pd-timoshenko",
         "pd-torsion",

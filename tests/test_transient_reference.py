@@ -133,6 +133,8 @@ def test_transient_study_measures_the_histories(tmp_path):
     checks = pd.read_csv(tmp_path / "s" / "checks.csv")
     assert checks.verdict[0] == "pass" and abs(checks.observed_order[0] - 2) < 0.1, checks
     # the beam against exact-modal-timoshenko: m = 1, 2 first order (the stabilisation), m = 3, 4 blow up somewhere
-    assert list(checks.verdict[1:]) == ["expected-fail"] * 4 and (checks.observed_order[1:3] < 1.6).all(), checks
+    assert list(checks.verdict[1:5]) == ["expected-fail"] * 4 and (checks.observed_order[1:3] < 1.6).all(), checks
+    # the FEM stand-in (Newmark) converges to the exact modal solution: an independent check of both (1.80)
+    assert checks.verdict[5] == "pass" and abs(checks.observed_order[5] - 2) < 0.3, checks
     beam = df[df.scene_file == "paper_moyer/beam_transient.toml"]
     assert set(beam[beam.status == "failed"].horizon_factor) == {3, 4}, beam[["points", "horizon_factor", "status"]]

@@ -1,0 +1,94 @@
+"""The transient of ``fem-timoshenko`` (the scikit-fem stand-in of issue 30 item 4): the element's stiffness (its
+``variant``), the consistent mass of linear w and θ (scikit-fem ElementLineP1 x ElementLineP1: ρA w v + ρI θ φ,
+two Gauss points), damping as the PD beam applies it (mass-proportional on the translations: c_d/ρ, or 2 ζ ω_1
+with ω_1 this model's first frequency), step loads from rest, :func:`~reference_fem.newmark.newmark` in time.
+The probes are nodes (inserted like load positions), so their histories are nodal values."""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from pdverify.errors import InputError
+from pdverify.result import Result, Timer
+from pdverify.scene import PointForce, Scene
+
+from .beam import constrained_dofs
+from .newmark import newmark
+
+DEFAULT_SAMPLES = 2000  # samples over end_time when the scene gives no output_interval
+
+
+def consistent_mass(nodes: np.ndarray, rhoA: float, rhoI: float) -> sp.csr_matrix:
+    """ρA w v + ρI θ φ on ElementLineP1 x ElementLineP1 (two Gauss points: exact), DOFs (w_i, θ_i) interleaved."""
+    import skfem as fem
+
+    basis = fem.Basis(fem.MeshLine(nodes), fem.ElementLineP1() * fem.ElementLineP1(), intorder=2)
+
+    @fem.BilinearForm
+    def mass(w, theta, v, phi, _):
+        return rhoA * w * v + rhoI * theta * phi
+
+    order = basis.nodal_dofs.T.ravel()
+    return mass.assemble(basis).tocsr()[order][:, order]
+
+
+def transient(model, scene: Scene, params: dict) -> Result:
+    """The model's transient on the scene (``model``: fem-timoshenko)."""
+    timer = Timer()
+    d, rho = scene.dynamics, scene.material.density
+    if rho is None:
+        raise InputError("material.density: needed for dynamics; add density to the scene")
+    probes = list(d.probes) or [scene.length / 2]
+    with timer("assemble"):
+        # the probes as zero loads: beam_nodes puts every load position on a node
+        marks = [PointForce(type="point_force", position=p, value=0.0) for p in probes]
+        marked = scene.model_copy(update={"loads": [*scene.loads, *marks]})
+        K, F, nodes = model.assemble_band(marked, params)
+        K = K.tocsr()
+        M = consistent_mass(nodes, rho * scene.section.A, rho * scene.section.I)
+        free = np.setdiff1d(np.arange(2 * len(nodes)), constrained_dofs(scene, len(nodes)))
+        K, M, F = K[free][:, free], M[free][:, free], F[free]
+        translations = sp.diags((free % 2 == 0).astype(float))
+        D = d.damping or 0.0
+        if d.damping_ratio:
+            from scipy.sparse.linalg import eigsh
+
+            omega1 = float(np.sqrt(eigsh(K.tocsc(), k=1, M=M.tocsc(), sigma=0.0, which="LM")[0][0]))
+            D = 2 * d.damping_ratio * omega1
+        C = D * (translations @ M @ translations)
+        at = np.searchsorted(free, 2 * np.abs(nodes[:, None] - np.asarray(probes, float)).argmin(0))
+        observe = sp.csr_matrix((np.ones(len(probes)), (np.arange(len(probes)), at)), shape=(len(probes), len(free)))
+    sample = d.output_interval or d.end_time / DEFAULT_SAMPLES
+    # default step: the sampling interval, or the time the fastest wave (sqrt(E/rho)) takes across the shortest
+    # element if shorter (a Courant number of 1, which Newmark does not need for stability: the time error then
+    # falls with the mesh)
+    dt = d.time_step or min(sample, float(np.diff(nodes).min()) / np.sqrt(scene.material.youngs_modulus / rho))
+    steps = int(np.ceil(d.end_time / dt - 1e-9))
+    with timer("solve"):
+        t, hist, u = newmark(K, M, C, F, d.end_time / steps, steps, observe)
+    every = max(1, int(round(sample / (d.end_time / steps))))
+    full = np.zeros(2 * len(nodes))
+    full[free] = u
+    info = {
+        "analysis": "dynamic",
+        "integrator": "Newmark average acceleration (beta = 1/4, gamma = 1/2)",
+        "time_step": d.end_time / steps,
+        "steps": steps,
+        "damping": D,
+        "history": {
+            "t": t[::every],
+            "series": {f"w(x={p:g})": hist[::every, k] for k, p in enumerate(probes)},
+            "ylabel": "deflection",
+        },
+    }
+    return model.new_result(
+        scene,
+        params,
+        nodes,
+        full[0::2],
+        rotation=full[1::2],
+        dofs=len(free),
+        timings=timer.timings,
+        info=info,
+    )
