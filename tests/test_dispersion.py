@@ -50,3 +50,25 @@ def test_timoshenko_branches_limits():
     b = timoshenko_branches(np.array([1e-4]), SCENE.EI, SCENE.kGA, rA, rI)[0]
     assert b[0] == pytest.approx(np.sqrt(SCENE.EI / rA) * 1e-8, rel=1e-8)
     assert b[1] == pytest.approx(np.sqrt(SCENE.kGA / rI), rel=1e-8)
+
+
+def test_the_report_draws_each_pd_model_s_dispersion(tmp_path):
+    """A study running pd-timoshenko and pd-rod: the report holds one dispersion figure per (model, variant) at
+    its finest grid, read from the study's scenes.json (the scenes as run); other models get none."""
+    import shutil
+    from pathlib import Path
+
+    from pdverify import run_study
+    from pdverify.report.build import build_report
+
+    for name in ("beam_transient.toml", "rod_transient.toml"):
+        shutil.copy(Path(__file__).parents[1] / "studies" / "paper_moyer" / name, tmp_path / name)
+    runs = [("pd-timoshenko", "beam", "[21, 41]"), ("pd-rod", "rod", "41"), ("fem-timoshenko", "beam", "21")]
+    text = 'name = "waves"\nscenes = ["beam_transient.toml", "rod_transient.toml"]\nreference = "none"\n'
+    for model, scene, points in runs:
+        text += f'[[runs]]\nmodel = "{model}"\nscenes = ["{scene}_transient.toml"]\npoints = {points}\n'
+    (tmp_path / "s.toml").write_text(text)
+    run_study(tmp_path / "s.toml", out=tmp_path / "out", workers=1, progress=False)
+    pages = build_report(tmp_path / "out").read_text()  # index.html (the paper pages repeat the figures)
+    assert pages.count("pd-timoshenko (corrected) dispersion, 41 points") == 1
+    assert pages.count("pd-rod (corrected) dispersion, 41 points") == 1 and "fem-timoshenko (" not in pages

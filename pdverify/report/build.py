@@ -214,6 +214,27 @@ def _slug(text: str) -> str:
     return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "scenes"
 
 
+def dispersion_figures(d: Path, sfile: str, rows: pd.DataFrame) -> list[str]:
+    """The dispersion figure of each PD rod / beam (model, variant) run on the scene, at its finest grid
+    (:func:`pdverify.report.waves.dispersion_figure`; the scene from the study's ``scenes.json``)."""
+    from ..study.outdir import SCENES
+    from ..study.spec import _scene
+    from .waves import dispersion_figure
+
+    pd_rows = rows[rows["model"].isin(("pd-rod", "pd-timoshenko"))]
+    if pd_rows.empty:
+        return []
+    try:
+        text = json.loads((d / SCENES).read_text())[sfile]
+    except (OSError, ValueError, KeyError):  # a study run before scenes.json was written
+        return []
+    figs = []
+    for (model, variant), g in pd_rows.groupby(["model", pd_rows["variant"].fillna("corrected")], sort=True):
+        fig = dispersion_figure(_scene(text, sfile, None), model, int(g["points"].max()), variant)
+        figs += [fig] if fig else []
+    return figs
+
+
 def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Path:
     d = Path(study_dir)
     if not (d / "results.csv").exists():
@@ -300,6 +321,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                             c["load_steps"], f"{_label(r)}: deformed shapes", exact, unit_of_file.get(sfile, "m")
                         )
                     )
+        figs.extend(dispersion_figures(d, sfile, g))
         scenes.append(
             {
                 "name": g["scene"].iloc[0],

@@ -7,7 +7,8 @@ back (resume) and each new one stored at once and atomically.
   line naming the folder and the other run's pid. The kernel drops the lock when the process ends,
   however it ends (``kill -9`` included); the file itself stays (removing it would race with a run
   taking it).
-- **One study per folder.** ``OUT/study.toml`` is a copy of the study file, written when the run starts.
+- **One study per folder.** ``OUT/study.toml`` is a copy of the study file, written when the run starts, with
+  ``OUT/scenes.json`` (each scene file's text as run).
   A run of another study (its ``name`` differs from the copy's) stops with exit code 4 before anything is
   computed or written: give another ``--out`` or remove the folder. The same study edited (same name: a
   run added, a grid refined) takes the folder over: its copy is replaced, the cases it shares with the
@@ -16,6 +17,7 @@ back (resume) and each new one stored at once and atomically.
 
 from __future__ import annotations
 
+import json
 import os
 import time
 from pathlib import Path
@@ -71,6 +73,9 @@ class FolderLock:
             self.fd = None
 
 
+SCENES = "scenes.json"
+
+
 def claim(out: Path, study: Study) -> None:
     """Make ``out`` this study's folder: refuse it when its study.toml names another study (module
     docstring), else write (or replace) the copy. Raises OutputError."""
@@ -89,11 +94,13 @@ def claim(out: Path, study: Study) -> None:
             f"output directory {out} holds the results of another study ({_name(theirs)}, not "
             f"{study.name!r}): give another --out or remove {out}"
         )
-    if theirs != mine:
-        try:
+    scenes = json.dumps({c.scene_file: c.scene_text for c in study.cases}, indent=1, sort_keys=True) + "\n"
+    try:
+        if theirs != mine:
             write_atomic(there, mine)
-        except OSError as exc:
-            raise output_error(out, exc, "study.toml") from None
+        write_atomic(Path(out) / SCENES, scenes)  # the scene files as run: the report reads them (no path needed)
+    except OSError as exc:
+        raise output_error(out, exc, "study.toml") from None
 
 
 def _name(toml: bytes) -> str:
