@@ -120,7 +120,8 @@ def _cases():
     for name in models():
         if name in NO_LOADS:
             continue
-        slow = [pytest.mark.slow] if name == "exact-modal-rod" else []  # 8 s: point forces need 4096 modes
+        # modal references: point forces need thousands of modes (exact-modal-rod 8 s, -timoshenko 84 s)
+        slow = [pytest.mark.slow] if name.startswith("exact-modal-") else []
         out.append(pytest.param(name, name, {}, id=name, marks=slow))
     for label, (name, opts) in OPTIONS.items():
         out.append(pytest.param(label, name, opts, id=label))  # the nonlinear path: one axial meaning per end
