@@ -120,7 +120,7 @@ def _cases():
     for name in models():
         if name in NO_LOADS:
             continue
-        # modal references: point forces need thousands of modes (exact-modal-rod 8 s, -timoshenko 84 s)
+        # modal references: point forces need thousands of modes (exact-modal-rod 8 s, -timoshenko 36 s)
         slow = [pytest.mark.slow] if name.startswith("exact-modal-") else []
         out.append(pytest.param(name, name, {}, id=name, marks=slow))
     for label, (name, opts) in OPTIONS.items():

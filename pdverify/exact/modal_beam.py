@@ -7,7 +7,7 @@ the horizon).
 The modes (ω_k, w_k, γ_k) are those of :class:`pdverify.exact.vibration.TimoshenkoBeam`: ω_k the roots of the
 characteristic determinant, (w_k, γ_k) its general solution with the null vector of the end conditions at ω_k,
 scaled to unit modal mass ∫ ρA w_k² + ρI γ_k² dx = 1 (composite Gauss–Legendre, 8 points per panel, two panels
-per mode of the sum). With the modal loads F_k = ∫ q w_k dx + Σ P w_k(a) + Σ C γ_k(a),
+per mode up to the highest of its block). With the modal loads F_k = ∫ q w_k dx + Σ P w_k(a) + Σ C γ_k(a),
 
     w(x, t) = Σ_k p_k w_k(x) (1 - cos ω_k t),   p_k = F_k / ω_k²,   and γ alike,
 
@@ -82,31 +82,34 @@ class BeamModes:
 
     def participations(self, count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """(ω_k, coefficients scaled to unit modal mass, p_k = F_k / ω_k², max |w_k|) of the first ``count``
-        modes."""
+        modes. Each block of :data:`BLOCK` modes is integrated on two panels per mode up to its highest one,
+        and kept: the next octave computes its new modes only."""
         omega = self.beam.frequencies(count)
-        coef = self.coefficients(omega)
-        edges = np.linspace(0.0, self.L, 2 * count + 17)
-        xq, wq = _composite(edges)
-        loads = [ld for ld in self.scene.loads if not isinstance(ld, (PointForce, PointMoment))]
-        spans = [(ld, *self.scene.span(ld)) for ld in loads]
-        mass, force, peak = (np.empty(count) for _ in range(3))
-        for b0 in range(0, count, BLOCK):
-            blk = slice(b0, b0 + BLOCK)
-            w, g = self.fields(omega[blk], coef[blk], xq)
-            mass[blk] = (self.beam.rA * w * w + self.beam.rI * g * g) @ wq
-            peak[blk] = np.abs(w).max(1)
-            F = np.zeros(w.shape[0])
-            for ld, a, b in spans:
-                xd, wd = _composite(np.linspace(a, b, max(2, int(np.ceil((b - a) / self.L * (2 * count + 16)))) + 1))
-                shape = np.sin(np.pi * xd / self.L) if ld.shape == "sine" else 1.0
-                F += self.fields(omega[blk], coef[blk], xd)[0] @ (ld.value * shape * wd)
-            for ld in self.scene.loads:
-                if isinstance(ld, (PointForce, PointMoment)):
-                    w1, g1 = self.fields(omega[blk], coef[blk], np.array([ld.position]))
-                    F += ld.value * (w1 if isinstance(ld, PointForce) else g1)[:, 0]
-            force[blk] = F
+        done = self._done = getattr(self, "_done", [])  # per block: (coef, mass, force, peak)
+        for b0 in range(BLOCK * len(done), count, BLOCK):
+            done.append(self._block(omega[b0 : b0 + BLOCK], b0 + BLOCK))
+        coef, mass, force, peak = (np.concatenate(part)[:count] for part in zip(*done, strict=True))
         norm = 1 / np.sqrt(mass)
         return omega, coef * norm[:, None], force * norm / omega**2, peak * norm
+
+    def _block(self, omega: np.ndarray, highest: int) -> tuple:
+        """(coefficients, modal mass, modal load, max |w|) of the modes ``omega`` (unscaled), the integrals on
+        2 ``highest`` + 16 panels over the beam (a mode k has fewer than k half-waves in either field)."""
+        coef = self.coefficients(omega)
+        panels = 2 * highest + 16
+        xq, wq = _composite(np.linspace(0.0, self.L, panels + 1))
+        w, g = self.fields(omega, coef, xq)
+        F = np.zeros(len(omega))
+        for ld in self.scene.loads:
+            if isinstance(ld, (PointForce, PointMoment)):
+                w1, g1 = self.fields(omega, coef, np.array([ld.position]))
+                F += ld.value * (w1 if isinstance(ld, PointForce) else g1)[:, 0]
+            else:
+                a, b = self.scene.span(ld)
+                xd, wd = _composite(np.linspace(a, b, max(2, int(np.ceil((b - a) / self.L * panels))) + 1))
+                shape = np.sin(np.pi * xd / self.L) if ld.shape == "sine" else 1.0
+                F += self.fields(omega, coef, xd)[0] @ (ld.value * shape * wd)
+        return coef, (self.beam.rA * w * w + self.beam.rI * g * g) @ wq, F, np.abs(w).max(1)
 
     def truncated(self, tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """(ω, coefficients, p, truncation error estimate relative to max |w_static|), the fewest octaves that
