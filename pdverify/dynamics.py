@@ -99,8 +99,12 @@ class EnergyLedger:
             return stored / self._work_in
         return None
 
-    def arrays(self) -> dict:
-        return {"t": np.asarray(self.t, float), **{k: np.asarray(v, float) for k, v in self.cols.items()}}
+    def arrays(self, length: float = 1.0) -> dict:
+        """The samples; the energies times ``length``: the operators' rows are equations per unit length at each
+        point, so the sums over points become energies (J) when multiplied by the spacing. Every point counts a
+        whole spacing (the ends too): absolute energies to O(spacing / L) (0.8 % at 161 points on a cantilever),
+        the balance and drift, ratios, exactly as before."""
+        return {"t": np.asarray(self.t, float), **{k: length * np.asarray(v, float) for k, v in self.cols.items()}}
 
     def drift(self) -> float:
         """max |balance| over the run relative to the largest of the stored energy and the work put in."""
@@ -108,6 +112,20 @@ class EnergyLedger:
         a = {k: np.asarray(v, float) for k, v in a.items()}
         scale = max(np.abs(a["kinetic"]).max(initial=0.0) + np.abs(a["strain"]).max(initial=0.0), self._work_in)
         return float(np.abs(a["balance"]).max(initial=0.0) / scale) if scale > 0 else 0.0
+
+
+def ledger_columns(t: np.ndarray, energy: dict) -> dict:
+    """The ledger as columns beside the histories' times ``t``: ``energy_<column>`` with NaN where the ledger
+    took no sample (its times ``energy["t"]`` are a subset of ``t``)."""
+    if not energy:
+        return {}
+    rows = np.searchsorted(t, energy["t"])
+    out = {}
+    for k in LEDGER_COLUMNS:
+        col = np.full(len(t), np.nan)
+        col[rows] = energy[k]
+        out[f"energy_{k}"] = col
+    return out
 
 
 def symbol_max(blocks: dict, inv_mass: np.ndarray, samples: int = 4097) -> float:

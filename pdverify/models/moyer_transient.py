@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ..dynamics import LEDGER_COLUMNS, EnergyLedger
+from ..dynamics import EnergyLedger, ledger_columns
 from ..errors import SolveError
 from ..result import columns_csv
 from ._moyer_kernels import motion_value
@@ -51,13 +51,7 @@ class History:
 
     def to_csv(self) -> str:
         cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)}}
-        if self.energy:  # the ledger's samples are a subset of the rows (NaN elsewhere)
-            rows = np.searchsorted(self.t, self.energy["t"])
-            for k in LEDGER_COLUMNS:
-                col = np.full(len(self.t), np.nan)
-                col[rows] = self.energy[k]
-                cols[f"energy_{k}"] = col
-        return columns_csv(cols, fmt="%.12g")
+        return columns_csv({**cols, **ledger_columns(self.t, self.energy)}, fmt="%.12g")
 
 
 def _interp_rows(x: np.ndarray, probes: np.ndarray) -> sp.csr_matrix:
@@ -232,7 +226,7 @@ def integrate(
         damping,
         stabilisation,
         omega1,
-        ledger.arrays(),
+        ledger.arrays(disc.x[1] - disc.x[0]),
         ledger.drift(),
     )
 

@@ -312,6 +312,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                             h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")
                         )
                     )
+                    if h.get("energy"):
+                        energy = "in lbf" if force_of_file.get(sfile) == "lbf" else "J"
+                        figs.append(figures.energy_ledger(h["energy"], f"{_label(r)}: energy ledger", energy))
                 if c.get("load_steps"):
                     exact = [
                         (np.array(st["exact_x"]), np.array(st["exact_z"])) for st in c["load_steps"] if "exact_x" in st

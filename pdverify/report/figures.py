@@ -140,3 +140,24 @@ def dispersion(
     for (label, k, w), style in zip(continuum, ("k--", "k:"), strict=False):
         ax.plot(k, w, style, lw=1.4, label=label)
     return _finish(fig, ax, "wavenumber k (1/length)", "ω (rad/s)", title)
+
+
+LEDGER_LABELS = {
+    "kinetic": "kinetic T",
+    "strain": "strain U",
+    "load_work": "work of the loads",
+    "support_work": "work of the supports",
+    "damping": "dissipated: damping",
+    "stabilisation": "dissipated: stabilisation",
+    "balance": "balance T + U + D - W",
+}
+
+
+def energy_ledger(energy: dict, title: str, unit: str = "J") -> str:
+    """The energy ledger of a transient against time (columns that stay zero are left out)."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    for key, label in LEDGER_LABELS.items():
+        y = np.asarray(energy.get(key, []), float)
+        if len(y) and np.any(y != 0):
+            ax.plot(energy["t"], y, ":" if key == "balance" else "-", lw=1.0, label=label)
+    return _finish(fig, ax, "t (s)", f"energy ({unit})", title)

@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 
 from .. import __version__
+from ..dynamics import ledger_columns
 from ..errors import InputError, OutputError, PdverifyError
 from ..registry import get_model, run
 from ..result import columns_csv
@@ -109,9 +110,8 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
         if artefacts and isinstance(hist, dict) and "t" in hist:  # the time histories as CSV, for other tools
             hdir = Path(artefacts).parent / "histories"
             hdir.mkdir(parents=True, exist_ok=True)
-            write_atomic(
-                hdir / f"{case_id or case.case_id}.csv", columns_csv({"t": hist["t"], **hist.get("series", {})})
-            )
+            cols = {"t": hist["t"], **hist.get("series", {}), **ledger_columns(hist["t"], hist.get("energy", {}))}
+            write_atomic(hdir / f"{case_id or case.case_id}.csv", columns_csv(cols))
         if artefacts and ".vtu" in result.writers:
             base = Path(artefacts) / (case_id or case.case_id)
             base.parent.mkdir(parents=True, exist_ok=True)
@@ -238,6 +238,8 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
                 "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
                 "ylabel": hist.get("ylabel", "displacement"),
             }
+            if hist.get("energy"):  # the energy ledger (kinetic, strain, work, dissipation, balance)
+                curve["history"]["energy"] = {k: np.asarray(v, "<f8") for k, v in hist["energy"].items()}
     except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
         for k, v in (solved.get("timings") or {}).items():  # what the attempt cost, as far as it went
             row.setdefault(k, v)
