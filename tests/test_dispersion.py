@@ -72,3 +72,6 @@ def test_the_report_draws_each_pd_model_s_dispersion(tmp_path):
     pages = build_report(tmp_path / "out").read_text()  # index.html (the paper pages repeat the figures)
     assert pages.count("pd-timoshenko (corrected) dispersion, 41 points") == 1
     assert pages.count("pd-rod (corrected) dispersion, 41 points") == 1 and "fem-timoshenko (" not in pages
+    # the beam's three transient runs overlaid, whole run and early time (Moyer & Miraglia Figs 3, 9, 10); the
+    # rod's one run has none
+    assert "w(x=1), every run" in pages and "w(x=1), early time" in pages and "u(x=1), every run" not in pages

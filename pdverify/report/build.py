@@ -214,6 +214,26 @@ def _slug(text: str) -> str:
     return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "scenes"
 
 
+EARLY = 0.15  # the "early time" figure shows this fraction of the run (Moyer & Miraglia Figs 3 and 10)
+
+
+def overlay_figures(runs: list[tuple[str, np.ndarray, dict, str]], title: str) -> list[str]:
+    """Two or more runs with time histories on a scene: their first probe's response on one axis over the whole
+    run and over its first :data:`EARLY` (where dispersion and grid effects show; the paper's Figs 3, 9, 10)."""
+    if len(runs) < 2:
+        return []
+    probe = next(iter(runs[0][2]), None)
+    curves = [(label, t, series[probe]) for label, t, series, _ in runs if probe in series]
+    if len(curves) < 2:
+        return []
+    end = max(float(np.asarray(t)[-1]) for _, t, _ in curves)
+    ylabel = runs[0][3]
+    return [
+        figures.histories_overlay(curves, f"{title}: {probe}, every run", ylabel),
+        figures.histories_overlay(curves, f"{title}: {probe}, early time", ylabel, until=EARLY * end),
+    ]
+
+
 def dispersion_figures(d: Path, sfile: str, rows: pd.DataFrame) -> list[str]:
     """The dispersion figure of each PD rod / beam (model, variant) run on the scene, at its finest grid
     (:func:`pdverify.report.waves.dispersion_figure`; the scene from the study's ``scenes.json``)."""
@@ -302,11 +322,13 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
             figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w", unit))
             force = force_of_file.get(sfile, "N")
             figs.extend(resultant_figures(resultant_curves, title, unit, force))
+            overlay = []
             for _, r in gs.iterrows():
                 path = case_file(d / "cases", r["case_id"])
                 c = curve_of(path) if path is not None else {}
                 if c.get("history"):
                     h = c["history"]
+                    overlay += [(_label(r), h["t"], h["series"], h.get("ylabel", "displacement"))]
                     figs.append(
                         figures.time_history(
                             h["t"], h["series"], f"{_label(r)}: time history", h.get("ylabel", "displacement")
@@ -324,6 +346,7 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                             c["load_steps"], f"{_label(r)}: deformed shapes", exact, unit_of_file.get(sfile, "m")
                         )
                     )
+            figs.extend(overlay_figures(overlay, title))
         figs.extend(dispersion_figures(d, sfile, g))
         scenes.append(
             {

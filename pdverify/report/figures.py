@@ -117,6 +117,20 @@ def time_history(t: np.ndarray, series: dict[str, np.ndarray], title: str, ylabe
     return _finish(fig, ax, "t (s)", ylabel, title)
 
 
+def histories_overlay(
+    curves: list[tuple[str, np.ndarray, np.ndarray]],
+    title: str,
+    ylabel: str = "displacement",
+    until: float | None = None,
+) -> str:
+    """Several runs' responses at one probe on one axis (each its own times), up to ``until`` seconds."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    for label, t, y in curves:
+        keep = slice(None) if until is None else np.asarray(t) <= until
+        ax.plot(np.asarray(t)[keep], np.asarray(y)[keep], "-", lw=1.0, label=label)
+    return _finish(fig, ax, "t (s)", ylabel, title)
+
+
 def cost(
     groups: list[tuple[str, np.ndarray, np.ndarray]], limits: list[tuple[str, np.ndarray, np.ndarray]], title: str
 ) -> str:
