@@ -28,7 +28,7 @@ def test_suite_scenes_are_valid_toml_and_mirror_is_an_involution():
         assert parse_scene(tomllib.loads(toml_text(sc))).to_dict() == parse_scene(sc).to_dict()
     sets = [m["set"] for m in p.meta.values()]
     assert sets.count("convergence") == 5 * len(PAIRS) + sum("free" in pr or "guided" in pr for pr in PAIRS)
-    assert sets.count("curved") == 3 and sets.count("floor") == 1
+    assert sets.count("curved") == 4 and sets.count("floor") == 1
     for sc in p.scenes.values():
         back = mirror(mirror(sc))
         assert parse_scene({**back, "name": sc["name"]}).to_dict() == parse_scene(sc).to_dict()

@@ -4,7 +4,7 @@ The suite is fixed and versioned (:data:`SUITE_VERSION`): the same model gives t
 version changes. Straight scenes: every support pair that holds the beam, with a point force, a point
 moment, a uniform, a partial and a sine load (and a force at a free or guided end), at slenderness 20;
 two uniform-load scenes from thick to very slender (locking); one scene on fine grids (round-off floor).
-Curved scenes (arcs and a parabola) when the model declares ``curved``. Loads sit on grid points of every
+Curved scenes (arcs, one clockwise) when the model declares ``curved``. Loads sit on grid points of every
 grid (quarter points), so the orders measure the model, not the load placement.
 
 A theory pdverify has no exact solution of (``higher-order``, ``continuum``) is judged by self-convergence:
@@ -22,8 +22,9 @@ from pathlib import Path
 from ..scene import SUPPORTS, is_mechanism
 
 # 1.1: natural frequencies of models that declare dynamics (verify.dynamics); 1.2: self-convergence for theories
-# without an exact solution here, and superposition with the point-load positions shared by the three solves
-SUITE_VERSION = "1.2"
+# without an exact solution here, and superposition with the point-load positions shared by the three solves;
+# 1.3: a clockwise arc among the curved scenes
+SUITE_VERSION = "1.3"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -88,7 +89,7 @@ def mirror(scene: dict) -> dict:
 
 
 def curved_scenes() -> list[dict]:
-    """Arcs and a parabola: cantilevers and statically indeterminate ones (reference exact-curved)."""
+    """Arcs, one of them clockwise: cantilevers and statically indeterminate ones (reference exact-curved)."""
     sec, half_pi = {"width": 0.05, "height": 0.05}, 1.5707963267948966
     arc = {"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0}
     base = {"beam": {"length": half_pi}, "section": sec, "material": dict(MATERIAL), "axis": arc}
@@ -102,6 +103,13 @@ def curved_scenes() -> list[dict]:
         {
             **base,
             "name": "quarter circle, clamped-pinned, uniform",
+            "supports": {"left": "clamped", "right": "pinned"},
+            "loads": [{"type": "distributed", "value": -1000.0}],
+        },
+        {
+            **base,
+            "name": "quarter circle clockwise, clamped-pinned, uniform",
+            "axis": {**arc, "direction": "clockwise"},
             "supports": {"left": "clamped", "right": "pinned"},
             "loads": [{"type": "distributed", "value": -1000.0}],
         },
