@@ -4,8 +4,9 @@ Every number in a table is the value of the results table, formatted with ``fmt`
 digits), so it can be traced to its row; re-running on the same results gives the same HTML apart
 from the one ``generated`` line.
 
-~600 lines: one builder per page section (results, convergence, locking, benchmarks, checks, trust, papers,
-cards) feeding one template; figures are in :mod:`figures`, the performance page in :mod:`perf`.
+~630 lines: one builder per page section (results, convergence, locking, benchmarks, checks, trust, papers,
+cards) feeding one template; figures are in :mod:`figures`, a scene's extra figures (resultants, overlaid
+transients, dispersion) in :mod:`scene_figures`, the performance page in :mod:`perf`.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from markupsafe import Markup
 from ..errors import InputError, OutputError
 from ..study.store import case_file, read_curve
 from . import figures
+from .scene_figures import dispersion_figures, overlay_figures, resultant_figures
 
 # the convergence table's columns, on the index page and on each paper's page
 CONVERGENCE_COLUMNS = [
@@ -169,29 +171,6 @@ def _units_of(res: pd.DataFrame, key: str, kind: str = "length") -> dict:
     return out
 
 
-RESULTANTS = (("N", "axial force N"), ("Q", "shear force Q"))  # curved-beam fields drawn beside the deflection
-
-
-def resultant_figures(curves: list[tuple[str, dict]], title: str, unit: str, force: str) -> list[str]:
-    """Axial force N and shear force Q along the axis, one figure each, of the curves that return them
-    (pd-curved and the exact curved beams: ``fields`` N and Q). The vertical range is the exact curves' (labels
-    starting with ``exact-``) widened by half its span, so that a locked run's resultants (the primal form's N
-    can be off by 50x) leave the axes instead of hiding the others; without an exact curve every curve sets it."""
-    figs = []
-    for key, name in RESULTANTS:
-        got = [(label, c["x"], c["fields"][key]) for label, c in curves if key in c.get("fields", {})]
-        if not got:
-            continue
-        exact = [y for label, _, y in got if label.startswith("exact-")]
-        ylim = None
-        if exact:
-            lo, hi = min(float(np.min(y)) for y in exact), max(float(np.max(y)) for y in exact)
-            pad = 0.5 * (hi - lo) or 0.5 * max(abs(lo), abs(hi), 1e-300)
-            ylim = (lo - pad, hi + pad)
-        figs.append(figures.deflection(got, None, f"{title}: {name}", key, unit, yunit=force, ylim=ylim))
-    return figs
-
-
 def _curve(d: Path, path: Path) -> dict:
     """A case's curves, or InputError naming the damaged file (``pdverify study`` recomputes it)."""
     try:
@@ -212,47 +191,6 @@ def _slug(text: str) -> str:
     import re
 
     return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "scenes"
-
-
-EARLY = 0.15  # the "early time" figure shows this fraction of the run (Moyer & Miraglia Figs 3 and 10)
-
-
-def overlay_figures(runs: list[tuple[str, np.ndarray, dict, str]], title: str) -> list[str]:
-    """Two or more runs with time histories on a scene: their first probe's response on one axis over the whole
-    run and over its first :data:`EARLY` (where dispersion and grid effects show; the paper's Figs 3, 9, 10)."""
-    if len(runs) < 2:
-        return []
-    probe = next(iter(runs[0][2]), None)
-    curves = [(label, t, series[probe]) for label, t, series, _ in runs if probe in series]
-    if len(curves) < 2:
-        return []
-    end = max(float(np.asarray(t)[-1]) for _, t, _ in curves)
-    ylabel = runs[0][3]
-    return [
-        figures.histories_overlay(curves, f"{title}: {probe}, every run", ylabel),
-        figures.histories_overlay(curves, f"{title}: {probe}, early time", ylabel, until=EARLY * end),
-    ]
-
-
-def dispersion_figures(d: Path, sfile: str, rows: pd.DataFrame) -> list[str]:
-    """The dispersion figure of each PD rod / beam (model, variant) run on the scene, at its finest grid
-    (:func:`pdverify.report.waves.dispersion_figure`; the scene from the study's ``scenes.json``)."""
-    from ..study.outdir import SCENES
-    from ..study.spec import _scene
-    from .waves import dispersion_figure
-
-    pd_rows = rows[rows["model"].isin(("pd-rod", "pd-timoshenko"))]
-    if pd_rows.empty:
-        return []
-    try:
-        text = json.loads((d / SCENES).read_text())[sfile]
-    except (OSError, ValueError, KeyError):  # a study run before scenes.json was written
-        return []
-    figs = []
-    for (model, variant), g in pd_rows.groupby(["model", pd_rows["variant"].fillna("corrected")], sort=True):
-        fig = dispersion_figure(_scene(text, sfile, None), model, int(g["points"].max()), variant)
-        figs += [fig] if fig else []
-    return figs
 
 
 def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Path:
