@@ -143,21 +143,13 @@ def modal_sum(phi: np.ndarray, omega: np.ndarray, damping: float, times) -> np.n
     return out
 
 
-class ExactModalRod(Model):
-    name = "exact-modal-rod"
-    title = "exact transient of the elastic rod from rest: sum of its modes (step loads, mass-proportional damping)"
-    source = "modal superposition (textbook); the transient reference of pd-rod"
-    histories = True  # history_at(): the exact translations at any probes and times
-    options = (
-        POINTS,
-        Option("tolerance", float, 1e-6, "truncation error estimate, relative to max |u_static|", minimum=1e-14),
-    )
+class ModalReference(Model):
+    """A transient reference summed from modes: step loads from rest, no prescribed end motions; gives time
+    histories at any probes and times (``history_at``), the study runner's transient reference."""
+
+    histories = True
     analyses = frozenset({"dynamic"})
-    axial = True
-    bending = False
-    theory = "axial"
     reference = True
-    load_types = frozenset({"point_force", "distributed"})
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
@@ -165,7 +157,26 @@ class ExactModalRod(Model):
             out.append("material.density: needed for dynamics; add density to the scene")
         d = scene.dynamics
         if d is not None and any(em is not None for em in (d.left, d.right)):
-            out.append("dynamics.left/right: exact-modal-rod takes step loads only, no prescribed end motions")
+            out.append(f"dynamics.left/right: {self.name} takes step loads only, no prescribed end motions")
+        return out
+
+
+class ExactModalRod(ModalReference):
+    name = "exact-modal-rod"
+    title = "exact transient of the elastic rod from rest: sum of its modes (step loads, mass-proportional damping)"
+    source = "modal superposition (textbook); the transient reference of pd-rod"
+    options = (
+        POINTS,
+        Option("tolerance", float, 1e-6, "truncation error estimate, relative to max |u_static|", minimum=1e-14),
+    )
+    axial = True
+    bending = False
+    theory = "axial"
+    load_types = frozenset({"point_force", "distributed"})
+
+    def check(self, scene: Scene) -> list[str]:
+        out = super().check(scene)
+        d = scene.dynamics
         if d is not None and d.damping_ratio is not None and d.damping is not None:
             out.append("dynamics: give damping or damping_ratio, not both")
         return out

@@ -25,10 +25,10 @@ from functools import lru_cache
 import numpy as np
 
 from ..errors import InputError
-from ..registry import POINTS, Model, Option
+from ..registry import POINTS, Option
 from ..result import Result, Timer
 from ..scene import PointForce, PointMoment, Scene
-from .modal import modal_result, modal_sum
+from .modal import ModalReference, modal_result, modal_sum
 from .vibration import TimoshenkoBeam, beam_end
 
 MAX_MODES = 1024  # the sum's modes at most (their octave above them is computed for the estimate)
@@ -151,27 +151,20 @@ def beam_response(scene: Scene, positions, times, tolerance: float = 1e-5) -> tu
     return both[:, :n], both[:, n:], {"modes": len(omega), "truncation_error": est, "damping": 0.0}
 
 
-class ExactModalTimoshenko(Model):
+class ExactModalTimoshenko(ModalReference):
     name = "exact-modal-timoshenko"
     title = "exact transient of the Timoshenko beam from rest: sum of its modes (step loads, undamped)"
     source = "modal superposition, modes from the characteristic determinant; the transient reference of pd-timoshenko"
-    histories = True  # history_at(): the exact deflections at any probes and times
     options = (
         POINTS,
         Option("tolerance", float, 1e-5, "truncation error estimate, relative to max |w_static|", minimum=1e-12),
     )
-    analyses = frozenset({"dynamic"})
     theory = "timoshenko"
-    reference = True
     load_types = frozenset({"point_force", "point_moment", "distributed"})
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
-        if scene.material.density is None:
-            out.append("material.density: needed for dynamics; add density to the scene")
         d = scene.dynamics
-        if d is not None and any(em is not None for em in (d.left, d.right)):
-            out.append("dynamics.left/right: exact-modal-timoshenko takes step loads only, no prescribed end motions")
         if d is not None and (d.damping or d.damping_ratio):
             out.append(
                 "dynamics: exact-modal-timoshenko is undamped (a damping of the translations alone, as the PD "
