@@ -30,18 +30,26 @@ def gives_modes(model) -> bool:
     return model.modes
 
 
-def discrete_eigenvalues(K: sp.spmatrix, mass: np.ndarray, count: int) -> tuple[np.ndarray, float]:
-    """(λ, ||M⁻¹K||_∞): the ``count`` eigenvalues of M⁻¹K smallest in modulus, ordered by modulus."""
+def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, float]:
+    """(λ, ||M⁻¹K||_∞): the ``count`` eigenvalues of K φ = λ M φ smallest in modulus, ordered by modulus. ``mass``:
+    the lumped mass (a vector), or a consistent mass matrix (sparse, symmetric positive definite; the norm then
+    takes its row sums, the lumped mass of the same element)."""
     import scipy.linalg as la
     import scipy.sparse.linalg as spla
 
-    A = sp.csr_matrix(sp.diags(1.0 / mass) @ K)
+    consistent = sp.issparse(mass)
+    lumped = np.asarray(mass.sum(1)).ravel() if consistent else np.asarray(mass, float)
+    A = sp.csr_matrix(sp.diags(1.0 / lumped) @ K)
     norm = float(abs(A).sum(1).max())
     n = A.shape[0]
-    if n <= DENSE_DOFS or count >= n - 1:
+    v0 = np.random.default_rng(0).standard_normal(n)  # fixed start vector: the same digits on every run
+    if (n <= DENSE_DOFS or count >= n - 1) and consistent:
+        lam = la.eigvals(K.toarray(), mass.toarray())
+    elif n <= DENSE_DOFS or count >= n - 1:
         lam = la.eigvals(A.toarray())
-    else:  # fixed start vector: the same digits on every run
-        v0 = np.random.default_rng(0).standard_normal(n)
+    elif consistent:
+        lam = spla.eigs(sp.csc_matrix(K), k=count, M=sp.csc_matrix(mass), sigma=0.0, return_eigenvectors=False, v0=v0)
+    else:
         lam = spla.eigs(A.tocsc(), k=count, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
     lam = lam[np.argsort(np.abs(lam), kind="stable")][:count]
     return lam, norm

@@ -288,7 +288,8 @@ class Model:
         raise NotImplementedError(f"model {self.name} assembles no linear system (assembles = False)")
 
     def eigenproblem(self, scene: Scene, params: dict) -> tuple:
-        """(K on the free DOFs, lumped mass): K phi = omega^2 M phi of its transient (models with ``modes``)."""
+        """(K on the free DOFs, mass): K phi = omega^2 M phi of its transient (models with ``modes``); the mass a
+        vector (lumped) or a sparse symmetric positive definite matrix (consistent)."""
         raise NotImplementedError(f"model {self.name} gives no eigenproblem (modes = False)")
 
     def history_at(self, scene: Scene, params: dict, probes, t):

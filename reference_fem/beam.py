@@ -447,9 +447,17 @@ class FemTimoshenko(_BeamFE):
     )
 
     analyses = frozenset({"static", "dynamic"})
+    modes = True  # eigenproblem(): the stiffness and consistent mass of its transient
 
     def shear_stiffness(self, scene: Scene) -> float | None:
         return scene.kGA
+
+    def eigenproblem(self, scene: Scene, params: dict) -> tuple:
+        """(K, M) on the free DOFs, M the consistent mass (sparse) its transient integrates with."""
+        from .beam_transient import free_system
+
+        K, M, _, _, _ = free_system(self, scene, params, probes=())
+        return K, M
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)

@@ -33,22 +33,26 @@ def consistent_mass(nodes: np.ndarray, rhoA: float, rhoI: float) -> sp.csr_matri
     return mass.assemble(basis).tocsr()[order][:, order]
 
 
+def free_system(model, scene: Scene, params: dict, probes) -> tuple:
+    """(K, M, F, free DOFs, nodes) of the model on the scene, the supported DOFs removed; ``probes`` inserted as
+    nodes (as zero loads: beam_nodes puts every load position on a node)."""
+    rho = scene.material.density
+    if rho is None:
+        raise InputError("material.density: needed for dynamics; add density to the scene")
+    marks = [PointForce(type="point_force", position=p, value=0.0) for p in probes]
+    K, F, nodes = model.assemble_band(scene.model_copy(update={"loads": [*scene.loads, *marks]}), params)
+    M = consistent_mass(nodes, rho * scene.section.A, rho * scene.section.I)
+    free = np.setdiff1d(np.arange(2 * len(nodes)), constrained_dofs(scene, len(nodes)))
+    return K.tocsr()[free][:, free], M[free][:, free], F[free], free, nodes
+
+
 def transient(model, scene: Scene, params: dict) -> Result:
     """The model's transient on the scene (``model``: fem-timoshenko)."""
     timer = Timer()
     d, rho = scene.dynamics, scene.material.density
-    if rho is None:
-        raise InputError("material.density: needed for dynamics; add density to the scene")
     probes = list(d.probes) or [scene.length / 2]
     with timer("assemble"):
-        # the probes as zero loads: beam_nodes puts every load position on a node
-        marks = [PointForce(type="point_force", position=p, value=0.0) for p in probes]
-        marked = scene.model_copy(update={"loads": [*scene.loads, *marks]})
-        K, F, nodes = model.assemble_band(marked, params)
-        K = K.tocsr()
-        M = consistent_mass(nodes, rho * scene.section.A, rho * scene.section.I)
-        free = np.setdiff1d(np.arange(2 * len(nodes)), constrained_dofs(scene, len(nodes)))
-        K, M, F = K[free][:, free], M[free][:, free], F[free]
+        K, M, F, free, nodes = free_system(model, scene, params, probes)
         translations = sp.diags((free % 2 == 0).astype(float))
         D = d.damping or 0.0
         if d.damping_ratio:

@@ -134,3 +134,15 @@ def test_damped_fem_transient_settles_to_the_static_solve(left, right):
     sc = _scene(left, right, loads, dynamics={"end_time": 20 * T1, "damping_ratio": 1.0, "time_step": T1 / 200})
     r = run(sc, "fem-timoshenko", points=41)
     assert np.abs(r.w - r0.w).max() < 3e-5 * np.abs(r0.w).max()
+
+
+def test_fem_modes_use_the_consistent_mass_and_converge_at_order_two():
+    """fem-timoshenko gives its transient's K and consistent mass (modes = True); `pdverify modes` solves
+    K φ = λ M φ densely up to 300 free DOFs and with ARPACK above (101 and 201 nodes here: both paths): the lowest
+    three frequencies against the analytic ones fall 4x per halving (measured ratios 3.99-4.00)."""
+    from pdverify.modes import modes
+
+    sc = _scene("clamped", "free", UNIFORM)
+    tables = [modes(sc, "fem-timoshenko", {"points": n}, 3) for n in (101, 201)]
+    err = [np.abs(t.omega / t.analytic - 1) for t in tables]
+    assert np.all(np.abs(err[0] / err[1] - 4) < 0.1), err
