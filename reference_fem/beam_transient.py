@@ -6,11 +6,13 @@ The probes are nodes (inserted like load positions), so their histories are noda
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import scipy.sparse as sp
 
 from pdverify.errors import InputError
-from pdverify.result import Result, Timer
+from pdverify.result import Result, Timer, columns_csv
 from pdverify.scene import PointForce, Scene
 
 from .beam import constrained_dofs
@@ -74,17 +76,14 @@ def transient(model, scene: Scene, params: dict) -> Result:
     every = max(1, int(round(sample / (d.end_time / steps))))
     full = np.zeros(2 * len(nodes))
     full[free] = u
+    series = {f"w(x={p:g})": hist[::every, k] for k, p in enumerate(probes)}
     info = {
         "analysis": "dynamic",
         "integrator": "Newmark average acceleration (beta = 1/4, gamma = 1/2)",
         "time_step": d.end_time / steps,
         "steps": steps,
         "damping": D,
-        "history": {
-            "t": t[::every],
-            "series": {f"w(x={p:g})": hist[::every, k] for k, p in enumerate(probes)},
-            "ylabel": "deflection",
-        },
+        "history": {"t": t[::every], "series": series, "ylabel": "deflection"},
     }
     return model.new_result(
         scene,
@@ -95,4 +94,5 @@ def transient(model, scene: Scene, params: dict) -> Result:
         dofs=len(free),
         timings=timer.timings,
         info=info,
+        writers={".csv": lambda path: Path(path).write_text(columns_csv({"t": t[::every], **series}, fmt="%.12g"))},
     )

@@ -146,3 +146,12 @@ def test_fem_modes_use_the_consistent_mass_and_converge_at_order_two():
     tables = [modes(sc, "fem-timoshenko", {"points": n}, 3) for n in (101, 201)]
     err = [np.abs(t.omega / t.analytic - 1) for t in tables]
     assert np.all(np.abs(err[0] / err[1] - 4) < 0.1), err
+
+
+def test_fem_transient_writes_its_histories_as_csv(tmp_path):
+    """`pdverify solve ... --out h.csv` on a transient writes the probes' histories (as pd-timoshenko's do)."""
+    sc = _scene("clamped", "free", UNIFORM, dynamics={"probes": [1.0, 2.0], "output_interval": 1e-3})
+    r = run(sc, "fem-timoshenko", points=21)
+    r.writers[".csv"](str(tmp_path / "h.csv"))
+    lines = (tmp_path / "h.csv").read_text().splitlines()
+    assert lines[0] == "t,w(x=1),w(x=2)" and len(lines) == 1 + len(r.info["history"]["t"]) == 12
