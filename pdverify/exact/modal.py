@@ -98,15 +98,21 @@ class RodModes:
         N = 64
         while True:
             omega, p = self.participations(4 * N)
-            s1, s2 = np.abs(p[N : 2 * N]).sum(), np.abs(p[2 * N :]).sum()
-            ratio = min(s2 / s1, 0.99) if s1 > 0 else 0.0
-            tail = s1 / (1 - ratio)  # Σ_{k>N} |p_k| with the octave sums falling by `ratio`
             k = np.arange(1, N + 1)
             scale = np.abs(p[:N] @ self.shapes(k, x)).max()
-            est = 2 * tail / scale if scale > 0 else 0.0
+            est = tail_bound(np.abs(p), N) / scale if scale > 0 else 0.0  # |φ_k| <= 1
             if est <= tolerance or 4 * N >= MAX_MODES:
                 return omega[:N], p[:N], float(est)
             N *= 2
+
+
+def tail_bound(size: np.ndarray, N: int) -> float:
+    """2 Σ_{k>N} size_k, what the modes beyond the first N add at most (``size``: a bound on each of the first 4N
+    modes' contribution, |g_k| <= 2), from the sums over (N, 2N] and (2N, 4N] with the octave sums extrapolated
+    geometrically."""
+    s1, s2 = size[N : 2 * N].sum(), size[2 * N :].sum()
+    ratio = min(s2 / s1, 0.99) if s1 > 0 else 0.0
+    return 2 * s1 / (1 - ratio)
 
 
 def rod_response(scene: Scene, positions, times, tolerance: float = 1e-6, damping: float | None = None) -> tuple:

@@ -28,7 +28,7 @@ from ..errors import InputError
 from ..registry import POINTS, Option
 from ..result import Result, Timer
 from ..scene import PointForce, PointMoment, Scene
-from .modal import ModalReference, modal_result, modal_sum
+from .modal import ModalReference, modal_result, modal_sum, tail_bound
 from .vibration import TimoshenkoBeam, beam_end
 
 MAX_MODES = 1024  # the sum's modes at most (their octave above them is computed for the estimate)
@@ -44,6 +44,7 @@ class BeamModes:
         if rho is None:
             raise InputError("material.density: needed for dynamics; add density to the scene")
         self.scene, self.L = scene, scene.length
+        self._done = []  # per block of BLOCK modes: (coefficients, modal mass, modal load, max |w|)
         self.beam = TimoshenkoBeam(
             scene.EI,
             scene.kGA,
@@ -56,17 +57,11 @@ class BeamModes:
 
     def coefficients(self, omega: np.ndarray) -> np.ndarray:
         """(len(omega), 4): the general solution's coefficients at each ω_k (null vector of the end conditions,
-        as :meth:`TimoshenkoBeam.determinant` writes them); NaN at the cut-off mode (w = 0, γ = const)."""
-        rows, scale = [], 0.0
-        for x, (w_held, g_held) in ((0.0, self.beam.left), (self.L, self.beam.right)):
-            C = self.beam._columns(omega, x)
-            scale = scale + (C * C).sum(1)
-            rows.append(C[:, 0] if w_held else C[:, 1] - C[:, 2])
-            rows.append(C[:, 2] if g_held else C[:, 3])
+        :meth:`TimoshenkoBeam.end_conditions`); NaN at the cut-off mode (w = 0, γ = const)."""
+        M, scale = self.beam.end_conditions(omega)
         cutoff = np.isclose(omega, self.beam.cutoff, rtol=1e-9)
-        M = np.stack(rows, 1) / np.sqrt(scale)[:, None, :]
         M[cutoff] = np.eye(4)
-        coef = np.linalg.svd(M)[2][:, -1, :] / np.sqrt(scale)
+        coef = np.linalg.svd(M)[2][:, -1, :] / scale
         coef[cutoff] = np.nan
         return coef
 
@@ -85,10 +80,9 @@ class BeamModes:
         modes. Each block of :data:`BLOCK` modes is integrated on two panels per mode up to its highest one,
         and kept: the next octave computes its new modes only."""
         omega = self.beam.frequencies(count)
-        done = self._done = getattr(self, "_done", [])  # per block: (coef, mass, force, peak)
-        for b0 in range(BLOCK * len(done), count, BLOCK):
-            done.append(self._block(omega[b0 : b0 + BLOCK], b0 + BLOCK))
-        coef, mass, force, peak = (np.concatenate(part)[:count] for part in zip(*done, strict=True))
+        for b0 in range(BLOCK * len(self._done), count, BLOCK):
+            self._done.append(self._block(omega[b0 : b0 + BLOCK], b0 + BLOCK))
+        coef, mass, force, peak = (np.concatenate(part)[:count] for part in zip(*self._done, strict=True))
         norm = 1 / np.sqrt(mass)
         return omega, coef * norm[:, None], force * norm / omega**2, peak * norm
 
@@ -114,16 +108,11 @@ class BeamModes:
     def truncated(self, tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
         """(ω, coefficients, p, truncation error estimate relative to max |w_static|), the fewest octaves that
         meet it."""
-        N = 64
+        N, x = 64, np.linspace(0.0, self.L, 401)
         while True:
             omega, coef, p, peak = self.participations(4 * N)
-            size = np.abs(p) * peak
-            s1, s2 = size[N : 2 * N].sum(), size[2 * N :].sum()
-            ratio = min(s2 / s1, 0.99) if s1 > 0 else 0.0
-            tail = s1 / (1 - ratio)
-            x = np.linspace(0.0, self.L, 401)
             scale = np.abs(p[:N] @ self.fields(omega[:N], coef[:N], x)[0]).max()
-            est = 2 * tail / scale if scale > 0 else 0.0
+            est = tail_bound(np.abs(p) * peak, N) / scale if scale > 0 else 0.0
             if est <= tolerance or 4 * N >= MAX_MODES:
                 return omega[:N], coef[:N], p[:N], float(est)
             N *= 2

@@ -84,10 +84,9 @@ class TimoshenkoBeam:
             sb = (q - s * s) / s
             return np.stack([w, dw, np.concatenate([sb * sn, -sb * cs], 1), sb * s * w], 1)
 
-    def determinant(self, omega) -> np.ndarray:
-        """The characteristic determinant at ``omega`` (rad/s), each function's column scaled by the norm of
-        its (w, w', γ, γ') at both ends (positive and never zero: the sign changes, and so the roots, are
-        those of the unscaled determinant)."""
+    def end_conditions(self, omega) -> tuple[np.ndarray, np.ndarray]:
+        """(len(omega), 4, 4) the four end conditions (rows) on the four functions of the general solution
+        (columns), each column scaled by the norm of its (w, w', γ, γ') at both ends; and that scale."""
         omega = np.atleast_1d(np.asarray(omega, float))
         rows, scale = [], 0.0
         for x, (w_held, g_held) in ((0.0, self.left), (self.L, self.right)):
@@ -95,8 +94,15 @@ class TimoshenkoBeam:
             scale = scale + (C * C).sum(1)
             rows.append(C[:, 0] if w_held else C[:, 1] - C[:, 2])  # w = 0, else the shear w' - γ = 0
             rows.append(C[:, 2] if g_held else C[:, 3])  # γ = 0, else the moment γ' = 0
+        scale = np.sqrt(scale)
+        with np.errstate(invalid="ignore"):  # NaN at the cut-off's s = 0
+            return np.stack(rows, 1) / scale[:, None, :], scale
+
+    def determinant(self, omega) -> np.ndarray:
+        """The characteristic determinant at ``omega`` (rad/s) of the scaled :meth:`end_conditions` (the scale is
+        positive and never zero: the sign changes, and so the roots, are those of the unscaled determinant)."""
         with np.errstate(invalid="ignore"):  # NaN at the cut-off's s = 0: no sign change is read there
-            return np.linalg.det(np.stack(rows, 1) / np.sqrt(scale)[:, None, :])
+            return np.linalg.det(self.end_conditions(omega)[0])
 
     def frequencies(self, count: int, resolution: int = 256) -> np.ndarray:
         """The first ``count`` circular frequencies (rad/s): sign changes of :meth:`determinant` on a scan, all
