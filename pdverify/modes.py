@@ -42,15 +42,12 @@ def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, 
     A = sp.csr_matrix(sp.diags(1.0 / lumped) @ K)
     norm = float(abs(A).sum(1).max())
     n = A.shape[0]
-    v0 = np.random.default_rng(0).standard_normal(n)  # fixed start vector: the same digits on every run
-    if (n <= DENSE_DOFS or count >= n - 1) and consistent:
-        lam = la.eigvals(K.toarray(), mass.toarray())
-    elif n <= DENSE_DOFS or count >= n - 1:
-        lam = la.eigvals(A.toarray())
-    elif consistent:
-        lam = spla.eigs(sp.csc_matrix(K), k=count, M=sp.csc_matrix(mass), sigma=0.0, return_eigenvectors=False, v0=v0)
-    else:
-        lam = spla.eigs(A.tocsc(), k=count, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
+    if n <= DENSE_DOFS or count >= n - 1:
+        lam = la.eigvals(K.toarray(), mass.toarray()) if consistent else la.eigvals(A.toarray())
+    else:  # fixed start vector: the same digits on every run
+        v0 = np.random.default_rng(0).standard_normal(n)
+        B, M = (sp.csc_matrix(K), sp.csc_matrix(mass)) if consistent else (A.tocsc(), None)
+        lam = spla.eigs(B, k=count, M=M, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
     lam = lam[np.argsort(np.abs(lam), kind="stable")][:count]
     return lam, norm
 
