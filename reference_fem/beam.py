@@ -14,6 +14,7 @@ By default (``form = mixed``) both solve their elements' stiffness as the two-fi
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 from scipy.interpolate import CubicHermiteSpline
 
 from pdverify.band import Band
@@ -406,23 +407,27 @@ def linear_shapes(xi, l):
     return np.array([1 - xi, 0 * xi, xi, 0 * xi]) * np.ones_like(l)
 
 
-def linear_timoshenko(nodes: np.ndarray, EI: float, kGA: float, variant: str) -> Band:
-    """The linear Timoshenko element in scikit-fem: w and theta both ElementLineP1, the energy
-    EI theta' phi' + kGA (w' - theta)(v' - phi) integrated with one Gauss point (``reduced``: the shear term
-    underintegrated, no locking) or two (``full``: exact, locks when slender). DOFs (w_i, theta_i) interleaved.
-    scikit-fem's line rules have at least two points, so the one-point rule is given explicitly."""
+def two_fields(form, nodes: np.ndarray, **quadrature) -> sp.csr_matrix:
+    """A bilinear form on w and theta, both scikit-fem ElementLineP1 on the nodes, assembled with the DOFs
+    (w_i, theta_i) interleaved per node (this module's order); ``quadrature``: scikit-fem Basis keywords."""
     import skfem as fem
 
-    one_point = (np.array([[0.5]]), np.array([1.0]))
-    kind = {"quadrature": one_point} if variant == "reduced" else {"intorder": 2}
-    basis = fem.Basis(fem.MeshLine(nodes), fem.ElementLineP1() * fem.ElementLineP1(), **kind)
+    basis = fem.Basis(fem.MeshLine(nodes), fem.ElementLineP1() * fem.ElementLineP1(), **quadrature)
+    order = basis.nodal_dofs.T.ravel()
+    return fem.BilinearForm(form).assemble(basis).tocsr()[order][:, order]
 
-    @fem.BilinearForm
+
+def linear_timoshenko(nodes: np.ndarray, EI: float, kGA: float, variant: str) -> Band:
+    """The linear Timoshenko element in scikit-fem (:func:`two_fields`): the energy
+    EI theta' phi' + kGA (w' - theta)(v' - phi) integrated with one Gauss point (``reduced``: the shear term
+    underintegrated, no locking) or two (``full``: exact, locks when slender). scikit-fem's line rules have at
+    least two points, so the one-point rule is given explicitly."""
+
     def energy(w, theta, v, phi, _):
         return EI * theta.grad[0] * phi.grad[0] + kGA * (w.grad[0] - theta) * (v.grad[0] - phi)
 
-    order = basis.nodal_dofs.T.ravel()  # (w_i, theta_i) per node
-    return Band.from_sparse(energy.assemble(basis).tocsr()[order][:, order])
+    one_point = {"quadrature": (np.array([[0.5]]), np.array([1.0]))}
+    return Band.from_sparse(two_fields(energy, nodes, **(one_point if variant == "reduced" else {"intorder": 2})))
 
 
 class FemTimoshenko(_BeamFE):

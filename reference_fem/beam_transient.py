@@ -15,7 +15,7 @@ from pdverify.errors import InputError
 from pdverify.result import Result, Timer, columns_csv
 from pdverify.scene import PointForce, Scene
 
-from .beam import constrained_dofs
+from .beam import constrained_dofs, two_fields
 from .newmark import newmark
 
 DEFAULT_SAMPLES = 2000  # samples over end_time when the scene gives no output_interval
@@ -23,16 +23,11 @@ DEFAULT_SAMPLES = 2000  # samples over end_time when the scene gives no output_i
 
 def consistent_mass(nodes: np.ndarray, rhoA: float, rhoI: float) -> sp.csr_matrix:
     """ρA w v + ρI θ φ on ElementLineP1 x ElementLineP1 (two Gauss points: exact), DOFs (w_i, θ_i) interleaved."""
-    import skfem as fem
 
-    basis = fem.Basis(fem.MeshLine(nodes), fem.ElementLineP1() * fem.ElementLineP1(), intorder=2)
-
-    @fem.BilinearForm
     def mass(w, theta, v, phi, _):
         return rhoA * w * v + rhoI * theta * phi
 
-    order = basis.nodal_dofs.T.ravel()
-    return mass.assemble(basis).tocsr()[order][:, order]
+    return two_fields(mass, nodes, intorder=2)
 
 
 def free_system(model, scene: Scene, params: dict, probes) -> tuple:
