@@ -213,7 +213,6 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         row.update(solved["timings"])
         row["dofs"] = solved["dofs"]
         row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
-        row["horizon_factor"] = params.get("horizon")
         row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
         row["cond"] = info.get("cond")
         row["status"], row["message"] = "ok", ""
