@@ -195,6 +195,24 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> dict[tuple
     return {v: float(xv) for v, xv in zip(var, x)}
 
 
+def bond_pieces(C: np.ndarray, off: int, dx: float, h: float, centred: bool, path: bool) -> list[tuple]:
+    """The Hessian of one bond (point p to p + ``off``) divided by h, as (row shift, column offset, 4x4 block):
+    the block sits in the row of point p + row shift at point offset ``col``. Plain bonds couple their two ends
+    (:func:`bond_block`); with ``path`` (:func:`path_measures`) every pair of points along the bond. The order is
+    the summation order of :func:`assemble_blocks` and :func:`uniform_blocks` (their rows agree bit for bit)."""
+    if path:
+        M = path_measures(off, dx)
+        B = M.T @ C @ M / h
+        sg, d = (1 if off > 0 else -1), abs(off)
+        return [
+            (sg * a, sg * (b - a), B[NF * a : NF * a + NF, NF * b : NF * b + NF])
+            for a in range(d + 1)
+            for b in range(d + 1)
+        ]
+    B = bond_block(C, off * dx, centred) / h
+    return [(0, 0, B[:NF, :NF]), (0, off, B[:NF, NF:]), (off, -off, B[NF:, :NF]), (off, 0, B[NF:, NF:])]
+
+
 def assemble_blocks(
     n: int,
     dx: float,
@@ -212,19 +230,8 @@ def assemble_blocks(
     for off, wt in weights.items():
         lo, hi = max(0, -off), min(n, n - off)
         t = wt[lo:hi, None, None]
-        if path:
-            M = path_measures(off, dx)
-            B = M.T @ C @ M / h
-            sg, d = (1 if off > 0 else -1), abs(off)
-            for a in range(d + 1):
-                for b in range(d + 1):
-                    Kb[lo + sg * a : hi + sg * a, J + sg * (b - a)] += t * B[NF * a : NF * a + NF, NF * b : NF * b + NF]
-            continue
-        B = bond_block(C, off * dx, centred) / h
-        Kb[lo:hi, J] += t * B[:NF, :NF]
-        Kb[lo:hi, J + off] += t * B[:NF, NF:]
-        Kb[lo + off : hi + off, J - off] += t * B[NF:, :NF]
-        Kb[lo + off : hi + off, J] += t * B[NF:, NF:]
+        for row, col, block in bond_pieces(C, off, dx, h, centred, path):
+            Kb[lo + row : hi + row, J + col] += t * block
     cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
     ok = (cols >= 0) & (cols < n)
     indptr = np.r_[0, np.cumsum(ok.sum(axis=1))]
@@ -282,17 +289,6 @@ def uniform_blocks(
     J = max(abs(o) for o in weights)
     blocks = {o: np.zeros((NF, NF)) for o in range(-J, J + 1)}
     for off, wt in weights.items():
-        if path:
-            M = path_measures(off, dx)
-            B = M.T @ C @ M / h
-            sg, d = (1 if off > 0 else -1), abs(off)
-            for a in range(d + 1):
-                for b in range(d + 1):
-                    blocks[sg * (b - a)] += wt * B[NF * a : NF * a + NF, NF * b : NF * b + NF]
-            continue
-        B = bond_block(C, off * dx, centred) / h
-        blocks[0] += wt * B[:NF, :NF]
-        blocks[off] += wt * B[:NF, NF:]
-        blocks[-off] += wt * B[NF:, :NF]
-        blocks[0] += wt * B[NF:, NF:]
+        for _, col, block in bond_pieces(C, off, dx, h, centred, path):
+            blocks[col] += wt * block
     return blocks
