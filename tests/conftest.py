@@ -1,5 +1,7 @@
 import copy
+import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -35,6 +37,12 @@ MIXED_LOADS = [
     {"type": "point_force", "position": 2.0, "value": 80.0},
     {"type": "point_moment", "position": 0.0, "value": -60.0},
 ]
+# a force, a moment and span ends between the grid points of the usual grids (L = 2)
+OFF_GRID_LOADS = [
+    {"type": "point_force", "position": 0.733, "value": -100.0},
+    {"type": "point_moment", "position": 1.417, "value": 40.0},
+    {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29},
+]
 
 
 def _sigint_default() -> None:
@@ -55,6 +63,23 @@ def start_in_own_group(cmd: list[str]) -> subprocess.Popen:
         stderr=subprocess.PIPE,
         start_new_session=True,
         preexec_fn=_sigint_default,
+    )
+
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def pdverify_process(*args, cwd=ROOT, timeout: float = 300) -> subprocess.CompletedProcess:
+    """``python -m pdverify.cli ARGS`` in a child process (text output captured; pdverify from this checkout):
+    for what only a real process shows (exit codes, stderr, signals, start-up)."""
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    return subprocess.run(
+        [sys.executable, "-m", "pdverify.cli", *map(str, args)],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
     )
 
 

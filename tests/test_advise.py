@@ -1,11 +1,9 @@
 """pdverify advise: physics decisions, a-posteriori estimate confirmed by the exact error, auto solve."""
 
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-from conftest import scene_dict
+from conftest import pdverify_process, scene_dict
 
 from pdverify.advise import advise, estimate
 from pdverify.errors import InputError
@@ -74,40 +72,19 @@ def test_bad_tolerance():
 
 @pytest.mark.slow
 def test_solve_model_auto():
-    r = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pdverify.cli",
-            "solve",
-            "studies/paper_yang/cantilever_tip_force.toml",
-            "--model",
-            "auto",
-            "--tolerance",
-            "5e-2",
-            "--format",
-            "json",
-        ],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
+    r = pdverify_process(
+        "solve",
+        "studies/paper_yang/cantilever_tip_force.toml",
+        "--model",
+        "auto",
+        "--tolerance",
+        "5e-2",
+        "--format",
+        "json",
     )
     assert r.returncode == 0, r.stderr
     assert "auto: fem-timoshenko" in r.stderr and '"model": "fem-timoshenko"' in r.stdout
-    r = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pdverify.cli",
-            "solve",
-            "studies/paper_yang/cantilever_tip_force.toml",
-            "--model",
-            "auto",
-        ],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-    )
+    r = pdverify_process("solve", "studies/paper_yang/cantilever_tip_force.toml", "--model", "auto")
     assert r.returncode == 2 and "needs --tolerance" in r.stderr
 
 
@@ -177,11 +154,6 @@ def test_dynamics_scene_needs_the_static_part_asked_for():
 
 
 def test_cli_advise_dynamics_scene_exit_2():
-    r = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "advise", "studies/paper_moyer/beam_example2.toml"],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-    )
+    r = pdverify_process("advise", "studies/paper_moyer/beam_example2.toml")
     assert r.returncode == 2 and r.stderr.startswith("error: dynamics:") and "--static" in r.stderr
     assert "Traceback" not in r.stderr

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import MIXED_LOADS, PAIRS, scene_dict
+from conftest import MIXED_LOADS, OFF_GRID_LOADS, PAIRS, scene_dict
 
 from pdverify.errors import SolveError
 from pdverify.exact.straight import solve_straight
@@ -166,17 +166,7 @@ def test_errors_against_exact_and_fem_eb_recorded(name, record_property):
 def test_loads_between_points_converge_at_order_two(model):
     """Force, moment and span ends off the grid points: measured 6.6e-4 / 1.1e-3 at 101 points and
     order 2 for both models (a moment placed at the midpoint of its interval would give order 1)."""
-    sc = parse_scene(
-        scene_dict(
-            "clamped",
-            "pinned",
-            [
-                {"type": "point_force", "position": 0.733, "value": -100.0},
-                {"type": "point_moment", "position": 1.417, "value": 40.0},
-                {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29},
-            ],
-        )
-    )
+    sc = parse_scene(scene_dict("clamped", "pinned", OFF_GRID_LOADS))
     e = []
     for n in (201, 401, 801):
         r = run(sc, model, points=n)

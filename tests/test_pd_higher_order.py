@@ -506,6 +506,16 @@ def _peaks(name, ns, **opts):
     return np.array([peak(run(PAPER[name], "pd-higher-order", points=int(n), **opts).w) for n in ns])
 
 
+def _errors_against_6401_points(sc, **options) -> list[float]:
+    """max |w - w_6401| / max |w_6401| of pd-higher-order at 201, 401 and 801 points (the reference interpolated)."""
+    ref = run(sc, "pd-higher-order", points=6401, **options)
+    e = []
+    for n in (201, 401, 801):
+        r = run(sc, "pd-higher-order", points=n, **options)
+        e.append(np.abs(r.w - np.interp(r.x, ref.x, ref.w)).max() / np.abs(ref.w).max())
+    return e
+
+
 @pytest.mark.slow
 def test_interior_point_force_is_second_order_with_the_bonds_cut_at_the_load():
     """ss_centre_force, m = 3, max error vs the model's own 6401 points at 201 / 401 / 801 points. cuts = loads
@@ -513,11 +523,7 @@ def test_interior_point_force_is_second_order_with_the_bonds_cut_at_the_load():
     the bonds straddling the load averaging the w* kink under it."""
     sc = PAPER["ss_centre_force"]
     for cuts, lo, hi in (("loads", 1.7, 2.3), ("none", 0.6, 1.3)):
-        ref = run(sc, "pd-higher-order", points=6401, cuts=cuts)
-        e = []
-        for n in (201, 401, 801):
-            r = run(sc, "pd-higher-order", points=n, cuts=cuts)
-            e.append(np.abs(r.w - np.interp(r.x, ref.x, ref.w)).max() / np.abs(ref.w).max())
+        e = _errors_against_6401_points(sc, cuts=cuts)
         assert lo < np.log2(e[1] / e[2]) < hi, (cuts, e)
     assert run(sc, "pd-higher-order", points=201).info["cuts"] == [0.5]
 
@@ -545,11 +551,7 @@ def test_convergence_at_fixed_m3_is_second_order_with_patch_test_end_layers(name
     a uniform state is not in equilibrium there), errors 20-500 times larger."""
     sc = PAPER[name]
     for layer, lo, hi in (("patch", 1.6, 2.3), ("point", 0.8, 1.3)):
-        ref = run(sc, "pd-higher-order", points=6401, end_layer=layer)
-        e = []
-        for n in (201, 401, 801):
-            r = run(sc, "pd-higher-order", points=n, end_layer=layer)
-            e.append(np.abs(r.w - np.interp(r.x, ref.x, ref.w)).max() / np.abs(ref.w).max())
+        e = _errors_against_6401_points(sc, end_layer=layer)
         order = np.log2(e[1] / e[2])
         assert lo < order < hi, (layer, e, order)
 

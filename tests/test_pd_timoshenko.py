@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import MIXED_LOADS, PAIRS, scene_dict
+from conftest import MIXED_LOADS, OFF_GRID_LOADS, PAIRS, scene_dict
 
 from pdverify.errors import InputError, SolveError
 from pdverify.exact.straight import solve_straight
@@ -148,17 +148,7 @@ def test_rotation_moment_and_shear_fields(left, right):
 
 
 def test_loads_between_points():
-    sc = parse_scene(
-        scene_dict(
-            "clamped",
-            "pinned",
-            [
-                {"type": "point_force", "position": 0.733, "value": -100.0},
-                {"type": "point_moment", "position": 1.417, "value": 40.0},
-                {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29},
-            ],
-        )
-    )
+    sc = parse_scene(scene_dict("clamped", "pinned", OFF_GRID_LOADS))
     for s in (4, 100):
         assert err(sc.with_slenderness(s), points=201) < 5e-3
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from conftest import start_in_own_group
+from conftest import pdverify_process, start_in_own_group
 
 from pdverify.errors import InputError, OutputError
 from pdverify.study import load_study, run_study
@@ -26,16 +26,6 @@ def write_study(tmp_path, body, name="s"):
     p = tmp_path / f"{name}.toml"
     p.write_text(f'name = "{name}"\nscenes = ["{SCENE}"]\nreference = "exact-eb"\n' + body)
     return p
-
-
-def cli(*args, timeout=120):
-    return subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", *map(str, args)],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-    )
 
 
 def one_error_line(r, code):
@@ -153,7 +143,7 @@ def test_a_locked_folder_is_one_line_exit_4_naming_it_and_the_other_run(tmp_path
     )
     try:
         assert holder.stdout.readline().strip() == "held"
-        line = one_error_line(cli("study", p, "--out", out, "--quiet"), 4)
+        line = one_error_line(pdverify_process("study", p, "--out", out, "--quiet"), 4)
         assert str(out) in line and f"pid {holder.pid}" in line and "another --out" in line, line
         assert not list((out / "cases").glob("*.case"))
         with pytest.raises(OutputError, match=f"in use by another pdverify run \\(pid {holder.pid}\\)"):
@@ -201,7 +191,7 @@ def test_another_study_never_overwrites_a_folders_tables(tmp_path):
     out = tmp_path / "out"
     run_study(load_study(a), out, workers=1, progress=False)
     before = {f.name: f.read_bytes() for f in out.iterdir() if f.is_file() and f.name != LOCK_NAME}
-    line = one_error_line(cli("study", b, "--out", out, "--quiet"), 4)
+    line = one_error_line(pdverify_process("study", b, "--out", out, "--quiet"), 4)
     assert str(out) in line and "'first'" in line and "another --out" in line and f"remove {out}" in line, line
     assert {f.name: f.read_bytes() for f in out.iterdir() if f.is_file() and f.name != LOCK_NAME} == before
     assert len(list((out / "cases").glob("*.case"))) == 2
@@ -255,7 +245,9 @@ def test_a_malformed_scheduler_address_is_one_line_exit_2(tmp_path, address):
 
 def test_a_malformed_scheduler_address_from_the_cli(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
-    line = one_error_line(cli("study", p, "--out", tmp_path / "out", "--scheduler", "nonsense", "--quiet"), 2)
+    line = one_error_line(
+        pdverify_process("study", p, "--out", tmp_path / "out", "--scheduler", "nonsense", "--quiet"), 2
+    )
     assert "--scheduler 'nonsense'" in line and "tcp://HOST:PORT" in line, line
 
 
@@ -270,7 +262,7 @@ def test_an_unreachable_scheduler_is_one_line_exit_2_within_the_connect_timeout(
         port = s.getsockname()[1]
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101]\n')
     t = time.perf_counter()
-    r = cli("study", p, "--out", tmp_path / "out", "--scheduler", f"tcp://127.0.0.1:{port}", "--quiet")
+    r = pdverify_process("study", p, "--out", tmp_path / "out", "--scheduler", f"tcp://127.0.0.1:{port}", "--quiet")
     took = time.perf_counter() - t
     line = one_error_line(r, 2)
     assert f"tcp://127.0.0.1:{port}" in line and "no Dask scheduler reached" in line, line
@@ -282,7 +274,7 @@ def test_an_unreachable_scheduler_is_one_line_exit_2_within_the_connect_timeout(
 @pytest.mark.slow
 def test_workers_below_one_is_one_line_exit_2(tmp_path, workers):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
-    line = one_error_line(cli("study", p, "--out", tmp_path / "out", "--workers", workers, "--quiet"), 2)
+    line = one_error_line(pdverify_process("study", p, "--out", tmp_path / "out", "--workers", workers, "--quiet"), 2)
     assert f"--workers {workers}" in line and "1 or more" in line, line
 
 

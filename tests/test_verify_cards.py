@@ -2,14 +2,12 @@
 linked in the report, their failures in the exit status only with ``verify_required = true``."""
 
 import json
-import os
 import re
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
+from conftest import pdverify_process
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = "paper_diyaroglu/clamped_free.toml"
@@ -23,25 +21,13 @@ def _study(tmp_path: Path, extra: str) -> Path:
     return path
 
 
-def _pdverify(*args, cwd: Path):
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", *map(str, args)],
-        capture_output=True,
-        text=True,
-        env=env,
-        cwd=cwd,
-        timeout=300,
-    )
-
-
 def test_bad_verify_entries_are_one_line_each_and_nothing_runs(tmp_path):
     study = _study(
         tmp_path,
         'verify = ["no-such-model", "pd-eb colour=red", "pd-eb points=11", "pd-rod", 5, '
         '"pd-eb variant=paper", "pd-eb variant=paper", "pd-eb variant"]\nverify_required = "yes"',
     )
-    r = _pdverify("study", study, "--out", tmp_path / "out", "--quiet", cwd=tmp_path)
+    r = pdverify_process("study", study, "--out", tmp_path / "out", "--quiet", cwd=tmp_path)
     assert r.returncode == 2 and "Traceback" not in r.stderr
     lines = r.stderr.splitlines()
     assert all(line.startswith("error: ") for line in lines)
@@ -67,7 +53,7 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
     L/h = 1e4), so its card fails. ~15 s on 2 cores."""
     study = _study(tmp_path, 'verify = ["exact-eb", "fem-timoshenko variant=full"]\nverify_required = true')
     out = tmp_path / "out"
-    r = _pdverify("study", study, "--out", out, "--quiet", "--workers", "2", "--report", cwd=tmp_path)
+    r = pdverify_process("study", study, "--out", out, "--quiet", "--workers", "2", "--report", cwd=tmp_path)
     assert r.returncode == 1, r.stderr  # the study itself passes: the failed card, required, fails it
     assert "Traceback" not in r.stderr
     last = r.stderr.strip().splitlines()[-1]
@@ -96,7 +82,7 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
     case_files = sorted((out / "verify").rglob("cases/**/*.*"))
     stamps = [p.stat().st_mtime_ns for p in case_files]
     study.write_text(study.read_text().replace("verify_required = true", "verify_required = false"))
-    r = _pdverify("study", study, "--out", out, "--quiet", "--workers", "2", "--report", cwd=tmp_path)
+    r = pdverify_process("study", study, "--out", out, "--quiet", "--workers", "2", "--report", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert r.stderr.strip().splitlines()[-1].endswith("cards 1 pass, 1 fail (not required); exit 0")
     assert case_files and sorted((out / "verify").rglob("cases/**/*.*")) == case_files
@@ -105,6 +91,6 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
 
     # a study that drops the key: its report lists no card
     study.write_text(re.sub(r"verify.*\n", "", study.read_text()))
-    r = _pdverify("study", study, "--out", out, "--quiet", "--workers", "2", "--report", cwd=tmp_path)
+    r = pdverify_process("study", study, "--out", out, "--quiet", "--workers", "2", "--report", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert 'id="cards"' not in (out / "index.html").read_text()
