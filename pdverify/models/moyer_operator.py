@@ -48,11 +48,15 @@ cells by Taylor expansion about the end faces (a Dirichlet face anchored at zero
    plain mean (γ_i + γ_{i+1})/2 the shear force carries an error kGA Δ² γ''/12 that grows like (Δ/h)²
    (measured 1.3 % on the Table 1 cantilever, 2.9 % at L/h = 100 with 201 points, clamped–free, mixed
    loads); with the 13/24 average the tip-loaded cantilever is exact (1e-11).
-2. ghost points from one polynomial per field (degree 3, fitted to the first 4 real points) that
-   satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; pinned w = w_end,
-   EIγ' = M̄; free EIγ' = M̄, kGA ψ = P̄; guided γ = γ_end, kGA ψ = P̄ (end loads enter here);
-   the end point's own equation holds where its value is not prescribed. Rod: u = u_end or EA u' = N̄.
-3. at free and guided ends the ghost ψ̄ are extrapolated from the real intervals' ψ̄ with ψ(end) =
+2. ghost points at clamped and free ends from one polynomial per field (degree 3, fitted to the first 4
+   real points) that satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; free
+   EIγ' = M̄, kGA ψ = P̄ (end loads enter here); the end point's own equation holds where its value is not
+   prescribed. Rod: u = u_end or EA u' = N̄. At pinned (roller) and guided ends the ghosts are mirror
+   images (pinned: w odd, γ even; guided: w even, γ odd) plus the Taylor terms of the end conditions
+   (pinned EIγ' = M̄, guided kGA ψ = P̄) and of the end's line load (:func:`mirror_ghosts`): the operator
+   keeps the symmetry classes of the stencil, so between two such ends it has a real positive spectrum
+   (the cubic fits gave it growing modes at every horizon; issue 30).
+3. at free ends the ghost ψ̄ are extrapolated from the real intervals' ψ̄ with ψ(end) =
    P̄/kGA imposed (quadratic, 4 intervals), not computed from the extrapolated w and γ, whose errors
    would enter the shear force multiplied by kGA/Δ (uniformly loaded cantilever, 201 points: 27 % at
    L/h = 1000 and 2700 % at 1e4 before, 3e-8 and 3e-6 after).
@@ -64,7 +68,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import InputError
-from ..scene import Scene
+from ..scene import Distributed, Scene
 from ._moyer_kernels import (
     EndPatched,
     average_ghosts,
@@ -78,8 +82,9 @@ from ._moyer_kernels import (
 )
 from .moyer_system import Discrete
 
+MIRRORED = ("pinned", "roller", "guided")  # corrected ends whose ghosts are mirror images (mirror_ghosts)
 FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
-SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS = 2, 4  # ψ̄ ghosts at free/guided ends
+SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS = 2, 4  # ψ̄ ghosts at free ends
 # rod (torsion) ghosts at a traction end for m >= 2: quartic through 5 points. The cubic through 4 gives M⁻¹K
 # complex eigenvalues at m = 2 (growth 3.4e-2 of ω_max, every slenderness); the quartic's spectrum is real for
 # m = 2..10, the cubic's is at m = 1 (the quartic's is not: 4.8e-2); static results agree to the horizon's
@@ -313,6 +318,9 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
             blocks[side] = (R, np.zeros(2 * G), 4)
             continue
         P, C = ends[side]
+        if sup in MIRRORED:
+            blocks[side] = mirror_ghosts(sup, G, dx, sigma, P, C, end_line_load(scene, side), EI, kGA)
+            continue
         con = []
         if fix_w:
             con.append(({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0))
@@ -364,8 +372,58 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
     return K.tocsr(), bw_parts, bg_parts, (Avg @ psi_u).tocsr(), Avg @ psi_0
 
 
+def end_line_load(scene: Scene, side: int) -> float:
+    """The transverse line load q of the distributed loads at the end point (0 outside their spans)."""
+    xe = 0.0 if side == 0 else scene.length
+    q = 0.0
+    for load in scene.loads:
+        if isinstance(load, Distributed) and load.value:
+            a, b = scene.span(load)
+            if a - 1e-12 * scene.length <= xe <= b + 1e-12 * scene.length:
+                q += load.value if load.shape == "uniform" else load.value * np.sin(np.pi * xe / scene.length)
+    return q
+
+
+def mirror_ghosts(sup: str, G: int, dx: float, sigma: float, P: float, C: float, q: float, EI: float, kGA: float):
+    """Ghosts of a pinned (roller) or guided end of the corrected beam as mirror images, (R, r0, G + 1).
+
+    A pinned end is the centre of an antisymmetric deformation (w odd, γ even about it), a guided end of a
+    symmetric one (w even, γ odd): the two classes the beam's stencil maps into themselves. With the ghosts
+    their images, the operator between two such ends is the stencil of the periodic beam restricted to one
+    class: its spectrum is the dispersion relation's, real and positive (no growing mode at any horizon or
+    slenderness). The end conditions and loads enter only r0, as the Taylor terms the image lacks, from the
+    static equations of the corrected operator (kGA ψ' = -q, EI γ'' = -kGA ψ, w' = γ + ψ) at the end; ξ runs
+    into the beam, τ = -σ = dξ/dx:
+
+    pinned: w(-ξ) = -w(ξ) + 2 w_0 + ξ² w_ξξ + ξ⁴ w_ξξξξ/12,  w_ξξ = -τ C̄/EI - q/kGA, w_ξξξξ = q/EI;
+            γ(-ξ) = γ(ξ) - 2 ξ γ_ξ - ξ³ γ_ξξξ/3,           γ_ξ = -C̄/EI, γ_ξξξ = τ q/EI;
+    guided: w(-ξ) = w(ξ) - 2 ξ w_ξ - ξ³ w_ξξξ/3,            w_ξ = τ γ_0 - P̄/kGA, w_ξξξ = P̄/EI;
+            γ(-ξ) = -γ(ξ) + 2 γ_0 + ξ² γ_ξξ,               γ_ξξ = -σ P̄/EI.
+
+    The first neglected terms (line couples and load gradients at the end, ξ⁵ γ^(5), ξ⁶ w^(6)) are
+    O(Δ³) in the ghosts, like the cubic fits' errors. The ghost ψ̄ follow from the images (no
+    :func:`_shear_ghosts` extrapolation)."""
+    npts = G + 1
+    t = np.arange(1, G + 1)
+    xi = dx * t
+    tau = -sigma
+    R, r0 = np.zeros((2 * G, 2 * npts)), np.zeros(2 * G)
+    w, g = t - 1, G + t - 1  # rows of the w and γ ghosts; columns: w of real point k is k, γ is npts + k
+    if sup in ("pinned", "roller"):
+        R[w, t], R[w, 0] = -1.0, 2.0
+        r0[:G] = xi**2 * (-tau * C / EI - q / kGA) + xi**4 / 12 * (q / EI)
+        R[g, npts + t] = 1.0
+        r0[G:] = -2 * xi * (-C / EI) - xi**3 / 3 * (tau * q / EI)
+    else:
+        R[w, t], R[w, npts] = 1.0, -2 * xi * tau
+        r0[:G] = -2 * xi * (-P / kGA) - xi**3 / 3 * (P / EI)
+        R[g, npts + t], R[g, npts] = -1.0, 2.0
+        r0[G:] = xi**2 * (-sigma * P / EI)
+    return R, r0, npts
+
+
 def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
-    """At an end whose deflection is free (free, guided) the ghost ψ̄ are extrapolated from the ψ̄ of
+    """At a free end the ghost ψ̄ are extrapolated from the ψ̄ of
     the real intervals with ψ(end) = the end shear P̄/kGA imposed, instead of being computed from
     extrapolated w and γ: an extrapolation error δ in w or γ would enter the shear force as kGA δ/Δ,
     which grows like (L/h)² (measured: 27 % at slenderness 1000 on a uniformly loaded cantilever)."""
@@ -374,7 +432,7 @@ def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
     c0 = np.zeros(rows_all)
     replaced = np.zeros(rows_all, bool)
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        if DIRICHLET[sup][0]:
+        if DIRICHLET[sup][0] or sup in MIRRORED:
             continue
         sigma = -1.0 if side == 0 else 1.0
         k = np.arange(SHEAR_FIT_INTERVALS)
