@@ -24,7 +24,7 @@ from ..errors import InputError
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Scene
-from .moyer_operator import FIT_POINTS, ROD_HELD, beam_operator, rod_operator
+from .moyer_operator import FIT_POINTS, MIRRORED, ROD_HELD, beam_operator, rod_operator
 from .moyer_system import Discrete, prescribed_motions, static_solution, static_system
 from .moyer_transient import STABILISATION, History, integrate
 from .pd_common import boundary_layer_warnings
@@ -62,6 +62,11 @@ class _MoyerModel(Model):
     assembles = True
     modes = True  # eigenproblem(): the operator of the transient and its lumped mass
     stabilisation = STABILISATION  # κ of the scheme's stiffness-proportional damping (moyer_transient.integrate)
+
+    def stabilisation_for(self, scene: Scene, params: dict) -> float:
+        """κ of this scene's run (the class's; the beam drops it where its closures are stable)."""
+        return self.stabilisation
+
     variant_rules = (
         Rule(
             (("variant", "corrected"),),
@@ -144,7 +149,7 @@ class _MoyerModel(Model):
                     damping_ratio=d.damping_ratio,
                     probes=d.probes,
                     output_interval=d.output_interval,
-                    stabilisation=self.stabilisation,
+                    stabilisation=self.stabilisation_for(scene, params),
                     context=_context(scene, params),
                 )
             u = h.final
@@ -270,6 +275,14 @@ class PDTimoshenko(_MoyerModel):
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
 
+    def stabilisation_for(self, scene: Scene, params: dict) -> float:
+        """0 between two mirrored ends (pinned, roller, guided) of the corrected variant: their spectrum is
+        real (moyer_operator.mirror_ghosts), so damping is only what the scene asks for."""
+        ends = (scene.supports.left, scene.supports.right)
+        if params["variant"] == "corrected" and params["grid"] == "nodes" and all(e in MIRRORED for e in ends):
+            return 0.0
+        return self.stabilisation
+
     def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         dx = x[1] - x[0]
@@ -339,7 +352,7 @@ def simulate(
         record_every=record_every,
         output_interval=output_interval,
         damp_rotations=damp_rotations,
-        stabilisation=m.stabilisation if stabilisation is None else stabilisation,
+        stabilisation=m.stabilisation_for(scene, params) if stabilisation is None else stabilisation,
         context=_context(scene, params),
     )
 
