@@ -33,7 +33,7 @@ def load_resultants(scene: Scene) -> tuple[float, float]:
         elif isinstance(load, Distributed):
             a, b = scene.span(load)
             xq = (a + b) / 2 + (b - a) / 2 * gx
-            q = load.value * (np.ones_like(xq) if load.shape == "uniform" else np.sin(np.pi * xq / scene.length))
+            q = load.value * scene.load_shape(load, xq)
             P += float(np.sum(gw * q)) * (b - a) / 2
             Mo += float(np.sum(gw * q * xq)) * (b - a) / 2
     return P, Mo

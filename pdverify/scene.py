@@ -20,6 +20,7 @@ import tomllib
 from pathlib import Path
 from typing import Annotated, Literal
 
+import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, model_validator
 
 from .errors import InputError
@@ -321,6 +322,11 @@ class Scene(_Strict):
         a = 0.0 if load.start is None else load.start
         b = self.length if load.end is None else load.end
         return a, b
+
+    def load_shape(self, load: Distributed, x) -> np.ndarray:
+        """The shape of a distributed load at x (1, or sin(πx/L) for ``shape = "sine"``); its span not applied."""
+        x = np.asarray(x, dtype=float)
+        return np.ones_like(x) if load.shape == "uniform" else np.sin(np.pi * x / self.length)
 
     def with_slenderness(self, slenderness: float) -> Scene:
         """The same scene with the section height set to length / slenderness.

@@ -121,7 +121,7 @@ class Cantilever:
                 continue
             a, b = self.scene.span(load)
             on = (inside >= a) & (inside <= b)
-            f = on * (1.0 if load.shape == "uniform" else np.sin(np.pi * s / self.scene.length))
+            f = on * self.scene.load_shape(load, s)
             if load.frame == "global":
                 out += f[..., None] * np.array([load.axial, load.value])
             else:

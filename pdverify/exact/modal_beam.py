@@ -101,8 +101,7 @@ class BeamModes:
             else:
                 a, b = self.scene.span(ld)
                 xd, wd = _composite(np.linspace(a, b, max(2, int(np.ceil((b - a) / self.L * panels))) + 1))
-                shape = np.sin(np.pi * xd / self.L) if ld.shape == "sine" else 1.0
-                F += self.fields(omega, coef, xd)[0] @ (ld.value * shape * wd)
+                F += self.fields(omega, coef, xd)[0] @ (ld.value * self.scene.load_shape(ld, xd) * wd)
         return coef, (self.beam.rA * w * w + self.beam.rI * g * g) @ wq, F, np.abs(w).max(1)
 
     def truncated(self, tolerance: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:

@@ -179,7 +179,7 @@ def distributed_loads(
         a, b = scene.span(load)
         if not a <= inside <= b:
             continue
-        f = np.ones_like(s) if load.shape == "uniform" else np.sin(np.pi * s / scene.length)
+        f = scene.load_shape(load, s)
         if load.frame == "global":
             pt += f * (load.axial * t[:, 0] + load.value * t[:, 1])
             pn += f * (load.axial * n[:, 0] + load.value * n[:, 1])

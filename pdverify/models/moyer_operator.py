@@ -380,7 +380,7 @@ def end_line_load(scene: Scene, side: int) -> float:
         if isinstance(load, Distributed) and load.value:
             a, b = scene.span(load)
             if a - 1e-12 * scene.length <= xe <= b + 1e-12 * scene.length:
-                q += load.value if load.shape == "uniform" else load.value * np.sin(np.pi * xe / scene.length)
+                q += load.value * float(scene.load_shape(load, xe))
     return q
 
 
