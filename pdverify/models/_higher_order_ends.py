@@ -96,10 +96,11 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
 
 
 def end_conditions(
-    n: int, left: str, right: str, variant: str, pin: str, h: float, about: str = "point"
+    n: int, left: str, right: str, variant: str, pin: str, h: float, about: str = "point", clamp: str = "face"
 ) -> tuple[list, list]:
     """(drop, tie): the DOFs held at zero and the ties (slave, master, c), u_slave = c u_master, of the end
-    conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed); guided: theta = theta* = 0;
+    conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed; ``clamp = layer``: w* left free, its
+    zero enforced through the layer spring of :mod:`._higher_order_layer`); guided: theta = theta* = 0;
     pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's antisymmetric w*); ``pin = face``: w = -h^2/20 w*
     instead (zero parabola-weighted mean deflection of the end face); free: nothing. Paper mirrored about the
     boundary (``about = "boundary"``): clamped w(1) = w*(1) = 0 on the first point (Eq. B39; theta, theta*
@@ -111,7 +112,7 @@ def end_conditions(
                 drop += [NF * k + W, NF * k + WS]
             continue
         if sup == "clamped":
-            drop += [NF * k + f for f in (TH, TS, W, WS)]
+            drop += [NF * k + f for f in ((TH, TS, W) if clamp == "layer" else (TH, TS, W, WS))]
         elif sup == "guided":
             drop += [NF * k + f for f in (TH, TS)]
         elif sup in ("pinned", "roller"):  # no axial unknown: roller = pinned
@@ -126,12 +127,20 @@ def end_conditions(
 
 
 def constraint_map(
-    n: int, left: str, right: str, variant: str, pin: str, h: float, numbering: str = "unknowns", about: str = "point"
+    n: int,
+    left: str,
+    right: str,
+    variant: str,
+    pin: str,
+    h: float,
+    numbering: str = "unknowns",
+    about: str = "point",
+    clamp: str = "face",
 ) -> sp.csr_matrix:
     """T: u = T z with the end conditions built in (:func:`end_conditions`). ``numbering = "unknowns"``:
     T is 4n x unknowns (the held DOFs eliminated); ``"points"``: 4n x 4n, the numbering of u kept and the
     columns of the held DOFs zero (the band's form: unit rows added by ``Band.fix``)."""
-    drop, tie = end_conditions(n, left, right, variant, pin, h, about)
+    drop, tie = end_conditions(n, left, right, variant, pin, h, about, clamp)
     keep = np.ones(NF * n, bool)
     keep[drop] = False
     free = np.flatnonzero(keep)

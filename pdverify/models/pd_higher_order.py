@@ -108,6 +108,7 @@ from ..scene import PointForce, PointMoment, Scene
 from ..stations import STATIONS_HELP, parse_stations
 from ._higher_order_bonds import NF, TH, TS, WS, W, assemble_blocks, bond_weights, coefficients, uniform_blocks
 from ._higher_order_ends import constraint_map, end_conditions, extended_volumes, load_vector, mirror_map, taylor_map
+from ._higher_order_layer import grid_layer_stiffness, layer_constants, spring
 from ._higher_order_outputs import reactions, section_stresses
 from .pd_common import boundary_layer_warnings, family
 
@@ -207,6 +208,15 @@ class PDHigherOrder(Model):
             "each side gets its own patch-test layer: second order under point loads) | none",
             choices=("loads", "none"),
         ),
+        Option(
+            "clamp",
+            str,
+            "auto",
+            "clamped end: auto (face for paper, layer for corrected) | face (w* = 0 held on the end point) | layer "
+            "(w* = 0 through the spring of the face's boundary layer, ~0.1 h wide: second order also when the "
+            "spacing is many depths; ends = truncated or taylor)",
+            choices=("auto", "face", "layer"),
+        ),
         Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
     )
 
@@ -234,6 +244,7 @@ class PDHigherOrder(Model):
         ),
         Rule(_PAPER, "shear", "Eq. 14d-f: the shear measures use theta_k xi (point)", allowed=("auto", "point")),
         Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
+        Rule(_PAPER, "clamp", "Eq. B39: w = w* = 0 at the clamped end point (face)", allowed=("auto", "face")),
     )
 
     def about(self, params: dict) -> str:
@@ -257,12 +268,27 @@ class PDHigherOrder(Model):
     @staticmethod
     def choice(params: dict, key: str) -> str:
         """An option's value with ``auto`` resolved (paper: Appendix B and Eq. 16b; corrected: see the docstring)."""
-        auto = {"ends": ("mirror", "truncated"), "pin": ("mid", "face"), "loads": ("mid", "faces")}[key]
+        auto = {
+            "ends": ("mirror", "truncated"),
+            "pin": ("mid", "face"),
+            "loads": ("mid", "faces"),
+            "clamp": ("face", "layer"),
+        }[key]
         v = params.get(key, "auto")
         return auto[params["variant"] != "paper"] if v == "auto" else v
 
     def ends(self, params: dict) -> str:
         return self.choice(params, "ends")
+
+    def clamp(self, params: dict) -> str:
+        """The clamped end's w* condition: ``face`` or ``layer`` (auto: layer for the corrected variant's
+        essential end conditions, face for the paper and for mirror layers, whose images hold w*)."""
+        clamp = self.choice(params, "clamp")
+        if self.ends(params) != "mirror":
+            return clamp
+        if params.get("clamp", "auto") == "layer":
+            raise InputError("clamp = layer needs ends = truncated or taylor (mirror layers hold w* by their images)")
+        return "face"
 
     def assemble_band(self, scene: Scene, params: dict):
         """(B, b, (drop, tie), info): B u = b on the real points' interleaved DOFs u = (theta, theta*, w, w*)
@@ -292,6 +318,7 @@ class PDHigherOrder(Model):
         C, h = self.constants(scene)
         left, right = scene.supports.left, scene.supports.right
         pin = self.choice(params, "pin")
+        clamp = self.clamp(params)
         info = {
             "depth": h,
             "ends": ends,
@@ -369,12 +396,15 @@ class PDHigherOrder(Model):
                 h,
                 numbering="points",
                 about=about,
+                clamp=clamp,
             )
             if symmetric:
                 return (T.T @ K @ T).toarray()
             D = (K @ T).toarray()
             D[
-                end_conditions(nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h, about)[0]
+                end_conditions(
+                    nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h, about, clamp
+                )[0]
             ] = 0.0
             return D
 
@@ -408,7 +438,9 @@ class PDHigherOrder(Model):
             B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
         for r0, a, D in dense:
             put_rows(B, NF * (r0 + a), NF * r0, D)
-        drop, tie = end_conditions(n, left, right, variant, pin, h, about)
+        drop, tie = end_conditions(n, left, right, variant, pin, h, about, clamp)
+        if clamp == "layer":
+            info["clamp_layer"] = self.clamp_springs(B, scene, n, dx, span, drop)
         F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
         info["end_rows"] = [(k, c0, D, F[NF * k : NF * k + NF].copy()) for k, c0, D in ends_rows]
         b = F.copy()
@@ -418,10 +450,29 @@ class PDHigherOrder(Model):
         B.fix(drop, b)
         wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family", fractions=fractions)
         info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
-        info.update(pin=pin, loads=self.choice(params, "loads"))
+        info.update(pin=pin, loads=self.choice(params, "loads"), clamp=clamp)
         if variant == "paper":
             info.update(volumes=fractions, mirror=about)
         return B, b, (drop, tie), info
+
+    def clamp_springs(self, B: Band, scene: Scene, n: int, dx: float, reach: int, drop: list) -> dict:
+        """``clamp = layer``: the spring k = S s_d / (s_d - S) on w* of each clamped end point, added to the band
+        (:mod:`._higher_order_layer`); where the grid's layer is already as stiff as the face's (s_d <= S) w* is
+        held (appended to ``drop``). Returns {side: {"grid_over_face": s_d / S, "spring_over_face": k / S}}."""
+        mat = scene.material
+        S, ell = layer_constants(mat.E, mat.poissons_ratio, mat.G, scene.section.depth)
+        ends = [(s, e) for s, e in (("left", 0), ("right", n - 1)) if getattr(scene.supports, s) == "clamped"]
+        grid = [grid_layer_stiffness(B, end, n, reach, dx, ell) for _, end in ends]  # both before either spring
+        out = {}
+        for (side, end), s_d in zip(ends, grid):
+            k = spring(s_d, S)
+            dof = NF * end + WS
+            if np.isfinite(k):
+                B.add_entries(np.array([dof]), np.array([dof]), np.array([k]))
+            else:
+                drop.append(dof)
+            out[side] = {"grid_over_face": s_d / S, "spring_over_face": k / S, "width": ell}
+        return out
 
     @staticmethod
     def cut_points(scene: Scene, params: dict, x: np.ndarray, J: int) -> tuple[int, ...]:
