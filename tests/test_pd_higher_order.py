@@ -112,6 +112,52 @@ def test_slender_beams_do_not_lock(slenderness):
         assert run(sc, "pd-higher-order", points=201, shear="centred").w[100] / ex - 1 < -0.4
 
 
+@pytest.mark.parametrize("horizon", [1.0, 3.0])
+def test_slender_clamped_beams_converge_at_order_two(horizon):
+    """cc uniform at L/h = 1e4 (dx = 250 .. 62 h, the w* layer ~0.11 h far below the spacing), centre vs exact
+    Timoshenko on 41 / 81 / 161 points. clamp = layer (default): orders 1.98, 1.94 (m = 1) and 2.01, 2.07 (m = 3),
+    1.65e-4 at 161 points (m = 3); clamp = face holds w* on the end point, a layer dx/2 wide: first order (1.11,
+    1.06; 0.56, 0.82) and -2.7e-3 at 161 points (m = 3)."""
+    sc = PAPER["cc_uniform"].with_slenderness(1e4)
+    ex = run(sc, "exact-timoshenko", points=201).w[100]
+
+    def errors(clamp):
+        return np.array(
+            [
+                run(sc, "pd-higher-order", points=n, horizon=horizon, clamp=clamp).w[(n - 1) // 2] / ex - 1
+                for n in (41, 81, 161)
+            ]
+        )
+
+    e = errors("layer")
+    rates = np.log2(np.abs(e[:-1] / e[1:]))
+    assert np.all(np.abs(rates - 2) < 0.1) and abs(e[-1]) < 3e-4, (e, rates)
+    e = errors("face")
+    assert np.all(np.log2(np.abs(e[:-1] / e[1:])) < 1.2) and abs(e[-1]) > 2e-3, e
+
+
+def test_clamp_layer_spring_is_the_face_condition_where_the_grid_resolves_the_layer():
+    """The continuous layer's stiffness S = sqrt(D R) / h (D = G h^5/80, R = E' h^3/3, Eq. 9) is what the grid's own
+    layer tends to: s_d / S = 0.99993 at dx = ell / 4.5 (L/h = 5, 1001 points), so the spring is infinite, w* is
+    held and the solution is the face condition's to the bit; at L/h = 1e4 and 41 points s_d / S = 34.95 (~ dx /
+    (2 ell), the end volume's reaction) and k / S = 1.029."""
+    mat = PAPER["cc_uniform"].material
+    h = PAPER["cc_uniform"].section.depth
+    S, ell = layer_constants(mat.E, mat.poissons_ratio, mat.G, h)
+    assert ell == pytest.approx(h * np.sqrt(3 * (1 - mat.poissons_ratio) / 160), rel=1e-12)
+    layer = run(PAPER["cc_uniform"], "pd-higher-order", points=1001)
+    info = layer.info["clamp_layer"]
+    assert 0.999 < info["left"]["grid_over_face"] <= 1
+    assert info["right"]["grid_over_face"] == pytest.approx(info["left"]["grid_over_face"], rel=1e-12)
+    assert np.isinf(info["left"]["spring_over_face"])
+    assert np.array_equal(layer.w, run(PAPER["cc_uniform"], "pd-higher-order", points=1001, clamp="face").w)
+    info = run(PAPER["cc_uniform"].with_slenderness(1e4), "pd-higher-order", points=41).info["clamp_layer"]["left"]
+    dx = 1.0 / 40
+    assert info["grid_over_face"] == pytest.approx(dx / (2 * info["width"]), rel=0.05)
+    assert info["spring_over_face"] == pytest.approx(spring(info["grid_over_face"], 1.0), rel=1e-12)
+    assert 1 < info["spring_over_face"] < 1.1
+
+
 @pytest.mark.slow
 def test_euler_lagrange_equations_by_symbolic_differentiation():
     """Eq. 15 written term by term in sympy on a 7-point grid (m = 2, paper weights 1/(delta^2 A |xi|) V),

@@ -63,5 +63,6 @@ def grid_layer_stiffness(B: Band, end: int, n: int, reach: int, dx: float, ell: 
 
 def spring(s_d: float, S: float) -> float:
     """k = S s_d / (s_d - S): the spring that, in series with the grid's layer s_d, has the continuous layer's
-    stiffness S; inf (the face condition w* = 0) where the grid's layer is already as stiff or softer."""
-    return S * s_d / (s_d - S) if s_d > S else np.inf
+    stiffness S; inf (the face condition w* = 0) where the grid's layer is already as stiff or softer, or where
+    S is not a positive number (a degenerate material: the solve reports it)."""
+    return S * s_d / (s_d - S) if 0 < S < s_d else np.inf

@@ -82,7 +82,12 @@ simply supported benchmarks differ from it by that, not by the operator (option 
 6. bonds cut at interior point loads (option ``cuts = loads``, :meth:`PDHigherOrder.cut_points`): the beam is
    the sum of sub-beams sharing each loaded point, each with its own patch-test end layers, so no bond averages
    the kink of w* (and of the shear) under a concentrated load; loads exactly on a point, at least 4J + 1
-   spacings from the ends and from each other.
+   spacings from the ends and from each other;
+7. the clamp's w* condition through its boundary layer (option ``clamp = layer``, :mod:`._higher_order_layer`):
+   w* = 0 on the clamped face makes a layer ~0.1 h wide; held on the end point it acts over dx/2 instead (first
+   order once dx is many layer widths: every slender beam). w* of the end point is free, tied to zero by the
+   spring whose series with the grid's own layer has the continuous layer's stiffness; the face condition where
+   the grid resolves the layer.
 Measured orders: docs/models/yang.md.
 
 Cost: the operator is assembled straight into LAPACK's band layout (:meth:`PDHigherOrder.assemble_band`):
@@ -471,7 +476,8 @@ class PDHigherOrder(Model):
                 B.add_entries(np.array([dof]), np.array([dof]), np.array([k]))
             else:
                 drop.append(dof)
-            out[side] = {"grid_over_face": s_d / S, "spring_over_face": k / S, "width": ell}
+            ratio = (s_d / S, k / S) if S > 0 else (np.inf, np.inf)
+            out[side] = {"grid_over_face": ratio[0], "spring_over_face": ratio[1], "width": ell}
         return out
 
     @staticmethod
