@@ -463,7 +463,8 @@ class PDHigherOrder(Model):
     def clamp_springs(self, B: Band, scene: Scene, n: int, dx: float, reach: int, drop: list) -> dict:
         """``clamp = layer``: the spring k = S s_d / (s_d - S) on w* of each clamped end point, added to the band
         (:mod:`._higher_order_layer`); where the grid's layer is already as stiff as the face's (s_d <= S) w* is
-        held (appended to ``drop``). Returns {side: {"grid_over_face": s_d / S, "spring_over_face": k / S}}."""
+        held (appended to ``drop``). Returns {side: {"w_star": "spring" | "held ...", "grid_over_face": s_d / S,
+        "spring_over_face": k / S, "width": the layer's width ell}}."""
         mat = scene.material
         S, ell = layer_constants(mat.E, mat.poissons_ratio, mat.G, scene.section.depth)
         ends = [(s, e) for s, e in (("left", 0), ("right", n - 1)) if getattr(scene.supports, s) == "clamped"]
@@ -477,7 +478,12 @@ class PDHigherOrder(Model):
             else:
                 drop.append(dof)
             ratio = (s_d / S, k / S) if S > 0 else (np.inf, np.inf)
-            out[side] = {"grid_over_face": ratio[0], "spring_over_face": ratio[1], "width": ell}
+            out[side] = {
+                "w_star": "spring" if np.isfinite(k) else "held (the grid resolves the layer)",
+                "grid_over_face": ratio[0],
+                "spring_over_face": ratio[1],
+                "width": ell,
+            }
         return out
 
     @staticmethod
