@@ -243,14 +243,18 @@ class EndMotion(_Strict):
 class Dynamics(_Strict):
     """Optional ``[dynamics]`` table: a transient run from rest (loads applied as steps at t = 0).
 
-    ``damping_ratio``: fraction of critical damping of the first mode (mass-proportional, on the
-    translations); or ``damping`` = c_d / rho in 1/s. ``time_step``: default = safety x stable limit.
+    ``damping_ratio``: fraction of critical damping of the first mode (mass-proportional); or ``damping`` =
+    c_d / rho in 1/s. ``damping_on``: ``all`` (default; the damping force is c_d/rho times each DOF's inertia, the
+    rotations' too: every mode of an undamped beam decays at the same rate c_d/(2 rho), so a damped run settles) or
+    ``translations`` (Moyer & Miraglia's Eq. 36-37: the rotations undamped; a beam's shear-rotation modes are then
+    damped only through their coupling to w and ring for long). ``time_step``: default = safety x stable limit.
     ``probes``: positions whose time histories are recorded; ``output_interval``: seconds between records."""
 
     end_time: Real = Field(gt=0, allow_inf_nan=False)
     time_step: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
     damping_ratio: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
     damping: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+    damping_on: Literal["all", "translations"] = "all"
     output_interval: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
     probes: list[Real] = Field(default_factory=list)
     left: EndMotion | None = None

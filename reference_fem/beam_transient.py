@@ -1,7 +1,8 @@
 """The transient of ``fem-timoshenko`` (the scikit-fem stand-in of issue 30 item 4): the element's stiffness (its
 ``variant``), the consistent mass of linear w and θ (scikit-fem ElementLineP1 x ElementLineP1: ρA w v + ρI θ φ,
-two Gauss points), damping as the PD beam applies it (mass-proportional on the translations: c_d/ρ, or 2 ζ ω_1
-with ω_1 this model's first frequency), step loads from rest, :func:`~reference_fem.newmark.newmark` in time.
+two Gauss points), damping as the PD beam applies it (mass-proportional, C = (c_d/ρ) M, on the translations
+alone with the scene's ``damping_on = "translations"``; c_d/ρ given, or 2 ζ ω_1 with ω_1 this model's first
+frequency), step loads from rest, :func:`~reference_fem.newmark.newmark` in time.
 The probes are nodes (inserted like load positions), so their histories are nodal values."""
 
 from __future__ import annotations
@@ -57,7 +58,7 @@ def transient(model, scene: Scene, params: dict) -> Result:
 
             omega1 = float(np.sqrt(eigsh(K.tocsc(), k=1, M=M.tocsc(), sigma=0.0, which="LM")[0][0]))
             D = 2 * d.damping_ratio * omega1
-        C = D * (translations @ M @ translations)
+        C = D * (M if d.damping_on == "all" else translations @ M @ translations)
         at = np.searchsorted(free, 2 * np.abs(nodes[:, None] - np.asarray(probes, float)).argmin(0))
         observe = sp.csr_matrix((np.ones(len(probes)), (np.arange(len(probes)), at)), shape=(len(probes), len(free)))
     sample = d.output_interval or d.end_time / DEFAULT_SAMPLES

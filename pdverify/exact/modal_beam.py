@@ -9,10 +9,12 @@ characteristic determinant, (w_k, γ_k) its general solution with the null vecto
 scaled to unit modal mass ∫ ρA w_k² + ρI γ_k² dx = 1 (composite Gauss–Legendre, 8 points per panel, two panels
 per mode up to the highest of its block). With the modal loads F_k = ∫ q w_k dx + Σ P w_k(a) + Σ C γ_k(a),
 
-    w(x, t) = Σ_k p_k w_k(x) (1 - cos ω_k t),   p_k = F_k / ω_k²,   and γ alike,
+    w(x, t) = Σ_k p_k w_k(x) g_k(t),   p_k = F_k / ω_k²,   and γ alike,   g_k = 1 - cos ω_k t (undamped),
 
-which at t -> ∞ on average is the static solution Σ p_k w_k (tested against exact-timoshenko). Undamped only:
-the PD beam damps its translations alone, which couples the modes. Truncation as ``exact-modal-rod``: modes in
+which at t -> ∞ on average is the static solution Σ p_k w_k (tested against exact-timoshenko). Damping as the
+scene's ``damping_on = "all"`` asks (mass-proportional, D = c_d/ρ on ρA w_t and ρI γ_t, or 2 ζ ω_1): the modes
+stay uncoupled and g_k is the damped step response of ``exact.modal.modal_sum``. A damping of the translations
+alone (``damping_on = "translations"``) couples the modes: declined. Truncation as ``exact-modal-rod``: modes in
 octaves (64, 128, ...) until the estimate of what the rest adds, 2 Σ_{k>N} |p_k| max|w_k| with the octave sums
 extrapolated geometrically, is below ``tolerance`` x max |w_static|, at most :data:`MAX_MODES` in the sum
 (``info["truncation_error"]``; a point force converges like 1/N in the shear range).
@@ -131,17 +133,20 @@ def _truncated(scene_json: str, tolerance: float) -> tuple:
 
 
 def beam_response(scene: Scene, positions, times, tolerance: float = 1e-5) -> tuple:
-    """w and γ at ``positions`` and ``times``, each (len(times), len(positions)), and info (modes, truncation)."""
+    """w and γ at ``positions`` and ``times``, each (len(times), len(positions)), and info (modes, truncation,
+    damping D = c_d/ρ in 1/s: the scene's damping, or 2 ζ ω_1 with this beam's ω_1)."""
     modes, omega, coef, p, est = _truncated(scene.model_dump_json(), tolerance)
     w, g = modes.fields(omega, coef, np.asarray(positions, float))
-    both = modal_sum(np.concatenate([w, g], 1) * p[:, None], omega, 0.0, times)
+    d = scene.dynamics
+    damping = 0.0 if d is None else float(d.damping or 2 * (d.damping_ratio or 0.0) * omega[0])
+    both = modal_sum(np.concatenate([w, g], 1) * p[:, None], omega, damping, times)
     n = len(positions)
-    return both[:, :n], both[:, n:], {"modes": len(omega), "truncation_error": est, "damping": 0.0}
+    return both[:, :n], both[:, n:], {"modes": len(omega), "truncation_error": est, "damping": damping}
 
 
 class ExactModalTimoshenko(ModalReference):
     name = "exact-modal-timoshenko"
-    title = "exact transient of the Timoshenko beam from rest: sum of its modes (step loads, undamped)"
+    title = "exact transient of the Timoshenko beam from rest: sum of its modes (step loads, mass-proportional damping)"
     source = "modal superposition, modes from the characteristic determinant; the transient reference of pd-timoshenko"
     options = (
         POINTS,
@@ -153,10 +158,10 @@ class ExactModalTimoshenko(ModalReference):
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
         d = scene.dynamics
-        if d is not None and (d.damping or d.damping_ratio):
+        if d is not None and (d.damping or d.damping_ratio) and d.damping_on == "translations":
             out.append(
-                "dynamics: exact-modal-timoshenko is undamped (a damping of the translations alone, as the PD "
-                "beam applies it, couples the modes); drop damping / damping_ratio"
+                'dynamics: damping_on = "translations" couples the beam\'s modes (exact-modal-timoshenko sums '
+                'uncoupled ones); use damping_on = "all" (mass-proportional) or drop damping / damping_ratio'
             )
         return out
 

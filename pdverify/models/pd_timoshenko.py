@@ -149,6 +149,7 @@ class _MoyerModel(Model):
                     damping_ratio=d.damping_ratio,
                     probes=d.probes,
                     output_interval=d.output_interval,
+                    damp_rotations=d.damping_on == "all",
                     stabilisation=self.stabilisation_for(scene, params),
                     context=_context(scene, params),
                 )
@@ -317,13 +318,14 @@ def simulate(
     probes=None,
     record_every: int | None = None,
     model: str = "pd-timoshenko",
-    damp_rotations: bool = False,
+    damp_rotations: bool | None = None,
     stabilisation: float | None = None,
 ) -> History:
     """Transient run of ``pd-timoshenko`` (or ``model = "pd-rod"`` / ``"pd-torsion"``) on ``scene``: the scene's
     [dynamics] table gives the defaults (end time, damping, probes, prescribed end motions); the
     arguments override them (``record_every`` overrides the table's output_interval; ``stabilisation`` the
-    model's own, none for the rod kernel's models). Returns a :class:`History`."""
+    model's own, none for the rod kernel's models; ``damp_rotations`` the table's damping_on, default all).
+    Returns a :class:`History`."""
     m = {"pd-timoshenko": PDTimoshenko(), "pd-rod": PDRod(), "pd-torsion": PDTorsion()}[model]
     params = m.resolve(scene, params or {})
     if scene.material.density is None:
@@ -338,6 +340,8 @@ def simulate(
         if damping is None and damping_ratio is None:
             damping, damping_ratio = d.damping, d.damping_ratio
         probes = d.probes if probes is None else probes
+    if damp_rotations is None:
+        damp_rotations = d is None or d.damping_on == "all"
     output_interval = d.output_interval if (d is not None and record_every is None) else None
     disc = m.operator(scene, params)
     return integrate(
