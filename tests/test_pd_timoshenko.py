@@ -252,20 +252,25 @@ ROD_LOADS = [
     [("clamped", "free", 2.0), ("free", "clamped", 0.0), ("clamped", "pinned", None), ("pinned", "guided", 2.0)],
 )
 def test_rod_static_any_supports(left, right, end):
-    """Axial point forces (off-grid, at a free end), partial uniform and sine loads: measured at 201
-    points 3e-5 .. 9e-5 (m = 1, order 2), 3e-3 .. 2e-2 (m = 3, order ~1.3: point force smeared)."""
-    loads = ROD_LOADS + (
-        [{"type": "point_force", "position": end, "value": 0.0, "axial": -2e5}] if end is not None else []
-    )
-    sc = parse_scene(scene_dict(left, right, loads))
+    """Axial point forces (off-grid, at a free end), partial uniform and sine loads: measured at 201 points
+    5e-6 .. 3.1e-5 (m = 1), 3e-3 .. 2e-2 (m = 3, order ~1.3: point force smeared). The mirror ghosts of the
+    free ends (2026-11-26) cut m = 1's error 10-15x (was 6e-5 .. 9e-5 with the fitted ghosts); what is left
+    is the cell averages at the partial load's ends, whose pairwise order depends on where the grid falls
+    (1.61 .. 2.55 from 201 to 401 points). The sine load alone (and the end force) converges at exactly 2
+    for every pair (measured 2.000; 7.6e-6 .. 1.0e-5 at 201 points, m = 1)."""
+    end_force = [{"type": "point_force", "position": end, "value": 0.0, "axial": -2e5}] if end is not None else []
     e = {}
+    for loads in ("mixed", "sine"):
+        sc = parse_scene(scene_dict(left, right, (ROD_LOADS if loads == "mixed" else ROD_LOADS[2:]) + end_force))
+        for m in (1, 3):
+            for n in (201, 401):
+                r = run(sc, "pd-rod", points=n, horizon=m)
+                ex = rod_reference(sc, r.x)
+                e[loads, m, n] = np.abs(r.fields["u"] - ex).max() / np.abs(ex).max()
+    assert e["mixed", 1, 201] < 4e-5 and e["mixed", 1, 401] < e["mixed", 1, 201] / 2**1.5, e
+    assert e["mixed", 3, 201] < 3e-2 and e["mixed", 3, 401] < e["mixed", 3, 201] / 2**0.9, e
     for m in (1, 3):
-        for n in (201, 401):
-            r = run(sc, "pd-rod", points=n, horizon=m)
-            ex = rod_reference(sc, r.x)
-            e[m, n] = np.abs(r.fields["u"] - ex).max() / np.abs(ex).max()
-    assert e[1, 201] < 2e-4 and np.log2(e[1, 201] / e[1, 401]) > 1.7
-    assert e[3, 201] < 3e-2 and e[3, 401] < e[3, 201] / 2**0.9
+        assert abs(np.log2(e["sine", m, 201] / e["sine", m, 401]) - 2) < 0.05, e
 
 
 def test_rod_paper_variant_free_end_is_singular():

@@ -51,7 +51,9 @@ cells by Taylor expansion about the end faces (a Dirichlet face anchored at zero
 2. ghost points at clamped and free ends from one polynomial per field (degree 3, fitted to the first 4
    real points) that satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; free
    EIγ' = M̄, kGA ψ = P̄ (end loads enter here); the end point's own equation holds where its value is not
-   prescribed. Rod: u = u_end or EA u' = N̄. At pinned (roller) and guided ends the ghosts are mirror
+   prescribed. The rod (and torsion bar) takes mirror images at every end (:func:`rod_mirror_ghosts`: odd
+   where u is held, even where EA u' = N̄), so its operator times the end points' half cells is symmetric
+   for every support pair and horizon. At the beam's pinned (roller) and guided ends the ghosts are mirror
    images (pinned: w odd, γ even; guided: w even, γ odd) plus the Taylor terms of the end conditions
    (pinned EIγ' = M̄, guided kGA ψ = P̄) and of the end's line load (:func:`mirror_ghosts`): the operator
    keeps the symmetry classes of the stencil, so between two such ends it has a real positive spectrum
@@ -85,11 +87,6 @@ from .moyer_system import Discrete
 MIRRORED = ("pinned", "roller", "guided")  # corrected ends whose ghosts are mirror images (mirror_ghosts)
 FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
 SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS = 2, 4  # ψ̄ ghosts at free ends
-# rod (torsion) ghosts at a traction end for m >= 2: quartic through 5 points. The cubic through 4 gives M⁻¹K
-# complex eigenvalues at m = 2 (growth 3.4e-2 of ω_max, every slenderness); the quartic's spectrum is real for
-# m = 2..10, the cubic's is at m = 1 (the quartic's is not: 4.8e-2); static results agree to the horizon's
-# own error (they differ by 2e-11 at m = 2..4, clamped-free, mixed axial loads, 201 points)
-ROD_TRACTION_FIT = (4, 5)
 
 
 def _core_points(m: int) -> int:
@@ -212,13 +209,8 @@ def _rod_core(
         if variant == "paper":
             blocks[side] = (taylor_rows(G, 1 if fixed else 2), np.zeros(G), 4)
         else:
-            if fixed:
-                con = [({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0)]
-            else:  # EA u_s(0) = N̄ (outward force at this end); GJ θ_s(0) = T̄
-                con = [({(0, 1): 1.0}, {}, dx * ends[side][0] / stiff)]
-            deg, npts = (FIT_DEGREE, FIT_POINTS) if (fixed or m == 1) else ROD_TRACTION_FIT
-            R, r0 = constrained_ghosts(1, deg, npts, G, con)
-            blocks[side] = (R, r0, npts)
+            f = end_line_load(scene, side, "axial" if kind == "axial" else "torque")
+            blocks[side] = rod_mirror_ghosts(fixed, G, ends[side][0], f, stiff, dx)
     E, e0 = _extension(n, G, 1, blocks)
     c = rod_kernel(m)
     j = np.arange(1, m + 1)
@@ -372,16 +364,44 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
     return K.tocsr(), bw_parts, bg_parts, (Avg @ psi_u).tocsr(), Avg @ psi_0
 
 
-def end_line_load(scene: Scene, side: int) -> float:
-    """The transverse line load q of the distributed loads at the end point (0 outside their spans)."""
+def end_line_load(scene: Scene, side: int, component: str = "transverse") -> float:
+    """The line load of the distributed loads at the end point (0 outside their spans): ``component`` transverse
+    (load.value), axial (load.axial) or torque (load.torque)."""
     xe = 0.0 if side == 0 else scene.length
     q = 0.0
     for load in scene.loads:
-        if isinstance(load, Distributed) and load.value:
+        if not isinstance(load, Distributed):
+            continue
+        v = {"transverse": load.value, "axial": load.axial, "torque": load.torque}[component]
+        if v:
             a, b = scene.span(load)
             if a - 1e-12 * scene.length <= xe <= b + 1e-12 * scene.length:
-                q += load.value * float(scene.load_shape(load, xe))
+                q += v * float(scene.load_shape(load, xe))
     return q
+
+
+def rod_mirror_ghosts(held: bool, G: int, N: float, f: float, stiff: float, dx: float):
+    """Ghosts of an end of the corrected rod (and torsion bar) as mirror images, (R, r0, G + 1): a held end is the
+    centre of an odd deformation, a traction end (EA u_s = N̄, s outward) of an even one, the two classes the rod's
+    stencil (Eq. 19) maps into themselves, so for every support pair and horizon the operator times the volumes
+    (Δ/2 at an end point that moves) is symmetric, and its spectrum real. The end condition and the end's line
+    load f enter r0 as the Taylor terms the image lacks (ξ runs into the rod; EA u_ξξ = -f):
+
+    held:     u(-ξ) = -u(ξ) + 2 u_0 + ξ² u_ξξ,   u_ξξ = -f / EA;
+    traction: u(-ξ) = u(ξ) - 2 ξ u_ξ,            u_ξ = -N̄ / EA.
+
+    The first neglected terms (ξ⁴ u^(4) and ξ³ u^(3), from load gradients at the end) are O(Δ³) in the ghosts."""
+    npts = G + 1
+    t = np.arange(1, G + 1)
+    xi = dx * t
+    R, r0 = np.zeros((G, npts)), np.zeros(G)
+    R[t - 1, t] = -1.0 if held else 1.0
+    if held:
+        R[:, 0] = 2.0
+        r0[:] = -(xi**2) * f / stiff
+    else:
+        r0[:] = 2 * xi * N / stiff
+    return R, r0, npts
 
 
 def mirror_ghosts(sup: str, G: int, dx: float, sigma: float, P: float, C: float, q: float, EI: float, kGA: float):

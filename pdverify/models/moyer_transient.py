@@ -48,6 +48,7 @@ class History:
     omega1: float | None
     energy: dict = field(default_factory=dict)  # the ledger: "t" (a subset of t) and LEDGER_COLUMNS -> array
     energy_drift: float = 0.0  # max |balance| / max(stored energy, work put in)
+    scheme_drift: float = 0.0  # max change of the scheme's discrete energy (dynamics.EnergyLedger.scheme_drift)
 
     def to_csv(self) -> str:
         cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)}}
@@ -173,7 +174,9 @@ def integrate(
             y[moving] = Kcols @ u
             return y
 
-    ledger = EnergyLedger(ledger_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n), kappa * dt)
+    weights = np.ones(nf * n)
+    weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
+    ledger = EnergyLedger(ledger_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n), kappa * dt, weights)
     if len(moving):  # the support work ∫ (K u - b)_p du_p, one small product per step
         Kp = st.on_state(Kcols)
         bp = disc.b[moving]
@@ -204,7 +207,7 @@ def integrate(
                     last_ledger = s
                     u, V = st.state(), st.velocity()
                     Vn = alpha_dof * V + gd * (disc.b - apply_K(u + kappa * V))
-                    ratio = ledger.blown_up(ledger.sample(t, u, (V + Vn) / (2 * dt)))
+                    ratio = ledger.blown_up(ledger.sample(t, u, (V + Vn) / (2 * dt), u + Vn, Vn / dt))
                 else:  # between ledger samples: only a non-finite state stops the run
                     ratio = None if np.isfinite(st.amax()) else float("inf")
                 if ratio is not None:
@@ -228,6 +231,7 @@ def integrate(
         omega1,
         ledger.arrays(disc.x[1] - disc.x[0]),
         ledger.drift(),
+        ledger.scheme_drift(),
     )
 
 
