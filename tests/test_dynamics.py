@@ -388,7 +388,8 @@ def test_damped_beam_settles_to_the_static_solve_for_every_support_pair():
 def test_damped_rod_settles_to_the_static_solve_for_every_support_pair(m):
     """Issue 30: damped runs settle to the direct solve on the same grid. pd-rod, 61 points, critical damping
     of the first mode (ζ = 1), 8 ms: every support pair within 1e-8 of the static solution (issue 30's criterion;
-    measured <= 8.1e-13; m = 2 with a free end grew before the quartic traction fit)."""
+    measured <= 4.1e-13, 8.1e-13 with the fitted ghosts; m = 2 with a free end grew with the cubic traction
+    fit, before the quartic one and the mirror-image ghosts)."""
     worst = 0.0
     for left, right in PAIRS:
         sc = _scene(

@@ -191,8 +191,9 @@ class _RodModel(_MoyerModel):
     """The rod kernel's models (axial and torsion): one field and its resultant, stiffness x the field's slope."""
 
     field, resultant = "u", "N"
-    # no stabilisation: with the quartic traction closures M^-1 K has a real spectrum for every support pair and
-    # horizon (test_dynamics), so the scheme is stable undamped; damping is only what the scene asks for
+    # no stabilisation: with the mirror-image ghosts (moyer_operator.rod_mirror_ghosts) M^-1 K has a real spectrum
+    # for every support pair and horizon (test_dynamics), so the scheme is stable undamped; damping is only what
+    # the scene asks for
     stabilisation = 0.0
 
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
