@@ -110,6 +110,15 @@ class Band:
             self.diag(off)[sl] += c if np.isscalar(c) else np.asarray(c, float)[i0:i1]
         return self
 
+    def values(self, rows, cols) -> np.ndarray:
+        """A[rows, cols] element by element (arrays of one shape; 0 outside the band)."""
+        rows, cols = np.broadcast_arrays(np.asarray(rows, np.int64), np.asarray(cols, np.int64))
+        off = cols - rows
+        inside = (off <= self.upper) & (off >= -self.lower)
+        out = np.zeros(rows.shape)
+        out[inside] = self.data[self.upper - off[inside], cols[inside]]
+        return out
+
     def add_entries(self, rows, cols, vals) -> Band:
         """Scatter-add a few entries (boundary rows, ghost corrections); repeated (row, col) add up."""
         rows, cols = np.asarray(rows, np.int64).ravel(), np.asarray(cols, np.int64).ravel()

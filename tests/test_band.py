@@ -61,6 +61,8 @@ def test_entries_fix_sparse_round_trip_matvec_and_scale():
     assert np.allclose(B.toarray(), A)
     with pytest.raises(ValueError):
         B.add_entries([0], [9], [1.0])  # outside the band
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    assert np.array_equal(B.values(i, j), A)  # entry by entry, zero outside the band
     s = rng.uniform(0.5, 2.0, size=n)
     assert np.allclose(B.copy().scale(s).toarray(), s[:, None] * A * s[None, :])
     B.fix([0, 17])

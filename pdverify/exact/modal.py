@@ -115,13 +115,19 @@ def tail_bound(size: np.ndarray, N: int) -> float:
     return 2 * s1 / (1 - ratio)
 
 
+def scene_damping(scene: Scene, omega1: float) -> float:
+    """D = c_d/ρ (1/s) of the scene's [dynamics]: its ``damping``, or 2 ζ ω_1 for ``damping_ratio`` with this
+    reference's first frequency; 0 without either."""
+    d = scene.dynamics
+    return 0.0 if d is None else float(d.damping or 2 * (d.damping_ratio or 0.0) * omega1)
+
+
 def rod_response(scene: Scene, positions, times, tolerance: float = 1e-6, damping: float | None = None) -> tuple:
     """u at ``positions`` and ``times``, (len(times), len(positions)), and info (modes, truncation error)."""
     modes = RodModes(scene)
     omega, p, est = modes.truncated(tolerance)
     if damping is None:
-        d = scene.dynamics
-        damping = 0.0 if d is None else (d.damping or 2 * (d.damping_ratio or 0.0) * omega[0])
+        damping = scene_damping(scene, omega[0])
     u = modal_sum(
         modes.shapes(np.arange(1, len(omega) + 1), np.asarray(positions, float)) * p[:, None], omega, damping, times
     )

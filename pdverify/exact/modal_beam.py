@@ -30,7 +30,7 @@ from ..errors import InputError
 from ..registry import POINTS, Option
 from ..result import Result, Timer
 from ..scene import PointForce, PointMoment, Scene
-from .modal import ModalReference, modal_result, modal_sum, tail_bound
+from .modal import ModalReference, modal_result, modal_sum, scene_damping, tail_bound
 from .vibration import TimoshenkoBeam, beam_end
 
 MAX_MODES = 1024  # the sum's modes at most (their octave above them is computed for the estimate)
@@ -137,8 +137,7 @@ def beam_response(scene: Scene, positions, times, tolerance: float = 1e-5) -> tu
     damping D = c_d/ρ in 1/s: the scene's damping, or 2 ζ ω_1 with this beam's ω_1)."""
     modes, omega, coef, p, est = _truncated(scene.model_dump_json(), tolerance)
     w, g = modes.fields(omega, coef, np.asarray(positions, float))
-    d = scene.dynamics
-    damping = 0.0 if d is None else float(d.damping or 2 * (d.damping_ratio or 0.0) * omega[0])
+    damping = scene_damping(scene, omega[0])
     both = modal_sum(np.concatenate([w, g], 1) * p[:, None], omega, damping, times)
     n = len(positions)
     return both[:, :n], both[:, n:], {"modes": len(omega), "truncation_error": est, "damping": damping}

@@ -37,7 +37,7 @@ def layer_constants(E: float, nu: float, G: float, h: float) -> tuple[float, flo
 
 def block_window(B: Band, points: np.ndarray) -> sp.csc_matrix:
     """The w*-w* block B[dofs][:, dofs], dofs = NF points + WS, of consecutive ``points`` (either order), read
-    from the band's diagonals (A[i, j] = data[upper + i - j, j]); sparse, with the band's reach."""
+    from the band (:meth:`Band.values`); sparse, with the band's reach."""
     dofs = NF * np.asarray(points) + WS
     size = len(dofs)
     reach = min(B.upper, B.lower) // NF
@@ -46,7 +46,7 @@ def block_window(B: Band, points: np.ndarray) -> sp.csc_matrix:
     for o in range(-min(reach, size - 1), min(reach, size - 1) + 1):  # window positions a -> a + o
         i = a[max(0, -o) : size - max(0, o)]
         r, c = dofs[i], dofs[i + o]
-        rows.append(i), cols.append(i + o), vals.append(B.data[B.upper + r - c, c])
+        rows.append(i), cols.append(i + o), vals.append(B.values(r, c))
     return sp.csc_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(size, size))
 
 
