@@ -82,7 +82,8 @@ from ._moyer_kernels import (
     taylor_rows_cells,
     toeplitz,
 )
-from .moyer_system import Discrete
+from .moyer_energy import energy_beam_operator
+from .moyer_system import DIRICHLET, Discrete
 
 MIRRORED = ("pinned", "roller", "guided")  # corrected ends whose ghosts are mirror images (mirror_ghosts)
 FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
@@ -108,13 +109,6 @@ def _ghost_index(n: int, G: int, side: int) -> np.ndarray:
     return G - 1 - t if side == 0 else G + n + t
 
 
-DIRICHLET = {
-    "clamped": (True, True),
-    "pinned": (True, False),
-    "roller": (True, False),
-    "free": (False, False),
-    "guided": (False, True),
-}  # (w, γ) held; no axial unknown: roller = pinned
 # ends whose axial displacement (pd-rod) or twist (pd-torsion) is held: a roller slides axially, but holds the
 # twist as a pinned (fork) support does (docs/supports.md)
 ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "roller")}
@@ -240,7 +234,9 @@ def _grid(scene: Scene, n: int, grid: str, variant: str, name: str) -> tuple[int
 def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes") -> Discrete:
     """Static operator of the PD Timoshenko beam on the interleaved DOFs (w_0, γ_0, w_1, γ_1, ...):
     assembled in full on a short grid (:func:`_beam_core`, Eq. 45–49 as written) and extended by its
-    stencil (:class:`~._moyer_kernels.EndPatched`)."""
+    stencil (:class:`~._moyer_kernels.EndPatched`); variant ``energy``: :func:`.moyer_energy.energy_beam_operator`."""
+    if variant == "energy":
+        return energy_beam_operator(scene, n, m)
     n, x = _grid(scene, n, grid, variant, "pd-timoshenko")
     _check_grid(n, m, "pd-timoshenko")
     dx = x[1] - x[0]

@@ -18,6 +18,14 @@ from ..linalg import solve_linear
 from ..scene import Scene
 from ._moyer_kernels import EndPatched, motion_final
 
+DIRICHLET = {
+    "clamped": (True, True),
+    "pinned": (True, False),
+    "roller": (True, False),
+    "free": (False, False),
+    "guided": (False, True),
+}  # the beam's (w, γ) held by each support; no axial unknown: roller = pinned
+
 
 @dataclass
 class Discrete:
@@ -37,6 +45,9 @@ class Discrete:
     nf: int  # fields per point (1 rod, 2 beam)
     info: dict = field(default_factory=dict)
     psi: tuple | None = None  # (EndPatched op, constant): the shear strain at the points used by the operator
+    # per DOF: the point's share of the length in units of Δ (None: the trapezoid, 1/2 at the end points); the
+    # operator times these weights is symmetric where the variant is written from an energy
+    weights: np.ndarray | None = None
 
     @cached_property
     def K(self) -> sp.csr_matrix:

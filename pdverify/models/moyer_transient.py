@@ -174,8 +174,10 @@ def integrate(
             y[moving] = Kcols @ u
             return y
 
-    weights = np.ones(nf * n)
-    weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
+    weights = disc.weights
+    if weights is None:
+        weights = np.ones(nf * n)
+        weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
     ledger = EnergyLedger(ledger_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n), kappa * dt, weights)
     if len(moving):  # the support work ∫ (K u - b)_p du_p, one small product per step
         Kp = st.on_state(Kcols)
@@ -277,8 +279,11 @@ def _blow_up_message(
                 f": M^-1 K has the eigenvalue {lam[k]:.3g} (the mode grows like exp({growth[k]:.3g} t), "
                 "a real part below zero or an imaginary part)"
             )
+    # a beam operator not written from an energy (pd-timoshenko paper, corrected): variant energy has no growing mode
+    beam = disc.nf == 2 and disc.weights is None
+    instead = ", or use variant = energy (its operator is symmetric: no growing mode)" if beam else ""
     return (
         f"{head}; dt is below the stable limit {limit:.4g} s, so a smaller step does not help: the operator's "
         f"boundary closures{where} have a growing mode{detail}; change the horizon or the number of points, "
-        f"or damp more (damping_ratio)"
+        f"or damp more (damping_ratio){instead}"
     )

@@ -273,6 +273,28 @@ class PDTimoshenko(_MoyerModel):
     name = "pd-timoshenko"
     title = "micro-elastic PD Timoshenko beam (w, rotation)"
     theory = "timoshenko"
+    options = tuple(
+        Option(
+            "variant",
+            str,
+            "corrected",
+            "paper | corrected | energy (the corrected beam from a discrete energy: symmetric, stable undamped)",
+            choices=("paper", "corrected", "energy"),
+        )
+        if o.name == "variant"
+        else o
+        for o in _OPTIONS
+    )
+    variant_rules = (
+        *_MoyerModel.variant_rules,
+        Rule(
+            (("variant", "energy"),),
+            "grid",
+            "the energy form is written for the node grid; grid = cells is the paper's Section 4 setup "
+            "(variant = paper)",
+            allowed=("nodes",),
+        ),
+    )
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
@@ -280,6 +302,8 @@ class PDTimoshenko(_MoyerModel):
     def stabilisation_for(self, scene: Scene, params: dict) -> float:
         """0 between two mirrored ends (pinned, roller, guided) of the corrected variant: their spectrum is
         real (moyer_operator.mirror_ghosts), so damping is only what the scene asks for."""
+        if params["variant"] == "energy":  # symmetric in the volumes: a real spectrum at every end (moyer_energy)
+            return 0.0
         ends = (scene.supports.left, scene.supports.right)
         if params["variant"] == "corrected" and params["grid"] == "nodes" and all(e in MIRRORED for e in ends):
             return 0.0
