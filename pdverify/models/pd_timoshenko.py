@@ -3,7 +3,8 @@ torsion (Moyer & Miraglia, seed 001; torsion: Section 5, Eq. 54–56), static or
 
 The pieces, one direction of imports: :mod:`._moyer_kernels` (quadrature weights, ghost polynomials,
 loads, the end-patched stencil) -> :mod:`.moyer_system` (the discrete system and its direct solve) ->
-:mod:`.moyer_operator` (the rod and beam operators, Eq. 19, 45–49, both variants) ->
+:mod:`.moyer_energy` (the beam's variant energy) -> :mod:`.moyer_operator` (the rod and beam operators, Eq. 19,
+45–49) ->
 :mod:`.moyer_spectrum` (eigenvalues of M⁻¹K: stable step, frequencies) and :mod:`.moyer_steps` (step
 engines) -> :mod:`.moyer_transient` (the time integration of Eq. 7–12, its history and energy ledger)
 -> this module (the models and :func:`simulate`).
