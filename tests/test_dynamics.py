@@ -286,7 +286,8 @@ def test_rod_closures_have_a_real_spectrum():
 
 @pytest.mark.xfail(
     strict=True,
-    reason="issue 30 item 1 (open): the corrected beam's clamped and free closures have growing modes; "
+    reason="issue 30 item 1: the corrected beam's clamped and free closures have growing modes (variant energy has "
+    "none: tests/test_moyer_energy.py); "
     "measured at 41 points: 54 of 160 cases, every one with a clamped end (m = 3, 4 from L/h = 20; m = 1, 2 "
     "with a free end at L/h = 4, 20), worst 0.074 (free-clamped, m = 4, L/h = 20, complex eigenvalues); "
     "119 of 160 before the mirror ghosts of pinned and guided ends",
