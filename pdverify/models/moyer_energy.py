@@ -108,13 +108,54 @@ def bending_laplacian(n: int, m: int) -> sp.csr_matrix:
     """Σ_b ω_ab (γ_a - γ_b) as an n x n matrix (units EI/Δ): the interior bonds, the fitted ones at both ends."""
     wj = bond_kernel(m)
     j = np.arange(1, m + 1)
-    W = stencil_operator(n, 0, n, np.concatenate([j, -j]), np.concatenate([wj, wj]), truncate=True).tolil()
+    W = stencil_operator(n, 0, n, np.concatenate([j, -j]), np.concatenate([wj, wj]), truncate=True)
     w, _ = end_bonds(m)
     Z = len(w)
-    W[:Z, :Z] = w
-    W[n - Z :, n - Z :] = w[::-1, ::-1]
-    W = W.tocsr()
+    corners = sp.block_diag([w, np.zeros((n - 2 * Z, n - 2 * Z)), w[::-1, ::-1]]) if n > 2 * Z else None
+    if corners is None:
+        corners = sp.block_diag([w, w[::-1, ::-1]])
+    inside = np.zeros(n, bool)
+    inside[:Z] = inside[n - Z :] = True
+    left = np.arange(n) < Z
+    C = W.tocoo()
+    same = (left[C.row] == left[C.col]) & inside[C.row] & inside[C.col]  # bonds within one end's zone
+    W = sp.csr_matrix((C.data[~same], (C.row[~same], C.col[~same])), shape=(n, n)) + corners.tocsr()
     return (sp.diags(np.asarray(W.sum(axis=1)).ravel()) - W).tocsr()
+
+
+def bond_moment(gamma: np.ndarray, m: int, EI: float, dx: float) -> np.ndarray:
+    """M = EIγ' at the points from the bond sums. For a quadratic γ the left end row's sum is M at the end of its
+    cell, s_0 = V_0 Δ, and row r's (0 < r < n - 1) is M(s_r) - M(s_{r-1}), s_r = Σ_{k<=r} V_k Δ (the last row's is
+    -M(s_{n-2})): M at the cells' ends s_0 .. s_{n-2} is the cumulative sum of the rows, interpolated linearly to the
+    points and extrapolated to the end points."""
+    n = len(gamma)
+    rows = -(EI / dx) * (bending_laplacian(n, m) @ gamma)
+    _, vg = volumes(n, m)
+    s = np.cumsum(vg[:-1]) * dx
+    Mf = np.cumsum(rows[:-1])
+    x = np.arange(n) * dx
+    M = np.interp(x, s, Mf)
+    M[0] = Mf[0] - s[0] * (Mf[1] - Mf[0]) / (s[1] - s[0])
+    M[-1] = Mf[-1] + (x[-1] - s[-1]) * (Mf[-1] - Mf[-2]) / (s[-1] - s[-2])
+    return M
+
+
+def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, couples: np.ndarray) -> np.ndarray:
+    """The bending moment M = EIγ' at the points: M' = V = -kGA ψ integrated interval by interval (ψ̄ is the interval
+    average of ψ, so each step is exact to the solution's error), the point couples (``couples``, per point, as in the
+    γ loads) as steps after their point (as exact-timoshenko's fields), and the constant from the bond sums' moment
+    (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond sums smear a
+    point couple over the horizon; with the mean, that bias was first order). Why not the bond sums themselves: near
+    an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval averages)
+    differ, so the discrete γ' is first order there; the bond moment's error at a clamped end was 5.3e-2, 2.7e-2,
+    1.4e-2 of the largest moment at 101, 201, 401 points (m = 3), one-sided differences of γ gave 1.1e-2 at 201."""
+    n = len(u) // 2
+    steps = dx * (-scene.kGA) * (shear_strain(n, dx) @ u) - couples[:-1]
+    M = np.concatenate([[0.0], np.cumsum(steps)])
+    flux = bond_moment(u[1::2], m, scene.EI, dx)
+    Z = 2 * zone(m)
+    inner = slice(Z, n - Z) if n > 2 * Z + 2 else slice(None)
+    return M + np.median(flux[inner] - M[inner])
 
 
 def shear_strain(n: int, dx: float) -> sp.csr_matrix:

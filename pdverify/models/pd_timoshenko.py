@@ -25,6 +25,8 @@ from ..errors import InputError
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
 from ..scene import Scene
+from ._moyer_kernels import node_loads
+from .moyer_energy import moment_field
 from .moyer_operator import FIT_POINTS, MIRRORED, ROD_HELD, beam_operator, rod_operator
 from .moyer_system import Discrete, prescribed_motions, static_solution, static_system
 from .moyer_transient import STABILISATION, History, integrate
@@ -317,7 +319,11 @@ class PDTimoshenko(_MoyerModel):
         x = disc.x
         dx = x[1] - x[0]
         w, g = u[0::2], u[1::2]
-        M = scene.EI * np.gradient(g, dx, edge_order=2)
+        if params["variant"] == "energy":  # M' = V integrated (moyer_energy.moment_field)
+            _, mu, _ = node_loads(scene, x, "transverse", ends_apart=True)
+            M = moment_field(u, scene, params["horizon"], dx, mu * dx)
+        else:
+            M = scene.EI * np.gradient(g, dx, edge_order=2)
         # ψ as the operator sees it (interval averages at the point; paper: central differences):
         # np.gradient(w) - γ would carry the O(Δ²) error of w' multiplied by kGA
         psi = disc.psi[0] @ u + disc.psi[1]
