@@ -170,6 +170,7 @@ class _MoyerModel(Model):
                 omega1=h.omega1,
                 stabilisation=h.stabilisation,
                 energy_drift=h.energy_drift,
+                scheme_drift=h.scheme_drift,
                 history={
                     "t": h.t,
                     "series": series,
