@@ -111,9 +111,10 @@ def bending_laplacian(n: int, m: int) -> sp.csr_matrix:
     W = stencil_operator(n, 0, n, np.concatenate([j, -j]), np.concatenate([wj, wj]), truncate=True)
     w, _ = end_bonds(m)
     Z = len(w)
-    corners = sp.block_diag([w, np.zeros((n - 2 * Z, n - 2 * Z)), w[::-1, ::-1]]) if n > 2 * Z else None
-    if corners is None:
-        corners = sp.block_diag([w, w[::-1, ::-1]])
+    r, c = np.nonzero(w)
+    corners = sp.csr_matrix(
+        (np.r_[w[r, c], w[r, c]], (np.r_[r, n - 1 - r], np.r_[c, n - 1 - c])), shape=(n, n)
+    )  # the left end's fitted bonds and their mirror image at the right end
     inside = np.zeros(n, bool)
     inside[:Z] = inside[n - Z :] = True
     left = np.arange(n) < Z
