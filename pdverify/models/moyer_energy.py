@@ -37,7 +37,7 @@ import scipy.sparse as sp
 from ..errors import InputError
 from ..scene import Distributed, Scene
 from ._moyer_kernels import EndPatched, node_loads, rod_kernel, toeplitz
-from .moyer_system import DIRICHLET, Discrete
+from .moyer_system import Discrete, beam_prescribed
 from .pd_common import stencil_operator
 
 ZONE = 3  # bonds are refitted within ZONE m + 1 points of each end
@@ -227,14 +227,7 @@ def energy_beam_operator(scene: Scene, n: int, m: int) -> Discrete:
         bg[end] += ends[side][1] / (vg[end] * dx)
     b = np.empty(2 * n)
     b[0::2], b[1::2] = bw, bg
-    prescribed = {}
-    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        end = 0 if side == 0 else n - 1
-        fix_w, fix_g = DIRICHLET[sup]
-        if fix_w:
-            prescribed[2 * end] = ("w", side)
-        if fix_g:
-            prescribed[2 * end + 1] = ("rotation", side)
+    prescribed = beam_prescribed(scene, n)
     weights = np.empty(2 * n)
     weights[0::2], weights[1::2] = vw, vg
     rho = scene.material.density or 0.0

@@ -83,7 +83,7 @@ from ._moyer_kernels import (
     toeplitz,
 )
 from .moyer_energy import energy_beam_operator
-from .moyer_system import DIRICHLET, Discrete
+from .moyer_system import DIRICHLET, Discrete, beam_prescribed
 
 MIRRORED = ("pinned", "roller", "guided")  # corrected ends whose ghosts are mirror images (mirror_ghosts)
 FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
@@ -244,15 +244,8 @@ def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes
     kGA = scene.kGA
     rho = scene.material.density or 0.0
     q, mu, ends = node_loads(scene, x, "transverse", ends_apart=(variant == "corrected"))
-    prescribed = {}
-    if grid == "nodes":  # cells: the end faces are not points, Dirichlet values enter the ghost cells
-        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-            end = 0 if side == 0 else n - 1
-            fix_w, fix_g = DIRICHLET[sup]
-            if fix_w:
-                prescribed[2 * end] = ("w", side)
-            if fix_g:
-                prescribed[2 * end + 1] = ("rotation", side)
+    # cells: the end faces are not points, Dirichlet values enter the ghost cells
+    prescribed = beam_prescribed(scene, n) if grid == "nodes" else {}
     Kc, bw_parts, bg_parts, Pc, p0c = _beam_core(scene, min(n, _core_points(m)), dx, m, variant, grid, ends)
     op = EndPatched.from_core(Kc, 2, 2, n)
     bw, bg = q, mu

@@ -27,6 +27,19 @@ DIRICHLET = {
 }  # the beam's (w, γ) held by each support; no axial unknown: roller = pinned
 
 
+def beam_prescribed(scene: Scene, n: int) -> dict:
+    """dof -> (field, side) of the beam's held DOFs on n points (interleaved w, γ): :data:`DIRICHLET` at each end."""
+    out = {}
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        end = 0 if side == 0 else n - 1
+        fix_w, fix_g = DIRICHLET[sup]
+        if fix_w:
+            out[2 * end] = ("w", side)
+        if fix_g:
+            out[2 * end + 1] = ("rotation", side)
+    return out
+
+
 @dataclass
 class Discrete:
     """The assembled operator on all real DOFs: rows r: mass_r u_tt = b_r - (K u)_r (free rows only).
