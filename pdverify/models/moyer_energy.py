@@ -46,7 +46,8 @@ END_AVERAGE = np.array([9.0, 19.0, -5.0, 1.0]) / 24  # the same over the first i
 
 
 def bond_kernel(m: int) -> np.ndarray:
-    """ω_j, j = 1..m (units EI/Δ): the bond form of the corrected J sum, Σ_b ω (γ_b - γ_a) = Δ (2EI/δ²) J_a Δ/EI."""
+    """ω_j, j = 1..m (units EI/Δ): the bond form of the corrected J sum (Eq. 48),
+    (EI/Δ) Σ_b ω_ab (γ_b - γ_a) = Δ (2EI/δ²) J_a at an interior point."""
     return 2.0 * rod_kernel(m) / m**2
 
 
