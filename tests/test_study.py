@@ -686,3 +686,28 @@ def test_a_models_warnings_reach_its_row_and_the_report(tmp_path):
 
     html_text = build_report(tmp_path / "out").read_text()
     assert "element = q4: full integration locks in bending" in html_text
+
+
+def test_scenes_that_share_a_name_are_refused(tmp_path):
+    """The tables group a convergence series by the scene's name: two scene files of different content under one name
+    merged into one series (17 support pairs of a transient gave a single 'observed order', and a duplicated grid
+    crashed the GCI with a ZeroDivisionError). One line names both files and the fix; the same file twice is fine."""
+    text = SCENE.read_text()
+    other = tmp_path / "other.toml"
+    other.write_text(text.replace('left = "clamped"', 'left = "pinned"'))
+    p = tmp_path / "s.toml"
+    p.write_text(f'name = "s"\nscenes = ["{SCENE}", "{other}"]\nreference = "exact-eb"\n[[runs]]\nmodel = "exact-eb"\n')
+    with pytest.raises(InputError, match=r"are both named .*give each scene its own name") as exc:
+        load_study(p)
+    assert len(exc.value.lines) == 1 and str(other) in exc.value.lines[0]
+    same = tmp_path / "same.toml"
+    same.write_text(text)
+    p.write_text(f'name = "s"\nscenes = ["{SCENE}", "{same}"]\nreference = "exact-eb"\n[[runs]]\nmodel = "exact-eb"\n')
+    load_study(p)
+
+
+def test_gci_of_a_repeated_grid_is_nan():
+    """Three finest spacings with one repeated (the same case listed twice) have no refinement ratio: NaN, not a
+    ZeroDivisionError."""
+    assert all(np.isnan(v) for v in gci([0.1, 0.1, 0.2, 0.4], [1.0, 1.1, 1.2, 1.3]).values())
+    assert gci([0.1, 0.2, 0.4], [1.0, 1.01, 1.04])["gci_order"] == pytest.approx(np.log2(3))

@@ -78,6 +78,8 @@ def gci(spacing, value, safety: float = 1.25) -> dict[str, float]:
     (h1, h2, h3), (f1, f2, f3) = h[order].tolist(), f[order].tolist()
     r21, r32 = h2 / h1, h3 / h2
     e21, e32 = f2 - f1, f3 - f2
+    if not (r21 > 1 and r32 > 1):  # a grid twice among the three finest (the same case listed twice)
+        return nan
     if e21 == 0 or e32 == 0 or (e21 > 0) != (e32 > 0) or not (math.isfinite(e21) and math.isfinite(e32)):
         return nan
     ratio = abs(e32 / e21)
