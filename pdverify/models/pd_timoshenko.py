@@ -112,7 +112,8 @@ class _MoyerModel(Model):
 
     def eigenproblem(self, scene: Scene, params: dict) -> tuple:
         """(K, mass) on the free DOFs: K φ = ω² diag(mass) φ, the operator of the transient (``pdverify
-        modes``); K is not symmetric (the boundary closures), so ω² may be complex."""
+        modes``); K is not symmetric in the paper and corrected variants (the boundary closures), so ω² may be
+        complex there; variant energy's K times the volumes is symmetric, so its ω² are real."""
         if scene.material.density is None:
             raise InputError("material.density: needed for natural frequencies; add density to the scene")
         disc = self.operator(scene, params)
