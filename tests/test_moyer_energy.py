@@ -236,3 +236,13 @@ def test_transients_converge_at_order_two_for_every_support_pair(tmp_path):
         e = g.sort_values("points").err_max.to_numpy()
         rate = np.log2(e[:-1] / e[1:])
         assert np.all((rate > 1.8) & (rate < 2.1)), (scene, e, rate)
+
+
+@pytest.mark.parametrize("m", [13, 20, 40])
+def test_a_horizon_whose_end_bonds_are_not_definite_is_one_clear_error(m):
+    """From horizon 13 the fitted end bonds have an end mode of negative bending energy (lowest eigenvalue -3.9e-4 of
+    the largest at m = 13, -1.8e-2 at 20; from 40 the fit has no consistent solution): refused in one line naming the
+    horizon and the fix, not solved (horizons 1-12: moyer_energy.definite > 0, tested above through the Laplacian)."""
+    assert E.definite(12) > 0
+    with pytest.raises(InputError, match=f"horizon = {m}: variant energy.*use horizon <= 12 or variant corrected"):
+        run(_scene_at("clamped", "free", 20), "pd-timoshenko", points=801, horizon=m, variant="energy")
