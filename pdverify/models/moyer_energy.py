@@ -43,6 +43,7 @@ from .pd_common import stencil_operator
 ZONE = 3  # bonds are refitted within ZONE m + 1 points of each end
 AVERAGE = np.array([-1.0, 13.0, 13.0, -1.0]) / 24  # interval average of a cubic from its 4 nearest points
 END_AVERAGE = np.array([9.0, 19.0, -5.0, 1.0]) / 24  # the same over the first interval, from the end's 4 points
+GAMMA = sp.csr_matrix(([1.0], ([1], [1])), shape=(2, 2))  # the γ slot of a point's interleaved DOFs (w, γ)
 
 
 def bond_kernel(m: int) -> np.ndarray:
@@ -182,10 +183,7 @@ def shear_strain(n: int, dx: float) -> sp.csr_matrix:
 def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(K per length, ψ at the points) on n points: ∂U/∂u divided by the volumes, interleaved DOFs."""
     B = shear_strain(n, dx)
-    Ke = (scene.kGA * dx) * (B.T @ B)
-    Lg = bending_laplacian(n, m) * (scene.EI / dx)
-    g = 2 * np.arange(n) + 1
-    Ke = Ke + _embed(Lg, g, 2 * n)
+    Ke = (scene.kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (scene.EI / dx), GAMMA)
     vw, vg = volumes(n, m)
     vol = np.empty(2 * n)
     vol[0::2], vol[1::2] = vw * dx, vg * dx
@@ -199,12 +197,6 @@ def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.cs
         ]
     )
     return K.tocsr(), (P @ B).tocsr()
-
-
-def _embed(M: sp.spmatrix, idx: np.ndarray, size: int) -> sp.csr_matrix:
-    """M placed at rows and columns ``idx`` of a size x size matrix."""
-    C = sp.coo_matrix(M)
-    return sp.csr_matrix((C.data, (idx[C.row], idx[C.col])), shape=(size, size))
 
 
 @cache
