@@ -36,6 +36,7 @@ from .scene import Scene
 PRIORS = Path(__file__).parent / "data" / "advisor_priors.json"
 # the options advise tries per model (others: their defaults); the priors are fitted for the same
 CANDIDATE_OPTIONS = {
+    "pd-timoshenko": {"variant": "energy"},
     "pd-eb": {"variant": "corrected"},
     "pd-bond-pair": {"variant": "corrected", "ends": "taylor"},
     "fem-plane-stress": {"element": "q8"},
@@ -259,7 +260,13 @@ def estimate(
     est, order = np.inf, float("nan")
     while n <= max_points:
         t0 = time.perf_counter()
-        r = run(scene, name, points=n, **options)
+        try:
+            r = run(scene, name, points=n, **options)
+        except InputError as exc:  # below the model's fewest points (e.g. pd-timoshenko energy: 6m + 2): refine
+            if sols or not exc.lines[0].startswith(f"points = {n}:"):
+                raise
+            n = 2 * n - 1
+            continue
         dt = time.perf_counter() - t0
         spent += dt
         sols.append((n, r, dt))

@@ -55,7 +55,10 @@ CASES = [
         for m in (2, 3, 4)
     ],
     ("paper_moyer/rod_example1.toml", "pd-rod", {"points": 101, "horizon": 1}),
-    ("paper_moyer/beam_example2.toml", "pd-timoshenko", {"points": 101, "horizon": 1}),
+    *[
+        ("paper_moyer/beam_example2.toml", "pd-timoshenko", {"variant": v, "points": 101, "horizon": 1})
+        for v in ("corrected", "energy")
+    ],
     *[
         (f"paper_curved/{s}.toml", "pd-curved", {"form": f, "degree": 4, "points": 401})
         for s in ("semicircle_tangential", "semicircle_normal", "straight_sine")

@@ -70,7 +70,7 @@ def test_the_report_draws_each_pd_model_s_dispersion(tmp_path):
     (tmp_path / "s.toml").write_text(text)
     run_study(tmp_path / "s.toml", out=tmp_path / "out", workers=1, progress=False)
     pages = build_report(tmp_path / "out").read_text()  # index.html (the paper pages repeat the figures)
-    assert pages.count("pd-timoshenko (corrected) dispersion, 41 points") == 1
+    assert pages.count("pd-timoshenko (energy) dispersion, 41 points") == 1  # the default variant
     assert pages.count("pd-rod (corrected) dispersion, 41 points") == 1 and "fem-timoshenko (" not in pages
     # the beam's three transient runs overlaid, whole run and early time (Moyer & Miraglia Figs 3, 9, 10); the
     # rod's one run has none

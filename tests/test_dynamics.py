@@ -204,14 +204,14 @@ def test_blow_up_message_names_step_limit_and_cause():
     disc = O.beam_operator(sc, 41, 1, "corrected")
     limit = S.stable_time_step(disc) / np.sqrt(1 + 2 * TR.STABILISATION)
     with pytest.raises(SolveError, match=r"the stable limit is .* use time_step <= "):
-        T.simulate(sc, {"points": 41, "horizon": 1}, dt=1.1 * limit)
+        T.simulate(sc, {"points": 41, "horizon": 1, "variant": "corrected"}, dt=1.1 * limit)
     sc = _scene("clamped", "free", height=0.1)
     with pytest.raises(
         SolveError,
         match=r"below the stable limit .* does not help.*clamped-free, horizon = 4.*"
         r"eigenvalue \d.*j",
     ):
-        T.simulate(sc, {"points": 41, "horizon": 4}, t_end=0.02)
+        T.simulate(sc, {"points": 41, "horizon": 4, "variant": "corrected"}, t_end=0.02)
 
 
 def test_table1_cantilever_runs_at_smaller_steps():
@@ -227,7 +227,7 @@ def test_table1_cantilever_runs_at_smaller_steps():
     limit = S.stable_time_step(disc) / np.sqrt(1 + 2 * TR.STABILISATION)
     share = []
     for f in (0.5, 0.3):
-        h = T.simulate(sc, {"points": 101}, dt=f * limit)
+        h = T.simulate(sc, {"points": 101, "variant": "corrected"}, dt=f * limit)
         assert np.all(np.isfinite(h.final))
         share.append(h.energy["stabilisation"][-1] / h.energy["load_work"][-1])
     assert share[1] == pytest.approx(share[0], rel=1e-2)
@@ -342,7 +342,9 @@ def test_mirrored_beam_ends_converge_at_order_two_with_end_loads(slenderness):
     errors = []
     for n in (41, 81, 161, 321):
         exact = np.asarray(run(sc, "exact-timoshenko", points=n).w)
-        errors.append(np.abs(np.asarray(run(sc, "pd-timoshenko", points=n, horizon=1).w) - exact).max())
+        errors.append(
+            np.abs(np.asarray(run(sc, "pd-timoshenko", points=n, horizon=1, variant="corrected").w) - exact).max()
+        )
     errors = np.array(errors) / np.abs(exact).max()
     rates = np.log2(errors[:-1] / errors[1:])
     assert np.all(np.abs(rates - 2) < 0.1) and errors[0] < 1e-4, (errors, rates)
@@ -358,10 +360,22 @@ def test_mirrored_beam_ends_run_undamped_at_the_computed_step():
             for sl in (4, 20, 100, 1e4):
                 sc = _scene(left, right, height=2.0 / sl)
                 limit = S.stable_time_step(O.beam_operator(sc, 41, m, "corrected"))
-                h = T.simulate(sc, {"points": 41, "horizon": m}, dt=limit, t_end=1e4 * limit, stabilisation=0.0)
+                h = T.simulate(
+                    sc,
+                    {"points": 41, "horizon": m, "variant": "corrected"},
+                    dt=limit,
+                    t_end=1e4 * limit,
+                    stabilisation=0.0,
+                )
                 assert np.all(np.isfinite(h.final)), (left, right, m, sl)
                 with pytest.raises(SolveError, match="blew up"):
-                    T.simulate(sc, {"points": 41, "horizon": m}, dt=1.05 * limit, t_end=1e4 * limit, stabilisation=0.0)
+                    T.simulate(
+                        sc,
+                        {"points": 41, "horizon": m, "variant": "corrected"},
+                        dt=1.05 * limit,
+                        t_end=1e4 * limit,
+                        stabilisation=0.0,
+                    )
 
 
 @pytest.mark.slow
@@ -378,8 +392,10 @@ def test_damped_beam_settles_to_the_static_solve_for_every_support_pair():
         for left, right in PAIRS:
             for on in worst:
                 sc = _scene(left, right, loads=loads, end_time=0.5, damping_ratio=1.0, damping_on=on)
-                static = run(sc.model_copy(update={"dynamics": None}), "pd-timoshenko", points=41, horizon=m).w
-                w = T.simulate(sc, {"points": 41, "horizon": m}).final[0::2]
+                static = run(
+                    sc.model_copy(update={"dynamics": None}), "pd-timoshenko", points=41, horizon=m, variant="corrected"
+                ).w
+                w = T.simulate(sc, {"points": 41, "horizon": m, "variant": "corrected"}).final[0::2]
                 worst[on] = max(worst[on], np.abs(w - static).max() / np.abs(static).max())
     assert worst["all"] < 1e-8 and worst["translations"] > 1e-7, worst
 

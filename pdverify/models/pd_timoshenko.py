@@ -285,8 +285,9 @@ class PDTimoshenko(_MoyerModel):
         Option(
             "variant",
             str,
-            "corrected",
-            "paper | corrected | energy (the corrected beam from a discrete energy: symmetric, stable undamped)",
+            "energy",
+            "energy (the corrected beam from a discrete energy: symmetric, stable undamped; horizons 1-12) | "
+            "corrected (collocation: exact for cubics) | paper",
             choices=("paper", "corrected", "energy"),
         )
         if o.name == "variant"
