@@ -41,7 +41,8 @@ static) is the literal Section 4 setup: n - 1 cells of Δ = L/(n - 1), points at
 cells by Taylor expansion about the end faces (a Dirichlet face anchored at zero); measured on Table 1:
 19.6, 14.1 and 10.6 times the exact tip deflection for m = 2, 3, 4 (order 2 between Dirichlet ends).
 
-``corrected`` (default; the "before" numbers were measured while developing it, the result is tested):
+``corrected`` (pd-rod's and pd-torsion's default; pd-timoshenko's is ``energy``, :mod:`.moyer_energy`; the "before"
+numbers were measured while developing it, the result is tested):
 1. ψ as interval averages: ψ̄_{i+1/2} = (w_{i+1} - w_i)/Δ - (-γ_{i-1} + 13γ_i + 13γ_{i+1} - γ_{i+2})/24
    (the exact average over [x_i, x_{i+1}] for a cubic γ), I by the midpoint rule on each unit interval
    (weights 1/(j - 1/2)), K_i = 2δ (ψ̄_{i-1/2} + ψ̄_{i+1/2})/2. Compact: no odd–even decoupling. With the
