@@ -9,7 +9,11 @@ loads, the end-patched stencil) -> :mod:`.moyer_system` (the discrete system and
 engines) -> :mod:`.moyer_transient` (the time integration of Eq. 7–12, its history and energy ledger)
 -> this module (the models and :func:`simulate`).
 
-Results: x, w, rotation = γ, fields M = EIγ', V = M' = -kGA ψ (the exact models' convention), psi;
+The beam's variants: ``energy`` (the default: the corrected equations as the gradient of a discrete energy,
+symmetric, no ghosts), ``corrected`` (collocation with ghost points: exact for cubics), ``paper`` (as published).
+
+Results: x, w, rotation = γ, fields M = EIγ' (energy: M' = V integrated, :func:`.moyer_energy.moment_field`),
+V = M' = -kGA ψ (the exact models' convention), psi;
 rod: u, N = EA u'; torsion: twist, T = GJ θ'. A scene with a ``[dynamics]`` table is run in time by
 ``solve`` (option ``analysis``: auto | static | dynamic); the time histories are in info["history"]
 and ``--out file.csv`` writes them.
