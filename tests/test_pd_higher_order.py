@@ -680,3 +680,21 @@ def test_hundred_thousand_points_in_seconds():
     assert r.dofs == 4 * 100_001 - 4
     assert "in place" in r.info["solver"]  # the band assembled by assemble_band, factorised in its own memory
     assert abs(r.w[-1] / plane_stress("cantilever_tip_force")[1][-1] - 1) < 3e-3
+
+
+def test_clamp_layer_transition_study_measures_what_the_card_fails(tmp_path):
+    """studies/paper_yang_clamp_layer.toml: the cantilever at L/h = 20 on 21-161 points against the model's own
+    641-point solution (the grids and reference of the verify card's convergence scenes). Where the spacing is about
+    the clamp's w* layer the error rises on the way (measured 1.25e-3, 2.1e-4, 4.6e-4, 2.1e-4; fitted order 0.66),
+    so the study's order check is expected to fail, as the card's convergence check does on those scenes (issue
+    32)."""
+    import pandas as pd
+
+    from pdverify import run_study
+
+    run_study(ROOT / "studies" / "paper_yang_clamp_layer.toml", out=tmp_path / "s", workers=1, progress=False)
+    check = pd.read_csv(tmp_path / "s" / "checks.csv").iloc[0]
+    points, errors = (np.array(str(check[k]).split(), float) for k in ("points", "errors"))
+    errors = errors[np.argsort(points)]  # coarse to fine
+    assert check.verdict == "expected-fail" and check.observed_order < 1.2, check
+    assert errors[-1] < 1e-3 and errors[-1] < errors[0] / 3 and np.any(np.diff(errors) > 0), errors
