@@ -323,7 +323,8 @@ class Model:
 
     def evaluator(self, scene: Scene, params: dict):
         """A function x -> fields (as :meth:`evaluate`) for repeated evaluation on one scene, or None when
-        the model has no ``evaluate``. Models whose ``evaluate`` solves first override this to solve once."""
+        the model has no ``evaluate``. Models whose ``evaluate`` solves first override this to solve once, and give
+        the function the solve's round-off bound as an ``error_bound`` attribute (a study's reference rows read it)."""
         if type(self).evaluate is Model.evaluate:
             return None
         return lambda x: self.evaluate(scene, params, x)

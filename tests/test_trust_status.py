@@ -93,3 +93,55 @@ def test_a_study_row_is_suspect_and_the_report_marks_it(tmp_path):
 
     html = table(pd.DataFrame([bad, good]), ["model", "err_max", "error_bound", "status"], row_class="status")
     assert '<tr class="suspect">' in html and '<tr class="ok">' in html
+
+
+def test_a_row_against_a_reference_with_a_large_bound_is_suspect():
+    """The error is measured against the reference, so the reference's round-off bound is the row's too: fem-eb at
+    101 nodes (exact at its nodes) against fem-eb's direct form at 20,001 nodes (bound ~1e3) is suspect, with a message
+    naming the reference; against the two-field form (bound < 1e-6) it is ok. Exact references make no bound."""
+    from pdverify.study import spec
+    from pdverify.study.runner import run_case
+    from pdverify.study.status import reference_status
+
+    assert reference_status(None, {}) == {"ref_error_bound": None}
+    assert reference_status(0.5 * BOUND_LIMIT, {}) == {"ref_error_bound": 0.5 * BOUND_LIMIT}
+    both = reference_status(2 * BOUND_LIMIT, {"message": "own"})
+    assert both["status"] == "suspect" and both["message"].startswith("own; the reference's round-off bound 2e-06")
+    text = TOML.format(E="200e9")
+    ref = {"model": "fem-eb", "points": 20001}
+    bad = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 101}, dict(ref, form="direct")))["row"]
+    good = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 101}, ref))["row"]
+    exact = run_case(spec.Case("s.toml", text, None, "fem-eb", {"points": 101}, {"model": "exact-eb"}))["row"]
+    assert bad["status"] == "suspect" and bad["ref_error_bound"] > BOUND_LIMIT and "reference's" in bad["message"]
+    assert bad["error_bound"] < BOUND_LIMIT  # the model's own solve is fine: only the reference is in doubt
+    assert good["status"] == "ok" and good["ref_error_bound"] < BOUND_LIMIT
+    assert exact["status"] == "ok" and exact["ref_error_bound"] is None
+
+
+def test_a_card_check_on_such_rows_carries_the_caveat(tmp_path):
+    """A verify check that judged errors against such a reference says so in its summary (card HTML, JSON, JUnit)
+    and the study report's cards table marks its verdict with * (the caveat as the cell's title)."""
+    from pdverify.report.build import _check_cell
+    from pdverify.verify import checks as C
+
+    df = pd.DataFrame(
+        {
+            "scene_file": ["a", "a", "a", "b", "b", "b"],
+            "points": [21, 41, 81] * 2,
+            "spacing": [1 / 20, 1 / 40, 1 / 80] * 2,
+            "err_max": [4e-3, 1e-3, 2.5e-4] * 2,
+            "total_s": [0.01] * 6,
+            "status": ["ok"] * 3 + ["suspect"] * 3,
+            "message": [""] * 6,
+            "ref_error_bound": [1e-9] * 3 + [0.36] * 3,
+        }
+    )
+    rows = C.series(df, ["a", "b"])
+    conv = C.convergence(rows, 2.0, "convergence")
+    assert (
+        conv["verdict"] == "pass" and conv["caveat"] and "1 scene(s)" in conv["summary"] and "0.36" in conv["summary"]
+    )
+    assert not C.convergence(rows[:1], 2.0, "convergence")["caveat"]
+    cell = _check_cell("pass", conv["caveat"])
+    assert cell.endswith(">pass*</td>") and 'title="1 scene(s) measured against a reference' in cell
+    assert _check_cell("pass", "") == '<td class="chk-pass">pass</td>'

@@ -567,6 +567,15 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
     return index
 
 
+def _check_cell(verdict: str, caveat: str) -> str:
+    """A check's verdict in the cards table; with a caveat (errors against a reference whose round-off bound passes
+    1e-6) marked * and the caveat as the cell's title."""
+    cls = html.escape((verdict or "none").replace("/", ""))
+    if not caveat:
+        return f'<td class="chk-{cls}">{html.escape(verdict)}</td>'
+    return f'<td class="chk-{cls}" title="{html.escape(caveat.lstrip("; "))}">{html.escape(verdict)}*</td>'
+
+
 def cards_table(d: Path, out: Path) -> dict | None:
     """The study's verification cards (``d/verify/cards.json``, pdverify.verify.published): one row per card,
     its verdict, each check's verdict and a link to its card.html (relative to the report in ``out``)."""
@@ -580,8 +589,11 @@ def cards_table(d: Path, out: Path) -> dict | None:
     checks = list(dict.fromkeys(c["check"] for card in index["cards"] for c in card.get("checks", [])))
     head = "".join(f"<th>{html.escape(h)}</th>" for h in ["model", "options", "verdict", *checks, "cases", "card"])
     rows = []
+    caveats = 0
     for card in index["cards"]:
         got = {c["check"]: c["verdict"] for c in card.get("checks", [])}
+        said = {c["check"]: c["caveat"] for c in card.get("checks", []) if c.get("caveat")}
+        caveats += len(said)
         link = Path(os.path.relpath(d / "verify" / card["folder"] / "card.html", out)).as_posix()
         opts = ", ".join(f"{k}={v}" for k, v in card.get("options", {}).items()) or "defaults"
         cells = [
@@ -589,10 +601,7 @@ def cards_table(d: Path, out: Path) -> dict | None:
             f'<td class="l">{html.escape(opts)}</td>',
             f'<td class="verdict">{html.escape(card["verdict"])}</td>',
         ]
-        cells += [
-            f'<td class="chk-{html.escape(got.get(c, "none").replace("/", ""))}">{html.escape(got.get(c, ""))}</td>'
-            for c in checks
-        ]
+        cells += [_check_cell(got.get(c, ""), said.get(c, "")) for c in checks]
         cells.append(f"<td>{int(card.get('cases', 0))} ({int(card.get('failed_cases', 0))} failed)</td>")
         cells.append(f'<td class="l"><a href="{html.escape(link)}">card.html</a></td>')
         rows.append(f'<tr class="{html.escape(card["verdict"])}">{"".join(cells)}</tr>')
@@ -604,6 +613,7 @@ def cards_table(d: Path, out: Path) -> dict | None:
         "required": bool(index.get("required")),
         "n": len(index["cards"]),
         "n_fail": n_fail,
+        "caveats": caveats,
     }
 
 

@@ -31,7 +31,7 @@ from .derived import (
 from .metrics import errors
 from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .spec import Case, Study, code_digest
-from .status import case_status
+from .status import case_status, reference_status
 from .store import write_atomic
 from .tables import trust_table  # noqa: F401 (re-exported)
 
@@ -40,19 +40,19 @@ PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", 
 
 @lru_cache(maxsize=64)
 def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tuple):
-    """x -> reference deflection, built once per (scene, slenderness, reference options): the reference
-    model's ``evaluator`` where it has one (exact models: exact at any x), else its own solution
-    interpolated by a cubic spline."""
+    """(x -> reference deflection, its solve's round-off bound), built once per (scene, slenderness, reference
+    options): the reference model's ``evaluator`` where it has one (exact models: exact at any x; no bound), else
+    its own solution interpolated by a cubic spline, with the bound of that solve (None when it made none)."""
     from scipy.interpolate import CubicSpline
 
     ref = dict(ref_items)
     model = get_model(ref.pop("model"))
     scene = Case(scene_file, scene_text, slenderness, "", {}, {}).scene()
     ev = model.evaluator(scene, model.resolve(scene, ref))
-    if ev is not None:
-        return lambda x: np.asarray(ev(x)["w"], float)
+    if ev is not None:  # exact (no bound), or a solve's interpolant that carries its bound (fem-eb)
+        return lambda x: np.asarray(ev(x)["w"], float), getattr(ev, "error_bound", None)
     solved = run(scene, model, **ref)
-    return CubicSpline(solved.x, solved.w)
+    return CubicSpline(solved.x, solved.w), solved.info.get("error_bound")
 
 
 REFERENCE_CACHE_POINTS = 20_000  # grids up to this size keep their reference values (64 grids: <= 10 MB)
@@ -63,7 +63,7 @@ def _reference_values(scene_text: str, scene_file: str, slenderness, ref_items: 
     """The reference at one grid, kept: a sweep over horizon, variant or form solves many cases on the
     same points, and the exact solutions cost as much as the rest of a small case's bookkeeping
     (0.18 ms at 1,200 points). Read-only, so a caller cannot change the cached values."""
-    w = np.array(_reference_fn(scene_text, scene_file, slenderness, ref_items)(np.frombuffer(x_bytes, "<f8")), float)
+    w = np.array(_reference_fn(scene_text, scene_file, slenderness, ref_items)[0](np.frombuffer(x_bytes, "<f8")), float)
     w.flags.writeable = False
     return w
 
@@ -75,7 +75,12 @@ def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
     x = np.asarray(x, "<f8")
     if x.size <= REFERENCE_CACHE_POINTS:
         return _reference_values(*key, x.tobytes())
-    return np.asarray(_reference_fn(*key)(x), float)
+    return np.asarray(_reference_fn(*key)[0](x), float)
+
+
+def reference_bound(case: Case) -> float | None:
+    """The round-off bound of the case's reference solve (None for exact references and models without one)."""
+    return _reference_fn(case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())))[1]
 
 
 @lru_cache(maxsize=256)
@@ -217,6 +222,8 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         row["cond"] = info.get("cond")
         row["status"], row["message"] = "ok", ""
         row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (issue 27)
+        if case.reference.get("model") != "none":  # ... or the reference's: the error is measured against it
+            row.update(reference_status(reference_bound(case), row))
         row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
         if "artefact_message" in solved:
             row["artefact_message"] = solved["artefact_message"]

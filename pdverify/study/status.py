@@ -1,5 +1,5 @@
-"""A study case's status from its solve's round-off bound (issue 27): ``suspect`` when the bound passes
-:data:`pdverify.linalg.BOUND_LIMIT`, so no table shows such a row as a plain ``ok``."""
+"""A study case's status from its solve's round-off bound (issue 27) and its reference's: ``suspect`` when either
+passes :data:`pdverify.linalg.BOUND_LIMIT`, so no table shows such a row as a plain ``ok``."""
 
 from __future__ import annotations
 
@@ -23,4 +23,25 @@ def case_status(info: dict) -> dict:
         "error_bound": bound,
         "status": "suspect",
         "message": f"round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the solve's",
+    }
+
+
+def reference_status(bound: float | None, row: dict) -> dict:
+    """Columns for the round-off bound of the case's reference solve (a model solved as the reference, e.g. its own
+    solution on a fine grid; None for exact references): ``ref_error_bound`` and, when it passes BOUND_LIMIT or is
+    not finite, ``status = "suspect"`` with a message naming it (added to the row's own)."""
+    if bound is None:
+        return {"ref_error_bound": None}
+    bound = float(bound)
+    if bound <= BOUND_LIMIT:
+        return {"ref_error_bound": bound}
+    shown = f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
+    said = (
+        f"the reference's round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the "
+        "reference's"
+    )
+    return {
+        "ref_error_bound": bound,
+        "status": "suspect",
+        "message": "; ".join(m for m in (row.get("message"), said) if m),
     }

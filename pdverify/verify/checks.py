@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from ..linalg import BOUND_LIMIT
 from ..study.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
 
 EXACT = 1e-9  # an error this small at every grid: the model reproduces the solution (orders meaningless)
@@ -30,6 +31,28 @@ SOLVED = ("ok", "suspect")
 
 def check(name: str, verdict: str, summary: str, **data) -> dict:
     return {"check": name, "verdict": verdict, "summary": summary, **data}
+
+
+def reference_bound(rows) -> float:
+    """The largest round-off bound of the reference solves behind these study rows (0 when the reference is exact
+    or made none: the column ``ref_error_bound``, docs/trust.md)."""
+    if "ref_error_bound" not in rows:
+        return 0.0
+    b = np.asarray(rows["ref_error_bound"], float)
+    b = b[~np.isnan(b)]
+    return float(b.max()) if b.size else 0.0
+
+
+def reference_note(bounds) -> str:
+    """What a check's summary adds when some of the errors it judged are against a reference whose round-off bound
+    passes BOUND_LIMIT: the verdict holds only if that reference is as good as its solve's bound cannot show."""
+    bad = [b for b in bounds if not b <= BOUND_LIMIT]
+    if not bad:
+        return ""
+    return (
+        f"; {len(bad)} scene(s) measured against a reference whose round-off bound passes {BOUND_LIMIT:g} (up to "
+        f"{max(bad):.2g}): their errors may be the reference's"
+    )
 
 
 def series(df, files: list[str]) -> list[dict]:
@@ -66,6 +89,7 @@ def series(df, files: list[str]) -> list[dict]:
                 "failed": [
                     f"{int(r.points)} points: {r.message}" for r in rows[~rows["status"].isin(SOLVED)].itertuples()
                 ],
+                "reference_bound": reference_bound(ok),
             }
         )
     return out
@@ -84,8 +108,15 @@ def convergence(rows: list[dict], expected: float, label: str) -> dict:
         if verdict == "pass"
         else f"{len(bad)} of {len(rows)} scenes below order {expected - ORDER_SLACK:g} or failed (lowest {worst:.2f})"
     )
+    note = reference_note(r["reference_bound"] for r in rows)
     return check(
-        label, verdict, text, expected_order=expected, lowest_order=worst, failing=[r["scene_file"] for r in bad]
+        label,
+        verdict,
+        text + note,
+        expected_order=expected,
+        lowest_order=worst,
+        failing=[r["scene_file"] for r in bad],
+        caveat=note,
     )
 
 
@@ -93,12 +124,14 @@ def accuracy(rows: list[dict]) -> dict:
     finest = [r["errors"][-1] if r["errors"] else float("inf") for r in rows]
     worst = max(finest)
     bad = [r["scene_file"] for r, e in zip(rows, finest, strict=True) if not e <= ACCURACY]
+    note = reference_note(r["reference_bound"] for r in rows)
     return check(
         "error at the finest grid",
         "pass" if not bad else "fail",
-        f"largest error at the finest grid {worst:.2e} (limit {ACCURACY:g})",
+        f"largest error at the finest grid {worst:.2e} (limit {ACCURACY:g}){note}",
         largest=worst,
         failing=bad,
+        caveat=note,
     )
 
 
@@ -120,13 +153,14 @@ def within(rows: list[dict]) -> dict:
 def locking(df, files: list[str], meta: dict) -> dict:
     """Error vs slenderness at each grid (slope of log error vs log slenderness, reported). Judged at the finest
     grid: locking when the most slender scene's error exceeds both 10x the error at slenderness 20 and 0.1 %."""
-    slopes, bad = [], []
+    slopes, bad, ref_bounds = [], [], []
     for pair in sorted({meta[f]["pair"] for f in files}):
         fs = [f for f in files if meta[f]["pair"] == pair]
         rows = df[df["scene_file"].isin(fs)]
         if (~rows["status"].isin(SOLVED)).any():
             bad.append(f"{pair}: failed solves")
         rows = rows[rows["status"].isin(SOLVED)]
+        ref_bounds += [reference_bound(rows[rows["scene_file"] == f]) for f in fs]
         for points, g in rows.groupby("points"):
             s = [meta[f]["slenderness"] for f in g["scene_file"]]
             e = g["err_max"].to_numpy(float)
@@ -151,10 +185,12 @@ def locking(df, files: list[str], meta: dict) -> dict:
                 )
     finest = [s for s in slopes if s["points"] == max((t["points"] for t in slopes), default=0)]
     text = "; ".join(f"{s['pair']}: slope {s['slope']:.2f}, {max(s['errors'].values()):.1e} at most" for s in finest)
+    note = reference_note(ref_bounds)
     return check(
         "locking (error vs slenderness 5 ... 10000)",
         "pass" if slopes and not bad else "fail",
-        (text + " at the finest grid") if not bad else "locks: " + "; ".join(bad),
+        ((text + " at the finest grid") if not bad else "locks: " + "; ".join(bad)) + note,
+        caveat=note,
         slopes=slopes,
     )
 
@@ -170,11 +206,14 @@ def floor(rows: list[dict]) -> dict:
     growth = log_slope(n[i:], e[i:])[0] if len(e) - i >= 2 else float("nan")
     ok = e[-1] <= max(ROUND_OFF * e[i], FLOOR, EXACT)
     rise = f"; rises ~N^{growth:.1f} beyond {int(n[i])} points" if not math.isnan(growth) else ""
+    note = reference_note([r["reference_bound"]])
     return check(
         "accuracy floor (round-off)",
         "pass" if ok else "fail",
         f"error {e[-1]:.2e} at {int(n[-1])} points, smallest {e[i]:.2e} at {int(n[i])}{rise}"
-        + ("" if ok else f": above {FLOOR:g} from round-off"),
+        + ("" if ok else f": above {FLOOR:g} from round-off")
+        + note,
+        caveat=note,
         floor=float(e[i]),
         finest=float(e[-1]),
         growth=growth,
