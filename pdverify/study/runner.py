@@ -270,14 +270,20 @@ def run_case(case: Case, artefacts: str | None = None, case_id: str | None = Non
 
 
 def run_study(
-    study: Study, out: Path, workers: int | None = None, scheduler: str | None = None, progress: bool = True
+    study: Study,
+    out: Path,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress: bool = True,
+    artefacts: bool = True,
 ) -> pd.DataFrame:
     """Run the study's cases not yet done in ``out`` (resumed from their case files), write every table and
     meta.json there; the results table. ``workers``: local processes (default: every core; 1 runs the
     cases in this process); ``scheduler``: a Dask scheduler's address (then ``workers`` is not used).
     Raises InputError for a bad ``workers`` or ``scheduler`` (exit 2), OutputError (exit 4; nothing stored
     is lost) when ``out`` cannot be written, is in use by another run or holds another study's results, or
-    when a process solving cases dies."""
+    when a process solving cases dies. ``artefacts``: write the models' own files (plane-stress VTU and PNG, time
+    histories as CSV) under ``out``; the verification suite's cases skip them."""
     workers = _whole_workers(workers)
     if scheduler is not None:
         execute.check_scheduler(scheduler)
@@ -289,7 +295,7 @@ def run_study(
     lock = FolderLock(out)
     try:
         claim(out, study)
-        return _run_study(study, out, workers, scheduler, progress)
+        return _run_study(study, out, workers, scheduler, progress, artefacts)
     except execute.BrokenProcessPool:  # a worker killed: the cases it solved before were stored here
         raise OutputError(
             f"a worker process ended abruptly (killed: out of memory, a signal); the cases "
@@ -318,7 +324,9 @@ def _whole_workers(workers):
     return n
 
 
-def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | None, progress: bool) -> pd.DataFrame:
+def _run_study(
+    study: Study, out: Path, workers: int | None, scheduler: str | None, progress: bool, artefacts: bool = True
+) -> pd.DataFrame:
     t0 = time.perf_counter()
     ids = [c.case_id for c in study.cases]  # hashed once: the key covers the scene text and the code digest
     done = finished(out / "cases", ids)  # case id -> row (the curves stay on disk)
@@ -326,12 +334,13 @@ def _run_study(study: Study, out: Path, workers: int | None, scheduler: str | No
     todo = list({cid: c for c, cid in zip(study.cases, ids) if cid not in done}.items())  # each id once
     todo_ids, todo_cases = [cid for cid, _ in todo], [c for _, c in todo]
     n = 1 if scheduler else min(workers or os.cpu_count() or 1, max(1, len(todo)))
+    files = str(out / "vtu") if artefacts else None
     if scheduler and todo:
         loop = execute.on_dask(run_case, todo_cases, todo_ids, scheduler)
     elif n > 1:
-        loop = execute.pool(run_case, todo_cases, todo_ids, str(out / "vtu"), n)
+        loop = execute.pool(run_case, todo_cases, todo_ids, files, n)
     else:
-        loop = execute.serial(run_case, todo_cases, todo_ids, str(out / "vtu"))
+        loop = execute.serial(run_case, todo_cases, todo_ids, files)
     keep = Keeper(out, code_digest())
     bar = _progress(len(todo), progress)
     try:
