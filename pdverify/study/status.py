@@ -26,19 +26,29 @@ def case_status(info: dict) -> dict:
     }
 
 
+REFERENCE_SHARE = 0.1  # a reference bound below this share of the measured error cannot change its first digit
+
+
+def reference_in_doubt(bound: float, err: float) -> bool:
+    """Whether a reference's round-off bound could decide an error measured against it: past BOUND_LIMIT (or not
+    finite) and not below REFERENCE_SHARE of the error."""
+    return not (bound <= BOUND_LIMIT or bound < REFERENCE_SHARE * float(err))
+
+
 def reference_status(bound: float | None, row: dict) -> dict:
     """Columns for the round-off bound of the case's reference solve (a model solved as the reference, e.g. its own
-    solution on a fine grid; None for exact references): ``ref_error_bound`` and, when it passes BOUND_LIMIT or is
-    not finite, ``status = "suspect"`` with a message naming it (added to the row's own)."""
+    solution on a fine grid; None for exact references): ``ref_error_bound`` and, when it passes BOUND_LIMIT (or is
+    not finite) and is not below REFERENCE_SHARE of the row's measured error ``err_max`` (so it could be a tenth of
+    that error or more), ``status = "suspect"`` with a message naming it (added to the row's own)."""
     if bound is None:
         return {"ref_error_bound": None}
     bound = float(bound)
-    if bound <= BOUND_LIMIT:
+    if not reference_in_doubt(bound, row.get("err_max", math.nan)):
         return {"ref_error_bound": bound}
     shown = f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
     said = (
-        f"the reference's round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the "
-        "reference's"
+        f"the reference's round-off bound {shown} exceeds {BOUND_LIMIT:g} and a tenth of the error measured here, "
+        "which may be the reference's"
     )
     return {
         "ref_error_bound": bound,

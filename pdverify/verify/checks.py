@@ -12,6 +12,7 @@ import numpy as np
 
 from ..linalg import BOUND_LIMIT
 from ..study.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
+from ..study.status import reference_in_doubt
 
 EXACT = 1e-9  # an error this small at every grid: the model reproduces the solution (orders meaningless)
 ROUND = ROUND_OFF_LEVEL  # errors below this are round-off level: no order fitted there
@@ -29,29 +30,36 @@ IDENTITY = 1e-8  # symmetry and superposition: relative difference that passes (
 SOLVED = ("ok", "suspect")
 
 
+def _missing(v) -> bool:
+    return v is None or (isinstance(v, float) and math.isnan(v))
+
+
 def check(name: str, verdict: str, summary: str, **data) -> dict:
     return {"check": name, "verdict": verdict, "summary": summary, **data}
 
 
 def reference_bound(rows) -> float:
-    """The largest round-off bound of the reference solves behind these study rows (0 when the reference is exact
-    or made none: the column ``ref_error_bound``, docs/trust.md)."""
+    """The largest round-off bound of the reference solves behind these study rows that could decide their errors
+    (:func:`pdverify.study.status.reference_in_doubt`; 0 when none: the column ``ref_error_bound``, docs/trust.md)."""
     if "ref_error_bound" not in rows:
         return 0.0
-    b = np.asarray(rows["ref_error_bound"], float)
-    b = b[~np.isnan(b)]
-    return float(b.max()) if b.size else 0.0
+    doubt = [
+        float(b)
+        for b, e in zip(rows["ref_error_bound"], rows["err_max"], strict=True)
+        if not _missing(b) and reference_in_doubt(float(b), e)
+    ]
+    return max(doubt, default=0.0)
 
 
 def reference_note(bounds) -> str:
     """What a check's summary adds when some of the errors it judged are against a reference whose round-off bound
-    passes BOUND_LIMIT: the verdict holds only if that reference is as good as its solve's bound cannot show."""
-    bad = [b for b in bounds if not b <= BOUND_LIMIT]
+    could decide them: the verdict holds only if that reference is better than its solve's bound can show."""
+    bad = [b for b in bounds if b > 0]
     if not bad:
         return ""
     return (
-        f"; {len(bad)} scene(s) measured against a reference whose round-off bound passes {BOUND_LIMIT:g} (up to "
-        f"{max(bad):.2g}): their errors may be the reference's"
+        f"; {len(bad)} scene(s) measured against a reference whose round-off bound passes {BOUND_LIMIT:g} and a "
+        f"tenth of their errors (up to {max(bad):.2g}): those errors may be the reference's"
     )
 
 
