@@ -185,7 +185,7 @@ def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
     """Partial loads that lie inside one point's cell [x_i - dx/2, x_i + dx/2]: the PD models place distributed loads
     by cell averages, so such a load acts on that point as a whole, moved by up to half a spacing (a first-order
     error; measured: a 0.9 mm load on a clamped–clamped 2 m beam at 401 points, 2.9e-3 to 3.2e-3 in pd-eb,
-    pd-bond-pair, pd-higher-order and pd-timoshenko, the same at 801; pd-timoshenko 1.2e-5 at 1601 points, where it
+    pd-bond-pair, pd-higher-order and pd-timoshenko, the same at 801; 1.1e-5 to 1.1e-4 at 1601 points, where it
     straddles two cells). Flag it."""
     dx = x[1] - x[0]
     out = []
