@@ -8,6 +8,10 @@ import math
 from ..linalg import BOUND_LIMIT
 
 
+def _shown(bound: float) -> str:
+    return f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
+
+
 def case_status(info: dict) -> dict:
     """Columns for a solved case's row from the result's ``info``: ``error_bound`` (the relative round-off
     bound of its linear solve, None when the model made none) and, when that bound passes BOUND_LIMIT or
@@ -18,11 +22,11 @@ def case_status(info: dict) -> dict:
     bound = float(bound)
     if bound <= BOUND_LIMIT:
         return {"error_bound": bound}
-    shown = f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
     return {
         "error_bound": bound,
         "status": "suspect",
-        "message": f"round-off bound {shown} exceeds {BOUND_LIMIT:g}: the error measured here may be the solve's",
+        "message": f"round-off bound {_shown(bound)} exceeds {BOUND_LIMIT:g}: the error measured here may be the "
+        "solve's",
     }
 
 
@@ -45,10 +49,9 @@ def reference_status(bound: float | None, row: dict) -> dict:
     bound = float(bound)
     if not reference_in_doubt(bound, row.get("err_max", math.nan)):
         return {"ref_error_bound": bound}
-    shown = f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
     said = (
-        f"the reference's round-off bound {shown} exceeds {BOUND_LIMIT:g} and a tenth of the error measured here, "
-        "which may be the reference's"
+        f"the reference's round-off bound {_shown(bound)} exceeds {BOUND_LIMIT:g} and a tenth of the error measured "
+        "here, which may be the reference's"
     )
     return {
         "ref_error_bound": bound,

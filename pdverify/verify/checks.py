@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pandas as pd
 
 from ..linalg import BOUND_LIMIT
 from ..study.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
@@ -30,10 +31,6 @@ IDENTITY = 1e-8  # symmetry and superposition: relative difference that passes (
 SOLVED = ("ok", "suspect")
 
 
-def _missing(v) -> bool:
-    return v is None or (isinstance(v, float) and math.isnan(v))
-
-
 def check(name: str, verdict: str, summary: str, **data) -> dict:
     return {"check": name, "verdict": verdict, "summary": summary, **data}
 
@@ -46,7 +43,7 @@ def reference_bound(rows) -> float:
     doubt = [
         float(b)
         for b, e in zip(rows["ref_error_bound"], rows["err_max"], strict=True)
-        if not _missing(b) and reference_in_doubt(float(b), e)
+        if not pd.isna(b) and reference_in_doubt(float(b), e)
     ]
     return max(doubt, default=0.0)
 
