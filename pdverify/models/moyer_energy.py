@@ -175,8 +175,7 @@ def shear_strain(n: int, dx: float) -> sp.csr_matrix:
             sp.csr_matrix((END_AVERAGE[::-1], ([0] * 4, np.arange(n - 4, n))), shape=(1, n)),
         ]
     )
-    perm = np.empty(2 * n, dtype=np.int64)
-    perm[0::2], perm[1::2] = np.arange(n), n + np.arange(n)
+    perm = np.column_stack((np.arange(n), n + np.arange(n))).ravel()  # (w_i, γ_i) interleaved
     return sp.hstack([D, -A]).tocsr()[:, perm]
 
 
@@ -185,9 +184,7 @@ def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.cs
     B = shear_strain(n, dx)
     Ke = (scene.kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (scene.EI / dx), GAMMA)
     vw, vg = volumes(n, m)
-    vol = np.empty(2 * n)
-    vol[0::2], vol[1::2] = vw * dx, vg * dx
-    K = sp.diags(1.0 / vol) @ Ke
+    K = sp.diags(1.0 / (np.column_stack((vw, vg)).ravel() * dx)) @ Ke
     # ψ at the points: the mean of the two intervals, extrapolated linearly at the ends
     P = sp.vstack(
         [
@@ -237,22 +234,18 @@ def energy_beam_operator(scene: Scene, n: int, m: int) -> Discrete:
     for side, end in ((0, 0), (1, n - 1)):
         bw[end] += ends[side][0] / (vw[end] * dx)
         bg[end] += ends[side][1] / (vg[end] * dx)
-    b = np.empty(2 * n)
-    b[0::2], b[1::2] = bw, bg
     prescribed = beam_prescribed(scene, n)
-    weights = np.empty(2 * n)
-    weights[0::2], weights[1::2] = vw, vg
     rho = scene.material.density or 0.0
     info = {"ghosts_per_end": 0, "spacing": dx, "horizon": m * dx, "fitted_points_per_end": zone(m)}
     return Discrete(
         x,
         EndPatched.from_core(Kc, 2, 2, n),
-        b,
+        np.column_stack((bw, bg)).ravel(),
         (rho * scene.section.A, rho * scene.section.I),
         (True, False),
         prescribed,
         2,
         info=info,
         psi=(EndPatched.from_core(Pc, 1, 2, n), np.zeros(n)),
-        weights=weights,
+        weights=np.column_stack((vw, vg)).ravel(),
     )
