@@ -8,7 +8,8 @@ command = ["julia", "solve.jl", "{input}"]  # {input}: path of the input JSON (e
                                             # {python}: this Python; {dir}: the manifest's folder
 timeout = 60                                # seconds per solve (default 60)
 [capabilities]                              # all optional; defaults as a built-in model's
-theory = "euler-bernoulli"                  # euler-bernoulli | timoshenko | higher-order | continuum
+theory = "euler-bernoulli"                  # euler-bernoulli | timoshenko | higher-order | continuum | axial | torsion
+measures = "w"                              # what a study measures: w, or a field of the result (u, twist)
 curved = false
 axial = false
 torsion = false
@@ -49,7 +50,15 @@ from .result import Result
 from .scene import Scene, read_toml
 
 KINDS = {"int": int, "float": float, "str": str, "bool": bool}
-CAPABILITIES = {"theory": str, "curved": bool, "axial": bool, "torsion": bool, "bending": bool, "kind": str}
+CAPABILITIES = {
+    "theory": str,
+    "measures": str,
+    "curved": bool,
+    "axial": bool,
+    "torsion": bool,
+    "bending": bool,
+    "kind": str,
+}
 MANIFEST_KEYS = {"name", "title", "source", "command", "timeout", "capabilities", "options"}
 
 

@@ -19,7 +19,7 @@ from .errors import InputError
 from .exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
 from .registry import get_model
 from .result import columns_csv, plain_json
-from .scene import HELD, Scene
+from .scene import HELD, ROD_HELD, Scene
 
 DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (0.05 s); ARPACK above (0.1 s at 600)
 ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
@@ -73,8 +73,6 @@ def analytic_frequencies(scene: Scene, theory: str, count: int) -> tuple[np.ndar
         c = np.sqrt(scene.EA / (rho * scene.section.A))
         what = "rod"
     elif theory == "torsion":
-        from .models.moyer_operator import ROD_HELD  # the twist is not in scene.HELD: fork supports (docs/supports.md)
-
         held = (left in ROD_HELD["torsion"], right in ROD_HELD["torsion"])
         c = np.sqrt(scene.material.G * scene.section.J / (rho * scene.section.polar))
         what = "torsion bar"

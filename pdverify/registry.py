@@ -210,7 +210,8 @@ class Model:
     axial: bool = False  # carries axial loads (loads[i].axial)
     bending: bool = True  # carries transverse loads (loads[i].value)
     torsion: bool = False  # carries torques (point_torque, loads[i].torque)
-    theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum (what it can represent)
+    theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum | axial | torsion
+    measures: str = "w"  # the output a study measures against its reference: w, or a point field (u, twist)
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
     order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
@@ -312,6 +313,7 @@ class Model:
             "supports": sorted(self.supports),
             "load_types": sorted(self.load_types),
             "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
+            "measures": self.measures,
             "end_motions": self.end_motions,
             "assembles": self.assembles,
             "variant_rules": [f"{dict(r.when)}: {r.option} ({r.why})" for r in self.variant_rules],

@@ -37,6 +37,9 @@ HELD = {
     "guided": (False, False, True),
     "free": (False, False, False),
 }
+# What holds the single unknown of a rod (axial displacement) or of a torsion bar (twist): a roller slides
+# axially, but holds the twist as a pinned (fork) support does (docs/supports.md)
+ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "roller")}
 
 
 Real = Annotated[float, Strict()]  # a float that an int may give, never a boolean or a string ("true" is not 1.0)

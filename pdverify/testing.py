@@ -11,7 +11,8 @@ def test_my_model_matches_fem():
 ```
 
 A failing assertion raises AssertionError whose message is the table of grids, errors and orders (or of the
-worst points), so the CI log says what went wrong. ``model`` and ``reference`` are a registered model's
+worst points), so the CI log says what went wrong. What is compared is what the model ``measures`` (w; a
+rod's u, a torsion bar's twist). ``model`` and ``reference`` are a registered model's
 name (built-in, plug-in, or an external model's manifest path) or a :class:`~pdverify.registry.Model`;
 ``scene`` a :class:`~pdverify.scene.Scene`, a scene table (dict) or a scene file.
 """
@@ -46,6 +47,11 @@ def _scene(s) -> Scene:
     return load_scene(Path(s))
 
 
+def _values(result, quantity: str) -> np.ndarray:
+    """A result's measured quantity: w, or a point field (u, twist)."""
+    return np.asarray(result.w if quantity == "w" else result.fields[quantity], float)
+
+
 def default_reference(model: Model, scene: Scene, grids=(21, 41, 81, 161), **options):
     """The exact solution of the model's declared theory (curved axes: exact-curved); for a theory pdverify has
     no exact solution of (higher-order, continuum), the model itself with ``options`` on the nested grid
@@ -54,23 +60,25 @@ def default_reference(model: Model, scene: Scene, grids=(21, 41, 81, 161), **opt
         return get_model("exact-curved")
     if reference_for(model.theory) is None:
         fine = run(scene, model, **options, points=finer(grids))
-        return lambda x: np.interp(x, fine.x, fine.w)
+        return lambda x: np.interp(x, fine.x, _values(fine, model.measures))
     return get_model(reference_for(model.theory))
 
 
-def _reference_w(reference, scene: Scene, x: np.ndarray, options: dict) -> np.ndarray:
-    """The reference's deflection at ``x``: its evaluate(), else its solution on its own points interpolated."""
+def _reference_w(reference, scene: Scene, x: np.ndarray, options: dict, quantity: str = "w") -> np.ndarray:
+    """The reference's ``quantity`` (w, u, twist) at ``x``: its evaluate(), else its solution on its own points
+    interpolated."""
     if callable(reference) and not isinstance(reference, Model):
         return np.asarray(reference(x), float)
     fn = reference.evaluator(scene, reference.resolve(scene, options))
     if fn is not None:
-        return np.asarray(fn(x)["w"], float)
+        return np.asarray(fn(x)[quantity], float)
     r = run(scene, reference, **options)
-    return np.interp(x, r.x, r.w)
+    return np.interp(x, r.x, _values(r, quantity))
 
 
 def convergence_table(model, scene, grids=(21, 41, 81, 161), reference=None, **options) -> list[dict]:
-    """Rows (points, spacing, error, order vs the previous grid): error = max |w - w_ref| / max |w_ref|."""
+    """Rows (points, spacing, error, order vs the previous grid): error = max |w - w_ref| / max |w_ref| (w: what the
+    model measures)."""
     m, sc = _model(model), _scene(scene)
     ref = (
         default_reference(m, sc, grids, **options)
@@ -82,7 +90,7 @@ def convergence_table(model, scene, grids=(21, 41, 81, 161), reference=None, **o
     rows = []
     for n in grids:
         r = run(sc, m, **options, points=n)
-        e = errors(r.w, _reference_w(ref, sc, np.asarray(r.x), {}))["err_max"]
+        e = errors(_values(r, m.measures), _reference_w(ref, sc, np.asarray(r.x), {}, m.measures))["err_max"]
         h = float(np.diff(r.x).max())
         prev = rows[-1] if rows else None
         order = (
@@ -132,14 +140,15 @@ def assert_matches(model, reference, scene, rtol: float = 1e-3, **options) -> fl
     ref = reference if callable(reference) and not isinstance(reference, (str, Model)) else _model(reference)
     r = run(sc, m, **options)
     x = np.asarray(r.x)
-    w_ref = _reference_w(ref, sc, x, {})
-    e = errors(r.w, w_ref)["err_max"]
+    q = m.measures
+    w, w_ref = _values(r, q), _reference_w(ref, sc, x, {}, q)
+    e = errors(w, w_ref)["err_max"]
     if not e <= rtol:
         scale = max(np.abs(w_ref).max(), 1e-300)
-        rel = np.abs(r.w - w_ref) / scale
+        rel = np.abs(w - w_ref) / scale
         worst = np.sort(np.argsort(rel)[-8:])
-        lines = [f"{'x':>10} {'w':>12} {'w_ref':>12} {'|diff|/max|w_ref|':>18}"]
-        lines += [f"{x[i]:>10.4g} {r.w[i]:>12.5e} {w_ref[i]:>12.5e} {rel[i]:>18.3e}" for i in worst]
+        lines = [f"{'x':>10} {q:>12} {q + '_ref':>12} {f'|diff|/max|{q}_ref|':>18}"]
+        lines += [f"{x[i]:>10.4g} {w[i]:>12.5e} {w_ref[i]:>12.5e} {rel[i]:>18.3e}" for i in worst]
         name = getattr(ref, "name", getattr(ref, "__name__", "the reference"))
         raise AssertionError(
             f"{m.name} on {sc.name!r} against {name}: error {e:.3e} > rtol {rtol:g} "

@@ -10,7 +10,8 @@ Curved axes: arcs of any opening from 10 to 359 deg (any start angle) and polyno
 
 Each model is compared with the exact solution of the theory it declares (:data:`REFERENCE`): exact-eb
 (euler-bernoulli), exact-timoshenko (timoshenko, higher-order), exact-curved (curved axes; the axial rod
-on a straight axis). The error is max |u - u_exact| / max |u_exact| over the compared displacements at the
+on a straight axis, exact-rod included: two closed forms checked against each other), exact-torsion (the torsion
+bar's twist). The error is max |u - u_exact| / max |u_exact| over the compared displacements at the
 model's own points.
 
 The prediction (:func:`predicted`) is the model's own convergence on the same scene, not a blanket
@@ -57,6 +58,7 @@ REFERENCE = {
     "timoshenko": "exact-timoshenko",
     "higher-order": "exact-timoshenko",
     "axial": "exact-curved",
+    "torsion": "exact-torsion",
 }
 # Static models left out, each with the reason (the others are swept):
 EXCLUDED = {
@@ -68,7 +70,7 @@ EXCLUDED = {
     "exact-elastica": "large rotations under one end load: a nonlinear reference, not a linear scene's",
     "fem-plane-stress": "the 2D continuum differs from the beam by the thickness gap, O(h/L) (docs/supports.md); "
     "its convergence to exact-curved is test_supports_curved.py's slow test (12 min)",
-    "pd-torsion": "no exact twist reference is registered (torsion is checked by tests/test_pd_timoshenko.py)",
+    "exact-torsion": "the torsion reference itself (its closed form: tests/test_exact_rod.py)",
 }
 STATIC = sorted(n for n, m in models().items() if "static" in m.analyses and n not in EXCLUDED)
 
@@ -76,16 +78,21 @@ STATIC = sorted(n for n, m in models().items() if "static" in m.analyses and n n
 # -- scenes ------------------------------------------------------------------------------------------------
 
 
-def _loads(draw, length: float, bending: bool, axial: bool, moments: bool) -> list[dict]:
-    """1-4 loads anywhere on [0, length], ends included: forces, moments, uniform / partial / sine loads."""
-    kinds = ["point_force", "distributed"] + (["point_moment"] if moments and bending else [])
+def _loads(draw, length: float, bending: bool, axial: bool, moments: bool, torsion: bool = False) -> list[dict]:
+    """1-4 loads anywhere on [0, length], ends included: forces, moments, uniform / partial / sine loads (a torsion
+    bar: torques, point and distributed)."""
+    kinds = ["point_torque" if torsion else "point_force", "distributed"] + (
+        ["point_moment"] if moments and bending else []
+    )
     out = []
     for _ in range(draw(st.integers(1, 4))):
         kind = draw(st.sampled_from(kinds))
         size = draw(st.floats(100.0, 1000.0)) * draw(st.sampled_from([-1.0, 1.0]))
-        load = {"type": kind, "value": size if bending else 0.0}
+        load = {"type": kind, "value": size if bending or kind == "point_torque" else 0.0}
         if axial and kind != "point_moment":
             load["axial"] = draw(st.floats(-1000.0, 1000.0))
+        if torsion and kind == "distributed":
+            load["torque"] = size / length
         if kind == "distributed":
             load["value"] = load["value"] / length
             shape = draw(st.sampled_from(["uniform", "partial", "sine"]))
@@ -112,7 +119,7 @@ def straight_scenes(draw, model: str):
     if m.axial and not m.bending:  # the rod: its own mechanisms (two sliding ends)
         assume(mechanism_message(parse_scene(scene_dict(left, right))) is None)
     length = draw(st.floats(0.5, 5.0))
-    loads = _loads(draw, length, m.bending, not m.bending and m.axial, "point_moment" in m.load_types)
+    loads = _loads(draw, length, m.bending, not m.bending and m.axial, "point_moment" in m.load_types, m.torsion)
     d = scene_dict(left, right, loads, beam={"length": length})
     return parse_scene(d).with_slenderness(draw(st.floats(math.log(3.0), math.log(1e4)).map(math.exp)))
 
@@ -159,7 +166,7 @@ def points(low: int, high: int):
 def _keys(scene, model) -> tuple[str, ...]:
     if not scene.is_straight:
         return ("ux", "uy")
-    return ("w",) if model.bending else ("u",)
+    return ("w",) if model.bending else ("twist",) if model.torsion else ("u",)
 
 
 def _values(res, key: str) -> np.ndarray:
@@ -176,7 +183,9 @@ def error(scene, model, res) -> float:
     keys = _keys(scene, model)
     exact = np.concatenate([f[k] for k in keys])
     loads = sum(abs(getattr(ld, "value", 0.0)) + abs(getattr(ld, "axial", 0.0)) for ld in scene.loads) * scene.length
-    typical = loads * (scene.length**3 / scene.EI + scene.length / scene.EA)
+    torques = sum(abs(getattr(ld, "torque", 0.0)) for ld in scene.loads) * scene.length
+    GJ = scene.material.G * scene.section.J
+    typical = loads * (scene.length**3 / scene.EI + scene.length / scene.EA + scene.length / GJ) + torques / GJ
     # every load on a held end: the exact solution is round-off about zero (no relative error defined)
     assume(np.abs(exact).max() > 1e-6 * typical)
     diff = np.concatenate([_values(res, k) - f[k] for k in keys])

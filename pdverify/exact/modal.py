@@ -184,6 +184,7 @@ class ExactModalRod(ModalReference):
     axial = True
     bending = False
     theory = "axial"
+    measures = "u"
     load_types = frozenset({"point_force", "distributed"})
 
     def check(self, scene: Scene) -> list[str]:

@@ -71,7 +71,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..errors import InputError
-from ..scene import Distributed, Scene
+from ..scene import ROD_HELD, Distributed, Scene
 from ._moyer_kernels import (
     EndPatched,
     average_ghosts,
@@ -108,11 +108,6 @@ def _ghost_index(n: int, G: int, side: int) -> np.ndarray:
     """Extended-grid indices of ghosts t = 1..G outside the end (extended index = real + G)."""
     t = np.arange(G)
     return G - 1 - t if side == 0 else G + n + t
-
-
-# ends whose axial displacement (pd-rod) or twist (pd-torsion) is held: a roller slides axially, but holds the
-# twist as a pinned (fork) support does (docs/supports.md)
-ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "roller")}
 
 
 def _extension(n: int, G: int, nf: int, blocks) -> tuple[sp.csr_matrix, np.ndarray]:

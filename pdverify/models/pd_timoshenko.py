@@ -28,10 +28,10 @@ import numpy as np
 from ..errors import InputError
 from ..registry import Model, Option, Rule, System
 from ..result import Result, Timer
-from ..scene import Scene
+from ..scene import ROD_HELD, Scene
 from ._moyer_kernels import node_loads
 from .moyer_energy import moment_field
-from .moyer_operator import FIT_POINTS, MIRRORED, ROD_HELD, beam_operator, rod_operator
+from .moyer_operator import FIT_POINTS, MIRRORED, beam_operator, rod_operator
 from .moyer_system import Discrete, prescribed_motions, static_solution, static_system
 from .moyer_transient import STABILISATION, History, integrate
 from .pd_common import boundary_layer_warnings
@@ -234,6 +234,7 @@ class PDRod(_RodModel):
     axial = True
     bending = False
     theory = "axial"
+    measures = "u"
     load_types = frozenset({"point_force", "distributed"})  # their axial components
 
     def check(self, scene: Scene) -> list[str]:
@@ -262,6 +263,7 @@ class PDTorsion(_RodModel):
     bending = False
     torsion = True
     theory = "torsion"
+    measures = "twist"
     load_types = frozenset({"point_torque", "distributed"})  # distributed: its torque component
 
     def operator(self, scene, params):

@@ -242,12 +242,9 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
                 if path is None:
                     continue
                 c = curve_of(path)
-                y = c["w"]
-                if not np.any(y) and "u" in c.get("fields", {}):  # axial models: the axial displacement
-                    y = c["fields"]["u"]
-                    ylabels.add("u")
-                else:
-                    ylabels.add("w")
+                quantity = c.get("quantity", "w")  # what the model is measured on (pd-rod: u, pd-torsion: twist)
+                y = c["w"] if quantity == "w" else c["fields"][quantity]
+                ylabels.add(quantity)
                 curves.append((_label(r), c["x"], y))
                 if {"N", "Q"} <= set(c.get("fields", {})):
                     resultant_curves.append((_label(r), c))

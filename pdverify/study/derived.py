@@ -144,9 +144,10 @@ def _save(df: pd.DataFrame, out: Path, name: str, parquet: bool = True) -> None:
 
 
 def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_dir: Path | None = None) -> pd.DataFrame:
-    """Verification rows. Default quantity: the deflection at the point of largest reference deflection
-    (``w_at_max``); with ``position`` (m along the axis) and optional ``quantity`` (w, rotation or a
-    point field such as u, theta, M), the case's curve interpolated there (the case file holds it)."""
+    """Verification rows. Default quantity: what the model is measured on (its deflection, pd-rod's u) at the
+    point of largest reference value (``w_at_max``); with ``position`` (m along the axis) and optional
+    ``quantity`` (w, rotation or a point field such as u, theta, M), the case's curve interpolated there (the
+    case file holds it)."""
     rows = []
     for b in study.benchmarks:
         r, unmatched = match_benchmark(b, df)  # its case, or the row of a missing / failed case
@@ -155,7 +156,8 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
             continue
         target = b.get("target", r["w_ref_at_max"])
         computed = r["w_at_max"]
-        quantity = b.get("quantity", "w")
+        measures = r.get("quantity") if isinstance(r.get("quantity"), str) else "w"  # what the row's errors are on
+        quantity = b.get("quantity", measures)
         if "position" in b:
             path = case_file(cases_dir, r["case_id"]) if cases_dir else None
             c = read_curve(path) if path is not None else {}
@@ -173,7 +175,8 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
                 continue
             computed = float(np.interp(float(b["position"]), c["x"], arr))
             if "target" not in b:
-                target = float(np.interp(float(b["position"]), c["x"], c["w_ref"])) if quantity == "w" else float("nan")
+                at = float(b["position"])
+                target = float(np.interp(at, c["x"], c["w_ref"])) if quantity == measures else float("nan")
         rel = abs(computed - target) / abs(target) if target else float("nan")
         tol = b.get("tolerance", 0.01)
         order = float("nan")
@@ -201,7 +204,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
                 "err_max": r["err_max"],
                 "tolerance": tol,
                 "verdict": _verdict(rel <= tol, b.get("expected", "pass")),
-                "quantity": quantity if "position" in b else "w at max",
+                "quantity": quantity if "position" in b else f"{measures} at max",
                 "position": b.get("position"),
                 "observed_order": order,
                 "case_id": r["case_id"],

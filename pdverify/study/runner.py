@@ -38,11 +38,21 @@ from .tables import trust_table  # noqa: F401 (re-exported)
 PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
 
 
+def measured(values: dict, quantity: str, model: str) -> np.ndarray:
+    """The output ``quantity`` (a model's ``measures``: w, or a point field such as u or twist) of ``values``
+    (a solve's {"w": ..., "fields": {...}} or an evaluator's fields); InputError naming the model when it has none."""
+    got = values.get(quantity) if quantity == "w" or "fields" not in values else values["fields"].get(quantity)
+    if got is None:
+        raise InputError(f"model {model} gives no {quantity}: the study measures {quantity} (the model's `measures`)")
+    return np.asarray(got, float)
+
+
 @lru_cache(maxsize=64)
-def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tuple):
-    """(x -> reference deflection, its solve's round-off bound), built once per (scene, slenderness, reference
-    options): the reference model's ``evaluator`` where it has one (exact models: exact at any x; no bound), else
-    its own solution interpolated by a cubic spline, with the bound of that solve (None when it made none)."""
+def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tuple, quantity: str = "w"):
+    """(x -> the reference's ``quantity``, its solve's round-off bound), built once per (scene, slenderness,
+    reference options, quantity): the reference model's ``evaluator`` where it has one (exact models: exact at any
+    x; no bound), else its own solution interpolated by a cubic spline, with the bound of that solve (None when it
+    made none). ``quantity``: what the case's model measures (``Model.measures``: w, u, twist)."""
     from scipy.interpolate import CubicSpline
 
     ref = dict(ref_items)
@@ -50,28 +60,39 @@ def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tupl
     scene = Case(scene_file, scene_text, slenderness, "", {}, {}).scene()
     ev = model.evaluator(scene, model.resolve(scene, ref))
     if ev is not None:  # exact (no bound), or a solve's interpolant that carries its bound (fem-eb)
-        return lambda x: np.asarray(ev(x)["w"], float), getattr(ev, "error_bound", None)
+        return lambda x: measured(ev(x), quantity, model.name), getattr(ev, "error_bound", None)
     solved = run(scene, model, **ref)
-    return CubicSpline(solved.x, solved.w), solved.info.get("error_bound")
+    values = {"w": solved.w, "fields": solved.fields}
+    return CubicSpline(solved.x, measured(values, quantity, model.name)), solved.info.get("error_bound")
 
 
 REFERENCE_CACHE_POINTS = 20_000  # grids up to this size keep their reference values (64 grids: <= 10 MB)
 
 
 @lru_cache(maxsize=64)
-def _reference_values(scene_text: str, scene_file: str, slenderness, ref_items: tuple, x_bytes: bytes) -> np.ndarray:
+def _reference_values(
+    scene_text: str, scene_file: str, slenderness, ref_items: tuple, quantity: str, x_bytes: bytes
+) -> np.ndarray:
     """The reference at one grid, kept: a sweep over horizon, variant or form solves many cases on the
     same points, and the exact solutions cost as much as the rest of a small case's bookkeeping
     (0.18 ms at 1,200 points). Read-only, so a caller cannot change the cached values."""
-    w = np.array(_reference_fn(scene_text, scene_file, slenderness, ref_items)[0](np.frombuffer(x_bytes, "<f8")), float)
+    fn = _reference_fn(scene_text, scene_file, slenderness, ref_items, quantity)[0]
+    w = np.array(fn(np.frombuffer(x_bytes, "<f8")), float)
     w.flags.writeable = False
     return w
 
 
+def _key(case: Case) -> tuple:
+    """(scene text, scene file, slenderness, reference options, quantity): what a case's reference depends on."""
+    quantity = get_model(case.model).measures
+    return (case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())), quantity)
+
+
 def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
-    """The reference deflection at the model's points (see :func:`_reference_fn`); the values of grids of
-    up to ``REFERENCE_CACHE_POINTS`` points are kept per (scene, slenderness, reference, grid)."""
-    key = (case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())))
+    """The reference's value of what the case's model measures (its deflection, or e.g. pd-rod's u) at the model's
+    points (see :func:`_reference_fn`); the values of grids of up to ``REFERENCE_CACHE_POINTS`` points are kept
+    per (scene, slenderness, reference, quantity, grid)."""
+    key = _key(case)
     x = np.asarray(x, "<f8")
     if x.size <= REFERENCE_CACHE_POINTS:
         return _reference_values(*key, x.tobytes())
@@ -80,7 +101,7 @@ def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
 
 def reference_bound(case: Case) -> float | None:
     """The round-off bound of the case's reference solve (None for exact references and models without one)."""
-    return _reference_fn(case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())))[1]
+    return _reference_fn(*_key(case))[1]
 
 
 @lru_cache(maxsize=256)
@@ -199,7 +220,9 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         scene, params = _describe(case, row)
         if "failure" in solved:
             raise _Failed(solved["failure"])
-        x, w, info = solved["x"], solved["w"], solved["info"]
+        x, info = solved["x"], solved["info"]
+        row["quantity"] = quantity = get_model(case.model).measures  # w, or a field (pd-rod: u)
+        w = measured(solved, quantity, case.model)
         if case.reference.get("model") == "none":
             w_ref = np.full_like(x, np.nan)
             row.update(
@@ -228,7 +251,10 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         if "artefact_message" in solved:
             row["artefact_message"] = solved["artefact_message"]
         # arrays stay arrays here (compact to pickle from a worker); encode_record stores them exactly
-        curve = {"x": x, "w": w, "w_ref": np.asarray(w_ref, "<f8")}
+        # w_ref: the reference of the measured quantity (named by "quantity" when it is not w)
+        curve = {"x": x, "w": solved["w"], "w_ref": np.asarray(w_ref, "<f8")}
+        if quantity != "w":
+            curve["quantity"] = quantity
         if solved["rotation"] is not None:
             curve["rotation"] = solved["rotation"]
         if solved["fields"]:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools

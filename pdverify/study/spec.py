@@ -48,7 +48,7 @@ from pathlib import Path
 
 from .. import __version__
 from ..errors import InputError
-from ..registry import get_model
+from ..registry import get_model, models
 from ..scene import Scene, load_scene, read_toml
 from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
 
@@ -169,6 +169,17 @@ class Study:
     verify_required: bool = False
     cases: list[Case] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
+
+
+def _measures_mismatch(where: str, model, ref_model) -> str:
+    """One line: the run's reference gives another quantity than its model is measured on (e.g. pd-rod's u
+    against exact-eb's w), naming the references that give it."""
+    same = [n for n, m in models().items() if m.reference and m.measures == model.measures]
+    return (
+        f"{where}: reference {ref_model.name} gives {ref_model.measures}, but model {model.name} is measured on "
+        f"{model.measures}; give a reference that gives {model.measures} ({', '.join(same) or 'none installed'}) "
+        'or reference = "none"'
+    )
 
 
 def _reference(value, where: str) -> dict:
@@ -364,6 +375,10 @@ def load_study(path: str | Path) -> Study:
             except InputError as exc:
                 errors.append(f"{path}: {exc.lines[0]}")
                 continue
+        if run_ref["model"] != "none" and run_ref["model"] in models():  # (an unknown one is reported below)
+            if (ref_model := get_model(run_ref["model"])).measures != model.measures:
+                errors.append(_measures_mismatch(where, model, ref_model))
+                continue
         run_scenes = run.get("scenes", list(scene_objs))
         if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
             errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
@@ -454,13 +469,14 @@ def load_study(path: str | Path) -> Study:
             errors.append(
                 f"{where}.expected = {bench['expected']!r}: pass (default) or fail (a known defect the row documents)"
             )
-        q = bench.get("quantity", "w")
+        measures = models()[bench["model"]].measures if bench["model"] in models() else "w"
+        q = bench.get("quantity", measures)
         if not isinstance(q, str):
             errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
-        elif q != "w" and "position" not in bench:
-            errors.append(f"{where}.quantity = {q!r}: a quantity other than w needs a position")
-        elif q != "w" and "target" not in bench:
-            errors.append(f"{where}.quantity = {q!r}: the reference gives w only; give a target")
+        elif q != measures and "position" not in bench:
+            errors.append(f"{where}.quantity = {q!r}: a quantity other than {measures} needs a position")
+        elif q != measures and "target" not in bench:
+            errors.append(f"{where}.quantity = {q!r}: the reference gives {measures} only; give a target")
     errors += validate_checks(
         data.get("checks", []),
         scene_objs,
