@@ -34,6 +34,40 @@ def test_suite_scenes_are_valid_toml_and_mirror_is_an_involution():
         assert parse_scene({**back, "name": sc["name"]}).to_dict() == parse_scene(sc).to_dict()
 
 
+def test_the_rod_suite_holds_the_rod_and_mirrors_its_axial_loads():
+    """Suite 1.4: a rod gets its own loads on the pairs that hold u (clamped or pinned at an end), no locking
+    scenes, exact-rod as reference; its mirror reverses an axial force and keeps a torque; every scene valid."""
+    from pdverify.verify.suite import ROD_LOADS, pairs_for
+
+    p = plan(get_model("pd-rod"))
+    pairs = pairs_for("axial")
+    assert len(pairs) == 14 and all({"clamped", "pinned"} & set(pr) for pr in pairs)
+    sets = [m["set"] for m in p.meta.values()]
+    sliding = sum(bool(set(pr) - {"clamped", "pinned"}) for pr in pairs)  # an end force where an end slides
+    assert sets.count("convergence") == 4 * len(pairs) + sliding and "locking" not in sets
+    assert p.reference == "exact-rod" and plan(get_model("pd-torsion")).reference == "exact-torsion"
+    for sc in p.scenes.values():
+        assert get_model("pd-rod").check(parse_scene(sc)) == [] and all(ld["value"] == 0.0 for ld in sc["loads"])
+    force = mirror({**p.scenes["scenes/000.toml"], "loads": ROD_LOADS["axial"]["point force"]})["loads"][0]
+    torque = mirror({**p.scenes["scenes/000.toml"], "loads": ROD_LOADS["torsion"]["point torque"]})["loads"][0]
+    assert force["axial"] == -1000.0 and torque["value"] == 100.0
+
+
+def test_a_card_of_another_suite_version_is_replaced_and_another_study_is_kept(tmp_path):
+    """verify's own case folder from an older suite is stale: it is removed (the main job rerun after an upgrade
+    would otherwise stop with "holds the results of another study"); a folder of any other study is left."""
+    from pdverify.verify import drop_other_suite
+
+    old, other = tmp_path / "old", tmp_path / "other"
+    for folder, name in ((old, "pdverify verify pd-eb (suite 0.9)"), (other, "my study")):
+        folder.mkdir()
+        (folder / "study.toml").write_text(f'name = "{name}"\n')
+    drop_other_suite(old, "pd-eb")
+    drop_other_suite(other, "pd-eb")
+    drop_other_suite(tmp_path / "missing", "pd-eb")
+    assert not old.exists() and (other / "study.toml").exists()
+
+
 def test_a_theory_without_an_exact_solution_is_judged_against_itself_on_a_finer_grid(tmp_path):
     """Suite 1.2: pd-higher-order (theory "higher-order") gets its own solution on a 4x finer nested grid as
     the reference of every set, plus one run of that grid against exact Timoshenko (the theory gap); a
@@ -117,16 +151,16 @@ def test_junit_has_a_failure_per_failed_check_and_skips_not_applicable():
 def test_verify_a_model_that_solves_no_suite_scene_is_one_line(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "verify", "pd-rod", "--out", str(tmp_path), "--quiet"],
+        [sys.executable, "-m", "pdverify.cli", "verify", "pd-curved-mms", "--out", str(tmp_path), "--quiet"],
         capture_output=True,
         text=True,
         env=env,
         timeout=120,
     )
     assert r.returncode == 2 and r.stderr.splitlines() == [
-        "error: model pd-rod solves none of the suite's scenes (loads[0].value = -1000.0: model pd-rod carries no "
-        "transverse loads (axial only); give the load as loads[i].axial or use a bending model); verify needs a beam "
-        "model that takes straight (or curved) beams with transverse loads"
+        "error: model pd-curved-mms solves none of the suite's scenes (axis.type = 'straight': the manufactured "
+        "solution is written for a polynomial axis); verify needs a beam (transverse loads), rod (axial loads) or "
+        "torsion-bar model (torques)"
     ]
 
 
@@ -169,8 +203,8 @@ def test_higher_order_card_measures_the_model_not_the_theory_gap(tmp_path):
     gap = got["theory gap"]
     assert gap["verdict"] == "info" and 1e-3 < max(gap["scenes"].values()) < 1e-2
     assert got["superposition (two loads vs their sum)"]["verdict"] == "pass"
-    from pdverify.verify import LOADS, _solve
-    from pdverify.verify.suite import end_force, straight
+    from pdverify.verify import _solve
+    from pdverify.verify.suite import LOADS, end_force, straight
 
     model = get_model("pd-higher-order")
     a, b = LOADS["point force"] + LOADS["point moment"], LOADS["sine"] + end_force("clamped", "free")

@@ -24,7 +24,7 @@ def _study(tmp_path: Path, extra: str) -> Path:
 def test_bad_verify_entries_are_one_line_each_and_nothing_runs(tmp_path):
     study = _study(
         tmp_path,
-        'verify = ["no-such-model", "pd-eb colour=red", "pd-eb points=11", "pd-rod", 5, '
+        'verify = ["no-such-model", "pd-eb colour=red", "pd-eb points=11", "pd-curved-mms", 5, '
         '"pd-eb variant=paper", "pd-eb variant=paper", "pd-eb variant"]\nverify_required = "yes"',
     )
     r = pdverify_process("study", study, "--out", tmp_path / "out", "--quiet", cwd=tmp_path)
@@ -36,7 +36,7 @@ def test_bad_verify_entries_are_one_line_each_and_nothing_runs(tmp_path):
         ("verify[0] = 'no-such-model'", "unknown model"),
         ("verify[1] = 'pd-eb colour=red'", "takes no option 'colour'"),
         ("verify[2] = 'pd-eb points=11'", "the suite sets the grids"),
-        ("verify[3] = 'pd-rod'", "solves none of the suite's scenes"),
+        ("verify[3] = 'pd-curved-mms'", "solves none of the suite's scenes"),
         ("verify[4] = 5", "give a model and its options"),
         ("verify[6] = 'pd-eb variant=paper'", "listed twice"),
         ("verify[7] = 'pd-eb variant'", "write key=value"),

@@ -16,16 +16,36 @@ from ..registry import get_model, run
 from ..scene import parse_scene
 from . import checks as C
 from .dynamics import dynamics_check
-from .suite import GAP_REFERENCE, LOADS, SUITE_VERSION, end_force, finer, mirror, plan, straight, write_study
+from .suite import (
+    GAP_REFERENCE,
+    SUITE_VERSION,
+    end_force,
+    finer,
+    loads_for,
+    mirror,
+    plan,
+    rod_kind,
+    straight,
+    write_study,
+)
 
 __all__ = ["verify", "SUITE_VERSION", "parse_entry", "entry_errors", "card_folder"]
 
 MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
-ASYMMETRIC = {
-    "point force": [{"type": "point_force", "position": 0.25, "value": -1000.0}],
-    "point moment": LOADS["point moment"],
-    "partial": [{"type": "distributed", "value": -1000.0, "start": 0.25, "end": 0.5}],
-}
+# the mirror scene's solution at L - x is this times the scene's at x (an axial force and u reverse)
+MIRROR_SIGN = {None: 1.0, "axial": -1.0, "torsion": 1.0}
+
+
+def asymmetric(kind: str | None) -> dict:
+    """Loads without mirror symmetry: the suite's point load moved to L/4 and its partial load on [L/4, L/2]
+    (and the point moment at L/4, for a beam)."""
+    loads = loads_for(kind)
+    point, partial = next(iter(loads)), "partial"
+    out = {
+        point: [{**loads[point][0], "position": 0.25}],
+        partial: [{**loads[partial][0], "start": 0.25, "end": 0.5}],
+    }
+    return out if kind is not None else {**out, "point moment": loads["point moment"]}
 
 
 def _solve(scene: dict, model, options: dict, points: int):
@@ -37,15 +57,14 @@ def _declines(model, scene: dict) -> bool:
 
 
 def symmetry(model, options: dict, points: int) -> list[tuple[str, float]]:
-    out = []
+    out, kind = [], rod_kind(model)
     for left, right in MIRROR_PAIRS:
-        for load, lds in ASYMMETRIC.items():
+        for load, lds in asymmetric(kind).items():
             sc = straight(left, right, lds, name=f"{left}-{right}, {load}")
             if _declines(model, sc) or _declines(model, mirror(sc)):
                 continue
-            out.append(
-                (sc["name"], C.mirrored(_solve(sc, model, options, points), _solve(mirror(sc), model, options, points)))
-            )
+            a, b = _solve(sc, model, options, points), _solve(mirror(sc), model, options, points)
+            out.append((sc["name"], C.mirrored(a, b, model.measures, MIRROR_SIGN[kind])))
     return out
 
 
@@ -53,19 +72,24 @@ def sharing_positions(loads: list[dict], every: list[dict]) -> list[dict]:
     """``loads`` and a zero-valued copy of each point load of ``every``: the three scenes of the superposition
     check then carry the same point-load positions, so a model that adapts its grid or bonds to them (e.g.
     pd-higher-order's ``cuts = loads``) is judged on one operator, and linearity is what is measured."""
-    return loads + [{**ld, "value": 0.0} for ld in every if ld["type"] in ("point_force", "point_moment")]
+    zero = {"point_force": {"value": 0.0, "axial": 0.0}, "point_moment": {"value": 0.0}, "point_torque": {"value": 0.0}}
+    return loads + [{**ld, **zero[ld["type"]]} for ld in every if ld["type"] in zero]
 
 
 def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
-    out = []
+    out, kind = [], rod_kind(model)
+    loads = loads_for(kind)
     for left, right in (("clamped", "clamped"), ("clamped", "free"), ("pinned", "guided")):
-        a = LOADS["point force"] + LOADS["point moment"]
-        b = LOADS["sine"] + (end_force(left, right) or LOADS["partial"])
+        a = loads[next(iter(loads))] + (loads["point moment"] if kind is None else loads["uniform"])
+        b = loads["sine"] + (end_force(left, right, kind) or loads["partial"])
         a, b = sharing_positions(a, b), sharing_positions(b, a)
         if any(_declines(model, straight(left, right, lds)) for lds in (a, b, a + b)):
             continue
         ra, rb, rab = (_solve(straight(left, right, lds), model, options, points) for lds in (a, b, a + b))
-        out.append((f"{left}-{right}: force + moment, sine + end force or partial", C.superposition_diff(ra, rb, rab)))
+        what = "force + moment" if kind is None else "point + uniform"
+        out.append(
+            (f"{left}-{right}: {what}, sine + end load or partial", C.superposition_diff(ra, rb, rab, model.measures))
+        )
     return out
 
 
@@ -128,7 +152,7 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
     if not solved:
         return [
             f"model {model.name} solves none of the suite's scenes ({next(iter(declined.values()))[0]}); "
-            "verify needs a beam model that takes straight (or curved) beams with transverse loads"
+            "verify needs a beam (transverse loads), rod (axial loads) or torsion-bar model (torques)"
         ]
     try:
         model.resolve(parse_scene(p.scenes[solved[0]]), options)
@@ -161,10 +185,11 @@ def verify(
     if all(declined.values()):
         first = next(iter(declined.values()))[0]
         raise InputError(
-            f"model {model.name} solves none of the suite's scenes ({first}); verify needs a beam model "
-            "that takes straight (or curved) beams with transverse loads"
+            f"model {model.name} solves none of the suite's scenes ({first}); verify needs a beam (transverse "
+            "loads), rod (axial loads) or torsion-bar model (torques)"
         )
     study_path = write_study(p, model, options, out / "suite")
+    drop_other_suite(out / "study", model.name)
     df = run_study(  # no VTU, PNG or history files: the card reads the errors
         load_study(study_path), out / "study", workers=workers, scheduler=scheduler, progress=progress, artefacts=False
     )
@@ -177,7 +202,13 @@ def verify(
         C.convergence(conv, expected, "convergence (straight)"),
         C.accuracy(conv),
         C.within(conv),
-        C.locking(df, files["locking"], p.meta),
+        C.locking(df, files["locking"], p.meta)
+        if files["locking"]
+        else C.check(
+            "locking (error vs slenderness 5 ... 10000)",
+            "n/a",
+            f"the error of a {model.theory} model does not depend on the slenderness: no locking scenes",
+        ),
         C.floor(C.series(df, files["floor"])),
         C.cost(conv),
         C.theory_gap(gap_df, p.meta, GAP_REFERENCE, finer(p.grids))
@@ -186,7 +217,9 @@ def verify(
             "theory gap", "n/a", f"errors are against the exact solution of the model's theory: {p.reference}"
         ),
     ]
-    if model.bending and model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum"):
+    if model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum", "axial", "torsion") and (
+        model.bending or rod_kind(model)
+    ):
         mid = p.grids[min(2, len(p.grids) - 1)]
         found.append(C.identity("symmetry (mirror scenes)", _guarded(symmetry, model, options, mid)))
         found.append(C.identity("superposition (two loads vs their sum)", _guarded(superposition, model, options, mid)))
@@ -223,6 +256,22 @@ def verify(
     }
     write_card(card, out)
     return card
+
+
+def drop_other_suite(folder: Path, model_name: str) -> None:
+    """Remove ``folder`` when it holds this card's cases from another suite version (``pdverify verify MODEL (suite
+    X)``): verify's own cache, stale once the suite changes, which the study runner would otherwise refuse as another
+    study's folder. Any other study there is left alone (and refused by the runner, as before)."""
+    import shutil
+    import tomllib
+
+    try:
+        name = tomllib.loads((folder / "study.toml").read_text(encoding="utf-8")).get("name", "")
+    except (OSError, ValueError):
+        return
+    mine = f"pdverify verify {model_name} (suite "
+    if isinstance(name, str) and name.startswith(mine) and name != f"{mine}{SUITE_VERSION})":
+        shutil.rmtree(folder)
 
 
 def _guarded(fn, model, options, points) -> list[tuple[str, float]]:

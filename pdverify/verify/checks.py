@@ -252,11 +252,18 @@ def cost(rows: list[dict]) -> dict:
     )
 
 
-def mirrored(a, b) -> float:
-    """max |w_b(L - x) - w_a(x)| / max |w_a|: the mirror scene's solution read back on the first one's points."""
+def measured(result, quantity: str = "w") -> np.ndarray:
+    """A result's ``quantity``: w, or a point field (a rod's u, a torsion bar's twist)."""
+    return np.asarray(result.w if quantity == "w" else result.fields[quantity], float)
+
+
+def mirrored(a, b, quantity: str = "w", sign: float = 1.0) -> float:
+    """max |sign f_b(L - x) - f_a(x)| / max |f_a| of the measured quantity f (w; a rod's u has sign -1): the
+    mirror scene's solution read back on the first one's points."""
     L = a.x[-1]
-    wb = np.interp(a.x, (L - b.x)[::-1], b.w[::-1])
-    return float(np.abs(wb - a.w).max() / max(np.abs(a.w).max(), 1e-300))
+    fa, fb = measured(a, quantity), measured(b, quantity)
+    back = sign * np.interp(a.x, (L - b.x)[::-1], fb[::-1])
+    return float(np.abs(back - fa).max() / max(np.abs(fa).max(), 1e-300))
 
 
 def identity(name: str, diffs: list[tuple[str, float]]) -> dict:
@@ -292,5 +299,5 @@ def theory_gap(df, meta: dict, reference: str, points: int) -> dict:
     )
 
 
-def superposition_diff(a, b, ab) -> float:
-    return errors(a.w + b.w, ab.w)["err_max"]
+def superposition_diff(a, b, ab, quantity: str = "w") -> float:
+    return errors(measured(a, quantity) + measured(b, quantity), measured(ab, quantity))["err_max"]

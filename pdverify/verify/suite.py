@@ -7,6 +7,11 @@ two uniform-load scenes from thick to very slender (locking); one scene on fine 
 Curved scenes (arcs, one clockwise) when the model declares ``curved``. Loads sit on grid points of every
 grid (quarter points), so the orders measure the model, not the load placement.
 
+A rod (theory ``axial``) or a torsion bar (``torsion``) gets the same sets with its own loads (:data:`ROD_LOADS`:
+axial forces or torques, point, uniform, partial, sine, and one at an end that does not hold the unknown) on the
+support pairs that hold it (``scene.ROD_HELD``), against ``exact-rod`` or ``exact-torsion``; no locking scenes
+(a rod's error does not depend on the slenderness).
+
 A theory pdverify has no exact solution of (``higher-order``, ``continuum``) is judged by self-convergence:
 the reference is the model itself, with the same options, on a grid :data:`SELF_REFINEMENT` times finer than
 the set's finest (nested, so the grids' points are its points), and the distance of that solution from exact
@@ -19,12 +24,12 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..scene import SUPPORTS, is_mechanism
+from ..scene import ROD_HELD, SUPPORTS, is_mechanism
 
 # 1.1: natural frequencies of models that declare dynamics (verify.dynamics); 1.2: self-convergence for theories
 # without an exact solution here, and superposition with the point-load positions shared by the three solves;
-# 1.3: a clockwise arc among the curved scenes
-SUITE_VERSION = "1.3"
+# 1.3: a clockwise arc among the curved scenes; 1.4: axial and torsion models (ROD_LOADS; the beams' cards unchanged)
+SUITE_VERSION = "1.4"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -59,16 +64,63 @@ LOADS = {
 }
 
 
-def end_force(left: str, right: str) -> list[dict] | None:
-    """A force at the free or guided end of the pair (None when both ends hold the deflection)."""
+def _axial(position=None, **load) -> dict:
+    """An axial load of 1 kN (per metre) along +x (the rod suite's loads)."""
+    return {"value": 0.0, "axial": 1000.0, **load, **({} if position is None else {"position": position})}
+
+
+def _torque(**load) -> dict:
+    """A distributed torque of 100 N m/m (the torsion suite's loads)."""
+    return {"type": "distributed", "value": 0.0, "torque": 100.0, **load}
+
+
+ROD_LOADS = {  # suite 1.4
+    "axial": {
+        "point force": [_axial(0.5, type="point_force")],
+        "uniform": [_axial(type="distributed")],
+        "partial": [_axial(type="distributed", start=0.25, end=0.75)],
+        "sine": [_axial(type="distributed", shape="sine")],
+    },
+    "torsion": {
+        "point torque": [{"type": "point_torque", "position": 0.5, "value": 100.0}],
+        "uniform": [_torque()],
+        "partial": [_torque(start=0.25, end=0.75)],
+        "sine": [_torque(shape="sine")],
+    },
+}
+
+
+def rod_kind(model) -> str | None:
+    """ "axial" or "torsion" for a model of a rod or torsion bar (its theory), None for a beam."""
+    return model.theory if model.theory in ROD_HELD else None
+
+
+def loads_for(kind: str | None) -> dict:
+    """The suite's loads of a beam (kind None), a rod or a torsion bar."""
+    return LOADS if kind is None else ROD_LOADS[kind]
+
+
+def pairs_for(kind: str | None) -> list[tuple[str, str]]:
+    """The support pairs that hold a beam (kind None), or of those, the ones that hold the rod's unknown."""
+    return PAIRS if kind is None else [p for p in PAIRS if set(p) & set(ROD_HELD[kind])]
+
+
+def end_force(left: str, right: str, kind: str | None = None) -> list[dict] | None:
+    """A force at an end of the pair that does not hold the unknown (free or guided for a beam's deflection; for a
+    rod, an axial force or a torque at an end outside ``ROD_HELD``); None when both ends hold it."""
     for support, position in ((right, LENGTH), (left, 0.0)):
-        if support in ("free", "guided"):
+        if kind is None and support in ("free", "guided"):
             return [{"type": "point_force", "position": position, "value": -1000.0}]
+        if kind is not None and support not in ROD_HELD[kind]:
+            if kind == "axial":
+                return [_axial(position, type="point_force")]
+            return [{"type": "point_torque", "position": position, "value": 100.0}]
     return None
 
 
 def mirror(scene: dict) -> dict:
-    """The mirror-image scene (x -> L - x): supports swapped, positions mirrored, moments reversed."""
+    """The mirror-image scene (x -> L - x): supports swapped, positions mirrored, moments and axial forces
+    reversed (the mirror's u is -u(L - x); w and the twist are w(L - x) and twist(L - x))."""
     L = scene["beam"]["length"]
     loads = []
     for ld in scene["loads"]:
@@ -77,6 +129,8 @@ def mirror(scene: dict) -> dict:
             ld["position"] = L - ld["position"]
         if ld["type"] == "point_moment":
             ld["value"] = -ld["value"]
+        if ld.get("axial"):  # an axial force reverses; a torque (about the axis) does not
+            ld["axial"] = -ld["axial"]
         if ld["type"] == "distributed" and ("start" in ld or "end" in ld):
             ld["start"], ld["end"] = L - ld.get("end", L), L - ld.get("start", 0.0)
         loads.append(ld)
@@ -139,7 +193,8 @@ class Plan:
 def reference_for(theory: str) -> str | None:
     """The exact solution of the model's declared theory; None for a theory pdverify has none of (higher-order,
     continuum): the model is judged against itself on a finer grid."""
-    return {"euler-bernoulli": "exact-eb", "timoshenko": "exact-timoshenko"}.get(theory)
+    exact = {"euler-bernoulli": "exact-eb", "timoshenko": "exact-timoshenko", "axial": "exact-rod"}
+    return {**exact, "torsion": "exact-torsion"}.get(theory)
 
 
 def finer(grids) -> int:
@@ -161,10 +216,12 @@ def plan(model, full: bool = False) -> Plan:
         scenes[f] = scene
         meta[f] = {"set": kind, "name": scene["name"], **info}
 
-    for left, right in PAIRS:
-        cases = dict(LOADS)
-        if end_force(left, right):
-            cases["end force"] = end_force(left, right)
+    kind = rod_kind(model)
+    loads = loads_for(kind)
+    for left, right in pairs_for(kind):
+        cases = dict(loads)
+        if end_force(left, right, kind):
+            cases["end force" if kind != "torsion" else "end torque"] = end_force(left, right, kind)
         for load, lds in cases.items():
             add(
                 "convergence",
@@ -173,7 +230,7 @@ def plan(model, full: bool = False) -> Plan:
                 load=load,
                 slenderness=SLENDERNESS,
             )
-    for left, right in (("clamped", "free"), ("clamped", "clamped")):
+    for left, right in (("clamped", "free"), ("clamped", "clamped")) if kind is None else ():
         for s in LOCKING_SLENDERNESS:
             add(
                 "locking",
@@ -184,7 +241,7 @@ def plan(model, full: bool = False) -> Plan:
             )
     add(
         "floor",
-        straight("clamped", "free", LOADS["uniform"], name="clamped-free, uniform (fine grids)"),
+        straight("clamped", "free", loads["uniform"], name="clamped-free, uniform (fine grids)"),
         pair="clamped-free",
         load="uniform",
         slenderness=SLENDERNESS,
