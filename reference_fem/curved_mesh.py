@@ -114,13 +114,32 @@ def line_forces(
     return F
 
 
+def _facet_mapping(mesh):
+    """scikit-fem's isoparametric mapping of ``mesh``, its inverse (with which a ``FacetBasis`` locates its
+    quadrature points in the elements) stopping at the round-off of the mapped coordinates. scikit-fem stops Newton
+    at 1e-12 in reference coordinates summed over an element's points, below what float64 reaches once an element
+    is ~1e-4 of the coordinates (a beam of ~5000 points and more: "Newton iteration didn't converge"). Here the
+    elements are rectangles, whose bilinear map Newton inverts in one step."""
+    import skfem as fem
+
+    extent = np.abs(mesh.p).max()
+    edge = np.min(np.linalg.norm(mesh.p[:, mesh.facets[0]] - mesh.p[:, mesh.facets[1]], axis=0))
+    tol = max(1e-12, 1e-12 * extent / edge)
+
+    class RoundOff(fem.MappingIsoparametric):
+        def invF(self, x, tind=None, newton_max_iters=50, newton_tol=tol):
+            return super().invF(x, tind, newton_max_iters, newton_tol)
+
+    return RoundOff(mesh, mesh.elem(), mesh.bndelem)
+
+
 def _facet_forces(bm: BeamMesh, basis, a: np.ndarray, b: np.ndarray, density) -> np.ndarray:
     """:func:`line_forces` on a straight axis with scikit-fem's idiom: a ``FacetBasis`` on the edges and a
     ``LinearForm`` of the density (per unit physical length there), the same 8-point Gauss rule (intorder 15)."""
     import skfem as fem
     from skfem.helpers import dot
 
-    fb = fem.FacetBasis(bm.mesh, basis.elem, facets=bm.facet_ids(a, b), intorder=15)
+    fb = fem.FacetBasis(bm.mesh, basis.elem, facets=bm.facet_ids(a, b), intorder=15, mapping=_facet_mapping(bm.mesh))
 
     @fem.LinearForm
     def work(v, w):
