@@ -81,6 +81,13 @@ def test_a_theory_without_an_exact_solution_is_judged_against_itself_on_a_finer_
     assert refs[2] == ([641], "exact-timoshenko") and len(refs) == 3
     study = tomllib.loads(write_study(plan(tim), tim, {}, tmp_path / "tim").read_text())
     assert [r["reference"] for r in study["runs"]] == ["exact-timoshenko"] * 2
+    # a curved self-converged model (the 2D strip) is judged against itself on the arcs too, not exact-curved
+    ps = get_model("fem-plane-stress")
+    study = tomllib.loads(write_study(plan(ps), ps, {}, tmp_path / "ps").read_text())
+    assert study["runs"][-1]["reference"] == {"model": "fem-plane-stress", "points": 641}
+    cur = get_model("pd-curved")
+    study = tomllib.loads(write_study(plan(cur), cur, {}, tmp_path / "cur").read_text())
+    assert study["runs"][-1]["reference"] == "exact-curved"
 
 
 def _frame(errors_by_points: dict, scene_file="s.toml"):

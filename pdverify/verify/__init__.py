@@ -242,6 +242,7 @@ def verify(
         "pdverify_version": __version__,
         "reference": p.reference or f"{model.name} itself at {finer(p.grids)} points (self-convergence)",
         "curved_reference": p.curved_reference,
+        "measures": model.measures,
         "grids": list(p.grids),
         "floor_grids": list(p.floor_grids),
         "expected_order": expected,

@@ -67,6 +67,7 @@ def page(card: dict) -> str:
         if card.get("skipped")
         else ""
     )
+    q = e(card.get("measures", "w"))  # what the errors are of (w; a rod's u, a torsion bar's twist)
     return f"""<!doctype html><html><head><meta charset="utf-8"><title>pdverify verify {e(card["model"])}</title>
 <style>body{{font-family:sans-serif;margin:2em}} table{{border-collapse:collapse}} td,th{{border:1px solid #ccc;
 padding:2px 8px;text-align:right}} td:first-child{{text-align:left}} .pass td:nth-child(2){{color:#080}}
@@ -77,7 +78,7 @@ padding:2px 8px;text-align:right}} td:first-child{{text-align:left}} .pass td:nt
 pdverify {card["pdverify_version"]}; {card["cases"]} cases ({card["failed_cases"]} failed,
 {card.get("suspect_cases", 0)} suspect: round-off
 bound above 1e-6, their measured errors judged), {card["wall_s"]:.1f} s.
-Expected order {card["expected_order"]:g}. Error: max |w - w_exact| / max |w_exact| at the model's points.</p>
+Expected order {card["expected_order"]:g}. Error: max |{q} - {q}_ref| / max |{q}_ref| at the model's points.</p>
 <h2>Checks</h2><table><tr><th>check</th><th>verdict</th><th>measured</th></tr>{rows}</table>
 <h2>Scenes</h2><table><tr><th>scene</th><th>L/h</th>{head}<th>orders per pair</th><th>fitted</th><th>failures</th></tr>
 {scenes}</table>{skipped}</body></html>
