@@ -137,12 +137,14 @@ def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tup
     u, info = solve_linear(B, rhs, what=what)
     cond = info.get("cond", 0.0)
     if np.isfinite(cond) and cond * np.finfo(float).eps > 1.0:
+        free = (  # what an end leaves free: the beam's w and rotation, the rod's u, the bar's twist
+            "the deflection at a free end, the rotation at a pinned or free one"
+            if disc.nf == 2
+            else "the axial displacement or twist at an end that does not hold it"
+        )
         hint = (
-            (
-                "variant paper leaves an end's free unknowns (the deflection at a free end, the rotation at "
-                "a pinned or free one) without a traction condition (Section 4 as published); use variant "
-                "corrected"
-            )
+            f"variant paper leaves an end's free unknowns ({free}) without a traction condition (Section 4 as "
+            "published); use variant corrected"
             if "paper" in what
             else "use fewer points"
         )
