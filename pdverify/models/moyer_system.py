@@ -136,7 +136,7 @@ def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tup
     B, rhs, held = static_system(scene, disc) if system is None else system
     u, info = solve_linear(B, rhs, what=what)
     cond = info.get("cond", 0.0)
-    if np.isfinite(cond) and cond * np.finfo(float).eps > 1.0:
+    if cond * np.finfo(float).eps > 1.0:  # an infinite estimate too (a zero pivot); NaN (no estimate) is not
         free = (  # what an end leaves free: the beam's w and rotation, the rod's u, the bar's twist
             "the deflection at a free end, the rotation at a pinned or free one"
             if disc.nf == 2
