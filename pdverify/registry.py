@@ -53,7 +53,7 @@ import scipy.sparse as sp
 from .band import Band
 from .errors import InputError
 from .result import Result, check_finite
-from .scene import Scene
+from .scene import Scene, straight_mechanism
 
 MODEL_PACKAGES = ("pdverify.exact", "pdverify.models")
 
@@ -232,6 +232,8 @@ class Model:
                     f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
                     f"{', '.join(sorted(self.supports))}"
                 )
+        if self.bending and (why := straight_mechanism(scene)) is not None:  # (a scene that bends it is refused)
+            out.append(why)
         if scene.dynamics is None and "static" not in self.analyses:
             out.append(
                 f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table (end_time, ...)"

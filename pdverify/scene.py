@@ -362,6 +362,30 @@ def is_mechanism(left: str, right: str) -> bool:
     return not (translation_fixed and rotation_fixed)
 
 
+def straight_mechanism(scene) -> str | None:
+    """The one-line reason a straight beam on these supports is a mechanism across its axis (None when it is not):
+    a model that bends refuses such a scene (``Model.check``), and so does the scene itself when it bends it."""
+    left, right = scene.supports.left, scene.supports.right
+    if not (scene.is_straight and is_mechanism(left, right)):
+        return None
+    return (
+        f"supports = {left}-{right}: a mechanism (the beam can move as a rigid body) that cannot carry the loads; "
+        "fix the deflection at one end and the rotation somewhere (clamped, or pinned/roller at both ends, or pinned "
+        "with guided)"
+    )
+
+
+def bends(scene) -> bool:
+    """True when the scene loads or moves the beam across its axis (a transverse force, a moment, a prescribed
+    deflection or rotation). A rod's or a torsion bar's scene does not, so its supports need only hold its own
+    unknown: a rod pinned at one end and free at the other is valid (pd-rod, exact-rod)."""
+    if any(ld.type == "point_moment" or (ld.type != "point_torque" and ld.value != 0.0) for ld in scene.loads):
+        return True
+    d = scene.dynamics
+    ends = () if d is None else (d.left, d.right)
+    return any(em is not None and (em.displacement is not None or em.rotation is not None) for em in ends)
+
+
 def _loc(loc) -> str:
     parts = []
     for p in loc:
@@ -530,12 +554,8 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
                 f"beam.length = {scene.length!r}: the {scene.axis.type} axis is {arc:.12g} m long (arc length); "
                 "set beam.length to it"
             )
-    if is_mechanism(scene.supports.left, scene.supports.right) and scene.is_straight:
-        lines.append(
-            f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism (the beam can move as a rigid "
-            "body) that cannot carry the loads; fix the deflection at one end and the rotation somewhere "
-            "(clamped, or pinned/roller at both ends, or pinned with guided)"
-        )
+    if (why := straight_mechanism(scene)) is not None and bends(scene):
+        lines.append(why)
     elif not scene.is_straight and not lines:
         from .geometry import mechanism_message
 

@@ -197,3 +197,22 @@ def test_the_pytest_helper_measures_a_rod_on_u():
         assert_converges("pd-rod", ROOT / "studies/paper_moyer/rod_point_force.toml", order=2)
     with pytest.raises(AssertionError, match=r"\|diff\|/max\|u_ref\|"):
         assert_matches("pd-rod", "exact-rod", ROOT / "studies/paper_moyer/rod_point_force.toml", rtol=1e-3, points=81)
+
+
+def test_a_rod_needs_only_its_own_unknown_held():
+    """A rod pinned at one end and free at the other (a torsion bar on a fork and free) is a valid scene: it does
+    not bend, so the beam's mechanism rule does not apply to it. pd-rod gives exact-rod's tip displacement; every
+    model that bends refuses the scene with the mechanism line; a scene that bends it is refused as before."""
+    force = [_axial("point_force", position=L, axial=1000.0)]
+    scene = _scene("pinned", "free", force)
+    tip = run(scene, "pd-rod").fields["u"][-1]
+    assert tip == pytest.approx(1000.0 * L / EA, rel=1e-12)
+    assert run(scene, "exact-rod").fields["u"][-1] == pytest.approx(1000.0 * L / EA, rel=1e-15)
+    bar = _scene("roller", "free", [{"type": "point_torque", "position": L, "value": 100.0}])
+    GJ = bar.material.G * bar.section.J
+    assert run(bar, "pd-torsion").fields["twist"][-1] == pytest.approx(100.0 * L / GJ, rel=1e-12)
+    for name in ("pd-eb", "exact-timoshenko", "pd-curved", "fem-plane-stress"):
+        with pytest.raises(InputError, match="supports = pinned-free: a mechanism"):
+            run(scene, name)
+    with pytest.raises(InputError, match="supports = pinned-free: a mechanism"):
+        _scene("pinned", "free", [_axial("point_force", position=L, axial=1000.0, value=-1.0)])
