@@ -30,8 +30,8 @@ import numpy as np
 
 from .errors import InputError, OutputError, SolveError
 from .exact.straight import solve_straight
-from .registry import models, problems, run
-from .scene import Scene
+from .registry import get_model, models, problems, run
+from .scene import Scene, bends
 
 PRIORS = Path(__file__).parent / "data" / "advisor_priors.json"
 # the options advise tries per model (others: their defaults); the priors are fitted for the same
@@ -229,6 +229,11 @@ def rebuild_priors(
     return data
 
 
+def _measured(result, quantity: str) -> np.ndarray:
+    """What a model is measured on (``Model.measures``): w, or a point field (u, twist)."""
+    return np.asarray(result.w if quantity == "w" else result.fields[quantity], float)
+
+
 def moves_ends(scene: Scene) -> bool:
     """True when the scene's [dynamics] table prescribes an end motion (the exact solutions leave it out)."""
     d = scene.dynamics
@@ -272,10 +277,11 @@ def estimate(
         sols.append((n, r, dt))
         if len(sols) >= 3:
             (_, r1, _), (_, r2, _), (_, r3, _) = sols[-3:]
-            scale = np.abs(r3.w).max() or 1.0
+            f1, f2, f3 = (_measured(r, models()[name].measures) for r in (r1, r2, r3))  # w, a rod's u, a twist
+            scale = np.abs(f3).max() or 1.0
             # differences on the coarser grid's points (interpolated: FE meshes carry extra load nodes)
-            d12 = np.abs(r1.w - np.interp(r1.x, r2.x, r2.w)).max() / scale
-            d23 = np.abs(r2.w - np.interp(r2.x, r3.x, r3.w)).max() / scale
+            d12 = np.abs(f1 - np.interp(r1.x, r2.x, f2)).max() / scale
+            d23 = np.abs(f2 - np.interp(r2.x, r3.x, f3)).max() / scale
             # the grids agree to their own round-off (the solves' bounds, at least 1e-10): the model is exact
             # for this scene, and the differences are noise with no order in them
             noise = max([1e-10] + [10 * float(r.info.get("error_bound", 0.0)) for r in (r1, r2, r3)])
@@ -295,10 +301,17 @@ def estimate(
     ex = None
     options = {k: v for k, v in options.items() if k != "static"}
     prior = prior_order(name, options)
-    if scene.is_straight and models()[name].theory in ("euler-bernoulli", "timoshenko") and not moves_ends(scene):
-        exw = solve_straight(scene, models()[name].theory != "euler-bernoulli").fields(r_best.x)["w"]
+    theory = models()[name].theory
+    if scene.is_straight and theory in ("euler-bernoulli", "timoshenko") and not moves_ends(scene):
+        exw = solve_straight(scene, theory != "euler-bernoulli").fields(r_best.x)["w"]
         scale = np.abs(exw).max()
         ex = float(np.abs(r_best.w - exw).max() / scale) if scale > 0 else None
+    elif scene.is_straight and theory in ("axial", "torsion") and not moves_ends(scene):  # exact-rod, exact-torsion
+        exact = get_model("exact-rod" if theory == "axial" else "exact-torsion")
+        q = models()[name].measures
+        exf = exact.evaluator(scene, {})(r_best.x)[q]
+        scale = np.abs(exf).max()
+        ex = float(np.abs(_measured(r_best, q) - exf).max() / scale) if scale > 0 else None
     return Candidate(
         name,
         options,
@@ -345,7 +358,13 @@ def advise(
         else:
             cands.append(m)
     exact_applies = not moves_ends(scene)  # the exact beam solutions leave prescribed end motions out
-    if not scene.is_straight:
+    if not bends(scene):  # axial loads or torques only: a beam model's deflection would be zero, and exact
+        needs.append("no bending (axial loads or torques only): rod and torsion models; no shear or 2D check")
+        for m in cands:
+            if m.bending:
+                rejected.append(f"{m.name}: the scene does not bend the beam, and {m.name} is judged on its deflection")
+        cands = [m for m in cands if not m.bending]
+    elif not scene.is_straight:
         needs.append("curved axis: models that solve curved beams")
     elif not exact_applies:
         needs.append("prescribed end motions: the exact beam solutions leave them out, so no shear or 2D check")
