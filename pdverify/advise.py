@@ -32,6 +32,7 @@ from .errors import InputError, OutputError, SolveError
 from .exact.straight import solve_straight
 from .registry import get_model, models, problems, run
 from .scene import Scene, bends
+from .verify.suite import reference_for
 
 PRIORS = Path(__file__).parent / "data" / "advisor_priors.json"
 # the options advise tries per model (others: their defaults); the priors are fitted for the same
@@ -229,11 +230,6 @@ def rebuild_priors(
     return data
 
 
-def _measured(result, quantity: str) -> np.ndarray:
-    """What a model is measured on (``Model.measures``): w, or a point field (u, twist)."""
-    return np.asarray(result.w if quantity == "w" else result.fields[quantity], float)
-
-
 def moves_ends(scene: Scene) -> bool:
     """True when the scene's [dynamics] table prescribes an end motion (the exact solutions leave it out)."""
     d = scene.dynamics
@@ -277,7 +273,7 @@ def estimate(
         sols.append((n, r, dt))
         if len(sols) >= 3:
             (_, r1, _), (_, r2, _), (_, r3, _) = sols[-3:]
-            f1, f2, f3 = (_measured(r, models()[name].measures) for r in (r1, r2, r3))  # w, a rod's u, a twist
+            f1, f2, f3 = (r.measured(models()[name].measures) for r in (r1, r2, r3))  # w, a rod's u, a twist
             scale = np.abs(f3).max() or 1.0
             # differences on the coarser grid's points (interpolated: FE meshes carry extra load nodes)
             d12 = np.abs(f1 - np.interp(r1.x, r2.x, f2)).max() / scale
@@ -307,11 +303,10 @@ def estimate(
         scale = np.abs(exw).max()
         ex = float(np.abs(r_best.w - exw).max() / scale) if scale > 0 else None
     elif scene.is_straight and theory in ("axial", "torsion") and not moves_ends(scene):  # exact-rod, exact-torsion
-        exact = get_model("exact-rod" if theory == "axial" else "exact-torsion")
         q = models()[name].measures
-        exf = exact.evaluator(scene, {})(r_best.x)[q]
+        exf = get_model(reference_for(theory)).evaluator(scene, {})(r_best.x)[q]
         scale = np.abs(exf).max()
-        ex = float(np.abs(_measured(r_best, q) - exf).max() / scale) if scale > 0 else None
+        ex = float(np.abs(r_best.measured(q) - exf).max() / scale) if scale > 0 else None
     return Candidate(
         name,
         options,

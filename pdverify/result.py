@@ -38,6 +38,10 @@ class Result:
     version: str = __version__
     writers: dict[str, Callable[[str], None]] = field(default_factory=dict, repr=False)
 
+    def measured(self, quantity: str = "w") -> np.ndarray:
+        """The output ``quantity``: w, or a point field (a rod's u, a torsion bar's twist: ``Model.measures``)."""
+        return np.asarray(self.w if quantity == "w" else self.fields[quantity], float)
+
     def to_dict(self) -> dict:
         out = {
             "scene": self.scene,

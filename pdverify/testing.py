@@ -47,11 +47,6 @@ def _scene(s) -> Scene:
     return load_scene(Path(s))
 
 
-def _values(result, quantity: str) -> np.ndarray:
-    """A result's measured quantity: w, or a point field (u, twist)."""
-    return np.asarray(result.w if quantity == "w" else result.fields[quantity], float)
-
-
 def default_reference(model: Model, scene: Scene, grids=(21, 41, 81, 161), **options):
     """The exact solution of the model's declared theory (curved axes: exact-curved); for a theory pdverify has
     no exact solution of (higher-order, continuum), the model itself with ``options`` on the nested grid
@@ -60,7 +55,7 @@ def default_reference(model: Model, scene: Scene, grids=(21, 41, 81, 161), **opt
         return get_model("exact-curved")
     if reference_for(model.theory) is None:
         fine = run(scene, model, **options, points=finer(grids))
-        return lambda x: np.interp(x, fine.x, _values(fine, model.measures))
+        return lambda x: np.interp(x, fine.x, fine.measured(model.measures))
     return get_model(reference_for(model.theory))
 
 
@@ -73,7 +68,7 @@ def _reference_w(reference, scene: Scene, x: np.ndarray, options: dict, quantity
     if fn is not None:
         return np.asarray(fn(x)[quantity], float)
     r = run(scene, reference, **options)
-    return np.interp(x, r.x, _values(r, quantity))
+    return np.interp(x, r.x, r.measured(quantity))
 
 
 def convergence_table(model, scene, grids=(21, 41, 81, 161), reference=None, **options) -> list[dict]:
@@ -90,7 +85,7 @@ def convergence_table(model, scene, grids=(21, 41, 81, 161), reference=None, **o
     rows = []
     for n in grids:
         r = run(sc, m, **options, points=n)
-        e = errors(_values(r, m.measures), _reference_w(ref, sc, np.asarray(r.x), {}, m.measures))["err_max"]
+        e = errors(r.measured(m.measures), _reference_w(ref, sc, np.asarray(r.x), {}, m.measures))["err_max"]
         h = float(np.diff(r.x).max())
         prev = rows[-1] if rows else None
         order = (
@@ -141,7 +136,7 @@ def assert_matches(model, reference, scene, rtol: float = 1e-3, **options) -> fl
     r = run(sc, m, **options)
     x = np.asarray(r.x)
     q = m.measures
-    w, w_ref = _values(r, q), _reference_w(ref, sc, x, {}, q)
+    w, w_ref = r.measured(q), _reference_w(ref, sc, x, {}, q)
     e = errors(w, w_ref)["err_max"]
     if not e <= rtol:
         scale = max(np.abs(w_ref).max(), 1e-300)

@@ -159,7 +159,7 @@ def row_edges(bm: BeamMesh, j: int, lo: float = -np.inf, hi: float = np.inf):
 
 
 def face_edges(bm: BeamMesh, i: int):
-    """Edges of the end face s = s_i (i = 0 or -1), bottom to top: (a, b, pa, pb)."""
+    """Edges of the section line s = s_i (an end face for i = 0 or -1), bottom to top: (a, b, pa, pb)."""
     j = np.arange(len(bm.t) - 1)
     si = np.full(len(j), bm.s[i])
     return bm.vid[i, j], bm.vid[i, j + 1], np.vstack([si, bm.t[j]]), np.vstack([si, bm.t[j + 1]])

@@ -169,10 +169,6 @@ def _keys(scene, model) -> tuple[str, ...]:
     return ("w",) if model.bending else ("twist",) if model.torsion else ("u",)
 
 
-def _values(res, key: str) -> np.ndarray:
-    return np.asarray(res.w if key == "w" else res.fields[key], float)
-
-
 def reference(scene, model) -> str:
     return "exact-curved" if not scene.is_straight else REFERENCE[model.theory]
 
@@ -188,7 +184,7 @@ def error(scene, model, res) -> float:
     typical = loads * (scene.length**3 / scene.EI + scene.length / scene.EA + scene.length / GJ) + torques / GJ
     # every load on a held end: the exact solution is round-off about zero (no relative error defined)
     assume(np.abs(exact).max() > 1e-6 * typical)
-    diff = np.concatenate([_values(res, k) - f[k] for k in keys])
+    diff = np.concatenate([res.measured(k) - f[k] for k in keys])
     return float(np.abs(diff).max() / np.abs(exact).max())
 
 
@@ -207,7 +203,7 @@ def predicted(scene, model, results: list, n: int) -> tuple[float, float]:
     scale = max(np.abs(f[k]).max() for k in keys)
 
     def diff(a, b):  # the finer grid at the coarser one's points (nested grids: at its own nodes)
-        return max(np.abs(_values(a, k) - np.interp(a.x, b.x, _values(b, k))).max() for k in keys) / scale
+        return max(np.abs(a.measured(k) - np.interp(a.x, b.x, b.measured(k))).max() for k in keys) / scale
 
     d1, d2 = diff(results[0], results[1]), diff(results[1], results[2])
     p = math.log2(d1 / d2) if d1 > 0 and d2 > 0 else float("inf")

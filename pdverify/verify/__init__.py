@@ -217,9 +217,8 @@ def verify(
             "theory gap", "n/a", f"errors are against the exact solution of the model's theory: {p.reference}"
         ),
     ]
-    if model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum", "axial", "torsion") and (
-        model.bending or rod_kind(model)
-    ):
+    beam = model.bending and model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum")
+    if beam or rod_kind(model):
         mid = p.grids[min(2, len(p.grids) - 1)]
         found.append(C.identity("symmetry (mirror scenes)", _guarded(symmetry, model, options, mid)))
         found.append(C.identity("superposition (two loads vs their sum)", _guarded(superposition, model, options, mid)))

@@ -252,16 +252,11 @@ def cost(rows: list[dict]) -> dict:
     )
 
 
-def measured(result, quantity: str = "w") -> np.ndarray:
-    """A result's ``quantity``: w, or a point field (a rod's u, a torsion bar's twist)."""
-    return np.asarray(result.w if quantity == "w" else result.fields[quantity], float)
-
-
 def mirrored(a, b, quantity: str = "w", sign: float = 1.0) -> float:
     """max |sign f_b(L - x) - f_a(x)| / max |f_a| of the measured quantity f (w; a rod's u has sign -1): the
     mirror scene's solution read back on the first one's points."""
     L = a.x[-1]
-    fa, fb = measured(a, quantity), measured(b, quantity)
+    fa, fb = a.measured(quantity), b.measured(quantity)
     back = sign * np.interp(a.x, (L - b.x)[::-1], fb[::-1])
     return float(np.abs(back - fa).max() / max(np.abs(fa).max(), 1e-300))
 
@@ -300,4 +295,4 @@ def theory_gap(df, meta: dict, reference: str, points: int) -> dict:
 
 
 def superposition_diff(a, b, ab, quantity: str = "w") -> float:
-    return errors(measured(a, quantity) + measured(b, quantity), measured(ab, quantity))["err_max"]
+    return errors(a.measured(quantity) + b.measured(quantity), ab.measured(quantity))["err_max"]

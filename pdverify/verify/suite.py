@@ -191,11 +191,18 @@ class Plan:
     curved_reference: str | None
 
 
+EXACT = {  # the exact solution of each theory that has one here
+    "euler-bernoulli": "exact-eb",
+    "timoshenko": "exact-timoshenko",
+    "axial": "exact-rod",
+    "torsion": "exact-torsion",
+}
+
+
 def reference_for(theory: str) -> str | None:
     """The exact solution of the model's declared theory; None for a theory pdverify has none of (higher-order,
     continuum): the model is judged against itself on a finer grid."""
-    exact = {"euler-bernoulli": "exact-eb", "timoshenko": "exact-timoshenko", "axial": "exact-rod"}
-    return {**exact, "torsion": "exact-torsion"}.get(theory)
+    return EXACT.get(theory)
 
 
 def finer(grids) -> int:
