@@ -1,0 +1,294 @@
+"""Model ``exact-higher-order``: the exact solution of the (local) higher-order beam theory that ``pd-higher-order``
+makes peridynamic (Yang, Oterkus & Oterkus 2020, seed 002, Eq. 2-9), on any straight scene.
+
+Kinematics (Eq. 2-3): u = z theta + z^3 theta*, w = w + z^2 w*; y = (theta, theta*, w, w*). The strain energy per
+unit length is (b/2) Q(m) with Q = m^T C m (Eq. 9, :func:`~pdverify.models._higher_order_bonds.coefficients`) and
+the measures (the local forms of the bond measures of Eq. 14)::
+
+    a = theta'   s = 2 w*   c = theta*'   g = w' + theta   e = w*' + 3 theta*,   i.e. m = D1 y' + D0 y.
+
+With the generalised section forces N = b (K11 y' + K10 y) (K11 = D1^T C D1, K10 = D1^T C D0, K00 = D0^T C D0; N_theta
+is the moment of sigma_xx, N_w the shear force), the Euler-Lagrange equations of Eq. 9 with loads f per length are
+N' = b (K10^T y' + K00 y) - f: eight first-order equations z' = M z - (0, f) for z = (y, N). The loads are applied
+as the corrected variant of ``pd-higher-order`` applies them (its options ``loads`` and ``pin``, the same names
+here): ``loads = faces`` puts transverse loads on the top face (work on w + h^2/4 w*), end forces as a parabolic
+shear traction (w + h^2/20 w*) and end moments as a linear normal traction (theta + 3 h^2/20 theta*); ``mid``
+puts them on the mid-surface (Eq. 16b). A point load makes N jump by minus its generalised force.
+
+End conditions: an end holds the combinations ``H y = 0`` of its support (clamped: all four, the whole end face
+fixed; guided: theta, theta*; pinned and roller: w + h^2/20 w* with ``pin = face``, w with ``pin = mid``; free:
+none) and, in the complementary directions, the natural conditions Z^T (N -+ P_end) = 0 (Z spanning the null space
+of H): the variational statement of the same end conditions.
+
+Solution: exact piecewise by matrix exponentials. Every load is constant or a sine on a piece between the
+breakpoints (ends, point loads, spans' ends), so the state augmented with (1, sin kx, cos kx) obeys a constant linear
+system on each piece; the pieces are split into shooting intervals short against the section's boundary layer
+(the eigenvalues +-9.1 +- 2.2i / h at nu = 0.3: layers ~0.1 h wide), the interval maps are matrix exponentials, and
+continuity, the jumps and the end conditions make one sparse block-bidiagonal system. Everything is written in
+units of h (length) and E' b h (force), where every coefficient is O(1). Exact to round-off at any x (no grid):
+the reference ``pd-higher-order`` converges to, and the theory's own answer to questions such as where the
+deflection under a point load peaks (docs/models/yang.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from ..models._higher_order_bonds import coefficients
+from ..registry import POINTS, Model, Option
+from ..result import Result, Timer
+from ..scene import Distributed, PointForce, PointMoment, Scene
+
+D1 = np.zeros((5, 4))
+D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e = w*' + ...
+D0 = np.zeros((5, 4))
+D0[[1, 3, 4], [3, 0, 1]] = 2.0, 1.0, 3.0  # s = 2 w*, g = ... + theta, e = ... + 3 theta*
+BLOCKS = {"slow": slice(0, 4), "decay": slice(4, 6), "grow": slice(6, 8)}  # the modal coordinates' blocks
+
+
+def system_matrix(nu: float, shear_ratio: float) -> np.ndarray:
+    """M (8 x 8) of z' = M z for z = (y, N), in units of h and E' b h; shear_ratio = G / E'."""
+    C = coefficients(1.0 - nu * nu, nu, shear_ratio, 1.0)  # E' = 1
+    K11, K10, K00 = D1.T @ C @ D1, D1.T @ C @ D0, D0.T @ C @ D0
+    Ki = np.linalg.inv(K11)
+    return np.block([[-Ki @ K10, Ki], [K00 - K10.T @ Ki @ K10, K10.T @ Ki]])
+
+
+def modal_basis(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(T, B): T (8 x 8, real) with T^-1 M T = B = blockdiag(slow, decaying, growing). Slow: the Jordan chain of
+    the eigenvalue 0 (the polynomial beam solutions, w cubic), from the rigid translation z1 = e_w (M z1 = 0) by
+    M z_(j+1) = z_j (least squares: the equations are consistent), whose block is the exact shift matrix (a
+    round-off perturbation of a 4 x 4 Jordan block has eigenvalues ~1e-4, which grow without bound over a long
+    beam); decaying and growing: the boundary layer's pair -alpha +- i beta and its mirror, in real form."""
+    chain = [np.eye(8)[2]]
+    for _ in range(3):
+        chain.append(np.linalg.lstsq(M, chain[-1], rcond=None)[0])
+    lam, V = np.linalg.eig(M)
+    fast = [np.argmin(np.where(lam.imag > 0, sign * lam.real, np.inf)) for sign in (1.0, -1.0)]
+    T = np.column_stack(chain + [np.column_stack([V[:, i].real, V[:, i].imag]) for i in fast])
+    B = np.linalg.solve(T, M @ T)
+    exact = np.zeros((8, 8))
+    exact[0, 1] = exact[1, 2] = exact[2, 3] = 1.0  # M z_(j+1) = z_j
+    for blk in (BLOCKS["decay"], BLOCKS["grow"]):
+        exact[blk, blk] = B[blk, blk]
+    return T, exact
+
+
+def held(support: str, pin: str) -> np.ndarray:
+    """H (k x 4): the combinations of y = (theta, theta*, w, w*) an end holds (unit h)."""
+    rows = {
+        "clamped": np.eye(4),
+        "guided": np.eye(4)[:2],
+        "pinned": np.array([[0.0, 0.0, 1.0, 1.0 / 20]]) if pin == "face" else np.eye(4)[2:3],
+        "free": np.zeros((0, 4)),
+    }
+    return rows["pinned" if support == "roller" else support]
+
+
+def end_rows(support: str, pin: str) -> tuple[np.ndarray, int]:
+    """(B, k): B (4 x 8) on z = (y, N) at an end, its first k rows the held combinations H y, the others Z^T N
+    (Z spanning the null space of H: the natural conditions)."""
+    H = held(support, pin)
+    Z = sla.null_space(H) if len(H) else np.eye(4)
+    B = np.zeros((4, 8))
+    B[: len(H), :4] = H
+    B[len(H) :, 4:] = Z.T
+    return B, len(H)
+
+
+@dataclass
+class Piece:
+    """[x0, x1], one load state: A[block] the augmented generator of (modal block, 1, sin kx, cos kx)."""
+
+    x0: float
+    x1: float
+    A: dict
+
+
+class Solution:
+    """The exact fields of one scene: :meth:`fields` at any x (physical units)."""
+
+    def __init__(self, scene: Scene, loads: str = "faces", pin: str = "face"):
+        mat, sec = scene.material, scene.section
+        self.h = h = sec.depth
+        nu = mat.poissons_ratio
+        self.Ep = mat.E / (1.0 - nu * nu)
+        self.b = sec.A / h  # the equivalent rectangle's width
+        self.F0 = self.Ep * self.b * h  # the force unit
+        self.L = L = scene.length / h
+        self.k = np.pi / L  # the sine shape's wave number
+        self.faces = loads == "faces"
+        M = system_matrix(nu, mat.G / self.Ep)
+        self.T, self.modal = modal_basis(M)
+        Ti = np.linalg.inv(self.T)
+        point, dist = [], []
+        for load in scene.loads:
+            if isinstance(load, Distributed) and load.value != 0.0:
+                a, b = scene.span(load)
+                dist.append((a / h, b / h, load.shape, load.value / (self.Ep * self.b)))
+            elif isinstance(load, (PointForce, PointMoment)) and load.value != 0.0:
+                point.append((load.position / h, load))
+        inner = {p for p, _ in point if 0 < p < L} | {v for d in dist for v in d[:2] if 0 < v < L}
+        self.breaks = np.array(sorted({0.0, L} | inner))
+        self.pieces = [
+            Piece(x0, x1, self.generators(Ti, dist, (x0 + x1) / 2)) for x0, x1 in zip(self.breaks[:-1], self.breaks[1:])
+        ]
+        self.jumps = np.zeros((len(self.breaks), 8))  # z(x+) - z(x-) at each break (point loads; ends: end loads)
+        for pos, load in point:
+            i = int(np.argmin(np.abs(self.breaks - pos)))
+            self.jumps[i, 4:] -= self.generalised(load, at_end=i in (0, len(self.breaks) - 1))
+        self.U = self.solve_pieces(scene.supports.left, scene.supports.right, pin)
+
+    def generalised(self, load, at_end: bool) -> np.ndarray:
+        """The generalised force on (theta, theta*, w, w*) of a point load, in the units of N."""
+        g = np.zeros(4)
+        if isinstance(load, PointForce):
+            g[2] = load.value / self.F0
+            if self.faces:
+                g[3] = g[2] * (1 / 20 if at_end else 1 / 4)
+        else:
+            g[0] = -load.value / (self.F0 * self.h)
+            if self.faces and at_end:
+                g[1] = g[0] * 3 / 20
+        return g
+
+    def generators(self, Ti: np.ndarray, dist: list, xm: float) -> dict:
+        """The augmented generators of the three modal blocks on a piece whose midpoint is xm: zeta' = (modal
+        block) zeta + Ti (0, -f), f = (constant, sine) parts of the loads acting there."""
+        G = np.zeros((8, 3))  # forcing of z per (1, sin kx, cos kx)
+        for a, b, shape, q in dist:
+            if a <= xm <= b:
+                G[4:, 0 if shape == "uniform" else 1] -= [0.0, 0.0, q, q / 4 if self.faces else 0.0]
+        Gz = Ti @ G
+        out = {}
+        for name, blk in BLOCKS.items():
+            n = blk.stop - blk.start
+            A = np.zeros((n + 3, n + 3))
+            A[:n, :n], A[:n, n:] = self.modal[blk, blk], Gz[blk]
+            A[n + 1, n + 2], A[n + 2, n + 1] = self.k, -self.k
+            out[name] = A
+        return out
+
+    def aug(self, x: np.ndarray) -> np.ndarray:
+        return np.stack([np.ones_like(x), np.sin(self.k * x), np.cos(self.k * x)], axis=-1)
+
+    def maps(self, p: int, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(P, c): z(x) = P @ U_p + c on piece p for each x (P: n x 8 x 8, c: n x 8), U_p = (slow and decaying
+        coordinates at x0, growing at x1): each block propagated from its own anchor, so every exponential is
+        bounded by the polynomial growth of the slow block."""
+        piece = self.pieces[p]
+        x = np.asarray(x, float)
+        P = np.zeros((len(x), 8, 8))
+        cz = np.zeros((len(x), 8))
+        for name, blk in BLOCKS.items():
+            x_ref = piece.x1 if name == "grow" else piece.x0
+            n = blk.stop - blk.start
+            E = sla.expm(piece.A[name][None] * (x - x_ref)[:, None, None])
+            P[:, :, blk] = self.T[:, blk] @ E[:, :n, :n]
+            cz += np.einsum("ij,njk,k->ni", self.T[:, blk], E[:, :n, n:], self.aug(np.array(x_ref)))
+        return P, cz
+
+    def solve_pieces(self, left: str, right: str, pin: str) -> np.ndarray:
+        """U (pieces x 8): the end conditions and, at every break between pieces, z(x+) = z(x-) + jump; one
+        dense system of 8 unknowns per piece."""
+        n = len(self.pieces)
+        K, r = np.zeros((8 * n, 8 * n)), np.zeros(8 * n)
+        for side, sup, p, at in (("left", left, 0, 0), ("right", right, n - 1, -1)):
+            B, k = end_rows(sup, pin)
+            P, c = self.maps(p, self.breaks[[at]])
+            row = 0 if side == "left" else 8 * n - 4
+            K[row : row + 4, 8 * p : 8 * p + 8] = B @ P[0]
+            # left: N(0+) = -P(0) = the jump from zero; right: N(L-) = P(L) = -(the jump at L)
+            r[row : row + 4] = B @ ((1.0 if side == "left" else -1.0) * self.jumps[at] - c[0])
+        for p in range(n - 1):  # a few pieces (one per load boundary), not per point
+            xb = self.breaks[[p + 1]]
+            (Pl, cl), (Pr, cr) = self.maps(p, xb), self.maps(p + 1, xb)
+            row = 4 + 8 * p
+            K[row : row + 8, 8 * p : 8 * p + 8] = Pl[0]
+            K[row : row + 8, 8 * p + 8 : 8 * p + 16] = -Pr[0]
+            r[row : row + 8] = cr[0] - cl[0] - self.jumps[p + 1]
+        return np.linalg.solve(K, r).reshape(n, 8)
+
+    def states(self, x) -> np.ndarray:
+        """z (n x 8) at x (physical), the left limit at a point load (as exact-eb: a load at a acts on x > a)."""
+        xs = np.clip(np.asarray(x, float) / self.h, 0.0, self.L)
+        piece = np.clip(np.searchsorted(self.breaks, xs, "left") - 1, 0, len(self.pieces) - 1)
+        out = np.empty((len(xs), 8))
+        for p in np.unique(piece):
+            on = piece == p
+            P, c = self.maps(p, xs[on])
+            out[on] = P @ self.U[p] + c
+        return out
+
+    def fields(self, x) -> dict[str, np.ndarray]:
+        """w, rotation (counter-clockwise, = -theta), theta, theta*, w*, M (sagging, = -N_theta) and V (= -N_w)."""
+        z = self.states(x)
+        h, F0 = self.h, self.F0
+        return {
+            "w": z[:, 2] * h,
+            "rotation": -z[:, 0],
+            "theta": z[:, 0],
+            "theta_star": z[:, 1] / h**2,
+            "w_star": z[:, 3] / h,
+            "M": -z[:, 4] * F0 * h,
+            "V": -z[:, 6] * F0,
+        }
+
+    def reactions(self) -> dict[str, float]:
+        """The force (+z) and counter-clockwise moment each support puts on the beam: R = -N(0+) - P(0) at the left,
+        N(L-) - P(L) at the right, on w and theta (as pd-higher-order reports them)."""
+        z0, zL = self.states(np.array([0.0, self.L * self.h]))
+        out = {}
+        for side, r in (("left", -z0[4:] + self.jumps[0, 4:]), ("right", zL[4:] + self.jumps[-1, 4:])):
+            out[f"force_{side}"] = float(r[2] * self.F0)
+            out[f"moment_{side}"] = float(-r[0] * self.F0 * self.h)
+        return out
+
+
+class ExactHigherOrder(Model):
+    name = "exact-higher-order"
+    title = "exact higher-order beam (the local theory of Yang et al. 2020, Eq. 9)"
+    source = "exact solution of the higher-order beam equations (Yang, Oterkus & Oterkus 2020, Eq. 2-9)"
+    theory = "higher-order"
+    reference = True
+    options = (
+        POINTS,
+        Option(
+            "loads",
+            str,
+            "faces",
+            "faces (as pd-higher-order's corrected variant) | mid (Eq. 16b)",
+            choices=("faces", "mid"),
+        ),
+        Option("pin", str, "face", "pinned end: face (w + h^2/20 w* = 0) | mid (w = 0)", choices=("face", "mid")),
+    )
+
+    def evaluator(self, scene: Scene, params: dict):
+        return Solution(scene, params.get("loads", "faces"), params.get("pin", "face")).fields
+
+    def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
+        return self.evaluator(scene, params)(x)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        with timer("solve"):
+            sol = Solution(scene, params["loads"], params["pin"])
+            x = np.linspace(0.0, scene.length, params["points"])
+            f = sol.fields(x)
+        return self.new_result(
+            scene,
+            params,
+            x,
+            f.pop("w"),
+            rotation=f.pop("rotation"),
+            fields=f,
+            dofs=8,
+            timings=timer.timings,
+            info={"reactions": sol.reactions(), "depth": sol.h, "loads": params["loads"], "pin": params["pin"]},
+        )
+
+
+MODELS = [ExactHigherOrder()]
