@@ -21,13 +21,16 @@ none) and, in the complementary directions, the natural conditions Z^T (N -+ P_e
 of H): the variational statement of the same end conditions.
 
 Solution: exact piecewise by matrix exponentials. Every load is constant or a sine on a piece between the
-breakpoints (ends, point loads, spans' ends), so the state augmented with (1, sin kx, cos kx) obeys a constant linear
-system on each piece; the pieces are split into shooting intervals short against the section's boundary layer
-(the eigenvalues +-9.1 +- 2.2i / h at nu = 0.3: layers ~0.1 h wide), the interval maps are matrix exponentials, and
-continuity, the jumps and the end conditions make one sparse block-bidiagonal system. Everything is written in
-units of h (length) and E' b h (force), where every coefficient is O(1). Exact to round-off at any x (no grid):
-the reference ``pd-higher-order`` converges to, and the theory's own answer to questions such as where the
-deflection under a point load peaks (docs/models/yang.md).
+breakpoints (ends, point loads, spans' ends), so on each piece the state augmented with (1, sin kx, cos kx) obeys a
+constant linear system. In the modal coordinates of M (:func:`modal_basis`) it splits into three blocks: the slow
+one (the polynomial beam solutions, an exact 4 x 4 Jordan chain), the boundary layer's decaying pair (a complex pair
+of eigenvalues of order 1/h: layers a fraction of h wide), propagated from the piece's left end, and its growing
+pair, propagated back from the piece's right end, so no exponential exceeds the polynomial growth of the slow block
+however long the beam. Eight unknowns per piece meet the end conditions and, at every break, continuity and the
+jumps: one small dense system. Everything is written in units of h (length) and E' b h (force), where every
+coefficient is O(1). Exact to round-off at any x (no grid; tests/test_exact_higher_order.py): the reference ``pd-
+higher-order`` converges to, and the theory's own answer to questions such as where the deflection under a point
+load peaks (docs/models/yang.md).
 """
 
 from __future__ import annotations
