@@ -303,6 +303,12 @@ class Model:
         """Point-updates per second of the time integrator (models with ``"dynamic"`` in ``analyses``)."""
         raise NotImplementedError(f"model {self.name} has no time integrator")
 
+    def reference_options(self, params: dict) -> dict | None:
+        """The options of its theory's exact solution that give this model's continuum with ``params`` (the user's
+        options over the defaults): {} by default; None when its equations converge to something the exact
+        solution does not represent (then it is judged against itself on a finer grid)."""
+        return {}
+
     def linear(self, params: dict) -> bool:
         """False when ``params`` select a nonlinear path (``nonlinear_when``)."""
         return not any(params.get(k) == v for k, v in self.nonlinear_when)

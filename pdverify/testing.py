@@ -26,7 +26,7 @@ import numpy as np
 from .registry import Model, get_model, run
 from .scene import Scene, load_scene, parse_scene
 from .study.metrics import errors, observed_order
-from .verify.suite import finer, reference_for
+from .verify.suite import exact_reference, finer
 
 __all__ = ["assert_converges", "assert_matches", "convergence_table"]
 
@@ -48,15 +48,21 @@ def _scene(s) -> Scene:
 
 
 def default_reference(model: Model, scene: Scene, grids=(21, 41, 81, 161), **options):
-    """The exact solution of the model's declared theory (curved axes: exact-curved); for a theory pdverify has
-    no exact solution of (higher-order, continuum), the model itself with ``options`` on the nested grid
-    ``pdverify verify`` uses (4x the finest grid's spacings): self-convergence."""
+    """The exact solution of the model's declared theory with the options that match the model's
+    (:func:`pdverify.verify.suite.exact_reference`; curved axes: exact-curved); for a theory pdverify has no exact
+    solution of (continuum), or equations that converge to something else, the model itself with ``options`` on the
+    nested grid ``pdverify verify`` uses (4x the finest grid's spacings): self-convergence."""
     if not scene.is_straight:
         return get_model("exact-curved")
-    if reference_for(model.theory) is None:
+    ref = exact_reference(model, options)
+    if ref is None:
         fine = run(scene, model, **options, points=finer(grids))
         return lambda x: np.interp(x, fine.x, fine.measured(model.measures))
-    return get_model(reference_for(model.theory))
+    if isinstance(ref, str):
+        return get_model(ref)
+    exact = get_model(ref["model"])
+    fields = exact.evaluator(scene, exact.resolve(scene, {k: v for k, v in ref.items() if k != "model"}))
+    return lambda x: fields(np.asarray(x, float))[model.measures]
 
 
 def _reference_w(reference, scene: Scene, x: np.ndarray, options: dict, quantity: str = "w") -> np.ndarray:
@@ -117,7 +123,7 @@ def assert_converges(
     fitted = observed_order([r["spacing"] for r in rows], [r["error"] for r in rows])[0]
     if not abs(fitted - order) <= tol:
         ref = (
-            ("the exact solution" if reference_for(m.theory) or not sc.is_straight else "itself on a finer grid")
+            ("the exact solution" if exact_reference(m, options) or not sc.is_straight else "itself on a finer grid")
             if reference is None
             else getattr(reference, "name", getattr(reference, "__name__", reference))
         )

@@ -295,6 +295,14 @@ class PDHigherOrder(Model):
             raise InputError("clamp = layer needs ends = truncated or taylor (mirror layers hold w* by their images)")
         return "face"
 
+    def reference_options(self, params: dict) -> dict | None:
+        """exact-higher-order with the same loads and pin (its options of those names). None for the paper variant
+        and mirror ends: their fictitious layers hold w' (symmetric images), not the theory's natural conditions."""
+        params = {o.name: o.default for o in self.options} | dict(params)
+        if params["variant"] == "paper" or self.ends(params) == "mirror":
+            return None
+        return {"loads": self.choice(params, "loads"), "pin": self.choice(params, "pin")}
+
     def assemble_band(self, scene: Scene, params: dict):
         """(B, b, (drop, tie), info): B u = b on the real points' interleaved DOFs u = (theta, theta*, w, w*)
         per point, assembled straight into a :class:`~pdverify.band.Band` (the matrix ``solve`` factorises).

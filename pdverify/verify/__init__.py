@@ -24,6 +24,7 @@ from .suite import (
     loads_for,
     mirror,
     plan,
+    reference_name,
     rod_kind,
     straight,
     write_study,
@@ -146,7 +147,7 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
             errors.append(why)
     if errors:
         return errors
-    p = plan(model, full)
+    p = plan(model, full, options)
     declined = _declined(model, p)
     solved = [f for f, why in declined.items() if not why]
     if not solved:
@@ -180,7 +181,7 @@ def verify(
     model = get_model(model_name)
     expected = order if order is not None else model.order
     out = Path(out)
-    p = plan(model, full)
+    p = plan(model, full, options)
     declined = _declined(model, p)
     if all(declined.values()):
         first = next(iter(declined.values()))[0]
@@ -214,7 +215,9 @@ def verify(
         C.theory_gap(gap_df, p.meta, GAP_REFERENCE, finer(p.grids))
         if p.reference is None
         else C.check(
-            "theory gap", "n/a", f"errors are against the exact solution of the model's theory: {p.reference}"
+            "theory gap",
+            "n/a",
+            f"errors are against the exact solution of the model's theory: {reference_name(p.reference)}",
         ),
     ]
     beam = model.bending and model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum")
@@ -239,7 +242,8 @@ def verify(
         "theory": model.theory,
         "suite_version": SUITE_VERSION,
         "pdverify_version": __version__,
-        "reference": p.reference or f"{model.name} itself at {finer(p.grids)} points (self-convergence)",
+        "reference": reference_name(p.reference)
+        or f"{model.name} itself at {finer(p.grids)} points (self-convergence)",
         "curved_reference": p.curved_reference,
         "measures": model.measures,
         "grids": list(p.grids),

@@ -29,8 +29,10 @@ from ..scene import ROD_HELD, SUPPORTS, is_mechanism
 # 1.1: natural frequencies of models that declare dynamics (verify.dynamics); 1.2: self-convergence for theories
 # without an exact solution here, and superposition with the point-load positions shared by the three solves;
 # 1.3: a clockwise arc among the curved scenes; 1.4: axial and torsion models (ROD_LOADS; the beams' cards unchanged),
-# and a self-converged model's curved scenes against itself (was exact-curved: fem-plane-stress's card only)
-SUITE_VERSION = "1.4"
+# and a self-converged model's curved scenes against itself (was exact-curved: fem-plane-stress's card only);
+# 1.5: higher-order models against exact-higher-order with their loads and pin (Model.reference_options; were
+# self-converged)
+SUITE_VERSION = "1.5"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -187,7 +189,7 @@ class Plan:
     meta: dict[str, dict]
     grids: tuple
     floor_grids: tuple
-    reference: str | None  # None: self-convergence (:func:`finer`)
+    reference: str | dict | None  # a model name or {model, options}; None: self-convergence (:func:`finer`)
     curved_reference: str | None
 
 
@@ -196,13 +198,32 @@ EXACT = {  # the exact solution of each theory that has one here
     "timoshenko": "exact-timoshenko",
     "axial": "exact-rod",
     "torsion": "exact-torsion",
+    "higher-order": "exact-higher-order",
 }
 
 
 def reference_for(theory: str) -> str | None:
-    """The exact solution of the model's declared theory; None for a theory pdverify has none of (higher-order,
-    continuum): the model is judged against itself on a finer grid."""
+    """The exact solution of the model's declared theory; None for a theory pdverify has none of (continuum): the
+    model is judged against itself on a finer grid."""
     return EXACT.get(theory)
+
+
+def exact_reference(model, options: dict) -> str | dict | None:
+    """The reference a study gives for ``model`` with ``options``: its theory's exact solution with the options
+    that match the model's (:meth:`~pdverify.registry.Model.reference_options`), a name or an inline table; None
+    when there is none or the model's equations converge to something else (self-convergence)."""
+    name, extra = reference_for(model.theory), model.reference_options(options)
+    if name is None or extra is None:
+        return None
+    return {"model": name, **extra} if extra else name
+
+
+def reference_name(reference: str | dict | None) -> str | None:
+    """How a card names a reference: ``exact-higher-order (loads = faces, pin = face)``."""
+    if not isinstance(reference, dict):
+        return reference
+    opts = ", ".join(f"{k} = {v}" for k, v in reference.items() if k != "model")
+    return f"{reference['model']} ({opts})"
 
 
 def finer(grids) -> int:
@@ -216,7 +237,7 @@ def self_reference(model, options: dict, grids) -> dict:
     return {"model": model.name, **options, "points": finer(grids)}
 
 
-def plan(model, full: bool = False) -> Plan:
+def plan(model, full: bool = False, options: dict | None = None) -> Plan:
     scenes, meta = {}, {}
 
     def add(kind: str, scene: dict, **info):
@@ -268,7 +289,7 @@ def plan(model, full: bool = False) -> Plan:
         meta,
         FULL_GRIDS if full else GRIDS,
         FULL_FLOOR_GRIDS if full else FLOOR_GRIDS,
-        reference_for(model.theory),
+        exact_reference(model, options or {}),
         # a theory judged against itself is so on curved axes too (exact-curved is a beam theory: the 2D strip
         # converges to its own solution, 1.7e-2 away on the clamped-pinned quarter circle)
         "exact-curved" if model.curved and reference_for(model.theory) else None,
