@@ -158,3 +158,21 @@ def test_the_dimple_under_a_point_force_is_the_theorys():
         pd_peak = r.x[np.argmax(np.abs(r.w))]
         assert abs(abs(pd_peak - 0.5) - (0.5 - peak)) <= r.x[1] - r.x[0]
         assert abs(r.w[500] / w[-1] - 1) < 1e-4
+
+
+def test_a_point_load_between_grid_points_is_flagged():
+    """pd-higher-order cuts its bonds only at point loads on a grid point; one between two points is split between
+    them and converges at first order near it (ss centre force, L/h = 5, 801 points, whole-curve error vs the exact
+    theory: 2.2e-5 on the grid, 2.6e-4 at x = 0.5015): its result says so, the on-grid one does not."""
+    base = load_scene("studies/paper_yang/ss_centre_force.toml")
+    errs, flagged = [], []
+    for pos in (0.5, 0.5015):
+        data = base.model_dump()
+        data["loads"][0]["position"] = pos
+        sc = parse_scene(data)
+        r = run(sc, get_model("pd-higher-order"), points=801)
+        ref = EXACT.evaluate(sc, {}, r.x)["w"]
+        errs.append(np.abs(r.w - ref).max() / np.abs(ref).max())
+        flagged.append(any("not on a cut grid point" in w for w in r.info.get("warnings", [])))
+    assert flagged == [False, True]
+    assert errs[1] > 5 * errs[0]

@@ -544,6 +544,24 @@ class PDHigherOrder(Model):
         if flags:
             info.setdefault("warnings", []).extend(flags)
         faces = info.get("loads") == "faces"
+        if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
+            cut = set(info.get("cuts", ()))
+            uncut = [
+                ld.position
+                for ld in scene.loads
+                if isinstance(ld, (PointForce, PointMoment))
+                and ld.value != 0.0
+                and 0.0 < ld.position < scene.length
+                and not any(abs(ld.position - c) <= 1e-9 * scene.length for c in cut)
+            ]
+            if uncut:
+                at = ", ".join(f"{a:.6g}" for a in uncut)
+                info.setdefault("warnings", []).append(
+                    f"point load at x = {at} not on a cut grid point (between two points, or within 4J + 1 spacings "
+                    "of an end or another point load): split between its neighbours, whose bonds average the kink "
+                    "under it, so w converges at first order near it (docs/models/yang.md); put the load on a grid "
+                    "point (points = L / spacing + 1)"
+                )
         local = [
             ld.position
             for ld in scene.loads
