@@ -683,8 +683,8 @@ def test_hundred_thousand_points_in_seconds():
 
 
 def test_clamp_layer_transition_study_measures_what_the_card_fails(tmp_path):
-    """studies/paper_yang_clamp_layer.toml: the cantilever at L/h = 20 on 21-161 points against the model's own
-    641-point solution (the grids and reference of the verify card's convergence scenes). Where the spacing is about
+    """studies/paper_yang_clamp_layer.toml: the cantilever at L/h = 20 on 21-161 points against exact-higher-order
+    (the grids and reference of the verify card's convergence scenes, suite 1.5). Where the spacing is about
     the clamp's w* layer the error rises on the way (measured 1.25e-3, 2.1e-4, 4.6e-4, 2.1e-4; fitted order 0.66),
     so the study's order check is expected to fail, as the card's convergence check does on those scenes (issue
     32)."""
