@@ -202,7 +202,7 @@ def test_higher_order_card_measures_the_model_not_the_theory_gap(tmp_path):
     suite 1.1); against the exact solution of its own theory (suite 1.5) it converges: second order on every scene
     without a clamped end. With one and a free or guided other end, at L/h = 20 the grids 21..161 (dx = 9 .. 1.1
     widths of the clamp's w* layer) are pre-asymptotic (docs/models/yang.md, "Clamped ends"): the error at 161
-    points is below 1e-3 and 3-40x below that at 21, but clamped-free rises between 41 and 81 points (1.1e-4 ->
+    points is below 1e-3 and 4-98x below that at 21, but clamped-free rises between 41 and 81 points (1.1e-4 ->
     3.1e-4, uniform). The locking check passes with the clamp's layer spring (4.9e-4 at most). Superposition holds
     to round-off once the three solves share the point-load positions (the default cuts = loads makes the operator
     depend on them: 1.9e-5 apart without)."""
