@@ -544,15 +544,15 @@ class PDHigherOrder(Model):
         if flags:
             info.setdefault("warnings", []).extend(flags)
         faces = info.get("loads") == "faces"
+        interior = [
+            ld
+            for ld in scene.loads
+            if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
+        ]
         if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
-            cut = set(info.get("cuts", ()))
+            cut = info.get("cuts", ())
             uncut = [
-                ld.position
-                for ld in scene.loads
-                if isinstance(ld, (PointForce, PointMoment))
-                and ld.value != 0.0
-                and 0.0 < ld.position < scene.length
-                and not any(abs(ld.position - c) <= 1e-9 * scene.length for c in cut)
+                ld.position for ld in interior if not any(abs(ld.position - c) <= 1e-9 * scene.length for c in cut)
             ]
             if uncut:
                 at = ", ".join(f"{a:.6g}" for a in uncut)
@@ -562,13 +562,7 @@ class PDHigherOrder(Model):
                     "under it, so w converges at first order near it (docs/models/yang.md); put the load on a grid "
                     "point (points = L / spacing + 1)"
                 )
-        local = [
-            ld.position
-            for ld in scene.loads
-            if (isinstance(ld, PointMoment) or (isinstance(ld, PointForce) and faces))
-            and ld.value != 0.0
-            and 0.0 < ld.position < scene.length
-        ]
+        local = [ld.position for ld in interior if isinstance(ld, PointMoment) or faces]
         if local:
             at = ", ".join(f"{a:.6g}" for a in local)
             info.setdefault("warnings", []).append(
