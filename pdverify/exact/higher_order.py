@@ -41,6 +41,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..models._higher_order_bonds import coefficients
+from ..models._higher_order_ends import point_work
 from ..registry import POINTS, Model, Option
 from ..result import Result, Timer
 from ..scene import Distributed, PointForce, PointMoment, Scene
@@ -91,15 +92,15 @@ def held(support: str, pin: str) -> np.ndarray:
     return rows["pinned" if support == "roller" else support]
 
 
-def end_rows(support: str, pin: str) -> tuple[np.ndarray, int]:
-    """(B, k): B (4 x 8) on z = (y, N) at an end, its first k rows the held combinations H y, the others Z^T N
-    (Z spanning the null space of H: the natural conditions)."""
+def end_rows(support: str, pin: str) -> np.ndarray:
+    """B (4 x 8) on z = (y, N) at an end: its first rows the held combinations H y, the others Z^T N (Z spanning
+    the null space of H: the natural conditions)."""
     H = held(support, pin)
     Z = sla.null_space(H) if len(H) else np.eye(4)
     B = np.zeros((4, 8))
     B[: len(H), :4] = H
     B[len(H) :, 4:] = Z.T
-    return B, len(H)
+    return B
 
 
 @dataclass
@@ -146,17 +147,9 @@ class Solution:
         self.U = self.solve_pieces(scene.supports.left, scene.supports.right, pin)
 
     def generalised(self, load, at_end: bool) -> np.ndarray:
-        """The generalised force on (theta, theta*, w, w*) of a point load, in the units of N."""
-        g = np.zeros(4)
-        if isinstance(load, PointForce):
-            g[2] = load.value / self.F0
-            if self.faces:
-                g[3] = g[2] * (1 / 20 if at_end else 1 / 4)
-        else:
-            g[0] = -load.value / (self.F0 * self.h)
-            if self.faces and at_end:
-                g[1] = g[0] * 3 / 20
-        return g
+        """The generalised force on (theta, theta*, w, w*) of a point load (:func:`point_work`) in the units of N:
+        E' b h times h, h^3, 1, h^2."""
+        return point_work(load, self.h, self.faces, at_end) / (self.F0 * self.h ** np.array([1, 3, 0, 2]))
 
     def generators(self, Ti: np.ndarray, dist: list, xm: float) -> dict:
         """The augmented generators of the three modal blocks on a piece whose midpoint is xm: zeta' = (modal
@@ -200,7 +193,7 @@ class Solution:
         n = len(self.pieces)
         K, r = np.zeros((8 * n, 8 * n)), np.zeros(8 * n)
         for side, sup, p, at in (("left", left, 0, 0), ("right", right, n - 1, -1)):
-            B, k = end_rows(sup, pin)
+            B = end_rows(sup, pin)
             P, c = self.maps(p, self.breaks[[at]])
             row = 0 if side == "left" else 8 * n - 4
             K[row : row + 4, 8 * p : 8 * p + 8] = B @ P[0]

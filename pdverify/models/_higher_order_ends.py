@@ -57,6 +57,23 @@ def taylor_map(n: int, G: int | tuple[int, int], p: int) -> sp.csr_matrix:
     )
 
 
+def point_work(load: PointForce | PointMoment, h: float, faces: bool, at_end: bool) -> np.ndarray:
+    """The generalised force (theta, theta*, w, w*) of a point load, the coefficients of its work (Eq. 16b; with
+    ``faces``, where the plane-stress reference applies it): a force P on w, and on w* P h^2/4 on the top face,
+    P h^2/20 as an end's parabolic shear; a counter-clockwise moment C as -C on theta, and at an end (a linear
+    normal traction) -3 C h^2/20 on theta*."""
+    g = np.zeros(NF)
+    if isinstance(load, PointForce):
+        g[W] = load.value
+        if faces:
+            g[WS] = load.value * h * h * (1 / 20 if at_end else 1 / 4)
+    else:
+        g[TH] = -load.value
+        if faces and at_end:
+            g[TS] = -load.value * 3 * h * h / 20
+    return g
+
+
 def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
     """F (n x 4): generalised forces (per unit area) on (theta, theta*, w, w*) of the real points.
     Distributed loads: cell integrals (cells [x_k -+ dx/2] within the beam); point forces and moments
@@ -75,23 +92,18 @@ def load_vector(scene: Scene, x: np.ndarray, faces: bool) -> np.ndarray:
             if faces:
                 F[:, WS] += q * h * h / 4
             continue
+        if not isinstance(load, (PointForce, PointMoment)):  # torques: not carried
+            continue
         pos = float(np.clip((load.position - x[0]) / dx, 0.0, n - 1))  # cell-centred grids: beyond the end points
         i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
         t = pos - i
         if abs(t) < 1e-9 or i == n - 1:
             t = 0.0
         at_end = t == 0.0 and i in (0, n - 1)
+        g = point_work(load, h, faces, at_end)
         for node, wgt in ((i, 1.0 - t), (i + 1, t)):
-            if wgt == 0.0:
-                continue
-            if isinstance(load, PointForce):
-                F[node, W] += wgt * load.value
-                if faces:
-                    F[node, WS] += wgt * load.value * h * h * (1 / 20 if at_end else 1 / 4)
-            elif isinstance(load, PointMoment):
-                F[node, TH] -= wgt * load.value
-                if faces and at_end:
-                    F[node, TS] -= wgt * load.value * 3 * h * h / 20
+            if wgt != 0.0:
+                F[node] += wgt * g
     return F / A
 
 
