@@ -326,9 +326,15 @@ def test_mirrored_beam_ends_have_a_real_spectrum():
 def test_mirrored_beam_ends_converge_at_order_two_with_end_loads(slenderness):
     """The mirror ghosts carry the end conditions and the end's line load in their Taylor terms: pinned-guided
     with a moment at the pinned end, a force at the guided end, a uniform load, an interior force and couple
-    (m = 1, 41-321 points) converges to exact-timoshenko at order 2 (measured 2.00, 1.97-2.01 at L/h = 20 and
-    1e4) and is within 1e-4 at 41 points (measured 2.6e-6; the cubic fits before: 3.6e-4 and 1.1e-3). A wrong
-    sign in a Taylor term fails one or the other: w_ξξξ's gives 4.3e-2 and 1.1e4 at 41 points, at order 2."""
+    (m = 1) converges to exact-timoshenko at order 2 and is within 1e-4 at 41 points. A wrong sign in a Taylor
+    term fails one or the other (w_ξξξ's gives 4.3e-2 and 1.1e4 at 41 points, at order 2).
+
+    The order is taken only between grids whose solve is accurate to 1 % of the error: the solve's own estimate
+    of the error it leaves is the largest refinement step after the first (``info["refinement"]``, relative to
+    the largest unknown; while refinement contracts the last step bounds what is left, once it stalls the
+    steps are the noise it cannot go below). At L/h = 1e4 the shear stiffness makes the system's condition
+    ~(L/h)^2 N^2 (5e13 at 321 points) and the finest grids' solves are good to ~1e-8 only, a fraction of their
+    discretisation error: those rates would be of the machine's round-off, not of the ghosts."""
     loads = [
         {"type": "distributed", "value": -1000.0},
         {"type": "point_force", "position": 0.6, "value": -300.0},
@@ -339,15 +345,19 @@ def test_mirrored_beam_ends_converge_at_order_two_with_end_loads(slenderness):
     sc = parse_scene(
         scene_dict("pinned", "guided", loads, section={"width": 0.05, "height": 2.0 / slenderness}, material=MATERIAL)
     )
-    errors = []
-    for n in (41, 81, 161, 321):
+    grids = (21, 41, 81, 161, 321)
+    errors, noise = [], []
+    for n in grids:
         exact = np.asarray(run(sc, "exact-timoshenko", points=n).w)
-        errors.append(
-            np.abs(np.asarray(run(sc, "pd-timoshenko", points=n, horizon=1, variant="corrected").w) - exact).max()
-        )
-    errors = np.array(errors) / np.abs(exact).max()
-    rates = np.log2(errors[:-1] / errors[1:])
-    assert np.all(np.abs(rates - 2) < 0.1) and errors[0] < 1e-4, (errors, rates)
+        r = run(sc, "pd-timoshenko", points=n, horizon=1, variant="corrected")
+        top = max(np.abs(r.w).max(), np.abs(r.rotation).max())  # the refinement steps are relative to this
+        errors.append(np.abs(np.asarray(r.w) - exact).max() / np.abs(exact).max())
+        noise.append(max(r.info["refinement"][1:]) * top / np.abs(exact).max())
+    errors, noise = np.array(errors), np.array(noise)
+    clean = errors > 100 * noise  # round-off moves a rate by at most (r_n/e_n + r_2n/e_2n) / ln 2 < 0.03 there
+    rates = np.log2(errors[:-1] / errors[1:])[clean[:-1] & clean[1:]]
+    assert len(rates) >= 2, (errors, noise)
+    assert np.all(np.abs(rates - 2) < 0.1) and errors[grids.index(41)] < 1e-4, (errors, noise, rates)
 
 
 @pytest.mark.slow
