@@ -17,14 +17,14 @@ Imports are lazy so that ``pdverify --help`` stays fast.
 
 from __future__ import annotations
 
-__version__ = "0.1.0"
+from .core.version import __version__
 
 __all__ = ["load_scene", "run", "run_study", "Result", "Scene", "InputError", "__version__"]
 
 
 def load_scene(path):
-    """Read and validate a scene TOML file; a :class:`pdverify.scene.Scene`."""
-    from .scene import load_scene as _load
+    """Read and validate a scene TOML file; a :class:`pdverify.core.scene.Scene`."""
+    from .core.scene_file import load_scene as _load
 
     return _load(path)
 
@@ -38,13 +38,14 @@ def run(scene, model, **options):
     return _run(scene, model, **options)
 
 
-def run_study(study, out=None, workers=None, scheduler=None, progress=False):
-    """Run a study (a path to a study TOML file or a loaded Study); write its tables to ``out`` (default
-    ``reports/<study file stem>``) and return the results table as a pandas DataFrame."""
+def run_study(study, out=None, workers=None, scheduler=None, progress=False, report=False, junit=None):
+    """Run a study (a path to a study TOML file or a loaded Study) as ``pdverify study`` does: its cases, the
+    verification cards it asks for, ``junit`` XML and, with ``report``, the HTML report, into ``out`` (default
+    ``reports/<study file stem>``). Returns a :class:`~pdverify.apps.pipeline.StudyRun`: ``results`` (the
+    table, a DataFrame, which the run also stands in for), ``cards``, ``exit_code``, ``summary``."""
     from pathlib import Path
 
-    from .study import load_study
-    from .study import run_study as _run_study
+    from .apps.pipeline import load_study, run
 
     if isinstance(study, (str, Path)):
         path = Path(study)
@@ -52,20 +53,20 @@ def run_study(study, out=None, workers=None, scheduler=None, progress=False):
         out = out if out is not None else Path("reports") / path.stem
     if out is None:
         raise TypeError("run_study: give out= (an output folder) with a loaded study")
-    return _run_study(study, Path(out), workers=workers, scheduler=scheduler, progress=progress)
+    return run(study, Path(out), workers=workers, scheduler=scheduler, progress=progress, report=report, junit=junit)
 
 
 def __getattr__(name):
     if name == "Result":
-        from .result import Result
+        from .core.result import Result
 
         return Result
     if name == "Scene":
-        from .scene import Scene
+        from .core.scene import Scene
 
         return Scene
     if name == "InputError":
-        from .errors import InputError
+        from .core.errors import InputError
 
         return InputError
     raise AttributeError(f"module 'pdverify' has no attribute {name!r}")

@@ -1,5 +1,5 @@
-"""``python -m pdverify``: the command line (:func:`pdverify.cli.main`)."""
+"""``python -m pdverify``: the command line (:func:`pdverify.apps.cli.main`)."""
 
-from .cli import main
+from .apps.cli import main
 
 main()

@@ -14,7 +14,7 @@ A failing assertion raises AssertionError whose message is the table of grids, e
 worst points), so the CI log says what went wrong. What is compared is what the model ``measures`` (w; a
 rod's u, a torsion bar's twist). ``model`` and ``reference`` are a registered model's
 name (built-in, plug-in, or an external model's manifest path) or a :class:`~pdverify.registry.Model`;
-``scene`` a :class:`~pdverify.scene.Scene`, a scene table (dict) or a scene file.
+``scene`` a :class:`~pdverify.core.scene.Scene`, a scene table (dict) or a scene file.
 """
 
 from __future__ import annotations
@@ -23,9 +23,11 @@ from pathlib import Path
 
 import numpy as np
 
-from .registry import Model, get_model, run
-from .scene import Scene, load_scene, parse_scene
-from .study.metrics import errors, observed_order
+from .core.contract import Model
+from .core.scene import Scene
+from .core.scene_file import load_scene, parse_scene
+from .measure.metrics import errors, observed_order
+from .registry import get_model, model_argument, run
 from .verify.suite import exact_reference, finer
 
 __all__ = ["assert_converges", "assert_matches", "convergence_table"]
@@ -34,7 +36,6 @@ __all__ = ["assert_converges", "assert_matches", "convergence_table"]
 def _model(m) -> Model:
     if isinstance(m, Model):
         return m
-    from .plugins import model_argument
 
     return get_model(model_argument(str(m)))
 
@@ -114,7 +115,7 @@ def format_table(rows: list[dict]) -> str:
 def assert_converges(
     model, scene, order: float = 2.0, grids=(21, 41, 81, 161), tol: float = 0.1, reference=None, **options
 ) -> list[dict]:
-    """Assert that the order fitted over ``grids`` (least squares, pdverify.study.metrics.observed_order) is
+    """Assert that the order fitted over ``grids`` (least squares, pdverify.measure.metrics.observed_order) is
     ``order`` within ``tol``. ``reference``: a model (name or Model), a function x -> w, or None for the
     exact solution of the model's theory (the model itself on a 4x finer grid when its theory has none here,
     as ``pdverify verify`` does). Returns the table."""

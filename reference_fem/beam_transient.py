@@ -12,11 +12,11 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from pdverify.errors import InputError
-from pdverify.result import Result, Timer, columns_csv
-from pdverify.scene import PointForce, Scene
+from pdverify.core.errors import InputError
+from pdverify.core.result import Result, Timer, columns_csv
+from pdverify.core.scene import PointForce, Scene
 
-from .beam import constrained_dofs, two_fields
+from .beam_elements import constrained_dofs, two_fields
 from .newmark import newmark
 
 DEFAULT_SAMPLES = 2000  # samples over end_time when the scene gives no output_interval

@@ -1,7 +1,7 @@
 """Plane-stress meshes that follow the beam axis, and the line loads and rotated supports on them.
 
 A beam of arc length L and height h is the image of the parameter rectangle (s, t) in [0, L] x [-h/2, h/2]
-under (s, t) -> X(s) + t n(s), with X the axis (``pdverify.geometry``: straight, circular arc or polynomial
+under (s, t) -> X(s) + t n(s), with X the axis (``pdverify.core.geometry``: straight, circular arc or polynomial
 y = f(x)) and n = e_z x tangent its unit normal (+z for a straight beam, towards the centre of curvature
 of a counter-clockwise arc). The nodes of a tensor grid (s_i, t_j) are mapped; for q8/q9 on a curved axis
 the mesh is a scikit-fem ``MeshQuad2`` whose mid-side and centre nodes are the mapped parameter mid-points,
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from pdverify.geometry import AxisGeometry, geometry
+from pdverify.core.geometry import AxisGeometry, geometry
 
 _GX, _GW = np.polynomial.legendre.leggauss(8)
 

@@ -24,7 +24,7 @@ reaction: converges at order ~4 and matches Timoshenko & Goodier's 2D simply sup
 (L/h = 5). guided = the end face cannot rotate: every face node's tangential displacement equals the
 mid-height node's (the face stays straight and normal to the axis, it slides freely along t and n); free =
 nothing. A support pair that leaves a rigid-body motion (two rollers on a straight axis or on an arc, a
-ring pinned at both ends) is rejected by ``check`` (:func:`pdverify.geometry.mechanism_message`).
+ring pinned at both ends) is rejected by ``check`` (:func:`pdverify.core.geometry.mechanism_message`).
 Loads (value along n, axial along t; ``frame = "global"``: (axial, value) = global (x, y), decomposed into
 the local t and n at each point): a distributed load's normal part is a traction on the top face, its
 tangential part a line load on the mid-line (no eccentric moment, as in the beam models), both per unit
@@ -50,12 +50,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from pdverify.errors import InputError
-from pdverify.linalg import solve_linear
-from pdverify.registry import Model, Option
-from pdverify.result import Result, Timer
-from pdverify.scene import Distributed, PointForce, Scene
-from pdverify.stations import STATIONS_HELP, parse_stations
+from pdverify.core.contract import Model, Option
+from pdverify.core.errors import InputError
+from pdverify.core.geometry import geometry, mechanism_message
+from pdverify.core.result import Result, Timer
+from pdverify.core.scene import Distributed, PointForce, Scene
+from pdverify.core.stations import STATIONS_HELP, parse_stations
+from pdverify.numerics.linalg import solve_linear
+from reference_fem import curved_mesh as cm
+from reference_fem import q4_variants, vtu
+from reference_fem.beam import beam_nodes
+from reference_fem.render import render_png
+from reference_fem.stresses import through_section
 
 ELEMENTS = {
     "q4": "ElementQuad1",
@@ -70,7 +76,6 @@ LOCKING_ELEMENTS = ("q4", "q4-bbar")  # full integration: parasitic shear in ben
 
 def mesh_lines(scene: Scene, points: int, layers: int):
     """Stations s along the axis (load positions and span ends included) and through-thickness t."""
-    from reference_fem.beam import beam_nodes
 
     h = scene.section.depth
     x = beam_nodes(scene, points)
@@ -166,7 +171,6 @@ class FemPlaneStress(Model):
         if scene.section.height is None:
             out.append("section: the plane-stress reference needs a rectangle (width and height)")
             return out
-        from pdverify.geometry import geometry, mechanism_message
 
         if not scene.is_straight:
             h = scene.section.height
@@ -182,8 +186,6 @@ class FemPlaneStress(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         import skfem as fem
         from skfem.models.elasticity import lame_parameters, linear_elasticity
-
-        from reference_fem import curved_mesh as cm
 
         if params["layers"] % 2:
             raise InputError(f"layers = {params['layers']}: give an even number so the mid-line is a row of nodes")
@@ -202,8 +204,6 @@ class FemPlaneStress(Model):
             lam, mu = lame_parameters(E, nu)
             lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress
             if el.startswith("q4-"):
-                from reference_fem import q4_variants
-
                 K = width * q4_variants.assemble(mesh, basis, E, nu, el[3:])
             else:
                 K = width * linear_elasticity(lam, mu).assemble(basis)
@@ -360,8 +360,6 @@ class FemPlaneStress(Model):
         )
         info["reactions"] = _reactions(K0 @ u - F0, basis, geo, scene.length)
         if len(stations):
-            from reference_fem.stresses import through_section
-
             info["sections"] = through_section(basis, u, stations, h, 4 * params["layers"] + 1, lam, mu)
         if not scene.is_straight:
             info.update(
@@ -370,15 +368,12 @@ class FemPlaneStress(Model):
             )
 
         def write_vtu(path, u=u, basis=basis, lam=lam, mu=mu):
-            from reference_fem import vtu
 
             vtu.write(path, basis, u, lam, mu)
 
         def write_png(path):
             import os
             import tempfile
-
-            from reference_fem.render import render_png
 
             fd, tmp = tempfile.mkstemp(suffix=".vtu")
             os.close(fd)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import subprocess
 import sys
 
-from pdverify.errors import SolveError
+from pdverify.core.errors import SolveError
 
 _SCRIPT = r"""
 import sys

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from hypothesis import settings
 
-from pdverify.scene import is_mechanism
+from pdverify.core.scene import is_mechanism
 
 # Property tests draw the same examples on every run (a CI failure reproduces on any machine, and a green
 # run means the same thing each time); `pytest --hypothesis-profile=explore` searches afresh.
@@ -70,11 +70,11 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def pdverify_process(*args, cwd=ROOT, timeout: float = 300) -> subprocess.CompletedProcess:
-    """``python -m pdverify.cli ARGS`` in a child process (text output captured; pdverify from this checkout):
+    """``python -m pdverify.apps.cli ARGS`` in a child process (text output captured; pdverify from this checkout):
     for what only a real process shows (exit codes, stderr, signals, start-up)."""
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     return subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", *map(str, args)],
+        [sys.executable, "-m", "pdverify.apps.cli", *map(str, args)],
         cwd=cwd,
         env=env,
         capture_output=True,
@@ -94,7 +94,7 @@ def scene_dict(left="clamped", right="free", loads=(), **over):
 
 @pytest.fixture
 def make_scene():
-    from pdverify.scene import parse_scene
+    from pdverify.core.scene_file import parse_scene
 
     def make(left="clamped", right="free", loads=(), **over):
         return parse_scene(scene_dict(left, right, loads, **over))
@@ -104,7 +104,7 @@ def make_scene():
 
 def cli(args, capsys) -> tuple[int, str, str]:
     """(exit code, stdout, stderr) of ``pdverify ARGS`` run in this process."""
-    from pdverify.cli import main
+    from pdverify.apps.cli import main
 
     capsys.readouterr()
     with pytest.raises(SystemExit) as exc:

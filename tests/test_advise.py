@@ -5,10 +5,10 @@ from pathlib import Path
 import pytest
 from conftest import pdverify_process, scene_dict
 
-from pdverify.advise import advise, estimate
-from pdverify.errors import InputError
+from pdverify.apps.advise import advise, estimate
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.registry import get_model
-from pdverify.scene import load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 
@@ -103,7 +103,7 @@ def test_solve_model_auto():
 
 def test_priors_fitted_from_a_study_predict_the_grid(tmp_path):
     """fit_series on a study's results gives err = C (dx / L)^p per series; the prediction for 1e-4 follows."""
-    from pdverify.advise import fit_series, predicted_points
+    from pdverify.apps.advise import fit_series, predicted_points
     from pdverify.study import load_study, run_study
 
     study = tmp_path / "s.toml"
@@ -127,7 +127,7 @@ points = [51, 101, 201, 401]
 def test_packaged_priors_do_not_depend_on_the_working_directory(tmp_path, monkeypatch):
     """The priors ship inside the package with the code digest they were made from; advise reads them
     from any directory (it read reports/*/results.csv relative to the working directory before)."""
-    from pdverify.advise import PRIORS, load_priors, predicted_points
+    from pdverify.apps.advise import PRIORS, load_priors, predicted_points
 
     monkeypatch.chdir(tmp_path)
     data = load_priors()
@@ -138,7 +138,7 @@ def test_packaged_priors_do_not_depend_on_the_working_directory(tmp_path, monkey
 
 
 def test_rebuild_priors_writes_the_fits_and_the_code_digest(tmp_path):
-    from pdverify.advise import load_priors, rebuild_priors
+    from pdverify.apps.advise import load_priors, rebuild_priors
     from pdverify.study.spec import code_digest
 
     out = tmp_path / "priors.json"
@@ -152,7 +152,7 @@ def test_dynamics_scene_needs_the_static_part_asked_for():
     """beam_example2 is end-driven ([dynamics], no loads): advise refuses it, and with static = True
     advises a model that can hold the settled end offset (no exact check: the exact beams leave the motion
     out; it printed "estimated error 0.00e+00" and "nan" before)."""
-    from pdverify.advise import format_advice
+    from pdverify.apps.advise import format_advice
 
     sc = load_scene(ROOT / "studies/paper_moyer/beam_example2.toml")
     with pytest.raises(InputError, match="dynamics: the scene asks for a transient run"):

@@ -3,7 +3,7 @@
 or failed computation, 4 output), nothing on stdout and no traceback.
 
 Each file in tests/bad_inputs/ starts with ``# expect: <text>``; the CLI's stderr must contain it. The cases run
-the CLI in-process (:func:`pdverify.cli.main`, ~5 ms a case instead of ~0.35 s a process; an exception that
+the CLI in-process (:func:`pdverify.apps.cli.main`, ~5 ms a case instead of ~0.35 s a process; an exception that
 escaped would fail the test with its traceback); a sample runs as real processes too.
 """
 
@@ -17,8 +17,8 @@ from conftest import cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdverify.errors import InputError
-from pdverify.scene import parse_scene
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import parse_scene
 
 ROOT = Path(__file__).parents[1]
 BAD = sorted((ROOT / "tests" / "bad_inputs").glob("scene_*.toml"))

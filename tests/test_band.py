@@ -6,9 +6,9 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from pdverify.band import Band
-from pdverify.errors import SolveError
-from pdverify.linalg import solve_band, solve_linear
+from pdverify.core.errors import SolveError
+from pdverify.numerics.band import Band
+from pdverify.numerics.linalg import solve_band, solve_linear
 
 
 def dense_stencil(n, offsets, coefs, r0=0, r1=None):

@@ -10,7 +10,8 @@ import pandas as pd
 import pytest
 import scipy.sparse as sp
 
-from pdverify.bench import bench_case, cost_slope
+from pdverify.apps.bench import bench_case
+from pdverify.measure.cost import cost_slope
 
 ROOT = Path(__file__).parents[1]
 
@@ -21,7 +22,7 @@ def test_bench_json_lines():
         [
             sys.executable,
             "-m",
-            "pdverify.cli",
+            "pdverify.apps.cli",
             "bench",
             "-m",
             "exact-eb",
@@ -47,8 +48,8 @@ def test_limit_is_banded_solve_of_the_models_matrix(monkeypatch):
     """A model that declares ``assembles`` gets limit_s from the banded solve of exactly the System its
     assemble() returns; one that does not declare it gets none, whatever methods it has."""
     from pdverify import registry
-    from pdverify.exact.models import ExactBeam
-    from pdverify.registry import System
+    from pdverify.core.contract import System
+    from pdverify.exact.beam import ExactBeam
 
     class Tridiag(ExactBeam):
         assembles = True
@@ -73,7 +74,7 @@ def test_limit_is_banded_solve_of_the_models_matrix(monkeypatch):
 
 def test_default_models_are_the_declared_ones():
     """bench's default list: models declaring an assembled system or a time integrator, nothing probed."""
-    from pdverify.bench import default_models
+    from pdverify.apps.bench import default_models
     from pdverify.registry import models
 
     got = set(default_models())
@@ -147,7 +148,7 @@ def test_rows_carry_their_error_against_the_exact_solution():
 def test_inaccurate_runs_count_toward_no_target(tmp_path):
     """A run whose error is above 1e-6 is left out of every target, the slope and the cheapest run; a
     model with no accurate run fails the accuracy target instead of passing on speed."""
-    from pdverify.bench import accurate
+    from pdverify.measure.cost import accurate
     from pdverify.report.perf import build_performance, cheapest, targets
 
     rows = [

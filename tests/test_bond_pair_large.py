@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.models.pd_bond_pair import factored_stencils, family, operator_stencil, spring_constants
+from pdverify.papers.ogrady.model import factored_stencils, family, operator_stencil, spring_constants
 from pdverify.registry import run
-from pdverify.scene import parse_scene
 
 
 def err(scene, **opts):

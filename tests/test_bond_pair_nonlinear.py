@@ -8,11 +8,13 @@ from conftest import MIXED_LOADS, scene_dict
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from pdverify.errors import InputError
+from pdverify.core.errors import InputError
+from pdverify.core.scene import SUPPORTS, is_mechanism
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.elastica import ExactElastica, extensible_tip_force_shape, tip_force_shape, tip_force_tip
-from pdverify.models._bond_pair_loads import held_dofs
+from pdverify.measure.shapes import with_exact_shapes
+from pdverify.papers.ogrady.ends import held_dofs
 from pdverify.registry import run
-from pdverify.scene import SUPPORTS, is_mechanism, parse_scene
 
 L = 2.0  # conftest's beam
 # every support pair the scene takes, rollers included (conftest's PAIRS has none)
@@ -101,7 +103,7 @@ def test_small_loads_linear_and_nonlinear_paths_agree_to_1e_10(n):
 
 
 def test_axial_condition_of_each_support():
-    """The scene's vocabulary (pdverify.scene.HELD, docs/supports.md) on both ends."""
+    """The scene's vocabulary (pdverify.core.scene.HELD, docs/supports.md) on both ends."""
     n = 11
     assert held_dofs("pinned", "pinned", n) == [1, 0, 21, 20]  # both displacements at both ends
     assert held_dofs("clamped", "roller", n) == [1, 0, 21]  # roller: transverse only
@@ -285,11 +287,12 @@ def test_tip_force_second_order_against_the_extensible_elastica(alpha):
     "kind,value,bound", [("point_force", -2 * EI_SLENDER, 1e-4), ("point_moment", np.pi * EI_SLENDER, 5e-4)]
 )
 def test_load_steps_carry_the_exact_elastica(kind, value, bound):
-    """The report draws each load step's deformed shape over the exact one: the tip force's too (before: the
-    circles of a tip moment only). At 201 points, largest distance over the points at each of the five steps,
-    measured 5.1e-6..4.7e-5 L (P L^2 / EI = 2) and 1.1e-5..3.1e-4 L (semicircle), growing with the load."""
+    """The report draws each load step's deformed shape over the exact one (the study stores both:
+    :func:`pdverify.measure.shapes.with_exact_shapes`), the tip force's and the tip moment's. At 201 points,
+    largest distance over the points at each of the five steps, measured 5.1e-6..4.7e-5 L (P L^2 / EI = 2) and
+    1.1e-5..3.1e-4 L (semicircle), growing with the load."""
     sc = parse_scene(scene_dict("clamped", "free", [{"type": kind, "position": 1.0, "value": value}], **SLENDER))
-    shots = nonlinear(sc, 201).info["load_steps"]
+    shots = with_exact_shapes(sc, nonlinear(sc, 201).info["load_steps"])
     assert len(shots) == 5
     for st in shots:
         d = np.hypot(np.subtract(st["x"], st["exact_x"]), np.subtract(st["z"], st["exact_z"])).max()

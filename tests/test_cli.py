@@ -97,7 +97,7 @@ def test_failed_write_leaves_no_partial_file(tmp_path, capsys, monkeypatch):
 def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
     """`bench --points 101 201` (several values after one flag) and `--points 101 --points 201` are the same
     (the timed runs are replaced by a recorder: this checks the parsing, test_bench.py the timing)."""
-    import pdverify.bench
+    import pdverify.apps.bench
 
     calls = []
 
@@ -105,7 +105,7 @@ def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
         calls.append((model, points))
         return {"model": model, "points": points, "status": "failed", "message": "not run"}
 
-    monkeypatch.setattr(pdverify.bench, "bench_subprocess", fake)
+    monkeypatch.setattr(pdverify.apps.bench, "bench_subprocess", fake)
     for args in (
         ["--points", "101", "201"],
         ["--points", "101", "--points", "201"],
@@ -121,7 +121,7 @@ def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
 
 
 def test_spread_repeats_only_touches_bench_points():
-    from pdverify.cli import _spread_repeats
+    from pdverify.apps.cli import _spread_repeats
 
     assert _spread_repeats(["bench", "--points", "1", "2", "-m", "a"]) == [
         "bench",
@@ -152,9 +152,9 @@ MEASURED_PEAK_MB = {
 def test_memory_estimate_covers_the_measured_peak(model, points):
     """The guard's estimate is above the measured peak, and within 2x of it (a guard that refuses runs that fit
     would be as wrong as none)."""
-    from pdverify.memguard import estimate_bytes
+    from pdverify.core.scene_file import load_scene
+    from pdverify.measure.memory import estimate_bytes
     from pdverify.registry import get_model
-    from pdverify.scene import load_scene
 
     scene = load_scene(ROOT / ("studies/paper_curved/semicircle_normal.toml" if model == "pd-curved" else SCENE))
     m = get_model(model)
@@ -166,7 +166,7 @@ def test_memory_estimate_covers_the_measured_peak(model, points):
 def test_memory_guard_refuses_pd_curved_at_ten_million_points(capsys):
     """pd-curved at 10^7 points: refused before the large allocation with the estimate (was: MemoryError after
     allocating 32 GiB)."""
-    from pdverify.memguard import available_bytes
+    from pdverify.measure.memory import available_bytes
 
     have = available_bytes()
     if have is None or have > 200 * 2**30:
@@ -204,8 +204,8 @@ def test_units_key_of_a_scene():
     """units = "inch-pound" labels lengths in inches; SI by default; other values are errors."""
     import tomllib
 
-    from pdverify.errors import InputError
-    from pdverify.scene import parse_scene
+    from pdverify.core.errors import InputError
+    from pdverify.core.scene_file import parse_scene
 
     data = tomllib.loads(SCENE.read_text())
     assert parse_scene(data).length_unit == "m"

@@ -14,10 +14,11 @@ import numpy as np
 import pytest
 from conftest import scene_dict
 
-from pdverify.errors import InputError
-from pdverify.geometry import axis_length, geometry
+from pdverify.core.errors import InputError
+from pdverify.core.geometry import axis_length, geometry
+from pdverify.core.scene import Axis
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import run
-from pdverify.scene import Axis, parse_scene
 
 ARC = {"type": "arc", "radius": 1.0, "opening_angle_deg": 120.0, "start_angle_deg": 30.0}
 POLY = {"type": "polynomial", "coefficients": [0.0, 0.4, -0.3, 0.1], "x_range": [0.0, 1.6]}

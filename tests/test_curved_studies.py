@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pdverify.core.scene_file import load_scene
+from pdverify.measure.metrics import locking_slope, observed_order
 from pdverify.registry import get_model, run
-from pdverify.scene import load_scene
-from pdverify.study.metrics import locking_slope, observed_order
 from pdverify.study.spec import load_study
 
 STUDIES = Path(__file__).resolve().parent.parent / "studies"
@@ -76,8 +76,8 @@ def test_manufactured_loads_satisfy_the_equilibrium_equations(kind):
     and check N' - kappa Q + p_t = 0, Q' + kappa N + p_n = 0, M' + Q + m = 0."""
     from scipy.interpolate import CubicSpline
 
-    from pdverify.geometry import geometry
-    from pdverify.manufactured import fields
+    from pdverify.core.geometry import geometry
+    from pdverify.theory.curved_manufactured import fields
 
     sc = scene("quintic_manufactured")
     s = np.linspace(0, sc.length, 4001)
@@ -102,7 +102,7 @@ def test_bending_manufactured_solution_is_beam_like():
     """fields = bending: clamped ends, and every resultant and load scales with EI at fixed displacements (the
     membrane and shear strains are O(h^2/L^2) of the bending ones, as in a slender beam), so N L / M stays O(1)
     from L/h = 10 to 10^4; the trig fields' N L / M grows like (L/h)^2."""
-    from pdverify.manufactured import fields
+    from pdverify.theory.curved_manufactured import fields
 
     s = np.linspace(0, scene("quintic_manufactured").length, 801)
 

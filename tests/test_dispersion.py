@@ -1,14 +1,14 @@
-"""Dispersion relations (pdverify.dispersion, issue 30 item 5): the interior stencil's branches against the
+"""Dispersion relations (pdverify.numerics.dispersion, issue 30 item 5): the interior stencil's branches against the
 continuum, rod and Timoshenko beam, horizons 1-4."""
 
 import numpy as np
 import pytest
 from conftest import scene_dict
 
-from pdverify.dispersion import stencil_branches, timoshenko_branches
-from pdverify.models import moyer_operator as O
-from pdverify.models._moyer_kernels import rod_kernel
-from pdverify.scene import parse_scene
+from pdverify.core.scene_file import parse_scene
+from pdverify.numerics.dispersion import stencil_branches, timoshenko_branches
+from pdverify.papers.moyer import operator as O
+from pdverify.papers.moyer.kernels import rod_kernel
 
 MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
 SCENE = parse_scene(scene_dict("clamped", "clamped", [], material=MATERIAL))

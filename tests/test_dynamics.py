@@ -7,14 +7,14 @@ import numpy as np
 import pytest
 from conftest import PAIRS, scene_dict
 
-from pdverify.dynamics import LEDGER_COLUMNS
-from pdverify.errors import SolveError
-from pdverify.models import moyer_operator as O
-from pdverify.models import moyer_spectrum as S
-from pdverify.models import moyer_transient as TR
-from pdverify.models import pd_timoshenko as T
+from pdverify.core.errors import SolveError
+from pdverify.core.scene_file import load_scene, parse_scene
+from pdverify.numerics.timeint import LEDGER_COLUMNS
+from pdverify.papers.moyer import model as T
+from pdverify.papers.moyer import operator as O
+from pdverify.papers.moyer import spectrum as S
+from pdverify.papers.moyer import transient as TR
 from pdverify.registry import run
-from pdverify.scene import load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
@@ -465,7 +465,7 @@ def test_ledger_energies_are_in_joules():
     half of it stored (Clapeyron, 9.3e-12). Before that, they were 1/Δ too large (J/m)."""
     from pathlib import Path
 
-    from pdverify.scene import load_scene
+    from pdverify.core.scene_file import load_scene
 
     sc = load_scene(Path(__file__).parents[1] / "studies/paper_moyer/beam_transient.toml")
     rest = sc.model_copy(update={"dynamics": sc.dynamics.model_copy(update={"damping_ratio": 1.0, "end_time": 0.3})})

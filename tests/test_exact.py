@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
+from pdverify.core.scene import is_mechanism
 from pdverify.exact.straight import solve_straight
-from pdverify.scene import is_mechanism
 
 L, P, C, q = 2.0, -350.0, 120.0, -900.0
 
@@ -221,7 +221,7 @@ def test_models_registered_and_solve_cli_json(tmp_path):
         [
             sys.executable,
             "-m",
-            "pdverify.cli",
+            "pdverify.apps.cli",
             "solve",
             "studies/examples/cantilever_tip_load.toml",
             "--model",

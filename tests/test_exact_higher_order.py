@@ -4,10 +4,10 @@ reference pd-higher-order converges to (issue #32)."""
 import numpy as np
 import pytest
 
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.exact.higher_order import D0, D1, Solution
-from pdverify.models._higher_order_bonds import coefficients
 from pdverify.registry import get_model, run
-from pdverify.scene import load_scene, parse_scene
+from pdverify.theory.higher_order import coefficients
 
 E, NU, B = 2e11, 0.3, 0.05
 EXACT = get_model("exact-higher-order")

@@ -8,9 +8,9 @@ import pandas as pd
 import pytest
 from conftest import pdverify_process
 
-from pdverify.errors import InputError
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, run
-from pdverify.scene import parse_scene
 from pdverify.study import load_study, run_study
 
 ROOT = Path(__file__).parents[1]

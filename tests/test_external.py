@@ -11,10 +11,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pdverify.errors import InputError, SolveError
-from pdverify.external import load_manifest
+from pdverify.core.errors import InputError, SolveError
+from pdverify.core.scene_file import load_scene
 from pdverify.registry import run
-from pdverify.scene import load_scene
+from pdverify.registry.external import load_manifest
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "studies" / "examples" / "cantilever_tip_load.toml"
@@ -97,7 +97,7 @@ def test_each_failure_is_one_line_naming_model_and_case(tmp_path, mode, words):
 def test_cli_solve_with_a_manifest_path(tmp_path):
     path = manifest(tmp_path)
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    cmd = [sys.executable, "-m", "pdverify.cli", "solve", str(SCENE), "--model", str(path), "--format", "json"]
+    cmd = [sys.executable, "-m", "pdverify.apps.cli", "solve", str(SCENE), "--model", str(path), "--format", "json"]
     ok = subprocess.run(cmd + ["--points", "5"], capture_output=True, text=True, env=env, timeout=120)
     assert ok.returncode == 0, ok.stderr
     assert json.loads(ok.stdout)["model"] == "ext-tip" and len(json.loads(ok.stdout)["w"]) == 5
@@ -140,7 +140,7 @@ def test_study_goes_on_past_every_failure(tmp_path):
         [
             sys.executable,
             "-m",
-            "pdverify.cli",
+            "pdverify.apps.cli",
             "study",
             str(tmp_path / "study.toml"),
             "--out",
@@ -177,7 +177,7 @@ def test_models_path_lists_manifests_and_warns_once_for_a_bad_one(tmp_path):
     (tmp_path / "bad.toml").write_text('name = "bad one"\ncommand = ["x"]\n')
     env = {**os.environ, "PYTHONPATH": str(ROOT), "PDVERIFY_MODELS_PATH": str(tmp_path)}
     r = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "models"], capture_output=True, text=True, env=env, timeout=120
+        [sys.executable, "-m", "pdverify.apps.cli", "models"], capture_output=True, text=True, env=env, timeout=120
     )
     assert r.returncode == 0, r.stderr
     assert any(line.startswith("ext-tip ") for line in r.stdout.splitlines())

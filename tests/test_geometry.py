@@ -2,9 +2,10 @@ import numpy as np
 import pytest
 from conftest import scene_dict
 
-from pdverify.errors import InputError
-from pdverify.geometry import AxisGeometry, axis_length
-from pdverify.scene import Axis, parse_scene
+from pdverify.core.errors import InputError
+from pdverify.core.geometry import AxisGeometry, axis_length
+from pdverify.core.scene import Axis
+from pdverify.core.scene_file import parse_scene
 
 
 def test_arc_semicircle():

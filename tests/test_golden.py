@@ -1,7 +1,7 @@
 """Regression: every paper benchmark's curve against its golden file, to rtol max(1e-10, cond * eps) of its
 largest value (cond: the run's own condition estimate; 1e-10 for runs without one).
 
-Regenerate with `python -m pdverify.golden --regenerate` and explain the change in the commit message.
+Regenerate with `python -m pdverify.apps.golden --regenerate` and explain the change in the commit message.
 
 Why cond * eps and not a flat 1e-10: the last digits of a solution depend on the CPU's BLAS kernels
 (OpenBLAS picks them at run time), and below cond * eps they are not determined by the scene. Measured:
@@ -29,13 +29,13 @@ import json
 import numpy as np
 import pytest
 
-from pdverify.golden import CASES, GOLDEN, compute, key
+from pdverify.apps.golden import CASES, GOLDEN, compute, key
 
 
 @pytest.mark.parametrize("scene,model,options", CASES, ids=[key(*c) for c in CASES])
 def test_golden(scene, model, options):
     path = GOLDEN / f"{key(scene, model, options)}.json"
-    assert path.exists(), f"missing golden file {path.name}: run python -m pdverify.golden --regenerate"
+    assert path.exists(), f"missing golden file {path.name}: run python -m pdverify.apps.golden --regenerate"
     want = json.loads(path.read_text())
     got = compute(scene, model, options)
     assert np.allclose(got["x"], want["x"], rtol=0, atol=1e-14)
@@ -51,9 +51,9 @@ def test_golden(scene, model, options):
 def test_same_inputs_same_numbers_bitwise():
     """Reproducibility: the stable time step comes from an eigenvalue solve (ARPACK, whose default start
     vector is random); two runs of a transient and of a static solve give identical bits."""
-    from pdverify.golden import ROOT
+    from pdverify.apps.golden import ROOT
+    from pdverify.core.scene_file import load_scene
     from pdverify.registry import run
-    from pdverify.scene import load_scene
 
     sc = load_scene(ROOT / "studies" / "paper_moyer" / "beam_example2.toml")
     a, b = (run(sc, "pd-timoshenko", points=41, horizon=1) for _ in range(2))

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 from conftest import scene_dict
 
-from pdverify.errors import SolveError
+from pdverify.core.errors import SolveError
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.models.pd_eb_transient import simulate_eb as simulate
+from pdverify.papers.diyaroglu.transient import simulate_eb as simulate
 from pdverify.registry import run
-from pdverify.scene import parse_scene
 
 
 def err(sc, model, **o):
@@ -85,7 +85,7 @@ def test_explicit_dynamics_at_the_stability_limit():
 def test_singular_system_one_message_no_nan():
     import scipy.sparse as sp
 
-    from pdverify.linalg import solve_linear
+    from pdverify.numerics.linalg import solve_linear
 
     K = sp.csr_matrix(np.array([[1.0, -1.0], [-1.0, 1.0]]))
     with pytest.raises(SolveError, match="singular"):

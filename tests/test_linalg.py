@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from pdverify.errors import SolveError
-from pdverify.linalg import solve_linear
+from pdverify.core.errors import SolveError
+from pdverify.numerics.linalg import solve_linear
 
 
 def lap(n):
@@ -38,8 +38,8 @@ def test_banded_lu_of_the_scaled_matrix_solves_both_directions():
     transposed) must equal dense solves of the scaled matrix, and the band storage must hold K."""
     import scipy.sparse as sp
 
-    from pdverify.band import Band
-    from pdverify.linalg import banded_lu, bandwidths, scale_symmetric
+    from pdverify.numerics.band import Band
+    from pdverify.numerics.linalg import banded_lu, bandwidths, scale_symmetric
 
     rng = np.random.default_rng(3)
     n = 40

@@ -15,9 +15,9 @@ import pytest
 from conftest import MIXED_LOADS, scene_dict
 from numpy.polynomial import Polynomial
 
-from pdverify.errors import SolveError
+from pdverify.core.errors import SolveError
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import models, run
-from pdverify.scene import parse_scene
 
 BENDING = MIXED_LOADS  # forces and moments anywhere and at the ends, partial and sine loads
 AXIAL = [
@@ -79,8 +79,8 @@ def _scenes():
         )
     L = 2.0
     poly = {"type": "polynomial", "coefficients": [0.0, 0.3, -0.1], "x_range": [0.0, 1.0]}
-    from pdverify.geometry import axis_length
-    from pdverify.scene import Axis
+    from pdverify.core.geometry import axis_length
+    from pdverify.core.scene import Axis
 
     Lp = axis_length(Axis(**poly))
     loads = [

@@ -6,9 +6,9 @@ import pytest
 import scipy.linalg as sla
 from conftest import scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.modal_beam import BeamModes, beam_response
 from pdverify.registry import get_model, run
-from pdverify.scene import parse_scene
 
 STEEL = {"youngs_modulus": 200e9, "poissons_ratio": 0.3, "density": 7850.0}
 SLOW = pytest.mark.slow  # point loads (and load ends) converge like 1/modes: 1024 modes for the estimate, 4-6 s
@@ -106,7 +106,7 @@ def test_fem_transient_converges_to_the_exact_modal_solution():
     3.3e-5 at 21 .. 161 nodes (measured; 8.5e-6 at 321): two independent methods agreeing."""
     from pathlib import Path
 
-    from pdverify.scene import load_scene
+    from pdverify.core.scene_file import load_scene
 
     sc = load_scene(Path(__file__).parents[1] / "studies/paper_moyer/beam_transient.toml")
     ex = get_model("exact-modal-timoshenko")
@@ -129,7 +129,7 @@ def test_damped_modal_reference_and_both_transients_agree():
     7.6e-9). damping_on = "translations" couples the modes: the reference declines it."""
     from pathlib import Path
 
-    from pdverify.scene import load_scene
+    from pdverify.core.scene_file import load_scene
 
     base = load_scene(Path(__file__).parents[1] / "studies/paper_moyer/beam_transient_pinned_guided.toml")
     sc = base.model_copy(update={"dynamics": base.dynamics.model_copy(update={"damping_ratio": 0.2})})
@@ -180,7 +180,7 @@ def test_fem_modes_use_the_consistent_mass_and_converge_at_order_two():
     """fem-timoshenko gives its transient's K and consistent mass (modes = True); `pdverify modes` solves
     K φ = λ M φ densely up to 300 free DOFs and with ARPACK above (101 and 201 nodes here: both paths): the lowest
     three frequencies against the analytic ones fall 4x per halving (measured ratios 3.99-4.00)."""
-    from pdverify.modes import modes
+    from pdverify.measure.modes import modes
 
     sc = _scene("clamped", "free", UNIFORM)
     tables = [modes(sc, "fem-timoshenko", {"points": n}, 3) for n in (101, 201)]

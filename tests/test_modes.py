@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from conftest import PAIRS, cli, scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
-from pdverify.modes import modes
-from pdverify.scene import parse_scene
+from pdverify.measure.modes import modes
 
 MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
 

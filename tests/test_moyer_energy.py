@@ -9,14 +9,14 @@ from conftest import MIXED_LOADS, PAIRS, scene_dict
 from test_dynamics import LOADS, MATERIAL, _scene
 from test_transient_reference import PROBES, _semi_discrete
 
-from pdverify.errors import InputError, SolveError
-from pdverify.models import moyer_energy as E
-from pdverify.models import moyer_operator as O
-from pdverify.models import moyer_spectrum as S
-from pdverify.models import moyer_transient as TR
-from pdverify.models import pd_timoshenko as T
+from pdverify.core.errors import InputError, SolveError
+from pdverify.core.scene_file import parse_scene
+from pdverify.papers.moyer import energy as E
+from pdverify.papers.moyer import model as T
+from pdverify.papers.moyer import operator as O
+from pdverify.papers.moyer import spectrum as S
+from pdverify.papers.moyer import transient as TR
 from pdverify.registry import run
-from pdverify.scene import parse_scene
 
 SLENDERNESS = (4, 20, 100, 1e4)
 
@@ -145,7 +145,7 @@ def test_a_run_with_the_stabilisation_says_so():
     """Trust: the corrected variant's transient at a clamped end runs with the scheme's stabilising damping (not in
     the scene or the paper): its result carries a warning with the share of the work put in that it took (measured
     5.2e-4 on the cantilever at 41 points, m = 2) and names variant energy, which runs without it and carries none."""
-    from pdverify.scene import load_scene
+    from pdverify.core.scene_file import load_scene
 
     sc = load_scene(Path(__file__).parents[1] / "studies" / "paper_moyer" / "beam_transient.toml")
     flags = run(sc, "pd-timoshenko", points=41, horizon=2, variant="corrected").info["warnings"]
@@ -216,7 +216,7 @@ def test_transients_converge_at_order_two_for_every_support_pair(tmp_path):
     study runner: every pairwise order within 1.8-2.1 (measured 1.84-2.04; 2.6e-3 at 321 points between clamped ends
     at most, 2.1e-5 at least)."""
     from pdverify import run_study
-    from pdverify.scene import is_mechanism
+    from pdverify.core.scene import is_mechanism
 
     base = (Path(__file__).parents[1] / "studies" / "paper_moyer" / "beam_transient.toml").read_text()
     scenes = []

@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.models.pd_bond_pair import family, spring_constants
+from pdverify.papers.ogrady.model import family, spring_constants
 from pdverify.registry import run
-from pdverify.scene import parse_scene
 
 LOADS = MIXED_LOADS
 
@@ -121,7 +121,7 @@ def test_rigid_rotation_produces_no_force():
     th = np.deg2rad(30.0)
     Rm = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
     # rotate the whole extended grid, then evaluate the element forces without the support map
-    from pdverify.models._bond_pair_nonlinear import bond_grad, pair_grad
+    from pdverify.papers.ogrady.nonlinear import bond_grad, pair_grad
 
     Xe = np.stack([(np.arange(model.N) - model.G) * model.dx, np.zeros(model.N)], axis=1)
     U = Xe @ Rm.T - Xe
@@ -147,7 +147,7 @@ def test_consistent_tangent_matches_central_differences():
 
 
 def test_nonlinear_path_needs_the_mirror_ghosts():
-    from pdverify.errors import InputError
+    from pdverify.core.errors import InputError
 
     sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_moment", "position": 2.0, "value": 1.0}]))
     with pytest.raises(InputError, match="ends = taylor"):

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-from pdverify.errors import InputError
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.exact.curved import Cantilever
 from pdverify.registry import get_model, run
-from pdverify.scene import load_scene, parse_scene
 
 EXACT_T = get_model("exact-timoshenko")
 EXACT_C = get_model("exact-curved-cantilever")
@@ -152,8 +152,8 @@ def test_exact_cantilever_clapeyron_on_a_quintic_axis():
 
     d = scene_dict("clamped", "free", [{"type": "point_force", "position": 0.0, "value": 0.0}])
     d["axis"] = {"type": "polynomial", "coefficients": [0.0, 0.75, -2.25, 1.5, -1.5, 1.5], "x_range": [0.0, 1.0]}
-    from pdverify.geometry import axis_length
-    from pdverify.scene import Axis
+    from pdverify.core.geometry import axis_length
+    from pdverify.core.scene import Axis
 
     L = axis_length(Axis(**d["axis"]))
     d["beam"] = {"length": L}
@@ -345,9 +345,9 @@ def _sparse_resultant_system(model, sc, params, body=None):
     wrote its band directly: (K interleaved CSR, b, column scales)."""
     import scipy.sparse as sp
 
-    from pdverify.models import _pddo
-    from pdverify.models._curved_assembly import conditions
-    from pdverify.models._curved_particles import axis_frame, distributed_loads
+    from pdverify.papers.curved import pddo as _pddo
+    from pdverify.papers.curved.assembly import conditions
+    from pdverify.papers.curved.particles import axis_frame, distributed_loads
 
     segs, inner, ends, m, size = model.discretise(sc, params)
     s = np.concatenate(segs)
@@ -391,7 +391,7 @@ def _sparse_resultant_system(model, sc, params, body=None):
 
 def _groups(sc):
     """The scenes solve() assembles: one per group of loads needing the same breaks."""
-    from pdverify.models._curved_particles import breakpoints
+    from pdverify.papers.curved.particles import breakpoints
 
     groups = {}
     for load in sc.loads:
@@ -406,7 +406,7 @@ def test_band_assembly_equals_the_sparse_route_bit_for_bit(P, points):
     """The band (block stencils, boundary and interface entries, row and column equilibration on the written
     diagonals only) holds the same numbers as the sparse products it replaced: every support pair with
     mixed loads (one system per load group), both semicircles, the quintic with the manufactured loads."""
-    from pdverify.manufactured import body
+    from pdverify.theory.curved_manufactured import body
 
     m = get_model("pd-curved")
     scenes = [(g, None) for pair in PAIRS for g in _groups(parse_scene(scene_dict(*pair, MIXED_LOADS)))]
@@ -427,8 +427,8 @@ def test_band_solve_above_small_equals_the_csr_route_and_is_the_bench_limit():
     """Above 20,000 unknowns solve() factorises the band in place: the same bits as the CSR banded LU of
     the same matrix; assemble() (the System pdverify bench times) is that band and right-hand side,
     manufactured loads included."""
-    from pdverify.linalg import SMALL, solve_linear
-    from pdverify.manufactured import body
+    from pdverify.numerics.linalg import SMALL, solve_linear
+    from pdverify.theory.curved_manufactured import body
 
     sc = load_scene("studies/paper_curved/quintic_manufactured.toml")
     m = get_model("pd-curved-mms")
@@ -456,8 +456,8 @@ def test_axis_abscissae_is_the_geometry_inversion(coefficients, x_range):
     checked here at 12; the two inversions differ by up to 4 ulp on 3,000 positions."""
     import mpmath as mp
 
-    from pdverify.geometry import AxisGeometry, axis_abscissae, axis_length
-    from pdverify.scene import Axis
+    from pdverify.core.geometry import AxisGeometry, axis_abscissae, axis_length
+    from pdverify.core.scene import Axis
 
     axis = Axis(type="polynomial", coefficients=coefficients, x_range=x_range)
     L = axis_length(axis)
@@ -539,7 +539,7 @@ def test_graded_segment_grids_follow_the_density():
     """segment_grids with a density: the segment ends are kept, particles increase, and the spacing ratio is the
     grading ratio: ρ lies in [1, ratio], so no two spacings differ by more than the ratio, and a narrow bend
     comes close to it (curvature grading on the steep quintic, ratio 20: measured 14.6 at 201 particles)."""
-    from pdverify.models._curved_particles import grading_density, segment_grids
+    from pdverify.papers.curved.particles import grading_density, segment_grids
 
     sc = load_scene("studies/paper_curved/steep_quintic_uniform.toml")
     L = sc.length
@@ -555,7 +555,7 @@ def test_given_positions_reproduce_the_uniform_and_the_graded_particles():
     """positions = the particles' arc lengths (as a study or the CLI gives them): the uniform grid written out gives
     the same bits as points = 81; the graded grid written out gives the graded run; with a point load inside the
     beam the break is added to the given positions."""
-    from pdverify.models._curved_particles import grading_density, segment_grids
+    from pdverify.papers.curved.particles import grading_density, segment_grids
 
     sc = load_scene("studies/paper_curved/semicircle_normal.toml")
     text = lambda s: ", ".join(repr(float(v)) for v in s)  # noqa: E731

@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, OFF_GRID_LOADS, PAIRS, scene_dict
 
-from pdverify.errors import SolveError
+from pdverify.core.errors import SolveError
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.models.pd_eb import PDEulerBernoulli, curvature_weights
-from pdverify.models.pd_eb_transient import simulate_eb as simulate
+from pdverify.papers.diyaroglu.model import PDEulerBernoulli, curvature_weights
+from pdverify.papers.diyaroglu.transient import simulate_eb as simulate
 from pdverify.registry import run
-from pdverify.scene import load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 PAPER = {
@@ -87,7 +87,7 @@ def test_every_support_pair_converges_order_two(left, right):
 
 
 def test_horizon_below_one_spacing_rejected(make_scene):
-    from pdverify.errors import InputError
+    from pdverify.core.errors import InputError
 
     with pytest.raises(InputError, match="horizon = 0.5"):
         run(
@@ -178,7 +178,7 @@ def test_loads_between_points_converge_at_order_two(model):
 def test_mixed_form_equals_direct_form_and_rejects_the_paper_variant():
     """Same discrete solution in both forms (to round-off at a coarse grid); the paper's energy form
     has no two-equation split, which is said in one line."""
-    from pdverify.errors import InputError
+    from pdverify.core.errors import InputError
 
     for name, sc in PAPER.items():
         a = run(sc, "pd-eb", points=101, form="direct").w
@@ -201,7 +201,7 @@ def test_paper_readings_of_the_boundary_treatment(scene, energy, literal, layer)
     max error / max |w| against exact-eb (measured values in the parameters, 10 % margin). Only the energy
     reading agrees with the paper's Figures 9, 11 and 13 ("agree well" with FE); the literal reading
     makes a simply supported beam nearly clamped (peak 1.44e-3 against 6.25e-3)."""
-    from pdverify.scene import load_scene
+    from pdverify.core.scene_file import load_scene
 
     sc = load_scene(f"studies/paper_diyaroglu/{scene}.toml")
     ex = solve_straight(sc, False)
@@ -212,7 +212,7 @@ def test_paper_readings_of_the_boundary_treatment(scene, energy, literal, layer)
 
 
 def test_reading_is_a_paper_variant_option():
-    from pdverify.errors import InputError
+    from pdverify.core.errors import InputError
 
     sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -5.0}]))
     with pytest.raises(InputError, match="reading"):

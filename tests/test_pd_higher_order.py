@@ -8,13 +8,14 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-from pdverify.models._higher_order_bonds import NF, WS, assemble_blocks, bond_weights, coefficients, energy
-from pdverify.models._higher_order_ends import constraint_map, load_vector, mirror_map, taylor_map
-from pdverify.models._higher_order_layer import layer_constants, spring
-from pdverify.models.pd_common import family
-from pdverify.models.pd_higher_order import PDHigherOrder
+from pdverify.core.scene_file import load_scene, parse_scene
+from pdverify.numerics.families import family
+from pdverify.papers.yang.bonds import assemble_blocks, bond_weights, energy
+from pdverify.papers.yang.ends import constraint_map, load_vector, mirror_map, taylor_map
+from pdverify.papers.yang.layer import layer_constants, spring
+from pdverify.papers.yang.model import PDHigherOrder
 from pdverify.registry import run
-from pdverify.scene import load_scene, parse_scene
+from pdverify.theory.higher_order import NF, WS, coefficients
 
 ROOT = Path(__file__).parents[1]
 NAMES = ["ss_uniform", "ss_centre_force", "cc_uniform", "cantilever_tip_force", "cantilever_tip_moment"]
@@ -569,7 +570,7 @@ def test_outputs_and_sign_conventions():
 
 
 def test_family_must_fit():
-    from pdverify.errors import InputError
+    from pdverify.core.errors import InputError
 
     with pytest.raises(InputError, match="horizon"):
         run(PAPER["cc_uniform"], "pd-higher-order", points=6, horizon=3)
@@ -636,7 +637,7 @@ def test_end_layer_weights_pass_the_patch_test():
     """end_layer_weights: every point keeps Σ_j w xi^2 = V (trapezoid), every segment carries Σ w xi^2 / d = dx,
     the weights stay positive (measured 0.66 .. 2.25 of the per-point ones at m = 3), the two ends mirror each
     other, and at m = 1 nothing changes."""
-    from pdverify.models._higher_order_bonds import end_layer_weights
+    from pdverify.papers.yang.bonds import end_layer_weights
 
     for m, n in ((3.0, 41), (2.5, 41), (3.0, 11), (1.0, 21)):
         dx = 1.0 / (n - 1)

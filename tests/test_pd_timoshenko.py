@@ -8,16 +8,17 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, OFF_GRID_LOADS, PAIRS, scene_dict
 
-from pdverify.errors import InputError, SolveError
+from pdverify.core.errors import InputError, SolveError
+from pdverify.core.scene import Distributed, PointForce
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.exact.vibration import TimoshenkoBeam
-from pdverify.models._moyer_kernels import rod_kernel, shear_kernel
-from pdverify.models.moyer_operator import beam_operator
-from pdverify.models.moyer_spectrum import stable_time_step
-from pdverify.models.moyer_transient import STABILISATION, integrate
-from pdverify.models.pd_timoshenko import simulate
+from pdverify.papers.moyer.kernels import rod_kernel, shear_kernel
+from pdverify.papers.moyer.model import simulate
+from pdverify.papers.moyer.operator import beam_operator
+from pdverify.papers.moyer.spectrum import stable_time_step
+from pdverify.papers.moyer.transient import STABILISATION, integrate
 from pdverify.registry import run
-from pdverify.scene import Distributed, PointForce, load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 TABLE1 = load_scene(ROOT / "studies/paper_moyer/cantilever_table1.toml")
@@ -408,7 +409,7 @@ def test_time_stepping_is_stable_with_the_non_symmetric_closures(right, n, m, re
     """Spectral radius of the undamped one-step map (u, v) -> (u', v') on the free DOFs. Without the
     stabilisation (κ = 0) the complex eigenvalues of the boundary closures make it grow: measured
     1 + 1.9e-2, 2.0e-2, 2.4e-3, 1.3e-3; with κ = 0.2 it is <= 1."""
-    from pdverify.models.moyer_spectrum import mass_scaled
+    from pdverify.papers.moyer.spectrum import mass_scaled
 
     sc = parse_scene(
         dict(
@@ -471,7 +472,7 @@ def test_cli_dynamic_scene_writes_time_history(tmp_path):
         [
             sys.executable,
             "-m",
-            "pdverify.cli",
+            "pdverify.apps.cli",
             "solve",
             str(ROOT / "studies/paper_moyer/rod_example1.toml"),
             "--model",

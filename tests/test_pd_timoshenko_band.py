@@ -7,16 +7,16 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-from pdverify.linalg import solve_linear
-from pdverify.models import moyer_operator as O
-from pdverify.models import moyer_spectrum as S
-from pdverify.models import moyer_steps as ST
-from pdverify.models import moyer_system as SY
-from pdverify.models import moyer_transient as TR
-from pdverify.models import pd_timoshenko as T
-from pdverify.models._moyer_kernels import EndPatched, node_loads
+from pdverify.core.scene_file import load_scene, parse_scene
+from pdverify.numerics.linalg import solve_linear
+from pdverify.papers.moyer import model as T
+from pdverify.papers.moyer import operator as O
+from pdverify.papers.moyer import spectrum as S
+from pdverify.papers.moyer import steps as ST
+from pdverify.papers.moyer import system as SY
+from pdverify.papers.moyer import transient as TR
+from pdverify.papers.moyer.kernels import EndPatched, node_loads
 from pdverify.registry import run
-from pdverify.scene import load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 AXIAL_LOADS = [

@@ -7,7 +7,7 @@ import time
 import numpy as np
 import pytest
 
-from pdverify.models._pddo import derivative_matrices, families, pddo_weights
+from pdverify.papers.curved.pddo import derivative_matrices, families, pddo_weights
 
 
 def _grid(kind, n=31):
@@ -134,7 +134,7 @@ def test_default_mixed_families_keep_the_first_derivative_symbol_away_from_zero_
     sets the stencil's spare coefficients and the symbol's slope at pi collapses (P = 6: 0.017) or turns
     negative (P = 8, 10: -0.41, -0.82, a spurious null mode); default_horizon's families keep it >= 0.44
     (measured 0.67, 1.67, 0.45, 2.2, 2.2, 2.66, 2.66, 3.06, 3.06 for P = 2..10)."""
-    from pdverify.models._curved_particles import default_horizon
+    from pdverify.papers.curved.particles import default_horizon
 
     assert _symbol_slope_at_pi(P, default_horizon(P, "mixed")) > 0.4
     if P in (6, 8, 10):

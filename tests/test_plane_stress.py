@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 from conftest import scene_dict
 
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.registry import run
-from pdverify.scene import load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 

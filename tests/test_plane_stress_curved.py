@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
-from pdverify.errors import InputError
-from pdverify.geometry import axis_length
+from pdverify.core.errors import InputError
+from pdverify.core.geometry import axis_length
+from pdverify.core.scene import Axis
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.registry import run
-from pdverify.scene import Axis, load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 
@@ -270,7 +271,7 @@ def test_curved_scene_files_and_vtu(name, tmp_path):
     assert m.point_data["displacement"].shape == (n, 3) and np.all(m.point_data["von_mises"] >= 0)
     assert list(m.cells_dict) == ["quad8"]  # the mid-side nodes kept (on the mapped curves)
     # the VTU carries the mapped (curved) geometry: mid-line points lie on the axis
-    from pdverify.geometry import geometry
+    from pdverify.core.geometry import geometry
 
     X = geometry(sc).position(np.array([0.0, sc.length]))
     for p in X:
@@ -279,8 +280,8 @@ def test_curved_scene_files_and_vtu(name, tmp_path):
 
 def beam_load_resultant(scene):
     """(Fx, Fy, Mz about X(0)) of the scene's loads on the axis, by 400-point Gauss per distributed load."""
-    from pdverify.geometry import geometry
-    from pdverify.scene import Distributed, PointForce
+    from pdverify.core.geometry import geometry
+    from pdverify.core.scene import Distributed, PointForce
 
     geo = geometry(scene)
     X0 = geo.position(np.array([0.0]))[0]

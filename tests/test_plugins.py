@@ -52,7 +52,7 @@ def cli(site, *args, timeout=300):
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(site), str(ROOT)])}
     env.pop("PDVERIFY_MODELS_PATH", None)
     return subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", *args],
+        [sys.executable, "-m", "pdverify.apps.cli", *args],
         capture_output=True,
         text=True,
         env=env,
@@ -124,7 +124,8 @@ def test_missing_own_metadata_is_one_warning_naming_the_fem_references(monkeypat
     references: the registry says so (one warning line) instead of leaving 'unknown model fem-eb' to explain it."""
     from importlib.metadata import PackageNotFoundError
 
-    from pdverify import plugins, registry
+    from pdverify import registry
+    from pdverify.registry import plugins
 
     def absent(name):
         raise PackageNotFoundError(name)

@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 from conftest import PAIRS, scene_dict
 
+from pdverify.core.scene import SUPPORTS, is_mechanism
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.registry import run
-from pdverify.scene import SUPPORTS, is_mechanism, parse_scene
 
 L = 2.0  # conftest's beam
 ALL_PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]

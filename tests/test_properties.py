@@ -10,8 +10,9 @@ from conftest import scene_dict
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from pdverify.core.scene import is_mechanism
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import models, run
-from pdverify.scene import is_mechanism, parse_scene
 
 SUPPORTS = ("clamped", "pinned", "roller", "free", "guided")
 PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]

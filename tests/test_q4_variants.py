@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pdverify.core.scene_file import load_scene
 from pdverify.registry import run
-from pdverify.scene import load_scene
 
 skfem = pytest.importorskip("skfem")
 from reference_fem import q4_variants  # noqa: E402

@@ -7,8 +7,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model
-from pdverify.scene import parse_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text()
@@ -25,7 +25,7 @@ def test_the_scene_is_valid_and_solves():
 
 
 def test_the_study_file_runs_and_passes(tmp_path):
-    from pdverify.cli import main
+    from pdverify.apps.cli import main
 
     text = blocks("toml")[1].replace('"paper_diyaroglu/', f'"{ROOT}/studies/paper_diyaroglu/')
     study = tmp_path / "my_study.toml"

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.registry import get_model, run
-from pdverify.scene import parse_scene
 
 LOADS = MIXED_LOADS + [{"type": "distributed", "value": -250.0, "shape": "sine", "start": 0.35, "end": 1.7}]
 
@@ -67,7 +67,7 @@ def test_closed_form_hermite_equals_scikit_fem():
 def test_linear_timoshenko_in_scikit_fem_is_the_textbook_element(variant, gauss):
     """The scikit-fem form of the linear variants equals the element matrix written out (uneven elements):
     EI/l [theta' theta'] + kGA l sum_g wt_g B_g B_g^T, B = (-1/l, -(1 - xi), 1/l, -xi), DOFs (w, theta) per node."""
-    from reference_fem.beam import element_band, linear_timoshenko
+    from reference_fem.beam_elements import element_band, linear_timoshenko
 
     nodes = np.array([0.0, 0.3, 0.45, 1.0, 1.2])
     EI, kGA, l = 3.0, 700.0, np.diff(nodes)
@@ -84,7 +84,7 @@ def test_diagonal_assembly_equals_triplet_assembly():
     """assemble_elements accumulates diagonals by strided slices; it must equal the COO scatter."""
     import scipy.sparse as sp
 
-    from reference_fem.beam import assemble_elements
+    from reference_fem.beam_elements import assemble_elements
 
     rng = np.random.default_rng(0)
     ne = 9
@@ -100,7 +100,7 @@ def test_diagonal_assembly_equals_triplet_assembly():
 def test_nodes_hold_every_load_position_and_element_loads_do_not_depend_on_the_block_size():
     """beam_nodes inserts load positions into the uniform grid (a position within 1e-12 L of a node is
     that node); element_loads integrates in blocks of elements: any block size gives the same vectors."""
-    from reference_fem.beam import beam_nodes, element_loads, hermite_shapes
+    from reference_fem.beam_elements import beam_nodes, element_loads, hermite_shapes
 
     sc = parse_scene(scene_dict("clamped", "pinned", LOADS))
     x = beam_nodes(sc, 11)

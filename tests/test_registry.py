@@ -11,11 +11,12 @@ import pytest
 from conftest import scene_dict
 
 from pdverify import registry
-from pdverify.band import Band
-from pdverify.errors import InputError
-from pdverify.linalg import solve_linear
-from pdverify.registry import Model, System, get_model, models, problems, run
-from pdverify.scene import load_scene, parse_scene
+from pdverify.core.contract import Model, System
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import load_scene, parse_scene
+from pdverify.numerics.band import Band
+from pdverify.numerics.linalg import solve_linear
+from pdverify.registry import get_model, models, problems, run
 
 ROOT = Path(__file__).parents[1]
 EXAMPLE2 = ROOT / "studies/paper_moyer/beam_example2.toml"
@@ -212,14 +213,14 @@ def test_cli_exit_2_one_line():
         ["studies/examples/cantilever_tip_load.toml", "--model", "pd-eb", "--variant", "paper", "--horizon", "2.5"],
     ):
         r = subprocess.run(
-            [sys.executable, "-m", "pdverify.cli", "solve", *args], capture_output=True, text=True, cwd=ROOT
+            [sys.executable, "-m", "pdverify.apps.cli", "solve", *args], capture_output=True, text=True, cwd=ROOT
         )
         assert r.returncode == 2 and r.stderr.startswith("error: ") and r.stderr.count("\n") == 1, r.stderr
     r = subprocess.run(
         [
             sys.executable,
             "-m",
-            "pdverify.cli",
+            "pdverify.apps.cli",
             "solve",
             "studies/paper_moyer/beam_example2.toml",
             "--model",
@@ -241,7 +242,7 @@ def test_cli_exit_2_one_line():
 def test_bench_probes_no_attributes():
     """bench and advise read the declarations (assembles, analyses, bench_scene), never hasattr/getattr."""
     for f in ("bench.py", "advise.py"):
-        src = (ROOT / "pdverify" / f).read_text()
+        src = (ROOT / "pdverify" / "apps" / f).read_text()
         assert "hasattr(" not in src and "getattr(m" not in src and "getattr(model" not in src, f
 
 

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import pdverify.errors
+import pdverify.core.errors
 from pdverify.report import build_report
 from pdverify.report.build import fmt
 from pdverify.study import load_study, run_study
@@ -90,8 +90,8 @@ def test_one_page_per_paper_linked_both_ways(study_dir):
 def test_time_histories_plotted_and_written_as_csv(tmp_path, monkeypatch):
     """A dynamic model's history (info["history"]) becomes a figure on the report and a CSV file."""
     from pdverify import registry
-    from pdverify.registry import Model, Option
-    from pdverify.result import Result
+    from pdverify.core.contract import Model, Option
+    from pdverify.core.result import Result
 
     class Ringing(Model):
         name = "ringing-test"
@@ -314,7 +314,7 @@ def test_unwritable_report_out(tmp_path):
     )
     assert r.returncode == 4 and "Traceback" not in r.stderr and r.stderr.count("\n") == 1
     assert str(blocker) in r.stderr and blocker.read_text() == "x"
-    with pytest.raises(pdverify.errors.OutputError, match="rep"):
+    with pytest.raises(pdverify.core.errors.OutputError, match="rep"):
         build_report(tmp_path / "run", blocker / "rep")
 
 

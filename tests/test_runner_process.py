@@ -14,7 +14,7 @@ import pandas as pd
 import pytest
 from conftest import pdverify_process, start_in_own_group
 
-from pdverify.errors import InputError, OutputError
+from pdverify.core.errors import InputError, OutputError
 from pdverify.study import load_study, run_study
 from pdverify.study.outdir import LOCK_NAME, FolderLock
 
@@ -67,7 +67,7 @@ def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
     )
     out = tmp_path / "out"
     proc = subprocess.Popen(
-        [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"],
+        [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"],
         cwd=ROOT,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
@@ -104,7 +104,7 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
         "horizon = [2, 3, 4]\n",
     )
     out = tmp_path / "out"
-    cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
+    cmd = [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
     proc = start_in_own_group(cmd)
     deadline = time.time() + 60
     workers = []

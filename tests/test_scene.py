@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 from conftest import scene_dict
 
-from pdverify.errors import InputError
-from pdverify.scene import load_scene, parse_scene
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import load_scene, parse_scene
 
 ROOT = Path(__file__).parents[1]
 
@@ -123,7 +123,7 @@ def test_with_slenderness_rescales_height():
 
 
 def cli(*args):
-    return subprocess.run([sys.executable, "-m", "pdverify.cli", *args], capture_output=True, text=True, cwd=ROOT)
+    return subprocess.run([sys.executable, "-m", "pdverify.apps.cli", *args], capture_output=True, text=True, cwd=ROOT)
 
 
 def test_cli_bad_scene_one_line_exit_2(tmp_path):

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from conftest import cli
 
-from pdverify.errors import InputError
+from pdverify.core.errors import InputError
+from pdverify.core.scene_file import load_scene
 from pdverify.exact.strip import sine_loaded_strip
 from pdverify.registry import run
-from pdverify.scene import load_scene
 
 ROOT = Path(__file__).parents[1]
 STRIP = load_scene(ROOT / "studies/examples/sine_strip.toml")
@@ -151,7 +151,7 @@ def test_reactions_of_pd_higher_order_and_plane_stress_against_exact_timoshenko(
 @pytest.mark.parametrize("model", ["pd-eb", "fem-eb", "pd-bond-pair", "pd-timoshenko", "fem-timoshenko"])
 @pytest.mark.parametrize("name", ["cantilever_tip_force", "ss_centre_force", "cc_uniform"])
 def test_beam_model_reactions_from_statics_and_end_moments(model, name):
-    """pdverify.reactions (every straight static beam model without K u - b): determinate supports from statics
+    """pdverify.core.reactions (every straight static beam model without K u - b): determinate supports from statics
     (exact to round-off); clamped-clamped from the model's end moment. Measured at 201 points, cc uniform,
     moment_left vs 8.3333: fem-eb / pd-timoshenko / fem-timoshenko 8.3325 (-1e-4), pd-eb and pd-bond-pair 8.1464
     (-2.2 %; pd-eb on Diyaroglu's clamped-clamped: -2.95e-2, -1.49e-2, -7.5e-3, -3.7e-3, -1.9e-3 at 101..1601

@@ -14,12 +14,12 @@ import pytest
 from conftest import start_in_own_group
 
 from pdverify import registry
-from pdverify.errors import InputError
+from pdverify.core.contract import Model, Option
+from pdverify.core.errors import InputError
+from pdverify.core.result import Result
 from pdverify.exact.straight import solve_straight
-from pdverify.registry import Model, Option
-from pdverify.result import Result
+from pdverify.measure.metrics import gci, observed_order, pareto
 from pdverify.study import load_study, run_study
-from pdverify.study.metrics import gci, observed_order, pareto
 
 ROOT = Path(__file__).parents[1]
 SCENE = ROOT / "studies/paper_diyaroglu/clamped_clamped.toml"
@@ -129,7 +129,7 @@ def test_bad_study_one_line_exit_2(tmp_path, what):
     body, msg = BAD_STUDIES[what]
     p = write_study(tmp_path, body)
     r = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(tmp_path / "o")],
+        [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(tmp_path / "o")],
         capture_output=True,
         text=True,
         cwd=ROOT,
@@ -156,7 +156,7 @@ def _signal_mid_run(p, out, sig):
     """Start ``pdverify study`` serially in its own process group, send ``sig`` to the group once 5 case
     files are on disk (as a terminal sends Ctrl-C to the whole group) and wait; the process, its stderr
     and the CLI command (to run the study again)."""
-    cmd = [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
+    cmd = [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
     proc = start_in_own_group(cmd)
     deadline = time.time() + 60
     while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
@@ -195,7 +195,7 @@ def test_resume_after_sigkill(tmp_path):
         rtol=1e-12,
     )
     # the derived tables of the resumed run cover the resumed cases too
-    from pdverify.study.runner import write_derived
+    from pdverify.study.derived import write_derived
 
     again = tmp_path / "again"
     again.mkdir()
@@ -503,7 +503,7 @@ def test_serial_and_pool_runs_write_the_same_tables(tmp_path):
     """A serial run and a run with two pool workers give the same results but for the timings, meta.json
     records the same environment and counts, and each run's derived tables are, byte for byte, those
     written again from the results table beside them."""
-    from pdverify.study.runner import write_derived
+    from pdverify.study.derived import write_derived
 
     p = write_study(
         tmp_path,
@@ -559,7 +559,7 @@ def _run_case_or_die(case, artefacts=None, case_id=None):
 def test_pool_worker_killed_is_one_output_error_and_the_run_resumes(tmp_path, monkeypatch):
     """A pool worker killed mid-run: one OutputError (no BrokenProcessPool traceback) saying how to resume;
     the cases finished before are kept, and the next run computes only the others."""
-    from pdverify.errors import OutputError
+    from pdverify.core.errors import OutputError
     from pdverify.study import runner
 
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51, 101, 201]\nhorizon = [2, 3]\n')
@@ -584,7 +584,7 @@ def test_unwritable_output_is_one_line_exit_4(tmp_path):
     blocker = tmp_path / "taken"
     blocker.write_text("a file, not a directory")
     r = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "study", str(p), "--out", str(blocker / "out"), "--quiet"],
+        [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(blocker / "out"), "--quiet"],
         capture_output=True,
         text=True,
         cwd=ROOT,
@@ -598,7 +598,7 @@ def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypa
     """A case file that cannot be written in the middle of a run (a full disk, simulated) stops the study
     with OutputError naming the directory and the fix, in a serial run and with pool workers (the main
     process writes every case file); the cases written before it stay."""
-    from pdverify.errors import OutputError
+    from pdverify.core.errors import OutputError
     from pdverify.study import outdir
 
     real = outdir.write_atomic
@@ -619,7 +619,7 @@ def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypa
 def test_unwritable_table_is_an_output_error_and_the_cases_stay(tmp_path, synthetic, workers):
     """A table that cannot be written (here a directory stands where results.csv goes) stops the study with
     OutputError naming the directory, after every case file is written (a rerun only redoes the tables)."""
-    from pdverify.errors import OutputError
+    from pdverify.core.errors import OutputError
 
     p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31]\n')
     (tmp_path / "out" / "results.csv").mkdir(parents=True)

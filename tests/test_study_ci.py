@@ -13,10 +13,10 @@ import pytest
 from typer.testing import CliRunner
 
 from pdverify import registry
-from pdverify.cli import app
+from pdverify.apps.cli import app
+from pdverify.core.contract import Model, Option
+from pdverify.core.result import Result
 from pdverify.exact.straight import solve_straight
-from pdverify.registry import Model, Option
-from pdverify.result import Result
 
 ROOT = Path(__file__).parents[1]
 CC = ROOT / "studies/paper_diyaroglu/clamped_clamped.toml"  # exact centre deflection P L^3 / (192 E I)
@@ -316,7 +316,7 @@ def test_study_from_a_ci_script(tmp_path):
     p = study_file(tmp_path, bench("centre", 0.02) + bench("too tight", 1e-4) + check("corrected", "{ min = 1.9 }"))
     script = tmp_path / "ci.sh"
     script.write_text(
-        f'#!/bin/sh\n"{sys.executable}" -m pdverify.cli study "{p}" --out "{tmp_path}/out" --quiet '
+        f'#!/bin/sh\n"{sys.executable}" -m pdverify.apps.cli study "{p}" --out "{tmp_path}/out" --quiet '
         f'--workers 1 --junit "{tmp_path}/reports/junit.xml"\nstatus=$?\necho "status=$status"\n'
         "exit $status\n"
     )

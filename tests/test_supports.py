@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, scene_dict
 
-from pdverify.errors import InputError
-from pdverify.geometry import constraint_rows, mechanism_message, rigid_body_modes
+from pdverify.core.errors import InputError
+from pdverify.core.geometry import constraint_rows, mechanism_message, rigid_body_modes
+from pdverify.core.scene import HELD, SUPPORTS, Scene, is_mechanism
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import models, run
-from pdverify.scene import HELD, SUPPORTS, Scene, is_mechanism, parse_scene
 
 TRANSVERSE = (
     "exact-eb",
@@ -199,7 +200,9 @@ def test_ring_mechanisms_exit_2_naming_the_supports(tmp_path, left, right, needl
     path.write_text(_toml(ring(left, right)))
     for model in ("pd-curved", "exact-curved"):
         r = subprocess.run(
-            [sys.executable, "-m", "pdverify.cli", "solve", str(path), "--model", model], capture_output=True, text=True
+            [sys.executable, "-m", "pdverify.apps.cli", "solve", str(path), "--model", model],
+            capture_output=True,
+            text=True,
         )
         assert r.returncode == 2, r.stderr
         lines = r.stderr.strip().splitlines()

@@ -20,9 +20,10 @@ import numpy as np
 import pytest
 from conftest import scene_dict
 
-from pdverify.geometry import axis_length, mechanism_message
+from pdverify.core.geometry import axis_length, mechanism_message
+from pdverify.core.scene import SUPPORTS, Axis, Scene
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, run
-from pdverify.scene import SUPPORTS, Axis, Scene, parse_scene
 
 ARC = {"type": "arc", "radius": 1.0, "opening_angle_deg": 120.0, "start_angle_deg": 30.0}
 POLY = {"type": "polynomial", "coefficients": [0.0, 0.4, -0.3], "x_range": [0.0, 1.6]}

@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 from conftest import scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.modal import rod_response
-from pdverify.models import moyer_operator as O
-from pdverify.models import moyer_spectrum as S
-from pdverify.models import moyer_transient as TR
+from pdverify.papers.moyer import operator as O
+from pdverify.papers.moyer import spectrum as S
+from pdverify.papers.moyer import transient as TR
 from pdverify.registry import run
-from pdverify.scene import parse_scene
 
 MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
 T_END, PROBES = 2e-3, [1.0, 2.0]
@@ -122,8 +122,8 @@ def test_transient_study_measures_the_histories(tmp_path):
     import pandas as pd
 
     from pdverify import run_study
-    from pdverify.models.pd_timoshenko import simulate
-    from pdverify.scene import load_scene
+    from pdverify.core.scene_file import load_scene
+    from pdverify.papers.moyer.model import simulate
 
     root = Path(__file__).parents[1] / "studies"
     df = run_study(root / "paper_moyer_transient.toml", out=tmp_path / "s", workers=1, progress=False)

@@ -6,8 +6,8 @@ the computed u against u* is the solve's alone."""
 import numpy as np
 import pytest
 
-from pdverify.band import Band
-from pdverify.linalg import BOUND_LIMIT, SMALL, solve_linear
+from pdverify.numerics.band import Band
+from pdverify.numerics.linalg import BOUND_LIMIT, SMALL, solve_linear
 
 
 def fourth_difference(n: int) -> Band:

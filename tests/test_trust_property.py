@@ -2,8 +2,8 @@
 registered static model over generated straight and curved scenes and requires, for each case, an error
 against the exact solution within what the model's own convergence predicts at that grid, or a warning.
 
-Scenes: every support pair that holds the beam (straight: :func:`pdverify.scene.is_mechanism`; curved:
-:func:`pdverify.geometry.mechanism_message`), 1-4 mixed loads anywhere (point forces and moments, also at
+Scenes: every support pair that holds the beam (straight: :func:`pdverify.core.scene.is_mechanism`; curved:
+:func:`pdverify.core.geometry.mechanism_message`), 1-4 mixed loads anywhere (point forces and moments, also at
 the ends; uniform, partial and sine distributed loads; axial components on curved axes and for the rod),
 slenderness 3 to 1e4 (log-uniform), 11 to 10^5 points (log-uniform; the default run stops at 2,000).
 Curved axes: arcs of any opening from 10 to 359 deg (any start angle) and polynomial axes.
@@ -36,10 +36,11 @@ from conftest import scene_dict
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from pdverify.errors import InputError
-from pdverify.geometry import axis_length, mechanism_message
+from pdverify.core.errors import InputError
+from pdverify.core.geometry import axis_length, mechanism_message
+from pdverify.core.scene import SUPPORTS, Axis, is_mechanism
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, models, run
-from pdverify.scene import SUPPORTS, Axis, is_mechanism, parse_scene
 
 SAFETY = 4.0  # the error may exceed the Richardson estimate by this factor (pre-asymptotic grids, off-grid loads)
 FLOOR = 1e-9  # relative errors below this always pass (round-off of a float64 solve at these sizes)

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from conftest import MIXED_LOADS, PAIRS, scene_dict
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.linalg import BOUND_LIMIT
+from pdverify.numerics.linalg import BOUND_LIMIT
 from pdverify.registry import run
-from pdverify.scene import parse_scene
 
 MODELS = ("fem-eb", "fem-timoshenko")
 LOADS = {  # one of each load type, off-centre (a load on a node of the uniform grid or between two)

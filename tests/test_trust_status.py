@@ -7,8 +7,8 @@ import math
 import pandas as pd
 import pytest
 
-from pdverify.linalg import BOUND_LIMIT
-from pdverify.study.status import case_status
+from pdverify.measure.status import case_status
+from pdverify.numerics.linalg import BOUND_LIMIT
 
 TOML = """name = "propped cantilever"
 [beam]
@@ -40,7 +40,7 @@ def test_case_status_from_the_bound():
 def _cli(args, tmp_path, E="200e9"):
     from typer.testing import CliRunner
 
-    from pdverify.cli import app
+    from pdverify.apps.cli import app
 
     scene = tmp_path / "s.toml"
     scene.write_text(TOML.format(E=E))
@@ -99,9 +99,9 @@ def test_a_row_against_a_reference_with_a_large_bound_is_suspect():
     """The error is measured against the reference, so the reference's round-off bound is the row's too: fem-eb at
     101 nodes (exact at its nodes) against fem-eb's direct form at 20,001 nodes (bound ~1e3) is suspect, with a message
     naming the reference; against the two-field form (bound < 1e-6) it is ok. Exact references make no bound."""
+    from pdverify.measure.status import reference_status
     from pdverify.study import spec
     from pdverify.study.runner import run_case
-    from pdverify.study.status import reference_status
 
     assert reference_status(None, {}) == {"ref_error_bound": None}
     assert reference_status(0.5 * BOUND_LIMIT, {}) == {"ref_error_bound": 0.5 * BOUND_LIMIT}

@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model
-from pdverify.scene import parse_scene
 from pdverify.verify import checks as C
 from pdverify.verify import verify
 from pdverify.verify.card import junit
@@ -165,7 +165,7 @@ def test_junit_has_a_failure_per_failed_check_and_skips_not_applicable():
 def test_verify_a_model_that_solves_no_suite_scene_is_one_line(tmp_path):
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     r = subprocess.run(
-        [sys.executable, "-m", "pdverify.cli", "verify", "pd-curved-mms", "--out", str(tmp_path), "--quiet"],
+        [sys.executable, "-m", "pdverify.apps.cli", "verify", "pd-curved-mms", "--out", str(tmp_path), "--quiet"],
         capture_output=True,
         text=True,
         env=env,

@@ -28,10 +28,11 @@ from __future__ import annotations
 import numpy as np
 from numpy.polynomial import legendre as leg
 
-from ..geometry import geometry
-from ..registry import POINTS, Model
-from ..result import Result, Timer
-from ..scene import HELD, Distributed, PointMoment, Scene
+from ..core.contract import POINTS, Model
+from ..core.errors import SolveError
+from ..core.geometry import geometry, mechanism_message
+from ..core.result import Result, Timer
+from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -193,7 +194,6 @@ class Indeterminate:
     u_t, u_n, φ = 0; resultant: N, Q, M equal to the end load, minus at s = 0)."""
 
     def __init__(self, scene: Scene):
-        from ..scene import PointForce
 
         L = scene.length
         base = {"supports": scene.supports.model_copy(update={"left": "clamped", "right": "free"})}
@@ -238,8 +238,6 @@ class Indeterminate:
         try:
             self.c = np.linalg.solve(np.array(rows), np.array(rhs))
         except np.linalg.LinAlgError:
-            from ..errors import SolveError
-
             raise SolveError("exact-curved: the supports leave a rigid-body motion (a mechanism)") from None
 
     def _states(self, s: np.ndarray) -> list[dict]:
@@ -285,7 +283,6 @@ class ExactCurved(Model):
 
     def check(self, scene: Scene) -> list[str]:
         """The scene checks plus the rigid-body test on straight axes (e.g. two rollers slide along x)."""
-        from ..geometry import mechanism_message
 
         out = super().check(scene)
         why = mechanism_message(scene)

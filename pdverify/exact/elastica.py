@@ -39,10 +39,10 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipeinc, ellipj, ellipk, ellipkinc
 
-from ..errors import InputError
-from ..registry import POINTS, Model, Option
-from ..result import Result, Timer
-from ..scene import PointForce, PointMoment, Scene
+from ..core.contract import POINTS, Model, Option
+from ..core.errors import InputError
+from ..core.result import Result, Timer
+from ..core.scene import PointForce, PointMoment, Scene
 
 
 def tip_force_parameters(alpha: float) -> tuple[float, float, float]:

@@ -2,7 +2,7 @@
 makes peridynamic (Yang, Oterkus & Oterkus 2020, seed 002, Eq. 2-9), on any straight scene.
 
 Kinematics (Eq. 2-3): u = z theta + z^3 theta*, w = w + z^2 w*; y = (theta, theta*, w, w*). The strain energy per
-unit length is (b/2) Q(m) with Q = m^T C m (Eq. 9, :func:`~pdverify.models._higher_order_bonds.coefficients`) and
+unit length is (b/2) Q(m) with Q = m^T C m (Eq. 9, :func:`~pdverify.papers.yang.bonds.coefficients`) and
 the measures (the local forms of the bond measures of Eq. 14)::
 
     a = theta'   s = 2 w*   c = theta*'   g = w' + theta   e = w*' + 3 theta*,   i.e. m = D1 y' + D0 y.
@@ -40,11 +40,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from ..models._higher_order_bonds import coefficients
-from ..models._higher_order_ends import point_work
-from ..registry import POINTS, Model, Option
-from ..result import Result, Timer
-from ..scene import Distributed, PointForce, PointMoment, Scene
+from ..core.contract import POINTS, Model, Option
+from ..core.result import Result, Timer
+from ..core.scene import Distributed, PointForce, PointMoment, Scene
+from ..theory.higher_order import coefficients, point_work
 
 D1 = np.zeros((5, 4))
 D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e = w*' + ...

@@ -1,39 +1,23 @@
 """Model ``exact-curved-manufactured``: the chosen fields of the manufactured curved-beam solution
-(pdverify/manufactured.py; design note §4, quintic example). The loads that produce them are not scene
+(:mod:`pdverify.theory.curved_manufactured`, the quintic example). The loads that produce them are not scene
 loads: ``pd-curved-mms`` adds them. The scene must be clamped at both ends and carry no [[loads]]."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..geometry import geometry
-from ..manufactured import FIELDS
-from ..registry import POINTS, Model
-from ..result import Result, Timer
-from ..scene import Scene
-
-
-def manufactured_checks(scene: Scene) -> list[str]:
-    out = []
-    if scene.axis.type != "polynomial":
-        out.append(f"axis.type = {scene.axis.type!r}: the manufactured solution is written for a polynomial axis")
-    if (scene.supports.left, scene.supports.right) != ("clamped", "clamped"):
-        out.append(
-            f"supports = {scene.supports.left}-{scene.supports.right}: the manufactured fields vanish at "
-            "both ends; set both supports to clamped"
-        )
-    if scene.loads:
-        out.append(
-            "loads: the manufactured solution brings its own loads (pd-curved-mms adds them); remove the [[loads]]"
-        )
-    return out
+from ..core.contract import POINTS, Model
+from ..core.geometry import geometry
+from ..core.result import Result, Timer
+from ..core.scene import Scene
+from ..theory.curved_manufactured import FIELDS, fields, manufactured_checks
 
 
 class ExactCurvedManufactured(Model):
     name = "exact-curved-manufactured"
     title = "manufactured solution of the curved Timoshenko–Ehrenfest beam (chosen fields)"
     source = (
-        "pdverify/manufactured.py: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x) "
+        "pdverify.theory.curved_manufactured: u_t = U sin(pi x), u_n = U sin(2 pi x), phi = (U/L) sin(pi x)(1 - x) "
         "(fields = trig) or a beam-like bending field (fields = bending)"
     )
     options = (POINTS, FIELDS)
@@ -46,8 +30,6 @@ class ExactCurvedManufactured(Model):
         return super().check(scene) + manufactured_checks(scene)
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        from ..manufactured import fields
-
         x = np.asarray(x, float)
         f = fields(scene, x, kind=params.get("fields", "trig"))
         t, n = geometry(scene).frame(x)

@@ -21,10 +21,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
-from ..registry import POINTS, Model, Option
-from ..result import Result, Timer, columns_csv
-from ..scene import HELD, Scene
+from ..core.contract import POINTS, Model, Option
+from ..core.errors import InputError
+from ..core.result import Result, Timer, columns_csv
+from ..core.scene import HELD, Scene
 from .vibration import rod_frequencies
 
 MAX_MODES = 2**14  # 4096 modes in the sum (their octave above for the estimate): a point force ~1e-4

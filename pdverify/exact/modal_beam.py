@@ -26,10 +26,10 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..errors import InputError
-from ..registry import POINTS, Option
-from ..result import Result, Timer
-from ..scene import PointForce, PointMoment, Scene
+from ..core.contract import POINTS, Option
+from ..core.errors import InputError
+from ..core.result import Result, Timer
+from ..core.scene import PointForce, PointMoment, Scene
 from .modal import ModalReference, modal_result, modal_sum, scene_damping, tail_bound
 from .vibration import TimoshenkoBeam, beam_end
 

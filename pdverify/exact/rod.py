@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..registry import POINTS, Model
-from ..result import Result, Timer
-from ..scene import ROD_HELD, Distributed, PointForce, PointTorque, Scene
+from ..core.contract import POINTS, Model
+from ..core.result import Result, Timer
+from ..core.scene import ROD_HELD, Distributed, PointForce, PointTorque, Scene
 from .straight import _active, _distributed_terms
 
 

@@ -24,8 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import SolveError
-from ..scene import Distributed, PointForce, PointMoment, Scene
+from ..core.errors import SolveError
+from ..core.scene import Distributed, PointForce, PointMoment, Scene
 
 
 def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:

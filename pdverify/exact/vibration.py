@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scene import HELD
+from ..core.scene import HELD
 
 
 def rod_frequencies(length: float, wave_speed: float, held: tuple[bool, bool], count: int) -> np.ndarray:
@@ -33,7 +33,7 @@ def rod_frequencies(length: float, wave_speed: float, held: tuple[bool, bool], c
 
 
 def beam_end(support: str) -> tuple[bool, bool]:
-    """(deflection held, rotation held) of a support (pdverify.scene.HELD: normal displacement, rotation)."""
+    """(deflection held, rotation held) of a support (pdverify.core.scene.HELD: normal displacement, rotation)."""
     return HELD[support][1], HELD[support][2]
 
 

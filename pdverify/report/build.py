@@ -21,8 +21,11 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
-from ..errors import InputError, OutputError
-from ..study.store import case_file, read_curve
+from ..core.errors import InputError, OutputError
+from ..core.scene import UNITS
+from ..registry import get_model
+from ..study.store import case_file, read_curve, write_atomic
+from ..verify.published import read_index
 from . import figures
 from .scene_figures import dispersion_figures, overlay_figures, resultant_figures
 
@@ -108,8 +111,6 @@ def _label(r) -> str:
     parts = [str(r["model"])]
     opts = json.loads(r["options"]) if isinstance(r.get("options"), str) else {}
     try:
-        from ..registry import get_model
-
         model = get_model(str(r["model"]))
     except Exception:  # a model of another installation: show every string option
         model = None
@@ -160,7 +161,6 @@ def _readable(v) -> str:
 def _units_of(res: pd.DataFrame, key: str, kind: str = "length") -> dict:
     """Length unit ('m', 'in'; ``kind = "force"``: 'N', 'lbf') of each scene (by ``key``: scene_file or scene),
     from the rows' ``units``."""
-    from ..scene import UNITS
 
     if "units" not in res or key not in res:
         return {}
@@ -578,8 +578,6 @@ def cards_table(d: Path, out: Path) -> dict | None:
     its verdict, each check's verdict and a link to its card.html (relative to the report in ``out``)."""
     import os
 
-    from ..verify.published import read_index
-
     index = read_index(d)
     if not index or not index["cards"]:
         return None
@@ -628,7 +626,6 @@ def readable_options(df: pd.DataFrame) -> pd.DataFrame:
 
 def _write(path: Path, data) -> None:
     """A report file written whole (temporary file, then renamed) or OutputError naming it (exit code 4)."""
-    from ..study.store import write_atomic
 
     try:
         write_atomic(path, data)

@@ -16,8 +16,8 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
-from .. import __version__
-from ..bench import ACCURACY, accurate
+from ..core.version import __version__
+from ..measure.cost import ACCURACY, accurate
 from . import figures
 from .build import environment, table
 

@@ -10,7 +10,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..study.outdir import SCENES
+from ..study.spec import _scene
 from . import figures
+from .waves import dispersion_figure
 
 RESULTANTS = (("N", "axial force N"), ("Q", "shear force Q"))  # curved-beam fields drawn beside the deflection
 
@@ -58,9 +61,6 @@ def overlay_figures(runs: list[tuple[str, np.ndarray, dict, str]], title: str) -
 def dispersion_figures(d: Path, sfile: str, rows: pd.DataFrame) -> list[str]:
     """The dispersion figure of each PD rod / beam (model, variant) run on the scene, at its finest grid
     (:func:`pdverify.report.waves.dispersion_figure`; the scene from the study's ``scenes.json``)."""
-    from ..study.outdir import SCENES
-    from ..study.spec import _scene
-    from .waves import dispersion_figure
 
     pd_rows = rows[rows["model"].isin(("pd-rod", "pd-timoshenko"))]
     if pd_rows.empty:

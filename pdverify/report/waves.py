@@ -1,15 +1,15 @@
 """The report's dispersion figures (issue 30 item 5): the interior stencils of pd-rod and pd-timoshenko at horizons
-1–4 on a scene's grid against the continuum they discretise (:mod:`pdverify.dispersion`), wavenumbers up to the
+1–4 on a scene's grid against the continuum they discretise (:mod:`pdverify.numerics.dispersion`), wavenumbers up to the
 grid's π/Δ. A branch below zero marks a negative ω² (an unstable interior: none for these stencils)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..dispersion import stencil_branches, timoshenko_branches
-from ..errors import PdverifyError
-from ..models import moyer_operator as O
-from ..scene import Scene
+from ..core.errors import PdverifyError
+from ..core.scene import Scene
+from ..numerics.dispersion import stencil_branches, timoshenko_branches
+from ..papers.moyer import operator as O
 from . import figures
 
 HORIZONS = (1, 2, 3, 4)

@@ -28,8 +28,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..errors import InputError
-from .metrics import ROUND_OFF_LEVEL, log_slope
+from ..core.errors import InputError
+from ..measure.metrics import ROUND_OFF_LEVEL, log_slope
+from ..registry import get_model
 from .store import write_atomic
 from .tables import GROUPINGS, grouped
 
@@ -75,7 +76,6 @@ def option_filter_errors(model, filters: dict, where: str) -> list[str]:
 def validate_checks(checks, scenes, models: set, path) -> list[str]:
     """One error line per problem of the study's ``[[checks]]`` tables (``scenes``: the study's scene files,
     ``models``: the models its runs use)."""
-    from ..registry import get_model
 
     if not isinstance(checks, list):
         return [f"{path}: checks = {checks!r}: write [[checks]] tables"]

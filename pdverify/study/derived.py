@@ -25,7 +25,7 @@ try:  # imported with the runner (its one-time cost belongs to start-up, not to 
 except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written (by pandas)
     pa = None
 
-from .. import __version__
+from ..core.version import __version__
 from .checks import match_benchmark, write_checks
 from .checks import verdict as _verdict
 from .spec import Study, code_digest

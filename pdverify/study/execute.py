@@ -22,7 +22,7 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from concurrent.futures.process import BrokenProcessPool  # noqa: F401 (what a killed worker raises)
 
-from ..errors import InputError
+from ..core.errors import InputError
 
 SCHEDULER_TIMEOUT_S = 5  # how long to wait for a Dask scheduler to answer before giving up (Dask's own: 30 s)
 _ADDRESS = re.compile(r"(?:(?:tcp|tls|ws|wss|ucx)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):(\d{1,5})")

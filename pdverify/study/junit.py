@@ -13,7 +13,7 @@ import time
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from .. import __version__
+from ..core.version import __version__
 from .checks import FAILING, Outcome, benchmark_message, check_message
 from .store import write_atomic
 

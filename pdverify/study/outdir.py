@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import OutputError
+from ..core.errors import OutputError
 
 try:
     import fcntl

@@ -16,22 +16,18 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import __version__
-from ..dynamics import ledger_columns
-from ..errors import InputError, OutputError, PdverifyError
+from ..core.errors import InputError, OutputError, PdverifyError
+from ..core.result import columns_csv
+from ..core.version import __version__
+from ..measure.metrics import errors
+from ..measure.shapes import with_exact_shapes
+from ..measure.status import case_status, reference_status
+from ..numerics.timeint import ledger_columns
 from ..registry import get_model, run
-from ..result import columns_csv
 from . import execute
-from .derived import (
-    results_frame,
-    results_table,
-    write_derived,  # noqa: F401
-    write_tables,
-)
-from .metrics import errors
+from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .spec import Case, Study, code_digest
-from .status import case_status, reference_status
 from .store import write_atomic
 from .tables import trust_table  # noqa: F401 (re-exported)
 
@@ -259,8 +255,8 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
             curve["rotation"] = solved["rotation"]
         if solved["fields"]:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
             curve["fields"] = solved["fields"]
-        if "load_steps" in info:  # deformed shapes of a nonlinear path, for the report
-            curve["load_steps"] = info["load_steps"]
+        if "load_steps" in info:  # deformed shapes of a nonlinear path and the exact ones, for the report
+            curve["load_steps"] = with_exact_shapes(scene, info["load_steps"])
         hist = info.get("history")
         if (
             isinstance(hist, dict) and "t" in hist

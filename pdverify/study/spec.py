@@ -46,11 +46,14 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 
-from .. import __version__
-from ..errors import InputError
-from ..registry import get_model, models
-from ..scene import Scene, load_scene, read_toml
+from ..core.errors import InputError
+from ..core.scene import Scene
+from ..core.scene_file import load_scene, parse_scene, read_toml
+from ..core.version import __version__
+from ..registry import get_model, models, use_manifest
+from ..registry.plugins import GROUP
 from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
+from .entries import card_folder, parse_entry
 
 RUN_KEYS = {"model", "reference", "scenes", "slenderness"}
 STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
@@ -61,8 +64,6 @@ def code_packages() -> list[str]:
     """The packages whose code can change a number: pdverify and the top-level package of every
     ``pdverify.models`` entry point (reference_fem's finite elements and any installed plug-in)."""
     from importlib.metadata import entry_points
-
-    from ..plugins import GROUP
 
     tops = sorted({ep.value.split(":")[0].split(".")[0] for ep in entry_points(group=GROUP)})
     return ["pdverify", *(t for t in tops if t != "pdverify")]
@@ -148,7 +149,6 @@ def _shared_names(path: Path, scene_objs: dict) -> list[str]:
 @lru_cache(maxsize=256)
 def _scene(scene_text: str, scene_file: str, slenderness) -> Scene:
     """Parsed (and rescaled) scene, once per process: scenes are frozen, so sharing is safe."""
-    from ..scene import parse_scene
 
     s = parse_scene(tomllib.loads(scene_text), source=scene_file)
     return s.with_slenderness(slenderness) if slenderness else s
@@ -225,8 +225,7 @@ def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
 
 def _external(path: Path, manifests) -> list[str]:
     """Register the external models of the study's ``external = ["manifest.toml", ...]`` (relative to the
-    study file; see pdverify.external); the problems as error lines."""
-    from ..plugins import use_manifest
+    study file; see pdverify.registry.external); the problems as error lines."""
 
     if not isinstance(manifests, list) or not all(isinstance(m, str) for m in manifests):
         return [f"{path}: external = {manifests!r}: give a list of manifest files"]
@@ -239,9 +238,10 @@ def _external(path: Path, manifests) -> list[str]:
     return errors
 
 
-def _verify_entries(data: dict, path: Path) -> tuple[list[dict], bool, list[str]]:
-    """The study's ``verify`` cards (model, options, folder), ``verify_required`` and their error lines."""
-    from ..verify import card_folder, entry_errors, parse_entry
+def _verify_entries(data: dict, path: Path, card_errors=None) -> tuple[list[dict], bool, list[str]]:
+    """The study's ``verify`` cards (model, options, folder), ``verify_required`` and their error lines;
+    ``card_errors(model, options)``: what else stops a card (:func:`pdverify.verify.entry_errors`), else only
+    the model's name is checked."""
 
     entries, errors = data.get("verify", []), []
     required = data.get("verify_required", False)
@@ -261,7 +261,7 @@ def _verify_entries(data: dict, path: Path) -> tuple[list[dict], bool, list[str]
         except InputError as exc:
             errors.append(f"{path}: verify[{i}] = {exc.lines[0]}")
             continue
-        found = entry_errors(name, options)
+        found = card_errors(name, options) if card_errors is not None else _model_errors(name)
         errors += [f"{where}: {line}" for line in found]
         folder = card_folder(get_model(name).name if not found else name, options)
         if not found and folder in folders:
@@ -272,8 +272,18 @@ def _verify_entries(data: dict, path: Path) -> tuple[list[dict], bool, list[str]
     return cards, required is True, errors
 
 
-def load_study(path: str | Path) -> Study:
-    """Read a study file and validate every scene, model, option and reference. Raises InputError."""
+def _model_errors(name: str) -> list[str]:
+    try:
+        get_model(name)
+    except InputError as exc:
+        return [exc.lines[0]]
+    return []
+
+
+def load_study(path: str | Path, card_errors=None) -> Study:
+    """Read a study file and validate every scene, model, option and reference. Raises InputError.
+    ``card_errors(model, options)``: the problems of each ``verify`` entry (the pipeline passes
+    :func:`pdverify.verify.entry_errors`: whether the suite applies to the model and its options)."""
     path = Path(path)
     text, data = read_toml(path, "study")
     errors: list[str] = []
@@ -483,7 +493,7 @@ def load_study(path: str | Path) -> Study:
         {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)},
         path,
     )
-    study.verify, study.verify_required, found = _verify_entries(data, path)
+    study.verify, study.verify_required, found = _verify_entries(data, path, card_errors)
     errors += found
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once

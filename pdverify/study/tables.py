@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .metrics import gci, locking_slope, observed_order, pareto
+from ..measure.metrics import gci, locking_slope, observed_order, pareto
 
 GROUP = ("scene", "model", "options", "slenderness")  # a convergence series: every option but the grid
 SHOWN = ("variant", "horizon_factor", "degree")  # columns repeated from the series' finest grid

@@ -10,11 +10,14 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from .. import __version__
-from ..errors import InputError
+from ..core.errors import InputError
+from ..core.scene_file import parse_scene
+from ..core.version import __version__
 from ..registry import get_model, run
-from ..scene import parse_scene
+from ..study import load_study, run_study
+from ..study.checks import strict_type
 from . import checks as C
+from .card import write_card
 from .dynamics import dynamics_check
 from .suite import (
     GAP_REFERENCE,
@@ -30,7 +33,7 @@ from .suite import (
     write_study,
 )
 
-__all__ = ["verify", "SUITE_VERSION", "parse_entry", "entry_errors", "card_folder"]
+__all__ = ["verify", "SUITE_VERSION", "entry_errors"]
 
 MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
 # the mirror scene's solution at L - x is this times the scene's at x (an axial force and u reverse)
@@ -94,37 +97,6 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
     return out
 
 
-def parse_entry(entry) -> tuple[str, dict]:
-    """A study file's ``verify`` entry: ``"pd-eb variant=paper horizon=3"`` (values typed as TOML types them:
-    ``3`` a number, ``true`` a boolean, anything else a string) or a table ``{model = "pd-eb", variant = "paper"}``.
-    Raises InputError (one line) for an entry of neither form."""
-    import tomllib
-
-    if isinstance(entry, dict) and isinstance(entry.get("model"), str):
-        return entry["model"], {k: v for k, v in entry.items() if k != "model"}
-    if not isinstance(entry, str) or not entry.split():
-        raise InputError(f'{entry!r}: give a model and its options, e.g. "pd-eb variant=paper"')
-    name, *pairs = entry.split()
-    options = {}
-    for item in pairs:
-        k, eq, v = item.partition("=")
-        if not eq or not k or not v:
-            raise InputError(f"{entry!r}: option {item!r}: write key=value")
-        try:
-            options[k] = tomllib.loads(f"v = {v}")["v"]
-        except tomllib.TOMLDecodeError:
-            options[k] = v
-    return name, options
-
-
-def card_folder(model_name: str, options: dict) -> str:
-    """The card's folder name, as ``pdverify verify`` names it: ``pd_eb_variant_paper``."""
-    import re
-
-    text = (model_name + "".join(f"_{k}_{v}" for k, v in options.items())).lower()
-    return re.sub(r"[^a-z0-9]+", "_", text).strip("_") or "model"
-
-
 def _declined(model, p) -> dict:
     """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out)."""
     return {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
@@ -134,7 +106,6 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
     """What stops ``verify(model_name, ..., options)`` before it runs anything: an unknown model or option, a
     value of the wrong type, a grid option (the suite sets the grids), a model that solves none of the
     suite's scenes. One line each (without the caller's prefix)."""
-    from ..study.checks import strict_type
 
     try:
         model = get_model(model_name)
@@ -173,8 +144,6 @@ def verify(
     progress: bool = False,
 ) -> dict:
     """Run the suite on ``model_name`` with ``options``, judge it, write the card into ``out``; the card."""
-    from ..study import load_study, run_study
-    from .card import write_card
 
     t0 = time.perf_counter()
     options = dict(options or {})

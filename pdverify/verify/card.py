@@ -8,7 +8,7 @@ import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from ..errors import OutputError
+from ..core.errors import OutputError
 
 
 def _plain(v):

@@ -1,6 +1,6 @@
 """The judgements of a verification: each check reads the suite's results and returns a verdict.
 
-Orders and slopes come from :mod:`pdverify.study.metrics`. A verdict is ``pass``, ``fail``, ``info``
+Orders and slopes come from :mod:`pdverify.measure.metrics`. A verdict is ``pass``, ``fail``, ``info``
 (measured, not judged) or ``n/a`` (the model does not declare what the check needs).
 """
 
@@ -11,9 +11,9 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..linalg import BOUND_LIMIT
-from ..study.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
-from ..study.status import reference_in_doubt
+from ..measure.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
+from ..measure.status import reference_in_doubt
+from ..numerics.linalg import BOUND_LIMIT
 
 EXACT = 1e-9  # an error this small at every grid: the model reproduces the solution (orders meaningless)
 ROUND = ROUND_OFF_LEVEL  # errors below this are round-off level: no order fitted there
@@ -37,7 +37,7 @@ def check(name: str, verdict: str, summary: str, **data) -> dict:
 
 def reference_bound(rows) -> float:
     """The largest round-off bound of the reference solves behind these study rows that could decide their errors
-    (:func:`pdverify.study.status.reference_in_doubt`; 0 when none: the column ``ref_error_bound``, docs/trust.md)."""
+    (:func:`pdverify.measure.status.reference_in_doubt`; 0 when none: the column ``ref_error_bound``, docs/trust.md)."""
     if "ref_error_bound" not in rows:
         return 0.0
     doubt = [

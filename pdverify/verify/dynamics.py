@@ -1,5 +1,5 @@
 """The suite's dynamics check (suite 1.1): a model that declares dynamics and gives its transient operator
-(``eigenproblem``, :mod:`pdverify.modes`) has its lowest natural frequencies measured against the analytic
+(``eigenproblem``, :mod:`pdverify.measure.modes`) has its lowest natural frequencies measured against the analytic
 ones (Timoshenko beam: roots of the characteristic determinant) for every support pair of the suite, on the
 suite's grids. The frequencies are what its time integration resolves, so their order of convergence and their
 error at the finest grid are judged as the static deflections are.
@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..modes import gives_modes, modes
-from ..scene import parse_scene
-from ..study.metrics import ROUND_OFF_LEVEL, observed_order
+from ..core.scene_file import parse_scene
+from ..measure.metrics import ROUND_OFF_LEVEL, observed_order
+from ..measure.modes import gives_modes, modes
 from . import checks as C
 from .suite import PAIRS, straight
 

@@ -7,7 +7,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..errors import OutputError
+from ..core.errors import OutputError
+from ..study.store import write_atomic
+from . import verify
 
 INDEX = "cards.json"
 
@@ -17,7 +19,6 @@ def run_cards(
 ) -> list[dict]:
     """Run ``study.verify``'s cards into ``out / "verify"``; their summaries (model, options, folder, verdict,
     the checks' verdicts). ``echo``: called with one line per card as it ends."""
-    from . import verify
 
     root = Path(out) / "verify"
     if not study.verify:  # a study that no longer asks for cards: its report lists none
@@ -60,7 +61,6 @@ def run_cards(
 
 
 def write_index(root: Path, cards: list[dict], required: bool) -> None:
-    from ..study.store import write_atomic
 
     try:
         root.mkdir(parents=True, exist_ok=True)

@@ -24,7 +24,8 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..scene import ROD_HELD, SUPPORTS, is_mechanism
+from ..core.scene import ROD_HELD, SUPPORTS, is_mechanism
+from ..registry.external import ExternalModel
 
 # 1.1: natural frequencies of models that declare dynamics (verify.dynamics); 1.2: self-convergence for theories
 # without an exact solution here, and superposition with the point-load positions shared by the three solves;
@@ -328,7 +329,6 @@ def toml_text(data: dict) -> str:
 
 def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
     """The plan as scene files and a study file in ``folder``; returns the study file's path."""
-    from ..external import ExternalModel
 
     for f, scene in p.scenes.items():
         (folder / f).parent.mkdir(parents=True, exist_ok=True)

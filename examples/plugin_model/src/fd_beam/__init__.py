@@ -2,8 +2,8 @@
 (``POINTS``: a grid), its theory, and ``solve(scene, params) -> Result``; the numerics are in ``fd.py``
 (numpy/scipy on the scene's JSON form, shared with examples/external_model)."""
 
-from pdverify.registry import POINTS, Model
-from pdverify.result import Result
+from pdverify.core.contract import POINTS, Model
+from pdverify.core.result import Result
 
 from . import fd
 

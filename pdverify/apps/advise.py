@@ -1,0 +1,451 @@
+"""``pdverify advise``: the cheapest model and grid that is accurate enough for one scene.
+
+1. What the scene needs. Curved axis -> models with ``curved``; shear: the exact Euler–Bernoulli and
+   Timoshenko solutions of the scene are compared; when the shear deflection is below half the tolerance,
+   Euler–Bernoulli models qualify, else only models whose ``theory`` includes shear. 2D effects: when
+   (h/L)^2 exceeds half the tolerance, a q8 plane-stress solve is compared with exact Timoshenko; if they
+   differ by more than half the tolerance only the continuum model qualifies. Dynamics: the estimate is
+   of static solutions, so a scene with a ``[dynamics]`` table is refused unless the static part is asked
+   for (``static = True``, CLI ``--static``): then only models that can solve that part qualify (the
+   declared capabilities, :func:`pdverify.registry.problems`).
+2. The grid, per candidate: the packaged priors (``pdverify/data/advisor_priors.json``: per model and
+   options, the error constant C and order p of clean convergence series, err = C (dx / L)^p, with the
+   code digest they were made from; ``pdverify advise --rebuild-priors`` regenerates them) predict the
+   points needed; the ladder of nested grids N, 2N-1, 4N-3 starts two refinements below that prediction
+   and stops when the a-posteriori estimate on this very scene (observed order p from three grids,
+   Richardson |w_2 - w_3| / (2^p - 1), relative to max|w|) is below the tolerance.
+3. The cheapest candidate whose estimate is below the tolerance wins (cost = its measured solve time);
+   the runner-up is the next cheapest. On straight scenes whose exact solution applies (no end motions)
+   the exact error is printed as a check.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..core.errors import InputError, OutputError, SolveError
+from ..core.scene import Scene, bends
+from ..exact.straight import solve_straight
+from ..registry import get_model, models, problems, run
+from ..study import load_study, run_study
+from ..study.spec import code_digest
+from ..verify.suite import reference_for
+
+PRIORS = Path(__file__).resolve().parents[1] / "data" / "advisor_priors.json"
+# the options advise tries per model (others: their defaults); the priors are fitted for the same
+CANDIDATE_OPTIONS = {
+    "pd-timoshenko": {"variant": "energy"},
+    "pd-eb": {"variant": "corrected"},
+    "pd-bond-pair": {"variant": "corrected", "ends": "taylor"},
+    "fem-plane-stress": {"element": "q8"},
+}
+
+
+@dataclass
+class Candidate:
+    model: str
+    options: dict
+    points: int
+    estimate: float
+    order: float
+    seconds: float
+    exact_error: float | None = None
+    basis: str = ""
+
+
+@dataclass
+class Advice:
+    scene: str
+    tolerance: float
+    needs: list[str]
+    choice: Candidate | None
+    runner_up: Candidate | None
+    rejected: list[str] = field(default_factory=list)
+    static: bool = False  # the static part of a [dynamics] scene (solve it with -o static=true)
+
+
+def shear_gap(scene: Scene) -> float:
+    x = np.linspace(0, scene.length, 201)
+    eb = solve_straight(scene, False).fields(x)["w"]
+    ti = solve_straight(scene, True).fields(x)["w"]
+    scale = np.abs(ti).max()
+    return float(np.abs(ti - eb).max() / scale) if scale > 0 else 0.0
+
+
+def _matches(opts: dict, options: dict) -> bool:
+    return all(opts.get(k) == v for k, v in options.items())
+
+
+def load_priors(path: Path | str | None = None) -> dict:
+    """The advisor's priors (a small JSON file shipped in the package; independent of the working
+    directory): ``{"code_digest", "series": [{model, options, scene, constant, order, points}]}``."""
+    p = Path(path) if path is not None else PRIORS
+    try:
+        return json.loads(p.read_text())
+    except (OSError, ValueError):
+        return {"code_digest": None, "series": []}
+
+
+def prior_order(model: str, options: dict, priors: dict | None = None) -> str:
+    """Observed orders of the prior convergence series for this model with these options."""
+    priors = load_priors() if priors is None else priors
+    orders = [s["order"] for s in priors.get("series", []) if s["model"] == model and _matches(s["options"], options)]
+    if not orders:
+        return "no prior series"
+    return f"priors: median observed order {np.median(orders):.2f} over {len(orders)} series"
+
+
+def predicted_points(model: str, options: dict, tol: float, priors: dict | None = None) -> tuple[int | None, str]:
+    """Points the priors say this model needs for tol: each clean series' err = C (dx / L)^p solved for
+    dx, the most pessimistic series taken. (None, why) without a series."""
+    priors = load_priors() if priors is None else priors
+    needs = [
+        int(np.ceil((tol / s["constant"]) ** (-1.0 / s["order"]))) + 1
+        for s in priors.get("series", [])
+        if s["model"] == model and _matches(s["options"], options)
+    ]
+    if not needs:
+        return None, "no clean prior convergence series for these options"
+    n = max(needs)
+    return n, f"priors: {len(needs)} convergence series predict up to {n} points"
+
+
+def fit_series(results) -> list[dict]:
+    """Clean convergence series of a study's results table (rows: model, options, scene_file, points,
+    err_max, status; slenderness sweeps left out): per scene and option set with >= 3 grids, the
+    least-squares fit of log err = log C + p log(dx / L); kept when p > 0.5 and r^2 > 0.9 (a
+    discretisation-error series, not round-off or a plateau)."""
+    import pandas as pd
+
+    df = results if isinstance(results, pd.DataFrame) else pd.read_csv(results)
+    ok = (df["status"] == "ok") & df["err_max"].notna() & (df["err_max"] > 1e-12) & df["slenderness"].isna()
+    out = []
+    for (model, scene, options), g in df[ok].groupby(["model", "scene_file", "options"]):
+        if g["points"].nunique() < 3:
+            continue
+        lh, le = np.log(1.0 / (g["points"].to_numpy(float) - 1)), np.log(g["err_max"].to_numpy(float))
+        p, c = np.polyfit(lh, le, 1)
+        r2 = 1 - np.sum((le - (p * lh + c)) ** 2) / max(np.sum((le - le.mean()) ** 2), 1e-300)
+        if p > 0.5 and r2 > 0.9:
+            out.append(
+                {
+                    "model": model,
+                    "options": json.loads(options),
+                    "scene": scene,
+                    "constant": float(np.exp(c)),
+                    "order": float(p),
+                    "r2": float(r2),
+                    "points": sorted(int(n) for n in g["points"]),
+                }
+            )
+    return out
+
+
+PRIOR_SCENES = {
+    "euler-bernoulli": (
+        "exact-eb",
+        (
+            "paper_diyaroglu/clamped_clamped.toml",
+            "paper_diyaroglu/simply_supported.toml",
+            "paper_diyaroglu/clamped_free.toml",
+        ),
+    ),
+    "timoshenko": (
+        "exact-timoshenko",
+        ("paper_diyaroglu/clamped_clamped.toml", "paper_diyaroglu/clamped_free.toml", "paper_yang/cc_uniform.toml"),
+    ),
+}  # per theory: reference, scenes
+PRIOR_POINTS = (21, 41, 81, 161)
+
+
+def rebuild_priors(
+    out: Path | str | None = None,
+    names: list[str] | None = None,
+    points=PRIOR_POINTS,
+    studies: Path | None = None,
+    workdir: Path | None = None,
+) -> dict:
+    """Regenerate the priors (``pdverify advise --rebuild-priors``): a small study (every advise candidate
+    that bends, with :data:`CANDIDATE_OPTIONS`, on the scenes of :data:`PRIOR_SCENES` against their exact
+    solution, at ``points``), fitted by :func:`fit_series`, written with the code digest it was made from.
+    Needs the source checkout's ``studies/`` folder (the scenes)."""
+    import tempfile
+
+    studies = Path(studies) if studies is not None else Path(__file__).resolve().parents[2] / "studies"
+    if not studies.is_dir():
+        raise InputError(
+            f"studies = {str(studies)!r}: the scenes of the priors study are not there; run "
+            "--rebuild-priors from a source checkout of pdverify"
+        )
+    cands = [
+        m
+        for m in models().values()
+        if not m.reference
+        and "static" in m.analyses
+        and m.bending
+        and m.option("points") is not None
+        and (names is None or m.name in names)
+    ]
+    if not cands:
+        raise InputError(f"models = {names!r}: no advise candidate among them")
+    runs, used = [], set()
+    for m in cands:
+        ref, scenes = PRIOR_SCENES["euler-bernoulli" if m.theory == "euler-bernoulli" else "timoshenko"]
+        used.update(scenes)
+        opts = "".join(f"{k} = {json.dumps(v)}\n" for k, v in CANDIDATE_OPTIONS.get(m.name, {}).items())
+        listed = ", ".join(f'"{(studies / sc).as_posix()}"' for sc in scenes)
+        runs.append(
+            f'[[runs]]\nmodel = "{m.name}"\nscenes = [{listed}]\nreference = {{model = "{ref}"}}\n'
+            f"points = {list(points)}\n{opts}"
+        )
+    head = ", ".join(f'"{(studies / sc).as_posix()}"' for sc in sorted(used))
+    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
+        spec = Path(tmp) / "priors.toml"
+        spec.write_text(f'name = "advisor priors"\nscenes = [{head}]\nreference = "none"\n\n' + "\n".join(runs))
+        df = run_study(load_study(spec), Path(tmp) / "run", workers=1, progress=False)
+    series = fit_series(df)
+    for one in series:  # scene files relative to studies/ (the file is versioned: no machine's paths)
+        one["scene"] = (
+            Path(one["scene"]).relative_to(studies).as_posix() if Path(one["scene"]).is_absolute() else one["scene"]
+        )
+    data = {
+        "format": 1,
+        "code_digest": code_digest(),
+        "points": list(points),
+        "made_by": "pdverify advise --rebuild-priors",
+        "series": series,
+    }
+    target = Path(out) if out is not None else PRIORS
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        target.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
+    except OSError as exc:
+        raise OutputError(f"{target}: cannot write the priors ({exc.strerror or exc})") from None
+    return data
+
+
+def moves_ends(scene: Scene) -> bool:
+    """True when the scene's [dynamics] table prescribes an end motion (the exact solutions leave it out)."""
+    d = scene.dynamics
+    return d is not None and any(
+        getattr(em, k) is not None
+        for em in (d.left, d.right)
+        if em is not None
+        for k in ("displacement", "axial", "rotation", "twist")
+    )
+
+
+def estimate(
+    scene: Scene,
+    name: str,
+    options: dict,
+    tol: float,
+    budget: float,
+    start: int = 11,
+    max_points: int = 20_001,
+    static: bool = False,
+) -> Candidate | None:
+    """Refine nested grids until the Richardson estimate is below tol (or the budget/size runs out).
+    ``static``: the static part of a scene with a [dynamics] table (``run(..., static=True)``)."""
+    if static:
+        options = dict(options, static=True)
+    if name == "fem-plane-stress":
+        max_points = min(max_points, 401)
+    sols, n, spent = [], start, 0.0
+    est, order = np.inf, float("nan")
+    while n <= max_points:
+        t0 = time.perf_counter()
+        try:
+            r = run(scene, name, points=n, **options)
+        except InputError as exc:  # below the model's fewest points (e.g. pd-timoshenko energy: 6m + 2): refine
+            if sols or not exc.lines[0].startswith(f"points = {n}:"):
+                raise
+            n = 2 * n - 1
+            continue
+        dt = time.perf_counter() - t0
+        spent += dt
+        sols.append((n, r, dt))
+        if len(sols) >= 3:
+            (_, r1, _), (_, r2, _), (_, r3, _) = sols[-3:]
+            f1, f2, f3 = (r.measured(models()[name].measures) for r in (r1, r2, r3))  # w, a rod's u, a twist
+            scale = np.abs(f3).max() or 1.0
+            # differences on the coarser grid's points (interpolated: FE meshes carry extra load nodes)
+            d12 = np.abs(f1 - np.interp(r1.x, r2.x, f2)).max() / scale
+            d23 = np.abs(f2 - np.interp(r2.x, r3.x, f3)).max() / scale
+            # the grids agree to their own round-off (the solves' bounds, at least 1e-10): the model is exact
+            # for this scene, and the differences are noise with no order in them
+            noise = max([1e-10] + [10 * float(r.info.get("error_bound", 0.0)) for r in (r1, r2, r3)])
+            if max(d12, d23) <= noise:
+                est, order = max(d12, d23, noise / 10), float("inf")
+            else:
+                order = float(np.log2(d12 / d23))
+                est = d23 / (2**order - 1) if order > 0.1 else np.inf
+            if est < tol:
+                break
+        if spent > budget:
+            break
+        n = 2 * n - 1
+    if not np.isfinite(est) or est >= tol:
+        return None
+    n_best, r_best, dt_best = sols[-1]
+    ex = None
+    options = {k: v for k, v in options.items() if k != "static"}
+    prior = prior_order(name, options)
+    theory = models()[name].theory
+    if scene.is_straight and theory in ("euler-bernoulli", "timoshenko") and not moves_ends(scene):
+        exw = solve_straight(scene, theory != "euler-bernoulli").fields(r_best.x)["w"]
+        scale = np.abs(exw).max()
+        ex = float(np.abs(r_best.w - exw).max() / scale) if scale > 0 else None
+    elif scene.is_straight and theory in ("axial", "torsion") and not moves_ends(scene):  # exact-rod, exact-torsion
+        q = models()[name].measures
+        exf = get_model(reference_for(theory)).evaluator(scene, {})(r_best.x)[q]
+        scale = np.abs(exf).max()
+        ex = float(np.abs(r_best.measured(q) - exf).max() / scale) if scale > 0 else None
+    return Candidate(
+        name,
+        options,
+        n_best,
+        float(est),
+        order,
+        dt_best,
+        ex,
+        f"three-grid Richardson on this scene (N = {sols[-3][0]}, {sols[-2][0]}, {n_best}; p = {order:.2f}); {prior}",
+    )
+
+
+def continuum_gap(scene: Scene) -> float:
+    """Relative difference, at the largest deflection, between exact Timoshenko and a q8 plane-stress solve."""
+    r = run(scene, "fem-plane-stress", element="q8", points=161, layers=8)
+    ex = solve_straight(scene, True).fields(r.x)["w"]
+    i = int(np.argmax(np.abs(ex)))
+    return float(abs(r.w[i] / ex[i] - 1)) if ex[i] else 0.0
+
+
+def advise(
+    scene: Scene, tolerance: float, budget: float = 30.0, include_reference: bool = False, static: bool = False
+) -> Advice:
+    """``static``: advise on the static part of a scene with a [dynamics] table (without it such a scene
+    is refused: the estimates are of static solutions)."""
+    if not 0 < tolerance < 1:
+        raise InputError(f"tolerance = {tolerance!r}: give a relative tolerance between 0 and 1, e.g. 1e-3")
+    if scene.dynamics is not None and not static:
+        dyn = ", ".join(n for n, m in models().items() if "dynamic" in m.analyses)
+        raise InputError(
+            "dynamics: the scene asks for a transient run and advise estimates the error of static "
+            f"solutions only; give --static to advise on its static part, or run a dynamic model ({dyn})"
+        )
+    if not scene.loads and not moves_ends(scene):
+        raise InputError("loads: the scene carries no load (its static response is zero); nothing to advise on")
+    needs, rejected, unable = [], [], []
+    cands = []
+    for m in models().values():
+        if "static" not in m.analyses or (m.reference and not include_reference):
+            continue
+        why = problems(scene, m, static)  # the declared capabilities (supports, loads, axes, dynamics)
+        if why:
+            unable.append(f"{m.name}: {why[0]}")
+        else:
+            cands.append(m)
+    exact_applies = not moves_ends(scene)  # the exact beam solutions leave prescribed end motions out
+    if not bends(scene):  # axial loads or torques only: a beam model's deflection would be zero, and exact
+        needs.append("no bending (axial loads or torques only): rod and torsion models; no shear or 2D check")
+        for m in cands:
+            if m.bending:
+                rejected.append(f"{m.name}: the scene does not bend the beam, and {m.name} is judged on its deflection")
+        cands = [m for m in cands if not m.bending]
+    elif not scene.is_straight:
+        needs.append("curved axis: models that solve curved beams")
+    elif not exact_applies:
+        needs.append("prescribed end motions: the exact beam solutions leave them out, so no shear or 2D check")
+    else:
+        gap = shear_gap(scene)
+        if gap <= tolerance / 2:
+            needs.append(
+                f"Euler–Bernoulli is enough: the shear deflection is {gap:.2e} of the deflection "
+                f"(tolerance {tolerance:g})"
+            )
+        else:
+            needs.append(f"shear matters: Timoshenko and EB differ by {gap:.2e} > tolerance/2; EB models excluded")
+            for m in cands:
+                if m.theory == "euler-bernoulli":
+                    rejected.append(f"{m.name}: Euler–Bernoulli theory misses the shear deflection ({gap:.1e})")
+            cands = [m for m in cands if m.theory != "euler-bernoulli"]
+        twod = (1.0 / scene.slenderness) ** 2  # order of the 2D corrections to beam theory
+        if twod <= tolerance / 2:
+            needs.append(f"beam theory is enough: 2D corrections are of order (h/L)^2 = {twod:.1e} <= tolerance/2")
+        elif "fem-plane-stress" in models() and not models()["fem-plane-stress"].check(scene):
+            gap2 = continuum_gap(scene)
+            if gap2 > tolerance / 2:
+                needs.append(
+                    f"2D effects matter: Timoshenko and a q8 plane-stress solution differ by {gap2:.2e} > "
+                    "tolerance/2; only the continuum model qualifies"
+                )
+                for m in cands:
+                    rejected.append(f"{m.name}: beam theory misses 2D effects ({gap2:.1e})")
+                cands = [models()["fem-plane-stress"]]
+            else:
+                needs.append(f"beam theory is enough: Timoshenko and q8 plane stress differ by {gap2:.2e}")
+    if scene.dynamics is not None:
+        needs.append(
+            "static part (--static): the response to the loads and settled end motions; the transient "
+            "run is not estimated"
+        )
+    else:
+        needs.append("static: the scene has no [dynamics] table")
+    options = CANDIDATE_OPTIONS
+    found = []
+    for m in cands:
+        if m.option("points") is None:
+            continue
+        opts = options.get(m.name, {})
+        n_pred, why = predicted_points(m.name, opts, tolerance)
+        # start the ladder two refinements below the prediction, so the three grids end near it
+        start = 11 if n_pred is None else max(11, min(5001, (n_pred - 1) // 4 + 1))
+        try:
+            c = estimate(scene, m.name, opts, tolerance, budget, start=start, static=static)
+            if c is not None:
+                c.basis += f"; start N = {start} ({why})"
+        except (InputError, SolveError) as exc:
+            rejected.append(f"{m.name}: {exc.lines[0]}")
+            continue
+        if c is None:
+            rejected.append(f"{m.name}: did not reach {tolerance:g} within the budget ({budget:g} s) / grid limit")
+        else:
+            found.append(c)
+    found.sort(key=lambda c: c.seconds)
+    rejected += unable
+    if not found:
+        raise SolveError(
+            f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
+            f"{budget:g} s; " + "; ".join(rejected[:3])
+        )
+    return Advice(
+        scene.name,
+        tolerance,
+        needs,
+        found[0],
+        found[1] if len(found) > 1 else None,
+        rejected,
+        static and scene.dynamics is not None,
+    )
+
+
+def format_advice(a: Advice) -> str:
+    lines = [f"scene: {a.scene}   tolerance: {a.tolerance:g}"]
+    lines += [f"  needs: {n}" for n in a.needs]
+    for label, c in (("choice", a.choice), ("runner-up", a.runner_up)):
+        if c is None:
+            continue
+        opts = [f"--{k} {v}" for k, v in c.options.items()] + (["-o static=true"] if a.static else [])
+        lines.append(" ".join([f"{label}: {c.model} --points {c.points}", *opts]))
+        lines.append(f"  estimated error {c.estimate:.2e} ({c.basis})")
+        if c.exact_error is not None:
+            lines.append(f"  check against the exact solution: {c.exact_error:.2e}")
+        lines.append(f"  expected cost {c.seconds:.3g} s")
+    lines += [f"  not chosen: {r}" for r in a.rejected]
+    return "\n".join(lines)

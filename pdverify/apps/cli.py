@@ -1,0 +1,549 @@
+"""Command line: ``pdverify solve | models | ...``.
+
+Every user error is printed as ``error: <one line>`` on stderr, never a traceback. Exit codes (docs/cli.md):
+0 done, 1 a study's verdicts failed, 2 bad input (scene, study, option, file), 3 failed or refused
+computation (singular, overflow, not enough memory), 4 output could not be written.
+
+Each command is a thin typer function over the library (solve, study, report, verify, advise, bench, models,
+modes); they share the option parsing, the output paths and the error wrapping kept here. Imports are lazy: each
+command imports what it runs, so ``pdverify --help`` starts in ~0.15 s instead of the library's ~1.8 s.
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+from enum import Enum
+from pathlib import Path
+
+import typer
+
+from ..core.errors import InputError, OutputError, PdverifyError, SolveError
+from ..core.version import __version__
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    context_settings={"help_option_names": ["-h", "--help"]},
+    help="pdverify: how far a peridynamic beam model is from the truth, in numbers.",
+)
+
+
+def _show_version(value: bool):
+    if value:
+        typer.echo(f"pdverify {__version__}")
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _root(
+    version: bool = typer.Option(
+        False, "--version", "-V", callback=_show_version, is_eager=True, help="print the version and exit"
+    ),
+):
+    """pdverify: how far a peridynamic beam model is from the truth, in numbers."""
+
+
+def _fail(exc: PdverifyError) -> None:
+    for line in exc.lines:
+        typer.echo(f"error: {line}", err=True)
+    raise typer.Exit(exc.exit_code)
+
+
+def user_errors(fn):
+    """Turn PdverifyError into one line per problem and a non-zero exit code; a computation that runs out
+    of memory or out of the floating-point range becomes one line and exit code 3."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except SolveError as exc:  # a failed computation on far-out numbers: name them (E = 1e-300 reads singular)
+            extreme = _extreme_values()
+            _fail(SolveError([exc.lines[0] + extreme, *exc.lines[1:]]) if extreme else exc)
+        except PdverifyError as exc:
+            _fail(exc)
+        except MemoryError:
+            _fail(SolveError("out of memory during the computation; use fewer points (a larger spacing)"))
+        except (OverflowError, FloatingPointError) as exc:
+            _fail(
+                SolveError(
+                    f"the computation left the floating-point range ({exc.__class__.__name__}: "
+                    f"{exc.args[-1] if exc.args else exc}){_extreme_values()}; give the scene in units "
+                    "that keep its numbers within about 1e-100..1e100"
+                )
+            )
+
+    return wrapper
+
+
+_SCENE_FILES: list = []  # scene files a command read, to name their extreme values when a computation overflows
+
+
+def _extreme_values() -> str:
+    """'; extreme values: beam.length = 1e+300' for the numbers of the scenes read that are far out of range."""
+    import math
+
+    found = []
+
+    def walk(v, where):
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(x, f"{where}.{k}" if where else k)
+        elif isinstance(v, list):
+            for i, x in enumerate(v):
+                walk(x, f"{where}[{i}]")
+        elif (
+            isinstance(v, (int, float))
+            and not isinstance(v, bool)
+            and v != 0
+            and math.isfinite(v)
+            and not 1e-100 <= abs(v) <= 1e100
+        ):
+            found.append(f"{where} = {v:g}")
+
+    for sc in _SCENE_FILES:
+        walk(sc.model_dump(mode="json", exclude_none=True), "")
+    return f"; extreme values: {', '.join(found)}" if found else ""
+
+
+class Format(str, Enum):  # noqa: UP042 (typer reads str-Enum choices)
+    table = "table"
+    json = "json"
+    csv = "csv"
+
+
+def parse_options(pairs: list[str] | None) -> dict:
+    """``key=value`` strings from ``--option`` into a dict (values stay strings; models coerce)."""
+    out = {}
+    for item in pairs or []:
+        if "=" not in item:
+            raise InputError(f"--option {item!r}: write key=value")
+        k, v = item.split("=", 1)
+        out[k.strip()] = v.strip()
+    return out
+
+
+def _table(result) -> str:
+    cols = result.columns()
+    names = list(cols)
+    lines = [f"# scene: {result.scene}   model: {result.model}   dofs: {result.dofs}   version: {result.version}"]
+    lines.append("# parameters: " + ", ".join(f"{k}={v}" for k, v in result.parameters.items()))
+    lines.append("# timings: " + ", ".join(f"{k}={v:.4g}" for k, v in result.timings.items()))
+    for k, v in result.info.items():
+        if not isinstance(v, (list, dict)):
+            lines.append(f"# {k}: {v}")
+    lines += [f"# {w}" for w in result.warning_lines()]
+    lines += [f"# {w}" for w in result.output_lines()]
+    lines.append("".join(f"{n:>16}" for n in names))
+    n = len(cols["x"])
+    for i in range(n):
+        lines.append("".join(f"{float(cols[c][i]):16.8g}" for c in names))
+    return "\n".join(lines) + "\n"
+
+
+_SUFFIX_FORMAT = {".csv": Format.csv, ".json": Format.json, ".txt": Format.table}
+
+
+def _out_format(out: Path | None, fmt: Format | None) -> Format:
+    """The output format: --format if given, else the one the --out extension names, else table; a --format that
+    contradicts the extension is an error (``--out r.json --format csv`` would write CSV into a .json file)."""
+    implied = _SUFFIX_FORMAT.get(out.suffix.lower()) if out is not None else None
+    if fmt is not None and implied is not None and fmt != implied:
+        raise InputError(
+            f"--format {fmt.value} and --out {out}: the extension {out.suffix} means {implied.value}; "
+            f"drop --format or name the file *{next(k for k, v in _SUFFIX_FORMAT.items() if v == fmt)}"
+        )
+    return fmt or implied or Format.table
+
+
+def check_writable(out: Path, option: str) -> None:
+    """Before any computation: ``out`` can be created as a file (its folder may be missing: it is made)."""
+    import os
+
+    if out.is_dir():
+        raise OutputError(f"{option} {out}: is a folder; give a file name, e.g. {out / 'result.csv'}")
+    parent = out.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
+
+
+def write_file(out: Path, write, option: str) -> None:
+    """``write(path)`` into a temporary file beside ``out``, then renamed over it: a failed write leaves no empty or
+    partial file (and an existing ``out`` as it was). OSError -> OutputError (exit code 4)."""
+    import os
+
+    tmp = out.parent / f".{out.stem}.tmp-{os.getpid()}{out.suffix}"  # same suffix: writers choose by it
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        write(str(tmp))
+        os.replace(tmp, out)
+    except OSError as exc:
+        raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); nothing was written") from None
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+@app.command()
+@user_errors
+def solve(
+    scene: Path = typer.Argument(..., help="scene TOML file"),
+    model: str = typer.Option(..., "--model", "-m", help="model name (see `pdverify models`)"),
+    points: int | None = typer.Option(None, help="material points / nodes along the axis, ends included"),
+    spacing: float | None = typer.Option(None, help="grid spacing in metres (instead of --points)"),
+    horizon: float | None = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
+    degree: int | None = typer.Option(None, help="PD-function degree (models that have one)"),
+    variant: str | None = typer.Option(None, help="model variant, e.g. paper | corrected"),
+    element: str | None = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
+    layers: int | None = typer.Option(None, help="elements through the thickness (plane-stress reference)"),
+    form: str | None = typer.Option(None, help="equation form of a model, e.g. primal | mixed"),
+    option: list[str] | None = typer.Option(
+        None,
+        "--option",
+        "-o",
+        help="any other model option, key=value; static=true: the static part of a scene with [dynamics]",
+    ),
+    fmt: Format | None = typer.Option(
+        None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"
+    ),
+    out: Path | None = typer.Option(None, "--out", help="write the output here instead of stdout"),
+    tolerance: float | None = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
+):
+    """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
+    from ..core.scene_file import load_scene
+    from ..registry import as_flag, get_model, run
+
+    fmt = _out_format(out, fmt)
+    if out is not None:
+        check_writable(out, "--out")
+    sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
+    _SCENE_FILES[:] = [sc]
+    given = dict(
+        points=points,
+        spacing=spacing,
+        horizon=horizon,
+        degree=degree,
+        variant=variant,
+        element=element,
+        layers=layers,
+        form=form,
+    )
+    given.update(parse_options(option))
+    if model == "auto":
+        from .advise import advise as _advise
+
+        if tolerance is None:
+            raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
+        choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
+        typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
+        model = choice.model
+        given = dict(choice.options, points=choice.points, static=given.get("static", False))
+    from ..measure.memory import check_memory
+    from ..registry import model_argument
+
+    m = get_model(model_argument(model))  # a manifest path registers its external model first
+    check_memory(sc, m, given)
+    result = run(sc, m, **given)
+    if out is not None and out.suffix in result.writers:
+        write_file(out, result.writers[out.suffix], "--out")
+        typer.echo(f"wrote {out}", err=True)
+        return
+    for w in result.warning_lines():  # on stderr too, whatever the format
+        typer.echo(w, err=True)
+    text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
+    if out is not None:
+        text = text if text.endswith("\n") else text + "\n"
+        write_file(out, lambda path: Path(path).write_text(text, encoding="utf-8"), "--out")
+        typer.echo(f"wrote {out}", err=True)
+    else:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
+@app.command()
+@user_errors
+def modes(
+    scene: Path = typer.Argument(..., help="scene TOML file (its supports, section and material; density needed)"),
+    model: str = typer.Option(..., "--model", "-m", help="a model with a mass operator: pd-rod, pd-timoshenko, ..."),
+    option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
+    count: int = typer.Option(5, "--count", help="how many modes, lowest first"),
+    fmt: Format = typer.Option(Format.table, "--format", help="table | json | csv"),
+):
+    """The first natural frequencies of a model's discrete operator against the analytic ones, with the
+    relative error per mode (rod and torsion bar: closed form; Timoshenko beam: characteristic determinant)."""
+    from ..core.scene_file import load_scene
+    from ..measure.modes import modes as _modes
+
+    sc = load_scene(scene)
+    _SCENE_FILES[:] = [sc]
+    table = _modes(sc, model, parse_options(option), count)
+    for w in table.warnings:
+        typer.echo(f"warning: {w}", err=True)
+    text = {Format.json: table.to_json, Format.csv: table.to_csv, Format.table: table.to_table}[fmt]()
+    sys.stdout.write(text if text.endswith("\n") else text + "\n")
+
+
+@app.command("models")
+@user_errors
+def list_models():
+    """List the available models, their options and source papers."""
+    from ..registry import models
+
+    for name, m in models().items():
+        opts = ", ".join(f"{o.name}={o.default}" for o in m.options)
+        typer.echo(f"{name:22s} {m.title}  [{opts}]")
+        if m.source:
+            typer.echo(f"{'':22s} source: {m.source}")
+        c = m.capabilities()
+        typer.echo(
+            f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
+            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}"
+        )
+
+
+def _slug(name: str) -> str:
+    import re
+
+    return re.sub(r"[^a-z0-9]+", "_", name.lower()).strip("_") or "study"
+
+
+@app.command()
+@user_errors
+def study(
+    study_file: Path = typer.Argument(..., help="study TOML file"),
+    out: Path | None = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
+    workers: int | None = typer.Option(
+        None, "--workers", help="local worker processes, 1 or more (default: all cores; 1: in this process)"
+    ),
+    scheduler: str | None = typer.Option(
+        None,
+        "--scheduler",
+        help="Dask scheduler address tcp://HOST:PORT (connect timeout 5 s; exit 2 when none is reached)",
+    ),
+    report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+    junit: Path | None = typer.Option(None, "--junit", help="also write the verdicts as JUnit XML to FILE"),
+):
+    """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts. The output
+    folder is locked while the run uses it and holds one study (exit 4 otherwise: see docs/studies.md).
+
+    Exit status (docs/ci.md), the last line on stderr is the summary:
+    0 every benchmark and order check passes (an expected-fail row that fails counts) and every case ran;
+    1 a benchmark or check fails or is missing, or a case failed outside an expected-fail row;
+    2 bad input; 3 a failed computation; 4 output could not be written, or the folder is in use.
+    """
+    from .pipeline import load_study, run
+
+    if workers is not None and workers < 1:  # an option is checked before the files it applies to
+        raise InputError(f"--workers {workers}: give a whole number of processes, 1 or more")
+    spec = load_study(study_file)
+    out = out or Path("reports") / _slug(study_file.stem)
+    done = run(
+        spec,
+        out,
+        workers=workers,
+        scheduler=scheduler,
+        progress=not quiet,
+        report=report,
+        junit=junit,
+        echo=lambda line: typer.echo(line, err=True),
+    )
+    if done.report is not None:
+        typer.echo(f"report: {done.report}")
+    typer.echo(done.summary, err=True)
+    raise typer.Exit(done.exit_code)
+
+
+@app.command()
+@user_errors
+def advise(
+    scene: Path | None = typer.Argument(None, help="scene TOML file"),
+    tolerance: float = typer.Option(1e-3, "--tolerance", help="relative error you can accept"),
+    budget: float = typer.Option(30.0, "--budget", help="seconds per candidate model for the grid search"),
+    static: bool = typer.Option(False, "--static", help="a scene with [dynamics]: advise on its static part"),
+    rebuild_priors: bool = typer.Option(
+        False, "--rebuild-priors", help="regenerate pdverify/data/advisor_priors.json (a small study)"
+    ),
+):
+    """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
+    from ..core.scene_file import load_scene
+    from .advise import PRIORS, format_advice
+    from .advise import advise as _advise
+    from .advise import rebuild_priors as _rebuild
+
+    if rebuild_priors:
+        data = _rebuild()
+        typer.echo(f"wrote {PRIORS}: {len(data['series'])} series, code digest {data['code_digest']}")
+        return
+    if scene is None:
+        raise InputError("scene: give a scene file (or --rebuild-priors)")
+    sc = load_scene(scene)
+    _SCENE_FILES[:] = [sc]
+    typer.echo(format_advice(_advise(sc, tolerance, budget, static=static)))
+
+
+@app.command()
+@user_errors
+def report(
+    study_dir: Path = typer.Argument(..., help="a study output directory (holds results.csv)"),
+    out: Path | None = typer.Option(None, "--out", help="write the report here (default: the study directory)"),
+):
+    """Turn a study's results into a self-contained HTML report (index.html)."""
+    from ..report import build_report
+
+    if out is not None:
+        check_writable(out / "index.html", "--out")
+    typer.echo(f"report: {build_report(study_dir, out)}")
+
+
+@app.command()
+@user_errors
+def bench(
+    model: list[str] | None = typer.Option(
+        None, "--model", "-m", help="model(s) to time; default: all with an assembled system"
+    ),
+    points: list[int] | None = typer.Option(
+        None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"
+    ),
+    fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
+    scene: Path | None = typer.Option(None, help="scene to time (default: the example cantilever)"),
+    out: Path | None = typer.Option(
+        None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"
+    ),
+):
+    """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
+    import json as _json
+
+    from ..measure.cost import accurate, cost_slope
+    from ..registry import get_model, model_argument
+    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models
+
+    names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
+    for n in names:
+        get_model(n)
+    rows = []
+    for n in names:
+        sizes = points or [p for p in DEFAULT_POINTS if p <= SMALL_MODELS.get(n, 10**9)]
+        for p in sizes:
+            row = bench_subprocess(n, p, str(scene) if scene else None)
+            rows.append(row)
+            if fmt == Format.json:
+                typer.echo(_json.dumps(row))
+            elif row.get("status") != "ok":
+                typer.echo(f"{n:18s} {p:>9d}  failed: {row.get('message')}")
+            else:
+                f = lambda v, spec: "-" if v is None else format(v, spec)  # noqa: E731
+                typer.echo(
+                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} error={f(row.get('max_error'), '.1e')} "
+                    f"assemble={f(row['assemble_s'], '.3g')}s "
+                    f"solve={f(row['solve_s'], '.3g')}s total={row['total_s']:.3g}s limit={f(row['limit_s'], '.3g')}s "
+                    f"ratio={f(row['ratio'], '.2f')} mem={row['peak_mem_mb']:.0f}MB "
+                    f"updates/s={f(row['updates_per_s'], '.3g')}"
+                    + ("" if accurate(row) else "  (error above 1e-6 or unknown: counts toward no target)")
+                )
+    slopes = cost_slope(rows)
+    for n, s in slopes.items():
+        line = {"model": n, "cost_slope": s}
+        typer.echo(_json.dumps(line) if fmt == Format.json else f"{n:18s} cost ~ N^{s:.2f}")
+    if out:
+        from ..report.perf import build_performance
+
+        page = build_performance(rows, out, slopes)
+        if fmt != Format.json:
+            typer.echo(f"performance page: {page}")
+
+
+@app.command("verify")
+@user_errors
+def verify_cmd(
+    model: str = typer.Argument(..., help="model name, or path to an external model's manifest (.toml)"),
+    option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
+    out: Path | None = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
+    full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
+    order: float | None = typer.Option(None, "--order", help="expected order (default: the model's, else 2)"),
+    workers: int | None = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
+    scheduler: str | None = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
+    quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+):
+    """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
+    Exit code 1 when a check fails."""
+    from ..registry import model_argument
+    from ..verify import verify
+
+    name = model_argument(model)
+    options = parse_options(option)
+    out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))
+    card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)
+    for c in card["checks"]:
+        typer.echo(f"{c['verdict']:>5}  {c['check']}: {c['summary']}")
+    typer.echo(f"{card['model']}: {card['verdict']} (suite {card['suite_version']}); card: {out}/card.html")
+    if card["verdict"] == "fail":
+        raise typer.Exit(1)
+
+
+@app.command()
+def version():
+    """Print the package version."""
+    typer.echo(__version__)
+
+
+def _spread_repeats(argv: list[str], option: str = "--points") -> list[str]:
+    """``--points 1000 10000`` (as the README writes it) -> ``--points 1000 --points 10000``: the values that follow
+    the option up to the next option. Only for ``bench``, whose --points takes several sizes and which takes no
+    other argument."""
+    command = next((a for a in argv if not a.startswith("-")), None)  # the global options take no values
+    if command != "bench":
+        return argv
+    out, after = [], 0  # after: how many values the last --points has taken
+    for arg in argv:
+        if arg == option:
+            after = 0
+        elif arg.startswith("-"):
+            after = -1
+        elif after >= 0:
+            after += 1
+            if after > 1:
+                out.append(option)
+        out.append(arg)
+    return out
+
+
+def main(argv: list[str] | None = None):  # console-script entry point
+    """Run the CLI; a usage error (unknown option, bad value of an option) is one ``error:`` line, exit code 2."""
+    try:  # typer >= 0.2x carries its own copy of click
+        from typer._click import exceptions as click
+    except ImportError:  # pragma: no cover - older typer: click itself
+        from click import exceptions as click
+
+    no_args = getattr(click, "NoArgsIsHelpError", ())  # click < 8.2 prints the help itself
+    argv = list(sys.argv[1:] if argv is None else argv)
+    command = typer.main.get_command(app)
+    try:
+        rv = command.main(args=_spread_repeats(argv), prog_name="pdverify", standalone_mode=False)
+    except no_args as exc:
+        text = exc.ctx.get_help() if exc.ctx is not None else ""  # typer's rich help prints itself, returns ""
+        if text:
+            typer.echo(text)
+        sys.exit(2)
+    except click.UsageError as exc:
+        hint = f"; see `{exc.ctx.command_path} -h`" if exc.ctx is not None else ""
+        typer.echo(f"error: {exc.format_message().replace('Value error, ', '').rstrip('.')}{hint}", err=True)
+        sys.exit(2)
+    except typer.Abort:
+        typer.echo("error: aborted", err=True)
+        sys.exit(130)
+    except BrokenPipeError:  # stdout closed early (`pdverify solve ... | head`): stop quietly, as other tools do
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)
+    sys.exit(rv if isinstance(rv, int) else 0)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,376 @@
+"""The model contract: what a model declares and provides (docs/contract.md has the version for model authors).
+
+* **Options** -- a model declares its options (:class:`Option`: name, type, default, allowed values);
+  :meth:`Model.resolve` validates what the user gave and fills in the defaults.
+* **Capabilities, as data** -- each model declares what it can solve: ``analyses`` (``"static"`` and/or
+  ``"dynamic"``), ``straight`` / ``curved`` axes, ``supports``, ``load_types``, the load components it
+  carries (``bending``, ``axial``, ``torsion``), ``end_motions`` (prescribed end motions of a
+  ``[dynamics]`` table) and ``variant_rules`` (:class:`Rule`: the option values a variant's equations
+  define). :meth:`Model.check` turns them into one line per problem; :meth:`Model.resolve` applies
+  :func:`variant_problems`, so a study file is checked when it is loaded.
+* **Solve** -- :meth:`Model.solve` returns a :class:`~pdverify.core.result.Result`.
+* **Assembled system** -- a linear static model whose solve factorises one linear system sets
+  ``assembles = True`` and implements :meth:`Model.assemble`, which returns that :class:`System`
+  (the matrix as a :class:`~pdverify.numerics.band.Band` or scipy sparse, the right-hand side, the free
+  unknowns, info). ``pdverify bench`` times the banded solve of exactly that system. Models whose static
+  path is nonlinear for some options declare them in ``nonlinear_when``; models with a time integrator list
+  ``"dynamic"`` in ``analyses`` and implement :meth:`Model.bench_dynamics`.
+
+>>> import numpy as np, scipy.sparse as sp
+>>> K = sp.diags([[-1.0] * 3, [2.0] * 4, [-1.0] * 3], [-1, 0, 1]).tocsr()
+>>> s = System(K, np.ones(4), free=np.arange(4), info={})
+>>> s.unknowns, s.eliminated
+(4, True)
+>>> Kf, bf = System(K, np.ones(4), free=np.array([1, 2]), info={}).reduced()
+>>> Kf.toarray().tolist(), bf.tolist()
+([[2.0, -1.0], [-1.0, 2.0]], [1.0, 1.0])
+
+One file on purpose: Option, Rule, System and Model with its capability checks are read together by a model
+author.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.sparse as sp
+
+from .errors import InputError
+from .result import Result
+from .scene import Scene, straight_mechanism
+
+
+@dataclass(frozen=True)
+class Option:
+    """One option a model takes. ``minimum`` is inclusive unless ``strict``."""
+
+    name: str
+    kind: type
+    default: Any
+    help: str = ""
+    choices: tuple | None = None
+    minimum: float | None = None
+    strict: bool = False
+    maximum: float | None = None
+
+    def coerce(self, model: str, value):
+        try:
+            if isinstance(value, bool) and self.kind in (int, float):
+                raise ValueError  # numbers never from true/false
+            if self.kind is int:
+                f = float(value)
+                if f != int(f):
+                    raise ValueError
+                v = int(f)
+            elif self.kind is float:
+                v = float(value)
+                if not np.isfinite(v):
+                    raise ValueError
+            elif self.kind is bool:  # true/false only: "maybe" or 2 is an error, not False
+                if isinstance(value, bool):
+                    v = value
+                elif str(value).strip().lower() in ("true", "false"):
+                    v = str(value).strip().lower() == "true"
+                else:
+                    raise ValueError
+            else:
+                v = self.kind(value)
+        except (TypeError, ValueError):
+            raise InputError(
+                f"{self.name} = {value!r}: model {model} needs "
+                + {int: "an integer", float: "a number", bool: "true or false"}.get(self.kind, self.kind.__name__)
+                + " here"
+            ) from None
+        if self.choices is not None and v not in self.choices:
+            raise InputError(
+                f"{self.name} = {value!r}: not an option of model {model}; allowed: {', '.join(map(str, self.choices))}"
+            )
+        if self.minimum is not None and (v < self.minimum or (self.strict and v == self.minimum)):
+            raise InputError(
+                f"{self.name} = {value!r}: model {model} needs {self.name} "
+                f"{'>' if self.strict else '>='} {self.minimum:g}"
+                + (" (the horizon must cover at least one spacing)" if self.name == "horizon" else "")
+            )
+        if self.maximum is not None and v > self.maximum:
+            raise InputError(f"{self.name} = {value!r}: model {model} needs {self.name} <= {self.maximum:g}")
+        return v
+
+
+@dataclass
+class System:
+    """The linear system a linear static model's solve factorises: ``matrix @ z = rhs``.
+
+    ``matrix``: a :class:`~pdverify.numerics.band.Band` or a scipy sparse matrix. ``free``: the indices, in the
+    model's own numbering of its unknowns, of those the supports leave free. Either the held unknowns
+    were eliminated (``matrix`` is ``len(free)`` square and z = u[free]: :attr:`eliminated`), or they
+    keep their place with a unit row and a cleared column (z is the whole u, zero where held).
+    ``info``: what the assembly chose (ghost layers, form, ...), merged into the result's info."""
+
+    matrix: Any  # a pdverify.numerics.band.Band or a scipy sparse matrix
+    rhs: np.ndarray
+    free: np.ndarray
+    info: dict = field(default_factory=dict)
+
+    @property
+    def unknowns(self) -> int:
+        """Free unknowns (the result's ``dofs`` for a single-solve model)."""
+        return len(self.free)
+
+    @property
+    def eliminated(self) -> bool:
+        return self.matrix.shape[0] == len(self.free)
+
+    def reduced(self) -> tuple[sp.csr_matrix, np.ndarray]:
+        """(CSR, rhs) of the free unknowns only: the rows and columns of ``free`` (the held ones dropped)."""
+        K = sp.csr_matrix(self.matrix.tocsr())  # a Band or any scipy sparse matrix
+        if self.eliminated:
+            return K, np.asarray(self.rhs)
+        f = np.asarray(self.free, np.int64)
+        return K[f][:, f].tocsr(), np.asarray(self.rhs)[f]
+
+
+@dataclass(frozen=True)
+class Rule:
+    """An option value a variant's equations define (checked by :func:`run` before solving).
+
+    When every option in ``when`` has the given value, option ``option`` must be one of ``allowed`` (if
+    given) and a whole number (if ``whole``); ``why`` names the equation that defines only those."""
+
+    when: tuple[tuple[str, Any], ...]
+    option: str
+    why: str
+    allowed: tuple | None = None
+    whole: bool = False
+
+    def applies(self, params: dict) -> bool:
+        return all(params.get(k) == v for k, v in self.when)
+
+    def problem(self, model: str, params: dict) -> str | None:
+        if not self.applies(params) or self.option not in params:
+            return None
+        v = params[self.option]
+        bad_value = self.allowed is not None and v not in self.allowed
+        bad_whole = self.whole and float(v) != int(float(v))
+        if not (bad_value or bad_whole):
+            return None
+        cond = ", ".join(f"{k} = {val}" for k, val in self.when)
+        need = "a whole number" if bad_whole else "one of " + ", ".join(map(str, self.allowed))
+        return f"{self.option} = {v!r}: not defined by {cond} of model {model}, which takes {need} ({self.why})"
+
+
+SUPPORTS = frozenset({"clamped", "pinned", "roller", "guided", "free"})  # docs/supports.md: one meaning each
+LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "point_torque" for torsion models
+
+# an end motion of [dynamics.left/right] and the load component (Model attribute) whose unknown it moves
+MOTION_COMPONENT = {"displacement": "bending", "rotation": "bending", "axial": "axial", "twist": "torsion"}
+
+POINTS = Option("points", int, 101, "material points / nodes along the axis, ends included", minimum=2)
+
+
+class Model:
+    """Base class. Subclasses set ``name``, ``title``, ``source``, ``options`` and ``solve``.
+
+    ``points`` (if among the options) may also be given as ``spacing``; the registry converts.
+    """
+
+    name: str = ""
+    title: str = ""
+    source: str = ""
+    options: tuple[Option, ...] = (POINTS,)
+    # -- capabilities: what the model can solve, as data (checked by `run` before solving) --------
+    analyses: frozenset[str] = frozenset({"static"})  # "static" and/or "dynamic" (a time integrator)
+    straight: bool = True  # solves straight axes
+    curved: bool = False  # solves curved axes
+    supports: frozenset[str] = SUPPORTS  # end conditions it represents (scene.supports.left/right)
+    load_types: frozenset[str] = LOAD_TYPES  # loads[i].type it applies
+    end_motions: bool = False  # prescribed end motions ([dynamics.left/right]) in its solution
+    variant_rules: tuple[Rule, ...] = ()  # option values each variant's equations define (Rule)
+    # -- the assembled system -------------------------------------------------------------------
+    assembles: bool = False  # a linear static solve of one System: implements assemble()
+    nonlinear_when: tuple[tuple[str, Any], ...] = ()  # options that switch solve() to a nonlinear path
+    bench_scene: str | None = None  # the scene `pdverify bench` times (a path under studies/), if its own
+    axial: bool = False  # carries axial loads (loads[i].axial)
+    bending: bool = True  # carries transverse loads (loads[i].value)
+    torsion: bool = False  # carries torques (point_torque, loads[i].torque)
+    theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum | axial | torsion
+    measures: str = "w"  # the output a study measures against its reference: w, or a point field (u, twist)
+    reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
+    order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
+    modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
+    histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
+
+    def check(self, scene: Scene) -> list[str]:
+        """Reasons this model cannot solve ``scene`` (empty when it can): its declared capabilities first
+        (subclasses add their own reasons to ``super().check(scene)``)."""
+        out = []
+        if not scene.is_straight and not self.curved:
+            out.append(f"model {self.name} solves straight beams only; axis.type = {scene.axis.type!r}")
+        if scene.is_straight and not self.straight:
+            out.append(f"model {self.name} solves curved beams only; axis.type = 'straight'")
+        for side in ("left", "right"):
+            sup = getattr(scene.supports, side)
+            if sup not in self.supports:
+                out.append(
+                    f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
+                    f"{', '.join(sorted(self.supports))}"
+                )
+        if self.bending and (why := straight_mechanism(scene)) is not None:  # (a scene that bends it is refused)
+            out.append(why)
+        if scene.dynamics is None and "static" not in self.analyses:
+            out.append(
+                f"dynamics: model {self.name} solves transient runs only; add a [dynamics] table (end_time, ...)"
+            )
+        if scene.dynamics is not None and "dynamic" not in self.analyses:
+            out.append(
+                f"dynamics: model {self.name} solves statics only and the scene asks for a transient run; "
+                "use a dynamic model (`pdverify models` lists each model's analyses) or ask for the static part "
+                "(-o static=true)"
+            )
+        if scene.dynamics is not None and self.end_motions:
+            for side in ("left", "right"):
+                em = getattr(scene.dynamics, side)
+                for k, component in MOTION_COMPONENT.items():
+                    if em is not None and getattr(em, k) is not None and not getattr(self, component):
+                        out.append(
+                            f"dynamics.{side}.{k}: model {self.name} has no such unknown to move; "
+                            "use a model that carries it or drop the motion"
+                        )
+        for i, load in enumerate(scene.loads):
+            if load.type not in self.load_types and load.type != "point_torque":  # torques: the twist check below
+                out.append(
+                    f"loads[{i}].type = {load.type!r}: model {self.name} takes {', '.join(sorted(self.load_types))}"
+                )
+                continue
+            if getattr(load, "axial", 0.0) != 0.0 and not self.axial:
+                out.append(
+                    f"loads[{i}].axial = {load.axial!r}: model {self.name} has no axial displacement; "
+                    "use a model with an axial DOF or drop the axial component"
+                )
+            torque = load.type == "point_torque" or getattr(load, "torque", 0.0) != 0.0
+            if torque and not (self.torsion and (load.type != "point_torque" or load.type in self.load_types)):
+                out.append(
+                    f"loads[{i}]: a torque: model {self.name} has no twist; use a torsion model (pd-torsion) "
+                    "or drop the torque"
+                )
+            if load.value != 0.0 and not self.bending and load.type != "point_torque":
+                what = "moments" if load.type == "point_moment" else "transverse loads"
+                out.append(
+                    f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} (axial only); "
+                    "give the load as loads[i].axial or use a bending model"
+                )
+        return out
+
+    def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def new_result(self, scene: Scene, params: dict, x, w, **parts) -> Result:
+        """The :class:`~pdverify.core.result.Result` of this model's solve of ``scene`` with ``params``: the scene's
+        and model's names and a copy of the options filled in; ``parts``: rotation, fields, dofs, timings, info."""
+        return Result(scene=scene.name, model=self.name, parameters=dict(params), x=x, w=w, **parts)
+
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The :class:`System` that :meth:`solve` factorises (models with ``assembles = True``)."""
+        raise NotImplementedError(f"model {self.name} assembles no linear system (assembles = False)")
+
+    def eigenproblem(self, scene: Scene, params: dict) -> tuple:
+        """(K on the free DOFs, mass): K phi = omega^2 M phi of its transient (models with ``modes``); the mass a
+        vector (lumped) or a sparse symmetric positive definite matrix (consistent)."""
+        raise NotImplementedError(f"model {self.name} gives no eigenproblem (modes = False)")
+
+    def history_at(self, scene: Scene, params: dict, probes, t):
+        """Translations at ``probes`` (columns) and times ``t`` (rows), for references with ``histories``."""
+        raise NotImplementedError(f"model {self.name} gives no time histories (histories = False)")
+
+    def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
+        """Point-updates per second of the time integrator (models with ``"dynamic"`` in ``analyses``)."""
+        raise NotImplementedError(f"model {self.name} has no time integrator")
+
+    def reference_options(self, params: dict) -> dict | None:
+        """The options of its theory's exact solution that give this model's continuum with ``params`` (the user's
+        options over the defaults): {} by default; None when its equations converge to something the exact
+        solution does not represent (then it is judged against itself on a finer grid)."""
+        return {}
+
+    def linear(self, params: dict) -> bool:
+        """False when ``params`` select a nonlinear path (``nonlinear_when``)."""
+        return not any(params.get(k) == v for k, v in self.nonlinear_when)
+
+    def capabilities(self) -> dict:
+        """The declared capabilities as plain data (``pdverify models``, docs/contract.md)."""
+        return {
+            "analyses": sorted(self.analyses),
+            "axes": [a for a, ok in (("straight", self.straight), ("curved", self.curved)) if ok],
+            "supports": sorted(self.supports),
+            "load_types": sorted(self.load_types),
+            "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
+            "measures": self.measures,
+            "end_motions": self.end_motions,
+            "assembles": self.assembles,
+            "variant_rules": [f"{dict(r.when)}: {r.option} ({r.why})" for r in self.variant_rules],
+        }
+
+    def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray] | None:
+        """Fields at arbitrary positions ``x`` (exact models); None when only point values exist."""
+        return None
+
+    def evaluator(self, scene: Scene, params: dict):
+        """A function x -> fields (as :meth:`evaluate`) for repeated evaluation on one scene, or None when
+        the model has no ``evaluate``. Models whose ``evaluate`` solves first override this to solve once, and give
+        the function the solve's round-off bound as an ``error_bound`` attribute (a study's reference rows read it)."""
+        if type(self).evaluate is Model.evaluate:
+            return None
+        return lambda x: self.evaluate(scene, params, x)
+
+    # -- option handling -----------------------------------------------------------------
+    def option(self, name: str) -> Option | None:
+        return next((o for o in self.options if o.name == name), None)
+
+    def resolve(self, scene: Scene, given: dict, rules: bool = True) -> dict:
+        """Validate ``given`` options against this model and fill in the defaults; ``rules``: also against
+        its ``variant_rules`` (:func:`variant_problems`; off only to build a variant's operator with
+        another's option, as a test of the assembly)."""
+        given = {k: v for k, v in given.items() if v is not None and k != "static"}  # static: a run option (run)
+        if "spacing" in given:
+            if self.option("points") is None:
+                raise InputError(f"spacing: model {self.name} takes no grid; drop --spacing")
+            if "points" in given:
+                raise InputError("points and spacing both given; give one of them")
+            given["points"] = points_from_spacing(scene.length, given.pop("spacing"))
+        names = [o.name for o in self.options]
+        for key in given:
+            if key not in names:
+                raise InputError(
+                    f"{key}: model {self.name} takes no option '{key}'; it takes: {', '.join(names) or 'none'}"
+                )
+        params = {}
+        for opt in self.options:
+            params[opt.name] = opt.coerce(self.name, given[opt.name]) if opt.name in given else opt.default
+        found = variant_problems(self, params) if rules else []
+        if found:
+            raise InputError(found)
+        return params
+
+
+def points_from_spacing(length: float, spacing) -> int:
+    try:
+        dx = float(spacing)
+    except (TypeError, ValueError):
+        raise InputError(f"spacing = {spacing!r}: needs a number (metres)") from None
+    if not dx > 0:
+        raise InputError(f"spacing = {spacing!r}: must be positive")
+    n = length / dx
+    if n < 1 - 1e-9:
+        raise InputError(f"spacing = {dx:g}: larger than the beam length {length:g}")
+    if abs(n - round(n)) > 1e-6 * max(1.0, n):
+        raise InputError(
+            f"spacing = {dx:g}: does not divide the length {length:g} into whole intervals ({n:.6g}); "
+            "choose length / spacing an integer, or give --points"
+        )
+    return int(round(n)) + 1
+
+
+def variant_problems(m: Model, params: dict) -> list[str]:
+    """The options in ``params`` that the chosen variant's equations do not define (``variant_rules``)."""
+    return [p for p in (r.problem(m.name, params) for r in m.variant_rules) if p]

@@ -1,0 +1,379 @@
+"""Scenes: the TOML description of one beam problem that every model shares.
+
+The straight-beam keys (``name``, ``[beam]``, ``[section]``, ``[material]``, ``[supports]``,
+``[[loads]]``) are a contract read by other tools: extend, never rename. SI units unless the scene says
+``units = "inch-pound"`` (any consistent set works; the key labels reports), z up, x from the left end (0)
+to the right end (``beam.length``).
+
+The scene is one pydantic model tree whose validators (supports, loads, axes, units, dynamics, strict types)
+read the neighbouring fields. Reading a scene file, the error wording and the checks across tables are
+:mod:`pdverify.core.scene_file` (``load_scene``, ``parse_scene``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Annotated, Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, Strict, model_validator
+
+SUPPORTS = ("clamped", "pinned", "free", "guided", "roller")
+Support = Literal["clamped", "pinned", "free", "guided", "roller"]
+# What each support holds, per end, in the axis frame (tangential displacement, normal displacement, rotation):
+# one meaning on every axis and in every model (docs/supports.md). Straight models without an axial unknown
+# see only (normal, rotation), so there roller = pinned.
+HELD = {
+    "clamped": (True, True, True),
+    "pinned": (True, True, False),
+    "roller": (False, True, False),
+    "guided": (False, False, True),
+    "free": (False, False, False),
+}
+# What holds the single unknown of a rod (axial displacement) or of a torsion bar (twist): a roller slides
+# axially, but holds the twist as a pinned (fork) support does (docs/supports.md)
+ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "roller")}
+
+
+Real = Annotated[float, Strict()]  # a float that an int may give, never a boolean or a string ("true" is not 1.0)
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class Beam(_Strict):
+    length: Real = Field(gt=0, allow_inf_nan=False)
+
+
+class Section(_Strict):
+    """Rectangle (``width``, ``height``) or given ``area``, ``inertia`` (and ``shear_factor``)."""
+
+    width: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    height: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    area: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    inertia: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    shear_factor: Real | None = Field(default=None, gt=0, le=1.5, allow_inf_nan=False)
+    torsion_constant: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _complete(self):
+        rect = self.width is not None and self.height is not None
+        given = self.area is not None and self.inertia is not None
+        if not rect and not given:
+            raise ValueError(
+                "give width and height (rectangle) or area and inertia; "
+                f"got width={self.width}, height={self.height}, area={self.area}, inertia={self.inertia}"
+            )
+        if (self.width is None) != (self.height is None):
+            raise ValueError("width and height go together; give both or neither")
+        both = [k for k in ("width", "height", "area", "inertia") if getattr(self, k) is not None]
+        if rect and (self.area is not None or self.inertia is not None):
+            raise ValueError(
+                f"{', '.join(both)} given: a section is a rectangle (width, height) or given by area and "
+                "inertia, not both (they would disagree); keep one pair"
+            )
+        return self
+
+    @property
+    def A(self) -> float:
+        return self.area if self.area is not None else self.width * self.height
+
+    @property
+    def I(self) -> float:  # noqa: E743 - the field's name
+        return self.inertia if self.inertia is not None else self.width * self.height**3 / 12.0
+
+    @property
+    def k(self) -> float:
+        return self.shear_factor if self.shear_factor is not None else 5.0 / 6.0
+
+    @property
+    def J(self) -> float | None:
+        """Saint-Venant torsion constant: given, or of the rectangle (series-fit formula
+        a b³ (1/3 - 0.21 (b/a)(1 - b⁴/(12 a⁴))), a >= b); None for an area/inertia section without it."""
+        if self.torsion_constant is not None:
+            return self.torsion_constant
+        if self.width is None:
+            return None
+        a, b = max(self.width, self.height), min(self.width, self.height)
+        return a * b**3 * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b**4 / (12.0 * a**4)))
+
+    @property
+    def polar(self) -> float | None:
+        """Polar moment of area of the rectangle (rotary inertia of twist); None when not a rectangle."""
+        if self.width is None:
+            return None
+        return self.width * self.height * (self.width**2 + self.height**2) / 12.0
+
+    @property
+    def depth(self) -> float:
+        """Height of the section (for a given area/inertia: of the equivalent rectangle)."""
+        if self.height is not None:
+            return self.height
+        return math.sqrt(12.0 * self.I / self.A)
+
+
+class Material(_Strict):
+    youngs_modulus: Real = Field(gt=0, allow_inf_nan=False)
+    poissons_ratio: Real = Field(gt=-1.0, lt=0.5, allow_inf_nan=False)
+    density: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    shear_modulus: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+
+    @property
+    def E(self) -> float:
+        return self.youngs_modulus
+
+    @property
+    def G(self) -> float:
+        if self.shear_modulus is not None:
+            return self.shear_modulus
+        return self.youngs_modulus / (2.0 * (1.0 + self.poissons_ratio))
+
+
+class Supports(_Strict):
+    """One support per end; each name holds the same end quantities on every axis and in every model
+    (:data:`HELD`, docs/supports.md)."""
+
+    left: Support
+    right: Support
+
+
+Frame = Literal["local", "global"]
+
+
+class PointForce(_Strict):
+    """``value`` acts along the normal (+z for a straight beam), ``axial`` along the tangent (+x).
+
+    ``frame = "local"`` (default): normal/tangent of the axis at the load; ``"global"``: ``axial`` is the
+    global x component and ``value`` the global y (= z, up) component. Identical for straight beams."""
+
+    type: Literal["point_force"]
+    position: Real = Field(allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
+    axial: Real = Field(default=0.0, allow_inf_nan=False)
+    frame: Frame = "local"
+
+
+class PointMoment(_Strict):
+    type: Literal["point_moment"]
+    position: Real = Field(allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
+
+
+class Distributed(_Strict):
+    type: Literal["distributed"]
+    value: Real = Field(allow_inf_nan=False)
+    start: Real | None = Field(default=None, allow_inf_nan=False)
+    end: Real | None = Field(default=None, allow_inf_nan=False)
+    shape: Literal["uniform", "sine"] = "uniform"
+    axial: Real = Field(default=0.0, allow_inf_nan=False)
+    torque: Real = Field(default=0.0, allow_inf_nan=False)
+    frame: Frame = "local"
+
+
+class PointTorque(_Strict):
+    """A twisting moment about the beam axis (right-hand rule about +x); carried by torsion models only."""
+
+    type: Literal["point_torque"]
+    position: Real = Field(allow_inf_nan=False)
+    value: Real = Field(allow_inf_nan=False)
+
+
+Load = Annotated[PointForce | PointMoment | Distributed | PointTorque, Field(discriminator="type")]
+
+
+class Axis(_Strict):
+    """Shape of the beam axis. ``straight`` is the default; curved axes are read by ``pd-curved``
+    and the curved plane-stress reference (see their docs for the extra keys). An arc turns
+    ``counterclockwise`` (curvature +1/R, the default) or ``clockwise`` (curvature -1/R) from its start angle."""
+
+    type: Literal["straight", "arc", "polynomial"] = "straight"
+    radius: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    opening_angle_deg: Real | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
+    start_angle_deg: Real = Field(default=0.0, allow_inf_nan=False)
+    direction: Literal["counterclockwise", "clockwise"] | None = None  # arcs only; None = counterclockwise
+    coefficients: list[Real] | None = None
+    x_range: tuple[Real, Real] | None = None
+
+    @model_validator(mode="after")
+    def _complete(self):
+        if self.type == "arc" and (self.radius is None or self.opening_angle_deg is None):
+            raise ValueError("an arc axis needs radius and opening_angle_deg")
+        if self.type != "arc" and self.direction is not None:
+            raise ValueError(f"direction applies to arc axes only (a {self.type} axis bends as its coefficients say)")
+        if self.type == "polynomial":
+            if not self.coefficients or self.x_range is None:
+                raise ValueError("a polynomial axis needs coefficients (of y(x), constant first) and x_range")
+            if not self.x_range[0] < self.x_range[1]:
+                raise ValueError(f"x_range = {list(self.x_range)}: the first value must be below the second")
+        return self
+
+
+class Motion(_Strict):
+    """A prescribed end motion of time: ``sine_ramp`` = amplitude sin(2 pi frequency t) until
+    ``hold_after``, then the value reached there; ``sine`` = amplitude sin(2 pi frequency t); ``step`` = amplitude."""
+
+    type: Literal["sine_ramp", "sine", "step"]
+    amplitude: Real = Field(allow_inf_nan=False)
+    frequency: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    hold_after: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _complete(self):
+        if self.type in ("sine_ramp", "sine") and self.frequency is None:
+            raise ValueError(f"a {self.type} motion needs frequency (Hz)")
+        if self.type == "sine_ramp" and self.hold_after is None:
+            raise ValueError("a sine_ramp motion needs hold_after (the time from which the value is held)")
+        return self
+
+
+class EndMotion(_Strict):
+    """Prescribed motion of one end: transverse ``displacement``, ``axial`` displacement, ``rotation``, ``twist``."""
+
+    displacement: Motion | None = None
+    axial: Motion | None = None
+    rotation: Motion | None = None
+    twist: Motion | None = None
+
+
+class Dynamics(_Strict):
+    """Optional ``[dynamics]`` table: a transient run from rest (loads applied as steps at t = 0).
+
+    ``damping_ratio``: fraction of critical damping of the first mode (mass-proportional); or ``damping`` =
+    c_d / rho in 1/s. ``damping_on``: ``all`` (default; the damping force is c_d/rho times each DOF's inertia, the
+    rotations' too: every mode of an undamped beam decays at the same rate c_d/(2 rho), so a damped run settles) or
+    ``translations`` (Moyer & Miraglia's Eq. 36-37: the rotations undamped; a beam's shear-rotation modes are then
+    damped only through their coupling to w and ring for long). ``time_step``: default = safety x stable limit.
+    ``probes``: positions whose time histories are recorded; ``output_interval``: seconds between records."""
+
+    end_time: Real = Field(gt=0, allow_inf_nan=False)
+    time_step: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    damping_ratio: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+    damping: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+    damping_on: Literal["all", "translations"] = "all"
+    output_interval: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    probes: list[Real] = Field(default_factory=list)
+    left: EndMotion | None = None
+    right: EndMotion | None = None
+
+    @model_validator(mode="after")
+    def _complete(self):
+        if self.damping_ratio is not None and self.damping is not None:
+            raise ValueError("give damping_ratio or damping, not both")
+        return self
+
+
+UNITS = {
+    "SI": {"length": "m", "force": "N", "stress": "Pa"},
+    "inch-pound": {"length": "in", "force": "lbf", "stress": "psi"},
+}
+"""The unit systems a scene may declare (``units = "inch-pound"``; default SI). Every model works in whatever
+consistent units the scene uses; the key only labels lengths and forces in reports."""
+
+
+class Scene(_Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    units: Literal["SI", "inch-pound"] = "SI"
+    beam: Beam
+    section: Section
+    material: Material
+    supports: Supports
+    loads: list[Load] = Field(default_factory=list)
+    axis: Axis = Field(default_factory=Axis)
+    dynamics: Dynamics | None = None
+
+    # -- derived quantities ------------------------------------------------------------------
+    @property
+    def length_unit(self) -> str:
+        """'m' or 'in': the unit of lengths and deflections (``units``)."""
+        return UNITS[self.units]["length"]
+
+    @property
+    def length(self) -> float:
+        return self.beam.length
+
+    @property
+    def EI(self) -> float:
+        return self.material.E * self.section.I
+
+    @property
+    def EA(self) -> float:
+        return self.material.E * self.section.A
+
+    @property
+    def kGA(self) -> float:
+        return self.section.k * self.material.G * self.section.A
+
+    @property
+    def slenderness(self) -> float:
+        return self.length / self.section.depth
+
+    @property
+    def is_straight(self) -> bool:
+        return self.axis.type == "straight"
+
+    @property
+    def has_axial_loads(self) -> bool:
+        return any(getattr(load, "axial", 0.0) != 0.0 for load in self.loads)
+
+    def span(self, load: Distributed) -> tuple[float, float]:
+        """(start, end) of a distributed load, defaults filled in."""
+        a = 0.0 if load.start is None else load.start
+        b = self.length if load.end is None else load.end
+        return a, b
+
+    def load_shape(self, load: Distributed, x) -> np.ndarray:
+        """The shape of a distributed load at x (1, or sin(πx/L) for ``shape = "sine"``); its span not applied."""
+        x = np.asarray(x, dtype=float)
+        return np.ones_like(x) if load.shape == "uniform" else np.sin(np.pi * x / self.length)
+
+    def with_slenderness(self, slenderness: float) -> Scene:
+        """The same scene with the section height set to length / slenderness.
+
+        A rectangle keeps its width; a section given by area and inertia is scaled as the
+        equivalent rectangle (area ~ h, inertia ~ h^3)."""
+        h_new = self.length / slenderness
+        s = self.section
+        if s.height is not None:
+            sec = s.model_copy(update={"height": h_new})
+        else:
+            r = h_new / s.depth
+            sec = s.model_copy(update={"area": s.A * r, "inertia": s.I * r**3})
+        return self.model_copy(update={"section": sec})
+
+    def to_dict(self) -> dict:
+        return self.model_dump(mode="json", exclude_none=True)
+
+
+def is_mechanism(left: str, right: str) -> bool:
+    """True when the supports leave a rigid-body mode of the transverse deflection w = a + b x (the axial
+    displacement, where a model has one, is checked by :func:`pdverify.core.geometry.rigid_body_modes`)."""
+    held = ("clamped", "pinned", "roller")
+    translation_fixed = left in held or right in held
+    rotation_fixed = "clamped" in (left, right) or "guided" in (left, right) or (left in held[1:] and right in held[1:])
+    return not (translation_fixed and rotation_fixed)
+
+
+def straight_mechanism(scene) -> str | None:
+    """The one-line reason a straight beam on these supports is a mechanism across its axis (None when it is not):
+    a model that bends refuses such a scene (``Model.check``), and so does the scene itself when it bends it."""
+    left, right = scene.supports.left, scene.supports.right
+    if not (scene.is_straight and is_mechanism(left, right)):
+        return None
+    return (
+        f"supports = {left}-{right}: a mechanism (the beam can move as a rigid body) that cannot carry the loads; "
+        "fix the deflection at one end and the rotation somewhere (clamped, or pinned/roller at both ends, or pinned "
+        "with guided)"
+    )
+
+
+def bends(scene) -> bool:
+    """True when the scene loads or moves the beam across its axis (a transverse force, a moment, a prescribed
+    deflection or rotation). A rod's or a torsion bar's scene does not, so its supports need only hold its own
+    unknown: a rod pinned at one end and free at the other is valid (pd-rod, exact-rod)."""
+    if any(ld.type == "point_moment" or (ld.type != "point_torque" and ld.value != 0.0) for ld in scene.loads):
+        return True
+    d = scene.dynamics
+    ends = () if d is None else (d.left, d.right)
+    return any(em is not None and (em.displacement is not None or em.rotation is not None) for em in ends)

@@ -1,0 +1,236 @@
+"""Reading a scene: ``load_scene(path)`` and ``parse_scene(dict)`` validate everything before any model runs and
+raise :class:`~pdverify.core.errors.InputError` with one line per problem (field, value, what is allowed)."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+from pydantic import ValidationError
+
+from .errors import InputError
+from .geometry import axis_length, mechanism_message
+from .scene import (
+    SUPPORTS,
+    Axis,
+    Beam,
+    Distributed,
+    Dynamics,
+    EndMotion,
+    Material,
+    Motion,
+    PointForce,
+    PointMoment,
+    PointTorque,
+    Scene,
+    Section,
+    Supports,
+    bends,
+    straight_mechanism,
+)
+
+
+def _loc(loc) -> str:
+    parts = []
+    for p in loc:
+        if isinstance(p, int):
+            parts.append(f"[{p}]")
+        elif p in ("point_force", "point_moment", "distributed", "point_torque"):
+            continue  # discriminator tag: not a field the user wrote
+        else:
+            parts.append(("." if parts else "") + str(p))
+    return "".join(parts) or "scene"
+
+
+def _allowed_keys(model_cls) -> str:
+    return ", ".join(model_cls.model_fields)
+
+
+_TABLES = {
+    "beam": Beam,
+    "section": Section,
+    "material": Material,
+    "supports": Supports,
+    "axis": Axis,
+    "dynamics": Dynamics,
+}
+
+
+def _message(err: dict, data: dict) -> str:
+    loc = _loc(err["loc"])
+    kind = err["type"]
+    value = err.get("input")
+    if kind == "extra_forbidden":
+        parent = err["loc"][:-1]
+        key = err["loc"][-1]
+        cls = Scene
+        if parent and parent[0] == "dynamics":
+            cls = {1: Dynamics, 2: EndMotion}.get(len(parent), Motion)
+        elif parent and parent[0] in _TABLES:
+            cls = _TABLES[parent[0]]
+        elif parent and parent[0] == "loads" and len(parent) >= 3:
+            cls = {
+                "point_force": PointForce,
+                "point_moment": PointMoment,
+                "distributed": Distributed,
+                "point_torque": PointTorque,
+            }.get(parent[2], Scene)
+        import difflib
+
+        close = difflib.get_close_matches(str(key), list(cls.model_fields), n=1, cutoff=0.75)
+        hint = f"did you mean '{close[0]}'? " if close else ""
+        return f"{loc}: unknown key '{key}'; {hint}allowed keys here: {_allowed_keys(cls)}"
+    if kind == "missing":
+        return f"{loc}: missing; this key is required"
+    if kind == "union_tag_invalid" or kind == "union_tag_not_found":
+        given = value.get("type") if isinstance(value, dict) else value
+        return (
+            f"{loc}.type = {given!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
+        )
+    if kind == "literal_error" and loc.startswith("supports."):
+        return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}"
+    if kind == "float_type" and isinstance(value, bool):
+        return f"{loc} = {str(value).lower()}: a number is needed here, not true/false"
+    if kind == "float_type" and isinstance(value, str):
+        return f"{loc} = {value!r}: a number is needed here (write it without quotes)"
+    msg = err["msg"]
+    if msg.startswith("Value error, "):
+        msg = msg[len("Value error, ") :]
+    if isinstance(value, dict):  # a rule across the keys of a table: the table's name, then the rule
+        return f"{loc}: {msg}"
+    return f"{loc} = {value!r}: {msg}"
+
+
+def _messages(errors: list[dict], data: dict) -> list[str]:
+    """One line per problem; a misspelt key (``positon``) and the required key it stands for (``position``,
+    then missing) are one problem: the unknown key's line says 'did you mean', the 'missing' line goes."""
+    import difflib
+
+    missing = {tuple(e["loc"]): e for e in errors if e["type"] == "missing"}
+    dropped, hints = set(), {}
+    for i, e in enumerate(errors):
+        if e["type"] != "extra_forbidden":
+            continue
+        parent, key = tuple(e["loc"][:-1]), str(e["loc"][-1])
+        names = [str(loc[-1]) for loc in missing if loc[:-1] == parent and loc not in dropped]
+        close = difflib.get_close_matches(key, names, n=1, cutoff=0.75)
+        if close:
+            dropped.add(parent + (close[0],))
+            hints[i] = close[0]
+    out = []
+    for i, e in enumerate(errors):
+        if tuple(e["loc"]) in dropped and e["type"] == "missing":
+            continue
+        msg = _message(e, data)
+        out.append(msg if i not in hints else msg.split("; ")[0] + f"; did you mean '{hints[i]}'?")
+    return out
+
+
+def _check_loads(scene: Scene) -> list[str]:
+    lines = []
+    L = scene.length
+    for i, load in enumerate(scene.loads):
+        if isinstance(load, (PointForce, PointMoment, PointTorque)):
+            if not 0.0 <= load.position <= L:
+                lines.append(
+                    f"loads[{i}].position = {load.position!r}: outside the beam [0, {L}]; "
+                    "give a position between 0 and beam.length"
+                )
+        else:
+            a, b = scene.span(load)
+            for key, v in (("start", a), ("end", b)):
+                if not 0.0 <= v <= L:
+                    lines.append(
+                        f"loads[{i}].{key} = {v!r}: outside the beam [0, {L}]; give a value between 0 and beam.length"
+                    )
+            if a >= b:
+                lines.append(f"loads[{i}].start = {a!r}, end = {b!r}: start must be below end")
+    return lines
+
+
+_FIXES = {
+    "displacement": ("clamped", "pinned", "roller"),
+    "axial": ("clamped", "pinned"),
+    "rotation": ("clamped", "guided"),
+    "twist": ("clamped", "pinned", "roller"),
+}
+
+
+def _check_dynamics(scene: Scene) -> list[str]:
+    d = scene.dynamics
+    if d is None:
+        return []
+    lines = []
+    for i, p in enumerate(d.probes):
+        if not 0.0 <= p <= scene.length:
+            lines.append(
+                f"dynamics.probes[{i}] = {p!r}: outside the beam [0, {scene.length}]; give positions on the beam"
+            )
+    for side in ("left", "right"):
+        em = getattr(d, side)
+        if em is None:
+            continue
+        sup = getattr(scene.supports, side)
+        for key, allowed in _FIXES.items():
+            if getattr(em, key) is not None and sup not in allowed:
+                lines.append(
+                    f"dynamics.{side}.{key}: a {sup} end leaves this motion free, so it cannot be prescribed; "
+                    f"set supports.{side} to {' or '.join(allowed)}"
+                )
+    return lines
+
+
+def parse_scene(data: dict, source: str = "scene") -> Scene:
+    """Validate a scene given as a dict (parsed TOML) and return it, or raise InputError."""
+    if not isinstance(data, dict):
+        raise InputError(f"{source}: a scene must be a TOML table, got {type(data).__name__}")
+    try:
+        scene = Scene.model_validate(data)
+    except ValidationError as exc:
+        raise InputError([f"{source}: {m}" for m in _messages(exc.errors(), data)]) from None
+    lines = _check_loads(scene) + _check_dynamics(scene)
+    if not scene.is_straight:
+        arc = axis_length(scene.axis)
+        if abs(arc - scene.length) > 1e-6 * arc:
+            lines.append(
+                f"beam.length = {scene.length!r}: the {scene.axis.type} axis is {arc:.12g} m long (arc length); "
+                "set beam.length to it"
+            )
+    if (why := straight_mechanism(scene)) is not None and bends(scene):
+        lines.append(why)
+    elif not scene.is_straight and not lines:
+        if (why := mechanism_message(scene)) is not None:
+            lines.append(why)
+    if lines:
+        raise InputError([f"{source}: {line}" for line in lines])
+    return scene
+
+
+def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
+    """(text, parsed table) of a TOML file, or InputError naming the file and what is wrong."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such {what} file; check the path") from None
+    except IsADirectoryError:
+        raise InputError(f"{path}: is a folder; give a {what} TOML file in it") from None
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            f"{path}: not a text file (byte 0x{exc.object[exc.start]:02x} at offset {exc.start} is not "
+            f"UTF-8); give a {what} TOML file"
+        ) from None
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read the {what} file ({exc.strerror or exc})") from None
+    if "\x00" in text:
+        raise InputError(f"{path}: not a text file (it contains NUL bytes); give a {what} TOML file")
+    try:
+        return text, tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: TOML syntax error: {exc}") from None
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene TOML file."""
+    _, data = read_toml(path, "scene")
+    return parse_scene(data, source=str(path))

@@ -1,0 +1,186 @@
+"""Natural frequencies of a model's discrete operator against the analytic ones (``pdverify modes``).
+
+The model gives its operator on the free DOFs and its lumped mass (``Model.eigenproblem``: K φ = ω² M φ,
+the operator of its transient); the eigenvalues λ = ω² of M⁻¹K nearest zero are computed densely up to
+``DENSE_DOFS`` free DOFs, else by ARPACK in shift-invert mode about 0. The reference for every support
+pair: the rod and the torsion bar in closed form, the Timoshenko beam from its characteristic determinant
+(:mod:`pdverify.exact.vibration`). Modes are matched by order.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..core.errors import InputError
+from ..core.result import columns_csv, plain_json
+from ..core.scene import HELD, ROD_HELD, Scene
+from ..exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
+from ..registry import get_model, models
+
+DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (0.05 s); ARPACK above (0.1 s at 600)
+ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
+
+
+def gives_modes(model) -> bool:
+    """Whether ``model`` gives the mass and stiffness of its transient (a ``eigenproblem`` method)."""
+    return model.modes
+
+
+def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, float]:
+    """(λ, ||M⁻¹K||_∞): the ``count`` eigenvalues of K φ = λ M φ smallest in modulus, ordered by modulus. ``mass``:
+    the lumped mass (a vector), or a consistent mass matrix (sparse, symmetric positive definite; the norm then
+    takes its row sums, the lumped mass of the same element)."""
+    import scipy.linalg as la
+    import scipy.sparse.linalg as spla
+
+    consistent = sp.issparse(mass)
+    lumped = np.asarray(mass.sum(1)).ravel() if consistent else np.asarray(mass, float)
+    A = sp.csr_matrix(sp.diags(1.0 / lumped) @ K)
+    norm = float(abs(A).sum(1).max())
+    n = A.shape[0]
+    if n <= DENSE_DOFS or count >= n - 1:
+        lam = la.eigvals(K.toarray(), mass.toarray()) if consistent else la.eigvals(A.toarray())
+    else:  # fixed start vector: the same digits on every run
+        v0 = np.random.default_rng(0).standard_normal(n)
+        B, M = (sp.csc_matrix(K), sp.csc_matrix(mass)) if consistent else (A.tocsc(), None)
+        lam = spla.eigs(B, k=count, M=M, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
+    lam = lam[np.argsort(np.abs(lam), kind="stable")][:count]
+    return lam, norm
+
+
+def analytic_frequencies(scene: Scene, theory: str, count: int) -> tuple[np.ndarray, str]:
+    """The first ``count`` circular frequencies (rad/s) of the continuum the model discretises, and what
+    they are."""
+    left, right = scene.supports.left, scene.supports.right
+    rho = scene.material.density
+    if theory == "timoshenko":
+        beam = TimoshenkoBeam(
+            scene.EI,
+            scene.kGA,
+            rho * scene.section.A,
+            rho * scene.section.I,
+            scene.length,
+            beam_end(left),
+            beam_end(right),
+        )
+        return beam.frequencies(count), f"Timoshenko beam {left}-{right}: roots of the characteristic determinant"
+    if theory == "axial":
+        held = (HELD[left][0], HELD[right][0])
+        c = np.sqrt(scene.EA / (rho * scene.section.A))
+        what = "rod"
+    elif theory == "torsion":
+        held = (left in ROD_HELD["torsion"], right in ROD_HELD["torsion"])
+        c = np.sqrt(scene.material.G * scene.section.J / (rho * scene.section.polar))
+        what = "torsion bar"
+    else:
+        raise InputError(f"modes: no analytic frequencies for theory {theory!r}")
+    if not any(held):
+        unknown = "twist" if theory == "torsion" else "axial displacement"
+        raise InputError(
+            f"supports = {left}-{right}: neither end holds the {unknown}, so the {what} has a rigid-body mode; "
+            "make one end clamped or pinned"
+        )
+    form = "k pi c / L" if all(held) else "(k - 1/2) pi c / L"
+    return rod_frequencies(scene.length, c, held, count), f"{what} {left}-{right}: {form}"
+
+
+@dataclass
+class ModeTable:
+    """The first modes of a model's operator beside the analytic ones."""
+
+    scene: str
+    model: str
+    parameters: dict
+    dofs: int
+    reference: str
+    eigenvalues: np.ndarray  # λ = ω² of M⁻¹K (complex)
+    analytic: np.ndarray  # ω (rad/s)
+    roundoff: np.ndarray  # relative round-off estimate of each frequency
+    warnings: list = field(default_factory=list)
+
+    @property
+    def omega(self) -> np.ndarray:
+        """Re √λ (rad/s)."""
+        return np.sqrt(self.eigenvalues.astype(complex)).real
+
+    def columns(self) -> dict:
+        return {
+            "mode": np.arange(1, len(self.analytic) + 1),
+            "frequency_hz": self.omega / (2 * np.pi),
+            "analytic_hz": self.analytic / (2 * np.pi),
+            "rel_error": self.omega / self.analytic - 1.0,
+            "roundoff": self.roundoff,
+        }
+
+    def to_csv(self) -> str:
+        return "".join(f"# warning: {w}\n" for w in self.warnings) + columns_csv(self.columns(), fmt="%.12g")
+
+    def to_json(self) -> str:
+        cols = self.columns()
+        rows = [{k: v[i] for k, v in cols.items()} for i in range(len(self.analytic))]
+        for r, lam in zip(rows, self.eigenvalues):
+            r["eigenvalue"] = [lam.real, lam.imag]
+        doc = {
+            "scene": self.scene,
+            "model": self.model,
+            "parameters": self.parameters,
+            "dofs": self.dofs,
+            "reference": self.reference,
+            "modes": rows,
+            "warnings": self.warnings,
+        }
+        return json.dumps(plain_json(doc), indent=1)
+
+    def to_table(self) -> str:
+        lines = [f"# scene: {self.scene}   model: {self.model}   free dofs: {self.dofs}"]
+        lines.append("# parameters: " + ", ".join(f"{k}={v}" for k, v in self.parameters.items()))
+        lines.append(f"# reference: {self.reference}")
+        lines += [f"# warning: {w}" for w in self.warnings]
+        cols = self.columns()
+        lines.append(f"{'mode':>5}" + "".join(f"{n:>16}" for n in list(cols)[1:]))
+        for i in range(len(self.analytic)):
+            lines.append(f"{i + 1:5d}" + "".join(f"{float(cols[c][i]):16.8g}" for c in list(cols)[1:]))
+        return "\n".join(lines) + "\n"
+
+
+def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
+    """The first ``count`` natural frequencies of ``model``'s discrete operator on ``scene`` (its supports,
+    section and material; loads and [dynamics] play no part) against the analytic ones."""
+    m = get_model(model)
+    if not gives_modes(m):
+        can = ", ".join(n for n, x in models().items() if gives_modes(x))
+        raise InputError(f"model {m.name}: gives no mass and stiffness operator for natural frequencies; use {can}")
+    if count < 1:
+        raise InputError(f"--count {count}: give a number of modes, 1 or more")
+    if scene.material.density is None:
+        raise InputError("material.density: needed for natural frequencies; add density to the scene")
+    bare = scene.model_copy(update={"loads": [], "dynamics": None})  # the free vibration of the supported beam
+    found = m.check(bare)
+    if found:
+        raise InputError(found)
+    params = m.resolve(bare, given)
+    K, mass = m.eigenproblem(bare, params)
+    if count > K.shape[0]:
+        raise InputError(f"--count {count}: the operator has {K.shape[0]} free DOFs; use fewer modes or more points")
+    analytic, reference = analytic_frequencies(scene, m.theory, count)
+    lam, norm = discrete_eigenvalues(K, mass, count)
+    # Bauer-Fike with a well-conditioned eigenbasis: |dλ| <= eps ||M⁻¹K||, half of it relative in ω
+    roundoff = 0.5 * np.finfo(float).eps * norm / np.abs(lam)
+    warnings = []
+    for k, v in enumerate(lam):
+        if v.real <= 0 or abs(v.imag) > 1e-9 * abs(v):
+            warnings.append(
+                f"mode {k + 1}: the eigenvalue {v.real:.6g}{v.imag:+.3g}j of M^-1 K is not real positive (the boundary "
+                "closures); its frequency is Re sqrt(eigenvalue)"
+            )
+    worst = int(np.argmax(roundoff))
+    if roundoff[worst] > ROUNDOFF_WARN:
+        warnings.append(
+            f"mode {worst + 1}: round-off may reach {roundoff[worst]:.1e} of the frequency (eps ||M^-1 K|| / "
+            "eigenvalue); use fewer points"
+        )
+    return ModeTable(scene.name, m.name, params, K.shape[0], reference, lam, analytic, roundoff, warnings)

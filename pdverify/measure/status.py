@@ -1,0 +1,60 @@
+"""A study case's status from its solve's round-off bound (issue 27) and its reference's: ``suspect`` when either
+passes :data:`pdverify.numerics.linalg.BOUND_LIMIT`, so no table shows such a row as a plain ``ok``."""
+
+from __future__ import annotations
+
+import math
+
+from ..numerics.linalg import BOUND_LIMIT
+
+
+def _shown(bound: float) -> str:
+    return f"{bound:.2g}" if math.isfinite(bound) else "unbounded"
+
+
+def case_status(info: dict) -> dict:
+    """Columns for a solved case's row from the result's ``info``: ``error_bound`` (the relative round-off
+    bound of its linear solve, None when the model made none) and, when that bound passes BOUND_LIMIT or
+    is not finite, ``status = "suspect"`` with a message naming it."""
+    bound = info.get("error_bound")
+    if bound is None:
+        return {"error_bound": None}
+    bound = float(bound)
+    if bound <= BOUND_LIMIT:
+        return {"error_bound": bound}
+    return {
+        "error_bound": bound,
+        "status": "suspect",
+        "message": f"round-off bound {_shown(bound)} exceeds {BOUND_LIMIT:g}: the error measured here may be the "
+        "solve's",
+    }
+
+
+REFERENCE_SHARE = 0.1  # a reference bound below this share of the measured error cannot change its first digit
+
+
+def reference_in_doubt(bound: float, err: float) -> bool:
+    """Whether a reference's round-off bound could decide an error measured against it: past BOUND_LIMIT (or not
+    finite) and not below REFERENCE_SHARE of the error."""
+    return not (bound <= BOUND_LIMIT or bound < REFERENCE_SHARE * float(err))
+
+
+def reference_status(bound: float | None, row: dict) -> dict:
+    """Columns for the round-off bound of the case's reference solve (a model solved as the reference, e.g. its own
+    solution on a fine grid; None for exact references): ``ref_error_bound`` and, when it passes BOUND_LIMIT (or is
+    not finite) and is not below REFERENCE_SHARE of the row's measured error ``err_max`` (so it could be a tenth of
+    that error or more), ``status = "suspect"`` with a message naming it (added to the row's own)."""
+    if bound is None:
+        return {"ref_error_bound": None}
+    bound = float(bound)
+    if not reference_in_doubt(bound, row.get("err_max", math.nan)):
+        return {"ref_error_bound": bound}
+    said = (
+        f"the reference's round-off bound {_shown(bound)} exceeds {BOUND_LIMIT:g} and a tenth of the error measured "
+        "here, which may be the reference's"
+    )
+    return {
+        "ref_error_bound": bound,
+        "status": "suspect",
+        "message": "; ".join(m for m in (row.get("message"), said) if m),
+    }

@@ -1,1 +1,0 @@
-"""Peridynamic beam models, one module each; each module lists its models in ``MODELS``."""

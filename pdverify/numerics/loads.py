@@ -1,0 +1,122 @@
+"""Loads on a grid of points along a straight beam: cell integrals of distributed loads, point loads as line
+loads split between their two nearest points, end loads, and the warnings for a load inside a boundary layer or
+narrower than the grid resolves. Shared by the one-dimensional PD models; arrays in, arrays out."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core.scene import Distributed, PointForce, PointMoment, Scene
+
+# -- loads -----------------------------------------------------------------------------------
+
+
+def cell_integral(
+    load: Distributed, scene: Scene, lo: np.ndarray, hi: np.ndarray, value: float | None = None
+) -> np.ndarray:
+    """∫ over [lo, hi] ∩ span of the load's shape times ``value`` (default: the transverse
+    ``load.value``; pass ``load.axial`` or ``load.torque`` for the other components)."""
+    v = load.value if value is None else value
+    a, b = scene.span(load)
+    lo, hi = np.clip(lo, a, b), np.clip(hi, a, b)
+    if load.shape == "uniform":
+        return v * (hi - lo)
+    k = np.pi / scene.length
+    return v * (np.cos(k * lo) - np.cos(k * hi)) / k
+
+
+def body_loads(scene: Scene, x: np.ndarray, skip_ends: dict | None = None) -> np.ndarray:
+    """Line load q_k (N/m) on the points: cell averages of distributed loads, P/dx for point forces
+    (split linearly between the two nearest points), -dm/dx couples for point moments (Eq. 25).
+    ``skip_ends``: {0 or n-1: set of load types} handled elsewhere (by ghost points or reactions)."""
+    n = len(x)
+    dx = x[1] - x[0]
+    L = scene.length
+    q = np.zeros(n)
+    lo, hi = np.clip(x - dx / 2, 0, L), np.clip(x + dx / 2, 0, L)
+    skip_ends = skip_ends or {}
+    for load in scene.loads:
+        if isinstance(load, Distributed):
+            q += cell_integral(load, scene, lo, hi) / (hi - lo)
+            continue
+        pos = load.position / dx
+        i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
+        t = pos - i
+        if abs(t) < 1e-9 or i == n - 1:
+            t = 0.0
+        node = i if t < 1e-9 else None
+        if node is not None and load.type in skip_ends.get(node, ()):
+            continue
+        if isinstance(load, PointForce):
+            q[i] += load.value * (1 - t) / dx
+            if t > 0:
+                q[i + 1] += load.value * t / dx
+        elif isinstance(load, PointMoment):
+            # ccw couple C: q = -C delta'(x - a), with the delta split linearly between the two nearest
+            # points (weights 1 - t, t) and each point's delta' a central dipole (-C/(2dx²) left, +C/(2dx²) right)
+            C = load.value
+            for node, wgt in ((i, 1.0 - t), (i + 1, t)):
+                if wgt == 0.0:
+                    continue
+                left, right = node - 1, node + 1
+                if left < 0:
+                    left, right = 0, 1
+                if right > n - 1:
+                    left, right = n - 2, n - 1
+                arm = (right - left) * dx
+                q[left] -= wgt * C / (arm * dx)
+                q[right] += wgt * C / (arm * dx)
+    return q
+
+
+def end_loads(scene: Scene) -> tuple[dict, dict]:
+    """Point force and moment applied exactly at the left (x = 0) and right (x = L) ends."""
+    P = {0: 0.0, 1: 0.0}
+    C = {0: 0.0, 1: 0.0}
+    for load in scene.loads:
+        if isinstance(load, (PointForce, PointMoment)):
+            for side, xe in ((0, 0.0), (1, scene.length)):
+                if abs(load.position - xe) <= 1e-12 * scene.length:
+                    (P if isinstance(load, PointForce) else C)[side] += load.value
+    return P, C
+
+
+def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
+    """Point loads (force, moment, torque) strictly inside the first ``reach`` spacings of an end: the
+    ghost polynomial fitted there assumes a smooth solution, so such a load is under-resolved (measured:
+    pd-eb 85-300 % error for a force one spacing from the support at 101 points, 1e-4 at 1601;
+    pd-timoshenko, 201 points, L/h = 20: 59 % one spacing from a pinned end, 2 % from a clamped one,
+    0.2 % at five spacings). Flag it instead of hiding it. Positions in the scene's length unit."""
+    dx = x[1] - x[0]
+    out = []
+    for i, load in enumerate(scene.loads):
+        if hasattr(load, "position"):
+            d = min(load.position, scene.length - load.position)
+            if 1e-12 * scene.length < d < reach * dx:
+                out.append(
+                    f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the "
+                    f"boundary layer of {reach} spacings: expect large errors; use at least "
+                    f"{int(np.ceil(reach * scene.length / d)) + 1} points"
+                )
+    return out + narrow_load_warnings(scene, x)
+
+
+def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
+    """Partial loads that lie inside one point's cell [x_i - dx/2, x_i + dx/2]: the PD models place distributed loads
+    by cell averages, so such a load acts on that point as a whole, moved by up to half a spacing (a first-order
+    error; measured: a 0.9 mm load on a clamped–clamped 2 m beam at 401 points, 2.9e-3 to 3.2e-3 in pd-eb,
+    pd-bond-pair, pd-higher-order and pd-timoshenko, the same at 801; 1.1e-5 to 1.1e-4 at 1601 points, where it
+    straddles two cells). Flag it."""
+    dx = x[1] - x[0]
+    out = []
+    for i, load in enumerate(scene.loads):
+        if isinstance(load, Distributed) and (load.start is not None or load.end is not None):
+            a = 0.0 if load.start is None else float(load.start)
+            b = scene.length if load.end is None else float(load.end)
+            if np.floor((a - x[0]) / dx + 0.5) == np.floor((b - x[0]) / dx + 0.5):
+                out.append(
+                    f"loads[{i}] from {a:g} to {b:g} lies inside one point's cell (spacing {dx:.3g}): it acts on "
+                    "that point as a whole, moved by up to half a spacing (a first-order error); use at least "
+                    f"{int(np.ceil(2 * scene.length / (b - a))) + 1} points"
+                )
+    return out

@@ -1,0 +1,345 @@
+"""Model ``pd-curved``: planar curved Timoshenko–Ehrenfest beam by PDDO collocation (seed 004).
+
+The seed's equations were lost in extraction; they are restored in the design note
+(../shared/design/formulas-bondpair-curved.md §2–3) and re-derived here from virtual work (the signs
+below were checked: the virtual-work identity, the straight-beam limit against ``exact-timoshenko``
+and the closed-form semicircle of :mod:`pdverify.exact.curved`).
+
+Axis r(s) (arc length s), tangent t, normal n = e_z × t, curvature κ (t' = κ n, n' = -κ t).
+Unknowns per particle: u_t, u_n (u = u_t t + u_n n) and the section rotation φ (counter-clockwise).
+
+* strains (seed Eq. 3):        ε = u_t' - κ u_n,   γ = u_n' + κ u_t - φ,   χ = φ'
+* resultants (Eq. 4):          N = EA ε,   Q = kGA γ,   M = EI χ
+* equilibrium (Eq. 8–10):      N' - κ Q + p_t = 0,   Q' + κ N + p_n = 0,   M' + Q + m = 0
+* boundary (Eq. 11–13):        at s = L either u_t, u_n, φ given or N = F·t, Q = F·n, M = C̄;
+                               at s = 0 the same with a minus sign.
+
+For a straight beam Q = kGA(w' - φ) = -dM/dx: ``exact-timoshenko``'s V is -Q (Result.fields["V"]).
+
+Collocation (Eq. 27–35): three equations per particle, every derivative replaced by PDDO functions of
+degree P (:mod:`pdverify.papers.curved.pddo`), families of 2 m + 1 particles (m = ``horizon``, default
+⌊P/2⌋ + 1, i.e. P + 3 members for even P, P + 2 for odd P, mixed form at even P >= 6: P + 1; see
+:func:`default_horizon`), shifted inward
+at the ends. Two forms:
+
+* ``primal`` (the paper, Eq. 14–16): constitutive law substituted, second derivatives by g²:
+  ``EA(u_t'' - κ' u_n - κ u_n') - κ kGA(u_n' + κ u_t - φ) + p_t = 0`` etc.;
+* ``mixed`` (beyond the paper): first-derivative functions only, applied twice: N = EA(D1 u_t - κ u_n),
+  then D1 N - κ Q + p_t = 0, ... With ``unknowns = resultants`` (default) N, Q, M are unknowns of their
+  own (six per particle: the constitutive rows ε(u) - N/EA = 0, γ(u) - Q/kGA = 0, χ(u) - M/EI = 0 at every
+  particle plus the equilibrium rows). The discrete solution is the same as with them substituted
+  (``unknowns = displacements``, three per particle), but the condition number no longer grows like
+  (L/h)²: semicircle, P = 6, 801 particles, L/h = 10^4: error 4.8e-11 instead of 1.1e-2 (round-off).
+
+At each end particle the three boundary equations replace the three equilibrium equations (slot t
+takes u_t or N, slot n takes u_n or Q, slot φ takes φ or M): clamped u_t = u_n = φ = 0; pinned
+u_t = u_n = 0, M = ±C̄; roller u_n = 0, N, M = ±(F·t, C̄); free N, Q, M = ±(F·t, F·n, C̄); guided φ = 0,
+N, Q = ±(F·t, F·n) (docs/supports.md).
+
+Particles are uniform by default; ``grading`` (largest / smallest spacing, ``graded_by`` curvature or ends) or
+``positions`` (arc lengths) place them non-uniformly (the seed: "not limited to uniform distributions of material
+particles"), the families keep 2m + 1 members, so each particle's horizon follows its spacing.
+
+Point loads inside the beam and the ends of a distributed load's span split the axis into segments
+(each with its own particles and families; a PDDO function never reaches across a load
+discontinuity). At an interface the two coincident particles carry continuity of u_t, u_n, φ and the
+jumps N⁺ - N⁻ = -F·t, Q⁺ - Q⁻ = -F·n, M⁺ - M⁻ = -C (a counter-clockwise couple C). Distributed loads are
+collocated point-wise (value along n, axial along t; ``frame = global``: (axial, value) = global
+(x, y) components per unit arc length; ``sine``: times sin(π s / L)). Every equation row is divided
+by its largest coefficient, the non-symmetric system is solved by LU (``solve_linear``; unknowns
+interleaved per particle, so it is banded) and its condition number reported. The default form is
+written straight into a :class:`~pdverify.numerics.band.Band` (6 x 6 block stencils, one diagonal per family
+offset; :meth:`PDCurved.assemble_band`), which ``solve_linear`` factorises in place above 20,000 unknowns;
+``assemble`` returns the same band as CSR.
+
+Three modules, one idea each: the particles (axis frame, segments, uniform / graded / given distributions,
+family size, loads at the particles: :mod:`pdverify.papers.curved.particles`), the collocation system
+(:mod:`pdverify.papers.curved.assembly`), and here the model: its options, the superposed solves and the output
+map. PDDO functions: :mod:`pdverify.papers.curved.pddo`. Measured errors, orders, locking and cost:
+docs/models/curved.md.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...core.contract import Model, Option, System
+from ...core.errors import InputError
+from ...core.geometry import mechanism_message
+from ...core.result import Result, Timer
+from ...core.scene import Scene
+from ...numerics.band import Band
+from ...numerics.linalg import solve_linear
+from . import pddo as _pddo
+from .assembly import assemble_displacements, assemble_resultants
+from .particles import (
+    axis_frame,
+    breakpoints,
+    default_horizon,
+    distributed_loads,
+    given_grids,
+    grading_density,
+    parse_positions,
+    segment_grids,
+)
+
+
+class PDCurved(Model):
+    name = "pd-curved"
+    title = "PDDO curved Timoshenko–Ehrenfest beam (u_t, u_n, φ), any degree"
+    source = "PDDO planar curved Timoshenko–Ehrenfest beam (seed 004; design note §2–3)"
+    options = (
+        Option("points", int, 101, "particles along the axis, ends included", minimum=5),
+        Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
+        Option(
+            "horizon",
+            int,
+            0,
+            "family half-width m in particles (family 2m + 1); 0 = floor(P/2) + 1 (mixed form, even P >= 6: P/2)",
+            minimum=0,
+        ),
+        Option(
+            "grading",
+            float,
+            1.0,
+            "largest / smallest particle spacing (1 = uniform particles; see graded_by)",
+            minimum=1.0,
+            maximum=1e3,
+        ),
+        Option(
+            "graded_by",
+            str,
+            "curvature",
+            "where particles gather when grading > 1: curvature (where the axis "
+            "bends) | ends (at the supports and at point loads)",
+            choices=("curvature", "ends"),
+        ),
+        Option(
+            "positions",
+            str,
+            "",
+            "particle arc lengths in m, comma-separated (0 and L added; breaks at point "
+            "loads and load ends added): overrides the particles of points and grading (points still sets the "
+            "output grid)",
+        ),
+        Option(
+            "form",
+            str,
+            "mixed",
+            "primal (the paper: second-derivative functions) | mixed (first-derivative functions applied twice)",
+            choices=("primal", "mixed"),
+        ),
+        Option(
+            "unknowns",
+            str,
+            "resultants",
+            "mixed form only: resultants (u_t, u_n, φ, N, Q, M per particle: "
+            "condition number free of the slenderness) | displacements (N, Q, M substituted: 3 per particle, "
+            "the same discrete solution, condition ~ (L/h)^2)",
+            choices=("resultants", "displacements"),
+        ),
+    )
+    curved = True
+    axial = True
+    theory = "timoshenko"
+    assembles = True
+
+    def check(self, scene: Scene) -> list[str]:
+        """The scene checks plus the axial rigid-body test on straight axes (e.g. two rollers slide along x)."""
+
+        out = super().check(scene)
+        why = mechanism_message(scene)
+        return out + ([why] if why is not None else [])
+
+    # ---------------------------------------------------------------------------------------
+    def discretise(self, scene: Scene, params: dict):
+        P = params["degree"]
+        m = params["horizon"] or default_horizon(P, params["form"])
+        size = 2 * m + 1
+        if size < P + 1:
+            raise InputError(
+                f"horizon = {m}: a family of {size} particles cannot carry degree {P}; "
+                f"use horizon >= {int(np.ceil(P / 2))} or a lower degree"
+            )
+        if size > params["points"]:
+            raise InputError(
+                f"points = {params['points']}: fewer than one family ({size} particles for "
+                f"degree {P}, horizon {m}); use more points"
+            )
+        bps, inner, ends = breakpoints(scene)
+        if params.get("positions"):
+            segs = given_grids(scene.length, bps, parse_positions(params["positions"], scene.length), size)
+            return segs, inner, ends, m, size
+        ratio = params.get("grading", 1.0)
+        density = None if ratio == 1.0 else grading_density(scene, ratio, params.get("graded_by", "curvature"))
+        segs = segment_grids(scene.length, bps, params["points"], size, density)
+        return segs, inner, ends, m, size
+
+    def assemble(self, scene: Scene, params: dict, body=None) -> System:
+        """The collocation system of all the scene's loads as one :class:`~pdverify.numerics.band.Band`
+        (:meth:`assemble_band`), z = (u_t, u_n, φ[, N, Q, M]) interleaved per particle; every unknown is
+        free (the end conditions are rows of the system). ``solve`` factorises one such system per group of
+        loads with the same breaks."""
+        B, b, data = self.assemble_band(scene, params, body)
+        return System(B, b, np.arange(B.n), data)
+
+    def assemble_band(self, scene: Scene, params: dict, body=None):
+        """(B, b, data): the collocation system (Eq. 27–35, boundary and interface rows replacing
+        equilibrium or constitutive rows, rows then columns equilibrated) as a :class:`~pdverify.numerics.band.Band`
+        with the unknowns of a particle interleaved. ``body(s, x)`` optionally adds distributed (p_t, p_n, m)
+        at the arc lengths s (x: their axis abscissae on a polynomial axis, else None; the manufactured loads).
+
+        The default form (mixed, resultants) is written straight into the band: the 6 x 6 block stencils of
+        the constitutive and equilibrium rows (PDDO weights per particle, one band diagonal per family offset)
+        and the boundary entries; the row and column scales are read and applied on the diagonals that were
+        written, over the stretch that was written. The other forms (three unknowns per particle, stencils
+        of D1 D1 and D2) are assembled as sparse products, as they always were, and copied into a band."""
+        segs, inner, ends, m, size = self.discretise(scene, params)
+        P = params["degree"]
+        s = np.concatenate(segs)
+        N = len(s)
+        t, nv, kap, dkap, xa = axis_frame(scene, s)
+        offs = np.cumsum([0] + [len(g) for g in segs])
+        six = params["form"] == "mixed" and params.get("unknowns", "resultants") == "resultants"
+        pt, pn, mm = np.zeros(N), np.zeros(N), np.zeros(N)
+        for i, g in enumerate(segs):
+            sl = slice(offs[i], offs[i + 1])
+            pt[sl], pn[sl] = distributed_loads(scene, g, t[sl], nv[sl], 0.5 * (g[0] + g[-1]))
+        if body is not None:
+            bt, bn, bm = body(s, xa)
+            pt, pn, mm = pt + bt, pn + bn, mm + bm
+        data = dict(s=s, segs=segs, offs=offs, N=N, t=t, n=nv, horizon=m, family=size)
+        if six:
+            B, b, cs = assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, (pt, pn, mm))
+            nf = 6
+            data.update(Eps=None, Gam=None, Chi=None)
+        else:
+            K, b, cs, ops = assemble_displacements(
+                scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, (pt, pn, mm)
+            )
+            B = Band.from_sparse(K)
+            nf = 3
+            data.update(ops)
+        # perm: interleaved index i -> component-major index perm[i]; cscale (component-major) and cscale_i
+        # (interleaved): the column scales, z = cscale_i * (solution of B)
+        data.update(
+            nf=nf, perm=np.arange(nf * N).reshape(nf, N).T.ravel(), cscale=cs.reshape(N, nf).T.ravel(), cscale_i=cs
+        )
+        return B, b, data
+
+    def solve(self, scene: Scene, params: dict, body=None) -> Result:
+        """Superposition of single-load solutions: the loads are grouped by the breaks they need (a point
+        load inside the beam: its position; a distributed load: its span ends inside the beam; end loads,
+        full-span loads and ``body``: none), each group solved on particles that respect its own breaks,
+        and the fields summed on the uniform output grid. So the result is exactly linear in the loads
+        (a discretisation that depended on all loads together would not be), and each discontinuity is
+        still resolved by its own segments."""
+        timer = Timer()
+        groups: dict[tuple, list] = {}
+        for load in scene.loads:
+            bps, _, _ = breakpoints(scene.model_copy(update={"loads": [load]}))
+            groups.setdefault(tuple(np.round(bps / scene.length, 12)), []).append(load)
+        if body is not None or not groups:
+            groups.setdefault((), [])
+        total, infos, dofs = None, [], 0
+        for key, loads in sorted(groups.items()):
+            sub = scene.model_copy(update={"loads": loads})
+            out, info, n_dofs = self._solve_once(sub, params, body if key == () else None, timer)
+            total = out if total is None else {k: total[k] + out[k] for k in total}
+            infos.append(info)
+            dofs += n_dofs
+        info = dict(infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))])
+        warnings = sorted({w for i in infos for w in i.get("warnings", [])})
+        if warnings:
+            info["warnings"] = warnings
+        info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
+        w, rot = total.pop("w"), total.pop("rotation")
+        x = total.pop("x") / len(infos)
+        return self.new_result(
+            scene,
+            params,
+            x,
+            w,
+            rotation=rot,
+            fields=total,
+            dofs=dofs,
+            timings=timer.timings,
+            info=info,
+        )
+
+    def _solve_once(self, scene: Scene, params: dict, body, timer: Timer):
+        """Fields on the uniform output grid, solver info and unknowns of one discretisation."""
+        with timer("assemble"):
+            B, b, d = self.assemble_band(scene, params, body)
+        with timer("solve"):  # factorises B in place above 20,000 unknowns (solve_band), else as CSR
+            zi, info = solve_linear(B, b, what=f"pd-curved (degree {params['degree']}, {params['form']})")
+        del B
+        N, nf = d["N"], d["nf"]
+        Z = (zi * d["cscale_i"]).reshape(N, nf)  # row k: the unknowns of particle k
+        ut, un, phi = Z[:, 0], Z[:, 1], Z[:, 2]
+        if nf == 6:
+            Nf, Qf, Mf = Z[:, 3], Z[:, 4], Z[:, 5]
+        else:
+            z = Z.T.ravel()
+            Nf, Qf, Mf = scene.EA * (d["Eps"] @ z), scene.kGA * (d["Gam"] @ z), scene.EI * (d["Chi"] @ z)
+        # output on the uniform grid of ``points`` positions (independent of the loads): the particle value
+        # where a particle sits there, else the degree-P PDDO interpolant g^0 of its segment; at a break
+        # the left segment's (left limit of the resultants)
+        T = self.output_map(d, scene.length, params["points"], params["degree"])
+        t, nv = d["t"], d["n"]
+        ux = ut * t[:, 0] + un * nv[:, 0]
+        uy = ut * t[:, 1] + un * nv[:, 1]
+        fields = {
+            "x": d["x"],
+            "w": T @ un,
+            "rotation": T @ phi,
+            "u": T @ ut,
+            "N": T @ Nf,
+            "Q": T @ Qf,
+            "M": T @ Mf,
+            "ux": T @ ux,
+            "uy": T @ uy,
+        }
+        if scene.is_straight:
+            fields["V"] = -fields["Q"]
+        info.update(
+            degree=params["degree"],
+            horizon=d["horizon"],
+            family=d["family"],
+            form=params["form"],
+            unknowns_per_particle=d["nf"],
+            segments=len(d["segs"]),
+            particles=N,
+        )
+        return fields, info, d["nf"] * N
+
+    @staticmethod
+    def output_map(d: dict, L: float, points: int, degree: int) -> sp.csr_matrix:
+        """Sparse (points, particles) map from particle values to the uniform output grid."""
+        x = np.linspace(0.0, L, points)
+        x[-1] = L
+        d["x"] = x
+        segs, offs, size = d["segs"], d["offs"], d["family"]
+        bps = np.array([g[-1] for g in segs[:-1]])
+        seg = np.searchsorted(bps, x - 1e-12 * L, side="left")  # a break belongs to its left segment
+        rows, cols, vals = [], [], []
+        for i, g in enumerate(segs):  # a few segments
+            k = np.flatnonzero(seg == i)
+            if not len(k):
+                continue
+            j = np.clip(np.searchsorted(g, x[k]), 0, len(g) - 1)
+            j = np.where((j > 0) & (np.abs(g[j - 1] - x[k]) < np.abs(g[j] - x[k])), j - 1, j)
+            on = np.abs(g[j] - x[k]) <= 1e-12 * L
+            rows.append(k[on]), cols.append(offs[i] + j[on]), vals.append(np.ones(on.sum()))
+            if (~on).any():
+                xo = x[k[~on]]
+                fam = _pddo.nearest_families(g, xo, size)
+                c = _pddo.pddo_weights(g, fam, degree, (0,), centers=xo)[0]
+                rows.append(np.repeat(k[~on], size)), cols.append((offs[i] + fam).ravel()), vals.append(c.ravel())
+        return sp.csr_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(points, offs[-1])
+        )
+
+
+MODELS = [PDCurved()]

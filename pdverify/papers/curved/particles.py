@@ -1,0 +1,209 @@
+"""pd-curved's particles: the axis frame at the particles, the segments between load discontinuities, the
+particle distributions (uniform, graded, given positions), the family size, and the loads at the particles.
+
+Seed 004's quadrature "is not limited to uniform distributions of material particles": segments hold 2m + 1-member
+families of consecutive particles (m = :func:`default_horizon` unless given), whatever their spacing.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.geometry import axis_abscissae, geometry
+from ...core.scene import Distributed, PointForce, PointMoment, Scene
+
+# -- geometry ---------------------------------------------------------------------------------
+
+
+def curvature_slope(scene: Scene, s: np.ndarray) -> np.ndarray:
+    """dκ/ds (0 for straight and arc axes; polynomial: (1/J) d/dx [y''/J³], J = sqrt(1 + y'²))."""
+    return axis_frame(scene, s)[3]
+
+
+def axis_frame(scene: Scene, s: np.ndarray):
+    """(t, n, κ, dκ/ds, x) at arc lengths s: tangent and normal (each (len(s), 2)), curvature, its slope and
+    the axis abscissae x(s) (polynomial axes; None otherwise). On a polynomial axis s is inverted once
+    (:func:`axis_abscissae`) and t, n, κ are the formulas of :mod:`pdverify.core.geometry` evaluated at that x
+    (``geometry.frame`` and ``geometry.curvature`` would each invert s again: 0.37 s per call at 10^4
+    particles, 8 s and 2 GB of temporaries at 10^5)."""
+    s = np.asarray(s, float)
+    geo = geometry(scene)
+    if scene.axis.type != "polynomial":
+        t, n = geo.frame(s)
+        return t, n, geo.curvature(s), np.zeros_like(s), None
+    from numpy.polynomial import polynomial as Pn
+
+    c = np.asarray(scene.axis.coefficients, float)
+    x = axis_abscissae(scene, s)
+    th = np.arctan(Pn.polyval(x, Pn.polyder(c)))
+    t = np.stack([np.cos(th), np.sin(th)], axis=-1)
+    n = np.stack([-np.sin(th), np.cos(th)], axis=-1)
+    d1, d2, d3 = (Pn.polyval(x, Pn.polyder(c, k)) for k in (1, 2, 3))
+    kap = d2 / (1 + d1**2) ** 1.5
+    J2 = 1 + d1**2
+    dkap = (d3 / J2**1.5 - 3 * d1 * d2**2 / J2**2.5) / np.sqrt(J2)
+    return t, n, kap, dkap, x
+
+
+# -- segments and loads -----------------------------------------------------------------------
+
+
+def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
+    """Interior break positions (sorted), the point loads there {index: [loads]} and the end point
+    loads {0: [...], 1: [...]} (loads exactly at s = 0 or s = L)."""
+    L = scene.length
+    tol = 1e-9 * L
+    pos, at = [], []
+    ends = {0: [], 1: []}
+    for load in scene.loads:
+        if isinstance(load, (PointForce, PointMoment)):
+            if load.position <= tol:
+                ends[0].append(load)
+            elif load.position >= L - tol:
+                ends[1].append(load)
+            else:
+                pos.append(load.position), at.append(load)
+        elif isinstance(load, Distributed):
+            for v in scene.span(load):
+                if tol < v < L - tol:
+                    pos.append(v), at.append(None)
+    bps: list[float] = []
+    loads: dict[int, list] = {}
+    for p, load in sorted(zip(pos, at), key=lambda t: t[0]):
+        if not bps or p - bps[-1] > tol:
+            bps.append(p)
+            loads[len(bps) - 1] = []
+        if load is not None:
+            loads[len(bps) - 1].append(load)
+    return np.array(bps), loads, ends
+
+
+def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, density=None) -> list[np.ndarray]:
+    """Particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all, at least ``min_points``
+    per segment. ``density`` None: uniform (a uniform grid of ``points`` particles when the breaks fall on
+    it). Else a pair (s_table, cumulative) of a non-decreasing measure m(s) (m(0) = 0, m(L) = 1): the
+    intervals of a segment are shared by its measure, and its particles sit at equal steps of m (the seed's
+    non-uniform particles: spacing ∝ 1/ρ for m = ∫ρ ds / ∫ρ ds)."""
+    edges = np.concatenate([[0.0], bps, [L]])
+    out = []
+    if density is not None:
+        st, cm = density
+        me = np.interp(edges, st, cm)
+    for i, (a, b) in enumerate(zip(edges[:-1], edges[1:])):
+        if density is None:
+            k = max(min_points - 1, int(np.floor((points - 1) * (b - a) / L + 0.5 + 1e-9)))
+            out.append(np.linspace(a, b, k + 1))
+            continue
+        k = max(min_points - 1, int(np.floor((points - 1) * (me[i + 1] - me[i]) + 0.5 + 1e-9)))
+        g = np.interp(np.linspace(me[i], me[i + 1], k + 1), cm, st)
+        g[0], g[-1] = a, b
+        out.append(g)
+    return out
+
+
+def parse_positions(text: str, L: float) -> np.ndarray:
+    """The ``positions`` option: arc lengths (m) separated by commas or spaces, strictly increasing, in [0, L]
+    (0 and L are added when missing). Raises InputError naming the option."""
+    try:
+        s = np.array([float(v) for v in text.replace(",", " ").split()], float)
+    except ValueError:
+        raise InputError(
+            f'positions = {text!r}: give arc lengths in m separated by commas, e.g. "0, 0.1, 0.25"'
+        ) from None
+    tol = 1e-12 * L
+    if not np.all(np.isfinite(s)) or s.min(initial=0.0) < -tol or s.max(initial=0.0) > L + tol:
+        raise InputError(f"positions: every arc length must lie in [0, L] = [0, {L:g}] m; remove the others")
+    if np.any(np.diff(s) <= 0):
+        raise InputError("positions: the arc lengths must increase strictly; sort them and remove repeats")
+    s = np.clip(s, 0.0, L)
+    return np.unique(np.concatenate([[0.0], s, [L]]))
+
+
+def given_grids(L: float, bps: np.ndarray, s: np.ndarray, min_points: int) -> list[np.ndarray]:
+    """The particles s (from :func:`parse_positions`) split at the breaks: each segment [a, b] takes the given
+    positions strictly inside it (those within 1e-9 L of a break dropped) and its two ends."""
+    edges = np.concatenate([[0.0], bps, [L]])
+    tol = 1e-9 * L
+    out = []
+    for a, b in zip(edges[:-1], edges[1:]):
+        g = np.concatenate([[a], s[(s > a + tol) & (s < b - tol)], [b]])
+        if len(g) < min_points:
+            raise InputError(
+                f"positions: {len(g)} particles on [{a:g}, {b:g}] m (between supports, point loads and "
+                f"load ends), fewer than one family ({min_points}); add positions there"
+            )
+        out.append(g)
+    return out
+
+
+def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
+    """(s_table, m(s)) for :func:`segment_grids`: density ρ = 1 + (ratio - 1) f(s), f in [0, 1], so the
+    largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
+    particles gather where the axis bends; the square root spreads them over the bend's flanks, which on
+    y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance
+    to the nearer end or to a point load inside the beam: particles gather at the supports and at point loads)."""
+    L = scene.length
+    s = np.linspace(0.0, L, samples)
+    if by == "curvature":
+        kap = np.abs(axis_frame(scene, s)[2])
+        f = np.sqrt(kap / kap.max()) if kap.max() > 0 else np.zeros_like(s)
+    else:
+        marks = [0.0, L] + [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment))]
+        d = np.min(np.abs(s[:, None] - np.array(marks)[None, :]), axis=1)
+        f = np.exp(-d / (0.1 * L))
+    rho = 1.0 + (ratio - 1.0) * f
+    m = np.concatenate([[0.0], np.cumsum((rho[1:] + rho[:-1]) * np.diff(s) / 2)])
+    return s, m / m[-1]
+
+
+def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
+    """(F·t, F·n, C) of a point load at a point with unit tangent t and normal n."""
+    if isinstance(load, PointMoment):
+        return 0.0, 0.0, load.value
+    if load.frame == "global":
+        F = np.array([load.axial, load.value])
+        return float(F @ t), float(F @ n), 0.0
+    return load.axial, load.value, 0.0
+
+
+def distributed_loads(
+    scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray, inside: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """(p_t, p_n) per unit arc length at the particles s of one segment (``inside``: a position strictly
+    inside the segment, to decide which spans cover it)."""
+    pt, pn = np.zeros_like(s), np.zeros_like(s)
+    for load in scene.loads:
+        if not isinstance(load, Distributed):
+            continue
+        a, b = scene.span(load)
+        if not a <= inside <= b:
+            continue
+        f = scene.load_shape(load, s)
+        if load.frame == "global":
+            pt += f * (load.axial * t[:, 0] + load.value * t[:, 1])
+            pn += f * (load.axial * n[:, 0] + load.value * n[:, 1])
+        else:
+            pt += f * load.axial
+            pn += f * load.value
+    return pt, pn
+
+
+def default_horizon(degree: int, form: str = "primal") -> int:
+    """⌊P/2⌋ + 1 (P + 3 members for even P, P + 2 for odd P), except the mixed form at even P >= 6: P/2
+    (P + 1 members, the interpolating central stencil).
+
+    Why: the mixed form applies the first-derivative function g^1 only, and every antisymmetric interior
+    stencil annihilates the sawtooth (-1)^k; what keeps the neighbouring high-frequency modes away from zero
+    is the slope of the stencil's symbol σ(θ) = Σ_j c_j sin(jθ) at θ = π, 2 Σ_j (-1)^(j+1) j c_j (h = 1).
+    With P + 3 members the spare (two more than P + 1) coefficients are set by the weight, and that slope collapses
+    at P = 6 (0.017, against 0.67 / 0.45 at P = 2 / 4 and 2.2 for the 7-member stencil) and changes sign
+    at P = 8 and 10 (-0.41, -0.82: a spurious interior null mode). The modes near θ = π are then held only
+    by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
+    P + 1 members give the interpolating stencil (slope 2.2 / 2.66 / 3.06 at P = 6 / 8 / 10), whose weights do
+    not depend on w. The primal form keeps ⌊P/2⌋ + 1: its g^2 symbol Σ_j c_j cos(jθ) stays negative at P = 6
+    (-0.096 at θ = π) and is positive there at P = 8 and 10 (0.32, 0.62), without a measured floor (straight sine,
+    P = 8: 1.2e-10 at 1601 particles; see docs/models/curved.md)."""
+    if form == "mixed" and degree % 2 == 0 and degree >= 6:
+        return degree // 2
+    return degree // 2 + 1

@@ -1,0 +1,251 @@
+"""Variant ``energy`` of pd-timoshenko: the corrected beam (seed 001, :mod:`.moyer_operator`) written as the
+gradient of a discrete energy, so that its operator is symmetric and positive semi-definite in the points' volumes
+(issue 30 item 1): M⁻¹K has a real, non-negative spectrum for every support pair, horizon and slenderness, and the
+leapfrog step conserves a discrete energy exactly. No ghost points.
+
+    U = ½ (EI/Δ) Σ_bonds ω_ab (γ_b - γ_a)²  +  ½ kGA Δ Σ_intervals ψ̄²,      W = Σ_i (b_w,i w_i + b_γ,i γ_i)
+
+Bending: the bonds of the rod kernel (Eq. 14–19, c_j = w_j / j), ω_j = 2 c_j / m²: the interior rows of
+∂U/∂γ are Δ times the corrected variant's (2EI/δ²) J_i (Eq. 48). Within Z = 3m + 1 points of an end the weights of
+the bonds that stay inside the beam, and the points' volumes V_r, are the smallest change (least squares) of the
+interior ones that makes every row's bond sum exact for a quadratic γ, the end row carrying the end's flux:
+
+    Σ_b ω_rb (b - r) = [r = 0],     Σ_b ω_rb (b - r)² = 2 V_r                     (:func:`end_bonds`)
+
+The volumes have to move: for a symmetric bond set whose weights beyond the zone are the interior ones, summing
+Σ_b ω_rb (b³ - r³) over the rows gives the end flux, which fixes Σ_r r V_r; the trapezoid's volumes miss it for
+m ≥ 2. The γ rows' inertia and loads use these volumes.
+
+Shear: ψ̄ on each interval as in the corrected variant (the interval average of ψ = w' - γ, Eq. 33: the w difference
+minus the 13/24 average of γ, (9, 19, -5, 1)/24 on the end intervals, the same cubic's average), with the local
+energy ½ kGA Δ Σ ψ̄². Its w rows are kGA (ψ̄_{i+1/2} - ψ̄_{i-1/2}), the PD integral I of Eq. 47 with horizon Δ:
+the local ψ that Eq. 37 puts in the γ rows is the adjoint of this shear integral only. With the horizon δ = mΔ in the
+w rows the γ rows would need ψ smoothed over the horizon, and that smoothing has no symmetric boundary rows that keep
+second order (measured: first order at L/h = 4; docs/models/moyer.md). So the horizon acts on the bending only.
+
+The rows are divided by the points' volumes (w: the trapezoid's; γ: V_r), which gives the per-length form of the
+other variants (:class:`~.moyer_system.Discrete`, its ``weights`` the volumes in units of Δ).
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...core.errors import InputError
+from ...core.scene import Distributed, Scene
+from ...numerics.families import stencil_operator
+from .kernels import EndPatched, node_loads, rod_kernel, toeplitz
+from .system import Discrete, beam_prescribed
+
+ZONE = 3  # bonds are refitted within ZONE m + 1 points of each end
+AVERAGE = np.array([-1.0, 13.0, 13.0, -1.0]) / 24  # interval average of a cubic from its 4 nearest points
+END_AVERAGE = np.array([9.0, 19.0, -5.0, 1.0]) / 24  # the same over the first interval, from the end's 4 points
+GAMMA = sp.csr_matrix(([1.0], ([1], [1])), shape=(2, 2))  # the γ slot of a point's interleaved DOFs (w, γ)
+
+
+def bond_kernel(m: int) -> np.ndarray:
+    """ω_j, j = 1..m (units EI/Δ): the bond form of the corrected J sum (Eq. 48),
+    (EI/Δ) Σ_b ω_ab (γ_b - γ_a) = Δ (2EI/δ²) J_a at an interior point."""
+    return 2.0 * rod_kernel(m) / m**2
+
+
+def zone(m: int) -> int:
+    """Points at each end whose bonds and volumes are refitted."""
+    return ZONE * m + 1
+
+
+@cache
+def end_bonds(m: int) -> tuple[np.ndarray, np.ndarray]:
+    """(ω, V) at the left end: the bond weights among the first Z = :func:`zone` points (Z x Z, symmetric, units
+    EI/Δ) and their volumes (units Δ), fitted as the module docstring says. m = 1: the interior weights and the
+    trapezoid (already exact)."""
+    Z = zone(m)
+    wj = bond_kernel(m)
+    a, b = np.triu_indices(Z, 1)
+    keep = b - a <= m
+    a, b = a[keep], b[keep]
+    d = b - a
+    V0 = np.ones(Z)
+    V0[0] = 0.5
+    x0 = np.concatenate([wj[d - 1], V0])
+    nb = len(d)
+    # rows r = 0..Z-1: first moments, then second moments minus 2 V_r; bonds leaving the zone keep their weight
+    C = np.zeros((2 * Z, nb + Z))
+    rhs = np.zeros(2 * Z)
+    idx = np.arange(nb)
+    for p, block in ((1, slice(0, Z)), (2, slice(Z, 2 * Z))):
+        C[block][a, idx] = d**p
+        C[block][b, idx] = (-d) ** p
+    r = np.arange(Z)[:, None]
+    j = np.arange(1, m + 1)[None, :]
+    outside = (r + j >= Z) * wj[None, :]  # bonds r -> r + j beyond the zone
+    rhs[:Z] = (r[:, 0] == 0) - (outside * j).sum(1)
+    rhs[Z:] = -(outside * j**2).sum(1)
+    C[Z:, nb:] = -2.0 * np.eye(Z)
+    x = x0 + C.T @ np.linalg.lstsq(C @ C.T, rhs - C @ x0, rcond=None)[0]
+    if np.abs(C @ x - rhs).max() > 1e-8 or x[nb:].min() <= 0:  # measured: from m = 40 on
+        raise InputError(
+            f"horizon = {m}: variant energy finds no consistent end bonds at this horizon (horizons 1-12 are "
+            "positive definite); use horizon <= 12 or variant corrected"
+        )
+    w = np.zeros((Z, Z))
+    w[a, b] = w[b, a] = x[:nb]
+    V = x[nb:].copy()
+    w.setflags(write=False), V.setflags(write=False)  # cached: shared by every call
+    return w, V
+
+
+def volumes(n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """(w volumes, γ volumes) of the n points in units of Δ: the trapezoid, and :func:`end_bonds`' at both ends."""
+    vw = np.ones(n)
+    vw[[0, -1]] = 0.5
+    vg = vw.copy()
+    _, V = end_bonds(m)
+    Z = len(V)
+    vg[:Z], vg[n - Z :] = V, V[::-1]
+    return vw, vg
+
+
+def bending_laplacian(n: int, m: int) -> sp.csr_matrix:
+    """Σ_b ω_ab (γ_a - γ_b) as an n x n matrix (units EI/Δ): the interior bonds, the fitted ones at both ends."""
+    wj = bond_kernel(m)
+    j = np.arange(1, m + 1)
+    W = stencil_operator(n, 0, n, np.concatenate([j, -j]), np.concatenate([wj, wj]), truncate=True)
+    w, _ = end_bonds(m)
+    Z = len(w)
+    r, c = np.nonzero(w)
+    corners = sp.csr_matrix(
+        (np.r_[w[r, c], w[r, c]], (np.r_[r, n - 1 - r], np.r_[c, n - 1 - c])), shape=(n, n)
+    )  # the left end's fitted bonds and their mirror image at the right end
+    inside = np.zeros(n, bool)
+    inside[:Z] = inside[n - Z :] = True
+    left = np.arange(n) < Z
+    C = W.tocoo()
+    same = (left[C.row] == left[C.col]) & inside[C.row] & inside[C.col]  # bonds within one end's zone
+    W = sp.csr_matrix((C.data[~same], (C.row[~same], C.col[~same])), shape=(n, n)) + corners.tocsr()
+    return (sp.diags(np.asarray(W.sum(axis=1)).ravel()) - W).tocsr()
+
+
+def bond_moment(gamma: np.ndarray, m: int, EI: float, dx: float) -> np.ndarray:
+    """M = EIγ' at the points from the bond sums. For a quadratic γ the left end row's sum is M at the end of its
+    cell, s_0 = V_0 Δ, and row r's (0 < r < n - 1) is M(s_r) - M(s_{r-1}), s_r = Σ_{k<=r} V_k Δ (the last row's is
+    -M(s_{n-2})): M at the cells' ends s_0 .. s_{n-2} is the cumulative sum of the rows, interpolated linearly to the
+    points and extrapolated to the end points."""
+    n = len(gamma)
+    rows = -(EI / dx) * (bending_laplacian(n, m) @ gamma)
+    _, vg = volumes(n, m)
+    s = np.cumsum(vg[:-1]) * dx
+    Mf = np.cumsum(rows[:-1])
+    x = np.arange(n) * dx
+    M = np.interp(x, s, Mf)
+    M[0] = Mf[0] - s[0] * (Mf[1] - Mf[0]) / (s[1] - s[0])
+    M[-1] = Mf[-1] + (x[-1] - s[-1]) * (Mf[-1] - Mf[-2]) / (s[-1] - s[-2])
+    return M
+
+
+def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, couples: np.ndarray) -> np.ndarray:
+    """The bending moment M = EIγ' at the points: M' = V = -kGA ψ integrated interval by interval (ψ̄ is the interval
+    average of ψ, so each step is exact to the solution's error), the point couples (``couples``, per point, as in the
+    γ loads) as steps after their point (as exact-timoshenko's fields), and the constant from the bond sums' moment
+    (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond sums smear a
+    point couple over the horizon; with the mean, that bias was first order). Why not the bond sums themselves: near
+    an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval averages)
+    differ, so the discrete γ' is first order there; the bond moment's error at a clamped end was 5.3e-2, 2.7e-2,
+    1.4e-2 of the largest moment at 101, 201, 401 points (m = 3), one-sided differences of γ gave 1.1e-2 at 201."""
+    n = len(u) // 2
+    steps = dx * (-scene.kGA) * (shear_strain(n, dx) @ u) - couples[:-1]
+    M = np.concatenate([[0.0], np.cumsum(steps)])
+    flux = bond_moment(u[1::2], m, scene.EI, dx)
+    Z = 2 * zone(m)
+    inner = slice(Z, n - Z) if n > 2 * Z + 2 else slice(None)
+    return M + np.median(flux[inner] - M[inner])
+
+
+def shear_strain(n: int, dx: float) -> sp.csr_matrix:
+    """ψ̄ of the n - 1 intervals from the interleaved DOFs (w_0, γ_0, w_1, ...): (w_{i+1} - w_i)/Δ minus the cubic's
+    interval average of γ."""
+    D = toeplitz(n - 1, 0, n, [0, 1], [-1.0 / dx, 1.0 / dx])
+    A = sp.vstack(
+        [
+            sp.csr_matrix((END_AVERAGE, ([0] * 4, np.arange(4))), shape=(1, n)),
+            toeplitz(n - 3, 0, n, np.arange(4), AVERAGE),
+            sp.csr_matrix((END_AVERAGE[::-1], ([0] * 4, np.arange(n - 4, n))), shape=(1, n)),
+        ]
+    )
+    perm = np.column_stack((np.arange(n), n + np.arange(n))).ravel()  # (w_i, γ_i) interleaved
+    return sp.hstack([D, -A]).tocsr()[:, perm]
+
+
+def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(K per length, ψ at the points) on n points: ∂U/∂u divided by the volumes, interleaved DOFs."""
+    B = shear_strain(n, dx)
+    Ke = (scene.kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (scene.EI / dx), GAMMA)
+    vw, vg = volumes(n, m)
+    K = sp.diags(1.0 / (np.column_stack((vw, vg)).ravel() * dx)) @ Ke
+    # ψ at the points: the mean of the two intervals, extrapolated linearly at the ends
+    P = sp.vstack(
+        [
+            sp.csr_matrix(([1.5, -0.5], ([0, 0], [0, 1])), shape=(1, n - 1)),
+            toeplitz(n - 2, 0, n - 1, [0, 1], [0.5, 0.5]),
+            sp.csr_matrix(([-0.5, 1.5], ([0, 0], [n - 3, n - 2])), shape=(1, n - 1)),
+        ]
+    )
+    return K.tocsr(), (P @ B).tocsr()
+
+
+@cache
+def definite(m: int) -> float:
+    """The lowest eigenvalue of the fitted bonds' Laplacian with one end held, over its largest (on 4 Z + 2m points,
+    both ends' zones and the interior between them): positive when the bending energy is positive definite. It is
+    for m = 1..12 and not from m = 13 on (an end mode of negative energy at each end, -1.4e-4 of the largest at
+    m = 13, tests/test_moyer_energy.py)."""
+    n = 4 * zone(m) + 2 * m
+    ev = np.linalg.eigvalsh(bending_laplacian(n, m).toarray()[1:, 1:])
+    return float(ev[0] / ev[-1])
+
+
+def energy_beam_operator(scene: Scene, n: int, m: int) -> Discrete:
+    """The operator of variant ``energy`` on n points (x_i = iΔ, ends included), as a :class:`Discrete` whose rows
+    are ∂U/∂u - b divided by the volumes: assembled in full on a short grid and extended by its stencil
+    (:class:`~._moyer_kernels.EndPatched`), like the other variants."""
+    if definite(m) <= 0:
+        raise InputError(
+            f"horizon = {m}: variant energy's fitted end bonds at this horizon have an end mode of negative bending "
+            "energy (horizons 1-12 are positive definite); use horizon <= 12 or variant corrected"
+        )
+    need = max(2 * zone(m), 5)
+    if n < need:
+        raise InputError(
+            f"points = {n}: model pd-timoshenko (variant energy) with horizon = {m} needs at least {need} points "
+            "(its two ends' fitted bonds must not overlap); use more points or a smaller horizon"
+        )
+    x = np.linspace(0.0, scene.length, n)
+    dx = x[1] - x[0]
+    Kc, Pc = _core(scene, min(n, 2 * zone(m) + 6 * m + 12), dx, m)  # both zones and stencil rows between
+    vw, vg = volumes(n, m)
+    q, mu, ends = node_loads(scene, x, "transverse", ends_apart=True)
+    spread = scene.model_copy(update={"loads": [ld for ld in scene.loads if isinstance(ld, Distributed)]})
+    qd = node_loads(spread, x, "transverse", ends_apart=True)[0]
+    bw = qd + (q - qd) / vw  # cell integrals of the line loads, point forces whole (their work)
+    bg = mu / vg
+    for side, end in ((0, 0), (1, n - 1)):
+        bw[end] += ends[side][0] / (vw[end] * dx)
+        bg[end] += ends[side][1] / (vg[end] * dx)
+    prescribed = beam_prescribed(scene, n)
+    rho = scene.material.density or 0.0
+    info = {"ghosts_per_end": 0, "spacing": dx, "horizon": m * dx, "fitted_points_per_end": zone(m)}
+    return Discrete(
+        x,
+        EndPatched.from_core(Kc, 2, 2, n),
+        np.column_stack((bw, bg)).ravel(),
+        (rho * scene.section.A, rho * scene.section.I),
+        (True, False),
+        prescribed,
+        2,
+        info=info,
+        psi=(EndPatched.from_core(Pc, 1, 2, n), np.zeros(n)),
+        weights=np.column_stack((vw, vg)).ravel(),
+    )

@@ -1,0 +1,462 @@
+"""The discrete operators of the micro-elastic PD rod, Timoshenko beam and torsion bar (Moyer & Miraglia,
+seed 001; torsion: Section 5, Eq. 54–56, the rod kernel with GJ and twist θ): the PD sums, the ghost
+closures of each support and the load vector, as a :class:`~.moyer_system.Discrete`.
+
+Node grid x_i = i Δ, i = 0..n-1 (ends included), horizon δ = m Δ (integer m, option ``horizon``).
+
+Rod (Section 2): ρ u_tt = ρ B I_i - c_d u_t + b with B = 2E/(δ² ρ) (Eq. 1–3) and the trapezoidal
+peridynamic integral I_i = Σ_j c_j (u_{i+j} + u_{i-j} - 2u_i), c_j = w_j / j (Eq. 13–19;
+w_j = 1, 1/2 at j = m; see ``_moyer_kernels.rod_kernel``).
+
+Timoshenko beam (Section 3), per unit length (w up, γ the cross-section rotation, ψ = w' - γ, Eq. 33):
+
+    ρA w_tt = (kGA / 2δ) I_i + q                   I_i = PV∫ ψ(x_i + ε)/ε dε       (Eq. 34, 36, 47)
+    ρI γ_tt = (2EI / δ²) J_i + (kGA / 2δ) K_i + μ   J_i = ∫ (γ(x_i+ε) - γ_i)/|ε| dε,  K_i = 2δ ψ_i (Eq. 35, 37, 48, 49)
+
+i.e. C1 = kG/(2δρ), C2 = 2E/(ρδ²), C3 = AkG/(2ρδI) (Eq. 50); q is the line load, μ the line couple.
+The static problem is the same discrete operator without inertia (rows: the real points; unknowns
+interleaved w_0, γ_0, w_1, ...). It is assembled as written (sparse products of the ghost extension,
+ψ and the PD sums) on a short grid of the same spacing only: away from the ends every row is the same
+stencil, so the operator on any grid is that stencil plus the short grid's end rows
+(:class:`~._moyer_kernels.EndPatched`, bit-identical to the whole-grid assembly). It is written
+diagonal by diagonal into a :class:`~pdverify.numerics.band.Band`, the supported DOFs held by unit rows, and
+solved by :func:`pdverify.numerics.linalg.solve_linear` (LU in place above 20,000 unknowns;
+:func:`~.moyer_system.static_solution`). :func:`~.moyer_transient.integrate` integrates the same operator
+in time with the damped leapfrog / velocity-Verlet scheme of Eq. 7–12 (38–44).
+
+Variants
+--------
+``paper`` (as published): ψ at the nodes by central differences (Eq. 45–46), I by Eq. 47; ghost
+points by Taylor extrapolation of w and γ (u) from the real points: first order (Eq. 20–21) at
+Dirichlet ends (clamped; rod: clamped/pinned), second order with one-sided second-order differences
+at the other ends (Section 4, Eq. 53); loads at an end as body force p/(AΔ) in the end cell.
+Two printing errors had to be corrected to evaluate the sums at all: Eq. 16 gives l1 = 1 + k - m,
+which runs over 2-m..0 (division by zero at k = m-1); the trapezoid of ∫_{-mΔ}^{-Δ} needs
+l1 = k - m - 1 (as Eq. 47/48 index it), and Eq. 19's first sum then needs the minus sign of Eq. 15
+(as Eq. 48 has it). Measured weaknesses (tests/test_pd_timoshenko.py): the pure extrapolation imposes
+no traction condition at a free end (the mixed-boundary cantilever of Section 4 is singular with the
+second-order extrapolation and wrong with the first-order one) and the central-difference ψ decouples
+odd and even points (w' twice by central differences). Option ``grid = "cells"`` (paper variant,
+static) is the literal Section 4 setup: n - 1 cells of Δ = L/(n - 1), points at the cell centres, ghost
+cells by Taylor expansion about the end faces (a Dirichlet face anchored at zero); measured on Table 1:
+19.6, 14.1 and 10.6 times the exact tip deflection for m = 2, 3, 4 (order 2 between Dirichlet ends).
+
+``corrected`` (pd-rod's and pd-torsion's default; pd-timoshenko's is ``energy``, :mod:`.moyer_energy`; the "before"
+numbers were measured while developing it, the result is tested):
+1. ψ as interval averages: ψ̄_{i+1/2} = (w_{i+1} - w_i)/Δ - (-γ_{i-1} + 13γ_i + 13γ_{i+1} - γ_{i+2})/24
+   (the exact average over [x_i, x_{i+1}] for a cubic γ), I by the midpoint rule on each unit interval
+   (weights 1/(j - 1/2)), K_i = 2δ (ψ̄_{i-1/2} + ψ̄_{i+1/2})/2. Compact: no odd–even decoupling. With the
+   plain mean (γ_i + γ_{i+1})/2 the shear force carries an error kGA Δ² γ''/12 that grows like (Δ/h)²
+   (measured 1.3 % on the Table 1 cantilever, 2.9 % at L/h = 100 with 201 points, clamped–free, mixed
+   loads); with the 13/24 average the tip-loaded cantilever is exact (1e-11).
+2. ghost points at clamped and free ends from one polynomial per field (degree 3, fitted to the first 4
+   real points) that satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; free
+   EIγ' = M̄, kGA ψ = P̄ (end loads enter here); the end point's own equation holds where its value is not
+   prescribed. The rod (and torsion bar) takes mirror images at every end (:func:`rod_mirror_ghosts`: odd
+   where u is held, even where EA u' = N̄), so its operator times the end points' half cells is symmetric
+   for every support pair and horizon. At the beam's pinned (roller) and guided ends the ghosts are mirror
+   images (pinned: w odd, γ even; guided: w even, γ odd) plus the Taylor terms of the end conditions
+   (pinned EIγ' = M̄, guided kGA ψ = P̄) and of the end's line load (:func:`mirror_ghosts`): the operator
+   keeps the symmetry classes of the stencil, so between two such ends it has a real positive spectrum
+   (the cubic fits gave it growing modes at every horizon; issue 30).
+3. at free ends the ghost ψ̄ are extrapolated from the real intervals' ψ̄ with ψ(end) =
+   P̄/kGA imposed (quadratic, 4 intervals), not computed from the extrapolated w and γ, whose errors
+   would enter the shear force multiplied by kGA/Δ (uniformly loaded cantilever, 201 points: 27 % at
+   L/h = 1000 and 2700 % at 1e4 before, 3e-8 and 3e-6 after).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...core.errors import InputError
+from ...core.scene import ROD_HELD, Distributed, Scene
+from .energy import energy_beam_operator
+from .kernels import (
+    EndPatched,
+    average_ghosts,
+    constrained_ghosts,
+    node_loads,
+    rod_kernel,
+    shear_kernel,
+    taylor_rows,
+    taylor_rows_cells,
+    toeplitz,
+)
+from .system import DIRICHLET, Discrete, beam_prescribed
+
+MIRRORED = ("pinned", "roller", "guided")  # corrected ends whose ghosts are mirror images (mirror_ghosts)
+FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
+SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS = 2, 4  # ψ̄ ghosts at free ends
+
+
+def _core_points(m: int) -> int:
+    """Points of the short grid on which an operator is assembled in full (EndPatched.from_core): a
+    stretch of stencil rows between the two ends' ghost-influenced rows (about m + 4 each) wider than
+    the family (m + 2 points each side). Grids up to this size are assembled in full."""
+    return 12 * (m + 4)
+
+
+def _end_data(n: int, side: int, npts: int) -> np.ndarray:
+    """Real point indices from the end inward."""
+    k = np.arange(npts)
+    return k if side == 0 else n - 1 - k
+
+
+def _ghost_index(n: int, G: int, side: int) -> np.ndarray:
+    """Extended-grid indices of ghosts t = 1..G outside the end (extended index = real + G)."""
+    t = np.arange(G)
+    return G - 1 - t if side == 0 else G + n + t
+
+
+def _extension(n: int, G: int, nf: int, blocks) -> tuple[sp.csr_matrix, np.ndarray]:
+    """Sparse map real DOFs (interleaved, nf per point) -> extended field f values (stacked f-major):
+    rows f*N + e. ``blocks``: per side, (R (nf G x nf npts), r0, npts) ghost maps, field-major."""
+    N = n + 2 * G
+    rows, cols, vals = [], [], []
+    for f in range(nf):
+        rows.append(f * N + G + np.arange(n)), cols.append(nf * np.arange(n) + f), vals.append(np.ones(n))
+    e0 = np.zeros(nf * N)
+    for side, (R, r0, npts) in blocks.items():
+        real = _end_data(n, side, npts)
+        ghost = _ghost_index(n, G, side)
+        for f in range(nf):
+            for g in range(nf):
+                blk = R[f * G : (f + 1) * G, g * npts : (g + 1) * npts]
+                rr = np.repeat(f * N + ghost, npts)
+                cc = np.tile(nf * real + g, G)
+                rows.append(rr), cols.append(cc), vals.append(blk.ravel())
+            e0[f * N + ghost] = r0[f * G : (f + 1) * G]
+    E = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(nf * N, nf * n))
+    return E, e0
+
+
+def _check_grid(n: int, m: int, name: str):
+    if n < max(2 * m + 2, FIT_POINTS + 1):
+        raise InputError(
+            f"points = {n}: model {name} with horizon = {m} needs at least {max(2 * m + 2, FIT_POINTS + 1)} "
+            "points; use more points or a smaller horizon"
+        )
+
+
+# -- rod --------------------------------------------------------------------------------------
+
+
+def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial", grid: str = "nodes") -> Discrete:
+    """Static operator of the PD rod: K u = b with u the axial displacement (``kind = "axial"``: stiffness
+        EA, mass ρA, loads.axial) or the twist θ (``kind = "torsion"``, Section 5 Eq. 54–56: the same
+        kernel with GJ, mass ρ I_p, torques). Fixed ends: :data:`ROD_HELD` (clamped, pinned; pd-torsion: roller
+    too); the others carry N̄ (T̄).
+        Assembled in full on a short grid (:func:`_rod_core`) and extended by its stencil (Eq. 19)."""
+    name = "pd-rod" if kind == "axial" else "pd-torsion"
+    n, x = _grid(scene, n, grid, variant, name)
+    _check_grid(n, m, name)
+    dx = x[1] - x[0]
+    delta = m * dx
+    rho = scene.material.density or 0.0
+    if kind == "axial":
+        stiff, inertia, component, key = scene.EA, scene.section.A, "axial", "u"
+    else:
+        J = scene.section.J
+        if J is None:
+            raise InputError(
+                "section.torsion_constant: pd-torsion needs the torsion constant J of a section given by "
+                "area and inertia; add torsion_constant (or give width and height)"
+            )
+        stiff, component, key = scene.material.G * J, "torque", "twist"
+        inertia = scene.section.polar if scene.section.polar is not None else np.nan
+    q, _, ends = node_loads(scene, x, component, ends_apart=(variant == "corrected"))
+    prescribed = {}
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        if grid == "nodes" and sup in ROD_HELD[kind]:
+            prescribed[0 if side == 0 else n - 1] = (key, side)
+    Kc, bc = _rod_core(scene, min(n, _core_points(m)), dx, m, variant, stiff, ends, grid, kind)
+    op = EndPatched.from_core(Kc, 1, 1, n)
+    b = EndPatched.add_ends(q, bc, 1)
+    if variant == "paper":
+        for side in (0, 1):
+            b[0 if side == 0 else n - 1] += ends[side][0] / dx
+    return Discrete(
+        x, op, b, (rho * inertia,), (True,), prescribed, 1, {"ghosts_per_end": m, "spacing": dx, "horizon": delta}
+    )
+
+
+def _rod_core(
+    scene: Scene, n: int, dx: float, m: int, variant: str, stiff: float, ends: dict, grid: str, kind: str = "axial"
+) -> tuple[sp.csr_matrix, np.ndarray]:
+    """(K, ghost part of b) of the rod on n points of spacing dx, assembled as written: K = -B I E with
+    the extension E to G = m ghosts per end (Eq. 20–21 or the constrained polynomial) and the PD sum I
+    (Eq. 19, c_j of ``rod_kernel``), B = 2 stiff/δ² (Eq. 3)."""
+    delta = m * dx
+    G = m
+    blocks = {}
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        fixed = sup in ROD_HELD[kind]
+        if grid == "cells":
+            blocks[side] = (taylor_rows_cells(G, 1 if fixed else 2, fixed), np.zeros(G), 4)
+            continue
+        if variant == "paper":
+            blocks[side] = (taylor_rows(G, 1 if fixed else 2), np.zeros(G), 4)
+        else:
+            f = end_line_load(scene, side, "axial" if kind == "axial" else "torque")
+            blocks[side] = rod_mirror_ghosts(fixed, G, ends[side][0], f, stiff, dx)
+    E, e0 = _extension(n, G, 1, blocks)
+    c = rod_kernel(m)
+    j = np.arange(1, m + 1)
+    Iop = toeplitz(n, G, n + 2 * G, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
+    B = 2.0 * stiff / delta**2  # ρA B = 2EA/δ² (Eq. 3): force per length per unit of I
+    return (-B * (Iop @ E)).tocsr(), B * (Iop @ e0)
+
+
+# -- Timoshenko beam ----------------------------------------------------------------------------
+
+
+def _grid(scene: Scene, n: int, grid: str, variant: str, name: str) -> tuple[int, np.ndarray]:
+    """(points, x): ``nodes`` x_i = iΔ (ends included); ``cells`` (Section 4, paper variant only): n - 1
+    cells of the same Δ = L/(n - 1), collocation points at their centres."""
+    L = scene.length
+    if grid == "nodes":
+        return n, np.linspace(0.0, L, n)
+    if variant != "paper":
+        raise InputError(
+            f"grid = 'cells': model {name} uses the cell-centred grid of Section 4 only in variant "
+            "paper; use grid = nodes or variant = paper"
+        )
+    nc = n - 1
+    return nc, (np.arange(nc) + 0.5) * (L / nc)
+
+
+def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes") -> Discrete:
+    """Static operator of the PD Timoshenko beam on the interleaved DOFs (w_0, γ_0, w_1, γ_1, ...):
+    assembled in full on a short grid (:func:`_beam_core`, Eq. 45–49 as written) and extended by its
+    stencil (:class:`~._moyer_kernels.EndPatched`); variant ``energy``: :func:`.moyer_energy.energy_beam_operator`."""
+    if variant == "energy":
+        return energy_beam_operator(scene, n, m)
+    n, x = _grid(scene, n, grid, variant, "pd-timoshenko")
+    _check_grid(n, m, "pd-timoshenko")
+    dx = x[1] - x[0]
+    delta = m * dx
+    kGA = scene.kGA
+    rho = scene.material.density or 0.0
+    q, mu, ends = node_loads(scene, x, "transverse", ends_apart=(variant == "corrected"))
+    # cells: the end faces are not points, Dirichlet values enter the ghost cells
+    prescribed = beam_prescribed(scene, n) if grid == "nodes" else {}
+    Kc, bw_parts, bg_parts, Pc, p0c = _beam_core(scene, min(n, _core_points(m)), dx, m, variant, grid, ends)
+    op = EndPatched.from_core(Kc, 2, 2, n)
+    bw, bg = q, mu
+    for v in bw_parts:
+        bw = EndPatched.add_ends(bw, v, 1)
+    for v in bg_parts:
+        bg = EndPatched.add_ends(bg, v, 1)
+    if variant == "paper":
+        for side in (0, 1):
+            end = 0 if side == 0 else n - 1
+            bw[end] += ends[side][0] / dx
+            bg[end] += ends[side][1] / dx
+    b = np.empty(2 * n)
+    b[0::2], b[1::2] = bw, bg
+    psi_nodes = (EndPatched.from_core(Pc, 1, 2, n), EndPatched.add_ends(np.zeros(n), p0c, 1))
+    info = {"ghosts_per_end": m + 1, "spacing": dx, "horizon": delta}
+    if rho:  # the paper's constants (Eq. 50)
+        info.update(
+            C1=kGA / (2 * delta * rho * scene.section.A),
+            C2=2 * scene.material.E / (rho * delta**2),
+            C3=kGA / (2 * rho * delta * scene.section.I),
+        )
+    return Discrete(
+        x, op, b, (rho * scene.section.A, rho * scene.section.I), (True, False), prescribed, 2, psi=psi_nodes, info=info
+    )
+
+
+def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str, ends: dict):
+    """The beam operator on n points of spacing dx, assembled as written: the extension E to G = m + 1
+    ghosts per end, ψ from it (Eq. 45–46, or the interval averages of the corrected variant), the PD
+    sums I (Eq. 47), J and K (Eq. 48–49) as sparse products. Returns (K (2n x 2n, interleaved), ghost
+    parts of the w and γ loads (lists, added in this order), ψ at the points (n x 2n), its constant)."""
+    delta = m * dx
+    EI, kGA = scene.EI, scene.kGA
+    G = m + 1
+    N = n + 2 * G
+    blocks = {}
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        sigma = -1.0 if side == 0 else 1.0
+        fix_w, fix_g = DIRICHLET[sup]
+        if grid == "cells":  # the end faces are not points: Dirichlet values enter the ghost cells
+            order = 1 if (fix_w and fix_g) else 2
+            R = np.zeros((2 * G, 8))
+            R[:G, :4] = taylor_rows_cells(G, order, fix_w)
+            R[G:, 4:] = taylor_rows_cells(G, order, fix_g)
+            blocks[side] = (R, np.zeros(2 * G), 4)
+            continue
+        if variant == "paper":
+            T = taylor_rows(G, 1 if (fix_w and fix_g) else 2)
+            R = np.kron(np.eye(2), T)
+            blocks[side] = (R, np.zeros(2 * G), 4)
+            continue
+        P, C = ends[side]
+        if sup in MIRRORED:
+            blocks[side] = mirror_ghosts(sup, G, dx, sigma, P, C, end_line_load(scene, side), EI, kGA)
+            continue
+        con = []
+        if fix_w:
+            con.append(({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0))
+        if fix_g:
+            con.append(({(1, 0): 1.0}, {(1, 0): 1.0}, 0.0))
+        if not fix_g:  # moment: EI γ_s(0) = C̄ (both ends, s outward)
+            con.append(({(1, 1): 1.0}, {}, dx * C / EI))
+        if not fix_w:  # shear: kGA (w_s - σ γ) = P̄
+            con.append(({(0, 1): 1.0, (1, 0): -sigma * dx}, {}, dx * P / kGA))
+        R, r0 = constrained_ghosts(2, FIT_DEGREE, FIT_POINTS, G, con)
+        blocks[side] = (R, r0, FIT_POINTS)
+    E, e0 = _extension(n, G, 2, blocks)
+    Ew, Eg = E[:N], E[N:]
+    ew, eg = e0[:N], e0[N:]
+    offs, a = shear_kernel(m, variant)
+    c = rod_kernel(m)
+    j = np.arange(1, m + 1)
+    if variant == "paper":
+        # nodal ψ on extended points 1..N-2 (index e - 1), ψ = (W_{e+1} - W_{e-1})/(2Δ) - Γ_e
+        Dc = toeplitz(N - 2, 1, N, [-1, 1], [-0.5 / dx, 0.5 / dx])
+        Sel = toeplitz(N - 2, 1, N, [0], [1.0])
+        Pw, Pg = Dc, -Sel
+        # I_i = Σ a_j (ψ_{e+j} - ψ_{e-j}) with e = i + G, ψ index e - 1
+        Sop = toeplitz(n, G - 1, N - 2, np.concatenate([j, -j]), np.concatenate([a, -a]))
+        Avg = toeplitz(n, G - 1, N - 2, [0], [1.0])
+    else:
+        # ψ̄ of the interval [e, e+1] (half point h = e + 1/2, rows h = 1..N-3, index h - 1): the interval
+        # average of w' is (W_{e+1} - W_e)/Δ, that of γ (-Γ_{e-1} + 13Γ_e + 13Γ_{e+1} - Γ_{e+2})/24 (exact
+        # for cubic γ; the plain mean (Γ_e + Γ_{e+1})/2 leaves kGA Δ² γ''/12, a shear-force error that
+        # grows like (Δ/h)², see the module docstring)
+        Pw = toeplitz(N - 3, 1, N, [0, 1], [-1.0 / dx, 1.0 / dx])
+        Pg = toeplitz(N - 3, 1, N, [-1, 0, 1, 2], np.array([1.0, -13.0, -13.0, 1.0]) / 24)
+        # I_i = Σ_j a_j (ψ_{e + j - 1/2} - ψ_{e - j + 1/2}): half points e + j - 1/2, e - j + 1/2
+        Sop = toeplitz(n, G - 1, N - 3, np.concatenate([j - 1, -j]), np.concatenate([a, -a]))
+        Avg = toeplitz(n, G - 1, N - 3, [-1, 0], [0.5, 0.5])
+    Jop = toeplitz(n, G, N, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
+    psi_u = Pw @ Ew + Pg @ Eg  # ψ (extended) from the real DOFs
+    psi_0 = Pw @ ew + Pg @ eg
+    if variant == "corrected":
+        psi_u, psi_0 = _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA)
+    cw, cg = kGA / (2 * delta), 2 * EI / delta**2
+    Kw = -(cw * (Sop @ psi_u))  # rows: w equations of the real points
+    Kg = -(cg * (Jop @ Eg) + kGA * (Avg @ psi_u))
+    bw_parts = [cw * (Sop @ psi_0)]
+    bg_parts = [cg * (Jop @ eg), kGA * (Avg @ psi_0)]
+    perm = np.empty(2 * n, dtype=np.int64)
+    perm[0::2], perm[1::2] = np.arange(n), n + np.arange(n)
+    K = sp.vstack([Kw, Kg]).tocsr()[perm]
+    return K.tocsr(), bw_parts, bg_parts, (Avg @ psi_u).tocsr(), Avg @ psi_0
+
+
+def end_line_load(scene: Scene, side: int, component: str = "transverse") -> float:
+    """The line load of the distributed loads at the end point (0 outside their spans): ``component`` transverse
+    (load.value), axial (load.axial) or torque (load.torque)."""
+    xe = 0.0 if side == 0 else scene.length
+    q = 0.0
+    for load in scene.loads:
+        if not isinstance(load, Distributed):
+            continue
+        v = {"transverse": load.value, "axial": load.axial, "torque": load.torque}[component]
+        if v:
+            a, b = scene.span(load)
+            if a - 1e-12 * scene.length <= xe <= b + 1e-12 * scene.length:
+                q += v * float(scene.load_shape(load, xe))
+    return q
+
+
+def rod_mirror_ghosts(held: bool, G: int, N: float, f: float, stiff: float, dx: float):
+    """Ghosts of an end of the corrected rod (and torsion bar) as mirror images, (R, r0, G + 1): a held end is the
+    centre of an odd deformation, a traction end (EA u_s = N̄, s outward) of an even one, the two classes the rod's
+    stencil (Eq. 19) maps into themselves, so for every support pair and horizon the operator times the volumes
+    (Δ/2 at an end point that moves) is symmetric, and its spectrum real. The end condition and the end's line
+    load f enter r0 as the Taylor terms the image lacks (ξ runs into the rod; EA u_ξξ = -f):
+
+    held:     u(-ξ) = -u(ξ) + 2 u_0 + ξ² u_ξξ,   u_ξξ = -f / EA;
+    traction: u(-ξ) = u(ξ) - 2 ξ u_ξ,            u_ξ = -N̄ / EA.
+
+    The first neglected terms (ξ⁴ u^(4) and ξ³ u^(3), from load gradients at the end) are O(Δ³) in the ghosts."""
+    npts = G + 1
+    t = np.arange(1, G + 1)
+    xi = dx * t
+    R, r0 = np.zeros((G, npts)), np.zeros(G)
+    R[t - 1, t] = -1.0 if held else 1.0
+    if held:
+        R[:, 0] = 2.0
+        r0[:] = -(xi**2) * f / stiff
+    else:
+        r0[:] = 2 * xi * N / stiff
+    return R, r0, npts
+
+
+def mirror_ghosts(sup: str, G: int, dx: float, sigma: float, P: float, C: float, q: float, EI: float, kGA: float):
+    """Ghosts of a pinned (roller) or guided end of the corrected beam as mirror images, (R, r0, G + 1).
+
+    A pinned end is the centre of an antisymmetric deformation (w odd, γ even about it), a guided end of a
+    symmetric one (w even, γ odd): the two classes the beam's stencil maps into themselves. With the ghosts
+    their images, the operator between two such ends is the stencil of the periodic beam restricted to one
+    class: its spectrum is the dispersion relation's, real and positive (no growing mode at any horizon or
+    slenderness). The end conditions and loads enter only r0, as the Taylor terms the image lacks, from the
+    static equations of the corrected operator (kGA ψ' = -q, EI γ'' = -kGA ψ, w' = γ + ψ) at the end; ξ runs
+    into the beam, τ = -σ = dξ/dx:
+
+    pinned: w(-ξ) = -w(ξ) + 2 w_0 + ξ² w_ξξ + ξ⁴ w_ξξξξ/12,  w_ξξ = -τ C̄/EI - q/kGA, w_ξξξξ = q/EI;
+            γ(-ξ) = γ(ξ) - 2 ξ γ_ξ - ξ³ γ_ξξξ/3,           γ_ξ = -C̄/EI, γ_ξξξ = τ q/EI;
+    guided: w(-ξ) = w(ξ) - 2 ξ w_ξ - ξ³ w_ξξξ/3,            w_ξ = τ γ_0 - P̄/kGA, w_ξξξ = P̄/EI;
+            γ(-ξ) = -γ(ξ) + 2 γ_0 + ξ² γ_ξξ,               γ_ξξ = -σ P̄/EI.
+
+    The first neglected terms (line couples and load gradients at the end, ξ⁵ γ^(5), ξ⁶ w^(6)) are
+    O(Δ³) in the ghosts, like the cubic fits' errors. The ghost ψ̄ follow from the images (no
+    :func:`_shear_ghosts` extrapolation)."""
+    npts = G + 1
+    t = np.arange(1, G + 1)
+    xi = dx * t
+    tau = -sigma
+    R, r0 = np.zeros((2 * G, 2 * npts)), np.zeros(2 * G)
+    w, g = t - 1, G + t - 1  # rows of the w and γ ghosts; columns: w of real point k is k, γ is npts + k
+    if sup in ("pinned", "roller"):
+        R[w, t], R[w, 0] = -1.0, 2.0
+        r0[:G] = xi**2 * (-tau * C / EI - q / kGA) + xi**4 / 12 * (q / EI)
+        R[g, npts + t] = 1.0
+        r0[G:] = -2 * xi * (-C / EI) - xi**3 / 3 * (tau * q / EI)
+    else:
+        R[w, t], R[w, npts] = 1.0, -2 * xi * tau
+        r0[:G] = -2 * xi * (-P / kGA) - xi**3 / 3 * (P / EI)
+        R[g, npts + t], R[g, npts] = -1.0, 2.0
+        r0[G:] = xi**2 * (-sigma * P / EI)
+    return R, r0, npts
+
+
+def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
+    """At a free end the ghost ψ̄ are extrapolated from the ψ̄ of
+    the real intervals with ψ(end) = the end shear P̄/kGA imposed, instead of being computed from
+    extrapolated w and γ: an extrapolation error δ in w or γ would enter the shear force as kGA δ/Δ,
+    which grows like (L/h)² (measured: 27 % at slenderness 1000 on a uniformly loaded cantilever)."""
+    rows_all = psi_u.shape[0]
+    rep_r, rep_c, rep_v = [], [], []
+    c0 = np.zeros(rows_all)
+    replaced = np.zeros(rows_all, bool)
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        if DIRICHLET[sup][0] or sup in MIRRORED:
+            continue
+        sigma = -1.0 if side == 0 else 1.0
+        k = np.arange(SHEAR_FIT_INTERVALS)
+        t = np.arange(m)
+        # half index h of interval [h, h+1] on the extended grid; psi rows are h - 1
+        if side == 1:
+            real_h, ghost_h = n - 2 + G - k, n - 1 + G + t
+        else:
+            real_h, ghost_h = G + k, G - 1 - t
+        R, r = average_ghosts(SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS, m)
+        for i, gh in enumerate(ghost_h):
+            rep_r.append(np.full(len(real_h), gh - 1)), rep_c.append(real_h - 1), rep_v.append(R[i])
+            c0[gh - 1] = r[i] * sigma * ends[side][0] / kGA
+            replaced[gh - 1] = True
+    if not replaced.any():
+        return psi_u, psi_0
+    keep = np.flatnonzero(~replaced)
+    rep_r.append(keep), rep_c.append(keep), rep_v.append(np.ones(len(keep)))
+    Rep = sp.csr_matrix(
+        (np.concatenate(rep_v), (np.concatenate(rep_r), np.concatenate(rep_c))), shape=(rows_all, rows_all)
+    )
+    return (Rep @ psi_u).tocsr(), Rep @ psi_0 + c0

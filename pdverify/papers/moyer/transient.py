@@ -1,0 +1,289 @@
+"""Transient runs of the Moyer & Miraglia rod / Timoshenko beam / torsion bar (seed 001): the damped leapfrog /
+velocity-Verlet scheme of Eq. 7–12 (38–44) from rest, its time histories (:class:`History`), the energy
+ledger sampled along the run (:mod:`pdverify.numerics.timeint`) and the blow-up message.
+
+Time stepping (both variants): the boundary closures make K non-symmetric and some modes have complex
+(or, at pinned ends with m = 1, 2 and L/h = 100, negative) ω² (tests/test_dynamics.py measures the
+spectrum); a stiffness-proportional damping β K v with β = κ dt_ref, κ = 0.2, dt_ref = 0.9 x the stable
+limit (``stabilisation``; the first mode gets ~2e-4 of critical) keeps the step map's spectral radius
+<= 1 on the small grids of the paper (1 + 2e-2 without), not on every grid. Every transient carries an
+energy ledger (:mod:`pdverify.numerics.timeint`: kinetic, strain, load and support work, the work of the damping
+and of the stabilisation, balance) and is stopped when its stored energy outgrows the work put in.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...core.errors import SolveError
+from ...core.result import columns_csv
+from ...numerics.timeint import EnergyLedger, ledger_columns
+from .kernels import motion_value
+from .spectrum import first_frequency, mass_scaled, stable_time_step
+from .steps import StencilStep, WholeStep
+from .system import Discrete
+
+STABILISATION = 0.2  # κ of the stiffness-proportional damping β = κ dt_ref of the time stepping (see integrate)
+DEFAULT_SAFETY = 0.9  # default dt = this x the stable limit; dt_ref of the stabilisation
+
+
+@dataclass
+class History:
+    """Time histories of a transient run: t (s), probe positions and their w (or u) and rotation."""
+
+    t: np.ndarray
+    probes: np.ndarray
+    values: np.ndarray  # (len(t), len(probes)) translation at the probes
+    rotations: np.ndarray | None
+    final: np.ndarray  # all DOFs at the end time
+    x: np.ndarray
+    dt: float
+    dt_limit: float
+    steps: int
+    damping: float  # c_d / rho (1/s)
+    stabilisation: float
+    omega1: float | None
+    energy: dict = field(default_factory=dict)  # the ledger: "t" (a subset of t) and LEDGER_COLUMNS -> array
+    energy_drift: float = 0.0  # max |balance| / max(stored energy, work put in)
+    scheme_drift: float = 0.0  # max change of the scheme's discrete energy (dynamics.EnergyLedger.scheme_drift)
+
+    def to_csv(self) -> str:
+        cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)}}
+        return columns_csv({**cols, **ledger_columns(self.t, self.energy)}, fmt="%.12g")
+
+
+def _interp_rows(x: np.ndarray, probes: np.ndarray) -> sp.csr_matrix:
+    """Linear interpolation from the points to the probe positions (sparse rows)."""
+    dx = x[1] - x[0]
+    i = np.clip(np.floor(probes / dx).astype(int), 0, len(x) - 2)
+    t = probes / dx - i
+    rows = np.repeat(np.arange(len(probes)), 2)
+    cols = np.stack([i, i + 1], 1).ravel()
+    vals = np.stack([1 - t, t], 1).ravel()
+    return sp.csr_matrix((vals, (rows, cols)), shape=(len(probes), len(x)))
+
+
+WHOLE_DOFS = 4000  # up to this many DOFs a step is one CSR product: fewer numpy calls per step (measured
+# crossover with the blockwise stencil at 2,000-5,000 points; at 1e5 points the stencil is 1.7x faster)
+LEDGER_STRIDE = 200  # steps between ledger samples above WHOLE_DOFS (a sample costs ~12 steps there: <= 6 %)
+
+
+def nf_n(disc: Discrete) -> int:
+    return disc.nf * len(disc.x)
+
+
+def integrate(
+    disc: Discrete,
+    motions: dict,
+    t_end: float | None,
+    dt: float | None = None,
+    damping: float = 0.0,
+    damping_ratio: float | None = None,
+    safety: float = 0.9,
+    probes=None,
+    record_every: int | None = None,
+    output_interval: float | None = None,
+    damp_rotations: bool = False,
+    stabilisation: float = STABILISATION,
+    steps: int | None = None,
+    context: str = "",
+    ledger_every: int | None = None,
+) -> History:
+    """Damped leapfrog velocity-Verlet (Eq. 7–11 / 38–44) from rest, loads as steps at t = 0 (v^{-1/2} =
+    -dt/2 a^0 so that v^0 = 0; Eq. 12 sets v^{-1/2} = 0, which is first order for a step load).
+
+    Per step: a^j = (b - K u^j)/m (one product with K); v̂ = v^{j-1/2} + dt (a^j - D v^{j-1/2});
+    û^{j+1} = u^j + dt v̂; v^j = (û^{j+1} - u^{j-1})/(2dt); v^{j+1/2} = v^{j-1/2} + dt (a^j - D v^j);
+    u^{j+1} = u^j + dt v^{j+1/2}. D = c_d/ρ acts on the translations only (Eq. 36–37: γ undamped).
+    Prescribed DOFs follow their motions.
+    ``damp_rotations``: the same D on the rotations too (not in the paper; without it the high
+    shear-rotation modes are damped only through their coupling to w and ring for long).
+    ``stabilisation`` κ: stiffness-proportional damping β K v^{j-1/2} with β = κ dt_ref (not in the
+    paper), dt_ref = DEFAULT_SAFETY x the limit: the same β at every step (dt = dt_ref: β = κ dt).
+    The boundary closures make K non-symmetric: some high modes have complex ω² and grow without it
+    (measured step-map spectral radius 1 + 2e-2 on the Table 1 cantilever, 101 points, m = 3); κ = 0.2
+    gives the highest mode ~18 % of critical and the first ~1e-4 %, and costs no extra product
+    (K (u + β v)). The stable limit becomes 2 / (ω_max sqrt(1 + 2κ)) (the step map is stable while
+    ω²dt² + 2βω²dt < 4: with β = 0.9κ x the limit the threshold is 1.017 x the limit at
+    κ = 0.2). ``steps``: run this many steps
+    (instead of up to ``t_end``). ``output_interval`` (s) or ``record_every`` (steps): the sampling of
+    the histories and of the energy ledger (:class:`pdverify.numerics.timeint.EnergyLedger`, v^j the mean of the
+    half-step velocities around the sample; ``ledger_every``: at most every so many steps, default
+    every sample up to ``WHOLE_DOFS`` unknowns, else every ``LEDGER_STRIDE`` steps). Raises SolveError
+    when the stored energy outgrows the work put in (a growing mode;
+    :meth:`~pdverify.numerics.timeint.EnergyLedger.blown_up`); ``context`` (supports, horizon) goes into that
+    message.
+
+    Implementation: with V = dt v^{j+1/2} the step is y = u + κ V, V <- α V + G (b - K y), u <- u + V
+    with G = (1 - c/2) dt²/m per DOF (zero on prescribed DOFs); K y is one CSR product up to
+    ``WHOLE_DOFS`` unknowns, else the operator's stencil applied block by block (:class:`StencilStep`)."""
+    limit = stable_time_step(disc) / np.sqrt(1.0 + 2.0 * stabilisation)
+    omega1 = None
+    if damping_ratio is not None:
+        omega1 = first_frequency(disc)
+        damping = 2.0 * damping_ratio * omega1
+    dt_ref = DEFAULT_SAFETY * limit
+    dt = safety * limit if dt is None else float(dt)
+    # β = κ dt_ref (seconds), the same for every step: with β = κ dt a smaller step damped the closures'
+    # growing modes less (Table 1 cantilever: stable at 0.9 of the limit, blew up at 0.5 and 0.3) and the
+    # scheme converged at order 1 in dt to a damping that vanishes. kappa: β / dt, what the step uses
+    kappa = stabilisation if dt == dt_ref else stabilisation * dt_ref / dt
+    if steps is None:
+        steps = int(np.ceil(t_end / dt - 1e-9))
+    if output_interval is not None:
+        record_every = max(1, int(round(output_interval / dt)))
+    record_every = record_every or max(1, steps // 2000)
+    if ledger_every is None:  # a ledger sample costs ~3 products with K (on large grids ~4 steps each)
+        ledger_every = record_every if nf_n(disc) <= WHOLE_DOFS else max(record_every, LEDGER_STRIDE)
+    last_ledger = 0
+    nf = disc.nf
+    probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
+    Pm = _interp_rows(disc.x, probes)
+    # the whole DOF vector is advanced; prescribed DOFs have 1/m = 0 (no acceleration) and are
+    # overwritten by their motions, so no index gathering per step
+    # Eq. 7-11 in closed form: u^j - u^{j-1} = dt v^{j-1/2}, so v^j = (v^{j-1/2} + v̂)/2 and
+    # v^{j+1/2} = alpha v^{j-1/2} + beta dt a^j with c = D dt, alpha = 1 - c + c²/2, beta = 1 - c/2
+    field_c = [(damping if (tr or damp_rotations) else 0.0) * dt for tr in disc.field_translational]
+    alpha = tuple(1.0 - c + c * c / 2 for c in field_c)
+    gd_field = tuple((1.0 - c / 2) * dt * dt / mf for c, mf in zip(field_c, disc.field_mass))
+    n = len(disc.x)
+    gd = np.tile(np.asarray(gd_field, float), n)
+    pres_dofs = np.array(sorted(disc.prescribed), dtype=np.int64)
+    gd[pres_dofs] = 0.0
+    bG = gd * disc.b
+    alpha_dof = np.tile(np.asarray(alpha), n)
+    if nf * n <= WHOLE_DOFS:
+        st = WholeStep(disc, gd, alpha_dof, kappa, bG)
+        apply_K = disc.K.__matmul__
+    else:
+        st = StencilStep(disc, gd, alpha, kappa, bG, gd_field)
+        apply_K = disc.op.matvec
+    free = np.ones(nf * n, bool)
+    free[pres_dofs] = False
+    pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
+    moving = np.array([dof for dof, _ in pres], dtype=np.int64)
+    ledger_K = apply_K
+    if len(moving):  # the ledger's K: rows of the moving DOFs are their columns (symmetric completion)
+        Kcols = _columns(disc, moving)
+
+        def ledger_K(u):
+            y = apply_K(u)
+            y[moving] = Kcols @ u
+            return y
+
+    weights = disc.weights
+    if weights is None:
+        weights = np.ones(nf * n)
+        weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
+    ledger = EnergyLedger(ledger_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n), kappa * dt, weights)
+    if len(moving):  # the support work ∫ (K u - b)_p du_p, one small product per step
+        Kp = st.on_state(Kcols)
+        bp = disc.b[moving]
+        react = Kp @ st.flat - bp
+        up = np.zeros(len(moving))
+    # from rest: v^0 = 0 with the loads acting from t = 0, so v^{-1/2} = -dt/2 a^0 (second order; Eq. 12's
+    # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state:
+    # measured 2.5e-3 at 0.1 of the step on a clamped rod, first order in dt)
+    V0 = -0.5 * dt * dt * disc.b / disc.mass
+    V0[pres_dofs] = 0.0
+    st.start(V0)
+    times, vals, rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
+    ledger.sample(0.0, np.zeros(nf * n), np.zeros(nf * n))
+    with np.errstate(over="ignore", invalid="ignore"):
+        for s in range(1, steps + 1):
+            st.step()
+            t = s * dt
+            up_new = [float(motion_value(mot, t)) for _, mot in pres]
+            for (dof, _), value in zip(pres, up_new):
+                st.set(dof, value)
+            if len(moving):
+                r_new = Kp @ st.flat - bp
+                up_new = np.array(up_new)
+                ledger.add_support_step(0.5 * (react + r_new), up_new - up)
+                react, up = r_new, up_new
+            if s % record_every == 0 or s == steps:
+                if s - last_ledger >= ledger_every or s == steps:
+                    last_ledger = s
+                    u, V = st.state(), st.velocity()
+                    Vn = alpha_dof * V + gd * (disc.b - apply_K(u + kappa * V))
+                    ratio = ledger.blown_up(ledger.sample(t, u, (V + Vn) / (2 * dt), u + Vn, Vn / dt))
+                else:  # between ledger samples: only a non-finite state stops the run
+                    ratio = None if np.isfinite(st.amax()) else float("inf")
+                if ratio is not None:
+                    raise SolveError(_blow_up_message(disc, dt, limit, s, t, ratio, stabilisation, context))
+                times.append(t)
+                vals.append(Pm @ st.field(0))
+                if nf == 2:
+                    rots.append(Pm @ st.field(1))
+    return History(
+        np.array(times),
+        probes,
+        np.array(vals),
+        np.array(rots) if nf == 2 else None,
+        st.state(),
+        disc.x,
+        dt,
+        limit,
+        steps,
+        damping,
+        stabilisation,
+        omega1,
+        ledger.arrays(disc.x[1] - disc.x[0]),
+        ledger.drift(),
+        ledger.scheme_drift(),
+    )
+
+
+def _columns(disc: Discrete, dofs: np.ndarray) -> sp.csr_matrix:
+    """K[:, dofs]ᵀ (len(dofs) x all DOFs) from the rows of the points within the operator's reach, the
+    diagonal entry set so that the row gives no force in the rigid mode of the DOF's field (the end row's
+    own diagonal belongs to an equation the support replaces, not to an energy)."""
+    nf, n, h = disc.nf, len(disc.x), disc.op.reach
+    pts = np.unique(np.clip((dofs // nf)[:, None] + np.arange(-h, h + 1)[None, :], 0, n - 1))
+    rows = disc.op.rows_csr(pts).tocsc()[:, dofs].T.tocsr()  # (len(dofs) x len(pts) nf)
+    sel = (nf * pts[:, None] + np.arange(nf)[None, :]).ravel()
+    C = rows.tocoo()
+    out = sp.csr_matrix((C.data, (C.row, sel[C.col])), shape=(len(dofs), nf * n)).tolil()
+    for i, d in enumerate(dofs):  # the diagonal: no energy in the rigid mode of the DOF's field
+        r = np.zeros(nf * n)
+        if d % nf == 0:  # translation (w, u, twist): a rigid translation
+            r[0::nf] = 1.0
+        else:  # rotation γ: w = (x - x_d) θ, γ = θ
+            r[0::nf], r[1::nf] = disc.x - disc.x[d // nf], 1.0
+        out[i, d] = 0.0
+        out[i, d] = -float(out[i].toarray().ravel() @ r) / r[d]
+    return out.tocsr()
+
+
+def _blow_up_message(
+    disc: Discrete, dt: float, limit: float, s: int, t: float, ratio: float, kappa: float, context: str
+) -> str:
+    """One line: the step, the limit, what grew and what to change."""
+    head = (
+        f"dt = {dt:.4g} s: the explicit integration blew up at step {s} (t = {t:.4g} s; stored energy "
+        f"{ratio:.2g} x the work put in)"
+    )
+    where = f" ({context})" if context else ""
+    if dt > limit * (1 + 1e-9):
+        return f"{head}; the stable limit is {limit:.4g} s; use time_step <= {limit:.4g} s or leave time_step out"
+    detail = ""
+    if disc.n_free <= 1500:  # a dense eigenvalue solve of a few seconds at most
+        lam = np.linalg.eigvals(mass_scaled(disc, disc.free).toarray())
+        growth = np.abs(np.sqrt(lam.astype(complex)).imag)  # mode ~ exp(±i sqrt(λ) t)
+        k = int(np.argmax(growth))
+        if growth[k] > 0:
+            detail = (
+                f": M^-1 K has the eigenvalue {lam[k]:.3g} (the mode grows like exp({growth[k]:.3g} t), "
+                "a real part below zero or an imaginary part)"
+            )
+    # a beam operator not written from an energy (pd-timoshenko paper, corrected): variant energy has no growing mode
+    beam = disc.nf == 2 and disc.weights is None
+    instead = ", or use variant = energy (its operator is symmetric: no growing mode)" if beam else ""
+    return (
+        f"{head}; dt is below the stable limit {limit:.4g} s, so a smaller step does not help: the operator's "
+        f"boundary closures{where} have a growing mode{detail}; change the horizon or the number of points, "
+        f"or damp more (damping_ratio){instead}"
+    )

@@ -1,0 +1,24 @@
+"""O'Grady & Foster: a non-ordinary state-based bond-pair (rotational spring) beam (model ``pd-bond-pair``).
+
+J. O'Grady, J. Foster, "Peridynamic beams: a non-ordinary, state-based model", International Journal of Solids
+and Structures 51(18) (2014) 3177–3183, doi:10.1016/j.ijsolstr.2014.05.014; LaTeX source
+github.com/johntfoster/BeamPaper (docs/references.md). Each pair of collinear bonds is a rotational spring; its
+energy is Eq. 2, its small-rotation form the bond-pair stencil. docs/models/ogrady.md is the guide.
+
+================  ===========================================================  ====================================
+equation          what                                                         implemented by
+================  ===========================================================  ====================================
+Eq. 1–2           the bond-pair energy, the angle between the bonds            ``nonlinear.NonlinearBondPair``
+                                                                               (large rotations)
+Eq. 2, small      the linear stencil Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k     ``model.PDBondPair``
+rotations         - 4 w_{k-j} + w_{k-2j})
+§3.1              alpha calibrated on the family sum, EI / Σ omega xi^2 dx     ``model.PDBondPair.alpha``
+                  (``variant = corrected``); 3 EI / delta^3 is a reconstruction
+                  (``variant = paper``)
+ends              mirror (reflection) images and the axial condition           ``ends``
+================  ===========================================================  ====================================
+"""
+
+from .model import MODELS
+
+__all__ = ["MODELS"]

@@ -1,0 +1,594 @@
+"""Model ``pd-higher-order``: PD higher-order beam (Yang, Oterkus & Oterkus 2020, seed 002).
+
+(~500 lines: this docstring of the paper's equations and the two variants' option list are most of it; the
+bond kernels, end conditions and outputs live in ``_higher_order_bonds``, ``_ends`` and ``_outputs``.)
+
+Kinematics (Eq. 2–3): u(x, z) = z theta + z^3 theta*, w(x, z) = w + z^2 w*; four DOFs per material
+point, ordered (theta, theta*, w, w*) as in Eq. 16a. Node grid x_k = k dx, k = 0..n-1 (ends included).
+A section given by area/inertia is treated as the equivalent rectangle of height ``Section.depth``
+(h = sqrt(12 I / A)); all energies are per unit cross-section area (V_k = A dx cancels A).
+
+Strain energy (Eq. 9 made peridynamic by the transformations Eq. 14a–f / A38a–f, assembled in Eq. 15).
+Per bond k -> j, xi = x_j - x_k, five bond measures, each ~ (a derivative) * xi for smooth fields::
+
+    a = theta_j - theta_k          s = 2 xi w*_k          c = theta*_j - theta*_k
+    g = w_j - w_k + xi theta_k     e = w*_j - w*_k + 3 xi theta*_k
+
+    W_k = 1/(2h) Σ_j omega_kj Q(a, s, c, g, e),   Q = m^T C m   (C: ``coefficients``)
+    Q = E/(1-nu^2) [h^3/12 (a^2 + 2 nu a s + s^2) + h^5/40 c (a + nu s) + h^7/448 c^2]
+        + G [h g^2 + h^5/80 e^2 + h^3/6 g e]
+
+with omega_kj = V_j / (delta^2 A |xi|) in the paper (Eq. 14: (1/delta^2 A) Σ ... / |xi| V_j).
+The static equations are the Euler–Lagrange equations of Eq. 20–21 without inertia:
+dU/du_k = b_k V_k, i.e. K u = F with K = Σ_k V_k d^2 W_k / du^2 (``bond_block`` per bond). Eq. 22c–d
+(legible) are rows of this K (checked symbolically in tests/test_pd_higher_order.py); Eq. 22a–b are
+damaged in the source and are taken from the energy instead. Loads (Eq. 16b): b_z on w, b_theta on
+theta; a point force P gives F_w = P, a ccw point moment C gives F_theta = -C (the paper's theta is
+minus the counter-clockwise rotation: gamma = theta + w' vanishes for w' = ccw rotation).
+
+Variants
+--------
+``paper`` (faithful): delta = (m + 0.015) dx, omega = 1/(delta^2 A |xi|) V_j (Eq. 14) for the members
+j = 1..J each side. Family volumes (option ``volumes``): ``partial`` (default) is the authors' convention
+(Oterkus/Madenci, reference [17] and the sister paper seed 000's "volume correction"): a member with
+delta - dx/2 < xi < delta + dx/2 gets the volume fraction beta = (delta + dx/2 - xi)/dx, so at 3.015 dx the
+third neighbour carries 0.515 and Σ_j omega xi^2 = 2 Σ beta_d d / (delta/dx)^2 = 9.09/9.090225, i.e. the
+continuous integral of Eq. A30 (δ^2) to 2.5e-5; ``full`` gives every member inside delta a whole cell,
+2 (1 + 2 + 3) / 3.015^2 = 12/9.090225 = 1.320: a uniformly 32 % stiffer operator (not the paper's).
+Boundaries (Appendix B) by fictitious layers of J points mirrored (option ``mirror``): ``point`` (default)
+about the end point, which is a material point and is held (clamped: w, w* symmetric and theta, theta*
+antisymmetric, w = w* = 0 at the end point, Eq. B39–B40; simply supported: the opposite, Eq. B41, w and w*
+held); read from the text: the conditions are "for the material point adjacent to the clamped end" (zero
+w and rotation there; zero w and curvature for the simple support), which an image about that point gives,
+and the sister paper mirrors "with respect to the first adjacent material point which is fixed".
+``boundary``: cell-centred points x = (k + 1/2) dx, dx = L / points, images i' of the real points i = 1..J
+about the boundary between 1 and 1' (Eq. B39–B41 with 1' a point of the fictitious layer), clamped
+w(1) = w*(1) = 0 (theta(1) then not zero), pinned and guided nothing held. Guided, not in the paper: the
+clamped mirror without w = 0. A free end has no fictitious layer (truncated families). The equations are
+those of Eq. 22 at the real points, the fictitious DOFs substituted by their images (a non-symmetric
+system). Loads on the mid-surface (Eq. 16b) while the plane-stress reference loads the top face: the
+simply supported benchmarks differ from it by that, not by the operator (option ``loads = faces``).
+
+``corrected`` (default), each change measured in tests/test_pd_higher_order.py:
+1. micro-modulus calibrated on the discrete family of each point: omega_kj = beta_j / (|xi| S_k),
+   S_k = Σ_j beta_j |xi_j| over the actual family (partial volume beta = 1/2 for the member at
+   delta = m dx), so every W_k is exact for linear fields, also on truncated families near the ends
+   (the same operator as the paper's partial volumes in the interior, exact also on truncated families);
+2. shear measures along the bond (option ``shear = path``, :func:`path_measures`): g = w_j - w_k + the
+   trapezoid of theta over the bond's nearest-neighbour segments, e likewise with 3 theta*. With theta_k
+   alone (Eq. 14d-f, ``shear = point``) a pure bending field leaves g = -theta' xi^2 / 2, a spurious shear
+   energy G h theta'^2 delta^2 / 8 next to E h^3 theta'^2 / 12, a stiffening of ~ (G/E) 1.5 (delta/h)^2;
+   with the bond-mean rotations (theta_k + theta_j)/2 (``shear = centred``) that is gone, but the J bonds'
+   measures cannot all vanish for a cubic w (trapezoid errors ~ xi^3 w'''/12 that differ bond by bond), a
+   penalty ~ (G/E) xi^4 / (h L)^2 times the bending energy: shear locking once dx is many depths. Summed over
+   the segments every bond's g is a sum of nearest-neighbour measures, which can all vanish together
+   (no locking); for smooth fields g = xi (w' + theta) + O(xi dx^2) as before;
+3. no fictitious points (option ``ends = truncated``): the discrete energy U = Σ_k V_k W_k with
+   trapezoidal volumes (dx/2 at the ends) is minimised with the essential conditions on the end point
+   (clamped theta = theta* = w = w* = 0: the whole end face fixed; guided theta = theta* = 0; pinned
+   w + h^2/20 w* = 0, option ``pin = face``); natural conditions (free faces, moment-free pins) come out of
+   the minimisation as in a finite-element model. The paper's mirror ghosts force w' = 0 at a clamped
+   end (zero shear strain where the shear force is largest);
+4. loads where the plane-stress reference applies them (option ``loads = faces``): distributed loads and
+   interior forces on the top face (work on w + h^2/4 w*), end forces as a parabolic shear traction
+   (w + h^2/20 w*), end moments as a linear normal traction (theta + 3 h^2/20 theta*);
+5. end layers that pass the patch test (option ``end_layer = patch``,
+   :func:`~pdverify.papers.yang.bonds.end_layer_weights`): the per-point
+   calibration alone (``end_layer = point``) leaves a uniform state out of equilibrium in the end layers (ghost
+   forces, as in quasicontinuum coupling; ``ends = taylor`` does the same): first order at m >= 2. The bonds of
+   the 2J + 1 points at each end get the least change of the per-point weights for which every point stays
+   calibrated and every nearest-neighbour segment carries the same total weight (the patch test of the segment
+   form of the energy with the along-the-bond measures); m = 1 is unchanged;
+6. bonds cut at interior point loads (option ``cuts = loads``, :meth:`PDHigherOrder.cut_points`): the beam is
+   the sum of sub-beams sharing each loaded point, each with its own patch-test end layers, so no bond averages
+   the kink of w* (and of the shear) under a concentrated load; loads exactly on a point, at least 4J + 1
+   spacings from the ends and from each other;
+7. the clamp's w* condition through its boundary layer (option ``clamp = layer``, :mod:`._higher_order_layer`):
+   w* = 0 on the clamped face makes a layer ~0.1 h wide; held on the end point it acts over dx/2 instead (first
+   order once dx is many layer widths: every slender beam). w* of the end point is free, tied to zero by the
+   spring whose series with the grid's own layer has the continuous layer's stiffness; the face condition where
+   the grid resolves the layer.
+Measured orders: docs/models/yang.md.
+
+Cost: the operator is assembled straight into LAPACK's band layout (:meth:`PDHigherOrder.assemble_band`):
+the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
+the rows of the ~2J points next to each end (truncated or ghost families, end volumes, Appendix B's images,
+end conditions) from the exact sparse route on a small window, the end conditions as unit rows
+(``Band.fix``); the band is factorised in place above 20,000 unknowns. ``pdverify bench`` (cantilever,
+100,000 points, 400,000 DOFs): assembly 0.02 s, whole run 1.2x the bare banded solve of the same matrix
+(was 7x: 0.6 s of sparse products and CSR bookkeeping). The assembled entries are the same bits as the
+whole-grid sparse route (tests/test_pd_higher_order.py).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...core.contract import Model, Option, Rule, System
+from ...core.errors import InputError
+from ...core.result import Result, Timer
+from ...core.scene import PointForce, PointMoment, Scene
+from ...core.stations import STATIONS_HELP, parse_stations
+from ...numerics.band import Band
+from ...numerics.families import family
+from ...numerics.linalg import solve_linear
+from ...numerics.loads import boundary_layer_warnings
+from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
+from .bonds import assemble_blocks, bond_weights, uniform_blocks
+from .ends import constraint_map, end_conditions, extended_volumes, load_vector, mirror_map, taylor_map
+from .layer import grid_layer_stiffness, layer_constants, spring
+from .outputs import reactions, section_stresses
+
+
+def put_rows(B: Band, r0: int, c0: int, D: np.ndarray) -> Band:
+    """Overwrite the rows r0 .. r0 + len(D) - 1 of the band with the dense rows D (columns c0 ..): the
+    rows are cleared, then D's nonzero entries written (``Band`` has no assignment of entries)."""
+    B.clear_rows(np.arange(r0, r0 + D.shape[0]))
+    i, j = np.nonzero(D)
+    return B.add_entries(r0 + i, c0 + j, D[i, j])
+
+
+# -- the model -------------------------------------------------------------------------------
+
+
+class PDHigherOrder(Model):
+    name = "pd-higher-order"
+    title = "PD higher-order beam (theta, theta*, w, w* per point)"
+    source = "Yang, Oterkus & Oterkus 2020, Peridynamic higher-order beam formulation (seed 002)"
+    theory = "higher-order"
+    options = (
+        Option(
+            "points", int, 201, "material points along the beam, ends included (paper: 1001 for dx = 1 mm)", minimum=5
+        ),
+        Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
+        Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
+        Option(
+            "ends",
+            str,
+            "auto",
+            "auto (mirror for paper, truncated for corrected) | mirror (Appendix B fictitious "
+            "layers) | truncated (no ghosts, per-point calibration) | taylor (ghosts extrapolated by a polynomial "
+            "of the real points, energy of the real points only)",
+            choices=("auto", "mirror", "truncated", "taylor"),
+        ),
+        Option("ghost_degree", int, 3, "degree of the ghost extrapolation (ends = taylor)", minimum=1, maximum=6),
+        Option(
+            "pin",
+            str,
+            "auto",
+            "pinned end: auto (mid for paper, face for corrected) | mid (w = 0 on the axis) | "
+            "face (parabola-weighted mean of "
+            "w + z^2 w* over the end face = 0: w + h^2/20 w* = 0, as fem-plane-stress pin = face)",
+            choices=("auto", "mid", "face"),
+        ),
+        Option(
+            "shear",
+            str,
+            "auto",
+            "auto (point for paper, path for corrected) | point (Eq. 14d-f: theta_k xi) | "
+            "centred (bond-mean rotations (theta_k + theta_j)/2 xi: no spurious G h theta'^2 delta^2 energy) | path "
+            "(the rotations' trapezoid along the bond's segments: no shear locking of slender beams)",
+            choices=("auto", "point", "centred", "path"),
+        ),
+        Option(
+            "loads",
+            str,
+            "auto",
+            "auto (mid for paper, faces for corrected) | mid (Eq. 16b: b_z on w, b_theta on theta) | "
+            "faces (where the plane-stress "
+            "reference puts them: top face, parabolic end shear, linear end traction)",
+            choices=("auto", "mid", "faces"),
+        ),
+        Option(
+            "volumes",
+            str,
+            "partial",
+            "paper variant's family volumes: partial (the authors' convention: the "
+            "member at 3 dx inside delta = 3.015 dx gets (delta + dx/2 - xi)/dx = 0.515) | full (whole cells "
+            "inside delta)",
+            choices=("partial", "full"),
+        ),
+        Option(
+            "mirror",
+            str,
+            "point",
+            "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
+            "images about the end point, which is held: the material point at the support, as in Appendix B's text "
+            "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
+            "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
+            choices=("boundary", "point"),
+        ),
+        Option(
+            "end_layer",
+            str,
+            "patch",
+            "bond weights of the points within 2J of an end (ends = truncated): patch (each point calibrated and "
+            "every segment carrying the same total, so a uniform state is in equilibrium: second order at any m) | "
+            "point (per-point calibration only: ghost forces, first order at m >= 2)",
+            choices=("patch", "point"),
+        ),
+        Option(
+            "cuts",
+            str,
+            "loads",
+            "with end_layer = patch: loads (no bond crosses a point that carries an interior point force or moment; "
+            "each side gets its own patch-test layer: second order under point loads) | none",
+            choices=("loads", "none"),
+        ),
+        Option(
+            "clamp",
+            str,
+            "auto",
+            "clamped end: auto (face for paper, layer for corrected) | face (w* = 0 held on the end point) | layer "
+            "(w* = 0 through the spring of the face's boundary layer, ~0.1 h wide: second order also when the "
+            "spacing is many depths; ends = truncated or taylor)",
+            choices=("auto", "face", "layer"),
+        ),
+        Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
+    )
+
+    assembles = True
+    _PAPER = (("variant", "paper"),)
+    variant_rules = (
+        Rule(
+            _PAPER,
+            "horizon",
+            "Eq. 14: delta = (m + 0.015) dx, full volumes over whole families of m points; "
+            "use variant = corrected for a fractional horizon",
+            whole=True,
+        ),
+        Rule(
+            _PAPER,
+            "ends",
+            "Appendix B: fictitious mirror layers (Eq. B39-B41), free ends truncated",
+            allowed=("auto", "mirror"),
+        ),
+        Rule(
+            _PAPER,
+            "pin",
+            "Eq. B41: a simply supported end holds w = w* = 0 at the end point (mid)",
+            allowed=("auto", "mid"),
+        ),
+        Rule(_PAPER, "shear", "Eq. 14d-f: the shear measures use theta_k xi (point)", allowed=("auto", "point")),
+        Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
+        Rule(_PAPER, "clamp", "Eq. B39: w = w* = 0 at the clamped end point (face)", allowed=("auto", "face")),
+    )
+
+    def about(self, params: dict) -> str:
+        """The mirror of the paper's fictitious layers: "boundary" or "point" (every other variant/end: "point")."""
+        if params["variant"] == "paper" and self.ends(params) == "mirror":
+            return params.get("mirror", "point")
+        return "point"
+
+    def grid(self, scene: Scene, params: dict) -> np.ndarray:
+        """x_k = k dx, ends included; mirrored about the boundary: cell centres (k + 1/2) dx, dx = L / points."""
+        n = params["points"]
+        if self.about(params) == "boundary":
+            return (np.arange(n) + 0.5) * (scene.length / n)
+        return np.linspace(0.0, scene.length, n)
+
+    def constants(self, scene: Scene):
+        mat = scene.material
+        h = scene.section.depth
+        return coefficients(mat.E, mat.poissons_ratio, mat.G, h), h
+
+    @staticmethod
+    def choice(params: dict, key: str) -> str:
+        """An option's value with ``auto`` resolved (paper: Appendix B and Eq. 16b; corrected: see the docstring)."""
+        auto = {
+            "ends": ("mirror", "truncated"),
+            "pin": ("mid", "face"),
+            "loads": ("mid", "faces"),
+            "clamp": ("face", "layer"),
+        }[key]
+        v = params.get(key, "auto")
+        return auto[params["variant"] != "paper"] if v == "auto" else v
+
+    def ends(self, params: dict) -> str:
+        return self.choice(params, "ends")
+
+    def clamp(self, params: dict) -> str:
+        """The clamped end's w* condition: ``face`` or ``layer`` (auto: layer for the corrected variant's
+        essential end conditions, face for the paper and for mirror layers, whose images hold w*)."""
+        clamp = self.choice(params, "clamp")
+        if self.ends(params) != "mirror":
+            return clamp
+        if params.get("clamp", "auto") == "layer":
+            raise InputError("clamp = layer needs ends = truncated or taylor (mirror layers hold w* by their images)")
+        return "face"
+
+    def reference_options(self, params: dict) -> dict | None:
+        """exact-higher-order with the same loads and pin (its options of those names). None for the paper variant
+        and mirror ends: their fictitious layers hold w' (symmetric images), not the theory's natural conditions."""
+        params = {o.name: o.default for o in self.options} | dict(params)
+        if params["variant"] == "paper" or self.ends(params) == "mirror":
+            return None
+        return {"loads": self.choice(params, "loads"), "pin": self.choice(params, "pin")}
+
+    def assemble_band(self, scene: Scene, params: dict):
+        """(B, b, (drop, tie), info): B u = b on the real points' interleaved DOFs u = (theta, theta*, w, w*)
+        per point, assembled straight into a :class:`~pdverify.numerics.band.Band` (the matrix ``solve`` factorises).
+
+        Every row whose point, bonds and partners' bonds lie away from the ends is the same 4x4 block
+        stencil (Eq. 15's Hessian with the interior weights, :func:`uniform_blocks`), written diagonal by
+        diagonal. The rows of the few points near each end (truncated families and their calibration,
+        end volumes, ghost layers folded onto their images, the end conditions) are computed exactly on a
+        small window of the extended grid, by the sparse route of Eq. 15 + Appendix B
+        (:func:`assemble_blocks`, :func:`mirror_map` / :func:`taylor_map`, :func:`constraint_map`), and
+        overwrite those rows. The ties of ``pin = face`` are folded in (u_slave = c u_master) and the held
+        DOFs (``drop``, and the slaves) are unit rows with cleared columns (``Band.fix``): the numbering of
+        u is kept, u_slave is restored after the solve."""
+        x = self.grid(scene, params)
+        n, dx = len(x), x[1] - x[0]
+        m, variant, ends = params["horizon"], params["variant"], self.ends(params)
+        fractions, about = params.get("volumes", "partial"), self.about(params)
+        d, _ = family(m, dx, variant, fractions)
+        J = int(d.max())
+        p = params["ghost_degree"]
+        if 2 * J + 1 > n or (ends == "taylor" and p + 1 > n):
+            raise InputError(
+                f"horizon = {m:g}: the family ({J} points each side) does not fit in {n} points; "
+                "use more points or a smaller horizon"
+            )
+        C, h = self.constants(scene)
+        left, right = scene.supports.left, scene.supports.right
+        pin = self.choice(params, "pin")
+        clamp = self.clamp(params)
+        info = {
+            "depth": h,
+            "ends": ends,
+            "section": "rectangle"
+            if scene.section.height is not None
+            else f"equivalent rectangle h = sqrt(12 I / A) = {h:.6g} m",
+        }
+        shear = params.get("shear", "auto")
+        path = shear == "path" or (shear == "auto" and variant != "paper")
+        centred = shear == "centred"
+        info["shear"] = "path" if path else "centred" if centred else "point"
+        symmetric = not (
+            ends == "mirror" and variant == "paper"
+        )  # paper: Eq. 22 at the real points, images substituted
+        if ends == "mirror":
+            G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
+            fold = lambda nw, Gw: mirror_map(nw, Gw, left, right, about)  # noqa: E731
+            info.update(
+                boundary=f"fictitious mirror layers (Appendix B) about the "
+                f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated",
+                ghosts_per_end=list(G),
+            )
+        elif ends == "taylor":
+            G, calibrate, reach = (J, J), "family", p
+            fold = lambda nw, Gw: taylor_map(nw, Gw, p)  # noqa: E731
+            info.update(
+                boundary=f"ghosts extrapolated (degree {p}), energy of the real points, essential end conditions",
+                ghosts_per_end=[J, J],
+            )
+        else:
+            G, calibrate, reach, fold = (0, 0), params.get("end_layer", "patch"), 0, None
+            info.update(boundary="truncated families (per-point calibration), essential end conditions")
+        N = n + G[0] + G[1]
+
+        cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
+        if cuts:
+            info["cuts"] = [float(x[c]) for c in cuts]
+
+        def weights(k, cuts=cuts):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
+            return bond_weights(
+                N,
+                m,
+                dx,
+                variant,
+                extended_volumes(k, n, G, dx, ends, variant),
+                calibrate,
+                points=k,
+                fractions=fractions,
+                cuts=cuts,
+            )
+
+        def window(r0: int, r1: int, constrained: bool = True) -> np.ndarray:
+            """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
+            window reaches: exact in the rows whose bonds and ghost images lie in the window. ``constrained =
+            False``: before the end conditions (the rows of the held DOFs kept: the reactions K u - b)."""
+            g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
+            nw = r1 - r0
+            k = np.arange(G[0] + r0 - g[0], G[0] + r1 + g[1])
+            Kx = assemble_blocks(len(k), dx, C, weights(k), h, centred, path)
+            if fold is None:
+                K = Kx
+            elif symmetric:
+                P = fold(nw, g)
+                K = (P.T @ Kx @ P).tocsr()
+            else:
+                K = (Kx[NF * g[0] : NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
+            if not constrained:
+                return K.toarray()
+            T = constraint_map(
+                nw,
+                left if r0 == 0 else "free",
+                right if r1 == n else "free",
+                variant,
+                pin,
+                h,
+                numbering="points",
+                about=about,
+                clamp=clamp,
+            )
+            if symmetric:
+                return (T.T @ K @ T).toarray()
+            D = (K @ T).toarray()
+            D[
+                end_conditions(
+                    nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h, about, clamp
+                )[0]
+            ] = 0.0
+            return D
+
+        # rows of each end from its window (beyond 2J: uniform; one spare); the patch-test end layer changes the
+        # bonds of the first 2J + 1 points, which reach J further
+        rows_end = max(2 * J + (J if calibrate == "patch" else 0), reach + 1) + 1
+        span = rows_end + J  # window points: those rows and their partners
+        if n >= 2 * span:
+            parts = [(0, span, 0, rows_end), (n - span, n, span - rows_end, span)]
+            R = 3 * J + 2  # rows changed by a cut: its two end layers (2J + 1 points each side) and their bonds
+            for c in cuts:
+                r0, r1 = max(0, c - R - J), min(n, c + R + J + 1)
+                parts.insert(-1, (r0, r1, c - R - r0, c + R + 1 - r0))
+        else:  # a small grid: one window is the whole matrix
+            parts = [(0, n, 0, n)]
+        dense = [(r0, a, window(r0, r1)[NF * a : NF * b]) for r0, r1, a, b in parts]
+        # the unconstrained rows of the two end points (reactions = those rows times u, minus the load)
+        ends_rows = []  # mirror ends: the images carry part of the reaction, no held row gives it
+        for k_end, (r0, r1, _, _) in ((0, parts[0]), (n - 1, parts[-1])) if ends != "mirror" else ():
+            D = window(r0, r1, constrained=False)
+            ends_rows.append((k_end, NF * r0, D[NF * (k_end - r0) : NF * (k_end - r0 + 1)]))
+        bw = NF * J + NF - 1
+        for _r0, a, D in dense:
+            i, j = np.nonzero(D)
+            if len(i):
+                bw = max(bw, int(np.abs(j - (i + NF * a)).max()))
+        B = Band(NF * n, bw, bw)
+        if len(parts) > 1:
+            mid = G[0] + n // 2
+            interior = {off: float(wt[0]) for off, wt in weights(np.array([mid]), cuts=()).items()}
+            B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
+        for r0, a, D in dense:
+            put_rows(B, NF * (r0 + a), NF * r0, D)
+        drop, tie = end_conditions(n, left, right, variant, pin, h, about, clamp)
+        if clamp == "layer":
+            info["clamp_layer"] = self.clamp_springs(B, scene, n, dx, span, drop)
+        F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
+        info["end_rows"] = [(k, c0, D, F[NF * k : NF * k + NF].copy()) for k, c0, D in ends_rows]
+        b = F.copy()
+        if symmetric:  # T^T F: the slave's load acts on its master (the paper variant has no ties)
+            for slave, master, c in tie:
+                b[master] += c * F[slave]
+        B.fix(drop, b)
+        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family", fractions=fractions)
+        info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
+        info.update(pin=pin, loads=self.choice(params, "loads"), clamp=clamp)
+        if variant == "paper":
+            info.update(volumes=fractions, mirror=about)
+        return B, b, (drop, tie), info
+
+    def clamp_springs(self, B: Band, scene: Scene, n: int, dx: float, reach: int, drop: list) -> dict:
+        """``clamp = layer``: the spring k = S s_d / (s_d - S) on w* of each clamped end point, added to the band
+        (:mod:`._higher_order_layer`); where the grid's layer is already as stiff as the face's (s_d <= S) w* is
+        held (appended to ``drop``). Returns {side: {"w_star": "spring" | "held ...", "grid_over_face": s_d / S,
+        "spring_over_face": k / S, "width": the layer's width ell}}."""
+        mat = scene.material
+        S, ell = layer_constants(mat.E, mat.poissons_ratio, mat.G, scene.section.depth)
+        ends = [(s, e) for s, e in (("left", 0), ("right", n - 1)) if getattr(scene.supports, s) == "clamped"]
+        grid = [grid_layer_stiffness(B, end, n, reach, dx, ell) for _, end in ends]  # both before either spring
+        out = {}
+        for (side, end), s_d in zip(ends, grid):
+            k = spring(s_d, S)
+            dof = NF * end + WS
+            if np.isfinite(k):
+                B.add_entries(np.array([dof]), np.array([dof]), np.array([k]))
+            else:
+                drop.append(dof)
+            ratio = (s_d / S, k / S) if S > 0 else (np.inf, np.inf)
+            out[side] = {
+                "w_star": "spring" if np.isfinite(k) else "held (the grid resolves the layer)",
+                "grid_over_face": ratio[0],
+                "spring_over_face": ratio[1],
+                "width": ell,
+            }
+        return out
+
+    @staticmethod
+    def cut_points(scene: Scene, params: dict, x: np.ndarray, J: int) -> tuple[int, ...]:
+        """Interior grid points carrying a point force or moment where the corrected variant cuts the bonds
+        (option ``cuts = loads``; ends = truncated, end_layer = patch): loads exactly on a point, at least 4J + 1
+        spacings from either end and from every other such load (a symmetric rule: mirror scenes cut alike)."""
+        if params.get("cuts", "loads") != "loads":
+            return ()
+        n, dx = len(x), x[1] - x[0]
+        cand = set()
+        for load in scene.loads:
+            if isinstance(load, (PointForce, PointMoment)):
+                p = (load.position - x[0]) / dx
+                i = int(round(p))
+                if abs(p - i) < 1e-9 and 0 < i < n - 1:
+                    cand.add(i)
+        gap = 4 * J + 1
+        return tuple(
+            sorted(c for c in cand if min(c, n - 1 - c) >= gap and all(abs(c - o) >= gap for o in cand if o != c))
+        )
+
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The band of :meth:`assemble_band` (the system ``solve`` factorises): u interleaved (theta, theta*,
+        w, w*) per real point, free = the DOFs not held; ``info["ties"]``: the (slave, master, c) of
+        ``pin = face`` (u_slave = c u_master, restored after the solve)."""
+        B, b, (drop, tie), info = self.assemble_band(scene, params)
+        return System(B, b, np.delete(np.arange(B.n), drop), dict(info, ties=tie))
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        with timer("assemble"):
+            system = self.assemble(scene, params)
+            binfo = dict(system.info)
+            tie = binfo.pop("ties")
+            end_rows = binfo.pop("end_rows")
+        with timer("solve"):
+            u, info = solve_linear(system.matrix, system.rhs, what=f"pd-higher-order ({params['variant']})")
+            for slave, master, c in tie:
+                u[slave] = c * u[master]
+        n = params["points"]
+        u = u.reshape(n, NF)
+        x = self.grid(scene, params)
+        dx = x[1] - x[0]
+        delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
+        info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
+        fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
+        reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
+        flags = boundary_layer_warnings(scene, x, reach)
+        if flags:
+            info.setdefault("warnings", []).extend(flags)
+        faces = info.get("loads") == "faces"
+        interior = [
+            ld
+            for ld in scene.loads
+            if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
+        ]
+        if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
+            cut = info.get("cuts", ())
+            uncut = [
+                ld.position for ld in interior if not any(abs(ld.position - c) <= 1e-9 * scene.length for c in cut)
+            ]
+            if uncut:
+                at = ", ".join(f"{a:.6g}" for a in uncut)
+                info.setdefault("warnings", []).append(
+                    f"point load at x = {at} not on a cut grid point (between two points, or within 4J + 1 spacings "
+                    "of an end or another point load): split between its neighbours, whose bonds average the kink "
+                    "under it, so w converges at first order near it (docs/models/yang.md); put the load on a grid "
+                    "point (points = L / spacing + 1)"
+                )
+        local = [ld.position for ld in interior if isinstance(ld, PointMoment) or faces]
+        if local:
+            at = ", ".join(f"{a:.6g}" for a in local)
+            info.setdefault("warnings", []).append(
+                f"concentrated load at x = {at}: the higher-order theory deforms the section under it (w*, theta*; "
+                "docs/models/yang.md), so within a few depths of the load w is not beam theory's and does not "
+                "converge to it (clamped-clamped, L/h = 7.4, load at 7/8 L: 7 % of the largest deflection)"
+            )
+        if end_rows:
+            info["reactions"] = reactions(end_rows, u.ravel(), scene.section.A)
+        stations = parse_stations(params.get("stations", ""), scene.length)
+        if len(stations):
+            mat = scene.material
+            info["sections"] = section_stresses(x, u, stations, binfo["depth"], mat.E, mat.poissons_ratio)
+        return self.new_result(
+            scene,
+            params,
+            x,
+            u[:, W].copy(),
+            rotation=-u[:, TH],
+            fields=fields,
+            dofs=system.unknowns,
+            timings=timer.timings,
+            info=info,
+        )
+
+
+MODELS = [PDHigherOrder()]

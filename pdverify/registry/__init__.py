@@ -1,0 +1,214 @@
+"""The model registry: every model of ``pdverify solve`` is found here, and :func:`run` solves a scene with one.
+
+A paper's package under ``pdverify.papers`` and each module of ``pdverify.exact`` list their models in
+``MODELS``; the registry imports them and collects them, so adding a model never means editing a central
+file. Models of other packages (the finite-element references of ``reference_fem`` too) arrive through the
+entry-point group ``pdverify.models`` (:mod:`pdverify.registry.plugins`). The contract a model follows
+(:class:`Model`, :class:`Option`, :class:`Rule`, :class:`System`) is :mod:`pdverify.core.contract`; it is
+re-exported here, where plug-ins have always found it.
+
+>>> sorted(get_model("pd-eb").supports), "dynamic" in get_model("pd-timoshenko").analyses
+(['clamped', 'free', 'guided', 'pinned', 'roller'], True)
+"""
+
+from __future__ import annotations
+
+import importlib
+import pkgutil
+import time
+
+import numpy as np
+
+from .. import exact, papers
+from ..core.contract import (
+    LOAD_TYPES,
+    MOTION_COMPONENT,
+    POINTS,
+    SUPPORTS,
+    Model,
+    Option,
+    Rule,
+    System,
+    points_from_spacing,
+    variant_problems,
+)
+from ..core.errors import InputError
+from ..core.reactions import equilibrium_reactions
+from ..core.result import Result, check_finite
+from ..core.scene import Scene
+from .external import ExternalModel, load_manifest
+from .plugins import discover, remember_manifest
+
+__all__ = [
+    "LOAD_TYPES",
+    "MOTION_COMPONENT",
+    "POINTS",
+    "SUPPORTS",
+    "Model",
+    "Option",
+    "Rule",
+    "System",
+    "as_flag",
+    "get_model",
+    "model_argument",
+    "models",
+    "points_from_spacing",
+    "problems",
+    "run",
+    "static_part",
+    "use_manifest",
+    "variant_problems",
+]
+
+_REGISTRY: dict[str, Model] | None = None
+
+
+def builtin_modules() -> list[str]:
+    """The modules that list built-in models in ``MODELS``: each paper's package (``pdverify.papers.<paper>``)
+    and each module of ``pdverify.exact``."""
+    found = []
+    for pkg, packages in ((papers, True), (exact, False)):
+        for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda i: i.name):
+            if not info.name.startswith("_") and info.ispkg == packages:
+                found.append(f"{pkg.__name__}.{info.name}")
+    return found
+
+
+def models() -> dict[str, Model]:
+    """All registered models by name (imported once). The built-in models are registered before the plug-ins
+    are imported, so a plug-in that asks for the models while it is imported sees those."""
+    global _REGISTRY
+    if _REGISTRY is None:
+        reg: dict[str, Model] = {}
+        for name in builtin_modules():
+            mod = importlib.import_module(name)
+            for m in getattr(mod, "MODELS", ()):
+                if m.name in reg:
+                    raise RuntimeError(f"model name {m.name!r} registered twice ({mod.__name__})")
+                reg[m.name] = m
+        _REGISTRY = reg
+        _REGISTRY = dict(sorted({**reg, **discover(reg)}.items()))
+    return _REGISTRY
+
+
+def use_manifest(path) -> str:
+    """Register the external model of the manifest at ``path`` (unless registered from the same file) and
+    return its name. The path is appended to ``PDVERIFY_MODELS_PATH``, so worker processes started later
+    (a process pool, a local Dask cluster, ``bench``'s subprocess) find it too. Raises InputError."""
+    from pathlib import Path
+
+    path = Path(path).resolve()
+    reg = models()
+    m = load_manifest(path)
+    old = reg.get(m.name)
+    if old is not None and not (isinstance(old, ExternalModel) and old.path == m.path):
+        raise InputError(f"{path}: name = {m.name!r}: a model of that name exists already; rename the external model")
+    reg[m.name] = m
+    remember_manifest(path)
+    return m.name
+
+
+def model_argument(name: str) -> str:
+    """A ``--model`` value: a model name as it is, a path to a manifest (``*.toml``) registered first."""
+    import os
+
+    if name.endswith(".toml") or os.sep in name:
+        return use_manifest(name)
+    return name
+
+
+def get_model(name: str) -> Model:
+    reg = models()
+    if name not in reg:
+        raise InputError(f"model = {name!r}: unknown model; available: {', '.join(reg)}")
+    return reg[name]
+
+
+def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
+    """The scene and options of the static response to a scene's loads (``static = true``): a dynamic
+    model runs its static analysis (option ``analysis``); a static-only model gets the scene without its
+    ``[dynamics]`` table, which it may drop only when the table prescribes no end motion."""
+    if "dynamic" in m.analyses:
+        if m.option("analysis") is None:
+            return scene, given
+        if given.get("analysis", "static") not in ("static", "auto"):
+            raise InputError(f"static = true and analysis = {given['analysis']!r}: give one of them")
+        return scene, dict(given, analysis="static")
+    d = scene.dynamics
+    if d is None:
+        return scene, given
+    moved = [
+        (side, k)
+        for side in ("left", "right")
+        if getattr(d, side) is not None
+        for k in MOTION_COMPONENT
+        if getattr(getattr(d, side), k) is not None
+    ]
+    if moved and not m.end_motions:
+        side, k = moved[0]
+        can = [n for n, x in models().items() if x.end_motions and getattr(x, MOTION_COMPONENT[k])]
+        raise InputError(
+            f"dynamics.{side}.{k}: model {m.name} cannot prescribe end motions, so its static part "
+            f"would leave out this one; use a model that can ({', '.join(can) or 'none installed'})"
+        )
+    return scene.model_copy(update={"dynamics": None}), given
+
+
+def problems(scene: Scene, m: Model, static: bool = False) -> list[str]:
+    """Every reason ``m`` cannot solve ``scene`` (its declared capabilities and its own check), one line
+    each; ``static``: only the static response to the loads is asked for (:func:`static_part`)."""
+    if static:
+        try:
+            scene, _ = static_part(scene, m, {})
+        except InputError as exc:
+            return exc.lines
+    return m.check(scene)
+
+
+def as_flag(value) -> bool:
+    """A yes/no run option given as a bool or a string (``-o static=true``)."""
+    if isinstance(value, bool):
+        return value
+    v = str(value).strip().lower()
+    if v in ("1", "true", "yes", "on"):
+        return True
+    if v in ("0", "false", "no", "off"):
+        return False
+    raise InputError(f"static = {value!r}: give true or false")
+
+
+def run(scene: Scene, model: str | Model, **given) -> Result:
+    """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
+
+    ``static = true`` (CLI ``-o static=true``; not a model option): the static response to the loads of a
+    scene that has a ``[dynamics]`` table (:func:`static_part`); without it a static-only model rejects
+    such a scene. Before solving, the scene is checked against the model's declared capabilities and the
+    options against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2).
+    Floating-point overflow and invalid operations inside the solve raise no numpy warning: a result that
+    holds NaN or inf is refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
+    t0 = time.perf_counter()
+    m = get_model(model) if isinstance(model, str) else model
+    if as_flag(given.pop("static", False)):
+        scene, given = static_part(scene, m, given)
+    found = m.check(scene)
+    if found:
+        raise InputError(found)
+    params = m.resolve(scene, given)  # the options, their variant's rules included
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        solved = m.solve(scene, params)
+    result = check_finite(solved)
+    if (
+        "reactions" not in result.info
+        and scene.is_straight
+        and scene.dynamics is None
+        and m.bending
+        and m.theory in ("euler-bernoulli", "timoshenko")
+        and len(result.x) >= 4
+    ):
+        result.info["reactions"] = equilibrium_reactions(
+            scene, result.x, result.w, result.rotation, result.fields.get("M")
+        )
+    result.timings["total_s"] = time.perf_counter() - t0
+    result.timings.setdefault("assemble_s", 0.0)
+    result.timings.setdefault("solve_s", 0.0)
+    return result
