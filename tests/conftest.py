@@ -1,95 +1,14 @@
-import copy
-import os
-import subprocess
-import sys
-from pathlib import Path
+"""pytest configuration: repeatable property tests, the tiers (docs in tests/README.md) and their time guard."""
 
 import pytest
+from helpers import scene_dict
 from hypothesis import settings
-
-from pdverify.core.scene import is_mechanism
 
 # Property tests draw the same examples on every run (a CI failure reproduces on any machine, and a green
 # run means the same thing each time); `pytest --hypothesis-profile=explore` searches afresh.
 settings.register_profile("repeatable", derandomize=True, database=None)
 settings.register_profile("explore", derandomize=False)
 settings.load_profile("repeatable")
-
-BASE = {
-    "name": "test beam",
-    "beam": {"length": 2.0},
-    "section": {"width": 0.05, "height": 0.1},
-    "material": {"youngs_modulus": 70e9, "poissons_ratio": 0.33},
-    "supports": {"left": "clamped", "right": "free"},
-    "loads": [],
-}
-
-
-SUPPORTS = ("clamped", "pinned", "free", "guided")
-# every support pair that holds the beam (the mechanisms are rejected by the scene validator)
-PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
-# forces and moments anywhere, also at both ends, uniform and sine loads on partial spans
-MIXED_LOADS = [
-    {"type": "point_force", "position": 0.7, "value": -300.0},
-    {"type": "point_moment", "position": 1.3, "value": 150.0},
-    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
-    {"type": "distributed", "value": 400.0, "shape": "sine"},
-    {"type": "point_force", "position": 2.0, "value": 80.0},
-    {"type": "point_moment", "position": 0.0, "value": -60.0},
-]
-# a force, a moment and span ends between the grid points of the usual grids (L = 2)
-OFF_GRID_LOADS = [
-    {"type": "point_force", "position": 0.733, "value": -100.0},
-    {"type": "point_moment", "position": 1.417, "value": 40.0},
-    {"type": "distributed", "value": -70.0, "start": 0.311, "end": 1.29},
-]
-
-
-def _sigint_default() -> None:
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
-def start_in_own_group(cmd: list[str]) -> subprocess.Popen:
-    """``cmd`` in a process group of its own (a test signals the whole group, as a terminal sends Ctrl-C), run
-    from the repository, pipes for its output, SIGINT at its default as for a terminal's foreground job: a
-    process started in the background by a non-interactive shell (``cmd &``, e.g. a CI runner) inherits
-    SIGINT ignored, and Python then installs no KeyboardInterrupt handler."""
-    return subprocess.Popen(
-        cmd,
-        cwd=Path(__file__).resolve().parents[1],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        start_new_session=True,
-        preexec_fn=_sigint_default,
-    )
-
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def pdverify_process(*args, cwd=ROOT, timeout: float = 300) -> subprocess.CompletedProcess:
-    """``python -m pdverify.apps.cli ARGS`` in a child process (text output captured; pdverify from this checkout):
-    for what only a real process shows (exit codes, stderr, signals, start-up)."""
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
-    return subprocess.run(
-        [sys.executable, "-m", "pdverify.apps.cli", *map(str, args)],
-        cwd=cwd,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=timeout,
-    )
-
-
-def scene_dict(left="clamped", right="free", loads=(), **over):
-    d = copy.deepcopy(BASE)
-    d["supports"] = {"left": left, "right": right}
-    d["loads"] = [dict(l) for l in loads]
-    for k, v in over.items():
-        d[k] = v
-    return d
 
 
 @pytest.fixture
@@ -102,12 +21,34 @@ def make_scene():
     return make
 
 
-def cli(args, capsys) -> tuple[int, str, str]:
-    """(exit code, stdout, stderr) of ``pdverify ARGS`` run in this process."""
-    from pdverify.apps.cli import main
+# -- the tiers' time budget ------------------------------------------------------------------------------
+# A default-tier test should take under TIER_BUDGET_S seconds (tests/README.md). Over-budget tests are listed at the
+# end of every run; with --tier-guard (on a quiet machine, when moving tests between tiers) they fail the run. A
+# plain run never fails on time: no test may pass or fail with the machine's load.
+TIER_BUDGET_S = 3.0
+_OVER_BUDGET: list[tuple[str, float]] = []
 
-    capsys.readouterr()
-    with pytest.raises(SystemExit) as exc:
-        main([str(a) for a in args])
-    out, err = capsys.readouterr()
-    return exc.value.code, out, err
+
+def pytest_addoption(parser):
+    parser.addoption(
+        "--tier-guard",
+        action="store_true",
+        help=f"fail the run when a default-tier test takes over {TIER_BUDGET_S:g} s (use on a quiet machine)",
+    )
+
+
+def pytest_runtest_logreport(report):
+    if report.when == "call" and report.duration > TIER_BUDGET_S and "slow" not in report.keywords:
+        _OVER_BUDGET.append((report.nodeid, report.duration))
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    if _OVER_BUDGET:
+        terminalreporter.section(f"default-tier tests over {TIER_BUDGET_S:g} s (mark them slow or make them faster)")
+        for nodeid, took in sorted(_OVER_BUDGET, key=lambda r: -r[1]):
+            terminalreporter.write_line(f"{took:6.2f} s  {nodeid}")
+
+
+def pytest_sessionfinish(session, exitstatus):
+    if _OVER_BUDGET and session.config.getoption("--tier-guard") and exitstatus == 0:
+        session.exitstatus = 1

@@ -1,0 +1,234 @@
+"""The command line itself: --version, -h on every command, the output format from the --out extension, bench's
+repeated --points, whole-or-nothing output files and the memory guard (docs/cli.md)."""
+
+import errno
+import json
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+from helpers import ROOT, cli
+
+from pdverify import __version__
+
+SCENE = ROOT / "studies/examples/cantilever_tip_load.toml"
+COMMANDS = ["solve", "modes", "models", "study", "advise", "report", "bench", "version"]
+
+
+def test_version_flag_and_command(capsys):
+    for args in (["--version"], ["-V"]):
+        code, out, _ = cli(args, capsys)
+        assert code == 0 and out.strip() == f"pdverify {__version__}"
+    code, out, _ = cli(["version"], capsys)
+    assert code == 0 and out.strip() == __version__
+
+
+def test_python_m_pdverify():
+    r = subprocess.run([sys.executable, "-m", "pdverify", "--version"], capture_output=True, text=True, cwd=ROOT)
+    assert r.returncode == 0 and r.stdout.strip() == f"pdverify {__version__}"
+
+
+@pytest.mark.parametrize("flag", ["-h", "--help"])
+@pytest.mark.parametrize("command", [None, *COMMANDS])
+def test_help_everywhere(command, flag, capsys):
+    code, out, err = cli([command, flag] if command else [flag], capsys)
+    assert code == 0 and "Usage: pdverify" in out and err == ""
+    if command:
+        assert f"pdverify {command}" in out
+
+
+@pytest.mark.parametrize(
+    "suffix,check",
+    [
+        (".csv", lambda p: list(pd.read_csv(p).columns)[:2] == ["x", "w"]),
+        (".json", lambda p: json.loads(p.read_text())["model"] == "exact-eb"),
+        (".txt", lambda p: p.read_text().startswith("# scene: cantilever, tip load")),
+        (".dat", lambda p: p.read_text().startswith("# scene: cantilever, tip load")),  # unknown extension: table
+    ],
+)
+def test_format_from_the_out_extension(suffix, check, tmp_path, capsys):
+    out = tmp_path / f"r{suffix}"
+    code, stdout, err = cli(["solve", SCENE, "-m", "exact-eb", "--points", "11", "--out", out], capsys)
+    assert code == 0 and stdout == "" and err == f"wrote {out}\n"
+    assert check(out)
+
+
+def test_format_given_and_matching_the_extension(tmp_path, capsys):
+    out = tmp_path / "r.json"
+    code, _, _ = cli(["solve", SCENE, "-m", "exact-eb", "--points", "11", "--format", "json", "--out", out], capsys)
+    assert code == 0 and len(json.loads(out.read_text())["x"]) == 11
+    code, _, err = cli(["solve", SCENE, "-m", "exact-eb", "--format", "csv", "--out", tmp_path / "s.json"], capsys)
+    assert code == 2 and "--format csv and --out" in err and not (tmp_path / "s.json").exists()
+
+
+def test_out_creates_missing_folders(tmp_path, capsys):
+    out = tmp_path / "a" / "b" / "r.csv"
+    code, _, _ = cli(["solve", SCENE, "-m", "exact-eb", "--points", "11", "--out", out], capsys)
+    assert code == 0 and len(pd.read_csv(out)) == 11
+
+
+def test_failed_write_leaves_no_partial_file(tmp_path, capsys, monkeypatch):
+    """The disk fills up half way through the write: exit 4, one line, no new file, an old file kept as it was,
+    no temporary file left (was: an empty file)."""
+    real = pathlib.Path.write_text
+
+    def half_then_full(self, data, *a, **k):
+        real(self, data[: len(data) // 2], *a, **k)
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(pathlib.Path, "write_text", half_then_full)
+    new = tmp_path / "new.csv"
+    code, out, err = cli(["solve", SCENE, "-m", "exact-eb", "--out", new], capsys)
+    assert code == 4 and out == "" and err.count("\n") == 1 and "No space left on device" in err
+    old = tmp_path / "old.csv"
+    monkeypatch.setattr(pathlib.Path, "write_text", real)
+    old.write_text("the previous result\n")
+    monkeypatch.setattr(pathlib.Path, "write_text", half_then_full)
+    code, _, _ = cli(["solve", SCENE, "-m", "exact-eb", "--out", old], capsys)
+    assert code == 4 and old.read_text() == "the previous result\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["old.csv"]
+
+
+def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
+    """`bench --points 101 201` (several values after one flag) and `--points 101 --points 201` are the same
+    (the timed runs are replaced by a recorder: this checks the parsing, test_bench.py the timing)."""
+    import pdverify.apps.bench
+
+    calls = []
+
+    def fake(model, points, scene):
+        calls.append((model, points))
+        return {"model": model, "points": points, "status": "failed", "message": "not run"}
+
+    monkeypatch.setattr(pdverify.apps.bench, "bench_subprocess", fake)
+    for args in (
+        ["--points", "101", "201"],
+        ["--points", "101", "--points", "201"],
+        ["--points", "101", "201", "-m", "pd-eb"],
+    ):
+        calls.clear()
+        code, out, err = cli(["bench", "-m", "exact-eb", *args], capsys)
+        assert code == 0, err
+        models = ["exact-eb", "pd-eb"] if "pd-eb" in args else ["exact-eb"]
+        assert calls == [(m, p) for m in models for p in (101, 201)]
+    code, _, err = cli(["bench", "-m", "exact-eb", "--points", "101", "x"], capsys)
+    assert code == 2 and "--points" in err
+
+
+def test_spread_repeats_only_touches_bench_points():
+    from pdverify.apps.cli import _spread_repeats
+
+    assert _spread_repeats(["bench", "--points", "1", "2", "-m", "a"]) == [
+        "bench",
+        "--points",
+        "1",
+        "--points",
+        "2",
+        "-m",
+        "a",
+    ]
+    assert _spread_repeats(["solve", "s.toml", "--points", "11"]) == ["solve", "s.toml", "--points", "11"]
+    assert _spread_repeats(["solve", "bench", "--points", "11", "x"]) == ["solve", "bench", "--points", "11", "x"]
+
+
+# Peak resident memory of whole static runs measured by `pdverify bench` (reports/bench/bench.jsonl, MB):
+# maximum resident set of `pdverify solve SCENE --model M --points N --format json` (/usr/bin/time -v, 2026-11-25,
+# with the round-off bound of every solve): the whole process, interpreter and imports included
+MEASURED_PEAK_MB = {
+    ("pd-eb", 1_000_000): 1378.8,
+    ("pd-timoshenko", 1_000_000): 1174.0,
+    ("fem-eb", 1_000_000): 1246.4,
+    ("pd-curved", 100_000): 1032.7,
+    ("pd-higher-order", 100_000): 391.0,
+}
+
+
+@pytest.mark.parametrize("model,points", list(MEASURED_PEAK_MB), ids=[m for m, _ in MEASURED_PEAK_MB])
+def test_memory_estimate_covers_the_measured_peak(model, points):
+    """The guard's estimate is above the measured peak, and within 2x of it (a guard that refuses runs that fit
+    would be as wrong as none)."""
+    from pdverify.core.scene_file import load_scene
+    from pdverify.measure.memory import estimate_bytes
+    from pdverify.registry import get_model
+
+    scene = load_scene(ROOT / ("studies/paper_curved/semicircle_normal.toml" if model == "pd-curved" else SCENE))
+    m = get_model(model)
+    need, dofs, band = estimate_bytes(scene, m, m.resolve(scene, {"points": points}))
+    peak = MEASURED_PEAK_MB[model, points] * 2**20
+    assert peak < need < 2 * peak, (need / 2**20, dofs, band)
+
+
+def test_memory_guard_refuses_pd_curved_at_ten_million_points(capsys):
+    """pd-curved at 10^7 points: refused before the large allocation with the estimate (was: MemoryError after
+    allocating 32 GiB)."""
+    from pdverify.measure.memory import available_bytes
+
+    have = available_bytes()
+    if have is None or have > 200 * 2**30:
+        pytest.skip("needs a Linux machine with less than 200 GiB available for the refusal")
+    code, out, err = cli(
+        ["solve", ROOT / "studies/paper_curved/semicircle_normal.toml", "-m", "pd-curved", "--points", "10000000"],
+        capsys,
+    )
+    assert code == 3 and out == "" and err.count("\n") == 1
+    assert err.startswith("error: points = 10000000: model pd-curved would need about ") and "GiB" in err
+    need = float(err.split("about ")[1].split(" GiB")[0])
+    assert 100 < need < 200  # 6e7 unknowns x bandwidth 73 x 32 bytes = 131 GiB
+
+
+def test_out_of_memory_is_one_line(capsys, monkeypatch):
+    """A MemoryError the guard did not foresee is still one line and exit code 3."""
+    from pdverify import registry
+
+    def no_memory(*a, **k):
+        raise MemoryError
+
+    monkeypatch.setattr(registry, "run", no_memory)
+    code, out, err = cli(["solve", SCENE, "-m", "exact-eb"], capsys)
+    assert code == 3 and err.startswith("error: out of memory") and err.count("\n") == 1
+
+
+def test_exit_codes_are_documented():
+    """docs/cli.md lists every exit code the CLI uses."""
+    text = (ROOT / "docs" / "cli.md").read_text()
+    for code in ("0", "1", "2", "3", "4"):
+        assert f"| {code} |" in text
+
+
+def test_units_key_of_a_scene():
+    """units = "inch-pound" labels lengths in inches; SI by default; other values are errors."""
+    import tomllib
+
+    from pdverify.core.errors import InputError
+    from pdverify.core.scene_file import parse_scene
+
+    data = tomllib.loads(SCENE.read_text())
+    assert parse_scene(data).length_unit == "m"
+    assert parse_scene(dict(data, units="inch-pound")).length_unit == "in"
+    with pytest.raises(InputError, match="units = 'imperial'"):
+        parse_scene(dict(data, units="imperial"))
+    # the numbers do not depend on the label
+    from pdverify.registry import run
+
+    a, b = (
+        run(parse_scene(data), "exact-eb", points=11),
+        run(parse_scene(dict(data, units="inch-pound")), "exact-eb", points=11),
+    )
+    assert np.array_equal(a.w, b.w)
+
+
+def test_no_arguments_prints_the_help(capsys):
+    code, out, err = cli([], capsys)
+    assert code == 2 and "Usage: pdverify" in out and err == ""
+
+
+def test_closed_stdout_is_no_traceback():
+    """`pdverify -h | head -1`: the reader closes the pipe early; no traceback (was: AttributeError on the way out)."""
+    p = subprocess.Popen([sys.executable, "-m", "pdverify"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=ROOT)
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    p.wait(timeout=60)
+    assert "Traceback" not in err and p.returncode in (1, 2)

@@ -1,0 +1,112 @@
+"""fem-eb and fem-timoshenko: nodally exact references; the naive Timoshenko element locks."""
+
+import numpy as np
+import pytest
+from helpers import MIXED_LOADS, PAIRS, scene_dict
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.exact.straight import solve_straight
+from pdverify.registry import get_model, run
+
+LOADS = MIXED_LOADS + [{"type": "distributed", "value": -250.0, "shape": "sine", "start": 0.35, "end": 1.7}]
+
+
+def rel(model, scene, shear, **opts):
+    r = run(scene, model, **opts)
+    ex = solve_straight(scene, shear).fields(r.x)
+    return np.abs(r.w - ex["w"]).max() / np.abs(ex["w"]).max(), np.abs(r.rotation - ex["rotation"]).max() / np.abs(
+        ex["rotation"]
+    ).max()
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+def test_fem_eb_nodally_exact(left, right):
+    sc = parse_scene(scene_dict(left, right, LOADS))
+    ew, er = rel("fem-eb", sc, False, points=11)
+    assert ew < 1e-9 and er < 1e-9
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+@pytest.mark.parametrize("slenderness", [5, 100, 10_000])
+def test_fem_timoshenko_iie_locking_free(left, right, slenderness):
+    sc = parse_scene(scene_dict(left, right, LOADS)).with_slenderness(slenderness)
+    ew, _ = rel("fem-timoshenko", sc, True, points=101)
+    assert ew < 1e-6  # nodally exact up to round-off (measured 2e-14 .. 8e-9)
+
+
+def test_naive_linear_element_locks_reduced_does_not():
+    sc = parse_scene(scene_dict("clamped", "free", LOADS)).with_slenderness(10_000)
+    full, _ = rel("fem-timoshenko", sc, True, points=101, variant="full")
+    reduced, _ = rel("fem-timoshenko", sc, True, points=101, variant="reduced")
+    assert full > 0.9  # locked: the deflection is ~1e-4 of the true one
+    assert reduced < 1e-3
+
+
+def test_fem_eb_evaluate_between_nodes_is_the_fe_solution():
+    sc = parse_scene(scene_dict("clamped", "pinned", LOADS))
+    m = get_model("fem-eb")
+    x = np.linspace(0, 2, 333)
+    f = m.evaluate(sc, m.resolve(sc, {"points": 41}), x)
+    ex = solve_straight(sc, False).fields(x)["w"]
+    assert np.abs(f["w"] - ex).max() / np.abs(ex).max() < 1e-3  # cubic interpolation error between nodes
+
+
+def test_closed_form_hermite_equals_scikit_fem():
+    """Above 20,001 nodes fem-eb assembles the same cubic Hermite element in closed form."""
+    sc = parse_scene(scene_dict("clamped", "pinned", LOADS))
+    m = get_model("fem-eb")
+    params = m.resolve(sc, {"points": 41})
+    (K1, F1, _), (K2, F2, _) = (m.assemble_band(sc, params, use_skfem=u) for u in (True, False))
+    K1, K2 = K1.tocsr(), K2.tocsr()  # before the supports: every DOF compared
+    assert abs(K1 - K2).max() < 1e-10 * abs(K1).max()
+    # scikit-fem inverts a global-coordinate Vandermonde per element: agreement to ~1e-12, not 1e-16
+    assert np.abs(F1 - F2).max() < 1e-10 * np.abs(F1).max()
+
+
+@pytest.mark.parametrize("variant, gauss", [("reduced", [0.5]), ("full", [0.5 - 0.5 / 3**0.5, 0.5 + 0.5 / 3**0.5])])
+def test_linear_timoshenko_in_scikit_fem_is_the_textbook_element(variant, gauss):
+    """The scikit-fem form of the linear variants equals the element matrix written out (uneven elements):
+    EI/l [theta' theta'] + kGA l sum_g wt_g B_g B_g^T, B = (-1/l, -(1 - xi), 1/l, -xi), DOFs (w, theta) per node."""
+    from reference_fem.beam_elements import element_band, linear_timoshenko
+
+    nodes = np.array([0.0, 0.3, 0.45, 1.0, 1.2])
+    EI, kGA, l = 3.0, 700.0, np.diff(nodes)
+    ke = EI / l[:, None, None] * np.array([[0, 0, 0, 0], [0, 1, 0, -1], [0, 0, 0, 0], [0, -1, 0, 1]], float)
+    for xi in gauss:
+        B = np.stack([-1 / l, -(1 - xi) * np.ones_like(l), 1 / l, -xi * np.ones_like(l)], axis=1)
+        ke = ke + kGA / len(gauss) * l[:, None, None] * B[:, :, None] * B[:, None, :]
+    want = element_band(ke, len(nodes)).tocsr().toarray()
+    got = linear_timoshenko(nodes, EI, kGA, variant).tocsr().toarray()
+    assert np.abs(got - want).max() < 1e-13 * np.abs(want).max()
+
+
+def test_diagonal_assembly_equals_triplet_assembly():
+    """assemble_elements accumulates diagonals by strided slices; it must equal the COO scatter."""
+    import scipy.sparse as sp
+
+    from reference_fem.beam_elements import assemble_elements
+
+    rng = np.random.default_rng(0)
+    ne = 9
+    ke, fe = rng.normal(size=(ne, 4, 4)), rng.normal(size=(ne, 4))
+    K, F = assemble_elements(ke, fe, ne + 1)
+    dofs = 2 * np.arange(ne)[:, None] + np.arange(4)[None, :]
+    K0 = sp.csr_matrix(
+        (ke.reshape(ne, -1).ravel(), (np.repeat(dofs, 4, axis=1).ravel(), np.tile(dofs, (1, 4)).ravel())), shape=K.shape
+    )
+    assert abs(K - K0).max() < 1e-15 and np.allclose(F, np.bincount(dofs.ravel(), fe.ravel()))
+
+
+def test_nodes_hold_every_load_position_and_element_loads_do_not_depend_on_the_block_size():
+    """beam_nodes inserts load positions into the uniform grid (a position within 1e-12 L of a node is
+    that node); element_loads integrates in blocks of elements: any block size gives the same vectors."""
+    from reference_fem.beam_elements import beam_nodes, element_loads, hermite_shapes
+
+    sc = parse_scene(scene_dict("clamped", "pinned", LOADS))
+    x = beam_nodes(sc, 11)
+    want = [v for l in LOADS for k, v in l.items() if k in ("position", "start", "end")]
+    assert all(np.abs(x - p).min() < 1e-12 for p in want) and np.all(np.diff(x) > 0)
+    assert len(beam_nodes(sc, 11)) == len(np.unique(np.r_[np.linspace(0, sc.length, 11), want]))
+    assert np.array_equal(element_loads(sc, x, hermite_shapes), element_loads(sc, x, hermite_shapes, chunk=3))
+    sc0 = parse_scene(scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -1.0}]))
+    assert not element_loads(sc0, beam_nodes(sc0, 5), hermite_shapes).any()

@@ -1,0 +1,178 @@
+"""Natural frequencies (issue 30 item 5): the analytic Timoshenko frequencies (pdverify.exact.vibration), the
+discrete operators' modes against them under refinement for every support pair, and `pdverify modes`."""
+
+import json
+
+import numpy as np
+import pytest
+from helpers import PAIRS, cli, scene_dict
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
+from pdverify.measure.modes import modes
+
+MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
+
+
+def _beam(slenderness, left, right, length=2.0):
+    h = length / slenderness
+    E, G, rho, k = 70e9, 70e9 / 2.66, 2700.0, 5 / 6
+    A, Inertia = 0.05 * h, 0.05 * h**3 / 12
+    return TimoshenkoBeam(E * Inertia, k * G * A, rho * A, rho * Inertia, length, beam_end(left), beam_end(right))
+
+
+@pytest.mark.parametrize("slenderness, count", [(4, 8), (20, 8), (100, 8), (20, 600), (4, 600)])
+def test_pinned_pinned_determinant_roots_are_the_closed_form(slenderness, count):
+    """Pinned–pinned has w = sin(kπx/L), γ = C cos(kπx/L): with λ = kπ/L, (kGA λ² - ρAω²)(EI λ² + kGA - ρIω²)
+    = kGA² λ², a quadratic in ω² per k (both spectra), and k = 0 gives the cut-off ω² = kGA/ρI (w = 0,
+    γ = const). The determinant's roots are these to 6.2e-14 (measured, L/h = 100; 4.4e-16 at 4); at
+    L/h = 4 the first 8 modes reach 1.23 x the cut-off, so the second spectrum and the cut-off mode are in.
+    600 modes (the modal transient's sums) cross the two spectra many times, with pairs 0.7 % of the usual
+    spacing apart: none is missed (the former scan in z alone lost roots beyond ~250 modes)."""
+    b = _beam(slenderness, "pinned", "pinned")
+    EI, kGA, rA, rI, L = b.EI, b.kGA, b.rA, b.rI, b.L
+    lam2 = (np.arange(1, count + 2) * np.pi / L) ** 2
+    a, bb, c = rA * rI, -(rA * (EI * lam2 + kGA) + rI * kGA * lam2), kGA * lam2 * (EI * lam2 + kGA) - kGA**2 * lam2
+    disc = np.sqrt(bb * bb - 4 * a * c)
+    ref = np.sort(np.concatenate([[kGA / rI], (-bb + disc) / (2 * a), 2 * c / (-bb + disc)]))[:count] ** 0.5
+    got = b.frequencies(count)
+    assert np.abs(got / ref - 1).max() < 5e-13
+    if slenderness == 4:
+        assert got[-1] > b.cutoff
+
+
+# Euler–Bernoulli βL of the first three modes (Blevins, Formulas for natural frequency and mode shape, Table 8-1;
+# guided = "sliding"): the Timoshenko frequencies tend to them as (h/L)²
+EULER_BERNOULLI = {
+    ("clamped", "clamped"): [4.73004074, 7.85320462, 10.9956078],
+    ("clamped", "pinned"): [3.92660231, 7.06858275, 10.2101761],
+    ("clamped", "free"): [1.87510407, 4.69409113, 7.85475744],
+    ("clamped", "guided"): [2.36502037, 5.49780392, 8.63937983],
+    ("pinned", "pinned"): [np.pi, 2 * np.pi, 3 * np.pi],
+    ("pinned", "guided"): [np.pi / 2, 3 * np.pi / 2, 5 * np.pi / 2],
+}
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+def test_timoshenko_frequencies_tend_to_euler_bernoulli(left, right):
+    """Every support pair (and its mirror): βL = L (ρAω²/EI)^¼ of the determinant's roots against Euler–
+    Bernoulli's; the difference is the shear and rotary-inertia correction, O((h/L)²): measured 5.4e-6 to
+    1.45e-5 at L/h = 1e3 and 100x less at 1e4 (ratios 99.9-100.2)."""
+    z_eb = np.array(EULER_BERNOULLI.get((left, right)) or EULER_BERNOULLI[(right, left)])
+    diff = []
+    for slenderness in (1e3, 1e4):
+        b = _beam(slenderness, left, right)
+        z = b.L * (b.rA * b.frequencies(3) ** 2 / b.EI) ** 0.25
+        assert np.all(z < z_eb)  # shear and rotary inertia lower every frequency
+        diff.append(np.abs(z / z_eb - 1).max())
+    assert 4e-6 < diff[0] < 2e-5
+    assert diff[0] / diff[1] == pytest.approx(100, rel=0.05)  # Blevins' 9 digits leave ~2 % on diff[1]
+
+
+def test_rod_frequencies_closed_form():
+    assert rod_frequencies(2.0, 5000.0, (True, True), 3) == pytest.approx(np.pi * 5000 / 2 * np.array([1, 2, 3]))
+    assert rod_frequencies(2.0, 5000.0, (False, True), 2) == pytest.approx(np.pi * 5000 / 2 * np.array([0.5, 1.5]))
+
+
+def _orders(model, left, right, points, horizon=3):
+    sc = parse_scene(scene_dict(left, right, [], material=MATERIAL))
+    err = np.array([np.abs(modes(sc, model, {"points": n, "horizon": horizon}, 3).omega) for n in points])
+    analytic = modes(sc, model, {"points": points[0], "horizon": horizon}, 3).analytic
+    err = np.abs(err / analytic - 1)
+    return err, np.log2(err[:-1] / err[1:])
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+def test_rod_modes_converge_at_order_two(left, right):
+    """pd-rod (corrected, m = 3), first three modes, 41 / 81 / 161 / 321 points (δ = 3 dx shrinks with dx): the
+    PD sum is a second-order difference (Eq. 19), so order 2. Measured 1.99-2.00 for every pair; errors at
+    321 points 5.0e-6 (mode 1, a free end) to 1.8e-4 (mode 3)."""
+    err, rate = _orders("pd-rod", left, right, (41, 81, 161, 321))
+    assert np.all(np.abs(rate - 2) < 0.3), rate
+    assert err[-1].max() < 1e-3
+
+
+@pytest.mark.parametrize("left,right", PAIRS)
+def test_timoshenko_modes_converge_at_order_two(left, right):
+    """pd-timoshenko (corrected, m = 3, L/h = 20), first three modes against the determinant's roots, 41 / 81 /
+    161 / 321 points: measured orders 1.91-2.00 (every pair; the lowest at the coarse grids of a free or
+    guided end); errors at 321 points 3.4e-6 (mode 1, clamped-free) to 3.6e-4 (mode 3, clamped-clamped)."""
+    err, rate = _orders("pd-timoshenko", left, right, (41, 81, 161, 321))
+    assert np.all(np.abs(rate - 2) < 0.3), rate
+    assert err[-1].max() < 1e-3
+
+
+def test_mirror_scenes_have_the_same_modes():
+    """clamped-free and free-clamped: the same spectrum up to the round-off estimate."""
+    a, b = (
+        modes(parse_scene(scene_dict(left, right, [], material=MATERIAL)), "pd-timoshenko", {"points": 61}, 4)
+        for left, right in (("clamped", "free"), ("free", "clamped"))
+    )
+    assert np.all(np.abs(a.omega / b.omega - 1) <= 10 * a.roundoff)
+
+
+# -- the command ------------------------------------------------------------------------------------
+
+
+@pytest.fixture
+def scene_file(tmp_path):
+    def write(density=True, left="clamped", right="free"):
+        mat = "density = 2700\n" if density else ""
+        text = (
+            'name = "modes"\n[beam]\nlength = 2.0\n[section]\nwidth = 0.05\nheight = 0.1\n'
+            f"[material]\nyoungs_modulus = 70e9\npoissons_ratio = 0.33\n{mat}"
+            f'[supports]\nleft = "{left}"\nright = "{right}"\n'
+        )
+        path = tmp_path / f"s_{density}_{left}_{right}.toml"
+        path.write_text(text)
+        return path
+
+    return write
+
+
+def test_modes_command_prints_frequencies_and_errors(scene_file, capsys):
+    """Table, CSV and JSON carry the same numbers: the model's frequencies, the analytic ones and their
+    relative error, which equals modes() from Python."""
+    path = scene_file()
+    ref = modes(parse_scene(scene_dict("clamped", "free", [], material=MATERIAL)), "pd-rod", {"points": 41}, 3)
+    code, out, err = cli(["modes", path, "--model", "pd-rod", "-o", "points=41", "--count", "3"], capsys)
+    assert code == 0 and "reference: rod clamped-free" in out
+    rows = [line.split() for line in out.splitlines() if not line.startswith("#")]
+    assert rows[0] == ["mode", "frequency_hz", "analytic_hz", "rel_error", "roundoff"] and len(rows) == 4
+    assert [float(r[3]) for r in rows[1:]] == pytest.approx(ref.columns()["rel_error"], rel=1e-7)
+    code, out, _ = cli(
+        ["modes", path, "--model", "pd-rod", "-o", "points=41", "--count", "3", "--format", "csv"], capsys
+    )
+    data = np.genfromtxt(out.splitlines(), delimiter=",", names=True, comments="#")
+    assert code == 0 and data["analytic_hz"] == pytest.approx(ref.analytic / (2 * np.pi), rel=1e-11)
+    code, out, _ = cli(["modes", path, "--model", "pd-timoshenko", "--count", "2", "--format", "json"], capsys)
+    doc = json.loads(out)
+    assert code == 0 and doc["model"] == "pd-timoshenko" and len(doc["modes"]) == 2
+    assert abs(doc["modes"][0]["rel_error"]) < 1e-3  # measured 3.4e-5 (101 points, m = 3)
+
+
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["--model", "pd-eb"], "model pd-eb: gives no mass and stiffness operator"),
+        (["--model", "pd-rod", "--count", "0"], "--count 0: give a number of modes"),
+        (["--model", "pd-rod", "-o", "points=11", "--count", "30"], "--count 30: the operator has 10 free DOFs"),
+        (["--model", "pd-rod", "-o", "spacing=0.3"], "spacing = 0.3: does not divide the length"),
+        (["--model", "pd-rod", "-o", "horizont=2"], "horizont: model pd-rod takes no option"),
+        (["--model", "no-such-model"], "model = 'no-such-model': unknown model"),
+    ],
+)
+def test_modes_bad_input_is_one_line(scene_file, capsys, args, message):
+    code, out, err = cli(["modes", scene_file(), *args], capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1 and err.startswith(f"error: {message}")
+
+
+def test_modes_needs_density_and_a_held_rod(scene_file, capsys):
+    code, _, err = cli(["modes", scene_file(density=False), "--model", "pd-timoshenko"], capsys)
+    assert code == 2 and err == "error: material.density: needed for natural frequencies; add density to the scene\n"
+    code, _, err = cli(["modes", scene_file(left="guided", right="clamped"), "--model", "pd-rod"], capsys)
+    assert code == 0  # guided slides axially; clamped holds
+    code, _, err = cli(["modes", scene_file(left="guided", right="free"), "--model", "pd-timoshenko"], capsys)
+    assert code == 2 and "supports = guided-free: a mechanism" in err and err.count("\n") == 1
+    code, _, err = cli(["modes", scene_file(left="roller", right="roller"), "--model", "pd-rod"], capsys)
+    assert code == 2 and "roller-roller: neither end holds the axial displacement" in err and err.count("\n") == 1

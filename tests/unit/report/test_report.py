@@ -1,0 +1,364 @@
+"""HTML report: renders in headless Chromium with no console errors, links resolve, numbers trace to
+results.csv, and re-running gives the same HTML apart from the timestamp."""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from html.parser import HTMLParser
+
+import numpy as np
+import pandas as pd
+import pytest
+from helpers import ROOT
+
+import pdverify.core.errors
+from pdverify.report import build_report
+from pdverify.report.build import fmt
+from pdverify.study import load_study, run_study
+
+
+@pytest.fixture(scope="module")
+def study_dir(tmp_path_factory):
+    out = tmp_path_factory.mktemp("study")
+    p = out / "study.toml.in"
+    p.write_text(
+        (ROOT / "studies/paper_diyaroglu.toml")
+        .read_text()
+        .replace('"paper_diyaroglu/', f'"{ROOT}/studies/paper_diyaroglu/')
+        + '\n[papers]\npaper_diyaroglu = "Diyaroglu, Oterkus and Oterkus"\n'
+    )
+    p = p.rename(out / "diy.toml")
+    run_study(load_study(p), out / "run", workers=1, progress=False)
+    build_report(out / "run")
+    return out / "run"
+
+
+class Links(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.hrefs, self.svgs = [], 0
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "a":
+            self.hrefs.append(dict(attrs).get("href"))
+        if tag == "svg":
+            self.svgs += 1
+
+
+def resolves(study_dir, page, href) -> bool:
+    """An href of ``page`` points at an existing file and, with a #fragment, at an element id of that file."""
+    target, _, frag = href.partition("#")
+    text = page if not target else (study_dir / target).read_text() if (study_dir / target).exists() else None
+    if text is None:
+        return False
+    return not frag or f'id="{frag}"' in text
+
+
+@pytest.mark.slow
+def test_links_resolve_and_figures_present(study_dir):
+    page = (study_dir / "index.html").read_text()
+    p = Links()
+    p.feed(page)
+    assert p.svgs >= 5  # 3 deflection + 3 convergence + speed/error
+    for h in p.hrefs:
+        assert resolves(study_dir, page, h), h
+    # no network requests: nothing is loaded from a URL (XML namespaces are names, not requests)
+    assert not re.search(r'(src|href)="(https?:)?//', page) and "url(http" not in page
+
+
+@pytest.mark.slow
+def test_one_page_per_paper_linked_both_ways(study_dir):
+    index = (study_dir / "index.html").read_text()
+    page_file = study_dir / "paper-paper-diyaroglu.html"
+    assert 'href="paper-paper-diyaroglu.html"' in index and "Diyaroglu, Oterkus and Oterkus" in index
+    page = page_file.read_text()
+    p = Links()
+    p.feed(page)
+    assert "index.html" in p.hrefs and p.svgs >= 6  # 3 deflection + 3 convergence (+ horizon)
+    assert all(resolves(study_dir, page, h) for h in p.hrefs), [h for h in p.hrefs if not resolves(study_dir, page, h)]
+    # the page's benchmark rows are the study's rows for this paper: every computed value is shown
+    bench = pd.read_csv(study_dir / "benchmarks.csv")
+    for _, b in bench.iterrows():
+        assert f">{fmt(b['computed'])}<" in page
+
+
+def test_time_histories_plotted_and_written_as_csv(tmp_path, monkeypatch):
+    """A dynamic model's history (info["history"]) becomes a figure on the report and a CSV file."""
+    from pdverify import registry
+    from pdverify.core.contract import Model, Option
+    from pdverify.core.result import Result
+
+    class Ringing(Model):
+        name = "ringing-test"
+        kind = "dynamic"
+        options = (Option("points", int, 11, minimum=2),)
+
+        def solve(self, scene, params):
+            x = np.linspace(0, scene.length, params["points"])
+            t = np.linspace(0, 1, 201)
+            mid = 0.1 * (1 - np.cos(2 * np.pi * 5 * t) * np.exp(-t))
+            return Result(
+                scene.name,
+                self.name,
+                dict(params),
+                x,
+                0 * x,
+                dofs=len(x),
+                info={"history": {"t": t, "series": {"midpoint": mid}}},
+            )
+
+    monkeypatch.setitem(registry.models(), "ringing-test", Ringing())
+    p = tmp_path / "dyn.toml"
+    p.write_text(
+        f'name = "dyn"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "none"\n'
+        '[[runs]]\nmodel = "ringing-test"\npoints = [11, 21]\n'
+    )  # two cases: a serial run's recorder path
+    df = run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
+    for case_id in df["case_id"]:
+        h = pd.read_csv(tmp_path / "run" / "histories" / f"{case_id}.csv")
+        assert list(h.columns) == ["t", "midpoint"] and len(h) == 201
+        assert np.allclose(h["midpoint"], 0.1 * (1 - np.cos(2 * np.pi * 5 * h["t"]) * np.exp(-h["t"])), rtol=1e-15)
+    page = build_report(tmp_path / "run").read_text()
+    assert "time history" in page and "t (s)" in page
+
+
+def test_numbers_trace_to_results(study_dir):
+    page = (study_dir / "index.html").read_text()
+    res = pd.read_csv(study_dir / "results.csv")
+    bench = pd.read_csv(study_dir / "benchmarks.csv")
+    for _, b in bench.iterrows():
+        row = res[res["case_id"] == b["case_id"]].iloc[0]
+        assert b["computed"] == row["w_at_max"] and b["err_max"] == row["err_max"]
+        assert f">{fmt(row['w_at_max'])}<" in page and f">{fmt(row['err_max'])}<" in page
+
+
+@pytest.mark.slow
+def test_rebuild_is_identical_apart_from_timestamp(study_dir, tmp_path):
+    a = (study_dir / "index.html").read_text()
+    b = build_report(study_dir, tmp_path).read_text()
+    strip = lambda s: re.sub(r'<span id="generated">[^<]*</span>', "", s)  # noqa: E731
+    assert strip(a) == strip(b)
+
+
+def find_chromium() -> str:
+    """The Chromium executable; the test skips without one, unless PDVERIFY_REQUIRE_BROWSER=1 (set by .ci/run,
+    which installs it), where a missing browser fails. Nothing is installed here."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    if chromium:
+        return chromium
+    if os.environ.get("PDVERIFY_REQUIRE_BROWSER") == "1":
+        pytest.fail("PDVERIFY_REQUIRE_BROWSER=1 but no chromium or chromium-browser on PATH (.ci/run installs it)")
+    pytest.skip(
+        "Chromium is not installed (apt-get install chromium, or run .ci/run); the report's rendering "
+        "in a browser is not checked"
+    )
+
+
+def test_browser_test_skips_or_fails_by_the_environment(monkeypatch):
+    """Without a browser: a skip with the reason, or a failure under PDVERIFY_REQUIRE_BROWSER=1."""
+    monkeypatch.setattr(shutil, "which", lambda name: None)
+    monkeypatch.delenv("PDVERIFY_REQUIRE_BROWSER", raising=False)
+    with pytest.raises(pytest.skip.Exception, match="Chromium is not installed"):
+        find_chromium()
+    monkeypatch.setenv("PDVERIFY_REQUIRE_BROWSER", "1")
+    with pytest.raises(pytest.fail.Exception, match="PDVERIFY_REQUIRE_BROWSER=1"):
+        find_chromium()
+
+
+@pytest.mark.slow
+def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
+    chromium = find_chromium()
+    shot = ROOT / "reports" / "_scratch" / "report_screenshot.png"
+    shot.parent.mkdir(parents=True, exist_ok=True)
+    flags = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={tmp_path / 'profile'}",
+        "--enable-logging=stderr",
+        "--v=0",
+    ]
+    url = (study_dir / "index.html").as_uri()
+    r = subprocess.run(
+        [chromium, *flags, f"--screenshot={shot}", "--window-size=1280,2400", url],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert shot.exists() and shot.stat().st_size > 10_000
+    console = [l for l in r.stderr.splitlines() if "CONSOLE" in l or "Uncaught" in l]
+    assert not console, console
+    # the DOM after scripts ran: every inline SVG figure is in it, with a non-empty drawing
+    dom = subprocess.run([chromium, *flags, "--dump-dom", url], capture_output=True, text=True, timeout=120).stdout
+    assert dom.count("<svg") >= 5 and dom.count("<path") > 50
+    # the per-paper page too
+    url = (study_dir / "paper-paper-diyaroglu.html").as_uri()
+    r = subprocess.run([chromium, *flags, "--dump-dom", url], capture_output=True, text=True, timeout=120)
+    console = [l for l in r.stderr.splitlines() if "CONSOLE" in l or "Uncaught" in l]
+    assert not console and r.stdout.count("<svg") >= 6, console
+
+
+@pytest.mark.slow
+def test_plane_stress_images_and_vtu_links(tmp_path):
+    """A study with a plane-stress case writes its VTU and an off-screen PNG; the report inlines the
+    picture and links the VTU."""
+    p = tmp_path / "ps.toml"
+    p.write_text(f'''name = "ps"
+scenes = ["{ROOT}/studies/paper_yang/cantilever_tip_force.toml"]
+reference = "exact-timoshenko"
+[[runs]]
+model = "fem-plane-stress"
+points = [21, 31]
+layers = 4
+''')  # two cases: a serial run's recorder path (the pictures are drawn by the solving process)
+    run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
+    pngs = list((tmp_path / "run" / "vtu").glob("*.png"))
+    assert len(pngs) == 2 and all(png.stat().st_size > 2000 for png in pngs)
+    page = build_report(tmp_path / "run").read_text()
+    for png in pngs:
+        assert f'href="vtu/{png.stem}.vtu"' in page and (tmp_path / "run" / "vtu" / f"{png.stem}.vtu").exists()
+    assert "data:image/png;base64," in page
+
+
+def test_case_ids_link_to_their_rows(study_dir):
+    """Every case id of a benchmark row links to that case's row of the results table (index.html#case-<id>)."""
+    index = (study_dir / "index.html").read_text()
+    paper = (study_dir / "paper-paper-diyaroglu.html").read_text()
+    bench = pd.read_csv(study_dir / "benchmarks.csv")
+    assert len(bench) > 0
+    for cid in bench["case_id"].dropna():
+        assert f'<tr id="case-{cid}"' in index or f'id="case-{cid}"' in index
+        assert f'href="#case-{cid}"' in index and f'href="index.html#case-{cid}"' in paper
+
+
+def test_references_and_what_was_run_are_text(study_dir):
+    """No JSON object in the page's text: references as 'model (k=v)', meta values as 'numpy 2.4.6, ...'."""
+    page = (study_dir / "index.html").read_text()
+    text = re.sub(r"<(script|style|svg)\b.*?</\1>", "", page, flags=re.S)
+    text = re.sub(r"<pre>.*?</pre>", "", text, flags=re.S)  # the study file itself, as written
+    assert "{&#34;" not in text and '{"' not in text and "{&quot;" not in text
+    meta = json.loads((study_dir / "meta.json").read_text())
+    assert f"numpy {meta['versions']['numpy']}" in page
+
+
+def _one_case_study(tmp_path, name, scene_text, description=""):
+    tmp_path.mkdir(parents=True, exist_ok=True)
+    scene = tmp_path / "beam.toml"
+    scene.write_text(scene_text)
+    study = tmp_path / "s.toml"
+    study.write_text(
+        f'name = {json.dumps(name)}\ndescription = {json.dumps(description)}\nscenes = ["beam.toml"]\n'
+        'reference = "exact-eb"\n[[runs]]\nmodel = "fem-eb"\npoints = [11]\n'
+    )
+    run_study(load_study(study), tmp_path / "run", workers=1, progress=False)
+    return build_report(tmp_path / "run").read_text()
+
+
+def test_markup_in_the_study_name_is_escaped(tmp_path):
+    """The study's name (and the study file shown) is text: a tag in it is not markup (was: autoescape=False)."""
+    tag = "<img src=x onerror=console.log('INJECTED')>"
+    scene = (ROOT / "studies/examples/cantilever_tip_load.toml").read_text()
+    scene = scene.replace('name = "cantilever, tip load"', 'name = "<b>bold</b> beam"')
+    page = _one_case_study(tmp_path, tag, scene, description="<script>alert(1)</script>")
+    assert tag not in page and "<img src=x" not in page and "<b>bold" not in page and "<script>alert" not in page
+    assert "&lt;img src=x onerror=console.log(&#39;INJECTED&#39;)&gt;" in page
+    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in page and "&lt;b&gt;bold&lt;/b&gt; beam" in page
+    paper = next(p for p in (tmp_path / "run").glob("paper-*.html"))
+    assert "<img src=x" not in paper.read_text() and "<b>bold" not in paper.read_text()
+
+
+def test_axis_labels_carry_the_scene_units(tmp_path):
+    """An inch-pound scene (Moyer's) labels lengths in inches; an SI scene in metres."""
+    text = (ROOT / "studies/paper_moyer/cantilever_table1.toml").read_text()
+    assert 'units = "inch-pound"' in text
+    page = _one_case_study(tmp_path / "in", "moyer", text.replace("fem-timoshenko", "fem-eb"))
+    assert "x (in)" in page and "w (in)" in page and "(m)" not in page
+    page = _one_case_study(tmp_path / "si", "si", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
+    assert "x (m)" in page and "w (m)" in page and "(in)" not in page
+
+
+@pytest.mark.slow
+def test_damaged_case_file_is_named(tmp_path):
+    """`pdverify report` on a folder with a damaged case file: one line naming it, exit code 2, no traceback."""
+    _one_case_study(tmp_path, "damaged", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
+    case = next((tmp_path / "run" / "cases").iterdir())
+    case.write_bytes(case.read_bytes()[:-7])
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify", "report", str(tmp_path / "run")], capture_output=True, text=True, cwd=ROOT
+    )
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert r.stderr.count("\n") == 1 and r.stderr.startswith(f"error: {case}:") and "pdverify study" in r.stderr
+
+
+@pytest.mark.slow
+def test_unwritable_report_out(tmp_path):
+    """`report --out` below a file: exit code 4, one line naming the path, nothing written."""
+    _one_case_study(tmp_path, "unwritable", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    r = subprocess.run(
+        [sys.executable, "-m", "pdverify", "report", str(tmp_path / "run"), "--out", str(blocker / "rep")],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert r.returncode == 4 and "Traceback" not in r.stderr and r.stderr.count("\n") == 1
+    assert str(blocker) in r.stderr and blocker.read_text() == "x"
+    with pytest.raises(pdverify.core.errors.OutputError, match="rep"):
+        build_report(tmp_path / "run", blocker / "rep")
+
+
+def test_ci_requires_the_browser():
+    """.ci/run installs chromium when missing and makes the browser test fail (not skip) without it."""
+    text = (ROOT / ".ci" / "run").read_text()
+    assert "apt-get install" in text and "chromium" in text
+    run_line = next(i for i, l in enumerate(text.splitlines()) if "pytest" in l)
+    assert any("export PDVERIFY_REQUIRE_BROWSER=1" in l for l in text.splitlines()[:run_line])
+
+
+@pytest.mark.slow
+def test_curved_page_draws_axial_and_shear_forces_and_its_locking_table(tmp_path):
+    """Seed 004's page: N and Q beside the deflection for the curves that return them (pd-curved and the exact
+    curved beam, whose range sets the axes), and the page's own locking table; a grid run at one slenderness
+    draws no locking line, an exact model (error 0) none either."""
+    p = tmp_path / "c.toml"
+    p.write_text(f'''name = "c"
+scenes = ["{ROOT}/studies/paper_curved/semicircle_normal.toml"]
+reference = "exact-curved-cantilever"
+[papers]
+paper_curved = "seed 004"
+[[runs]]
+model = "pd-curved"
+degree = 2
+form = ["primal", "mixed"]
+points = 41
+slenderness = [10, 100]
+[[runs]]
+model = "pd-curved"
+degree = 2
+points = 21
+slenderness = [10]
+[[runs]]
+model = "exact-curved-cantilever"
+points = 41
+slenderness = [10, 100]
+''')
+    run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
+    build_report(tmp_path / "run")
+    page = (tmp_path / "run" / "paper-paper-curved.html").read_text()
+    for sl in ("10", "100"):
+        for name in ("axial force N", "shear force Q"):
+            assert f"semicircle, normal tip force, L/h = {sl}: {name}" in page
+    assert "locking_slope" in page and page.count("pd-curved primal n=41") >= 3  # deflection, N, Q (+ locking)
+    lock = page[page.index('id="locking"') :]
+    lock = lock[: lock.index("</svg>")]
+    assert "pd-curved primal n=41" in lock and "pd-curved n=41" in lock
+    assert "n=21" not in lock and "exact-curved-cantilever" not in lock

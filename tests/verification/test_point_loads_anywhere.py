@@ -1,0 +1,129 @@
+"""Point forces and moments anywhere (issue 33 item 2): second order on every path of pd-bond-pair and pd-eb.
+
+A load at (i + t) dx is split between the two nearest points, so the error constant depends on t and the
+order read from one fixed position fluctuates from grid to grid (a moment at 0.4219 m: 2.17, 2.10, 1.76 over
+101 -> 801 points, Taylor ends, because t runs through 0.10, 0.19, 0.38, 0.76). The error on a grid is taken
+here as the largest over positions base + t dx, t in {0.1, 0.5, 0.9}: that error falls as dx² (measured
+1.99-2.00 per doubling, 101 -> 1601 points, for the same moment).
+"""
+
+import numpy as np
+import pytest
+from helpers import PAIRS, scene_dict
+
+from pdverify.core.scene import SUPPORTS, is_mechanism
+from pdverify.core.scene_file import parse_scene
+from pdverify.exact.straight import solve_straight
+from pdverify.registry import run
+
+L = 2.0  # conftest's beam
+ALL_PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
+LOADS = [
+    ("point_force", 0.7037, -300.0),
+    ("point_force", 1.8123, -300.0),
+    ("point_moment", 1.3011, 150.0),
+    ("point_moment", 0.4219, 150.0),
+]
+T = (0.1, 0.5, 0.9)
+# path: (model, options, support pairs). Transverse-only paths take roller = pinned (tests/test_supports.py).
+PATHS = {
+    "pd-bond-pair taylor mixed": ("pd-bond-pair", {}, PAIRS),
+    "pd-bond-pair taylor direct": ("pd-bond-pair", {"form": "direct"}, PAIRS),
+    "pd-bond-pair mirror": ("pd-bond-pair", {"ends": "mirror"}, ALL_PAIRS),
+    "pd-eb corrected mixed": ("pd-eb", {}, PAIRS),
+    "pd-eb corrected direct": ("pd-eb", {"form": "direct"}, PAIRS),
+}
+
+
+def worst_error(name, opts, left, right, kind, base, value, n):
+    """Largest max|w - exact| / max|exact| over the positions (floor(base / dx) + t) dx, t in T."""
+    dx = L / (n - 1)
+    out = 0.0
+    for t in T:
+        load = {"type": kind, "position": (np.floor(base / dx) + t) * dx, "value": value}
+        sc = parse_scene(scene_dict(left, right, [load]))
+        r = run(sc, name, points=n, **opts)
+        ex = solve_straight(sc, False).fields(r.x)["w"]
+        out = max(out, np.abs(r.w - ex).max() / np.abs(ex).max())
+    return out
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", list(PATHS))
+def test_point_loads_anywhere_second_order(path):
+    """Measured, 101 -> 201 -> 401 points, every pair and load: order >= 1.98 (Taylor mixed), 1.97 (Taylor
+    direct), 1.99 (mirror, rollers included), 1.99 (pd-eb mixed), 1.94 (pd-eb direct). The direct forms
+    reach their round-off floor (~1e-6, warned: round-off bound past 1e-6) from 401 points, so they are
+    read below it (issue 27). pd-eb's paper variant does not converge at all (docs/models/diyaroglu.md).
+    Before (issue 33): moments on chord (i, i+1) and forces at the nearest point on the mirror path, first
+    order (a mid-span moment 16.6 % off at 101 points)."""
+    name, opts, pairs = PATHS[path]
+    low = []
+    for left, right in pairs:
+        for kind, base, value in LOADS:
+            e = [worst_error(name, opts, left, right, kind, base, value, n) for n in (101, 201, 401)]
+            orders = np.log2(np.array(e[:-1]) / np.array(e[1:]))
+            if orders.min() < 1.8:
+                low.append((left, right, kind, base, e, orders.round(2).tolist()))
+    assert not low
+
+
+def test_mid_span_moment_off_the_grid_on_the_mirror_path():
+    """The fast tier's witness: a moment between two points of a clamped-pinned beam, mirror ends, within
+    0.6 % at 101 points and second order (measured 4.8e-3, 1.2e-3 at 201: 2.01; issue 33 measured 16.6 % at
+    101 points when the moment acted on chord (i, i + 1))."""
+    e = [
+        worst_error("pd-bond-pair", {"ends": "mirror"}, "clamped", "pinned", "point_moment", 1.0, 150.0, n)
+        for n in (101, 201)
+    ]
+    assert e[0] < 6e-3
+    assert np.log2(e[0] / e[1]) > 1.8
+
+
+def nonlinear_tip(left, right, kind, position, value, n):
+    sc = parse_scene(scene_dict(left, right, [{"type": kind, "position": position, "value": value}]))
+    return run(sc, "pd-bond-pair", points=n, nonlinear=True, ends="mirror", steps=5)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    "left,right,kind,value", [("clamped", "free", "point_moment", 4.0e4), ("pinned", "guided", "point_force", -2.0e4)]
+)
+def test_point_loads_anywhere_second_order_on_the_nonlinear_path(left, right, kind, value):
+    """Finite rotations (slopes up to 0.18 / 0.08 rad), the load between two points (t = 0.25, 0.75 of each
+    grid's spacing), against the 3201-point solution with the same load: measured orders 2.00, 2.01
+    (moment) and 2.01, 2.02 (force) over 101 -> 201 -> 401; on six pairs 1.99-2.03."""
+    base = 1.3011 if kind == "point_moment" else 0.7037
+    errs = []
+    for n in (101, 201, 401):
+        dx, e = L / (n - 1), 0.0
+        for t in (0.25, 0.75):
+            p = (np.floor(base / dx) + t) * dx
+            a, ref = nonlinear_tip(left, right, kind, p, value, n), nonlinear_tip(left, right, kind, p, value, 3201)
+            s = 3200 // (n - 1)
+            d = np.hypot(a.w - ref.w[::s], a.fields["u"] - ref.fields["u"][::s]).max()
+            e = max(e, d / np.abs(ref.w).max())
+        errs.append(e)
+    orders = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
+    assert orders.min() > 1.8, (errs, orders)
+
+
+NARROW = {"type": "distributed", "value": -50.0, "start": 1.65516, "end": 1.65610}  # 0.94 mm wide
+
+
+@pytest.mark.parametrize("model", ["pd-eb", "pd-bond-pair", "pd-higher-order", "pd-timoshenko"])
+def test_a_load_inside_one_cell_is_flagged(model):
+    """A partial load narrower than the spacing that lies inside one point's cell acts on that point as a whole
+    (pd_common.narrow_load_warnings): at 401 points (cell 1.6525-1.6575) the result says so and is off by more than
+    1e-3 (measured 2.9e-3 to 3.2e-3, the same at 801); at 1601 points the load straddles two cells, no warning, and the
+    error is small (measured 1.1e-5 to 1.1e-4). A full-span load is never flagged."""
+    sc = parse_scene(scene_dict("clamped", "clamped", [NARROW], section={"width": 0.05, "height": 2.0 / 1541}))
+    exact = "exact-timoshenko" if model in ("pd-higher-order", "pd-timoshenko") else "exact-eb"
+    for n, flagged in ((401, True), (1601, False)):
+        r = run(sc, model, points=n)
+        ex = run(sc, exact, points=n).w
+        err = np.abs(r.w - ex).max() / np.abs(ex).max()
+        said = [w for w in r.info.get("warnings", []) if "inside one point's cell" in w]
+        assert bool(said) == flagged and (err > 1e-3) == flagged, (n, err, said)
+    whole = parse_scene(scene_dict("clamped", "clamped", [dict(NARROW, start=None, end=None)]))
+    assert not any("cell" in w for w in run(whole, model, points=401).info.get("warnings", []))
