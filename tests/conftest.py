@@ -1,8 +1,15 @@
-"""pytest configuration: repeatable property tests, the tiers (docs in tests/README.md) and their time guard."""
+"""pytest configuration: one BLAS thread, repeatable property tests, the tiers (tests/README.md) and their time
+guard."""
+
+import os
 
 import pytest
-from helpers import scene_dict
 from hypothesis import settings
+
+# as the command line does (pdverify/apps/cli.py): one BLAS thread per process, set before numpy is imported (this
+# file imports nothing that imports it); the test workers (pytest-xdist) are the parallelism
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
 # Property tests draw the same examples on every run (a CI failure reproduces on any machine, and a green
 # run means the same thing each time); `pytest --hypothesis-profile=explore` searches afresh.
@@ -13,6 +20,8 @@ settings.load_profile("repeatable")
 
 @pytest.fixture
 def make_scene():
+    from helpers import scene_dict  # deferred: helpers imports numpy, after the BLAS setting above
+
     from pdverify.core.scene_file import parse_scene
 
     def make(left="clamped", right="free", loads=(), **over):
@@ -52,3 +61,21 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
 def pytest_sessionfinish(session, exitstatus):
     if _OVER_BUDGET and session.config.getoption("--tier-guard") and exitstatus == 0:
         session.exitstatus = 1
+
+
+# -- record_property values cross the worker boundary (pytest-xdist serialises plain Python only) -----------------
+def _plain(value):
+    if hasattr(value, "tolist"):  # numpy scalars and arrays
+        return value.tolist()
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    return value if isinstance(value, (int, float, str, bool, type(None))) else str(value)
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    outcome = yield
+    report = outcome.get_result()
+    report.user_properties = [(name, _plain(value)) for name, value in report.user_properties]

@@ -235,6 +235,7 @@ class Indeterminate:
                 key = ("u", "w", "rotation")[c] if kin else ("N", "Q", "M")[c]
                 rows.append([b[key][0] for b in basis[1:]])
                 rhs.append((0.0 if kin else target[c]) - basis[0][key][0])
+        self.cond = float(f"{np.linalg.cond(np.array(rows)):.3g}")  # the force method's system: cond eps round-off
         try:
             self.c = np.linalg.solve(np.array(rows), np.array(rhs))
         except np.linalg.LinAlgError:
@@ -295,7 +296,8 @@ class ExactCurved(Model):
         timer = Timer()
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
-            f = self.solver(scene).fields(s)
+            sol = self.solver(scene)
+            f = sol.fields(s)
         return self.new_result(
             scene,
             params,
@@ -305,7 +307,7 @@ class ExactCurved(Model):
             fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
             dofs=0,
             timings=timer.timings,
-            info={},
+            info={"cond": getattr(sol, "cond", 1.0)},  # a cantilever solves nothing: statics and quadrature only
         )
 
 

@@ -49,6 +49,10 @@ D1 = np.zeros((5, 4))
 D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e = w*' + ...
 D0 = np.zeros((5, 4))
 D0[[1, 3, 4], [3, 0, 1]] = 2.0, 1.0, 3.0  # s = 2 w*, g = ... + theta, e = ... + 3 theta*
+# the forcing's largest entry in the augmented generators: small beside the modal blocks (entries ~1-10), so their
+# exponential sets the Pade degree and scaling of expm (an entry of 1e14 made it lose digits; one of 1 made it 15x
+# slower)
+FORCING = 1e-7
 BLOCKS = {"slow": slice(0, 4), "decay": slice(4, 6), "grow": slice(6, 8)}  # the modal coordinates' blocks
 
 
@@ -71,13 +75,27 @@ def modal_basis(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         chain.append(np.linalg.lstsq(M, chain[-1], rcond=None)[0])
     lam, V = np.linalg.eig(M)
     fast = [np.argmin(np.where(lam.imag > 0, sign * lam.real, np.inf)) for sign in (1.0, -1.0)]
-    T = np.column_stack(chain + [np.column_stack([V[:, i].real, V[:, i].imag]) for i in fast])
+    layer = [inverse_iteration(M, lam[i], V[:, i]) for i in fast]
+    T = np.column_stack(chain + [np.column_stack([v.real, v.imag]) for v in layer])
     B = np.linalg.solve(T, M @ T)
     exact = np.zeros((8, 8))
     exact[0, 1] = exact[1, 2] = exact[2, 3] = 1.0  # M z_(j+1) = z_j
     for blk in (BLOCKS["decay"], BLOCKS["grow"]):
         exact[blk, blk] = B[blk, blk]
     return T, exact
+
+
+def inverse_iteration(M: np.ndarray, lam: complex, v: np.ndarray, steps: int = 2) -> np.ndarray:
+    """The eigenvector of M for the simple eigenvalue near ``lam``, refined from ``v`` by inverse iteration with a
+    Rayleigh-quotient shift. LAPACK's eigenvectors of the layer modes of this M (which also has the defective
+    eigenvalue 0) can be off by ~1e-7 for one ulp of change in the material constants; two steps bring them to
+    round-off."""
+    n = len(v)
+    for _ in range(steps):
+        v = np.linalg.solve(M - lam * np.eye(n), v)
+        v = v / np.linalg.norm(v)
+        lam = np.vdot(v, M @ v)
+    return v
 
 
 def held(support: str, pin: str) -> np.ndarray:
@@ -152,17 +170,20 @@ class Solution:
 
     def generators(self, Ti: np.ndarray, dist: list, xm: float) -> dict:
         """The augmented generators of the three modal blocks on a piece whose midpoint is xm: zeta' = (modal
-        block) zeta + Ti (0, -f), f = (constant, sine) parts of the loads acting there."""
+        block) zeta + Ti (0, -f), f = (constant, sine) parts of the loads acting there. The forcing enters the
+        augmented state (1, sin kx, cos kx) scaled to FORCING (its factor in ``"scale"``), so the matrix
+        exponential sees the same entries whatever the load's size in the scene's units."""
         G = np.zeros((8, 3))  # forcing of z per (1, sin kx, cos kx)
         for a, b, shape, q in dist:
             if a <= xm <= b:
                 G[4:, 0 if shape == "uniform" else 1] -= [0.0, 0.0, q, q / 4 if self.faces else 0.0]
         Gz = Ti @ G
-        out = {}
+        scale = float(np.abs(Gz).max()) / FORCING or 1.0
+        out = {"scale": scale}
         for name, blk in BLOCKS.items():
             n = blk.stop - blk.start
             A = np.zeros((n + 3, n + 3))
-            A[:n, :n], A[:n, n:] = self.modal[blk, blk], Gz[blk]
+            A[:n, :n], A[:n, n:] = self.modal[blk, blk], Gz[blk] / scale
             A[n + 1, n + 2], A[n + 2, n + 1] = self.k, -self.k
             out[name] = A
         return out
@@ -183,7 +204,7 @@ class Solution:
             n = blk.stop - blk.start
             E = sla.expm(piece.A[name][None] * (x - x_ref)[:, None, None])
             P[:, :, blk] = self.T[:, blk] @ E[:, :n, :n]
-            cz += np.einsum("ij,njk,k->ni", self.T[:, blk], E[:, :n, n:], self.aug(np.array(x_ref)))
+            cz += np.einsum("ij,njk,k->ni", self.T[:, blk], E[:, :n, n:], piece.A["scale"] * self.aug(np.array(x_ref)))
         return P, cz
 
     def solve_pieces(self, left: str, right: str, pin: str) -> np.ndarray:
@@ -205,6 +226,7 @@ class Solution:
             K[row : row + 8, 8 * p : 8 * p + 8] = Pl[0]
             K[row : row + 8, 8 * p + 8 : 8 * p + 16] = -Pr[0]
             r[row : row + 8] = cr[0] - cl[0] - self.jumps[p + 1]
+        self.cond = float(f"{np.linalg.cond(K):.3g}")  # its rounding scales the fields' round-off: cond eps
         return np.linalg.solve(K, r).reshape(n, 8)
 
     def states(self, x) -> np.ndarray:
@@ -282,7 +304,13 @@ class ExactHigherOrder(Model):
             fields=f,
             dofs=8,
             timings=timer.timings,
-            info={"reactions": sol.reactions(), "depth": sol.h, "loads": params["loads"], "pin": params["pin"]},
+            info={
+                "reactions": sol.reactions(),
+                "depth": sol.h,
+                "loads": params["loads"],
+                "pin": params["pin"],
+                "cond": sol.cond,
+            },
         )
 
 

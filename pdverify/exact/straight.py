@@ -147,11 +147,15 @@ def solve_straight(scene: Scene, shear: bool) -> StraightSolution:
     rows = _rows(scene.supports.left, 0.0, scene, r) + _rows(scene.supports.right, scene.length, scene, r)
     A = np.array([row for row, _ in rows])
     b = np.array([rhs for _, rhs in rows])
-    # scale x by the length so the 4x4 system is well conditioned for any length
+    # scale x by the length (every unknown in deflection units) and each condition by its largest coefficient
+    # (w, phi, M and V rows differ by powers of the length): the 4x4 system is then well conditioned at any size,
+    # from a micrometre to kilometres, and its rank says whether the supports hold the beam
     L = scene.length
     S = np.diag([L**2, L**3, L, 1.0])  # S a: every unknown in deflection units
     As = A @ np.linalg.inv(S)
-    if np.linalg.matrix_rank(As, tol=1e-10 * np.abs(As).max()) < 4:
+    row = np.abs(As).max(axis=1)
+    As, b = As / row[:, None], b / row
+    if np.linalg.matrix_rank(As, tol=1e-10) < 4:
         raise SolveError(
             f"supports = {scene.supports.left}-{scene.supports.right}: the beam is a mechanism; "
             "fix the deflection at one end and the rotation somewhere"

@@ -1,0 +1,114 @@
+"""A scaled scene gives the same relative result: every static model on a straight beam, the scene scaled in length
+(every length: the beam, its section, load positions and spans; 1e-6 to 1e6), in modulus (1e-3 to 1e15) and in
+load (1e-6 to 1e6), gives the same deflection relative to its largest value and the same warnings as the unscaled
+scene. A model whose numbers depend on the units (an absolute tolerance, a rank test on unscaled rows, a round-off
+bound in absolute terms) fails here.
+
+Tolerance: the two runs' own round-off bounds (``info["error_bound"]``, each relative to max |w|, which covers the
+rounding of the scaled inputs as data error; an estimate "usually within a factor of 3", Higham 2002 §15.3, hence
+BOUND_FACTOR) plus a few eps for the normalisation; closed forms, which solve at most a small dense system of
+condition ``info["cond"]``, get SCALE_EPS cond eps.
+"""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+from helpers import PAIRS, scene_dict
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.registry import models, run
+
+SCALE_EPS = 64  # a closed form's rounding: a few dozen operations on each value, each within eps
+BOUND_FACTOR = 3.0  # Hager's estimate of a norm is usually within a factor of 3 of it (Higham 2002, §15.3)
+
+# every static straight-beam model, with the options that set its grid; a curved model on a straight axis too
+SKIP = {
+    "exact-curved-cantilever": "clamped-free only; exact-curved covers it",
+    "exact-curved-manufactured": "ignores the scene's loads by design",
+    "pd-curved-mms": "manufactured loads",
+    "exact-elastica": "a nonlinear reference for one end load",
+    "fem-plane-stress": "the 2D continuum: its own scale test below, slow",
+}
+MODELS = sorted(n for n, m in models().items() if "static" in m.analyses and m.straight and m.bending and n not in SKIP)
+
+LOADS = [
+    {"type": "point_force", "position": 0.7, "value": -300.0},
+    {"type": "point_moment", "position": 1.3, "value": 150.0},
+    {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
+    {"type": "distributed", "value": 400.0, "shape": "sine"},
+]
+
+
+def scaled(left: str, right: str, length: float, modulus: float, load: float) -> dict:
+    """The test beam (L = 2, 0.05 x 0.1 section, E = 70 GPa) with every length times ``length``, the modulus times
+    ``modulus`` and every load times ``load`` (forces and moments by the same factor, line loads per unit length)."""
+    loads = []
+    for ld in LOADS:
+        d = dict(ld)
+        for key in ("position", "start", "end"):
+            if key in d:
+                d[key] *= length
+        d["value"] *= (
+            load * (length if d["type"] == "point_moment" else 1.0) / (length if d["type"] == "distributed" else 1.0)
+        )
+        loads.append(d)
+    return scene_dict(
+        left,
+        right,
+        loads,
+        beam={"length": 2.0 * length},
+        section={"width": 0.05 * length, "height": 0.1 * length},
+        material={"youngs_modulus": 70e9 * modulus, "poissons_ratio": 0.33},
+    )
+
+
+def words(warnings: list[str]) -> list[str]:
+    """A warning without its numbers (a position or a load scales with the scene; its text must not change)."""
+    return sorted(re.sub(r"[-+]?\d[\d.]*(e[-+]?\d+)?", "#", w) for w in warnings)
+
+
+def relative(result) -> np.ndarray:
+    w = np.asarray(result.w, float)
+    return w / np.abs(w).max()
+
+
+def tolerance(a, b) -> float:
+    eps = np.finfo(float).eps
+    bounds = [r.info.get("error_bound") for r in (a, b)]
+    if any(v is None for v in bounds):
+        return SCALE_EPS * eps * max(r.info.get("cond", 1.0) for r in (a, b))
+    return BOUND_FACTOR * sum(bounds) + 8 * eps
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    pair=st.sampled_from(PAIRS),
+    length=st.sampled_from([1e-6, 1e-3, 1e3, 1e6]),
+    modulus=st.sampled_from([1e-3, 1e-9, 1e6, 1e5 / 70]),
+    load=st.sampled_from([1e-6, 1e6]),
+)
+@pytest.mark.parametrize("name", MODELS)
+def test_a_scaled_scene_gives_the_same_relative_result(name, pair, length, modulus, load):
+    options = {"points": 41} if models()[name].option("points") is not None else {}
+    base = run(parse_scene(scaled(*pair, 1.0, 1.0, 1.0)), name, **options)
+    other = run(parse_scene(scaled(*pair, length, modulus, load)), name, **options)
+    assert np.allclose(np.asarray(other.x) / length, base.x, rtol=1e-15, atol=1e-15 * 2.0)
+    diff = np.abs(relative(other) - relative(base)).max()
+    assert diff <= tolerance(base, other), (diff, tolerance(base, other))
+    assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("length", [1e-6, 1e6])
+def test_the_plane_stress_reference_scales_too(length):
+    options = {"points": 21, "layers": 2, "element": "q8"}
+    base = run(parse_scene(scaled("clamped", "pinned", 1.0, 1.0, 1.0)), "fem-plane-stress", **options)
+    other = run(parse_scene(scaled("clamped", "pinned", length, 1e3, 1e-3)), "fem-plane-stress", **options)
+    diff = np.abs(relative(other) - relative(base)).max()
+    assert diff <= tolerance(base, other), (diff, tolerance(base, other))
+    assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))
