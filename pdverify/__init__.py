@@ -30,11 +30,19 @@ def load_scene(path):
 
 
 def run(scene, model, **options):
-    """Solve ``scene`` (a Scene or a path to a scene file) with ``model`` (a registered name or a Model)."""
+    """Solve ``scene`` (a Scene or a path to a scene file) with ``model`` (a registered name or a Model). A grid
+    too large for the machine's memory is refused before it is allocated (SolveError naming the largest that fits)."""
+    from .core.contract import Model
+    from .measure.memory import check_memory
+    from .registry import get_model
     from .registry import run as _run
 
     if not hasattr(scene, "length"):
         scene = load_scene(scene)
+    if isinstance(model, str):
+        model = get_model(model)
+    if isinstance(model, Model):  # anything else is refused by the registry's run, in one line
+        check_memory(scene, model, options)
     return _run(scene, model, **options)
 
 

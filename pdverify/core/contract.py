@@ -77,7 +77,7 @@ class Option:
                     raise ValueError
             else:
                 v = self.kind(value)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise InputError(
                 f"{self.name} = {value!r}: model {model} needs "
                 + {int: "an integer", float: "a number", bool: "true or false"}.get(self.kind, self.kind.__name__)

@@ -16,6 +16,7 @@ normal n = e_z × t = (-sin θ, cos θ), so for a straight beam t = +x and n = +
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -48,6 +49,12 @@ def axis_length(axis: Axis, straight_length: float | None = None) -> float:
     c = np.asarray(axis.coefficients, float)
     x0, x1 = axis.x_range
     return float(arclength(c, x0, np.array([x1]))[0])
+
+
+def start_angle(axis: Axis) -> float:
+    """The arc's start angle in radians, reduced to one turn in degrees first: fmod is exact in floating point,
+    whereas the radians of 1e15 degrees carry an error of ~1e-3 in their sine and cosine."""
+    return float(np.deg2rad(math.fmod(axis.start_angle_deg, 360.0)))
 
 
 def _turn(axis: Axis) -> float:
@@ -101,7 +108,7 @@ class AxisGeometry:
         if a.type == "straight":
             return np.stack([s, np.zeros_like(s)], axis=-1)
         if a.type == "arc":
-            ang = np.deg2rad(a.start_angle_deg) + _turn(a) * s / a.radius
+            ang = start_angle(a) + _turn(a) * s / a.radius
             return a.radius * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
         x = self._x_of_s(s)
         return np.stack([x, P.polyval(x, np.asarray(a.coefficients, float))], axis=-1)
@@ -114,7 +121,7 @@ class AxisGeometry:
             return np.zeros_like(s)
         if a.type == "arc":
             sigma = _turn(a)
-            return np.deg2rad(a.start_angle_deg) + sigma * (s / a.radius + np.pi / 2)
+            return start_angle(a) + sigma * (s / a.radius + np.pi / 2)
         x = self._x_of_s(s)
         return np.arctan(P.polyval(x, P.polyder(np.asarray(a.coefficients, float))))
 

@@ -18,6 +18,8 @@ from typing import Annotated, Literal
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, Strict, model_validator
 
+from .errors import InputError
+
 SUPPORTS = ("clamped", "pinned", "free", "guided", "roller")
 Support = Literal["clamped", "pinned", "free", "guided", "roller"]
 # What each support holds, per end, in the axis frame (tangential displacement, normal displacement, rotation):
@@ -36,6 +38,7 @@ ROD_HELD = {"axial": ("clamped", "pinned"), "torsion": ("clamped", "pinned", "ro
 
 
 Real = Annotated[float, Strict()]  # a float that an int may give, never a boolean or a string ("true" is not 1.0)
+Finite = Annotated[Real, Field(allow_inf_nan=False)]
 
 
 class _Strict(BaseModel):
@@ -192,8 +195,10 @@ class Axis(_Strict):
     opening_angle_deg: Real | None = Field(default=None, gt=0, le=360, allow_inf_nan=False)
     start_angle_deg: Real = Field(default=0.0, allow_inf_nan=False)
     direction: Literal["counterclockwise", "clockwise"] | None = None  # arcs only; None = counterclockwise
-    coefficients: list[Real] | None = None
-    x_range: tuple[Real, Real] | None = None
+    coefficients: list[Annotated[Real, Field(allow_inf_nan=False)]] | None = None
+    x_range: tuple[Annotated[Real, Field(allow_inf_nan=False)], Annotated[Real, Field(allow_inf_nan=False)]] | None = (
+        None
+    )
 
     @model_validator(mode="after")
     def _complete(self):
@@ -333,6 +338,8 @@ class Scene(_Strict):
 
         A rectangle keeps its width; a section given by area and inertia is scaled as the
         equivalent rectangle (area ~ h, inertia ~ h^3)."""
+        if isinstance(slenderness, bool) or not (isinstance(slenderness, (int, float)) and 0 < slenderness < math.inf):
+            raise InputError(f"slenderness = {slenderness!r}: give a positive, finite length / depth ratio")
         h_new = self.length / slenderness
         s = self.section
         if s.height is not None:

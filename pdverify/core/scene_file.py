@@ -3,9 +3,11 @@ raise :class:`~pdverify.core.errors.InputError` with one line per problem (field
 
 from __future__ import annotations
 
+import math
 import tomllib
 from pathlib import Path
 
+import numpy as np
 from pydantic import ValidationError
 
 from .errors import InputError
@@ -180,6 +182,30 @@ def _check_dynamics(scene: Scene) -> list[str]:
     return lines
 
 
+def _check_magnitudes(scene: Scene) -> list[str]:
+    """The section's and beam's derived stiffnesses must be ordinary floating-point numbers: a width of 5e-324 (the
+    smallest subnormal) gives an area of 0, a modulus of 1e300 times a large section overflows."""
+    sec, tiny = scene.section, float(np.finfo(float).tiny)
+    given = ", ".join(
+        f"{k} = {getattr(sec, k)!r}" for k in ("width", "height", "area", "inertia") if getattr(sec, k) is not None
+    )
+    derived = (
+        ("area", sec.A),
+        ("second moment of area", sec.I),
+        ("EI", scene.EI),
+        ("EA", scene.EA),
+        ("kGA", scene.kGA),
+    )
+    for name, value in derived:
+        if not (math.isfinite(value) and value >= tiny):
+            return [
+                f"section: {given} and youngs_modulus = {scene.material.E!r} give {name} = {value!r}, not an ordinary "
+                "float (it under- or overflows); give the scene in units that keep its numbers within about "
+                "1e-100..1e100"
+            ]
+    return []
+
+
 def parse_scene(data: dict, source: str = "scene") -> Scene:
     """Validate a scene given as a dict (parsed TOML) and return it, or raise InputError."""
     if not isinstance(data, dict):
@@ -188,7 +214,7 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
         scene = Scene.model_validate(data)
     except ValidationError as exc:
         raise InputError([f"{source}: {m}" for m in _messages(exc.errors(), data)]) from None
-    lines = _check_loads(scene) + _check_dynamics(scene)
+    lines = _check_magnitudes(scene) + _check_loads(scene) + _check_dynamics(scene)
     if not scene.is_straight:
         arc = axis_length(scene.axis)
         if abs(arc - scene.length) > 1e-6 * arc:

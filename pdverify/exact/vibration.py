@@ -21,7 +21,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.errors import SolveError
 from ..core.scene import HELD
+
+SCAN_LIMIT = 1e4  # per mode sought: the scan in z = L (rho A omega^2 / EI)^(1/4) stops at this times (count + 1)
 
 
 def rod_frequencies(length: float, wave_speed: float, held: tuple[bool, bool], count: int) -> np.ndarray:
@@ -105,6 +108,21 @@ class TimoshenkoBeam:
             return np.linalg.det(self.end_conditions(omega)[0])
 
     def frequencies(self, count: int, resolution: int = 256) -> np.ndarray:
+        """The first ``count`` circular frequencies (rad/s), found on the dimensionless beam (length, EI and rho A
+        one; x = L xi, t = tau / omega_0, omega_0^2 = EI / (rho A L^4)) and scaled back: the same roots whatever the
+        units (a modulus of 1e-30 or a density of 1e-300 would otherwise under- or overflow omega^2)."""
+        w0 = np.sqrt(self.EI / (self.rA * self.L**4))
+        unit = TimoshenkoBeam(
+            1.0, self.kGA * self.L**2 / self.EI, 1.0, self.rI / (self.rA * self.L**2), 1.0, self.left, self.right
+        )
+        if not (np.isfinite(w0) and w0 > 0 and np.isfinite(unit.kGA) and np.isfinite(unit.rI) and unit.rI > 0):
+            raise SolveError(
+                "the beam's natural frequencies are out of the floating-point range in these units; give the scene "
+                "in units that keep its numbers within about 1e-100..1e100"
+            )
+        return w0 * unit.scan(count, resolution)
+
+    def scan(self, count: int, resolution: int = 256) -> np.ndarray:
         """The first ``count`` circular frequencies (rad/s): sign changes of :meth:`determinant` on a scan, all
         brackets refined at once by bisection to the last bits, kept when the determinant vanishes there (|det|
         below 1e-6 of its values at the bracket: a jump of the basis at the cut-off changes the sign too); close
@@ -119,7 +137,14 @@ class TimoshenkoBeam:
         z_cross = self.L**2 * wave_step * resolution / (2 * np.pi * np.sqrt(self.EI / self.rA))
         found = [self.cutoff] if self.left[0] and self.right[0] and not self.left[1] and not self.right[1] else []
         z0, chunk = 1e-3, 8192
+        z_limit = SCAN_LIMIT * (count + 1)
         while len(found) < count:
+            if not z0 < z_limit:
+                raise SolveError(
+                    f"the characteristic determinant changed sign {len(found)} times up to z = {z_limit:g} (its "
+                    f"{count} lowest modes lie below z ~ {count + 1} pi for any real beam); check the section and "
+                    "material"
+                )
             if z0 < z_cross:
                 z = np.minimum(z0 + np.pi / resolution * np.arange(chunk + 1), z_cross)
                 omega = to_omega(np.unique(z))

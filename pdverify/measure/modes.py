@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ..core.errors import InputError
+from ..core.errors import InputError, SolveError
 from ..core.result import columns_csv, plain_json
 from ..core.scene import HELD, ROD_HELD, Scene
 from ..exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
@@ -39,6 +39,17 @@ def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, 
 
     consistent = sp.issparse(mass)
     lumped = np.asarray(mass.sum(1)).ravel() if consistent else np.asarray(mass, float)
+    # K / k0 and M / m0 (powers of two: exact) keep every entry an ordinary float whatever the units (a density of
+    # 1e-300 overflows 1/M); the eigenvalues are k0 / m0 times those of the scaled pair
+    k0 = 2.0 ** np.round(np.log2(abs(K).max()))
+    m0 = 2.0 ** np.round(np.log2(np.abs(lumped).max()))
+    if not np.log2(k0) - np.log2(m0) < 1023:  # k0 / m0 overflows
+        raise SolveError(
+            "the natural frequencies squared are out of the floating-point range in these units (stiffness "
+            f"~{k0:.0e}, mass ~{m0:.0e}); give the scene in units that keep its numbers within about 1e-100..1e100"
+        )
+    K, lumped = K / k0, lumped / m0
+    mass = mass / m0 if consistent else lumped
     A = sp.csr_matrix(sp.diags(1.0 / lumped) @ K)
     norm = float(abs(A).sum(1).max())
     n = A.shape[0]
@@ -49,7 +60,7 @@ def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, 
         B, M = (sp.csc_matrix(K), sp.csc_matrix(mass)) if consistent else (A.tocsc(), None)
         lam = spla.eigs(B, k=count, M=M, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
     lam = lam[np.argsort(np.abs(lam), kind="stable")][:count]
-    return lam, norm
+    return lam * (k0 / m0), norm * (k0 / m0)
 
 
 def analytic_frequencies(scene: Scene, theory: str, count: int) -> tuple[np.ndarray, str]:

@@ -36,6 +36,7 @@ from ..core.errors import InputError
 from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite
 from ..core.scene import Scene
+from ..core.scene_file import parse_scene
 from .external import ExternalModel, load_manifest
 from .plugins import discover, remember_manifest
 
@@ -187,6 +188,11 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     Floating-point overflow and invalid operations inside the solve raise no numpy warning: a result that
     holds NaN or inf is refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
     t0 = time.perf_counter()
+    if not isinstance(model, (str, Model)):
+        raise InputError(f"model = {model!r}: give a model's name (see `pdverify models`) or a pdverify Model")
+    if not isinstance(scene, Scene):
+        raise InputError(f"scene = {type(scene).__name__}: give a Scene (pdverify.load_scene or parse_scene)")
+    scene = parse_scene(scene.to_dict(), source=f"scene {scene.name!r}")  # a copy changed by model_copy is checked too
     m = get_model(model) if isinstance(model, str) else model
     if as_flag(given.pop("static", False)):
         scene, given = static_part(scene, m, given)

@@ -70,11 +70,12 @@ def test_no_warning_where_the_bound_holds(tmp_path):
 
 @pytest.mark.parametrize("model", ["exact-eb", "fem-eb", "exact-timoshenko", "fem-timoshenko"])
 def test_no_nan_with_exit_0(tmp_path, model):
-    """E = 1e-300: exact-eb and fem-eb printed NaN with exit 0 (issue 27)."""
+    """E = 1e-300 on a 1 cm section: EI underflows to a subnormal float. The scene is refused before any model
+    runs (exit 2, one line naming the modulus and the fix); never a NaN printed with exit 0."""
     r = _cli(["-m", model, "--points", "11"], tmp_path, E="1e-300")
-    assert r.exit_code == 3
+    assert r.exit_code == 2
     assert "nan" not in r.stdout.lower()
-    assert model in r.output and "error:" in r.output
+    assert "youngs_modulus = 1e-300" in r.output and "error:" in r.output and "units" in r.output
 
 
 def test_a_study_row_is_suspect_and_the_report_marks_it(tmp_path):
