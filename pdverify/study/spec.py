@@ -53,7 +53,7 @@ from ..core.version import __version__
 from ..registry import get_model, models, use_manifest
 from ..registry.plugins import GROUP
 from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
-from .entries import card_folder, parse_entry
+from .entries import verify_entries
 
 RUN_KEYS = {"model", "reference", "scenes", "slenderness"}
 STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
@@ -236,48 +236,6 @@ def _external(path: Path, manifests) -> list[str]:
         except InputError as exc:
             errors.extend(exc.lines)
     return errors
-
-
-def _verify_entries(data: dict, path: Path, card_errors=None) -> tuple[list[dict], bool, list[str]]:
-    """The study's ``verify`` cards (model, options, folder), ``verify_required`` and their error lines;
-    ``card_errors(model, options)``: what else stops a card (:func:`pdverify.verify.entry_errors`), else only
-    the model's name is checked."""
-
-    entries, errors = data.get("verify", []), []
-    required = data.get("verify_required", False)
-    if not isinstance(required, bool):
-        errors.append(f"{path}: verify_required = {required!r}: give true or false")
-    if not isinstance(entries, list):
-        return (
-            [],
-            False,
-            errors + [f'{path}: verify = {entries!r}: give a list of models, e.g. ["pd-eb", "pd-eb variant=paper"]'],
-        )
-    cards, folders = [], set()
-    for i, entry in enumerate(entries):
-        where = f"{path}: verify[{i}] = {entry!r}"
-        try:
-            name, options = parse_entry(entry)
-        except InputError as exc:
-            errors.append(f"{path}: verify[{i}] = {exc.lines[0]}")
-            continue
-        found = card_errors(name, options) if card_errors is not None else _model_errors(name)
-        errors += [f"{where}: {line}" for line in found]
-        folder = card_folder(get_model(name).name if not found else name, options)
-        if not found and folder in folders:
-            errors.append(f"{where}: listed twice; drop one")
-        elif not found:
-            folders.add(folder)
-            cards.append({"model": name, "options": options, "folder": folder})
-    return cards, required is True, errors
-
-
-def _model_errors(name: str) -> list[str]:
-    try:
-        get_model(name)
-    except InputError as exc:
-        return [exc.lines[0]]
-    return []
 
 
 def load_study(path: str | Path, card_errors=None) -> Study:
@@ -493,7 +451,7 @@ def load_study(path: str | Path, card_errors=None) -> Study:
         {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)},
         path,
     )
-    study.verify, study.verify_required, found = _verify_entries(data, path, card_errors)
+    study.verify, study.verify_required, found = verify_entries(data, path, card_errors)
     errors += found
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once
