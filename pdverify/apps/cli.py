@@ -372,9 +372,10 @@ def advise(
 ):
     """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
     from ..core.scene_file import load_scene
-    from .advise import PRIORS, format_advice
     from .advise import advise as _advise
-    from .advise import rebuild_priors as _rebuild
+    from .advise import format_advice
+    from .priors import PRIORS
+    from .priors import rebuild_priors as _rebuild
 
     if rebuild_priors:
         data = _rebuild()
