@@ -8,9 +8,9 @@
    of static solutions, so a scene with a ``[dynamics]`` table is refused unless the static part is asked
    for (``static = True``, CLI ``--static``): then only models that can solve that part qualify (the
    declared capabilities, :func:`pdverify.registry.problems`).
-2. The grid, per candidate: the packaged priors (``pdverify/data/advisor_priors.json``: per model and
-   options, the error constant C and order p of clean convergence series, err = C (dx / L)^p, with the
-   code digest they were made from; ``pdverify advise --rebuild-priors`` regenerates them) predict the
+2. The grid, per candidate: the packaged priors (:mod:`.priors`, ``pdverify/data/advisor_priors.json``: per
+   model and options, the error constant C and order p of clean convergence series, err = C (dx / L)^p, with
+   the code digest they were made from; ``pdverify advise --rebuild-priors`` regenerates them) predict the
    points needed; the ladder of nested grids N, 2N-1, 4N-3 starts two refinements below that prediction
    and stops when the a-posteriori estimate on this very scene (observed order p from three grids,
    Richardson |w_2 - w_3| / (2^p - 1), relative to max|w|) is below the tolerance.
@@ -21,29 +21,25 @@
 
 from __future__ import annotations
 
-import json
 import time
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
-from ..core.errors import InputError, OutputError, SolveError
+from ..core.errors import InputError, SolveError
 from ..core.scene import Scene, bends
 from ..exact.straight import solve_straight
 from ..registry import get_model, models, problems, run
-from ..study import load_study, run_study
-from ..study.spec import code_digest
 from ..verify.suite import reference_for
-
-PRIORS = Path(__file__).resolve().parents[1] / "data" / "advisor_priors.json"
-# the options advise tries per model (others: their defaults); the priors are fitted for the same
-CANDIDATE_OPTIONS = {
-    "pd-timoshenko": {"variant": "energy"},
-    "pd-eb": {"variant": "corrected"},
-    "pd-bond-pair": {"variant": "corrected", "ends": "taylor"},
-    "fem-plane-stress": {"element": "q8"},
-}
+from .priors import (  # noqa: F401 (PRIORS, load_priors, fit_series, rebuild_priors: re-exported)
+    CANDIDATE_OPTIONS,
+    PRIORS,
+    fit_series,
+    load_priors,
+    predicted_points,
+    prior_order,
+    rebuild_priors,
+)
 
 
 @dataclass
@@ -75,158 +71,6 @@ def shear_gap(scene: Scene) -> float:
     ti = solve_straight(scene, True).fields(x)["w"]
     scale = np.abs(ti).max()
     return float(np.abs(ti - eb).max() / scale) if scale > 0 else 0.0
-
-
-def _matches(opts: dict, options: dict) -> bool:
-    return all(opts.get(k) == v for k, v in options.items())
-
-
-def load_priors(path: Path | str | None = None) -> dict:
-    """The advisor's priors (a small JSON file shipped in the package; independent of the working
-    directory): ``{"code_digest", "series": [{model, options, scene, constant, order, points}]}``."""
-    p = Path(path) if path is not None else PRIORS
-    try:
-        return json.loads(p.read_text())
-    except (OSError, ValueError):
-        return {"code_digest": None, "series": []}
-
-
-def prior_order(model: str, options: dict, priors: dict | None = None) -> str:
-    """Observed orders of the prior convergence series for this model with these options."""
-    priors = load_priors() if priors is None else priors
-    orders = [s["order"] for s in priors.get("series", []) if s["model"] == model and _matches(s["options"], options)]
-    if not orders:
-        return "no prior series"
-    return f"priors: median observed order {np.median(orders):.2f} over {len(orders)} series"
-
-
-def predicted_points(model: str, options: dict, tol: float, priors: dict | None = None) -> tuple[int | None, str]:
-    """Points the priors say this model needs for tol: each clean series' err = C (dx / L)^p solved for
-    dx, the most pessimistic series taken. (None, why) without a series."""
-    priors = load_priors() if priors is None else priors
-    needs = [
-        int(np.ceil((tol / s["constant"]) ** (-1.0 / s["order"]))) + 1
-        for s in priors.get("series", [])
-        if s["model"] == model and _matches(s["options"], options)
-    ]
-    if not needs:
-        return None, "no clean prior convergence series for these options"
-    n = max(needs)
-    return n, f"priors: {len(needs)} convergence series predict up to {n} points"
-
-
-def fit_series(results) -> list[dict]:
-    """Clean convergence series of a study's results table (rows: model, options, scene_file, points,
-    err_max, status; slenderness sweeps left out): per scene and option set with >= 3 grids, the
-    least-squares fit of log err = log C + p log(dx / L); kept when p > 0.5 and r^2 > 0.9 (a
-    discretisation-error series, not round-off or a plateau)."""
-    import pandas as pd
-
-    df = results if isinstance(results, pd.DataFrame) else pd.read_csv(results)
-    ok = (df["status"] == "ok") & df["err_max"].notna() & (df["err_max"] > 1e-12) & df["slenderness"].isna()
-    out = []
-    for (model, scene, options), g in df[ok].groupby(["model", "scene_file", "options"]):
-        if g["points"].nunique() < 3:
-            continue
-        lh, le = np.log(1.0 / (g["points"].to_numpy(float) - 1)), np.log(g["err_max"].to_numpy(float))
-        p, c = np.polyfit(lh, le, 1)
-        r2 = 1 - np.sum((le - (p * lh + c)) ** 2) / max(np.sum((le - le.mean()) ** 2), 1e-300)
-        if p > 0.5 and r2 > 0.9:
-            out.append(
-                {
-                    "model": model,
-                    "options": json.loads(options),
-                    "scene": scene,
-                    "constant": float(np.exp(c)),
-                    "order": float(p),
-                    "r2": float(r2),
-                    "points": sorted(int(n) for n in g["points"]),
-                }
-            )
-    return out
-
-
-PRIOR_SCENES = {
-    "euler-bernoulli": (
-        "exact-eb",
-        (
-            "paper_diyaroglu/clamped_clamped.toml",
-            "paper_diyaroglu/simply_supported.toml",
-            "paper_diyaroglu/clamped_free.toml",
-        ),
-    ),
-    "timoshenko": (
-        "exact-timoshenko",
-        ("paper_diyaroglu/clamped_clamped.toml", "paper_diyaroglu/clamped_free.toml", "paper_yang/cc_uniform.toml"),
-    ),
-}  # per theory: reference, scenes
-PRIOR_POINTS = (21, 41, 81, 161)
-
-
-def rebuild_priors(
-    out: Path | str | None = None,
-    names: list[str] | None = None,
-    points=PRIOR_POINTS,
-    studies: Path | None = None,
-    workdir: Path | None = None,
-) -> dict:
-    """Regenerate the priors (``pdverify advise --rebuild-priors``): a small study (every advise candidate
-    that bends, with :data:`CANDIDATE_OPTIONS`, on the scenes of :data:`PRIOR_SCENES` against their exact
-    solution, at ``points``), fitted by :func:`fit_series`, written with the code digest it was made from.
-    Needs the source checkout's ``studies/`` folder (the scenes)."""
-    import tempfile
-
-    studies = Path(studies) if studies is not None else Path(__file__).resolve().parents[2] / "studies"
-    if not studies.is_dir():
-        raise InputError(
-            f"studies = {str(studies)!r}: the scenes of the priors study are not there; run "
-            "--rebuild-priors from a source checkout of pdverify"
-        )
-    cands = [
-        m
-        for m in models().values()
-        if not m.reference
-        and "static" in m.analyses
-        and m.bending
-        and m.option("points") is not None
-        and (names is None or m.name in names)
-    ]
-    if not cands:
-        raise InputError(f"models = {names!r}: no advise candidate among them")
-    runs, used = [], set()
-    for m in cands:
-        ref, scenes = PRIOR_SCENES["euler-bernoulli" if m.theory == "euler-bernoulli" else "timoshenko"]
-        used.update(scenes)
-        opts = "".join(f"{k} = {json.dumps(v)}\n" for k, v in CANDIDATE_OPTIONS.get(m.name, {}).items())
-        listed = ", ".join(f'"{(studies / sc).as_posix()}"' for sc in scenes)
-        runs.append(
-            f'[[runs]]\nmodel = "{m.name}"\nscenes = [{listed}]\nreference = {{model = "{ref}"}}\n'
-            f"points = {list(points)}\n{opts}"
-        )
-    head = ", ".join(f'"{(studies / sc).as_posix()}"' for sc in sorted(used))
-    with tempfile.TemporaryDirectory(dir=workdir) as tmp:
-        spec = Path(tmp) / "priors.toml"
-        spec.write_text(f'name = "advisor priors"\nscenes = [{head}]\nreference = "none"\n\n' + "\n".join(runs))
-        df = run_study(load_study(spec), Path(tmp) / "run", workers=1, progress=False)
-    series = fit_series(df)
-    for one in series:  # scene files relative to studies/ (the file is versioned: no machine's paths)
-        one["scene"] = (
-            Path(one["scene"]).relative_to(studies).as_posix() if Path(one["scene"]).is_absolute() else one["scene"]
-        )
-    data = {
-        "format": 1,
-        "code_digest": code_digest(),
-        "points": list(points),
-        "made_by": "pdverify advise --rebuild-priors",
-        "series": series,
-    }
-    target = Path(out) if out is not None else PRIORS
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        target.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
-    except OSError as exc:
-        raise OutputError(f"{target}: cannot write the priors ({exc.strerror or exc})") from None
-    return data
 
 
 def moves_ends(scene: Scene) -> bool:
@@ -329,8 +173,33 @@ def continuum_gap(scene: Scene) -> float:
 def advise(
     scene: Scene, tolerance: float, budget: float = 30.0, include_reference: bool = False, static: bool = False
 ) -> Advice:
-    """``static``: advise on the static part of a scene with a [dynamics] table (without it such a scene
-    is refused: the estimates are of static solutions)."""
+    """The cheapest model and grid whose a-posteriori error estimate on ``scene`` is below ``tolerance`` (steps
+    1-3 of the module's docstring), and the runner-up. ``static``: advise on the static part of a scene with a
+    [dynamics] table (without it such a scene is refused: the estimates are of static solutions)."""
+    _check_request(scene, tolerance, static)
+    cands, unable = _capable(scene, static, include_reference)
+    needs, rejected, cands = _needs(scene, tolerance, cands)
+    found, failed = _estimates(scene, cands, tolerance, budget, static)
+    rejected += failed + unable
+    if not found:
+        raise SolveError(
+            f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
+            f"{budget:g} s; " + "; ".join(rejected[:3])
+        )
+    return Advice(
+        scene.name,
+        tolerance,
+        needs,
+        found[0],
+        found[1] if len(found) > 1 else None,
+        rejected,
+        static and scene.dynamics is not None,
+    )
+
+
+def _check_request(scene: Scene, tolerance: float, static: bool) -> None:
+    """Refuse (InputError) a tolerance outside (0, 1), a transient scene unless its static part is asked for,
+    and a scene with nothing to respond to."""
     if not 0 < tolerance < 1:
         raise InputError(f"tolerance = {tolerance!r}: give a relative tolerance between 0 and 1, e.g. 1e-3")
     if scene.dynamics is not None and not static:
@@ -341,8 +210,12 @@ def advise(
         )
     if not scene.loads and not moves_ends(scene):
         raise InputError("loads: the scene carries no load (its static response is zero); nothing to advise on")
-    needs, rejected, unable = [], [], []
-    cands = []
+
+
+def _capable(scene: Scene, static: bool, include_reference: bool) -> tuple[list, list[str]]:
+    """The static models whose declared capabilities (supports, loads, axes, dynamics) cover the scene, and one
+    line for each that cannot solve it (references only with ``include_reference``)."""
+    cands, unable = [], []
     for m in models().values():
         if "static" not in m.analyses or (m.reference and not include_reference):
             continue
@@ -351,45 +224,27 @@ def advise(
             unable.append(f"{m.name}: {why[0]}")
         else:
             cands.append(m)
-    exact_applies = not moves_ends(scene)  # the exact beam solutions leave prescribed end motions out
+    return cands, unable
+
+
+def _needs(scene: Scene, tolerance: float, cands: list) -> tuple[list[str], list[str], list]:
+    """What the scene needs of a model (step 1 of the module's docstring), the candidates rejected for it and
+    those left."""
+    rejected = []
     if not bends(scene):  # axial loads or torques only: a beam model's deflection would be zero, and exact
-        needs.append("no bending (axial loads or torques only): rod and torsion models; no shear or 2D check")
+        needs = ["no bending (axial loads or torques only): rod and torsion models; no shear or 2D check"]
         for m in cands:
             if m.bending:
                 rejected.append(f"{m.name}: the scene does not bend the beam, and {m.name} is judged on its deflection")
         cands = [m for m in cands if not m.bending]
     elif not scene.is_straight:
-        needs.append("curved axis: models that solve curved beams")
-    elif not exact_applies:
-        needs.append("prescribed end motions: the exact beam solutions leave them out, so no shear or 2D check")
+        needs = ["curved axis: models that solve curved beams"]
+    elif moves_ends(scene):  # the exact beam solutions leave prescribed end motions out
+        needs = ["prescribed end motions: the exact beam solutions leave them out, so no shear or 2D check"]
     else:
-        gap = shear_gap(scene)
-        if gap <= tolerance / 2:
-            needs.append(
-                f"Euler–Bernoulli is enough: the shear deflection is {gap:.2e} of the deflection "
-                f"(tolerance {tolerance:g})"
-            )
-        else:
-            needs.append(f"shear matters: Timoshenko and EB differ by {gap:.2e} > tolerance/2; EB models excluded")
-            for m in cands:
-                if m.theory == "euler-bernoulli":
-                    rejected.append(f"{m.name}: Euler–Bernoulli theory misses the shear deflection ({gap:.1e})")
-            cands = [m for m in cands if m.theory != "euler-bernoulli"]
-        twod = (1.0 / scene.slenderness) ** 2  # order of the 2D corrections to beam theory
-        if twod <= tolerance / 2:
-            needs.append(f"beam theory is enough: 2D corrections are of order (h/L)^2 = {twod:.1e} <= tolerance/2")
-        elif "fem-plane-stress" in models() and not models()["fem-plane-stress"].check(scene):
-            gap2 = continuum_gap(scene)
-            if gap2 > tolerance / 2:
-                needs.append(
-                    f"2D effects matter: Timoshenko and a q8 plane-stress solution differ by {gap2:.2e} > "
-                    "tolerance/2; only the continuum model qualifies"
-                )
-                for m in cands:
-                    rejected.append(f"{m.name}: beam theory misses 2D effects ({gap2:.1e})")
-                cands = [models()["fem-plane-stress"]]
-            else:
-                needs.append(f"beam theory is enough: Timoshenko and q8 plane stress differ by {gap2:.2e}")
+        shear, rejected, cands = _shear_need(scene, tolerance, cands)
+        continuum, more, cands = _continuum_need(scene, tolerance, cands)
+        needs, rejected = [shear, *continuum], rejected + more
     if scene.dynamics is not None:
         needs.append(
             "static part (--static): the response to the loads and settled end motions; the transient "
@@ -397,12 +252,57 @@ def advise(
         )
     else:
         needs.append("static: the scene has no [dynamics] table")
-    options = CANDIDATE_OPTIONS
-    found = []
+    return needs, rejected, cands
+
+
+def _shear_need(scene: Scene, tolerance: float, cands: list) -> tuple[str, list[str], list]:
+    """Whether Euler–Bernoulli theory is enough: the exact shear deflection against half the tolerance; the
+    need, the Euler–Bernoulli candidates rejected when it is not, and the candidates left."""
+    gap = shear_gap(scene)
+    if gap <= tolerance / 2:
+        need = (
+            f"Euler–Bernoulli is enough: the shear deflection is {gap:.2e} of the deflection (tolerance {tolerance:g})"
+        )
+        return need, [], cands
+    rejected = [
+        f"{m.name}: Euler–Bernoulli theory misses the shear deflection ({gap:.1e})"
+        for m in cands
+        if m.theory == "euler-bernoulli"
+    ]
+    need = f"shear matters: Timoshenko and EB differ by {gap:.2e} > tolerance/2; EB models excluded"
+    return need, rejected, [m for m in cands if m.theory != "euler-bernoulli"]
+
+
+def _continuum_need(scene: Scene, tolerance: float, cands: list) -> tuple[list[str], list[str], list]:
+    """Whether beam theory is enough: (h/L)^2 against half the tolerance, else exact Timoshenko against a q8
+    plane-stress solve; the needs (none when fem-plane-stress cannot tell), the candidates rejected when only the
+    continuum model qualifies, and the candidates left."""
+    twod = (1.0 / scene.slenderness) ** 2  # order of the 2D corrections to beam theory
+    if twod <= tolerance / 2:
+        return [f"beam theory is enough: 2D corrections are of order (h/L)^2 = {twod:.1e} <= tolerance/2"], [], cands
+    if "fem-plane-stress" not in models() or models()["fem-plane-stress"].check(scene):
+        return [], [], cands
+    gap2 = continuum_gap(scene)
+    if gap2 <= tolerance / 2:
+        return [f"beam theory is enough: Timoshenko and q8 plane stress differ by {gap2:.2e}"], [], cands
+    need = (
+        f"2D effects matter: Timoshenko and a q8 plane-stress solution differ by {gap2:.2e} > "
+        "tolerance/2; only the continuum model qualifies"
+    )
+    rejected = [f"{m.name}: beam theory misses 2D effects ({gap2:.1e})" for m in cands]
+    return [need], rejected, [models()["fem-plane-stress"]]
+
+
+def _estimates(
+    scene: Scene, cands: list, tolerance: float, budget: float, static: bool
+) -> tuple[list[Candidate], list[str]]:
+    """Each candidate with a grid option on its ladder of nested grids (step 2 of the module's docstring), the
+    cheapest first, and one line for each that does not reach the tolerance or fails."""
+    found, rejected = [], []
     for m in cands:
         if m.option("points") is None:
             continue
-        opts = options.get(m.name, {})
+        opts = CANDIDATE_OPTIONS.get(m.name, {})
         n_pred, why = predicted_points(m.name, opts, tolerance)
         # start the ladder two refinements below the prediction, so the three grids end near it
         start = 11 if n_pred is None else max(11, min(5001, (n_pred - 1) // 4 + 1))
@@ -418,21 +318,7 @@ def advise(
         else:
             found.append(c)
     found.sort(key=lambda c: c.seconds)
-    rejected += unable
-    if not found:
-        raise SolveError(
-            f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
-            f"{budget:g} s; " + "; ".join(rejected[:3])
-        )
-    return Advice(
-        scene.name,
-        tolerance,
-        needs,
-        found[0],
-        found[1] if len(found) > 1 else None,
-        rejected,
-        static and scene.dynamics is not None,
-    )
+    return found, rejected
 
 
 def format_advice(a: Advice) -> str:

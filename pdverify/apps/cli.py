@@ -5,8 +5,9 @@ Every user error is printed as ``error: <one line>`` on stderr, never a tracebac
 computation (singular, overflow, not enough memory), 4 output could not be written.
 
 Each command is a thin typer function over the library (solve, study, report, verify, advise, bench, models,
-modes); they share the option parsing, the output paths and the error wrapping kept here. Imports are lazy: each
-command imports what it runs, so ``pdverify --help`` starts in ~0.15 s instead of the library's ~1.8 s.
+modes); they share the option parsing and the error wrapping kept here and the output paths of :mod:`.output`.
+Imports are lazy: each command imports what it runs, so ``pdverify --help`` starts in ~0.15 s instead of the
+library's ~1.8 s.
 """
 
 from __future__ import annotations
@@ -14,13 +15,15 @@ from __future__ import annotations
 import functools
 import os
 import sys
-from enum import Enum
 from pathlib import Path
 
 import typer
 
-from ..core.errors import InputError, OutputError, PdverifyError, SolveError
+from ..core.errors import InputError, PdverifyError, SolveError
 from ..core.version import __version__
+from .output import Format, check_writable, write_file
+from .output import out_format as _out_format
+from .output import result_table as _table
 
 # One BLAS thread per process, unless the user sets otherwise: pdverify's matrices are banded or small and its
 # parallelism is processes (--workers, a Dask cluster). A threaded BLAS spreading each small product over the cores
@@ -117,12 +120,6 @@ def _extreme_values() -> str:
     return f"; extreme values: {', '.join(found)}" if found else ""
 
 
-class Format(str, Enum):  # noqa: UP042 (typer reads str-Enum choices)
-    table = "table"
-    json = "json"
-    csv = "csv"
-
-
 def parse_options(pairs: list[str] | None) -> dict:
     """``key=value`` strings from ``--option`` into a dict (values stay strings; models coerce)."""
     out = {}
@@ -132,71 +129,6 @@ def parse_options(pairs: list[str] | None) -> dict:
         k, v = item.split("=", 1)
         out[k.strip()] = v.strip()
     return out
-
-
-def _table(result) -> str:
-    cols = result.columns()
-    names = list(cols)
-    lines = [f"# scene: {result.scene}   model: {result.model}   dofs: {result.dofs}   version: {result.version}"]
-    lines.append("# parameters: " + ", ".join(f"{k}={v}" for k, v in result.parameters.items()))
-    lines.append("# timings: " + ", ".join(f"{k}={v:.4g}" for k, v in result.timings.items()))
-    for k, v in result.info.items():
-        if not isinstance(v, (list, dict)):
-            lines.append(f"# {k}: {v}")
-    lines += [f"# {w}" for w in result.warning_lines()]
-    lines += [f"# {w}" for w in result.output_lines()]
-    lines.append("".join(f"{n:>16}" for n in names))
-    n = len(cols["x"])
-    for i in range(n):
-        lines.append("".join(f"{float(cols[c][i]):16.8g}" for c in names))
-    return "\n".join(lines) + "\n"
-
-
-_SUFFIX_FORMAT = {".csv": Format.csv, ".json": Format.json, ".txt": Format.table}
-
-
-def _out_format(out: Path | None, fmt: Format | None) -> Format:
-    """The output format: --format if given, else the one the --out extension names, else table; a --format that
-    contradicts the extension is an error (``--out r.json --format csv`` would write CSV into a .json file)."""
-    implied = _SUFFIX_FORMAT.get(out.suffix.lower()) if out is not None else None
-    if fmt is not None and implied is not None and fmt != implied:
-        raise InputError(
-            f"--format {fmt.value} and --out {out}: the extension {out.suffix} means {implied.value}; "
-            f"drop --format or name the file *{next(k for k, v in _SUFFIX_FORMAT.items() if v == fmt)}"
-        )
-    return fmt or implied or Format.table
-
-
-def check_writable(out: Path, option: str) -> None:
-    """Before any computation: ``out`` can be created as a file (its folder may be missing: it is made)."""
-    import os
-
-    if out.is_dir():
-        raise OutputError(f"{option} {out}: is a folder; give a file name, e.g. {out / 'result.csv'}")
-    parent = out.parent
-    while not parent.exists() and parent != parent.parent:
-        parent = parent.parent
-    if not parent.is_dir():
-        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
-
-
-def write_file(out: Path, write, option: str) -> None:
-    """``write(path)`` into a temporary file beside ``out``, then renamed over it: a failed write leaves no empty or
-    partial file (and an existing ``out`` as it was). OSError -> OutputError (exit code 4)."""
-    import os
-
-    tmp = out.parent / f".{out.stem}.tmp-{os.getpid()}{out.suffix}"  # same suffix: writers choose by it
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        write(str(tmp))
-        os.replace(tmp, out)
-    except OSError as exc:
-        raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); nothing was written") from None
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 @app.command()
@@ -381,9 +313,10 @@ def advise(
 ):
     """Pick the cheapest model and grid that reach the tolerance on this scene (with the estimate)."""
     from ..core.scene_file import load_scene
-    from .advise import PRIORS, format_advice
     from .advise import advise as _advise
-    from .advise import rebuild_priors as _rebuild
+    from .advise import format_advice
+    from .priors import PRIORS
+    from .priors import rebuild_priors as _rebuild
 
     if rebuild_priors:
         data = _rebuild()

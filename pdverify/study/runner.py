@@ -199,75 +199,18 @@ class _Failed(Exception):
 
 def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
     """The measuring half of a case: its row (parameters, errors against the reference at the model's
-    points, timings, dofs, status) and its curves, from what :func:`solve_case` returned. Never raises."""
+    points, timings, dofs, status) and its curves, from what :func:`solve_case` returned. Never raises: a
+    failure is the row's status, and the row and curves are filled as far as the measuring went."""
     case_id = case_id or case.case_id
-    row = {
-        "case_id": case_id,
-        "code": code_digest(),
-        "scene_file": case.scene_file,
-        "model": case.model,
-        "slenderness": case.slenderness,
-        "reference": _reference_text(tuple(sorted(case.reference.items()))),
-        "version": __version__,
-    }
-    row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
-    curve = {}
+    row = _row_skeleton(case, case_id)
+    curve: dict = {}
     try:
         scene, params = _describe(case, row)
         if "failure" in solved:
             raise _Failed(solved["failure"])
-        x, info = solved["x"], solved["info"]
-        row["quantity"] = quantity = get_model(case.model).measures  # w, or a field (pd-rod: u)
-        w = measured(solved, quantity, case.model)
-        if case.reference.get("model") == "none":
-            w_ref = np.full_like(x, np.nan)
-            row.update(
-                err_max=np.nan,
-                err_l2=np.nan,
-                err_at_max=np.nan,
-                w_at_max=float(w[np.argmax(np.abs(w))]),
-                w_ref_at_max=np.nan,
-            )
-        else:
-            w_ref = reference_at(case, scene, x)
-            row.update(errors(w, w_ref))
-            hist_err = history_errors(case, scene, info.get("history"))
-            if hist_err is not None:  # a transient against a transient reference: the histories, not the final w
-                row.update(hist_err)
-        row.update(solved["timings"])
-        row["dofs"] = solved["dofs"]
-        row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
-        row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
-        row["cond"] = info.get("cond")
-        row["status"], row["message"] = "ok", ""
-        row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (issue 27)
-        if case.reference.get("model") != "none":  # ... or the reference's: the error is measured against it
-            row.update(reference_status(reference_bound(case), row))
-        row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
-        if "artefact_message" in solved:
-            row["artefact_message"] = solved["artefact_message"]
-        # arrays stay arrays here (compact to pickle from a worker); encode_record stores them exactly
-        # w_ref: the reference of the measured quantity (named by "quantity" when it is not w)
-        curve = {"x": x, "w": solved["w"], "w_ref": np.asarray(w_ref, "<f8")}
-        if quantity != "w":
-            curve["quantity"] = quantity
-        if solved["rotation"] is not None:
-            curve["rotation"] = solved["rotation"]
-        if solved["fields"]:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
-            curve["fields"] = solved["fields"]
-        if "load_steps" in info:  # deformed shapes of a nonlinear path and the exact ones, for the report
-            curve["load_steps"] = with_exact_shapes(scene, info["load_steps"])
-        hist = info.get("history")
-        if (
-            isinstance(hist, dict) and "t" in hist
-        ):  # time histories of a dynamic run: {"t": [...], "series": {label: [...]}}
-            curve["history"] = {
-                "t": np.asarray(hist["t"], "<f8"),
-                "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
-                "ylabel": hist.get("ylabel", "displacement"),
-            }
-            if hist.get("energy"):  # the energy ledger (kinetic, strain, work, dissipation, balance)
-                curve["history"]["energy"] = {k: np.asarray(v, "<f8") for k, v in hist["energy"].items()}
+        w_ref = _measure_errors(case, scene, solved, row)
+        _measure_status(case, solved, params, row)
+        _fill_curves(curve, scene, solved, w_ref, row["quantity"])
     except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
         for k, v in (solved.get("timings") or {}).items():  # what the attempt cost, as far as it went
             row.setdefault(k, v)
@@ -283,6 +226,91 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         "row": row,
         "curve": curve,
     }
+
+
+def _row_skeleton(case: Case, case_id: str) -> dict:
+    """The columns of a case's row known from the case alone: its key, code, scene file, model, slenderness,
+    reference and version, and its options as given."""
+    row = {
+        "case_id": case_id,
+        "code": code_digest(),
+        "scene_file": case.scene_file,
+        "model": case.model,
+        "slenderness": case.slenderness,
+        "reference": _reference_text(tuple(sorted(case.reference.items()))),
+        "version": __version__,
+    }
+    row.update({k: case.given.get(k) for k in PARAM_COLUMNS})
+    return row
+
+
+def _measure_errors(case: Case, scene, solved: dict, row: dict) -> np.ndarray:
+    """Fill the row's measured quantity and its errors against the reference at the model's points (NaN with
+    ``reference = "none"``; a transient against a transient reference: the errors of the histories); the
+    reference's values at those points."""
+    x, info = solved["x"], solved["info"]
+    row["quantity"] = quantity = get_model(case.model).measures  # w, or a field (pd-rod: u)
+    w = measured(solved, quantity, case.model)
+    if case.reference.get("model") == "none":
+        w_ref = np.full_like(x, np.nan)
+        row.update(
+            err_max=np.nan,
+            err_l2=np.nan,
+            err_at_max=np.nan,
+            w_at_max=float(w[np.argmax(np.abs(w))]),
+            w_ref_at_max=np.nan,
+        )
+        return w_ref
+    w_ref = reference_at(case, scene, x)
+    row.update(errors(w, w_ref))
+    hist_err = history_errors(case, scene, info.get("history"))
+    if hist_err is not None:  # a transient against a transient reference: the histories, not the final w
+        row.update(hist_err)
+    return w_ref
+
+
+def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
+    """Fill the row's timings, dofs, spacing, horizon (length units), condition number, status (``suspect`` when
+    the model's or the reference's round-off bound is too large), message, and the model's warnings."""
+    x, info = solved["x"], solved["info"]
+    row.update(solved["timings"])
+    row["dofs"] = solved["dofs"]
+    row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
+    row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
+    row["cond"] = info.get("cond")
+    row["status"], row["message"] = "ok", ""
+    row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (issue 27)
+    if case.reference.get("model") != "none":  # ... or the reference's: the error is measured against it
+        row.update(reference_status(reference_bound(case), row))
+    row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
+    if "artefact_message" in solved:
+        row["artefact_message"] = solved["artefact_message"]
+
+
+def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: str) -> None:
+    """Fill ``curve`` in place: the model's points, deflection and reference of the measured quantity, rotation,
+    point fields, a nonlinear path's load steps beside the exact shapes, a dynamic run's histories and energy."""
+    info = solved["info"]
+    # arrays stay arrays here (compact to pickle from a worker); encode_record stores them exactly
+    # w_ref: the reference of the measured quantity (named by "quantity" when it is not w)
+    curve.update({"x": solved["x"], "w": solved["w"], "w_ref": np.asarray(w_ref, "<f8")})
+    if quantity != "w":
+        curve["quantity"] = quantity
+    if solved["rotation"] is not None:
+        curve["rotation"] = solved["rotation"]
+    if solved["fields"]:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
+        curve["fields"] = solved["fields"]
+    if "load_steps" in info:  # deformed shapes of a nonlinear path and the exact ones, for the report
+        curve["load_steps"] = with_exact_shapes(scene, info["load_steps"])
+    hist = info.get("history")
+    if isinstance(hist, dict) and "t" in hist:  # time histories of a dynamic run: {"t": [...], "series": {...}}
+        curve["history"] = {
+            "t": np.asarray(hist["t"], "<f8"),
+            "series": {k: np.asarray(v, "<f8") for k, v in hist.get("series", {}).items()},
+            "ylabel": hist.get("ylabel", "displacement"),
+        }
+        if hist.get("energy"):  # the energy ledger (kinetic, strain, work, dissipation, balance)
+            curve["history"]["energy"] = {k: np.asarray(v, "<f8") for k, v in hist["energy"].items()}
 
 
 def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:

@@ -50,12 +50,26 @@ from ..core.errors import InputError
 from ..core.scene import Scene
 from ..core.scene_file import load_scene, parse_scene, read_toml
 from ..core.version import __version__
-from ..registry import get_model, models, use_manifest
+from ..registry import Model, get_model, models, use_manifest
 from ..registry.plugins import GROUP
 from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
-from .entries import card_folder, parse_entry
+from .entries import model_errors, verify_entries
+from .runs import Run, as_list, parse_run, reference_table
 
-RUN_KEYS = {"model", "reference", "scenes", "slenderness"}
+STUDY_KEYS = {
+    "name",
+    "description",
+    "scenes",
+    "reference",
+    "runs",
+    "sweep",
+    "benchmarks",
+    "papers",
+    "checks",
+    "external",
+    "verify",
+    "verify_required",
+}  # the study file's top-level keys
 STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
 BENCH_KEYS = set(BENCH_VALUES)  # the values of a benchmark row; its other keys filter the cases
 
@@ -171,29 +185,6 @@ class Study:
     skipped: list[str] = field(default_factory=list)
 
 
-def _measures_mismatch(where: str, model, ref_model) -> str:
-    """One line: the run's reference gives another quantity than its model is measured on (e.g. pd-rod's u
-    against exact-eb's w), naming the references that give it."""
-    same = [n for n, m in models().items() if m.reference and m.measures == model.measures]
-    return (
-        f"{where}: reference {ref_model.name} gives {ref_model.measures}, but model {model.name} is measured on "
-        f"{model.measures}; give a reference that gives {model.measures} ({', '.join(same) or 'none installed'}) "
-        'or reference = "none"'
-    )
-
-
-def _reference(value, where: str) -> dict:
-    if isinstance(value, str):
-        return {"model": value}
-    if isinstance(value, dict) and isinstance(value.get("model"), str):
-        return dict(value)
-    raise InputError(f"{where}reference = {value!r}: give a model name or a table {{model = ..., options...}}")
-
-
-def _as_list(v):
-    return v if isinstance(v, list) else [v]
-
-
 def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
     """Target, tolerance and option filters of one benchmark row: a number that can pass or fail."""
     errors = []
@@ -238,72 +229,14 @@ def _external(path: Path, manifests) -> list[str]:
     return errors
 
 
-def _verify_entries(data: dict, path: Path, card_errors=None) -> tuple[list[dict], bool, list[str]]:
-    """The study's ``verify`` cards (model, options, folder), ``verify_required`` and their error lines;
-    ``card_errors(model, options)``: what else stops a card (:func:`pdverify.verify.entry_errors`), else only
-    the model's name is checked."""
-
-    entries, errors = data.get("verify", []), []
-    required = data.get("verify_required", False)
-    if not isinstance(required, bool):
-        errors.append(f"{path}: verify_required = {required!r}: give true or false")
-    if not isinstance(entries, list):
-        return (
-            [],
-            False,
-            errors + [f'{path}: verify = {entries!r}: give a list of models, e.g. ["pd-eb", "pd-eb variant=paper"]'],
-        )
-    cards, folders = [], set()
-    for i, entry in enumerate(entries):
-        where = f"{path}: verify[{i}] = {entry!r}"
-        try:
-            name, options = parse_entry(entry)
-        except InputError as exc:
-            errors.append(f"{path}: verify[{i}] = {exc.lines[0]}")
-            continue
-        found = card_errors(name, options) if card_errors is not None else _model_errors(name)
-        errors += [f"{where}: {line}" for line in found]
-        folder = card_folder(get_model(name).name if not found else name, options)
-        if not found and folder in folders:
-            errors.append(f"{where}: listed twice; drop one")
-        elif not found:
-            folders.add(folder)
-            cards.append({"model": name, "options": options, "folder": folder})
-    return cards, required is True, errors
-
-
-def _model_errors(name: str) -> list[str]:
-    try:
-        get_model(name)
-    except InputError as exc:
-        return [exc.lines[0]]
-    return []
-
-
-def load_study(path: str | Path, card_errors=None) -> Study:
-    """Read a study file and validate every scene, model, option and reference. Raises InputError.
-    ``card_errors(model, options)``: the problems of each ``verify`` entry (the pipeline passes
-    :func:`pdverify.verify.entry_errors`: whether the suite applies to the model and its options)."""
-    path = Path(path)
-    text, data = read_toml(path, "study")
-    errors: list[str] = []
-    allowed = {
-        "name",
-        "description",
-        "scenes",
-        "reference",
-        "runs",
-        "sweep",
-        "benchmarks",
-        "papers",
-        "checks",
-        "external",
-        "verify",
-        "verify_required",
-    }
-    for key in data:
-        if key not in allowed:
-            errors.append(f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(allowed))}")
+def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
+    """The study's name, scene files and runs (as listed; an unusable list is empty), and the error lines of
+    those, of unknown top-level keys and of ``[papers]``."""
+    errors = [
+        f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(STUDY_KEYS))}"
+        for key in data
+        if key not in STUDY_KEYS
+    ]
     name = data.get("name")
     if not isinstance(name, str) or not name:
         errors.append(f"{path}: name: missing; give the study a name")
@@ -319,26 +252,38 @@ def load_study(path: str | Path, card_errors=None) -> Study:
     papers = data.get("papers", {})
     if not isinstance(papers, dict) or not all(isinstance(v, str) for v in papers.values()):
         errors.append(f'{path}: papers = {papers!r}: give a table {{scene folder = "page title"}}')
+    return (name, scenes, runs), errors
+
+
+def _sweep(path: Path, data: dict) -> tuple[list, list[str]]:
+    """``[sweep]``'s slenderness list (``[None]``: the scenes' own sections) and its error lines."""
+    errors = []
     sweep = data.get("sweep", {})
     if not isinstance(sweep, dict) or set(sweep) - {"slenderness"}:
         errors.append(f"{path}: sweep = {sweep!r}: only 'slenderness' (a list) can be swept here")
         sweep = {}
-    slen = _as_list(sweep.get("slenderness", [None]))
+    slen = as_list(sweep.get("slenderness", [None]))
     if not slen:
         errors.append(f"{path}: sweep.slenderness = []: an empty sweep runs nothing; give values or drop it")
     for s in slen:
         if s is not None and not (finite_number(s) and s > 0):
             errors.append(f"{path}: sweep.slenderness value {s!r}: must be a positive finite number (length / height)")
-    try:
-        reference = _reference(data.get("reference", "exact-eb"), "")
-    except InputError as exc:
-        errors.extend(f"{path}: {l}" for l in exc.lines)
-        reference = {"model": "exact-eb"}
-    errors.extend(_external(path, data.get("external", [])))
-    if errors:
-        raise InputError(errors)
+    return slen, errors
 
+
+def _study_reference(path: Path, data: dict) -> tuple[dict, list[str]]:
+    """The study's reference (default exact-eb) as a table ``{model, options...}`` and its error lines."""
+    try:
+        return reference_table(data.get("reference", "exact-eb"), ""), []
+    except InputError as exc:
+        return {"model": "exact-eb"}, [f"{path}: {l}" for l in exc.lines]
+
+
+def _read_scenes(path: Path, scenes: list[str]) -> tuple[dict[str, tuple[str, Scene]], list[str]]:
+    """Each scene file's text and scene (paths relative to the study file), and the error lines of the files
+    that do not load and of different scenes that share a name."""
     scene_objs: dict[str, tuple[str, Scene]] = {}
+    errors = []
     for s in scenes:
         p = (path.parent / s) if not Path(s).is_absolute() else Path(s)
         try:
@@ -346,123 +291,82 @@ def load_study(path: str | Path, card_errors=None) -> Study:
             scene_objs[s] = (p.read_text(encoding="utf-8"), sc)
         except InputError as exc:
             errors.extend(exc.lines)
-    errors.extend(_shared_names(path, scene_objs))
+    return scene_objs, errors + _shared_names(path, scene_objs)
+
+
+def _reference_case_errors(path: Path, ref_model: Model, reference: dict, sfile: str, scene: Scene) -> list[str]:
+    """Whether the reference takes its options (typed as TOML types them) on this scene and can solve it."""
     ref_given = {k: v for k, v in reference.items() if k != "model"}
-    ref_model = None
-    if reference["model"] != "none":
+    errors = [
+        f"{path}: reference.{why}"
+        for k, v in ref_given.items()
+        if ref_model.option(k) is not None and (why := strict_type(ref_model.option(k), v))
+    ]
+    if not errors:  # (a coerced value would only add a confusing error)
         try:
-            ref_model = get_model(reference["model"])
+            ref_model.resolve(scene, ref_given)
         except InputError as exc:
             errors.append(f"{path}: reference: {exc.lines[0]}")
+    if reasons := ref_model.check(scene):
+        errors.append(f"{path}: reference {ref_model.name} cannot solve {sfile}: {reasons[0]}")
+    return errors
 
-    study = Study(
-        name or "",
-        path,
-        text,
-        scenes,
-        reference,
-        runs,
-        slen,
-        list(data.get("benchmarks", [])),
-        list(data.get("checks", [])) if isinstance(data.get("checks", []), list) else [],
-    )
-    reasons_of: dict = {}  # (model, scene, slenderness) -> why the model cannot solve it
-    refs_checked: set = set()  # (scene, slenderness, reference) validated
-    for i, run in enumerate(runs):
-        where = f"{path}: runs[{i}]"
-        if not isinstance(run, dict) or not isinstance(run.get("model"), str):
-            errors.append(f"{where}: model: missing; every run names a model")
-            continue
+
+def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_checked: set) -> list[str]:
+    """Append the run's cases to ``study.cases``, every combination of its axes on every scene and slenderness,
+    and those its model cannot solve to ``study.skipped``; the error lines of options the model does not take
+    and of its reference. ``reasons_of``: (model, scene, slenderness) -> why the model cannot solve it;
+    ``refs_checked``: the (scene, slenderness, reference) validated, each once per study."""
+    combos = [dict(zip(run.axes, combo)) for combo in itertools.product(*run.axes.values())]
+    ref_model = None
+    if run.reference["model"] != "none":  # "none": no reference (e.g. large rotations), no errors
         try:
-            model = get_model(run["model"])
+            ref_model = get_model(run.reference["model"])
         except InputError as exc:
-            errors.append(f"{where}: {exc.lines[0]}")
-            continue
-        run_ref = reference
-        if "reference" in run:
-            try:
-                run_ref = _reference(run["reference"], f"runs[{i}].")
-            except InputError as exc:
-                errors.append(f"{path}: {exc.lines[0]}")
-                continue
-        if run_ref["model"] != "none" and run_ref["model"] in models():  # (an unknown one is reported below)
-            if (ref_model := get_model(run_ref["model"])).measures != model.measures:
-                errors.append(_measures_mismatch(where, model, ref_model))
-                continue
-        run_scenes = run.get("scenes", list(scene_objs))
-        if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
-            errors.append(f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes")
-            continue
-        run_slen = slen
-        if "slenderness" in run:  # this run's own slenderness sweep, in place of [sweep]'s
-            run_slen = _as_list(run["slenderness"])
-            bad = [v for v in run_slen if not (finite_number(v) and v > 0)]
-            if bad or not run_slen:
-                errors.append(
-                    f"{where}.slenderness = {run['slenderness']!r}: give positive finite numbers (length / height)"
-                )
-                continue
-        axes = {k: _as_list(v) for k, v in run.items() if k not in RUN_KEYS}
-        typed = [
-            f"{where}.{why}"
-            for k, v in axes.items()
-            if model.option(k) is not None
-            for why in dict.fromkeys(strict_type(model.option(k), x) for x in v)
-            if why
-        ]
-        if typed:  # not expanded: the coerced values would only add confusing errors
-            errors += typed
-            continue
-        for k, v in axes.items():
-            if not v:
-                errors.append(f"{where}.{k} = []: an empty sweep runs nothing; give values or drop the key")
-        names = list(axes)
-        for combo in itertools.product(*(axes[k] for k in names)):
-            given = dict(zip(names, combo))
-            for sfile in run_scenes:
-                stext, sc = scene_objs[sfile]
-                ref_given = {k: v for k, v in run_ref.items() if k != "model"}
-                ref_model = None
-                if run_ref["model"] != "none":  # "none": no reference (e.g. large rotations), no errors
-                    try:
-                        ref_model = get_model(run_ref["model"])
-                    except InputError as exc:
-                        errors.append(f"{where}: reference: {exc.lines[0]}")
-                        continue
-                for sl in run_slen:
-                    scx = sc.with_slenderness(sl) if sl else sc
-                    try:
-                        model.resolve(scx, given)
-                    except InputError as exc:
-                        errors.append(f"{where}: {exc.lines[0]}")
-                        continue
-                    if (model.name, sfile, sl) not in reasons_of:  # the same for every option set
-                        reasons_of[(model.name, sfile, sl)] = model.check(scx)
-                    reasons = reasons_of[(model.name, sfile, sl)]
-                    if reasons:
-                        study.skipped.append(f"{run['model']} on {sfile}: {reasons[0]}")
-                        continue
-                    ref_key = (sfile, sl, repr(sorted(run_ref.items())))
-                    if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
-                        refs_checked.add(ref_key)
-                        typed = [
-                            f"{path}: reference.{why}"
-                            for k, v in ref_given.items()
-                            if ref_model.option(k) is not None and (why := strict_type(ref_model.option(k), v))
-                        ]
-                        errors += typed
-                        try:
-                            if not typed:  # (a coerced value would only add a confusing error)
-                                ref_model.resolve(scx, ref_given)
-                        except InputError as exc:
-                            errors.append(f"{path}: reference: {exc.lines[0]}")
-                        if ref_model.check(scx):
-                            errors.append(
-                                f"{path}: reference {ref_model.name} cannot solve {sfile}: {ref_model.check(scx)[0]}"
-                            )
-                    study.cases.append(Case(sfile, stext, sl, model.name, dict(given), dict(run_ref)))
+            return [f"{run.where}: reference: {exc.lines[0]}"] if combos and run.scenes else []
+    errors = []
+    for given in combos:
+        for sfile in run.scenes:
+            stext, sc = scene_objs[sfile]
+            for sl in run.slenderness:
+                scx = sc.with_slenderness(sl) if sl else sc
+                try:
+                    run.model.resolve(scx, given)
+                except InputError as exc:
+                    errors.append(f"{run.where}: {exc.lines[0]}")
+                    continue
+                if (run.model.name, sfile, sl) not in reasons_of:  # the same for every option set
+                    reasons_of[(run.model.name, sfile, sl)] = run.model.check(scx)
+                if reasons := reasons_of[(run.model.name, sfile, sl)]:
+                    study.skipped.append(f"{run.written} on {sfile}: {reasons[0]}")
+                    continue
+                ref_key = (sfile, sl, repr(sorted(run.reference.items())))
+                if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
+                    refs_checked.add(ref_key)
+                    errors += _reference_case_errors(study.path, ref_model, run.reference, sfile, scx)
+                study.cases.append(Case(sfile, stext, sl, run.model.name, dict(given), dict(run.reference)))
+    return errors
+
+
+def _expand_runs(study: Study, scene_objs: dict) -> list[str]:
+    """Expand every run of the study into its cases (:func:`_run_cases`); the error lines."""
+    errors: list[str] = []
+    reasons_of: dict = {}
+    refs_checked: set = set()
+    for i, run in enumerate(study.runs):
+        parsed, found = parse_run(study.path, i, run, study.reference, study.slenderness, scene_objs)
+        errors += found
+        if parsed is not None:
+            errors += _run_cases(parsed, study, scene_objs, reasons_of, refs_checked)
+    return errors
+
+
+def _benchmark_rows_errors(study: Study, scene_objs: dict) -> list[str]:
+    """The error lines of the study's ``[[benchmarks]]`` rows: keys, scene, position, expected and quantity,
+    and :func:`_benchmark_errors`."""
+    errors = []
     for j, bench in enumerate(study.benchmarks):
-        where = f"{path}: benchmarks[{j}]"
+        where = f"{study.path}: benchmarks[{j}]"
         if not isinstance(bench, dict) or not {"name", "scene", "model"} <= set(bench):
             errors.append(f"{where}: needs name, scene and model")
             continue
@@ -470,30 +374,65 @@ def load_study(path: str | Path, card_errors=None) -> Study:
             errors.append(f"{where}.scene = {bench['scene']!r}: not one of the study's scenes")
             continue
         errors += _benchmark_errors(bench, where, study)
-        if "position" in bench:
-            L = scene_objs[bench["scene"]][1].length
-            pos = bench["position"]
-            if not isinstance(pos, (int, float)) or isinstance(pos, bool) or not 0 <= pos <= L:
-                errors.append(f"{where}.position = {pos!r}: give a number between 0 and the beam length {L:g}")
-        if bench.get("expected", "pass") not in ("pass", "fail"):
-            errors.append(
-                f"{where}.expected = {bench['expected']!r}: pass (default) or fail (a known defect the row documents)"
-            )
-        measures = models()[bench["model"]].measures if bench["model"] in models() else "w"
-        q = bench.get("quantity", measures)
-        if not isinstance(q, str):
-            errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
-        elif q != measures and "position" not in bench:
-            errors.append(f"{where}.quantity = {q!r}: a quantity other than {measures} needs a position")
-        elif q != measures and "target" not in bench:
-            errors.append(f"{where}.quantity = {q!r}: the reference gives {measures} only; give a target")
-    errors += validate_checks(
-        data.get("checks", []),
-        scene_objs,
-        {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)},
+        errors += _benchmark_output_errors(bench, where, scene_objs[bench["scene"]][1].length)
+    return errors
+
+
+def _benchmark_output_errors(bench: dict, where: str, length: float) -> list[str]:
+    """The error lines of a benchmark row's position (on a beam of ``length``), expected and quantity."""
+    errors = []
+    if "position" in bench:
+        pos = bench["position"]
+        if not isinstance(pos, (int, float)) or isinstance(pos, bool) or not 0 <= pos <= length:
+            errors.append(f"{where}.position = {pos!r}: give a number between 0 and the beam length {length:g}")
+    if bench.get("expected", "pass") not in ("pass", "fail"):
+        errors.append(
+            f"{where}.expected = {bench['expected']!r}: pass (default) or fail (a known defect the row documents)"
+        )
+    measures = models()[bench["model"]].measures if bench["model"] in models() else "w"
+    q = bench.get("quantity", measures)
+    if not isinstance(q, str):
+        errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
+    elif q != measures and "position" not in bench:
+        errors.append(f"{where}.quantity = {q!r}: a quantity other than {measures} needs a position")
+    elif q != measures and "target" not in bench:
+        errors.append(f"{where}.quantity = {q!r}: the reference gives {measures} only; give a target")
+    return errors
+
+
+def load_study(path: str | Path, card_errors=None) -> Study:
+    """Read a study file and validate every scene, model, option and reference. Raises InputError.
+    ``card_errors(model, options)``: the problems of each ``verify`` entry (the pipeline passes
+    :func:`pdverify.verify.entry_errors`: whether the suite applies to the model and its options)."""
+    path = Path(path)
+    text, data = read_toml(path, "study")
+    (name, scenes, runs), errors = _head(path, data)
+    slen, sweep_errors = _sweep(path, data)
+    reference, reference_errors = _study_reference(path, data)
+    errors += sweep_errors + reference_errors + _external(path, data.get("external", []))
+    if errors:
+        raise InputError(errors)
+
+    scene_objs, errors = _read_scenes(path, scenes)
+    if reference["model"] != "none":
+        errors += [f"{path}: reference: {line}" for line in model_errors(reference["model"])]
+    checks = data.get("checks", [])
+    study = Study(
+        name,
         path,
+        text,
+        scenes,
+        reference,
+        runs,
+        slen,
+        list(data.get("benchmarks", [])),
+        list(checks) if isinstance(checks, list) else [],
     )
-    study.verify, study.verify_required, found = _verify_entries(data, path, card_errors)
+    errors += _expand_runs(study, scene_objs)
+    errors += _benchmark_rows_errors(study, scene_objs)
+    run_models = {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)}
+    errors += validate_checks(checks, scene_objs, run_models, path)
+    study.verify, study.verify_required, found = verify_entries(data, path, card_errors)
     errors += found
     if errors:
         # one line per problem, duplicates (same bad option on many scenes) once

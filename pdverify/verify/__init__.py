@@ -102,6 +102,16 @@ def _declined(model, p) -> dict:
     return {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
 
 
+def _solves_none(model, declined: dict) -> str | None:
+    """The error line of a model that declines every scene of the plan (None when it solves one)."""
+    if not all(declined.values()):
+        return None
+    return (
+        f"model {model.name} solves none of the suite's scenes ({next(iter(declined.values()))[0]}); "
+        "verify needs a beam (transverse loads), rod (axial loads) or torsion-bar model (torques)"
+    )
+
+
 def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str]:
     """What stops ``verify(model_name, ..., options)`` before it runs anything: an unknown model or option, a
     value of the wrong type, a grid option (the suite sets the grids), a model that solves none of the
@@ -120,12 +130,9 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
         return errors
     p = plan(model, full, options)
     declined = _declined(model, p)
+    if why := _solves_none(model, declined):
+        return [why]
     solved = [f for f, why in declined.items() if not why]
-    if not solved:
-        return [
-            f"model {model.name} solves none of the suite's scenes ({next(iter(declined.values()))[0]}); "
-            "verify needs a beam (transverse loads), rod (axial loads) or torsion-bar model (torques)"
-        ]
     try:
         model.resolve(parse_scene(p.scenes[solved[0]]), options)
     except InputError as exc:
@@ -152,23 +159,48 @@ def verify(
     out = Path(out)
     p = plan(model, full, options)
     declined = _declined(model, p)
-    if all(declined.values()):
-        first = next(iter(declined.values()))[0]
-        raise InputError(
-            f"model {model.name} solves none of the suite's scenes ({first}); verify needs a beam (transverse "
-            "loads), rod (axial loads) or torsion-bar model (torques)"
-        )
+    if why := _solves_none(model, declined):
+        raise InputError(why)
+    df = _run_suite(p, model, options, out, workers, scheduler, progress)
+    found, scenes, df = _judge(model, options, p, df, expected)
+    card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}
+    write_card(card, out)
+    return card
+
+
+def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress: bool):
+    """Write the plan as a study into ``out/suite`` and run it into ``out/study`` (a stale folder of another suite
+    version dropped first); its results."""
     study_path = write_study(p, model, options, out / "suite")
     drop_other_suite(out / "study", model.name)
-    df = run_study(  # no VTU, PNG or history files: the card reads the errors
+    return run_study(  # no VTU, PNG or history files: the card reads the errors
         load_study(study_path), out / "study", workers=workers, scheduler=scheduler, progress=progress, artefacts=False
     )
+
+
+def _judge(model, options: dict, p, df, expected: float) -> tuple:
+    """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
+    they judge (the theory-gap run, judged on its own, left out)."""
     files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in ("convergence", "locking", "floor", "curved")}
     # the theory-gap run (self-convergence only): the convergence scenes on the reference grid, finer than any other
     gap = (p.reference is None) & (df["points"] == finer(p.grids)) & df["scene_file"].isin(files["convergence"])
     df, gap_df = df[~gap], df[gap]
     conv = C.series(df, files["convergence"])
-    found = [
+    found = _straight_checks(model, p, df, gap_df, conv, files, expected) + _identity_checks(model, options, p)
+    curved = C.series(df, files["curved"])
+    found.append(
+        C.convergence(curved, expected, "convergence (curved axes)")
+        if curved
+        else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
+    )
+    found.append(dynamics_check(model, options, p.grids, expected))
+    return found, [{**p.meta[r["scene_file"]], **r} for r in conv + curved], df
+
+
+def _straight_checks(model, p, df, gap_df, conv: list[dict], files: dict, expected: float) -> list[dict]:
+    """Convergence, accuracy, agreement, locking, round-off floor and cost of the straight scenes, and the theory
+    gap of a self-converged model."""
+    return [
         C.convergence(conv, expected, "convergence (straight)"),
         C.accuracy(conv),
         C.within(conv),
@@ -189,22 +221,24 @@ def verify(
             f"errors are against the exact solution of the model's theory: {reference_name(p.reference)}",
         ),
     ]
+
+
+def _identity_checks(model, options: dict, p) -> list[dict]:
+    """Symmetry and superposition of a beam or rod, solved here on the suite's third grid (none for others)."""
     beam = model.bending and model.theory in ("euler-bernoulli", "timoshenko", "higher-order", "continuum")
-    if beam or rod_kind(model):
-        mid = p.grids[min(2, len(p.grids) - 1)]
-        found.append(C.identity("symmetry (mirror scenes)", _guarded(symmetry, model, options, mid)))
-        found.append(C.identity("superposition (two loads vs their sum)", _guarded(superposition, model, options, mid)))
-    curved = C.series(df, files["curved"])
-    found.append(
-        C.convergence(curved, expected, "convergence (curved axes)")
-        if curved
-        else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
-    )
-    found.append(dynamics_check(model, options, p.grids, expected))
-    scenes = [{**p.meta[r["scene_file"]], **r} for r in conv + curved]
-    skipped = [f"{p.meta[f]['name']}: {why[0]}" for f, why in declined.items() if why]
-    verdict = "fail" if any(c["verdict"] == "fail" for c in found) else "pass"
-    card = {
+    if not (beam or rod_kind(model)):
+        return []
+    mid = p.grids[min(2, len(p.grids) - 1)]
+    return [
+        C.identity("symmetry (mirror scenes)", _guarded(symmetry, model, options, mid)),
+        C.identity("superposition (two loads vs their sum)", _guarded(superposition, model, options, mid)),
+    ]
+
+
+def _card(model, options: dict, p, expected: float, found: list[dict], scenes: list[dict], df, declined) -> dict:
+    """The card: the model, suite and references, the checks and their verdict, the scenes, the cases that
+    failed or are suspect and the scenes the model declines (without ``wall_s``)."""
+    return {
         "model": model.name,
         "title": model.title,
         "options": options,
@@ -218,17 +252,14 @@ def verify(
         "grids": list(p.grids),
         "floor_grids": list(p.floor_grids),
         "expected_order": expected,
-        "verdict": verdict,
+        "verdict": "fail" if any(c["verdict"] == "fail" for c in found) else "pass",
         "checks": found,
         "scenes": scenes,
         "failed_cases": int((~df["status"].isin(C.SOLVED)).sum()),
         "suspect_cases": int((df["status"] == "suspect").sum()),
-        "skipped": skipped,
+        "skipped": [f"{p.meta[f]['name']}: {why[0]}" for f, why in declined.items() if why],
         "cases": len(df),
-        "wall_s": time.perf_counter() - t0,
     }
-    write_card(card, out)
-    return card
 
 
 def drop_other_suite(folder: Path, model_name: str) -> None:

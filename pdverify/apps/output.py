@@ -1,0 +1,80 @@
+"""Where a command's output goes: its format (``--format``, else the ``--out`` extension, else a table), the check
+that ``--out`` can be written before anything is computed, the write itself (atomic: a failure leaves no partial
+file), and a solve's result as a table."""
+
+from __future__ import annotations
+
+import os
+from enum import Enum
+from pathlib import Path
+
+from ..core.errors import InputError, OutputError
+
+
+class Format(str, Enum):  # noqa: UP042 (typer reads str-Enum choices)
+    table = "table"
+    json = "json"
+    csv = "csv"
+
+
+def result_table(result) -> str:
+    """A solve's result as the table format prints it: ``#`` header lines (scene, model, dofs, version,
+    parameters, timings, info, warnings, outputs), then one column per output at each point."""
+    cols = result.columns()
+    names = list(cols)
+    lines = [f"# scene: {result.scene}   model: {result.model}   dofs: {result.dofs}   version: {result.version}"]
+    lines.append("# parameters: " + ", ".join(f"{k}={v}" for k, v in result.parameters.items()))
+    lines.append("# timings: " + ", ".join(f"{k}={v:.4g}" for k, v in result.timings.items()))
+    for k, v in result.info.items():
+        if not isinstance(v, (list, dict)):
+            lines.append(f"# {k}: {v}")
+    lines += [f"# {w}" for w in result.warning_lines()]
+    lines += [f"# {w}" for w in result.output_lines()]
+    lines.append("".join(f"{n:>16}" for n in names))
+    n = len(cols["x"])
+    for i in range(n):
+        lines.append("".join(f"{float(cols[c][i]):16.8g}" for c in names))
+    return "\n".join(lines) + "\n"
+
+
+_SUFFIX_FORMAT = {".csv": Format.csv, ".json": Format.json, ".txt": Format.table}
+
+
+def out_format(out: Path | None, fmt: Format | None) -> Format:
+    """The output format: --format if given, else the one the --out extension names, else table; a --format that
+    contradicts the extension is an error (``--out r.json --format csv`` would write CSV into a .json file)."""
+    implied = _SUFFIX_FORMAT.get(out.suffix.lower()) if out is not None else None
+    if fmt is not None and implied is not None and fmt != implied:
+        raise InputError(
+            f"--format {fmt.value} and --out {out}: the extension {out.suffix} means {implied.value}; "
+            f"drop --format or name the file *{next(k for k, v in _SUFFIX_FORMAT.items() if v == fmt)}"
+        )
+    return fmt or implied or Format.table
+
+
+def check_writable(out: Path, option: str) -> None:
+    """Before any computation: ``out`` can be created as a file (its folder may be missing: it is made)."""
+    if out.is_dir():
+        raise OutputError(f"{option} {out}: is a folder; give a file name, e.g. {out / 'result.csv'}")
+    parent = out.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
+
+
+def write_file(out: Path, write, option: str) -> None:
+    """``write(path)`` into a temporary file beside ``out``, then renamed over it: a failed write leaves no empty or
+    partial file (and an existing ``out`` as it was). OSError -> OutputError (exit code 4)."""
+    tmp = out.parent / f".{out.stem}.tmp-{os.getpid()}{out.suffix}"  # same suffix: writers choose by it
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        write(str(tmp))
+        os.replace(tmp, out)
+    except OSError as exc:
+        raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); nothing was written") from None
+    finally:
+        if tmp.exists():
+            tmp.unlink()

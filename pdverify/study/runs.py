@@ -1,0 +1,110 @@
+"""One ``[[runs]]`` table of a study file, checked before anything runs: its model, its reference (the
+study's unless the run sets its own; it must give the quantity the model is measured on), the scenes and
+slenderness list it runs, and its sweep axes (every other key: a list of values, each of the type the model's
+option takes)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..core.errors import InputError
+from ..registry import Model, get_model, models
+from .checks import finite_number, strict_type
+
+RUN_KEYS = {"model", "reference", "scenes", "slenderness"}
+
+
+def measures_mismatch(where: str, model, ref_model) -> str:
+    """One line: the run's reference gives another quantity than its model is measured on (e.g. pd-rod's u
+    against exact-eb's w), naming the references that give it."""
+    same = [n for n, m in models().items() if m.reference and m.measures == model.measures]
+    return (
+        f"{where}: reference {ref_model.name} gives {ref_model.measures}, but model {model.name} is measured on "
+        f"{model.measures}; give a reference that gives {model.measures} ({', '.join(same) or 'none installed'}) "
+        'or reference = "none"'
+    )
+
+
+def reference_table(value, where: str) -> dict:
+    """A ``reference`` as a table ``{model, options...}``: a model name or a table naming one."""
+    if isinstance(value, str):
+        return {"model": value}
+    if isinstance(value, dict) and isinstance(value.get("model"), str):
+        return dict(value)
+    raise InputError(f"{where}reference = {value!r}: give a model name or a table {{model = ..., options...}}")
+
+
+def as_list(v):
+    """A value of a sweep: a list as it is, a single value as a list of one."""
+    return v if isinstance(v, list) else [v]
+
+
+@dataclass
+class Run:
+    """One ``[[runs]]`` table, its form checked: the model as written and as registered, the reference, the
+    scene files and slenderness list it runs, and its sweep axes (every other key, a list of values each)."""
+
+    where: str
+    written: str
+    model: Model
+    reference: dict
+    scenes: list[str]
+    slenderness: list
+    axes: dict[str, list]
+
+
+def parse_run(
+    path: Path, i: int, run, reference: dict, slenderness: list, scene_objs: dict
+) -> tuple[Run | None, list[str]]:
+    """The run's model, reference, scenes, slenderness list (the study's unless the run sets its own) and sweep
+    axes, and their error lines; None when one of them is wrong, or its reference gives another quantity than
+    the model is measured on."""
+    where = f"{path}: runs[{i}]"
+    if not isinstance(run, dict) or not isinstance(run.get("model"), str):
+        return None, [f"{where}: model: missing; every run names a model"]
+    try:
+        model = get_model(run["model"])
+    except InputError as exc:
+        return None, [f"{where}: {exc.lines[0]}"]
+    run_ref = reference
+    if "reference" in run:
+        try:
+            run_ref = reference_table(run["reference"], f"runs[{i}].")
+        except InputError as exc:
+            return None, [f"{path}: {exc.lines[0]}"]
+    if run_ref["model"] != "none" and run_ref["model"] in models():  # (an unknown one is reported with the cases)
+        if (ref_model := get_model(run_ref["model"])).measures != model.measures:
+            return None, [measures_mismatch(where, model, ref_model)]
+    run_scenes = run.get("scenes", list(scene_objs))
+    if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
+        return None, [f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes"]
+    run_slen = slenderness
+    if "slenderness" in run:  # this run's own slenderness sweep, in place of [sweep]'s
+        run_slen = as_list(run["slenderness"])
+        if not run_slen or any(not (finite_number(v) and v > 0) for v in run_slen):
+            return None, [
+                f"{where}.slenderness = {run['slenderness']!r}: give positive finite numbers (length / height)"
+            ]
+    axes, errors = _run_axes(where, run, model)
+    if axes is None:
+        return None, errors
+    return Run(where, run["model"], model, run_ref, run_scenes, run_slen, axes), errors
+
+
+def _run_axes(where: str, run: dict, model: Model) -> tuple[dict | None, list[str]]:
+    """The run's sweep axes and their error lines: values of the wrong type (then None: the coerced values
+    would only add confusing errors) or an empty list."""
+    axes = {k: as_list(v) for k, v in run.items() if k not in RUN_KEYS}
+    typed = [
+        f"{where}.{why}"
+        for k, v in axes.items()
+        if model.option(k) is not None
+        for why in dict.fromkeys(strict_type(model.option(k), x) for x in v)
+        if why
+    ]
+    if typed:
+        return None, typed
+    return axes, [
+        f"{where}.{k} = []: an empty sweep runs nothing; give values or drop the key" for k, v in axes.items() if not v
+    ]
