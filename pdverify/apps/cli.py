@@ -21,7 +21,7 @@ import typer
 
 from ..core.errors import InputError, PdverifyError, SolveError
 from ..core.version import __version__
-from .output import Format, check_writable, write_file
+from .output import Format, check_folder, check_writable, write_file
 from .output import out_format as _out_format
 from .output import result_table as _table
 
@@ -120,6 +120,26 @@ def _extreme_values() -> str:
     return f"; extreme values: {', '.join(found)}" if found else ""
 
 
+def grid_options(options: dict, **named) -> dict:
+    """The model options of a command: its named options (``--points``, ``--horizon``, ...; None where not given)
+    with its ``-o key=value`` ones. A key given both ways is an error, not a silent choice of one of them."""
+    given = {k: v for k, v in named.items() if v is not None}
+    for key in given.keys() & options.keys():
+        raise InputError(
+            f"--{key.replace('_', '-')} {given[key]} and -o {key}={options[key]}: the same option twice; give one"
+        )
+    return {**given, **options}
+
+
+def positive(option: str, value: float) -> float:
+    """A positive, finite number for ``option`` (a tolerance, a budget in seconds), or one line (exit 2)."""
+    import math
+
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(f"{option} {value}: give a positive number")
+    return value
+
+
 def parse_options(pairs: list[str] | None) -> dict:
     """``key=value`` strings from ``--option`` into a dict (values stay strings; models coerce)."""
     out = {}
@@ -165,7 +185,8 @@ def solve(
         check_writable(out, "--out")
     sc = load_scene(scene)  # before the models are imported: a bad scene fails fast
     _SCENE_FILES[:] = [sc]
-    given = dict(
+    given = grid_options(
+        parse_options(option),
         points=points,
         spacing=spacing,
         horizon=horizon,
@@ -175,12 +196,14 @@ def solve(
         layers=layers,
         form=form,
     )
-    given.update(parse_options(option))
+    if tolerance is not None and model != "auto":
+        raise InputError(f"--tolerance {tolerance:g}: applies to --model auto only; drop it or use --model auto")
     if model == "auto":
         from .advise import advise as _advise
 
         if tolerance is None:
             raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
+        positive("--tolerance", tolerance)
         choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
         typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
         model = choice.model
@@ -284,6 +307,9 @@ def study(
         raise InputError(f"--workers {workers}: give a whole number of processes, 1 or more")
     spec = load_study(study_file)
     out = out or Path("reports") / _slug(study_file.stem)
+    check_folder(out, "--out")
+    if junit is not None:
+        check_writable(junit, "--junit")
     done = run(
         spec,
         out,
@@ -322,6 +348,8 @@ def advise(
         data = _rebuild()
         typer.echo(f"wrote {PRIORS}: {len(data['series'])} series, code digest {data['code_digest']}")
         return
+    positive("--tolerance", tolerance)
+    positive("--budget", budget)
     if scene is None:
         raise InputError("scene: give a scene file (or --rebuild-priors)")
     sc = load_scene(scene)
@@ -339,6 +367,7 @@ def report(
     from ..report import build_report
 
     if out is not None:
+        check_folder(out, "--out")
         check_writable(out / "index.html", "--out")
     typer.echo(f"report: {build_report(study_dir, out)}")
 
@@ -361,13 +390,23 @@ def bench(
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
     import json as _json
 
+    from ..core.scene_file import load_scene
     from ..measure.cost import accurate, cost_slope
     from ..registry import get_model, model_argument
     from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models
 
     names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
+    if out is not None:
+        check_folder(out, "--out")
+    if scene is not None:
+        load_scene(scene)  # a missing or bad scene: one line, exit 2, before any timing
     for n in names:
-        get_model(n)
+        m = get_model(n)
+        grid = m.option("points")
+        for p in points or ():
+            if grid is None:
+                raise InputError(f"--points {p}: model {n} takes no grid; drop --points or the model")
+            grid.coerce(n, p)  # below the model's least number of points: one line, exit 2
     rows = []
     for n in names:
         sizes = points or [p for p in DEFAULT_POINTS if p <= SMALL_MODELS.get(n, 10**9)]
@@ -414,12 +453,17 @@ def verify_cmd(
 ):
     """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
     Exit code 1 when a check fails."""
+    import math
+
     from ..registry import model_argument
     from ..verify import verify
 
+    if order is not None and not (math.isfinite(order) and order > 0):
+        raise InputError(f"--order {order}: give the expected order of convergence, a positive number (e.g. 2)")
     name = model_argument(model)
     options = parse_options(option)
     out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))
+    check_folder(out, "--out")
     card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)
     for c in card["checks"]:
         typer.echo(f"{c['verdict']:>5}  {c['check']}: {c['summary']}")

@@ -52,11 +52,41 @@ def out_format(out: Path | None, fmt: Format | None) -> Format:
     return fmt or implied or Format.table
 
 
+def target(out: Path, option: str) -> Path:
+    """The file a write to ``out`` replaces: ``out``, or the file a symlink at ``out`` names. Only a regular file, or
+    one that does not exist yet, is ever written: a folder, a device (``/dev/full``), a FIFO or a socket, or a
+    symlink to one, is refused (OutputError, exit 4) before anything is computed."""
+    real = Path(os.path.realpath(out)) if out.is_symlink() else out
+    via = f" (a symlink to {real})" if real != out else ""
+    if real.is_dir():
+        raise OutputError(f"{option} {out}{via}: is a folder; give a file name, e.g. {out / 'result.csv'}")
+    if os.path.lexists(real) and not real.is_file():
+        raise OutputError(
+            f"{option} {out}{via}: not a regular file (a device, FIFO or socket); pdverify writes regular files "
+            "only: give a file path"
+        )
+    return real
+
+
 def check_writable(out: Path, option: str) -> None:
-    """Before any computation: ``out`` can be created as a file (its folder may be missing: it is made)."""
-    if out.is_dir():
-        raise OutputError(f"{option} {out}: is a folder; give a file name, e.g. {out / 'result.csv'}")
+    """Before any computation: ``out`` can be created or replaced as a regular file (its folder may be missing: it
+    is made)."""
+    out = target(out, option)
     parent = out.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
+
+
+def check_folder(out: Path, option: str) -> None:
+    """Before any computation: ``out`` is a folder pdverify can write into, or can be made as one."""
+    real = Path(os.path.realpath(out))
+    if os.path.lexists(real) and not real.is_dir():
+        raise OutputError(f"{option} {out}: is a file, not a folder; give a folder (it is made if missing)")
+    parent = real
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
     if not parent.is_dir():
@@ -68,6 +98,7 @@ def check_writable(out: Path, option: str) -> None:
 def write_file(out: Path, write, option: str) -> None:
     """``write(path)`` into a temporary file beside ``out``, then renamed over it: a failed write leaves no empty or
     partial file (and an existing ``out`` as it was). OSError -> OutputError (exit code 4)."""
+    out = target(out, option)
     tmp = out.parent / f".{out.stem}.tmp-{os.getpid()}{out.suffix}"  # same suffix: writers choose by it
     try:
         out.parent.mkdir(parents=True, exist_ok=True)

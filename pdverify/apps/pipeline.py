@@ -25,6 +25,7 @@ from ..study.junit import write_junit
 from ..study.spec import Study
 from ..verify import entry_errors
 from ..verify.published import run_cards
+from .output import write_file
 
 
 def load_study(path) -> Study:
@@ -106,12 +107,9 @@ def run(
     if junit is not None:
         junit = Path(junit)
         try:
-            junit.parent.mkdir(parents=True, exist_ok=True)
-            write_junit(outcome, junit, wall)
-        except OSError as exc:
-            raise OutputError(
-                f"--junit {junit}: could not be written ({exc.strerror or exc}); the study's tables are in {out}"
-            ) from None
+            write_file(junit, lambda path: write_junit(outcome, Path(path), wall), "--junit")
+        except OutputError as exc:
+            raise OutputError(f"{exc.lines[0]}; the study's tables are in {out}") from None
         written_junit = junit
         say(f"junit: {junit}")
     index = build_report(out) if report else None

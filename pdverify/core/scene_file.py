@@ -3,6 +3,7 @@ raise :class:`~pdverify.core.errors.InputError` with one line per problem (field
 
 from __future__ import annotations
 
+import datetime
 import math
 import tomllib
 from pathlib import Path
@@ -95,12 +96,43 @@ def _message(err: dict, data: dict) -> str:
         return f"{loc} = {str(value).lower()}: a number is needed here, not true/false"
     if kind == "float_type" and isinstance(value, str):
         return f"{loc} = {value!r}: a number is needed here (write it without quotes)"
-    msg = err["msg"]
-    if msg.startswith("Value error, "):
-        msg = msg[len("Value error, ") :]
+    msg = _plain_words(kind, err.get("ctx") or {}, err["msg"])
     if isinstance(value, dict):  # a rule across the keys of a table: the table's name, then the rule
         return f"{loc}: {msg}"
-    return f"{loc} = {value!r}: {msg}"
+    return f"{loc} = {_as_toml(value)}: {msg}"
+
+
+def _plain_words(kind: str, ctx: dict, msg: str) -> str:
+    """pydantic's message in the words of a scene file (a table, a number, a list), not of Python classes."""
+    words = {
+        "model_type": "a table is needed here (its keys on the lines below a [name] header)",
+        "dict_type": "a table is needed here (its keys on the lines below a [name] header)",
+        "float_type": "a number is needed here",
+        "float_parsing": "a number is needed here",
+        "int_type": "a whole number is needed here",
+        "finite_number": "a finite number is needed here (not inf or nan)",
+        "list_type": "a list is needed here, e.g. [0.0, 1.0]",
+        "tuple_type": "a list is needed here, e.g. [0.0, 1.0]",
+        "string_type": "a text in quotes is needed here",
+        "greater_than": f"must be greater than {ctx.get('gt')}",
+        "greater_than_equal": f"must be at least {ctx.get('ge')}",
+        "less_than": f"must be less than {ctx.get('lt')}",
+        "less_than_equal": f"must be at most {ctx.get('le')}",
+        "too_short": f"needs {ctx.get('min_length')} values",
+        "too_long": f"takes {ctx.get('max_length')} values",
+    }
+    if kind in words:
+        return words[kind]
+    return msg[len("Value error, ") :] if msg.startswith("Value error, ") else msg
+
+
+def _as_toml(value) -> str:
+    """A value as the scene file writes it (a date as its date, text in quotes), not as Python's repr."""
+    if isinstance(value, (datetime.date, datetime.time)):
+        return f"{value.isoformat()} (a date or time)"
+    if isinstance(value, bool):
+        return str(value).lower()
+    return repr(value)
 
 
 def _messages(errors: list[dict], data: dict) -> list[str]:
@@ -236,7 +268,7 @@ def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
     """(text, parsed table) of a TOML file, or InputError naming the file and what is wrong."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (some Windows editors write one) is dropped
     except FileNotFoundError:
         raise InputError(f"{path}: no such {what} file; check the path") from None
     except IsADirectoryError:

@@ -11,6 +11,7 @@ transients, dispersion) in :mod:`scene_figures`, the performance page in :mod:`p
 
 from __future__ import annotations
 
+import csv
 import html
 import json
 import time
@@ -91,12 +92,25 @@ def table(
     return Markup(f'<table class="sortable"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody></table>')
 
 
+# columns that hold text whatever they look like: a scene named "123", "NA" or "True" stays that name
+TEXT_COLUMNS = frozenset(
+    "study case_id code scene_file model reference version variant element form scene units options quantity "
+    "status message warnings artefact_message check verdict name".split()
+)
+
+
 def _read(d: Path, name: str) -> pd.DataFrame:
     p = d / f"{name}.csv"
     if not p.exists() or p.stat().st_size == 0:
         return pd.DataFrame()
     try:
-        return pd.read_csv(p)
+        header = pd.read_csv(p, nrows=0).columns
+        text = [c for c in header if c in TEXT_COLUMNS]
+        numbers = {c: ["", "nan", "NaN", "NA", "None", "null"] for c in header if c not in TEXT_COLUMNS}
+        df = pd.read_csv(p, dtype={c: "string" for c in text}, keep_default_na=False, na_values=numbers)
+        for c in text:
+            df[c] = df[c].fillna("").astype(str)
+        return df
     except pd.errors.EmptyDataError:
         return pd.DataFrame()
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
@@ -104,6 +118,17 @@ def _read(d: Path, name: str) -> pd.DataFrame:
             f"{p}: not a readable CSV table ({str(exc).splitlines()[0][:120]}); run "
             f"`pdverify study STUDY.toml --out {d}` again"
         ) from None
+
+
+def _short_rows(path: Path) -> tuple[int, int, int] | None:
+    """(line, fields, header fields) of the first row whose field count differs from the header's, or None."""
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = csv.reader(fh)
+        want = len(next(rows, []))
+        for line, row in enumerate(rows, start=2):
+            if row and len(row) != want:
+                return line, len(row), want
+    return None
 
 
 def _label(r) -> str:
@@ -204,19 +229,23 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
         raise OutputError(
             f"{out}: cannot make the report folder ({exc.strerror or exc}); choose another --out"
         ) from None
-    res = _read(d, "results")
-    for col in ("case_id", "scene_file", "scene", "status") if len(res) else ():
-        if col not in res:
-            raise InputError(
-                f"{d / 'results.csv'}: no '{col}' column; not a pdverify results table (run "
-                f"`pdverify study STUDY.toml --out {d}` again)"
-            )
     try:
         meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
     except (ValueError, UnicodeDecodeError):
         raise InputError(
             f"{d / 'meta.json'}: not valid JSON; run `pdverify study STUDY.toml --out {d}` again"
         ) from None
+    res = _read(d, "results")
+    again = f"run `pdverify study STUDY.toml --out {d}` again"
+    if res.empty:
+        raise InputError(f"{d / 'results.csv'}: no cases (an empty table); {again}")
+    for col in ("case_id", "scene_file", "scene", "status", "model", "slenderness", "points", "err_max"):
+        if col not in res:
+            raise InputError(f"{d / 'results.csv'}: no '{col}' column; not a pdverify results table ({again})")
+    short = _short_rows(d / "results.csv")
+    if short:
+        line, got, want = short
+        raise InputError(f"{d / 'results.csv'}: line {line} has {got} fields, the header {want}; {again}")
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; run `pdverify study STUDY.toml --out {d}` again")
     unit_of_file, unit_of_scene = _units_of(res, "scene_file"), _units_of(res, "scene")

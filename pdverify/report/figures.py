@@ -13,6 +13,7 @@ import numpy as np  # noqa: E402
 
 plt.rcParams["svg.hashsalt"] = "pdverify"
 plt.rcParams["svg.fonttype"] = "none"
+plt.rcParams["text.parse_math"] = False  # names and labels are text: a scene named "$x^{$" is not TeX
 
 
 def _svg(fig) -> str:

@@ -115,13 +115,14 @@ def _name(toml: bytes) -> str:
 
 def finished(cases_dir: Path, ids: list[str]) -> dict[str, dict]:
     """The rows of the cases already stored (case id -> row); a missing, partial or corrupt file is not
-    among them (store.read_case), so its case is computed again."""
+    among them (store.read_case), nor one whose record is another case's (a file copied over this case's name),
+    so its case is computed again."""
     on_disk = {e.name for e in os.scandir(cases_dir)}  # one listing instead of a look-up per case
     done = {}
     for cid in dict.fromkeys(ids):
         path = case_file(cases_dir, cid, on_disk)
         rec = read_case(path) if path is not None else None
-        if rec is not None:
+        if rec is not None and rec["row"].get("case_id", cid) == cid:
             done[cid] = rec["row"]
     return done
 

@@ -252,6 +252,10 @@ def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
     papers = data.get("papers", {})
     if not isinstance(papers, dict) or not all(isinstance(v, str) for v in papers.values()):
         errors.append(f'{path}: papers = {papers!r}: give a table {{scene folder = "page title"}}')
+    for key, table in (("benchmarks", "[[benchmarks]]"), ("checks", "[[checks]]")):
+        value = data.get(key, [])
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            errors.append(f"{path}: {key} = {value!r}: give {table} tables (an array of tables), or leave it out")
     return (name, scenes, runs), errors
 
 

@@ -157,10 +157,15 @@ def verify(
     model = get_model(model_name)
     expected = order if order is not None else model.order
     out = Path(out)
+    grid = [f"{k}: the suite sets the grids; drop it" for k in options if k in ("points", "spacing")]
+    if grid:
+        raise InputError(grid)
     p = plan(model, full, options)
     declined = _declined(model, p)
     if why := _solves_none(model, declined):
         raise InputError(why)
+    solved = next(f for f, why in declined.items() if not why)
+    model.resolve(parse_scene(p.scenes[solved]), options)  # bad options: one line each before anything runs
     df = _run_suite(p, model, options, out, workers, scheduler, progress)
     found, scenes, df = _judge(model, options, p, df, expected)
     card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}

@@ -265,12 +265,13 @@ def identity(name: str, diffs: list[tuple[str, float]]) -> dict:
     if not diffs:
         return check(name, "n/a", "no scene")
     worst = max(d for _, d in diffs)
-    return check(
-        name,
-        "pass" if worst <= IDENTITY else "fail",
-        f"largest relative difference {worst:.1e} (limit {IDENTITY:g})",
-        cases=dict(diffs),
+    failed = [label for label, _ in diffs if label.startswith("failed:")]
+    summary = (
+        f"the solve failed ({failed[0][len('failed: ') :]})"
+        if failed
+        else f"largest relative difference {worst:.1e} (limit {IDENTITY:g})"
     )
+    return check(name, "pass" if worst <= IDENTITY else "fail", summary, cases=dict(diffs))
 
 
 def theory_gap(df, meta: dict, reference: str, points: int) -> dict:

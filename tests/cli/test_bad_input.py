@@ -7,6 +7,8 @@ the CLI in-process (:func:`pdverify.apps.cli.main`, ~5 ms a case instead of ~0.3
 escaped would fail the test with its traceback); a sample runs as real processes too.
 """
 
+import os
+import re
 import subprocess
 import sys
 import tomllib
@@ -16,7 +18,9 @@ from helpers import ROOT, cli
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from pdverify.core.errors import InputError
+import pdverify
+import pdverify.registry
+from pdverify.core.errors import InputError, SolveError
 from pdverify.core.scene_file import parse_scene
 
 BAD = sorted((ROOT / "tests" / "bad_inputs").glob("scene_*.toml"))
@@ -117,11 +121,54 @@ CLI_CASES = [
     ("report-broken-meta", ["report", "{broken_meta}"], 2, "meta.json: not valid JSON"),
     ("report-out-below-file", ["report", "{broken_meta}", "--out", "{file}/rep"], 4, "is a file, not a folder"),
     ("advise-tolerance-text", ["advise", "{scene}", "--tolerance", "abc"], 2, "--tolerance"),
-    ("advise-tolerance-0", ["advise", "{scene}", "--tolerance", "0"], 2, "tolerance = 0"),
+    ("advise-tolerance-0", ["advise", "{scene}", "--tolerance", "0"], 2, "--tolerance 0"),
     ("advise-missing-scene", ["advise", "{tmp}/missing.toml"], 2, "missing.toml"),
     ("bench-unknown-model", ["bench", "-m", "nosuch"], 2, "model = 'nosuch'"),
     ("bench-points-text", ["bench", "-m", "exact-eb", "--points", "abc"], 2, "--points"),
     ("bench-format-unknown", ["bench", "--format", "xml"], 2, "--format"),
+    # output paths: only a regular file (or a new one) is written, refused before any work
+    ("solve-out-device", ["solve", "{scene}", "-m", "exact-eb", "--out", "/dev/full"], 4, "not a regular file"),
+    ("solve-out-fifo", ["solve", "{scene}", "-m", "exact-eb", "--out", "{fifo}"], 4, "not a regular file"),
+    ("solve-out-link-to-folder", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dir}"], 4, "is a folder"),
+    ("solve-out-link-to-device", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dev}"], 4, "a symlink to"),
+    ("study-junit-device", ["study", "{study}", "--out", "{tmp}/o1", "--junit", "/dev/full"], 4, "--junit /dev/full"),
+    ("study-junit-folder", ["study", "{study}", "--out", "{tmp}/o2", "--junit", "{tmp}"], 4, "--junit"),
+    ("study-out-is-file", ["study", "{study}", "--out", "{file}"], 4, "is a file, not a folder"),
+    ("bench-out-is-file", ["bench", "-m", "pd-eb", "--points", "101", "--out", "{file}"], 4, "is a file, not a folder"),
+    ("verify-out-is-file", ["verify", "pd-eb", "--out", "{file}"], 4, "is a file, not a folder"),
+    # options checked before anything runs
+    ("bench-points-0", ["bench", "-m", "pd-eb", "--points", "0"], 2, "points = 0"),
+    ("bench-points-1", ["bench", "-m", "pd-eb", "--points", "1"], 2, "points = 1"),
+    ("bench-points-2", ["bench", "-m", "pd-eb", "--points", "2"], 2, "points = 2"),
+    ("bench-points-negative", ["bench", "-m", "pd-eb", "--points", "-10"], 2, "points = -10"),
+    ("bench-missing-scene", ["bench", "-m", "pd-eb", "--points", "101", "--scene", "{tmp}/missing.toml"], 2, "missing"),
+    ("solve-points-inf", ["solve", "{scene}", "-m", "pd-eb", "-o", "points=inf"], 2, "points = 'inf'"),
+    ("solve-points-1e400", ["solve", "{scene}", "-m", "pd-eb", "-o", "points=1e400"], 2, "points = '1e400'"),
+    ("modes-points-inf", ["modes", "{dyn}", "-m", "pd-timoshenko", "-o", "points=inf"], 2, "points = 'inf'"),
+    ("solve-option-twice", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "3", "-o", "horizon=5"], 2, "twice"),
+    ("solve-points-twice", ["solve", "{scene}", "-m", "pd-eb", "--points", "11", "-o", "points=21"], 2, "twice"),
+    ("solve-tolerance-without-auto", ["solve", "{scene}", "-m", "pd-eb", "--tolerance", "1e-3"], 2, "--model auto"),
+    ("solve-auto-tolerance-0", ["solve", "{scene}", "-m", "auto", "--tolerance", "0"], 2, "--tolerance 0"),
+    ("verify-points", ["verify", "pd-eb", "-o", "points=3", "--out", "{tmp}/v1"], 2, "the suite sets the grids"),
+    ("verify-spacing", ["verify", "pd-eb", "-o", "spacing=0.1", "--out", "{tmp}/v2"], 2, "the suite sets the grids"),
+    ("verify-order-nan", ["verify", "pd-eb", "--order", "nan"], 2, "--order nan"),
+    ("verify-order-0", ["verify", "pd-eb", "--order", "0"], 2, "--order 0"),
+    ("verify-order-negative", ["verify", "pd-eb", "--order", "-1"], 2, "--order -1"),
+    ("verify-bad-option", ["verify", "pd-eb", "-o", "bogus=1", "--out", "{tmp}/v3"], 2, "bogus"),
+    ("verify-bad-variant", ["verify", "pd-eb", "-o", "variant=nosuch", "--out", "{tmp}/v4"], 2, "variant = 'nosuch'"),
+    ("advise-budget-negative", ["advise", "{scene}", "--budget", "-5"], 2, "--budget -5"),
+    ("advise-budget-nan", ["advise", "{scene}", "--budget", "nan"], 2, "--budget nan"),
+    ("advise-budget-0", ["advise", "{scene}", "--budget", "0"], 2, "--budget 0"),
+    ("advise-tolerance-negative", ["advise", "{scene}", "--tolerance", "-1e-3"], 2, "--tolerance -0.001"),
+    ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
+    # study files
+    ("study-benchmarks-number", ["study", "{study_bench5}"], 2, "benchmarks = 5"),
+    ("study-checks-text", ["study", "{study_checks}"], 2, "checks = 'all'"),
+    # damaged study folders
+    ("report-empty-results", ["report", "{empty_results}"], 2, "no cases"),
+    ("report-shifted-results", ["report", "{shifted}"], 2, "line 2 has"),
+    # extreme numbers of the scene refused in one line
+    ("modes-density-tiny", ["modes", "{dyn_tiny_rho}", "-m", "pd-timoshenko"], 3, "floating-point range"),
     ("unknown-command", ["nosuch"], 2, "nosuch"),
     ("unknown-global-option", ["--bogus"], 2, "--bogus"),
     ("models-extra-argument", ["models", "extra"], 2, "extra"),
@@ -140,6 +187,22 @@ def files(tmp_path_factory):
     )
     (d / "tiny_E.toml").write_text(text.replace("youngs_modulus = 200e9", "youngs_modulus = 1e-300"))
     (d / "empty").mkdir()
+    os.mkfifo(d / "fifo.csv")
+    (d / "link_dir").symlink_to(d / "empty")
+    (d / "link_dev.csv").symlink_to("/dev/full")
+    dyn = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
+    (d / "dyn.toml").write_text(dyn)
+    (d / "dyn_tiny_rho.toml").write_text(re.sub(r"density = [0-9.e+-]+", "density = 1e-300", dyn))
+    head = f'name = "bad"\nscenes = ["{SCENE.as_posix()}"]\nreference = "exact-eb"\n'
+    runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
+    (d / "study.toml").write_text(head + runs)
+    (d / "study_bench5.toml").write_text(head + "benchmarks = 5\n" + runs)
+    (d / "study_checks.toml").write_text(head + 'checks = "all"\n' + runs)
+    header = "case_id,scene_file,scene,status,model,slenderness,points,err_max\n"
+    (d / "empty_results").mkdir()
+    (d / "empty_results" / "results.csv").write_text(header)
+    (d / "shifted").mkdir()
+    (d / "shifted" / "results.csv").write_text(header + "s.toml,123,ok,pd-eb,,11,0.1\n")
     for name, results, meta in (
         ("broken_csv", 'a,b\n1,"2\n', "{}"),
         ("broken_meta", "case_id,scene_file,scene,status\n", "{not json"),
@@ -161,12 +224,22 @@ def files(tmp_path_factory):
         "broken_csv": d / "broken_csv",
         "broken_meta": d / "broken_meta",
         "no_cols": d / "no_cols",
+        "fifo": d / "fifo.csv",
+        "link_dir": d / "link_dir",
+        "link_dev": d / "link_dev.csv",
+        "dyn": d / "dyn.toml",
+        "dyn_tiny_rho": d / "dyn_tiny_rho.toml",
+        "study": d / "study.toml",
+        "study_bench5": d / "study_bench5.toml",
+        "study_checks": d / "study_checks.toml",
+        "empty_results": d / "empty_results",
+        "shifted": d / "shifted",
     }
 
 
 def test_corpus_is_large_enough():
-    """The issue's bar: at least 60 bad inputs across scenes, options and files."""
-    assert len(BAD) + len(CLI_CASES) >= 60 and len({c[0] for c in CLI_CASES}) == len(CLI_CASES)
+    """The bar: at least 150 bad inputs across scenes, options, files and the Python API."""
+    assert len(BAD) + len(CLI_CASES) + len(API_CASES) >= 150 and len({c[0] for c in CLI_CASES}) == len(CLI_CASES)
 
 
 @pytest.mark.parametrize("args,code,text", [c[1:] for c in CLI_CASES], ids=[c[0] for c in CLI_CASES])
@@ -265,3 +338,55 @@ def test_fuzz_arbitrary_documents(doc):
         parse_scene(doc if isinstance(doc, dict) else {"x": doc})
     except InputError as exc:
         assert exc.lines
+
+
+# -- the Python API: pdverify.run, parse_scene and the Scene's own methods, in-process -------------------------
+def _api_scene():
+    return parse_scene(tomllib.loads(SCENE.read_text()))
+
+
+API_CASES = [
+    (
+        "load-moved-outside",
+        lambda sc: pdverify.run(
+            sc.model_copy(update={"loads": [sc.loads[0].model_copy(update={"position": 5.0})]}), "pd-eb"
+        ),
+        InputError,
+        "loads[0].position = 5.0",
+    ),
+    (
+        "width-negative-by-copy",
+        lambda sc: pdverify.run(
+            sc.model_copy(update={"section": sc.section.model_copy(update={"width": -0.01})}), "exact-eb"
+        ),
+        InputError,
+        "section.width = -0.01",
+    ),
+    ("slenderness-negative", lambda sc: sc.with_slenderness(-5), InputError, "slenderness = -5"),
+    ("slenderness-zero", lambda sc: sc.with_slenderness(0), InputError, "slenderness = 0"),
+    ("slenderness-nan", lambda sc: sc.with_slenderness(float("nan")), InputError, "slenderness = nan"),
+    ("model-number", lambda sc: pdverify.run(sc, 5), InputError, "model = 5"),
+    ("model-none", lambda sc: pdverify.run(sc, None), InputError, "model = None"),
+    ("model-unknown", lambda sc: pdverify.run(sc, "nosuch"), InputError, "model = 'nosuch'"),
+    ("points-inf", lambda sc: pdverify.run(sc, "pd-eb", points=float("inf")), InputError, "points = inf"),
+    ("points-text", lambda sc: pdverify.run(sc, "pd-eb", points="x"), InputError, "points = 'x'"),
+    ("points-huge", lambda sc: pdverify.run(sc, "pd-eb", points=10**12), SolveError, "use at most about"),
+    ("option-unknown", lambda sc: pdverify.run(sc, "pd-eb", bogus=1), InputError, "bogus"),
+    ("scene-not-a-scene", lambda sc: pdverify.registry.run({"beam": 1}, "pd-eb"), InputError, "give a Scene"),
+]
+
+
+@pytest.mark.parametrize("call,error,text", [c[1:] for c in API_CASES], ids=[c[0] for c in API_CASES])
+def test_bad_api_input(call, error, text):
+    """The Python API checks what the command line checks: one InputError (or SolveError) line, never a bare
+    AttributeError, OverflowError or MemoryError, and never a silent number."""
+    with pytest.raises(error) as exc:
+        call(_api_scene())
+    assert len(exc.value.lines) >= 1 and text in exc.value.lines[0], exc.value.lines
+
+
+def test_a_byte_order_mark_is_read(tmp_path):
+    """A scene saved with a UTF-8 byte-order mark (some Windows editors write one) reads like the same text."""
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + SCENE.read_bytes())
+    assert pdverify.load_scene(path) == pdverify.load_scene(SCENE)

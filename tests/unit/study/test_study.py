@@ -710,3 +710,17 @@ def test_gci_of_a_repeated_grid_is_nan():
     ZeroDivisionError."""
     assert all(np.isnan(v) for v in gci([0.1, 0.1, 0.2, 0.4], [1.0, 1.1, 1.2, 1.3]).values())
     assert gci([0.1, 0.2, 0.4], [1.0, 1.01, 1.04])["gci_order"] == pytest.approx(np.log2(3))
+
+
+def test_a_case_file_copied_over_another_is_computed_again(tmp_path):
+    """Resuming reads a stored case only if its record is that case's: a file copied over another case's name (a
+    careless copy between folders) is computed again, so no case vanishes from results.csv."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [11, 21]\n')
+    first = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    by_points = first.set_index("points")["case_id"]
+    cases = tmp_path / "out" / "cases"
+    src, dst = (next(cases.glob(f"{by_points[n]}.*")) for n in (11, 21))
+    dst.write_bytes(src.read_bytes())
+    again = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert sorted(again["points"]) == [11, 21]
+    assert again.set_index("points")["err_max"].to_dict() == first.set_index("points")["err_max"].to_dict()

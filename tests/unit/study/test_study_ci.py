@@ -301,12 +301,12 @@ def test_junit_file(tmp_path, failing):
 
 def test_junit_path_errors(tmp_path):
     p = study_file(tmp_path, bench("centre", 0.02))
-    r = run(p, tmp_path, "--junit", str(tmp_path))
-    assert r.exit_code == 2 and r.stderr.startswith("error: --junit") and len(r.stderr.splitlines()) == 1
+    r = run(p, tmp_path, "--junit", str(tmp_path))  # a folder: an output path that cannot be written, exit 4
+    assert r.exit_code == 4 and r.stderr.startswith("error: --junit") and len(r.stderr.splitlines()) == 1
     (tmp_path / "afile").write_text("x")
     r = run(p, tmp_path, "--junit", str(tmp_path / "afile/junit.xml"))
     assert r.exit_code == 4 and "error: --junit" in r.stderr and "Traceback" not in r.stderr
-    assert (tmp_path / "out/benchmarks.csv").is_file()  # the study's tables are kept
+    assert not (tmp_path / "out/benchmarks.csv").exists()  # refused before any case ran
 
 
 @pytest.mark.slow
