@@ -29,9 +29,12 @@ def load_scene(path):
     return _load(path)
 
 
-def run(scene, model, **options):
+def run(scene, model, estimate=False, **options):
     """Solve ``scene`` (a Scene or a path to a scene file) with ``model`` (a registered name or a Model). A grid
-    too large for the machine's memory is refused before it is allocated (SolveError naming the largest that fits)."""
+    too large for the machine's memory is refused before it is allocated (SolveError naming the largest that fits).
+    ``estimate``: also solve two nested grids; ``result.info["estimate"]`` is then a Richardson estimate of the
+    discretisation error (:mod:`pdverify.measure.richardson`), with a warning where the grids are not in the
+    asymptotic range."""
     from .core.contract import Model
     from .measure.memory import check_memory
     from .registry import get_model
@@ -43,6 +46,10 @@ def run(scene, model, **options):
         model = get_model(model)
     if isinstance(model, Model):  # anything else is refused by the registry's run, in one line
         check_memory(scene, model, options)
+        if estimate:
+            from .measure.richardson import with_estimate
+
+            return with_estimate(scene, model, options, _run)
     return _run(scene, model, **options)
 
 

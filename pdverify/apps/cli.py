@@ -175,6 +175,9 @@ def solve(
     ),
     out: Path | None = typer.Option(None, "--out", help="write the output here instead of stdout"),
     tolerance: float | None = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
+    estimate: bool = typer.Option(
+        False, "--estimate", help="also solve two nested grids and print a Richardson estimate of the error"
+    ),
 ):
     """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
     from ..core.scene_file import load_scene
@@ -213,7 +216,12 @@ def solve(
 
     m = get_model(model_argument(model))  # a manifest path registers its external model first
     check_memory(sc, m, given)
-    result = run(sc, m, **given)
+    if estimate:
+        from ..measure.richardson import with_estimate
+
+        result = with_estimate(sc, m, given, run)
+    else:
+        result = run(sc, m, **given)
     if out is not None and out.suffix in result.writers:
         write_file(out, result.writers[out.suffix], "--out")
         typer.echo(f"wrote {out}", err=True)

@@ -79,7 +79,8 @@ class Result:
         line per warning, ``# warning: ...``, and, when through-section stresses were asked for (option
         ``stations``), the lines of :meth:`output_lines` (read it back with ``pandas.read_csv(..., comment="#")``;
         without either it is a plain table)."""
-        head = self.warning_lines() + (self.output_lines() if self.info.get("sections") else [])
+        shown = self.info.get("sections") or self.info.get("estimate")
+        head = self.warning_lines() + (self.output_lines() if shown else [])
         return "".join(f"# {line}\n" for line in head) + columns_csv(self.columns())
 
     def output_lines(self) -> list[str]:
@@ -87,6 +88,8 @@ class Result:
         sigma_xx, sigma_zz, tau_xz`` followed by one line of those four numbers per z (the CSV's comment lines
         and the table's header; JSON carries them in ``info``)."""
         out = []
+        if self.info.get("estimate"):
+            out.append(self.info["estimate"]["line"])
         r = self.info.get("reactions")
         if r:
             out.append("reactions: " + ", ".join(f"{k}={v:.8g}" for k, v in r.items() if not isinstance(v, str)))

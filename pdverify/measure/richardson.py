@@ -1,0 +1,101 @@
+"""The discretisation error of a result estimated from the model itself: Richardson extrapolation on nested grids.
+
+Three solves on grids whose spacings halve (n, 2n - 1, 4n - 3 points, or the two coarser ones below n) give the
+differences d_coarse and d_fine of successive grids at the coarser grid's points, the observed order
+p = log2(d_coarse / d_fine) and the error of each grid, e_i = d_(i,i+1) 2^p / (2^p - 1), and of the finest,
+d_fine / (2^p - 1) (Richardson 1911; Roache 1998, ch. 5). The estimate is trusted only in the asymptotic range:
+the observed order within ASYMPTOTIC of the order the model's equations promise (``Model.order``). Where the grids
+agree to their round-off (the solves' own bounds) the model is exact on the scene up to that round-off.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.errors import InputError
+
+ASYMPTOTIC = (0.75, 1.5)  # the observed order's band around the promised one, as fractions of it
+NOISE = 10.0  # grids closer than this many times their round-off bounds agree to round-off
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """The estimated relative error (of max |quantity|) of the result on ``grids[at]``."""
+
+    error: float
+    order: float
+    grids: tuple[int, ...]
+    at: int
+    asymptotic: bool
+    why: str  # how the estimate was made, or why it is not to be trusted
+
+    def line(self) -> str:
+        """One line for every output format."""
+        head = f"estimate: discretisation error ~{self.error:.2g} (relative; Richardson on {self.grids}"
+        head += f", observed order {self.order:.2f})" if math.isfinite(self.order) else ")"
+        return head + ("" if self.asymptotic else f"; not asymptotic: {self.why}")
+
+
+def nested_grids(n: int, least: int) -> tuple[tuple[int, ...], int]:
+    """(three grids whose spacings halve, the index of n among them): the two coarser ones below n where the
+    intervals divide and the coarsest has at least ``least`` points, else n with finer ones."""
+    if (n - 1) % 4 == 0 and (n - 1) // 4 + 1 >= least:
+        return ((n - 1) // 4 + 1, (n - 1) // 2 + 1, n), 2
+    if (n - 1) % 2 == 0 and (n - 1) // 2 + 1 >= least:
+        return ((n - 1) // 2 + 1, n, 2 * n - 1), 1
+    return (n, 2 * n - 1, 4 * n - 3), 0
+
+
+def difference(coarse, fine, quantity: str, scale: float) -> float:
+    """max |coarse - fine| at the coarser grid's points, relative to ``scale`` (nested grids: the finer one's
+    values there, interpolated where a model adds points of its own, such as FE load nodes)."""
+    a, b = coarse.measured(quantity), fine.measured(quantity)
+    return float(np.abs(a - np.interp(coarse.x, fine.x, b)).max() / scale)
+
+
+def richardson(results: list, at: int, quantity: str = "w", promised: float | None = None) -> Estimate:
+    """The estimate for ``results[at]`` from three results on nested grids (coarse to fine)."""
+    grids = tuple(len(r.x) for r in results)
+    scale = float(np.abs(results[-1].measured(quantity)).max()) or 1.0
+    d1, d2 = difference(results[0], results[1], quantity, scale), difference(results[1], results[2], quantity, scale)
+    noise = NOISE * max(float(r.info.get("error_bound") or 0.0) for r in results)
+    if max(d1, d2) <= max(noise, 16 * np.finfo(float).eps):
+        return Estimate(max(d1, d2), math.inf, grids, at, True, "the grids agree to their round-off")
+    p = math.log2(d1 / d2) if d1 > 0 and d2 > 0 else math.nan
+    if not p > 0:
+        return Estimate(max(d1, d2), p, grids, at, False, "the grids do not converge in themselves")
+    q = 2.0**p
+    error = (d1, d2)[at] * q / (q - 1) if at < 2 else d2 / (q - 1)
+    if promised is None:
+        return Estimate(error, p, grids, at, True, "")
+    lo, hi = (f * promised for f in ASYMPTOTIC)
+    if lo <= p <= hi:
+        return Estimate(error, p, grids, at, True, "")
+    return Estimate(
+        max(error, d2), p, grids, at, False, f"observed order {p:.2f}, the model's {promised:g}: refine the grid"
+    )
+
+
+def with_estimate(scene, model, options: dict, run) -> object:
+    """The result of ``run(scene, model, **options)`` with ``info["estimate"]`` (the :class:`Estimate` as a dict,
+    its ``line`` included), from two more solves on nested grids; a model without a grid gets none."""
+    grid = model.option("points")
+    params = model.resolve(scene, options)
+    if grid is None:
+        return run(scene, model, **options)
+    n = params["points"]
+    grids, at = nested_grids(n, int(grid.minimum or 2))
+    try:
+        results = [run(scene, model, **dict(options, points=g)) for g in grids]
+    except InputError:  # a coarser grid than the model's rules allow (e.g. its ends' families would overlap)
+        grids, at = nested_grids(n, n + 1)
+        results = [run(scene, model, **dict(options, points=g)) for g in grids]
+    est = richardson(results, at, model.measures, model.order)
+    result = results[at]
+    result.info["estimate"] = {**est.__dict__, "grids": list(est.grids), "line": est.line()}
+    if not est.asymptotic:
+        result.info.setdefault("warnings", []).append(est.line())
+    return result
