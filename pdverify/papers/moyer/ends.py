@@ -156,10 +156,10 @@ def mirror_ghosts(sup: str, G: int, dx: float, sigma: float, P: float, C: float,
 
 
 def shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
-    """At a free end the ghost ψ̄ are extrapolated from the ψ̄ of
-    the real intervals with ψ(end) = the end shear P̄/kGA imposed, instead of being computed from
-    extrapolated w and γ: an extrapolation error δ in w or γ would enter the shear force as kGA δ/Δ,
-    which grows like (L/h)² (measured: 27 % at slenderness 1000 on a uniformly loaded cantilever)."""
+    """(ψ̄ map, constant) with the ghost ψ̄ of every free end extrapolated from the ψ̄ of the real intervals (degree
+    SHEAR_FIT_DEGREE through SHEAR_FIT_INTERVALS of them) with ψ(end) = the end shear P̄/kGA imposed, instead of
+    computed from extrapolated w and γ: an extrapolation error δ in w or γ would enter the shear force as kGA δ/Δ,
+    which grows like (L/h)² (the corrected variant's item 3 in :mod:`.operator`)."""
     rows_all = psi_u.shape[0]
     rep_r, rep_c, rep_v = [], [], []
     c0 = np.zeros(rows_all)
