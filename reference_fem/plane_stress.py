@@ -36,6 +36,7 @@ on the section line through its station (along that station's tangent), so that 
 pair of opposite forces on the neighbouring mid-height nodes used before grew as the mesh was refined, and the
 deflection under it with them, like a 2D point force's (log): 1.7e-2, 4.3e-2, 1.1e-1 from exact Timoshenko at
 101, 401, 1601 points (pinned-pinned, L/h = 20, couple at L/4; now 3.1e-4, 3.2e-4, 3.2e-4, the theories' gap).
+(:mod:`reference_fem.plane_conditions` assembles these loads and supports and sums the reactions.)
 Output: at the mid-line vertices (t = 0), x = arc length s, w = u·n, fields u = u·t (tangential),
 ux, uy (global), rotation of the section line = (u_t(bottom) - u_t(top)) / h; ``--out result.vtu``
 writes the element's own cells (quad / quad8 / quad9) with the displacement and the nodal stresses
@@ -54,12 +55,20 @@ from pdverify.core.contract import Model, Option
 from pdverify.core.errors import InputError
 from pdverify.core.geometry import geometry, mechanism_message
 from pdverify.core.result import Result, Timer
-from pdverify.core.scene import Distributed, PointForce, Scene
+from pdverify.core.scene import Scene
 from pdverify.core.stations import STATIONS_HELP, parse_stations
 from pdverify.numerics.linalg import solve_linear
 from reference_fem import curved_mesh as cm
 from reference_fem import q4_variants, vtu
 from reference_fem.beam import beam_nodes
+from reference_fem.plane_conditions import (
+    constrained_system,
+    full_displacement,
+    load_resultant,
+    load_vector,
+    reactions,
+    support_conditions,
+)
 from reference_fem.render import render_png
 from reference_fem.stresses import through_section
 
@@ -83,53 +92,90 @@ def mesh_lines(scene: Scene, points: int, layers: int):
     return x, y
 
 
-def _couple(C: float, te: np.ndarray, I: float, width: float):
-    """The line density of a couple C on a section line with tangent te: the bending stress -C t / I along te
-    times the thickness (per unit length of the line); its moment about the mid-height is C."""
-
-    def density(sq, tq):
-        return te[:, None, None] * (-C * tq / I * width)[None]
-
-    return density
+def strip_mesh(scene: Scene, points: int, layers: int, element: str) -> cm.BeamMesh:
+    """The mesh of the strip: the parameter grid of :func:`mesh_lines` mapped onto the axis, with q8/q9 mid-side
+    nodes on the mapped curves on a curved axis (straight-edged q4 and straight axes)."""
+    s, tt = mesh_lines(scene, points, layers)
+    return cm.build_mesh(scene, s, tt, quadratic_geometry=(not scene.is_straight and not element.startswith("q4")))
 
 
-def _local(load, tan: np.ndarray, nor: np.ndarray):
-    """(tangential, normal) components of a load's (axial, value) in its frame, at frames (…, 2)."""
-    if getattr(load, "frame", "local") == "global":
-        g = np.array([load.axial, load.value])
-        return tan @ g, nor @ g
-    return np.full(tan.shape[:-1], float(load.axial)), np.full(tan.shape[:-1], float(load.value))
+def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
+    """(lambda*, mu): scikit-fem's plane-strain Lame constants with lambda* = 2 lambda mu / (lambda + 2 mu)
+    = E nu / (1 - nu²), the plane-stress constant."""
+    from skfem.models.elasticity import lame_parameters  # scikit-fem is loaded by the model's solve only
+
+    lam, mu = lame_parameters(E, nu)
+    return 2 * lam * mu / (lam + 2 * mu), mu
 
 
-def _reactions(r: np.ndarray, basis, geo, length: float) -> dict[str, float]:
-    """Support reactions from r = K u - F (the nodal forces the supports put on the strip; round-off elsewhere),
-    summed over the nodes nearer each end: force along the end normal (+z for a straight beam), axial along the
-    end tangent, moment counter-clockwise about the end of the axis."""
-    ends = geo.position(np.array([0.0, length]))
-    tan, nor = geo.frame(np.array([0.0, length]))
-    xd, yd = _dofs(basis)
-    loc = basis.doflocs[:, xd]
-    near_left = np.hypot(*(loc - ends[0][:, None])) <= np.hypot(*(loc - ends[1][:, None]))
-    out = {}
-    for k, side in enumerate(("left", "right")):
-        sel = near_left if k == 0 else ~near_left
-        fx, fy = r[xd[sel]], r[yd[sel]]
-        arm = loc[:, sel] - ends[k][:, None]
-        f = np.array([fx.sum(), fy.sum()])
-        out[f"force_{side}"] = float(f @ nor[k])
-        out[f"axial_{side}"] = float(f @ tan[k])
-        out[f"moment_{side}"] = float(np.sum(arm[0] * fy - arm[1] * fx))
-    return out
+def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):
+    """K of the strip (thickness = section width): scikit-fem's linear elasticity (q4 with 3x3 Gauss, q8, q9) or
+    the PLANE182 stand-ins q4-bbar, q4-qm6, q4-reduced (:mod:`reference_fem.q4_variants`)."""
+    from skfem.models.elasticity import linear_elasticity  # scikit-fem is loaded by the model's solve only
+
+    E, nu, width = scene.material.E, scene.material.poissons_ratio, scene.section.width
+    if element.startswith("q4-"):
+        return width * q4_variants.assemble(basis.mesh, basis, E, nu, element[3:])
+    return width * linear_elasticity(lam, mu).assemble(basis)
 
 
-def _dofs(basis) -> tuple[np.ndarray, np.ndarray]:
-    """(x-DOFs, y-DOFs) of every node (vertices, and the mid-side / centre nodes of q8 / q9), paired."""
-    xs, ys = [basis.nodal_dofs[0]], [basis.nodal_dofs[1]]
-    for d in (basis.facet_dofs, basis.interior_dofs):
-        if d.shape[0]:
-            xs.append(d[0])
-            ys.append(d[1])
-    return np.concatenate(xs), np.concatenate(ys)
+def face_rows(scene: Scene, nt: int) -> tuple[int, int]:
+    """(loaded face, mid-line): node rows of the face that carries the normal loads (t = +h/2; on a clockwise arc
+    t = -h/2, the inner face as on a counter-clockwise arc) and of the mid-line, of nt rows."""
+    top = 0 if scene.axis.type == "arc" and scene.axis.direction == "clockwise" else nt - 1
+    return top, nt // 2
+
+
+def midline_fields(u: np.ndarray, basis, bm: cm.BeamMesh, tan_s: np.ndarray, nor_s: np.ndarray, h: float):
+    """(w, rotation, fields) at the mid-line vertices: w = u·n, u = u·t, (ux, uy) global, rotation of the section
+    line = (u_t(bottom) - u_t(top)) / h."""
+    nt = len(bm.t)
+    vx, vy = basis.nodal_dofs[0], basis.nodal_dofs[1]
+    mid, topn, botn = bm.vid[:, nt // 2], bm.vid[:, nt - 1], bm.vid[:, 0]
+    ux, uy = u[vx[mid]], u[vy[mid]]
+    w = ux * nor_s[:, 0] + uy * nor_s[:, 1]
+    ut = ux * tan_s[:, 0] + uy * tan_s[:, 1]
+
+    def tangential(nodes):
+        return u[vx[nodes]] * tan_s[:, 0] + u[vy[nodes]] * tan_s[:, 1]
+
+    rot = (tangential(botn) - tangential(topn)) / h
+    return w, rot, {"u": ut, "ux": ux, "uy": uy}
+
+
+def locking_warning(element: str, scene: Scene, stations: int, layers: int) -> str | None:
+    """The warning of a fully integrated q4 (parasitic shear in bending), with the elements' aspect ratio."""
+    if element not in LOCKING_ELEMENTS:
+        return None
+    aspect = (scene.length / (stations - 1)) / (scene.section.depth / layers)
+    return (
+        f"element = {element}: full integration locks in bending (parasitic shear), here with elements "
+        f"{aspect:.3g} times as long as they are thick; the deflection may be far too small (-27 % on a "
+        "100 x 8 cantilever at L/h = 100, docs/models/yang.md): use q8, q4-qm6 or q4-reduced"
+    )
+
+
+def writers(scene: Scene, basis, u: np.ndarray, lam: float, mu: float) -> dict:
+    """The result's writers: ``.vtu`` the element's own cells with the displacement and the nodal stresses
+    (:mod:`reference_fem.vtu`), ``.png`` a picture of it (deformation drawn at 10 % of L)."""
+
+    def write_vtu(path, u=u, basis=basis, lam=lam, mu=mu):
+        vtu.write(path, basis, u, lam, mu)
+
+    def write_png(path):
+        import os
+        import tempfile
+
+        fd, tmp = tempfile.mkstemp(suffix=".vtu")
+        os.close(fd)
+        try:
+            write_vtu(tmp)
+            amp = max(np.abs(u).max(), 1e-300)
+            render_png(tmp, path, scale=0.1 * scene.length / amp)  # deformation drawn at 10 % of L
+        finally:
+            os.unlink(tmp)
+
+    return {".vtu": write_vtu, ".png": write_png}
 
 
 class FemPlaneStress(Model):
@@ -185,180 +231,40 @@ class FemPlaneStress(Model):
 
     def solve(self, scene: Scene, params: dict) -> Result:
         import skfem as fem
-        from skfem.models.elasticity import lame_parameters, linear_elasticity
 
         if params["layers"] % 2:
             raise InputError(f"layers = {params['layers']}: give an even number so the mid-line is a row of nodes")
         stations = parse_stations(params.get("stations", ""), scene.length)
         if len(stations) and not scene.is_straight:
             raise InputError("stations: through-section stresses are given for straight axes only")
+        el, h = params["element"], scene.section.depth
         timer = Timer()
         with timer("assemble"):
-            el = params["element"]
-            s, tt = mesh_lines(scene, params["points"], params["layers"])
-            bm = cm.build_mesh(scene, s, tt, quadratic_geometry=(not scene.is_straight and not el.startswith("q4")))
-            mesh, geo = bm.mesh, bm.geo
-            elem = fem.ElementVector(getattr(fem, ELEMENTS[el])())
-            basis = fem.Basis(mesh, elem)
-            E, nu, width = scene.material.E, scene.material.poissons_ratio, scene.section.width
-            lam, mu = lame_parameters(E, nu)
-            lam = 2 * lam * mu / (lam + 2 * mu)  # plane stress
-            if el.startswith("q4-"):
-                K = width * q4_variants.assemble(mesh, basis, E, nu, el[3:])
-            else:
-                K = width * linear_elasticity(lam, mu).assemble(basis)
-            L, h, I = scene.length, scene.section.depth, scene.section.I
-            ns, nt = len(s), len(tt)
-            jm = nt // 2  # mid-line row
-            top = 0 if scene.axis.type == "arc" and scene.axis.direction == "clockwise" else nt - 1  # loaded face
-            F = np.zeros(basis.N)
-            tan_s, nor_s = geo.frame(s)
-            for load in scene.loads:
-                if isinstance(load, Distributed):
-                    a, b = scene.span(load)
-
-                    def profile(sq, load=load):
-                        return np.ones_like(sq) if load.shape == "uniform" else np.sin(np.pi * sq / L)
-
-                    def normal_part(sq, tq, load=load):
-                        tq_, nq_ = geo.frame(sq)
-                        _, qn = _local(load, tq_, nq_)
-                        return np.moveaxis(nq_ * (qn * profile(sq))[..., None], -1, 0)
-
-                    def tangential_part(sq, tq, load=load):
-                        tq_, nq_ = geo.frame(sq)
-                        qt, _ = _local(load, tq_, nq_)
-                        return np.moveaxis(tq_ * (qt * profile(sq))[..., None], -1, 0)
-
-                    F += cm.line_forces(bm, basis, *cm.row_edges(bm, top, a, b), normal_part)
-                    if load.axial != 0.0 or load.frame == "global":
-                        F += cm.line_forces(bm, basis, *cm.row_edges(bm, jm, a, b), tangential_part)
-                    continue
-                at_end = min(abs(load.position - 0.0), abs(load.position - L)) < 1e-12 * L
-                i = 0 if load.position < L / 2 else ns - 1
-                if at_end:
-                    te, ne = tan_s[i], nor_s[i]
-                    if isinstance(load, PointForce):
-                        ft, fn = _local(load, te, ne)
-
-                        def end_force(sq, tq, ft=float(ft), fn=float(fn), te=te, ne=ne):
-                            tau = 1.5 * fn / h * (1 - (2 * tq / h) ** 2)  # parabolic shear, per face length
-                            return ne[:, None, None] * tau[None] + te[:, None, None] * (ft / h)
-
-                        F += cm.line_forces(bm, basis, *cm.face_edges(bm, i), end_force)
-                    else:
-                        F += cm.line_forces(bm, basis, *cm.face_edges(bm, i), _couple(load.value, te, I, width))
-                    continue
-                k = int(np.argmin(np.abs(s - load.position)))
-                if isinstance(load, PointForce):
-                    ft, fn = _local(load, tan_s[k], nor_s[k])
-                    topk, midn = bm.vid[k, top], bm.vid[k, jm]
-                    F[basis.nodal_dofs[:, topk]] += fn * nor_s[k]
-                    if ft != 0.0:
-                        F[basis.nodal_dofs[:, midn]] += ft * tan_s[k]
-                else:  # the end moment's traction on the section line s = s_k (a force pair would be singular)
-                    F += cm.line_forces(bm, basis, *cm.face_edges(bm, k), _couple(load.value, tan_s[k], I, width))
-            # resultant of the assembled loads (force, moment about the left end of the axis): a check of
-            # the load assembly against the scene's beam loads
-            xd = (
-                np.concatenate([basis.nodal_dofs[0], basis.facet_dofs[0]])
-                if basis.facet_dofs.shape[0]
-                else basis.nodal_dofs[0]
-            )
-            yd = (
-                np.concatenate([basis.nodal_dofs[1], basis.facet_dofs[1]])
-                if basis.facet_dofs.shape[0]
-                else basis.nodal_dofs[1]
-            )
-            rel = basis.doflocs[:, xd] - geo.position(np.array([0.0]))[0][:, None]
-            resultant = [float(F[xd].sum()), float(F[yd].sum()), float(np.sum(rel[0] * F[yd] - rel[1] * F[xd]))]
-            # supports: constraints on tangential / normal components of the end-face nodes
-            fixed, pairs, tangents, crows = [], [], [], []
-            for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-                i = 0 if side == 0 else ns - 1
-                if sup == "free":
-                    continue
-                if sup in ("pinned", "roller") and params["pin"] == "face":
-                    # weighted means of the face displacement: ∫ φ u·d dt = 0 (consistent line integrals)
-                    dirs = [(nor_s[i], lambda tq: 1.5 / h * (1 - (2 * tq / h) ** 2))]
-                    if sup == "pinned":
-                        dirs.append((tan_s[i], lambda tq: np.full_like(tq, 1.0 / h)))
-                    for d, phi in dirs:
-                        crows.append(
-                            cm.line_forces(
-                                bm,
-                                basis,
-                                *cm.face_edges(bm, i),
-                                lambda sq, tq, d=d, phi=phi: d[:, None, None] * phi(tq)[None],
-                            )
-                        )
-                    continue
-                if sup in ("pinned", "roller"):
-                    face = basis.nodal_dofs[:, [bm.vid[i, jm]]]
-                else:
-                    face = cm.face_node_pairs(bm, basis, i)
-                pairs.append(face)
-                tangents.append(np.repeat(tan_s[i][:, None], face.shape[1], axis=1))
-                if sup in ("clamped", "pinned"):
-                    fixed.append(face.ravel())
-                elif sup == "roller":
-                    fixed.append(face[1])  # u' y-slot = normal component
-                else:  # guided: every face node's tangential component equals the first one's (no rotation)
-                    for k in range(1, face.shape[1]):
-                        row = np.zeros(basis.N)
-                        row[face[:, k]] += tan_s[i]
-                        row[face[:, 0]] -= tan_s[i]
-                        crows.append(row)
-            K0, F0 = K, F.copy()  # before the supports' rotation: the reactions are K0 u - F0
-            T = None
-            if pairs:
-                pr, tg = np.hstack(pairs), np.hstack(tangents)
-                if not (np.all(tg[0] == 1.0) and np.all(tg[1] == 0.0)):
-                    T = cm.rotation_matrix(basis.N, pr, tg)
-                    K = (T.T @ K @ T).tocsr()
-                    F = T.T @ F
-            fixed = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
-            Kf, Ff, _, free = fem.condense(K, F, D=fixed)  # the held DOFs (zero) eliminated
-            S = None
-            if crows:  # eliminate one master dof per face-mean constraint: u_f = S v
-                C = np.vstack(crows)
-                if T is not None:
-                    C = np.asarray((T.T @ C.T).T)
-                S = cm.constraint_basis(C[:, free])
-                Kf, Ff = (S.T @ Kf @ S).tocsr(), S.T @ Ff
+            bm = strip_mesh(scene, params["points"], params["layers"], el)
+            basis = fem.Basis(bm.mesh, fem.ElementVector(getattr(fem, ELEMENTS[el])()))
+            lam, mu = plane_stress_lame(scene.material.E, scene.material.poissons_ratio)
+            K = stiffness(basis, scene, el, lam, mu)
+            top, mid = face_rows(scene, len(bm.t))
+            tan_s, nor_s = bm.geo.frame(bm.s)
+            F = load_vector(scene, bm, basis, tan_s, nor_s, top, mid)
+            conditions = support_conditions(scene, params["pin"], bm, basis, tan_s, nor_s, mid)
+            Kf, Ff, free, T, S = constrained_system(K, F, basis.N, *conditions)
         with timer("solve"):
             uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"))
-            if S is not None:
-                uf = S @ uf
-            u = np.zeros(basis.N)
-            u[free] = uf
-            if T is not None:
-                u = T @ u
-        vx, vy = basis.nodal_dofs[0], basis.nodal_dofs[1]
-        mid, topn, botn = bm.vid[:, jm], bm.vid[:, nt - 1], bm.vid[:, 0]
-        ux, uy = u[vx[mid]], u[vy[mid]]
-        w = ux * nor_s[:, 0] + uy * nor_s[:, 1]
-        ut = ux * tan_s[:, 0] + uy * tan_s[:, 1]
-
-        def tangential(nodes):
-            return u[vx[nodes]] * tan_s[:, 0] + u[vy[nodes]] * tan_s[:, 1]
-
-        rot = (tangential(botn) - tangential(topn)) / h
-        if el in LOCKING_ELEMENTS:
-            aspect = (scene.length / (ns - 1)) / (h / params["layers"])
-            info.setdefault("warnings", []).append(
-                f"element = {el}: full integration locks in bending (parasitic shear), here with elements "
-                f"{aspect:.3g} times as long as they are thick; the deflection may be far too small (-27 % on a "
-                "100 x 8 cantilever at L/h = 100, docs/models/yang.md): use q8, q4-qm6 or q4-reduced"
-            )
+            u = full_displacement(uf, free, basis.N, T, S)
+        w, rot, fields = midline_fields(u, basis, bm, tan_s, nor_s, h)
+        ns = len(bm.s)
+        flag = locking_warning(el, scene, ns, params["layers"])
+        if flag:
+            info.setdefault("warnings", []).append(flag)
         info.update(
             element=el,
             mesh=f"{ns - 1} x {params['layers']} {el}",
-            nodes=mesh.p.shape[1],
+            nodes=bm.mesh.p.shape[1],
             plane_stress_lambda=lam,
-            load_resultant=resultant,
+            load_resultant=load_resultant(F, basis, bm.geo),
         )
-        info["reactions"] = _reactions(K0 @ u - F0, basis, geo, scene.length)
+        info["reactions"] = reactions(K @ u - F, basis, bm.geo, scene.length)  # before the supports' rotation
         if len(stations):
             info["sections"] = through_section(basis, u, stations, h, 4 * params["layers"] + 1, lam, mu)
         if not scene.is_straight:
@@ -366,35 +272,17 @@ class FemPlaneStress(Model):
                 axis=scene.axis.type,
                 geometry=("quadratic edges on the mapped curves" if not el.startswith("q4") else "straight-edged q4"),
             )
-
-        def write_vtu(path, u=u, basis=basis, lam=lam, mu=mu):
-
-            vtu.write(path, basis, u, lam, mu)
-
-        def write_png(path):
-            import os
-            import tempfile
-
-            fd, tmp = tempfile.mkstemp(suffix=".vtu")
-            os.close(fd)
-            try:
-                write_vtu(tmp)
-                amp = max(np.abs(u).max(), 1e-300)
-                render_png(tmp, path, scale=0.1 * scene.length / amp)  # deformation drawn at 10 % of L
-            finally:
-                os.unlink(tmp)
-
         return self.new_result(
             scene,
             params,
-            s,
+            bm.s,
             w,
             rotation=rot,
-            fields={"u": ut, "ux": ux, "uy": uy},
+            fields=fields,
             dofs=len(free),
             timings=timer.timings,
             info=info,
-            writers={".vtu": write_vtu, ".png": write_png},
+            writers=writers(scene, basis, u, lam, mu),
         )
 
 

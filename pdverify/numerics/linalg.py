@@ -349,35 +349,14 @@ def solve_linear(
         ):
             return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place)
         K = K.tocsr()
-    K = canonical_csr(K)
-    b = np.asarray(b, dtype=float)
-    if not np.all(np.isfinite(K.data)) or not np.all(np.isfinite(b)):
-        raise SolveError(f"{what}: the assembled matrix or load vector holds NaN/inf; check the scene's numbers")
+    K, b = _finite_system(K, b, what)
     n = K.shape[0]
     # symmetric diagonal equilibration S K S (S u') = S b: removes the powers of the element length
     # between mixed DOFs from the condition number
     s = diagonal_scaling(K.diagonal()) if scaling is None else np.asarray(scaling, float)
     lo, up = bandwidths(K)
     info: dict = {"system_unknowns": n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal"}
-    bs = s * b
-    Ks = None
-    try:
-        if max(lo, up) <= banded_max and n > 2 * (lo + up + 1):
-            info["solver"] = "banded LU (LAPACK gbtrf/gbtrs)"
-            solve, solve_t = banded_lu(K, lo, up, s)  # factorised once, reused by refinement and cond
-            u = solve(bs)
-        else:
-            info["solver"] = "sparse LU (SuperLU)"
-            Ks = scale_symmetric(K, s)
-            lu = spla.splu(Ks.tocsc())
-            u = lu.solve(bs)
-            solve = lu.solve
-            solve_t = lambda y: lu.solve(y, trans="T")  # noqa: E731
-    except (np.linalg.LinAlgError, RuntimeError) as exc:
-        raise SolveError(
-            f"{what}: the system matrix is singular ({exc}); the supports do not hold the beam "
-            "(a mechanism) or the discretisation is degenerate"
-        ) from None
+    u, solve, solve_t, info["solver"], Ks = _lu_solve(K, s * b, s, lo, up, banded_max, what)
     if not np.all(np.isfinite(u)):
         raise SolveError(f"{what}: the solution is not finite; the system is singular or too ill-conditioned")
     with np.errstate(all="ignore"):
@@ -391,24 +370,71 @@ def solve_linear(
     if refinement is None:
         refinement = n <= SMALL
     if refinement:
-        u, hist = refine(K, b, u, lambda r: s * solve(s * r))
-        info["refinement"] = hist
+        u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r))
+    _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch)
+    if condition is None:
+        condition = n <= SMALL
+    if condition:  # of the scaled matrix, the one that was factorised
+        info["cond"] = _condition(K, Ks, s, solve, solve_t)  # for the record: the warning is the error bound's
+        # (cond * eps overstates the two-field forms' round-off by 1e6: fem-eb at 1001 nodes, cond 1.6e11,
+        # error 1.7e-14, bound 2.4e-11)
+    return u, info
+
+
+def _finite_system(K: sp.spmatrix, b: np.ndarray, what: str) -> tuple[sp.csr_matrix, np.ndarray]:
+    """(K in canonical CSR, b as floats); SolveError naming ``what`` when either holds NaN or inf."""
+    K = canonical_csr(K)
+    b = np.asarray(b, dtype=float)
+    if not np.all(np.isfinite(K.data)) or not np.all(np.isfinite(b)):
+        raise SolveError(f"{what}: the assembled matrix or load vector holds NaN/inf; check the scene's numbers")
+    return K, b
+
+
+def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int, banded_max: int, what: str):
+    """(y, solve, solve_t, solver, Ks): the LU of diag(s) K diag(s), banded (LAPACK gbtrf, :func:`banded_lu`) when
+    the bandwidth is at most ``banded_max`` and the band is narrow for the size, else sparse (SuperLU of the scaled
+    CSR matrix Ks; None on the banded path), factorised once for the solve of ``bs``, the refinement and the
+    condition estimate. SolveError naming ``what`` when a pivot is zero."""
+    Ks = None
+    try:
+        if max(lo, up) <= banded_max and K.shape[0] > 2 * (lo + up + 1):
+            solver = "banded LU (LAPACK gbtrf/gbtrs)"
+            solve, solve_t = banded_lu(K, lo, up, s)  # factorised once, reused by refinement and cond
+            y = solve(bs)
+        else:
+            solver = "sparse LU (SuperLU)"
+            Ks = scale_symmetric(K, s)
+            lu = spla.splu(Ks.tocsc())
+            y = lu.solve(bs)
+            solve = lu.solve
+            solve_t = lambda z: lu.solve(z, trans="T")  # noqa: E731
+    except (np.linalg.LinAlgError, RuntimeError) as exc:
+        raise SolveError(
+            f"{what}: the system matrix is singular ({exc}); the supports do not hold the beam "
+            "(a mechanism) or the discretisation is degenerate"
+        ) from None
+    return y, solve, solve_t, solver, Ks
+
+
+def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch) -> None:
+    """``info["residual"]``: max |K u - b| relative to the size of its terms (the unscaled system), and the
+    round-off bound of :func:`forward_error_bound` (``info["error_bound"]``, a warning past ``BOUND_LIMIT``) with
+    the correction of the residual computed in extended precision."""
     r = K @ u - b  # residual of the unscaled system, relative to the size of its terms
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
     rl = np.asarray(np.asarray(b, np.longdouble) - K.astype(np.longdouble) @ np.asarray(u, np.longdouble), float)
     m = np.abs(K) @ np.abs(u) + np.abs(b) if magnitude is None else magnitude(u)
     _record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), s * m, u, watch))
-    if condition is None:
-        condition = n <= SMALL
-    if condition:  # of the scaled matrix, the one that was factorised
-        try:
-            if hasattr(solve, "cond") and n > 100:  # banded: from the LU factors (no sparse copy, no extra LU)
-                c = solve.cond()
-            else:
-                c = condition_estimate(Ks if Ks is not None else scale_symmetric(K, s), solve, solve_t)
-        except Exception:  # an estimate only; never fail a solve for it
-            c = float("nan")
-        info["cond"] = c  # for the record: the warning is the error bound's (cond * eps overstates the two-field
-        # forms' round-off by 1e6: fem-eb at 1001 nodes, cond 1.6e11, error 1.7e-14, bound 2.4e-11)
-    return u, info
+
+
+def _condition(K, Ks, s, solve, solve_t) -> float:
+    """1-norm condition estimate of the scaled matrix diag(s) K diag(s) (the one factorised): from the banded LU's
+    factors above 100 unknowns (no sparse copy, no extra LU), else :func:`condition_estimate`; NaN if the estimate
+    fails (an estimate only: a solve never fails for it)."""
+    try:
+        if hasattr(solve, "cond") and K.shape[0] > 100:  # banded: from the LU factors
+            return solve.cond()
+        return condition_estimate(Ks if Ks is not None else scale_symmetric(K, s), solve, solve_t)
+    except Exception:  # an estimate only; never fail a solve for it
+        return float("nan")

@@ -1,6 +1,8 @@
 """Model ``pd-eb``: ordinary state-based PD Euler–Bernoulli beam (Diyaroglu, Oterkus & Oterkus).
 
 One transverse DOF per material point, points x_k = k dx (ends included).
+The kernels (the curvature, the paper's fictitious layers, the corrected variant's ghost points and the
+pieces of its mixed form) are in :mod:`.operator`; this module holds the model.
 
 Curvature (Eq. 11a) of point k with family j = 1..J on each side::
 
@@ -38,44 +40,23 @@ horizon is exactly m dx and the last member's partial volume is used.
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 
 from ...core.contract import Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
-from ...numerics.band import Band
-from ...numerics.families import ghost_stencil_system, partial_volumes, stencil_operator
-from ...numerics.ghosts import curvature_end_rows, poly_ghosts, taylor_ghosts
 from ...numerics.linalg import eliminate, solve_linear
-from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
-
-# -- kernels (arrays in, arrays out) ---------------------------------------------------------
-
-
-def curvature_weights(m: float, dx: float, variant: str) -> np.ndarray:
-    """c_j, j = 1..J, of kappa_k = Σ_j c_j (w_{k+j} + w_{k-j} - 2 w_k) (Eq. 11a with Eq. 32 or discrete)."""
-    if variant == "paper":
-        delta = (m + 0.015) * dx
-        J = int(np.floor(delta / dx + 1e-12))
-        j = np.arange(1, J + 1)
-        return dx / (delta * j**2 * dx**2)  # d V / xi² with d = 1/(A delta), V = A dx
-    j, beta = partial_volumes(m)
-    return beta / (j**2 * dx**2 * beta.sum())
-
-
-def curvature_operator(n_rows: int, row0: int, n_cols: int, c: np.ndarray) -> sp.csr_matrix:
-    """Sparse D: rows are points row0 .. row0 + n_rows - 1 of a column grid of n_cols points."""
-    J = len(c)
-    j = np.arange(1, J + 1)
-    offsets = np.concatenate([[0], -j, j])
-    return stencil_operator(n_rows, row0, n_cols, offsets, np.concatenate([[-2.0 * c.sum()], c, c]))
-
-
-def fixed_points(scene: Scene, n: int) -> list[int]:
-    """End points held at w = 0 (clamped and pinned supports) of a grid of n points."""
-    held = ("clamped", "pinned", "roller")  # no axial unknown: roller = pinned
-    return [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in held]
+from ...numerics.loads import body_loads, boundary_layer_warnings
+from .operator import (
+    corrected_system,
+    curvature_weights,
+    fixed_points,
+    ghost_map,
+    mixed_end_rows,
+    mixed_ghost_coupling,
+    mixed_matrix,
+    paper_system,
+)
 
 
 def mirror_scene(scene: Scene) -> Scene:
@@ -173,145 +154,17 @@ class PDEulerBernoulli(Model):
             )
         a = scene.EI / scene.section.A
         A = scene.section.A
-        left, right = scene.supports.left, scene.supports.right
         if variant == "paper":
-            K, b, fixed, info = self._assemble_paper(scene, x, c, a, A, left, right, params.get("reading", "energy"))
+            K, b, fixed, info = paper_system(scene, x, c, a, A, params.get("reading", "energy"))
         else:
-            K, b, fixed, info = self._assemble_corrected(scene, x, c, a, A, left, right)
+            K, b, fixed, info = corrected_system(scene, x, c, a, A)
         K.fix(fixed, b)  # master–slave elimination of the supported points (Eq. 39–42): w = 0 there
         return K, b, fixed, info
-
-    # paper: energy form with mirror ghosts and Appendix free ends -------------------------
-    def _assemble_paper(self, scene, x, c, a, A, left, right, reading="energy"):
-        """The paper's boundary treatment in one of three readings (``reading``):
-
-        * ``energy``: U = Σ over the real points of a kappa² V / 2 (Eq. 2, 10a), kappa (Eq. 11a) using the
-          fictitious points as mirror images of real ones (w = T w_real, Eq. 39-41), K = a (D T)^T (D T):
-          Eq. 42 applied to the real points' energy;
-        * ``literal``: Eq. 37 written for every point of the extended grid, fictitious ones included (their
-          kappa from the points that exist: the family truncated at the layer's outer edge), then
-          K̂ = T^T K T (Eq. 42): the fictitious points' energy counts too;
-        * ``layer``: ``literal`` with the fictitious layer of 2.015 dx at simply supported ends (Section
-          "Simply supported boundary condition": two mirrored points; the real points whose family
-          reaches past them use the horizon 2.015 dx with d = 1 / (A 2.015 dx), as Eq. A10-A12). In the
-          energy reading the layer changes nothing: the only real point whose family reaches past it is
-          the support point, whose curvature is zero under the negative mirror either way."""
-        n, dx, J = len(x), x[1] - x[0], len(c)
-        G = J
-        D = curvature_operator(n, G, n + 2 * G, c).tocoo()
-        keep = np.ones(D.nnz, bool)
-        rr, cc, vv = [D.row], [D.col], [D.data]
-        for side, sup in ((0, left), (1, right)):
-            if sup != "free":
-                continue
-            o = 1 if side == 0 else -1
-            for pnt in range(min(J, n)):
-                k = pnt if side == 0 else n - 1 - pnt
-                keep &= D.row != k
-                e = k + G
-                if pnt == 0:  # Eq. A1 with d1 = 1/(A dx): one-sided second difference
-                    cols, vals = [e, e + o, e + 2 * o], [1 / dx**2, -2 / dx**2, 1 / dx**2]
-                else:  # Eq. A7/A10: reduced horizon (p + 0.015) dx, d_p = 1/(A delta_p)
-                    cp = curvature_weights(float(pnt), dx, "paper")
-                    cols = [e] + [e + j for j in range(1, len(cp) + 1)] + [e - j for j in range(1, len(cp) + 1)]
-                    vals = [-2 * cp.sum()] + list(cp) + list(cp)
-                rr.append(np.full(len(cols), k))
-                cc.append(np.array(cols))
-                vv.append(np.array(vals))
-        layer = {
-            side: reading == "layer" and sup in ("pinned", "roller") and J > 2 for side, sup in ((0, left), (1, right))
-        }
-        for side in (0, 1):
-            if not layer[side]:
-                continue
-            c2 = curvature_weights(2.0, dx, "paper")  # delta = 2.015 dx, d = 1 / (A delta)
-            for pnt in range(J - 2):  # real points whose family would reach past the two fictitious points
-                k = pnt if side == 0 else n - 1 - pnt
-                keep &= D.row != k
-                e = k + G
-                rr.append(np.full(5, k)), cc.append(np.array([e, e + 1, e - 1, e + 2, e - 2]))
-                vv.append(np.array([-2 * c2.sum(), c2[0], c2[0], c2[1], c2[1]]))
-        rr[0], cc[0], vv[0] = D.row[keep], D.col[keep], D.data[keep]
-        D = sp.csr_matrix((np.concatenate(vv), (np.concatenate(rr), np.concatenate(cc))), shape=D.shape)
-        # master–slave map T: extended (ghost + real) <- real (Eq. 39–41)
-        tr, tc, tv = [G + np.arange(n)], [np.arange(n)], [np.ones(n)]
-        for side, sup in ((0, left), (1, right)):
-            sign = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "roller": -1.0, "free": 0.0}[sup]
-            if sign == 0.0:
-                continue
-            j = np.arange(1, (2 if layer[side] else G) + 1)
-            g = G - j if side == 0 else G + n - 1 + j
-            r = j if side == 0 else n - 1 - j
-            ok = (r >= 0) & (r < n)
-            tr.append(g[ok]), tc.append(r[ok]), tv.append(np.full(ok.sum(), sign))
-        T = sp.csr_matrix((np.concatenate(tv), (np.concatenate(tr), np.concatenate(tc))), shape=(n + 2 * G, n))
-        if reading in ("literal", "layer"):  # Eq. 37 on the fictitious points of supported ends as well
-            alive = np.zeros(n + 2 * G, bool)
-            alive[np.unique(T.tocoo().row)] = True  # the real points and the fictitious points that exist
-            ghosts = np.flatnonzero(alive & ((np.arange(n + 2 * G) < G) | (np.arange(n + 2 * G) >= G + n)))
-            jj = np.arange(1, J + 1)
-            cols = np.c_[ghosts, ghosts[:, None] - jj, ghosts[:, None] + jj]
-            vals = np.broadcast_to(np.r_[-2 * c.sum(), c, c], cols.shape)
-            ok = (cols >= 0) & (cols < n + 2 * G)
-            ok[ok] = alive[cols[ok]]  # the family truncated at the layer's outer edge
-            Dg = sp.csr_matrix(
-                (vals[ok], (np.broadcast_to(np.arange(len(ghosts))[:, None], cols.shape)[ok], cols[ok])),
-                shape=(len(ghosts), n + 2 * G),
-            )
-            D = sp.vstack([D, Dg]).tocsr()
-        DT = D @ T
-        K = Band.from_sparse(a * (DT.T @ DT))
-        b = body_loads(scene, x) / A
-        fixed = fixed_points(scene, n)
-        return K, b, fixed, {"ghosts_per_end": G, "boundary": "mirror images, Appendix free ends", "reading": reading}
-
-    # corrected: strong form with Taylor ghosts -----------------------------------------------
-    def _assemble_corrected(self, scene, x, c, a, A, left, right):
-        n, dx, J = len(x), x[1] - x[0], len(c)
-        G = 2 * J
-        # K_ext = a D2 D1 (D1: kappa on the real points and J ghosts each side; D2: on the real points),
-        # a Toeplitz operator whose stencil is the self-convolution of the curvature stencil
-        st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])
-        g_rows, g_cols, g_vals, e0, skip = self.ghosts(scene, n, dx, G)
-        K, r = ghost_stencil_system(np.arange(-G, G + 1), a * np.convolve(st, st), G, n, g_rows, g_cols, g_vals, e0)
-        b = body_loads(scene, x, skip_ends=skip) / A - r
-        fixed = fixed_points(scene, n)
-        return K, b, fixed, {"ghosts_per_end": G, "boundary": "Taylor ghost points (degree 4, 4 real points)"}
 
     @staticmethod
     def form(params: dict) -> str:
         f = params.get("form", "auto")
         return ("mixed" if params["variant"] == "corrected" else "direct") if f == "auto" else f
-
-    def ghosts(self, scene: Scene, n: int, dx: float, G: int, curvature_ends: bool = False):
-        """Taylor ghost points of both ends (design note §1): w_ghost = Gm w_real + g0.
-        Returns (rows, cols, values) of the ghost rows of E in extended numbering (G ghosts, n real,
-        G ghosts), the constant part e0 (length n + 2G) and the end loads handled by the ghosts.
-        ``curvature_ends``: free and guided ends take their moment and shear through conditions on the
-        curvature (:func:`curvature_end_rows`); their ghost w only extrapolate (free: cubic through the
-        first four points; guided: degree 4 with w' = 0), so no third difference of w carries the shear."""
-        P, C = end_loads(scene)
-        EI = scene.EI
-        p = min(4, n)
-        er, ec, ev = [], [], []
-        e0 = np.zeros(n + 2 * G)
-        skip = {0: set(), n - 1: set()}
-        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-            # internal moment and the third s-derivative coefficient EI d3w/ds3 at the end
-            if side == 0:
-                M_end, V3 = -C[0], -P[0]  # M(0+) = -C0, EI w'''(0) = P0 -> d3/ds3 = -w'''
-            else:
-                M_end, V3 = C[1], -P[1]  # M(L-) = C1, EI w'''(L) = -P1
-            if curvature_ends and sup in ("free", "guided"):
-                Gm, g0 = poly_ghosts((4,) if sup == "free" else (1,), G, p)[0], np.zeros(G)
-            else:
-                Gm, g0 = taylor_ghosts(sup, G, dx, M_end, V3, EI, p)
-            real = np.arange(p) if side == 0 else n - 1 - np.arange(p)
-            ghost = G - 1 - np.arange(G) if side == 0 else G + n + np.arange(G)
-            er.append(np.repeat(ghost, p)), ec.append(np.tile(real, G)), ev.append(Gm.ravel())
-            e0[ghost] = g0
-            skip[0 if side == 0 else n - 1] = {"point_force", "point_moment"}  # end loads: in the ghosts or reactions
-        return np.concatenate(er), np.concatenate(ec), np.concatenate(ev), e0, skip
 
     def assemble_mixed(self, scene: Scene, params: dict):
         """The corrected operator split in two second-order equations (``form = mixed``)::
@@ -342,53 +195,13 @@ class PDEulerBernoulli(Model):
         h2 = dx * dx
         st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])  # D1 = D2 stencil, offsets -J..J
         npos = n + 2 * J
-        # ghost w (outside the beam) = Gm w_real + g0: onto the real columns of the kappa rows that reach them
-        g_rows, g_cols, g_vals, e0, skip = self.ghosts(scene, n, dx, G, curvature_ends=True)
-        gpos = g_rows - G  # ghost position (extended numbering -> grid position, < 0 or > n - 1)
-        p = np.unique(np.clip(np.r_[np.arange(-J, J), np.arange(n - J, n + J)], -J, n - 1 + J))  # rows reaching a ghost
-        ge, kp = np.nonzero(np.abs(gpos[:, None] - p[None, :]) <= J)  # (ghost entry, kappa row) within a family
-        rows, cols = 2 * (p[kp] + J), 2 * (g_cols[ge] + J) + 1
+        g_rows, g_cols, g_vals, e0, skip = ghost_map(scene, n, dx, G, curvature_ends=True)
+        rows, cols, vals, rhs = mixed_ghost_coupling(g_rows - G, g_cols, g_vals, e0, n, J, st, h2)
         q = body_loads(scene, x, skip_ends=skip)
-        P, C = end_loads(scene)
-        ends = []  # free and guided ends: conditions on k instead of Taylor ghosts of w
-        for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-            if sup in ("free", "guided"):
-                M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
-                ends.append(
-                    curvature_end_rows(
-                        sup,
-                        side,
-                        n,
-                        dx,
-                        c,
-                        M_end,
-                        V3,
-                        scene.EI,
-                        q[0 if side == 0 else -1],
-                        J,
-                        lambda p_: 2 * (np.asarray(p_) + J),
-                        lambda p_: 2 * (np.asarray(p_) + J) + 1,
-                    )
-                )
-        off = (
-            np.r_[cols - rows, -2 * J - 1, 2 * J + 1]
-            if not ends
-            else np.r_[cols - rows, -2 * J - 1, 2 * J + 1, np.concatenate([e[1] - e[0] for e in ends])]
-        )
-        M = Band(2 * npos, int(-off.min()), int(off.max()))
-        # unknowns k_p = h² kappa_p and w_p (entries of order one): kappa rows (dof 0) k_p - h² Σ_o st_o w_{p+o},
-        # w rows (dof 1) h² Σ_o st_o k_{p+o}
-        blocks = {o: [[1.0 if o == 0 else 0.0, -h2 * st[o + J]], [h2 * st[o + J], 0.0]] for o in range(-J, J + 1)}
-        M.add_block_stencil(2, blocks)
-        M.add_entries(rows, cols, -h2 * st[gpos[ge] - p[kp] + J] * g_vals[ge])
-        rhs = np.zeros(2 * npos)
-        gp = np.unique(gpos)
-        gi, kq = np.nonzero(np.abs(gp[:, None] - p[None, :]) <= J)
-        np.add.at(rhs, 2 * (p[kq] + J), h2 * st[gp[gi] - p[kq] + J] * e0[gp[gi] + G])
+        ends = mixed_end_rows(scene, n, dx, c, q)  # free and guided ends: conditions on k
+        M = mixed_matrix(npos, J, st, h2, (rows, cols, vals), ends)
         rhs[2 * J + 1 : 2 * (n + J) : 2] = q / A * h2 * h2 / a
-        for e_rows, e_cols, e_vals, r_rows, r_vals in ends:
-            M.clear_rows(np.unique(e_rows))
-            M.add_entries(e_rows, e_cols, e_vals)
+        for _, _, _, r_rows, r_vals in ends:
             rhs[r_rows] = r_vals
         fixed = fixed_points(scene, n)
         held = np.r_[2 * np.arange(J) + 1, 2 * (n + J + np.arange(J)) + 1, 2 * (np.asarray(fixed, np.int64) + J) + 1]

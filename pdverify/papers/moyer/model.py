@@ -1,13 +1,12 @@
 """Models ``pd-rod``, ``pd-timoshenko``, ``pd-torsion``: micro-elastic PD rod, Timoshenko beam and
 torsion (Moyer & Miraglia, seed 001; torsion: Section 5, Eq. 54–56), static or transient.
 
-The pieces, one direction of imports: :mod:`._moyer_kernels` (quadrature weights, ghost polynomials,
-loads, the end-patched stencil) -> :mod:`.moyer_system` (the discrete system and its direct solve) ->
-:mod:`.moyer_energy` (the beam's variant energy) -> :mod:`.moyer_operator` (the rod and beam operators, Eq. 19,
-45–49) ->
-:mod:`.moyer_spectrum` (eigenvalues of M⁻¹K: stable step, frequencies) and :mod:`.moyer_steps` (step
-engines) -> :mod:`.moyer_transient` (the time integration of Eq. 7–12, its history and energy ledger)
--> this module (the models and :func:`simulate`).
+The pieces, one direction of imports: :mod:`.kernels` (quadrature weights, ghost polynomials, loads, the
+end-patched stencil) -> :mod:`.system` (the discrete system and its direct solve) -> :mod:`.energy` (the beam's
+variant energy) and :mod:`.ends` (the ghost points of each support, Eq. 20–21 and the mirror images) ->
+:mod:`.operator` (the rod and beam operators, Eq. 19, 45–49) -> :mod:`.spectrum` (eigenvalues of M⁻¹K: stable
+step, frequencies) and :mod:`.steps` (step engines) -> :mod:`.transient` (the time integration of Eq. 7–12, its
+history and energy ledger) -> this module (the models and :func:`simulate`).
 
 The beam's variants: ``energy`` (the default: the corrected equations as the gradient of a discrete energy,
 symmetric, no ghosts), ``corrected`` (collocation with ghost points: exact for cubics), ``paper`` (as published).
@@ -30,9 +29,10 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import ROD_HELD, Scene
 from ...numerics.loads import boundary_layer_warnings
+from .ends import FIT_POINTS, MIRRORED
 from .energy import moment_field
 from .kernels import node_loads
-from .operator import FIT_POINTS, MIRRORED, beam_operator, rod_operator
+from .operator import beam_operator, rod_operator
 from .system import Discrete, prescribed_motions, static_solution, static_system
 from .transient import STABILISATION, History, integrate
 

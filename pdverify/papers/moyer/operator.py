@@ -1,6 +1,7 @@
 """The discrete operators of the micro-elastic PD rod, Timoshenko beam and torsion bar (Moyer & Miraglia,
-seed 001; torsion: Section 5, Eq. 54–56, the rod kernel with GJ and twist θ): the PD sums, the ghost
-closures of each support and the load vector, as a :class:`~.moyer_system.Discrete`.
+seed 001; torsion: Section 5, Eq. 54–56, the rod kernel with GJ and twist θ): the PD sums over the real points
+extended by the ghost closures of each support (:mod:`.ends`) and the load vector, as a
+:class:`~.moyer_system.Discrete`.
 
 Node grid x_i = i Δ, i = 0..n-1 (ends included), horizon δ = m Δ (integer m, option ``horizon``).
 
@@ -52,11 +53,11 @@ numbers were measured while developing it, the result is tested):
 2. ghost points at clamped and free ends from one polynomial per field (degree 3, fitted to the first 4
    real points) that satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; free
    EIγ' = M̄, kGA ψ = P̄ (end loads enter here); the end point's own equation holds where its value is not
-   prescribed. The rod (and torsion bar) takes mirror images at every end (:func:`rod_mirror_ghosts`: odd
+   prescribed. The rod (and torsion bar) takes mirror images at every end (:func:`.ends.rod_mirror_ghosts`: odd
    where u is held, even where EA u' = N̄), so its operator times the end points' half cells is symmetric
    for every support pair and horizon. At the beam's pinned (roller) and guided ends the ghosts are mirror
    images (pinned: w odd, γ even; guided: w even, γ odd) plus the Taylor terms of the end conditions
-   (pinned EIγ' = M̄, guided kGA ψ = P̄) and of the end's line load (:func:`mirror_ghosts`): the operator
+   (pinned EIγ' = M̄, guided kGA ψ = P̄) and of the end's line load (:func:`.ends.mirror_ghosts`): the operator
    keeps the symmetry classes of the stencil, so between two such ends it has a real positive spectrum
    (the cubic fits gave it growing modes at every horizon; issue 30).
 3. at free ends the ghost ψ̄ are extrapolated from the real intervals' ψ̄ with ψ(end) =
@@ -71,24 +72,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...core.errors import InputError
-from ...core.scene import ROD_HELD, Distributed, Scene
+from ...core.scene import ROD_HELD, Scene
+from .ends import FIT_POINTS, beam_ghosts, rod_ghosts, shear_ghosts
 from .energy import energy_beam_operator
-from .kernels import (
-    EndPatched,
-    average_ghosts,
-    constrained_ghosts,
-    node_loads,
-    rod_kernel,
-    shear_kernel,
-    taylor_rows,
-    taylor_rows_cells,
-    toeplitz,
-)
-from .system import DIRICHLET, Discrete, beam_prescribed
-
-MIRRORED = ("pinned", "roller", "guided")  # corrected ends whose ghosts are mirror images (mirror_ghosts)
-FIT_DEGREE, FIT_POINTS = 3, 4  # corrected ghosts: cubic per field through the first 4 real points
-SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS = 2, 4  # ψ̄ ghosts at free ends
+from .kernels import EndPatched, node_loads, rod_kernel, shear_kernel, toeplitz
+from .system import Discrete, beam_prescribed
 
 
 def _core_points(m: int) -> int:
@@ -190,17 +178,10 @@ def _rod_core(
     (Eq. 19, c_j of ``rod_kernel``), B = 2 stiff/δ² (Eq. 3)."""
     delta = m * dx
     G = m
-    blocks = {}
-    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        fixed = sup in ROD_HELD[kind]
-        if grid == "cells":
-            blocks[side] = (taylor_rows_cells(G, 1 if fixed else 2, fixed), np.zeros(G), 4)
-            continue
-        if variant == "paper":
-            blocks[side] = (taylor_rows(G, 1 if fixed else 2), np.zeros(G), 4)
-        else:
-            f = end_line_load(scene, side, "axial" if kind == "axial" else "torque")
-            blocks[side] = rod_mirror_ghosts(fixed, G, ends[side][0], f, stiff, dx)
+    blocks = {
+        side: rod_ghosts(scene, side, sup, variant, grid, kind, G, dx, stiff, ends)
+        for side, sup in ((0, scene.supports.left), (1, scene.supports.right))
+    }
     E, e0 = _extension(n, G, 1, blocks)
     c = rod_kernel(m)
     j = np.arange(1, m + 1)
@@ -278,37 +259,10 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
     EI, kGA = scene.EI, scene.kGA
     G = m + 1
     N = n + 2 * G
-    blocks = {}
-    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        sigma = -1.0 if side == 0 else 1.0
-        fix_w, fix_g = DIRICHLET[sup]
-        if grid == "cells":  # the end faces are not points: Dirichlet values enter the ghost cells
-            order = 1 if (fix_w and fix_g) else 2
-            R = np.zeros((2 * G, 8))
-            R[:G, :4] = taylor_rows_cells(G, order, fix_w)
-            R[G:, 4:] = taylor_rows_cells(G, order, fix_g)
-            blocks[side] = (R, np.zeros(2 * G), 4)
-            continue
-        if variant == "paper":
-            T = taylor_rows(G, 1 if (fix_w and fix_g) else 2)
-            R = np.kron(np.eye(2), T)
-            blocks[side] = (R, np.zeros(2 * G), 4)
-            continue
-        P, C = ends[side]
-        if sup in MIRRORED:
-            blocks[side] = mirror_ghosts(sup, G, dx, sigma, P, C, end_line_load(scene, side), EI, kGA)
-            continue
-        con = []
-        if fix_w:
-            con.append(({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0))
-        if fix_g:
-            con.append(({(1, 0): 1.0}, {(1, 0): 1.0}, 0.0))
-        if not fix_g:  # moment: EI γ_s(0) = C̄ (both ends, s outward)
-            con.append(({(1, 1): 1.0}, {}, dx * C / EI))
-        if not fix_w:  # shear: kGA (w_s - σ γ) = P̄
-            con.append(({(0, 1): 1.0, (1, 0): -sigma * dx}, {}, dx * P / kGA))
-        R, r0 = constrained_ghosts(2, FIT_DEGREE, FIT_POINTS, G, con)
-        blocks[side] = (R, r0, FIT_POINTS)
+    blocks = {
+        side: beam_ghosts(scene, side, sup, variant, grid, G, dx, ends)
+        for side, sup in ((0, scene.supports.left), (1, scene.supports.right))
+    }
     E, e0 = _extension(n, G, 2, blocks)
     Ew, Eg = E[:N], E[N:]
     ew, eg = e0[:N], e0[N:]
@@ -337,7 +291,7 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
     psi_u = Pw @ Ew + Pg @ Eg  # ψ (extended) from the real DOFs
     psi_0 = Pw @ ew + Pg @ eg
     if variant == "corrected":
-        psi_u, psi_0 = _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA)
+        psi_u, psi_0 = shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA)
     cw, cg = kGA / (2 * delta), 2 * EI / delta**2
     Kw = -(cw * (Sop @ psi_u))  # rows: w equations of the real points
     Kg = -(cg * (Jop @ Eg) + kGA * (Avg @ psi_u))
@@ -347,116 +301,3 @@ def _beam_core(scene: Scene, n: int, dx: float, m: int, variant: str, grid: str,
     perm[0::2], perm[1::2] = np.arange(n), n + np.arange(n)
     K = sp.vstack([Kw, Kg]).tocsr()[perm]
     return K.tocsr(), bw_parts, bg_parts, (Avg @ psi_u).tocsr(), Avg @ psi_0
-
-
-def end_line_load(scene: Scene, side: int, component: str = "transverse") -> float:
-    """The line load of the distributed loads at the end point (0 outside their spans): ``component`` transverse
-    (load.value), axial (load.axial) or torque (load.torque)."""
-    xe = 0.0 if side == 0 else scene.length
-    q = 0.0
-    for load in scene.loads:
-        if not isinstance(load, Distributed):
-            continue
-        v = {"transverse": load.value, "axial": load.axial, "torque": load.torque}[component]
-        if v:
-            a, b = scene.span(load)
-            if a - 1e-12 * scene.length <= xe <= b + 1e-12 * scene.length:
-                q += v * float(scene.load_shape(load, xe))
-    return q
-
-
-def rod_mirror_ghosts(held: bool, G: int, N: float, f: float, stiff: float, dx: float):
-    """Ghosts of an end of the corrected rod (and torsion bar) as mirror images, (R, r0, G + 1): a held end is the
-    centre of an odd deformation, a traction end (EA u_s = N̄, s outward) of an even one, the two classes the rod's
-    stencil (Eq. 19) maps into themselves, so for every support pair and horizon the operator times the volumes
-    (Δ/2 at an end point that moves) is symmetric, and its spectrum real. The end condition and the end's line
-    load f enter r0 as the Taylor terms the image lacks (ξ runs into the rod; EA u_ξξ = -f):
-
-    held:     u(-ξ) = -u(ξ) + 2 u_0 + ξ² u_ξξ,   u_ξξ = -f / EA;
-    traction: u(-ξ) = u(ξ) - 2 ξ u_ξ,            u_ξ = -N̄ / EA.
-
-    The first neglected terms (ξ⁴ u^(4) and ξ³ u^(3), from load gradients at the end) are O(Δ³) in the ghosts."""
-    npts = G + 1
-    t = np.arange(1, G + 1)
-    xi = dx * t
-    R, r0 = np.zeros((G, npts)), np.zeros(G)
-    R[t - 1, t] = -1.0 if held else 1.0
-    if held:
-        R[:, 0] = 2.0
-        r0[:] = -(xi**2) * f / stiff
-    else:
-        r0[:] = 2 * xi * N / stiff
-    return R, r0, npts
-
-
-def mirror_ghosts(sup: str, G: int, dx: float, sigma: float, P: float, C: float, q: float, EI: float, kGA: float):
-    """Ghosts of a pinned (roller) or guided end of the corrected beam as mirror images, (R, r0, G + 1).
-
-    A pinned end is the centre of an antisymmetric deformation (w odd, γ even about it), a guided end of a
-    symmetric one (w even, γ odd): the two classes the beam's stencil maps into themselves. With the ghosts
-    their images, the operator between two such ends is the stencil of the periodic beam restricted to one
-    class: its spectrum is the dispersion relation's, real and positive (no growing mode at any horizon or
-    slenderness). The end conditions and loads enter only r0, as the Taylor terms the image lacks, from the
-    static equations of the corrected operator (kGA ψ' = -q, EI γ'' = -kGA ψ, w' = γ + ψ) at the end; ξ runs
-    into the beam, τ = -σ = dξ/dx:
-
-    pinned: w(-ξ) = -w(ξ) + 2 w_0 + ξ² w_ξξ + ξ⁴ w_ξξξξ/12,  w_ξξ = -τ C̄/EI - q/kGA, w_ξξξξ = q/EI;
-            γ(-ξ) = γ(ξ) - 2 ξ γ_ξ - ξ³ γ_ξξξ/3,           γ_ξ = -C̄/EI, γ_ξξξ = τ q/EI;
-    guided: w(-ξ) = w(ξ) - 2 ξ w_ξ - ξ³ w_ξξξ/3,            w_ξ = τ γ_0 - P̄/kGA, w_ξξξ = P̄/EI;
-            γ(-ξ) = -γ(ξ) + 2 γ_0 + ξ² γ_ξξ,               γ_ξξ = -σ P̄/EI.
-
-    The first neglected terms (line couples and load gradients at the end, ξ⁵ γ^(5), ξ⁶ w^(6)) are
-    O(Δ³) in the ghosts, like the cubic fits' errors. The ghost ψ̄ follow from the images (no
-    :func:`_shear_ghosts` extrapolation)."""
-    npts = G + 1
-    t = np.arange(1, G + 1)
-    xi = dx * t
-    tau = -sigma
-    R, r0 = np.zeros((2 * G, 2 * npts)), np.zeros(2 * G)
-    w, g = t - 1, G + t - 1  # rows of the w and γ ghosts; columns: w of real point k is k, γ is npts + k
-    if sup in ("pinned", "roller"):
-        R[w, t], R[w, 0] = -1.0, 2.0
-        r0[:G] = xi**2 * (-tau * C / EI - q / kGA) + xi**4 / 12 * (q / EI)
-        R[g, npts + t] = 1.0
-        r0[G:] = -2 * xi * (-C / EI) - xi**3 / 3 * (tau * q / EI)
-    else:
-        R[w, t], R[w, npts] = 1.0, -2 * xi * tau
-        r0[:G] = -2 * xi * (-P / kGA) - xi**3 / 3 * (P / EI)
-        R[g, npts + t], R[g, npts] = -1.0, 2.0
-        r0[G:] = xi**2 * (-sigma * P / EI)
-    return R, r0, npts
-
-
-def _shear_ghosts(scene, psi_u, psi_0, n, G, m, ends, kGA):
-    """At a free end the ghost ψ̄ are extrapolated from the ψ̄ of
-    the real intervals with ψ(end) = the end shear P̄/kGA imposed, instead of being computed from
-    extrapolated w and γ: an extrapolation error δ in w or γ would enter the shear force as kGA δ/Δ,
-    which grows like (L/h)² (measured: 27 % at slenderness 1000 on a uniformly loaded cantilever)."""
-    rows_all = psi_u.shape[0]
-    rep_r, rep_c, rep_v = [], [], []
-    c0 = np.zeros(rows_all)
-    replaced = np.zeros(rows_all, bool)
-    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
-        if DIRICHLET[sup][0] or sup in MIRRORED:
-            continue
-        sigma = -1.0 if side == 0 else 1.0
-        k = np.arange(SHEAR_FIT_INTERVALS)
-        t = np.arange(m)
-        # half index h of interval [h, h+1] on the extended grid; psi rows are h - 1
-        if side == 1:
-            real_h, ghost_h = n - 2 + G - k, n - 1 + G + t
-        else:
-            real_h, ghost_h = G + k, G - 1 - t
-        R, r = average_ghosts(SHEAR_FIT_DEGREE, SHEAR_FIT_INTERVALS, m)
-        for i, gh in enumerate(ghost_h):
-            rep_r.append(np.full(len(real_h), gh - 1)), rep_c.append(real_h - 1), rep_v.append(R[i])
-            c0[gh - 1] = r[i] * sigma * ends[side][0] / kGA
-            replaced[gh - 1] = True
-    if not replaced.any():
-        return psi_u, psi_0
-    keep = np.flatnonzero(~replaced)
-    rep_r.append(keep), rep_c.append(keep), rep_v.append(np.ones(len(keep)))
-    Rep = sp.csr_matrix(
-        (np.concatenate(rep_v), (np.concatenate(rep_r), np.concatenate(rep_c))), shape=(rows_all, rows_all)
-    )
-    return (Rep @ psi_u).tocsr(), Rep @ psi_0 + c0

@@ -120,6 +120,67 @@ def integrate(
     Implementation: with V = dt v^{j+1/2} the step is y = u + κ V, V <- α V + G (b - K y), u <- u + V
     with G = (1 - c/2) dt²/m per DOF (zero on prescribed DOFs); K y is one CSR product up to
     ``WHOLE_DOFS`` unknowns, else the operator's stencil applied block by block (:class:`StencilStep`)."""
+    dt, limit, kappa, damping, omega1 = time_step(disc, dt, damping, damping_ratio, safety, stabilisation)
+    steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
+    clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
+    probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
+    recorder = Recorder(disc, probes)
+    gains = Gains(disc, clock.dt, clock.damping, damp_rotations)
+    st, apply_K = step_engine(disc, gains, clock.kappa)
+    supports = SupportWork(disc, motions)
+    ledger = energy_ledger(disc, supports.ledger_K(apply_K), gains, clock.dt, clock.kappa)
+    supports.start(st)
+    # from rest: v^0 = 0 with the loads acting from t = 0, so v^{-1/2} = -dt/2 a^0 (second order; Eq. 12's
+    # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state:
+    # measured 2.5e-3 at 0.1 of the step on a clamped rod, first order in dt)
+    V0 = -0.5 * clock.dt * clock.dt * disc.b / disc.mass
+    V0[gains.pres_dofs] = 0.0
+    st.start(V0)
+    ledger.sample(0.0, np.zeros(nf_n(disc)), np.zeros(nf_n(disc)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        _step_loop(disc, clock, gains, st, apply_K, supports, ledger, recorder, stabilisation, context)
+    return History(
+        np.array(recorder.times),
+        probes,
+        np.array(recorder.vals),
+        np.array(recorder.rots) if disc.nf == 2 else None,
+        st.state(),
+        disc.x,
+        clock.dt,
+        clock.limit,
+        clock.steps,
+        clock.damping,
+        stabilisation,
+        clock.omega1,
+        ledger.arrays(disc.x[1] - disc.x[0]),
+        ledger.drift(),
+        ledger.scheme_drift(),
+    )
+
+
+@dataclass
+class Clock:
+    """The time step of a run and its sampling: dt, the stable limit (with the stabilisation), ``kappa`` = β / dt
+    (what the step uses), the damping c_d / ρ (from ``damping_ratio`` when given: 2 ζ ω1), ω1 (None unless
+    asked for), the number of steps and the strides of the histories and of the ledger."""
+
+    dt: float
+    limit: float
+    kappa: float
+    damping: float
+    omega1: float | None
+    steps: int
+    record_every: int
+    ledger_every: int
+
+
+def time_step(
+    disc: Discrete, dt: float | None, damping: float, damping_ratio: float | None, safety: float, stabilisation: float
+):
+    """(dt, limit, kappa, damping, omega1) of a run: the stable limit 2 / (ω_max sqrt(1 + 2κ)) of the stabilised
+    step (κ = ``stabilisation``), dt = ``safety`` x the limit unless given, β / dt of the stabilisation
+    β = κ dt_ref with dt_ref = DEFAULT_SAFETY x the limit, the damping c_d / ρ (2 ζ ω1 from ``damping_ratio``
+    when given) and ω1 (None unless needed for that)."""
     limit = stable_time_step(disc) / np.sqrt(1.0 + 2.0 * stabilisation)
     omega1 = None
     if damping_ratio is not None:
@@ -131,6 +192,13 @@ def integrate(
     # growing modes less (Table 1 cantilever: stable at 0.9 of the limit, blew up at 0.5 and 0.3) and the
     # scheme converged at order 1 in dt to a damping that vanishes. kappa: β / dt, what the step uses
     kappa = stabilisation if dt == dt_ref else stabilisation * dt_ref / dt
+    return dt, limit, kappa, damping, omega1
+
+
+def sampling(disc: Discrete, t_end, dt: float, steps, record_every, output_interval, ledger_every) -> tuple:
+    """(steps, record_every, ledger_every): the steps up to ``t_end`` unless given, the histories every
+    ``output_interval`` (s) or ``record_every`` steps (default: ~2000 samples), the ledger at most every
+    ``ledger_every`` steps (default every sample up to ``WHOLE_DOFS`` unknowns, else every ``LEDGER_STRIDE``)."""
     if steps is None:
         steps = int(np.ceil(t_end / dt - 1e-9))
     if output_interval is not None:
@@ -138,103 +206,132 @@ def integrate(
     record_every = record_every or max(1, steps // 2000)
     if ledger_every is None:  # a ledger sample costs ~3 products with K (on large grids ~4 steps each)
         ledger_every = record_every if nf_n(disc) <= WHOLE_DOFS else max(record_every, LEDGER_STRIDE)
-    last_ledger = 0
-    nf = disc.nf
-    probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
-    Pm = _interp_rows(disc.x, probes)
-    # the whole DOF vector is advanced; prescribed DOFs have 1/m = 0 (no acceleration) and are
-    # overwritten by their motions, so no index gathering per step
-    # Eq. 7-11 in closed form: u^j - u^{j-1} = dt v^{j-1/2}, so v^j = (v^{j-1/2} + v̂)/2 and
-    # v^{j+1/2} = alpha v^{j-1/2} + beta dt a^j with c = D dt, alpha = 1 - c + c²/2, beta = 1 - c/2
-    field_c = [(damping if (tr or damp_rotations) else 0.0) * dt for tr in disc.field_translational]
-    alpha = tuple(1.0 - c + c * c / 2 for c in field_c)
-    gd_field = tuple((1.0 - c / 2) * dt * dt / mf for c, mf in zip(field_c, disc.field_mass))
-    n = len(disc.x)
-    gd = np.tile(np.asarray(gd_field, float), n)
-    pres_dofs = np.array(sorted(disc.prescribed), dtype=np.int64)
-    gd[pres_dofs] = 0.0
-    bG = gd * disc.b
-    alpha_dof = np.tile(np.asarray(alpha), n)
-    if nf * n <= WHOLE_DOFS:
-        st = WholeStep(disc, gd, alpha_dof, kappa, bG)
-        apply_K = disc.K.__matmul__
-    else:
-        st = StencilStep(disc, gd, alpha, kappa, bG, gd_field)
-        apply_K = disc.op.matvec
-    free = np.ones(nf * n, bool)
-    free[pres_dofs] = False
-    pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
-    moving = np.array([dof for dof, _ in pres], dtype=np.int64)
-    ledger_K = apply_K
-    if len(moving):  # the ledger's K: rows of the moving DOFs are their columns (symmetric completion)
-        Kcols = _columns(disc, moving)
+    return steps, record_every, ledger_every
+
+
+class Gains:
+    """The per-DOF coefficients of the step in closed form (Eq. 7-11): u^j - u^{j-1} = dt v^{j-1/2}, so
+    v^j = (v^{j-1/2} + v̂)/2 and v^{j+1/2} = alpha v^{j-1/2} + beta dt a^j with c = D dt, alpha = 1 - c + c²/2,
+    beta = 1 - c/2. ``field_c``, ``alpha``, ``gd_field`` per field (c, alpha, G = beta dt²/m); ``gd``,
+    ``alpha_dof`` per DOF (interleaved), G zero on the prescribed DOFs (``pres_dofs``: no acceleration, they
+    follow their motions, so no index gathering per step); ``bG`` = G b."""
+
+    def __init__(self, disc: Discrete, dt: float, damping: float, damp_rotations: bool):
+        n = len(disc.x)
+        self.field_c = [(damping if (tr or damp_rotations) else 0.0) * dt for tr in disc.field_translational]
+        self.alpha = tuple(1.0 - c + c * c / 2 for c in self.field_c)
+        self.gd_field = tuple((1.0 - c / 2) * dt * dt / mf for c, mf in zip(self.field_c, disc.field_mass))
+        self.gd = np.tile(np.asarray(self.gd_field, float), n)
+        self.pres_dofs = np.array(sorted(disc.prescribed), dtype=np.int64)
+        self.gd[self.pres_dofs] = 0.0
+        self.bG = self.gd * disc.b
+        self.alpha_dof = np.tile(np.asarray(self.alpha), n)
+
+
+def step_engine(disc: Discrete, gains: Gains, kappa: float):
+    """(engine, K product): the whole DOF vector advanced by one CSR product up to ``WHOLE_DOFS`` unknowns
+    (:class:`WholeStep`), else by the operator's stencil block by block (:class:`StencilStep`)."""
+    if nf_n(disc) <= WHOLE_DOFS:
+        return WholeStep(disc, gains.gd, gains.alpha_dof, kappa, gains.bG), disc.K.__matmul__
+    return StencilStep(disc, gains.gd, gains.alpha, kappa, gains.bG, gains.gd_field), disc.op.matvec
+
+
+class SupportWork:
+    """The prescribed motions of a run and the work of their supports, ∫ (K u - b)_p du_p (trapezoid per step,
+    one small product per step); the ledger's K takes the rows of the moving DOFs as their columns (the
+    symmetric completion, :func:`_columns`)."""
+
+    def __init__(self, disc: Discrete, motions: dict):
+        self.disc = disc
+        self.pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
+        self.moving = np.array([dof for dof, _ in self.pres], dtype=np.int64)
+        self.Kcols = _columns(disc, self.moving) if len(self.moving) else None
+
+    def ledger_K(self, apply_K):
+        """u -> K u with the moving DOFs' rows replaced by their columns (apply_K itself when none moves)."""
+        if not len(self.moving):
+            return apply_K
+        moving, Kcols = self.moving, self.Kcols
 
         def ledger_K(u):
             y = apply_K(u)
             y[moving] = Kcols @ u
             return y
 
+        return ledger_K
+
+    def start(self, st) -> None:
+        """The reactions and positions at rest, on the engine ``st``'s state."""
+        if len(self.moving):
+            self.Kp = st.on_state(self.Kcols)
+            self.bp = self.disc.b[self.moving]
+            self.react = self.Kp @ st.flat - self.bp
+            self.up = np.zeros(len(self.moving))
+
+    def advance(self, st, t: float, ledger: EnergyLedger) -> None:
+        """Set the prescribed DOFs to their motions at t and add the step's support work to the ledger."""
+        up_new = [float(motion_value(mot, t)) for _, mot in self.pres]
+        for (dof, _), value in zip(self.pres, up_new):
+            st.set(dof, value)
+        if len(self.moving):
+            r_new = self.Kp @ st.flat - self.bp
+            up_new = np.array(up_new)
+            ledger.add_support_step(0.5 * (self.react + r_new), up_new - self.up)
+            self.react, self.up = r_new, up_new
+
+
+def energy_ledger(disc: Discrete, ledger_K, gains: Gains, dt: float, kappa: float) -> EnergyLedger:
+    """The run's :class:`~pdverify.numerics.timeint.EnergyLedger`: the free DOFs (not prescribed), damping c / dt
+    per DOF, the stabilisation's β = kappa dt, the points' shares of the length (the operator's, else the
+    trapezoid: 1/2 at the end points)."""
+    nf, n = disc.nf, len(disc.x)
+    free = np.ones(nf * n, bool)
+    free[gains.pres_dofs] = False
     weights = disc.weights
     if weights is None:
         weights = np.ones(nf * n)
         weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
-    ledger = EnergyLedger(ledger_K, disc.mass, free, disc.b, np.tile(np.asarray(field_c) / dt, n), kappa * dt, weights)
-    if len(moving):  # the support work ∫ (K u - b)_p du_p, one small product per step
-        Kp = st.on_state(Kcols)
-        bp = disc.b[moving]
-        react = Kp @ st.flat - bp
-        up = np.zeros(len(moving))
-    # from rest: v^0 = 0 with the loads acting from t = 0, so v^{-1/2} = -dt/2 a^0 (second order; Eq. 12's
-    # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state:
-    # measured 2.5e-3 at 0.1 of the step on a clamped rod, first order in dt)
-    V0 = -0.5 * dt * dt * disc.b / disc.mass
-    V0[pres_dofs] = 0.0
-    st.start(V0)
-    times, vals, rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
-    ledger.sample(0.0, np.zeros(nf * n), np.zeros(nf * n))
-    with np.errstate(over="ignore", invalid="ignore"):
-        for s in range(1, steps + 1):
-            st.step()
-            t = s * dt
-            up_new = [float(motion_value(mot, t)) for _, mot in pres]
-            for (dof, _), value in zip(pres, up_new):
-                st.set(dof, value)
-            if len(moving):
-                r_new = Kp @ st.flat - bp
-                up_new = np.array(up_new)
-                ledger.add_support_step(0.5 * (react + r_new), up_new - up)
-                react, up = r_new, up_new
-            if s % record_every == 0 or s == steps:
-                if s - last_ledger >= ledger_every or s == steps:
-                    last_ledger = s
-                    u, V = st.state(), st.velocity()
-                    Vn = alpha_dof * V + gd * (disc.b - apply_K(u + kappa * V))
-                    ratio = ledger.blown_up(ledger.sample(t, u, (V + Vn) / (2 * dt), u + Vn, Vn / dt))
-                else:  # between ledger samples: only a non-finite state stops the run
-                    ratio = None if np.isfinite(st.amax()) else float("inf")
-                if ratio is not None:
-                    raise SolveError(_blow_up_message(disc, dt, limit, s, t, ratio, stabilisation, context))
-                times.append(t)
-                vals.append(Pm @ st.field(0))
-                if nf == 2:
-                    rots.append(Pm @ st.field(1))
-    return History(
-        np.array(times),
-        probes,
-        np.array(vals),
-        np.array(rots) if nf == 2 else None,
-        st.state(),
-        disc.x,
-        dt,
-        limit,
-        steps,
-        damping,
-        stabilisation,
-        omega1,
-        ledger.arrays(disc.x[1] - disc.x[0]),
-        ledger.drift(),
-        ledger.scheme_drift(),
-    )
+    damping = np.tile(np.asarray(gains.field_c) / dt, n)
+    return EnergyLedger(ledger_K, disc.mass, free, disc.b, damping, kappa * dt, weights)
+
+
+class Recorder:
+    """The histories at the probes (linear interpolation from the points): t, the translation (field 0) and, for
+    the beam, the rotation (field 1); zero at t = 0."""
+
+    def __init__(self, disc: Discrete, probes: np.ndarray):
+        self.P, self.nf = _interp_rows(disc.x, probes), disc.nf
+        self.times, self.vals, self.rots = [0.0], [np.zeros(len(probes))], [np.zeros(len(probes))]
+
+    def record(self, t: float, st) -> None:
+        self.times.append(t)
+        self.vals.append(self.P @ st.field(0))
+        if self.nf == 2:
+            self.rots.append(self.P @ st.field(1))
+
+
+def _step_loop(disc, clock: Clock, gains: Gains, st, apply_K, supports, ledger, recorder, stabilisation, context):
+    """The steps 1 .. clock.steps: a step of the engine, the prescribed motions and their work, and at every
+    ``record_every``-th step (and the last) the histories, with a ledger sample at most every ``ledger_every``
+    steps (the last always), in between only a check that the state is finite. Raises SolveError (the
+    :func:`_blow_up_message`) when the stored energy outgrows the work put in."""
+    dt, steps, kappa = clock.dt, clock.steps, clock.kappa
+    last_ledger = 0
+    for s in range(1, steps + 1):
+        st.step()
+        t = s * dt
+        supports.advance(st, t, ledger)
+        if s % clock.record_every == 0 or s == steps:
+            if s - last_ledger >= clock.ledger_every or s == steps:
+                last_ledger = s
+                u, V = st.state(), st.velocity()
+                Vn = gains.alpha_dof * V + gains.gd * (disc.b - apply_K(u + kappa * V))
+                ratio = ledger.blown_up(ledger.sample(t, u, (V + Vn) / (2 * dt), u + Vn, Vn / dt))
+            else:  # between ledger samples: only a non-finite state stops the run
+                ratio = None if np.isfinite(st.amax()) else float("inf")
+            if ratio is not None:
+                raise SolveError(_blow_up_message(disc, dt, clock.limit, s, t, ratio, stabilisation, context))
+            recorder.record(t, st)
 
 
 def _columns(disc: Discrete, dofs: np.ndarray) -> sp.csr_matrix:

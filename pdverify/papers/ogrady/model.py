@@ -103,6 +103,71 @@ def factored_stencils(j: np.ndarray, c: np.ndarray, EI: float, dx: float) -> tup
     return r, np.convolve([1.0, -2.0, 1.0], r)
 
 
+HELD_W = ("clamped", "pinned", "roller")  # supports that hold w (roller: pinned's transverse conditions)
+D1 = {-1: 1.0, 0: -2.0, 1: 1.0}  # the second difference of the mixed form's first equation
+
+
+def mixed_ends(scene: Scene, n: int, dx: float, G: int, Jk: int, q: np.ndarray):
+    """The ends of the mixed form (:meth:`PDBondPair.assemble_mixed`): (ghosts, conditions). At clamped, pinned and
+    roller ends the G ghost w outside the beam by the degree-4 Taylor polynomial of ``taylor_ghosts`` (end loads
+    through the moment and shear at the end), ghosts = (positions, real points, weights, (position, constant)
+    rows); at free and guided ends the end conditions on k = D1 w (the curvature stencil c = 1/dx²;
+    :func:`~pdverify.numerics.ghosts.curvature_end_rows`): conditions = (rows, cols, vals, (row, rhs) rows) lists,
+    round-off ~N eps instead of ~N³ eps through Taylor ghosts of w."""
+    P, C = end_loads(scene)
+    g_pos, g_real, g_val, g_const = [], [], [], []
+    k_rows, k_cols, k_vals, k_rhs = [], [], [], []  # the end rows of free and guided ends (on k)
+    kidx = lambda p: 2 * (np.asarray(p) + Jk)  # noqa: E731  (unknown k_p)
+    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+        M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
+        if sup in ("free", "guided"):
+            q_end = q[0 if side == 0 else n - 1]
+            er_, ec_, ev_, rr_, rv_ = curvature_end_rows(
+                sup, side, n, dx, np.array([1 / dx**2]), M_end, V3, scene.EI, q_end, Jk, kidx, lambda p_: kidx(p_) + 1
+            )
+            k_rows.append(er_), k_cols.append(ec_), k_vals.append(ev_), k_rhs.append(np.c_[rr_, rv_])
+            continue
+        Gm, g0 = taylor_ghosts("pinned" if sup == "roller" else sup, G, dx, M_end, V3, scene.EI, min(4, n))
+        real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
+        pos = -1 - np.arange(G) if side == 0 else n + np.arange(G)
+        g_pos.append(np.repeat(pos, 4)), g_real.append(np.tile(real, G)), g_val.append(Gm.ravel())
+        g_const.append(np.stack([pos, g0], axis=1))
+    g_pos, g_real = (np.concatenate(v) if v else np.zeros(0, np.int64) for v in (g_pos, g_real))
+    g_val = np.concatenate(g_val) if g_val else np.zeros(0)
+    g_const = np.concatenate(g_const) if g_const else np.zeros((0, 2))
+    return (g_pos, g_real, g_val, g_const), (k_rows, k_cols, k_vals, k_rhs)
+
+
+def ghost_rows(g_pos, g_real, g_val, g_const, n: int, Jk: int):
+    """The ghost w in the first equation k_p - (w_{p+1} - 2 w_p + w_{p-1}) = 0 of the rows p within the grid
+    whose second difference reaches a ghost position (|g - p| <= 1): (rows, cols, vals) lists onto the real w
+    columns and the constant part (rhs, length 2 (n + 2 Jk))."""
+    rows, cols, vals = [], [], []
+    rhs = np.zeros(2 * (n + 2 * Jk))
+    for o, w_o in D1.items():
+        p = g_pos - o
+        ok = (p >= -Jk) & (p <= n - 1 + Jk)
+        rows.append(2 * (p[ok] + Jk)), cols.append(2 * (g_real[ok] + Jk) + 1), vals.append(-w_o * g_val[ok])
+        pc = g_const[:, 0].astype(np.int64) - o
+        okc = (pc >= -Jk) & (pc <= n - 1 + Jk)
+        np.add.at(rhs, 2 * (pc[okc] + Jk), w_o * g_const[okc, 1])
+    return rows, cols, vals, rhs
+
+
+def mixed_band(npos: int, Jk: int, st: np.ndarray, rows, cols, vals, cleared) -> Band:
+    """The band of the mixed form, unknowns (k_p, w_p) interleaved at the positions p = -Jk .. n-1+Jk: the block
+    stencil of k_p - D1 w and Σ_o s_o k_{p+o}, the rows ``cleared`` (free and guided end conditions) emptied, then
+    the entries (rows, cols, vals) of the ghosts and end conditions added."""
+    off = np.r_[cols - rows, -2 * Jk - 1, 2 * Jk + 1]
+    M = Band(2 * npos, int(-off.min()), int(off.max()))
+    blocks = {o: [[1.0 if o == 0 else 0.0, -D1.get(o, 0.0)], [st[o + Jk], 0.0]] for o in range(-Jk, Jk + 1)}
+    M.add_block_stencil(2, blocks)
+    if cleared is not None:
+        M.clear_rows(np.unique(cleared))
+    M.add_entries(rows, cols, vals)
+    return M
+
+
 class PDBondPair(Model):
     name = "pd-bond-pair"
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
@@ -227,8 +292,8 @@ class PDBondPair(Model):
         mixed form). At clamped, pinned and roller ends ghost w (outside the beam, up to 2J spacings) enter
         the first equation through the Taylor map w_g = Gm w_real + g0; at free and guided ends the first
         equation of the end point and of the positions outside is replaced by the end conditions on k
-        (:func:`pd_common.curvature_end_rows`). Unknowns interleaved (k_p, w_p) in LAPACK's band layout; the w of
-        positions outside the beam and of supported points are held at zero.
+        (:func:`~pdverify.numerics.ghosts.curvature_end_rows`, :func:`mixed_ends`). Unknowns interleaved (k_p,
+        w_p) in LAPACK's band layout; the w of positions outside the beam and of supported points are held at zero.
         Returns the :class:`~pdverify.registry.System` (free: the unknowns not held; ``info["Jk"]``): w of real
         point i is unknown 2 (i + Jk) + 1."""
         n = params["points"]
@@ -244,67 +309,19 @@ class PDBondPair(Model):
                 f"{n} points; use more points or a smaller horizon"
             )
         _, st = factored_stencils(j, c, scene.EI, dx)
-        left, right = scene.supports.left, scene.supports.right
-        P, C = end_loads(scene)
         skip = {0: {"point_force", "point_moment"}, n - 1: {"point_force", "point_moment"}}
         q = body_loads(scene, x, skip_ends=skip)
-        g_pos, g_real, g_val, g_const = [], [], [], []
-        k_rows, k_cols, k_vals, k_rhs = [], [], [], []  # the end rows of free and guided ends (on k)
-        kidx = lambda p: 2 * (np.asarray(p) + Jk)  # noqa: E731  (unknown k_p)
-        for side, sup in ((0, left), (1, right)):
-            M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
-            if sup in ("free", "guided"):
-                # end conditions on k = D1 w (the curvature stencil c = 1/dx²): moment and shear on k, not
-                # through Taylor ghosts of w (round-off ~N eps instead of ~N³ eps; pd_common.curvature_end_rows)
-                er_, ec_, ev_, rr_, rv_ = curvature_end_rows(
-                    sup,
-                    side,
-                    n,
-                    dx,
-                    np.array([1 / dx**2]),
-                    M_end,
-                    V3,
-                    scene.EI,
-                    q[0 if side == 0 else n - 1],
-                    Jk,
-                    kidx,
-                    lambda p_: kidx(p_) + 1,
-                )
-                k_rows.append(er_), k_cols.append(ec_), k_vals.append(ev_), k_rhs.append(np.c_[rr_, rv_])
-                continue
-            Gm, g0 = taylor_ghosts("pinned" if sup == "roller" else sup, G, dx, M_end, V3, scene.EI, min(4, n))
-            real = np.arange(4) if side == 0 else n - 1 - np.arange(4)
-            pos = -1 - np.arange(G) if side == 0 else n + np.arange(G)
-            g_pos.append(np.repeat(pos, 4)), g_real.append(np.tile(real, G)), g_val.append(Gm.ravel())
-            g_const.append(np.stack([pos, g0], axis=1))
-        g_pos, g_real = (np.concatenate(v) if v else np.zeros(0, np.int64) for v in (g_pos, g_real))
-        g_val = np.concatenate(g_val) if g_val else np.zeros(0)
-        g_const = np.concatenate(g_const) if g_const else np.zeros((0, 2))
-        npos = n + 2 * Jk
-        # the k rows (p) whose second difference reaches a ghost position g: |g - p| <= 1, p within the grid
-        d1 = {-1: 1.0, 0: -2.0, 1: 1.0}
-        rows, cols, vals = [], [], []
-        rhs = np.zeros(2 * npos)
-        for o, w_o in d1.items():
-            p = g_pos - o
-            ok = (p >= -Jk) & (p <= n - 1 + Jk)
-            rows.append(2 * (p[ok] + Jk)), cols.append(2 * (g_real[ok] + Jk) + 1), vals.append(-w_o * g_val[ok])
-            pc = g_const[:, 0].astype(np.int64) - o
-            okc = (pc >= -Jk) & (pc <= n - 1 + Jk)
-            np.add.at(rhs, 2 * (pc[okc] + Jk), w_o * g_const[okc, 1])
+        ghosts, (k_rows, k_cols, k_vals, k_rhs) = mixed_ends(scene, n, dx, G, Jk, q)
+        rows, cols, vals, rhs = ghost_rows(*ghosts, n, Jk)
         cat = lambda a, dt: np.concatenate([np.asarray(v, dt).ravel() for v in a])  # noqa: E731
         rows, cols, vals = cat(rows + k_rows, np.int64), cat(cols + k_cols, np.int64), cat(vals + k_vals, float)
-        off = np.r_[cols - rows, -2 * Jk - 1, 2 * Jk + 1]
-        M = Band(2 * npos, int(-off.min()), int(off.max()))
-        blocks = {o: [[1.0 if o == 0 else 0.0, -d1.get(o, 0.0)], [st[o + Jk], 0.0]] for o in range(-Jk, Jk + 1)}
-        M.add_block_stencil(2, blocks)
-        if k_rows:
-            M.clear_rows(np.unique(cat(k_rows, np.int64)))  # free/guided end rows: the conditions on k instead
+        npos = n + 2 * Jk
+        M = mixed_band(npos, Jk, st, rows, cols, vals, cat(k_rows, np.int64) if k_rows else None)
+        if k_rows:  # free/guided end rows: the conditions on k instead
             kr = np.concatenate([np.asarray(v, float).reshape(-1, 2) for v in k_rhs])
             rhs[kr[:, 0].astype(np.int64)] = kr[:, 1]
-        M.add_entries(rows, cols, vals)
         rhs[2 * Jk + 1 : 2 * (n + Jk) : 2] = q * dx**4 / scene.EI
-        fixed = [i for i, sup in ((0, left), (n - 1, right)) if sup in ("clamped", "pinned", "roller")]
+        fixed = [i for i, sup in ((0, scene.supports.left), (n - 1, scene.supports.right)) if sup in HELD_W]
         held = np.r_[
             2 * np.arange(Jk) + 1, 2 * (n + Jk + np.arange(Jk)) + 1, 2 * (np.asarray(fixed, np.int64) + Jk) + 1
         ]

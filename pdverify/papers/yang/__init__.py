@@ -12,7 +12,8 @@ equation        what                                                            
 Eq. 2–3, 9      kinematics and the energy density Q = m^T C m                           :mod:`pdverify.theory
                                                                                         .higher_order`
 Eq. 13–15       the PD energy over bonds and its Hessian (the stiffness)                ``bonds.energy``,
-                                                                                        ``bonds.assemble_blocks``
+                                                                                        ``bonds.assemble_blocks``,
+                                                                                        ``operator.band_operator``
 Eq. 14a–f       the five bond measures and the bond weights                             ``bonds.bond_measures``,
                                                                                         ``bonds.bond_weights``
 Eq. 16a–b       body forces and the load vector                                         ``ends.load_vector``

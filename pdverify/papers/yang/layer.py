@@ -21,6 +21,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...core.scene import Scene
 from ...numerics.band import Band
 from ...theory.higher_order import NF, WS
 
@@ -66,3 +67,30 @@ def spring(s_d: float, S: float) -> float:
     stiffness S; inf (the face condition w* = 0) where the grid's layer is already as stiff or softer, or where
     S is not a positive number (a degenerate material: the solve reports it)."""
     return S * s_d / (s_d - S) if 0 < S < s_d else np.inf
+
+
+def clamp_springs(B: Band, scene: Scene, n: int, dx: float, reach: int, drop: list) -> dict:
+    """``clamp = layer``: the spring k = S s_d / (s_d - S) on w* of each clamped end point, added to the band;
+    where the grid's layer is already as stiff as the face's (s_d <= S) w* is held (appended to ``drop``).
+    Returns {side: {"w_star": "spring" | "held ...", "grid_over_face": s_d / S, "spring_over_face": k / S,
+    "width": the layer's width ell}}."""
+    mat = scene.material
+    S, ell = layer_constants(mat.E, mat.poissons_ratio, mat.G, scene.section.depth)
+    ends = [(s, e) for s, e in (("left", 0), ("right", n - 1)) if getattr(scene.supports, s) == "clamped"]
+    grid = [grid_layer_stiffness(B, end, n, reach, dx, ell) for _, end in ends]  # both before either spring
+    out = {}
+    for (side, end), s_d in zip(ends, grid):
+        k = spring(s_d, S)
+        dof = NF * end + WS
+        if np.isfinite(k):
+            B.add_entries(np.array([dof]), np.array([dof]), np.array([k]))
+        else:
+            drop.append(dof)
+        ratio = (s_d / S, k / S) if S > 0 else (np.inf, np.inf)
+        out[side] = {
+            "w_star": "spring" if np.isfinite(k) else "held (the grid resolves the layer)",
+            "grid_over_face": ratio[0],
+            "spring_over_face": ratio[1],
+            "width": ell,
+        }
+    return out

@@ -1,7 +1,8 @@
 """Model ``pd-higher-order``: PD higher-order beam (Yang, Oterkus & Oterkus 2020, seed 002).
 
-(~500 lines: this docstring of the paper's equations and the two variants' option list are most of it; the
-bond kernels, end conditions and outputs live in ``_higher_order_bonds``, ``_ends`` and ``_outputs``.)
+(This docstring of the paper's equations and the two variants' option list are most of the module; the bond
+kernels, end conditions, band assembly, clamp layer and outputs live in ``bonds``, ``ends``, ``operator``,
+``layer`` and ``outputs``.)
 
 Kinematics (Eq. 2–3): u(x, z) = z theta + z^3 theta*, w(x, z) = w + z^2 w*; four DOFs per material
 point, ordered (theta, theta*, w, w*) as in Eq. 16a. Node grid x_k = k dx, k = 0..n-1 (ends included).
@@ -90,7 +91,7 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    the grid resolves the layer.
 Measured orders: docs/models/yang.md.
 
-Cost: the operator is assembled straight into LAPACK's band layout (:meth:`PDHigherOrder.assemble_band`):
+Cost: the operator is assembled straight into LAPACK's band layout (:mod:`.operator`):
 the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
 the rows of the ~2J points next to each end (truncated or ghost families, end volumes, Appendix B's images,
 end conditions) from the exact sparse route on a small window, the end conditions as unit rows
@@ -107,28 +108,16 @@ import numpy as np
 from ...core.contract import Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
-from ...core.scene import PointForce, PointMoment, Scene
+from ...core.scene import Scene
 from ...core.stations import STATIONS_HELP, parse_stations
-from ...numerics.band import Band
 from ...numerics.families import family
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
-from .bonds import assemble_blocks, bond_weights, uniform_blocks
-from .ends import constraint_map, end_conditions, extended_volumes, load_vector, mirror_map, taylor_map
-from .layer import grid_layer_stiffness, layer_constants, spring
-from .outputs import reactions, section_stresses
-
-
-def put_rows(B: Band, r0: int, c0: int, D: np.ndarray) -> Band:
-    """Overwrite the rows r0 .. r0 + len(D) - 1 of the band with the dense rows D (columns c0 ..): the
-    rows are cleared, then D's nonzero entries written (``Band`` has no assignment of entries)."""
-    B.clear_rows(np.arange(r0, r0 + D.shape[0]))
-    i, j = np.nonzero(D)
-    return B.add_entries(r0 + i, c0 + j, D[i, j])
-
-
-# -- the model -------------------------------------------------------------------------------
+from .ends import end_conditions, load_vector
+from .layer import clamp_springs
+from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
+from .outputs import point_load_warnings, reactions, section_stresses
 
 
 class PDHigherOrder(Model):
@@ -318,6 +307,24 @@ class PDHigherOrder(Model):
         overwrite those rows. The ties of ``pin = face`` are folded in (u_slave = c u_master) and the held
         DOFs (``drop``, and the slaves) are unit rows with cleared columns (``Band.fix``): the numbering of
         u is kept, u_slave is restored after the solve."""
+        lay, J, info = self.layout(scene, params)
+        B, end_rows, span = band_operator(lay, J)
+        drop, tie = end_conditions(lay.n, lay.left, lay.right, lay.variant, lay.pin, lay.h, lay.about, lay.clamp)
+        if lay.clamp == "layer":
+            info["clamp_layer"] = clamp_springs(B, scene, lay.n, lay.dx, span, drop)
+        F = load_vector(scene, lay.x, self.choice(params, "loads") == "faces").ravel()
+        info["end_rows"] = [(k, c0, D, F[NF * k : NF * k + NF].copy()) for k, c0, D in end_rows]
+        b = held_system(B, F, drop, tie, lay.symmetric)
+        info["stiffness_factor"] = stiffness_factor(J, lay.m, lay.dx, lay.variant, lay.fractions)
+        info.update(pin=lay.pin, loads=self.choice(params, "loads"), clamp=lay.clamp)
+        if lay.variant == "paper":
+            info.update(volumes=lay.fractions, mirror=lay.about)
+        return B, b, (drop, tie), info
+
+    def layout(self, scene: Scene, params: dict) -> tuple[Layout, int, dict]:
+        """(layout, J, info): the :class:`~.operator.Layout` of the options on ``scene`` (the variant's choices
+        resolved), the family's reach J in points and the result's info so far (depth, ends, section, shear,
+        boundary, cuts). Raises InputError when the family does not fit in the grid."""
         x = self.grid(scene, params)
         n, dx = len(x), x[1] - x[0]
         m, variant, ends = params["horizon"], params["variant"], self.ends(params)
@@ -345,176 +352,39 @@ class PDHigherOrder(Model):
         path = shear == "path" or (shear == "auto" and variant != "paper")
         centred = shear == "centred"
         info["shear"] = "path" if path else "centred" if centred else "point"
-        symmetric = not (
-            ends == "mirror" and variant == "paper"
-        )  # paper: Eq. 22 at the real points, images substituted
-        if ends == "mirror":
-            G, calibrate, reach = (0 if left == "free" else J, 0 if right == "free" else J), "family", J
-            fold = lambda nw, Gw: mirror_map(nw, Gw, left, right, about)  # noqa: E731
-            info.update(
-                boundary=f"fictitious mirror layers (Appendix B) about the "
-                f"{'boundary' if about == 'boundary' else 'end point'}, free ends truncated",
-                ghosts_per_end=list(G),
-            )
-        elif ends == "taylor":
-            G, calibrate, reach = (J, J), "family", p
-            fold = lambda nw, Gw: taylor_map(nw, Gw, p)  # noqa: E731
-            info.update(
-                boundary=f"ghosts extrapolated (degree {p}), energy of the real points, essential end conditions",
-                ghosts_per_end=[J, J],
-            )
-        else:
-            G, calibrate, reach, fold = (0, 0), params.get("end_layer", "patch"), 0, None
-            info.update(boundary="truncated families (per-point calibration), essential end conditions")
-        N = n + G[0] + G[1]
-
+        G, calibrate, reach, described = ghost_layers(ends, J, p, left, right, about, params.get("end_layer", "patch"))
+        info.update(described)
         cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
         if cuts:
             info["cuts"] = [float(x[c]) for c in cuts]
-
-        def weights(k, cuts=cuts):  # V_k omega_kj of the extended points k (bond_weights on the whole extended grid)
-            return bond_weights(
-                N,
-                m,
-                dx,
-                variant,
-                extended_volumes(k, n, G, dx, ends, variant),
-                calibrate,
-                points=k,
-                fractions=fractions,
-                cuts=cuts,
-            )
-
-        def window(r0: int, r1: int, constrained: bool = True) -> np.ndarray:
-            """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
-            window reaches: exact in the rows whose bonds and ghost images lie in the window. ``constrained =
-            False``: before the end conditions (the rows of the held DOFs kept: the reactions K u - b)."""
-            g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
-            nw = r1 - r0
-            k = np.arange(G[0] + r0 - g[0], G[0] + r1 + g[1])
-            Kx = assemble_blocks(len(k), dx, C, weights(k), h, centred, path)
-            if fold is None:
-                K = Kx
-            elif symmetric:
-                P = fold(nw, g)
-                K = (P.T @ Kx @ P).tocsr()
-            else:
-                K = (Kx[NF * g[0] : NF * (g[0] + nw)] @ fold(nw, g)).tocsr()
-            if not constrained:
-                return K.toarray()
-            T = constraint_map(
-                nw,
-                left if r0 == 0 else "free",
-                right if r1 == n else "free",
-                variant,
-                pin,
-                h,
-                numbering="points",
-                about=about,
-                clamp=clamp,
-            )
-            if symmetric:
-                return (T.T @ K @ T).toarray()
-            D = (K @ T).toarray()
-            D[
-                end_conditions(
-                    nw, left if r0 == 0 else "free", right if r1 == n else "free", variant, pin, h, about, clamp
-                )[0]
-            ] = 0.0
-            return D
-
-        # rows of each end from its window (beyond 2J: uniform; one spare); the patch-test end layer changes the
-        # bonds of the first 2J + 1 points, which reach J further
-        rows_end = max(2 * J + (J if calibrate == "patch" else 0), reach + 1) + 1
-        span = rows_end + J  # window points: those rows and their partners
-        if n >= 2 * span:
-            parts = [(0, span, 0, rows_end), (n - span, n, span - rows_end, span)]
-            R = 3 * J + 2  # rows changed by a cut: its two end layers (2J + 1 points each side) and their bonds
-            for c in cuts:
-                r0, r1 = max(0, c - R - J), min(n, c + R + J + 1)
-                parts.insert(-1, (r0, r1, c - R - r0, c + R + 1 - r0))
-        else:  # a small grid: one window is the whole matrix
-            parts = [(0, n, 0, n)]
-        dense = [(r0, a, window(r0, r1)[NF * a : NF * b]) for r0, r1, a, b in parts]
-        # the unconstrained rows of the two end points (reactions = those rows times u, minus the load)
-        ends_rows = []  # mirror ends: the images carry part of the reaction, no held row gives it
-        for k_end, (r0, r1, _, _) in ((0, parts[0]), (n - 1, parts[-1])) if ends != "mirror" else ():
-            D = window(r0, r1, constrained=False)
-            ends_rows.append((k_end, NF * r0, D[NF * (k_end - r0) : NF * (k_end - r0 + 1)]))
-        bw = NF * J + NF - 1
-        for _r0, a, D in dense:
-            i, j = np.nonzero(D)
-            if len(i):
-                bw = max(bw, int(np.abs(j - (i + NF * a)).max()))
-        B = Band(NF * n, bw, bw)
-        if len(parts) > 1:
-            mid = G[0] + n // 2
-            interior = {off: float(wt[0]) for off, wt in weights(np.array([mid]), cuts=()).items()}
-            B.add_block_stencil(NF, uniform_blocks(C, dx, interior, h, centred, path))
-        for r0, a, D in dense:
-            put_rows(B, NF * (r0 + a), NF * r0, D)
-        drop, tie = end_conditions(n, left, right, variant, pin, h, about, clamp)
-        if clamp == "layer":
-            info["clamp_layer"] = self.clamp_springs(B, scene, n, dx, span, drop)
-        F = load_vector(scene, x, self.choice(params, "loads") == "faces").ravel()
-        info["end_rows"] = [(k, c0, D, F[NF * k : NF * k + NF].copy()) for k, c0, D in ends_rows]
-        b = F.copy()
-        if symmetric:  # T^T F: the slave's load acts on its master (the paper variant has no ties)
-            for slave, master, c in tie:
-                b[master] += c * F[slave]
-        B.fix(drop, b)
-        wref = bond_weights(2 * J + 1, m, dx, variant, np.full(2 * J + 1, dx), calibrate="family", fractions=fractions)
-        info["stiffness_factor"] = float(sum(w[J] * (abs(o) * dx) ** 2 for o, w in wref.items()) / dx)
-        info.update(pin=pin, loads=self.choice(params, "loads"), clamp=clamp)
-        if variant == "paper":
-            info.update(volumes=fractions, mirror=about)
-        return B, b, (drop, tie), info
-
-    def clamp_springs(self, B: Band, scene: Scene, n: int, dx: float, reach: int, drop: list) -> dict:
-        """``clamp = layer``: the spring k = S s_d / (s_d - S) on w* of each clamped end point, added to the band
-        (:mod:`._higher_order_layer`); where the grid's layer is already as stiff as the face's (s_d <= S) w* is
-        held (appended to ``drop``). Returns {side: {"w_star": "spring" | "held ...", "grid_over_face": s_d / S,
-        "spring_over_face": k / S, "width": the layer's width ell}}."""
-        mat = scene.material
-        S, ell = layer_constants(mat.E, mat.poissons_ratio, mat.G, scene.section.depth)
-        ends = [(s, e) for s, e in (("left", 0), ("right", n - 1)) if getattr(scene.supports, s) == "clamped"]
-        grid = [grid_layer_stiffness(B, end, n, reach, dx, ell) for _, end in ends]  # both before either spring
-        out = {}
-        for (side, end), s_d in zip(ends, grid):
-            k = spring(s_d, S)
-            dof = NF * end + WS
-            if np.isfinite(k):
-                B.add_entries(np.array([dof]), np.array([dof]), np.array([k]))
-            else:
-                drop.append(dof)
-            ratio = (s_d / S, k / S) if S > 0 else (np.inf, np.inf)
-            out[side] = {
-                "w_star": "spring" if np.isfinite(k) else "held (the grid resolves the layer)",
-                "grid_over_face": ratio[0],
-                "spring_over_face": ratio[1],
-                "width": ell,
-            }
-        return out
+        lay = Layout(
+            x=x,
+            m=m,
+            variant=variant,
+            fractions=fractions,
+            ends=ends,
+            G=G,
+            calibrate=calibrate,
+            reach=reach,
+            p=p,
+            C=C,
+            h=h,
+            centred=centred,
+            path=path,
+            left=left,
+            right=right,
+            pin=pin,
+            about=about,
+            clamp=clamp,
+            cuts=cuts,
+        )
+        return lay, J, info
 
     @staticmethod
     def cut_points(scene: Scene, params: dict, x: np.ndarray, J: int) -> tuple[int, ...]:
-        """Interior grid points carrying a point force or moment where the corrected variant cuts the bonds
-        (option ``cuts = loads``; ends = truncated, end_layer = patch): loads exactly on a point, at least 4J + 1
-        spacings from either end and from every other such load (a symmetric rule: mirror scenes cut alike)."""
-        if params.get("cuts", "loads") != "loads":
-            return ()
-        n, dx = len(x), x[1] - x[0]
-        cand = set()
-        for load in scene.loads:
-            if isinstance(load, (PointForce, PointMoment)):
-                p = (load.position - x[0]) / dx
-                i = int(round(p))
-                if abs(p - i) < 1e-9 and 0 < i < n - 1:
-                    cand.add(i)
-        gap = 4 * J + 1
-        return tuple(
-            sorted(c for c in cand if min(c, n - 1 - c) >= gap and all(abs(c - o) >= gap for o in cand if o != c))
-        )
+        """The interior points where the corrected variant cuts the bonds (option ``cuts = loads``; ends =
+        truncated, end_layer = patch): :func:`.operator.load_cuts`."""
+        return load_cuts(scene, x, J) if params.get("cuts", "loads") == "loads" else ()
 
     def assemble(self, scene: Scene, params: dict) -> System:
         """The band of :meth:`assemble_band` (the system ``solve`` factorises): u interleaved (theta, theta*,
@@ -545,33 +415,8 @@ class PDHigherOrder(Model):
         flags = boundary_layer_warnings(scene, x, reach)
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        faces = info.get("loads") == "faces"
-        interior = [
-            ld
-            for ld in scene.loads
-            if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
-        ]
-        if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
-            cut = info.get("cuts", ())
-            uncut = [
-                ld.position for ld in interior if not any(abs(ld.position - c) <= 1e-9 * scene.length for c in cut)
-            ]
-            if uncut:
-                at = ", ".join(f"{a:.6g}" for a in uncut)
-                info.setdefault("warnings", []).append(
-                    f"point load at x = {at} not on a cut grid point (between two points, or within 4J + 1 spacings "
-                    "of an end or another point load): split between its neighbours, whose bonds average the kink "
-                    "under it, so w converges at first order near it (docs/models/yang.md); put the load on a grid "
-                    "point (points = L / spacing + 1)"
-                )
-        local = [ld.position for ld in interior if isinstance(ld, PointMoment) or faces]
-        if local:
-            at = ", ".join(f"{a:.6g}" for a in local)
-            info.setdefault("warnings", []).append(
-                f"concentrated load at x = {at}: the higher-order theory deforms the section under it (w*, theta*; "
-                "docs/models/yang.md), so within a few depths of the load w is not beam theory's and does not "
-                "converge to it (clamped-clamped, L/h = 7.4, load at 7/8 L: 7 % of the largest deflection)"
-            )
+        for flag in point_load_warnings(scene, params, info):
+            info.setdefault("warnings", []).append(flag)
         if end_rows:
             info["reactions"] = reactions(end_rows, u.ravel(), scene.section.A)
         stations = parse_stations(params.get("stations", ""), scene.length)

@@ -1,6 +1,7 @@
 """Engineering outputs of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020, seed 002): stresses through the
-section at chosen stations (Eq. 6a-c) and the support reactions (K u - b at the held DOFs). Kept apart from the
-model's assembly (pd_higher_order.py) because they only read a solution.
+section at chosen stations (Eq. 6a-c), the support reactions (K u - b at the held DOFs) and the warnings of
+interior point loads. Kept apart from the model's assembly (model.py, operator.py) because they only read a
+solution and the scene.
 
 Stresses (Eq. 6a-c, plane stress, E' = E / (1 - nu^2), G = E / (2 (1 + nu)))::
 
@@ -17,6 +18,8 @@ not compared with the 2D solution (docs/models/yang.md).
 from __future__ import annotations
 
 import numpy as np
+
+from ...core.scene import PointForce, PointMoment, Scene
 
 
 def section_stresses(
@@ -59,4 +62,37 @@ def reactions(end_rows: list, u: np.ndarray, area: float) -> dict[str, float]:
         R = (D @ u[c0 : c0 + D.shape[1]] - F) * area
         out[f"force_{side}"] = float(R[2])
         out[f"moment_{side}"] = float(-R[0])
+    return out
+
+
+def point_load_warnings(scene: Scene, params: dict, info: dict) -> list[str]:
+    """The warnings of interior point loads: one not on a cut grid point (corrected variant, ``ends = truncated``,
+    ``cuts = loads``: its neighbours' bonds average the kink under it), and concentrated loads that deform the
+    section (a point moment, or any point load with ``loads = faces``: w*, theta* under it)."""
+    out = []
+    faces = info.get("loads") == "faces"
+    interior = [
+        ld
+        for ld in scene.loads
+        if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
+    ]
+    if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
+        cut = info.get("cuts", ())
+        uncut = [ld.position for ld in interior if not any(abs(ld.position - c) <= 1e-9 * scene.length for c in cut)]
+        if uncut:
+            at = ", ".join(f"{a:.6g}" for a in uncut)
+            out.append(
+                f"point load at x = {at} not on a cut grid point (between two points, or within 4J + 1 spacings "
+                "of an end or another point load): split between its neighbours, whose bonds average the kink "
+                "under it, so w converges at first order near it (docs/models/yang.md); put the load on a grid "
+                "point (points = L / spacing + 1)"
+            )
+    local = [ld.position for ld in interior if isinstance(ld, PointMoment) or faces]
+    if local:
+        at = ", ".join(f"{a:.6g}" for a in local)
+        out.append(
+            f"concentrated load at x = {at}: the higher-order theory deforms the section under it (w*, theta*; "
+            "docs/models/yang.md), so within a few depths of the load w is not beam theory's and does not "
+            "converge to it (clamped-clamped, L/h = 7.4, load at 7/8 L: 7 % of the largest deflection)"
+        )
     return out
