@@ -23,11 +23,14 @@ from pdverify.numerics.band import Band
 from pdverify.numerics.linalg import solve_linear
 
 from .beam_elements import (
+    add_springs,
     beam_nodes,
     constrained_dofs,
     element_band,
     element_loads,
+    element_properties,
     element_vector,
+    held_rows,
     hermite_shapes,
     hermite_stiffness,
     hold_supports,
@@ -38,12 +41,18 @@ from .beam_elements import (
     natural_band,
     natural_magnitude,
     nodal_point_loads,
+    reactions,
 )
 from .beam_transient import free_system, transient
 
 
 class _BeamFE(Model):
-    """Shared by the two beam elements: ``assemble_band`` gives (K, F, nodes) before the supports."""
+    """Shared by the two beam elements: ``assemble_band`` gives (K, F, nodes) before the supports. Every support
+    inside the span and every segment end is a node; springs add their stiffness to their node's DOF."""
+
+    springs = True
+    inner_supports = True
+    segments = True
 
     def assemble_band(self, scene: Scene, params: dict):  # pragma: no cover - interface
         raise NotImplementedError
@@ -55,13 +64,19 @@ class _BeamFE(Model):
         the band of :meth:`assemble_band` with the supported DOFs held (unit rows, cleared columns); free: the
         unknowns not held (two-field: w_i, w'_i or theta_i and the element end moments)."""
         if self.mixed(params):
-            K, b, nodes, s, magnitude = self.assemble_mixed(scene, params)
-            held = 4 * (constrained_dofs(scene, len(nodes)) // 2) + constrained_dofs(scene, len(nodes)) % 2
-            return System(K, b, np.delete(np.arange(K.n), held), {"nodes": nodes, "scaling": s, "magnitude": magnitude})
+            K, b, nodes, s, magnitude, (rows, loads) = self.assemble_mixed(scene, params)
+            fixed = constrained_dofs(scene, nodes)
+            held = 4 * (fixed // 2) + fixed % 2
+            info = {"nodes": nodes, "scaling": s, "magnitude": magnitude, "held_rows": rows, "loads": loads}
+            return System(K, b, np.delete(np.arange(K.n), held), info)
         K, F, nodes = self.assemble_band(scene, params)
-        fixed = constrained_dofs(scene, len(nodes))
-        K, F, _ = hold_supports(scene, K, F, len(nodes))
-        return System(K, F, np.delete(np.arange(2 * len(nodes)), fixed), {"nodes": nodes})
+        add_springs(scene, K, nodes)
+        fixed = constrained_dofs(scene, nodes)
+        rows, loads = held_rows(K, fixed), F.copy()
+        K, F, _ = hold_supports(scene, K, F, nodes)
+        return System(
+            K, F, np.delete(np.arange(2 * len(nodes)), fixed), {"nodes": nodes, "held_rows": rows, "loads": loads}
+        )
 
     def mixed(self, params: dict) -> bool:
         """True when the two-field form (:func:`natural_band`) is solved; the elements' own stiffness K
@@ -75,24 +90,29 @@ class _BeamFE(Model):
         return None
 
     def assemble_mixed(self, scene: Scene, params: dict):
-        """(band, rhs, nodes, scaling) of the two-field system with the supports held (:func:`natural_band`)."""
+        """(band, rhs, nodes, scaling, magnitude, (held rows, loads)) of the two-field system with the springs added
+        and the supports held (:func:`natural_band`); the held rows and the loads as they were before."""
         nodes = beam_nodes(scene, params["points"])
-        K, s = natural_band(np.diff(nodes), scene.EI, self.shear_stiffness(scene))
+        EI, kGA = element_properties(scene, nodes)
+        kGA = kGA if self.shear_stiffness(scene) is not None else None
+        K, s = natural_band(np.diff(nodes), EI, kGA)
         F = self.nodal_loads(scene, params, nodes)
         b = np.zeros(K.n)
         b[0::4], b[1::4] = F[0::2], F[1::2]
-        fixed = constrained_dofs(scene, len(nodes))
+        add_springs(scene, K, nodes, stride=4)
+        fixed = constrained_dofs(scene, nodes)
         held = 4 * (fixed // 2) + fixed % 2
+        rows = held_rows(K, held), b.copy()  # the held rows and loads before K.fix: the reactions
         K.fix(held, b)
         s[held] = 1.0
-        terms = natural_magnitude(np.diff(nodes), scene.EI, self.shear_stiffness(scene), b)
+        terms = natural_magnitude(np.diff(nodes), EI, kGA, b)
 
         def magnitude(z):  # a held row is the exact equation u = 0: it rounds nothing
             m = terms(z)
             m[held] = 0.0
             return m
 
-        return K, b, nodes, s, magnitude
+        return K, b, nodes, s, magnitude, rows
 
     def element(self, params: dict) -> str:  # pragma: no cover - interface
         """The element's name, in info["element"]."""
@@ -136,13 +156,16 @@ class _BeamFE(Model):
             u = np.empty(2 * len(nodes))
             u[0::2], u[1::2] = z[0::4], z[1::4]
             info["form"] = "two-field (displacements and element end moments, K = T^T F^-1 T)"
+            info["reactions"] = reactions(scene, nodes, system.info["held_rows"], z, system.info["loads"], stride=4)
             return u, info, system.unknowns, nodes, timer
         with timer("assemble"):
             system = self.assemble(scene, params)
         with timer("solve"):
             u, info = solve_linear(system.matrix, system.rhs, what=what, watch=np.arange(0, system.matrix.n, 2))
         info["form"] = "direct (the assembled stiffness K)"
-        return u, info, system.unknowns, system.info["nodes"], timer
+        nodes = system.info["nodes"]
+        info["reactions"] = reactions(scene, nodes, system.info["held_rows"], u, system.info["loads"])
+        return u, info, system.unknowns, nodes, timer
 
 
 FORM = Option(
@@ -172,9 +195,10 @@ class FemEulerBernoulli(_BeamFE):
         nodes = beam_nodes(scene, params["points"])
         if use_skfem is None:
             use_skfem = len(nodes) <= self.SKFEM_MAX_NODES
+        EI, _ = element_properties(scene, nodes)
         if not use_skfem:
             l = np.diff(nodes)
-            ke = hermite_stiffness(l, scene.EI / l**3)
+            ke = hermite_stiffness(l, EI / l**3)
             F = element_vector(element_loads(scene, nodes, hermite_shapes), len(nodes))
             return element_band(ke, len(nodes)), F + nodal_point_loads(scene, nodes, 2), nodes
         import skfem as fem
@@ -183,9 +207,11 @@ class FemEulerBernoulli(_BeamFE):
         mesh = fem.MeshLine(nodes)
         basis = fem.Basis(mesh, fem.ElementLineHermite(), intorder=12)
 
+        at = scene.stiffness_at  # EI of the segment a quadrature point lies in (segment ends are nodes)
+
         @fem.BilinearForm
         def bending(u, v, w):
-            return scene.EI * ddot(dd(u), dd(v))
+            return (scene.EI if scene.uniform else at(w.x[0])["EI"]) * ddot(dd(u), dd(v))
 
         @fem.LinearForm
         def load(v, w):
@@ -259,6 +285,8 @@ class FemTimoshenko(_BeamFE):
         d = scene.dynamics
         if d is not None and any(em is not None for em in (d.left, d.right)):
             out.append("dynamics.left/right: fem-timoshenko's transient takes step loads, not prescribed end motions")
+        if d is not None and scene.segments:
+            out.append("segments: fem-timoshenko's transient takes one section and material (its mass is uniform)")
         return out
 
     def solve(self, scene: Scene, params: dict) -> Result:
@@ -267,21 +295,24 @@ class FemTimoshenko(_BeamFE):
         return super().solve(scene, params)
 
     def nodal_loads(self, scene: Scene, params: dict, nodes: np.ndarray) -> np.ndarray:
-        EI, kGA = scene.EI, scene.kGA
-        shapes = iie_shapes(lambda ll: 12 * EI / (kGA * ll**2)) if params["variant"] == "iie" else linear_shapes
+        EI, kGA = element_properties(scene, nodes)
+        phi = 12 * EI / (kGA * np.diff(nodes) ** 2)
+        shapes = iie_shapes(phi) if params["variant"] == "iie" else linear_shapes
         return element_vector(element_loads(scene, nodes, shapes), len(nodes)) + nodal_point_loads(scene, nodes, 2)
 
     def assemble_band(self, scene: Scene, params: dict):
         """(K, F, nodes) before the supports, K a :class:`Band`."""
         nodes = beam_nodes(scene, params["points"])
         l = np.diff(nodes)
-        EI, kGA = scene.EI, scene.kGA
+        EI, kGA = element_properties(scene, nodes)
         if params["variant"] == "iie":
             f = 12 * EI / (kGA * l**2)
             ke = hermite_stiffness(l, EI / ((1 + f) * l**3), f)
-            fe = element_loads(scene, nodes, iie_shapes(lambda ll: 12 * EI / (kGA * ll**2)))
+            fe = element_loads(scene, nodes, iie_shapes(f))
         else:
-            return linear_timoshenko(nodes, EI, kGA, params["variant"]), self.nodal_loads(scene, params, nodes), nodes
+            at = scene.stiffness_at
+            ei, ga = (scene.EI, scene.kGA) if scene.uniform else (lambda x: at(x)["EI"], lambda x: at(x)["kGA"])
+            return linear_timoshenko(nodes, ei, ga, params["variant"]), self.nodal_loads(scene, params, nodes), nodes
         return element_band(ke, len(nodes)), element_vector(fe, len(nodes)) + nodal_point_loads(scene, nodes, 2), nodes
 
     def element(self, params: dict) -> str:

@@ -16,9 +16,10 @@ _GX, _GW = np.polynomial.legendre.leggauss(12)
 
 
 def beam_nodes(scene: Scene, points: int) -> np.ndarray:
-    """Uniform nodes plus every load position and span end (one within 1e-12 L of a node is that node)."""
+    """Uniform nodes plus every load position and span end, every support inside the span and every segment's
+    end (one within 1e-12 L of a node is that node)."""
     L = scene.length
-    extra = []
+    extra = [s.position for s in scene.supports.inner] + [g.end for g in scene.segments[:-1]]
     for load in scene.loads:
         if isinstance(load, Distributed):
             extra.extend(scene.span(load))
@@ -45,6 +46,15 @@ def line_load(scene: Scene, x: np.ndarray) -> np.ndarray:
     return q
 
 
+def element_properties(scene: Scene, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(EI, kGA) of each element: those of the segment it lies in (segment ends are nodes)."""
+    if scene.uniform:
+        n = len(nodes) - 1
+        return np.full(n, scene.EI), np.full(n, scene.kGA)
+    at = scene.stiffness_at(0.5 * (nodes[1:] + nodes[:-1]))
+    return at["EI"], at["kGA"]
+
+
 def element_loads(scene: Scene, nodes: np.ndarray, shape_fns, chunk: int = 1 << 16) -> np.ndarray:
     """Work-equivalent element load vectors ∫ q N_i dx, (n_el, 4), by Gauss quadrature (in blocks of
     ``chunk`` elements: the (4, n_el, 12) shape-function array of 10^6 elements is 400 MB)."""
@@ -56,7 +66,7 @@ def element_loads(scene: Scene, nodes: np.ndarray, shape_fns, chunk: int = 1 << 
         e1 = min(e0 + chunk, len(fe))
         x0, l = nodes[e0:e1, None], np.diff(nodes[e0 : e1 + 1])[:, None]
         q = line_load(scene, x0 + l * xi[None, :])
-        N = shape_fns(xi[None, :], l)  # (4, n_el, nq)
+        N = shape_fns(xi[None, :], l, slice(e0, e1))  # (4, n_el, nq)
         fe[e0:e1] = np.einsum("ieq,eq,q->ei", N, q * l, _GW / 2)
     return fe
 
@@ -184,11 +194,83 @@ def assemble_elements(ke: np.ndarray, fe: np.ndarray, n_nodes: int):
     return element_band(ke, n_nodes).tocsr(), element_vector(fe, n_nodes)
 
 
-def constrained_dofs(scene: Scene, n_nodes: int) -> np.ndarray:
-    fix = {"clamped": (0, 1), "pinned": (0,), "roller": (0,), "guided": (1,), "free": ()}  # roller = pinned in w
-    out = [2 * 0 + d for d in fix[scene.supports.left]]
-    out += [2 * (n_nodes - 1) + d for d in fix[scene.supports.right]]
-    return np.array(out, dtype=int)
+# the nodal DOFs (0: w, 1: w' or theta) each support holds; roller = pinned in w, a spring holds none rigidly
+_FIX = {"clamped": (0, 1), "pinned": (0,), "roller": (0,), "guided": (1,), "free": (), "spring": ()}
+
+
+def support_nodes(scene: Scene, nodes: np.ndarray) -> list[tuple[str, int, object]]:
+    """(reaction label, node, support) of every support: the ends ("left", "right", a name or a Spring) and those
+    inside the span ("inner_<i>", an InnerSupport; each on its own node: beam_nodes puts it there)."""
+    out = [("left", 0, scene.supports.left), ("right", len(nodes) - 1, scene.supports.right)]
+    for i, s in enumerate(scene.supports.inner):
+        out.append((f"inner_{i}", int(np.argmin(np.abs(nodes - s.position))), s))
+    return out
+
+
+def _held(support) -> tuple[int, ...]:
+    kind = support if isinstance(support, str) else support.type
+    return _FIX[kind]
+
+
+def constrained_dofs(scene: Scene, nodes: np.ndarray | int) -> np.ndarray:
+    """The nodal DOFs (2 node + 0 for w, + 1 for the rotation) the supports hold rigidly."""
+    nodes = np.linspace(0.0, scene.length, nodes) if isinstance(nodes, (int, np.integer)) else nodes
+    out = [2 * k + d for _, k, sup in support_nodes(scene, nodes) for d in _held(sup)]
+    return np.array(sorted(out), dtype=int)
+
+
+def spring_dofs(scene: Scene, nodes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(DOFs, stiffnesses) of the elastic supports: a spring's stiffness on its node's w, its rotational stiffness
+    on the rotation."""
+    dofs, ks = [], []
+    for _, k, sup in support_nodes(scene, nodes):
+        if isinstance(sup, str) or sup.type != "spring":
+            continue
+        for d, stiff in ((0, sup.stiffness), (1, sup.rotational_stiffness)):
+            if stiff:
+                dofs.append(2 * k + d)
+                ks.append(stiff)
+    return np.array(dofs, dtype=int), np.array(ks, float)
+
+
+def add_springs(scene: Scene, K: Band, nodes: np.ndarray, stride: int = 2) -> Band:
+    """The springs on the diagonal of K (nodal DOFs numbered ``stride`` per node: 2, or 4 in the two-field form)."""
+    dofs, ks = spring_dofs(scene, nodes)
+    if len(dofs):
+        K.add_entries(stride * (dofs // 2) + dofs % 2, stride * (dofs // 2) + dofs % 2, ks)
+    return K
+
+
+def held_rows(K: Band, dofs: np.ndarray) -> list[tuple[int, np.ndarray, np.ndarray]]:
+    """(dof, columns, values) of the rows ``dofs`` of K, read before the supports are held (for the reactions)."""
+    out = []
+    for i in np.asarray(dofs, int):
+        cols = np.arange(max(0, i - K.lower), min(K.n, i + K.upper + 1))
+        out.append((int(i), cols, K.values(np.full(len(cols), i), cols)))
+    return out
+
+
+def reactions(scene: Scene, nodes: np.ndarray, rows, u: np.ndarray, F: np.ndarray, stride: int = 2) -> dict:
+    """The support reactions on the beam (force +z, moment counter-clockwise), keyed as exact-eb keys them:
+    K u - F on each held DOF (``rows`` from :func:`held_rows`, DOFs ``stride`` per node) and -k u of each
+    spring; zero where a support holds nothing."""
+    R = {int(i): float(vals @ u[cols] - F[i]) for i, cols, vals in rows}
+    dofs, ks = spring_dofs(scene, nodes)
+    for d, k in zip(dofs, ks):
+        j = stride * (d // 2) + d % 2
+        R[j] = R.get(j, 0.0) - k * float(u[j])
+    out = {}
+    for label, k, sup in support_nodes(scene, nodes):
+        force, moment = R.get(stride * k, 0.0), R.get(stride * k + 1, 0.0)
+        if label.startswith("inner"):
+            if sup.holds_deflection:
+                out[f"force_{label}"] = force
+            if sup.holds_rotation:
+                out[f"moment_{label}"] = moment
+        else:
+            out[f"force_{label}"], out[f"moment_{label}"] = force, moment
+    out["method"] = "K u - F on the held DOFs, -k u of each spring"
+    return out
 
 
 def reduce_supports(scene: Scene, K, F, n_nodes: int):
@@ -196,14 +278,15 @@ def reduce_supports(scene: Scene, K, F, n_nodes: int):
     return eliminate(K, F, constrained_dofs(scene, n_nodes))
 
 
-def hold_supports(scene: Scene, K: Band, F: np.ndarray, n_nodes: int) -> tuple[Band, np.ndarray, int]:
+def hold_supports(scene: Scene, K: Band, F: np.ndarray, nodes: np.ndarray | int) -> tuple[Band, np.ndarray, int]:
     """The supported DOFs held at zero in place (unit rows, cleared columns): (K, F, free DOF count)."""
-    fixed = constrained_dofs(scene, n_nodes)
+    fixed = constrained_dofs(scene, nodes)
     K.fix(fixed, F)
+    n_nodes = nodes if isinstance(nodes, (int, np.integer)) else len(nodes)
     return K, F, 2 * n_nodes - len(fixed)
 
 
-def hermite_shapes(xi, l):
+def hermite_shapes(xi, l, elements=None):
     """Cubic Hermite shape functions (w1, w1', w2, w2') on [0, l], xi = s / l."""
     return np.stack(
         np.broadcast_arrays(
@@ -212,11 +295,11 @@ def hermite_shapes(xi, l):
     )
 
 
-def iie_shapes(phi):
-    """Interdependent-interpolation Timoshenko element: w shape functions with Phi = 12EI/(kGA l²)."""
+def iie_shapes(phi: np.ndarray):
+    """Interdependent-interpolation Timoshenko element: w shape functions with each element's Phi = 12EI/(kGA l²)."""
 
-    def shapes(xi, l):
-        f = phi(l)
+    def shapes(xi, l, elements=slice(None)):
+        f = np.asarray(phi)[elements].reshape(l.shape)
         c = 1 / (1 + f)
         return c * np.array(
             [
@@ -230,7 +313,7 @@ def iie_shapes(phi):
     return shapes
 
 
-def linear_shapes(xi, l):
+def linear_shapes(xi, l, elements=None):
     return np.array([1 - xi, 0 * xi, xi, 0 * xi]) * np.ones_like(l)
 
 
@@ -244,14 +327,16 @@ def two_fields(form, nodes: np.ndarray, **quadrature) -> sp.csr_matrix:
     return fem.BilinearForm(form).assemble(basis).tocsr()[order][:, order]
 
 
-def linear_timoshenko(nodes: np.ndarray, EI: float, kGA: float, variant: str) -> Band:
+def linear_timoshenko(nodes: np.ndarray, EI, kGA, variant: str) -> Band:
     """The linear Timoshenko element in scikit-fem (:func:`two_fields`): the energy
     EI theta' phi' + kGA (w' - theta)(v' - phi) integrated with one Gauss point (``reduced``: the shear term
     underintegrated, no locking) or two (``full``: exact, locks when slender). scikit-fem's line rules have at
     least two points, so the one-point rule is given explicitly."""
 
-    def energy(w, theta, v, phi, _):
-        return EI * theta.grad[0] * phi.grad[0] + kGA * (w.grad[0] - theta) * (v.grad[0] - phi)
+    def energy(w, theta, v, phi, at):  # EI, kGA: numbers, or functions of x (segments)
+        ei = EI(at.x[0]) if callable(EI) else EI
+        ga = kGA(at.x[0]) if callable(kGA) else kGA
+        return ei * theta.grad[0] * phi.grad[0] + ga * (w.grad[0] - theta) * (v.grad[0] - phi)
 
     one_point = {"quadrature": (np.array([[0.5]]), np.array([1.0]))}
     return Band.from_sparse(two_fields(energy, nodes, **(one_point if variant == "reduced" else {"intorder": 2})))

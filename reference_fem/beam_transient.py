@@ -16,7 +16,7 @@ from pdverify.core.errors import InputError
 from pdverify.core.result import Result, Timer, columns_csv
 from pdverify.core.scene import PointForce, Scene
 
-from .beam_elements import constrained_dofs, two_fields
+from .beam_elements import add_springs, constrained_dofs, two_fields
 from .newmark import newmark
 
 DEFAULT_SAMPLES = 2000  # samples over end_time when the scene gives no output_interval
@@ -39,8 +39,9 @@ def free_system(model, scene: Scene, params: dict, probes) -> tuple:
         raise InputError("material.density: needed for dynamics; add density to the scene")
     marks = [PointForce(type="point_force", position=p, value=0.0) for p in probes]
     K, F, nodes = model.assemble_band(scene.model_copy(update={"loads": [*scene.loads, *marks]}), params)
+    add_springs(scene, K, nodes)
     M = consistent_mass(nodes, rho * scene.section.A, rho * scene.section.I)
-    free = np.setdiff1d(np.arange(2 * len(nodes)), constrained_dofs(scene, len(nodes)))
+    free = np.setdiff1d(np.arange(2 * len(nodes)), constrained_dofs(scene, nodes))
     return K.tocsr()[free][:, free], M[free][:, free], F[free], free, nodes
 
 

@@ -184,6 +184,9 @@ class Model:
     straight: bool = True  # solves straight axes
     curved: bool = False  # solves curved axes
     supports: frozenset[str] = SUPPORTS  # end conditions it represents (scene.supports.left/right)
+    springs: bool = False  # elastic supports (a [supports] end or inner support given as a spring table)
+    inner_supports: bool = False  # supports inside the span (supports.inner)
+    segments: bool = False  # sections and materials that change along the axis ([[segments]])
     load_types: frozenset[str] = LOAD_TYPES  # loads[i].type it applies
     end_motions: bool = False  # prescribed end motions ([dynamics.left/right]) in its solution
     variant_rules: tuple[Rule, ...] = ()  # option values each variant's equations define (Rule)
@@ -210,12 +213,29 @@ class Model:
         if scene.is_straight and not self.straight:
             out.append(f"model {self.name} solves curved beams only; axis.type = 'straight'")
         for side in ("left", "right"):
-            sup = getattr(scene.supports, side)
-            if sup not in self.supports:
+            sup = scene.supports.kind(side)
+            if sup == "spring" and not self.springs:
+                out.append(
+                    f"supports.{side} = spring: model {self.name} has no elastic supports; use a model that has "
+                    "(`pdverify models` lists each model's supports: exact-eb, fem-eb, ...)"
+                )
+            elif sup != "spring" and sup not in self.supports:
                 out.append(
                     f"supports.{side} = {sup!r}: model {self.name} does not represent it; it takes "
                     f"{', '.join(sorted(self.supports))}"
                 )
+        if scene.supports.inner and not self.inner_supports:
+            out.append(
+                f"supports.inner: model {self.name} holds the beam at its ends only; use a model with supports "
+                "inside the span (`pdverify models`: exact-eb, fem-eb, ...)"
+            )
+        elif self.inner_supports and not self.springs and any(s.type == "spring" for s in scene.supports.inner):
+            out.append(f"supports.inner: model {self.name} has no elastic supports; give rigid ones")
+        if scene.segments and not self.segments:
+            out.append(
+                f"segments: model {self.name} takes one section and one material; use a model that takes segments "
+                "(`pdverify models`: exact-eb, fem-eb, ...)"
+            )
         if self.bending and (why := straight_mechanism(scene)) is not None:  # (a scene that bends it is refused)
             out.append(why)
         if scene.dynamics is None and "static" not in self.analyses:
@@ -302,7 +322,8 @@ class Model:
         return {
             "analyses": sorted(self.analyses),
             "axes": [a for a, ok in (("straight", self.straight), ("curved", self.curved)) if ok],
-            "supports": sorted(self.supports),
+            "supports": sorted(self.supports) + ["spring"] * self.springs + ["inner"] * self.inner_supports,
+            "segments": self.segments,
             "load_types": sorted(self.load_types),
             "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
             "measures": self.measures,

@@ -16,7 +16,7 @@ import math
 from typing import Annotated, Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, Strict, model_validator
+from pydantic import BaseModel, ConfigDict, Discriminator, Field, Strict, Tag, model_validator
 
 from .errors import InputError
 
@@ -133,12 +133,85 @@ class Material(_Strict):
         return self.youngs_modulus / (2.0 * (1.0 + self.poissons_ratio))
 
 
-class Supports(_Strict):
-    """One support per end; each name holds the same end quantities on every axis and in every model
-    (:data:`HELD`, docs/supports.md)."""
+class Spring(_Strict):
+    """An elastic support: ``stiffness`` against the deflection (force per length, N/m) and
+    ``rotational_stiffness`` against the rotation (moment per radian, N m/rad); either may be zero."""
 
-    left: Support
-    right: Support
+    type: Literal["spring"] = "spring"
+    stiffness: Real = Field(default=0.0, ge=0, allow_inf_nan=False)
+    rotational_stiffness: Real = Field(default=0.0, ge=0, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _some(self):
+        if self.stiffness == 0.0 and self.rotational_stiffness == 0.0:
+            raise ValueError("a spring needs stiffness or rotational_stiffness above 0 (with both 0 the end is free)")
+        return self
+
+
+class InnerSupport(_Strict):
+    """A support inside the span at ``position``: ``pinned`` or ``roller`` hold the deflection (a straight beam has
+    no axial unknown there: the two are one), ``clamped`` the deflection and the rotation, ``spring`` resists them
+    elastically (``stiffness``, ``rotational_stiffness``)."""
+
+    position: Real = Field(allow_inf_nan=False)
+    type: Literal["pinned", "roller", "clamped", "spring"]
+    stiffness: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+    rotational_stiffness: Real | None = Field(default=None, ge=0, allow_inf_nan=False)
+
+    @model_validator(mode="after")
+    def _springs_only(self):
+        given = [k for k in ("stiffness", "rotational_stiffness") if getattr(self, k) is not None]
+        if self.type != "spring" and given:
+            raise ValueError(f'{", ".join(given)}: a {self.type} support holds rigidly; give type = "spring"')
+        if self.type == "spring" and not (self.stiffness or self.rotational_stiffness):
+            raise ValueError("a spring needs stiffness or rotational_stiffness above 0")
+        return self
+
+    @property
+    def holds_deflection(self) -> bool:
+        return self.type != "spring" or bool(self.stiffness)
+
+    @property
+    def holds_rotation(self) -> bool:
+        return self.type == "clamped" or (self.type == "spring" and bool(self.rotational_stiffness))
+
+
+def _end_kind(value) -> str:
+    return "named" if isinstance(value, str) else "spring"
+
+
+# an end's support: a name, or a spring given as a table (pydantic reads it by the value's type, so a bad name or a
+# bad spring gives one error, tagged "named" or "spring", which the scene file's messages drop)
+EndSupport = Annotated[Annotated[Support, Tag("named")] | Annotated[Spring, Tag("spring")], Discriminator(_end_kind)]
+
+
+class Supports(_Strict):
+    """One support per end, each a name (one meaning on every axis and in every model: :data:`HELD`,
+    docs/supports.md) or a :class:`Spring`; and any number of supports inside the span (``inner``)."""
+
+    left: EndSupport
+    right: EndSupport
+    inner: list[InnerSupport] = Field(default_factory=list)
+
+    def kind(self, side: str) -> str:
+        """The support's name at ``side`` ("left" or "right"): one of :data:`SUPPORTS` or ``"spring"``."""
+        sup = getattr(self, side)
+        return sup if isinstance(sup, str) else "spring"
+
+    @property
+    def simple(self) -> bool:
+        """True for a named support at each end and none inside (what every model represents)."""
+        return isinstance(self.left, str) and isinstance(self.right, str) and not self.inner
+
+
+class Segment(_Strict):
+    """A stretch [``start``, ``end``] of the axis with its own ``section`` and/or ``material`` (the scene's own
+    tables where one is not given): stepped shafts, haunched girders, joints of two materials."""
+
+    start: Real = Field(allow_inf_nan=False)
+    end: Real = Field(allow_inf_nan=False)
+    section: Section | None = None
+    material: Material | None = None
 
 
 Frame = Literal["local", "global"]
@@ -287,6 +360,7 @@ class Scene(_Strict):
     loads: list[Load] = Field(default_factory=list)
     axis: Axis = Field(default_factory=Axis)
     dynamics: Dynamics | None = None
+    segments: list[Segment] = Field(default_factory=list)
 
     # -- derived quantities ------------------------------------------------------------------
     @property
@@ -309,6 +383,29 @@ class Scene(_Strict):
     @property
     def kGA(self) -> float:
         return self.section.k * self.material.G * self.section.A
+
+    @property
+    def uniform(self) -> bool:
+        """True when one section and one material hold along the whole beam (no ``segments``)."""
+        return not self.segments
+
+    def pieces(self) -> list[tuple[float, float, Section, Material]]:
+        """(start, end, section, material) of each stretch of the beam in order: the segments with the scene's
+        own section and material filled in where a segment gives none, or the whole beam."""
+        if not self.segments:
+            return [(0.0, self.length, self.section, self.material)]
+        return [(g.start, g.end, g.section or self.section, g.material or self.material) for g in self.segments]
+
+    def stiffness_at(self, x) -> dict[str, np.ndarray]:
+        """EI, EA and kGA at the positions ``x`` (at an interface, those of the segment to its right)."""
+        x = np.asarray(x, float)
+        out = {k: np.empty_like(x) for k in ("EI", "EA", "kGA")}
+        for a, _, sec, mat in self.pieces():
+            on = x >= a
+            out["EI"][on] = mat.E * sec.I
+            out["EA"][on] = mat.E * sec.A
+            out["kGA"][on] = sec.k * mat.G * sec.A
+        return out
 
     @property
     def slenderness(self) -> float:
@@ -362,16 +459,46 @@ def is_mechanism(left: str, right: str) -> bool:
     return not (translation_fixed and rotation_fixed)
 
 
+def rigid_rows(scene) -> np.ndarray:
+    """The conditions the supports put on a rigid motion w = a + b x of a straight beam, rows (at, bt) with
+    at a + bt b = 0: a deflection held (or a spring's) at x gives (1, x), a rotation held (or a rotational
+    spring's) gives (0, 1); positions in units of the length."""
+    rows = []
+    sup = scene.supports
+    for side, x in (("left", 0.0), ("right", 1.0)):
+        end = getattr(sup, side)
+        if isinstance(end, Spring):
+            deflection, rotation = end.stiffness > 0, end.rotational_stiffness > 0
+        else:
+            deflection, rotation = HELD[end][1], HELD[end][2]
+        rows += [(1.0, x)] * deflection + [(0.0, 1.0)] * rotation
+    for inner in sup.inner:
+        x = inner.position / scene.length
+        rows += [(1.0, x)] * inner.holds_deflection + [(0.0, 1.0)] * inner.holds_rotation
+    return np.array(rows, float).reshape(-1, 2)
+
+
 def straight_mechanism(scene) -> str | None:
     """The one-line reason a straight beam on these supports is a mechanism across its axis (None when it is not):
     a model that bends refuses such a scene (``Model.check``), and so does the scene itself when it bends it."""
-    left, right = scene.supports.left, scene.supports.right
-    if not (scene.is_straight and is_mechanism(left, right)):
+    if not scene.is_straight:
         return None
+    sup = scene.supports
+    if sup.simple:
+        if not is_mechanism(sup.left, sup.right):
+            return None
+        return (
+            f"supports = {sup.left}-{sup.right}: a mechanism (the beam can move as a rigid body) that cannot carry "
+            "the loads; fix the deflection at one end and the rotation somewhere (clamped, or pinned/roller at both "
+            "ends, or pinned with guided)"
+        )
+    if np.linalg.matrix_rank(rigid_rows(scene)) == 2:
+        return None
+    inner = ", ".join(f"{s.type} at {s.position:g}" for s in sup.inner) or "none inside"
     return (
-        f"supports = {left}-{right}: a mechanism (the beam can move as a rigid body) that cannot carry the loads; "
-        "fix the deflection at one end and the rotation somewhere (clamped, or pinned/roller at both ends, or pinned "
-        "with guided)"
+        f"supports = {sup.kind('left')}-{sup.kind('right')} ({inner}): a mechanism (the beam can move as a rigid "
+        "body); hold the deflection at two places, or the deflection and the rotation at one (springs count when "
+        "their stiffness is above 0)"
     )
 
 

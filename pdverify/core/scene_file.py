@@ -38,7 +38,7 @@ def _loc(loc) -> str:
     for p in loc:
         if isinstance(p, int):
             parts.append(f"[{p}]")
-        elif p in ("point_force", "point_moment", "distributed", "point_torque"):
+        elif p in ("point_force", "point_moment", "distributed", "point_torque", "named", "spring"):
             continue  # discriminator tag: not a field the user wrote
         else:
             parts.append(("." if parts else "") + str(p))
@@ -90,8 +90,15 @@ def _message(err: dict, data: dict) -> str:
         return (
             f"{loc}.type = {given!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
         )
+    if kind == "literal_error" and loc.startswith("supports.inner"):
+        return f"{loc} = {value!r}: unknown support inside the span; allowed: pinned, roller, clamped, spring"
+    if kind == "literal_error" and loc.startswith("supports.") and loc.endswith(".type"):
+        return (
+            f'{loc} = {value!r}: a support given as a table is a spring: write type = "spring" with stiffness '
+            "and/or rotational_stiffness, or give the support's name"
+        )
     if kind == "literal_error" and loc.startswith("supports."):
-        return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}"
+        return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}, or a spring table"
     if kind == "float_type" and isinstance(value, bool):
         return f"{loc} = {str(value).lower()}: a number is needed here, not true/false"
     if kind == "float_type" and isinstance(value, str):
@@ -204,7 +211,7 @@ def _check_dynamics(scene: Scene) -> list[str]:
         em = getattr(d, side)
         if em is None:
             continue
-        sup = getattr(scene.supports, side)
+        sup = scene.supports.kind(side)
         for key, allowed in _FIXES.items():
             if getattr(em, key) is not None and sup not in allowed:
                 lines.append(
@@ -214,27 +221,78 @@ def _check_dynamics(scene: Scene) -> list[str]:
     return lines
 
 
+def _check_supports(scene: Scene) -> list[str]:
+    """Supports inside the span: on the beam, one per position (and none at an end, which has its own support),
+    on straight axes (a curved axis's supports are its ends')."""
+    sup, L = scene.supports, scene.length
+    if not sup.inner and sup.simple:
+        return []
+    lines = []
+    if not scene.is_straight:
+        lines.append(
+            f"supports: springs and supports inside the span are for straight beams; axis.type = {scene.axis.type!r}"
+        )
+    seen: dict[float, int] = {}
+    for i, s in enumerate(sup.inner):
+        where = f"supports.inner[{i}].position = {s.position!r}"
+        if not 0.0 < s.position < L:
+            lines.append(f"{where}: not inside the beam (0, {L}); an end's support is supports.left or supports.right")
+        elif s.position in seen:
+            lines.append(f"{where}: supports.inner[{seen[s.position]}] is at the same position; give one support there")
+        seen.setdefault(s.position, i)
+    return lines
+
+
+def _check_segments(scene: Scene) -> list[str]:
+    """Segments cover [0, length] in order, without gaps or overlaps (ends meet to 1e-12 of the length)."""
+    segs, L = scene.segments, scene.length
+    if not segs:
+        return []
+    lines, tol = [], 1e-12 * L
+    if not scene.is_straight:
+        lines.append(f"segments: for straight beams; axis.type = {scene.axis.type!r}")
+    at = 0.0
+    for i, g in enumerate(segs):
+        if not g.start < g.end:
+            lines.append(f"segments[{i}]: start = {g.start!r}, end = {g.end!r}: start must be below end")
+        if abs(g.start - at) > tol:
+            what = "a gap" if g.start > at else "an overlap"
+            lines.append(
+                f"segments[{i}].start = {g.start!r}: {what} after {at!r}; segments cover [0, beam.length] in order, "
+                "each starting where the one before ends"
+            )
+        at = g.end
+    if abs(at - L) > tol:
+        lines.append(f"segments[{len(segs) - 1}].end = {at!r}: the last segment must end at beam.length = {L!r}")
+    return lines
+
+
 def _check_magnitudes(scene: Scene) -> list[str]:
-    """The section's and beam's derived stiffnesses must be ordinary floating-point numbers: a width of 5e-324 (the
-    smallest subnormal) gives an area of 0, a modulus of 1e300 times a large section overflows."""
-    sec, tiny = scene.section, float(np.finfo(float).tiny)
-    given = ", ".join(
-        f"{k} = {getattr(sec, k)!r}" for k in ("width", "height", "area", "inertia") if getattr(sec, k) is not None
-    )
-    derived = (
-        ("area", sec.A),
-        ("second moment of area", sec.I),
-        ("EI", scene.EI),
-        ("EA", scene.EA),
-        ("kGA", scene.kGA),
-    )
-    for name, value in derived:
-        if not (math.isfinite(value) and value >= tiny):
-            return [
-                f"section: {given} and youngs_modulus = {scene.material.E!r} give {name} = {value!r}, not an ordinary "
-                "float (it under- or overflows); give the scene in units that keep its numbers within about "
-                "1e-100..1e100"
-            ]
+    """The derived stiffnesses of the section and of each segment must be ordinary floating-point numbers: a width
+    of 5e-324 (the smallest subnormal) gives an area of 0, a modulus of 1e300 times a large section overflows."""
+    tiny = float(np.finfo(float).tiny)
+    tables = [("section", scene.section, scene.material)] + [
+        (f"segments[{i}]", g.section or scene.section, g.material or scene.material)
+        for i, g in enumerate(scene.segments)
+    ]
+    for where, sec, mat in tables:
+        given = ", ".join(
+            f"{k} = {getattr(sec, k)!r}" for k in ("width", "height", "area", "inertia") if getattr(sec, k) is not None
+        )
+        derived = {
+            "area": sec.A,
+            "second moment of area": sec.I,
+            "EI": mat.E * sec.I,
+            "EA": mat.E * sec.A,
+            "kGA": sec.k * mat.G * sec.A,
+        }
+        for name, value in derived.items():
+            if not (math.isfinite(value) and value >= tiny):
+                return [
+                    f"{where}: {given} and youngs_modulus = {mat.E!r} give {name} = {value!r}, not an ordinary float "
+                    "(it under- or overflows); give the scene in units that keep its numbers within about "
+                    "1e-100..1e100"
+                ]
     return []
 
 
@@ -246,7 +304,13 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
         scene = Scene.model_validate(data)
     except ValidationError as exc:
         raise InputError([f"{source}: {m}" for m in _messages(exc.errors(), data)]) from None
-    lines = _check_magnitudes(scene) + _check_loads(scene) + _check_dynamics(scene)
+    lines = (
+        _check_magnitudes(scene)
+        + _check_loads(scene)
+        + _check_dynamics(scene)
+        + _check_supports(scene)
+        + _check_segments(scene)
+    )
     if not scene.is_straight:
         arc = axis_length(scene.axis)
         if abs(arc - scene.length) > 1e-6 * arc:

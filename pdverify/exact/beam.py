@@ -12,9 +12,12 @@ from .straight import solve_straight
 
 class ExactBeam(Model):
     options = (POINTS,)
-    source = "closed-form integration of the beam equations (textbook)"
+    source = "closed-form integration of the beam equations (textbook), piece by piece between supports and segments"
 
     reference = True
+    springs = True
+    inner_supports = True
+    segments = True
 
     def __init__(self, name: str, shear: bool, title: str):
         self.name, self.shear, self.title = name, shear, title

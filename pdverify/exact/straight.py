@@ -20,12 +20,10 @@ Everything is integrated analytically: the answer is exact to round-off at any x
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from ..core.errors import SolveError
-from ..core.scene import Distributed, PointForce, PointMoment, Scene
+from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring
 
 
 def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:
@@ -96,70 +94,203 @@ def _distributed_terms(load: Distributed, a: float, b: float, L: float, x: np.nd
     return tuple(np.where(on, v, zero) for v in (Mp_, dMb, I1_, I2_))
 
 
-@dataclass
+def _basis(scene: Scene, load, x: np.ndarray) -> np.ndarray:
+    """(5, len(x)): M, V, I1 = ∫M, I2 = ∫∫M and Vi = ∫V (M without the steps of point moments) from 0, of
+    one load (a scene load, or a unit reaction at an inner support) alone."""
+    one = scene.model_copy(update={"loads": [load], "segments": [], "supports": scene.supports})
+    Mp, dMp, I1, I2, Mv = particular(one, x)
+    return np.stack([Mp, dMp, I1, I2, Mv])
+
+
 class StraightSolution:
-    """Closed-form solution; call :meth:`fields` at any x."""
+    """The exact solution of a straight scene: end supports, springs, supports inside the span and segments of
+    their own section and material. Call :meth:`fields` at any x.
 
-    scene: Scene
-    shear: bool  # True: Timoshenko, False: Euler–Bernoulli
-    c: np.ndarray  # c0, c1 (moment), c2, c3 (rotation, deflection constants)
+    The moment is M = c0 + c1 x + Mp(x) + Σ R_i (x - a_i)+ - Σ C_i H(x - a_i): the loads' particular moment and
+    the unknown force R_i and moment C_i of each inner support (force +z, moment counter-clockwise on the beam).
+    On each segment [a_s, b_s] (EI_s, kGA_s) the rotation and deflection follow by integrating the moment piece by
+    piece: phi = c2 + ∫ M / EI, w = c3 + ∫ phi - ∫ V / kGA (Euler–Bernoulli: no last term). The conditions of the
+    ends and of each inner support give the unknowns (c0, c1, c2, c3, the R_i and C_i): one small dense system,
+    scaled by the length and row by row so its rank says whether the supports hold the beam at any size."""
 
-    @property
-    def r(self) -> float:
-        return self.scene.EI / self.scene.kGA if self.shear else 0.0
+    def __init__(self, scene: Scene, shear: bool):
+        self.scene, self.shear = scene, shear
+        L = scene.length
+        self.pieces = [(a, b, mat.E * sec.I, sec.k * mat.G * sec.A) for a, b, sec, mat in scene.pieces()]
+        inner = scene.supports.inner
+        self.forces = [s for s in inner if s.holds_deflection]
+        self.moments = [s for s in inner if s.holds_rotation]
+        units = [PointForce(type="point_force", position=s.position, value=1.0) for s in self.forces]
+        units += [PointMoment(type="point_moment", position=s.position, value=1.0) for s in self.moments]
+        self.units = units
+        self.c = self._solve(L)
 
+    # -- the fields as functions of the unknowns -----------------------------------------------------------------
+    def _moment_basis(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(B, p): (5, n_moment_unknowns, len(x)) and (5, len(x)) of M, V, I1, I2, Vi for c0, c1 and the inner
+        reactions (B) and for the scene's loads (p)."""
+        one, zero = np.ones_like(x), np.zeros_like(x)
+        cols = [np.stack([one, zero, x, x**2 / 2, zero]), np.stack([x, one, x**2 / 2, x**3 / 6, x])]
+        cols += [_basis(self.scene, u, x) for u in self.units]
+        p = np.stack(particular(self.scene, x)) if self.scene.loads else np.zeros((5, len(x)))
+        return np.stack(cols, axis=1), p
+
+    def _integrated(self, F: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(Phi, W): ∫₀^x M / EI and ∫₀^x (∫ M / EI) - ∫₀^x V / kGA of moment functions F = (M, V, I1, I2, Vi)
+        evaluated at the segments' ends and at x (F: callable x -> (5, ..., len(x)))."""
+        Phi = 0.0
+        W = 0.0
+        for a, b, EI, kGA in self.pieces:
+            y = np.clip(x, a, b)
+            Fa, Fy = F(np.full_like(x, a)), F(y)
+            Phi_a = Phi_at_a = self._phi_before(F, a)
+            dy = y - a
+            Phi = Phi + (Fy[2] - Fa[2]) / EI
+            W = W + Phi_at_a * dy + (Fy[3] - Fa[3] - Fa[2] * dy) / EI
+            if self.shear:
+                W = W - (Fy[4] - Fa[4]) / kGA
+            del Phi_a
+        return Phi, W
+
+    def _phi_before(self, F, a: float):
+        """∫₀^a M / EI over the segments left of a."""
+        total = 0.0
+        for s0, s1, EI, _ in self.pieces:
+            if s0 >= a:
+                break
+            e = min(s1, a)
+            total = total + (F(np.array([e]))[2] - F(np.array([s0]))[2]) / EI
+        return total
+
+    def _linear(self, x: np.ndarray) -> dict:
+        """{field: (A, p)}: field(x) = A @ u + p for u = (c0, c1, reactions..., c2, c3)."""
+        x = np.asarray(x, float)
+        k = 2 + len(self.units)
+
+        def moment_part(y):
+            B, p = self._moment_basis(y)
+            return np.concatenate([B, p[:, None, :]], axis=1)  # (5, k + 1, len(y)): the unknowns' and the loads'
+
+        Phi, W = self._integrated(moment_part, x)  # (k + 1, len(x)) each
+        F = moment_part(x)
+        n = len(x)
+        out = {}
+        for name, rows, c2, c3 in (
+            ("M", F[0], 0.0, 0.0),
+            ("V", F[1], 0.0, 0.0),
+            ("rotation", Phi, 1.0, 0.0),
+            ("w", W, x, 1.0),
+        ):
+            A = np.zeros((n, k + 2))
+            A[:, :k] = np.asarray(rows)[:k].T
+            A[:, k] = c2
+            A[:, k + 1] = c3
+            out[name] = (A, np.asarray(rows)[k] * np.ones(n))
+        return out
+
+    # -- the conditions --------------------------------------------------------------------------------------------
+    def _solve(self, L: float) -> np.ndarray:
+        sup = self.scene.supports
+        rows, rhs = [], []
+
+        def cond(field: str, at: float, extra: dict | None = None):
+            A, p = self._linear(np.array([at]))[field]
+            row, r = A[0].copy(), -p[0]
+            for other, coef in (extra or {}).items():
+                B, q = self._linear(np.array([at]))[other]
+                row += coef * B[0]
+                r -= coef * q[0]
+            rows.append(row)
+            rhs.append(r)
+
+        k = 2 + len(self.units)
+        for side, at in (("left", 0.0), ("right", L)):
+            end = getattr(sup, side)
+            sign = 1.0 if side == "left" else -1.0  # the support's force on the beam: V(0) at the left, -V(L) right
+            if isinstance(end, Spring):
+                if end.stiffness:
+                    cond("V", at, {"w": sign * end.stiffness})  # force + k w = 0
+                else:
+                    cond("V", at)
+                if end.rotational_stiffness:
+                    cond("M", at, {"rotation": -sign * end.rotational_stiffness})  # moment + k_r phi = 0
+                else:
+                    cond("M", at)
+                continue
+            held = {
+                "clamped": ("w", "rotation"),
+                "pinned": ("w", "M"),
+                "roller": ("w", "M"),
+                "free": ("M", "V"),
+                "guided": ("rotation", "V"),
+            }[end]
+            for field in held:
+                cond(field, at)
+        for j, s in enumerate(self.forces):  # w(a) = 0, or R + k w(a) = 0
+            if s.type == "spring":
+                cond("w", s.position)
+                rows[-1] = rows[-1] * s.stiffness
+                rhs[-1] = rhs[-1] * s.stiffness
+                rows[-1][2 + j] += 1.0
+            else:
+                cond("w", s.position)
+        for j, s in enumerate(self.moments):  # phi(a) = 0, or C + k_r phi(a) = 0
+            col = 2 + len(self.forces) + j
+            if s.type == "spring":
+                cond("rotation", s.position)
+                rows[-1] = rows[-1] * s.rotational_stiffness
+                rhs[-1] = rhs[-1] * s.rotational_stiffness
+                rows[-1][col] += 1.0
+            else:
+                cond("rotation", s.position)
+        A, b = np.array(rows), np.array(rhs)
+        # every unknown in deflection units (x by L, moments by EI0 L^2, forces by EI0 L ...) and each condition by
+        # its largest coefficient: the system is then well conditioned at any size, from a micrometre to kilometres,
+        # and its rank says whether the supports hold the beam
+        EI0 = self.pieces[0][2]
+        scale = np.ones(k + 2)
+        scale[0] = EI0 / L**2  # c0, a moment
+        scale[1] = EI0 / L**3  # c1, a force
+        for j in range(len(self.forces)):
+            scale[2 + j] = EI0 / L**3
+        for j in range(len(self.moments)):
+            scale[2 + len(self.forces) + j] = EI0 / L**2
+        scale[k] = 1.0 / L  # c2, a rotation
+        As = A * scale
+        row = np.abs(As).max(axis=1)
+        As, b = As / row[:, None], b / row
+        if np.linalg.matrix_rank(As, tol=1e-10) < As.shape[1]:
+            raise SolveError(
+                f"supports = {sup.kind('left')}-{sup.kind('right')}: the beam is a mechanism; "
+                "fix the deflection at one end and the rotation somewhere"
+            )
+        return np.linalg.solve(As, b) * scale
+
+    # -- results ---------------------------------------------------------------------------------------------------
     def fields(self, x) -> dict[str, np.ndarray]:
-        x = np.asarray(x, dtype=float)
-        EI = self.scene.EI
-        c0, c1, c2, c3 = self.c
-        Mp, dMp, I1, I2, Mv = particular(self.scene, x)
-        M = c0 + c1 * x + Mp
-        V = c1 + dMp
-        phi = (c0 * x + c1 * x**2 / 2 + I1) / EI + c2
-        w = (c0 * x**2 / 2 + c1 * x**3 / 6 + I2) / EI + c2 * x + c3 - self.r * (c1 * x + Mv) / EI
-        return {"w": w, "rotation": phi, "M": M, "V": V}
+        lin = self._linear(np.asarray(x, float))
+        return {name: A @ self.c + p for name, (A, p) in lin.items() if name in ("w", "rotation", "M", "V")}
 
     def reactions(self) -> dict[str, float]:
-        """Support reactions (force +z, moment counter-clockwise) at the left and right ends."""
-        end = self.fields(np.array([self.scene.length]))
-        return {
-            "force_left": float(self.c[1]),
-            "moment_left": float(-self.c[0]),
+        """Support reactions (force +z, moment counter-clockwise on the beam): at the ends, and of each support
+        inside the span in the order of ``supports.inner`` (``force_inner_<i>``, ``moment_inner_<i>``)."""
+        L = self.scene.length
+        start = self.fields(np.array([0.0]))
+        end = self.fields(np.array([L]))
+        out = {
+            "force_left": float(start["V"][0]),
+            "moment_left": float(-start["M"][0]),
             "force_right": float(-end["V"][0]),
             "moment_right": float(end["M"][0]),
         }
-
-
-def _rows(support: str, x: float, scene: Scene, r: float) -> list[tuple[np.ndarray, float]]:
-    """Boundary-condition rows a·(c0/EI, c1/EI, c2, c3) = rhs at an end x."""
-    EI = scene.EI
-    Mp, dMp, I1, I2, Mv = (float(v[0]) for v in particular(scene, np.array([x])))
-    w = (np.array([x**2 / 2, x**3 / 6 - r * x, x, 1.0]), -(I2 - r * Mv) / EI)
-    phi = (np.array([x, x**2 / 2, 1.0, 0.0]), -I1 / EI)
-    M = (np.array([1.0, x, 0.0, 0.0]), -Mp / EI)
-    V = (np.array([0.0, 1.0, 0.0, 0.0]), -dMp / EI)
-    return {"clamped": [w, phi], "pinned": [w, M], "roller": [w, M], "free": [M, V], "guided": [phi, V]}[support]
+        inner = self.scene.supports.inner
+        for j, s in enumerate(self.forces):
+            out[f"force_inner_{inner.index(s)}"] = float(self.c[2 + j])
+        for j, s in enumerate(self.moments):
+            out[f"moment_inner_{inner.index(s)}"] = float(self.c[2 + len(self.forces) + j])
+        return out
 
 
 def solve_straight(scene: Scene, shear: bool) -> StraightSolution:
-    """Integration constants from the four boundary conditions (Euler–Bernoulli or Timoshenko)."""
-    r = scene.EI / scene.kGA if shear else 0.0
-    rows = _rows(scene.supports.left, 0.0, scene, r) + _rows(scene.supports.right, scene.length, scene, r)
-    A = np.array([row for row, _ in rows])
-    b = np.array([rhs for _, rhs in rows])
-    # scale x by the length (every unknown in deflection units) and each condition by its largest coefficient
-    # (w, phi, M and V rows differ by powers of the length): the 4x4 system is then well conditioned at any size,
-    # from a micrometre to kilometres, and its rank says whether the supports hold the beam
-    L = scene.length
-    S = np.diag([L**2, L**3, L, 1.0])  # S a: every unknown in deflection units
-    As = A @ np.linalg.inv(S)
-    row = np.abs(As).max(axis=1)
-    As, b = As / row[:, None], b / row
-    if np.linalg.matrix_rank(As, tol=1e-10) < 4:
-        raise SolveError(
-            f"supports = {scene.supports.left}-{scene.supports.right}: the beam is a mechanism; "
-            "fix the deflection at one end and the rotation somewhere"
-        )
-    a = np.linalg.inv(S) @ np.linalg.solve(As, b)
-    c = np.array([a[0] * scene.EI, a[1] * scene.EI, a[2], a[3]])
-    return StraightSolution(scene, shear, c)
+    """The exact Euler–Bernoulli (``shear = False``) or Timoshenko solution of a straight scene."""
+    return StraightSolution(scene, shear)

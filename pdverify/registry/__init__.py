@@ -207,6 +207,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         "reactions" not in result.info
         and scene.is_straight
         and scene.dynamics is None
+        and scene.supports.simple
         and m.bending
         and m.theory in ("euler-bernoulli", "timoshenko")
         and len(result.x) >= 4
