@@ -125,16 +125,36 @@ class _BeamFE(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         u, info, dofs, nodes, timer = self.solve_nodal(scene, params, self.what(params))
         info.update(element=self.element(params), elements=len(nodes) - 1)
+        fields = self.resultants(scene, params, nodes, u) if self.element_matrices(scene, params, nodes) else {}
         return self.new_result(
             scene,
             params,
             nodes,
             u[0::2],
             rotation=u[1::2],
+            fields=fields,
             dofs=dofs,
             timings=timer.timings,
             info=info,
         )
+
+    def element_matrices(self, scene: Scene, params: dict, nodes: np.ndarray):
+        """(ke, fe): each element's stiffness (n_el, 4, 4) and work-equivalent loads (n_el, 4), or None."""
+        return None
+
+    def resultants(self, scene: Scene, params: dict, nodes: np.ndarray, u: np.ndarray) -> dict:
+        """The bending moment M (sagging positive) and shear force V = dM/dx at the nodes, from each element's end
+        forces ke u_e - fe (exact where the nodal values are: the element is in equilibrium with its loads). At a
+        node the value just right of it, where a point load makes V, and a couple M, jump; at the right end the value
+        with every load acting (as exact-eb gives them)."""
+        ke, fe = self.element_matrices(scene, params, nodes)
+        ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)
+        end = np.einsum("eab,eb->ea", ke, ue) - fe  # (force, moment) on each element at its left and right end
+        last = nodal_point_loads(scene, nodes, 2)[-2:]  # the force and couple at the right end's node
+        # on an element's left end the force is +V and the counter-clockwise moment -M; on its right end -V and +M
+        M = np.append(-end[:, 1], end[-1, 3] - last[1])
+        V = np.append(end[:, 0], -end[-1, 2] + last[0])
+        return {"M": M, "V": V}
 
     def solve_nodal(self, scene: Scene, params: dict, what: str):
         """(u, info, free DOF count, nodes, timer): nodal DOFs (w_i, w'_i or theta_i) interleaved."""
@@ -228,6 +248,11 @@ class FemEulerBernoulli(_BeamFE):
         F = element_vector(element_loads(scene, nodes, hermite_shapes), len(nodes))
         return F + nodal_point_loads(scene, nodes, 2)
 
+    def element_matrices(self, scene: Scene, params: dict, nodes: np.ndarray):
+        l = np.diff(nodes)
+        EI, _ = element_properties(scene, nodes)
+        return hermite_stiffness(l, EI / l**3), element_loads(scene, nodes, hermite_shapes)
+
     def evaluate(self, scene, params, x):  # noqa: D401 - the FE solution itself between nodes
         return self.evaluator(scene, params)(x)
 
@@ -299,6 +324,14 @@ class FemTimoshenko(_BeamFE):
         phi = 12 * EI / (kGA * np.diff(nodes) ** 2)
         shapes = iie_shapes(phi) if params["variant"] == "iie" else linear_shapes
         return element_vector(element_loads(scene, nodes, shapes), len(nodes)) + nodal_point_loads(scene, nodes, 2)
+
+    def element_matrices(self, scene: Scene, params: dict, nodes: np.ndarray):
+        if params["variant"] != "iie":
+            return None  # the linear elements' moments are constant per element: not reported
+        l = np.diff(nodes)
+        EI, kGA = element_properties(scene, nodes)
+        f = 12 * EI / (kGA * l**2)
+        return hermite_stiffness(l, EI / ((1 + f) * l**3), f), element_loads(scene, nodes, iie_shapes(f))
 
     def assemble_band(self, scene: Scene, params: dict):
         """(K, F, nodes) before the supports, K a :class:`Band`."""

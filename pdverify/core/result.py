@@ -14,6 +14,35 @@ import numpy as np
 from .errors import SolveError
 from .version import __version__
 
+# What a study can measure, and where a result holds it: its canonical name, then the names the models' fields use
+# (M, V, N: the bending moment, sagging positive; the shear force V = dM/dx; the axial force, tension positive).
+# A curved model's Q (the shear of its own frame, Q = -dM/ds) counts as -shear.
+QUANTITIES = {
+    "w": "deflection",
+    "rotation": "rotation of the section (counter-clockwise)",
+    "moment": "bending moment (sagging positive)",
+    "shear": "shear force (dM/dx)",
+    "axial": "axial force (tension positive)",
+    "u": "axial displacement",
+    "twist": "angle of twist",
+}
+FIELD_NAMES = {"moment": ("moment", "M"), "shear": ("shear", "V"), "axial": ("axial", "N")}
+
+
+def quantity_of(w, rotation, fields: dict, quantity: str):
+    """The values of ``quantity`` (:data:`QUANTITIES`) among a solution's w, rotation and fields; None when it
+    has none."""
+    if quantity == "w":
+        return w
+    if quantity == "rotation":
+        return rotation if rotation is not None else fields.get("rotation")
+    for name in FIELD_NAMES.get(quantity, (quantity,)):
+        if name in fields:
+            return fields[name]
+    if quantity == "shear" and "Q" in fields:
+        return -np.asarray(fields["Q"], float)
+    return None
+
 
 @dataclass
 class Result:
@@ -40,8 +69,12 @@ class Result:
     writers: dict[str, Callable[[str], None]] = field(default_factory=dict, repr=False)
 
     def measured(self, quantity: str = "w") -> np.ndarray:
-        """The output ``quantity``: w, or a point field (a rod's u, a torsion bar's twist: ``Model.measures``)."""
-        return np.asarray(self.w if quantity == "w" else self.fields[quantity], float)
+        """The output ``quantity`` (:data:`QUANTITIES`: w, rotation, moment, shear, axial, or a point field such
+        as a rod's u or a torsion bar's twist); KeyError when the result has none."""
+        got = quantity_of(self.w, self.rotation, self.fields, quantity)
+        if got is None:
+            raise KeyError(f"model {self.model} gives no {quantity}")
+        return np.asarray(got, float)
 
     def to_dict(self) -> dict:
         out = {

@@ -29,12 +29,13 @@ import numpy as np
 import pandas as pd
 
 from ..core.errors import InputError
+from ..core.result import QUANTITIES
 from ..measure.metrics import ROUND_OFF_LEVEL, log_slope
 from ..registry import get_model
 from .store import write_atomic
 from .tables import GROUPINGS, grouped
 
-CHECK_KEYS = {"name", "model", "observed_order", "expected", "scene", "slenderness"}
+CHECK_KEYS = {"name", "model", "observed_order", "expected", "scene", "slenderness", "quantity"}
 FAILING = ("fail", "missing")  # verdicts that fail a study (exit 1)
 MIN_GRIDS = 3
 
@@ -92,6 +93,8 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
             continue
         if "name" in c and not (isinstance(c["name"], str) and c["name"]):
             errors.append(f"{where}.name = {c['name']!r}: give a text")
+        if "quantity" in c and c["quantity"] not in QUANTITIES:
+            errors.append(f"{where}.quantity = {c['quantity']!r}: give one of {', '.join(QUANTITIES)}")
         bounds = c.get("observed_order")
         if not isinstance(bounds, dict) or not bounds or set(bounds) - {"min", "max"}:
             errors.append(f"{where}.observed_order = {bounds!r}: give a table {{min = 1.9}}, {{max = 2.1}} or both")
@@ -145,12 +148,16 @@ def _fmt(values, spec=".4g") -> str:
 def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     """One check applied to one series (the rows of its cases), its order from the convergence table's."""
     conv = GROUPINGS["convergence"].compute(key, rows)
+    main = rows[0].get("quantity") or "w"
+    quantity = check.get("quantity", main)  # another quantity than the model's own: its own errors and order
+    conv = [c for c in conv if c["quantity"] == quantity]
+    column = "err_max" if quantity == main else f"err_max_{quantity}"
     bounds = check["observed_order"]
     ok = sorted(
         (r for r in rows if r.get("status") == "ok" and r.get("spacing") is not None), key=lambda r: float(r["spacing"])
     )
     h = np.array([float(r["spacing"]) for r in ok])
-    err = np.array([float(r["err_max"]) if r.get("err_max") is not None else math.nan for r in ok])
+    err = np.array([float(r[column]) if r.get(column) is not None else math.nan for r in ok])
     pairwise = [log_slope(h[i : i + 2], err[i : i + 2])[0] for i in range(len(ok) - 1) if h[i + 1] != h[i]]
     n_grids = len(np.unique(h))
     order = conv[0]["observed_order"] if conv else math.nan

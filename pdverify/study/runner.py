@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from ..core.errors import InputError, OutputError, PdverifyError
-from ..core.result import columns_csv
+from ..core.result import columns_csv, quantity_of
 from ..core.version import __version__
 from ..measure.metrics import errors
 from ..measure.shapes import with_exact_shapes
@@ -37,7 +37,10 @@ PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", 
 def measured(values: dict, quantity: str, model: str) -> np.ndarray:
     """The output ``quantity`` (a model's ``measures``: w, or a point field such as u or twist) of ``values``
     (a solve's {"w": ..., "fields": {...}} or an evaluator's fields); InputError naming the model when it has none."""
-    got = values.get(quantity) if quantity == "w" or "fields" not in values else values["fields"].get(quantity)
+    if "fields" in values:  # a solve's {"w", "rotation", "fields"}
+        got = quantity_of(values["w"], values.get("rotation"), values["fields"], quantity)
+    else:  # an evaluator's fields
+        got = quantity_of(values.get("w"), values.get("rotation"), values, quantity)
     if got is None:
         raise InputError(f"model {model} gives no {quantity}: the study measures {quantity} (the model's `measures`)")
     return np.asarray(got, float)
@@ -58,7 +61,7 @@ def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tupl
     if ev is not None:  # exact (no bound), or a solve's interpolant that carries its bound (fem-eb)
         return lambda x: measured(ev(x), quantity, model.name), getattr(ev, "error_bound", None)
     solved = run(scene, model, **ref)
-    values = {"w": solved.w, "fields": solved.fields}
+    values = {"w": solved.w, "rotation": solved.rotation, "fields": solved.fields}
     return CubicSpline(solved.x, measured(values, quantity, model.name)), solved.info.get("error_bound")
 
 
@@ -78,17 +81,18 @@ def _reference_values(
     return w
 
 
-def _key(case: Case) -> tuple:
-    """(scene text, scene file, slenderness, reference options, quantity): what a case's reference depends on."""
-    quantity = get_model(case.model).measures
+def _key(case: Case, quantity: str | None = None) -> tuple:
+    """(scene text, scene file, slenderness, reference options, quantity): what a case's reference depends on;
+    the quantity by default the one the case's model is measured on (``Model.measures``)."""
+    quantity = quantity or get_model(case.model).measures
     return (case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())), quantity)
 
 
-def reference_at(case: Case, scene, x: np.ndarray) -> np.ndarray:
-    """The reference's value of what the case's model measures (its deflection, or e.g. pd-rod's u) at the model's
-    points (see :func:`_reference_fn`); the values of grids of up to ``REFERENCE_CACHE_POINTS`` points are kept
-    per (scene, slenderness, reference, quantity, grid)."""
-    key = _key(case)
+def reference_at(case: Case, scene, x: np.ndarray, quantity: str | None = None) -> np.ndarray:
+    """The reference's value of what the case's model measures (its deflection, or e.g. pd-rod's u), or of
+    ``quantity``, at the model's points (see :func:`_reference_fn`); the values of grids of up to
+    ``REFERENCE_CACHE_POINTS`` points are kept per (scene, slenderness, reference, quantity, grid)."""
+    key = _key(case, quantity)
     x = np.asarray(x, "<f8")
     if x.size <= REFERENCE_CACHE_POINTS:
         return _reference_values(*key, x.tobytes())
@@ -209,6 +213,7 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         if "failure" in solved:
             raise _Failed(solved["failure"])
         w_ref = _measure_errors(case, scene, solved, row)
+        _measure_quantities(case, scene, solved, row)
         _measure_status(case, solved, params, row)
         _fill_curves(curve, scene, solved, w_ref, row["quantity"])
     except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
@@ -267,6 +272,50 @@ def _measure_errors(case: Case, scene, solved: dict, row: dict) -> np.ndarray:
     if hist_err is not None:  # a transient against a transient reference: the histories, not the final w
         row.update(hist_err)
     return w_ref
+
+
+def jumps(scene, x: np.ndarray, quantity: str) -> np.ndarray:
+    """The points where ``quantity`` jumps (within 1e-9 of the length): the shear at point forces and at supports
+    inside the span, the moment at couples and at inner clamped supports. There the value depends on the side a
+    model reports, so an error there says nothing."""
+    tol = 1e-9 * scene.length
+    at = []
+    for load in scene.loads:
+        kind = getattr(load, "type", "")
+        if (quantity == "shear" and kind == "point_force") or (quantity == "moment" and kind == "point_moment"):
+            at.append(load.position)
+        if quantity == "axial" and kind == "point_force" and getattr(load, "axial", 0.0):
+            at.append(load.position)
+    for s in scene.supports.inner:
+        if (quantity == "shear" and s.holds_deflection) or (quantity == "moment" and s.holds_rotation):
+            at.append(s.position)
+    x = np.asarray(x, float)
+    return np.any(np.abs(x[:, None] - np.asarray(at, float)[None, :]) <= tol, axis=1) if at else np.zeros(len(x), bool)
+
+
+def _measure_quantities(case: Case, scene, solved: dict, row: dict) -> None:
+    """The errors of every other quantity the study measures (``quantities``: rotation, moment, shear, axial),
+    ``err_max_<q>`` and ``err_l2_<q>`` (relative to the reference's largest value of that quantity), NaN where the
+    model or the reference gives none (named in ``missing_quantities``)."""
+    main = row["quantity"]
+    missing = []
+    for q in case.quantities:
+        if q == main:
+            continue
+        row[f"err_max_{q}"] = row[f"err_l2_{q}"] = np.nan
+        if case.reference.get("model") == "none":
+            continue
+        try:
+            values = measured(solved, q, case.model)
+            ref = reference_at(case, scene, solved["x"], q)
+        except (InputError, KeyError):
+            missing.append(q)
+            continue
+        keep = ~jumps(scene, solved["x"], q)  # a jump's two values are both right there: not compared
+        e = errors(values[keep], ref[keep])
+        row[f"err_max_{q}"], row[f"err_l2_{q}"] = e["err_max"], e["err_l2"]
+    if missing:
+        row["missing_quantities"] = " ".join(missing)
 
 
 def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:

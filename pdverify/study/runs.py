@@ -9,10 +9,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.errors import InputError
+from ..core.result import QUANTITIES
 from ..registry import Model, get_model, models
 from .checks import finite_number, strict_type
 
-RUN_KEYS = {"model", "reference", "scenes", "slenderness"}
+RUN_KEYS = {"model", "reference", "scenes", "slenderness", "quantities"}
 
 
 def measures_mismatch(where: str, model, ref_model) -> str:
@@ -52,10 +53,20 @@ class Run:
     scenes: list[str]
     slenderness: list
     axes: dict[str, list]
+    quantities: tuple = ()
+
+
+def parse_quantities(value, where: str) -> tuple[tuple, list[str]]:
+    """A ``quantities`` list (the study's or a run's) and its error lines."""
+    if value is None:
+        return (), []
+    if not isinstance(value, list) or not all(isinstance(q, str) and q in QUANTITIES for q in value):
+        return (), [f"{where}quantities = {value!r}: give a list of {', '.join(QUANTITIES)}"]
+    return tuple(dict.fromkeys(value)), []
 
 
 def parse_run(
-    path: Path, i: int, run, reference: dict, slenderness: list, scene_objs: dict
+    path: Path, i: int, run, reference: dict, slenderness: list, scene_objs: dict, quantities: tuple = ()
 ) -> tuple[Run | None, list[str]]:
     """The run's model, reference, scenes, slenderness list (the study's unless the run sets its own) and sweep
     axes, and their error lines; None when one of them is wrong, or its reference gives another quantity than
@@ -89,7 +100,11 @@ def parse_run(
     axes, errors = _run_axes(where, run, model)
     if axes is None:
         return None, errors
-    return Run(where, run["model"], model, run_ref, run_scenes, run_slen, axes), errors
+    if "quantities" in run:
+        quantities, bad = parse_quantities(run["quantities"], f"{where}.")
+        if bad:
+            return None, bad
+    return Run(where, run["model"], model, run_ref, run_scenes, run_slen, axes, quantities), errors
 
 
 def _run_axes(where: str, run: dict, model: Model) -> tuple[dict | None, list[str]]:

@@ -54,7 +54,7 @@ from ..registry import Model, get_model, models, use_manifest
 from ..registry.plugins import GROUP
 from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
 from .entries import model_errors, verify_entries
-from .runs import Run, as_list, parse_run, reference_table
+from .runs import Run, as_list, parse_quantities, parse_run, reference_table
 
 STUDY_KEYS = {
     "name",
@@ -69,6 +69,7 @@ STUDY_KEYS = {
     "external",
     "verify",
     "verify_required",
+    "quantities",
 }  # the study file's top-level keys
 STORE_SCHEMA = 4  # bump when a case record's content or format changes: older case files are then recomputed
 BENCH_KEYS = set(BENCH_VALUES)  # the values of a benchmark row; its other keys filter the cases
@@ -116,6 +117,7 @@ class Case:
     model: str
     given: dict
     reference: dict
+    quantities: tuple = ()  # more quantities to measure than the model's own (rotation, moment, shear, axial)
 
     @property
     def case_id(self) -> str:
@@ -129,7 +131,8 @@ class Case:
                 __version__,
                 STORE_SCHEMA,
                 code_digest(),
-            ],
+            ]
+            + ([list(self.quantities)] if self.quantities else []),
             sort_keys=True,
             default=str,
         )
@@ -183,6 +186,7 @@ class Study:
     verify_required: bool = False
     cases: list[Case] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
+    quantities: tuple = ()  # what every run measures besides its model's own quantity (a run may set its own)
 
 
 def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
@@ -348,7 +352,9 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
                 if ref_model is not None and ref_key not in refs_checked:  # once per scene and reference
                     refs_checked.add(ref_key)
                     errors += _reference_case_errors(study.path, ref_model, run.reference, sfile, scx)
-                study.cases.append(Case(sfile, stext, sl, run.model.name, dict(given), dict(run.reference)))
+                study.cases.append(
+                    Case(sfile, stext, sl, run.model.name, dict(given), dict(run.reference), run.quantities)
+                )
     return errors
 
 
@@ -358,7 +364,7 @@ def _expand_runs(study: Study, scene_objs: dict) -> list[str]:
     reasons_of: dict = {}
     refs_checked: set = set()
     for i, run in enumerate(study.runs):
-        parsed, found = parse_run(study.path, i, run, study.reference, study.slenderness, scene_objs)
+        parsed, found = parse_run(study.path, i, run, study.reference, study.slenderness, scene_objs, study.quantities)
         errors += found
         if parsed is not None:
             errors += _run_cases(parsed, study, scene_objs, reasons_of, refs_checked)
@@ -432,6 +438,8 @@ def load_study(path: str | Path, card_errors=None) -> Study:
         list(data.get("benchmarks", [])),
         list(checks) if isinstance(checks, list) else [],
     )
+    study.quantities, found = parse_quantities(data.get("quantities"), f"{path}: ")
+    errors += found
     errors += _expand_runs(study, scene_objs)
     errors += _benchmark_rows_errors(study, scene_objs)
     run_models = {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)}

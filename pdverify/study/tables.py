@@ -76,24 +76,32 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
     order = np.argsort([_float(r.get("spacing")) for r in rows], kind="stable")
     rows = [rows[i] for i in order]
     h = np.array([_float(r.get("spacing")) for r in rows])
-    err = np.array([_float(r.get("err_max")) for r in rows])
     w = np.array([_float(r.get("w_at_max")) for r in rows])
     n_grids = len(np.unique(h))
     if n_grids < 3:
         return []
-    p, r2 = observed_order(h, err)
-    return [
-        dict(
-            zip(GROUP, key),
-            **{c: rows[0].get(c) for c in SHOWN},
-            n_grids=int(n_grids),
-            spacings=" ".join(f"{v:.4g}" for v in h),
-            errors=" ".join(f"{v:.3e}" for v in err),
-            observed_order=p,
-            r2=r2,
-            **gci(h, w),
+    out = []
+    # the model's own quantity first (an order check reads that row), then every other one the study measures
+    extra = [c[len("err_max_") :] for c in dict.fromkeys(k for r in rows for k in r) if c.startswith("err_max_")]
+    for quantity, column in [(rows[0].get("quantity") or "w", "err_max"), *((q, f"err_max_{q}") for q in extra)]:
+        err = np.array([_float(r.get(column)) for r in rows])
+        if column != "err_max" and not np.isfinite(err).any():
+            continue  # the model or the reference gives none of it
+        p, r2 = observed_order(h, err)
+        out.append(
+            dict(
+                zip(GROUP, key),
+                **{c: rows[0].get(c) for c in SHOWN},
+                quantity=quantity,
+                n_grids=int(n_grids),
+                spacings=" ".join(f"{v:.4g}" for v in h),
+                errors=" ".join(f"{v:.3e}" for v in err),
+                observed_order=p,
+                r2=r2,
+                **(gci(h, w) if column == "err_max" else {}),
+            )
         )
-    ]
+    return out
 
 
 def _locking(key: tuple, rows: list[dict]) -> list[dict]:

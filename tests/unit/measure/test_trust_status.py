@@ -60,7 +60,7 @@ def test_every_format_shows_the_warning(tmp_path, fmt):
         assert any(line.startswith("# warning: round-off bound") for line in out.splitlines())
     if fmt == "csv":
         df = pd.read_csv(__import__("io").StringIO(out), comment="#")
-        assert list(df.columns) == ["x", "w", "rotation"] and len(df) == 20001
+        assert list(df.columns) == ["x", "w", "rotation", "M", "V"] and len(df) == 20001
 
 
 def test_no_warning_where_the_bound_holds(tmp_path):

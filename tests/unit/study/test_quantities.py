@@ -1,0 +1,50 @@
+"""A study measures more than the deflection: ``quantities = ["rotation", "moment", "shear", "axial"]`` (at the top
+or in a run) gives one error column per quantity, a convergence row per quantity and order checks on any of them."""
+
+import pandas as pd
+import pytest
+from helpers import ROOT
+
+from pdverify.core.errors import InputError
+from pdverify.study import load_study, run_study
+
+SCENE = ROOT / "studies/examples/cantilever_tip_load.toml"
+
+
+def write(tmp_path, body):
+    p = tmp_path / "q.toml"
+    p.write_text(f'name = "q"\nscenes = ["{SCENE.as_posix()}"]\nreference = "exact-timoshenko"\n' + body)
+    return p
+
+
+def test_each_quantity_has_its_error_column_and_its_order(tmp_path):
+    p = write(
+        tmp_path,
+        'quantities = ["rotation", "moment"]\n[[runs]]\nmodel = "fem-timoshenko"\npoints = [11, 21, 41]\n'
+        '[[runs]]\nmodel = "pd-timoshenko"\npoints = [21, 41, 81]\n'
+        '[[checks]]\nmodel = "pd-timoshenko"\nquantity = "rotation"\nobserved_order = { min = 1.9, max = 2.1 }\n',
+    )
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    fem = df[df["model"] == "fem-timoshenko"]
+    assert (fem["err_max_rotation"] < 1e-12).all()  # nodally exact rotations
+    assert "missing_quantities" not in df or df["missing_quantities"].isna().all()
+    conv = pd.read_csv(tmp_path / "out" / "convergence.csv")
+    pd_rows = conv[conv["model"] == "pd-timoshenko"].set_index("quantity")
+    assert {"w", "rotation", "moment"} <= set(pd_rows.index)
+    assert abs(pd_rows.loc["rotation", "observed_order"] - 2) < 0.1
+    checks = pd.read_csv(tmp_path / "out" / "checks.csv")
+    assert list(checks["verdict"]) == ["pass"]
+
+
+def test_a_quantity_a_model_does_not_give_is_named_not_invented(tmp_path):
+    p = write(tmp_path, 'quantities = ["axial"]\n[[runs]]\nmodel = "pd-eb"\npoints = [11, 21]\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert df["err_max_axial"].isna().all() and (df["missing_quantities"] == "axial").all()
+
+
+@pytest.mark.parametrize("where", ["top", "run"])
+def test_an_unknown_quantity_is_one_line(tmp_path, where):
+    run = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
+    body = ('quantities = ["curvature"]\n' + run) if where == "top" else run + 'quantities = ["curvature"]\n'
+    with pytest.raises(InputError, match="quantities = \\['curvature'\\]: give a list of w, rotation"):
+        load_study(write(tmp_path, body))
