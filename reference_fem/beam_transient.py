@@ -1,8 +1,8 @@
-"""The transient of ``fem-timoshenko`` (the scikit-fem stand-in of issue 30 item 4): the element's stiffness (its
-``variant``), the consistent mass of linear w and θ (scikit-fem ElementLineP1 x ElementLineP1: ρA w v + ρI θ φ,
-two Gauss points), damping as the PD beam applies it (mass-proportional, C = (c_d/ρ) M, on the translations
-alone with the scene's ``damping_on = "translations"``; c_d/ρ given, or 2 ζ ω_1 with ω_1 this model's first
-frequency), step loads from rest, :func:`~reference_fem.newmark.newmark` in time.
+"""The transient of ``fem-timoshenko`` (a finite-element reference for pd-timoshenko's transients): the element's
+stiffness (its ``variant``), the consistent mass of linear w and θ (scikit-fem ElementLineP1 x ElementLineP1:
+ρA w v + ρI θ φ, two Gauss points), damping as the PD beam applies it (mass-proportional, C = (c_d/ρ) M, on the
+translations alone with the scene's ``damping_on = "translations"``; c_d/ρ given, or 2 ζ ω_1 with ω_1 this model's
+first frequency), step loads from rest, :func:`~reference_fem.newmark.newmark` in time.
 The probes are nodes (inserted like load positions), so their histories are nodal values."""
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 integration = ANSYS PLANE182 analogue, q8 serendipity, q9 Lagrange), for straight and curved axes.
 
 Plane stress: scikit-fem's ``lame_parameters`` are the plane-strain constants; plane stress uses
-lambda* = 2 lambda mu / (lambda + 2 mu) = E nu / (1 - nu²) (tests/test_plane_stress.py would catch the
+lambda* = 2 lambda mu / (lambda + 2 mu) = E nu / (1 - nu²) (tests/reference_fem/test_plane_stress.py would catch the
 mix-up against the exact cantilever).
 
 Geometry (``reference_fem.curved_mesh``): the parameter rectangle (s, t) in [0, L] x [-h/2, h/2] mapped
@@ -32,10 +32,9 @@ axis length; a point force at an end is a parabolic shear traction over the end 
 shear distribution, along n_end) plus a uniform traction for its tangential part; an interior point force
 acts at the top node (normal part) and at the mid-height node (tangential part); an end moment is a
 linear normal traction (-C t / I, along the end tangent); an interior point moment the same linear traction
-on the section line through its station (along that station's tangent), so that its deflection converges: the
-pair of opposite forces on the neighbouring mid-height nodes used before grew as the mesh was refined, and the
-deflection under it with them, like a 2D point force's (log): 1.7e-2, 4.3e-2, 1.1e-1 from exact Timoshenko at
-101, 401, 1601 points (pinned-pinned, L/h = 20, couple at L/4; now 3.1e-4, 3.2e-4, 3.2e-4, the theories' gap).
+on the section line through its station (along that station's tangent), so that its deflection converges (a
+pair of opposite forces on the neighbouring mid-height nodes would grow as the mesh is refined, and the
+deflection under it with them, like a 2D point force's, logarithmically).
 (:mod:`reference_fem.plane_conditions` assembles these loads and supports and sums the reactions.)
 Output: at the mid-line vertices (t = 0), x = arc length s, w = u·n, fields u = u·t (tangential),
 ux, uy (global), rotation of the section line = (u_t(bottom) - u_t(top)) / h; ``--out result.vtu``

@@ -1,4 +1,5 @@
-"""Four-node quadrilateral stiffness variants standing in for ANSYS PLANE182's KEYOPT(1) (issue #32 item 3).
+"""Four-node quadrilateral stiffness variants standing in for ANSYS PLANE182's KEYOPT(1), the element Yang et al.
+2020 compare with.
 
 All are bilinear isoparametric quads (nodes of ``mesh.t`` taken in their cyclic order as the reference corners
 (-1,-1), (1,-1), (1,1), (-1,1)), plane stress D = E/(1-nu^2) [[1, nu, 0], [nu, 1, 0], [0, 0, (1-nu)/2]], 2x2
@@ -20,7 +21,7 @@ Gauss points, element matrices computed for all elements at once (arrays, no loo
   2a x 2b (b b^T = diag(1/4a^2, 1/4b^2), A = 4ab) the x mode u = q xi eta has e_xx = q eta / a and
   K_hg = E (4ab/3) / a^2, which is also what Wilson's incompatible modes leave after condensation (they cancel
   the parasitic shear and give the anticlastic e_yy = -nu e_xx), so on rectangles ``reduced`` is QM6's
-  matrix (tests/test_q4_variants.py); on distorted quads the two differ.
+  matrix (tests/reference_fem/test_q4_variants.py); on distorted quads the two differ.
 """
 
 from __future__ import annotations

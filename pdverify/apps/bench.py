@@ -140,9 +140,9 @@ def bench_subprocess(model: str, points: int, scene_path: str | None = None, tim
 DEFAULT_POINTS = (1_000, 10_000, 100_000, 1_000_000)
 SMALL_MODELS = {
     "pd-higher-order": 100_000,
-    "pd-curved": 100_000,  # the size for 4-DOF / PDDO models
+    "pd-curved": 100_000,  # the largest size timed for 4-DOF / PDDO models
     "pd-curved-mms": 10_000,
-}  # a verification harness: its sympy-built loads cost 14 s at 1e5
+}  # a verification harness: its sympy-built loads dominate its time at 1e5
 
 
 def default_models() -> list[str]:

@@ -6,8 +6,7 @@ computation (singular, overflow, not enough memory), 4 output could not be writt
 
 Each command is a thin typer function over the library (solve, study, report, verify, advise, bench, models,
 modes); they share the option parsing and the error wrapping kept here and the output paths of :mod:`.output`.
-Imports are lazy: each command imports what it runs, so ``pdverify --help`` starts in ~0.15 s instead of the
-library's ~1.8 s.
+Imports are lazy: each command imports what it runs, so ``pdverify --help`` starts without importing the library.
 """
 
 from __future__ import annotations
@@ -27,9 +26,8 @@ from .output import result_table as _table
 
 # One BLAS thread per process, unless the user sets otherwise: pdverify's matrices are banded or small and its
 # parallelism is processes (--workers, a Dask cluster). A threaded BLAS spreading each small product over the cores
-# competes with those processes and with the machine's other work (a 4001-point exact-higher-order evaluation took
-# 3 s single-threaded and 20 s with two threads on a loaded 2-core machine). Set before numpy is first imported:
-# the commands import it lazily.
+# competes with those processes and with the machine's other work, and on a loaded machine is slower than one
+# thread. Set before numpy is first imported: the commands import it lazily.
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 

@@ -1,7 +1,7 @@
 """Golden results of every paper benchmark: regenerate with ``python -m pdverify.apps.golden --regenerate``.
 
 A change to a golden file must be explained in the commit message (which model changed and why).
-The tests (tests/test_golden.py) compare every curve to rtol max(1e-10, cond * eps) of its largest value
+The tests (tests/regression/test_golden.py) compare every curve to rtol max(1e-10, cond * eps) of its largest value
 (cond: the run's condition estimate; why, with the measurements, in the test's docstring).
 """
 

@@ -80,7 +80,8 @@ class AxisGeometry:
         ``local = True`` (pd-curved, many particles): each step integrates from the table node below the start
         (one panel over about 1/2000 of the axis; the nodes' s by the composite rule from x0, at the nodes used
         only): 16 instead of 512 integrand values per point and step, bounded temporaries, the same root to
-        round-off (the two differ by up to 4 ulp, each within 2 ulp of 40-digit roots: tests/test_pd_curved.py).
+        round-off (the two differ by up to 4 ulp, each within 2 ulp of 40-digit roots:
+        tests/papers/curved/test_pd_curved.py).
         """
         c = np.asarray(self.axis.coefficients, float)
         x0, x1 = (float(v) for v in self.axis.x_range)

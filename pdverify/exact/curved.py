@@ -1,6 +1,6 @@
 """Model ``exact-curved-cantilever``: any statically determinate curved (or straight) cantilever, exact.
 
-Design note §4 (RECONSTRUCTED): clamped at one end, free at the other; point forces (local or global
+docs/design/formulas.md §4 (reconstructed): clamped at one end, free at the other; point forces (local or global
 frame), point moments and distributed loads (uniform or sine, on any span, local or global frame).
 Statics gives the internal force F(s) = N t + Q n and moment M(s) without solving anything::
 
@@ -18,7 +18,7 @@ inside the beam the left limit is returned). Then ε = N/EA, γ = Q/kGA, χ = M/
 panels split at every load discontinuity, 24 Gauss–Legendre nodes each; the cumulative integrals at
 the nodes by the spectral (Legendre) integration matrix, and at any s by barycentric interpolation in
 its panel, so every field is round-off accurate on the exact axis geometry. For the semicircle the
-same fields follow in closed form (sympy): tests/test_pd_curved.py checks this module against it and
+same fields follow in closed form (sympy): tests/papers/curved/test_pd_curved.py checks this module against it and
 against Clapeyron's theorem. ``evaluate`` gives u_t (``u``), u_n (``w``), φ (``rotation``), N, Q, M,
 ux, uy at any s.
 """
@@ -273,7 +273,10 @@ class Indeterminate:
 class ExactCurved(Model):
     name = "exact-curved"
     title = "exact curved Timoshenko–Ehrenfest beam, any supports (statics + quadrature + force method)"
-    source = "design note §4 (statically determinate cantilever) extended by the force method to any support pair"
+    source = (
+        "docs/design/formulas.md §4 (statically determinate cantilever) extended by the force method to any "
+        "support pair"
+    )
     options = (POINTS,)
     curved = True
     axial = True
@@ -314,7 +317,7 @@ class ExactCurved(Model):
 class ExactCurvedCantilever(ExactCurved):
     name = "exact-curved-cantilever"
     title = "exact curved Timoshenko–Ehrenfest cantilever (statics + quadrature)"
-    source = "design note §4: statically determinate curved cantilever (closed form for the semicircle)"
+    source = "docs/design/formulas.md §4: statically determinate curved cantilever (closed form for the semicircle)"
     solver = Cantilever
 
     def check(self, scene: Scene) -> list[str]:

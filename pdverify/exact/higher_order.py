@@ -1,5 +1,5 @@
 """Model ``exact-higher-order``: the exact solution of the (local) higher-order beam theory that ``pd-higher-order``
-makes peridynamic (Yang, Oterkus & Oterkus 2020, seed 002, Eq. 2-9), on any straight scene.
+makes peridynamic (Yang, Oterkus & Oterkus 2020, Eq. 2-9), on any straight scene.
 
 Kinematics (Eq. 2-3): u = z theta + z^3 theta*, w = w + z^2 w*; y = (theta, theta*, w, w*). The strain energy per
 unit length is (b/2) Q(m) with Q = m^T C m (Eq. 9, :func:`~pdverify.papers.yang.bonds.coefficients`) and
@@ -28,7 +28,7 @@ of eigenvalues of order 1/h: layers a fraction of h wide), propagated from the p
 pair, propagated back from the piece's right end, so no exponential exceeds the polynomial growth of the slow block
 however long the beam. Eight unknowns per piece meet the end conditions and, at every break, continuity and the
 jumps: one small dense system. Everything is written in units of h (length) and E' b h (force), where every
-coefficient is O(1). Exact to round-off at any x (no grid; tests/test_exact_higher_order.py): the reference ``pd-
+coefficient is O(1). Exact to round-off at any x (no grid; tests/exact/test_exact_higher_order.py): the reference ``pd-
 higher-order`` converges to, and the theory's own answer to questions such as where the deflection under a point
 load peaks (docs/models/yang.md).
 """
@@ -50,8 +50,8 @@ D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e
 D0 = np.zeros((5, 4))
 D0[[1, 3, 4], [3, 0, 1]] = 2.0, 1.0, 3.0  # s = 2 w*, g = ... + theta, e = ... + 3 theta*
 # the forcing's largest entry in the augmented generators: small beside the modal blocks (entries ~1-10), so their
-# exponential sets the Pade degree and scaling of expm (an entry of 1e14 made it lose digits; one of 1 made it 15x
-# slower)
+# exponential sets the Pade degree and scaling of expm (a very large entry would cost digits, and even one of 1
+# makes expm much slower)
 FORCING = 1e-7
 BLOCKS = {"slow": slice(0, 4), "decay": slice(4, 6), "grow": slice(6, 8)}  # the modal coordinates' blocks
 

@@ -21,7 +21,7 @@ integrated with no rigid motion (w = 0 at both ends for every z; mean u over the
     w = sin(alpha x) [f''' / alpha^2 - (2 + nu) f'] / E,    u = -cos(alpha x) (f'' + nu alpha^2 f) / (alpha E) + u0
 
 (the z-independent part of the compatibility condition, f''' / alpha - alpha^3 F - 2 alpha f' = const, is what makes
-w's integration constant drop out). Checked in tests/test_exact.py: the strains of (u, w) are those of the
+w's integration constant drop out). Checked in tests/exact/test_exact.py: the strains of (u, w) are those of the
 stresses, the face conditions hold, and for a slender strip sigma_xx tends to M z / I.
 """
 

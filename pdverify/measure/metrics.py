@@ -12,8 +12,7 @@ ROUND_OFF_LEVEL = 1e-7  # relative errors below this are round-off (eps x N^3 at
 def _norm(v: np.ndarray) -> float:
     """Euclidean norm by numpy's pairwise sum, not BLAS: the same bits whatever the number of BLAS threads,
     and no BLAS thread left spinning. (OpenBLAS threads a dot product above ~10,000 entries, and its
-    threads then spin for a while: after ``d @ d`` on 12,001 points a process used two cores, CPU/wall
-    1.99, which took the other core from the solver in a serial run.)"""
+    threads then spin for a while, taking the other core from the solver in a serial run.)"""
     return math.sqrt(float(np.add.reduce(v * v)))
 
 

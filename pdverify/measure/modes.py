@@ -21,7 +21,7 @@ from ..core.scene import HELD, ROD_HELD, Scene
 from ..exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
 from ..registry import get_model, models
 
-DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (0.05 s); ARPACK above (0.1 s at 600)
+DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (every eigenvalue, cheap); ARPACK above
 ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
 
 

@@ -1,4 +1,4 @@
-"""A study case's status from its solve's round-off bound (issue 27) and its reference's: ``suspect`` when either
+"""A study case's status from its solve's round-off bound (docs/trust.md) and its reference's: ``suspect`` when either
 passes :data:`pdverify.numerics.linalg.BOUND_LIMIT`, so no table shows such a row as a plain ``ok``."""
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Dispersion relations: frequency against wavenumber of a discrete operator's interior stencil and of the
-continuum it discretises (issue 30 item 5; the report draws them: pdverify/report/waves.py).
+continuum it discretises (the report draws them: pdverify/report/waves.py).
 
 A wave u_p = û e^{i(kx_p - ωt)} on the interior rows M u_tt = -K u of a stencil {o: C_o} (nf x nf blocks,
 :class:`~pdverify.papers.moyer.kernels.EndPatched`) gives ω² as the eigenvalues of M⁻¹ Σ_o C_o e^{i k Δ o}

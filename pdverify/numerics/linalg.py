@@ -49,8 +49,8 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
         """1-norm condition estimate ||A||_1 * est ||A^-1||_1 from the factors, rounded to 6 digits (an
         estimate has no use for 17, and sums differ in the last bit with the arrays' alignment).
         ||A^-1||_1 by Hager's method with Higham's extra test vector (the algorithm of LAPACK's dlacn2):
-        a few band solves, linear in n. (LAPACK's dgbcon does the same but measured O(n^2) here:
-        0.1 s at 20,000 unknowns, 0.39 s at 40,000; scipy's onenormest took a third of a small case.)"""
+        a few band solves, linear in n. (LAPACK's dgbcon does the same, but its time as called here grows
+        faster than n; scipy's onenormest costs a large share of a small solve.)"""
         inv = hager_inverse_norm(solve, lambda y: solve(y, 1), n)
         return float(f"{anorm * inv:.6g}") if np.isfinite(inv) else float("inf")
 
@@ -89,7 +89,7 @@ def hager_norm1(apply, apply_t, n: int, iterations: int = 5) -> float:
     return est
 
 
-BOUND_LIMIT = 1e-6  # relative round-off bound above which a result carries a warning (issue 27)
+BOUND_LIMIT = 1e-6  # relative round-off bound above which a result carries a warning (docs/trust.md)
 ENTRY_ROUNDING = 4  # relative uncertainty of each independently rounded term of a row, in units of eps: the few
 # roundings of an assembled entry (a product of the material, a power of the spacing and a stencil weight)
 
@@ -212,7 +212,7 @@ def solve_band(
     solution is that of the LU alone) and :func:`forward_error_bound` (``info["error_bound"]``, over the
     unknowns ``watch``; ``magnitude(u)``: the size of each row's independently rounded terms, default
     |B| |u| + |b|): a few extra banded solves and products, all linear in n. B's scaled band is kept
-    beside its factors for the residual (one more band of memory than before)."""
+    beside its factors for the residual (one more band of memory)."""
     from scipy.linalg import lapack
 
     b = np.asarray(b, dtype=float)
@@ -335,7 +335,7 @@ def solve_linear(
     Every solve carries ``info["error_bound"]``, :func:`forward_error_bound` over the unknowns ``watch``
     (default all; ``magnitude(u)``: the size of each row's independently rounded terms, default
     |K| |u| + |b|), and a warning when it passes ``BOUND_LIMIT``. ``refine_in_place``: refine on the
-    in-place path too (:func:`solve_band`; off by default there, as before, so its solutions are the LU's).
+    in-place path too (:func:`solve_band`; off by default there, so its solutions are the LU's).
     ``scaling``: the symmetric scaling s of
     diag(s) K diag(s) (default 1/sqrt|diag K|; a saddle-point system with zero diagonal needs its own).
     """
@@ -363,10 +363,9 @@ def solve_linear(
         u = s * u
     _require_finite(u, what)
     # Refinement against the UNSCALED matrix (so the scaling's rounding is corrected too), on by default
-    # up to 20,000 unknowns (three extra banded solves). Measured, fem-eb clamped-free vs exact-eb:
-    # 101 nodes 3.2e-9 -> 5.2e-10, 1001: 1.4e-5 -> 6.6e-6, 10001: 8.2e-2 -> 1.1e-2. It cannot remove
+    # up to 20,000 unknowns (three extra banded solves). It reduces the solve's own round-off; it cannot remove
     # the rest: the rounding of the assembled entries themselves (data error ~ cond * eps, cond ~ N^4
-    # for the fourth-order operators); see tests/test_hard_cases.py for the floor.
+    # for the fourth-order operators); see tests/verification/test_hard_cases.py for the floor.
     if refinement is None:
         refinement = n <= SMALL
     if refinement:
@@ -376,8 +375,7 @@ def solve_linear(
         condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised
         info["cond"] = _condition(K, Ks, s, solve, solve_t)  # for the record: the warning is the error bound's
-        # (cond * eps overstates the two-field forms' round-off by 1e6: fem-eb at 1001 nodes, cond 1.6e11,
-        # error 1.7e-14, bound 2.4e-11)
+        # (cond * eps overstates the two-field forms' round-off by orders of magnitude: docs/trust.md)
     return u, info
 
 

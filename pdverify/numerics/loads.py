@@ -83,10 +83,9 @@ def end_loads(scene: Scene) -> tuple[dict, dict]:
 
 def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
     """Point loads (force, moment, torque) strictly inside the first ``reach`` spacings of an end: the
-    ghost polynomial fitted there assumes a smooth solution, so such a load is under-resolved (measured:
-    pd-eb 85-300 % error for a force one spacing from the support at 101 points, 1e-4 at 1601;
-    pd-timoshenko, 201 points, L/h = 20: 59 % one spacing from a pinned end, 2 % from a clamped one,
-    0.2 % at five spacings). Flag it instead of hiding it. Positions in the scene's length unit."""
+    ghost polynomial fitted there assumes a smooth solution, so such a load is under-resolved (large errors a
+    spacing from the support: docs/models/diyaroglu.md, docs/models/moyer.md). Flag it instead of hiding it.
+    Positions in the scene's length unit."""
     dx = x[1] - x[0]
     out = []
     for i, load in enumerate(scene.loads):
@@ -104,9 +103,7 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
 def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
     """Partial loads that lie inside one point's cell [x_i - dx/2, x_i + dx/2]: the PD models place distributed loads
     by cell averages, so such a load acts on that point as a whole, moved by up to half a spacing (a first-order
-    error; measured: a 0.9 mm load on a clamped–clamped 2 m beam at 401 points, 2.9e-3 to 3.2e-3 in pd-eb,
-    pd-bond-pair, pd-higher-order and pd-timoshenko, the same at 801; 1.1e-5 to 1.1e-4 at 1601 points, where it
-    straddles two cells). Flag it."""
+    error: docs/regression.md, tests/verification/test_point_loads_anywhere.py). Flag it."""
     dx = x[1] - x[0]
     out = []
     for i, load in enumerate(scene.loads):

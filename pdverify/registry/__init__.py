@@ -5,7 +5,7 @@ A paper's package under ``pdverify.papers`` and each module of ``pdverify.exact`
 file. Models of other packages (the finite-element references of ``reference_fem`` too) arrive through the
 entry-point group ``pdverify.models`` (:mod:`pdverify.registry.plugins`). The contract a model follows
 (:class:`Model`, :class:`Option`, :class:`Rule`, :class:`System`) is :mod:`pdverify.core.contract`; it is
-re-exported here, where plug-ins have always found it.
+re-exported here, the import path plug-ins use.
 
 >>> sorted(get_model("pd-eb").supports), "dynamic" in get_model("pd-timoshenko").analyses
 (['clamped', 'free', 'guided', 'pinned', 'roller'], True)

@@ -161,7 +161,7 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
     pairwise = [log_slope(h[i : i + 2], err[i : i + 2])[0] for i in range(len(ok) - 1) if h[i + 1] != h[i]]
     n_grids = len(np.unique(h))
     order = conv[0]["observed_order"] if conv else math.nan
-    failed = [r for r in rows if r.get("status") != "ok"]  # failed, or suspect (issue 27): not in the order
+    failed = [r for r in rows if r.get("status") != "ok"]  # failed, or suspect (round-off): not in the order
     not_ok = Counter(r.get("status") for r in failed)
     messages = [f"{', '.join(f'{n} {s}' for s, n in not_ok.items())} of its {len(rows)} cases"] if failed else []
     if n_grids < MIN_GRIDS and failed and check.get("expected") == "fail":  # the documented defect: cases fail

@@ -46,7 +46,7 @@ def results_table(study: Study, rows: list[dict]):
 
 def write_results(study: Study, out: Path, rows: list[dict], table=None) -> None:
     """results.csv and results.parquet from :func:`results_table` (``table``, when built already): the
-    same bytes in every path, ~6 ms for 200 cases where the DataFrame's conversion and writes took ~9 ms."""
+    same bytes in every path, without a DataFrame's conversion."""
     table = table if table is not None else results_table(study, rows)
     if table is None:
         _save(results_frame(study, rows), out, "results")
@@ -109,10 +109,10 @@ def _rows_table(rows: list[dict], text=()):
 
 
 def _write(table, out: Path, name: str, parquet: bool = True) -> None:
-    """``name``.csv and (``parquet``) ``name``.parquet from one Arrow table: Arrow's CSV writer takes ~1 ms
-    where pandas' ``to_csv`` took 8-11 ms on a 200-case results table (the tables are on a study's critical
-    path). Arrow quotes every text value and writes an integral float without ``.0`` (``pandas.read_csv``
-    then reads such a column as integers); values are written exactly (shortest round-trip form)."""
+    """``name``.csv and (``parquet``) ``name``.parquet from one Arrow table: Arrow's CSV writer is several times
+    faster than pandas' ``to_csv`` (the tables are on a study's critical path). Arrow quotes every text value
+    and writes an integral float without ``.0`` (``pandas.read_csv`` then reads such a column as integers); values
+    are written exactly (shortest round-trip form)."""
     pa_csv.write_csv(table, out / f"{name}.csv")
     if parquet:
         pa_parquet.write_table(table, out / f"{name}.parquet")

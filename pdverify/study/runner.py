@@ -328,7 +328,7 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
     row["cond"] = info.get("cond")
     row["status"], row["message"] = "ok", ""
-    row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (issue 27)
+    row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (docs/trust.md)
     if case.reference.get("model") != "none":  # ... or the reference's: the error is measured against it
         row.update(reference_status(reference_bound(case), row))
     row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them

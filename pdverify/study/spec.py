@@ -150,7 +150,7 @@ def _text_digest(text: str) -> str:
 
 def _shared_names(path: Path, scene_objs: dict) -> list[str]:
     """Scene files of different content that share a name: the tables group a series by the scene's name, so their
-    errors would merge into one convergence series (measured: 17 support pairs of one transient gave one 'order')."""
+    errors would merge into one convergence series (the 17 support pairs of one transient would give one 'order')."""
     seen: dict[str, tuple[str, str]] = {}
     out = []
     for f, (text, sc) in scene_objs.items():

@@ -12,9 +12,8 @@ table and its curves (x, w, w_ref, rotation, point fields, time histories, load 
 
 Arrays are stored bit for bit (NaN, -0.0, subnormals included). The checksum covers the whole file
 after the lengths, so a truncated file, a flipped bit in a number or in an array, or a file of another
-kind reads as ``None`` and the case is recomputed. The format replaced a first one (JSON with base64
-arrays), which was several times slower to encode.
-Files of that first format (``<case id>.json``) are still read (:func:`case_file`, :func:`read_curve`).
+kind reads as ``None`` and the case is recomputed. Files of the first format (``<case id>.json``: JSON with
+base64 arrays, several times slower to encode) are still read (:func:`case_file`, :func:`read_curve`).
 """
 
 from __future__ import annotations
@@ -154,7 +153,7 @@ def write_all(fd: int, parts) -> None:
 
 def case_file(cases_dir: Path, case_id: str, names: set[str] | None = None) -> Path | None:
     """The record of ``case_id`` in ``cases_dir``: this format's file, else a first-format ``.json``
-    file (studies run before the change), else None. ``names``: the directory's file names when the
+    file (JSON with base64 arrays), else None. ``names``: the directory's file names when the
     caller has listed it once (a resumed study looks up every case; one listing instead of a stat each)."""
     for suffix in (SUFFIX, LEGACY_SUFFIX):
         name = case_id + suffix

@@ -1,11 +1,12 @@
-"""Manufactured solution of the curved Timoshenko–Ehrenfest beam (design note §4, quintic example).
+"""Manufactured solution of the curved Timoshenko–Ehrenfest beam (docs/design/formulas.md §4; the quintic axis of
+Curved PDDO beam 2024, §4.3).
 
 Chosen fields (x̂ = (x - x0)/(x1 - x0) on the axis' x_range, U = 1e-3 L, L the arc length), all zero at
 both ends, so the beam is clamped at both ends::
 
     u_t = U sin(pi x̂),   u_n = U sin(2 pi x̂),   phi = (U/L) sin(pi x̂) (1 - x̂)
 
-The loads follow symbolically (sympy) from the equilibrium of pdverify/models/pd_curved.py with
+The loads follow symbolically (sympy) from the equilibrium of pdverify/papers/curved/model.py with
 d/ds = (1/J) d/dx, J = sqrt(1 + y'^2), kappa = y''/J^3::
 
     N = EA (u_t' - kappa u_n),  Q = kGA (u_n' + kappa u_t - phi),  M = EI phi'

@@ -270,7 +270,7 @@ def _card(model, options: dict, p, expected: float, found: list[dict], scenes: l
 def drop_other_suite(folder: Path, model_name: str) -> None:
     """Remove ``folder`` when it holds this card's cases from another suite version (``pdverify verify MODEL (suite
     X)``): verify's own cache, stale once the suite changes, which the study runner would otherwise refuse as another
-    study's folder. Any other study there is left alone (and refused by the runner, as before)."""
+    study's folder. Any other study there is left alone (and refused by the runner)."""
     import shutil
     import tomllib
 

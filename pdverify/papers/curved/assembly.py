@@ -1,6 +1,6 @@
-"""pd-curved's collocation system (seed 004, Eq. 27–35): the mixed form with the resultants as unknowns written
-straight into a band, the three-unknown forms (primal, Eq. 14–16; mixed with the resultants substituted) as sparse
-products, and the boundary (Eq. 11–13) and interface rows both share. The model and its solve:
+"""pd-curved's collocation system (Curved PDDO beam 2024, Eq. 27–35): the mixed form with the resultants as
+unknowns written straight into a band, the three-unknown forms (primal, Eq. 14–16; mixed with the resultants
+substituted) as sparse products, and the boundary (Eq. 11–13) and interface rows both share. The model and its solve:
 :mod:`pdverify.papers.curved.model`."""
 
 from __future__ import annotations
@@ -29,10 +29,8 @@ def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, s
     # Boundary and interface conditions replace the equilibrium rows of the segment-end particles; with
     # N, Q, M as unknowns and one kinematic end in a slot, the continuity at an interface replaces the
     # constitutive row instead, on the side away from that end (else a segment between a load and a free end
-    # has only resultant conditions and a spurious discrete compatibility condition: quintic
-    # cantilever, load ending 0.22 m before the free end, 41 particles, P = 4: 170 % error). Dropping a
-    # constitutive row at the outer ends too was measured worse (clamped-clamped straight sine, P = 4,
-    # 81 particles: 7.5e-6 instead of 1.9e-6), so the outer conditions stay in the equilibrium rows.
+    # has only resultant conditions and a spurious discrete compatibility condition). At the outer ends the
+    # conditions stay in the equilibrium rows: dropping a constitutive row there too is less accurate.
     rr, rc, rv = [], [], []
     rb = {}
 

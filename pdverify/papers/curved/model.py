@@ -1,14 +1,13 @@
-"""Model ``pd-curved``: planar curved Timoshenko–Ehrenfest beam by PDDO collocation (seed 004).
+"""Model ``pd-curved``: planar curved Timoshenko–Ehrenfest beam by PDDO collocation (Curved PDDO beam 2024).
 
-The seed's equations were lost in extraction; they are restored in the design note
-(../shared/design/formulas-bondpair-curved.md §2–3) and re-derived here from virtual work (the signs
-below were checked: the virtual-work identity, the straight-beam limit against ``exact-timoshenko``
-and the closed-form semicircle of :mod:`pdverify.exact.curved`).
+The paper's printed equations are not available to pdverify; docs/design/formulas.md §2–3 writes them out, and
+they are re-derived here from virtual work (the signs below are checked: the virtual-work identity, the
+straight-beam limit against ``exact-timoshenko`` and the closed-form semicircle of :mod:`pdverify.exact.curved`).
 
 Axis r(s) (arc length s), tangent t, normal n = e_z × t, curvature κ (t' = κ n, n' = -κ t).
 Unknowns per particle: u_t, u_n (u = u_t t + u_n n) and the section rotation φ (counter-clockwise).
 
-* strains (seed Eq. 3):        ε = u_t' - κ u_n,   γ = u_n' + κ u_t - φ,   χ = φ'
+* strains (Eq. 3):             ε = u_t' - κ u_n,   γ = u_n' + κ u_t - φ,   χ = φ'
 * resultants (Eq. 4):          N = EA ε,   Q = kGA γ,   M = EI χ
 * equilibrium (Eq. 8–10):      N' - κ Q + p_t = 0,   Q' + κ N + p_n = 0,   M' + Q + m = 0
 * boundary (Eq. 11–13):        at s = L either u_t, u_n, φ given or N = F·t, Q = F·n, M = C̄;
@@ -29,7 +28,7 @@ at the ends. Two forms:
   own (six per particle: the constitutive rows ε(u) - N/EA = 0, γ(u) - Q/kGA = 0, χ(u) - M/EI = 0 at every
   particle plus the equilibrium rows). The discrete solution is the same as with them substituted
   (``unknowns = displacements``, three per particle), but the condition number no longer grows like
-  (L/h)²: semicircle, P = 6, 801 particles, L/h = 10^4: error 4.8e-11 instead of 1.1e-2 (round-off).
+  (L/h)², which keeps slender beams clear of round-off (docs/models/curved.md, Known limits).
 
 At each end particle the three boundary equations replace the three equilibrium equations (slot t
 takes u_t or N, slot n takes u_n or Q, slot φ takes φ or M): clamped u_t = u_n = φ = 0; pinned
@@ -37,7 +36,7 @@ u_t = u_n = 0, M = ±C̄; roller u_n = 0, N, M = ±(F·t, C̄); free N, Q, M = �
 N, Q = ±(F·t, F·n) (docs/supports.md).
 
 Particles are uniform by default; ``grading`` (largest / smallest spacing, ``graded_by`` curvature or ends) or
-``positions`` (arc lengths) place them non-uniformly (the seed: "not limited to uniform distributions of material
+``positions`` (arc lengths) place them non-uniformly (the paper: "not limited to uniform distributions of material
 particles"), the families keep 2m + 1 members, so each particle's horizon follows its spacing.
 
 Point loads inside the beam and the ends of a distributed load's span split the axis into segments
@@ -55,8 +54,7 @@ offset; :meth:`PDCurved.assemble_band`), which ``solve_linear`` factorises in pl
 Three modules, one idea each: the particles (axis frame, segments, uniform / graded / given distributions,
 family size, loads at the particles: :mod:`pdverify.papers.curved.particles`), the collocation system
 (:mod:`pdverify.papers.curved.assembly`), and here the model: its options, the superposed solves and the output
-map. PDDO functions: :mod:`pdverify.papers.curved.pddo`. Measured errors, orders, locking and cost:
-docs/models/curved.md.
+map. PDDO functions: :mod:`pdverify.papers.curved.pddo`. Errors, orders, locking and cost: docs/models/curved.md.
 """
 
 from __future__ import annotations
@@ -88,7 +86,10 @@ from .particles import (
 class PDCurved(Model):
     name = "pd-curved"
     title = "PDDO curved Timoshenko–Ehrenfest beam (u_t, u_n, φ), any degree"
-    source = "PDDO planar curved Timoshenko–Ehrenfest beam (seed 004; design note §2–3)"
+    source = (
+        "Curved PDDO beam 2024, A peridynamic formulation for planar arbitrarily curved Timoshenko–Ehrenfest beams "
+        "(equations: docs/design/formulas.md §2–3)"
+    )
     options = (
         Option("points", int, 101, "particles along the axis, ends included", minimum=5),
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
@@ -194,7 +195,7 @@ class PDCurved(Model):
         the constitutive and equilibrium rows (PDDO weights per particle, one band diagonal per family offset)
         and the boundary entries; the row and column scales are read and applied on the diagonals that were
         written, over the stretch that was written. The other forms (three unknowns per particle, stencils
-        of D1 D1 and D2) are assembled as sparse products, as they always were, and copied into a band."""
+        of D1 D1 and D2) are assembled as sparse products and copied into a band."""
         segs, inner, ends, m, size = self.discretise(scene, params)
         P = params["degree"]
         s = np.concatenate(segs)

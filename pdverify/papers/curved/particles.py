@@ -1,8 +1,9 @@
 """pd-curved's particles: the axis frame at the particles, the segments between load discontinuities, the
 particle distributions (uniform, graded, given positions), the family size, and the loads at the particles.
 
-Seed 004's quadrature "is not limited to uniform distributions of material particles": segments hold 2m + 1-member
-families of consecutive particles (m = :func:`default_horizon` unless given), whatever their spacing.
+The curved PDDO beam paper's quadrature "is not limited to uniform distributions of material particles": segments
+hold 2m + 1-member families of consecutive particles (m = :func:`default_horizon` unless given), whatever their
+spacing.
 """
 
 from __future__ import annotations
@@ -25,8 +26,7 @@ def axis_frame(scene: Scene, s: np.ndarray):
     """(t, n, κ, dκ/ds, x) at arc lengths s: tangent and normal (each (len(s), 2)), curvature, its slope and
     the axis abscissae x(s) (polynomial axes; None otherwise). On a polynomial axis s is inverted once
     (:func:`axis_abscissae`) and t, n, κ are the formulas of :mod:`pdverify.core.geometry` evaluated at that x
-    (``geometry.frame`` and ``geometry.curvature`` would each invert s again: 0.37 s per call at 10^4
-    particles, 8 s and 2 GB of temporaries at 10^5)."""
+    (``geometry.frame`` and ``geometry.curvature`` would each invert s again, the costly step on large grids)."""
     s = np.asarray(s, float)
     geo = geometry(scene)
     if scene.axis.type != "polynomial":
@@ -83,7 +83,7 @@ def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, densi
     """Particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all, at least ``min_points``
     per segment. ``density`` None: uniform (a uniform grid of ``points`` particles when the breaks fall on
     it). Else a pair (s_table, cumulative) of a non-decreasing measure m(s) (m(0) = 0, m(L) = 1): the
-    intervals of a segment are shared by its measure, and its particles sit at equal steps of m (the seed's
+    intervals of a segment are shared by its measure, and its particles sit at equal steps of m (the paper's
     non-uniform particles: spacing ∝ 1/ρ for m = ∫ρ ds / ∫ρ ds)."""
     edges = np.concatenate([[0.0], bps, [L]])
     out = []
@@ -202,8 +202,8 @@ def default_horizon(degree: int, form: str = "primal") -> int:
     by the end families, the condition number grows like n^4 and the error has a floor that grows with n.
     P + 1 members give the interpolating stencil (slope 2.2 / 2.66 / 3.06 at P = 6 / 8 / 10), whose weights do
     not depend on w. The primal form keeps ⌊P/2⌋ + 1: its g^2 symbol Σ_j c_j cos(jθ) stays negative at P = 6
-    (-0.096 at θ = π) and is positive there at P = 8 and 10 (0.32, 0.62), without a measured floor (straight sine,
-    P = 8: 1.2e-10 at 1601 particles; see docs/models/curved.md)."""
+    (-0.096 at θ = π) and is positive there at P = 8 and 10 (0.32, 0.62), yet its errors at P = 8 show no floor
+    (docs/models/curved.md)."""
     if form == "mixed" and degree % 2 == 0 and degree >= 6:
         return degree // 2
     return degree // 2 + 1

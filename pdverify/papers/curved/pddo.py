@@ -1,4 +1,5 @@
-"""Peridynamic differential-operator (PDDO) functions in 1D (seed 004 §3.2; design note §2).
+"""Peridynamic differential-operator (PDDO) functions in 1D (Curved PDDO beam 2024, §3.2; written out in
+docs/design/formulas.md §2).
 
 At particle k with family H_k (particles j, xi = s_j - s_k, volume V_j), the PD functions
 
@@ -10,7 +11,7 @@ scaled by delta before A is formed (A is a Hankel moment matrix and loses digits
 families are solved at once, as the equivalent weighted least-squares problem in a Legendre basis (see
 :func:`pddo_weights`): Householder QR of every family's (size x P+1) matrix, column by column with each
 step vectorised over the families (:func:`householder_solve`). Derivatives of polynomials of degree <= P
-are reproduced exactly (tests/test_pddo.py).
+are reproduced exactly (tests/papers/curved/test_pddo.py).
 
 Pure functions, arrays in, arrays out; no Python loop over particles.
 """
@@ -33,7 +34,7 @@ def cell_volumes(s: np.ndarray) -> np.ndarray:
 def families(n: int, size: int) -> np.ndarray:
     """(n, size) particle indices: a window of ``size`` consecutive particles centred on each particle
     (odd ``size``; an even one reaches one further to the right), shifted inward near the ends so every
-    family keeps ``size`` members (the seed: horizons may differ per particle)."""
+    family keeps ``size`` members (the paper: horizons may differ per particle)."""
     if size > n:
         raise ValueError(f"family of {size} particles does not fit in {n}")
     start = np.clip(np.arange(n) - (size - 1) // 2, 0, n - size)
@@ -57,10 +58,10 @@ def householder_solve(A: np.ndarray, d: np.ndarray) -> np.ndarray:
     A = Q R as LAPACK's ``dgeqr2`` (reflectors H = I - tau v v^T, v_0 = 1, beta = -sign(alpha) ||x||), then
     Q R^(-T) d for the p x r right-hand sides d (the same for every k). Returns (m, r, n).
 
-    Written as a (p)-loop over the columns with every operation vectorised over the batch: the batched
-    ``np.linalg.qr`` + ``solve`` it replaces spent its time per matrix (LAPACK calls on 7 x 5 matrices,
-    copies in and out), 0.27 s for 10^5 families; the arithmetic is the same up to the summation order
-    (round-off). ``A`` is overwritten by R (upper part) and the reflectors."""
+    Written as a (p)-loop over the columns with every operation vectorised over the batch: a batched
+    ``np.linalg.qr`` + ``solve`` spends its time per matrix (LAPACK calls on 7 x 5 matrices, copies in and
+    out); the arithmetic is the same up to the summation order (round-off). ``A`` is overwritten by R (upper
+    part) and the reflectors."""
     m, p, n = A.shape
     taus, vs = [], []
     for k in range(p):  # over the p <= 11 columns, not over particles

@@ -1,4 +1,4 @@
-"""Model ``pd-eb``: ordinary state-based PD Euler–Bernoulli beam (Diyaroglu, Oterkus & Oterkus).
+"""Model ``pd-eb``: ordinary state-based PD Euler–Bernoulli beam (Diyaroglu, Oterkus & Oterkus 2019).
 
 One transverse DOF per material point, points x_k = k dx (ends included).
 The kernels (the curvature, the paper's fictitious layers, the corrected variant's ghost points and the
@@ -27,11 +27,11 @@ The horizon factor: ``--horizon 3`` means the papers' delta = 3.015 dx in ``pape
 the third neighbour inside despite round-off, and enters d as published); in ``corrected`` the
 horizon is exactly m dx and the last member's partial volume is used.
 
-``corrected``: three changes, each measured in tests/test_pd_eb.py.
+``corrected``: three changes, each tested in tests/papers/diyaroglu/test_pd_eb.py.
 1. d calibrated on the DISCRETE family: c_j = beta_j / (j² dx² Σ beta), so kappa is exact for any
    quadratic (the paper's continuous d makes kappa too small by m / (m + 0.015) and K by its square).
 2. partial volume of the last member: beta_j = clip(m - (j - 1/2), 0, 1) (beta_3 = 1/2 for m = 3).
-3. boundaries by Taylor ghost points (design note §1): a degree-4 polynomial satisfying the support's
+3. boundaries by Taylor ghost points (docs/design/formulas.md §1): a degree-4 polynomial satisfying the support's
    conditions (clamped w = w' = 0; pinned w = 0, EI w'' = M̄; free EI w'' = M̄, EI w''' = -V̄; guided
    w' = 0, EI w''' = -V̄) is fitted to the first four real points and evaluated at 2J ghosts per end;
    end loads enter through M̄, V̄ (not as body forces), the support point's equation is w = 0.
@@ -86,7 +86,7 @@ def mirror_scene(scene: Scene) -> Scene:
 class PDEulerBernoulli(Model):
     name = "pd-eb"
     title = "ordinary state-based PD Euler–Bernoulli beam"
-    source = "Diyaroglu, Oterkus & Oterkus, PD Euler–Bernoulli beam (seed 000)"
+    source = "Diyaroglu et al. 2019, An Euler–Bernoulli beam formulation in an ordinary state-based PD framework"
     options = (
         Option("points", int, 101, "material points along the beam, ends included", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
@@ -173,7 +173,7 @@ class PDEulerBernoulli(Model):
             h² D2 (h² kappa)            = h⁴ b / a
 
         the same discrete solution as a D2 D1 (E w + e0) = b, but the matrix of fourth differences
-        (entries ~1/h⁴) is never formed, which lowers the round-off floor (tests/test_hard_cases.py).
+        (entries ~1/h⁴) is never formed, which lowers the round-off floor (tests/verification/test_hard_cases.py).
 
         Assembled straight into LAPACK's band layout (:class:`~pdverify.numerics.band.Band`): positions
         p = -J .. n-1+J, two unknowns each (kappa_p, w_p), interleaved; both equations are Toeplitz block
@@ -234,9 +234,8 @@ class PDEulerBernoulli(Model):
                     "form = 'mixed': only the corrected variant has the two-equation form; "
                     "use variant = corrected or form = direct"
                 )
-            # the banded LU eliminates from the left end: a guided end there amplifies round-off (measured,
-            # guided-clamped, mixed loads, 10,001 points: 1.5e-6 in this order, 2.2e-8 reversed; 100,001:
-            # 1.6e-3 against 3.0e-7), so such a scene is solved as its mirror image and flipped back
+            # the banded LU eliminates from the left end: a guided end there amplifies round-off by orders of
+            # magnitude on fine grids, so such a scene is solved as its mirror image and flipped back
             flip = scene.supports.left == "guided" and scene.supports.right != "guided"
             with timer("assemble"):
                 system = self.assemble(mirror_scene(scene) if flip else scene, params)

@@ -161,7 +161,7 @@ def paper_system(scene: Scene, x: np.ndarray, c: np.ndarray, a: float, A: float,
 
 
 def ghost_map(scene: Scene, n: int, dx: float, G: int, curvature_ends: bool = False):
-    """Taylor ghost points of both ends (design note §1): w_ghost = Gm w_real + g0.
+    """Taylor ghost points of both ends (docs/design/formulas.md §1): w_ghost = Gm w_real + g0.
     Returns (rows, cols, values) of the ghost rows of E in extended numbering (G ghosts, n real,
     G ghosts), the constant part e0 (length n + 2G) and the end loads handled by the ghosts.
     ``curvature_ends``: free and guided ends take their moment and shear through conditions on the

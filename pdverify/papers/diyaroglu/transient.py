@@ -1,5 +1,5 @@
 """Explicit transient of the pd-eb operator (Diyaroglu et al. Eq. 15 with damping): central differences
-on the static operator the model assembles, from rest. Time integration apart from the model (pd_eb.py)."""
+on the static operator the model assembles, from rest. Time integration apart from the model (model.py)."""
 
 from __future__ import annotations
 

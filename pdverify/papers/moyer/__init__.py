@@ -11,8 +11,12 @@ equation          what                                                          
 ================  ===============================================================  ================================
 Eq. 1–3, 13–19    the rod's bond integral I_i = Σ_j c_j (u_{i+j} + u_{i-j} - 2u_i)  ``kernels.rod_kernel``,
                                                                                    ``operator.rod_operator``
-Eq. 20–21         Taylor ghost points (fourth-order extrapolation)                 ``kernels.taylor_rows``
-Eq. 19, 54–56     the corrected rod ends (mirror images of held and loaded ends)   ``ends.rod_mirror_ghosts``
+Eq. 20–21, 53     Taylor ghost points (first or second order, from the first four  ``kernels.taylor_rows``
+                  real points)
+Eq. 19 (ends)     the corrected rod ends: mirror images of held and loaded ends    ``ends.rod_mirror_ghosts``
+                  in place of Eq. 20–21's ghosts
+Eq. 54–56         the torsion bar: the rod's bond integral for the twist θ, GJ     ``operator.rod_operator``
+                  for EA (Section 5)                                               (``kind = "torsion"``)
 Eq. 33–35         the beam's energy and its equations of motion                    ``operator.beam_operator``
 Eq. 45–50         the beam's bending and shear integrals (the shear's principal    ``kernels.shear_kernel``,
                   value, Eq. 47; the J sum, Eq. 48)                                ``operator._beam_core``

@@ -1,4 +1,4 @@
-"""The ends of the Moyer & Miraglia rod, Timoshenko beam and torsion bar (seed 001): the ghost points beyond each
+"""The ends of the Moyer & Miraglia 2014 rod, Timoshenko beam and torsion bar: the ghost points beyond each
 end as a map of the real points, w_ghost = R w_real + r0, for every support and variant.
 
 ``paper``: Taylor extrapolation of the real points (Eq. 20–21; first order at Dirichlet ends, second order with

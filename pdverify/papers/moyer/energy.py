@@ -1,6 +1,6 @@
-"""Variant ``energy`` of pd-timoshenko: the corrected beam (seed 001, :mod:`.moyer_operator`) written as the
-gradient of a discrete energy, so that its operator is symmetric and positive semi-definite in the points' volumes
-(issue 30 item 1): M⁻¹K has a real, non-negative spectrum for every support pair, horizon and slenderness, and the
+"""Variant ``energy`` of pd-timoshenko: the corrected beam (Moyer & Miraglia 2014, :mod:`.operator`) written as the
+gradient of a discrete energy, so that its operator is symmetric and positive semi-definite in the points' volumes:
+M⁻¹K has a real, non-negative spectrum for every support pair, horizon and slenderness, and the
 leapfrog step conserves a discrete energy exactly. No ghost points.
 
     U = ½ (EI/Δ) Σ_bonds ω_ab (γ_b - γ_a)²  +  ½ kGA Δ Σ_intervals ψ̄²,      W = Σ_i (b_w,i w_i + b_γ,i γ_i)
@@ -21,10 +21,10 @@ minus the 13/24 average of γ, (9, 19, -5, 1)/24 on the end intervals, the same 
 energy ½ kGA Δ Σ ψ̄². Its w rows are kGA (ψ̄_{i+1/2} - ψ̄_{i-1/2}), the PD integral I of Eq. 47 with horizon Δ:
 the local ψ that Eq. 37 puts in the γ rows is the adjoint of this shear integral only. With the horizon δ = mΔ in the
 w rows the γ rows would need ψ smoothed over the horizon, and that smoothing has no symmetric boundary rows that keep
-second order (measured: first order at L/h = 4; docs/models/moyer.md). So the horizon acts on the bending only.
+second order. So the horizon acts on the bending only.
 
 The rows are divided by the points' volumes (w: the trapezoid's; γ: V_r), which gives the per-length form of the
-other variants (:class:`~.moyer_system.Discrete`, its ``weights`` the volumes in units of Δ).
+other variants (:class:`~.system.Discrete`, its ``weights`` the volumes in units of Δ).
 """
 
 from __future__ import annotations
@@ -86,7 +86,7 @@ def end_bonds(m: int) -> tuple[np.ndarray, np.ndarray]:
     rhs[Z:] = -(outside * j**2).sum(1)
     C[Z:, nb:] = -2.0 * np.eye(Z)
     x = x0 + C.T @ np.linalg.lstsq(C @ C.T, rhs - C @ x0, rcond=None)[0]
-    if np.abs(C @ x - rhs).max() > 1e-8 or x[nb:].min() <= 0:  # measured: from m = 40 on
+    if np.abs(C @ x - rhs).max() > 1e-8 or x[nb:].min() <= 0:  # no exact fit with positive volumes (large m)
         raise InputError(
             f"horizon = {m}: variant energy finds no consistent end bonds at this horizon (horizons 1-12 are "
             "positive definite); use horizon <= 12 or variant corrected"
@@ -151,10 +151,9 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, couples: np.nda
     average of ψ, so each step is exact to the solution's error), the point couples (``couples``, per point, as in the
     γ loads) as steps after their point (as exact-timoshenko's fields), and the constant from the bond sums' moment
     (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond sums smear a
-    point couple over the horizon; with the mean, that bias was first order). Why not the bond sums themselves: near
+    point couple over the horizon, which would bias a mean to first order). Why not the bond sums themselves: near
     an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval averages)
-    differ, so the discrete γ' is first order there; the bond moment's error at a clamped end was 5.3e-2, 2.7e-2,
-    1.4e-2 of the largest moment at 101, 201, 401 points (m = 3), one-sided differences of γ gave 1.1e-2 at 201."""
+    differ, so the discrete γ' is first order there."""
     n = len(u) // 2
     steps = dx * (-scene.kGA) * (shear_strain(n, dx) @ u) - couples[:-1]
     M = np.concatenate([[0.0], np.cumsum(steps)])
@@ -200,8 +199,8 @@ def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.cs
 def definite(m: int) -> float:
     """The lowest eigenvalue of the fitted bonds' Laplacian with one end held, over its largest (on 4 Z + 2m points,
     both ends' zones and the interior between them): positive when the bending energy is positive definite. It is
-    for m = 1..12 and not from m = 13 on (an end mode of negative energy at each end, -1.4e-4 of the largest at
-    m = 13, tests/test_moyer_energy.py)."""
+    for m = 1..12 and not from m = 13 on (an end mode of negative energy at each end,
+    tests/papers/moyer/test_moyer_energy.py)."""
     n = 4 * zone(m) + 2 * m
     ev = np.linalg.eigvalsh(bending_laplacian(n, m).toarray()[1:, 1:])
     return float(ev[0] / ev[-1])
@@ -210,7 +209,7 @@ def definite(m: int) -> float:
 def energy_beam_operator(scene: Scene, n: int, m: int) -> Discrete:
     """The operator of variant ``energy`` on n points (x_i = iΔ, ends included), as a :class:`Discrete` whose rows
     are ∂U/∂u - b divided by the volumes: assembled in full on a short grid and extended by its stencil
-    (:class:`~._moyer_kernels.EndPatched`), like the other variants."""
+    (:class:`~.kernels.EndPatched`), like the other variants."""
     if definite(m) <= 0:
         raise InputError(
             f"horizon = {m}: variant energy's fitted end bonds at this horizon have an end mode of negative bending "

@@ -1,4 +1,4 @@
-"""Kernels of the Moyer & Miraglia PD rod / Timoshenko beam (seed 001): arrays in, arrays out.
+"""Kernels of the Moyer & Miraglia 2014 PD rod / Timoshenko beam: arrays in, arrays out.
 
 Quadrature weights of the peridynamic integrals for a horizon delta = m dx (integer m), the
 extension of the real points to ghost points (Taylor extrapolation as published, or a polynomial

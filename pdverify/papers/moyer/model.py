@@ -1,5 +1,5 @@
 """Models ``pd-rod``, ``pd-timoshenko``, ``pd-torsion``: micro-elastic PD rod, Timoshenko beam and
-torsion (Moyer & Miraglia, seed 001; torsion: Section 5, Eq. 54–56), static or transient.
+torsion (Moyer & Miraglia 2014; torsion: Section 5, Eq. 54–56), static or transient.
 
 The pieces, one direction of imports: :mod:`.kernels` (quadrature weights, ghost polynomials, loads, the
 end-patched stencil) -> :mod:`.system` (the discrete system and its direct solve) -> :mod:`.energy` (the beam's
@@ -11,7 +11,7 @@ history and energy ledger) -> this module (the models and :func:`simulate`).
 The beam's variants: ``energy`` (the default: the corrected equations as the gradient of a discrete energy,
 symmetric, no ghosts), ``corrected`` (collocation with ghost points: exact for cubics), ``paper`` (as published).
 
-Results: x, w, rotation = γ, fields M = EIγ' (energy: M' = V integrated, :func:`.moyer_energy.moment_field`),
+Results: x, w, rotation = γ, fields M = EIγ' (energy: M' = V integrated, :func:`.energy.moment_field`),
 V = M' = -kGA ψ (the exact models' convention), psi;
 rod: u, N = EA u'; torsion: twist, T = GJ θ'. A scene with a ``[dynamics]`` table is run in time by
 ``solve`` (option ``analysis``: auto | static | dynamic); the time histories are in info["history"]
@@ -62,13 +62,13 @@ _OPTIONS = (
 
 
 class _MoyerModel(Model):
-    source = "Moyer & Miraglia, Peridynamic solutions for Timoshenko beams (seed 001)"
+    source = "Moyer & Miraglia 2014, Peridynamic solutions for Timoshenko beams"
     options = _OPTIONS
     analyses = frozenset({"static", "dynamic"})  # the damped leapfrog-Verlet integrator (Eq. 7-11)
     end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
     assembles = True
     modes = True  # eigenproblem(): the operator of the transient and its lumped mass
-    stabilisation = STABILISATION  # κ of the scheme's stiffness-proportional damping (moyer_transient.integrate)
+    stabilisation = STABILISATION  # κ of the scheme's stiffness-proportional damping (transient.integrate)
 
     def stabilisation_for(self, scene: Scene, params: dict) -> float:
         """κ of this scene's run (the class's; the beam drops it where its closures are stable)."""
@@ -203,7 +203,7 @@ class _RodModel(_MoyerModel):
     """The rod kernel's models (axial and torsion): one field and its resultant, stiffness x the field's slope."""
 
     field, resultant = "u", "N"
-    # no stabilisation: with the mirror-image ghosts (moyer_operator.rod_mirror_ghosts) M^-1 K has a real spectrum
+    # no stabilisation: with the mirror-image ghosts (ends.rod_mirror_ghosts) M^-1 K has a real spectrum
     # for every support pair and horizon (test_dynamics), so the scheme is stable undamped; damping is only what
     # the scene asks for
     stabilisation = 0.0
@@ -316,8 +316,8 @@ class PDTimoshenko(_MoyerModel):
 
     def stabilisation_for(self, scene: Scene, params: dict) -> float:
         """0 between two mirrored ends (pinned, roller, guided) of the corrected variant: their spectrum is
-        real (moyer_operator.mirror_ghosts), so damping is only what the scene asks for."""
-        if params["variant"] == "energy":  # symmetric in the volumes: a real spectrum at every end (moyer_energy)
+        real (ends.mirror_ghosts), so damping is only what the scene asks for."""
+        if params["variant"] == "energy":  # symmetric in the volumes: a real spectrum at every end (.energy)
             return 0.0
         ends = (scene.supports.left, scene.supports.right)
         if params["variant"] == "corrected" and params["grid"] == "nodes" and all(e in MIRRORED for e in ends):
@@ -328,7 +328,7 @@ class PDTimoshenko(_MoyerModel):
         x = disc.x
         dx = x[1] - x[0]
         w, g = u[0::2], u[1::2]
-        if params["variant"] == "energy":  # M' = V integrated (moyer_energy.moment_field)
+        if params["variant"] == "energy":  # M' = V integrated (energy.moment_field)
             _, mu, _ = node_loads(scene, x, "transverse", ends_apart=True)
             M = moment_field(u, scene, params["horizon"], dx, mu * dx)
         else:

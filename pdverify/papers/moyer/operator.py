@@ -1,13 +1,13 @@
-"""The discrete operators of the micro-elastic PD rod, Timoshenko beam and torsion bar (Moyer & Miraglia,
-seed 001; torsion: Section 5, Eq. 54–56, the rod kernel with GJ and twist θ): the PD sums over the real points
+"""The discrete operators of the micro-elastic PD rod, Timoshenko beam and torsion bar (Moyer & Miraglia 2014;
+torsion: Section 5, Eq. 54–56, the rod kernel with GJ and twist θ): the PD sums over the real points
 extended by the ghost closures of each support (:mod:`.ends`) and the load vector, as a
-:class:`~.moyer_system.Discrete`.
+:class:`~.system.Discrete`.
 
 Node grid x_i = i Δ, i = 0..n-1 (ends included), horizon δ = m Δ (integer m, option ``horizon``).
 
 Rod (Section 2): ρ u_tt = ρ B I_i - c_d u_t + b with B = 2E/(δ² ρ) (Eq. 1–3) and the trapezoidal
 peridynamic integral I_i = Σ_j c_j (u_{i+j} + u_{i-j} - 2u_i), c_j = w_j / j (Eq. 13–19;
-w_j = 1, 1/2 at j = m; see ``_moyer_kernels.rod_kernel``).
+w_j = 1, 1/2 at j = m; see ``kernels.rod_kernel``).
 
 Timoshenko beam (Section 3), per unit length (w up, γ the cross-section rotation, ψ = w' - γ, Eq. 33):
 
@@ -19,10 +19,10 @@ The static problem is the same discrete operator without inertia (rows: the real
 interleaved w_0, γ_0, w_1, ...). It is assembled as written (sparse products of the ghost extension,
 ψ and the PD sums) on a short grid of the same spacing only: away from the ends every row is the same
 stencil, so the operator on any grid is that stencil plus the short grid's end rows
-(:class:`~._moyer_kernels.EndPatched`, bit-identical to the whole-grid assembly). It is written
+(:class:`~.kernels.EndPatched`, bit-identical to the whole-grid assembly). It is written
 diagonal by diagonal into a :class:`~pdverify.numerics.band.Band`, the supported DOFs held by unit rows, and
 solved by :func:`pdverify.numerics.linalg.solve_linear` (LU in place above 20,000 unknowns;
-:func:`~.moyer_system.static_solution`). :func:`~.moyer_transient.integrate` integrates the same operator
+:func:`~.system.static_solution`). :func:`~.transient.integrate` integrates the same operator
 in time with the damped leapfrog / velocity-Verlet scheme of Eq. 7–12 (38–44).
 
 Variants
@@ -34,22 +34,20 @@ at the other ends (Section 4, Eq. 53); loads at an end as body force p/(AΔ) in 
 Two printing errors had to be corrected to evaluate the sums at all: Eq. 16 gives l1 = 1 + k - m,
 which runs over 2-m..0 (division by zero at k = m-1); the trapezoid of ∫_{-mΔ}^{-Δ} needs
 l1 = k - m - 1 (as Eq. 47/48 index it), and Eq. 19's first sum then needs the minus sign of Eq. 15
-(as Eq. 48 has it). Measured weaknesses (tests/test_pd_timoshenko.py): the pure extrapolation imposes
+(as Eq. 48 has it). Its weaknesses (tests/papers/moyer/test_pd_timoshenko.py): the pure extrapolation imposes
 no traction condition at a free end (the mixed-boundary cantilever of Section 4 is singular with the
 second-order extrapolation and wrong with the first-order one) and the central-difference ψ decouples
 odd and even points (w' twice by central differences). Option ``grid = "cells"`` (paper variant,
 static) is the literal Section 4 setup: n - 1 cells of Δ = L/(n - 1), points at the cell centres, ghost
-cells by Taylor expansion about the end faces (a Dirichlet face anchored at zero); measured on Table 1:
-19.6, 14.1 and 10.6 times the exact tip deflection for m = 2, 3, 4 (order 2 between Dirichlet ends).
+cells by Taylor expansion about the end faces (a Dirichlet face anchored at zero): order 2 between Dirichlet ends,
+and on Table 1 a tip deflection many times the exact one (docs/models/moyer.md gives the numbers).
 
-``corrected`` (pd-rod's and pd-torsion's default; pd-timoshenko's is ``energy``, :mod:`.moyer_energy`; the "before"
-numbers were measured while developing it, the result is tested):
+``corrected`` (pd-rod's and pd-torsion's default; pd-timoshenko's is ``energy``, :mod:`.energy`):
 1. ψ as interval averages: ψ̄_{i+1/2} = (w_{i+1} - w_i)/Δ - (-γ_{i-1} + 13γ_i + 13γ_{i+1} - γ_{i+2})/24
    (the exact average over [x_i, x_{i+1}] for a cubic γ), I by the midpoint rule on each unit interval
    (weights 1/(j - 1/2)), K_i = 2δ (ψ̄_{i-1/2} + ψ̄_{i+1/2})/2. Compact: no odd–even decoupling. With the
-   plain mean (γ_i + γ_{i+1})/2 the shear force carries an error kGA Δ² γ''/12 that grows like (Δ/h)²
-   (measured 1.3 % on the Table 1 cantilever, 2.9 % at L/h = 100 with 201 points, clamped–free, mixed
-   loads); with the 13/24 average the tip-loaded cantilever is exact (1e-11).
+   plain mean (γ_i + γ_{i+1})/2 the shear force would carry an error kGA Δ² γ''/12 that grows like (Δ/h)²;
+   with the 13/24 average the tip-loaded cantilever is exact to round-off.
 2. ghost points at clamped and free ends from one polynomial per field (degree 3, fitted to the first 4
    real points) that satisfies the support's conditions exactly: clamped w = w_end, γ = γ_end; free
    EIγ' = M̄, kGA ψ = P̄ (end loads enter here); the end point's own equation holds where its value is not
@@ -59,11 +57,10 @@ numbers were measured while developing it, the result is tested):
    images (pinned: w odd, γ even; guided: w even, γ odd) plus the Taylor terms of the end conditions
    (pinned EIγ' = M̄, guided kGA ψ = P̄) and of the end's line load (:func:`.ends.mirror_ghosts`): the operator
    keeps the symmetry classes of the stencil, so between two such ends it has a real positive spectrum
-   (the cubic fits gave it growing modes at every horizon; issue 30).
+   (cubic fits there would give it growing modes at every horizon).
 3. at free ends the ghost ψ̄ are extrapolated from the real intervals' ψ̄ with ψ(end) =
    P̄/kGA imposed (quadratic, 4 intervals), not computed from the extrapolated w and γ, whose errors
-   would enter the shear force multiplied by kGA/Δ (uniformly loaded cantilever, 201 points: 27 % at
-   L/h = 1000 and 2700 % at 1e4 before, 3e-8 and 3e-6 after).
+   would enter the shear force multiplied by kGA/Δ, an error that grows with the slenderness.
 """
 
 from __future__ import annotations
@@ -211,7 +208,7 @@ def _grid(scene: Scene, n: int, grid: str, variant: str, name: str) -> tuple[int
 def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes") -> Discrete:
     """Static operator of the PD Timoshenko beam on the interleaved DOFs (w_0, γ_0, w_1, γ_1, ...):
     assembled in full on a short grid (:func:`_beam_core`, Eq. 45–49 as written) and extended by its
-    stencil (:class:`~._moyer_kernels.EndPatched`); variant ``energy``: :func:`.moyer_energy.energy_beam_operator`."""
+    stencil (:class:`~.kernels.EndPatched`); variant ``energy``: :func:`.energy.energy_beam_operator`."""
     if variant == "energy":
         return energy_beam_operator(scene, n, m)
     n, x = _grid(scene, n, grid, variant, "pd-timoshenko")

@@ -1,4 +1,4 @@
-"""Spectrum of the Moyer & Miraglia operators (:mod:`.moyer_operator`): the eigenvalues of M⁻¹K on the free
+"""Spectrum of the Moyer & Miraglia operators (:mod:`.operator`): the eigenvalues of M⁻¹K on the free
 DOFs that set the explicit scheme's stable step (dt_limit = 2 / ω_max) and the first natural frequency.
 """
 
@@ -16,7 +16,7 @@ def mass_scaled(disc: Discrete, free: np.ndarray) -> sp.csr_matrix:
 
 
 EIG_DOFS = 1000  # up to this many free DOFs the largest eigenvalue is computed on the whole operator (ARPACK,
-# k = 4: 0.44 s at 1,000 DOFs, 3.9 s at 5,000), above on the operator shortened to this size and the symbol
+# k = 4, whose time grows faster than the DOFs), above on the operator shortened to this size and the symbol
 
 
 def stable_time_step(disc: Discrete) -> float:
@@ -31,9 +31,9 @@ def _eig_max(disc: Discrete) -> float:
     A = mass_scaled(disc, disc.free)
     if A.shape[0] < 20:
         return float(np.abs(np.linalg.eigvals(A.toarray())).max())
-    # fixed start vector: ARPACK's default is random, which made dt (and every transient) differ
+    # fixed start vector: ARPACK's default is random, which would make dt (and every transient) differ
     # between runs in the 11th digit. Not the ones vector, and k = 4: with v0 = ones and k = 1 ARPACK
-    # missed an end mode of the rod's traction closure (m = 2, 61 points: 5.72e10 for 7.49e10)
+    # misses an end mode of the rod's traction closure (m = 2, 61 points)
     v0 = np.random.default_rng(0).standard_normal(A.shape[0])
     return float(
         np.abs(spla.eigs(A, k=min(4, A.shape[0] - 2), which="LM", return_eigenvectors=False, tol=1e-6, v0=v0)).max()
@@ -45,9 +45,8 @@ def largest_eigenvalue(disc: Discrete) -> float:
     stencil away from its end rows: its spectrum is the end modes, which are those of the same operator
     shortened to ``EIG_DOFS`` DOFs (same end rows and stencil; ARPACK), and the interior modes, bounded by
     the maximum of the stencil's symbol over the wavenumbers (:func:`pdverify.numerics.timeint.symbol_max`).
-    (The Gershgorin row-sum bound used before above 5,000 DOFs gave a dt 1.13x (m = 2) and 1.32x (m = 3)
-    too small on a clamped–clamped beam of 3,001 points.) The beam's top modes are end modes (~2x the
-    symbol's maximum at m = 3), so the short grid carries the estimate."""
+    (A Gershgorin row-sum bound would over-estimate it and so give a smaller step than needed.) The beam's top
+    modes are end modes (~2x the symbol's maximum at m = 3), so the short grid carries the estimate."""
     if disc.n_free <= EIG_DOFS:
         return _eig_max(disc)
     nf, n = disc.nf, len(disc.x)

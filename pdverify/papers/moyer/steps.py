@@ -1,4 +1,4 @@
-"""The step engines of the explicit time integration (:func:`~.moyer_transient.integrate`): one step of the
+"""The step engines of the explicit time integration (:func:`~.transient.integrate`): one step of the
 damped leapfrog / velocity-Verlet scheme (Eq. 7–11, 38–44) as one CSR product (small grids) or with the
 operator's stencil applied matrix-free block by block (large grids).
 """

@@ -1,6 +1,6 @@
-"""The discrete system of the Moyer & Miraglia PD rod / Timoshenko beam / torsion bar (seed 001): the
+"""The discrete system of the Moyer & Miraglia 2014 PD rod / Timoshenko beam / torsion bar: the
 operator on all real DOFs with its supported DOFs (:class:`Discrete`, assembled by
-:mod:`.moyer_operator`), the prescribed end motions of a scene, and the direct static solve K u = b with
+:mod:`.operator`), the prescribed end motions of a scene, and the direct static solve K u = b with
 the supported DOFs held (Section 4: the static problem is the same operator without inertia).
 """
 
@@ -44,7 +44,7 @@ def beam_prescribed(scene: Scene, n: int) -> dict:
 class Discrete:
     """The assembled operator on all real DOFs: rows r: mass_r u_tt = b_r - (K u)_r (free rows only).
 
-    K is held as an :class:`~._moyer_kernels.EndPatched` operator ``op`` (the PD sums are one stencil
+    K is held as an :class:`~.kernels.EndPatched` operator ``op`` (the PD sums are one stencil
     away from the ends, explicit rows where a family reaches a ghost point): ``band()`` gives it in
     LAPACK's band layout for the direct solve, ``K`` as CSR (small grids, eigenvalues), and the time
     stepping applies the stencil matrix-free."""
@@ -131,8 +131,8 @@ def static_system(scene: Scene, disc: Discrete) -> tuple[Band, np.ndarray, dict]
 def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tuple[np.ndarray, dict]:
     """Direct banded solve of :func:`static_system` (or the given ``system``, which is consumed: factorised
     in place above 20,000 unknowns); prescribed DOFs take their settled values. Raises SolveError when
-    the system is singular to working precision (condition estimate > 1/eps: the paper variant's pure
-    extrapolation at a free rod end, measured 1.6e18)."""
+    the system is singular to working precision (condition estimate > 1/eps: e.g. the paper variant's pure
+    extrapolation at a free rod end)."""
     B, rhs, held = static_system(scene, disc) if system is None else system
     u, info = solve_linear(B, rhs, what=what)
     cond = info.get("cond", 0.0)

@@ -1,12 +1,12 @@
-"""Transient runs of the Moyer & Miraglia rod / Timoshenko beam / torsion bar (seed 001): the damped leapfrog /
+"""Transient runs of the Moyer & Miraglia 2014 rod / Timoshenko beam / torsion bar: the damped leapfrog /
 velocity-Verlet scheme of Eq. 7–12 (38–44) from rest, its time histories (:class:`History`), the energy
 ledger sampled along the run (:mod:`pdverify.numerics.timeint`) and the blow-up message.
 
 Time stepping (both variants): the boundary closures make K non-symmetric and some modes have complex
-(or, at pinned ends with m = 1, 2 and L/h = 100, negative) ω² (tests/test_dynamics.py measures the
+(or, at pinned ends with m = 1, 2 and L/h = 100, negative) ω² (tests/papers/moyer/test_dynamics.py checks the
 spectrum); a stiffness-proportional damping β K v with β = κ dt_ref, κ = 0.2, dt_ref = 0.9 x the stable
 limit (``stabilisation``; the first mode gets ~2e-4 of critical) keeps the step map's spectral radius
-<= 1 on the small grids of the paper (1 + 2e-2 without), not on every grid. Every transient carries an
+<= 1 on the small grids of the paper (above 1 without it), not on every grid. Every transient carries an
 energy ledger (:mod:`pdverify.numerics.timeint`: kinetic, strain, load and support work, the work of the damping
 and of the stabilisation, balance) and is stopped when its stored energy outgrows the work put in.
 """
@@ -66,8 +66,8 @@ def _interp_rows(x: np.ndarray, probes: np.ndarray) -> sp.csr_matrix:
     return sp.csr_matrix((vals, (rows, cols)), shape=(len(probes), len(x)))
 
 
-WHOLE_DOFS = 4000  # up to this many DOFs a step is one CSR product: fewer numpy calls per step (measured
-# crossover with the blockwise stencil at 2,000-5,000 points; at 1e5 points the stencil is 1.7x faster)
+WHOLE_DOFS = 4000  # up to this many DOFs a step is one CSR product (fewer numpy calls per step); on larger
+# grids the blockwise stencil (StencilStep) is the faster of the two
 LEDGER_STRIDE = 200  # steps between ledger samples above WHOLE_DOFS (a sample costs ~12 steps there: <= 6 %)
 
 
@@ -104,7 +104,7 @@ def integrate(
     ``stabilisation`` κ: stiffness-proportional damping β K v^{j-1/2} with β = κ dt_ref (not in the
     paper), dt_ref = DEFAULT_SAFETY x the limit: the same β at every step (dt = dt_ref: β = κ dt).
     The boundary closures make K non-symmetric: some high modes have complex ω² and grow without it
-    (measured step-map spectral radius 1 + 2e-2 on the Table 1 cantilever, 101 points, m = 3); κ = 0.2
+    (the step map's spectral radius passes 1 on the Table 1 cantilever); κ = 0.2
     gives the highest mode ~18 % of critical and the first ~1e-4 %, and costs no extra product
     (K (u + β v)). The stable limit becomes 2 / (ω_max sqrt(1 + 2κ)) (the step map is stable while
     ω²dt² + 2βω²dt < 4: with β = 0.9κ x the limit the threshold is 1.017 x the limit at
@@ -131,8 +131,7 @@ def integrate(
     ledger = energy_ledger(disc, supports.ledger_K(apply_K), gains, clock.dt, clock.kappa)
     supports.start(st)
     # from rest: v^0 = 0 with the loads acting from t = 0, so v^{-1/2} = -dt/2 a^0 (second order; Eq. 12's
-    # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state:
-    # measured 2.5e-3 at 0.1 of the step on a clamped rod, first order in dt)
+    # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state)
     V0 = -0.5 * clock.dt * clock.dt * disc.b / disc.mass
     V0[gains.pres_dofs] = 0.0
     st.start(V0)

@@ -4,12 +4,12 @@ Every bond xi from a point is paired with its opposite -xi through a rotational 
 ``w(xi) = omega(xi) alpha [1 + cos theta]`` (theta = deformed angle between the two bonds; the force
 state of Eq. 2 is its gradient). For small deflections 1 + cos theta ≈ Δ²/2 with
 Δ = (w_{k+j} - 2 w_k + w_{k-j}) / xi_j, so the bending energy per point is
-Σ_j ½ alpha omega_j beta_j dx (Δ_j)² dx and its gradient per unit length is (design note §1)::
+Σ_j ½ alpha omega_j beta_j dx (Δ_j)² dx and its gradient per unit length is (docs/design/formulas.md §1)::
 
     Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j}) = q_k,   c_j = alpha omega_j beta_j dx / xi_j²
 
 (= EI w'''' + O(delta²) w^(6)). omega = 1. alpha from energy equivalence with Euler–Bernoulli bending
-under uniform curvature (reconstructed in the design note, the seed is truncated there):
+under uniform curvature (docs/design/formulas.md §1; the paper's extracted text ends after Eq. 2):
 
 * ``paper``: the continuous horizon integral, alpha = EI / ∫_0^delta xi² dxi = 3 EI / delta³ with the
   full family volumes (delta = (m + 0.015) dx as in the other papers);
@@ -21,8 +21,8 @@ The stencil reaches 2J points past an end. Ends (``ends`` option):
 pinned = point reflection through the support, guided = reflection through the support's vertical,
 free = cubic extrapolation, end points' energy halved; the linear path is the tangent stiffness of that
 energy at the undeformed state, the nonlinear path its Newton solution) or ``taylor`` (the degree-4
-polynomial ghost points of ``pd_common.taylor_ghosts``, end loads through the moment and shear at the end;
-solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
+polynomial ghost points of :func:`pdverify.numerics.ghosts.taylor_ghosts`, end loads through the moment and shear
+at the end; solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
 """
 
 from __future__ import annotations
@@ -171,7 +171,10 @@ def mixed_band(npos: int, Jk: int, st: np.ndarray, rows, cols, vals, cleared) ->
 class PDBondPair(Model):
     name = "pd-bond-pair"
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
-    source = "O'Grady & Foster 2014 (seed 003) + design note §1 (alpha calibration, ghost rules)"
+    source = (
+        "O'Grady & Foster 2014, Peridynamic beams: a non-ordinary, state-based model (alpha calibration and ghost "
+        "rules: docs/design/formulas.md §1)"
+    )
     options = (
         Option("points", int, 201, "material points along the beam, ends included", minimum=5),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing", minimum=1.0),
@@ -201,15 +204,16 @@ class PDBondPair(Model):
         Rule(
             (("variant", "paper"),),
             "horizon",
-            "seed 003 alpha = 3 EI / delta^3 with delta = (m + 0.015) dx over "
-            "whole families of m points; use variant = corrected for a fractional horizon",
+            "O'Grady & Foster 2014 as reconstructed in docs/design/formulas.md §1: alpha = 3 EI / delta^3 with "
+            "delta = (m + 0.015) dx over whole families of m points; use variant = corrected for a fractional "
+            "horizon",
             whole=True,
         ),
         Rule(
             (("variant", "paper"),),
             "ends",
-            "the paper's continuous alpha goes with the mirror (reflection) ghosts "
-            "of seed 000; Taylor ghosts carry the true EI (design note §1); use ends = mirror",
+            "the paper's continuous alpha goes with the mirror (reflection) ghosts of Diyaroglu et al. 2019; "
+            "Taylor ghosts carry the true EI (docs/design/formulas.md §1); use ends = mirror",
             allowed=("mirror",),
         ),
     )
@@ -394,9 +398,9 @@ class PDBondPair(Model):
             Jk = binfo.pop("Jk")
             with timer("solve"):
                 # the condition number of the two-equation matrix grows like N^4 but is no bound on its
-                # round-off (measured: 1e-13 at 101 points against a cond eps of 1e-5), so it is not
-                # estimated; the round-off estimate is 0.1 eps N^2 (measured 0.01-1 of it at 10^5-10^6
-                # points, every support pair, mixed loads: tests/test_bond_pair_large.py)
+                # round-off (which stays far below cond eps), so it is not estimated; the round-off estimate
+                # 0.1 eps N^2 holds the errors at 10^5-10^6 points, every support pair, mixed loads
+                # (tests/papers/ogrady/test_bond_pair_large.py; docs/models/ogrady.md)
                 z, info = solve_linear(system.matrix, system.rhs, what=what + ", mixed form", condition=False)
                 w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
             info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2

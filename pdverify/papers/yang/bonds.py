@@ -1,8 +1,8 @@
-"""Bond kernels of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020, seed 002): the coefficients of Eq. 9 /
+"""Bond kernels of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020): the coefficients of Eq. 9 /
 Eq. 15, the five bond measures (Eq. 14a-f and the corrected variant's centred and along-the-bond shear
 measures), the bond weights (Eq. 14; partial volumes; the discrete calibration), the block-banded stiffness
 (Eq. 15's Hessian), its interior stencil and the energy it is the Hessian of. Arrays in, arrays out; the model,
-its variants and their reasons are in pd_higher_order.py."""
+its variants and their reasons are in model.py."""
 
 from __future__ import annotations
 

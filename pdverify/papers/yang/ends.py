@@ -1,7 +1,7 @@
-"""Ends and loads of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020, seed 002): Appendix B's mirror images
+"""Ends and loads of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020): Appendix B's mirror images
 (Eq. B39-B41), polynomial ghost points (``ends = taylor``), the end conditions and their constraint maps, the
 volumes of the extended grid, and the load vector (Eq. 16b; ``loads = faces``). The model, its variants and
-their reasons are in pd_higher_order.py."""
+their reasons are in model.py."""
 
 from __future__ import annotations
 
@@ -95,7 +95,7 @@ def end_conditions(
 ) -> tuple[list, list]:
     """(drop, tie): the DOFs held at zero and the ties (slave, master, c), u_slave = c u_master, of the end
     conditions. clamped: theta = theta* = w = w* = 0 (the end face fixed; ``clamp = layer``: w* left free, its
-    zero enforced through the layer spring of :mod:`._higher_order_layer`); guided: theta = theta* = 0;
+    zero enforced through the layer spring of :mod:`.layer`); guided: theta = theta* = 0;
     pinned: w = 0 and, in the paper, w* = 0 (Eq. B41's antisymmetric w*); ``pin = face``: w = -h^2/20 w*
     instead (zero parabola-weighted mean deflection of the end face); free: nothing. Paper mirrored about the
     boundary (``about = "boundary"``): clamped w(1) = w*(1) = 0 on the first point (Eq. B39; theta, theta*

@@ -1,4 +1,4 @@
-"""Model ``pd-higher-order``: PD higher-order beam (Yang, Oterkus & Oterkus 2020, seed 002).
+"""Model ``pd-higher-order``: PD higher-order beam (Yang, Oterkus & Oterkus 2020).
 
 (This docstring of the paper's equations and the two variants' option list are most of the module; the bond
 kernels, end conditions, band assembly, clamp layer and outputs live in ``bonds``, ``ends``, ``operator``,
@@ -22,7 +22,7 @@ Per bond k -> j, xi = x_j - x_k, five bond measures, each ~ (a derivative) * xi 
 with omega_kj = V_j / (delta^2 A |xi|) in the paper (Eq. 14: (1/delta^2 A) Σ ... / |xi| V_j).
 The static equations are the Euler–Lagrange equations of Eq. 20–21 without inertia:
 dU/du_k = b_k V_k, i.e. K u = F with K = Σ_k V_k d^2 W_k / du^2 (``bond_block`` per bond). Eq. 22c–d
-(legible) are rows of this K (checked symbolically in tests/test_pd_higher_order.py); Eq. 22a–b are
+(legible) are rows of this K (checked symbolically in tests/papers/yang/test_pd_higher_order.py); Eq. 22a–b are
 damaged in the source and are taken from the energy instead. Loads (Eq. 16b): b_z on w, b_theta on
 theta; a point force P gives F_w = P, a ccw point moment C gives F_theta = -C (the paper's theta is
 minus the counter-clockwise rotation: gamma = theta + w' vanishes for w' = ccw rotation).
@@ -31,7 +31,7 @@ Variants
 --------
 ``paper`` (faithful): delta = (m + 0.015) dx, omega = 1/(delta^2 A |xi|) V_j (Eq. 14) for the members
 j = 1..J each side. Family volumes (option ``volumes``): ``partial`` (default) is the authors' convention
-(Oterkus/Madenci, reference [17] and the sister paper seed 000's "volume correction"): a member with
+(Oterkus/Madenci, reference [17] and the sister paper Diyaroglu et al. 2019's "volume correction"): a member with
 delta - dx/2 < xi < delta + dx/2 gets the volume fraction beta = (delta + dx/2 - xi)/dx, so at 3.015 dx the
 third neighbour carries 0.515 and Σ_j omega xi^2 = 2 Σ beta_d d / (delta/dx)^2 = 9.09/9.090225, i.e. the
 continuous integral of Eq. A30 (δ^2) to 2.5e-5; ``full`` gives every member inside delta a whole cell,
@@ -50,7 +50,7 @@ those of Eq. 22 at the real points, the fictitious DOFs substituted by their ima
 system). Loads on the mid-surface (Eq. 16b) while the plane-stress reference loads the top face: the
 simply supported benchmarks differ from it by that, not by the operator (option ``loads = faces``).
 
-``corrected`` (default), each change measured in tests/test_pd_higher_order.py:
+``corrected`` (default), each change tested in tests/papers/yang/test_pd_higher_order.py:
 1. micro-modulus calibrated on the discrete family of each point: omega_kj = beta_j / (|xi| S_k),
    S_k = Σ_j beta_j |xi_j| over the actual family (partial volume beta = 1/2 for the member at
    delta = m dx), so every W_k is exact for linear fields, also on truncated families near the ends
@@ -63,7 +63,7 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    measures cannot all vanish for a cubic w (trapezoid errors ~ xi^3 w'''/12 that differ bond by bond), a
    penalty ~ (G/E) xi^4 / (h L)^2 times the bending energy: shear locking once dx is many depths. Summed over
    the segments every bond's g is a sum of nearest-neighbour measures, which can all vanish together
-   (no locking); for smooth fields g = xi (w' + theta) + O(xi dx^2) as before;
+   (no locking); for smooth fields g = xi (w' + theta) + O(xi dx^2) as with theta_k alone;
 3. no fictitious points (option ``ends = truncated``): the discrete energy U = Σ_k V_k W_k with
    trapezoidal volumes (dx/2 at the ends) is minimised with the essential conditions on the end point
    (clamped theta = theta* = w = w* = 0: the whole end face fixed; guided theta = theta* = 0; pinned
@@ -84,21 +84,20 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    the sum of sub-beams sharing each loaded point, each with its own patch-test end layers, so no bond averages
    the kink of w* (and of the shear) under a concentrated load; loads exactly on a point, at least 4J + 1
    spacings from the ends and from each other;
-7. the clamp's w* condition through its boundary layer (option ``clamp = layer``, :mod:`._higher_order_layer`):
+7. the clamp's w* condition through its boundary layer (option ``clamp = layer``, :mod:`.layer`):
    w* = 0 on the clamped face makes a layer ~0.1 h wide; held on the end point it acts over dx/2 instead (first
    order once dx is many layer widths: every slender beam). w* of the end point is free, tied to zero by the
    spring whose series with the grid's own layer has the continuous layer's stiffness; the face condition where
    the grid resolves the layer.
-Measured orders: docs/models/yang.md.
+Orders of convergence and errors: docs/models/yang.md.
 
 Cost: the operator is assembled straight into LAPACK's band layout (:mod:`.operator`):
 the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
 the rows of the ~2J points next to each end (truncated or ghost families, end volumes, Appendix B's images,
 end conditions) from the exact sparse route on a small window, the end conditions as unit rows
-(``Band.fix``); the band is factorised in place above 20,000 unknowns. ``pdverify bench`` (cantilever,
-100,000 points, 400,000 DOFs): assembly 0.02 s, whole run 1.2x the bare banded solve of the same matrix
-(was 7x: 0.6 s of sparse products and CSR bookkeeping). The assembled entries are the same bits as the
-whole-grid sparse route (tests/test_pd_higher_order.py).
+(``Band.fix``); the band is factorised in place above 20,000 unknowns, so the banded solve is most of a run's
+time (``pdverify bench -m pd-higher-order``; docs/models/yang.md). The assembled entries are the same bits as the
+whole-grid sparse route (tests/papers/yang/test_pd_higher_order.py).
 """
 
 from __future__ import annotations
@@ -123,7 +122,7 @@ from .outputs import point_load_warnings, reactions, section_stresses
 class PDHigherOrder(Model):
     name = "pd-higher-order"
     title = "PD higher-order beam (theta, theta*, w, w* per point)"
-    source = "Yang, Oterkus & Oterkus 2020, Peridynamic higher-order beam formulation (seed 002)"
+    source = "Yang et al. 2020, Peridynamic higher-order beam formulation"
     theory = "higher-order"
     options = (
         Option(
@@ -183,8 +182,8 @@ class PDHigherOrder(Model):
             "point",
             "paper variant's fictitious layers (ends = mirror): point (points at the ends, "
             "images about the end point, which is held: the material point at the support, as in Appendix B's text "
-            "and seed 000) | boundary (cell-centred points, images about the boundary half a spacing beyond "
-            "point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
+            "and Diyaroglu et al. 2019) | boundary (cell-centred points, images about the boundary half a spacing "
+            "beyond point 1, clamped w(1) = w*(1) = 0, Eq. B39-B41 read with 1' distinct from 1)",
             choices=("boundary", "point"),
         ),
         Option(
@@ -222,8 +221,8 @@ class PDHigherOrder(Model):
         Rule(
             _PAPER,
             "horizon",
-            "Eq. 14: delta = (m + 0.015) dx, full volumes over whole families of m points; "
-            "use variant = corrected for a fractional horizon",
+            "Eq. 14: delta = (m + 0.015) dx over families of m points (option volumes: partial, the default, or "
+            "full); use variant = corrected for a fractional horizon",
             whole=True,
         ),
         Rule(

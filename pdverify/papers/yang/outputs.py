@@ -1,4 +1,4 @@
-"""Engineering outputs of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020, seed 002): stresses through the
+"""Engineering outputs of ``pd-higher-order`` (Yang, Oterkus & Oterkus 2020): stresses through the
 section at chosen stations (Eq. 6a-c), the support reactions (K u - b at the held DOFs) and the warnings of
 interior point loads. Kept apart from the model's assembly (model.py, operator.py) because they only read a
 solution and the scene.
