@@ -20,7 +20,7 @@ import scipy.sparse as sp
 
 from ...core.errors import SolveError
 from ...core.result import columns_csv
-from ...numerics.timeint import EnergyLedger, ledger_columns
+from ...numerics.timeint import EnergyLedger, ledger_columns, step_count
 from .kernels import motion_value
 from .spectrum import first_frequency, mass_scaled, stable_time_step
 from .steps import StencilStep, WholeStep
@@ -120,7 +120,10 @@ def integrate(
     Implementation: with V = dt v^{j+1/2} the step is y = u + κ V, V <- α V + G (b - K y), u <- u + V
     with G = (1 - c/2) dt²/m per DOF (zero on prescribed DOFs); K y is one CSR product up to
     ``WHOLE_DOFS`` unknowns, else the operator's stencil applied block by block (:class:`StencilStep`)."""
+    given = dt is not None
     dt, limit, kappa, damping, omega1 = time_step(disc, dt, damping, damping_ratio, safety, stabilisation)
+    if steps is None:  # before any step: a run the machine cannot finish is refused (exit 2)
+        steps = step_count(t_end, dt, "time_step" if given else "default", limit)
     steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
     clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
     probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
