@@ -191,8 +191,7 @@ class _MoyerModel(Model):
             info.update(sinfo, analysis="static")
             inner = [h for h in R if h.label.startswith("inner")]  # (ends' reactions are in the end rows' values)
             extra["reactions"] = [
-                (h.position, R[h] if h.reaction == "force" else 0.0, R[h] if h.reaction == "moment" else 0.0)
-                for h in inner
+                (h.position, R[h] if h.slot == 0 else 0.0, R[h] if h.slot == 1 else 0.0) for h in inner
             ]
             extra["kinks"] = kinks
             ends, method = self.end_reactions(scene, params, disc, u, loads, extra["reactions"], kinks)

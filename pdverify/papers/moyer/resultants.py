@@ -23,20 +23,25 @@ from ...core.scene import Distributed, PointForce, PointMoment, Scene
 _GAUSS = np.polynomial.legendre.leggauss(8)
 
 
-def interval_moments(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(A, B) per interval [x_i, x_{i+1}] of the distributed loads' transverse line load q: A = ∫ q ds and
-    B = ∫ (s - x_i) q ds (8-point Gauss on the part of each interval inside each load's span)."""
+COMPONENT = {"transverse": "value", "axial": "axial", "torque": "torque"}
+
+
+def interval_moments(scene: Scene, x: np.ndarray, component: str = "transverse") -> tuple[np.ndarray, np.ndarray]:
+    """(A, B) per interval [x_i, x_{i+1}] of the distributed loads' line load q (``component``: transverse, axial or
+    torque): A = ∫ q ds and B = ∫ (s - x_i) q ds (8-point Gauss on the part of each interval inside each load's
+    span)."""
     lo, hi = x[:-1], x[1:]
     A, B = np.zeros(len(lo)), np.zeros(len(lo))
     g, gw = _GAUSS
     for load in scene.loads:
-        if not isinstance(load, Distributed) or load.value == 0.0:
+        v = getattr(load, COMPONENT[component], 0.0) if isinstance(load, Distributed) else 0.0
+        if v == 0.0:
             continue
         a, b = scene.span(load)
         s0, s1 = np.clip(lo, a, b), np.clip(hi, a, b)
         half = (s1 - s0) / 2
         s = (s0 + s1)[:, None] / 2 + half[:, None] * g[None, :]
-        q = load.value * scene.load_shape(load, s)
+        q = v * scene.load_shape(load, s)
         A += (q * gw).sum(1) * half
         B += (q * (s - lo[:, None]) * gw).sum(1) * half
     return A, B
@@ -55,11 +60,16 @@ def point_loads(scene: Scene, extra=()) -> tuple[list, list]:
     return forces, couples
 
 
-def shear_at_points(Vbar: np.ndarray, x: np.ndarray, scene: Scene, forces: list) -> np.ndarray:
-    """V at the points from the intervals' V̄ (module docstring)."""
+def shear_at_points(
+    Vbar: np.ndarray, x: np.ndarray, scene: Scene, forces: list, component: str = "transverse", sign: float = 1.0
+) -> np.ndarray:
+    """V at the points from the intervals' V̄ (module docstring); a rod's N (``component`` axial) or a bar's T
+    (torque) with ``sign`` = -1: N' = -p."""
     dx = x[1] - x[0]
     L = x[-1]
-    A, B = interval_moments(scene, x)
+    A, B = interval_moments(scene, x, component)
+    A, B = sign * A, sign * B
+    forces = [(at, sign * P) for at, P in forces]
     V = np.empty(len(x))
     V[1:] = Vbar + B / dx  # from the interval before each point
     V[0] = Vbar[0] - (dx * A[0] - B[0]) / dx  # the left end from the first interval
@@ -87,3 +97,12 @@ def moment_steps(Vbar: np.ndarray, x: np.ndarray, couples: list) -> np.ndarray:
         else:
             steps[0] -= C
     return np.concatenate([[0.0], np.cumsum(steps)])
+
+
+def stepped(rows_force: np.ndarray, local: np.ndarray) -> np.ndarray:
+    """The intervals' resultant from the forces each point's equation balances (``rows_force``, per point, in force
+    units): stepped interval by interval, which is the discrete equilibrium whatever the model's sums reach, its
+    constant the median of its difference from ``local`` (the intervals' resultant from the local strain: right away
+    from loads and supports, where the median looks)."""
+    steps = np.cumsum(rows_force[:-1])
+    return steps + np.median(local - steps)

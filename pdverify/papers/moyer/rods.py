@@ -6,10 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.errors import InputError
-from ...core.scene import ROD_HELD, Scene
+from ...core.scene import ROD_HELD, PointForce, PointTorque, Scene
 from .base import _MoyerModel
 from .operator import rod_operator
-from .pieces import holds_somewhere, piece_stiffness
+from .pieces import bond_stiffness, holds_somewhere
+from .resultants import shear_at_points, stepped
 
 
 class _RodModel(_MoyerModel):
@@ -24,28 +25,35 @@ class _RodModel(_MoyerModel):
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
         raise NotImplementedError
 
-    def stiffness_at(self, scene, x) -> np.ndarray | float:
-        """The stiffness (EA, GJ) at the points x (segments: each point's segment, an interface's right one)."""
-        if scene.uniform:
-            return self.stiffness(scene)
-        out = np.empty(len(x))
-        for a, _, S in piece_stiffness(scene, "EA" if self.unknowns == "axial" else "GJ"):
-            out[x >= a] = S
-        return out
+    @property
+    def key(self) -> str:
+        return "EA" if self.unknowns == "axial" else "GJ"
 
     def end_reactions(self, scene, params, disc, u, loads, inner, kinks):
-        """-N(0) and N(L) (T for the bar): the mirror-image ghosts carry the end's force, so the held end's row
-        holds no reaction."""
-        x = disc.x
-        R = self.stiffness_at(scene, x) * np.gradient(u, x[1] - x[0], edge_order=2)
-        R = np.broadcast_to(R, x.shape)
+        """-N(0) and N(L) (T for the bar) of the resultant field: the mirror-image ghosts carry the end's force, so
+        the held end's row holds no reaction."""
+        R = self.from_solution(scene, params, disc, u, {}, {}, None, {}, reactions=inner).fields[self.resultant]
         key = "axial" if self.unknowns == "axial" else "torque"
         return {("left", key): float(-R[0]), ("right", key): float(R[-1])}, "the resultant at the ends"
 
     def from_solution(self, scene, params, disc, u, fields, info, timer, writers, reactions=(), kinks=()):
+        """The result: u (twist) and its resultant N (T) at the points from the flux of the bonds across each cut
+        between two points, which every point's equation steps by its load (the cumulative sum of K u, anchored by
+        the median of EA Δu/Δ over the intervals; within a horizon of an end, where the ghosts' bonds cross the cuts
+        too, EA Δu/Δ itself), to the points by the loads between them (:mod:`.resultants`); ``reactions``: the inner
+        supports' and springs' (position, force, 0)."""
         x = disc.x
-        slope = np.gradient(u, x[1] - x[0], edge_order=2)
-        fields = dict(fields, **{self.field: u, self.resultant: self.stiffness_at(scene, x) * slope})
+        dx = x[1] - x[0]
+        stiff = self.stiffness(scene) if scene.uniform else bond_stiffness(scene, x[:-1], x[1:], self.key)
+        local = stiff * np.diff(u) / dx
+        Nbar = stepped(-(disc.op @ u) * dx, local)
+        ends = np.minimum(np.arange(len(local)), np.arange(len(local))[::-1]) <= params["horizon"]
+        Nbar[ends] = local[ends]  # the ghosts' bonds cross the cuts there: the local strain
+        component = "axial" if self.unknowns == "axial" else "torque"
+        forces = [(ld.position, v) for ld in scene.loads if (v := _point_value(ld, component))]
+        forces += [(at, f) for at, f, _ in reactions if f]
+        N = shear_at_points(Nbar, x, scene, forces, component, sign=-1.0)
+        fields = dict(fields, **{self.field: u, self.resultant: N})
         return self.new_result(
             scene,
             params,
@@ -53,10 +61,17 @@ class _RodModel(_MoyerModel):
             np.zeros_like(x),
             fields=fields,
             dofs=disc.n_free,
-            timings=timer.timings,
+            timings=timer.timings if timer is not None else {},
             info=info,
             writers=writers,
         )
+
+
+def _point_value(load, component: str) -> float:
+    """A point load's axial force (``component`` axial) or torque (torque); 0 for other loads."""
+    if component == "axial":
+        return load.axial if isinstance(load, PointForce) else 0.0
+    return load.value if isinstance(load, PointTorque) else 0.0
 
 
 class PDRod(_RodModel):
