@@ -1,5 +1,7 @@
-"""HTML report: renders in headless Chromium with no console errors, links resolve, numbers trace to
-results.csv, and re-running gives the same HTML apart from the timestamp."""
+"""HTML report: the summary first, figures that show errors (every scene's error along the beam, every
+convergence series' log-log plot), units on every axis and column; it renders in headless Chromium with no
+console errors, links resolve, numbers trace to results.csv, and re-running gives the same HTML apart from the
+timestamp."""
 
 import json
 import os
@@ -17,6 +19,7 @@ from helpers import ROOT
 import pdverify.core.errors
 from pdverify.report import build_report
 from pdverify.report.build import fmt
+from pdverify.report.tables import cell_text
 from pdverify.study import load_study, run_study
 
 
@@ -37,15 +40,39 @@ def study_dir(tmp_path_factory):
 
 
 class Links(HTMLParser):
+    """The links of a page, its inline SVG figures (paper pages) and its figures drawn from data (the index)."""
+
     def __init__(self):
         super().__init__()
-        self.hrefs, self.svgs = [], 0
+        self.hrefs, self.svgs, self.figures, self.ids = [], 0, [], set()
+        self._json = False
 
     def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if "id" in a:
+            self.ids.add(a["id"])
         if tag == "a":
-            self.hrefs.append(dict(attrs).get("href"))
+            self.hrefs.append(a.get("href"))
         if tag == "svg":
             self.svgs += 1
+        if tag == "figure" and "pfig" in a.get("class", ""):
+            self.figures.append({"attrs": a})
+        self._json = tag == "script" and a.get("type") == "application/json"
+
+    def handle_data(self, data):
+        if self._json:
+            self.figures[-1]["spec"] = json.loads(data)
+            self._json = False
+
+
+def figures_of(page: str) -> list[dict]:
+    """The index's figures: each one's attributes, its data (axes, series) and its title."""
+    p = Links()
+    p.feed(page)
+    titles = re.findall(r'<figure class="pfig[^"]*"[^>]*>.*?<div class="ftitle">(.*?)</div>', page, flags=re.S)
+    for f, t in zip(p.figures, titles, strict=True):
+        f["title"] = t
+    return p.figures
 
 
 def resolves(study_dir, page, href) -> bool:
@@ -59,14 +86,110 @@ def resolves(study_dir, page, href) -> bool:
 
 @pytest.mark.slow
 def test_links_resolve_and_figures_present(study_dir):
+    """Every link of the index resolves; its figures are data drawn by the page (3 scenes' errors, 6 convergence
+    series, 3 work-precision plots), every one with axes and at least one line; nothing is loaded from a URL."""
     page = (study_dir / "index.html").read_text()
     p = Links()
     p.feed(page)
-    assert p.svgs >= 5  # 3 deflection + 3 convergence + speed/error
+    figs = figures_of(page)
+    assert len(figs) >= 12 and all(f["spec"]["s"] and f["spec"]["x"]["l"] and f["spec"]["y"]["l"] for f in figs)
     for h in p.hrefs:
         assert resolves(study_dir, page, h), h
     # no network requests: nothing is loaded from a URL (XML namespaces are names, not requests)
     assert not re.search(r'(src|href)="(https?:)?//', page) and "url(http" not in page
+    assert "<svg" not in page.split("<script>")[0]  # no inline SVG: the page draws its figures
+
+
+def test_the_summary_comes_first_and_links_to_its_evidence(study_dir):
+    """The first section is the summary: one row per model and variant with its observed orders (linking to its
+    convergence plots), its worst error at the finest grid (linking to that scene's error figure) and the cost
+    (linking to that scene's work-precision figure); then the papers' benchmarks."""
+    page = (study_dir / "index.html").read_text()
+    sections = re.findall(r'<h2 id="([^"]+)"', page)
+    assert sections[:2] == ["summary", "benchmarks"]
+    summary = page[page.index('id="summary"') : page.index('id="benchmarks"')]
+    rows = re.findall(
+        r'<tr class="f [^"]*" data-model="([^"]*)" data-variant="([^"]*)".*?</td><td class="l">(.*?)</td>', summary
+    )
+    assert sorted(rows) == [
+        ("fem-eb", "", "defaults"),
+        ("pd-eb", "corrected", "variant=corrected"),
+        ("pd-eb", "paper", "reading=layer, variant=paper"),
+        ("pd-eb", "paper", "reading=literal, variant=paper"),
+        ("pd-eb", "paper", "variant=paper"),
+    ]
+    p = Links()
+    p.feed(page)
+    for anchor in ("conv-pd-eb-corrected", "conv-pd-eb-paper", "scene-", "wp-"):
+        links = re.findall(rf'href="#({anchor}[^"]*)"', summary)
+        assert links and all(a in p.ids for a in links), anchor
+    # the numbers: the corrected variant's fitted orders, but for a series at round-off on every grid (clamped-free:
+    # the corrected operator reproduces its cubic deflection, so refining only adds round-off: a "slope" of -2)
+    from pdverify.report.summary import ROUND_OFF
+
+    conv = pd.read_csv(study_dir / "convergence.csv")
+    conv = conv[conv["variant"] == "corrected"]
+    exact = [max(float(e) for e in errors.split()) < ROUND_OFF for errors in conv["errors"]]
+    assert exact.count(True) == 1
+    lo, hi = conv[[not x for x in exact]]["observed_order"].agg(["min", "max"])
+    text = f"{lo:.2f}" if f"{lo:.2f}" == f"{hi:.2f}" else f"{lo:.2f} to {hi:.2f}"
+    assert f'href="#conv-pd-eb-corrected">{text}</a>' in summary
+
+
+def test_every_scene_has_its_error_along_the_beam_on_a_log_axis(study_dir):
+    """Per scene a figure of |w - w_ref| along the beam: a log vertical axis with its unit, one line per model and
+    variant at its finest grid (their values are |w - w_ref| of the case file)."""
+    from pdverify.study.store import case_file, read_curve
+
+    page = (study_dir / "index.html").read_text()
+    res = pd.read_csv(study_dir / "results.csv")
+    figs = [f for f in figures_of(page) if f["title"].endswith("error along the beam")]
+    assert sorted(f["attrs"]["data-scene"] for f in figs) == sorted(res["scene"].unique())
+    for f in figs:
+        spec = f["spec"]
+        assert spec["y"]["log"] == 1 and spec["y"]["l"] == "|w − w_ref| (m)" and spec["x"]["l"] == "x (m)"
+        rows = res[res["scene"] == f["attrs"]["data-scene"]]
+        finest = rows.sort_values("points").groupby(["model", "options"]).tail(1)
+        assert len(spec["s"]) == len(finest)
+        assert all(s["m"] in set(finest["model"]) and "n=" in s["n"] for s in spec["s"])
+        # the line of fem-eb's finest grid is its error, to the digits drawn
+        r = finest[finest["model"] == "fem-eb"].iloc[0]
+        c = read_curve(case_file(study_dir / "cases", r["case_id"]))
+        line = next(s for s in spec["s"] if s["m"] == "fem-eb")
+        err = np.abs(c["w"] - c["w_ref"])
+        drawn = np.array([np.nan if v is None else v for v in line["y"]], float)
+        assert len(drawn) == len(err) and np.allclose(drawn, err, rtol=5e-3, atol=0)
+
+
+def test_every_convergence_series_has_a_log_log_plot_with_its_order(study_dir):
+    """One small log-log plot per row of convergence.csv: errors against spacing, the fitted order written on it
+    (the table's, two decimals) and the promised slope beside it."""
+    page = (study_dir / "index.html").read_text()
+    conv = pd.read_csv(study_dir / "convergence.csv")
+    figs = [f for f in figures_of(page) if "small" in f["attrs"]["class"] and f["spec"]["x"]["l"] == "Δx (m)"]
+    assert len(figs) == len(conv)
+    for f, (_, r) in zip(figs, conv.sort_values(["model", "variant"], kind="stable").iterrows(), strict=True):
+        spec = f["spec"]
+        assert spec["x"]["log"] == 1 and spec["y"]["log"] == 1
+        assert [a["t"] for a in spec["a"]] == [f"p = {r['observed_order']:.2f}"]
+        names = [s["n"] for s in spec["s"]]
+        assert names[1:] == [f"fit: p = {r['observed_order']:.2f}", "slope 2 (promised)"]
+        assert np.allclose(spec["s"][0]["y"], [float(v) for v in r["errors"].split()], rtol=5e-3)
+
+
+def test_units_on_every_axis_and_numeric_column(study_dir):
+    """Every axis label names its unit ('(m)', '(s)', '(–)' for a ratio); every numeric column header too."""
+    page = (study_dir / "index.html").read_text()
+    for f in figures_of(page):
+        for axis in ("x", "y"):
+            assert re.search(r"\([^)]+\)$", f["spec"][axis]["l"]), (f["title"], f["spec"][axis]["l"])
+    from pdverify.report.tables import COLUMNS
+
+    heads = re.findall(r'<th class="[^"]*" title="([^"]+)">([^<]*)</th>', page)
+    assert heads
+    for name, text in heads:
+        if name in COLUMNS and COLUMNS[name].unit:
+            assert re.search(r"\([^)]+\)$", text), (name, text)
 
 
 @pytest.mark.slow
@@ -121,7 +244,8 @@ def test_time_histories_plotted_and_written_as_csv(tmp_path, monkeypatch):
         h = pd.read_csv(tmp_path / "run" / "histories" / f"{case_id}.csv")
         assert list(h.columns) == ["t", "midpoint"] and len(h) == 201
         assert np.allclose(h["midpoint"], 0.1 * (1 - np.cos(2 * np.pi * 5 * h["t"]) * np.exp(-h["t"])), rtol=1e-15)
-    page = build_report(tmp_path / "run").read_text()
+    build_report(tmp_path / "run")
+    page = (tmp_path / "run" / "paper-paper-diyaroglu.html").read_text()  # the paper's page draws the histories
     assert "time history" in page and "t (s)" in page
 
 
@@ -132,7 +256,8 @@ def test_numbers_trace_to_results(study_dir):
     for _, b in bench.iterrows():
         row = res[res["case_id"] == b["case_id"]].iloc[0]
         assert b["computed"] == row["w_at_max"] and b["err_max"] == row["err_max"]
-        assert f">{fmt(row['w_at_max'])}<" in page and f">{fmt(row['err_max'])}<" in page
+        assert f">{fmt(row['w_at_max'])}<" in page
+        assert f">{cell_text('err_max', row['err_max'])}<" in page  # an error to the 3 digits it carries
 
 
 @pytest.mark.slow
@@ -208,8 +333,8 @@ def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
 
 @pytest.mark.slow
 def test_plane_stress_images_and_vtu_links(tmp_path):
-    """A study with a plane-stress case writes its VTU and an off-screen PNG; the report inlines the
-    picture and links the VTU."""
+    """A study with a plane-stress case writes its VTU and an off-screen PNG; the paper's page inlines the
+    picture and links the VTU; the index links to them."""
     p = tmp_path / "ps.toml"
     p.write_text(f'''name = "ps"
 scenes = ["{ROOT}/studies/paper_yang/cantilever_tip_force.toml"]
@@ -222,10 +347,12 @@ layers = 4
     run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
     pngs = list((tmp_path / "run" / "vtu").glob("*.png"))
     assert len(pngs) == 2 and all(png.stat().st_size > 2000 for png in pngs)
-    page = build_report(tmp_path / "run").read_text()
+    index = build_report(tmp_path / "run").read_text()
+    assert 'href="paper-paper-yang.html#plane-stress"' in index and "data:image/png" not in index
+    page = (tmp_path / "run" / "paper-paper-yang.html").read_text()  # the pictures are on the paper's page
     for png in pngs:
         assert f'href="vtu/{png.stem}.vtu"' in page and (tmp_path / "run" / "vtu" / f"{png.stem}.vtu").exists()
-    assert "data:image/png;base64," in page
+    assert page.count("data:image/png;base64,") == 2 and 'id="plane-stress"' in page
 
 
 def test_case_ids_link_to_their_rows(study_dir):
@@ -275,14 +402,47 @@ def test_markup_in_the_study_name_is_escaped(tmp_path):
     assert "<img src=x" not in paper.read_text() and "<b>bold" not in paper.read_text()
 
 
+def test_the_delta_dx_plane_has_its_section_when_its_figures_come(tmp_path, monkeypatch):
+    """The hook of the per-PD-model δ–Δx figures: sweeps.delta_dx_planes returns nothing today, and the index has
+    no such section; given figures, the index shows them under "The δ–Δx plane" with a link in its navigation."""
+    from pdverify.report import sweeps
+    from pdverify.report.plots import Axis, Figure, Series
+
+    scene = (ROOT / "studies/examples/cantilever_tip_load.toml").read_text()
+    page = _one_case_study(tmp_path / "none", "plain", scene)
+    assert 'id="delta-dx"' not in page and sweeps.delta_dx_planes(None, None) == []
+
+    def planes(data, palette):
+        fig = Figure("pd-eb: the δ–Δx plane", Axis("Δx (m)", "m", log=True), Axis("δ (m)", "m", log=True))
+        fig.series.append(Series("pd-eb", np.array([0.01, 0.02]), np.array([0.03, 0.06]), "pd-eb", "corrected", 0))
+        return [sweeps.Group("pd-eb corrected", "dd-pd-eb", [fig.html()])]
+
+    monkeypatch.setattr(sweeps, "delta_dx_planes", planes)
+    page = build_report(tmp_path / "none" / "run").read_text()
+    section = page[page.index('<h2 id="delta-dx">') :]
+    assert 'href="#delta-dx"' in page and 'id="dd-pd-eb"' in section and "pd-eb: the δ–Δx plane" in section
+
+
 def test_axis_labels_carry_the_scene_units(tmp_path):
-    """An inch-pound scene (Moyer's) labels lengths in inches; an SI scene in metres."""
-    text = (ROOT / "studies/paper_moyer/cantilever_table1.toml").read_text()
-    assert 'units = "inch-pound"' in text
-    page = _one_case_study(tmp_path / "in", "moyer", text.replace("fem-timoshenko", "fem-eb"))
-    assert "x (in)" in page and "w (in)" in page and "(m)" not in page
-    page = _one_case_study(tmp_path / "si", "si", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
-    assert "x (m)" in page and "w (m)" in page and "(in)" not in page
+    """An inch-pound scene (Moyer's) labels lengths in inches; an SI scene in metres: on the index's figures (the
+    error along the beam) and tables, and on the paper's page (the deflection). The page's drawing code is not
+    text of the page."""
+
+    def text(page):
+        return re.sub(r"<script>.*?</script>", "", page, flags=re.S)
+
+    scene = (ROOT / "studies/paper_moyer/cantilever_table1.toml").read_text()
+    assert 'units = "inch-pound"' in scene
+    page = text(_one_case_study(tmp_path / "in", "moyer", scene.replace("fem-timoshenko", "fem-eb")))
+    paper = (tmp_path / "in" / "run" / "paper-scenes.html").read_text()
+    assert '"x (in)"' in page and '"|w − w_ref| (in)"' in page and "Δx (in)" in page and "(m)" not in page
+    assert "w (in)" in paper and "(m)" not in paper
+    page = text(
+        _one_case_study(tmp_path / "si", "si", (ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
+    )
+    paper = (tmp_path / "si" / "run" / "paper-scenes.html").read_text()
+    assert '"x (m)"' in page and '"|w − w_ref| (m)"' in page and "Δx (m)" in page and "(in)" not in page
+    assert "w (m)" in paper and "(in)" not in paper
 
 
 @pytest.mark.slow
