@@ -1,7 +1,7 @@
 """HTML report: the summary first, figures that show errors (every scene's error along the beam, every
 convergence series' log-log plot), units on every axis and column; it renders in headless Chromium with no
-console errors, links resolve, numbers trace to results.csv, and re-running gives the same HTML apart from the
-timestamp."""
+console errors and no request leaving the page, its filters hide what they should, links resolve, numbers trace
+to results.csv, and re-running gives the same HTML apart from the timestamp."""
 
 import json
 import os
@@ -14,6 +14,7 @@ from html.parser import HTMLParser
 import numpy as np
 import pandas as pd
 import pytest
+from browser import Browser, find
 from helpers import ROOT
 
 import pdverify.core.errors
@@ -271,7 +272,7 @@ def test_rebuild_is_identical_apart_from_timestamp(study_dir, tmp_path):
 def find_chromium() -> str:
     """The Chromium executable; the test skips without one, unless PDVERIFY_REQUIRE_BROWSER=1 (set by .ci/run,
     which installs it), where a missing browser fails. Nothing is installed here."""
-    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    chromium = find()
     if chromium:
         return chromium
     if os.environ.get("PDVERIFY_REQUIRE_BROWSER") == "1":
@@ -293,42 +294,103 @@ def test_browser_test_skips_or_fails_by_the_environment(monkeypatch):
         find_chromium()
 
 
-@pytest.mark.slow
-def test_opens_in_headless_chromium_without_console_errors(study_dir, tmp_path):
-    chromium = find_chromium()
-    shot = ROOT / "reports" / "_scratch" / "report_screenshot.png"
-    shot.parent.mkdir(parents=True, exist_ok=True)
-    flags = [
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        f"--user-data-dir={tmp_path / 'profile'}",
-        "--enable-logging=stderr",
-        "--v=0",
-    ]
-    url = (study_dir / "index.html").as_uri()
-    r = subprocess.run(
-        [chromium, *flags, f"--screenshot={shot}", "--window-size=1280,2400", url],
-        capture_output=True,
-        text=True,
-        timeout=120,
+# The page's state as the browser has it: every filterable row and figure, hidden or not (inside a hidden block
+# counts as hidden; a closed <details> does not), the lines each figure draws and its legend.
+STATE = """(function () {
+  function hidden(e) { return e.closest('[hidden]') !== null; }
+  return {
+    rows: Array.from(document.querySelectorAll('tr.f')).map(function (r) {
+      return {model: r.dataset.model, scene: r.dataset.scene, hidden: hidden(r)}; }),
+    figures: Array.from(document.querySelectorAll('figure.pfig')).map(function (f) {
+      return {scene: f.dataset.scene, hidden: hidden(f), paths: f.querySelectorAll('svg path').length,
+              lines: f._spec.s.filter(function (s) { return !s.g && !s._hidden; }).map(function (s) { return s.m; }),
+              legend: Array.from(f.querySelectorAll('.legend li')).map(function (li) { return li.textContent; })}; }),
+    scenes: Array.from(document.querySelectorAll('section.scene')).map(function (s) {
+      return {id: s.id, hidden: hidden(s)}; })
+  };
+})()"""
+
+
+def choose(browser: Browser, name: str, value: str) -> dict:
+    """Pick ``value`` in the filter ``name`` as a user does (the select's value, then its change event); the
+    page's state after it."""
+    browser.evaluate(
+        f"(function () {{ var s = document.querySelector('#filters select[name={name}]');"
+        f" s.value = {json.dumps(value)}; s.dispatchEvent(new Event('change', {{bubbles: true}})); }})()"
     )
-    assert shot.exists() and shot.stat().st_size > 10_000
-    console = [l for l in r.stderr.splitlines() if "CONSOLE" in l or "Uncaught" in l]
-    assert not console, console
-    # the DOM after scripts ran: every inline SVG figure is in it, with a non-empty drawing
-    dom = subprocess.run([chromium, *flags, "--dump-dom", url], capture_output=True, text=True, timeout=120).stdout
-    assert dom.count("<svg") >= 5 and dom.count("<path") > 50
-    # the per-paper page too
-    url = (study_dir / "paper-paper-diyaroglu.html").as_uri()
-    r = subprocess.run([chromium, *flags, "--dump-dom", url], capture_output=True, text=True, timeout=120)
-    console = [l for l in r.stderr.splitlines() if "CONSOLE" in l or "Uncaught" in l]
-    assert not console and r.stdout.count("<svg") >= 6, console
+    return browser.evaluate(STATE)
+
+
+@pytest.mark.slow
+def test_opens_in_headless_chromium_and_its_filters_work(study_dir, tmp_path, record_property):
+    """In headless Chromium: no console error and no request but the page itself (index and paper page); every
+    figure drawn; the model filter hides the other models' rows, figures and lines (and legends), the scene filter
+    the other scenes; "show all" brings everything back; hovering a point shows its values with units.
+    Screenshots of the top of the page and one figure or table per section go to the test's tmp folder."""
+    chromium = find_chromium()
+    shots = tmp_path / "screenshots"
+    shots.mkdir()
+    index = (study_dir / "index.html").as_uri()
+    with Browser(chromium, tmp_path / "profile") as browser:
+        browser.open(index)
+        assert not browser.console_errors(), browser.console_errors()
+        assert browser.requests() == [index]  # nothing else: no font, script, image or data fetched
+        state = browser.evaluate(STATE)
+        assert state["figures"] and all(f["paths"] >= 1 and not f["hidden"] for f in state["figures"])
+        assert state["rows"] and not any(r["hidden"] for r in state["rows"])
+        browser.screenshot(shots / "top.png")
+        for name, selector in (
+            ("summary", "#summary ~ .wide"),
+            ("benchmarks", "#benchmarks ~ .wide"),
+            ("errors", "section.scene figure.pfig"),
+            ("convergence", "#convergence ~ section figure.pfig"),
+            ("work-precision", "#cost ~ .multiples figure.pfig"),
+        ):
+            assert browser.screenshot(shots / f"{name}.png", selector).stat().st_size > 5_000, name
+        record_property("screenshots", str(shots))
+
+        # the model filter: fem-eb only
+        state = choose(browser, "model", "fem-eb")
+        rows = state["rows"]
+        assert any(r["model"] == "fem-eb" for r in rows) and any(r["model"] == "pd-eb" for r in rows)
+        assert all(r["hidden"] == (r["model"] != "fem-eb") for r in rows)
+        shown = [f for f in state["figures"] if not f["hidden"]]
+        assert shown and len(shown) < len(state["figures"])  # the pd-eb convergence plots are gone
+        for f in shown:
+            assert set(f["lines"]) == {"fem-eb"}, f
+            assert not any(text.startswith("pd-eb") for text in f["legend"]), f["legend"]
+        assert all(not f["lines"] or "fem-eb" not in f["lines"] for f in state["figures"] if f["hidden"])
+        browser.screenshot(shots / "filtered-errors.png", "section.scene figure.pfig:not([hidden])")
+
+        # the scene filter (with the model filter off): one scene's section, rows and figures
+        choose(browser, "model", "")
+        scene = pd.read_csv(study_dir / "results.csv")["scene"].iloc[0]
+        state = choose(browser, "scene", scene)
+        assert [s["hidden"] for s in state["scenes"]].count(False) == 1
+        assert all(r["hidden"] == (scene not in (r["scene"] or "").split("|")) for r in state["rows"])
+        assert all(f["hidden"] == (f["scene"] != scene) for f in state["figures"])
+
+        # show all
+        browser.evaluate("document.querySelector('#filters button[type=reset]').click()")
+        state = browser.evaluate(STATE)
+        assert not any(r["hidden"] for r in state["rows"]) and not any(f["hidden"] for f in state["figures"])
+
+        # hover: the point under the mouse, its values and units
+        point = browser.evaluate(
+            "(function () { var c = document.querySelector('#convergence ~ section figure.pfig circle');"
+            " c.scrollIntoView({block: 'center'}); var r = c.getBoundingClientRect();"
+            " return {x: r.left + r.width / 2, y: r.top + r.height / 2}; })()"
+        )
+        browser.send("Input.dispatchMouseEvent", type="mouseMoved", x=point["x"], y=point["y"])
+        tip = browser.evaluate("document.querySelector('#convergence ~ section figure.pfig .tip').textContent")
+        assert re.search(r"Δx = [0-9.e-]+ m\nmax rel. error = [0-9.e-]+", tip), tip
+        assert not browser.console_errors(), browser.console_errors()
+
+        # the paper's page
+        paper = (study_dir / "paper-paper-diyaroglu.html").as_uri()
+        browser.open(paper)
+        assert not browser.console_errors() and browser.requests() == [paper]
+        assert browser.evaluate("document.querySelectorAll('svg path').length") > 50
 
 
 @pytest.mark.slow
