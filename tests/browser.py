@@ -160,13 +160,16 @@ class Browser:
         params = {"format": "png"}
         if selector is not None:
             # sticky and fixed elements (a filter bar) would lie over the element: they stay in the page's flow;
-            # the element is measured once two frames have passed and it no longer moves (content laid out only
-            # when scrolled to moves what follows it)
+            # content the page lays out only when scrolled to (content-visibility) is laid out and painted now; the
+            # element is measured once two frames have passed and it no longer moves
             measure = (
                 f"(function () {{ var e = document.querySelector({json.dumps(selector)}); if (!e) return null;"
                 " document.querySelectorAll('body *').forEach(function (x) {"
                 "   var p = getComputedStyle(x).position;"
                 "   if (p === 'sticky' || p === 'fixed') x.style.position = 'static'; });"
+                " if (!document.getElementById('shot-style')) { var st = document.createElement('style');"
+                "   st.id = 'shot-style'; st.textContent = '* { content-visibility: visible !important; }';"
+                "   document.head.appendChild(st); }"
                 " e.scrollIntoView();"
                 " return new Promise(function (done) { requestAnimationFrame(function () {"
                 "   requestAnimationFrame(function () { var r = e.getBoundingClientRect();"

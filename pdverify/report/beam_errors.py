@@ -153,8 +153,8 @@ def curved_shape_figure(runs: list[Run], title: str, length: str, units: str, pa
 
 
 def scene_sections(data: StudyFolder, palette: Palette) -> list[SceneSection]:
-    """One section per scene (in the study's order): its error figure per slenderness, its shapes where they
-    are the point, a note where it has no reference."""
+    """One section per scene (in the study's order): its error figure per slenderness and reference, its shapes
+    where they are the point, a note where it has no reference."""
     sections = []
     for sfile, g in data.ok.groupby("scene_file", sort=False):
         name = str(g["scene"].iloc[0])
@@ -162,14 +162,18 @@ def scene_sections(data: StudyFolder, palette: Palette) -> list[SceneSection]:
         length = data.length(sfile)
         scene = data.scene(sfile)
         curved = scene is not None and not scene.is_straight
-        ref = short_reference(g["reference"].iloc[0]) if "reference" in g else ""
-        sec = SceneSection(name, sfile, folder(sfile), ref)
+        references = g["reference"].map(short_reference) if "reference" in g else pd.Series("", index=g.index)
+        sec = SceneSection(name, sfile, folder(sfile), "; ".join(dict.fromkeys(references)))
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
             title = name + ("" if sl == -1 else f", L/h = {fmt(sl)}")
             runs = finest_runs(data, gs)
-            err = error_figure(runs, title, "s" if curved else "x", length, units, palette)
-            if err is not None:
-                sec.figures.append(err.html(sec.tags))
+            # one error figure per reference: runs measured against different references are not one comparison
+            for ref, rg in gs.groupby(references[gs.index], sort=False):
+                against = f", against {ref}" if references.nunique() > 1 else ""
+                err = error_figure(finest_runs(data, rg), title, "s" if curved else "x", length, units, palette)
+                if err is not None:
+                    err.title += against
+                    sec.figures.append(err.html(sec.tags))
             if curved:
                 shape = curved_shape_figure(runs, title, length, units, palette)
                 if shape is not None:

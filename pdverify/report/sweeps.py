@@ -16,7 +16,7 @@ from .inputs import StudyFolder
 from .plots import Axis, Figure, Palette, Series, positive
 from .summary import conv_anchor, cost_anchor
 from .tables import tags
-from .text import fixed, fmt, folder, label, options_of, variant_key, variant_of
+from .text import fixed, fmt, folder, key_options, label, options_of, variant_key, variant_of
 
 ERROR = "max rel. error (–)"
 
@@ -67,7 +67,9 @@ def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
     groups: dict[str, Group] = {}
     conv = conv.assign(_key=[variant_key(str(r["model"]), options_of(r.get("options"))) for _, r in conv.iterrows()])
     for key, g in conv.sort_values(["_key"], kind="stable").groupby("_key", sort=False):
-        group = groups.setdefault(key, Group(key, conv_anchor(key)))
+        opts = key_options(str(g["model"].iloc[0]), options_of(g["options"].iloc[0]))
+        title = f"{g['model'].iloc[0]}: " + (", ".join(f"{k}={v}" for k, v in opts.items()) or "defaults")
+        group = groups.setdefault(key, Group(title, conv_anchor(key)))
         for _, r in g.iterrows():
             h = np.array([float(v) for v in str(r["spacings"]).split()])
             e = np.array([float(v) for v in str(r["errors"]).split()])
@@ -80,7 +82,7 @@ def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
             extra = " ".join(
                 f"{short}={fmt(r[k])}"
                 for k, short in (("horizon_factor", "m"), ("degree", "P"), ("slenderness", "L/h"))
-                if k in r and pd.notna(r[k])
+                if k in r and pd.notna(r[k]) and not (k == "horizon_factor" and r[k] == 0)  # m = 0: no horizon
             )
             series = [Series(label(r), h, e, model, variant, colour, "line+points")]
             notes = []

@@ -184,8 +184,10 @@
     }
     var ul = document.createElement("ul");
     ul.className = "legend";
+    if (items.some(function (s) { return s.n.length > 36; })) ul.classList.add("one");  // long names: one column
     items.forEach(function (s) {
       var li = document.createElement("li");
+      li.title = s.n;
       var sw = node("svg", {width: 22, height: 8, "aria-hidden": "true"}, li);
       node("line", {x1: 0, x2: 22, y1: 4, y2: 4, stroke: colour(s.c), "stroke-width": 2, "stroke-dasharray": dash(s)}, sw);
       li.appendChild(document.createTextNode(s.n));
