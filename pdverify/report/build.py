@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..verify.published import read_index
 from . import beam_errors, sweeps
 from .inputs import StudyFolder, load
 from .output import environment, make_folder, write
@@ -24,7 +25,7 @@ from .papers import paper_pages
 from .plots import Palette
 from .summary import summary
 from .tables import row_tags, table, tags
-from .text import case_anchor, fmt, readable, readable_options, short_reference, variant_of
+from .text import case_anchor, fmt, options_of, readable, readable_options, short_reference, variant_of
 from .waves import dispersion_plot, dispersion_sets
 
 __all__ = ["build_report", "case_anchor", "environment", "fmt", "table"]
@@ -181,17 +182,17 @@ def render_paper(env, data: StudyFolder, page: dict, generated: str) -> str:
 
 
 def filter_choices(data: StudyFolder, pages: list[dict]) -> dict:
-    """The values each filter offers: papers (with their titles), models, variants, scenes by paper."""
+    """The values each filter offers: papers (with their titles), models and variants (of the study's runs and of
+    its cards), scenes by paper."""
     res = data.res
-    variants = sorted({variant_of(m, {}) if not v else v for m, v in zip(res["model"], res.get("variant", ""))})
-    by_paper = {}
-    for p in pages:
-        by_paper[p["title"]] = [s.name for s in p["scenes"]]
+    runs = [(m, options_of(o)) for m, o in zip(res["model"], res["options"])]
+    cards = [(c["model"], c.get("options", {})) for c in (read_index(data.d) or {"cards": []})["cards"]]
+    variants = sorted({variant_of(m, o) for m, o in runs + cards})
     return {
         "papers": [(p["folder"], p["title"]) for p in pages],
-        "models": sorted(set(res["model"])),
+        "models": sorted({m for m, _ in runs + cards}),
         "variants": [(v or "-", v or "(no variant)") for v in variants],
-        "scenes": by_paper,
+        "scenes": {p["title"]: [s.name for s in p["scenes"]] for p in pages},
     }
 
 

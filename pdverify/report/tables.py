@@ -174,7 +174,9 @@ def table(
     )
     rows = []
     for i, (_, r) in enumerate(df.iterrows()):
-        attrs = f' class="{html.escape(str(r[row_class]))}"' if row_class and row_class in r else ""
+        classes = [str(r[row_class])] if row_class and row_class in r else []
+        classes += ["f"] if filters is not None else []  # a row the page's filters show or hide
+        attrs = f' class="{html.escape(" ".join(classes))}"' if classes else ""
         if case_rows and "case_id" in r and isinstance(r["case_id"], str):
             attrs += f' id="{case_anchor(r["case_id"])}"'
         if filters is not None:

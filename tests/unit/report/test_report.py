@@ -300,7 +300,8 @@ STATE = """(function () {
   function hidden(e) { return e.closest('[hidden]') !== null; }
   return {
     rows: Array.from(document.querySelectorAll('tr.f')).map(function (r) {
-      return {model: r.dataset.model, scene: r.dataset.scene, hidden: hidden(r)}; }),
+      return {model: r.dataset.model, scene: r.dataset.scene, hidden: hidden(r), result: r.id.startsWith('case-')};
+    }),
     figures: Array.from(document.querySelectorAll('figure.pfig')).map(function (f) {
       return {scene: f.dataset.scene, hidden: hidden(f), paths: f.querySelectorAll('svg path').length,
               lines: f._spec.s.filter(function (s) { return !s.g && !s._hidden; }).map(function (s) { return s.m; }),
@@ -354,6 +355,8 @@ def test_opens_in_headless_chromium_and_its_filters_work(study_dir, tmp_path, re
         rows = state["rows"]
         assert any(r["model"] == "fem-eb" for r in rows) and any(r["model"] == "pd-eb" for r in rows)
         assert all(r["hidden"] == (r["model"] != "fem-eb") for r in rows)
+        results = [r for r in rows if r["result"]]  # the results table's rows among them (and the summary's, ...)
+        assert len(results) == len(pd.read_csv(study_dir / "results.csv")) and len(rows) > len(results)
         shown = [f for f in state["figures"] if not f["hidden"]]
         assert shown and len(shown) < len(state["figures"])  # the pd-eb convergence plots are gone
         for f in shown:
