@@ -28,32 +28,38 @@ class Group:
     title: str
     anchor: str
     figures: list[Markup] = field(default_factory=list)
-    tags: Markup = Markup("")
 
 
-def _promised(model: str, expected: dict, r) -> float | None:
-    """The slope drawn beside a series: the middle of its order check's band where the study checks it, else the
-    order the model promises."""
-    band = expected.get((r["scene"], r["model"], r.get("options"), r.get("slenderness")))
-    if band is not None:
-        return band
-    try:
-        return float(get_model(model).order)
-    except Exception:  # a model of another installation
-        return None
+def _series_key(r) -> tuple:
+    """A convergence series' key in convergence.csv and checks.csv (a missing slenderness as None: NaN is not
+    equal to itself)."""
+    sl = r.get("slenderness")
+    return (r["scene"], r["model"], r.get("options"), None if pd.isna(sl) else float(sl))
 
 
-def _check_bands(checks: pd.DataFrame) -> dict:
+def _check_bands(checks: pd.DataFrame) -> dict[tuple, tuple[float, str]]:
+    """Per checked series: the slope to draw (the middle of its band, or its lower bound) and its legend text."""
     out = {}
-    if checks.empty:
-        return out
-    for _, c in checks.iterrows():
+    for _, c in checks.iterrows() if not checks.empty else ():
         lo, hi = c.get("min"), c.get("max")
         if pd.notna(lo) and pd.notna(hi):
-            out[(c["scene"], c["model"], c.get("options"), c.get("slenderness"))] = 0.5 * (float(lo) + float(hi))
+            out[_series_key(c)] = (0.5 * (float(lo) + float(hi)), f"order check: {lo:g} to {hi:g}")
         elif pd.notna(lo):
-            out[(c["scene"], c["model"], c.get("options"), c.get("slenderness"))] = float(lo)
+            out[_series_key(c)] = (float(lo), f"order check: at least {lo:g}")
     return out
+
+
+def _reference_slope(model: str, bands: dict, r) -> tuple[float, str] | None:
+    """The slope drawn beside a series and its legend text: the series' order check where the study has one, else
+    the order the model promises (``Model.order``)."""
+    band = bands.get(_series_key(r))
+    if band is not None:
+        return band[0], f"slope {band[0]:g} ({band[1]})"
+    try:
+        q = float(get_model(model).order)
+    except Exception:  # a model of another installation
+        return None
+    return q, f"slope {q:g} (promised)"
 
 
 def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
@@ -96,12 +102,11 @@ def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
                 )
                 mid = np.sqrt(hs[0] * hs[1])
                 notes.append((mid, float(np.exp(c) * mid**p), f"p = {fixed(p, 2)}", colour))
-                q = _promised(model, bands, r)
-                if q is not None:
+                slope = _reference_slope(model, bands, r)
+                if slope is not None:
+                    q, text = slope
                     h0, e0 = h[good][np.argmin(h[good])], e[good][np.argmin(h[good])]
-                    series.append(
-                        Series(f"slope {q:g} (promised)", hs, e0 * (hs / h0) ** q, colour=-1, style="dot", guide=True)
-                    )
+                    series.append(Series(text, hs, e0 * (hs / h0) ** q, colour=-1, style="dot", guide=True))
             fig = Figure(
                 f"{scene}" + (f", {extra}" if extra else "") + (f": p = {fixed(p, 2)}" if pd.notna(p) else ""),
                 Axis(f"Δx ({length})", length, log=True),

@@ -164,18 +164,31 @@ def test_every_scene_has_its_error_along_the_beam_on_a_log_axis(study_dir):
 
 def test_every_convergence_series_has_a_log_log_plot_with_its_order(study_dir):
     """One small log-log plot per row of convergence.csv: errors against spacing, the fitted order written on it
-    (the table's, two decimals) and the promised slope beside it."""
+    (the table's, two decimals) and beside it the slope of the series' order check (the middle of its band) where
+    the study checks it, else the order the model promises."""
+    from pdverify.report.text import label
+
     page = (study_dir / "index.html").read_text()
     conv = pd.read_csv(study_dir / "convergence.csv")
+    checks = pd.read_csv(study_dir / "checks.csv")
     figs = [f for f in figures_of(page) if "small" in f["attrs"]["class"] and f["spec"]["x"]["l"] == "Δx (m)"]
     assert len(figs) == len(conv)
-    for f, (_, r) in zip(figs, conv.sort_values(["model", "variant"], kind="stable").iterrows(), strict=True):
-        spec = f["spec"]
+    by_series = {(f["attrs"]["data-scene"], f["spec"]["s"][0]["n"]): f["spec"] for f in figs}
+    checked = 0
+    for _, r in conv.iterrows():
+        spec = by_series[(r["scene"], label(r))]
         assert spec["x"]["log"] == 1 and spec["y"]["log"] == 1
         assert [a["t"] for a in spec["a"]] == [f"p = {r['observed_order']:.2f}"]
-        names = [s["n"] for s in spec["s"]]
-        assert names[1:] == [f"fit: p = {r['observed_order']:.2f}", "slope 2 (promised)"]
+        check = checks[(checks["scene"] == r["scene"]) & (checks["options"] == r["options"])]
+        if len(check):
+            lo, hi = check.iloc[0][["min", "max"]]
+            slope = f"slope {(lo + hi) / 2:g} (order check: {lo:g} to {hi:g})"
+            checked += 1
+        else:
+            slope = "slope 2 (promised)"
+        assert [s["n"] for s in spec["s"]][1:] == [f"fit: p = {r['observed_order']:.2f}", slope]
         assert np.allclose(spec["s"][0]["y"], [float(v) for v in r["errors"].split()], rtol=5e-3)
+    assert checked == len(checks) == 2
 
 
 def test_units_on_every_axis_and_numeric_column(study_dir):
