@@ -134,20 +134,21 @@ def build_report(study_dir: str | Path, out_dir: str | Path | None = None) -> Pa
 
 
 def _tables(data: StudyFolder, link: str | None):
-    """The table builders of a page: rows tagged for the filters, units per scene, case ids linking to ``link``."""
-
-    def filters(r):
-        return row_tags(r, data.scene_paper)
+    """The table builder of a page: rows tagged for the filters (from their JSON options, before those are shown
+    as text), units per scene, case ids linking to ``link``."""
 
     def make(df, columns=None, row_class=None, case_rows=False, full_on_hover=True):
+        if df is None or df.empty:
+            return table(df)
+        tagged = {i: row_tags(r, data.scene_paper) for i, r in df.iterrows()}
         return table(
-            df,
+            readable_options(df),
             columns,
             row_class=row_class,
             case_link=link,
             case_rows=case_rows,
             unit_of_row=data.unit_of_row,
-            filters=filters,
+            filters=lambda r: tagged[r.name],
             full_on_hover=full_on_hover,
         )
 
@@ -171,11 +172,9 @@ def render_paper(env, data: StudyFolder, page: dict, generated: str) -> str:
         convergence_figs=page["sweeps"]["convergence"],
         horizon_figs=page["sweeps"]["horizon"],
         locking_figs=page["sweeps"]["locking"],
-        locking=make(readable_options(lock[lock["scene"].isin(names)] if "scene" in lock else lock)),
+        locking=make(lock[lock["scene"].isin(names)] if "scene" in lock else lock),
         speed_figs=page["sweeps"]["speed"],
-        convergence=make(
-            readable_options(conv[conv["scene"].isin(names)] if "scene" in conv else conv), CONVERGENCE_COLUMNS
-        ),
+        convergence=make(conv[conv["scene"].isin(names)] if "scene" in conv else conv, CONVERGENCE_COLUMNS),
         waves=page["waves"],
         images=page["images"],
     )
@@ -229,23 +228,23 @@ def render_index(env, data: StudyFolder, out: Path, pages: list[dict], waves, ge
         filters=filter_choices(data, pages),
         summary=top,
         benchmarks=make(_benchmarks(data.table("benchmarks")), BENCHMARK_COLUMNS, row_class="verdict"),
-        checks=make(readable_options(data.table("checks")), CHECK_COLUMNS, row_class="verdict"),
+        checks=make(data.table("checks"), CHECK_COLUMNS, row_class="verdict"),
         papers=pages,
         performance=performance,
         scene_groups=[(paper, titles.get(paper, paper), secs) for paper, secs in papers_of.items()],
         convergence_groups=conv_groups,
-        convergence=make(readable_options(conv), CONVERGENCE_COLUMNS),
+        convergence=make(conv, CONVERGENCE_COLUMNS),
         cost_figs=cost_figs,
-        speed_summary=make(readable_options(data.table("speed_error_summary"))),
+        speed_summary=make(data.table("speed_error_summary")),
         locking_figs=sweeps.locking(data, palette),
-        locking=make(readable_options(lock)),
+        locking=make(lock),
         horizon_figs=sweeps.horizons(data, palette),
         delta_dx=sweeps.delta_dx_planes(data, palette),
         waves=[
             dispersion_plot(w).html(tags(scenes=w.scenes, papers=w.papers, tag_model=False, tag_variant=False))
             for w in waves
         ],
-        trust=make(readable_options(data.table("trust")), TRUST_COLUMNS),
+        trust=make(data.table("trust"), TRUST_COLUMNS),
         images=[(p, len(p["images"])) for p in pages if p["images"]],
         results=make(data.res, RESULT_COLUMNS, row_class="status", case_rows=True, full_on_hover=False),
         meta_table=table(meta_rows),

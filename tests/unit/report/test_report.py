@@ -191,6 +191,26 @@ def test_every_convergence_series_has_a_log_log_plot_with_its_order(study_dir):
     assert checked == len(checks) == 2
 
 
+def test_table_rows_carry_what_the_filters_match(study_dir):
+    """Each row of a table is tagged with its model, variant (from its options where the table has no variant
+    column: the trust table's paper rows are 'paper', not the default), scene and paper."""
+    page = (study_dir / "index.html").read_text()
+    trust = page[page.index('<h2 id="trust">') : page.index('<h2 id="plane-stress">')]
+    tagged = re.findall(r'<tr class="f" data-model="([^"]*)" data-variant="([^"]*)"', trust)
+    want = [
+        (r["model"], json.loads(r["options"]).get("variant", ""))
+        for _, r in pd.read_csv(study_dir / "trust.csv").iterrows()
+    ]
+    assert tagged == want and ("pd-eb", "paper") in tagged and ("pd-eb", "corrected") in tagged
+    results = re.findall(
+        r'<tr class="\w+ f" id="case-[^"]+" data-model="([^"]*)" data-variant="([^"]*)" '
+        r'data-scene="([^"]*)" data-paper="([^"]*)"',
+        page,
+    )
+    res = pd.read_csv(study_dir / "results.csv", keep_default_na=False)
+    assert results == [(m, v, s, "paper_diyaroglu") for m, v, s in zip(res["model"], res["variant"], res["scene"])]
+
+
 def test_units_on_every_axis_and_numeric_column(study_dir):
     """Every axis label names its unit ('(m)', '(s)', '(–)' for a ratio); every numeric column header too."""
     page = (study_dir / "index.html").read_text()
