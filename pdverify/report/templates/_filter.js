@@ -34,7 +34,7 @@
       rows += 1;
       rowsShown += show ? 1 : 0;
     });
-    var registry = window.pdvFigures || {list: [], draw: function () {}};
+    var registry = window.pdvFigures || {list: [], refresh: function () {}};
     registry.list.forEach(function (fig) {
       var spec = fig._spec, changed = false, any = false, data = false;
       spec.s.forEach(function (s) {
@@ -47,7 +47,7 @@
       figs += 1;
       figsShown += show ? 1 : 0;
       if (changed) fig._stale = true;  // drawn again when it shows
-      if (show && fig._stale) { fig._stale = false; registry.draw(fig); }
+      if (show && fig._stale) { fig._stale = false; registry.refresh(fig); }
     });
     document.querySelectorAll(".fgroup").forEach(function (g) {
       var inside = g.querySelectorAll(".f, figure.pfig");

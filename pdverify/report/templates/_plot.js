@@ -1,7 +1,8 @@
 /* pdverify report figures. Each <figure class="pfig"> holds its title (div.ftitle) and its data as JSON: {x/y: {l: label,
    u: unit, log}, s: series [{n: name, x: positions or {a, d, n} (a uniform grid), y, c: colour, k: style,
    m/v: model/variant (the filters), g: a guide line, pl: a label per point}], a: notes, eq: equal scales}.
-   Drawn here as SVG; hovering shows the nearest point's values; a legend entry toggles its line. */
+   Drawn here as SVG when near the screen; hovering shows the nearest point's values; a legend entry toggles its
+   line. */
 (function () {
   "use strict";
   var NS = "http://www.w3.org/2000/svg";
@@ -223,12 +224,31 @@
     svg.addEventListener("mouseleave", function () { tip.hidden = true; if (dot) { dot.remove(); dot = null; } });
   }
 
+  /* A figure is drawn when it comes near the screen (and before printing): the page opens without drawing the
+     figures far below. */
+  function ensure(fig) {
+    if (!fig._drawn) { fig._drawn = true; draw(fig); }
+  }
   var figures = Array.prototype.slice.call(document.querySelectorAll("figure.pfig"));
   figures.forEach(function (fig, i) {
     fig._index = i;
     fig._spec = JSON.parse(fig.querySelector("script").textContent);
     fig._title = (fig.querySelector(".ftitle") || {}).textContent || "";
-    draw(fig);
   });
-  window.pdvFigures = {list: figures, draw: draw};
+  if ("IntersectionObserver" in window) {
+    var near = new IntersectionObserver(function (entries) {
+      entries.forEach(function (e) {
+        if (e.isIntersecting) { near.unobserve(e.target); ensure(e.target); }
+      });
+    }, {rootMargin: "800px 0px"});
+    figures.forEach(function (fig) { near.observe(fig); });
+  } else {
+    figures.forEach(ensure);
+  }
+  window.addEventListener("beforeprint", function () { figures.forEach(ensure); });
+  window.pdvFigures = {
+    list: figures,
+    refresh: function (fig) { if (fig._drawn) draw(fig); },  // again, after a filter (undrawn: when it shows)
+    drawAll: function () { figures.forEach(ensure); }
+  };
 })();
