@@ -20,6 +20,7 @@ from . import checks as C
 from .card import write_card
 from .dynamics import dynamics_check
 from .suite import (
+    CURVED_QUANTITIES,
     GAP_REFERENCE,
     SUITE_VERSION,
     end_force,
@@ -198,8 +199,24 @@ def _judge(model, options: dict, p, df, expected: float) -> tuple:
         if curved
         else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
     )
+    found += [_curved_quantity(df, files["curved"], q, expected) for q in CURVED_QUANTITIES] if curved else []
     found.append(dynamics_check(model, options, p.grids, expected))
     return found, [{**p.meta[r["scene_file"]], **r} for r in conv + curved], df
+
+
+def _curved_quantity(df, files: list[str], quantity: str, expected: float) -> dict:
+    """The convergence of one more quantity on the curved scenes (``err_max_<q>``), where the model and the
+    reference give it."""
+    label = f"convergence (curved axes): {quantity}"
+    col = f"err_max_{quantity}"
+    given = df[df[col].notna()] if col in df else df.iloc[:0]
+    rows = C.series(given, files, col)
+    if not rows:
+        return C.check(label, "n/a", f"the model or its curved reference gives no {quantity}")
+    found = C.convergence(rows, expected, label)
+    finest = max((r["errors"][-1] for r in rows if r["errors"]), default=float("nan"))
+    grid = max((r["points"][-1] for r in rows if r["points"]), default=0)
+    return found | {"summary": f"{found['summary']}; largest error at {grid} points {finest:.2e}", "series": rows}
 
 
 def _straight_checks(model, p, df, gap_df, conv: list[dict], files: dict, expected: float) -> list[dict]:

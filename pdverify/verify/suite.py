@@ -32,8 +32,9 @@ from ..registry.external import ExternalModel
 # 1.3: a clockwise arc among the curved scenes; 1.4: axial and torsion models (ROD_LOADS; the beams' cards unchanged),
 # and a self-converged model's curved scenes against itself (was exact-curved: fem-plane-stress's card only);
 # 1.5: higher-order models against exact-higher-order with their loads and pin (Model.reference_options; were
-# self-converged)
-SUITE_VERSION = "1.5"
+# self-converged); 1.6: the curved scenes' rotation, moment, shear and axial force (CURVED_QUANTITIES), each its own
+# convergence check
+SUITE_VERSION = "1.6"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -45,6 +46,8 @@ MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.3}
 SELF_REFINEMENT = 4  # self-convergence: the reference grid has this many times the spacings of the finest grid
 GAP_REFERENCE = "exact-timoshenko"  # what a self-converged model's theory gap is measured against
 PAIRS = [(left, right) for left in SUPPORTS for right in SUPPORTS if not is_mechanism(left, right)]
+# what the curved scenes measure besides the displacement w (each its own convergence check on the card)
+CURVED_QUANTITIES = ("rotation", "moment", "shear", "axial")
 
 
 def straight(left: str, right: str, loads: list[dict], slenderness: float = SLENDERNESS, name: str = "") -> dict:
@@ -344,7 +347,15 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
         runs.append({**run, "points": [finer(p.grids)], "scenes": files("convergence"), "reference": GAP_REFERENCE})
     if files("curved"):
         curved = p.curved_reference or self_reference(model, options, p.grids)
-        runs.append({**run, "points": list(p.grids), "scenes": files("curved"), "reference": curved})
+        runs.append(
+            {
+                **run,
+                "points": list(p.grids),
+                "scenes": files("curved"),
+                "reference": curved,
+                "quantities": list(CURVED_QUANTITIES),
+            }
+        )
     study = {
         "name": f"pdverify verify {model.name} (suite {SUITE_VERSION})",
         "scenes": list(p.scenes),

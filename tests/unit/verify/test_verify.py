@@ -245,3 +245,35 @@ def test_dynamics_check_measures_natural_frequencies():
     assert all(abs(r["order"] - 2) < 0.1 for r in good["pairs"]), good["summary"]
     assert dynamics_check(get_model("pd-timoshenko"), {"variant": "paper"}, grids, 2.0)["verdict"] == "fail"
     assert dynamics_check(get_model("pd-eb"), {}, grids, 2.0)["verdict"] == "n/a"
+
+
+def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
+    """The curved run of the suite asks for every quantity; each gets its own convergence check, judged like w and
+    n/a where the model or its reference gives none."""
+    from pdverify.verify import _curved_quantity
+    from pdverify.verify.suite import CURVED_QUANTITIES
+
+    model = get_model("pd-curved")
+    p = plan(model)
+    study = tomllib.loads(write_study(p, model, {}, tmp_path).read_text())
+    curved = [r for r in study["runs"] if r.get("quantities")]
+    assert len(curved) == 1 and curved[0]["quantities"] == list(CURVED_QUANTITIES)
+    assert set(curved[0]["scenes"]) == {f for f, m in p.meta.items() if m["set"] == "curved"}
+    h = np.array([0.1, 0.05, 0.025, 0.0125])
+    rows = pd.DataFrame(
+        {
+            "scene_file": "a.toml",
+            "points": [11, 21, 41, 81],
+            "spacing": h,
+            "status": "ok",
+            "total_s": 0.01,
+            "err_max_moment": 0.3 * h**2,
+            "err_max_shear": 0.3 * h,
+            "err_max_axial": np.nan,
+        }
+    )
+    moment, shear = (_curved_quantity(rows, ["a.toml"], q, 2.0) for q in ("moment", "shear"))
+    assert moment["verdict"] == "pass" and "largest error at 81 points 4.69e-05" in moment["summary"]
+    assert shear["verdict"] == "fail" and shear["lowest_order"] == pytest.approx(1.0)
+    for q in ("axial", "rotation"):  # NaN (the reference has none), or no column at all
+        assert _curved_quantity(rows, ["a.toml"], q, 2.0)["verdict"] == "n/a"
