@@ -36,6 +36,7 @@ from .suite import (
 
 __all__ = ["verify", "SUITE_VERSION", "entry_errors"]
 
+ENGINEERING = "convergence (continuous, overhanging, spring, stepped, bi-material)"
 MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
 # the mirror scene's solution at L - x is this times the scene's at x (an axial force and u reverse)
 MIRROR_SIGN = {None: 1.0, "axial": -1.0, "torsion": 1.0}
@@ -187,12 +188,19 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
 def _judge(model, options: dict, p, df, expected: float) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
-    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in ("convergence", "locking", "floor", "curved")}
+    sets = ("convergence", "locking", "floor", "curved", "engineering")
+    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in sets}
     # the theory-gap run (self-convergence only): the convergence scenes on the reference grid, finer than any other
     gap = (p.reference is None) & (df["points"] == finer(p.grids)) & df["scene_file"].isin(files["convergence"])
     df, gap_df = df[~gap], df[gap]
     conv = C.series(df, files["convergence"])
     found = _straight_checks(model, p, df, gap_df, conv, files, expected) + _identity_checks(model, options, p)
+    engineering = C.series(df, files["engineering"])
+    found.append(
+        C.convergence(engineering, expected, ENGINEERING)
+        if engineering
+        else C.check(ENGINEERING, "n/a", "the model takes no supports inside the span, springs or segments")
+    )
     curved = C.series(df, files["curved"])
     found.append(
         C.convergence(curved, expected, "convergence (curved axes)")
@@ -201,7 +209,7 @@ def _judge(model, options: dict, p, df, expected: float) -> tuple:
     )
     found += [_curved_quantity(df, files["curved"], q, expected) for q in CURVED_QUANTITIES] if curved else []
     found.append(dynamics_check(model, options, p.grids, expected))
-    return found, [{**p.meta[r["scene_file"]], **r} for r in conv + curved], df
+    return found, [{**p.meta[r["scene_file"]], **r} for r in conv + engineering + curved], df
 
 
 def _curved_quantity(df, files: list[str], quantity: str, expected: float) -> dict:

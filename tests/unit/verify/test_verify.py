@@ -277,3 +277,27 @@ def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
     assert shear["verdict"] == "fail" and shear["lowest_order"] == pytest.approx(1.0)
     for q in ("axial", "rotation"):  # NaN (the reference has none), or no column at all
         assert _curved_quantity(rows, ["a.toml"], q, 2.0)["verdict"] == "n/a"
+
+
+def test_engineering_scenes_go_to_models_that_take_them_and_every_model_checks_them():
+    """Suite 1.7: the continuous, overhanging, spring, stepped and bi-material scenes are in the plan of a model that
+    declares supports inside the span, springs or segments (not of a rod's, nor of one that declares none), and every
+    model's check takes or declines each in lines, without an exception."""
+    from pdverify.registry import models
+    from pdverify.verify.suite import engineering_scenes
+
+    scenes = engineering_scenes()
+    assert [s["name"] for s in scenes] == [
+        "two spans",
+        "three spans",
+        "overhangs",
+        "on springs",
+        "stepped",
+        "bi-material",
+    ]
+    for name, m in models().items():
+        for sc in scenes:
+            assert isinstance(m.check(parse_scene(sc)), list), name
+    sets = lambda name: {m["set"] for m in plan(get_model(name)).meta.values()}  # noqa: E731
+    assert "engineering" in sets("pd-timoshenko") and "engineering" in sets("fem-eb")
+    assert "engineering" not in sets("pd-eb") and "engineering" not in sets("pd-rod")
