@@ -8,6 +8,7 @@ superposition solve a handful of scenes here. The card (:mod:`.card`) is JSON, H
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from ..core.errors import InputError
@@ -99,9 +100,20 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
     return out
 
 
-def _declined(model, p) -> dict:
-    """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out)."""
-    return {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+def _declined(model, p, options: dict | None = None) -> dict:
+    """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out); an
+    engineers' scene also when the model with these options refuses it as input (a variant that takes no segments:
+    a solve on the coarsest grid, one line)."""
+    out = {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+    for f, why in out.items():
+        if not why and p.meta[f]["set"] == "engineering" and options is not None:
+            try:
+                run(parse_scene(p.scenes[f]), model, **options, points=p.grids[0])
+            except InputError as exc:
+                out[f] = list(exc.lines)
+            except Exception:  # noqa: BLE001 - a failed solve is judged by the suite, not declined here
+                pass
+    return out
 
 
 def _solves_none(model, declined: dict) -> str | None:
@@ -163,13 +175,15 @@ def verify(
     if grid:
         raise InputError(grid)
     p = plan(model, full, options)
-    declined = _declined(model, p)
+    declined = _declined(model, p, options)
     if why := _solves_none(model, declined):
         raise InputError(why)
     solved = next(f for f, why in declined.items() if not why)
     model.resolve(parse_scene(p.scenes[solved]), options)  # bad options: one line each before anything runs
-    df = _run_suite(p, model, options, out, workers, scheduler, progress)
-    found, scenes, df = _judge(model, options, p, df, expected)
+    refused = {f for f, why in declined.items() if why and p.meta[f]["set"] == "engineering"}  # not run
+    run_plan = replace(p, scenes={f: sc for f, sc in p.scenes.items() if f not in refused})
+    df = _run_suite(run_plan, model, options, out, workers, scheduler, progress)
+    found, scenes, df = _judge(model, options, p, df, expected, declined)
     card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}
     write_card(card, out)
     return card
@@ -185,11 +199,11 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
     )
 
 
-def _judge(model, options: dict, p, df, expected: float) -> tuple:
+def _judge(model, options: dict, p, df, expected: float, declined: dict | None = None) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
     sets = ("convergence", "locking", "floor", "curved", "engineering")
-    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in sets}
+    files = {s: [f for f, m in p.meta.items() if m["set"] == s and not (declined or {}).get(f)] for s in sets}
     # the theory-gap run (self-convergence only): the convergence scenes on the reference grid, finer than any other
     gap = (p.reference is None) & (df["points"] == finer(p.grids)) & df["scene_file"].isin(files["convergence"])
     df, gap_df = df[~gap], df[gap]

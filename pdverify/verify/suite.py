@@ -429,7 +429,7 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
     for f, scene in p.scenes.items():
         (folder / f).parent.mkdir(parents=True, exist_ok=True)
         (folder / f).write_text(toml_text(scene))
-    files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets]  # noqa: E731
+    files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets and f in p.scenes]  # noqa: E731
     run = {"model": model.name, **options}
     ref = lambda grids: p.reference or self_reference(model, options, grids)  # noqa: E731
     runs = [

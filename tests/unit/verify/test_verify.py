@@ -279,25 +279,39 @@ def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
         assert _curved_quantity(rows, ["a.toml"], q, 2.0)["verdict"] == "n/a"
 
 
-def test_engineering_scenes_go_to_models_that_take_them_and_every_model_checks_them():
+def test_engineering_scenes_go_to_models_that_take_them():
     """Suite 1.7: the continuous, overhanging, spring, stepped and bi-material scenes are in the plan of a model that
-    declares supports inside the span, springs or segments (not of a rod's, nor of one that declares none), and every
-    model's check takes or declines each in lines, without an exception."""
-    from pdverify.registry import models
+    declares supports inside the span, springs or segments (not of a rod's, nor of one that declares none)."""
     from pdverify.verify.suite import engineering_scenes
 
-    scenes = engineering_scenes()
-    assert [s["name"] for s in scenes] == [
-        "two spans",
-        "three spans",
-        "overhangs",
-        "on springs",
-        "stepped",
-        "bi-material",
-    ]
-    for name, m in models().items():
-        for sc in scenes:
-            assert isinstance(m.check(parse_scene(sc)), list), name
+    names = [s["name"] for s in engineering_scenes()]
+    assert names == ["two spans", "three spans", "overhangs", "on springs", "stepped", "bi-material"]
     sets = lambda name: {m["set"] for m in plan(get_model(name)).meta.values()}  # noqa: E731
     assert "engineering" in sets("pd-timoshenko") and "engineering" in sets("fem-eb")
     assert "engineering" not in sets("pd-eb") and "engineering" not in sets("pd-rod")
+
+
+@pytest.mark.slow
+def test_every_model_takes_or_declines_the_engineering_scenes_in_lines():
+    """Every model's check takes or declines each engineers' scene in lines, without an exception (a spring end
+    on a model that holds only named supports, an inner support on a curved reference)."""
+    from pdverify.registry import models
+    from pdverify.verify.suite import engineering_scenes
+
+    for name, m in models().items():
+        for sc in engineering_scenes():
+            assert isinstance(m.check(parse_scene(sc)), list), name
+
+
+def test_a_variant_that_refuses_an_engineers_scene_declines_it():
+    """pd-timoshenko's corrected variant takes no segments (a one-line refusal when it solves): the card lists the
+    stepped and bi-material scenes among those it declines instead of counting failed solves."""
+    from pdverify.verify import _declined
+
+    model = get_model("pd-timoshenko")
+    p = plan(model, options={"variant": "corrected"})
+    declined = _declined(model, p, {"variant": "corrected"})
+    names = {p.meta[f]["name"]: why for f, why in declined.items() if p.meta[f]["set"] == "engineering"}
+    assert names["stepped"] and names["bi-material"] and names["stepped"][0].startswith("segments: variant corrected")
+    assert not names["two spans"] and not names["on springs"]
+    assert not any(why for f, why in _declined(model, plan(model), {}).items() if p.meta[f]["set"] == "engineering")
