@@ -201,8 +201,22 @@ def _span_loads(force_at: float, moment_at: float) -> list[dict]:
     ]
 
 
-def engineering_scenes() -> list[dict]:
-    """Scenes as engineers draw them (suite 1.7), loads in every span: continuous over two and three spans, an
+def _as_rod_load(load: dict, kind: str) -> dict:
+    """A beam load of the engineers' scenes as the rod's (axial) or the bar's (torsion) at the same place: the
+    distributed load 1 kN/m (100 N m/m), a point force or moment an axial force of its value (5 x a moment's) or a
+    torque of a tenth of it (half a moment's)."""
+    at = {"position": load["position"]} if "position" in load else {}
+    if load["type"] == "distributed":
+        return _axial(type="distributed") if kind == "axial" else _torque()
+    size = load["value"] * (1.0 if load["type"] == "point_force" else 5.0)
+    if kind == "axial":
+        return {"type": "point_force", **at, "value": 0.0, "axial": size}
+    return {"type": "point_torque", **at, "value": size / 10.0}
+
+
+def engineering_scenes(kind: str | None = None) -> list[dict]:
+    """Scenes as engineers draw them (suite 1.7), loads in every span (a rod's or a bar's, ``kind``, at the same
+    places: :func:`_as_rod_load`): continuous over two and three spans, an
     overhang on both sides, a beam on springs, a stepped and a bi-material beam. Supports, segment ends and loads sit
     on grid points of every grid (and where the mirror image puts them back exactly); the springs are about the
     beam's own stiffness (48 EI / L³ = 1.7e6 N/m)."""
@@ -259,6 +273,7 @@ def engineering_scenes() -> list[dict]:
     ]
     scenes = []
     for name, supports, segments, loads in out:
+        loads = loads if kind is None else [_as_rod_load(ld, kind) for ld in loads]
         sc = straight("pinned", "pinned", loads, name=name)
         sc["supports"] = supports
         if segments:
@@ -361,8 +376,8 @@ def plan(model, full: bool = False, options: dict | None = None) -> Plan:
         load="uniform",
         slenderness=SLENDERNESS,
     )
-    if kind is None and (model.inner_supports or model.springs or model.segments):
-        for sc in engineering_scenes():  # (a scene the model cannot hold is declined: listed on the card)
+    if model.inner_supports or model.springs or model.segments:
+        for sc in engineering_scenes(kind):  # (a scene the model cannot hold is declined: listed on the card)
             sup = sc["supports"]
             add(
                 "engineering",

@@ -281,14 +281,15 @@ def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
 
 def test_engineering_scenes_go_to_models_that_take_them():
     """Suite 1.7: the continuous, overhanging, spring, stepped and bi-material scenes are in the plan of a model that
-    declares supports inside the span, springs or segments (not of a rod's, nor of one that declares none)."""
+    declares supports inside the span, springs or segments (a rod's too, with its loads), not of one that declares
+    none."""
     from pdverify.verify.suite import engineering_scenes
 
     names = [s["name"] for s in engineering_scenes()]
     assert names == ["two spans", "three spans", "overhangs", "on springs", "stepped", "bi-material"]
     sets = lambda name: {m["set"] for m in plan(get_model(name)).meta.values()}  # noqa: E731
     assert "engineering" in sets("pd-timoshenko") and "engineering" in sets("fem-eb")
-    assert "engineering" not in sets("pd-eb") and "engineering" not in sets("pd-rod")
+    assert "engineering" not in sets("pd-eb") and "engineering" in sets("pd-rod")
 
 
 @pytest.mark.slow
