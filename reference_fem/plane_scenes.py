@@ -26,6 +26,7 @@ import scipy.sparse as sp
 
 from pdverify.core.scene import HELD, Scene, Spring
 from reference_fem import curved_mesh as cm
+from reference_fem.plane_conditions import node_dofs
 
 
 def _parabola(h: float):
@@ -147,8 +148,6 @@ def checks(scene: Scene) -> list[str]:
 def reactions(r: np.ndarray, basis, scene: Scene) -> dict[str, float]:
     """Every support's force, axial force and moment from r = K u - F (module docstring): each node's to the
     nearest support station."""
-    from reference_fem.plane_conditions import node_dofs
-
     stations = [("left", 0.0)] + [(f"inner_{i}", s.position) for i, s in enumerate(scene.supports.inner)]
     stations.append(("right", scene.length))
     at = np.array([p for _, p in stations])
