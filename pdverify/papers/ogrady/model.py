@@ -34,8 +34,48 @@ from ...core.scene import Scene
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
+from .general import first_order_warnings, linear_system, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
+
+ENDS = ("auto", "taylor", "mirror", "none")
+
+
+def resolved_ends(scene: Scene, params: dict) -> dict:
+    """``params`` with ``ends = auto`` made concrete: mirror for the nonlinear path and for scenes that need the pair
+    form (supports inside the span, springs, segments), taylor otherwise."""
+    if params["ends"] != "auto":
+        return params
+    general = not scene.supports.simple or bool(scene.segments)
+    return dict(params, ends="mirror" if params["nonlinear"] or general else "taylor")
+
+
+def pair_form(scene: Scene, params: dict) -> bool:
+    """True when ``scene`` is solved on the pair form (:mod:`.general`): ``ends = none``, or a scene with supports
+    inside the span, springs or segments (refused with Taylor ends, in one line)."""
+    general = not scene.supports.simple or bool(scene.segments)
+    if general and params["ends"] == "taylor":
+        what = "supports inside the span" if scene.supports.inner else "springs" if not scene.supports.simple else ""
+        raise InputError(
+            f"{what or 'segments'}: ends = taylor solves one section between end supports only; give -o ends=mirror "
+            "(or auto, or none)"
+        )
+    if params["ends"] == "none":
+        for side in ("left", "right"):
+            if scene.supports.kind(side) in ("clamped", "guided"):
+                raise InputError(
+                    f"supports.{side} = {scene.supports.kind(side)}: ends = none has no points outside the beam to "
+                    "hold a rotation (O'Grady & Foster 2014, §3.2: clamps 'require careful treatment'); give "
+                    "-o ends=mirror"
+                )
+    if (general or params["ends"] == "none") and scene.has_axial_loads:
+        i = next(i for i, ld in enumerate(scene.loads) if getattr(ld, "axial", 0.0))
+        raise InputError(
+            f"loads[{i}].axial = {scene.loads[i].axial!r}: the pair form (supports inside the span, springs, "
+            "segments, ends = none) carries the deflection only; drop the axial component"
+        )
+    return general or params["ends"] == "none"
+
 
 __all__ = ["MODELS", "PDBondPair", "factored_stencils", "operator_stencil", "pair_family", "spring_constants"]
 
@@ -77,7 +117,14 @@ class PDBondPair(Model):
             "nodes within delta) | continuous-alpha (3 EI / delta^3, a reconstruction, not the paper)",
             choices=VARIANTS,
         ),
-        Option("ends", str, "taylor", "boundary ghost rule: mirror | taylor", choices=("mirror", "taylor")),
+        Option(
+            "ends",
+            str,
+            "auto",
+            "auto (taylor for end supports only, else mirror) | taylor (Taylor ghost points, strong form) | mirror "
+            "(reflected ghosts, energy form) | none (no points outside the beam: the paper's §3.1)",
+            choices=ENDS,
+        ),
         Option(
             "form",
             str,
@@ -90,6 +137,9 @@ class PDBondPair(Model):
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
     )
     axial = True
+    springs = True
+    inner_supports = True
+    segments = True
     assembles = True
     nonlinear_when = (("nonlinear", True),)
     variant_rules = (
@@ -126,6 +176,11 @@ class PDBondPair(Model):
         :func:`.taylor.assemble_taylor`, supported points held."""
         if not self.linear(params):
             raise InputError("nonlinear = true: the nonlinear path solves no single linear system")
+        params = resolved_ends(scene, params)
+        if pair_form(scene, params):
+            K, rhs, elim, _ = linear_system(scene, params)
+            free = np.setdiff1d(np.arange(params["points"]), elim.dep)
+            return System(K, rhs, free, {"form": "pair form (supports, springs, segments)", "ends": params["ends"]})
         if params["ends"] == "mirror":
             model = self.energy_model(scene, params)
             K = model.tangent(np.zeros(2 * model.n), 0.0)
@@ -142,6 +197,34 @@ class PDBondPair(Model):
         K, b, fixed, info = assemble_taylor(scene, params, c, j)
         return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
 
+    def solve_pairs(self, scene: Scene, params: dict) -> Result:
+        """The linear pair form (:mod:`.general`)."""
+        timer = Timer()
+        with timer("solve"):
+            x, w, pairs, f, info = solve_pairs_linear(scene, params)
+        dx = x[1] - x[0]
+        reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
+        flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach)
+        if flags:
+            info.setdefault("warnings", []).extend(flags)
+        info.update(
+            form="pair form (supports, springs, segments)",
+            ends=params["ends"],
+            spacing=dx,
+            horizon_factor=params["horizon"],
+            horizon=horizon_length(params["horizon"], dx, params["variant"]),
+        )
+        return self.new_result(
+            scene,
+            params,
+            x,
+            w,
+            rotation=np.gradient(w, dx, edge_order=2),
+            dofs=len(x),
+            timings=timer.timings,
+            info=info,
+        )
+
     def axial_displacement(self, scene: Scene, params: dict) -> np.ndarray:
         """u of the axial bonds at rest (Taylor ends carry w only; at rest in a straight beam u and w decouple, so
         the axial block of the energy form's tangent gives u): the same axial discretisation as ``ends = mirror``."""
@@ -156,8 +239,13 @@ class PDBondPair(Model):
     def solve_nonlinear(self, scene: Scene, params: dict) -> Result:
         if params["ends"] != "mirror":
             raise InputError(
-                "ends = taylor: the nonlinear path uses the reflection (mirror) ghosts of the energy "
-                "form; give -o ends=mirror with -o nonlinear=true"
+                f"ends = {params['ends']}: the nonlinear path uses the reflection (mirror) ghosts of the energy "
+                "form; give -o ends=mirror (or auto) with -o nonlinear=true"
+            )
+        if pair_form(scene, params):
+            raise InputError(
+                "nonlinear = true: the large-rotation path takes supports at the ends only, one section and one "
+                "material; drop nonlinear for supports inside the span, springs or segments"
             )
         timer = Timer()
         dx = scene.length / (params["points"] - 1)
@@ -184,8 +272,11 @@ class PDBondPair(Model):
         )
 
     def solve(self, scene: Scene, params: dict) -> Result:
+        params = resolved_ends(scene, params)
         if params["nonlinear"]:
             return self.solve_nonlinear(scene, params)
+        if pair_form(scene, params):
+            return self.solve_pairs(scene, params)
         timer = Timer()
         what = f"pd-bond-pair ({params['variant']}, {params['ends']} ends)"
         x = np.linspace(0.0, scene.length, params["points"])

@@ -165,4 +165,5 @@ def test_nonlinear_path_needs_the_mirror_ghosts():
 
     sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_moment", "position": 2.0, "value": 1.0}]))
     with pytest.raises(InputError, match="ends = taylor"):
-        run(sc, "pd-bond-pair", nonlinear=True)
+        run(sc, "pd-bond-pair", nonlinear=True, ends="taylor")
+    assert run(sc, "pd-bond-pair", nonlinear=True, points=41).info["ends"].startswith("mirror")  # auto
