@@ -141,6 +141,22 @@ def linear_system(scene: Scene, params: dict, omega=None):
     return Kr, elim.T.T @ (F - K @ elim.w0), elim, (pairs, cond, K, F)
 
 
+def reaction_couples(cond: Conditions, elim: Elimination, residual: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The nodal forces of the supports' couples (the rotations held inside the span, rotational springs): force pairs
+    that carry no shear (:func:`.recovery.shear`)."""
+    out = np.zeros(len(w))
+    lam = elim.multipliers(residual)
+    for name, value, row in zip(cond.names, lam, cond.rows):
+        if name.startswith("moment"):
+            out += value * row.toarray().ravel()
+    for name, row, k in cond.spring_rows:
+        if name.startswith("moment"):
+            r = np.zeros(len(w))
+            r[list(row)] = list(row.values())
+            out -= k * (r @ w) * r
+    return out
+
+
 def solve_pairs_linear(scene: Scene, params: dict, omega=None):
     """(x, w, pairs, f, info): the linear pair form of ``scene`` solved in the mixed form (:mod:`.mixed`); ``f`` the
     pair forces; info holds the reactions and the solve's info."""
@@ -152,7 +168,9 @@ def solve_pairs_linear(scene: Scene, params: dict, omega=None):
     elim = eliminate(cond.rows, cond.values, n, what)
     F = nodal_loads(scene, n, dx)
     w, f, info = solve_mixed(pairs, elim, cond.springs, F, what)
-    info["reactions"] = reactions(cond, elim, pairs.D.T @ f + cond.springs @ w - F, w)
+    g = pairs.D.T @ f + cond.springs @ w  # the nodal forces of the pairs and springs: loads plus reactions
+    info["reactions"] = reactions(cond, elim, g - F, w)
+    info["nodal_forces"], info["reaction_couples"] = g, reaction_couples(cond, elim, g - F, w)
     return np.arange(n) * dx, w, pairs, f, info
 
 

@@ -36,6 +36,7 @@ from ...numerics.loads import boundary_layer_warnings
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
 from .general import first_order_warnings, linear_system, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
+from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
 
 ENDS = ("auto", "taylor", "mirror", "none")
@@ -204,7 +205,7 @@ class PDBondPair(Model):
             x, w, pairs, f, info = solve_pairs_linear(scene, params)
         dx = x[1] - x[0]
         reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
-        flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach)
+        flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach) + rotation_warnings(scene)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
@@ -219,7 +220,15 @@ class PDBondPair(Model):
             params,
             x,
             w,
-            rotation=np.gradient(w, dx, edge_order=2),
+            rotation=rotation(w, dx),
+            fields=pair_fields(
+                scene,
+                pairs,
+                f,
+                params["ends"] == "mirror",
+                g=info.pop("nodal_forces"),
+                extra_couples=info.pop("reaction_couples"),
+            ),
             dofs=len(x),
             timings=timer.timings,
             info=info,
@@ -290,6 +299,9 @@ class PDBondPair(Model):
                 u, info = solve_linear(system.matrix, system.rhs, what=what)
                 full = refine(model, system.matrix, system.rhs, system.free, u)
             w, fields["u"] = full[1::2], full[0::2]
+            dx = x[1] - x[0]
+            pairs = mirror_pairs(scene.EI, params, len(x), dx, (scene.supports.left, scene.supports.right))
+            fields.update(pair_fields(scene, pairs, pairs.moments(w), mirror=True))
         elif binfo.get("Jk") is not None:
             Jk = binfo.pop("Jk")
             with timer("solve"):
@@ -299,6 +311,12 @@ class PDBondPair(Model):
                 # (tests/papers/ogrady/test_bond_pair_large.py; docs/models/ogrady.md)
                 z, info = solve_linear(system.matrix, system.rhs, what=what + ", mixed form", condition=False)
                 w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
+            dx = x[1] - x[0]
+            j, _ = pair_family(params["horizon"], dx, params["variant"])
+            r, _ = factored_stencils(
+                j, spring_constants(scene.EI, params["horizon"], dx, params["variant"]), scene.EI, dx
+            )
+            fields.update(mixed_fields(scene, r, z[0::2], len(x), Jk, dx))
             info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2
             if roundoff > 1e-6:
                 info.setdefault("warnings", []).append(
@@ -314,7 +332,7 @@ class PDBondPair(Model):
         dx = x[1] - x[0]
         flags = boundary_layer_warnings(
             scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
-        )
+        ) + rotation_warnings(scene)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
@@ -329,7 +347,7 @@ class PDBondPair(Model):
             x,
             w,
             fields=fields,
-            rotation=np.gradient(w, dx, edge_order=2),
+            rotation=rotation(w, dx),
             dofs=system.unknowns,
             timings=timer.timings,
             info=info,
