@@ -272,7 +272,7 @@ def list_models():
         c = m.capabilities()
         typer.echo(
             f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
-            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}"
+            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}; sections {', '.join(c['shapes'])}"
         )
 
 

@@ -187,6 +187,7 @@ class Model:
     springs: bool = False  # elastic supports (a [supports] end or inner support given as a spring table)
     inner_supports: bool = False  # supports inside the span (supports.inner)
     segments: bool = False  # sections and materials that change along the axis ([[segments]])
+    shapes: frozenset[str] = frozenset({"rectangle", "given", "I", "profile"})  # section kinds (Section.kind) it takes
     load_types: frozenset[str] = LOAD_TYPES  # loads[i].type it applies
     end_motions: bool = False  # prescribed end motions ([dynamics.left/right]) in its solution
     variant_rules: tuple[Rule, ...] = ()  # option values each variant's equations define (Rule)
@@ -236,6 +237,15 @@ class Model:
                 f"segments: model {self.name} takes one section and one material; use a model that takes segments "
                 "(`pdverify models`: exact-eb, fem-eb, ...)"
             )
+        sections = [("section", scene.section)] + [
+            (f"segments[{i}].section", g.section) for i, g in enumerate(scene.segments)
+        ]
+        for where, sec in sections:
+            if sec is not None and sec.kind not in self.shapes:
+                out.append(
+                    f"{where}.shape = {sec.kind!r}: model {self.name} takes a rectangle (its equations use the "
+                    "section's depth and width); give width and height"
+                )
         if self.bending and (why := straight_mechanism(scene)) is not None:  # (a scene that bends it is refused)
             out.append(why)
         if scene.dynamics is None and "static" not in self.analyses:
@@ -324,6 +334,7 @@ class Model:
             "axes": [a for a, ok in (("straight", self.straight), ("curved", self.curved)) if ok],
             "supports": sorted(self.supports) + ["spring"] * self.springs + ["inner"] * self.inner_supports,
             "segments": self.segments,
+            "shapes": sorted(self.shapes),
             "load_types": sorted(self.load_types),
             "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
             "measures": self.measures,

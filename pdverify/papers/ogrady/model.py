@@ -38,6 +38,7 @@ from .general import first_order_warnings, linear_system, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
 from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
+from .weights import WEIGHTS, weights
 
 ENDS = ("auto", "taylor", "mirror", "none")
 
@@ -75,7 +76,20 @@ def pair_form(scene: Scene, params: dict) -> bool:
             f"loads[{i}].axial = {scene.loads[i].axial!r}: the pair form (supports inside the span, springs, "
             "segments, ends = none) carries the deflection only; drop the axial component"
         )
-    return general or params["ends"] == "none"
+    return general or params["ends"] == "none" or (params["weight"] != "uniform" and params["ends"] == "mirror")
+
+
+def omega(scene: Scene, params: dict):
+    """The members' weights of ``params["weight"]`` (None for uniform; :mod:`.weights`)."""
+    if params["weight"] == "uniform":
+        return None
+    if scene.segments:
+        raise InputError(
+            f"weight = {params['weight']}: a section weight takes one section along the beam; use weight = uniform "
+            "with segments"
+        )
+    dx = scene.length / (params["points"] - 1)
+    return weights(scene.section.profile, params["weight"], params["horizon"], dx, params["variant"])
 
 
 __all__ = ["MODELS", "PDBondPair", "factored_stencils", "operator_stencil", "pair_family", "spring_constants"]
@@ -134,6 +148,14 @@ class PDBondPair(Model):
             "and deflection, two second-order equations: round-off ~N^2 eps instead of ~N^4 eps)",
             choices=("auto", "direct", "mixed"),
         ),
+        Option(
+            "weight",
+            str,
+            "uniform",
+            "the pairs' weight omega: uniform (1) | paper (Eq. 6, |xi| b(y) at y = (xi / delta) t / 2) | fibre (b(y): "
+            "the fibre theory's moment-curvature curve)",
+            choices=WEIGHTS,
+        ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
     )
@@ -159,6 +181,13 @@ class PDBondPair(Model):
             "carry the true EI (docs/design/formulas.md §1); use ends = mirror",
             allowed=("mirror",),
         ),
+        Rule(
+            (("variant", "continuous-alpha"),),
+            "weight",
+            "Eq. 5's continuous integral alpha = 3 EI / delta^3 is the one of omega = 1; use variant = paper or "
+            "corrected for a section weight",
+            allowed=("uniform",),
+        ),
     )
 
     def energy_model(self, scene: Scene, params: dict):
@@ -179,7 +208,7 @@ class PDBondPair(Model):
             raise InputError("nonlinear = true: the nonlinear path solves no single linear system")
         params = resolved_ends(scene, params)
         if pair_form(scene, params):
-            K, rhs, elim, _ = linear_system(scene, params)
+            K, rhs, elim, _ = linear_system(scene, params, omega(scene, params))
             free = np.setdiff1d(np.arange(params["points"]), elim.dep)
             return System(K, rhs, free, {"form": "pair form (supports, springs, segments)", "ends": params["ends"]})
         if params["ends"] == "mirror":
@@ -192,7 +221,7 @@ class PDBondPair(Model):
             )
         dx = scene.length / (params["points"] - 1)
         j, _ = pair_family(params["horizon"], dx, params["variant"])
-        c = spring_constants(scene.EI, params["horizon"], dx, params["variant"])
+        c = spring_constants(scene.EI, params["horizon"], dx, params["variant"], omega(scene, params))
         if params.get("form", "auto") in ("auto", "mixed"):
             return assemble_mixed(scene, params, c, j)
         K, b, fixed, info = assemble_taylor(scene, params, c, j)
@@ -202,7 +231,7 @@ class PDBondPair(Model):
         """The linear pair form (:mod:`.general`)."""
         timer = Timer()
         with timer("solve"):
-            x, w, pairs, f, info = solve_pairs_linear(scene, params)
+            x, w, pairs, f, info = solve_pairs_linear(scene, params, omega(scene, params))
         dx = x[1] - x[0]
         reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
         flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach) + rotation_warnings(scene)
@@ -246,6 +275,11 @@ class PDBondPair(Model):
         return u[0::2]
 
     def solve_nonlinear(self, scene: Scene, params: dict) -> Result:
+        if params["weight"] != "uniform":
+            raise InputError(
+                f"weight = {params['weight']}: the large-rotation path weighs every pair alike; give -o weight=uniform "
+                "with -o nonlinear=true"
+            )
         if params["ends"] != "mirror":
             raise InputError(
                 f"ends = {params['ends']}: the nonlinear path uses the reflection (mirror) ghosts of the energy "
@@ -313,9 +347,8 @@ class PDBondPair(Model):
                 w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
             dx = x[1] - x[0]
             j, _ = pair_family(params["horizon"], dx, params["variant"])
-            r, _ = factored_stencils(
-                j, spring_constants(scene.EI, params["horizon"], dx, params["variant"]), scene.EI, dx
-            )
+            c = spring_constants(scene.EI, params["horizon"], dx, params["variant"], omega(scene, params))
+            r, _ = factored_stencils(j, c, scene.EI, dx)
             fields.update(mixed_fields(scene, r, z[0::2], len(x), Jk, dx))
             info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2
             if roundoff > 1e-6:
