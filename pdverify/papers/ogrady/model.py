@@ -33,6 +33,7 @@ from ...core.result import Result, Timer
 from ...core.scene import Scene
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
+from ...numerics.solvers import SOLVER, solve
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
 from .general import first_order_warnings, linear_system, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
@@ -158,6 +159,7 @@ class PDBondPair(Model):
         ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
+        SOLVER,
     )
     axial = True
     springs = True
@@ -330,7 +332,7 @@ class PDBondPair(Model):
         if params["ends"] == "mirror":
             model = self.energy_model(scene, params)
             with timer("solve"):
-                u, info = solve_linear(system.matrix, system.rhs, what=what)
+                u, info = solve(system.matrix, system.rhs, what, params["solver"])
                 full = refine(model, system.matrix, system.rhs, system.free, u)
             w, fields["u"] = full[1::2], full[0::2]
             dx = x[1] - x[0]
@@ -343,7 +345,7 @@ class PDBondPair(Model):
                 # round-off (which stays far below cond eps), so it is not estimated; the round-off estimate
                 # 0.1 eps N^2 holds the errors at 10^5-10^6 points, every support pair, mixed loads
                 # (tests/papers/ogrady/test_bond_pair_large.py; docs/models/ogrady.md)
-                z, info = solve_linear(system.matrix, system.rhs, what=what + ", mixed form", condition=False)
+                z, info = solve(system.matrix, system.rhs, what + ", mixed form", params["solver"], condition=False)
                 w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
             dx = x[1] - x[0]
             j, _ = pair_family(params["horizon"], dx, params["variant"])
@@ -358,7 +360,7 @@ class PDBondPair(Model):
                 )
         else:
             with timer("solve"):
-                w, info = solve_linear(system.matrix, system.rhs, what=what)
+                w, info = solve(system.matrix, system.rhs, what, params["solver"])
         if params["ends"] == "taylor" and scene.has_axial_loads:
             with timer("solve"):
                 fields["u"] = self.axial_displacement(scene, params)
