@@ -19,6 +19,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Strict, Tag, model_validator
 
 from .errors import InputError
+from .loading import Displacement, Loading
 from .section import Section  # noqa: F401  (a scene's [section] table; re-exported with the other tables)
 
 SUPPORTS = ("clamped", "pinned", "free", "guided", "roller")
@@ -55,6 +56,8 @@ class Material(_Strict):
     poissons_ratio: Real = Field(gt=-1.0, lt=0.5, allow_inf_nan=False)
     density: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
     shear_modulus: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    yield_stress: Real | None = Field(default=None, gt=0, allow_inf_nan=False)  # elastic-perfectly plastic (Pa)
+    failure_strain: Real | None = Field(default=None, gt=0, allow_inf_nan=False)  # brittle: the fibre strain at failure
 
     @property
     def E(self) -> float:
@@ -189,7 +192,7 @@ class PointTorque(_Strict):
     value: Real = Field(allow_inf_nan=False)
 
 
-Load = Annotated[PointForce | PointMoment | Distributed | PointTorque, Field(discriminator="type")]
+Load = Annotated[PointForce | PointMoment | Distributed | PointTorque | Displacement, Field(discriminator="type")]
 
 
 class Axis(_Strict):
@@ -295,6 +298,7 @@ class Scene(_Strict):
     axis: Axis = Field(default_factory=Axis)
     dynamics: Dynamics | None = None
     segments: list[Segment] = Field(default_factory=list)
+    loading: Loading | None = None  # a load path (pdverify.core.loading)
 
     # -- derived quantities ------------------------------------------------------------------
     @property
@@ -413,6 +417,7 @@ def rigid_rows(scene) -> np.ndarray:
     for inner in sup.inner:
         x = inner.position / scene.length
         rows += [(1.0, x)] * inner.holds_deflection + [(0.0, 1.0)] * inner.holds_rotation
+    rows += [(1.0, ld.position / scene.length) for ld in scene.loads if ld.type == "displacement"]
     return np.array(rows, float).reshape(-1, 2)
 
 
@@ -422,7 +427,7 @@ def straight_mechanism(scene) -> str | None:
     if not scene.is_straight:
         return None
     sup = scene.supports
-    if sup.simple:
+    if sup.simple and not any(ld.type == "displacement" for ld in scene.loads):
         if not is_mechanism(sup.left, sup.right):
             return None
         return (
