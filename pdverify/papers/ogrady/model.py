@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import LOAD_TYPES, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
@@ -35,8 +35,9 @@ from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
-from .general import first_order_warnings, linear_system, solve_pairs_linear
+from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
+from .path import follows_path, plastic_warnings, solve_path
 from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
 from .weights import WEIGHTS, weights
@@ -49,19 +50,33 @@ def resolved_ends(scene: Scene, params: dict) -> dict:
     form (supports inside the span, springs, segments), taylor otherwise."""
     if params["ends"] != "auto":
         return params
-    general = not scene.supports.simple or bool(scene.segments)
-    return dict(params, ends="mirror" if params["nonlinear"] or general else "taylor")
+    return dict(params, ends="mirror" if params["nonlinear"] or needs_pairs(scene) else "taylor")
+
+
+def needs_pairs(scene: Scene) -> bool:
+    """True when only the pair form represents ``scene``: supports inside the span, springs, segments, prescribed
+    deflections, a load path or a material that yields or breaks."""
+    displaced = any(ld.type == "displacement" for ld in scene.loads)
+    return not scene.supports.simple or bool(scene.segments) or displaced or follows_path(scene)
 
 
 def pair_form(scene: Scene, params: dict) -> bool:
     """True when ``scene`` is solved on the pair form (:mod:`.general`): ``ends = none``, or a scene with supports
     inside the span, springs or segments (refused with Taylor ends, in one line)."""
-    general = not scene.supports.simple or bool(scene.segments)
+    general = needs_pairs(scene)
     if general and params["ends"] == "taylor":
-        what = "supports inside the span" if scene.supports.inner else "springs" if not scene.supports.simple else ""
+        what = (
+            "supports inside the span"
+            if scene.supports.inner
+            else "springs"
+            if not scene.supports.simple
+            else "segments"
+            if scene.segments
+            else "a load path or prescribed deflections"
+        )
         raise InputError(
-            f"{what or 'segments'}: ends = taylor solves one section between end supports only; give -o ends=mirror "
-            "(or auto, or none)"
+            f"{what}: ends = taylor solves one elastic section between end supports under loads only; give "
+            "-o ends=mirror (or auto, or none)"
         )
     if params["ends"] == "none":
         for side in ("left", "right"):
@@ -162,6 +177,9 @@ class PDBondPair(Model):
         SOLVER,
     )
     axial = True
+    load_types = LOAD_TYPES | {"displacement"}
+    materials = frozenset({"yield_stress", "failure_strain"})
+    load_path = True
     springs = True
     inner_supports = True
     segments = True
@@ -265,6 +283,33 @@ class PDBondPair(Model):
             info=info,
         )
 
+    def solve_load_path(self, scene: Scene, params: dict) -> Result:
+        """A load path with pairs that yield or break (:mod:`.path`, Eq. 7 and 8): the last step's fields, every
+        step in ``Result.path``."""
+        pair_form(scene, params)  # the ends and loads the pair form takes (one line otherwise)
+        timer = Timer()
+        what = f"pd-bond-pair ({params['variant']}, {params['ends']} ends, load path)"
+        with timer("solve"):
+            pairs = scene_pairs(scene, params, omega(scene, params))
+            w, f, path, info, _ = solve_path(scene, params, pairs, what)
+        dx = pairs.dx
+        x = np.arange(pairs.n) * dx
+        info.setdefault("warnings", []).extend(plastic_warnings(scene, params, dx) + rotation_warnings(scene))
+        info.update(ends=params["ends"], spacing=dx, horizon_factor=params["horizon"])
+        fields = dict(pair_fields(scene, pairs, f, params["ends"] == "mirror"), health=path[-1]["health"])
+        return self.new_result(
+            scene,
+            params,
+            x,
+            w,
+            rotation=rotation(w, dx),
+            fields=fields,
+            dofs=len(x),
+            timings=timer.timings,
+            info=info,
+            path=path,
+        )
+
     def axial_displacement(self, scene: Scene, params: dict) -> np.ndarray:
         """u of the axial bonds at rest (Taylor ends carry w only; at rest in a straight beam u and w decouple, so
         the axial block of the energy form's tangent gives u): the same axial discretisation as ``ends = mirror``."""
@@ -277,6 +322,11 @@ class PDBondPair(Model):
         return u[0::2]
 
     def solve_nonlinear(self, scene: Scene, params: dict) -> Result:
+        if follows_path(scene) or any(ld.type == "displacement" for ld in scene.loads):
+            raise InputError(
+                "nonlinear = true: the large-rotation path takes elastic pairs under loads; drop nonlinear for "
+                "[loading], yield_stress, failure_strain or displacement loads"
+            )
         if params["weight"] != "uniform":
             raise InputError(
                 f"weight = {params['weight']}: the large-rotation path weighs every pair alike; give -o weight=uniform "
@@ -320,6 +370,8 @@ class PDBondPair(Model):
         params = resolved_ends(scene, params)
         if params["nonlinear"]:
             return self.solve_nonlinear(scene, params)
+        if follows_path(scene):
+            return self.solve_load_path(scene, params)
         if pair_form(scene, params):
             return self.solve_pairs(scene, params)
         timer = Timer()

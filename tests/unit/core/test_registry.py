@@ -29,7 +29,7 @@ def test_capabilities_are_declared_data():
     for m in models().values():
         assert m.analyses and m.analyses <= {"static", "dynamic"}, m.name
         assert m.supports <= registry.SUPPORTS | {"roller"}, m.name
-        assert m.load_types <= registry.LOAD_TYPES | {"point_torque"}, m.name
+        assert m.load_types <= registry.LOAD_TYPES | {"point_torque", "displacement"}, m.name
         assert m.straight or m.curved, m.name
         assert all(isinstance(r, registry.Rule) for r in m.variant_rules), m.name
         assert not hasattr(m, "limit_system") and not hasattr(m, "kind"), m.name  # one contract: assemble()
