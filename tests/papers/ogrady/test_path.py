@@ -252,3 +252,29 @@ def test_a_bad_load_path_is_one_line(loading, match):
     d["loading"] = loading
     with pytest.raises(InputError, match=match):
         parse_scene(d)
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1e3])
+def test_a_scaled_path_is_the_same_path(scale):
+    """Lengths times ``scale`` (micrometres to kilometres), stresses kept: every step's deflection scales with the
+    lengths (to 1e-13 of the peak) and the same pairs yield."""
+
+    def path(s):
+        b, length = 0.1 * s, 2.0 * s
+        P = -1.3 * SY * b**3 / 6 / length
+        d = {
+            "name": "scaled",
+            "beam": {"length": length},
+            "section": {"width": b, "height": b},
+            "material": {"youngs_modulus": E, "poissons_ratio": 0.3, "yield_stress": SY},
+            "supports": {"left": "clamped", "right": "free"},
+            "loads": [{"type": "point_force", "position": length, "value": P}],
+            "loading": {"factors": [0.0, 1.0, 0.0], "steps": 4},
+        }
+        return run(parse_scene(d), "pd-bond-pair", points=81, horizon=5).path
+
+    a, b = path(1.0), path(scale)
+    peak = np.abs(a[4]["w"]).max()
+    for sa, sb in zip(a, b, strict=True):
+        assert sa["yielded"] == sb["yielded"]
+        assert np.abs(sa["w"] - sb["w"] / scale).max() <= 1e-13 * peak
