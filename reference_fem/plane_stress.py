@@ -198,6 +198,7 @@ def writers(scene: Scene, basis, u: np.ndarray, lam: float, mu: float) -> dict:
 
 class FemPlaneStress(Model):
     name = "fem-plane-stress"
+    shapes = frozenset({"rectangle", "given"})  # its equations use the depth of a rectangle
     title = "2D plane-stress continuum (scikit-fem; q8 by default, PLANE182 stand-ins q4-*), straight or curved axis"
     source = "scikit-fem linear elasticity, plane-stress Lame constants; mesh mapped onto the axis"
     theory = "continuum"

@@ -272,7 +272,9 @@ def list_models():
         c = m.capabilities()
         typer.echo(
             f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
-            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}"
+            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}; sections {', '.join(c['shapes'])}"
+            + (f"; materials {', '.join(c['materials'])}" if c["materials"] else "")
+            + ("; load paths" if c["load_path"] else "")
         )
 
 
