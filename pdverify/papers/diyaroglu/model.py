@@ -45,8 +45,9 @@ from ...core.contract import Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
-from ...numerics.linalg import eliminate, solve_linear
+from ...numerics.linalg import eliminate
 from ...numerics.loads import boundary_layer_warnings
+from ...numerics.solvers import SOLVER, solve
 from . import mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
 from .scenes import inner_layer_warnings, spreads
@@ -123,6 +124,7 @@ class PDEulerBernoulli(Model):
             "(each point its own segment's EI)",
             choices=("calibrated", "point"),
         ),
+        SOLVER,
     )
     assembles = True
     springs = True
@@ -269,7 +271,7 @@ class PDEulerBernoulli(Model):
                 lay = self.layout(sc, params)
                 aug = mixed.system(lay)
             with timer("solve"):
-                z, info = solve_linear(aug.matrix, aug.rhs, what="pd-eb (corrected, mixed form)")
+                z, info = solve(aug.matrix, aug.rhs, "pd-eb (corrected, mixed form)", params["solver"])
                 w, M, multipliers = mixed.unpack(lay, aug, z)
             if flip:
                 w, M, multipliers = w[::-1].copy(), M[::-1].copy(), outputs.mirror_reactions(multipliers)
@@ -283,7 +285,7 @@ class PDEulerBernoulli(Model):
             with timer("assemble"):
                 system = self.assemble(scene, params)
             with timer("solve"):
-                w, info = solve_linear(system.matrix, system.rhs, what=f"pd-eb ({params['variant']})")
+                w, info = solve(system.matrix, system.rhs, f"pd-eb ({params['variant']})", params["solver"])
             ndofs, binfo, multipliers = system.unknowns, system.info, None
             c = curvature_weights(params["horizon"], dx, params["variant"])
             M = outputs.direct_moment(scene, w, dx, c, params["variant"], params.get("reading", "energy"))
