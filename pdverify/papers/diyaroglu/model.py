@@ -48,7 +48,7 @@ from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
-from . import mixed, outputs
+from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
 from .scenes import inner_layer_warnings, spreads
 
@@ -125,8 +125,12 @@ class PDEulerBernoulli(Model):
             choices=("calibrated", "point"),
         ),
         SOLVER,
+        dynamics.ANALYSIS,
     )
     assembles = True
+    analyses = frozenset({"static", "dynamic"})  # Eq. 3-7, 15 with the inertia rho w_tt (dynamics.py)
+    modes = True
+    eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params)
     springs = True
     inner_supports = True
     segments = True
@@ -258,6 +262,8 @@ class PDEulerBernoulli(Model):
         return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
 
     def solve(self, scene: Scene, params: dict) -> Result:
+        if dynamics.dynamic(scene, params):
+            return dynamics.transient(self, scene, params)
         timer = Timer()
         self.refuse(scene, params)
         x = self.grid(scene, params)

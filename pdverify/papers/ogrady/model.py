@@ -39,6 +39,7 @@ from ...numerics.families import family, ghost_stencil_system, stencil_operator
 from ...numerics.ghosts import curvature_end_rows, taylor_ghosts
 from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
 from ...numerics.solvers import SOLVER, solve
+from . import dynamics
 from .nonlinear import NonlinearBondPair
 
 
@@ -197,9 +198,13 @@ class PDBondPair(Model):
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
         SOLVER,
+        dynamics.ANALYSIS,
     )
     axial = True
     assembles = True
+    analyses = frozenset({"static", "dynamic"})  # the PD equation of motion with rho A w_tt (dynamics.py)
+    modes = True
+    eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params)
     nonlinear_when = (("nonlinear", True),)
     variant_rules = (
         Rule(
@@ -380,6 +385,8 @@ class PDBondPair(Model):
         )
 
     def solve(self, scene: Scene, params: dict) -> Result:
+        if dynamics.dynamic(scene, params):
+            return dynamics.transient(self, scene, params)
         if params["nonlinear"]:
             return self.solve_nonlinear(scene, params)
         timer = Timer()

@@ -85,10 +85,7 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    order once dx is many layer widths: every slender beam). w* of the end point is free, tied to zero by the
    spring whose series with the grid's own layer has the continuous layer's stiffness; the face condition where
    the grid resolves the layer.
-Orders of convergence and errors: docs/models/yang.md.
-
-Cost: the operator is assembled straight into LAPACK's band layout (:mod:`.operator`, which says how); the banded
-solve is most of a run's time (``pdverify bench -m pd-higher-order``; docs/models/yang.md).
+Orders: docs/models/yang.md. Band assembly: :mod:`.operator`. Dynamics (Eq. 17-22): :mod:`.dynamics`.
 """
 
 from __future__ import annotations
@@ -105,6 +102,7 @@ from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
+from . import dynamics
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
 from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
@@ -206,9 +204,13 @@ class PDHigherOrder(Model):
             choices=("auto", "face", "layer"),
         ),
         Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
+        dynamics.ANALYSIS,
     )
 
     assembles = True
+    analyses = frozenset({"static", "dynamic"})  # Eq. 17-22 with the inertia of Eq. 19 (dynamics.py)
+    modes = True
+    eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params): K and M of Eq. 22
     springs = True
     inner_supports = True
     _PAPER = (("variant", "paper"),)
@@ -392,6 +394,8 @@ class PDHigherOrder(Model):
         return System(A, rhs, free, dict(info, ties=tie, unknowns=unknowns, scales=scales))
 
     def solve(self, scene: Scene, params: dict) -> Result:
+        if dynamics.dynamic(scene, params):
+            return dynamics.transient(self, scene, params)
         timer = Timer()
         with timer("assemble"):
             system = self.assemble(scene, params)
