@@ -49,6 +49,7 @@ ANALYSIS = Option(
 )
 DEFAULT_SAFETY = 0.9
 SAMPLES = 2000  # default number of recorded samples of a run
+OMEGA1_DOFS = 20000  # omega_1 is computed (and reported) up to this many unknowns, or when a damping ratio needs it
 MODAL_DOFS = 4000  # a non-symmetric operator up to this size is run in its eigenbasis (a dense eigensolve)
 
 
@@ -106,7 +107,8 @@ def extreme_eigenvalue(A: sp.spmatrix, smallest: bool = False) -> float:
 @dataclass
 class Run:
     """A transient's samples: t (s), the observed values (one row per sample), the final u, the step, the stable
-    limit, the damping c (1/s), omega_1 (the lowest frequency) and the ledger."""
+    limit, the damping c (1/s), omega_1 (the lowest frequency; None on large grids without a damping ratio) and the
+    ledger."""
 
     t: np.ndarray
     values: np.ndarray
@@ -115,7 +117,7 @@ class Run:
     dt_limit: float
     steps: int
     damping: float
-    omega1: float
+    omega1: float | None
     energy: dict = field(default_factory=dict)
     energy_drift: float = 0.0
     scheme_drift: float = 0.0
@@ -156,7 +158,9 @@ def integrate(
             S = S.real
             Kt, bt, back = sp.diags(lam.real).tocsr(), np.linalg.solve(S, bt), Ri.T @ S
     limit = 2.0 / np.sqrt(extreme_eigenvalue(Kt))
-    omega1 = float(np.sqrt(extreme_eigenvalue(Kt, smallest=True)))  # the damping ratio's scale; in info
+    omega1 = None  # the damping ratio's scale; in info up to OMEGA1_DOFS unknowns (a shift-invert solve)
+    if damping_ratio is not None or Kt.shape[0] <= OMEGA1_DOFS:
+        omega1 = float(np.sqrt(extreme_eigenvalue(Kt, smallest=True)))
     if damping_ratio is not None:
         damping = 2.0 * damping_ratio * omega1
     dt = safety * limit if dt is None else float(dt)
