@@ -248,7 +248,7 @@ class Model:
                 "use a dynamic model (`pdverify models` lists each model's analyses) or ask for the static part "
                 "(-o static=true)"
             )
-        if scene.dynamics is not None and not self.end_motions and "dynamic" in self.analyses:
+        if scene.dynamics is not None and not (self.end_motions or self.reference) and "dynamic" in self.analyses:
             moved = [
                 f"dynamics.{side}.{k}"
                 for side in ("left", "right")
