@@ -18,8 +18,8 @@ stored energy. A non-symmetric K~ (boundary closures by ghost points) conserves 
 u.K u / 2; when its eigenvalues are real (a diagonalisable K~ = S Lambda S^-1, S of unit columns) the run is made
 in p = S^-1 q, where the step is the same linear map and decouples per mode: the ledger is then the modal energy
 (1/2) Σ (p_t^2 + lambda p^2), the energy of the inner product that makes K~ symmetric (``Run.ledger = "modal"``),
-conserved by the undamped scheme to round-off; it equals the physical energy when K is symmetric, and lies within
-cond(S)^2 of it (cond(S) ~ 2 to 5 for the PD beams' ghost closures). Up to MODAL_DOFS unknowns (a dense
+conserved by the undamped scheme to round-off; it equals the physical energy when K is symmetric, and lies within a
+factor cond(S)^2 of it (cond(S) ~ 2 to 5 for the PD beams' ghost closures). Up to MODAL_DOFS unknowns (a dense
 eigensolve); above, the physical ledger, whose balance then carries the non-symmetric part.
 A run whose stored energy outgrows the work put in (``blown_up``) stops with a SolveError naming
 the step and the limit.
