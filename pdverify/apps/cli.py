@@ -243,15 +243,18 @@ def modes(
     option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
     count: int = typer.Option(5, "--count", help="how many modes, lowest first"),
     fmt: Format = typer.Option(Format.table, "--format", help="table | json | csv"),
+    points: int | None = typer.Option(None, help="material points / nodes along the axis, ends included"),
+    horizon: float | None = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
 ):
     """The first natural frequencies of a model's discrete operator against the analytic ones, with the
-    relative error per mode (rod and torsion bar: closed form; Timoshenko beam: characteristic determinant)."""
+    relative error per mode (rod and torsion bar: closed form; Timoshenko and Euler-Bernoulli beams: their
+    characteristic determinants)."""
     from ..core.scene_file import load_scene
     from ..measure.modes import modes as _modes
 
     sc = load_scene(scene)
     _SCENE_FILES[:] = [sc]
-    table = _modes(sc, model, parse_options(option), count)
+    table = _modes(sc, model, grid_options(parse_options(option), points=points, horizon=horizon), count)
     for w in table.warnings:
         typer.echo(f"warning: {w}", err=True)
     text = {Format.json: table.to_json, Format.csv: table.to_csv, Format.table: table.to_table}[fmt]()

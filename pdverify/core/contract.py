@@ -261,6 +261,18 @@ class Model:
                 "use a dynamic model (`pdverify models` lists each model's analyses) or ask for the static part "
                 "(-o static=true)"
             )
+        if scene.dynamics is not None and not (self.end_motions or self.reference) and "dynamic" in self.analyses:
+            moved = [
+                f"dynamics.{side}.{k}"
+                for side in ("left", "right")
+                for k in MOTION_COMPONENT
+                if getattr(scene.dynamics, side) is not None and getattr(getattr(scene.dynamics, side), k) is not None
+            ]
+            if moved:
+                out.append(
+                    f"{moved[0]}: model {self.name} cannot prescribe end motions; use a model that can "
+                    "(`pdverify models`: end_motions) or drop the motion"
+                )
         if scene.dynamics is not None and self.end_motions:
             for side in ("left", "right"):
                 em = getattr(scene.dynamics, side)

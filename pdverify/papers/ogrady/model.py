@@ -34,6 +34,7 @@ from ...core.scene import Scene
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
+from . import dynamics
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
 from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
@@ -175,6 +176,7 @@ class PDBondPair(Model):
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
         SOLVER,
+        dynamics.ANALYSIS,
     )
     axial = True
     load_types = LOAD_TYPES | {"displacement"}
@@ -184,6 +186,15 @@ class PDBondPair(Model):
     inner_supports = True
     segments = True
     assembles = True
+    analyses = frozenset({"static", "dynamic"})  # the PD equation of motion with rho A w_tt (dynamics.py)
+    modes = True
+
+    def eigenproblem(self, scene: Scene, params: dict):
+        return dynamics.eigenproblem(self, scene, resolved_ends(scene, params))
+
+    def bench_dynamics(self, scene: Scene, params: dict):
+        return dynamics.bench(self, scene, resolved_ends(scene, params))
+
     nonlinear_when = (("nonlinear", True),)
     variant_rules = (
         Rule(
@@ -368,6 +379,8 @@ class PDBondPair(Model):
 
     def solve(self, scene: Scene, params: dict) -> Result:
         params = resolved_ends(scene, params)
+        if dynamics.dynamic(scene, params):
+            return dynamics.transient(self, scene, params)
         if params["nonlinear"]:
             return self.solve_nonlinear(scene, params)
         if follows_path(scene):

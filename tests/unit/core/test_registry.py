@@ -37,6 +37,9 @@ def test_capabilities_are_declared_data():
         "exact-modal-rod",
         "exact-modal-timoshenko",
         "fem-timoshenko",
+        "pd-bond-pair",
+        "pd-eb",
+        "pd-higher-order",
         "pd-rod",
         "pd-timoshenko",
         "pd-torsion",
@@ -117,9 +120,12 @@ def test_declared_supports_and_load_types_are_checked_before_solving(monkeypatch
 
 
 def test_static_model_rejects_a_dynamics_scene_unless_the_static_part_is_asked():
-    """It returned all zeros for beam_example2 (an end-driven transient) before."""
+    """It returned all zeros for beam_example2 (an end-driven transient) before; a dynamic model that cannot move
+    its ends (pd-eb) names the motion, static part or not."""
     sc = load_scene(EXAMPLE2)
-    with pytest.raises(InputError, match=r"^dynamics: model pd-eb solves statics only .*-o static=true"):
+    with pytest.raises(InputError, match=r"^dynamics: model fem-eb solves statics only .*-o static=true"):
+        run(sc, "fem-eb")
+    with pytest.raises(InputError, match=r"^dynamics.right.displacement: model pd-eb cannot prescribe end motions"):
         run(sc, "pd-eb")
     # its static part is the settled end offset, which pd-eb cannot prescribe: named, not dropped
     with pytest.raises(
@@ -133,10 +139,11 @@ def test_static_model_rejects_a_dynamics_scene_unless_the_static_part_is_asked()
         "clamped", "free", ONE_LOAD, material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
     )
     dyn = parse_scene(dict(loaded, dynamics={"end_time": 0.1}))
-    a = run(dyn, "pd-eb", points=41, static=True)
-    b = run(parse_scene(loaded), "pd-eb", points=41)
-    assert np.array_equal(a.w, b.w) and np.abs(a.w).max() > 0
-    assert problems(dyn, get_model("pd-eb")) and not problems(dyn, get_model("pd-eb"), static=True)
+    for name in ("fem-eb", "pd-eb"):
+        a = run(dyn, name, points=41, static=True)
+        b = run(parse_scene(loaded), name, points=41)
+        assert np.array_equal(a.w, b.w) and np.abs(a.w).max() > 0
+    assert problems(dyn, get_model("fem-eb")) and not problems(dyn, get_model("fem-eb"), static=True)
 
 
 def test_dynamic_model_static_part_is_its_static_analysis():
