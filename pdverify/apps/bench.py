@@ -116,7 +116,7 @@ def bench_case(model: str, points: int, scene_path: str | None = None, repeat: i
             sla.solve_banded((lo, up), ab, rhs, check_finite=False)
             limit = min(limit, time.perf_counter() - t0)
         row.update(limit_s=limit, ratio=total / limit, bandwidth=lo + up + 1)
-    if "dynamic" in m.analyses:
+    if "dynamic" in m.analyses and scene.material.density is not None:  # a mass needs a density
         row["updates_per_s"] = float(m.bench_dynamics(scene, params, steps=200))
     row["peak_mem_mb"] = max(peak, 0.0)
     row["mem_per_point_kb"] = max(peak, 0.0) * 1024 / points

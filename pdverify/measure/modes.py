@@ -4,7 +4,9 @@ The model gives its operator on the free DOFs and its lumped mass (``Model.eigen
 the operator of its transient); the eigenvalues λ = ω² of M⁻¹K nearest zero are computed densely up to
 ``DENSE_DOFS`` free DOFs, else by ARPACK in shift-invert mode about 0. The reference for every support
 pair: the rod and the torsion bar in closed form, the Timoshenko beam from its characteristic determinant
-(:mod:`pdverify.exact.vibration`). Modes are matched by order.
+(:mod:`pdverify.exact.vibration`), the Euler-Bernoulli beam from its frequency equation
+(:mod:`pdverify.exact.vibration_eb`; also the reference of the higher-order theory, whose slender limit it is).
+Modes are matched by order.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from ..core.errors import InputError, SolveError
 from ..core.result import columns_csv, plain_json
 from ..core.scene import HELD, ROD_HELD, Scene
 from ..exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
+from ..exact.vibration_eb import eb_frequencies
 from ..registry import get_model, models
 
 DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (every eigenvalue, cheap); ARPACK above
@@ -79,6 +82,13 @@ def analytic_frequencies(scene: Scene, theory: str, count: int) -> tuple[np.ndar
             beam_end(right),
         )
         return beam.frequencies(count), f"Timoshenko beam {left}-{right}: roots of the characteristic determinant"
+    if theory in ("euler-bernoulli", "higher-order"):
+        ends = beam_end(left), beam_end(right)
+        omega = eb_frequencies(scene.EI, rho * scene.section.A, scene.length, *ends, count)
+        what = f"Euler-Bernoulli beam {left}-{right}: roots of the frequency equation"
+        if theory == "higher-order":  # no closed form of its own: the slender limit, with the theory's distance
+            what += " (the higher-order theory's slender limit: it lies below by about Timoshenko's shear and inertia)"
+        return omega, what
     if theory == "axial":
         held = (HELD[left][0], HELD[right][0])
         c = np.sqrt(scene.EA / (rho * scene.section.A))
@@ -187,6 +197,15 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
             warnings.append(
                 f"mode {k + 1}: the eigenvalue {v.real:.6g}{v.imag:+.3g}j of M^-1 K is not real positive (the boundary "
                 "closures); its frequency is Re sqrt(eigenvalue)"
+            )
+    if m.theory == "higher-order":  # the reference is the slender limit: say how far the theory lies from it
+        tim, _ = analytic_frequencies(scene, "timoshenko", count)
+        gap = np.abs(tim / analytic - 1)
+        if gap.max() > 1e-4:
+            warnings.append(
+                f"reference: the Euler-Bernoulli frequencies are the higher-order theory's slender limit; on this "
+                f"beam shear and rotary inertia lower them by about {gap.max():.1e} (Timoshenko's beam, mode "
+                f"{int(np.argmax(gap)) + 1}), a difference of theories, not of the grid"
             )
     worst = int(np.argmax(roundoff))
     if roundoff[worst] > ROUNDOFF_WARN:

@@ -129,22 +129,22 @@ def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
     """The scene and options of the static response to a scene's loads (``static = true``): a dynamic
     model runs its static analysis (option ``analysis``); a static-only model gets the scene without its
     ``[dynamics]`` table, which it may drop only when the table prescribes no end motion."""
-    if "dynamic" in m.analyses:
+    d = scene.dynamics
+    moved = [
+        (side, k)
+        for side in ("left", "right")
+        if d is not None and getattr(d, side) is not None
+        for k in MOTION_COMPONENT
+        if getattr(getattr(d, side), k) is not None
+    ]
+    if "dynamic" in m.analyses and (m.end_motions or not moved):  # else its static part would drop the motion
         if m.option("analysis") is None:
             return scene, given
         if given.get("analysis", "static") not in ("static", "auto"):
             raise InputError(f"static = true and analysis = {given['analysis']!r}: give one of them")
         return scene, dict(given, analysis="static")
-    d = scene.dynamics
     if d is None:
         return scene, given
-    moved = [
-        (side, k)
-        for side in ("left", "right")
-        if getattr(d, side) is not None
-        for k in MOTION_COMPONENT
-        if getattr(getattr(d, side), k) is not None
-    ]
     if moved and not m.end_motions:
         side, k = moved[0]
         can = [n for n, x in models().items() if x.end_motions and getattr(x, MOTION_COMPONENT[k])]

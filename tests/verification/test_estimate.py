@@ -64,10 +64,10 @@ def test_a_model_exact_for_the_scene_is_at_its_round_off():
 
 
 def test_the_estimate_of_a_second_order_model_from_three_grids():
-    """On a sine load the error of pd-eb (corrected) is C dx^2: three grids give the order 2 and the error at the
-    middle one within the factor."""
+    """On a sine load the error of pd-eb (corrected) is C dx^2 from about 41 points (orders 1.84, 1.93, 1.97 from 21
+    to 161): three grids give the order 2 and the error at the middle one within the factor."""
     scene = parse_scene(scene_dict("pinned", "pinned", [{"type": "distributed", "value": -1.0, "shape": "sine"}]))
-    results = [run(scene, "pd-eb", points=n) for n in (21, 41, 81)]
+    results = [run(scene, "pd-eb", points=n) for n in (41, 81, 161)]
     est = richardson(results, 1, "w", 2.0)
     assert est.asymptotic and abs(est.order - 2) < 0.1
     assert 1 / ESTIMATE_FACTOR <= est.error / true_error(scene, "pd-eb", results[1]) <= ESTIMATE_FACTOR

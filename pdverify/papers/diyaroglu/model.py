@@ -46,23 +46,16 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
-from ...numerics.loads import body_loads, boundary_layer_warnings
+from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
-from .operator import (
-    corrected_system,
-    curvature_weights,
-    fixed_points,
-    ghost_map,
-    mixed_end_rows,
-    mixed_ghost_coupling,
-    mixed_matrix,
-    paper_system,
-)
+from . import dynamics, mixed, outputs
+from .operator import corrected_system, curvature_weights, paper_system
+from .scenes import inner_layer_warnings, spreads
 
 
 def mirror_scene(scene: Scene) -> Scene:
-    """The mirror image x -> L - x of a straight scene: supports swapped, positions and spans reflected,
-    couples and axial components reversed (a sine load sin(pi x / L) is its own image)."""
+    """The mirror image x -> L - x of a straight scene: supports swapped, positions, spans, inner supports and
+    segments reflected, couples and axial components reversed (a sine load sin(pi x / L) is its own image)."""
     L = scene.length
     loads = []
     for load in scene.loads:
@@ -77,8 +70,21 @@ def mirror_scene(scene: Scene) -> Scene:
             a, b = scene.span(load)
             up["start"], up["end"] = L - b, L - a
         loads.append(load.model_copy(update=up))
-    sup = scene.supports.model_copy(update={"left": scene.supports.right, "right": scene.supports.left})
-    return scene.model_copy(update={"supports": sup, "loads": loads})
+    inner = [s.model_copy(update={"position": L - s.position}) for s in scene.supports.inner]
+    sup = scene.supports.model_copy(update={"left": scene.supports.right, "right": scene.supports.left, "inner": inner})
+    segs = [g.model_copy(update={"start": L - g.end, "end": L - g.start}) for g in scene.segments[::-1]]
+    return scene.model_copy(update={"supports": sup, "loads": loads, "segments": segs})
+
+
+def paper_bias(m: float) -> str:
+    """The warning of the paper variant: with d = 1/(A delta), delta = (m + 0.015) dx (Eq. 32), the curvature of a
+    quadratic is too small by m/(m + 0.015), so the refined beam is too flexible by (1 + 0.015/m)^2 - 1."""
+    bias = (1.0 + 0.015 / m) ** 2 - 1.0
+    return (
+        f"variant = paper does not converge to the Euler-Bernoulli beam: d = 1/(A delta) with delta = "
+        f"({m:g} + 0.015) dx (Eq. 32) leaves the refined beam too flexible by (1 + 0.015/m)^2 - 1 = {bias:.2%} "
+        "(refined grids give deflections that much too large); use variant = corrected"
+    )
 
 
 # -- the model -------------------------------------------------------------------------------
@@ -109,9 +115,25 @@ class PDEulerBernoulli(Model):
             "layer (literal, with the 2.015 dx fictitious layer and horizon at simply supported ends)",
             choices=("energy", "literal", "layer"),
         ),
+        Option(
+            "interface",
+            str,
+            "calibrated",
+            "material interfaces ([[segments]]): calibrated (the points within a horizon of one take the flexibility "
+            "that carries a uniform moment across it exactly: Diyaroglu et al.'s correction of d there) | point "
+            "(each point its own segment's EI)",
+            choices=("calibrated", "point"),
+        ),
         SOLVER,
+        dynamics.ANALYSIS,
     )
     assembles = True
+    analyses = frozenset({"static", "dynamic"})  # Eq. 3-7, 15 with the inertia rho w_tt (dynamics.py)
+    modes = True
+    eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params)
+    springs = True
+    inner_supports = True
+    segments = True
     variant_rules = (
         Rule(
             (("variant", "paper"),),
@@ -131,16 +153,6 @@ class PDEulerBernoulli(Model):
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
         return np.linspace(0.0, scene.length, params["points"])
 
-    def assemble(self, scene: Scene, params: dict) -> System:
-        """The system ``solve`` factorises: ``form = mixed`` the band of :meth:`assemble_mixed` (free: its
-        unknowns not held), else the band of :meth:`assemble_full` with the supported points held at
-        w = 0 (unit rows; free: the unknown points). ``System.reduced()`` gives the master–slave
-        eliminated system of Eq. 39–42."""
-        if self.form(params) == "mixed":
-            return self.assemble_mixed(scene, params)
-        K, b, fixed, info = self.assemble_full(scene, params)
-        return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
-
     def assemble_full(self, scene: Scene, params: dict):
         """(K, b, fixed, info): K w = b on all real points (per unit volume), K a
         :class:`~pdverify.numerics.band.Band`; the points ``fixed`` are held at w = 0 (unit rows, ``Band.fix``)."""
@@ -159,7 +171,10 @@ class PDEulerBernoulli(Model):
         if variant == "paper":
             K, b, fixed, info = paper_system(scene, x, c, a, A, params.get("reading", "energy"))
         else:
-            K, b, fixed, info = corrected_system(scene, x, c, a, A)
+            st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])
+            K, b, fixed, info = corrected_system(
+                scene, x, c, a, A, lambda skip: mixed.point_load_terms(scene, n, dx, st, skip)
+            )
         K.fix(fixed, b)  # master–slave elimination of the supported points (Eq. 39–42): w = 0 there
         return K, b, fixed, info
 
@@ -168,100 +183,133 @@ class PDEulerBernoulli(Model):
         f = params.get("form", "auto")
         return ("mixed" if params["variant"] == "corrected" else "direct") if f == "auto" else f
 
-    def assemble_mixed(self, scene: Scene, params: dict):
-        """The corrected operator split in two second-order equations (``form = mixed``)::
+    def assemble_mixed(self, scene: Scene, params: dict) -> System:
+        """The corrected operator split in two second-order equations (``form = mixed``, :mod:`.mixed`)::
 
-            h² kappa - h² D1 (E w + e0) = 0      (kappa on the real points and J ghosts each side)
-            h² D2 (h² kappa)            = h⁴ b / a
+            EI0 f k - h² D1 (E w + e0) = (couples' curvature)    (on the real points and J ghosts each side)
+            h² D2 k                   = h⁴ q / EI0               (k = h² M / EI0, the moment)
 
-        the same discrete solution as a D2 D1 (E w + e0) = b, but the matrix of fourth differences
+        the same discrete solution as a D2 D1 (E w + e0) = b on a uniform beam, but the matrix of fourth differences
         (entries ~1/h⁴) is never formed, which lowers the round-off floor (tests/verification/test_hard_cases.py).
 
         Assembled straight into LAPACK's band layout (:class:`~pdverify.numerics.band.Band`): positions
-        p = -J .. n-1+J, two unknowns each (kappa_p, w_p), interleaved; both equations are Toeplitz block
-        stencils, the ghost map adds a few entries at each end, and the w of positions outside the beam
-        and of the supported points are held at zero (unit rows). Returns the :class:`~pdverify.registry.System`
-        (free: the unknowns not held): w of real point i is unknown 2 (i + J) + 1."""
-        x = self.grid(scene, params)
-        n, dx = len(x), x[1] - x[0]
-        c = curvature_weights(params["horizon"], dx, "corrected")
-        J = len(c)
-        G = 2 * J
-        if 2 * J + 1 > n:
-            raise InputError(
-                f"horizon = {params['horizon']:g}: the family ({J} points each side) does not fit in "
-                f"{n} points; use more points or a smaller horizon"
-            )
-        A = scene.section.A
-        a = scene.EI / A
-        h2 = dx * dx
-        st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])  # D1 = D2 stencil, offsets -J..J
-        npos = n + 2 * J
-        g_rows, g_cols, g_vals, e0, skip = ghost_map(scene, n, dx, G, curvature_ends=True)
-        rows, cols, vals, rhs = mixed_ghost_coupling(g_rows - G, g_cols, g_vals, e0, n, J, st, h2)
-        q = body_loads(scene, x, skip_ends=skip)
-        ends = mixed_end_rows(scene, n, dx, c, q)  # free and guided ends: conditions on k
-        M = mixed_matrix(npos, J, st, h2, (rows, cols, vals), ends)
-        rhs[2 * J + 1 : 2 * (n + J) : 2] = q / A * h2 * h2 / a
-        for _, _, _, r_rows, r_vals in ends:
-            rhs[r_rows] = r_vals
-        fixed = fixed_points(scene, n)
-        held = np.r_[2 * np.arange(J) + 1, 2 * (n + J + np.arange(J)) + 1, 2 * (np.asarray(fixed, np.int64) + J) + 1]
-        M.fix(held, rhs)
+        p = -J .. n-1+J, two unknowns each (k_p, w_p), interleaved; both equations are Toeplitz block stencils
+        (f: the flexibility, 1 on a uniform beam), the ghost map adds a few entries at each end, and the w of
+        positions outside the beam and of the supported points are held at zero (unit rows): w of real point i is
+        unknown 2 (i + J) + 1. With springs or supports inside the span their reactions are further unknowns after
+        the band's (:func:`.mixed.system`: a sparse matrix)."""
+        lay = self.layout(scene, params)
+        aug = mixed.system(lay)
+        held = lay.held
+        free = np.r_[np.delete(np.arange(aug.n_band), held), aug.n_band + np.arange(len(aug.unknowns))]
         return System(
-            M,
-            rhs,
-            np.delete(np.arange(2 * npos), held),
+            aug.matrix,
+            aug.rhs,
+            free,
             {
-                "ghosts_per_end": G,
+                "ghosts_per_end": 2 * lay.J,
                 "form": "mixed (two second-order equations)",
                 "boundary": "Taylor ghost points (degree 4, 4 real points)",
             },
         )
 
+    def layout(self, scene: Scene, params: dict) -> mixed.Layout:
+        x = self.grid(scene, params)
+        n, dx = len(x), x[1] - x[0]
+        c = curvature_weights(params["horizon"], dx, "corrected")
+        if 2 * len(c) + 1 > n:
+            raise InputError(
+                f"horizon = {params['horizon']:g}: the family ({len(c)} points each side) does not fit in "
+                f"{n} points; use more points or a smaller horizon"
+            )
+        return mixed.layout(scene, n, dx, c, params.get("interface", "calibrated") == "calibrated")
+
     def reduced(self, K, b, fixed):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
         return eliminate(K, b, fixed)
 
-    def solve(self, scene: Scene, params: dict) -> Result:
-        timer = Timer()
+    def refuse(self, scene: Scene, params: dict) -> None:
+        """InputError (one line) for what the chosen variant and form do not define."""
         if params.get("reading", "energy") != "energy" and params["variant"] != "paper":
             raise InputError(
                 f"reading = {params['reading']!r}: a reading of the paper's boundary treatment "
                 "(Eq. 37-42); use variant = paper or reading = energy"
             )
+        if self.form(params) == "mixed" and params["variant"] != "corrected":
+            raise InputError(
+                "form = 'mixed': only the corrected variant has the two-equation form; "
+                "use variant = corrected or form = direct"
+            )
+        extra = [k for k, on in (("springs", not scene.supports.simple), ("segments", bool(scene.segments))) if on]
+        if extra and (params["variant"] == "paper" or self.form(params) == "direct"):
+            what = "variant = paper (the paper's equations hold a beam at its ends only, one section)"
+            if params["variant"] != "paper":
+                what = "form = direct"
+            raise InputError(
+                f"{what}: pd-eb takes supports inside the span, springs and segments in the corrected variant's "
+                "mixed form only; use variant = corrected, form = auto"
+            )
+
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The system ``solve`` factorises: ``form = mixed`` the system of :meth:`assemble_mixed` (free: its
+        unknowns not held), else the band of :meth:`assemble_full` with the supported points held at
+        w = 0 (unit rows; free: the unknown points). ``System.reduced()`` gives the master–slave
+        eliminated system of Eq. 39–42."""
+        self.refuse(scene, params)
         if self.form(params) == "mixed":
-            if params["variant"] != "corrected":
-                raise InputError(
-                    "form = 'mixed': only the corrected variant has the two-equation form; "
-                    "use variant = corrected or form = direct"
-                )
+            return self.assemble_mixed(scene, params)
+        K, b, fixed, info = self.assemble_full(scene, params)
+        return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        if dynamics.dynamic(scene, params):
+            return dynamics.transient(self, scene, params)
+        timer = Timer()
+        self.refuse(scene, params)
+        x = self.grid(scene, params)
+        dx = x[1] - x[0]
+        if self.form(params) == "mixed":
             # the banded LU eliminates from the left end: a guided end there amplifies round-off by orders of
             # magnitude on fine grids, so such a scene is solved as its mirror image and flipped back
             flip = scene.supports.left == "guided" and scene.supports.right != "guided"
             with timer("assemble"):
-                system = self.assemble(mirror_scene(scene) if flip else scene, params)
+                sc = mirror_scene(scene) if flip else scene
+                lay = self.layout(sc, params)
+                aug = mixed.system(lay)
             with timer("solve"):
-                z, info = solve(system.matrix, system.rhs, "pd-eb (corrected, mixed form)", params["solver"])
-                n = params["points"]
-                J = (system.matrix.n // 2 - n) // 2  # positions -J .. n-1+J, two unknowns each
-                w = z[2 * J + 1 : 2 * (n + J) : 2].copy()
-                if flip:
-                    w = w[::-1].copy()
+                z, info = solve(aug.matrix, aug.rhs, "pd-eb (corrected, mixed form)", params["solver"])
+                w, M, multipliers = mixed.unpack(lay, aug, z)
+            if flip:
+                w, M, multipliers = w[::-1].copy(), M[::-1].copy(), outputs.mirror_reactions(multipliers)
+            ndofs = aug.matrix.shape[0] - len(lay.held)
+            binfo = {
+                "ghosts_per_end": 2 * lay.J,
+                "form": "mixed (two second-order equations)",
+                "boundary": "Taylor ghost points (degree 4, 4 real points)",
+            }
         else:
             with timer("assemble"):
                 system = self.assemble(scene, params)
             with timer("solve"):
                 w, info = solve(system.matrix, system.rhs, f"pd-eb ({params['variant']})", params["solver"])
-        ndofs, binfo = system.unknowns, system.info  # mixed: kappa on every position, w on the free points
-        x = self.grid(scene, params)
-        dx = x[1] - x[0]
-        rot = np.gradient(w, dx, edge_order=2)
+            ndofs, binfo, multipliers = system.unknowns, system.info, None
+            c = curvature_weights(params["horizon"], dx, params["variant"])
+            M = outputs.direct_moment(scene, w, dx, c, params["variant"], params.get("reading", "energy"))
+        out = outputs.fields(scene, x, w, M)
+        if multipliers is not None:
+            info["reactions"] = outputs.reactions(scene, x, M, out["V"], multipliers)
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
-        flags = boundary_layer_warnings(
-            scene, x, 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4
-        )
+        J = len(curvature_weights(params["horizon"], dx, params["variant"]))
+        reach = 2 * J + 4
+        exact = [f"loads[{i}] from" for i, ld in enumerate(scene.loads) if spreads(ld, scene, len(x), dx, J)]
+        if params["variant"] == "paper":
+            exact = []  # Eq. 25: the paper's loads are not spread by their kinks
+        flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
+        flags += inner_layer_warnings(scene, x, reach)
+        flags += outputs.recovery_warnings(scene, params)
+        if params["variant"] == "paper":
+            flags.append(paper_bias(params["horizon"]))
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return self.new_result(
@@ -269,7 +317,8 @@ class PDEulerBernoulli(Model):
             params,
             x,
             w,
-            rotation=rot,
+            rotation=out.pop("rotation"),
+            fields=out,
             dofs=ndofs,
             timings=timer.timings,
             info=info,

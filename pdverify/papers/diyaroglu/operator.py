@@ -160,20 +160,24 @@ def paper_system(scene: Scene, x: np.ndarray, c: np.ndarray, a: float, A: float,
 # -- corrected: Taylor ghost points ---------------------------------------------------------------
 
 
-def ghost_map(scene: Scene, n: int, dx: float, G: int, curvature_ends: bool = False):
+def ghost_map(scene: Scene, n: int, dx: float, G: int, curvature_ends: bool = False, sups=None, EIs=None):
     """Taylor ghost points of both ends (docs/design/formulas.md §1): w_ghost = Gm w_real + g0.
     Returns (rows, cols, values) of the ghost rows of E in extended numbering (G ghosts, n real,
     G ghosts), the constant part e0 (length n + 2G) and the end loads handled by the ghosts.
     ``curvature_ends``: free and guided ends take their moment and shear through conditions on the
     curvature (:func:`curvature_end_rows`); their ghost w only extrapolate (free: cubic through the
-    first four points; guided: degree 4 with w' = 0), so no third difference of w carries the shear."""
+    first four points; guided: degree 4 with w' = 0), so no third difference of w carries the shear.
+    ``sups``, ``EIs``: the ends' support names and bending stiffnesses (default the scene's: a spring end is
+    passed as "free", its spring's force and moment being end loads)."""
     P, C = end_loads(scene)
-    EI = scene.EI
+    sups = (scene.supports.left, scene.supports.right) if sups is None else sups
+    EIs = (scene.EI, scene.EI) if EIs is None else EIs
     p = min(4, n)
     er, ec, ev = [], [], []
     e0 = np.zeros(n + 2 * G)
     skip = {0: set(), n - 1: set()}
-    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+    for side, sup in enumerate(sups):
+        EI = EIs[side]
         # internal moment and the third s-derivative coefficient EI d3w/ds3 at the end
         if side == 0:
             M_end, V3 = -C[0], -P[0]  # M(0+) = -C0, EI w'''(0) = P0 -> d3/ds3 = -w'''
@@ -191,16 +195,21 @@ def ghost_map(scene: Scene, n: int, dx: float, G: int, curvature_ends: bool = Fa
     return np.concatenate(er), np.concatenate(ec), np.concatenate(ev), e0, skip
 
 
-def corrected_system(scene: Scene, x: np.ndarray, c: np.ndarray, a: float, A: float):
+def corrected_system(scene: Scene, x: np.ndarray, c: np.ndarray, a: float, A: float, loads=None):
     """(K, b, fixed, info) of the corrected variant's strong form: K_ext = a D2 D1 (D1: kappa on the real points and
     J ghosts each side; D2: on the real points), a Toeplitz operator whose stencil is the self-convolution of the
-    curvature stencil, the 2J ghosts per end by :func:`ghost_map`."""
+    curvature stencil, the 2J ghosts per end by :func:`ghost_map`. ``loads(skip)``: (q, curv) of the point loads
+    (:func:`.mixed.point_load_terms`; default the split of Eq. 25 and no curvature terms): b = (q - EI D2 curv) / A."""
     n, dx, J = len(x), x[1] - x[0], len(c)
     G = 2 * J
     st = np.concatenate([c[::-1], [-2.0 * c.sum()], c])
     g_rows, g_cols, g_vals, e0, skip = ghost_map(scene, n, dx, G)
     K, r = ghost_stencil_system(np.arange(-G, G + 1), a * np.convolve(st, st), G, n, g_rows, g_cols, g_vals, e0)
-    b = body_loads(scene, x, skip_ends=skip) / A - r
+    if loads is None:
+        q, curv = body_loads(scene, x, skip_ends=skip), np.zeros(n + 2 * J)
+    else:
+        q, curv = loads(skip)
+    b = (q - scene.EI * np.convolve(curv, st[::-1], mode="valid")) / A - r
     fixed = fixed_points(scene, n)
     return K, b, fixed, {"ghosts_per_end": G, "boundary": "Taylor ghost points (degree 4, 4 real points)"}
 
@@ -224,13 +233,16 @@ def mixed_ghost_coupling(gpos, g_cols, g_vals, e0, n: int, J: int, st: np.ndarra
     return rows, cols, vals, rhs
 
 
-def mixed_end_rows(scene: Scene, n: int, dx: float, c: np.ndarray, q: np.ndarray) -> list:
+def mixed_end_rows(scene: Scene, n: int, dx: float, c: np.ndarray, q: np.ndarray, sups=None, EIs=None) -> list:
     """The end conditions of free and guided ends on k = dx² kappa (:func:`curvature_end_rows`), instead of
-    Taylor ghosts of w: [(rows, cols, vals, rhs rows, rhs values)], left end first."""
+    Taylor ghosts of w: [(rows, cols, vals, rhs rows, rhs values)], left end first. ``sups``, ``EIs`` as
+    :func:`ghost_map`."""
     J = len(c)
     P, C = end_loads(scene)
+    sups = (scene.supports.left, scene.supports.right) if sups is None else sups
+    EIs = (scene.EI, scene.EI) if EIs is None else EIs
     ends = []
-    for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
+    for side, sup in enumerate(sups):
         if sup in ("free", "guided"):
             M_end, V3 = (-C[0], -P[0]) if side == 0 else (C[1], -P[1])
             ends.append(
@@ -242,7 +254,7 @@ def mixed_end_rows(scene: Scene, n: int, dx: float, c: np.ndarray, q: np.ndarray
                     c,
                     M_end,
                     V3,
-                    scene.EI,
+                    EIs[side],
                     q[0 if side == 0 else -1],
                     J,
                     lambda p_: 2 * (np.asarray(p_) + J),
@@ -252,10 +264,11 @@ def mixed_end_rows(scene: Scene, n: int, dx: float, c: np.ndarray, q: np.ndarray
     return ends
 
 
-def mixed_matrix(npos: int, J: int, st: np.ndarray, h2: float, ghost: tuple, ends: list) -> Band:
+def mixed_matrix(npos: int, J: int, st: np.ndarray, h2: float, ghost: tuple, ends: list, diag=None) -> Band:
     """The band of the mixed form: unknowns k_p = h² kappa_p and w_p (entries of order one), kappa rows (dof 0)
     k_p - h² Σ_o st_o w_{p+o}, w rows (dof 1) h² Σ_o st_o k_{p+o}; the ghost entries (:func:`mixed_ghost_coupling`)
-    added, the end rows of free and guided ends written over their kappa rows."""
+    added, the end rows of free and guided ends written over their kappa rows. ``diag``: the kappa rows' own
+    coefficient per position instead of 1 (k then a scaled moment: :mod:`.mixed`)."""
     rows, cols, vals = ghost
     off = (
         np.r_[cols - rows, -2 * J - 1, 2 * J + 1]
@@ -265,6 +278,9 @@ def mixed_matrix(npos: int, J: int, st: np.ndarray, h2: float, ghost: tuple, end
     M = Band(2 * npos, int(-off.min()), int(off.max()))
     blocks = {o: [[1.0 if o == 0 else 0.0, -h2 * st[o + J]], [h2 * st[o + J], 0.0]] for o in range(-J, J + 1)}
     M.add_block_stencil(2, blocks)
+    if diag is not None:
+        change = np.flatnonzero(np.asarray(diag) != 1.0)
+        M.add_entries(2 * change, 2 * change, np.asarray(diag)[change] - 1.0)
     M.add_entries(rows, cols, vals)
     for e_rows, e_cols, e_vals, _, _ in ends:
         M.clear_rows(np.unique(e_rows))

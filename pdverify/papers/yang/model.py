@@ -1,9 +1,5 @@
 """Model ``pd-higher-order``: PD higher-order beam (Yang, Oterkus & Oterkus 2020).
 
-(This docstring of the paper's equations and the two variants' option list are most of the module; the bond
-kernels, end conditions, band assembly, clamp layer and outputs live in ``bonds``, ``ends``, ``operator``,
-``layer`` and ``outputs``.)
-
 Kinematics (Eq. 2–3): u(x, z) = z theta + z^3 theta*, w(x, z) = w + z^2 w*; four DOFs per material
 point, ordered (theta, theta*, w, w*) as in Eq. 16a. Node grid x_k = k dx, k = 0..n-1 (ends included).
 A section given by area/inertia is treated as the equivalent rectangle of height ``Section.depth``
@@ -89,15 +85,7 @@ simply supported benchmarks differ from it by that, not by the operator (option 
    order once dx is many layer widths: every slender beam). w* of the end point is free, tied to zero by the
    spring whose series with the grid's own layer has the continuous layer's stiffness; the face condition where
    the grid resolves the layer.
-Orders of convergence and errors: docs/models/yang.md.
-
-Cost: the operator is assembled straight into LAPACK's band layout (:mod:`.operator`):
-the translation-invariant interior as one 4x4 block stencil (Eq. 15's Hessian with the interior weights),
-the rows of the ~2J points next to each end (truncated or ghost families, end volumes, Appendix B's images,
-end conditions) from the exact sparse route on a small window, the end conditions as unit rows
-(``Band.fix``); the band is factorised in place above 20,000 unknowns, so the banded solve is most of a run's
-time (``pdverify bench -m pd-higher-order``; docs/models/yang.md). The assembled entries are the same bits as the
-whole-grid sparse route (tests/papers/yang/test_pd_higher_order.py).
+Orders: docs/models/yang.md. Band assembly: :mod:`.operator`. Dynamics (Eq. 17-22): :mod:`.dynamics`.
 """
 
 from __future__ import annotations
@@ -112,15 +100,19 @@ from ...core.stations import STATIONS_HELP, parse_stations
 from ...numerics.families import family
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
+from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
+from . import dynamics
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
 from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
 from .outputs import point_load_warnings, reactions, section_stresses
+from .supports import section_forces, with_supports
 
 
 class PDHigherOrder(Model):
     name = "pd-higher-order"
+    shapes = frozenset({"rectangle", "given"})  # its equations use the depth of a rectangle
     title = "PD higher-order beam (theta, theta*, w, w* per point)"
     source = "Yang et al. 2020, Peridynamic higher-order beam formulation"
     theory = "higher-order"
@@ -213,9 +205,15 @@ class PDHigherOrder(Model):
             choices=("auto", "face", "layer"),
         ),
         Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
+        dynamics.ANALYSIS,
     )
 
     assembles = True
+    analyses = frozenset({"static", "dynamic"})  # Eq. 17-22 with the inertia of Eq. 19 (dynamics.py)
+    modes = True
+    eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params): K and M of Eq. 22
+    springs = True
+    inner_supports = True
     _PAPER = (("variant", "paper"),)
     variant_rules = (
         Rule(
@@ -337,7 +335,7 @@ class PDHigherOrder(Model):
                 "use more points or a smaller horizon"
             )
         C, h = self.constants(scene)
-        left, right = scene.supports.left, scene.supports.right
+        left, right = (scene.supports.kind(s).replace("spring", "free") for s in ("left", "right"))
         pin = self.choice(params, "pin")
         clamp = self.clamp(params)
         info = {
@@ -388,36 +386,50 @@ class PDHigherOrder(Model):
     def assemble(self, scene: Scene, params: dict) -> System:
         """The band of :meth:`assemble_band` (the system ``solve`` factorises): u interleaved (theta, theta*,
         w, w*) per real point, free = the DOFs not held; ``info["ties"]``: the (slave, master, c) of
-        ``pin = face`` (u_slave = c u_master, restored after the solve)."""
+        ``pin = face`` (u_slave = c u_master, restored after the solve). With springs or supports inside the span
+        their reactions follow u as unknowns (:func:`.supports.augmented`: a sparse matrix; ``info["unknowns"]``,
+        ``info["scales"]``)."""
         B, b, (drop, tie), info = self.assemble_band(scene, params)
-        return System(B, b, np.delete(np.arange(B.n), drop), dict(info, ties=tie))
+        faces, pin = self.choice(params, "loads") == "faces", self.choice(params, "pin")
+        A, rhs, free, unknowns, scales = with_supports(scene, params, B, b, drop, self.grid(scene, params), faces, pin)
+        return System(A, rhs, free, dict(info, ties=tie, unknowns=unknowns, scales=scales))
 
     def solve(self, scene: Scene, params: dict) -> Result:
+        if dynamics.dynamic(scene, params):
+            return dynamics.transient(self, scene, params)
         timer = Timer()
         with timer("assemble"):
             system = self.assemble(scene, params)
             binfo = dict(system.info)
             tie = binfo.pop("ties")
             end_rows = binfo.pop("end_rows")
+            unknowns, scales = binfo.pop("unknowns"), binfo.pop("scales")
         with timer("solve"):
-            u, info = solve_linear(system.matrix, system.rhs, what=f"pd-higher-order ({params['variant']})")
+            z, info = solve_linear(system.matrix, system.rhs, what=f"pd-higher-order ({params['variant']})")
+            n = params["points"]
+            u, lam = z[: NF * n].copy(), z[NF * n :]
             for slave, master, c in tie:
                 u[slave] = c * u[master]
-        n = params["points"]
         u = u.reshape(n, NF)
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
+        fields.update(section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"]))
         reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
         flags = boundary_layer_warnings(scene, x, reach)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         for flag in point_load_warnings(scene, params, info):
             info.setdefault("warnings", []).append(flag)
-        if end_rows:
-            info["reactions"] = reactions(end_rows, u.ravel(), scene.section.A)
+        own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
+        if unknowns:
+            own = closed_reactions(
+                scene, dict(own, **{r["key"]: float(v / s) for r, v, s in zip(unknowns, lam, scales)})
+            )
+        if own:
+            info["reactions"] = own
         stations = parse_stations(params.get("stations", ""), scene.length)
         if len(stations):
             mat = scene.material

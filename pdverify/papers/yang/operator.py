@@ -154,17 +154,17 @@ class Layout:
 
 
 def load_cuts(scene: Scene, x: np.ndarray, J: int) -> tuple[int, ...]:
-    """Interior grid points carrying a point force or moment where the bonds are cut: loads exactly on a point, at
-    least 4J + 1 spacings from either end and from every other such load (a symmetric rule: mirror scenes cut
-    alike)."""
+    """Interior grid points carrying a point force or moment, or a support inside the span, where the bonds are cut:
+    loads and supports exactly on a point, at least 4J + 1 spacings from either end and from every other such point
+    (a symmetric rule: mirror scenes cut alike)."""
     n, dx = len(x), x[1] - x[0]
     cand = set()
-    for load in scene.loads:
-        if isinstance(load, (PointForce, PointMoment)):
-            p = (load.position - x[0]) / dx
-            i = int(round(p))
-            if abs(p - i) < 1e-9 and 0 < i < n - 1:
-                cand.add(i)
+    spots = [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment))]
+    for pos in spots + [s.position for s in scene.supports.inner]:
+        p = (pos - x[0]) / dx
+        i = int(round(p))
+        if abs(p - i) < 1e-9 and 0 < i < n - 1:
+            cand.add(i)
     gap = 4 * J + 1
     return tuple(sorted(c for c in cand if min(c, n - 1 - c) >= gap and all(abs(c - o) >= gap for o in cand if o != c)))
 

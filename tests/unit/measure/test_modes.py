@@ -154,7 +154,7 @@ def test_modes_command_prints_frequencies_and_errors(scene_file, capsys):
 @pytest.mark.parametrize(
     "args,message",
     [
-        (["--model", "pd-eb"], "model pd-eb: gives no mass and stiffness operator"),
+        (["--model", "fem-eb"], "model fem-eb: gives no mass and stiffness operator"),
         (["--model", "pd-rod", "--count", "0"], "--count 0: give a number of modes"),
         (["--model", "pd-rod", "-o", "points=11", "--count", "30"], "--count 30: the operator has 10 free DOFs"),
         (["--model", "pd-rod", "-o", "spacing=0.3"], "spacing = 0.3: does not divide the length"),

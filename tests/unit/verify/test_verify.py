@@ -289,7 +289,7 @@ def test_engineering_scenes_go_to_models_that_take_them():
     assert names == ["two spans", "three spans", "overhangs", "on springs", "stepped", "bi-material"]
     sets = lambda name: {m["set"] for m in plan(get_model(name)).meta.values()}  # noqa: E731
     assert "engineering" in sets("pd-timoshenko") and "engineering" in sets("fem-eb")
-    assert "engineering" not in sets("pd-eb") and "engineering" in sets("pd-rod")
+    assert "engineering" not in sets("exact-curved") and "engineering" in sets("pd-rod")
 
 
 @pytest.mark.slow

@@ -1,0 +1,147 @@
+"""Elastic supports, supports inside the span and the section forces of ``pd-higher-order`` (Yang, Oterkus & Oterkus
+2020). Arrays in, arrays out; the model is in model.py.
+
+**Supports as multipliers.** Each reaction the supports give beyond the ends' held DOFs is an unknown lam: the
+force or counter-clockwise moment of a spring end or of a support inside the span. It enters the equations as the
+load vector g of a unit load of its kind at its place (Eq. 16b: a force on w, a couple as -1 on theta; at an end
+with ``loads = faces`` the end face's parabolic shear and linear traction, as the end loads) and holds the
+displacement work-conjugate to it, g . u: a support inside the span holds the mid-line w (and, clamped, the rotation
+-theta) at its position, split between the two nearest points as a point load is; a spring end holds what its
+pinned or clamped end would (``pin = face``: the end face's mean w + h^2/20 w*). Rigid: g . u = 0; spring:
+k g . u + lam = 0. The system stays symmetric (K u - lam g = F, g . u = 0); the reported reactions are these
+multipliers and the ends' K u - F, two of them closed by statics (:func:`pdverify.numerics.statics.closed_reactions`),
+so they balance the loads to round-off whatever the solve's residual.
+
+**Section forces.** The local theory's generalised section forces N = b (K11 y' + K10 y) (the Euler-Lagrange
+momenta of Eq. 9 per unit width b, y = (theta, theta*, w, w*), :mod:`pdverify.exact.higher_order`) from the
+solution's y and its derivative by second-order differences that never straddle a point load or a support
+(:func:`pdverify.numerics.recovery.derivative`): moment M = -N_theta (sagging); at the two end points, where the
+layers of w* and theta* (about 0.1 h wide) sit on a grid that does not resolve them, M extrapolated from the next
+three points (the resultant M is smooth through the layers), whose derivatives do not take the end points'
+values. The shear V = dM/dx by the same differences (the theory's -N_w, a shear strain times G h, loses its
+digits on a slender beam: w' + theta ~ V / (G A)).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...core.errors import InputError
+from ...core.scene import PointForce, PointMoment, Scene, Spring
+from ...numerics.recovery import derivative, jump_positions
+from ...theory.higher_order import NF, TH, point_work
+
+D1 = np.zeros((5, 4))
+D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e = w*' + ...
+D0 = np.zeros((5, 4))
+D0[[1, 3, 4], [3, 0, 1]] = 2.0, 1.0, 3.0  # s = 2 w*, g = ... + theta, e = ... + 3 theta*
+
+
+def reaction_unknowns(scene: Scene) -> list[dict]:
+    """One entry per reaction that is an unknown: ``key`` (its name in ``info["reactions"]``), ``kind`` ("force" or
+    "moment"), ``at`` (position), ``stiffness`` (None: rigid), ``end`` (0, 1 or None)."""
+    out = []
+    for side, at, e in (("left", 0.0, 0), ("right", scene.length, 1)):
+        sup = getattr(scene.supports, side)
+        if isinstance(sup, Spring):
+            if sup.stiffness:
+                out.append(dict(key=f"force_{side}", kind="force", at=at, stiffness=sup.stiffness, end=e))
+            if sup.rotational_stiffness:
+                k = sup.rotational_stiffness
+                out.append(dict(key=f"moment_{side}", kind="moment", at=at, stiffness=k, end=e))
+    for i, s in enumerate(scene.supports.inner):
+        spring = s.type == "spring"
+        if s.holds_deflection:
+            k = s.stiffness if spring else None
+            out.append(dict(key=f"force_inner_{i}", kind="force", at=s.position, stiffness=k, end=None))
+        if s.holds_rotation:
+            k = s.rotational_stiffness if spring else None
+            out.append(dict(key=f"moment_inner_{i}", kind="moment", at=s.position, stiffness=k, end=None))
+    return out
+
+
+def unit_vector(r: dict, x: np.ndarray, h: float, faces: bool, pin: str) -> np.ndarray:
+    """g (4n): the generalised force of a unit reaction ``r`` on the points x (module docstring), per unit area
+    times the area (the caller divides)."""
+    n, dx = len(x), x[1] - x[0]
+    g = np.zeros((n, NF))
+    load = (PointForce if r["kind"] == "force" else PointMoment)(
+        type="point_force" if r["kind"] == "force" else "point_moment", position=r["at"], value=1.0
+    )
+    if r["end"] is not None:
+        k = 0 if r["end"] == 0 else n - 1
+        g[k] = point_work(load, h, faces and (r["kind"] == "moment" or pin == "face"), at_end=True)
+        return g.ravel()
+    pos = float(np.clip((r["at"] - x[0]) / dx, 0.0, n - 1))
+    i = int(np.clip(np.floor(pos + 1e-9), 0, n - 1))
+    t = pos - i
+    if abs(t) < 1e-9 or i == n - 1:
+        t = 0.0
+    # a force on the mid-line w; a couple as an end's would act (a linear traction over the section: -1 on theta,
+    # -3 h^2/20 on theta*), so the support holds the section's mean rotation theta + 3 h^2/20 theta*
+    work = point_work(load, h, r["kind"] == "moment", at_end=True)
+    for node, wgt in ((i, 1.0 - t), (i + 1, t)):
+        if wgt != 0.0:
+            g[node] += wgt * work
+    return g.ravel()
+
+
+def augmented(B, b: np.ndarray, held, unknowns: list, x: np.ndarray, h: float, faces: bool, pin: str, area: float):
+    """(matrix, rhs, scales): the band B (the ``held`` DOFs as unit rows) with a row and a column per reaction
+    unknown: [[K, -g/s], [k A s g^T, 1]] (springs: k G.u + R = 0) or [[K, -g/s], [g^T, 0]] (rigid: G.u = 0), g the
+    unit reaction's load vector G per unit area A (held DOFs zeroed), s its largest entry (lam = R s: entries of
+    order one), each row scaled to its largest entry."""
+    K = B.tocsr()
+    diag = np.abs(K.diagonal())
+    cols, rows, d, scales = [], [], [], []
+    for r in unknowns:
+        g = unit_vector(r, x, h, faces, pin) / area
+        g[np.asarray(held, np.int64)] = 0.0
+        kd = float(diag[g != 0].max()) if np.any(g != 0) else 1.0  # the stiffness of the DOFs it acts on
+        s = (float(np.abs(g).max()) or 1.0) / kd  # lam = R s: the column's entries those of K there
+        cols.append(-g / s)
+        scales.append(s)
+        k = r["stiffness"]
+        row = g * (k * area * s if k is not None else 1.0)
+        dd = 1.0 if k is not None else 0.0
+        norm = max(float(np.abs(row).max()), dd) / kd  # the row's largest entry kd too
+        rows.append(row / norm)
+        d.append(dd / norm)
+    A = sp.bmat(
+        [[K, sp.csr_matrix(np.column_stack(cols))], [sp.csr_matrix(np.vstack(rows)), sp.diags(d)]], format="csr"
+    )
+    return A, np.r_[b, np.zeros(len(unknowns))], scales
+
+
+def with_supports(scene: Scene, params: dict, B, b: np.ndarray, held, x: np.ndarray, faces: bool, pin: str):
+    """(matrix, rhs, free, unknowns, scales): the band B as it is when the supports are the ends' alone, else the
+    :func:`augmented` system; ``variant = paper`` refuses springs and supports inside the span in one line."""
+    if params["variant"] == "paper" and not scene.supports.simple:
+        raise InputError(
+            "variant = paper: Appendix B's fictitious layers hold a beam at its ends only; springs and supports "
+            "inside the span need variant = corrected"
+        )
+    free = np.delete(np.arange(B.n), held)
+    unknowns = reaction_unknowns(scene)
+    if not unknowns:
+        return B, b, free, [], []
+    A, rhs, scales = augmented(B, b, held, unknowns, x, scene.section.depth, faces, pin, scene.section.A)
+    return A, rhs, np.r_[free, B.n + np.arange(len(unknowns))], unknowns, scales
+
+
+def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float) -> dict:
+    """{"M", "V"} at the points from u (n x 4) (module docstring)."""
+    jumps = np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")]
+    dx = x[1] - x[0]
+    ends = [x[0] + dx / 2, x[-1] - dx / 2]  # no difference takes the end points' values, inside the ends' layers
+    dy = np.column_stack([derivative(x, u[:, k], np.r_[jumps, ends]) for k in range(NF)])
+    m = dy @ D1.T + u @ D0.T  # the measures per point
+    M = -(scene.section.A / h) * ((m @ C) @ D1)[:, TH]  # -b (D1^T C m)_theta
+    if len(x) >= 4:  # the end points: extrapolated past the ends' layers of w*, theta* (M itself is smooth there)
+        M[0] = 3 * M[1] - 3 * M[2] + M[3]
+        M[-1] = 3 * M[-2] - 3 * M[-3] + M[-4]
+    return {"M": M, "V": derivative(x, M, jumps)}
+
+
+__all__ = ["reaction_unknowns", "unit_vector", "augmented", "with_supports", "section_forces"]
