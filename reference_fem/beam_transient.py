@@ -15,6 +15,7 @@ import scipy.sparse as sp
 from pdverify.core.errors import InputError
 from pdverify.core.result import Result, Timer, columns_csv
 from pdverify.core.scene import PointForce, Scene
+from pdverify.numerics.timeint import step_count
 
 from .beam_elements import add_springs, constrained_dofs, two_fields
 from .newmark import newmark
@@ -66,8 +67,11 @@ def transient(model, scene: Scene, params: dict) -> Result:
     # default step: the sampling interval, or the time the fastest wave (sqrt(E/rho)) takes across the shortest
     # element if shorter (a Courant number of 1, which Newmark does not need for stability: the time error then
     # falls with the mesh)
-    dt = d.time_step or min(sample, float(np.diff(nodes).min()) / np.sqrt(scene.material.youngs_modulus / rho))
-    steps = int(np.ceil(d.end_time / dt - 1e-9))
+    courant = float(np.diff(nodes).min()) / np.sqrt(scene.material.youngs_modulus / rho)
+    dt = d.time_step or min(sample, courant)
+    from_sampling = d.output_interval is not None and sample < courant
+    source = "time_step" if d.time_step else ("output_interval" if from_sampling else "default")
+    steps = step_count(d.end_time, dt, source)  # before any step (exit 2 above the limit)
     with timer("solve"):
         t, hist, u = newmark(K, M, C, F, d.end_time / steps, steps, observe)
     every = max(1, int(round(sample / (d.end_time / steps))))

@@ -150,7 +150,7 @@ def support_conditions(scene: Scene, pin: str, bm, basis, tan_s: np.ndarray, nor
     fixed, pairs, tangents, crows = [], [], [], []
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
         i = 0 if side == 0 else ns - 1
-        if sup == "free":
+        if not isinstance(sup, str) or sup == "free":  # an elastic end: its springs are stiffness (.plane_scenes)
             continue
         if sup in ("pinned", "roller") and pin == "face":
             crows.extend(_face_means(bm, basis, i, sup, tan_s[i], nor_s[i], scene.section.depth))

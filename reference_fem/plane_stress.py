@@ -59,7 +59,7 @@ from pdverify.core.scene import Scene
 from pdverify.core.stations import STATIONS_HELP, parse_stations
 from pdverify.numerics.linalg import solve_linear
 from reference_fem import curved_mesh as cm
-from reference_fem import q4_variants, vtu
+from reference_fem import plane_scenes, q4_variants, vtu
 from reference_fem.beam import beam_nodes
 from reference_fem.plane_conditions import (
     constrained_system,
@@ -205,6 +205,9 @@ class FemPlaneStress(Model):
     reference = True
     curved = True
     axial = True
+    springs = True  # straight axes (the scene's rule): reference_fem.plane_scenes
+    inner_supports = True
+    segments = True
     options = (
         Option("points", int, 101, "nodes along the beam (elements + 1), load positions added", minimum=2),
         Option("layers", int, 8, "elements through the thickness (even: the mid-line is a node row)", minimum=2),
@@ -245,6 +248,8 @@ class FemPlaneStress(Model):
                     f"section.height = {h!r}: the face on the concave side would cross the centre of "
                     f"curvature (smallest radius {1 / kmax:.6g} <= h/2); give height < {2 / kmax:.6g}"
                 )
+        if not scene.supports.simple or scene.segments:
+            return out + plane_scenes.checks(scene)
         why = mechanism_message(scene)  # also the axial slide of two rollers on a straight axis
         return out + ([why] if why is not None else [])
 
@@ -262,12 +267,20 @@ class FemPlaneStress(Model):
             bm = strip_mesh(scene, params["points"], params["layers"], el)
             basis = fem.Basis(bm.mesh, fem.ElementVector(getattr(fem, ELEMENTS[el])()))
             lam, mu = plane_stress_lame(scene.material.E, scene.material.poissons_ratio)
-            K = stiffness(basis, scene, el, lam, mu)
+            if scene.segments:  # each element its segment's constants (reference_fem.plane_scenes)
+                if el.startswith("q4-"):
+                    raise InputError(f"segments: element = {el} takes one material; use element q8, q9 or q4")
+                K = plane_scenes.segment_stiffness(basis, scene, plane_stress_lame)
+            else:
+                K = stiffness(basis, scene, el, lam, mu)
             top, mid = face_rows(scene, len(bm.t))
             tan_s, nor_s = bm.geo.frame(bm.s)
             F = load_vector(scene, bm, basis, tan_s, nor_s, top, mid)
             conditions = support_conditions(scene, params["pin"], bm, basis, tan_s, nor_s, mid)
-            Kf, Ff, free, T, S = constrained_system(K, F, basis.N, *conditions)
+            inner = plane_scenes.inner_conditions(scene, params["pin"], bm, basis, mid)
+            conditions = tuple(a + b for a, b in zip(conditions, inner, strict=True))
+            Ks = plane_scenes.springs(scene, bm, basis)
+            Kf, Ff, free, T, S = constrained_system(K if Ks is None else K + Ks, F, basis.N, *conditions)
         with timer("solve"):
             uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"))
             u = full_displacement(uf, free, basis.N, T, S)
@@ -283,7 +296,10 @@ class FemPlaneStress(Model):
             plane_stress_lambda=lam,
             load_resultant=load_resultant(F, basis, bm.geo),
         )
-        info["reactions"] = reactions(K @ u - F, basis, bm.geo, scene.length)  # before the supports' rotation
+        if scene.supports.simple:  # K u - F: the supports' forces on the strip (springs' included: K is elastic)
+            info["reactions"] = reactions(K @ u - F, basis, bm.geo, scene.length)
+        else:
+            info["reactions"] = plane_scenes.reactions(K @ u - F, basis, scene)
         if len(stations):
             info["sections"] = through_section(basis, u, stations, h, 4 * params["layers"] + 1, lam, mu)
         if not scene.is_straight:

@@ -118,6 +118,15 @@ def _extreme_values() -> str:
     return f"; extreme values: {', '.join(found)}" if found else ""
 
 
+# the grid's options, the same on every command that takes a grid (solve, modes; verify: the horizon only, the suite
+# sets the grids); each is the model option of its name (-o points=... works as well), refused by a model without it
+POINTS = typer.Option(None, "--points", help="material points / nodes along the axis, ends included")
+HORIZON = typer.Option(None, "--horizon", help="horizon as a multiple of the spacing (3 = the papers' 3.015)")
+HORIZON_LENGTH = typer.Option(
+    None, "--horizon-length", help="horizon in metres (option horizon_length; models that take one)"
+)
+
+
 def grid_options(options: dict, **named) -> dict:
     """The model options of a command: its named options (``--points``, ``--horizon``, ...; None where not given)
     with its ``-o key=value`` ones. A key given both ways is an error, not a silent choice of one of them."""
@@ -154,9 +163,10 @@ def parse_options(pairs: list[str] | None) -> dict:
 def solve(
     scene: Path = typer.Argument(..., help="scene TOML file"),
     model: str = typer.Option(..., "--model", "-m", help="model name (see `pdverify models`)"),
-    points: int | None = typer.Option(None, help="material points / nodes along the axis, ends included"),
+    points: int | None = POINTS,
     spacing: float | None = typer.Option(None, help="grid spacing in metres (instead of --points)"),
-    horizon: float | None = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
+    horizon: float | None = HORIZON,
+    horizon_length: float | None = HORIZON_LENGTH,
     degree: int | None = typer.Option(None, help="PD-function degree (models that have one)"),
     variant: str | None = typer.Option(None, help="model variant, e.g. paper | corrected"),
     element: str | None = typer.Option(None, help="element type of a FEM reference, e.g. q4 | q8 | q9"),
@@ -191,6 +201,7 @@ def solve(
         points=points,
         spacing=spacing,
         horizon=horizon,
+        horizon_length=horizon_length,
         degree=degree,
         variant=variant,
         element=element,
@@ -240,11 +251,12 @@ def solve(
 def modes(
     scene: Path = typer.Argument(..., help="scene TOML file (its supports, section and material; density needed)"),
     model: str = typer.Option(..., "--model", "-m", help="a model with a mass operator: pd-rod, pd-timoshenko, ..."),
+    points: int | None = POINTS,
+    horizon: float | None = HORIZON,
+    horizon_length: float | None = HORIZON_LENGTH,
     option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
     count: int = typer.Option(5, "--count", help="how many modes, lowest first"),
     fmt: Format = typer.Option(Format.table, "--format", help="table | json | csv"),
-    points: int | None = typer.Option(None, help="material points / nodes along the axis, ends included"),
-    horizon: float | None = typer.Option(None, help="horizon as a multiple of the spacing (3 = the papers' 3.015)"),
 ):
     """The first natural frequencies of a model's discrete operator against the analytic ones, with the
     relative error per mode (rod and torsion bar: closed form; Timoshenko and Euler-Bernoulli beams: their
@@ -254,7 +266,8 @@ def modes(
 
     sc = load_scene(scene)
     _SCENE_FILES[:] = [sc]
-    table = _modes(sc, model, grid_options(parse_options(option), points=points, horizon=horizon), count)
+    given = grid_options(parse_options(option), points=points, horizon=horizon, horizon_length=horizon_length)
+    table = _modes(sc, model, given, count)
     for w in table.warnings:
         typer.echo(f"warning: {w}", err=True)
     text = {Format.json: table.to_json, Format.csv: table.to_csv, Format.table: table.to_table}[fmt]()
@@ -470,6 +483,8 @@ def bench(
 @user_errors
 def verify_cmd(
     model: str = typer.Argument(..., help="model name, or path to an external model's manifest (.toml)"),
+    horizon: float | None = HORIZON,
+    horizon_length: float | None = HORIZON_LENGTH,
     option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
     out: Path | None = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
     full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
@@ -488,7 +503,7 @@ def verify_cmd(
     if order is not None and not (math.isfinite(order) and order > 0):
         raise InputError(f"--order {order}: give the expected order of convergence, a positive number (e.g. 2)")
     name = model_argument(model)
-    options = parse_options(option)
+    options = grid_options(parse_options(option), horizon=horizon, horizon_length=horizon_length)
     out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))
     check_folder(out, "--out")
     card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)

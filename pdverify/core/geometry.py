@@ -175,7 +175,7 @@ def constraint_rows(scene) -> np.ndarray:
     t, n = geo.frame(s)
     rows = []
     for k, sup in enumerate((scene.supports.left, scene.supports.right)):
-        held_t, held_n, held_phi = HELD[sup]
+        held_t, held_n, held_phi = HELD[sup] if isinstance(sup, str) else (False, False, False)  # a spring: none
         for held, d in ((held_t, t[k]), (held_n, n[k])):
             if held:
                 rows.append([d[0], d[1], (r[k, 0] * d[1] - r[k, 1] * d[0]) / L])

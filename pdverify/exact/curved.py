@@ -322,10 +322,10 @@ class ExactCurvedCantilever(ExactCurved):
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
-        sup = (scene.supports.left, scene.supports.right)
+        sup = (scene.supports.kind("left"), scene.supports.kind("right"))
         if sorted(sup) != ["clamped", "free"]:
             out.append(
-                f"supports = {sup}: model {self.name} solves cantilevers only (one end clamped, the other "
+                f"supports = {sup[0]}-{sup[1]}: model {self.name} solves cantilevers only (one end clamped, the other "
                 "free); use pd-curved or fem-plane-stress"
             )
         return out

@@ -128,7 +128,7 @@ class ExactElastica(Model):
 
     def reasons(self, scene: Scene) -> list[str]:
         """Why this reference cannot solve ``scene`` (empty when it can)."""
-        sup = (scene.supports.left, scene.supports.right)
+        sup = (scene.supports.kind("left"), scene.supports.kind("right"))  # (a spring end: "spring")
         if not scene.is_straight or sorted(sup) != ["clamped", "free"]:
             return [
                 (

@@ -32,11 +32,31 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.errors import InputError
+
+MAX_STEPS = 10_000_000  # time steps a transient may ask for (hours of stepping on a fine grid); more is refused
 BLOW_UP_RATIO = 1e6  # stored energy over the work put in at which a run counts as blown up (amplitudes ~1e6 x)
 LEDGER_COLUMNS = ("kinetic", "strain", "load_work", "support_work", "damping", "stabilisation", "balance", "scheme")
 """Columns of the ledger: ``damping`` the work dissipated by the scene's damping (c_d per DOF),
 ``stabilisation`` that of the scheme's stiffness-proportional damping β K v (not in the paper), ``scheme`` the
 scheme's discrete energy (module docstring; NaN at t = 0)."""
+
+
+def step_count(end_time: float, dt: float, source: str = "default", limit: float | None = None) -> int:
+    """ceil(end_time / dt), the steps of a run up to ``end_time``; InputError (one line naming the field and the fix)
+    above :data:`MAX_STEPS`. ``source``: where dt comes from, the scene's ``time_step`` or ``output_interval``, or the
+    model's ``default`` step; ``limit``: the largest stable step, named in the advice."""
+    ratio = float(end_time) / float(dt) if dt > 0 else float("inf")
+    if np.isfinite(ratio) and ratio <= MAX_STEPS:
+        return int(np.ceil(ratio - 1e-9))
+    if source == "default":
+        field = f"dynamics.end_time = {end_time:.4g} s with the model's time step {dt:.4g} s"
+        fix = "give a shorter dynamics.end_time or use fewer points (the stable step grows with the spacing)"
+    else:
+        field = f"dynamics.{source} = {dt:.4g} s with end_time = {end_time:.4g} s"
+        longest = f" (up to the stable limit {limit:.4g} s)" if limit else ""
+        fix = f"give a larger dynamics.{source}{longest} or a shorter dynamics.end_time"
+    raise InputError(f"{field} asks for {ratio:.3g} steps, more than the limit of {MAX_STEPS:.0e}; {fix}")
 
 
 @dataclass

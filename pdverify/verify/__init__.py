@@ -8,6 +8,7 @@ superposition solve a handful of scenes here. The card (:mod:`.card`) is JSON, H
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from ..core.errors import InputError
@@ -20,6 +21,7 @@ from . import checks as C
 from .card import write_card
 from .dynamics import dynamics_check
 from .suite import (
+    CURVED_QUANTITIES,
     GAP_REFERENCE,
     SUITE_VERSION,
     end_force,
@@ -35,6 +37,7 @@ from .suite import (
 
 __all__ = ["verify", "SUITE_VERSION", "entry_errors"]
 
+ENGINEERING = "convergence (continuous, overhanging, spring, stepped, bi-material)"
 MIRROR_PAIRS = (("clamped", "pinned"), ("clamped", "free"), ("clamped", "guided"), ("pinned", "guided"))
 # the mirror scene's solution at L - x is this times the scene's at x (an axial force and u reverse)
 MIRROR_SIGN = {None: 1.0, "axial": -1.0, "torsion": 1.0}
@@ -97,9 +100,20 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
     return out
 
 
-def _declined(model, p) -> dict:
-    """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out)."""
-    return {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+def _declined(model, p, options: dict | None = None) -> dict:
+    """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out); an
+    engineers' scene also when the model with these options refuses it as input (a variant that takes no segments:
+    a solve on the coarsest grid, one line)."""
+    out = {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
+    for f, why in out.items():
+        if not why and p.meta[f]["set"] == "engineering" and options is not None:
+            try:
+                run(parse_scene(p.scenes[f]), model, **options, points=p.grids[0])
+            except InputError as exc:
+                out[f] = list(exc.lines)
+            except Exception:  # noqa: BLE001 - a failed solve is judged by the suite, not declined here
+                pass
+    return out
 
 
 def _solves_none(model, declined: dict) -> str | None:
@@ -161,13 +175,15 @@ def verify(
     if grid:
         raise InputError(grid)
     p = plan(model, full, options)
-    declined = _declined(model, p)
+    declined = _declined(model, p, options)
     if why := _solves_none(model, declined):
         raise InputError(why)
     solved = next(f for f, why in declined.items() if not why)
     model.resolve(parse_scene(p.scenes[solved]), options)  # bad options: one line each before anything runs
-    df = _run_suite(p, model, options, out, workers, scheduler, progress)
-    found, scenes, df = _judge(model, options, p, df, expected)
+    refused = {f for f, why in declined.items() if why and p.meta[f]["set"] == "engineering"}  # not run
+    run_plan = replace(p, scenes={f: sc for f, sc in p.scenes.items() if f not in refused})
+    df = _run_suite(run_plan, model, options, out, workers, scheduler, progress)
+    found, scenes, df = _judge(model, options, p, df, expected, declined)
     card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}
     write_card(card, out)
     return card
@@ -183,23 +199,46 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
     )
 
 
-def _judge(model, options: dict, p, df, expected: float) -> tuple:
+def _judge(model, options: dict, p, df, expected: float, declined: dict | None = None) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
-    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in ("convergence", "locking", "floor", "curved")}
+    sets = ("convergence", "locking", "floor", "curved", "engineering")
+    files = {s: [f for f, m in p.meta.items() if m["set"] == s and not (declined or {}).get(f)] for s in sets}
     # the theory-gap run (self-convergence only): the convergence scenes on the reference grid, finer than any other
     gap = (p.reference is None) & (df["points"] == finer(p.grids)) & df["scene_file"].isin(files["convergence"])
     df, gap_df = df[~gap], df[gap]
     conv = C.series(df, files["convergence"])
     found = _straight_checks(model, p, df, gap_df, conv, files, expected) + _identity_checks(model, options, p)
+    engineering = C.series(df, files["engineering"])
+    found.append(
+        C.convergence(engineering, expected, ENGINEERING)
+        if engineering
+        else C.check(ENGINEERING, "n/a", "the model takes no supports inside the span, springs or segments")
+    )
     curved = C.series(df, files["curved"])
     found.append(
         C.convergence(curved, expected, "convergence (curved axes)")
         if curved
         else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
     )
+    found += [_curved_quantity(df, files["curved"], q, expected) for q in CURVED_QUANTITIES] if curved else []
     found.append(dynamics_check(model, options, p.grids, expected))
-    return found, [{**p.meta[r["scene_file"]], **r} for r in conv + curved], df
+    return found, [{**p.meta[r["scene_file"]], **r} for r in conv + engineering + curved], df
+
+
+def _curved_quantity(df, files: list[str], quantity: str, expected: float) -> dict:
+    """The convergence of one more quantity on the curved scenes (``err_max_<q>``), where the model and the
+    reference give it."""
+    label = f"convergence (curved axes): {quantity}"
+    col = f"err_max_{quantity}"
+    given = df[df[col].notna()] if col in df else df.iloc[:0]
+    rows = C.series(given, files, col)
+    if not rows:
+        return C.check(label, "n/a", f"the model or its curved reference gives no {quantity}")
+    found = C.convergence(rows, expected, label)
+    finest = max((r["errors"][-1] for r in rows if r["errors"]), default=float("nan"))
+    grid = max((r["points"][-1] for r in rows if r["points"]), default=0)
+    return found | {"summary": f"{found['summary']}; largest error at {grid} points {finest:.2e}", "series": rows}
 
 
 def _straight_checks(model, p, df, gap_df, conv: list[dict], files: dict, expected: float) -> list[dict]:

@@ -60,15 +60,16 @@ def reference_note(bounds) -> str:
     )
 
 
-def series(df, files: list[str]) -> list[dict]:
-    """Per scene file: grids, spacings, errors, costs, pair orders, fitted order (ok rows only)."""
+def series(df, files: list[str], column: str = "err_max") -> list[dict]:
+    """Per scene file: grids, spacings, errors (``column``: err_max, or a quantity's err_max_<q>), costs, pair
+    orders, fitted order (ok rows only)."""
     out = []
     for f in files:
         rows = df[(df["scene_file"] == f)].sort_values("points")
         if rows.empty:  # the model's check() declined the scene: skipped, not judged
             continue
         ok = rows[rows["status"].isin(SOLVED)]
-        h, e = ok["spacing"].to_numpy(float), ok["err_max"].to_numpy(float)
+        h, e = ok["spacing"].to_numpy(float), ok[column].to_numpy(float)
         pair = [
             math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")
             for i in range(len(e) - 1)

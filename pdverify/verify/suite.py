@@ -32,8 +32,10 @@ from ..registry.external import ExternalModel
 # 1.3: a clockwise arc among the curved scenes; 1.4: axial and torsion models (ROD_LOADS; the beams' cards unchanged),
 # and a self-converged model's curved scenes against itself (was exact-curved: fem-plane-stress's card only);
 # 1.5: higher-order models against exact-higher-order with their loads and pin (Model.reference_options; were
-# self-converged)
-SUITE_VERSION = "1.5"
+# self-converged); 1.6: the curved scenes' rotation, moment, shear and axial force (CURVED_QUANTITIES), each its own
+# convergence check; 1.7: scenes as engineers draw them (engineering_scenes) for models that take supports inside
+# the span, springs or segments
+SUITE_VERSION = "1.7"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -45,6 +47,8 @@ MATERIAL = {"youngs_modulus": 70e9, "poissons_ratio": 0.3}
 SELF_REFINEMENT = 4  # self-convergence: the reference grid has this many times the spacings of the finest grid
 GAP_REFERENCE = "exact-timoshenko"  # what a self-converged model's theory gap is measured against
 PAIRS = [(left, right) for left in SUPPORTS for right in SUPPORTS if not is_mechanism(left, right)]
+# what the curved scenes measure besides the displacement w (each its own convergence check on the card)
+CURVED_QUANTITIES = ("rotation", "moment", "shear", "axial")
 
 
 def straight(left: str, right: str, loads: list[dict], slenderness: float = SLENDERNESS, name: str = "") -> dict:
@@ -138,12 +142,18 @@ def mirror(scene: dict) -> dict:
         if ld["type"] == "distributed" and ("start" in ld or "end" in ld):
             ld["start"], ld["end"] = L - ld.get("end", L), L - ld.get("start", 0.0)
         loads.append(ld)
-    return {
+    sup = scene["supports"]
+    out = {
         **scene,
         "name": scene["name"] + " (mirror)",
         "loads": loads,
-        "supports": {"left": scene["supports"]["right"], "right": scene["supports"]["left"]},
+        "supports": {"left": sup["right"], "right": sup["left"]},
     }
+    if sup.get("inner"):  # supports inside the span and segments mirrored too
+        out["supports"]["inner"] = [dict(s, position=L - s["position"]) for s in sup["inner"]][::-1]
+    if scene.get("segments"):
+        out["segments"] = [dict(g, start=L - g["end"], end=L - g["start"]) for g in scene["segments"]][::-1]
+    return out
 
 
 def curved_scenes() -> list[dict]:
@@ -180,6 +190,96 @@ def curved_scenes() -> list[dict]:
             "loads": [{"type": "point_force", "position": half_pi, "value": -1000.0}],
         },
     ]
+
+
+def _span_loads(force_at: float, moment_at: float) -> list[dict]:
+    """A uniform load with a point force and a point moment in two of the spans (on grid points of every grid)."""
+    return [
+        {"type": "distributed", "value": -1000.0},
+        {"type": "point_force", "position": force_at, "value": -1000.0},
+        {"type": "point_moment", "position": moment_at, "value": 200.0},
+    ]
+
+
+def _as_rod_load(load: dict, kind: str) -> dict:
+    """A beam load of the engineers' scenes as the rod's (axial) or the bar's (torsion) at the same place: the
+    distributed load 1 kN/m (100 N m/m), a point force or moment an axial force of its value (5 x a moment's) or a
+    torque of a tenth of it (half a moment's)."""
+    at = {"position": load["position"]} if "position" in load else {}
+    if load["type"] == "distributed":
+        return _axial(type="distributed") if kind == "axial" else _torque()
+    size = load["value"] * (1.0 if load["type"] == "point_force" else 5.0)
+    if kind == "axial":
+        return {"type": "point_force", **at, "value": 0.0, "axial": size}
+    return {"type": "point_torque", **at, "value": size / 10.0}
+
+
+def engineering_scenes(kind: str | None = None) -> list[dict]:
+    """Scenes as engineers draw them (suite 1.7), loads in every span (a rod's or a bar's, ``kind``, at the same
+    places: :func:`_as_rod_load`): continuous over two and three spans, an
+    overhang on both sides, a beam on springs, a stepped and a bi-material beam. Supports, segment ends and loads sit
+    on grid points of every grid (and where the mirror image puts them back exactly); the springs are about the
+    beam's own stiffness (48 EI / L³ = 1.7e6 N/m)."""
+    steel = {"youngs_modulus": 200e9, "poissons_ratio": 0.3}
+    out = [
+        (
+            "two spans",
+            {"left": "pinned", "right": "pinned", "inner": [{"position": 0.5, "type": "pinned"}]},
+            [],
+            _span_loads(0.25, 0.75),
+        ),
+        (
+            "three spans",
+            {
+                "left": "pinned",
+                "right": "roller",
+                "inner": [{"position": 0.35, "type": "pinned"}, {"position": 0.7, "type": "roller"}],
+            },
+            [],
+            _span_loads(0.5, 0.85) + [{"type": "point_force", "position": 0.25, "value": 500.0}],
+        ),
+        (
+            "overhangs",
+            {
+                "left": "free",
+                "right": "free",
+                "inner": [{"position": 0.25, "type": "pinned"}, {"position": 0.75, "type": "roller"}],
+            },
+            [],
+            _span_loads(0.5, 0.9) + [{"type": "point_force", "position": 0.0, "value": -500.0}],
+        ),
+        (
+            "on springs",
+            {
+                "left": "pinned",
+                "right": {"type": "spring", "stiffness": 1e6, "rotational_stiffness": 1e4},
+                "inner": [{"position": 0.5, "type": "spring", "stiffness": 2e6}],
+            },
+            [],
+            _span_loads(0.25, 0.75),
+        ),
+        (
+            "stepped",
+            {"left": "clamped", "right": "pinned"},
+            [{"start": 0.0, "end": 0.4, "section": {"width": WIDTH, "height": 0.07}}, {"start": 0.4, "end": LENGTH}],
+            _span_loads(0.25, 0.7),
+        ),
+        (
+            "bi-material",
+            {"left": "clamped", "right": "pinned", "inner": [{"position": 0.55, "type": "pinned"}]},
+            [{"start": 0.0, "end": 0.55, "material": steel}, {"start": 0.55, "end": LENGTH}],
+            _span_loads(0.25, 0.8),
+        ),
+    ]
+    scenes = []
+    for name, supports, segments, loads in out:
+        loads = loads if kind is None else [_as_rod_load(ld, kind) for ld in loads]
+        sc = straight("pinned", "pinned", loads, name=name)
+        sc["supports"] = supports
+        if segments:
+            sc["segments"] = segments
+        scenes.append(sc)
+    return scenes
 
 
 @dataclass
@@ -276,6 +376,17 @@ def plan(model, full: bool = False, options: dict | None = None) -> Plan:
         load="uniform",
         slenderness=SLENDERNESS,
     )
+    if model.inner_supports or model.springs or model.segments:
+        for sc in engineering_scenes(kind):  # (a scene the model cannot hold is declined: listed on the card)
+            sup = sc["supports"]
+            add(
+                "engineering",
+                sc,
+                pair=f"{sup['left'] if isinstance(sup['left'], str) else 'spring'}-"
+                f"{sup['right'] if isinstance(sup['right'], str) else 'spring'}",
+                load="span loads",
+                slenderness=SLENDERNESS,
+            )
     if model.curved:
         for sc in curved_scenes():
             add(
@@ -333,18 +444,31 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
     for f, scene in p.scenes.items():
         (folder / f).parent.mkdir(parents=True, exist_ok=True)
         (folder / f).write_text(toml_text(scene))
-    files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets]  # noqa: E731
+    files = lambda *sets: [f for f, m in p.meta.items() if m["set"] in sets and f in p.scenes]  # noqa: E731
     run = {"model": model.name, **options}
     ref = lambda grids: p.reference or self_reference(model, options, grids)  # noqa: E731
     runs = [
-        {**run, "points": list(p.grids), "scenes": files("convergence", "locking"), "reference": ref(p.grids)},
+        {
+            **run,
+            "points": list(p.grids),
+            "scenes": files("convergence", "locking", "engineering"),
+            "reference": ref(p.grids),
+        },
         {**run, "points": list(p.floor_grids), "scenes": files("floor"), "reference": ref(p.floor_grids)},
     ]
     if p.reference is None:  # the theory gap: the self-convergence reference against exact Timoshenko theory
         runs.append({**run, "points": [finer(p.grids)], "scenes": files("convergence"), "reference": GAP_REFERENCE})
     if files("curved"):
         curved = p.curved_reference or self_reference(model, options, p.grids)
-        runs.append({**run, "points": list(p.grids), "scenes": files("curved"), "reference": curved})
+        runs.append(
+            {
+                **run,
+                "points": list(p.grids),
+                "scenes": files("curved"),
+                "reference": curved,
+                "quantities": list(CURVED_QUANTITIES),
+            }
+        )
     study = {
         "name": f"pdverify verify {model.name} (suite {SUITE_VERSION})",
         "scenes": list(p.scenes),

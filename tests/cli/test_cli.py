@@ -232,3 +232,41 @@ def test_closed_stdout_is_no_traceback():
     err = p.stderr.read().decode()
     p.wait(timeout=60)
     assert "Traceback" not in err and p.returncode in (1, 2)
+
+
+# -- the grid's options, the same on every command that takes a grid ----------------------------------------------
+
+
+def _rod_scene(tmp_path) -> pathlib.Path:
+    p = tmp_path / "rod.toml"
+    p.write_text(
+        'name = "rod"\n[beam]\nlength = 1.0\n[section]\nwidth = 0.05\nheight = 0.05\n'
+        "[material]\nyoungs_modulus = 70e9\npoissons_ratio = 0.3\ndensity = 2700\n"
+        '[supports]\nleft = "clamped"\nright = "free"\n'
+        '[[loads]]\ntype = "point_force"\nposition = 1.0\nvalue = 0.0\naxial = 100.0\n'
+    )
+    return p
+
+
+@pytest.mark.parametrize("command", ["solve", "modes"])
+def test_points_and_horizon_flags_are_the_model_options(command, tmp_path, capsys):
+    """--points 41 --horizon 2 gives what -o points=41 -o horizon=2 gives, on solve and modes alike."""
+    scene = str(_rod_scene(tmp_path))
+    fmt = ["--format", "json"]
+    a = cli([command, scene, "-m", "pd-rod", "--points", "41", "--horizon", "2", *fmt], capsys)
+    b = cli([command, scene, "-m", "pd-rod", "-o", "points=41", "-o", "horizon=2", *fmt], capsys)
+    c = cli([command, scene, "-m", "pd-rod", "--points", "41", *fmt], capsys)
+    assert a[0] == b[0] == c[0] == 0
+    strip = lambda d: {k: v for k, v in json.loads(d).items() if k not in ("timings", "info")}  # noqa: E731
+    assert strip(a[1]) == strip(b[1]) and strip(a[1]) != strip(c[1])  # the horizon took effect (default 3)
+
+
+@pytest.mark.parametrize("command", ["solve", "modes", "verify"])
+def test_horizon_length_is_the_option_horizon_length(command, tmp_path, capsys):
+    """--horizon-length goes to the model as horizon_length; a model without it refuses it in one line (exit 2);
+    a flag given twice (also as -o) is refused."""
+    args = ["pd-rod"] if command == "verify" else [str(_rod_scene(tmp_path)), "-m", "pd-rod"]
+    code, out, err = cli([command, *args, "--horizon-length", "0.01"], capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1 and "horizon_length" in err and "pd-rod" in err
+    code, _, err = cli([command, *args, "--horizon", "2", "-o", "horizon=3"], capsys)
+    assert code == 2 and err.startswith("error: --horizon 2") and "-o horizon=3: the same option twice" in err

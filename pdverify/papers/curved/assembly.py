@@ -12,14 +12,7 @@ from ...core.scene import Scene
 from ...numerics.band import Band, Extent
 from . import pddo as _pddo
 from .particles import force_components
-
-_SUPPORT_SLOTS = {  # per slot (t, n, φ): True = the kinematic quantity is prescribed, False = the resultant
-    "clamped": (True, True, True),
-    "pinned": (True, True, False),
-    "roller": (False, True, False),
-    "free": (False, False, False),
-    "guided": (False, False, True),
-}
+from .supports import held_slots, particle_stiffness, spring_slots, support_at
 
 
 def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, six: bool, resultant):
@@ -43,21 +36,24 @@ def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, s
         F = np.zeros(3)
         for load in ends[side]:
             F += force_components(load, t[k], nv[k])
-        for c, kin in enumerate(_SUPPORT_SLOTS[sup]):
+        springs = spring_slots(sup)
+        for c, kin in enumerate(held_slots(sup)):
             row = eq0 + c * N + k
             if kin:
                 add(row, [c * N + k], [1.0])
                 rb[row] = 0.0
-            else:
-                add(row, *resultant(c, k))
+            else:  # sign R = F - k u (an elastic end's force with the loads there, .supports)
+                cols, vals = resultant(c, k)
+                add(row, np.r_[cols, c * N + k], np.r_[vals, sign * springs[c]])
                 rb[row] = sign * F[c]
     for i in range(len(segs) - 1):
         ka, kb = offs[i + 1] - 1, offs[i + 1]
         F = np.zeros(3)
         for load in inner.get(i, []):
             F += force_components(load, t[ka], nv[ka])
+        held = support_at(scene, segs[i][-1])
         for c in range(3):
-            kl, kr = _SUPPORT_SLOTS[scene.supports.left][c], _SUPPORT_SLOTS[scene.supports.right][c]
+            kl, kr = held_slots(scene.supports.left)[c], held_slots(scene.supports.right)[c]
             if six and kl != kr:  # one kinematic end: continuity into the constitutive row away from it
                 kc, kj = (kb, ka) if kl else (ka, kb)
                 row = c * N + kc
@@ -66,9 +62,14 @@ def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, s
                 row = eq0 + c * N + kc
             add(row, [c * N + ka, c * N + kb], [1.0, -1.0])
             rb[row] = 0.0
+            if held is not None and held_slots(held)[c]:  # a rigid support inside the span: u_c = 0, the jump its
+                add(eq0 + c * N + kj, [c * N + ka], [1.0])  # reaction
+                rb[eq0 + c * N + kj] = 0.0
+                continue
+            k_c = spring_slots(held)[c] if held is not None else 0.0
             cb, vb = resultant(c, kb)
             ca, va = resultant(c, ka)
-            add(eq0 + c * N + kj, np.r_[cb, ca], np.r_[vb, -va])
+            add(eq0 + c * N + kj, np.r_[cb, ca, c * N + ka], np.r_[vb, -va, -k_c])  # R+ - R- - k u = -F
             rb[eq0 + c * N + kj] = -F[c]
     rows = np.array(sorted(rb))
     return rows, np.array([rb[r] for r in rows]), (np.concatenate(rr), np.concatenate(rc), np.concatenate(rv))
@@ -86,7 +87,7 @@ def assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, loa
     numbers, bit for bit, as the sparse assembly this replaced (scipy's products by diagonal matrices
     round each entry once, as here)."""
     N, nf = len(kap), 6
-    EA, kGA, EI = scene.EA, scene.kGA, scene.EI
+    EA, kGA, EI = particle_stiffness(scene, segs)  # each particle's segment's (.supports)
     bw = nf * (size - 1)  # the end families reach size - 1 particles
     B = Band(nf * N, bw, bw)
     ext = Extent(B)
@@ -155,7 +156,7 @@ def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap,
     Z = sp.csr_matrix((N, N))
     K_ = sp.diags(kap)
     Kp = sp.diags(dkap)
-    EA, kGA, EI = scene.EA, scene.kGA, scene.EI
+    EA, kGA, EI = (sp.diags(v) for v in particle_stiffness(scene, segs))  # each particle's segment's (.supports)
     # strain operators (rows: particles; block columns u_t, u_n, φ)
     Eps = sp.hstack([D1, -K_, Z], format="csr")
     Gam = sp.hstack([K_, D1, -I], format="csr")
@@ -166,12 +167,12 @@ def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap,
         dEps = sp.hstack([D2, -Kp - K_ @ D1, Z], format="csr")
         dGam = sp.hstack([Kp + K_ @ D1, D2, -D1], format="csr")
         dChi = sp.hstack([Z, Z, D2], format="csr")
-    Kt = EA * dEps - kGA * (K_ @ Gam)
-    Kn = kGA * dGam + EA * (K_ @ Eps)
-    Kf = EI * dChi + kGA * Gam
+    Kt = EA @ dEps - kGA @ (K_ @ Gam)
+    Kn = kGA @ dGam + EA @ (K_ @ Eps)
+    Kf = EI @ dChi + kGA @ Gam
     K = sp.vstack([Kt, Kn, Kf], format="csr")
     b = -np.concatenate(loads)
-    res = [(EA * Eps).tocsr(), (kGA * Gam).tocsr(), (EI * Chi).tocsr()]  # N, Q, M
+    res = [(EA @ Eps).tocsr(), (kGA @ Gam).tocsr(), (EI @ Chi).tocsr()]  # N, Q, M
 
     def resultant(c, k):
         r = res[c].getrow(k).tocoo()

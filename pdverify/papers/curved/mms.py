@@ -22,6 +22,7 @@ class PDCurvedMMS(PDCurved):
     source = "pd-curved; loads by sympy from the chosen fields (:mod:`pdverify.theory.curved_manufactured`)"
     reference = True  # a verification harness, not a candidate model for `pdverify advise`
     options = PDCurved.options + (FIELDS,)
+    springs = inner_supports = segments = False  # the manufactured fields hold on one uniform beam between its ends
 
     def check(self, scene: Scene) -> list[str]:
         return super().check(scene) + manufactured_checks(scene)

@@ -76,11 +76,13 @@ from .particles import (
     breakpoints,
     default_horizon,
     distributed_loads,
+    force_components,
     given_grids,
     grading_density,
     parse_positions,
     segment_grids,
 )
+from .supports import axial_mechanism, particle_stiffness, reactions
 
 
 class PDCurved(Model):
@@ -145,12 +147,15 @@ class PDCurved(Model):
     axial = True
     theory = "timoshenko"
     assembles = True
+    springs = True  # straight axes (the scene's rule): breaks with their own conditions (.supports)
+    inner_supports = True
+    segments = True
 
     def check(self, scene: Scene) -> list[str]:
         """The scene checks plus the axial rigid-body test on straight axes (e.g. two rollers slide along x)."""
 
         out = super().check(scene)
-        why = mechanism_message(scene)
+        why = mechanism_message(scene) if scene.supports.simple else axial_mechanism(scene)
         return out + ([why] if why is not None else [])
 
     # ---------------------------------------------------------------------------------------
@@ -251,6 +256,8 @@ class PDCurved(Model):
             infos.append(info)
             dofs += n_dofs
         info = dict(infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))])
+        if "reactions" in info:  # each solve's supports carry its loads: the sum
+            info["reactions"] = {k: sum(i["reactions"][k] for i in infos) for k in info["reactions"]}
         warnings = sorted({w for i in infos for w in i.get("warnings", [])})
         if warnings:
             info["warnings"] = warnings
@@ -283,7 +290,12 @@ class PDCurved(Model):
             Nf, Qf, Mf = Z[:, 3], Z[:, 4], Z[:, 5]
         else:
             z = Z.T.ravel()
-            Nf, Qf, Mf = scene.EA * (d["Eps"] @ z), scene.kGA * (d["Gam"] @ z), scene.EI * (d["Chi"] @ z)
+            EA, kGA, EI = particle_stiffness(scene, d["segs"])
+            Nf, Qf, Mf = EA * (d["Eps"] @ z), kGA * (d["Gam"] @ z), EI * (d["Chi"] @ z)
+        if scene.is_straight:  # the supports' forces and moments, from the resultants at the particles
+            info["reactions"] = reactions(
+                scene, d["segs"], d["offs"], np.array([Nf, Qf, Mf]), lambda at: _point_loads(scene, at)
+            )
         # output on the uniform grid of ``points`` positions (independent of the loads): the particle value
         # where a particle sits there, else the degree-P PDDO interpolant g^0 of its segment; at a break
         # the left segment's (left limit of the resultants)
@@ -344,3 +356,12 @@ class PDCurved(Model):
 
 
 MODELS = [PDCurved()]
+
+
+def _point_loads(scene: Scene, at: float) -> np.ndarray:
+    """(F_t, F_n, C) of the scene's point loads at ``at`` (a straight axis: t = +x, n = +z)."""
+    F = np.zeros(3)
+    for load in scene.loads:
+        if getattr(load, "position", None) is not None and abs(load.position - at) <= 1e-9 * scene.length:
+            F += force_components(load, np.array([1.0, 0.0]), np.array([0.0, 1.0]))
+    return F

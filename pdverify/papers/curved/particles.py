@@ -13,6 +13,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.geometry import axis_abscissae, geometry
 from ...core.scene import Distributed, PointForce, PointMoment, Scene
+from .supports import support_breaks
 
 # -- geometry ---------------------------------------------------------------------------------
 
@@ -68,6 +69,8 @@ def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
             for v in scene.span(load):
                 if tol < v < L - tol:
                     pos.append(v), at.append(None)
+    for v in support_breaks(scene):  # supports inside the span and segment ends (.supports)
+        pos.append(v), at.append(None)
     bps: list[float] = []
     loads: dict[int, list] = {}
     for p, load in sorted(zip(pos, at), key=lambda t: t[0]):

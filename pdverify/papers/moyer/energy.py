@@ -35,9 +35,12 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...core.errors import InputError
-from ...core.scene import Distributed, Scene
+from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.families import stencil_operator
+from .couples import couple_column
 from .kernels import EndPatched, node_loads, rod_kernel, toeplitz
+from .pieces import bond_stiffness
+from .resultants import moment_steps, point_loads, shear_at_points
 from .system import Discrete, beam_prescribed
 
 ZONE = 3  # bonds are refitted within ZONE m + 1 points of each end
@@ -109,8 +112,9 @@ def volumes(n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
     return vw, vg
 
 
-def bending_laplacian(n: int, m: int) -> sp.csr_matrix:
-    """Σ_b ω_ab (γ_a - γ_b) as an n x n matrix (units EI/Δ): the interior bonds, the fitted ones at both ends."""
+def bending_laplacian(n: int, m: int, bond=None) -> sp.csr_matrix:
+    """Σ_b ω_ab (γ_a - γ_b) as an n x n matrix (units EI/Δ): the interior bonds, the fitted ones at both ends;
+    ``bond``: (a, b) -> each bond's stiffness EI_ab (segments: :func:`.pieces.bond_stiffness`), then in units 1/Δ."""
     wj = bond_kernel(m)
     j = np.arange(1, m + 1)
     W = stencil_operator(n, 0, n, np.concatenate([j, -j]), np.concatenate([wj, wj]), truncate=True)
@@ -126,16 +130,33 @@ def bending_laplacian(n: int, m: int) -> sp.csr_matrix:
     C = W.tocoo()
     same = (left[C.row] == left[C.col]) & inside[C.row] & inside[C.col]  # bonds within one end's zone
     W = sp.csr_matrix((C.data[~same], (C.row[~same], C.col[~same])), shape=(n, n)) + corners.tocsr()
+    if bond is not None:
+        C = W.tocoo()
+        W = sp.csr_matrix((C.data * bond(C.row, C.col), (C.row, C.col)), shape=(n, n))
     return (sp.diags(np.asarray(W.sum(axis=1)).ravel()) - W).tocsr()
 
 
-def bond_moment(gamma: np.ndarray, m: int, EI: float, dx: float) -> np.ndarray:
+def stiffnesses(scene: Scene, n: int, dx: float):
+    """(kGA of the n - 1 intervals, the bonds' EI as a function of their points, for :func:`bending_laplacian`):
+    the scene's own for a uniform beam (None for the bonds: the plain weights times EI), else the series stiffness
+    of each interval and bond (:func:`.pieces.bond_stiffness`)."""
+    if scene.uniform:
+        return np.full(n - 1, scene.kGA), None
+    x = np.arange(n) * dx
+    return bond_stiffness(scene, x[:-1], x[1:], "kGA"), lambda a, b: bond_stiffness(scene, x[a], x[b], "EI")
+
+
+def bond_moment(gamma: np.ndarray, m: int, EI: float, dx: float, bond=None) -> np.ndarray:
     """M = EIγ' at the points from the bond sums. For a quadratic γ the left end row's sum is M at the end of its
     cell, s_0 = V_0 Δ, and row r's (0 < r < n - 1) is M(s_r) - M(s_{r-1}), s_r = Σ_{k<=r} V_k Δ (the last row's is
     -M(s_{n-2})): M at the cells' ends s_0 .. s_{n-2} is the cumulative sum of the rows, interpolated linearly to the
     points and extrapolated to the end points."""
     n = len(gamma)
-    rows = -(EI / dx) * (bending_laplacian(n, m) @ gamma)
+    rows = (
+        -(EI / dx) * (bending_laplacian(n, m) @ gamma)
+        if bond is None
+        else -(bending_laplacian(n, m, bond) @ gamma) / dx
+    )
     _, vg = volumes(n, m)
     s = np.cumsum(vg[:-1]) * dx
     Mf = np.cumsum(rows[:-1])
@@ -146,21 +167,34 @@ def bond_moment(gamma: np.ndarray, m: int, EI: float, dx: float) -> np.ndarray:
     return M
 
 
-def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, couples: np.ndarray) -> np.ndarray:
-    """The bending moment M = EIγ' at the points: M' = V = -kGA ψ integrated interval by interval (ψ̄ is the interval
-    average of ψ, so each step is exact to the solution's error), the point couples (``couples``, per point, as in the
-    γ loads) as steps after their point (as exact-timoshenko's fields), and the constant from the bond sums' moment
-    (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond sums smear a
-    point couple over the horizon, which would bias a mean to first order). Why not the bond sums themselves: near
-    an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval averages)
-    differ, so the discrete γ' is first order there."""
+def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), kinks=()) -> np.ndarray:
+    """The bending moment M = EIγ' at the points: M' = V = -kGA ψ integrated interval by interval (each interval's V̄
+    is the average of V over it, so each step is exact to the solution's error), the couples (the scene's and the
+    supports' ``reactions``, (position, force, couple)) as steps in the interval that holds them
+    (:func:`.resultants.moment_steps`, exact-timoshenko's convention at a point), and the constant from the bond
+    sums' moment (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond sums
+    smear a point couple over the horizon, which would bias a mean to first order). Why not the bond sums themselves:
+    near an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval
+    averages) differ, so the discrete γ' is first order there."""
     n = len(u) // 2
-    steps = dx * (-scene.kGA) * (shear_strain(n, dx) @ u) - couples[:-1]
-    M = np.concatenate([[0.0], np.cumsum(steps)])
-    flux = bond_moment(u[1::2], m, scene.EI, dx)
+    _, bond = stiffnesses(scene, n, dx)
+    _, couples = point_loads(scene, reactions)
+    M = moment_steps(interval_shear(u, scene, dx, kinks), np.arange(n) * dx, couples)
+    flux = bond_moment(u[1::2], m, scene.EI, dx, bond)
     Z = 2 * zone(m)
     inner = slice(Z, n - Z) if n > 2 * Z + 2 else slice(None)
     return M + np.median(flux[inner] - M[inner])
+
+
+def interval_shear(u: np.ndarray, scene: Scene, dx: float, kinks=()) -> np.ndarray:
+    """V̄ = -kGA ψ̄ of the n - 1 intervals (segments: each interval's series kGA); ``kinks`` (position, couple C,
+    singular part u_s) of the couples applied on their kink (:mod:`.couples`): their u_s has no shear strain, so its
+    intervals' ψ̄ (the 13/24 average of a kinked γ) are left out."""
+    n = len(u) // 2
+    kga, _ = stiffnesses(scene, n, dx)
+    for _, C, us in kinks:
+        u = u - C * us
+    return -kga * (shear_strain(n, dx) @ u)
 
 
 def shear_strain(n: int, dx: float) -> sp.csr_matrix:
@@ -181,18 +215,34 @@ def shear_strain(n: int, dx: float) -> sp.csr_matrix:
 def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(K per length, ψ at the points) on n points: ∂U/∂u divided by the volumes, interleaved DOFs."""
     B = shear_strain(n, dx)
-    Ke = (scene.kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (scene.EI / dx), GAMMA)
+    kga, bond = stiffnesses(scene, n, dx)
+    if bond is None:
+        Ke = (scene.kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (scene.EI / dx), GAMMA)
+    else:  # segments: each interval's kGA and each bond's EI
+        Ke = B.T @ sp.diags(kga * dx) @ B + sp.kron(bending_laplacian(n, m, bond) / dx, GAMMA)
     vw, vg = volumes(n, m)
     K = sp.diags(1.0 / (np.column_stack((vw, vg)).ravel() * dx)) @ Ke
-    # ψ at the points: the mean of the two intervals, extrapolated linearly at the ends
-    P = sp.vstack(
+    return K.tocsr(), (to_points(n) @ B).tocsr()
+
+
+def to_points(n: int) -> sp.csr_matrix:
+    """Values at the n points from those of the n - 1 intervals: the mean of the two around a point, extrapolated
+    linearly at the ends."""
+    return sp.vstack(
         [
             sp.csr_matrix(([1.5, -0.5], ([0, 0], [0, 1])), shape=(1, n - 1)),
             toeplitz(n - 2, 0, n - 1, [0, 1], [0.5, 0.5]),
             sp.csr_matrix(([-0.5, 1.5], ([0, 0], [n - 3, n - 2])), shape=(1, n - 1)),
         ]
-    )
-    return K.tocsr(), (P @ B).tocsr()
+    ).tocsr()
+
+
+def shear_force(u: np.ndarray, scene: Scene, dx: float, reactions=(), kinks=()) -> np.ndarray:
+    """V = -kGA ψ at the points from the intervals' V̄ and the loads between them, the supports' ``reactions``
+    ((position, force, couple)) included (:func:`.resultants.shear_at_points`)."""
+    n = len(u) // 2
+    forces, _ = point_loads(scene, reactions)
+    return shear_at_points(interval_shear(u, scene, dx, kinks), np.arange(n) * dx, scene, forces)
 
 
 @cache
@@ -223,9 +273,20 @@ def energy_beam_operator(scene: Scene, n: int, m: int) -> Discrete:
         )
     x = np.linspace(0.0, scene.length, n)
     dx = x[1] - x[0]
-    Kc, Pc = _core(scene, min(n, 2 * zone(m) + 6 * m + 12), dx, m)  # both zones and stencil rows between
+    # both zones and stencil rows between; segments: the whole grid (no stencil away from the ends)
+    Kc, Pc = _core(scene, n if not scene.uniform else min(n, 2 * zone(m) + 6 * m + 12), dx, m)
     vw, vg = volumes(n, m)
-    q, mu, ends = node_loads(scene, x, "transverse", ends_apart=True)
+    op = EndPatched.from_core(Kc, 2, 2, n)
+    weights = np.column_stack((vw, vg)).ravel()
+    kinked, couples = [], np.zeros(2 * n)  # interior couples as the operator's action on their kink (.couples)
+    for ld in scene.loads:
+        if isinstance(ld, PointMoment) and 0.0 < ld.position < scene.length:
+            got = couple_column(op, scene, x, m, weights, ld.position)
+            if got is not None:
+                kinked.append((ld, got[1]))
+                couples += ld.value * got[0]
+    rest = scene.model_copy(update={"loads": [ld for ld in scene.loads if not any(ld is k for k, _ in kinked)]})
+    q, mu, ends = node_loads(rest, x, "transverse", ends_apart=True)
     spread = scene.model_copy(update={"loads": [ld for ld in scene.loads if isinstance(ld, Distributed)]})
     qd = node_loads(spread, x, "transverse", ends_apart=True)[0]
     bw = qd + (q - qd) / vw  # cell integrals of the line loads, point forces whole (their work)
@@ -238,13 +299,14 @@ def energy_beam_operator(scene: Scene, n: int, m: int) -> Discrete:
     info = {"ghosts_per_end": 0, "spacing": dx, "horizon": m * dx, "fitted_points_per_end": zone(m)}
     return Discrete(
         x,
-        EndPatched.from_core(Kc, 2, 2, n),
-        np.column_stack((bw, bg)).ravel(),
+        op,
+        np.column_stack((bw, bg)).ravel() + couples,
         (rho * scene.section.A, rho * scene.section.I),
         (True, False),
         prescribed,
         2,
         info=info,
         psi=(EndPatched.from_core(Pc, 1, 2, n), np.zeros(n)),
-        weights=np.column_stack((vw, vg)).ravel(),
+        weights=weights,
+        kinks=[(ld.position, ld.value, us) for ld, us in kinked],
     )

@@ -20,267 +20,21 @@ and ``--out file.csv`` writes them.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import Option, Rule
 from ...core.errors import InputError
-from ...core.result import Result, Timer
-from ...core.scene import ROD_HELD, Scene
-from ...numerics.loads import boundary_layer_warnings
-from .ends import FIT_POINTS, MIRRORED
-from .energy import moment_field
-from .kernels import node_loads
-from .operator import beam_operator, rod_operator
-from .system import Discrete, prescribed_motions, static_solution, static_system
-from .transient import STABILISATION, History, integrate
+from ...core.scene import Scene
+from .base import _OPTIONS, _context, _MoyerModel, stabilisation_warning
+from .couples import couple_column
+from .ends import MIRRORED
+from .energy import moment_field, shear_force
+from .operator import beam_operator
+from .rods import PDRod, PDTorsion
+from .system import prescribed_motions
+from .transient import History, integrate
 
-# -- the models -------------------------------------------------------------------------------
-
-_OPTIONS = (
-    Option(
-        "points", int, 101, "material points along the beam, ends included (grid = cells: points - 1 cells)", minimum=6
-    ),
-    Option("horizon", int, 3, "horizon delta = m dx, m an integer (1 = nearest neighbours)", minimum=1),
-    Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
-    Option(
-        "analysis",
-        str,
-        "auto",
-        "auto (dynamic when the scene has [dynamics]) | static | dynamic",
-        choices=("auto", "static", "dynamic"),
-    ),
-    Option(
-        "grid",
-        str,
-        "nodes",
-        "nodes (ends included) | cells (Section 4 cell centres; variant paper, static)",
-        choices=("nodes", "cells"),
-    ),
-)
-
-
-class _MoyerModel(Model):
-    source = "Moyer & Miraglia 2014, Peridynamic solutions for Timoshenko beams"
-    options = _OPTIONS
-    analyses = frozenset({"static", "dynamic"})  # the damped leapfrog-Verlet integrator (Eq. 7-11)
-    end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
-    assembles = True
-    modes = True  # eigenproblem(): the operator of the transient and its lumped mass
-    stabilisation = STABILISATION  # κ of the scheme's stiffness-proportional damping (transient.integrate)
-
-    def stabilisation_for(self, scene: Scene, params: dict) -> float:
-        """κ of this scene's run (the class's; the beam drops it where its closures are stable)."""
-        return self.stabilisation
-
-    variant_rules = (
-        Rule(
-            (("variant", "corrected"),),
-            "grid",
-            "the corrections are written for the node grid; grid = cells "
-            "is the paper's Section 4 setup (variant = paper)",
-            allowed=("nodes",),
-        ),
-    )
-
-    def operator(self, scene: Scene, params: dict) -> Discrete:  # pragma: no cover - interface
-        raise NotImplementedError
-
-    def assemble(self, scene: Scene, params: dict) -> System:
-        """The static system ``solve`` factorises (:func:`static_system`): the operator's band with the
-        prescribed DOFs held (unit rows; a settled end motion moved to the right-hand side)."""
-        disc = self.operator(scene, params)
-        B, rhs, _ = static_system(scene, disc)
-        return System(B, rhs, np.asarray(disc.free), dict(disc.info))
-
-    def _dynamic(self, scene: Scene, params: dict) -> bool:
-        if params["analysis"] == "dynamic" and scene.dynamics is None:
-            raise InputError(
-                "analysis = 'dynamic': the scene has no [dynamics] table; add one (end_time, ...) "
-                "or use analysis = static"
-            )
-        dyn = params["analysis"] == "dynamic" or (params["analysis"] == "auto" and scene.dynamics is not None)
-        moving = scene.dynamics is not None and any(
-            getattr(em, k) is not None
-            for em in (scene.dynamics.left, scene.dynamics.right)
-            if em is not None
-            for k in ("displacement", "axial", "rotation", "twist")
-        )
-        if params.get("grid") == "cells" and (dyn or moving):
-            raise InputError(
-                "grid = 'cells': the cell-centred grid takes no dynamics or prescribed end motions here "
-                "(its end faces carry no points); use grid = nodes"
-            )
-        return dyn
-
-    def eigenproblem(self, scene: Scene, params: dict) -> tuple:
-        """(K, mass) on the free DOFs: K φ = ω² diag(mass) φ, the operator of the transient (``pdverify
-        modes``); K is not symmetric in the paper and corrected variants (the boundary closures), so ω² may be
-        complex there; variant energy's K times the volumes is symmetric, so its ω² are real."""
-        if scene.material.density is None:
-            raise InputError("material.density: needed for natural frequencies; add density to the scene")
-        disc = self.operator(scene, params)
-        if not np.all(np.isfinite(disc.mass)):
-            raise InputError("section: pd-torsion needs the polar moment of a rectangle; give width and height")
-        free = disc.free
-        return disc.K[free][:, free], disc.mass[free]
-
-    def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
-        """Point-updates per second of the explicit integration (``pdverify bench``)."""
-        import time
-
-        disc = self.operator(scene, params)
-        t0 = time.perf_counter()
-        h = integrate(disc, {}, t_end=None, steps=steps, record_every=steps)  # dt = 0.9 of the stable limit
-        return len(disc.x) * h.steps / (time.perf_counter() - t0)
-
-    def solve(self, scene: Scene, params: dict) -> Result:
-        timer = Timer()
-        if self._dynamic(scene, params) and scene.material.density is None:
-            raise InputError("material.density: needed for dynamics; add density to the scene")
-        with timer("assemble"):
-            disc = self.operator(scene, params)
-        m = params["horizon"]
-        info = dict(disc.info, horizon_factor=m, variant=params["variant"])
-        fields = {}
-        writers = {}
-        if self._dynamic(scene, params):
-            d = scene.dynamics
-            with timer("solve"):
-                h = integrate(
-                    disc,
-                    prescribed_motions(scene, disc),
-                    d.end_time,
-                    dt=d.time_step,
-                    damping=d.damping or 0.0,
-                    damping_ratio=d.damping_ratio,
-                    probes=d.probes,
-                    output_interval=d.output_interval,
-                    damp_rotations=d.damping_on == "all",
-                    stabilisation=self.stabilisation_for(scene, params),
-                    context=_context(scene, params),
-                )
-            u = h.final
-            label = "w" if self.bending else ("u" if self.axial else "twist")
-            series = {f"{label}(x={p:g})": h.values[:, k] for k, p in enumerate(h.probes)}
-            if h.rotations is not None:
-                series.update({f"rotation(x={p:g})": h.rotations[:, k] for k, p in enumerate(h.probes)})
-            info.update(
-                analysis="dynamic",
-                dt=h.dt,
-                dt_limit=h.dt_limit,
-                steps=h.steps,
-                damping=h.damping,
-                omega1=h.omega1,
-                stabilisation=h.stabilisation,
-                energy_drift=h.energy_drift,
-                scheme_drift=h.scheme_drift,
-                history={
-                    "t": h.t,
-                    "series": series,
-                    "energy": h.energy,
-                    "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label],
-                },
-            )
-            writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
-            flag = stabilisation_warning(h, params)
-            if flag:
-                info.setdefault("warnings", []).append(flag)
-        else:
-            with timer("assemble"):  # the band of K and the supports
-                system = static_system(scene, disc)
-            with timer("solve"):
-                u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
-            info.update(sinfo, analysis="static")
-            flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m)
-            if flags:
-                info.setdefault("warnings", []).extend(flags)
-        return self.from_solution(scene, params, disc, u, fields, info, timer, writers)
-
-
-class _RodModel(_MoyerModel):
-    """The rod kernel's models (axial and torsion): one field and its resultant, stiffness x the field's slope."""
-
-    field, resultant = "u", "N"
-    # no stabilisation: with the mirror-image ghosts (ends.rod_mirror_ghosts) M^-1 K has a real spectrum
-    # for every support pair and horizon (test_dynamics), so the scheme is stable undamped; damping is only what
-    # the scene asks for
-    stabilisation = 0.0
-
-    def stiffness(self, scene) -> float:  # pragma: no cover - interface
-        raise NotImplementedError
-
-    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
-        x = disc.x
-        slope = np.gradient(u, x[1] - x[0], edge_order=2)
-        fields = dict(fields, **{self.field: u, self.resultant: self.stiffness(scene) * slope})
-        return self.new_result(
-            scene,
-            params,
-            x,
-            np.zeros_like(x),
-            fields=fields,
-            dofs=disc.n_free,
-            timings=timer.timings,
-            info=info,
-            writers=writers,
-        )
-
-
-class PDRod(_RodModel):
-    name = "pd-rod"
-    title = "micro-elastic PD rod (axial), trapezoidal kernel"
-    axial = True
-    bending = False
-    theory = "axial"
-    measures = "u"
-    load_types = frozenset({"point_force", "distributed"})  # their axial components
-
-    def check(self, scene: Scene) -> list[str]:
-        out = super().check(scene)
-        sup = (scene.supports.left, scene.supports.right)
-        if not set(sup) & set(ROD_HELD["axial"]):
-            out.append(
-                f"supports = {sup[0]}-{sup[1]}: neither end holds the axial displacement (a roller or guided "
-                "end slides along the axis), so the rod is a mechanism; make one end clamped or pinned"
-            )
-        return out
-
-    def operator(self, scene, params):
-        return rod_operator(
-            scene, params["points"], params["horizon"], params["variant"], kind="axial", grid=params["grid"]
-        )
-
-    def stiffness(self, scene) -> float:
-        """EA: the resultant N = EA u' of the solved field u."""
-        return scene.EA
-
-
-class PDTorsion(_RodModel):
-    name = "pd-torsion"
-    title = "micro-elastic PD torsion (twist), the rod kernel with GJ (Section 5)"
-    bending = False
-    torsion = True
-    theory = "torsion"
-    measures = "twist"
-    load_types = frozenset({"point_torque", "distributed"})  # distributed: its torque component
-
-    def operator(self, scene, params):
-        disc = rod_operator(
-            scene, params["points"], params["horizon"], params["variant"], kind="torsion", grid=params["grid"]
-        )
-        if self._dynamic(scene, params) and not np.all(np.isfinite(disc.mass)):
-            raise InputError(
-                "section: pd-torsion dynamics needs the polar moment of a rectangle; give width and height"
-            )
-        return disc
-
-    field, resultant = "twist", "T"
-
-    def stiffness(self, scene) -> float:
-        """GJ: the torque T = GJ twist'."""
-        return scene.material.G * scene.section.J
+__all__ = ["MODELS", "PDRod", "PDTimoshenko", "PDTorsion", "simulate", "stabilisation_warning"]
 
 
 class PDTimoshenko(_MoyerModel):
@@ -324,19 +78,48 @@ class PDTimoshenko(_MoyerModel):
             return 0.0
         return self.stabilisation
 
-    def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
+    def couples(self, scene, params, disc):
+        if params["variant"] != "energy":
+            return None
+        return lambda a: couple_column(disc.op, scene, disc.x, params["horizon"], disc.weights, a)
+
+    def end_reactions(self, scene, params, disc, u, loads, inner, kinks):
+        """Variant energy: the held rows' residual K u - b (its rows are ∂U/∂u - b) times the points' volumes; the
+        others: V(0), -M(0), -V(L), M(L) of the fields (their ghost closures carry the end's force)."""
+        x = disc.x
+        dx = x[1] - x[0]
+        out = {}
+        if params["variant"] == "energy":
+            r = (disc.op @ u - disc.b - loads) * disc.weights * dx
+            for dof, (field, side) in disc.prescribed.items():
+                out[("left" if side == 0 else "right", "force" if field == "w" else "moment")] = float(r[dof])
+            return out, "the held rows' residual times the points' volumes"
+        fields = self.from_solution(scene, params, disc, u, {}, {}, None, {}, reactions=inner, kinks=kinks).fields
+        V, M = fields["V"], fields["M"]
+        out = {
+            ("left", "force"): V[0],
+            ("left", "moment"): -M[0],
+            ("right", "force"): -V[-1],
+            ("right", "moment"): M[-1],
+        }
+        return {k: float(v) for k, v in out.items()}, "the shear force and moment fields at the ends"
+
+    def from_solution(self, scene, params, disc, u, fields, info, timer, writers, reactions=(), kinks=()):
+        """The result; ``reactions``: the inner supports' and springs' (position, force, couple), loads on the beam
+        for the resultants of variant energy (:mod:`.resultants`), ``kinks`` those of their couples applied on their
+        kink (:mod:`.couples`)."""
         x = disc.x
         dx = x[1] - x[0]
         w, g = u[0::2], u[1::2]
-        if params["variant"] == "energy":  # M' = V integrated (energy.moment_field)
-            _, mu, _ = node_loads(scene, x, "transverse", ends_apart=True)
-            M = moment_field(u, scene, params["horizon"], dx, mu * dx)
+        psi = disc.psi[0] @ u + disc.psi[1]
+        if params["variant"] == "energy":  # M' = V integrated (energy.moment_field), V from the intervals
+            kinks = list(disc.kinks) + list(kinks)
+            M = moment_field(u, scene, params["horizon"], dx, reactions, kinks)
+            V = shear_force(u, scene, dx, reactions, kinks)
         else:
             M = scene.EI * np.gradient(g, dx, edge_order=2)
-        # ψ as the operator sees it (interval averages at the point; paper: central differences):
-        # np.gradient(w) - γ would carry the O(Δ²) error of w' multiplied by kGA
-        psi = disc.psi[0] @ u + disc.psi[1]
-        fields = dict(fields, M=M, V=-scene.kGA * psi, psi=psi)
+            V = -scene.kGA * psi
+        fields = dict(fields, M=M, V=V, psi=psi)
         return self.new_result(
             scene,
             params,
@@ -345,7 +128,7 @@ class PDTimoshenko(_MoyerModel):
             rotation=g,
             fields=fields,
             dofs=disc.n_free,
-            timings=timer.timings,
+            timings=timer.timings if timer is not None else {},
             info=info,
             writers=writers,
         )
@@ -402,30 +185,6 @@ def simulate(
         damp_rotations=damp_rotations,
         stabilisation=m.stabilisation_for(scene, params) if stabilisation is None else stabilisation,
         context=_context(scene, params),
-    )
-
-
-def stabilisation_warning(h: History, params: dict) -> str | None:
-    """The warning of a run that had the scheme's stiffness-proportional damping (not asked for by the scene, not in
-    the paper): how much of the work put in it took (the ledger's ``stabilisation`` column) and the variant that needs
-    none."""
-    if not h.stabilisation:
-        return None
-    e = h.energy
-    put_in = max(np.nanmax(np.abs(e["load_work"])), np.nanmax(np.abs(e["support_work"])), 0.0) if e else 0.0
-    took = float(e["stabilisation"][-1]) / put_in if put_in > 0 else float("nan")
-    return (
-        f"the scheme's stabilising damping (kappa = {h.stabilisation:g}, not in the scene or the paper) took "
-        f"{took:.2g} of the work put in: the closures of variant {params['variant']} at these supports have growing "
-        "modes; variant = energy runs without it"
-    )
-
-
-def _context(scene: Scene, params: dict) -> str:
-    """Where a growing mode comes from, for the blow-up message."""
-    return (
-        f"supports {scene.supports.left}-{scene.supports.right}, horizon = {params['horizon']}, "
-        f"points = {params['points']}, variant {params['variant']}"
     )
 
 

@@ -73,6 +73,7 @@ from ...core.scene import ROD_HELD, Scene
 from .ends import FIT_POINTS, beam_ghosts, rod_ghosts, shear_ghosts
 from .energy import energy_beam_operator
 from .kernels import EndPatched, node_loads, rod_kernel, shear_kernel, toeplitz
+from .pieces import bond_stiffness, piece_stiffness
 from .system import Discrete, beam_prescribed
 
 
@@ -156,7 +157,10 @@ def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial"
     for side, sup in ((0, scene.supports.left), (1, scene.supports.right)):
         if grid == "nodes" and sup in ROD_HELD[kind]:
             prescribed[0 if side == 0 else n - 1] = (key, side)
-    Kc, bc = _rod_core(scene, min(n, _core_points(m)), dx, m, variant, stiff, ends, grid, kind)
+    # segments: the whole grid (each bond's own stiffness, no stencil away from the ends)
+    Kc, bc = _rod_core(
+        scene, n if not scene.uniform else min(n, _core_points(m)), dx, m, variant, stiff, ends, grid, kind
+    )
     op = EndPatched.from_core(Kc, 1, 1, n)
     b = EndPatched.add_ends(q, bc, 1)
     if variant == "paper":
@@ -175,16 +179,36 @@ def _rod_core(
     (Eq. 19, c_j of ``rod_kernel``), B = 2 stiff/δ² (Eq. 3)."""
     delta = m * dx
     G = m
+    ends_stiff = (stiff, stiff)
+    if not scene.uniform:  # each end's closure with its own segment's stiffness
+        pieces = piece_stiffness(scene, "EA" if kind == "axial" else "GJ")
+        ends_stiff = (pieces[0][2], pieces[-1][2])
     blocks = {
-        side: rod_ghosts(scene, side, sup, variant, grid, kind, G, dx, stiff, ends)
+        side: rod_ghosts(scene, side, sup, variant, grid, kind, G, dx, ends_stiff[side], ends)
         for side, sup in ((0, scene.supports.left), (1, scene.supports.right))
     }
     E, e0 = _extension(n, G, 1, blocks)
     c = rod_kernel(m)
     j = np.arange(1, m + 1)
     Iop = toeplitz(n, G, n + 2 * G, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
+    if not scene.uniform:  # each bond's series stiffness over the reference (.pieces), the diagonal their sum
+        Iop = _bonds_weighted(Iop, scene, n, G, dx, "EA" if kind == "axial" else "GJ", stiff)
     B = 2.0 * stiff / delta**2  # ρA B = 2EA/δ² (Eq. 3): force per length per unit of I
     return (-B * (Iop @ E)).tocsr(), B * (Iop @ e0)
+
+
+def _bonds_weighted(Iop: sp.csr_matrix, scene: Scene, n: int, G: int, dx: float, key: str, ref: float):
+    """The PD sum with each bond's series stiffness S_ab / ``ref`` (:func:`.pieces.bond_stiffness`; the extended
+    grid's point e is at x = (e - G) Δ), its diagonal minus the sum of the row's bonds."""
+    C = Iop.tocoo()
+    x_row = C.row * dx
+    x_col = (C.col - G) * dx
+    off = C.row + G != C.col
+    vals = C.data.copy()
+    vals[off] *= bond_stiffness(scene, x_row[off], x_col[off], key) / ref
+    W = sp.csr_matrix((np.where(off, vals, 0.0), (C.row, C.col)), shape=Iop.shape)
+    diag = sp.csr_matrix((-np.asarray(W.sum(axis=1)).ravel(), (np.arange(n), np.arange(n) + G)), shape=Iop.shape)
+    return (W + diag).tocsr()
 
 
 # -- Timoshenko beam ----------------------------------------------------------------------------
@@ -211,6 +235,11 @@ def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes
     stencil (:class:`~.kernels.EndPatched`); variant ``energy``: :func:`.energy.energy_beam_operator`."""
     if variant == "energy":
         return energy_beam_operator(scene, n, m)
+    if not scene.uniform:
+        raise InputError(
+            f"segments: variant {variant} of pd-timoshenko takes one section and one material (its ghost closures "
+            "and shear sums are written for one); use variant energy (the default)"
+        )
     n, x = _grid(scene, n, grid, variant, "pd-timoshenko")
     _check_grid(n, m, "pd-timoshenko")
     dx = x[1] - x[0]

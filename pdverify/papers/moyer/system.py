@@ -61,6 +61,8 @@ class Discrete:
     # per DOF: the point's share of the length in units of Δ (None: the trapezoid, 1/2 at the end points); the
     # operator times these weights is symmetric where the variant is written from an energy
     weights: np.ndarray | None = None
+    # couples applied as the operator's action on their kink (variant energy, .couples): (position, C, u_s)
+    kinks: list = field(default_factory=list)
 
     @cached_property
     def K(self) -> sp.csr_matrix:

@@ -20,7 +20,7 @@ import scipy.sparse as sp
 
 from ...core.errors import SolveError
 from ...core.result import columns_csv
-from ...numerics.timeint import EnergyLedger, ledger_columns
+from ...numerics.timeint import EnergyLedger, ledger_columns, step_count
 from .kernels import motion_value
 from .spectrum import first_frequency, mass_scaled, stable_time_step
 from .steps import StencilStep, WholeStep
@@ -120,7 +120,10 @@ def integrate(
     Implementation: with V = dt v^{j+1/2} the step is y = u + κ V, V <- α V + G (b - K y), u <- u + V
     with G = (1 - c/2) dt²/m per DOF (zero on prescribed DOFs); K y is one CSR product up to
     ``WHOLE_DOFS`` unknowns, else the operator's stencil applied block by block (:class:`StencilStep`)."""
+    given = dt is not None
     dt, limit, kappa, damping, omega1 = time_step(disc, dt, damping, damping_ratio, safety, stabilisation)
+    if steps is None:  # before any step: a run the machine cannot finish is refused (exit 2)
+        steps = step_count(t_end, dt, "time_step" if given else "default", limit)
     steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
     clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
     probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
@@ -244,17 +247,20 @@ class SupportWork:
         self.disc = disc
         self.pres = [(dof, mot) for dof, mot in motions.items() if mot is not None]
         self.moving = np.array([dof for dof, _ in self.pres], dtype=np.int64)
-        self.Kcols = _columns(disc, self.moving) if len(self.moving) else None
+        self.w = point_weights(disc)
+        self.Kcols = _columns(disc, self.moving, self.w) if len(self.moving) else None
 
     def ledger_K(self, apply_K):
-        """u -> K u with the moving DOFs' rows replaced by their columns (apply_K itself when none moves)."""
+        """u -> K u with the moving DOFs' rows replaced by the weighted columns divided by their own weight (apply_K
+        itself when none moves): the ledger weighs every row by its point's share, so the moving rows of the
+        symmetric weighted operator S (S_pj = w_j K_jp) count once in ½ uᵀ S u, as the free rows' entries do."""
         if not len(self.moving):
             return apply_K
-        moving, Kcols = self.moving, self.Kcols
+        moving, Kcols, wp = self.moving, self.Kcols, self.w[self.moving]
 
         def ledger_K(u):
             y = apply_K(u)
-            y[moving] = Kcols @ u
+            y[moving] = (Kcols @ u) / wp
             return y
 
         return ledger_K
@@ -263,7 +269,7 @@ class SupportWork:
         """The reactions and positions at rest, on the engine ``st``'s state."""
         if len(self.moving):
             self.Kp = st.on_state(self.Kcols)
-            self.bp = self.disc.b[self.moving]
+            self.bp = (self.w * self.disc.b)[self.moving]
             self.react = self.Kp @ st.flat - self.bp
             self.up = np.zeros(len(self.moving))
 
@@ -286,12 +292,19 @@ def energy_ledger(disc: Discrete, ledger_K, gains: Gains, dt: float, kappa: floa
     nf, n = disc.nf, len(disc.x)
     free = np.ones(nf * n, bool)
     free[gains.pres_dofs] = False
-    weights = disc.weights
-    if weights is None:
-        weights = np.ones(nf * n)
-        weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
     damping = np.tile(np.asarray(gains.field_c) / dt, n)
-    return EnergyLedger(ledger_K, disc.mass, free, disc.b, damping, kappa * dt, weights)
+    return EnergyLedger(ledger_K, disc.mass, free, disc.b, damping, kappa * dt, point_weights(disc))
+
+
+def point_weights(disc: Discrete) -> np.ndarray:
+    """Per DOF, the point's share of the length in units of Δ: the operator's (``disc.weights``), else the
+    trapezoid (1/2 at the end points)."""
+    if disc.weights is not None:
+        return np.asarray(disc.weights, float)
+    nf, n = disc.nf, len(disc.x)
+    weights = np.ones(nf * n)
+    weights[:nf] = weights[-nf:] = 0.5  # the end points' half cells
+    return weights
 
 
 class Recorder:
@@ -333,16 +346,18 @@ def _step_loop(disc, clock: Clock, gains: Gains, st, apply_K, supports, ledger, 
             recorder.record(t, st)
 
 
-def _columns(disc: Discrete, dofs: np.ndarray) -> sp.csr_matrix:
-    """K[:, dofs]ᵀ (len(dofs) x all DOFs) from the rows of the points within the operator's reach, the
-    diagonal entry set so that the row gives no force in the rigid mode of the DOF's field (the end row's
-    own diagonal belongs to an equation the support replaces, not to an energy)."""
+def _columns(disc: Discrete, dofs: np.ndarray, weights: np.ndarray) -> sp.csr_matrix:
+    """(W K)[:, dofs]ᵀ (len(dofs) x all DOFs), W the points' shares ``weights``: the rows of the symmetric weighted
+    operator at the moving DOFs, from the rows of the points within the operator's reach, the diagonal entry set so
+    that the row gives no force in the rigid mode of the DOF's field (the end row's own diagonal belongs to an
+    equation the support replaces, not to an energy)."""
     nf, n, h = disc.nf, len(disc.x), disc.op.reach
     pts = np.unique(np.clip((dofs // nf)[:, None] + np.arange(-h, h + 1)[None, :], 0, n - 1))
     rows = disc.op.rows_csr(pts).tocsc()[:, dofs].T.tocsr()  # (len(dofs) x len(pts) nf)
     sel = (nf * pts[:, None] + np.arange(nf)[None, :]).ravel()
     C = rows.tocoo()
-    out = sp.csr_matrix((C.data, (C.row, sel[C.col])), shape=(len(dofs), nf * n)).tolil()
+    cols = sel[C.col]
+    out = sp.csr_matrix((C.data * weights[cols], (C.row, cols)), shape=(len(dofs), nf * n)).tolil()
     for i, d in enumerate(dofs):  # the diagonal: no energy in the rigid mode of the DOF's field
         r = np.zeros(nf * n)
         if d % nf == 0:  # translation (w, u, twist): a rigid translation

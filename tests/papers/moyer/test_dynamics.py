@@ -1,13 +1,15 @@
 """Transients of pd-rod / pd-timoshenko (issue 30): the energy ledger, blow-up detection and its message,
 the output interval, the stable time step at every size."""
 
+import re
+
 import numpy as np
 import pytest
-from helpers import PAIRS, ROOT, scene_dict
+from helpers import PAIRS, ROOT, cli, scene_dict
 from transients import AXIAL, LOADS, MATERIAL
 from transients import transient_scene as _scene
 
-from pdverify.core.errors import SolveError
+from pdverify.core.errors import InputError, SolveError
 from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.numerics.timeint import LEDGER_COLUMNS
 from pdverify.papers.moyer import model as T
@@ -98,6 +100,64 @@ def test_support_work_of_a_prescribed_motion():
         assert e["support_work"][-1] > 0 and e["strain"].min() >= 0
         bal.append(abs(e["balance"][-1]) / e["support_work"][-1])
     assert bal[0] / bal[1] > 3.5 and bal[1] < 1e-3
+
+
+@pytest.mark.parametrize(
+    "model,right,motion,horizon",
+    [
+        ("pd-rod", "pinned", "axial", 3),
+        ("pd-torsion", "pinned", "twist", 2),
+        ("pd-timoshenko", "pinned", "displacement", 2),
+        ("pd-timoshenko", "clamped", "rotation", 2),
+    ],
+)
+def test_ledger_balances_for_an_end_driven_run(model, right, motion, horizon):
+    """An end driven to a held offset (sine ramp, critically damped, settled by 0.02 s): the strain energy counts
+    the moving row of the weighted operator once, so support work = strain + damping to round-off (measured
+    |balance| / support work 1e-13 .. 4e-15; counting the moving row with its own half weight left a balance of
+    -750 of 1500 on Example 1), and the rod's strain is ½ EA (Δu)² / L exactly (u is linear)."""
+    drive = {motion: {"type": "sine_ramp", "amplitude": 1e-3, "frequency": 200.0, "hold_after": 1.25e-3}}
+    sc = parse_scene(
+        scene_dict(
+            "clamped",
+            right,
+            [],
+            section={"width": 0.05, "height": 0.1},
+            material=MATERIAL,
+            dynamics={"end_time": 0.02, "damping_ratio": 1.0, "right": drive},
+        )
+    )
+    e = run(sc, model, points=31, horizon=horizon).info["history"]["energy"]
+    assert abs(e["balance"][-1]) < 1e-9 * e["support_work"][-1]
+    assert e["damping"][-1] > 0.5 * e["strain"][-1]  # the balance is not trivially two zeros
+    if model == "pd-rod":
+        assert e["strain"][-1] == pytest.approx(0.5 * sc.EA * 1e-3**2 / sc.length, rel=1e-10)
+
+
+@pytest.mark.parametrize("model", ["pd-rod", "pd-timoshenko", "pd-torsion", "fem-timoshenko"])
+@pytest.mark.parametrize(
+    "dyn,field",
+    [
+        ({"end_time": 1e30}, "dynamics.end_time = 1e+30"),
+        ({"end_time": 0.01, "time_step": 1e-30}, "dynamics.time_step = 1e-30"),
+    ],
+)
+def test_a_run_over_the_step_limit_is_refused_before_it_starts(model, dyn, field):
+    """ceil(end_time / dt) above MAX_STEPS is one line naming the field and the fix (InputError: exit 2), before any
+    step (a run of 1e34 steps never ended)."""
+    loads = {"pd-rod": AXIAL, "pd-torsion": [{"type": "point_torque", "position": 2.0, "value": 1.0}]}.get(model, LOADS)
+    sc = parse_scene(scene_dict("clamped", "free", loads, material=MATERIAL, dynamics=dyn))
+    with pytest.raises(InputError, match="more than the limit of 1e\\+07") as exc:
+        run(sc, model, points=21)
+    assert str(exc.value).startswith(field) and "\n" not in str(exc.value)
+
+
+def test_the_step_limit_is_exit_2_on_the_command_line(tmp_path, capsys):
+    text = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
+    path = tmp_path / "long.toml"
+    path.write_text(re.sub(r"(?m)^end_time.*$", "end_time = 1e30", text))
+    code, out, err = cli(["solve", path, "-m", "pd-timoshenko", "--points", "21"], capsys)
+    assert code == 2 and out == "" and err.startswith("error: dynamics.end_time = 1e+30") and len(err.splitlines()) == 1
 
 
 def test_history_csv_and_info_carry_the_ledger(tmp_path):

@@ -88,14 +88,15 @@ def test_tip_loaded_cantilever_and_its_reactions():
     1.95e-4, 4.9e-5 at 41, 81, 161 points; the corrected variant is exact here, 1e-11: its γ rows take the shear
     couple and the bending at the same points, while the energy form's γ rows near an end weigh the couple by the
     cubic's interval averages and the bending by the fitted volumes), the shear field V = P along the beam (ψ̄
-    constant: 3e-10) and the reactions by statics exactly."""
+    constant: 3e-10) and 0 at the tip, beyond the tip force (exact-timoshenko's convention at x = L), and the
+    reactions by statics exactly."""
     sc = _scene_at("clamped", "free", 20, [{"type": "point_force", "position": 2.0, "value": -100.0}])
     tip = run(sc, "exact-timoshenko", points=41).w[-1]
     err = [run(sc, "pd-timoshenko", points=n, horizon=3, variant="energy").w[-1] / tip - 1 for n in (41, 81, 161)]
     rate = np.log2(np.array(err[:-1]) / np.array(err[1:]))
     assert np.all(np.abs(rate - 2) < 0.1) and err[0] < 1e-3, (err, rate)
     r = run(sc, "pd-timoshenko", points=41, horizon=3, variant="energy")
-    assert np.allclose(r.fields["V"], 100.0, rtol=1e-9)
+    assert np.allclose(r.fields["V"][:-1], 100.0, rtol=1e-9) and abs(r.fields["V"][-1]) < 1e-9 * 100.0
     assert abs(r.info["reactions"]["force_left"] - 100.0) < 1e-9
 
 
@@ -165,7 +166,9 @@ def test_moment_field_and_reactions(left, right):
     own points: order 2 (measured at most 4.0e-4, 9.9e-5, 1.6e-5 of the largest moment; exact to round-off where the
     supports are statically determinate: M' = V is exact there; differentiating γ gave
     1.1e-2 at a clamped end at 201 points, first order), and the support reactions (statics with the end moments
-    where the supports are indeterminate) within 1e-4 of the largest moment times the length at 201 points."""
+    where the supports are indeterminate) within 1e-4 of the largest moment times the length at 201 points; 4e-4 for
+    the couple, applied on its kink (.couples: measured 3.0e-4 on clamped-clamped, order 2; on two points it was
+    8e-5, with the rotation first order, 3.6e-2 there against 2.7e-4 now)."""
     for load in MIXED_LOADS[:4]:
         sc = _scene_at(left, right, 20, [load])
         ex = run(sc, "exact-timoshenko", points=201)
@@ -180,7 +183,8 @@ def test_moment_field_and_reactions(left, right):
                 for k, v in ex.info["reactions"].items():
                     if k != "method":
                         f = 1.0 if k.startswith("moment") else sc.length
-                        assert abs(r.info["reactions"][k] - v) * f < 1e-4 * scale, (load, k, r.info["reactions"][k], v)
+                        tol = (4e-4 if load["type"] == "point_moment" else 1e-4) * scale
+                        assert abs(r.info["reactions"][k] - v) * f < tol, (load, k, r.info["reactions"][k], v)
         rate = np.log2(np.array(err[:-1]) / np.array(err[1:]))
         assert err[-1] < 5e-5 and (max(err) < 1e-10 or np.all(rate > 1.7)), (load, err, rate)  # exact: determinate
 

@@ -245,3 +245,74 @@ def test_dynamics_check_measures_natural_frequencies():
     assert all(abs(r["order"] - 2) < 0.1 for r in good["pairs"]), good["summary"]
     assert dynamics_check(get_model("pd-timoshenko"), {"variant": "paper"}, grids, 2.0)["verdict"] == "fail"
     assert dynamics_check(get_model("pd-eb"), {}, grids, 2.0)["verdict"] == "n/a"
+
+
+def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
+    """The curved run of the suite asks for every quantity; each gets its own convergence check, judged like w and
+    n/a where the model or its reference gives none."""
+    from pdverify.verify import _curved_quantity
+    from pdverify.verify.suite import CURVED_QUANTITIES
+
+    model = get_model("pd-curved")
+    p = plan(model)
+    study = tomllib.loads(write_study(p, model, {}, tmp_path).read_text())
+    curved = [r for r in study["runs"] if r.get("quantities")]
+    assert len(curved) == 1 and curved[0]["quantities"] == list(CURVED_QUANTITIES)
+    assert set(curved[0]["scenes"]) == {f for f, m in p.meta.items() if m["set"] == "curved"}
+    h = np.array([0.1, 0.05, 0.025, 0.0125])
+    rows = pd.DataFrame(
+        {
+            "scene_file": "a.toml",
+            "points": [11, 21, 41, 81],
+            "spacing": h,
+            "status": "ok",
+            "total_s": 0.01,
+            "err_max_moment": 0.3 * h**2,
+            "err_max_shear": 0.3 * h,
+            "err_max_axial": np.nan,
+        }
+    )
+    moment, shear = (_curved_quantity(rows, ["a.toml"], q, 2.0) for q in ("moment", "shear"))
+    assert moment["verdict"] == "pass" and "largest error at 81 points 4.69e-05" in moment["summary"]
+    assert shear["verdict"] == "fail" and shear["lowest_order"] == pytest.approx(1.0)
+    for q in ("axial", "rotation"):  # NaN (the reference has none), or no column at all
+        assert _curved_quantity(rows, ["a.toml"], q, 2.0)["verdict"] == "n/a"
+
+
+def test_engineering_scenes_go_to_models_that_take_them():
+    """Suite 1.7: the continuous, overhanging, spring, stepped and bi-material scenes are in the plan of a model that
+    declares supports inside the span, springs or segments (a rod's too, with its loads), not of one that declares
+    none."""
+    from pdverify.verify.suite import engineering_scenes
+
+    names = [s["name"] for s in engineering_scenes()]
+    assert names == ["two spans", "three spans", "overhangs", "on springs", "stepped", "bi-material"]
+    sets = lambda name: {m["set"] for m in plan(get_model(name)).meta.values()}  # noqa: E731
+    assert "engineering" in sets("pd-timoshenko") and "engineering" in sets("fem-eb")
+    assert "engineering" not in sets("exact-curved") and "engineering" in sets("pd-rod")
+
+
+@pytest.mark.slow
+def test_every_model_takes_or_declines_the_engineering_scenes_in_lines():
+    """Every model's check takes or declines each engineers' scene in lines, without an exception (a spring end
+    on a model that holds only named supports, an inner support on a curved reference)."""
+    from pdverify.registry import models
+    from pdverify.verify.suite import engineering_scenes
+
+    for name, m in models().items():
+        for sc in engineering_scenes():
+            assert isinstance(m.check(parse_scene(sc)), list), name
+
+
+def test_a_variant_that_refuses_an_engineers_scene_declines_it():
+    """pd-timoshenko's corrected variant takes no segments (a one-line refusal when it solves): the card lists the
+    stepped and bi-material scenes among those it declines instead of counting failed solves."""
+    from pdverify.verify import _declined
+
+    model = get_model("pd-timoshenko")
+    p = plan(model, options={"variant": "corrected"})
+    declined = _declined(model, p, {"variant": "corrected"})
+    names = {p.meta[f]["name"]: why for f, why in declined.items() if p.meta[f]["set"] == "engineering"}
+    assert names["stepped"] and names["bi-material"] and names["stepped"][0].startswith("segments: variant corrected")
+    assert not names["two spans"] and not names["on springs"]
+    assert not any(why for f, why in _declined(model, plan(model), {}).items() if p.meta[f]["set"] == "engineering")

@@ -1,0 +1,252 @@
+"""The shared part of the Moyer & Miraglia 2014 models (:mod:`.model`, :mod:`.rods`): their options, the static and
+transient solve of the operator (:mod:`.operator`), with supports inside the span and springs (:mod:`.constraints`),
+and the stabilisation's warning."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ...core.contract import Model, Option, Rule, System
+from ...core.errors import InputError
+from ...core.result import Result, Timer
+from ...core.scene import Scene
+from ...numerics.loads import boundary_layer_warnings
+from .constraints import reactions, solve_with_holds
+from .ends import FIT_POINTS
+from .pieces import plain_ends
+from .system import Discrete, prescribed_motions, static_solution, static_system
+from .transient import STABILISATION, History, integrate
+
+# -- the models -------------------------------------------------------------------------------
+
+_OPTIONS = (
+    Option(
+        "points", int, 101, "material points along the beam, ends included (grid = cells: points - 1 cells)", minimum=6
+    ),
+    Option("horizon", int, 3, "horizon delta = m dx, m an integer (1 = nearest neighbours)", minimum=1),
+    Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
+    Option(
+        "analysis",
+        str,
+        "auto",
+        "auto (dynamic when the scene has [dynamics]) | static | dynamic",
+        choices=("auto", "static", "dynamic"),
+    ),
+    Option(
+        "grid",
+        str,
+        "nodes",
+        "nodes (ends included) | cells (Section 4 cell centres; variant paper, static)",
+        choices=("nodes", "cells"),
+    ),
+)
+
+
+class _MoyerModel(Model):
+    source = "Moyer & Miraglia 2014, Peridynamic solutions for Timoshenko beams"
+    options = _OPTIONS
+    springs = True  # statics: elastic ends and supports inside the span (.constraints), segments (.pieces)
+    inner_supports = True
+    segments = True
+    unknowns = "beam"  # what the supports hold (.pieces.holds): beam, axial or torsion
+    analyses = frozenset({"static", "dynamic"})  # the damped leapfrog-Verlet integrator (Eq. 7-11)
+    end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
+    assembles = True
+    modes = True  # eigenproblem(): the operator of the transient and its lumped mass
+    stabilisation = STABILISATION  # κ of the scheme's stiffness-proportional damping (transient.integrate)
+
+    def stabilisation_for(self, scene: Scene, params: dict) -> float:
+        """κ of this scene's run (the class's; the beam drops it where its closures are stable)."""
+        return self.stabilisation
+
+    variant_rules = (
+        Rule(
+            (("variant", "corrected"),),
+            "grid",
+            "the corrections are written for the node grid; grid = cells "
+            "is the paper's Section 4 setup (variant = paper)",
+            allowed=("nodes",),
+        ),
+    )
+
+    def operator(self, scene: Scene, params: dict) -> Discrete:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    def assemble(self, scene: Scene, params: dict) -> System:
+        """The static system ``solve`` factorises (:func:`static_system`): the operator's band with the
+        prescribed DOFs held (unit rows; a settled end motion moved to the right-hand side)."""
+        disc = self.operator(scene, params)
+        B, rhs, _ = static_system(scene, disc)
+        return System(B, rhs, np.asarray(disc.free), dict(disc.info))
+
+    def _dynamic(self, scene: Scene, params: dict) -> bool:
+        if params["analysis"] == "dynamic" and scene.dynamics is None:
+            raise InputError(
+                "analysis = 'dynamic': the scene has no [dynamics] table; add one (end_time, ...) "
+                "or use analysis = static"
+            )
+        dyn = params["analysis"] == "dynamic" or (params["analysis"] == "auto" and scene.dynamics is not None)
+        moving = scene.dynamics is not None and any(
+            getattr(em, k) is not None
+            for em in (scene.dynamics.left, scene.dynamics.right)
+            if em is not None
+            for k in ("displacement", "axial", "rotation", "twist")
+        )
+        if params.get("grid") == "cells" and (dyn or moving):
+            raise InputError(
+                "grid = 'cells': the cell-centred grid takes no dynamics or prescribed end motions here "
+                "(its end faces carry no points); use grid = nodes"
+            )
+        return dyn
+
+    def eigenproblem(self, scene: Scene, params: dict) -> tuple:
+        """(K, mass) on the free DOFs: K φ = ω² diag(mass) φ, the operator of the transient (``pdverify
+        modes``); K is not symmetric in the paper and corrected variants (the boundary closures), so ω² may be
+        complex there; variant energy's K times the volumes is symmetric, so its ω² are real."""
+        if scene.material.density is None:
+            raise InputError("material.density: needed for natural frequencies; add density to the scene")
+        _statics_only(scene, self.name, "natural frequencies")
+        disc = self.operator(scene, params)
+        if not np.all(np.isfinite(disc.mass)):
+            raise InputError("section: pd-torsion needs the polar moment of a rectangle; give width and height")
+        free = disc.free
+        return disc.K[free][:, free], disc.mass[free]
+
+    def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
+        """Point-updates per second of the explicit integration (``pdverify bench``)."""
+        import time
+
+        disc = self.operator(scene, params)
+        t0 = time.perf_counter()
+        h = integrate(disc, {}, t_end=None, steps=steps, record_every=steps)  # dt = 0.9 of the stable limit
+        return len(disc.x) * h.steps / (time.perf_counter() - t0)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        timer = Timer()
+        if self._dynamic(scene, params) and scene.material.density is None:
+            raise InputError("material.density: needed for dynamics; add density to the scene")
+        if self._dynamic(scene, params):
+            _statics_only(scene, self.name, "transient runs")
+        with timer("assemble"):
+            disc = self.operator(plain_ends(scene), params)
+        m = params["horizon"]
+        info = dict(disc.info, horizon_factor=m, variant=params["variant"])
+        fields = {}
+        writers = {}
+        extra = {}
+        if self._dynamic(scene, params):
+            d = scene.dynamics
+            with timer("solve"):
+                h = integrate(
+                    disc,
+                    prescribed_motions(scene, disc),
+                    d.end_time,
+                    dt=d.time_step,
+                    damping=d.damping or 0.0,
+                    damping_ratio=d.damping_ratio,
+                    probes=d.probes,
+                    output_interval=d.output_interval,
+                    damp_rotations=d.damping_on == "all",
+                    stabilisation=self.stabilisation_for(scene, params),
+                    context=_context(scene, params),
+                )
+            u = h.final
+            label = "w" if self.bending else ("u" if self.axial else "twist")
+            series = {f"{label}(x={p:g})": h.values[:, k] for k, p in enumerate(h.probes)}
+            if h.rotations is not None:
+                series.update({f"rotation(x={p:g})": h.rotations[:, k] for k, p in enumerate(h.probes)})
+            info.update(
+                analysis="dynamic",
+                dt=h.dt,
+                dt_limit=h.dt_limit,
+                steps=h.steps,
+                damping=h.damping,
+                omega1=h.omega1,
+                stabilisation=h.stabilisation,
+                energy_drift=h.energy_drift,
+                scheme_drift=h.scheme_drift,
+                history={
+                    "t": h.t,
+                    "series": series,
+                    "energy": h.energy,
+                    "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label],
+                },
+            )
+            writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
+            flag = stabilisation_warning(h, params)
+            if flag:
+                info.setdefault("warnings", []).append(flag)
+        elif not scene.supports.simple:  # springs, supports inside the span (.constraints)
+            with timer("solve"):
+                u, sinfo, R, loads, kinks = solve_with_holds(
+                    scene,
+                    disc,
+                    lambda s: self.operator(plain_ends(s), params),
+                    self.unknowns,
+                    f"{self.name} ({params['variant']})",
+                    self.couples(scene, params, disc),
+                )
+            info.update(sinfo, analysis="static")
+            inner = [h for h in R if h.label.startswith("inner")]  # (ends' reactions are in the end rows' values)
+            extra["reactions"] = [
+                (h.position, R[h] if h.slot == 0 else 0.0, R[h] if h.slot == 1 else 0.0) for h in inner
+            ]
+            extra["kinks"] = kinks
+            ends, method = self.end_reactions(scene, params, disc, u, loads, extra["reactions"], kinks)
+            info["reactions"] = reactions(scene, self.unknowns, R, ends, method)
+        else:
+            with timer("assemble"):  # the band of K and the supports
+                system = static_system(scene, disc)
+            with timer("solve"):
+                u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
+            info.update(sinfo, analysis="static")
+            flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m)
+            if flags:
+                info.setdefault("warnings", []).extend(flags)
+        return self.from_solution(scene, params, disc, u, fields, info, timer, writers, **extra)
+
+    def couples(self, scene, params, disc):
+        """a -> (rows, u_s) of a unit couple applied on its kink, or None (:mod:`.couples`; variant energy only)."""
+        return None
+
+    def end_reactions(self, scene, params, disc, u, loads, inner, kinks) -> tuple[dict, str]:  # pragma: no cover
+        """{(side, key): value} of the rigid ends' reactions and where they come from (.constraints.reactions)."""
+        raise NotImplementedError
+
+
+def _statics_only(scene: Scene, model: str, what: str) -> None:
+    """Supports inside the span, springs and segments are solved statically (one line otherwise)."""
+    found = [k for k, on in (("supports.inner", scene.supports.inner), ("segments", scene.segments)) if on]
+    if any(not isinstance(getattr(scene.supports, side), str) for side in ("left", "right")):
+        found.append("an elastic end (spring)")
+    if found:
+        raise InputError(
+            f"{', '.join(found)}: model {model} solves these statically only, not {what}; use -o analysis=static "
+            "(or drop the [dynamics] table)"
+        )
+
+
+def stabilisation_warning(h: History, params: dict) -> str | None:
+    """The warning of a run that had the scheme's stiffness-proportional damping (not asked for by the scene, not in
+    the paper): how much of the work put in it took (the ledger's ``stabilisation`` column) and the variant that needs
+    none."""
+    if not h.stabilisation:
+        return None
+    e = h.energy
+    put_in = max(np.nanmax(np.abs(e["load_work"])), np.nanmax(np.abs(e["support_work"])), 0.0) if e else 0.0
+    took = float(e["stabilisation"][-1]) / put_in if put_in > 0 else float("nan")
+    return (
+        f"the scheme's stabilising damping (kappa = {h.stabilisation:g}, not in the scene or the paper) took "
+        f"{took:.2g} of the work put in: the closures of variant {params['variant']} at these supports have growing "
+        "modes; variant = energy runs without it"
+    )
+
+
+def _context(scene: Scene, params: dict) -> str:
+    """Where a growing mode comes from, for the blow-up message."""
+    return (
+        f"supports {scene.supports.left}-{scene.supports.right}, horizon = {params['horizon']}, "
+        f"points = {params['points']}, variant {params['variant']}"
+    )

@@ -1,0 +1,108 @@
+"""The shear force V and the bending moment M of variant ``energy`` at the points, from its intervals' shear forces
+(Moyer & Miraglia 2014, Eq. 33: V = -kGA ψ; :mod:`.energy`).
+
+The beam's w rows say kGA (ψ̄_{i+½} - ψ̄_{i-½}) = -(the load at point i): the intervals' V̄ = -kGA ψ̄ step by each
+point's load, as the exact V steps by the loads between the intervals' middles. V̄ is then the exact V's average over
+its interval (to the second order of the distributed loads' cell integrals; exactly, where V is piecewise constant),
+and the value at a point follows from the loads on the interval before it (the first interval for the left end):
+
+    V(x_i) = V̄_{i-½} + (1/Δ) ∫_{x_{i-1}}^{x_i} (s - x_{i-1}) dV(s),    dV = q ds + point forces (reactions included),
+
+with exact-timoshenko's convention at a load on a point (a load at a acts on x > a; at x = L on x = L too). The mean of
+the two intervals around a point would be wrong by O(Δ q') where q jumps and by up to half a point force next to
+one between two points. The moment steps by Δ V̄ over each interval (∫ V exactly) and by -C at a couple, in the
+interval that holds it; its constant is the energy's bond moment's (:func:`.energy.moment_field`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...core.scene import Distributed, PointForce, PointMoment, Scene
+
+_GAUSS = np.polynomial.legendre.leggauss(8)
+
+
+COMPONENT = {"transverse": "value", "axial": "axial", "torque": "torque"}
+
+
+def interval_moments(scene: Scene, x: np.ndarray, component: str = "transverse") -> tuple[np.ndarray, np.ndarray]:
+    """(A, B) per interval [x_i, x_{i+1}] of the distributed loads' line load q (``component``: transverse, axial or
+    torque): A = ∫ q ds and B = ∫ (s - x_i) q ds (8-point Gauss on the part of each interval inside each load's
+    span)."""
+    lo, hi = x[:-1], x[1:]
+    A, B = np.zeros(len(lo)), np.zeros(len(lo))
+    g, gw = _GAUSS
+    for load in scene.loads:
+        v = getattr(load, COMPONENT[component], 0.0) if isinstance(load, Distributed) else 0.0
+        if v == 0.0:
+            continue
+        a, b = scene.span(load)
+        s0, s1 = np.clip(lo, a, b), np.clip(hi, a, b)
+        half = (s1 - s0) / 2
+        s = (s0 + s1)[:, None] / 2 + half[:, None] * g[None, :]
+        q = v * scene.load_shape(load, s)
+        A += (q * gw).sum(1) * half
+        B += (q * (s - lo[:, None]) * gw).sum(1) * half
+    return A, B
+
+
+def point_loads(scene: Scene, extra=()) -> tuple[list, list]:
+    """([(position, force)], [(position, couple)]) of the scene's point loads and ``extra`` ones (the supports'
+    reactions: (position, force, couple))."""
+    forces = [(ld.position, ld.value) for ld in scene.loads if isinstance(ld, PointForce) and ld.value]
+    couples = [(ld.position, ld.value) for ld in scene.loads if isinstance(ld, PointMoment) and ld.value]
+    for at, f, c in extra:
+        if f:
+            forces.append((at, f))
+        if c:
+            couples.append((at, c))
+    return forces, couples
+
+
+def shear_at_points(
+    Vbar: np.ndarray, x: np.ndarray, scene: Scene, forces: list, component: str = "transverse", sign: float = 1.0
+) -> np.ndarray:
+    """V at the points from the intervals' V̄ (module docstring); a rod's N (``component`` axial) or a bar's T
+    (torque) with ``sign`` = -1: N' = -p."""
+    dx = x[1] - x[0]
+    L = x[-1]
+    A, B = interval_moments(scene, x, component)
+    A, B = sign * A, sign * B
+    forces = [(at, sign * P) for at, P in forces]
+    V = np.empty(len(x))
+    V[1:] = Vbar + B / dx  # from the interval before each point
+    V[0] = Vbar[0] - (dx * A[0] - B[0]) / dx  # the left end from the first interval
+    tol = 1e-9 * dx
+    for at, P in forces:
+        i = int(np.clip(np.ceil((at - x[0]) / dx - 1e-9), 1, len(x) - 1))  # the interval (x_{i-1}, x_i] holding it
+        s = at - x[i - 1]
+        if at < x[i] - tol or (i == len(x) - 1 and at >= L - tol):  # on x_i: acts beyond it, except at x = L
+            V[i] += P * s / dx
+        if i == 1 and at < x[0] + tol:  # a force at the left end acts beyond it
+            V[0] -= P
+    return V
+
+
+def moment_steps(Vbar: np.ndarray, x: np.ndarray, couples: list) -> np.ndarray:
+    """M at the points up to a constant: M_0 = 0, M_{i+1} = M_i + Δ V̄_{i+½} - the couples in [x_i, x_{i+1})
+    (and at x = L in the last interval)."""
+    dx = x[1] - x[0]
+    steps = dx * np.asarray(Vbar, float).copy()
+    tol = 1e-9 * dx
+    for at, C in couples:
+        i = int(np.clip(np.floor((at - x[0]) / dx + 1e-9), 0, len(x) - 2))
+        if at > x[0] + tol or i > 0:  # at x = 0 it acts beyond the end point: in the first step too
+            steps[i] -= C
+        else:
+            steps[0] -= C
+    return np.concatenate([[0.0], np.cumsum(steps)])
+
+
+def stepped(rows_force: np.ndarray, local: np.ndarray) -> np.ndarray:
+    """The intervals' resultant from the forces each point's equation balances (``rows_force``, per point, in force
+    units): stepped interval by interval, which is the discrete equilibrium whatever the model's sums reach, its
+    constant the median of its difference from ``local`` (the intervals' resultant from the local strain: right away
+    from loads and supports, where the median looks)."""
+    steps = np.cumsum(rows_force[:-1])
+    return steps + np.median(local - steps)

@@ -1,0 +1,143 @@
+"""Models ``pd-rod`` and ``pd-torsion`` (Moyer & Miraglia 2014, Sections 2 and 5): the rod kernel's one field and its
+resultant (u and N = EA u'; the twist and T = GJ θ'), static or transient (:mod:`.base`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...core.errors import InputError
+from ...core.scene import ROD_HELD, PointForce, PointTorque, Scene
+from .base import _MoyerModel
+from .operator import rod_operator
+from .pieces import bond_stiffness, holds_somewhere
+from .resultants import shear_at_points, stepped
+
+
+class _RodModel(_MoyerModel):
+    """The rod kernel's models (axial and torsion): one field and its resultant, stiffness x the field's slope."""
+
+    field, resultant = "u", "N"
+    # no stabilisation: with the mirror-image ghosts (ends.rod_mirror_ghosts) M^-1 K has a real spectrum
+    # for every support pair and horizon (test_dynamics), so the scheme is stable undamped; damping is only what
+    # the scene asks for
+    stabilisation = 0.0
+
+    def stiffness(self, scene) -> float:  # pragma: no cover - interface
+        raise NotImplementedError
+
+    @property
+    def key(self) -> str:
+        return "EA" if self.unknowns == "axial" else "GJ"
+
+    def end_reactions(self, scene, params, disc, u, loads, inner, kinks):
+        """-N(0) and N(L) (T for the bar) of the resultant field: the mirror-image ghosts carry the end's force, so
+        the held end's row holds no reaction."""
+        R = self.from_solution(scene, params, disc, u, {}, {}, None, {}, reactions=inner).fields[self.resultant]
+        key = "axial" if self.unknowns == "axial" else "torque"
+        return {("left", key): float(-R[0]), ("right", key): float(R[-1])}, "the resultant at the ends"
+
+    def from_solution(self, scene, params, disc, u, fields, info, timer, writers, reactions=(), kinks=()):
+        """The result: u (twist) and its resultant N (T) at the points from the flux of the bonds across each cut
+        between two points, which every point's equation steps by its load (the cumulative sum of K u, anchored by
+        the median of EA Δu/Δ over the intervals; within a horizon of an end, where the ghosts' bonds cross the cuts
+        too, EA Δu/Δ itself), to the points by the loads between them (:mod:`.resultants`); ``reactions``: the inner
+        supports' and springs' (position, force, 0)."""
+        x = disc.x
+        dx = x[1] - x[0]
+        stiff = self.stiffness(scene) if scene.uniform else bond_stiffness(scene, x[:-1], x[1:], self.key)
+        local = stiff * np.diff(u) / dx
+        Nbar = stepped(-(disc.op @ u) * dx, local)
+        ends = np.minimum(np.arange(len(local)), np.arange(len(local))[::-1]) <= params["horizon"]
+        Nbar[ends] = local[ends]  # the ghosts' bonds cross the cuts there: the local strain
+        component = "axial" if self.unknowns == "axial" else "torque"
+        forces = [(ld.position, v) for ld in scene.loads if (v := _point_value(ld, component))]
+        forces += [(at, f) for at, f, _ in reactions if f]
+        N = shear_at_points(Nbar, x, scene, forces, component, sign=-1.0)
+        fields = dict(fields, **{self.field: u, self.resultant: N})
+        return self.new_result(
+            scene,
+            params,
+            x,
+            np.zeros_like(x),
+            fields=fields,
+            dofs=disc.n_free,
+            timings=timer.timings if timer is not None else {},
+            info=info,
+            writers=writers,
+        )
+
+
+def _point_value(load, component: str) -> float:
+    """A point load's axial force (``component`` axial) or torque (torque); 0 for other loads."""
+    if component == "axial":
+        return load.axial if isinstance(load, PointForce) else 0.0
+    return load.value if isinstance(load, PointTorque) else 0.0
+
+
+class PDRod(_RodModel):
+    name = "pd-rod"
+    title = "micro-elastic PD rod (axial), trapezoidal kernel"
+    unknowns = "axial"
+    axial = True
+    bending = False
+    theory = "axial"
+    measures = "u"
+    load_types = frozenset({"point_force", "distributed"})  # their axial components
+
+    def check(self, scene: Scene) -> list[str]:
+        out = super().check(scene)
+        if not holds_somewhere(scene, "axial", ROD_HELD["axial"]):
+            sup = scene.supports
+            out.append(
+                f"supports = {sup.kind('left')}-{sup.kind('right')}: neither end holds the axial displacement (a "
+                "roller or guided end slides along the axis), nor does a support inside the span or a spring, so the "
+                "rod is a mechanism; make one end clamped or pinned"
+            )
+        return out
+
+    def operator(self, scene, params):
+        return rod_operator(
+            scene, params["points"], params["horizon"], params["variant"], kind="axial", grid=params["grid"]
+        )
+
+    def stiffness(self, scene) -> float:
+        """EA: the resultant N = EA u' of the solved field u."""
+        return scene.EA
+
+
+class PDTorsion(_RodModel):
+    name = "pd-torsion"
+    title = "micro-elastic PD torsion (twist), the rod kernel with GJ (Section 5)"
+    unknowns = "torsion"
+    bending = False
+    torsion = True
+    theory = "torsion"
+    measures = "twist"
+    load_types = frozenset({"point_torque", "distributed"})  # distributed: its torque component
+
+    def operator(self, scene, params):
+        disc = rod_operator(
+            scene, params["points"], params["horizon"], params["variant"], kind="torsion", grid=params["grid"]
+        )
+        if self._dynamic(scene, params) and not np.all(np.isfinite(disc.mass)):
+            raise InputError(
+                "section: pd-torsion dynamics needs the polar moment of a rectangle; give width and height"
+            )
+        return disc
+
+    field, resultant = "twist", "T"
+
+    def check(self, scene: Scene) -> list[str]:
+        out = super().check(scene)
+        if not holds_somewhere(scene, "torsion", ROD_HELD["torsion"]):
+            sup = scene.supports
+            out.append(
+                f"supports = {sup.kind('left')}-{sup.kind('right')}: neither end holds the twist, nor does a support "
+                "inside the span or a spring (its rotational_stiffness), so the bar is a mechanism; make one end "
+                "clamped, pinned or roller"
+            )
+        return out
+
+    def stiffness(self, scene) -> float:
+        """GJ: the torque T = GJ twist'."""
+        return scene.material.G * scene.section.J
