@@ -2,7 +2,7 @@
 line, as printed) and ``DIR/index.html`` (cost vs points per model against the banded-solve limit of
 the same matrix, each model's work-precision curve (time vs max error against the exact solution) and
 its cheapest run within 1e-6, the ratio table and the targets of the performance issue with their
-verdicts; a run counts toward a target only when its error is within 1e-6, issue 27)."""
+verdicts; a run counts toward a target only when its error is within 1e-6)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The exact modal transient of the rod (exact-modal-rod, issue 30 item 4) and pd-rod's time-history error
+"""The exact modal transient of the rod (exact-modal-rod) and pd-rod's time-history error
 against it: order 2 in dx and in dt."""
 
 import numpy as np

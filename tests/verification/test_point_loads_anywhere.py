@@ -1,4 +1,4 @@
-"""Point forces and moments anywhere (issue 33 item 2): second order on every path of pd-bond-pair and pd-eb.
+"""Point forces and moments anywhere: second order on every path of pd-bond-pair and pd-eb.
 
 A load at (i + t) dx is split between the two nearest points, so the error constant depends on t and the
 order read from one fixed position fluctuates from grid to grid (a moment at 0.4219 m: 2.17, 2.10, 1.76 over
@@ -54,9 +54,8 @@ def test_point_loads_anywhere_second_order(path):
     """Measured, 101 -> 201 -> 401 points, every pair and load: order >= 1.98 (Taylor mixed), 1.97 (Taylor
     direct), 1.99 (mirror, rollers included), 1.99 (pd-eb mixed), 1.94 (pd-eb direct). The direct forms
     reach their round-off floor (~1e-6, warned: round-off bound past 1e-6) from 401 points, so they are
-    read below it (issue 27). pd-eb's paper variant does not converge at all (docs/models/diyaroglu.md).
-    Before (issue 33): moments on chord (i, i+1) and forces at the nearest point on the mirror path, first
-    order (a mid-span moment 16.6 % off at 101 points)."""
+    read below it. pd-eb's paper variant does not converge at all (docs/models/diyaroglu.md). Moments on the
+    chord (i, i+1) and forces at the nearest point would be first order."""
     name, opts, pairs = PATHS[path]
     low = []
     for left, right in pairs:
@@ -70,8 +69,8 @@ def test_point_loads_anywhere_second_order(path):
 
 def test_mid_span_moment_off_the_grid_on_the_mirror_path():
     """The fast tier's witness: a moment between two points of a clamped-pinned beam, mirror ends, within
-    0.6 % at 101 points and second order (measured 4.8e-3, 1.2e-3 at 201: 2.01; issue 33 measured 16.6 % at
-    101 points when the moment acted on chord (i, i + 1))."""
+    0.6 % at 101 points and second order (a moment acting on the chord (i, i + 1) instead is 16.6 % off at 101
+    points)."""
     e = [
         worst_error("pd-bond-pair", {"ends": "mirror"}, "clamped", "pinned", "point_moment", 1.0, 150.0, n)
         for n in (101, 201)

@@ -1,4 +1,4 @@
-"""Property test of issue 27 ("no number pdverify prints is silently wrong"): hypothesis sweeps every
+"""Property test of "no number pdverify prints is silently wrong": hypothesis sweeps every
 registered static model over generated straight and curved scenes and requires, for each case, an error
 against the exact solution within what the model's own convergence predicts at that grid, or a warning.
 
@@ -286,7 +286,7 @@ def test_exact_curved_end_moment_near_the_end(pair, position):
     assert np.abs(a.w - b.w).max() <= 1e-9 * np.abs(b.w).max()
 
 
-BANDED = ["fem-eb", "fem-timoshenko", "pd-bond-pair", "pd-eb", "pd-timoshenko"]  # issue 27's 10^5-point models
+BANDED = ["fem-eb", "fem-timoshenko", "pd-bond-pair", "pd-eb", "pd-timoshenko"]  # the 10^5-point models
 
 
 @pytest.mark.slow

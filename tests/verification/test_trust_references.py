@@ -1,6 +1,6 @@
 """Issue 27, item 2: the beam references stay within 1e-6 of the exact solution (relative to max |w|)
 up to 10^5 nodes and within 1e-4 at 10^6, for every support pair and load type, and their round-off
-bound (info.error_bound, issue 27 item 1) holds their error without crying wolf."""
+bound (info.error_bound) holds their error without crying wolf."""
 
 import numpy as np
 import pytest

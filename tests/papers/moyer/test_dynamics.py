@@ -1,4 +1,4 @@
-"""Transients of pd-rod / pd-timoshenko (issue 30): the energy ledger, blow-up detection and its message,
+"""Transients of pd-rod / pd-timoshenko: the energy ledger, blow-up detection and its message,
 the output interval, the stable time step at every size."""
 
 import re
@@ -328,8 +328,8 @@ def test_rod_closures_have_a_real_spectrum():
 
 @pytest.mark.xfail(
     strict=True,
-    reason="issue 30 item 1: the corrected beam's clamped and free closures have growing modes (variant energy has "
-    "none: tests/test_moyer_energy.py); "
+    reason="the corrected beam's clamped and free closures have growing modes (variant energy has "
+    "none: tests/papers/moyer/test_moyer_energy.py); "
     "measured at 41 points: 54 of 160 cases, every one with a clamped end (m = 3, 4 from L/h = 20; m = 1, 2 "
     "with a free end at L/h = 4, 20), worst 0.074 (free-clamped, m = 4, L/h = 20, complex eigenvalues); "
     "119 of 160 before the mirror ghosts of pinned and guided ends",
@@ -437,7 +437,7 @@ def test_damped_beam_settles_to_the_static_solve_for_every_support_pair():
     damping on every DOF (damping_on = "all", the default; measured worst 2.3e-12, 2.2e-11, 2.7e-11). On the
     translations alone (Eq. 36-37) the shear-rotation modes keep ringing where nothing else damps them: 5.0e-7,
     6.5e-7, 9.7e-7, all between pinned and guided ends, which run without the stabilisation. m = 4 with a clamped
-    and a free end blows up whatever the damping (issue 30 item 1)."""
+    and a free end blows up whatever the damping."""
     loads = LOADS + [{"type": "point_moment", "position": 1.5, "value": 50.0}]
     worst = {"all": 0.0, "translations": 0.0}
     for m in (1, 2, 3):
@@ -456,7 +456,7 @@ def test_damped_beam_settles_to_the_static_solve_for_every_support_pair():
 @pytest.mark.slow
 def test_damped_rod_settles_to_the_static_solve_for_every_support_pair(m):
     """Issue 30: damped runs settle to the direct solve on the same grid. pd-rod, 61 points, critical damping
-    of the first mode (ζ = 1), 8 ms: every support pair within 1e-8 of the static solution (issue 30's criterion;
+    of the first mode (ζ = 1), 8 ms: every support pair within 1e-8 of the static solution (the criterion;
     measured <= 4.1e-13, 8.1e-13 with the fitted ghosts; m = 2 with a free end grew with the cubic traction
     fit, before the quartic one and the mirror-image ghosts)."""
     worst = 0.0

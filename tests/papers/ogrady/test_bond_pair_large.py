@@ -1,4 +1,4 @@
-"""pd-bond-pair (Taylor ends) on fine grids (issue 27 item 2): the mixed form (curvature + deflection, end
+"""pd-bond-pair (Taylor ends) on fine grids: the mixed form (curvature + deflection, end
 conditions of free and guided ends written on the curvature) keeps the round-off near eps N^2."""
 
 import numpy as np

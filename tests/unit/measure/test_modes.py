@@ -1,4 +1,4 @@
-"""Natural frequencies (issue 30 item 5): the analytic Timoshenko frequencies (pdverify.exact.vibration), the
+"""Natural frequencies: the analytic Timoshenko frequencies (pdverify.exact.vibration), the
 discrete operators' modes against them under refinement for every support pair, and `pdverify modes`."""
 
 import json

@@ -1,4 +1,4 @@
-"""Dispersion relations (pdverify.numerics.dispersion, issue 30 item 5): the interior stencil's branches against the
+"""Dispersion relations (pdverify.numerics.dispersion): the interior stencil's branches against the
 continuum, rod and Timoshenko beam, horizons 1-4."""
 
 import numpy as np

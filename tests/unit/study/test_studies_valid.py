@@ -21,7 +21,7 @@ def test_main_job_study_has_benchmarks():
 
 def test_main_job_measures_every_paper_against_a_reference():
     """Every static case of the main job has a reference and every paper folder a benchmark row, so each
-    paper's report page shows numbers (issue 33: the O'Grady large-rotation runs had reference = "none").
+    paper's report page shows numbers (the O'Grady large-rotation runs had reference = "none").
     Transient runs (a [dynamics] table: Moyer's time histories) are shown as histories, without one."""
     s = load_study(ROOT / "studies" / "papers.toml")
     unmeasured = [c.scene_file for c in s.cases if c.reference["model"] == "none" and "[dynamics]" not in c.scene_text]

@@ -383,7 +383,7 @@ def test_trust_table_states_ranges_and_the_round_off_grid():
 
 
 def test_trust_calls_a_growth_round_off_only_where_cond_eps_explains_it():
-    """The pd-eb paper variant's case (issue 27): its error grows to 6e-3 under refinement while cond·eps is
+    """The pd-eb paper variant's case: its error grows to 6e-3 under refinement while cond·eps is
     4e-7: a discretisation defect, not round-off. Without a condition estimate the cause is not claimed."""
     from pdverify.study.runner import trust_table
 

@@ -1,4 +1,4 @@
-"""pdverify in CI (issue 28): the study's exit status and summary line, order checks, JUnit output and the
+"""pdverify in CI: the study's exit status and summary line, order checks, JUnit output and the
 study-file validation that keeps a verdict from passing or failing silently."""
 
 import os
