@@ -5,21 +5,23 @@ Every user error is printed as ``error: <one line>`` on stderr, never a tracebac
 computation (singular, overflow, not enough memory), 4 output could not be written.
 
 Each command is a thin typer function over the library (solve, study, report, verify, advise, bench, models,
-modes); they share the option parsing and the error wrapping kept here and the output paths of :mod:`.output`.
+modes); they share the option parsing and the error wrapping of :mod:`.cliargs` and the output paths of
+:mod:`.output`; `bench` lives in :mod:`.bench_command`.
 Imports are lazy: each command imports what it runs, so ``pdverify --help`` starts without importing the library.
 """
 
 from __future__ import annotations
 
-import functools
 import os
 import sys
 from pathlib import Path
 
 import typer
 
-from ..core.errors import InputError, PdverifyError, SolveError
+from ..core.errors import InputError
 from ..core.version import __version__
+from .bench_command import bench
+from .cliargs import _SCENE_FILES, HORIZON, HORIZON_LENGTH, POINTS, grid_options, parse_options, positive, user_errors
 from .output import Format, check_folder, check_writable, write_file
 from .output import out_format as _out_format
 from .output import result_table as _table
@@ -53,109 +55,6 @@ def _root(
     ),
 ):
     """pdverify: how far a peridynamic beam model is from the truth, in numbers."""
-
-
-def _fail(exc: PdverifyError) -> None:
-    for line in exc.lines:
-        typer.echo(f"error: {line}", err=True)
-    raise typer.Exit(exc.exit_code)
-
-
-def user_errors(fn):
-    """Turn PdverifyError into one line per problem and a non-zero exit code; a computation that runs out
-    of memory or out of the floating-point range becomes one line and exit code 3."""
-
-    @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
-        try:
-            return fn(*args, **kwargs)
-        except SolveError as exc:  # a failed computation on far-out numbers: name them (E = 1e-300 reads singular)
-            extreme = _extreme_values()
-            _fail(SolveError([exc.lines[0] + extreme, *exc.lines[1:]]) if extreme else exc)
-        except PdverifyError as exc:
-            _fail(exc)
-        except MemoryError:
-            _fail(SolveError("out of memory during the computation; use fewer points (a larger spacing)"))
-        except (OverflowError, FloatingPointError) as exc:
-            _fail(
-                SolveError(
-                    f"the computation left the floating-point range ({exc.__class__.__name__}: "
-                    f"{exc.args[-1] if exc.args else exc}){_extreme_values()}; give the scene in units "
-                    "that keep its numbers within about 1e-100..1e100"
-                )
-            )
-
-    return wrapper
-
-
-_SCENE_FILES: list = []  # scene files a command read, to name their extreme values when a computation overflows
-
-
-def _extreme_values() -> str:
-    """'; extreme values: beam.length = 1e+300' for the numbers of the scenes read that are far out of range."""
-    import math
-
-    found = []
-
-    def walk(v, where):
-        if isinstance(v, dict):
-            for k, x in v.items():
-                walk(x, f"{where}.{k}" if where else k)
-        elif isinstance(v, list):
-            for i, x in enumerate(v):
-                walk(x, f"{where}[{i}]")
-        elif (
-            isinstance(v, (int, float))
-            and not isinstance(v, bool)
-            and v != 0
-            and math.isfinite(v)
-            and not 1e-100 <= abs(v) <= 1e100
-        ):
-            found.append(f"{where} = {v:g}")
-
-    for sc in _SCENE_FILES:
-        walk(sc.model_dump(mode="json", exclude_none=True), "")
-    return f"; extreme values: {', '.join(found)}" if found else ""
-
-
-# the grid's options, the same on every command that takes a grid (solve, modes; verify: the horizon only, the suite
-# sets the grids); each is the model option of its name (-o points=... works as well), refused by a model without it
-POINTS = typer.Option(None, "--points", help="material points / nodes along the axis, ends included")
-HORIZON = typer.Option(None, "--horizon", help="horizon as a multiple of the spacing (3 = the papers' 3.015)")
-HORIZON_LENGTH = typer.Option(
-    None, "--horizon-length", help="horizon in metres (option horizon_length; models that take one)"
-)
-
-
-def grid_options(options: dict, **named) -> dict:
-    """The model options of a command: its named options (``--points``, ``--horizon``, ...; None where not given)
-    with its ``-o key=value`` ones. A key given both ways is an error, not a silent choice of one of them."""
-    given = {k: v for k, v in named.items() if v is not None}
-    for key in given.keys() & options.keys():
-        raise InputError(
-            f"--{key.replace('_', '-')} {given[key]} and -o {key}={options[key]}: the same option twice; give one"
-        )
-    return {**given, **options}
-
-
-def positive(option: str, value: float) -> float:
-    """A positive, finite number for ``option`` (a tolerance, a budget in seconds), or one line (exit 2)."""
-    import math
-
-    if not (math.isfinite(value) and value > 0):
-        raise InputError(f"{option} {value}: give a positive number")
-    return value
-
-
-def parse_options(pairs: list[str] | None) -> dict:
-    """``key=value`` strings from ``--option`` into a dict (values stay strings; models coerce)."""
-    out = {}
-    for item in pairs or []:
-        if "=" not in item:
-            raise InputError(f"--option {item!r}: write key=value")
-        k, v = item.split("=", 1)
-        out[k.strip()] = v.strip()
-    return out
 
 
 @app.command()
@@ -396,89 +295,6 @@ def report(
     typer.echo(f"report: {build_report(study_dir, out)}")
 
 
-@app.command()
-@user_errors
-def bench(
-    model: list[str] | None = typer.Option(
-        None, "--model", "-m", help="model(s) to time; default: all with an assembled system"
-    ),
-    points: list[int] | None = typer.Option(
-        None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"
-    ),
-    fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
-    scene: Path | None = typer.Option(None, help="scene to time (default: the example cantilever)"),
-    out: Path | None = typer.Option(
-        None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"
-    ),
-    sharing: list[str] | None = typer.Option(
-        None, "--sharing", help="model(s) whose verification suite is timed with and without shared factorisations"
-    ),
-):
-    """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
-    import json as _json
-
-    from ..core.scene_file import load_scene
-    from ..measure.cost import accurate, cost_slope
-    from ..registry import get_model, model_argument
-    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models
-
-    names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
-    if out is not None:
-        check_folder(out, "--out")
-    if scene is not None:
-        load_scene(scene)  # a missing or bad scene: one line, exit 2, before any timing
-    for n in names:
-        m = get_model(n)
-        grid = m.option("points")
-        for p in points or ():
-            if grid is None:
-                raise InputError(f"--points {p}: model {n} takes no grid; drop --points or the model")
-            grid.coerce(n, p)  # below the model's least number of points: one line, exit 2
-    rows = []
-    for n in names:
-        sizes = points or [p for p in DEFAULT_POINTS if p <= SMALL_MODELS.get(n, 10**9)]
-        for p in sizes:
-            row = bench_subprocess(n, p, str(scene) if scene else None)
-            rows.append(row)
-            if fmt == Format.json:
-                typer.echo(_json.dumps(row))
-            elif row.get("status") != "ok":
-                typer.echo(f"{n:18s} {p:>9d}  failed: {row.get('message')}")
-            else:
-                f = lambda v, spec: "-" if v is None else format(v, spec)  # noqa: E731
-                typer.echo(
-                    f"{n:18s} {p:>9d} dofs={row['dofs']:>9d} error={f(row.get('max_error'), '.1e')} "
-                    f"assemble={f(row['assemble_s'], '.3g')}s "
-                    f"solve={f(row['solve_s'], '.3g')}s total={row['total_s']:.3g}s limit={f(row['limit_s'], '.3g')}s "
-                    f"ratio={f(row['ratio'], '.2f')} mem={row['peak_mem_mb']:.0f}MB "
-                    f"updates/s={f(row['updates_per_s'], '.3g')}"
-                    + ("" if accurate(row) else "  (error above 1e-6 or unknown: counts toward no target)")
-                )
-    shared = []
-    for n in sharing or ():
-        from .sharing import sharing_gain
-
-        shared.append(sharing_gain(model_argument(n)) | {"kind": "sharing"})
-        r = shared[-1]
-        typer.echo(
-            _json.dumps(r)
-            if fmt == Format.json
-            else f"{n:18s} suite {r['cases']} cases: {r['factorisations_apart']} -> {r['factorisations_shared']} "
-            f"factorisations, {r['cases_per_s_apart']:.3g} -> {r['cases_per_s_shared']:.3g} cases/s "
-            f"(x{r['gain']:.2f}), same numbers: {r['same']}, max error {r['max_error']:.1e}"
-        )
-    slopes = cost_slope(rows)
-    for n, s in slopes.items():
-        line = {"model": n, "cost_slope": s}
-        typer.echo(_json.dumps(line) if fmt == Format.json else f"{n:18s} cost ~ N^{s:.2f}")
-    if out:
-        from ..report.perf import build_performance
-
-        page = build_performance(rows, out, slopes, shared)
-        if fmt != Format.json:
-            typer.echo(f"performance page: {page}")
-
-
 @app.command("verify")
 @user_errors
 def verify_cmd(
@@ -512,6 +328,9 @@ def verify_cmd(
     typer.echo(f"{card['model']}: {card['verdict']} (suite {card['suite_version']}); card: {out}/card.html")
     if card["verdict"] == "fail":
         raise typer.Exit(1)
+
+
+app.command("bench")(user_errors(bench))
 
 
 @app.command()

@@ -1,0 +1,114 @@
+"""What every command of the command line shares: one line per user error and its exit code
+(:func:`user_errors`), the grid's options (``--points``, ``--horizon``, ``--horizon-length``) and ``-o key=value``
+model options."""
+
+from __future__ import annotations
+
+import functools
+
+import typer
+
+from ..core.errors import InputError, PdverifyError, SolveError
+
+
+def _fail(exc: PdverifyError) -> None:
+    for line in exc.lines:
+        typer.echo(f"error: {line}", err=True)
+    raise typer.Exit(exc.exit_code)
+
+
+def user_errors(fn):
+    """Turn PdverifyError into one line per problem and a non-zero exit code; a computation that runs out
+    of memory or out of the floating-point range becomes one line and exit code 3."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except SolveError as exc:  # a failed computation on far-out numbers: name them (E = 1e-300 reads singular)
+            extreme = _extreme_values()
+            _fail(SolveError([exc.lines[0] + extreme, *exc.lines[1:]]) if extreme else exc)
+        except PdverifyError as exc:
+            _fail(exc)
+        except MemoryError:
+            _fail(SolveError("out of memory during the computation; use fewer points (a larger spacing)"))
+        except (OverflowError, FloatingPointError) as exc:
+            _fail(
+                SolveError(
+                    f"the computation left the floating-point range ({exc.__class__.__name__}: "
+                    f"{exc.args[-1] if exc.args else exc}){_extreme_values()}; give the scene in units "
+                    "that keep its numbers within about 1e-100..1e100"
+                )
+            )
+
+    return wrapper
+
+
+_SCENE_FILES: list = []  # scene files a command read, to name their extreme values when a computation overflows
+
+
+def _extreme_values() -> str:
+    """'; extreme values: beam.length = 1e+300' for the numbers of the scenes read that are far out of range."""
+    import math
+
+    found = []
+
+    def walk(v, where):
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(x, f"{where}.{k}" if where else k)
+        elif isinstance(v, list):
+            for i, x in enumerate(v):
+                walk(x, f"{where}[{i}]")
+        elif (
+            isinstance(v, (int, float))
+            and not isinstance(v, bool)
+            and v != 0
+            and math.isfinite(v)
+            and not 1e-100 <= abs(v) <= 1e100
+        ):
+            found.append(f"{where} = {v:g}")
+
+    for sc in _SCENE_FILES:
+        walk(sc.model_dump(mode="json", exclude_none=True), "")
+    return f"; extreme values: {', '.join(found)}" if found else ""
+
+
+# the grid's options, the same on every command that takes a grid (solve, modes; verify: the horizon only, the suite
+# sets the grids); each is the model option of its name (-o points=... works as well), refused by a model without it
+POINTS = typer.Option(None, "--points", help="material points / nodes along the axis, ends included")
+HORIZON = typer.Option(None, "--horizon", help="horizon as a multiple of the spacing (3 = the papers' 3.015)")
+HORIZON_LENGTH = typer.Option(
+    None, "--horizon-length", help="horizon in metres (option horizon_length; models that take one)"
+)
+
+
+def grid_options(options: dict, **named) -> dict:
+    """The model options of a command: its named options (``--points``, ``--horizon``, ...; None where not given)
+    with its ``-o key=value`` ones. A key given both ways is an error, not a silent choice of one of them."""
+    given = {k: v for k, v in named.items() if v is not None}
+    for key in given.keys() & options.keys():
+        raise InputError(
+            f"--{key.replace('_', '-')} {given[key]} and -o {key}={options[key]}: the same option twice; give one"
+        )
+    return {**given, **options}
+
+
+def positive(option: str, value: float) -> float:
+    """A positive, finite number for ``option`` (a tolerance, a budget in seconds), or one line (exit 2)."""
+    import math
+
+    if not (math.isfinite(value) and value > 0):
+        raise InputError(f"{option} {value}: give a positive number")
+    return value
+
+
+def parse_options(pairs: list[str] | None) -> dict:
+    """``key=value`` strings from ``--option`` into a dict (values stay strings; models coerce)."""
+    out = {}
+    for item in pairs or []:
+        if "=" not in item:
+            raise InputError(f"--option {item!r}: write key=value")
+        k, v = item.split("=", 1)
+        out[k.strip()] = v.strip()
+    return out
