@@ -25,6 +25,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.scene import ROD_HELD, SUPPORTS, is_mechanism
+from ..core.scene_file import parse_scene
+from ..registry import get_model
 from ..registry.external import ExternalModel
 
 # 1.1: natural frequencies of models that declare dynamics (verify.dynamics); 1.2: self-convergence for theories
@@ -292,6 +294,15 @@ class Plan:
     floor_grids: tuple
     reference: str | dict | None  # a model name or {model, options}; None: self-convergence (:func:`finer`)
     curved_reference: str | None
+    engineering_reference: str | dict | None = None  # the engineers' scenes': ``reference`` where it takes them all
+
+
+def takes_all(reference, scenes: list[dict]) -> bool:
+    """True when the reference (a name or {model, options}) solves every one of ``scenes`` (its check)."""
+    if reference is None:
+        return False
+    m = get_model(reference["model"] if isinstance(reference, dict) else reference)
+    return all(not m.check(parse_scene(sc)) for sc in scenes)
 
 
 EXACT = {  # the exact solution of each theory that has one here
@@ -396,15 +407,19 @@ def plan(model, full: bool = False, options: dict | None = None) -> Plan:
                 load=sc["loads"][0]["type"],
                 slenderness=sc["beam"]["length"] / sc["section"]["height"],
             )
+    reference = exact_reference(model, options or {})
+    engineering = [sc for f, sc in scenes.items() if meta[f]["set"] == "engineering"]
     return Plan(
         scenes,
         meta,
         FULL_GRIDS if full else GRIDS,
         FULL_FLOOR_GRIDS if full else FLOOR_GRIDS,
-        exact_reference(model, options or {}),
+        reference,
         # a theory judged against itself is so on curved axes too (exact-curved is a beam theory: the 2D strip
         # converges to its own solution, 1.7e-2 away on the clamped-pinned quarter circle)
         "exact-curved" if model.curved and reference_for(model.theory) else None,
+        # an exact solution that holds its beams at the ends only (exact-higher-order): the model against itself
+        reference if engineering and takes_all(reference, engineering) else None,
     )
 
 
@@ -451,13 +466,16 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
         {
             **run,
             "points": list(p.grids),
-            "scenes": files("convergence", "locking", "engineering"),
+            "scenes": files("convergence", "locking"),
             "reference": ref(p.grids),
         },
         {**run, "points": list(p.floor_grids), "scenes": files("floor"), "reference": ref(p.floor_grids)},
     ]
     if p.reference is None:  # the theory gap: the self-convergence reference against exact Timoshenko theory
         runs.append({**run, "points": [finer(p.grids)], "scenes": files("convergence"), "reference": GAP_REFERENCE})
+    if files("engineering"):
+        eng = p.engineering_reference or self_reference(model, options, p.grids)
+        runs.append({**run, "points": list(p.grids), "scenes": files("engineering"), "reference": eng})
     if files("curved"):
         curved = p.curved_reference or self_reference(model, options, p.grids)
         runs.append(

@@ -79,13 +79,15 @@ def test_a_theory_without_an_exact_solution_is_judged_against_itself_on_a_finer_
     assert finer((21, 41, 81, 161)) == 641 and (640 // 4) * 4 == 640  # nested: every 4th point of 641
     assert refs[0] == ([21, 41, 81, 161], {"model": "pd-higher-order", **paper, "points": 641})
     assert refs[1][1] == {"model": "pd-higher-order", **paper, "points": 4 * 2560 + 1}
-    assert refs[2] == ([641], "exact-timoshenko") and len(refs) == 3
+    assert refs[2] == ([641], "exact-timoshenko") and len(refs) == 4
+    assert refs[3] == refs[0]  # suite 1.7: the engineers' scenes, against itself too
     mid = {"loads": "mid"}
     study = tomllib.loads(write_study(plan(ho, options=mid), ho, mid, tmp_path / "ho2").read_text())
     exact = {"model": "exact-higher-order", "loads": "mid", "pin": "face"}
-    assert [r["reference"] for r in study["runs"]] == [exact] * 2
+    own = {"model": "pd-higher-order", **mid, "points": 641}  # exact-higher-order holds the ends only
+    assert [r["reference"] for r in study["runs"]] == [exact] * 2 + [own]
     study = tomllib.loads(write_study(plan(tim), tim, {}, tmp_path / "tim").read_text())
-    assert [r["reference"] for r in study["runs"]] == ["exact-timoshenko"] * 2
+    assert [r["reference"] for r in study["runs"]] == ["exact-timoshenko"] * 3
     # a curved self-converged model (the 2D strip) is judged against itself on the arcs too, not exact-curved
     ps = get_model("fem-plane-stress")
     study = tomllib.loads(write_study(plan(ps), ps, {}, tmp_path / "ps").read_text())
@@ -316,3 +318,17 @@ def test_a_variant_that_refuses_an_engineers_scene_declines_it():
     assert names["stepped"] and names["bi-material"] and names["stepped"][0].startswith("segments: variant corrected")
     assert not names["two spans"] and not names["on springs"]
     assert not any(why for f, why in _declined(model, plan(model), {}).items() if p.meta[f]["set"] == "engineering")
+
+
+def test_the_engineers_scenes_take_the_exact_reference_only_where_it_holds_them_all(tmp_path):
+    """exact-timoshenko takes every engineers' scene; exact-higher-order holds its beams at the ends only, so
+    pd-higher-order's engineers' scenes are judged against pd-higher-order itself on the finer grid."""
+    timo = plan(get_model("pd-timoshenko"))
+    assert timo.engineering_reference == "exact-timoshenko"
+    model = get_model("pd-higher-order")
+    p = plan(model)
+    assert p.engineering_reference is None
+    study = tomllib.loads(write_study(p, model, {}, tmp_path).read_text())
+    eng = {f for f, m in p.meta.items() if m["set"] == "engineering"}
+    (run,) = [r for r in study["runs"] if set(r["scenes"]) == eng]
+    assert run["reference"] == {"model": "pd-higher-order", "points": finer(p.grids)}
