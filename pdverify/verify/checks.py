@@ -92,6 +92,9 @@ def series(df, files: list[str], column: str = "err_max") -> list[dict]:
                 "pair_orders": pair,
                 "order": fitted,
                 "exact": bool(len(e) and above.sum() < 2 and np.nanmax(e) < ROUND),
+                # at round-off on the last two grids or more and every grid after the first such: a series that
+                # converges faster than any order (the grid resolves the solution); None otherwise
+                "exact_from": _round_off_from(ok["points"].astype(int).tolist(), e),
                 "failed": [
                     f"{int(r.points)} points: {r.message}" for r in rows[~rows["status"].isin(SOLVED)].itertuples()
                 ],
@@ -101,12 +104,27 @@ def series(df, files: list[str], column: str = "err_max") -> list[dict]:
     return out
 
 
+def _round_off_from(points: list[int], e: np.ndarray) -> int | None:
+    """The coarsest grid from which every error of the series is below round-off level, when that holds on at
+    least the two finest grids; None otherwise."""
+    below = np.asarray(e) < ROUND
+    if len(below) < 2 or not below[-2:].all():
+        return None
+    first = len(below) - int(np.argmin(below[::-1])) if not below.all() else 0
+    return int(points[first])
+
+
 def convergence(rows: list[dict], expected: float, label: str) -> dict:
     if not rows:
         return check(label, "n/a", "the model declines every scene of this set")
     if all(r["exact"] and not r["failed"] for r in rows):
         return check(label, "pass", f"exact to round-off (every error < {ROUND:g}) on all {len(rows)} scenes")
-    bad = [r for r in rows if r["failed"] or not (r["exact"] or r["order"] >= expected - ORDER_SLACK)]
+    resolved = [r for r in rows if not r["exact"] and r["exact_from"] is not None]
+    bad = [
+        r
+        for r in rows
+        if r["failed"] or not (r["exact"] or r["exact_from"] is not None or r["order"] >= expected - ORDER_SLACK)
+    ]
     worst = min((r["order"] for r in rows if not r["exact"] and not math.isnan(r["order"])), default=float("nan"))
     verdict = "pass" if not bad else "fail"
     text = (
@@ -114,6 +132,11 @@ def convergence(rows: list[dict], expected: float, label: str) -> dict:
         if verdict == "pass"
         else f"{len(bad)} of {len(rows)} scenes below order {expected - ORDER_SLACK:g} or failed (lowest {worst:.2f})"
     )
+    if resolved:  # converged past any order: the error drops to round-off level after the coarsest grids
+        text += (
+            f"; {len(resolved)} scene(s) at round-off (< {ROUND:g}) from "
+            f"{min(r['exact_from'] for r in resolved)}-{max(r['exact_from'] for r in resolved)} points on"
+        )
     note = reference_note(r["reference_bound"] for r in rows)
     return check(
         label,
