@@ -41,12 +41,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate, solve_linear
 from ...numerics.loads import body_loads, boundary_layer_warnings
+from ...theory.symbols import Series, beam_series
 from .operator import (
     corrected_system,
     curvature_weights,
@@ -108,6 +109,7 @@ class PDEulerBernoulli(Model):
             "layer (literal, with the 2.015 dx fictitious layer and horizon at simply supported ends)",
             choices=("energy", "literal", "layer"),
         ),
+        *NONLOCAL,
     )
     assembles = True
     variant_rules = (
@@ -117,6 +119,7 @@ class PDEulerBernoulli(Model):
             "Eq. 32: delta = (m + 0.015) dx, d = 1/(A delta) over whole "
             "families of m points; use variant = corrected for a fractional horizon",
             whole=True,
+            unless="horizon_length",  # Eq. 11a with a given delta: the points within it, d = 1/(A delta)
         ),
         Rule(
             (("variant", "paper"),),
@@ -125,6 +128,17 @@ class PDEulerBernoulli(Model):
             allowed=("auto", "direct"),
         ),
     )
+
+    def horizon_offset(self, params: dict) -> float:
+        """Eq. 32: delta = (m + 0.015) dx in the paper variant."""
+        return 0.015 if params["variant"] == "paper" else 0.0
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """The paper variant's energy reading closes pinned (roller) ends by negative and guided ends by positive
+        mirror images (Eq. 39-41): a series of the mirror modes with the continuous curvature symbol."""
+        if params["variant"] == "paper" and params.get("reading", "energy") == "energy":
+            return beam_series(scene, self.delta(scene, params), "curvature")
+        return None
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
         return np.linspace(0.0, scene.length, params["points"])

@@ -24,11 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import ROD_HELD, Scene
 from ...numerics.loads import boundary_layer_warnings
+from ...theory.symbols import Series, rod_series, timoshenko_series
 from .ends import FIT_POINTS, MIRRORED
 from .energy import moment_field
 from .kernels import node_loads
@@ -58,12 +59,14 @@ _OPTIONS = (
         "nodes (ends included) | cells (Section 4 cell centres; variant paper, static)",
         choices=("nodes", "cells"),
     ),
+    *NONLOCAL,
 )
 
 
 class _MoyerModel(Model):
     source = "Moyer & Miraglia 2014, Peridynamic solutions for Timoshenko beams"
     options = _OPTIONS
+    whole_horizon = "Eq. 13-19: the trapezoidal rule over the nodes 0..m of the horizon delta = m dx"
     analyses = frozenset({"static", "dynamic"})  # the damped leapfrog-Verlet integrator (Eq. 7-11)
     end_motions = True  # prescribed end motions of [dynamics] (Example 2); the static part: their final value
     assembles = True
@@ -211,6 +214,16 @@ class _RodModel(_MoyerModel):
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
         raise NotImplementedError
 
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """The corrected variant's mirror ends (odd where the field is held, even where its resultant is given:
+        :func:`.ends.rod_mirror_ghosts`): a series of the mirror modes with the rod kernel's symbol."""
+        if params["variant"] != "corrected" or params["grid"] != "nodes":
+            return None
+        kind = "axial" if self.axial else "torsion"
+        component = "axial" if self.axial else "torque"
+        delta = self.delta(scene, params)
+        return rod_series(scene, delta, self.stiffness(scene), tuple(ROD_HELD[kind]), component, self.field)
+
     def from_solution(self, scene, params, disc, u, fields, info, timer, writers):
         x = disc.x
         slope = np.gradient(u, x[1] - x[0], edge_order=2)
@@ -313,6 +326,22 @@ class PDTimoshenko(_MoyerModel):
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
+
+    def continuum_limit(self, params: dict) -> tuple[str, int] | None:
+        """Variant energy's fitted end bonds exist for horizons 1-12 only (:mod:`.energy`): no limit at fixed delta."""
+        if params["variant"] == "energy":
+            return (
+                "variant energy's fitted end bonds exist for horizons 1-12 only, so it has no limit at fixed delta",
+                12,
+            )
+        return None
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """The corrected variant's pinned (roller) and guided ends are mirror images (:func:`.ends.mirror_ghosts`):
+        under sine loads a series of the mirror modes with the continuous symbols of Eq. 47-49."""
+        if params["variant"] == "corrected" and params["grid"] == "nodes":
+            return timoshenko_series(scene, self.delta(scene, params))
+        return None
 
     def stabilisation_for(self, scene: Scene, params: dict) -> float:
         """0 between two mirrored ends (pinned, roller, guided) of the corrected variant: their spectrum is

@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
@@ -39,6 +39,7 @@ from ...numerics.families import family, ghost_stencil_system, stencil_operator
 from ...numerics.ghosts import curvature_end_rows, taylor_ghosts
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
+from ...theory.symbols import Series, beam_series
 from .nonlinear import NonlinearBondPair
 
 
@@ -196,6 +197,7 @@ class PDBondPair(Model):
         ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
+        *NONLOCAL,
     )
     axial = True
     assembles = True
@@ -208,6 +210,7 @@ class PDBondPair(Model):
             "delta = (m + 0.015) dx over whole families of m points; use variant = corrected for a fractional "
             "horizon",
             whole=True,
+            unless="horizon_length",  # a given delta: the points within it, alpha = 3 EI / delta^3
         ),
         Rule(
             (("variant", "paper"),),
@@ -217,6 +220,16 @@ class PDBondPair(Model):
             allowed=("mirror",),
         ),
     )
+
+    def horizon_offset(self, params: dict) -> float:
+        """delta = (m + 0.015) dx with the continuous alpha (as in the other papers)."""
+        return 0.015 if params["variant"] == "paper" else 0.0
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """Mirror ends (linear path): a series of the mirror modes with the continuous bond-pair symbol (omega = 1)."""
+        if params["ends"] == "mirror" and not params["nonlinear"]:
+            return beam_series(scene, self.delta(scene, params), "bond-pair")
+        return None
 
     def energy_model(self, scene: Scene, params: dict):
         n = params["points"]
