@@ -186,7 +186,14 @@ CONTINUUM = Option(
     "the model's nonlocal continuum solution at this horizon (its sums replaced by integrals): a closed form where "
     "one exists, else extrapolated in m at fixed delta, with its own error estimate (docs/nonlocal.md)",
 )
-NONLOCAL = (HORIZON_LENGTH, CONTINUUM)  # the options of every PD model (a model with a ``horizon`` option)
+CONTINUUM_M = Option(
+    "continuum_m",
+    int,
+    None,
+    "the finest m of the continuum's extrapolation (default: the model's; fewer is cheaper and less accurate)",
+    minimum=8,
+)
+NONLOCAL = (HORIZON_LENGTH, CONTINUUM, CONTINUUM_M)  # the options of every PD model (one with a ``horizon`` option)
 
 
 class Model(Horizon):

@@ -34,25 +34,24 @@ class Horizon:
         equations need a whole m and delta / dx is not one."""
         delta, dx = params["horizon_length"], self.spacing(scene, params)
         m = delta / dx
+        if abs(m - round(m)) <= 1e-9 * max(1.0, m):
+            m = float(round(m))  # a whole number of spacings, whatever the rounding of delta / dx
         opt = self.option("horizon")
-        if self.whole_horizon or opt.kind is int:
-            if abs(m - round(m)) > 1e-9 * max(1.0, m):
-                near = max(1, round(m))
-                raise InputError(
-                    f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}; model {self.name} needs a whole "
-                    f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
-                    f"{near * dx:.6g} or points with (points - 1) delta / length whole"
-                )
-            m = round(m)
-        value = m - self.horizon_offset(params)
-        try:
-            return opt.coerce(self.name, int(round(value)) if opt.kind is int else value)
-        except InputError:
+        if (self.whole_horizon or opt.kind is int) and m != round(m):
+            near = max(1, round(m))
+            raise InputError(
+                f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}; model {self.name} needs a whole "
+                f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
+                f"{near * dx:.6g} or points with (points - 1) delta / length whole"
+            )
+        least = opt.minimum if opt.minimum is not None else 0.0
+        if m < least or m <= 0:
             raise InputError(
                 f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}, below the least horizon of model "
-                f"{self.name} ({opt.minimum:g} spacing{'' if opt.minimum == 1 else 's'}); give a longer horizon or "
-                "more points"
-            ) from None
+                f"{self.name} ({least:g} spacing{'' if least == 1 else 's'}); give a longer horizon or more points"
+            )
+        value = m - self.horizon_offset(params)
+        return int(round(value)) if opt.kind is int else float(value)
 
     def continuum_series(self, scene: Scene, params: dict):
         """The closed form of the model's continuum on ``scene`` (:class:`pdverify.theory.nonlocal.Series`: the

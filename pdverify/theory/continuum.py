@@ -9,7 +9,7 @@ integrals, its own boundary treatment): the limit of its discrete solutions as m
   grid (so its points are points of every level), m from at least :data:`M_MIN` up, and the values at the asked points
   extrapolated to dx -> 0 by Neville's scheme (polynomials in dx of every degree: the expansions of the models' sums
   have odd and even powers). The estimate is the change of the chosen column between the two finest rows; levels are
-  added until it is below :data:`TOL` or the finest m reaches the model's ``continuum_m``.
+  added until it is below :data:`TOL` or the finest m reaches option ``continuum_m`` (default: the model's).
 * **No limit**: a variant whose discrete rules exist only up to some m at fixed delta
   (:meth:`~pdverify.core.contract.Model.continuum_limit`) gets its own finest grid there, flagged in one line.
 
@@ -125,7 +125,8 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float):
     best, est, each = None, math.inf, {}
     key = model.measures
     r = r0
-    while m_user * r <= model.continuum_m * (1 + 1e-9) or len(levels) < 2:
+    top = base.get("continuum_m") or model.continuum_m
+    while m_user * r <= top * (1 + 1e-9) or len(levels) < 2:
         try:
             values.append(_values_at(model, scene, base, _refined(model, scene, base, r), x_user))
         except InputError:  # the model refuses this grid (a memory or size limit): stop at the levels so far
