@@ -196,15 +196,29 @@ def _span_integral(shape: str, a: float, b: float, L: float, k: np.ndarray, kind
     return 0.5 * (_integral_sin(k + p, a, b) - _integral_sin(k - p, a, b))  # sin(px) cos(kx)
 
 
-def series_solution(scene: Scene, series: Series, x: np.ndarray, tol: float = 1e-11, most: int = 2**16):
+def _periods(x: np.ndarray, L: float) -> int | None:
+    """M when the points are x_j = j L / M (a whole number of intervals from 0): every mode's values there repeat
+    with period 2M in its index, so a series is summed from its coefficients folded modulo 2M."""
+    if len(x) < 2 or x[0] != 0.0:
+        return None
+    M = round(L / (x[1] - x[0]))
+    if M < 1 or np.abs(x - np.arange(len(x)) * (L / M)).max() > 1e-12 * L:
+        return None
+    return int(M)
+
+
+def series_solution(scene: Scene, series: Series, x: np.ndarray, tol: float = 1e-11, most: int = 2**20):
     """(quantity, rotation, error estimate) of the series at the points x, or None when a load has no coefficients.
     Terms are added in doubling blocks until the last block's largest term times the number of terms so far (a
     bound of the rest for terms falling like n^-2 or faster) is below ``tol`` times the largest value, or ``most``
-    terms; the estimate is that bound, relative."""
+    terms; the estimate is that bound, relative. On a uniform grid from 0 the coefficients are folded modulo 2M
+    (:func:`_periods`), so the cost grows like the number of terms, not times the number of points."""
     L = scene.length
     x = np.asarray(x, float)
-    total = np.zeros_like(x)
-    rot = np.zeros_like(x)
+    M = _periods(x, L)
+    period = 2 * M if M else None
+    acc_w = np.zeros(period) if period else np.zeros_like(x)
+    acc_r = np.zeros(period) if period else np.zeros_like(x)
     n0, block = 0, 256
     estimate = np.inf
     while n0 < most:
@@ -214,16 +228,26 @@ def series_solution(scene: Scene, series: Series, x: np.ndarray, tol: float = 1e
         if q is None:
             return None
         a = q * series.compliance(k)
-        total += _mode(kind, k[None, :], x[:, None]) @ a
-        s = series.slope(k) if series.slope is not None else k * series.compliance(k)
-        rot += _mode_slope(kind, k[None, :], x[:, None]) @ (q * s)
-        scale = max(float(np.abs(total).max()), 1e-300)
+        b = q * (series.slope(k) if series.slope is not None else k * series.compliance(k))
+        if period:
+            idx = np.arange(n0, n0 + block) % period  # mode j = n0 + 1 + i sits at residue (j - 1) mod 2M
+            acc_w += np.bincount(idx, a, period)
+            acc_r += np.bincount(idx, b, period)
+            values = _mode(kind, modes(series.left, series.right, L, period)[0][None, :], x[:, None]) @ acc_w
+        else:
+            acc_w += _mode(kind, k[None, :], x[:, None]) @ a
+            acc_r += _mode_slope(kind, k[None, :], x[:, None]) @ b
+            values = acc_w
+        scale = max(float(np.abs(values).max()), 1e-300)
         estimate = float(np.abs(a).max() * (n0 + block) / scale)
         n0 += block
         block *= 2
         if estimate <= tol:
             break
-    return total, rot, estimate
+    if period:
+        kp = modes(series.left, series.right, L, period)[0][None, :]
+        return _mode(kind, kp, x[:, None]) @ acc_w, _mode_slope(kind, kp, x[:, None]) @ acc_r, estimate
+    return acc_w, acc_r, estimate
 
 
 def mirror_ends(scene: Scene, odd: tuple, even: tuple) -> tuple[str, str] | None:
