@@ -1,10 +1,10 @@
 """Model ``pd-bond-pair``: non-ordinary state-based bond-pair beam (O'Grady & Foster 2014), linear path.
 
-Every bond xi from a point is paired with its opposite -xi through a rotational spring with potential
-``w(xi) = omega(xi) alpha [1 + cos theta]`` (theta = deformed angle between the two bonds; the force
-state of Eq. 2 is its gradient). For small deflections 1 + cos theta ≈ Δ²/2 with
-Δ = (w_{k+j} - 2 w_k + w_{k-j}) / xi_j, so the bending energy per point is
-Σ_j ½ alpha omega_j beta_j dx (Δ_j)² dx and its gradient per unit length is (docs/design/formulas.md §1)::
+Every bond xi from a point is paired with its opposite -xi through a rotational spring with potential ``w(xi) =
+omega(xi) alpha [1 + cos theta]`` (theta = deformed angle between the two bonds; the force state of Eq. 2 is its
+gradient). For small deflections 1 + cos theta ≈ Δ²/2 with Δ = (w_{k+j} - 2 w_k + w_{k-j}) / xi_j, so the bending
+energy per point is Σ_j ½ alpha omega_j beta_j dx (Δ_j)² dx and its gradient per unit length is
+(docs/design/formulas.md §1)::
 
     Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k - 4 w_{k-j} + w_{k-2j}) = q_k,   c_j = alpha omega_j beta_j dx / xi_j²
 
@@ -16,13 +16,12 @@ under uniform curvature (docs/design/formulas.md §1; the paper's extracted text
 * ``corrected``: the discrete family sum with the last member's partial volume,
   alpha = EI / Σ_j xi_j² beta_j dx, so a uniform curvature field gives exactly EI kappa² / 2.
 
-The stencil reaches 2J points past an end. Ends (``ends`` option):
-``mirror`` (the energy form: clamped = reflection of the real points through the normal to the clamp,
-pinned = point reflection through the support, guided = reflection through the support's vertical,
-free = cubic extrapolation, end points' energy halved; the linear path is the tangent stiffness of that
-energy at the undeformed state, the nonlinear path its Newton solution) or ``taylor`` (the degree-4
-polynomial ghost points of :func:`pdverify.numerics.ghosts.taylor_ghosts`, end loads through the moment and shear
-at the end; solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
+The stencil reaches 2J points past an end. Ends (``ends`` option): ``mirror`` (the energy form: clamped = reflection
+of the real points through the normal to the clamp, pinned = point reflection through the support, guided =
+reflection through the support's vertical, free = cubic extrapolation, end points' energy halved; the linear path is
+the tangent stiffness of that energy at the undeformed state, the nonlinear path its Newton solution) or ``taylor``
+(the degree-4 polynomial ghost points of :func:`pdverify.numerics.ghosts.taylor_ghosts`, end loads through the
+moment and shear at the end; solved in the mixed form of :meth:`PDBondPair.assemble_mixed` by default).
 """
 
 from __future__ import annotations
@@ -37,10 +36,12 @@ from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.families import family, ghost_stencil_system, stencil_operator
 from ...numerics.ghosts import curvature_end_rows, taylor_ghosts
-from ...numerics.linalg import solve_linear
 from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
+from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import Series, beam_series
 from .nonlinear import NonlinearBondPair
+
+FORM_HELP = "taylor ends: auto (= mixed) | direct (one fourth-order system) | mixed (curvature and deflection)"
 
 
 def spring_constants(EI: float, m: float, dx: float, variant: str) -> np.ndarray:
@@ -187,17 +188,11 @@ class PDBondPair(Model):
             choices=("paper", "corrected"),
         ),
         Option("ends", str, "taylor", "boundary ghost rule: mirror | taylor", choices=("mirror", "taylor")),
-        Option(
-            "form",
-            str,
-            "auto",
-            "taylor ends: auto (= mixed) | direct (one fourth-order system) | mixed (curvature "
-            "and deflection, two second-order equations: round-off ~N^2 eps instead of ~N^4 eps)",
-            choices=("auto", "direct", "mixed"),
-        ),
+        Option("form", str, "auto", FORM_HELP, choices=("auto", "direct", "mixed")),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
         *NONLOCAL,
+        SOLVER,
     )
     axial = True
     assembles = True
@@ -404,7 +399,7 @@ class PDBondPair(Model):
         if params["ends"] == "mirror":
             model = self.energy_model(scene, params)
             with timer("solve"):
-                u, info = solve_linear(system.matrix, system.rhs, what=what)
+                u, info = solve(system.matrix, system.rhs, what, params["solver"])
                 full = refine(model, system.matrix, system.rhs, system.free, u)
             w, fields["u"] = full[1::2], full[0::2]
         elif binfo.get("Jk") is not None:
@@ -414,7 +409,7 @@ class PDBondPair(Model):
                 # round-off (which stays far below cond eps), so it is not estimated; the round-off estimate
                 # 0.1 eps N^2 holds the errors at 10^5-10^6 points, every support pair, mixed loads
                 # (tests/papers/ogrady/test_bond_pair_large.py; docs/models/ogrady.md)
-                z, info = solve_linear(system.matrix, system.rhs, what=what + ", mixed form", condition=False)
+                z, info = solve(system.matrix, system.rhs, what + ", mixed form", params["solver"], condition=False)
                 w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
             info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2
             if roundoff > 1e-6:
@@ -424,7 +419,7 @@ class PDBondPair(Model):
                 )
         else:
             with timer("solve"):
-                w, info = solve_linear(system.matrix, system.rhs, what=what)
+                w, info = solve(system.matrix, system.rhs, what, params["solver"])
         dx = x[1] - x[0]
         flags = boundary_layer_warnings(
             scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4
