@@ -122,3 +122,24 @@ def test_gradient_coefficient(model, opts, path, kernel, exact):
         g = (value[i] / local[i] - 1) / (K * delta) ** 2
         assert info["error_bound"] < 0.01 * abs(g) * (K * delta) ** 2  # the limit known to 1 % of the model error
         assert abs(g / GRADIENT[kernel] - 1) < 0.05, (delta, g, GRADIENT[kernel])
+
+
+@pytest.mark.parametrize(
+    "model,opts,g", [("pd-bond-pair", {"ends": "mirror"}, 0.1), ("pd-eb", {"variant": "paper"}, 1 / 18)]
+)
+def test_eringen_agrees_to_fourth_order(model, opts, g):
+    """O'Grady & Foster 2014, Appendix B: the bond-pair continuum is Eringen's differential beam up to O(delta^4) when
+    mu matches its gradient term (mu = g delta^2; omega = 1 gives g = 1/10). On a simply supported beam under a uniform
+    load the difference falls at least like delta^3.8 from delta = 0.1 L to 0.05 L, while the model error (continuum -
+    local) falls like delta^2."""
+    sc = load_scene(STUDIES / "nonlocal" / "pp_uniform.toml")
+    diff, model_error = [], []
+    for delta in (0.1, 0.05):
+        points = int(round(8 / delta)) + 1
+        c = run(sc, model, points=points, horizon_length=delta, continuum=True, **opts).w
+        er = run(sc, "exact-eringen", points=points, e0a=np.sqrt(g) * delta).w
+        local = run(sc, "exact-eb", points=points).w
+        diff.append(np.abs(c - er).max() / np.abs(local).max())
+        model_error.append(np.abs(c - local).max() / np.abs(local).max())
+    assert np.log2(diff[0] / diff[1]) > 3.8
+    assert abs(np.log2(model_error[0] / model_error[1]) - 2) < 0.05
