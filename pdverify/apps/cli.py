@@ -392,8 +392,17 @@ def bench(
     out: Path | None = typer.Option(
         None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"
     ),
+    large_horizon: bool = typer.Option(
+        False,
+        "--large-horizon",
+        help="instead: the Krylov solver beside the banded one at delta = 0.1 L (default 2^14 + 1 points)",
+    ),
 ):
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
+    if large_horizon:
+        from .bench_horizon import bench_command
+
+        return bench_command(model, points, fmt == Format.json, scene, out, typer.echo)
     import json as _json
 
     from ..core.scene_file import load_scene
