@@ -271,9 +271,8 @@ def horizons(data: StudyFolder, palette: Palette) -> list[Markup]:
 
 
 def delta_dx_planes(data: StudyFolder, palette: Palette) -> list[Group]:
-    """Per PD model: the δ–Δx plane, model error (the horizon δ's, against the local theory) against
-    discretisation error (the grid's, at fixed horizon length δ), from runs that vary δ and Δx independently.
+    """Per PD model and variant: the δ–Δx plane of the runs that give their horizon as a length, with the model and
+    discretisation errors along the three paths (:func:`pdverify.report.planes.planes`)."""
+    from .planes import planes  # planes builds the groups of this module
 
-    The hook of the index's "δ–Δx plane" section (shown when this returns groups): no study writes such runs yet,
-    so there is nothing to draw."""
-    return []
+    return planes(data, palette)

@@ -30,7 +30,7 @@ def _f(v) -> float:
     return float("nan") if v is None else float(v)
 
 
-def _series_options(options: str | None) -> str:
+def series_options(options: str | None) -> str:
     """The options of a row without its grid and horizon (the key of a nonlocal series)."""
     try:
         opts = json.loads(options or "{}")
@@ -72,7 +72,7 @@ def nonlocal_rows(rows: list[dict]) -> list[dict]:
     for r in rows:
         if r.get("status") not in ("ok", "suspect") or r.get("err_disc") is None:
             continue
-        key = (r.get("scene"), r.get("model"), _series_options(r.get("options")), r.get("slenderness"))
+        key = (r.get("scene"), r.get("model"), series_options(r.get("options")), r.get("slenderness"))
         series.setdefault(key, []).append(r)
     out = []
     for key in sorted(series, key=lambda k: tuple((v is None, str(v)) for v in k)):
