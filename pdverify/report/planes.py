@@ -104,10 +104,8 @@ def _figure(g: pd.DataFrame, scene: str, length: str, model: str, variant: str, 
     )
 
 
-def planes(data, palette: Palette) -> list:
-    """Groups (:class:`pdverify.report.sweeps.Group`) of the δ–Δx figures, one per PD model and variant."""
-    from .sweeps import Group  # the group type of the index's figure sections, defined beside its other sweeps
-
+def planes(data, palette: Palette) -> list[tuple[str, str, list]]:
+    """(title, anchor, figures) of the δ–Δx figures, one per PD model and variant."""
     res = data.ok
     if any(c not in res for c in NEEDED):
         return []
@@ -121,7 +119,8 @@ def planes(data, palette: Palette) -> list:
         model = str(g["model"].iloc[0])
         opts = options_of(g["options"].iloc[0])
         shown = key_options(model, opts)
-        group = Group(f"{model}: " + (", ".join(f"{k}={v}" for k, v in shown.items()) or "defaults"), _anchor(key))
+        title = f"{model}: " + (", ".join(f"{k}={v}" for k, v in shown.items()) or "defaults")
+        figures = []
         variant = variant_of(model, opts)
         for scene, gs in g.groupby("scene", sort=False):
             for options, go in gs.groupby(gs["options"].map(_strip), sort=True):
@@ -129,9 +128,9 @@ def planes(data, palette: Palette) -> list:
                     continue
                 orders = _orders(nl, scene, model, options)
                 fig = _figure(go, str(scene), data.length(scene=scene), model, variant, orders)
-                group.figures.append(
+                figures.append(
                     fig.html(tags(scenes=[scene], papers=[data.scene_paper.get(scene, "")], tag_model=False))
                 )
-        if group.figures:
-            groups.append(group)
+        if figures:
+            groups.append((title, _anchor(key), figures))
     return groups

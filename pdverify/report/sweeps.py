@@ -13,6 +13,7 @@ from markupsafe import Markup
 from ..registry import get_model
 from .beam_errors import line_key
 from .inputs import StudyFolder
+from .planes import planes
 from .plots import Axis, Figure, Palette, Series, positive
 from .summary import conv_anchor, cost_anchor
 from .tables import tags
@@ -273,6 +274,4 @@ def horizons(data: StudyFolder, palette: Palette) -> list[Markup]:
 def delta_dx_planes(data: StudyFolder, palette: Palette) -> list[Group]:
     """Per PD model and variant: the δ–Δx plane of the runs that give their horizon as a length, with the model and
     discretisation errors along the three paths (:func:`pdverify.report.planes.planes`)."""
-    from .planes import planes  # planes builds the groups of this module
-
-    return planes(data, palette)
+    return [Group(title, anchor, figures) for title, anchor, figures in planes(data, palette)]
