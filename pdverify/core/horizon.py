@@ -12,6 +12,7 @@ class Horizon:
     """The horizon methods of every model (they apply to those with a ``horizon`` option)."""
 
     whole_horizon: str = ""  # why its equations need m = delta / dx whole (the equation), "" when any m is defined
+    full_volumes: str = ""  # the variant whose sums take full volumes up to delta (none: "")
     continuum_m: int = 128  # the finest m of the extrapolation to its continuum (its cost grows like N m^2)
 
     def spacing(self, scene: Scene, params: dict) -> float:
@@ -58,6 +59,13 @@ class Horizon:
         modes and the continuous symbol's compliance), or None where none is known: a model whose ends are odd or
         even mirror images has sin / cos modes as eigenfunctions of its operator (docs/design/nonlocal.md)."""
         return None
+
+    def continuum_whole(self, params: dict) -> str:
+        """Why the variant's sums reach a smooth limit in m only through whole m = delta / dx (the variant
+        :attr:`full_volumes`: their error depends on the fraction of m), "" when any m is smooth."""
+        if self.full_volumes and params.get("variant") == self.full_volumes:
+            return f"variant {self.full_volumes}'s sums take full volumes up to delta and depend on its fraction"
+        return ""
 
     def continuum_limit(self, params: dict) -> tuple[str, int] | None:
         """(why, largest m) when the variant's discrete rules have no limit at fixed delta (its continuum is then

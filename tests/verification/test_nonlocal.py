@@ -143,3 +143,12 @@ def test_eringen_agrees_to_fourth_order(model, opts, g):
         model_error.append(np.abs(c - local).max() / np.abs(local).max())
     assert np.log2(diff[0] / diff[1]) > 3.8
     assert abs(np.log2(model_error[0] / model_error[1]) - 2) < 0.05
+
+
+def test_a_fractional_m_of_a_full_volume_variant_has_no_continuum_estimate():
+    """pd-eb paper at delta = 3.015 dx (the paper's own horizon): the refined levels keep the fraction of m, so their
+    extrapolation is no continuum; the result says so and gives no estimate (its error bound is infinite)."""
+    sc = load_scene(STUDIES / "paper_diyaroglu" / "simply_supported.toml")
+    c = run(sc, "pd-eb", points=101, variant="paper", horizon_length=3.015 / 100, continuum=True, continuum_m=32)
+    assert c.info["error_bound"] == np.inf
+    assert any("m = 3.015 is not whole" in w for w in c.info["warnings"])

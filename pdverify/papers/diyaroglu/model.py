@@ -114,6 +114,7 @@ class PDEulerBernoulli(Model):
         SOLVER,
     )
     assembles = True
+    full_volumes = "paper"  # its sums take full volumes up to delta
     variant_rules = (
         Rule(
             (("variant", "paper"),),

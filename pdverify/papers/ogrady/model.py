@@ -196,6 +196,7 @@ class PDBondPair(Model):
     )
     axial = True
     assembles = True
+    full_volumes = "paper"  # its sums take full volumes up to delta
     nonlinear_when = (("nonlinear", True),)
     variant_rules = (
         Rule(
