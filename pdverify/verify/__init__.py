@@ -19,6 +19,7 @@ from ..study.checks import strict_type
 from . import checks as C
 from .card import write_card
 from .dynamics import dynamics_check
+from .fixed_horizon import nonlocal_check
 from .suite import (
     GAP_REFERENCE,
     SUITE_VERSION,
@@ -199,6 +200,7 @@ def _judge(model, options: dict, p, df, expected: float) -> tuple:
         else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
     )
     found.append(dynamics_check(model, options, p.grids, expected))
+    found.append(nonlocal_check(model, options, p.reference))
     return found, [{**p.meta[r["scene_file"]], **r} for r in conv + curved], df
 
 
