@@ -4,7 +4,9 @@ At a fixed horizon delta the horizon factor m = delta / dx grows with the grid, 
 costs O(N m^2). The Krylov path (:mod:`pdverify.numerics.krylov`: FFT Toeplitz products, a sine-transform
 preconditioner) solves the same system in O(N log N) per iteration. Each row times one model on one grid with
 ``solver = krylov`` and with ``solver = banded`` (each in a fresh process, as every bench row) and gives the largest
-difference of the two deflections relative to the largest deflection, which must be below :data:`AGREE`.
+difference of the two deflections relative to the largest deflection, which must be below :data:`AGREE`, beside
+each solve's own round-off bound (docs/trust.md): where the bounds are larger, neither solve is known to that
+accuracy and the difference says how far apart two equally trustworthy answers are.
 """
 
 from __future__ import annotations
@@ -39,6 +41,7 @@ def solve_once(model: str, points: int, solver: str, scene_path: str | None = No
         "solve_s": r.timings.get("solve_s"),
         "m": r.info.get("m"),
         "solver_choice": r.info.get("solver_choice"),
+        "error_bound": r.info.get("error_bound"),
         "w": np.asarray(r.w, float).tolist(),
     }
 
@@ -72,10 +75,16 @@ def large_horizon_row(model: str, points: int = POINTS, scene_path: str | None =
         banded_solve_s=b["solve_s"],
         assemble_s=b["assemble_s"],
         difference=diff,
+        krylov_bound=k["error_bound"],
+        banded_bound=b["error_bound"],
         agrees=diff <= AGREE,
         status="ok",
     )
     return row
+
+
+def _e(v) -> str:
+    return "-" if v is None else f"{v:.1e}"
 
 
 def describe(row: dict) -> str:
@@ -86,7 +95,8 @@ def describe(row: dict) -> str:
         f"{row['model']:18s} {row['points']:>9d} delta={row['horizon']} m={row['m']:.1f} "
         f"krylov={row['krylov_s']:.3g}s (solve {row['krylov_solve_s']:.3g}s) "
         f"banded={row['banded_s']:.3g}s (solve {row['banded_solve_s']:.3g}s) "
-        f"difference={row['difference']:.1e} ({'within' if row['agrees'] else 'NOT within'} {AGREE:g})"
+        f"difference={row['difference']:.1e} ({'within' if row['agrees'] else 'NOT within'} {AGREE:g}; round-off "
+        f"bounds: krylov {_e(row['krylov_bound'])}, banded {_e(row['banded_bound'])})"
     )
 
 

@@ -231,6 +231,8 @@ LARGE_HORIZON_COLUMNS = [
     "banded_solve_s",
     "assemble_s",
     "difference",
+    "krylov_bound",
+    "banded_bound",
     "agrees",
     "status",
     "message",
