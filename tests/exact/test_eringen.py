@@ -7,6 +7,7 @@ import pytest
 from helpers import PAIRS
 
 from pdverify.core.errors import InputError
+from pdverify.core.scene_file import parse_scene
 from pdverify.exact.eringen import eringen_fields
 from pdverify.exact.straight import solve_straight
 from pdverify.registry import run
@@ -115,3 +116,17 @@ def test_registered_and_refuses_inner_couple(make_scene):
     bad = make_scene("pinned", "pinned", [{"type": "point_moment", "position": 0.8, "value": 10.0}])
     with pytest.raises(InputError, match="exact-eringen takes couples at the ends only"):
         run(bad, "exact-eringen", e0a=e0a)
+
+
+@pytest.mark.parametrize("factor", [1e-6, 1e6])
+def test_a_scaled_scene_gives_the_same_relative_result(factor, make_scene):
+    """Every length (and e0a) times ``factor``, line loads divided by it: the deflection scales as a whole."""
+    loads = [udl(), pf(0.6)]
+    a = make_scene("clamped", "pinned", loads)
+    big = [dict(udl(q / factor)), dict(pf(0.6 * factor))]
+    d = a.to_dict()
+    d.update(loads=big, beam={"length": L * factor}, section={"width": 0.05 * factor, "height": 0.1 * factor})
+    b = parse_scene(d)
+    wa = eringen_fields(a, mu)(x)["w"]
+    wb = eringen_fields(b, mu * factor**2)(x * factor)["w"]
+    assert rel(wb / np.abs(wb).max(), wa / np.abs(wa).max()) < 1e-12
