@@ -125,7 +125,11 @@ def test_gradient_coefficient(model, opts, path, kernel, exact):
 
 
 @pytest.mark.parametrize(
-    "model,opts,g", [("pd-bond-pair", {"ends": "mirror"}, 0.1), ("pd-eb", {"variant": "paper"}, 1 / 18)]
+    "model,opts,g",
+    [
+        pytest.param("pd-bond-pair", {"ends": "mirror"}, 0.1, marks=pytest.mark.slow),  # extrapolated, not a series
+        ("pd-eb", {"variant": "paper"}, 1 / 18),
+    ],
 )
 def test_eringen_agrees_to_fourth_order(model, opts, g):
     """O'Grady & Foster 2014, Appendix B: the bond-pair continuum is Eringen's differential beam up to O(delta^4) when
