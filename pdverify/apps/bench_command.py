@@ -28,8 +28,17 @@ def bench(
     sharing: list[str] | None = typer.Option(
         None, "--sharing", help="model(s) whose verification suite is timed with and without shared factorisations"
     ),
+    large_horizon: bool = typer.Option(
+        False,
+        "--large-horizon",
+        help="instead: the Krylov solver beside the banded one at delta = 0.1 L (default 2^14 + 1 points)",
+    ),
 ):
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
+    if large_horizon:
+        from .bench_horizon import bench_command
+
+        return bench_command(model, points, fmt == Format.json, scene, out, typer.echo)
     import json as _json
 
     from ..core.scene_file import load_scene

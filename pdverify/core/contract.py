@@ -38,6 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .errors import InputError
+from .horizon import Horizon
 from .result import Result
 from .scene import Scene, straight_mechanism
 
@@ -143,9 +144,12 @@ class Rule:
     why: str
     allowed: tuple | None = None
     whole: bool = False
+    unless: str | None = None  # an option that, when given, lifts the rule (a horizon given as a length)
 
     def applies(self, params: dict) -> bool:
-        return all(params.get(k) == v for k, v in self.when)
+        return all(params.get(k) == v for k, v in self.when) and not (
+            self.unless and params.get(self.unless) is not None
+        )
 
     def problem(self, model: str, params: dict) -> str | None:
         if not self.applies(params) or self.option not in params:
@@ -167,9 +171,32 @@ LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "poi
 MOTION_COMPONENT = {"displacement": "bending", "rotation": "bending", "axial": "axial", "twist": "torsion"}
 
 POINTS = Option("points", int, 101, "material points / nodes along the axis, ends included", minimum=2)
+HORIZON_LENGTH = Option(
+    "horizon_length",
+    float,
+    None,
+    "the horizon delta in the scene's length unit (instead of horizon, a multiple of the spacing): m = delta / dx",
+    minimum=0.0,
+    strict=True,
+)
+CONTINUUM = Option(
+    "continuum",
+    bool,
+    False,
+    "the model's nonlocal continuum solution at this horizon (its sums replaced by integrals): a closed form where "
+    "one exists, else extrapolated in m at fixed delta, with its own error estimate (docs/nonlocal.md)",
+)
+CONTINUUM_M = Option(
+    "continuum_m",
+    int,
+    None,
+    "the finest m of the continuum's extrapolation (default: the model's; fewer is cheaper and less accurate)",
+    minimum=8,
+)
+NONLOCAL = (HORIZON_LENGTH, CONTINUUM, CONTINUUM_M)  # the options of every PD model (one with a ``horizon`` option)
 
 
-class Model:
+class Model(Horizon):
     """Base class. Subclasses set ``name``, ``title``, ``source``, ``options`` and ``solve``.
 
     ``points`` (if among the options) may also be given as ``spacing``; the registry converts.
@@ -416,6 +443,13 @@ class Model:
         params = {}
         for opt in self.options:
             params[opt.name] = opt.coerce(self.name, given[opt.name]) if opt.name in given else opt.default
+        if params.get("horizon_length") is not None:
+            if "horizon" in given:
+                raise InputError(
+                    "horizon and horizon_length both given; give one of them (horizon: a multiple of the spacing, "
+                    "horizon_length: a length)"
+                )
+            params["horizon"] = self.horizon_from_length(scene, params)
         found = variant_problems(self, params) if rules else []
         if found:
             raise InputError(found)

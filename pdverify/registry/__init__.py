@@ -37,6 +37,7 @@ from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite
 from ..core.scene import Scene
 from ..core.scene_file import parse_scene
+from ..theory.continuum import continuum_solution
 from .external import ExternalModel, load_manifest
 from .plugins import discover, remember_manifest
 
@@ -51,6 +52,7 @@ __all__ = [
     "System",
     "as_flag",
     "get_model",
+    "horizon_info",
     "model_argument",
     "models",
     "points_from_spacing",
@@ -178,6 +180,14 @@ def as_flag(value) -> bool:
     raise InputError(f"static = {value!r}: give true or false")
 
 
+def horizon_info(m: Model, scene: Scene, params: dict, info: dict) -> None:
+    """Record a PD model's horizon delta (length), spacing dx and m = delta / dx in a result's ``info`` (``horizon``,
+    ``spacing``, ``m``), each from the model's own info where it gave it."""
+    dx = info.get("spacing") or m.spacing(scene, params)
+    delta = info.get("horizon") or m.delta(scene, params)
+    info.update(horizon=float(delta), spacing=float(dx), m=round(float(delta) / float(dx), 9))
+
+
 def run(scene: Scene, model: str | Model, **given) -> Result:
     """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
 
@@ -201,8 +211,10 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         raise InputError(found)
     params = m.resolve(scene, given)  # the options, their variant's rules included
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        solved = m.solve(scene, params)
+        solved = continuum_solution(m, scene, params) if params.get("continuum") else m.solve(scene, params)
     result = check_finite(solved)
+    if m.option("horizon") is not None:
+        horizon_info(m, scene, params, result.info)
     if (
         "reactions" not in result.info
         and scene.is_straight

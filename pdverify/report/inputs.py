@@ -23,9 +23,9 @@ from .text import folder, unit_of
 # columns that hold text whatever they look like: a scene named "123", "NA" or "True" stays that name
 TEXT_COLUMNS = frozenset(
     "study case_id code scene_file model reference version variant element form scene units options quantity "
-    "status message warnings artefact_message check verdict name".split()
+    "status message warnings artefact_message check verdict name path held".split()
 )
-DERIVED = ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust", "checks")
+DERIVED = ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust", "checks", "nonlocal")
 
 
 def read_table(d: Path, name: str) -> pd.DataFrame:

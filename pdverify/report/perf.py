@@ -221,3 +221,48 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
     index = out / "index.html"
     index.write_text(page, encoding="utf-8")
     return index
+
+
+LARGE_HORIZON_COLUMNS = [
+    "model",
+    "points",
+    "horizon",
+    "m",
+    "krylov_s",
+    "krylov_solve_s",
+    "banded_s",
+    "banded_solve_s",
+    "assemble_s",
+    "difference",
+    "krylov_bound",
+    "banded_bound",
+    "agrees",
+    "status",
+    "message",
+]
+
+
+def build_large_horizon(rows: list[dict], out: str | Path) -> Path:
+    """The page of ``bench --large-horizon``: the Krylov and the banded times of each row beside each other."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    df = pd.DataFrame(rows)
+    meta = {
+        "pdverify": __version__,
+        "python": platform.python_version(),
+        "platform": platform.platform(),
+        "cpu_count": os.cpu_count(),
+    }
+    page = (
+        environment()
+        .get_template("performance.html.j2")
+        .render(
+            meta=meta,
+            generated=time.strftime("%Y-%m-%d %H:%M:%S"),
+            large_horizon=table(df, [c for c in LARGE_HORIZON_COLUMNS if c in df]),
+        )
+    )
+    (out / "bench_large_horizon.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
+    index = out / "index.html"
+    index.write_text(page, encoding="utf-8")
+    return index

@@ -13,6 +13,7 @@ from markupsafe import Markup
 from ..registry import get_model
 from .beam_errors import line_key
 from .inputs import StudyFolder
+from .planes import planes
 from .plots import Axis, Figure, Palette, Series, positive
 from .summary import conv_anchor, cost_anchor
 from .tables import tags
@@ -271,9 +272,6 @@ def horizons(data: StudyFolder, palette: Palette) -> list[Markup]:
 
 
 def delta_dx_planes(data: StudyFolder, palette: Palette) -> list[Group]:
-    """Per PD model: the δ–Δx plane, model error (the horizon δ's, against the local theory) against
-    discretisation error (the grid's, at fixed horizon length δ), from runs that vary δ and Δx independently.
-
-    The hook of the index's "δ–Δx plane" section (shown when this returns groups): no study writes such runs yet,
-    so there is nothing to draw."""
-    return []
+    """Per PD model and variant: the δ–Δx plane of the runs that give their horizon as a length, with the model and
+    discretisation errors along the three paths (:func:`pdverify.report.planes.planes`)."""
+    return [Group(title, anchor, figures) for title, anchor, figures in planes(data, palette)]

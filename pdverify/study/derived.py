@@ -28,6 +28,7 @@ except ImportError:  # pragma: no cover - parquet is optional, the CSV tables ar
 from ..core.version import __version__
 from .checks import match_benchmark, write_checks
 from .checks import verdict as _verdict
+from .nonlocal_table import nonlocal_rows
 from .spec import Study, code_digest
 from .store import case_file, read_curve, write_atomic
 from .tables import EMPTY_CONVERGENCE, convergence_rows, locking_rows, rows_of, speed_error_rows, trust_rows
@@ -273,7 +274,14 @@ DERIVED = {  # the derived tables (pdverify/study/tables.py), by the part of the
     "locking": lambda study, out, rows: _save_rows(locking_rows(rows), out, "locking"),
     "speed_error": _write_speed_error,  # speed_error.csv/.parquet and speed_error_summary.csv
     "trust": lambda study, out, rows: _save_rows(trust_rows(rows), out, "trust", parquet=False),
+    "nonlocal": lambda study, out, rows: _write_nonlocal(out, rows),  # nonlocal.csv: with split errors only
 }
+
+
+def _write_nonlocal(out: Path, rows: list[dict]) -> None:
+    """nonlocal.csv (:mod:`.nonlocal_table`), when a row carries the split errors."""
+    if any(r.get("err_disc") is not None for r in rows):
+        _save_rows(nonlocal_rows(rows), out, "nonlocal", parquet=False)
 
 
 def write_derived(study: Study, out: Path, results, parts=tuple(DERIVED)) -> None:

@@ -28,10 +28,11 @@ from . import execute
 from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .spec import Case, Study, code_digest
+from .split import continuum_at, split_errors
 from .store import write_atomic
 from .tables import trust_table  # noqa: F401 (re-exported)
 
-PARAM_COLUMNS = ("variant", "points", "horizon", "degree", "element", "layers", "form")
+PARAM_COLUMNS = ("variant", "points", "horizon", "horizon_length", "degree", "element", "layers", "form")
 
 
 def measured(values: dict, quantity: str, model: str) -> np.ndarray:
@@ -110,7 +111,7 @@ def _reference_text(items: tuple) -> str:
     return json.dumps(dict(items), sort_keys=True)
 
 
-INFO_KEYS = ("horizon", "cond", "error_bound", "load_steps", "history", "factorisation")
+INFO_KEYS = ("horizon", "m", "cond", "error_bound", "load_steps", "history", "factorisation")
 
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
@@ -193,7 +194,8 @@ def _describe(case: Case, row: dict):
     row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
     # the option is the horizon factor; the horizon in length units is known once solved (a failed case has none)
     row["horizon_factor"], row["horizon"] = row.get("horizon"), None
-    row["options"] = json.dumps({k: v for k, v in params.items() if k != "points"}, sort_keys=True)
+    drop = {"points"} | ({"horizon"} if params.get("horizon_length") is not None else set())  # (derived from it)
+    row["options"] = json.dumps({k: v for k, v in params.items() if k not in drop}, sort_keys=True)
     return scene, params
 
 
@@ -213,6 +215,7 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
         if "failure" in solved:
             raise _Failed(solved["failure"])
         w_ref = _measure_errors(case, scene, solved, row)
+        split_errors(case, scene, solved, w_ref, row)
         _measure_quantities(case, scene, solved, row)
         _measure_status(case, solved, params, row)
         _fill_curves(curve, scene, solved, w_ref, row["quantity"])
@@ -266,7 +269,7 @@ def _measure_errors(case: Case, scene, solved: dict, row: dict) -> np.ndarray:
             w_ref_at_max=np.nan,
         )
         return w_ref
-    w_ref = reference_at(case, scene, x)
+    w_ref = continuum_at(case, scene, x)[0] if case.reference.get("continuum") else reference_at(case, scene, x)
     row.update(errors(w, w_ref))
     hist_err = history_errors(case, scene, info.get("history"))
     if hist_err is not None:  # a transient against a transient reference: the histories, not the final w
@@ -307,7 +310,10 @@ def _measure_quantities(case: Case, scene, solved: dict, row: dict) -> None:
             continue
         try:
             values = measured(solved, q, case.model)
-            ref = reference_at(case, scene, solved["x"], q)
+            at = continuum_at if case.reference.get("continuum") else reference_at
+            ref = np.asarray(
+                at(case, scene, solved["x"], q)[0] if at is continuum_at else at(case, scene, solved["x"], q)
+            )
         except (InputError, KeyError):
             missing.append(q)
             continue
@@ -326,13 +332,16 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     row["dofs"] = solved["dofs"]
     row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
     row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
+    row["m"] = info.get("m")
     row["cond"] = info.get("cond")
     # the digest of the factorised operator: the cases with the same one in a process share its LU
     # (numerics/factorcache.py); whether this case made it or took it depends on the run's order, not recorded
     row["factorisation"] = info.get("factorisation")
     row["status"], row["message"] = "ok", ""
     row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (docs/trust.md)
-    if case.reference.get("model") != "none":  # ... or the reference's: the error is measured against it
+    if case.reference.get("continuum"):  # ... or the reference's: the error is measured against it
+        row.update(reference_status(continuum_at(case, case.scene(), x)[1], row))
+    elif case.reference.get("model") != "none":
         row.update(reference_status(reference_bound(case), row))
     row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
     if "artefact_message" in solved:

@@ -20,6 +20,7 @@ from ..study.checks import strict_type
 from . import checks as C
 from .card import write_card
 from .dynamics import dynamics_check
+from .fixed_horizon import nonlocal_check
 from .suite import (
     CURVED_QUANTITIES,
     GAP_REFERENCE,
@@ -223,6 +224,7 @@ def _judge(model, options: dict, p, df, expected: float, declined: dict | None =
     )
     found += [_curved_quantity(df, files["curved"], q, expected) for q in CURVED_QUANTITIES] if curved else []
     found.append(dynamics_check(model, options, p.grids, expected))
+    found.append(nonlocal_check(model, options, p.reference))
     return found, [{**p.meta[r["scene_file"]], **r} for r in conv + engineering + curved], df
 
 

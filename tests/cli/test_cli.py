@@ -261,12 +261,31 @@ def test_points_and_horizon_flags_are_the_model_options(command, tmp_path, capsy
     assert strip(a[1]) == strip(b[1]) and strip(a[1]) != strip(c[1])  # the horizon took effect (default 3)
 
 
-@pytest.mark.parametrize("command", ["solve", "modes", "verify"])
+@pytest.mark.parametrize("command", ["solve", "modes"])
 def test_horizon_length_is_the_option_horizon_length(command, tmp_path, capsys):
-    """--horizon-length goes to the model as horizon_length; a model without it refuses it in one line (exit 2);
-    a flag given twice (also as -o) is refused."""
-    args = ["pd-rod"] if command == "verify" else [str(_rod_scene(tmp_path)), "-m", "pd-rod"]
+    """--horizon-length 0.05 on 41 points of a 1 m rod is -o horizon_length=0.05, and two spacings: the same
+    numbers as --horizon 2."""
+    scene = str(_rod_scene(tmp_path))
+    fmt = ["--format", "json"]
+    a = cli([command, scene, "-m", "pd-rod", "--points", "41", "--horizon-length", "0.05", *fmt], capsys)
+    b = cli([command, scene, "-m", "pd-rod", "--points", "41", "-o", "horizon_length=0.05", *fmt], capsys)
+    c = cli([command, scene, "-m", "pd-rod", "--points", "41", "--horizon", "2", *fmt], capsys)
+    assert a[0] == b[0] == c[0] == 0, (a[2], b[2], c[2])
+    strip = lambda d: {k: v for k, v in json.loads(d).items() if k not in ("timings", "info")}  # noqa: E731
+    assert strip(a[1]) == strip(b[1])
+    for key, value in strip(a[1]).items():
+        if isinstance(value, list) and value and isinstance(value[0], float):
+            assert np.allclose(value, strip(c[1])[key], rtol=1e-12, atol=0), key
+
+
+@pytest.mark.parametrize("command", ["solve", "verify"])
+def test_horizon_flags_refused_in_one_line(command, tmp_path, capsys):
+    """A model without a horizon refuses --horizon-length in one line (exit 2); a flag given twice (also as -o) is
+    refused."""
+    name = "fem-eb" if command == "verify" else "exact-rod"
+    args = [name] if command == "verify" else [str(_rod_scene(tmp_path)), "-m", name]
     code, out, err = cli([command, *args, "--horizon-length", "0.01"], capsys)
-    assert code == 2 and out == "" and err.count("\n") == 1 and "horizon_length" in err and "pd-rod" in err
+    assert code == 2 and out == "" and err.count("\n") == 1 and "horizon_length" in err and name in err, err
+    args = ["pd-rod"] if command == "verify" else [str(_rod_scene(tmp_path)), "-m", "pd-rod"]
     code, _, err = cli([command, *args, "--horizon", "2", "-o", "horizon=3"], capsys)
     assert code == 2 and err.startswith("error: --horizon 2") and "-o horizon=3: the same option twice" in err

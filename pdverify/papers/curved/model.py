@@ -62,7 +62,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.contract import Model, Option, System
+from ...core.contract import NONLOCAL, Model, Option, System
 from ...core.errors import InputError
 from ...core.geometry import mechanism_message
 from ...core.result import Result, Timer
@@ -142,6 +142,7 @@ class PDCurved(Model):
             "the same discrete solution, condition ~ (L/h)^2)",
             choices=("resultants", "displacements"),
         ),
+        *NONLOCAL,
     )
     curved = True
     axial = True
@@ -150,6 +151,7 @@ class PDCurved(Model):
     springs = True  # straight axes (the scene's rule): breaks with their own conditions (.supports)
     inner_supports = True
     segments = True
+    whole_horizon = "Eq. 27-35: PDDO families of 2m + 1 particles"
 
     def check(self, scene: Scene) -> list[str]:
         """The scene checks plus the axial rigid-body test on straight axes (e.g. two rollers slide along x)."""
@@ -318,7 +320,8 @@ class PDCurved(Model):
             fields["V"] = -fields["Q"]
         info.update(
             degree=params["degree"],
-            horizon=d["horizon"],
+            horizon_factor=d["horizon"],
+            horizon=d["horizon"] * scene.length / (params["points"] - 1),  # m nominal spacings (uniform particles)
             family=d["family"],
             form=params["form"],
             unknowns_per_particle=d["nf"],

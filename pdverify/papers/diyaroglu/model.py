@@ -41,13 +41,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
+from ...theory.symbols import Series, beam_series
 from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
 from .scenes import inner_layer_warnings, spreads
@@ -124,6 +125,7 @@ class PDEulerBernoulli(Model):
             "(each point its own segment's EI)",
             choices=("calibrated", "point"),
         ),
+        *NONLOCAL,
         SOLVER,
         dynamics.ANALYSIS,
     )
@@ -134,6 +136,7 @@ class PDEulerBernoulli(Model):
     springs = True
     inner_supports = True
     segments = True
+    full_volumes = "paper"  # its sums take full volumes up to delta
     variant_rules = (
         Rule(
             (("variant", "paper"),),
@@ -141,6 +144,7 @@ class PDEulerBernoulli(Model):
             "Eq. 32: delta = (m + 0.015) dx, d = 1/(A delta) over whole "
             "families of m points; use variant = corrected for a fractional horizon",
             whole=True,
+            unless="horizon_length",  # Eq. 11a with a given delta: the points within it, d = 1/(A delta)
         ),
         Rule(
             (("variant", "paper"),),
@@ -149,6 +153,17 @@ class PDEulerBernoulli(Model):
             allowed=("auto", "direct"),
         ),
     )
+
+    def horizon_offset(self, params: dict) -> float:
+        """Eq. 32: delta = (m + 0.015) dx in the paper variant."""
+        return 0.015 if params["variant"] == "paper" else 0.0
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """The paper variant's energy reading closes pinned (roller) ends by negative and guided ends by positive
+        mirror images (Eq. 39-41): a series of the mirror modes with the continuous curvature symbol."""
+        if params["variant"] == "paper" and params.get("reading", "energy") == "energy":
+            return beam_series(scene, self.delta(scene, params), "curvature")
+        return None
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
         return np.linspace(0.0, scene.length, params["points"])

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
@@ -41,12 +41,14 @@ _OPTIONS = (
         "nodes (ends included) | cells (Section 4 cell centres; variant paper, static)",
         choices=("nodes", "cells"),
     ),
+    *NONLOCAL,
 )
 
 
 class _MoyerModel(Model):
     source = "Moyer & Miraglia 2014, Peridynamic solutions for Timoshenko beams"
     options = _OPTIONS
+    whole_horizon = "Eq. 13-19: the trapezoidal rule over the nodes 0..m of the horizon delta = m dx"
     springs = True  # statics: elastic ends and supports inside the span (.constraints), segments (.pieces)
     inner_supports = True
     segments = True

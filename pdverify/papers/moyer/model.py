@@ -25,6 +25,7 @@ import numpy as np
 from ...core.contract import Option, Rule
 from ...core.errors import InputError
 from ...core.scene import Scene
+from ...theory.symbols import Series, timoshenko_series
 from .base import _OPTIONS, _context, _MoyerModel, stabilisation_warning
 from .couples import couple_column
 from .ends import MIRRORED
@@ -67,6 +68,22 @@ class PDTimoshenko(_MoyerModel):
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
+
+    def continuum_limit(self, params: dict) -> tuple[str, int] | None:
+        """Variant energy's fitted end bonds exist for horizons 1-12 only (:mod:`.energy`): no limit at fixed delta."""
+        if params["variant"] == "energy":
+            return (
+                "variant energy's fitted end bonds exist for horizons 1-12 only, so it has no limit at fixed delta",
+                12,
+            )
+        return None
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """The corrected variant's pinned (roller) and guided ends are mirror images (:func:`.ends.mirror_ghosts`):
+        under sine loads a series of the mirror modes with the continuous symbols of Eq. 47-49."""
+        if params["variant"] == "corrected" and params["grid"] == "nodes":
+            return timoshenko_series(scene, self.delta(scene, params))
+        return None
 
     def stabilisation_for(self, scene: Scene, params: dict) -> float:
         """0 between two mirrored ends (pinned, roller, guided) of the corrected variant: their spectrum is

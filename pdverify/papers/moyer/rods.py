@@ -7,6 +7,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.scene import ROD_HELD, PointForce, PointTorque, Scene
+from ...theory.symbols import Series, rod_series
 from .base import _MoyerModel
 from .operator import rod_operator
 from .pieces import bond_stiffness, holds_somewhere
@@ -24,6 +25,16 @@ class _RodModel(_MoyerModel):
 
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
         raise NotImplementedError
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """The corrected variant's mirror ends (odd where the field is held, even where its resultant is given:
+        :func:`.ends.rod_mirror_ghosts`): a series of the mirror modes with the rod kernel's symbol."""
+        if params["variant"] != "corrected" or params["grid"] != "nodes":
+            return None
+        kind = "axial" if self.axial else "torsion"
+        component = "axial" if self.axial else "torque"
+        delta = self.delta(scene, params)
+        return rod_series(scene, delta, self.stiffness(scene), tuple(ROD_HELD[kind]), component, self.field)
 
     @property
     def key(self) -> str:

@@ -27,13 +27,14 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.contract import LOAD_TYPES, Model, Option, Rule, System
+from ...core.contract import LOAD_TYPES, NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
 from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
+from ...theory.symbols import Series, beam_series
 from . import dynamics
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
 from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
@@ -44,6 +45,8 @@ from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator
 from .weights import WEIGHTS, weights
 
 ENDS = ("auto", "taylor", "mirror", "none")
+
+FORM_HELP = "taylor ends: auto (= mixed) | direct (one fourth-order system) | mixed (curvature and deflection)"
 
 
 def resolved_ends(scene: Scene, params: dict) -> dict:
@@ -175,6 +178,7 @@ class PDBondPair(Model):
         ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
+        *NONLOCAL,
         SOLVER,
         dynamics.ANALYSIS,
     )
@@ -195,6 +199,7 @@ class PDBondPair(Model):
     def bench_dynamics(self, scene: Scene, params: dict):
         return dynamics.bench(self, scene, resolved_ends(scene, params))
 
+    full_volumes = "paper"  # its sums take full volumes up to delta
     nonlinear_when = (("nonlinear", True),)
     variant_rules = (
         Rule(
@@ -204,6 +209,7 @@ class PDBondPair(Model):
             "delta^3 with delta = (m + 0.015) dx over whole families of m points; use variant = paper or corrected "
             "for a fractional horizon",
             whole=True,
+            unless="horizon_length",  # a given delta: the points within it, alpha = 3 EI / delta^3
         ),
         Rule(
             (("variant", "continuous-alpha"),),
@@ -220,6 +226,16 @@ class PDBondPair(Model):
             allowed=("uniform",),
         ),
     )
+
+    def horizon_offset(self, params: dict) -> float:
+        """delta = (m + 0.015) dx with the continuous alpha (as in the other papers)."""
+        return 0.015 if params["variant"] == "continuous-alpha" else 0.0
+
+    def continuum_series(self, scene: Scene, params: dict) -> Series | None:
+        """Mirror ends (linear path): a series of the mirror modes with the continuous bond-pair symbol (omega = 1)."""
+        if params["ends"] == "mirror" and not params["nonlinear"]:
+            return beam_series(scene, self.delta(scene, params), "bond-pair")
+        return None
 
     def energy_model(self, scene: Scene, params: dict):
         n = params["points"]

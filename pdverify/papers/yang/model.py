@@ -92,7 +92,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.contract import Model, Option, Rule, System
+from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
@@ -206,6 +206,7 @@ class PDHigherOrder(Model):
         ),
         Option("stations", str, "", STATIONS_HELP + " (Eq. 6a-c)"),
         dynamics.ANALYSIS,
+        *NONLOCAL,
     )
 
     assembles = True
@@ -214,6 +215,7 @@ class PDHigherOrder(Model):
     eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params): K and M of Eq. 22
     springs = True
     inner_supports = True
+    continuum_m = 16  # the end layers' and path measures' assembly grows like m^3 or faster
     _PAPER = (("variant", "paper"),)
     variant_rules = (
         Rule(
@@ -222,6 +224,7 @@ class PDHigherOrder(Model):
             "Eq. 14: delta = (m + 0.015) dx over families of m points (option volumes: partial, the default, or "
             "full); use variant = corrected for a fractional horizon",
             whole=True,
+            unless="horizon_length",  # Eq. 14 with a given delta: the members within it, partial volumes
         ),
         Rule(
             _PAPER,
@@ -245,6 +248,15 @@ class PDHigherOrder(Model):
         if params["variant"] == "paper" and self.ends(params) == "mirror":
             return params.get("mirror", "point")
         return "point"
+
+    def horizon_offset(self, params: dict) -> float:
+        """Eq. 14: delta = (m + 0.015) dx in the paper variant."""
+        return 0.015 if params["variant"] == "paper" else 0.0
+
+    def spacing(self, scene: Scene, params: dict) -> float:
+        """dx of :meth:`grid` (L / points for cell-centred points)."""
+        n = params["points"]
+        return scene.length / (n if self.about(params) == "boundary" else n - 1)
 
     def grid(self, scene: Scene, params: dict) -> np.ndarray:
         """x_k = k dx, ends included; mirrored about the boundary: cell centres (k + 1/2) dx, dx = L / points."""

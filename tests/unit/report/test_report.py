@@ -512,14 +512,15 @@ def test_markup_in_the_study_name_is_escaped(tmp_path):
 
 
 def test_the_delta_dx_plane_has_its_section_when_its_figures_come(tmp_path, monkeypatch):
-    """The hook of the per-PD-model δ–Δx figures: sweeps.delta_dx_planes returns nothing today, and the index has
-    no such section; given figures, the index shows them under "The δ–Δx plane" with a link in its navigation."""
+    """The hook of the per-PD-model δ–Δx figures: a study without horizon lengths has no such section; given
+    figures, the index shows them under "The δ–Δx plane" with a link in its navigation (the figures themselves:
+    test_delta_dx_planes.py)."""
     from pdverify.report import sweeps
     from pdverify.report.plots import Axis, Figure, Series
 
     scene = (ROOT / "studies/examples/cantilever_tip_load.toml").read_text()
     page = _one_case_study(tmp_path / "none", "plain", scene)
-    assert 'id="delta-dx"' not in page and sweeps.delta_dx_planes(None, None) == []
+    assert 'id="delta-dx"' not in page
 
     def planes(data, palette):
         fig = Figure("pd-eb: the δ–Δx plane", Axis("Δx (m)", "m", log=True), Axis("δ (m)", "m", log=True))

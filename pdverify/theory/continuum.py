@@ -1,0 +1,230 @@
+"""A PD model's nonlocal continuum solution at a fixed horizon delta (the model's equations with its sums replaced by
+integrals, its own boundary treatment): the limit of its discrete solutions as m = delta / dx grows at fixed delta
+(docs/design/nonlocal.md, docs/nonlocal.md).
+
+* **Closed form** where the model gives one (:meth:`~pdverify.core.contract.Model.continuum_series`: mirror ends, the
+  series of :mod:`pdverify.theory.symbols`), used when its own estimate of the rest of the series is below
+  :data:`SERIES_TOL`.
+* **Extrapolation in m at fixed delta** elsewhere: the model solved on grids refined by whole factors of the asked
+  grid (so its points are points of every level), m from at least :data:`M_MIN` up, and the values at the asked points
+  extrapolated to dx -> 0 by Neville's scheme (polynomials in dx of every degree: the expansions of the models' sums
+  have odd and even powers). The estimate is the change of the chosen column between the two finest rows; levels are
+  added until it is below :data:`TOL` or the finest m reaches option ``continuum_m`` (default: the model's).
+* **No limit**: a variant whose discrete rules exist only up to some m at fixed delta
+  (:meth:`~pdverify.core.contract.Model.continuum_limit`) gets its own finest grid there, flagged in one line.
+
+The model object is passed in and solved through its own ``resolve`` and ``solve`` (no model is imported here).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from functools import lru_cache
+
+import numpy as np
+
+from ..core.errors import InputError
+from ..core.result import Result, Timer
+from ..core.scene import Scene
+from .symbols import series_solution
+
+M_MIN = 8  # the coarsest level's m: below it the expansions in dx / delta are not yet asymptotic
+TOL = 1e-9  # stop adding levels when the estimate (relative to the largest value) is below this
+ACHIEVED = 1e-8  # an estimate above this carries a warning with its number
+SERIES_TOL = 1e-10  # the closed form is used when the rest of its series is below this
+
+
+def horizon_of(model, scene: Scene, params: dict) -> float:
+    """delta of ``params``: the horizon length given, else the one the model reports for its solve."""
+    if params.get("horizon_length") is not None:
+        return float(params["horizon_length"])
+    solved = model.solve(scene, dict(params, continuum=False))
+    return float(solved.info["horizon"])
+
+
+def continuum_solution(model, scene: Scene, params: dict) -> Result:
+    """The model's continuum at the horizon of ``params``, at the points of the grid of ``params`` (as a
+    :class:`~pdverify.core.result.Result` with ``info``: the method, the levels, ``error_bound`` = its error estimate
+    relative to the largest value, horizon, spacing and m of the asked grid)."""
+    timer = Timer()
+    delta = horizon_of(model, scene, params)
+    dx = model.spacing(scene, params)
+    base = {k: v for k, v in params.items() if k not in ("horizon", "continuum")}
+    base["horizon_length"] = delta
+    x_user = None
+    info = {"horizon": delta, "spacing": dx, "m": delta / dx}
+    with timer("solve"):
+        series = model.continuum_series(scene, params)
+        solved = None
+        if series is not None:
+            x_user = _grid_of(model, scene, base, params["points"])
+            got = series_solution(scene, series, x_user)
+            if got is not None and got[2] <= SERIES_TOL:
+                q, rot, est = got
+                info.update(continuum="closed form: series of the mirror modes", error_bound=est)
+                fields = {} if series.quantity == "w" else {series.quantity: q}
+                w = q if series.quantity == "w" else np.zeros_like(q)
+                solved = (x_user, w, rot if series.quantity == "w" or series.slope is not None else None, fields)
+        if solved is None:
+            solved, more = _extrapolated(model, scene, base, delta, dx)
+            info.update(more)
+    x, w, rot, fields = solved
+    whole = model.continuum_whole(params)
+    if whole and "continuum_levels" in info and abs(info["m"] - round(info["m"])) > 1e-9 * info["m"]:
+        info["error_bound"] = math.inf  # the levels keep one fraction of m: their limit is not the continuum's
+        info.setdefault("warnings", []).append(
+            f"continuum of {model.name} at horizon {delta:g}: m = {info['m']:.6g} is not whole and {whole}: the "
+            "extrapolation has no smooth limit to find; give points with (points - 1) delta / length whole"
+        )
+    est = info.get("error_bound", math.inf)
+    if est > ACHIEVED and "no_limit" not in info:
+        info.setdefault("warnings", []).append(
+            f"continuum of {model.name} at horizon {delta:g}: estimated error {est:.2g} relative to the largest value "
+            f"(above {ACHIEVED:g}; {info['continuum']})"
+        )
+    return model.new_result(scene, params, x, w, rotation=rot, fields=fields, dofs=0, timings=timer.timings, info=info)
+
+
+def _grid_of(model, scene: Scene, base: dict, points: int) -> np.ndarray:
+    """The points of the model's grid with ``points`` (its own solve's x, from a solve of the grid)."""
+    return np.asarray(_level(model, scene, base, points)["x"])
+
+
+def _refined(model, scene: Scene, base: dict, r: int) -> int:
+    """The number of points of the grid of spacing dx / r (nodes with the ends: (n - 1) r + 1; cells: n r)."""
+    n, dx = base["points"], model.spacing(scene, base)
+    for cand in ((n - 1) * r + 1, n * r):
+        if abs(model.spacing(scene, dict(base, points=cand)) * r / dx - 1.0) < 1e-12:
+            return cand
+    raise InputError(f"model {model.name}: no grid of spacing dx / {r} found for the continuum")
+
+
+def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float):
+    """((x, w, rotation, fields), info) of the extrapolation in m (or the finest grid of a variant without limit)."""
+    m_user = delta / dx
+    limit = model.continuum_limit(base)
+    x_user = _grid_of(model, scene, base, base["points"])
+    if limit is not None:
+        why, m_top = limit
+        r = max(1, int(math.floor(m_top / m_user + 1e-9)))
+        levels = [r] if r == 1 else [max(1, r // 2), r]
+        values = [_values_at(model, scene, base, _refined(model, scene, base, q), x_user) for q in levels]
+        fine = values[-1]
+        est = _relative(values[0][model.measures], fine[model.measures]) if len(values) > 1 else math.inf
+        info = {
+            "continuum": f"its own finest grid at this horizon, m = {m_user * r:g} ({why})",
+            "continuum_levels": [m_user * q for q in levels],
+            "error_bound": est,
+            "no_limit": why,
+            "warnings": [
+                f"{model.name}: {why}; its continuum here is its own finest grid (m = {m_user * r:g}), which differs "
+                f"from the next coarser by {est:.2g}: m-convergence measured against it is flagged"
+            ],
+        }
+        return _unpack(x_user, fine), info
+    step = 2
+    r0 = max(1, int(math.ceil(M_MIN / m_user - 1e-9)))
+    if not _nested(model, scene, base, x_user, r0 * step):
+        step = 3  # cell-centred grids nest under odd refinements only
+        r0 = r0 if r0 % 2 else r0 + 1
+    levels, values = [], []
+    best, est, each = None, math.inf, {}
+    key = model.measures
+    r = r0
+    top = base.get("continuum_m") or model.continuum_m
+    while m_user * r <= top * (1 + 1e-9) or len(levels) < 2:
+        try:
+            values.append(_values_at(model, scene, base, _refined(model, scene, base, r), x_user))
+        except InputError:  # the model refuses this grid (a memory or size limit): stop at the levels so far
+            break
+        levels.append(r)
+        if len(levels) >= 3:
+            best, est, each = neville(np.array([1.0 / q for q in levels]), values, key)
+            if est <= TOL:
+                break
+        r *= step
+    if best is None:
+        best, est, each = values[-1], _change(values[0], values[-1]) if len(values) > 1 else math.inf, {}
+    info = {
+        "continuum": f"extrapolated in m at fixed delta from m = {', '.join(f'{m_user * q:g}' for q in levels)}",
+        "continuum_levels": [m_user * q for q in levels],
+        "error_bound": est,
+        "continuum_errors": each,
+    }
+    return _unpack(x_user, best), info
+
+
+def _unpack(x: np.ndarray, values: dict):
+    fields = {k: v for k, v in values.items() if k not in ("w", "rotation")}
+    return x, values["w"], values.get("rotation"), fields
+
+
+def _nested(model, scene, base, x_user, r) -> bool:
+    x = np.asarray(_level(model, scene, base, _refined(model, scene, base, r))["x"])
+    return _indices(x, x_user, scene.length) is not None
+
+
+def _indices(x: np.ndarray, x_user: np.ndarray, L: float) -> np.ndarray | None:
+    i = np.clip(np.searchsorted(x, x_user), 0, len(x) - 1)
+    i = np.where((i > 0) & (np.abs(x[i - 1] - x_user) < np.abs(x[i] - x_user)), i - 1, i)
+    return i if np.all(np.abs(x[i] - x_user) <= 1e-9 * L) else None
+
+
+def _values_at(model, scene, base, points: int, x_user) -> dict:
+    """w, rotation and every point field of the level with ``points`` at the asked points."""
+    solved = _level(model, scene, base, points)
+    idx = _indices(np.asarray(solved["x"]), x_user, scene.length)
+    if idx is None:
+        raise InputError(f"model {model.name}: the grid of {points} points does not hold the asked points")
+    return {k: np.asarray(v)[idx] for k, v in solved.items() if k != "x"}
+
+
+def _level(model, scene: Scene, base: dict, points: int) -> dict:
+    """One level's solution (kept: the levels of the grids of one study overlap)."""
+    key = json.dumps(dict(base, points=points), sort_keys=True, default=str)
+    return _cached_level(model, scene.model_dump_json(), key)
+
+
+@lru_cache(maxsize=32)
+def _cached_level(model, scene_json: str, key: str) -> dict:
+    scene = Scene.model_validate_json(scene_json)
+    params = model.resolve(scene, json.loads(key))
+    r = model.solve(scene, params)
+    out = {"x": np.asarray(r.x, float), "w": np.asarray(r.w, float)}
+    if r.rotation is not None:
+        out["rotation"] = np.asarray(r.rotation, float)
+    for k, v in r.fields.items():
+        if np.shape(v) == np.shape(r.x):
+            out[k] = np.asarray(v, float)
+    return out
+
+
+def _change(a: dict, b: dict) -> float:
+    """The largest change between two levels' values, each field relative to its largest value."""
+    return max(_relative(a[k], b[k]) for k in b if k in a)
+
+
+def _relative(a, b) -> float:
+    scale = float(np.abs(b).max())
+    return float(np.abs(a - b).max() / scale) if scale > 0 else float(np.abs(a - b).max())
+
+
+def neville(h: np.ndarray, values: list[dict], key: str = "w") -> tuple[dict, float, dict]:
+    """(values at h = 0, estimate, the estimate of every field) of Neville's polynomial extrapolation of the levels'
+    values (dicts of arrays) at spacings h (decreasing). Column j eliminates the terms h^1..h^j; the column whose two
+    finest entries of ``key`` differ least (relative to its largest value) is taken, its finest entry returned, that
+    difference its estimate."""
+    K = len(h)
+    keys = [k for k in values[-1] if all(k in v for v in values)]
+    T = [[{k: np.asarray(values[i][k], float) for k in keys}] for i in range(K)]
+    for i in range(1, K):
+        for j in range(1, i + 1):
+            f = h[i - j] / h[i] - 1.0
+            T[i].append({k: T[i][j - 1][k] + (T[i][j - 1][k] - T[i - 1][j - 1][k]) / f for k in keys})
+    best, est, col = T[K - 1][0], math.inf, 0
+    for j in range(K - 1):
+        e = _relative(T[K - 2][j][key], T[K - 1][j][key])
+        if e < est:
+            best, est, col = T[K - 1][j], e, j
+    return best, est, {k: _relative(T[K - 2][col][k], T[K - 1][col][k]) for k in keys}
