@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from pdverify.core.contract import Model, Option, System
+from pdverify.core.contract import LOAD_TYPES, Model, Option, System
 from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.numerics.band import Band
@@ -213,6 +213,7 @@ class FemEulerBernoulli(_BeamFE):
     )
     materials = frozenset({"yield_stress"})  # fibre sections along a load path (beam_plastic.py)
     load_path = True
+    load_types = LOAD_TYPES | {"displacement"}  # held nodes, solved on the load path's fibre beam
 
     SKFEM_MAX_NODES = 20_001  # ElementLineHermite inverts a global-coordinate Vandermonde per element:
     # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there
@@ -264,7 +265,8 @@ class FemEulerBernoulli(_BeamFE):
         return self.evaluator(scene, params)(x)
 
     def solve(self, scene: Scene, params: dict) -> Result:
-        if scene.loading is not None or scene.material.yield_stress is not None:
+        shown = any(ld.type == "displacement" for ld in scene.loads)
+        if scene.loading is not None or scene.material.yield_stress is not None or shown:
             return self.solve_load_path(scene, params)
         return super().solve(scene, params)
 

@@ -27,8 +27,15 @@ from pdverify.core.errors import InputError, SolveError
 from pdverify.core.loading import Displacement, Loading
 from pdverify.core.scene import Scene
 
-from .beam_elements import beam_nodes, constrained_dofs, element_loads, hermite_shapes, nodal_point_loads
-from .beam_elements import spring_dofs, support_nodes
+from .beam_elements import (
+    beam_nodes,
+    constrained_dofs,
+    element_loads,
+    hermite_shapes,
+    nodal_point_loads,
+    spring_dofs,
+    support_nodes,
+)
 
 GAUSS = 4  # Gauss points per element (the curvature is linear in each element; its M(kappa) is not)
 CUTS = 8  # halvings of a step before the path stops
@@ -188,7 +195,7 @@ def solve_path(scene: Scene, points: int, fibres: int):
     factors = (scene.loading or Loading()).path()
     N, shape = 2 * len(beam.nodes), (len(beam.l), GAUSS, len(beam.y))
     u, ep, ever = np.zeros(N), np.zeros(shape), np.zeros(shape, bool)
-    steps, stop, lam, newton = [], None, 0.0, 0
+    steps, stop, lam = [], None, 0.0
     targets = list(factors)
     for target in targets:
         cut, t = 0, target

@@ -28,7 +28,7 @@ import numpy as np
 from ..core.errors import InputError, SolveError
 from ..core.loading import Loading
 from ..core.scene import HELD, Scene
-from .straight import solve_straight
+from .straight import particular, solve_straight
 
 GAUSS = [np.polynomial.legendre.leggauss(n) for n in (10, 20)]
 QUAD_TOL = 1e-14  # per-piece tolerance of the adaptive quadrature, relative to the curvature's integral
@@ -72,12 +72,14 @@ def inverse_fibre(prof, E: float, sy: float, M: np.ndarray) -> np.ndarray:
     M = np.asarray(M, float)
     m = np.abs(M)
     k = m / (E * prof.inertia)
+    on = np.flatnonzero(m > sy * prof.elastic_modulus)  # the others are elastic: M / EI is the root
     for _ in range(200):
-        r = m - prof.fibre_moment(k, E, sy)
-        dk = r / prof.fibre_stiffness(k, E, sy)
-        k = k + np.maximum(dk, 0.0)
-        if np.all(dk <= 4e-16 * k):
+        if not len(on):
             break
+        kk = k[on]
+        dk = (m[on] - prof.fibre_moment(kk, E, sy)) / prof.fibre_stiffness(kk, E, sy)
+        k[on] = kk + np.maximum(dk, 0.0)
+        on = on[dk > 4e-16 * kk]
     else:
         raise SolveError("exact-eb: the fibre law's inverse did not converge (a moment too close to Mp)")
     return np.sign(M) * k
@@ -94,12 +96,16 @@ class PlasticBeam:
         self.E, self.EI, self.sy, self.ef = mat.E, mat.E * sec.I, mat.yield_stress, mat.failure_strain
         self.prof = sec.profile
         self.kinds = (scene.supports.kind("left"), scene.supports.kind("right"))
+        ends = np.array([0.0, self.L])  # M1 = c0 + c1 x + Mp(x): the line through the ends' statics
+        self.line = np.polyfit(ends, self.unit.fields(ends)["M"] - particular(scene, ends)[0], 1)
         self.edges = self._load_edges()
+        self._cache = {}
         self.peak_x, self.peak_M1 = self._peak()
 
     # -- statics ---------------------------------------------------------------------------------------------------
     def M1(self, x) -> np.ndarray:
-        return self.unit.fields(np.asarray(x, float))["M"]
+        x = np.asarray(x, float)
+        return particular(self.scene, x)[0] + np.polyval(self.line, x)
 
     def _load_edges(self) -> np.ndarray:
         pts = [0.0, self.L]
@@ -155,7 +161,13 @@ class PlasticBeam:
         return self._crossings(peak, self.moment_of_curvature(self.sy / self.E / depth))
 
     def _crossings(self, peak: float, levels: np.ndarray) -> np.ndarray:
-        """The x where |peak M1(x)| crosses one of ``levels``."""
+        """The x where |peak M1(x)| crosses one of ``levels`` (kept per peak and levels)."""
+        key = (peak, levels.tobytes())
+        if key not in self._cache:
+            self._cache[key] = self._find_crossings(peak, levels)
+        return self._cache[key]
+
+    def _find_crossings(self, peak: float, levels: np.ndarray) -> np.ndarray:
         s = np.unique(np.r_[[np.linspace(a, b, 2049) for a, b in zip(self.edges[:-1], self.edges[1:])]])
         g = np.abs(peak * self.M1(s))[:, None] - levels[None, :]
         i, j = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)
@@ -179,12 +191,18 @@ class PlasticBeam:
         err1, err2 = np.zeros(len(a)), np.zeros(len(a))
         scale = None
         for _ in range(LEVELS):
-            est = []
-            for gx, gw in GAUSS:
-                h, mid = 0.5 * (b - a), 0.5 * (b + a)
-                s = mid[:, None] + h[:, None] * gx[None, :]
-                k = self.curvature(s.ravel(), lam, peak).reshape(s.shape)
-                est.append((h * (k @ gw), h * ((k * s) @ gw), h * (np.abs(k) @ gw)))
+            h, mid = 0.5 * (b - a), 0.5 * (b + a)
+            s = [mid[:, None] + h[:, None] * gx[None, :] for gx, _ in GAUSS]
+            k = self.curvature(np.concatenate([v.ravel() for v in s]), lam, peak)
+            ks = np.split(k, [s[0].size])
+            est = [
+                (
+                    h * (kv.reshape(sv.shape) @ gw),
+                    h * ((kv.reshape(sv.shape) * sv) @ gw),
+                    h * (np.abs(kv.reshape(sv.shape)) @ gw),
+                )
+                for kv, sv, (_, gw) in zip(ks, s, GAUSS)
+            ]
             (c1, c2, ak), (f1, f2, _) = est
             if scale is None:
                 scale = max(ak.sum(), 1e-300)
