@@ -40,7 +40,7 @@ from .beam_elements import (
 GAUSS = 4  # Gauss points per element (the curvature is linear in each element; its M(kappa) is not)
 CUTS = 8  # halvings of a step before the path stops
 NEWTON = 60  # Newton iterations per step at most
-TOL = 1e-13  # the residual relative to the element forces' scale (else: the yielded set repeats, du at round-off)
+TOL = 1e-13  # the residual relative to the element forces' scale (or: the yielded set repeats)
 
 
 def fibre_rule(prof, count: int) -> tuple[np.ndarray, np.ndarray]:
@@ -146,12 +146,12 @@ class FibreBeam:
         u[self.held] = self.held_values(factor)[self.held]
         F = factor * self.F1
         fr = self.free
-        last, small = None, False
+        last = None
         for _ in range(NEWTON):
             f, K, (over, ep), mag = self.forces(u, eps_p)
             r = (F - f)[fr]
-            same = last is not None and np.array_equal(over, last)
-            if np.abs(r).max() <= TOL * max(np.abs(F).max(), mag.max(), 1e-300) or (same and small):
+            # the law is piecewise linear: once the yielded set at u is the one whose tangent gave u, u solves it
+            if np.abs(r).max() <= TOL * max(np.abs(F).max(), mag.max(), 1e-300) or np.array_equal(over, last):
                 return u, f, over, ep
             try:
                 du = spla.splu(K[fr][:, fr].tocsc()).solve(r)
@@ -160,8 +160,7 @@ class FibreBeam:
             if not np.all(np.isfinite(du)):
                 raise SolveError("fem-eb: the tangent stiffness is singular (a hinge: a mechanism)")
             u[fr] += du
-            # the law is piecewise linear: once the yielded set repeats, a correction at round-off is the solution
-            small, last = np.abs(du).max() <= 1e-13 * max(np.abs(u).max(), 1e-300), over
+            last = over
         raise SolveError(f"fem-eb: Newton did not settle in {NEWTON} iterations (no equilibrium: past collapse)")
 
     def reactions(self, f: np.ndarray, factor: float) -> dict:
