@@ -85,14 +85,15 @@ def test_the_fibre_beam_converges_to_exact_eb_with_the_elements():
         (RECT, ("pinned", "pinned"), 1.3, 321, 3200),
         (RECT, ("clamped", "free"), 1.3, 321, 3200),
         (IPE, ("pinned", "pinned"), 1.08, 321, 3200),
-        (IPE, ("clamped", "free"), 1.08, 641, 1600),
+        (IPE, ("clamped", "free"), 1.08, 961, 1600),
     ],
     ids=["rectangle-ss", "rectangle-cantilever", "I-ss", "I-cantilever"],
 )
 def test_fem_eb_refined_agrees_with_exact_eb_loaded_and_unloaded(section, supports, factor, points, fibres):
     """Rectangle to 1.3 first yield, IPE 300 to 1.08 (its shape factor is 1.129: 1.3 is past collapse), and
     unloaded: fem-eb's nodes within 1e-8 of exact-eb's at the peak and after unloading (relative to the peak's
-    largest deflection)."""
+    largest deflection). The IPE cantilever's plastic zone (7 % of the span at the clamp) needs the finest grid; there
+    the direct stiffness's round-off (N^4 eps) is 2e-8 of an elastic step's deflection."""
     peak, residual = errors(case(section, supports, factor), points, fibres)
     assert peak <= 1e-8 and residual <= 1e-8, (peak, residual)
 
