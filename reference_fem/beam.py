@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from pdverify.core.contract import Model, Option, System
+from pdverify.core.contract import LOAD_TYPES, Model, Option, System
 from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.numerics.band import Band
@@ -43,6 +43,7 @@ from .beam_elements import (
     nodal_point_loads,
     reactions,
 )
+from .beam_plastic import solve_path
 from .beam_transient import free_system, transient
 
 
@@ -205,7 +206,14 @@ class FemEulerBernoulli(_BeamFE):
         "cubic Hermite element, two-field K = T^T F^-1 T (form=direct: scikit-fem ElementLineHermite up to "
         "20,001 nodes); nodally exact (loads on nodes)"
     )
-    options = (Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2), FORM)
+    options = (
+        Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),
+        FORM,
+        Option("fibres", int, 400, "layers of each section along a load path (two fibres each)", minimum=1),
+    )
+    materials = frozenset({"yield_stress"})  # fibre sections along a load path (beam_plastic.py)
+    load_path = True
+    load_types = LOAD_TYPES | {"displacement"}  # held nodes, solved on the load path's fibre beam
 
     SKFEM_MAX_NODES = 20_001  # ElementLineHermite inverts a global-coordinate Vandermonde per element:
     # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there
@@ -255,6 +263,32 @@ class FemEulerBernoulli(_BeamFE):
 
     def evaluate(self, scene, params, x):  # noqa: D401 - the FE solution itself between nodes
         return self.evaluator(scene, params)(x)
+
+    def solve(self, scene: Scene, params: dict) -> Result:
+        shown = any(ld.type == "displacement" for ld in scene.loads)
+        if scene.loading is not None or scene.material.yield_stress is not None or shown:
+            return self.solve_load_path(scene, params)
+        return super().solve(scene, params)
+
+    def solve_load_path(self, scene: Scene, params: dict) -> Result:
+        """Fibre sections along the scene's load path (:mod:`.beam_plastic`): the last step's fields, every step in
+        ``Result.path``."""
+        timer = Timer()
+        with timer("solve"):
+            nodes, u, path, info = solve_path(scene, params["points"], params["fibres"])
+        info.update(element="cubic Hermite, fibre sections", elements=len(nodes) - 1)
+        return self.new_result(
+            scene,
+            params,
+            nodes,
+            u[0::2],
+            rotation=u[1::2],
+            fields={"health": path[-1]["health"]},
+            dofs=len(u),
+            timings=timer.timings,
+            info=info,
+            path=path,
+        )
 
     def evaluator(self, scene, params):
         """Solve once; x -> the FE solution between the nodes (the Hermite interpolant of w and w'). The function

@@ -7,7 +7,14 @@ import numpy as np
 from ..core.contract import POINTS, Model
 from ..core.result import Result, Timer
 from ..core.scene import Scene
+from .plastic import solve_path
 from .straight import solve_straight
+
+
+def follows_path(scene: Scene) -> bool:
+    """True when ``scene`` asks for a load path: a ``[loading]`` table, a yield stress or a failure strain."""
+    mat = scene.material
+    return scene.loading is not None or bool(mat.yield_stress or mat.failure_strain)
 
 
 class ExactBeam(Model):
@@ -22,14 +29,32 @@ class ExactBeam(Model):
     def __init__(self, name: str, shear: bool, title: str):
         self.name, self.shear, self.title = name, shear, title
         self.theory = "timoshenko" if shear else "euler-bernoulli"
+        if not shear:  # the fibre law along a load path (pdverify.exact.plastic), statically determinate scenes
+            self.materials = frozenset({"yield_stress", "failure_strain"})
+            self.load_path = True
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        return solve_straight(scene, self.shear).fields(x)
+        return self.evaluator(scene, params)(x)
 
     def evaluator(self, scene: Scene, params: dict):
+        if not self.shear and follows_path(scene):
+            return self._path_evaluator(scene)
         return solve_straight(scene, self.shear).fields  # the constants once, then any x
 
+    def _path_evaluator(self, scene: Scene):
+        """The last step's fields of the load path at any x."""
+        _, _, beam, (lam, peak) = solve_path(scene, np.array([0.0]))
+
+        def fields(x):
+            w, rot, _ = beam.deflection(x, lam, peak)
+            m1 = beam.M1(x)
+            return {"w": w, "rotation": rot, "M": lam * m1, "V": lam * beam.unit.fields(np.asarray(x, float))["V"]}
+
+        return fields
+
     def solve(self, scene: Scene, params: dict) -> Result:
+        if not self.shear and follows_path(scene):
+            return self.solve_load_path(scene, params)
         timer = Timer()
         with timer("assemble"):
             x = np.linspace(0.0, scene.length, params["points"])
@@ -46,6 +71,27 @@ class ExactBeam(Model):
             dofs=4,
             timings=timer.timings,
             info={"reactions": sol.reactions()},
+        )
+
+    def solve_load_path(self, scene: Scene, params: dict) -> Result:
+        """The elastic-perfectly plastic or brittle beam along the scene's load path (:mod:`.plastic`): the last
+        step's fields, every step in ``Result.path``."""
+        timer = Timer()
+        with timer("solve"):
+            x = np.linspace(0.0, scene.length, params["points"])
+            path, info, beam, (lam, peak) = solve_path(scene, x)
+            w, rot, _ = beam.deflection(x, lam, peak)
+        return self.new_result(
+            scene,
+            params,
+            x,
+            w,
+            rotation=rot,
+            fields={"M": lam * beam.M1(x), "health": path[-1]["health"]},
+            dofs=4,
+            timings=timer.timings,
+            info=info,
+            path=path,
         )
 
 

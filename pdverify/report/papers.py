@@ -14,6 +14,7 @@ from markupsafe import Markup
 
 from . import figures
 from .inputs import StudyFolder
+from .path_figures import health_figures
 from .scene_figures import overlay_figures, resultant_figures
 from .text import fmt, folder, label, short_reference, slug
 from .waves import Dispersion, svg
@@ -46,7 +47,7 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
         unit = data.length(sfile)
         force = "lbf" if data.units(sfile) == "inch-pound" else "N"
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
-            curves, ref, ylabels, resultant_curves = [], None, set(), []
+            curves, ref, ylabels, resultant_curves, health = [], None, set(), [], []
             # at most one curve per (model, variant): the finest grid
             for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
@@ -57,6 +58,8 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
                 y = c["w"] if quantity == "w" else c["fields"][quantity]
                 ylabels.add(quantity)
                 curves.append((label(r), c["x"], y))
+                if "health" in c.get("fields", {}):  # a load path's node health (path_figures.py)
+                    health.append((label(r), c["x"], c["fields"]["health"]))
                 if {"N", "Q"} <= set(c.get("fields", {})):
                     resultant_curves.append((label(r), c))
                 if ref is None or len(c["x"]) > len(ref[0]):
@@ -67,6 +70,7 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
             yunit = "rad" if ylabels == {"twist"} else unit
             figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w", unit, yunit))
             figs.extend(resultant_figures(resultant_curves, title, unit, force))
+            figs.extend(health_figures(health, title, unit))
             overlay = []
             for _, r in gs.iterrows():
                 c = data.curve(r["case_id"]) or {}

@@ -58,6 +58,7 @@ CLI_CASES = [
     ("solve-unknown-model", ["solve", "{scene}", "-m", "nosuch"], 2, "model = 'nosuch'"),
     ("solve-points-text", ["solve", "{scene}", "-m", "exact-eb", "--points", "abc"], 2, "--points"),
     ("solve-points-1", ["solve", "{scene}", "-m", "pd-eb", "--points", "1"], 2, "points = 1"),
+    ("solve-fibres-0", ["solve", "{scene}", "-m", "fem-eb", "-o", "fibres=0"], 2, "fibres = '0'"),
     ("solve-points-negative", ["solve", "{scene}", "-m", "pd-eb", "--points", "-5"], 2, "points"),
     ("solve-horizon-0", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "0"], 2, "horizon = 0"),
     ("solve-horizon-nan", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "nan"], 2, "horizon = nan"),

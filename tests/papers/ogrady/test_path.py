@@ -1,11 +1,10 @@
 """Bond pairs that yield and break along a load path (O'Grady & Foster 2014, Eq. 7 and 8, §3.2) against the classical
-elastic-perfectly plastic and brittle Euler-Bernoulli beam (classical_epp.py: statics, the section's fibre law)."""
+elastic-perfectly plastic and brittle Euler-Bernoulli beam (exact-eb's load path: statics, the section's fibre law)."""
 
 import copy
 
 import numpy as np
 import pytest
-from classical_epp import cantilever_tip, simply_supported_uniform
 from helpers import BASE
 
 from pdverify.core.errors import InputError
@@ -50,16 +49,15 @@ def test_an_elastic_path_follows_the_linear_solution_and_returns_to_zero():
 
 
 CASES = {
-    "simply supported, uniform load": (("pinned", "pinned"), simply_supported_uniform, 0.5),
-    "cantilever, tip force": (("clamped", "free"), cantilever_tip, 1.0),
+    "simply supported, uniform load": (("pinned", "pinned"), 0.5),
+    "cantilever, tip force": (("clamped", "free"), 1.0),
 }
 
 
 def _epp_errors(name, section, factor, ms, weight="fibre"):
     """Relative errors of the deflection at the peak (loaded to ``factor`` times first yield) and after unloading,
     at the mid-span or the tip, for m members per horizon on n = 160 m + 1 points (delta = L / 160)."""
-    supports, classical, at = CASES[name]
-    prof = Section(**section).profile
+    supports, at = CASES[name]
     My = first_yield(section)
     if supports[1] == "free":
         value = -factor * My / L
@@ -67,9 +65,10 @@ def _epp_errors(name, section, factor, ms, weight="fibre"):
     else:
         value = -factor * 8 * My / L**2
         load = {"type": "distributed", "value": value}
-    x, wl, wu = classical(prof, E, SY, L, value)
-    k = int(round(at * (len(x) - 1)))
     sc = scene(section, supports, [load], loading={"factors": [0.0, 1.0, 0.0], "steps": 5})
+    exact = run(sc, "exact-eb", points=161)
+    k = int(round(at * 160))
+    wl, wu = exact.path[5]["w"], exact.w
     out = []
     for m in ms:
         n = 160 * m + 1
@@ -119,15 +118,16 @@ def test_load_control_past_collapse_stops_at_the_pairs_own_plastic_moment(weight
 
 
 def test_a_brittle_beam_breaks_first_at_the_peak_moment_within_one_step_and_forms_a_hinge():
-    """Simply supported, the centre deflection prescribed to 3 times the fibre theory's first failure (extreme fibre
-    at failure_strain under the centre force), 30 steps: no pair breaks before that load; the first breaks within
-    one step after it (the longest pair sees the curvature averaged over +-delta: 1 - 2 delta / (3 L) of the peak,
-    3.3 % later at delta = 0.1); the hinge is at the centre (health 0 there, mirror-symmetric), and then the beam
-    carries no load."""
+    """Simply supported, the centre deflection prescribed to 3 times the fibre theory's first failure (exact-eb's
+    first-failure factor under a centre force: the extreme fibre at failure_strain under the peak moment, times its
+    elastic centre deflection), 30 steps: no pair breaks before that load; the first breaks within one step after it
+    (the longest pair sees the curvature averaged over +-delta: 1 - 2 delta / (3 L) of the peak, 3.3 % later at
+    delta = 0.1); the hinge is at the centre (health 0 there, mirror-symmetric), and then the beam carries no load."""
     n, m, ef = 201, 10, 1e-3
-    prof = Section(**RECT).profile
-    EI = E * prof.inertia
-    w_fail = (4 * EI * ef / prof.extreme_fibre / L) * L**3 / (48 * EI)
+    force = [{"type": "point_force", "position": L / 2, "value": -1e5}]
+    ref = run(scene(loads=force, material={"failure_strain": ef}), "exact-eb", points=n).info["load_path"]
+    assert ref["peak_position"] == pytest.approx(L / 2, rel=1e-12)
+    w_fail = -ref["first_failure_factor"] * run(scene(loads=force, material={}), "exact-eb", points=n).w[n // 2]
     steps = 30
     sc = scene(
         loads=[{"type": "displacement", "position": L / 2, "value": -3 * w_fail}],
@@ -181,9 +181,9 @@ def test_mirror_image_paths_are_mirror_images():
     [
         (
             {"material": {"youngs_modulus": E, "poissons_ratio": 0.3, "yield_stress": SY}},
-            "exact-eb",
+            "exact-timoshenko",
             {},
-            "material.yield_stress: model exact-eb is elastic only",
+            "material.yield_stress: model exact-timoshenko is elastic only",
         ),
         (
             {"material": {"youngs_modulus": E, "poissons_ratio": 0.3, "failure_strain": 1e-3}},
