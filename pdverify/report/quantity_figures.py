@@ -137,7 +137,8 @@ def deformed_axis_figure(runs, title: str, length: str, scene, colour) -> Figure
         return None
     geo = geometry(scene)
     exact = [r for r in have if r.model.startswith("exact-")]
-    drawn = exact[:1] + _worst([r for r in have if r not in exact], "err_max")
+    exact_ids = {id(r) for r in exact[:1]}
+    drawn = exact[:1] + _worst([r for r in have if not r.model.startswith("exact-")], "err_max")
     big = max(float(np.max(np.hypot(r.curve["fields"]["ux"], r.curve["fields"]["uy"]), initial=0.0)) for r in drawn)
     k = SHAPE_SCALE * scene.length / big if big > 0 else 1.0
     s0 = np.linspace(0.0, scene.length, 121)
@@ -147,7 +148,7 @@ def deformed_axis_figure(runs, title: str, length: str, scene, colour) -> Figure
         p = geo.position(r.x)
         x, y = p[:, 0] + k * r.curve["fields"]["ux"], p[:, 1] + k * r.curve["fields"]["uy"]
         idx = thin(x, y, False, QUANTITY_POINTS)  # along the arc: x is not monotone, but the kept ends and extremes are
-        if r in exact:
+        if id(r) in exact_ids:
             series.append(Series(f"{label(r.row)} (exact)", x[idx], y[idx], style="line", guide=True))
         else:
             series.append(Series(label(r.row), x[idx], y[idx], r.model, r.variant, colour(r.row)))
@@ -157,6 +158,7 @@ def deformed_axis_figure(runs, title: str, length: str, scene, colour) -> Figure
         Axis(f"y ({length})", length),
         series,
         equal=True,
-        caption=f"The axis (dashed), {'an exact solution (grey) and ' if exact else ''}the {len(drawn) - len(exact)} "
-        f"run(s) with the largest deflection error; displacements drawn {k:.3g} times their size.",
+        caption=f"The axis (dashed), {'an exact solution (grey) and ' if exact else ''}the "
+        f"{len(drawn) - len(exact_ids)} run(s) with the largest deflection error; displacements drawn {k:.3g} times "
+        "their size.",
     )
