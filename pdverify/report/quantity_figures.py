@@ -143,7 +143,7 @@ def deformed_axis_figure(runs, title: str, length: str, scene, colour) -> Figure
     k = SHAPE_SCALE * scene.length / big if big > 0 else 1.0
     s0 = np.linspace(0.0, scene.length, 121)
     axis = geo.position(s0)
-    series = [Series("axis", axis[:, 0], axis[:, 1], style="dash", guide=True)]
+    series = [Series("axis", axis[:, 0], axis[:, 1], style="dot", guide=True)]
     for r in drawn:
         p = geo.position(r.x)
         x, y = p[:, 0] + k * r.curve["fields"]["ux"], p[:, 1] + k * r.curve["fields"]["uy"]
@@ -158,7 +158,7 @@ def deformed_axis_figure(runs, title: str, length: str, scene, colour) -> Figure
         Axis(f"y ({length})", length),
         series,
         equal=True,
-        caption=f"The axis (dashed), {'an exact solution (grey) and ' if exact else ''}the "
+        caption=f"The axis (dotted), {'an exact solution (grey) and ' if exact else ''}the "
         f"{len(drawn) - len(exact_ids)} run(s) with the largest deflection error; displacements drawn {k:.3g} times "
         "their size.",
     )

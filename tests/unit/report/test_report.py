@@ -602,6 +602,7 @@ def test_curved_page_draws_axial_and_shear_forces_and_its_locking_table(tmp_path
     p.write_text(f'''name = "c"
 scenes = ["{ROOT}/studies/paper_curved/semicircle_normal.toml"]
 reference = "exact-curved-cantilever"
+quantities = ["rotation", "moment", "axial"]
 [papers]
 paper_curved = "seed 004"
 [[runs]]
@@ -631,3 +632,16 @@ slenderness = [10, 100]
     lock = lock[: lock.index("</svg>")]
     assert "pd-curved primal n=41" in lock and "pd-curved n=41" in lock
     assert "n=21" not in lock and "exact-curved-cantilever" not in lock
+    # the paper's four error measures: a table per scene, a column per quantity
+    measures = page[page.index("<h4>Error measures</h4>") :]
+    measures = measures[: measures.index("</table>")]
+    for column in ("err_max", "err_max_rotation", "err_max_moment", "err_max_axial"):
+        assert f'title="{column}"' in measures
+    # the index: each quantity's error along the arc, the deformed axis, rotation and moment along the arc
+    titles = [f["title"] for f in figures_of((tmp_path / "run" / "index.html").read_text())]
+    for sl in ("10", "100"):
+        head = f"semicircle, normal tip force, L/h = {sl}: "
+        for name in ("rotation", "bending moment M", "axial force N"):
+            assert head + f"{name}, error along the beam" in titles
+        assert any(t.startswith(head + "deformed axis") for t in titles)
+        assert head + "bending moment M along the curved axis" in titles
