@@ -39,4 +39,4 @@ def scene_measures(data: StudyFolder, scene_file: str) -> tuple[pd.DataFrame, st
     note = "; ".join(
         f"no {NAME.get(q, q)} from {', '.join(sorted(models))} or its reference" for q, models in missing.items()
     )
-    return rows[keep], note
+    return rows[keep], note[:1].upper() + note[1:]

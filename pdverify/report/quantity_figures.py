@@ -22,7 +22,8 @@ from .text import label, unit_of
 QUANTITIES = ("rotation", "moment", "shear", "axial")  # in the order the page shows them
 SYMBOL = {"rotation": "rotation", "moment": "M", "shear": "V", "axial": "N"}
 NAME = {"rotation": "rotation", "moment": "bending moment M", "shear": "shear force V", "axial": "axial force N"}
-QUANTITY_POINTS = 120  # points kept per line of a quantity's error (the deflection's figure keeps plots.MAX_POINTS)
+QUANTITY_POINTS = 80  # points kept per line of a quantity's error (the deflection's figure keeps plots.MAX_POINTS)
+SHAPE_POINTS = 60  # points kept per line of a shape (a smooth curve): the page stays under 2 MB with every quantity
 SHAPE_LINES = 3  # runs drawn beside the reference in a shape figure: the ones furthest from it
 SHAPE_SCALE = 0.1  # the deformed axis' largest displacement drawn as this fraction of the beam's length
 
@@ -45,8 +46,8 @@ def measured_quantities(runs) -> list[str]:
     return [q for q in QUANTITIES if q in got]
 
 
-def _thinned(x: np.ndarray, y: np.ndarray, log: bool) -> tuple[np.ndarray, np.ndarray]:
-    idx = thin(x, y, log, QUANTITY_POINTS)
+def _thinned(x: np.ndarray, y: np.ndarray, log: bool, limit: int = QUANTITY_POINTS) -> tuple[np.ndarray, np.ndarray]:
+    idx = thin(x, y, log, limit)
     return x[idx], y[idx]
 
 
@@ -113,10 +114,11 @@ def along_arc_figure(runs, quantity: str, title: str, length: str, units: str, c
         return None
     ref = max(have, key=lambda r: len(r.x))
     unit = unit_of(SYMBOL[quantity], units)
-    series = [Series("reference", *_thinned(ref.x, reference_of(ref.curve, quantity), False), style="dash", guide=True)]
+    ref_line = _thinned(ref.x, reference_of(ref.curve, quantity), False, SHAPE_POINTS)
+    series = [Series("reference", *ref_line, style="dash", guide=True)]
     worst = _worst(have, f"err_max_{quantity}")
     for r in worst:
-        x, y = _thinned(r.x, values_of(r.curve, quantity), False)
+        x, y = _thinned(r.x, values_of(r.curve, quantity), False, SHAPE_POINTS)
         series.append(Series(label(r.row), x, y, r.model, r.variant, colour(r.row)))
     return Figure(
         f"{title}: {NAME[quantity]} along the curved axis",
@@ -141,13 +143,13 @@ def deformed_axis_figure(runs, title: str, length: str, scene, colour) -> Figure
     drawn = exact[:1] + _worst([r for r in have if not r.model.startswith("exact-")], "err_max")
     big = max(float(np.max(np.hypot(r.curve["fields"]["ux"], r.curve["fields"]["uy"]), initial=0.0)) for r in drawn)
     k = SHAPE_SCALE * scene.length / big if big > 0 else 1.0
-    s0 = np.linspace(0.0, scene.length, 121)
+    s0 = np.linspace(0.0, scene.length, SHAPE_POINTS + 1)
     axis = geo.position(s0)
     series = [Series("axis", axis[:, 0], axis[:, 1], style="dot", guide=True)]
     for r in drawn:
         p = geo.position(r.x)
         x, y = p[:, 0] + k * r.curve["fields"]["ux"], p[:, 1] + k * r.curve["fields"]["uy"]
-        idx = thin(x, y, False, QUANTITY_POINTS)  # along the arc: x is not monotone, but the kept ends and extremes are
+        idx = thin(x, y, False, SHAPE_POINTS)  # along the arc: x is not monotone, but the kept ends and extremes are
         if id(r) in exact_ids:
             series.append(Series(f"{label(r.row)} (exact)", x[idx], y[idx], style="line", guide=True))
         else:

@@ -111,7 +111,7 @@ def test_the_error_measures_table_has_a_column_per_measured_quantity_and_names_t
     )
     table, note = scene_measures(SimpleNamespace(ok=rows), "a.toml")
     assert [c for c in table.columns if c.startswith("err_max")] == ["err_max", "err_max_rotation", "err_max_axial"]
-    assert list(table["case_id"]) == ["c1", "c2", "c3"] and note == "no axial force N from pd-eb or its reference"
+    assert list(table["case_id"]) == ["c1", "c2", "c3"] and note == "No axial force N from pd-eb or its reference"
     assert (
         scene_measures(SimpleNamespace(ok=rows.drop(columns=["err_max_rotation", "err_max_axial"])), "a.toml") is None
     )
