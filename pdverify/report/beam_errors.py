@@ -1,7 +1,8 @@
 """The index's figures of each scene: |quantity − reference| along the beam on a log axis, one line per model and
-variant at its finest grid (the deflection curves of ten models lie on top of each other; their errors do not),
-and the shape only where the shape is the point: a large-rotation run's deformed axis at its load steps against
-the exact elastica, and on a curved axis the reference with the few runs furthest from it."""
+variant at its finest grid (the deflection curves of ten models lie on top of each other; their errors do not), one
+such figure per other quantity the study measures (:mod:`.quantity_figures`), and the shape only where the shape is
+the point: a large-rotation run's deformed axis at its load steps against the exact elastica, and on a curved axis
+the reference with the few runs furthest from it, the deformed axis, the rotation and moment along the arc."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import numpy as np
 import pandas as pd
 from markupsafe import Markup
 
+from . import quantity_figures as qf
 from .inputs import StudyFolder
 from .plots import Axis, Figure, Palette, Series, positive
 from .summary import scene_anchor
@@ -156,6 +158,10 @@ def scene_sections(data: StudyFolder, palette: Palette) -> list[SceneSection]:
     """One section per scene (in the study's order): its error figure per slenderness and reference, its shapes
     where they are the point, a note where it has no reference."""
     sections = []
+
+    def colour(row) -> int:
+        return palette(line_key(row))
+
     for sfile, g in data.ok.groupby("scene_file", sort=False):
         name = str(g["scene"].iloc[0])
         units = data.units(sfile)
@@ -174,10 +180,15 @@ def scene_sections(data: StudyFolder, palette: Palette) -> list[SceneSection]:
                 if err is not None:
                     err.title += against
                     sec.figures.append(err.html(sec.tags))
+                xname = "s" if curved else "x"
+                for fig in qf.quantity_error_figures(finest_runs(data, rg), title, xname, length, units, scene, colour):
+                    fig.title += against
+                    sec.figures.append(fig.html(sec.tags))
             if curved:
-                shape = curved_shape_figure(runs, title, length, units, palette)
-                if shape is not None:
-                    sec.figures.append(shape.html(sec.tags))
+                shapes = [curved_shape_figure(runs, title, length, units, palette)]
+                shapes.append(qf.deformed_axis_figure(runs, title, length, scene, colour))
+                shapes += [qf.along_arc_figure(runs, q, title, length, units, colour) for q in ("rotation", "moment")]
+                sec.figures += [f.html(sec.tags) for f in shapes if f is not None]
             for r in runs:
                 if r.curve.get("load_steps"):
                     sec.figures.append(load_step_figure(r, title, length).html(sec.tags))

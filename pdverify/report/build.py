@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 from ..verify.published import read_index
-from . import beam_errors, sweeps
+from . import beam_errors, error_measures, sweeps
 from .inputs import StudyFolder, load
 from .output import environment, make_folder, write
 from .papers import paper_pages
@@ -36,6 +36,7 @@ CONVERGENCE_COLUMNS = [
     "model",
     "options",
     "slenderness",
+    "quantity",
     "n_grids",
     "observed_order",
     "r2",
@@ -66,6 +67,7 @@ CHECK_COLUMNS = [
     "model",
     "options",
     "slenderness",
+    "quantity",
     "points",
     "errors",
     "pairwise_orders",
@@ -163,7 +165,13 @@ def render_paper(env, data: StudyFolder, page: dict, generated: str) -> str:
     make = _tables(data, "index.html")
     names = page["names"]
     conv, lock = data.table("convergence"), data.table("locking")
+    measures = {}
+    for s in page["scenes"]:
+        got = error_measures.scene_measures(data, s.file)
+        if got is not None:
+            measures[s.file] = (make(got[0]), got[1])
     return env.get_template("paper.html.j2").render(
+        measures=measures,
         meta=data.meta,
         generated=generated,
         page=page,

@@ -15,6 +15,7 @@ from markupsafe import Markup
 from . import figures
 from .inputs import StudyFolder
 from .path_figures import health_figures
+from .quantity_figures import QUANTITIES
 from .scene_figures import overlay_figures, resultant_figures
 from .text import fmt, folder, label, short_reference, slug
 from .waves import Dispersion, svg
@@ -106,6 +107,8 @@ def sweep_figures(data: StudyFolder) -> dict[str, list[tuple[str, Markup]]]:
     conv, lock, se = data.table("convergence"), data.table("locking"), data.table("speed_error")
     ok = data.ok
     conv_figs = []
+    if not conv.empty and "quantity" in conv:  # the models' own quantity; the others: the index and the table
+        conv = conv[~conv["quantity"].isin(QUANTITIES)]
     if not conv.empty:
         for scene, g in conv.groupby("scene", sort=False):
             series = []

@@ -18,6 +18,7 @@ from ..registry import get_model
 from ..verify.card import check_anchor
 from ..verify.published import read_index
 from .inputs import StudyFolder
+from .quantity_figures import NAME, QUANTITIES, SYMBOL
 from .tables import tags
 from .text import fixed, folder, key_options, options_of, sig, slug, variant_key, variant_of
 
@@ -68,6 +69,7 @@ class Row:
     scenes: list[str] = field(default_factory=list)
     papers: list[str] = field(default_factory=list)
     orders: list[float] = field(default_factory=list)
+    quantity_orders: dict[str, list[float]] = field(default_factory=dict)  # rotation, moment, shear, axial
     worst: tuple[float, str, int] | None = None  # (error, scene, points) at the finest grid
     cost: tuple[float, str, int] | None = None  # (seconds, scene, points) at the finest grid
     exact_series: int = 0  # convergence series at round-off on every grid (no order to observe)
@@ -97,7 +99,10 @@ def _study_rows(data: StudyFolder) -> dict[str, Row]:
             key = variant_key(str(r["model"]), options_of(r.get("options")))
             if key not in rows or pd.isna(r["observed_order"]):
                 continue
-            if max(float(v) for v in str(r["errors"]).split()) < ROUND_OFF:
+            quantity = r.get("quantity")
+            if isinstance(quantity, str) and quantity in SYMBOL:  # another quantity than the model's own
+                rows[key].quantity_orders.setdefault(quantity, []).append(float(r["observed_order"]))
+            elif max(float(v) for v in str(r["errors"]).split()) < ROUND_OFF:
                 rows[key].exact_series += 1
             else:
                 rows[key].orders.append(float(r["observed_order"]))
@@ -188,6 +193,12 @@ def _promised(model: str, card: dict | None) -> float | None:
     return float(m.order) if m is not None else None
 
 
+def _range(orders: list[float]) -> str:
+    """Fitted orders as their range ('1.95 to 2.18'), one value when they agree to two decimals."""
+    lo, hi = min(orders), max(orders)
+    return fixed(lo, 2) if fixed(lo, 2) == fixed(hi, 2) else f"{fixed(lo, 2)} to {fixed(hi, 2)}"
+
+
 def _measured_cells(row: Row, conv_keys: set[str], scene_ids: set[str], cost_ids: set[str]) -> list[str]:
     def link(text: str, anchor: str, present: set[str], title: str = "") -> str:
         t = f' title="{html.escape(title)}"' if title else ""
@@ -202,10 +213,19 @@ def _measured_cells(row: Row, conv_keys: set[str], scene_ids: set[str], cost_ids
         if row.exact_series
         else ""
     )
-    if orders:
-        lo, hi = min(orders), max(orders)
-        text = fixed(lo, 2) if fixed(lo, 2) == fixed(hi, 2) else f"{fixed(lo, 2)} to {fixed(hi, 2)}"
-        title = f"{len(orders)} convergence series; fitted orders: " + ", ".join(fixed(o, 3) for o in orders)
+    others = {q: [o for o in v if np.isfinite(o)] for q, v in row.quantity_orders.items()}
+    others = {q: v for q, v in others.items() if v}
+    if orders or others:
+        text = "; ".join(
+            ([_range(orders)] if orders else [])
+            + [f"{SYMBOL[q]}: {_range(v)}" for q in QUANTITIES if q in others for v in [others[q]]]
+        )
+        named = [("the model's own quantity", orders), *((NAME[q], others[q]) for q in QUANTITIES if q in others)]
+        title = "; ".join(
+            f"{len(v)} convergence series of {name}; fitted orders: " + ", ".join(fixed(o, 3) for o in v)
+            for name, v in named
+            if v
+        )
         out.append(link(text, conv_anchor(row.key), conv_keys, title + exact))
     elif row.exact_series:
         out.append(link("round-off", conv_anchor(row.key), conv_keys, exact.lstrip("; ")))

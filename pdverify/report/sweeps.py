@@ -15,6 +15,7 @@ from .beam_errors import line_key
 from .inputs import StudyFolder
 from .planes import planes
 from .plots import Axis, Figure, Palette, Series, positive
+from .quantity_figures import NAME
 from .summary import conv_anchor, cost_anchor
 from .tables import tags
 from .text import fixed, fmt, folder, key_options, label, options_of, variant_key, variant_of
@@ -35,7 +36,14 @@ def _series_key(r) -> tuple:
     """A convergence series' key in convergence.csv and checks.csv (a missing slenderness as None: NaN is not
     equal to itself)."""
     sl = r.get("slenderness")
-    return (r["scene"], r["model"], r.get("options"), None if pd.isna(sl) else float(sl))
+    return (r["scene"], r["model"], r.get("options"), None if pd.isna(sl) else float(sl), other_quantity(r))
+
+
+def other_quantity(r) -> str | None:
+    """The quantity of a convergence series or check other than the model's own (rotation, moment, shear, axial),
+    None for the model's own (w, or e.g. pd-rod's u)."""
+    q = r.get("quantity")
+    return q if isinstance(q, str) and q in NAME else None
 
 
 def _check_bands(checks: pd.DataFrame) -> dict[tuple, tuple[float, str]]:
@@ -56,6 +64,8 @@ def _reference_slope(model: str, bands: dict, r) -> tuple[float, str] | None:
     band = bands.get(_series_key(r))
     if band is not None:
         return band[0], f"slope {band[0]:g} ({band[1]})"
+    if other_quantity(r):  # the model's promised order is its deflection's
+        return None
     try:
         q = float(get_model(model).order)
     except Exception:  # a model of another installation
@@ -108,8 +118,12 @@ def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
                     q, text = slope
                     h0, e0 = h[good][np.argmin(h[good])], e[good][np.argmin(h[good])]
                     series.append(Series(text, hs, e0 * (hs / h0) ** q, colour=-1, style="dot", guide=True))
+            quantity = other_quantity(r)
             fig = Figure(
-                f"{scene}" + (f", {extra}" if extra else "") + (f": p = {fixed(p, 2)}" if pd.notna(p) else ""),
+                f"{scene}"
+                + (f", {extra}" if extra else "")
+                + (f": {NAME[quantity]}" if quantity else "")
+                + (f": p = {fixed(p, 2)}" if pd.notna(p) else ""),
                 Axis(f"Δx ({length})", length, log=True),
                 Axis(ERROR, "", log=True),
                 series,

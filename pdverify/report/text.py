@@ -178,6 +178,9 @@ QUANTITY_KIND = {
     "N": "force",
     "Q": "force",
     "V": "force",
+    "moment": "moment",
+    "shear": "force",
+    "axial": "force",
 }
 
 

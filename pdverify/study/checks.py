@@ -189,6 +189,7 @@ def _series_row(check: dict, key: tuple, rows: list[dict]) -> dict:
         "model": model,
         "options": options,
         "slenderness": slenderness,
+        "quantity": quantity,
         "n_grids": n_grids,
         "points": " ".join(str(r.get("points")) for r in ok),
         "spacings": _fmt(h),

@@ -216,9 +216,11 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
             raise _Failed(solved["failure"])
         w_ref = _measure_errors(case, scene, solved, row)
         split_errors(case, scene, solved, w_ref, row)
-        _measure_quantities(case, scene, solved, row)
+        references = _measure_quantities(case, scene, solved, row)
         _measure_status(case, solved, params, row)
         _fill_curves(curve, scene, solved, w_ref, row["quantity"])
+        if references:  # the reference of each other quantity at the model's points: the report's error curves
+            curve["references"] = references
     except Exception as exc:  # a failed solve replayed (_Failed), a bad case, a bug: recorded, never raised
         for k, v in (solved.get("timings") or {}).items():  # what the attempt cost, as far as it went
             row.setdefault(k, v)
@@ -296,12 +298,13 @@ def jumps(scene, x: np.ndarray, quantity: str) -> np.ndarray:
     return np.any(np.abs(x[:, None] - np.asarray(at, float)[None, :]) <= tol, axis=1) if at else np.zeros(len(x), bool)
 
 
-def _measure_quantities(case: Case, scene, solved: dict, row: dict) -> None:
+def _measure_quantities(case: Case, scene, solved: dict, row: dict) -> dict:
     """The errors of every other quantity the study measures (``quantities``: rotation, moment, shear, axial),
     ``err_max_<q>`` and ``err_l2_<q>`` (relative to the reference's largest value of that quantity), NaN where the
-    model or the reference gives none (named in ``missing_quantities``)."""
+    model or the reference gives none (named in ``missing_quantities``). Returns the reference's values of each
+    quantity measured, at the model's points."""
     main = row["quantity"]
-    missing = []
+    missing, references = [], {}
     for q in case.quantities:
         if q == main:
             continue
@@ -320,8 +323,10 @@ def _measure_quantities(case: Case, scene, solved: dict, row: dict) -> None:
         keep = ~jumps(scene, solved["x"], q)  # a jump's two values are both right there: not compared
         e = errors(values[keep], ref[keep])
         row[f"err_max_{q}"], row[f"err_l2_{q}"] = e["err_max"], e["err_l2"]
+        references[q] = np.asarray(ref, "<f8")
     if missing:
         row["missing_quantities"] = " ".join(missing)
+    return references
 
 
 def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:

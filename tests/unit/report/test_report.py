@@ -594,15 +594,15 @@ def test_ci_requires_the_browser():
     assert any("export PDVERIFY_REQUIRE_BROWSER=1" in l for l in text.splitlines()[:run_line])
 
 
-@pytest.mark.slow
-def test_curved_page_draws_axial_and_shear_forces_and_its_locking_table(tmp_path):
-    """Seed 004's page: N and Q beside the deflection for the curves that return them (pd-curved and the exact
-    curved beam, whose range sets the axes), and the page's own locking table; a grid run at one slenderness
-    draws no locking line, an exact model (error 0) none either."""
+@pytest.fixture(scope="module")
+def curved_dir(tmp_path_factory):
+    """A curved study measuring rotation, moment and axial force (seed 004's error measures)."""
+    tmp_path = tmp_path_factory.mktemp("curved")
     p = tmp_path / "c.toml"
     p.write_text(f'''name = "c"
 scenes = ["{ROOT}/studies/paper_curved/semicircle_normal.toml"]
 reference = "exact-curved-cantilever"
+quantities = ["rotation", "moment", "axial"]
 [papers]
 paper_curved = "seed 004"
 [[runs]]
@@ -623,7 +623,15 @@ slenderness = [10, 100]
 ''')
     run_study(load_study(p), tmp_path / "run", workers=1, progress=False)
     build_report(tmp_path / "run")
-    page = (tmp_path / "run" / "paper-paper-curved.html").read_text()
+    return tmp_path / "run"
+
+
+@pytest.mark.slow
+def test_curved_page_draws_axial_and_shear_forces_and_its_locking_table(curved_dir):
+    """Seed 004's page: N and Q beside the deflection for the curves that return them (pd-curved and the exact
+    curved beam, whose range sets the axes), and the page's own locking table; a grid run at one slenderness
+    draws no locking line, an exact model (error 0) none either."""
+    page = (curved_dir / "paper-paper-curved.html").read_text()
     for sl in ("10", "100"):
         for name in ("axial force N", "shear force Q"):
             assert f"semicircle, normal tip force, L/h = {sl}: {name}" in page
@@ -632,3 +640,38 @@ slenderness = [10, 100]
     lock = lock[: lock.index("</svg>")]
     assert "pd-curved primal n=41" in lock and "pd-curved n=41" in lock
     assert "n=21" not in lock and "exact-curved-cantilever" not in lock
+    # the paper's four error measures: a table per scene, a column per quantity
+    measures = page[page.index("<h4>Error measures</h4>") :]
+    measures = measures[: measures.index("</table>")]
+    for column in ("err_max", "err_max_rotation", "err_max_moment", "err_max_axial"):
+        assert f'title="{column}"' in measures
+    # the index: each quantity's error along the arc, the deformed axis, rotation and moment along the arc
+    titles = [f["title"] for f in figures_of((curved_dir / "index.html").read_text())]
+    for sl in ("10", "100"):
+        head = f"semicircle, normal tip force, L/h = {sl}: "
+        for name in ("rotation", "bending moment M", "axial force N"):
+            assert head + f"{name}, error along the beam" in titles
+        assert any(t.startswith(head + "deformed axis") for t in titles)
+        assert head + "bending moment M along the curved axis" in titles
+
+
+@pytest.mark.slow
+def test_curved_quantity_figures_draw_in_chromium(curved_dir, tmp_path):
+    """The quantities' error figures and the deformed axis draw in headless Chromium without a console error; the
+    model filter keeps the exact run's deformed axis (a guide) and hides its lines elsewhere."""
+    chromium = find_chromium()
+    with Browser(chromium, tmp_path / "profile") as browser:
+        browser.open((curved_dir / "index.html").as_uri())
+        browser.evaluate("window.pdvFigures.drawAll()")
+        assert not browser.console_errors(), browser.console_errors()
+        titles = browser.evaluate(
+            "Array.from(document.querySelectorAll('figure.pfig .ftitle')).map(function (t) { return t.textContent; })"
+        )
+        state = browser.evaluate(STATE)
+        drawn = dict(zip(titles, state["figures"], strict=True))
+        ours = [t for t in titles if "bending moment M" in t or "axial force N, error" in t or "deformed axis" in t]
+        assert len(ours) == 2 * 4 and all(drawn[t]["paths"] >= 1 for t in ours)
+        state = choose(browser, "model", "pd-curved")
+        shape = next(f for t, f in zip(titles, state["figures"], strict=True) if "deformed axis" in t)
+        assert not shape["hidden"] and "exact-curved-cantilever" not in shape["lines"]
+        assert any("exact-curved-cantilever" in text for text in shape["legend"])

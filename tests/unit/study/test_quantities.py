@@ -1,12 +1,14 @@
 """A study measures more than the deflection: ``quantities = ["rotation", "moment", "shear", "axial"]`` (at the top
 or in a run) gives one error column per quantity, a convergence row per quantity and order checks on any of them."""
 
+import numpy as np
 import pandas as pd
 import pytest
 from helpers import ROOT
 
 from pdverify.core.errors import InputError
 from pdverify.study import load_study, run_study
+from pdverify.study.store import case_file, read_case
 
 SCENE = ROOT / "studies/examples/cantilever_tip_load.toml"
 
@@ -33,7 +35,14 @@ def test_each_quantity_has_its_error_column_and_its_order(tmp_path):
     assert {"w", "rotation", "moment"} <= set(pd_rows.index)
     assert abs(pd_rows.loc["rotation", "observed_order"] - 2) < 0.1
     checks = pd.read_csv(tmp_path / "out" / "checks.csv")
-    assert list(checks["verdict"]) == ["pass"]
+    assert list(checks["verdict"]) == ["pass"] and list(checks["quantity"]) == ["rotation"]
+    # each case file keeps the reference of every other quantity at its points (the report draws the errors)
+    row = fem.sort_values("points").iloc[-1]
+    curve = read_case(case_file(tmp_path / "out" / "cases", row["case_id"]))["curve"]
+    assert set(curve["references"]) == {"rotation", "moment"}
+    assert np.max(np.abs(curve["rotation"] - curve["references"]["rotation"])) < 1e-12 * np.max(
+        np.abs(curve["references"]["rotation"])
+    )
 
 
 def test_a_quantity_a_model_does_not_give_is_named_not_invented(tmp_path):
