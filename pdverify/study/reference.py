@@ -1,0 +1,91 @@
+"""A case's reference: the reference model's value of what the case measures at the case's points, built once per
+(scene, slenderness, reference options, quantity) and kept per grid, and the round-off bound of the reference's own
+solve."""
+
+from __future__ import annotations
+
+import json
+from functools import lru_cache
+
+import numpy as np
+
+from ..core.errors import InputError
+from ..core.result import quantity_of
+from ..registry import get_model, run
+from .spec import Case
+
+
+def measured(values: dict, quantity: str, model: str) -> np.ndarray:
+    """The output ``quantity`` (a model's ``measures``: w, or a point field such as u or twist) of ``values``
+    (a solve's {"w": ..., "fields": {...}} or an evaluator's fields); InputError naming the model when it has none."""
+    if "fields" in values:  # a solve's {"w", "rotation", "fields"}
+        got = quantity_of(values["w"], values.get("rotation"), values["fields"], quantity)
+    else:  # an evaluator's fields
+        got = quantity_of(values.get("w"), values.get("rotation"), values, quantity)
+    if got is None:
+        raise InputError(f"model {model} gives no {quantity}: the study measures {quantity} (the model's `measures`)")
+    return np.asarray(got, float)
+
+
+@lru_cache(maxsize=64)
+def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tuple, quantity: str = "w"):
+    """(x -> the reference's ``quantity``, its solve's round-off bound), built once per (scene, slenderness,
+    reference options, quantity): the reference model's ``evaluator`` where it has one (exact models: exact at any
+    x; no bound), else its own solution interpolated by a cubic spline, with the bound of that solve (None when it
+    made none). ``quantity``: what the case's model measures (``Model.measures``: w, u, twist)."""
+    from scipy.interpolate import CubicSpline
+
+    ref = dict(ref_items)
+    model = get_model(ref.pop("model"))
+    scene = Case(scene_file, scene_text, slenderness, "", {}, {}).scene()
+    ev = model.evaluator(scene, model.resolve(scene, ref))
+    if ev is not None:  # exact (no bound), or a solve's interpolant that carries its bound (fem-eb)
+        return lambda x: measured(ev(x), quantity, model.name), getattr(ev, "error_bound", None)
+    solved = run(scene, model, **ref)
+    values = {"w": solved.w, "rotation": solved.rotation, "fields": solved.fields}
+    return CubicSpline(solved.x, measured(values, quantity, model.name)), solved.info.get("error_bound")
+
+
+REFERENCE_CACHE_POINTS = 20_000  # grids up to this size keep their reference values (64 grids: <= 10 MB)
+
+
+@lru_cache(maxsize=64)
+def _reference_values(
+    scene_text: str, scene_file: str, slenderness, ref_items: tuple, quantity: str, x_bytes: bytes
+) -> np.ndarray:
+    """The reference at one grid, kept: a sweep over horizon, variant or form solves many cases on the
+    same points, and the exact solutions cost as much as the rest of a small case's bookkeeping
+    (0.18 ms at 1,200 points). Read-only, so a caller cannot change the cached values."""
+    fn = _reference_fn(scene_text, scene_file, slenderness, ref_items, quantity)[0]
+    w = np.array(fn(np.frombuffer(x_bytes, "<f8")), float)
+    w.flags.writeable = False
+    return w
+
+
+def _key(case: Case, quantity: str | None = None) -> tuple:
+    """(scene text, scene file, slenderness, reference options, quantity): what a case's reference depends on;
+    the quantity by default the one the case's model is measured on (``Model.measures``)."""
+    quantity = quantity or get_model(case.model).measures
+    return (case.scene_text, case.scene_file, case.slenderness, tuple(sorted(case.reference.items())), quantity)
+
+
+def reference_at(case: Case, scene, x: np.ndarray, quantity: str | None = None) -> np.ndarray:
+    """The reference's value of what the case's model measures (its deflection, or e.g. pd-rod's u), or of
+    ``quantity``, at the model's points (see :func:`_reference_fn`); the values of grids of up to
+    ``REFERENCE_CACHE_POINTS`` points are kept per (scene, slenderness, reference, quantity, grid)."""
+    key = _key(case, quantity)
+    x = np.asarray(x, "<f8")
+    if x.size <= REFERENCE_CACHE_POINTS:
+        return _reference_values(*key, x.tobytes())
+    return np.asarray(_reference_fn(*key)[0](x), float)
+
+
+def reference_bound(case: Case) -> float | None:
+    """The round-off bound of the case's reference solve (None for exact references and models without one)."""
+    return _reference_fn(*_key(case))[1]
+
+
+@lru_cache(maxsize=256)
+def _reference_text(items: tuple) -> str:
+    """The reference's options as the results table stores them (one per study, not one per case)."""
+    return json.dumps(dict(items), sort_keys=True)
