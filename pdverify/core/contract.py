@@ -29,6 +29,8 @@ One file on purpose: Option, Rule, System and Model with its capability checks a
 author.
 """
 
+# long module: the Model class every model implements, its options and capabilities in one place
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field

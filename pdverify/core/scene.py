@@ -10,6 +10,8 @@ read the neighbouring fields. Reading a scene file, the error wording and the ch
 :mod:`pdverify.core.scene_file` (``load_scene``, ``parse_scene``).
 """
 
+# long module: the scene file's tables and their validation, one pydantic model per table
+
 from __future__ import annotations
 
 import math

@@ -36,6 +36,8 @@ verify_required = false                           # default
 Values are typed as TOML types them: a boolean option takes only true/false, a number never a boolean.
 """
 
+# long module: the study file's schema and its validation, one error line per problem
+
 from __future__ import annotations
 
 import hashlib

@@ -18,6 +18,8 @@ the set's finest (nested, so the grids' points are its points), and the distance
 Timoshenko theory is reported as the theory gap (run as one more set, not judged).
 """
 
+# long module: the suite's fixed scenes and loads are data, versioned together
+
 from __future__ import annotations
 
 import json

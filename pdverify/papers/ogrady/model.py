@@ -22,6 +22,8 @@ polynomial ghost points of :func:`pdverify.numerics.ghosts.taylor_ghosts`, end l
 at the end; solved in the mixed form of :func:`.taylor.assemble_mixed` by default).
 """
 
+# long module: the model class dispatches its five paths (Taylor and mirror ends, pair form, nonlinear, load path)
+
 from __future__ import annotations
 
 import numpy as np

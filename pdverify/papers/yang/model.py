@@ -88,6 +88,8 @@ simply supported benchmarks differ from it by that, not by the operator (option 
 Orders: docs/models/yang.md. Band assembly: :mod:`.operator`. Dynamics (Eq. 17-22): :mod:`.dynamics`.
 """
 
+# long module: the model class and its option rules (operator, supports, outputs, dynamics: own modules)
+
 from __future__ import annotations
 
 import numpy as np
