@@ -31,14 +31,14 @@ def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:
     return (x > a) | ((x >= a) & (x >= length))
 
 
-def particular(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, ...]:
-    """(Mp, Mp', I1, I2, Mv) at x: the loads' particular moment, its slope, two integrals from 0,
-    and Mv = ∫Mp' (Mp without the steps of point moments)."""
+def particular(scene: Scene, x: np.ndarray, loads=None) -> tuple[np.ndarray, ...]:
+    """(Mp, Mp', I1, I2, Mv) at x: the loads' particular moment (of ``loads``, default the scene's), its slope,
+    two integrals from 0, and Mv = ∫Mp' (Mp without the steps of point moments)."""
     x = np.asarray(x, dtype=float)
     L = scene.length
     Mp, dMp, I1, I2 = (np.zeros_like(x) for _ in range(4))
     steps = np.zeros_like(x)
-    for load in scene.loads:
+    for load in scene.loads if loads is None else loads:
         if isinstance(load, PointForce):
             a, P = load.position, load.value
             on = _active(x, a, L)
@@ -97,9 +97,7 @@ def _distributed_terms(load: Distributed, a: float, b: float, L: float, x: np.nd
 def _basis(scene: Scene, load, x: np.ndarray) -> np.ndarray:
     """(5, len(x)): M, V, I1 = ∫M, I2 = ∫∫M and Vi = ∫V (M without the steps of point moments) from 0, of
     one load (a scene load, or a unit reaction at an inner support) alone."""
-    one = scene.model_copy(update={"loads": [load], "segments": [], "supports": scene.supports})
-    Mp, dMp, I1, I2, Mv = particular(one, x)
-    return np.stack([Mp, dMp, I1, I2, Mv])
+    return np.stack(particular(scene, x, [load]))
 
 
 class StraightSolution:
@@ -135,32 +133,25 @@ class StraightSolution:
         p = np.stack(particular(self.scene, x)) if self.scene.loads else np.zeros((5, len(x)))
         return np.stack(cols, axis=1), p
 
-    def _integrated(self, F: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _integrated(self, F, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(Phi, W): ∫₀^x M / EI and ∫₀^x (∫ M / EI) - ∫₀^x V / kGA of moment functions F = (M, V, I1, I2, Vi)
         evaluated at the segments' ends and at x (F: callable x -> (5, ..., len(x)))."""
+        ends = np.array([a for a, _, _, _ in self.pieces] + [self.pieces[-1][1]])
+        Fe = F(ends)  # (5, ..., pieces + 1): F at every segment's ends, once
         Phi = 0.0
         W = 0.0
-        for a, b, EI, kGA in self.pieces:
+        Phi_a = 0.0 * Fe[2][..., 0]  # ∫₀^a M / EI at the current segment's start
+        for i, (a, b, EI, kGA) in enumerate(self.pieces):
             y = np.clip(x, a, b)
-            Fa, Fy = F(np.full_like(x, a)), F(y)
-            Phi_a = Phi_at_a = self._phi_before(F, a)
+            Fy = F(y)
+            Fa = Fe[..., i : i + 1]
             dy = y - a
             Phi = Phi + (Fy[2] - Fa[2]) / EI
-            W = W + Phi_at_a * dy + (Fy[3] - Fa[3] - Fa[2] * dy) / EI
+            W = W + Phi_a[..., None] * dy + (Fy[3] - Fa[3] - Fa[2] * dy) / EI
             if self.shear:
                 W = W - (Fy[4] - Fa[4]) / kGA
-            del Phi_a
+            Phi_a = Phi_a + (Fe[2][..., i + 1] - Fe[2][..., i]) / EI
         return Phi, W
-
-    def _phi_before(self, F, a: float):
-        """∫₀^a M / EI over the segments left of a."""
-        total = 0.0
-        for s0, s1, EI, _ in self.pieces:
-            if s0 >= a:
-                break
-            e = min(s1, a)
-            total = total + (F(np.array([e]))[2] - F(np.array([s0]))[2]) / EI
-        return total
 
     def _linear(self, x: np.ndarray) -> dict:
         """{field: (A, p)}: field(x) = A @ u + p for u = (c0, c1, reactions..., c2, c3)."""
@@ -191,17 +182,10 @@ class StraightSolution:
     # -- the conditions --------------------------------------------------------------------------------------------
     def _solve(self, L: float) -> np.ndarray:
         sup = self.scene.supports
-        rows, rhs = [], []
+        conds = []  # (field, position, {other field: coefficient}, factor, column + 1 or 0): one row each
 
-        def cond(field: str, at: float, extra: dict | None = None):
-            A, p = self._linear(np.array([at]))[field]
-            row, r = A[0].copy(), -p[0]
-            for other, coef in (extra or {}).items():
-                B, q = self._linear(np.array([at]))[other]
-                row += coef * B[0]
-                r -= coef * q[0]
-            rows.append(row)
-            rhs.append(r)
+        def cond(field: str, at: float, extra: dict | None = None, factor: float = 1.0, col: int | None = None):
+            conds.append((field, at, extra or {}, factor, col))
 
         k = 2 + len(self.units)
         for side, at in (("left", 0.0), ("right", L)):
@@ -228,21 +212,27 @@ class StraightSolution:
                 cond(field, at)
         for j, s in enumerate(self.forces):  # w(a) = 0, or R + k w(a) = 0
             if s.type == "spring":
-                cond("w", s.position)
-                rows[-1] = rows[-1] * s.stiffness
-                rhs[-1] = rhs[-1] * s.stiffness
-                rows[-1][2 + j] += 1.0
+                cond("w", s.position, factor=s.stiffness, col=2 + j)
             else:
                 cond("w", s.position)
         for j, s in enumerate(self.moments):  # phi(a) = 0, or C + k_r phi(a) = 0
-            col = 2 + len(self.forces) + j
             if s.type == "spring":
-                cond("rotation", s.position)
-                rows[-1] = rows[-1] * s.rotational_stiffness
-                rhs[-1] = rhs[-1] * s.rotational_stiffness
-                rows[-1][col] += 1.0
+                cond("rotation", s.position, factor=s.rotational_stiffness, col=2 + len(self.forces) + j)
             else:
                 cond("rotation", s.position)
+        lin = self._linear(np.array([c[1] for c in conds]))  # every condition's point in one evaluation
+        rows, rhs = [], []
+        for i, (field, _, extra, factor, col) in enumerate(conds):
+            A, p = lin[field]
+            row, r = A[i].copy(), -p[i]
+            for other, coef in extra.items():
+                row += coef * lin[other][0][i]
+                r -= coef * lin[other][1][i]
+            row, r = row * factor, r * factor
+            if col is not None:
+                row[col] += 1.0
+            rows.append(row)
+            rhs.append(r)
         A, b = np.array(rows), np.array(rhs)
         # every unknown in deflection units (x by L, moments by EI0 L^2, forces by EI0 L ...) and each condition by
         # its largest coefficient: the system is then well conditioned at any size, from a micrometre to kilometres,

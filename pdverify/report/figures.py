@@ -72,7 +72,7 @@ def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: 
             xytext=(4, 4),
             textcoords="offset points",
         )
-    return _finish(fig, ax, f"spacing ({unit})", "max relative error", title, which="both")
+    return _finish(fig, ax, f"spacing ({unit})", "max relative error (–)", title, which="both")
 
 
 def scatter(
@@ -142,19 +142,23 @@ def cost(
         for lab, nl, tl in limits:
             if lab == label and len(nl):
                 ax.loglog(nl, tl, "--", lw=1, color=line.get_color(), label=f"{label}: banded-solve limit")
-    return _finish(fig, ax, "points", "seconds", title, which="both")
+    return _finish(fig, ax, "points (–)", "total time (s)", title, which="both")
 
 
 def dispersion(
-    discrete: list[tuple[str, np.ndarray, np.ndarray]], continuum: list[tuple[str, np.ndarray, np.ndarray]], title: str
+    discrete: list[tuple[str, np.ndarray, np.ndarray]],
+    continuum: list[tuple[str, np.ndarray, np.ndarray]],
+    title: str,
+    unit: str = "m",
 ) -> str:
-    """Frequency against wavenumber: the discrete branches (solid) over the continuum's (black: dashed, dotted)."""
+    """Frequency against wavenumber (in 1/``unit``): the discrete branches (solid) over the continuum's (black:
+    dashed, dotted)."""
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     for label, k, w in discrete:
         ax.plot(k, w, "-", lw=1.2, label=label)
     for (label, k, w), style in zip(continuum, ("k--", "k:"), strict=False):
         ax.plot(k, w, style, lw=1.4, label=label)
-    return _finish(fig, ax, "wavenumber k (1/length)", "ω (rad/s)", title)
+    return _finish(fig, ax, f"wavenumber k (1/{unit})", "ω (rad/s)", title)
 
 
 LEDGER_LABELS = {

@@ -19,7 +19,8 @@ from markupsafe import Markup
 from ..core.version import __version__
 from ..measure.cost import ACCURACY, accurate
 from . import figures
-from .build import environment, table
+from .output import environment
+from .tables import table
 
 RATIO_TARGET = 2.0  # total time / banded solve of the same matrix, at the largest size
 UPDATES_TARGET = 5e7  # point-updates per second of explicit dynamics at 10^6 points
@@ -146,7 +147,7 @@ def work_precision_figure(groups, accuracy: float, title: str) -> str:
     for label, t, e in groups:
         ax.loglog(t, e, "o-", ms=4, label=label)
     ax.axhline(accuracy, color="k", ls="--", lw=1, label=f"max error {accuracy:g}: counts toward targets below")
-    return figures._finish(fig, ax, "total seconds", "max error vs exact", title, which="both")
+    return figures._finish(fig, ax, "total time (s)", "max rel. error vs exact (–)", title, which="both")
 
 
 def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float]) -> Path:

@@ -1,19 +1,12 @@
-"""Figures of one scene beyond its deflection curves: curved beams' resultants (N, Q), the overlay of several
-transient runs, the PD rod and beam stencils' dispersion. Each takes what the report builder read (curves, case
-rows, the output folder) and returns inline SVG strings (:mod:`.figures`)."""
+"""Figures of one scene on its paper's page beyond its deflection curves: curved beams' resultants (N, Q) and the
+overlay of several transient runs. Each takes what the report builder read (curves, case rows) and returns inline
+SVG strings (:mod:`.figures`)."""
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import numpy as np
-import pandas as pd
 
-from ..study.outdir import SCENES
-from ..study.spec import _scene
 from . import figures
-from .waves import dispersion_figure
 
 RESULTANTS = (("N", "axial force N"), ("Q", "shear force Q"))  # curved-beam fields drawn beside the deflection
 
@@ -56,21 +49,3 @@ def overlay_figures(runs: list[tuple[str, np.ndarray, dict, str]], title: str) -
         figures.histories_overlay(curves, f"{title}: {probe}, every run", ylabel),
         figures.histories_overlay(curves, f"{title}: {probe}, early time", ylabel, until=EARLY * end),
     ]
-
-
-def dispersion_figures(d: Path, sfile: str, rows: pd.DataFrame) -> list[str]:
-    """The dispersion figure of each PD rod / beam (model, variant) run on the scene, at its finest grid
-    (:func:`pdverify.report.waves.dispersion_figure`; the scene from the study's ``scenes.json``)."""
-
-    pd_rows = rows[rows["model"].isin(("pd-rod", "pd-timoshenko"))]
-    if pd_rows.empty:
-        return []
-    try:
-        text = json.loads((d / SCENES).read_text())[sfile]
-    except (OSError, ValueError, KeyError):  # a study run before scenes.json was written
-        return []
-    figs = []
-    for (model, variant), g in pd_rows.groupby(["model", pd_rows["variant"].fillna("corrected")], sort=True):
-        fig = dispersion_figure(_scene(text, sfile, None), model, int(g["points"].max()), variant)
-        figs += [fig] if fig else []
-    return figs

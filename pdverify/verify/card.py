@@ -5,6 +5,7 @@ from __future__ import annotations
 import html
 import json
 import math
+import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -46,11 +47,17 @@ def _fmt(v, spec=".2e") -> str:
     return "–" if v is None or (isinstance(v, float) and math.isnan(v)) else format(v, spec)
 
 
+def check_anchor(check: str) -> str:
+    """The id of a check's row on card.html ('check-convergence-straight'): the study report links to it."""
+    return "check-" + (re.sub(r"[^a-z0-9]+", "-", check.lower()).strip("-") or "x")
+
+
 def page(card: dict) -> str:
     e = html.escape
     opts = ", ".join(f"{k}={v}" for k, v in card["options"].items()) or "defaults"
     rows = "".join(
-        f"<tr class='{c['verdict'].replace('/', '')}'><td>{e(c['check'])}</td><td>{c['verdict']}</td>"
+        f"<tr id='{check_anchor(c['check'])}' class='{c['verdict'].replace('/', '')}'><td>{e(c['check'])}</td>"
+        f"<td>{c['verdict']}</td>"
         f"<td>{e(c['summary'])}</td></tr>"
         for c in card["checks"]
     )

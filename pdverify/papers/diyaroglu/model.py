@@ -45,8 +45,9 @@ from ...core.contract import Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
-from ...numerics.linalg import eliminate, solve_linear
+from ...numerics.linalg import eliminate
 from ...numerics.loads import body_loads, boundary_layer_warnings
+from ...numerics.solvers import SOLVER, solve
 from .operator import (
     corrected_system,
     curvature_weights,
@@ -108,6 +109,7 @@ class PDEulerBernoulli(Model):
             "layer (literal, with the 2.015 dx fictitious layer and horizon at simply supported ends)",
             choices=("energy", "literal", "layer"),
         ),
+        SOLVER,
     )
     assembles = True
     variant_rules = (
@@ -240,7 +242,7 @@ class PDEulerBernoulli(Model):
             with timer("assemble"):
                 system = self.assemble(mirror_scene(scene) if flip else scene, params)
             with timer("solve"):
-                z, info = solve_linear(system.matrix, system.rhs, what="pd-eb (corrected, mixed form)")
+                z, info = solve(system.matrix, system.rhs, "pd-eb (corrected, mixed form)", params["solver"])
                 n = params["points"]
                 J = (system.matrix.n // 2 - n) // 2  # positions -J .. n-1+J, two unknowns each
                 w = z[2 * J + 1 : 2 * (n + J) : 2].copy()
@@ -250,7 +252,7 @@ class PDEulerBernoulli(Model):
             with timer("assemble"):
                 system = self.assemble(scene, params)
             with timer("solve"):
-                w, info = solve_linear(system.matrix, system.rhs, what=f"pd-eb ({params['variant']})")
+                w, info = solve(system.matrix, system.rhs, f"pd-eb ({params['variant']})", params["solver"])
         ndofs, binfo = system.unknowns, system.info  # mixed: kappa on every position, w on the free points
         x = self.grid(scene, params)
         dx = x[1] - x[0]

@@ -37,8 +37,8 @@ from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.families import family, ghost_stencil_system, stencil_operator
 from ...numerics.ghosts import curvature_end_rows, taylor_ghosts
-from ...numerics.linalg import solve_linear
 from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
+from ...numerics.solvers import SOLVER, solve
 from .nonlinear import NonlinearBondPair
 
 
@@ -196,6 +196,7 @@ class PDBondPair(Model):
         ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
         Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
+        SOLVER,
     )
     axial = True
     assembles = True
@@ -391,7 +392,7 @@ class PDBondPair(Model):
         if params["ends"] == "mirror":
             model = self.energy_model(scene, params)
             with timer("solve"):
-                u, info = solve_linear(system.matrix, system.rhs, what=what)
+                u, info = solve(system.matrix, system.rhs, what, params["solver"])
                 full = refine(model, system.matrix, system.rhs, system.free, u)
             w, fields["u"] = full[1::2], full[0::2]
         elif binfo.get("Jk") is not None:
@@ -401,7 +402,7 @@ class PDBondPair(Model):
                 # round-off (which stays far below cond eps), so it is not estimated; the round-off estimate
                 # 0.1 eps N^2 holds the errors at 10^5-10^6 points, every support pair, mixed loads
                 # (tests/papers/ogrady/test_bond_pair_large.py; docs/models/ogrady.md)
-                z, info = solve_linear(system.matrix, system.rhs, what=what + ", mixed form", condition=False)
+                z, info = solve(system.matrix, system.rhs, what + ", mixed form", params["solver"], condition=False)
                 w = z[2 * Jk + 1 : 2 * (len(x) + Jk) : 2].copy()
             info["roundoff_estimate"] = roundoff = 0.1 * np.finfo(float).eps * len(x) ** 2
             if roundoff > 1e-6:
@@ -411,7 +412,7 @@ class PDBondPair(Model):
                 )
         else:
             with timer("solve"):
-                w, info = solve_linear(system.matrix, system.rhs, what=what)
+                w, info = solve(system.matrix, system.rhs, what, params["solver"])
         dx = x[1] - x[0]
         flags = boundary_layer_warnings(
             scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4

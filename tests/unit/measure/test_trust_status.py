@@ -121,8 +121,8 @@ def test_a_row_against_a_reference_with_a_large_bound_is_suspect():
 
 def test_a_card_check_on_such_rows_carries_the_caveat(tmp_path):
     """A verify check that judged errors against such a reference says so in its summary (card HTML, JSON, JUnit)
-    and the study report's cards table marks its verdict with * (the caveat as the cell's title)."""
-    from pdverify.report.build import _check_cell
+    and the study report's summary marks its verdict with * (the caveat in the cell's title)."""
+    from pdverify.report.summary import _check_cell
     from pdverify.verify import checks as C
 
     df = pd.DataFrame(

@@ -55,7 +55,9 @@ def test_timoshenko_branches_limits():
 @pytest.mark.slow
 def test_the_report_draws_each_pd_model_s_dispersion(tmp_path):
     """A study running pd-timoshenko and pd-rod: the report holds one dispersion figure per (model, variant) at
-    its finest grid, read from the study's scenes.json (the scenes as run); other models get none."""
+    its finest grid, read from the study's scenes.json (the scenes as run); other models get none. A relation
+    depends on the grid, section and material, not on the loads: two rod scenes that differ in their load share
+    one figure, which names both (on the index and on the paper's page)."""
     import shutil
 
     from pdverify import run_study
@@ -63,15 +65,26 @@ def test_the_report_draws_each_pd_model_s_dispersion(tmp_path):
 
     for name in ("beam_transient.toml", "rod_transient.toml"):
         shutil.copy(ROOT / "studies" / "paper_moyer" / name, tmp_path / name)
-    runs = [("pd-timoshenko", "beam", "[21, 41]"), ("pd-rod", "rod", "41"), ("fem-timoshenko", "beam", "21")]
-    text = 'name = "waves"\nscenes = ["beam_transient.toml", "rod_transient.toml"]\nreference = "none"\n'
-    for model, scene, points in runs:
-        text += f'[[runs]]\nmodel = "{model}"\nscenes = ["{scene}_transient.toml"]\npoints = {points}\n'
+    rod = (tmp_path / "rod_transient.toml").read_text()
+    other = rod.replace('name = "rod, sine axial load from rest"', 'name = "rod, a larger load"')
+    (tmp_path / "rod2_transient.toml").write_text(other.replace("axial = 3000.0", "axial = 6000.0"))
+    runs = [
+        ("pd-timoshenko", '["beam_transient.toml"]', "[21, 41]"),
+        ("pd-rod", '["rod_transient.toml", "rod2_transient.toml"]', "41"),
+        ("fem-timoshenko", '["beam_transient.toml"]', "21"),
+    ]
+    text = 'name = "waves"\nscenes = ["beam_transient.toml", "rod_transient.toml", "rod2_transient.toml"]\n'
+    text += 'reference = "none"\n'
+    for model, scenes, points in runs:
+        text += f'[[runs]]\nmodel = "{model}"\nscenes = {scenes}\npoints = {points}\n'
     (tmp_path / "s.toml").write_text(text)
     run_study(tmp_path / "s.toml", out=tmp_path / "out", workers=1, progress=False)
-    pages = build_report(tmp_path / "out").read_text()  # index.html (the paper pages repeat the figures)
-    assert pages.count("pd-timoshenko (energy) dispersion, 41 points") == 1  # the default variant
-    assert pages.count("pd-rod (corrected) dispersion, 41 points") == 1 and "fem-timoshenko (" not in pages
-    # the beam's three transient runs overlaid, whole run and early time (Moyer & Miraglia Figs 3, 9, 10); the
-    # rod's one run has none
-    assert "w(x=1), every run" in pages and "w(x=1), early time" in pages and "u(x=1), every run" not in pages
+    index = build_report(tmp_path / "out").read_text()
+    paper = (tmp_path / "out" / "paper-scenes.html").read_text()
+    for page in (index, paper):
+        assert page.count("pd-timoshenko (energy) dispersion, 41 points") == 1  # the default variant
+        assert page.count("pd-rod (corrected) dispersion, 41 points") == 1 and "fem-timoshenko (" not in page
+        assert "rod, sine axial load from rest; rod, a larger load" in page
+    # the beam's three transient runs overlaid, whole run and early time (Moyer & Miraglia Figs 3, 9, 10), on the
+    # paper's page; the rod's one run has none
+    assert "w(x=1), every run" in paper and "w(x=1), early time" in paper and "u(x=1), every run" not in paper

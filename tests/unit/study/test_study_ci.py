@@ -409,6 +409,6 @@ def test_report_shows_the_order_checks_with_their_verdicts(tmp_path):
     run(p, tmp_path)
     page = build_report(tmp_path / "out").read_text()
     checks = page[page.index('id="checks"') : page.index('id="checks"') + 20000]
-    assert "Order checks" in page and '<tr class="pass">' in checks and '<tr class="fail">' in checks
+    assert "Order checks" in page and '<tr class="pass f" ' in checks and '<tr class="fail f" ' in checks
     fitted = pd.read_csv(tmp_path / "out/checks.csv")["observed_order"]
-    assert all(f">{v:.6g}<" in checks for v in fitted)  # the report's number format (build.fmt)
+    assert all(f">{v:.2f}<" in checks for v in fitted)  # an order to two decimals (report.tables.COLUMNS)

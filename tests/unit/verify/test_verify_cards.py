@@ -74,8 +74,12 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
     assert 'id="cards"' in index
     for folder in folders.values():
         assert f'href="verify/{folder}/card.html"' in index
-    row = re.search(r"<tr class=\"fail\">(.*?)</tr>", index.split('id="cards"', 1)[1]).group(1)
+    # the summary's row of the failed card (its rows carry the filters' attributes), linking to the failed check
+    row = re.search(r'<tr class="f fail" [^>]*>(.*?)</tr>', index.split('id="cards"', 1)[1]).group(1)
     assert "fem-timoshenko" in row and "variant=full" in row
+    assert 'href="verify/fem_timoshenko_variant_full/card.html#check-locking-error-vs-slenderness-5-10000"' in row
+    card = (out / "verify" / "fem_timoshenko_variant_full" / "card.html").read_text()
+    assert "id='check-locking-error-vs-slenderness-5-10000'" in card
 
     # not required: the same cards are reported, the exit status is the study's; their cases are reused
     case_files = sorted((out / "verify").rglob("cases/**/*.*"))
