@@ -15,6 +15,7 @@ import scipy.sparse as sp
 from pdverify.core.errors import InputError
 from pdverify.core.result import Result, Timer, columns_csv
 from pdverify.core.scene import PointForce, Scene
+from pdverify.numerics.steps import step_count
 
 from .beam_elements import add_springs, constrained_dofs, two_fields
 from .newmark import newmark
@@ -67,7 +68,7 @@ def transient(model, scene: Scene, params: dict) -> Result:
     # element if shorter (a Courant number of 1, which Newmark does not need for stability: the time error then
     # falls with the mesh)
     dt = d.time_step or min(sample, float(np.diff(nodes).min()) / np.sqrt(scene.material.youngs_modulus / rho))
-    steps = int(np.ceil(d.end_time / dt - 1e-9))
+    steps = step_count(d.end_time, dt, d.time_step is not None)
     with timer("solve"):
         t, hist, u = newmark(K, M, C, F, d.end_time / steps, steps, observe)
     every = max(1, int(round(sample / (d.end_time / steps))))

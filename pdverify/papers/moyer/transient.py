@@ -20,6 +20,7 @@ import scipy.sparse as sp
 
 from ...core.errors import SolveError
 from ...core.result import columns_csv
+from ...numerics.steps import step_count
 from ...numerics.timeint import EnergyLedger, ledger_columns
 from .kernels import motion_value
 from .spectrum import first_frequency, mass_scaled, stable_time_step
@@ -120,8 +121,11 @@ def integrate(
     Implementation: with V = dt v^{j+1/2} the step is y = u + κ V, V <- α V + G (b - K y), u <- u + V
     with G = (1 - c/2) dt²/m per DOF (zero on prescribed DOFs); K y is one CSR product up to
     ``WHOLE_DOFS`` unknowns, else the operator's stencil applied block by block (:class:`StencilStep`)."""
+    given = dt is not None
     dt, limit, kappa, damping, omega1 = time_step(disc, dt, damping, damping_ratio, safety, stabilisation)
-    steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
+    steps, record_every, ledger_every = sampling(
+        disc, t_end, dt, steps, record_every, output_interval, ledger_every, given
+    )
     clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
     probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
     recorder = Recorder(disc, probes)
@@ -194,12 +198,15 @@ def time_step(
     return dt, limit, kappa, damping, omega1
 
 
-def sampling(disc: Discrete, t_end, dt: float, steps, record_every, output_interval, ledger_every) -> tuple:
-    """(steps, record_every, ledger_every): the steps up to ``t_end`` unless given, the histories every
+def sampling(
+    disc: Discrete, t_end, dt: float, steps, record_every, output_interval, ledger_every, given: bool = False
+) -> tuple:
+    """(steps, record_every, ledger_every): the steps up to ``t_end`` unless given (at most
+    :data:`pdverify.numerics.steps.MAX_STEPS`; ``given``: dt is the scene's), the histories every
     ``output_interval`` (s) or ``record_every`` steps (default: ~2000 samples), the ledger at most every
     ``ledger_every`` steps (default every sample up to ``WHOLE_DOFS`` unknowns, else every ``LEDGER_STRIDE``)."""
     if steps is None:
-        steps = int(np.ceil(t_end / dt - 1e-9))
+        steps = step_count(t_end, dt, given)
     if output_interval is not None:
         record_every = max(1, int(round(output_interval / dt)))
     record_every = record_every or max(1, steps // 2000)

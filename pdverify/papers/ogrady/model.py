@@ -195,7 +195,7 @@ class PDBondPair(Model):
             choices=("auto", "direct", "mixed"),
         ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
-        Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
+        Option("steps", int, 10, "load steps of the nonlinear path", minimum=1, maximum=100_000),
         SOLVER,
     )
     axial = True
