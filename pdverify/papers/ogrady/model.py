@@ -39,6 +39,7 @@ from ...numerics.families import family, ghost_stencil_system, stencil_operator
 from ...numerics.ghosts import curvature_end_rows, taylor_ghosts
 from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
 from ...numerics.solvers import SOLVER, solve
+from .bias import paper_bias
 from .nonlinear import NonlinearBondPair
 
 
@@ -417,6 +418,7 @@ class PDBondPair(Model):
         flags = boundary_layer_warnings(
             scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4
         )
+        flags += [paper_bias(params["horizon"])] if params["variant"] == "paper" else []
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
