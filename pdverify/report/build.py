@@ -38,6 +38,8 @@ CONVERGENCE_COLUMNS = [
     "slenderness",
     "n_grids",
     "observed_order",
+    "promised_order",
+    "below_order",
     "r2",
     "gci_order",
     "gci_fine",
