@@ -186,7 +186,9 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
 def _judge(model, options: dict, p, df, expected: float) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
-    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in ("convergence", "locking", "floor", "curved")}
+    sets = ("convergence", "locking", "floor", "curved", "curved_locking")
+    files = {s: [f for f, m in p.meta.items() if m["set"] == s] for s in sets}
+    files["locking"] = files["locking"] + files["curved_locking"]  # one locking check, straight and curved axes
     # the theory-gap run (self-convergence only): the convergence scenes on the reference grid, finer than any other
     gap = (p.reference is None) & (df["points"] == finer(p.grids)) & df["scene_file"].isin(files["convergence"])
     df, gap_df = df[~gap], df[gap]
