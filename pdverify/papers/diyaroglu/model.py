@@ -46,7 +46,7 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
-from ...numerics.loads import body_loads, boundary_layer_warnings
+from ...numerics.loads import body_loads, boundary_layer_warnings, moment_rotation_warnings
 from ...numerics.solvers import SOLVER, solve
 from .operator import (
     corrected_system,
@@ -262,6 +262,7 @@ class PDEulerBernoulli(Model):
         flags = boundary_layer_warnings(
             scene, x, 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4
         )
+        flags += moment_rotation_warnings(scene)
         if params["variant"] == "paper":  # d = 1 / (A delta) with delta = (m + 0.015) dx: kappa too small by m / delta
             flags.append(
                 f"variant = paper does not converge to the beam: its curvature is too small by m/(m + 0.015), so the "

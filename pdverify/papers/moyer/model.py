@@ -28,7 +28,7 @@ from ...core.contract import Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import ROD_HELD, Scene
-from ...numerics.loads import boundary_layer_warnings
+from ...numerics.loads import boundary_layer_warnings, moment_rotation_warnings
 from .ends import FIT_POINTS, MIRRORED
 from .energy import moment_field
 from .kernels import node_loads
@@ -194,6 +194,7 @@ class _MoyerModel(Model):
                 u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
             info.update(sinfo, analysis="static")
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m) + point_force_order(self, scene, params)
+            flags += moment_rotation_warnings(scene) if self.bending else []
             if flags:
                 info.setdefault("warnings", []).extend(flags)
         return self.from_solution(scene, params, disc, u, fields, info, timer, writers)

@@ -37,7 +37,7 @@ from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.families import family, ghost_stencil_system, stencil_operator
 from ...numerics.ghosts import curvature_end_rows, taylor_ghosts
-from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads
+from ...numerics.loads import body_loads, boundary_layer_warnings, end_loads, moment_rotation_warnings
 from ...numerics.solvers import SOLVER, solve
 from .bias import paper_bias
 from .nonlinear import NonlinearBondPair
@@ -418,7 +418,9 @@ class PDBondPair(Model):
         flags = boundary_layer_warnings(
             scene, x, 4 * int(family(params["horizon"], dx, params["variant"])[0].max()) + 4
         )
-        flags += [paper_bias(params["horizon"])] if params["variant"] == "paper" else []
+        flags += moment_rotation_warnings(scene) + (
+            [paper_bias(params["horizon"])] if params["variant"] == "paper" else []
+        )
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
