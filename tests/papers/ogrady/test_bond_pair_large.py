@@ -42,7 +42,8 @@ def test_mixed_and_direct_forms_are_the_same_discretisation_away_from_free_and_g
     assert em < 1e-3 and ed < 1e-3
     e401, _ = err(sc, points=401)
     assert np.log2(em / e401) > 1.8
-    assert not rm.info.get("warnings")
+    # the couple at 1.3 is the only thing noted: the rotation near it is first order (numerics.loads)
+    assert all("a point moment at 1.3" in w for w in rm.info.get("warnings", [])), rm.info.get("warnings")
 
 
 @pytest.mark.slow
