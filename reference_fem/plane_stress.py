@@ -49,6 +49,7 @@ each end's nodes (force along the end normal, axial, moment ccw about the end of
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 
 from pdverify.core.contract import Model, Option
 from pdverify.core.errors import InputError
@@ -108,14 +109,32 @@ def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
 
 
 def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):
-    """K of the strip (thickness = section width): scikit-fem's linear elasticity (q4 with 3x3 Gauss, q8, q9) or
+    """K of the strip (thickness = section width): plane-stress linear elasticity (:func:`elasticity`; q4 with 3x3
+    Gauss, q8, q9), or
     the PLANE182 stand-ins q4-bbar, q4-qm6, q4-reduced (:mod:`reference_fem.q4_variants`)."""
-    from skfem.models.elasticity import linear_elasticity  # scikit-fem is loaded by the model's solve only
-
     E, nu, width = scene.material.E, scene.material.poissons_ratio, scene.section.width
     if element.startswith("q4-"):
         return width * q4_variants.assemble(basis.mesh, basis, E, nu, element[3:])
-    return width * linear_elasticity(lam, mu).assemble(basis)
+    return width * elasticity(basis, lam, mu)
+
+
+def elasticity(basis, lam: float, mu: float) -> sp.csr_matrix:
+    """∫ sigma(u) : eps(v) dx, sigma = lam tr(eps) I + 2 mu eps: the bilinear form of scikit-fem's
+    ``linear_elasticity``, every element's matrix from the basis functions' symmetric gradients in one product
+    (scikit-fem's assembly calls the form once per pair of basis functions)."""
+    from skfem.helpers import sym_grad  # scikit-fem is loaded by the model's solve only
+
+    eps = np.array([sym_grad(phi[0]) for phi in basis.basis])  # (functions, 2, 2, elements, quadrature points)
+    tr = eps[:, 0, 0] + eps[:, 1, 1]
+    dx = basis.dx
+    ke = lam * np.einsum("ieq,jeq,eq->ije", tr, tr, dx, optimize=True)
+    ke += 2.0 * mu * np.einsum("iabeq,jabeq,eq->ije", eps, eps, dx, optimize=True)
+    dofs = basis.element_dofs  # (functions, elements)
+    rows = np.broadcast_to(dofs[:, None, :], ke.shape).ravel()
+    cols = np.broadcast_to(dofs[None, :, :], ke.shape).ravel()
+    K = sp.coo_matrix((ke.ravel(), (rows, cols)), shape=(basis.N, basis.N)).tocsr()
+    K.eliminate_zeros()  # as scikit-fem's assembly does
+    return K
 
 
 def face_rows(scene: Scene, nt: int) -> tuple[int, int]:
@@ -179,6 +198,7 @@ def writers(scene: Scene, basis, u: np.ndarray, lam: float, mu: float) -> dict:
 
 class FemPlaneStress(Model):
     name = "fem-plane-stress"
+    shapes = frozenset({"rectangle", "given"})  # its equations use the depth of a rectangle
     title = "2D plane-stress continuum (scikit-fem; q8 by default, PLANE182 stand-ins q4-*), straight or curved axis"
     source = "scikit-fem linear elasticity, plane-stress Lame constants; mesh mapped onto the axis"
     theory = "continuum"

@@ -272,7 +272,9 @@ def list_models():
         c = m.capabilities()
         typer.echo(
             f"{'':22s} solves: {'/'.join(c['analyses'])}, {'/'.join(c['axes'])} axes; supports "
-            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}"
+            f"{', '.join(c['supports'])}; loads {', '.join(c['load_types'])}; sections {', '.join(c['shapes'])}"
+            + (f"; materials {', '.join(c['materials'])}" if c["materials"] else "")
+            + ("; load paths" if c["load_path"] else "")
         )
 
 
@@ -392,6 +394,9 @@ def bench(
     out: Path | None = typer.Option(
         None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"
     ),
+    sharing: list[str] | None = typer.Option(
+        None, "--sharing", help="model(s) whose verification suite is timed with and without shared factorisations"
+    ),
 ):
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
     import json as _json
@@ -433,6 +438,19 @@ def bench(
                     f"updates/s={f(row['updates_per_s'], '.3g')}"
                     + ("" if accurate(row) else "  (error above 1e-6 or unknown: counts toward no target)")
                 )
+    shared = []
+    for n in sharing or ():
+        from .sharing import sharing_gain
+
+        shared.append(sharing_gain(model_argument(n)) | {"kind": "sharing"})
+        r = shared[-1]
+        typer.echo(
+            _json.dumps(r)
+            if fmt == Format.json
+            else f"{n:18s} suite {r['cases']} cases: {r['factorisations_apart']} -> {r['factorisations_shared']} "
+            f"factorisations, {r['cases_per_s_apart']:.3g} -> {r['cases_per_s_shared']:.3g} cases/s "
+            f"(x{r['gain']:.2f}), same numbers: {r['same']}, max error {r['max_error']:.1e}"
+        )
     slopes = cost_slope(rows)
     for n, s in slopes.items():
         line = {"model": n, "cost_slope": s}
@@ -440,7 +458,7 @@ def bench(
     if out:
         from ..report.perf import build_performance
 
-        page = build_performance(rows, out, slopes)
+        page = build_performance(rows, out, slopes, shared)
         if fmt != Format.json:
             typer.echo(f"performance page: {page}")
 

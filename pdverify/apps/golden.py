@@ -33,7 +33,7 @@ CASES = [
     *[
         (f"paper_diyaroglu/{s}.toml", "pd-bond-pair", {"variant": v, "ends": e, "points": 201})
         for s in ("clamped_free", "clamped_clamped", "simply_supported")
-        for v, e in (("paper", "mirror"), ("corrected", "taylor"))
+        for v, e in (("paper", "mirror"), ("continuous-alpha", "mirror"), ("corrected", "taylor"))
     ],
     *[
         (f"paper_yang/{s}.toml", "fem-timoshenko", {"points": 101})

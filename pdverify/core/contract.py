@@ -187,7 +187,10 @@ class Model:
     springs: bool = False  # elastic supports (a [supports] end or inner support given as a spring table)
     inner_supports: bool = False  # supports inside the span (supports.inner)
     segments: bool = False  # sections and materials that change along the axis ([[segments]])
+    shapes: frozenset[str] = frozenset({"rectangle", "given", "I", "profile"})  # section kinds (Section.kind) it takes
     load_types: frozenset[str] = LOAD_TYPES  # loads[i].type it applies
+    materials: frozenset[str] = frozenset()  # material laws past elasticity it takes: yield_stress, failure_strain
+    load_path: bool = False  # follows a [loading] path (load factors, steps, unloading)
     end_motions: bool = False  # prescribed end motions ([dynamics.left/right]) in its solution
     variant_rules: tuple[Rule, ...] = ()  # option values each variant's equations define (Rule)
     # -- the assembled system -------------------------------------------------------------------
@@ -236,6 +239,16 @@ class Model:
                 f"segments: model {self.name} takes one section and one material; use a model that takes segments "
                 "(`pdverify models`: exact-eb, fem-eb, ...)"
             )
+        sections = [("section", scene.section)] + [
+            (f"segments[{i}].section", g.section) for i, g in enumerate(scene.segments)
+        ]
+        for where, sec in sections:
+            if sec is not None and sec.kind not in self.shapes:
+                out.append(
+                    f"{where}.shape = {sec.kind!r}: model {self.name} takes a rectangle (its equations use the "
+                    "section's depth and width); give width and height"
+                )
+        out += self._path_problems(scene)
         if self.bending and (why := straight_mechanism(scene)) is not None:  # (a scene that bends it is refused)
             out.append(why)
         if scene.dynamics is None and "static" not in self.analyses:
@@ -282,6 +295,26 @@ class Model:
                 )
         return out
 
+    def _path_problems(self, scene: Scene) -> list[str]:
+        """Material laws past elasticity and load paths this model does not take (``materials``, ``load_path``)."""
+        out = []
+        mats = [("material", scene.material)] + [
+            (f"segments[{i}].material", g.material) for i, g in enumerate(scene.segments) if g.material is not None
+        ]
+        for where, mat in mats:
+            for law in ("yield_stress", "failure_strain"):
+                if getattr(mat, law) is not None and law not in self.materials:
+                    out.append(
+                        f"{where}.{law}: model {self.name} is elastic only; drop {law} or use a model that takes it "
+                        "(`pdverify models`: pd-bond-pair, ...)"
+                    )
+        if scene.loading is not None and not self.load_path:
+            out.append(
+                f"loading: model {self.name} solves one load, not a load path; drop [loading] or use a model that "
+                "follows one (`pdverify models`: pd-bond-pair, ...)"
+            )
+        return out
+
     def solve(self, scene: Scene, params: dict) -> Result:  # pragma: no cover - interface
         raise NotImplementedError
 
@@ -324,6 +357,9 @@ class Model:
             "axes": [a for a, ok in (("straight", self.straight), ("curved", self.curved)) if ok],
             "supports": sorted(self.supports) + ["spring"] * self.springs + ["inner"] * self.inner_supports,
             "segments": self.segments,
+            "shapes": sorted(self.shapes),
+            "materials": sorted(self.materials),
+            "load_path": self.load_path,
             "load_types": sorted(self.load_types),
             "components": [c for c in ("bending", "axial", "torsion") if getattr(self, c)],
             "measures": self.measures,

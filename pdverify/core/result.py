@@ -51,7 +51,7 @@ class Result:
     ``x``: positions of the real points (m), no fictitious ones; ``w``: deflection there (m, +z);
     ``rotation``: rotation (rad, counter-clockwise) where the model has one; ``fields``: other
     point outputs (axial displacement ``u``, resultants ``N``, ``Q``, ``M`` ...); ``info``:
-    scalars such as the condition-number estimate, mesh, element, warnings.
+    scalars such as the condition-number estimate, mesh, element, warnings; ``path``: the steps of a load path.
     ``writers`` maps a file suffix (".vtu") to a function writing a model-specific artefact.
     """
 
@@ -65,6 +65,7 @@ class Result:
     dofs: int = 0
     timings: dict[str, float] = field(default_factory=dict)
     info: dict = field(default_factory=dict)
+    path: list[dict] | None = None  # one entry per step of a load path (factor, w, reactions, ...), in order
     version: str = __version__
     writers: dict[str, Callable[[str], None]] = field(default_factory=dict, repr=False)
 
@@ -92,6 +93,8 @@ class Result:
         out["timings"] = {k: float(v) for k, v in self.timings.items()}
         if self.info:
             out["info"] = plain_json(self.info)
+        if self.path is not None:
+            out["path"] = plain_json(self.path)
         out["version"] = self.version
         return out
 

@@ -19,6 +19,8 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Strict, Tag, model_validator
 
 from .errors import InputError
+from .loading import Displacement, Loading
+from .section import Section  # noqa: F401  (a scene's [section] table; re-exported with the other tables)
 
 SUPPORTS = ("clamped", "pinned", "free", "guided", "roller")
 Support = Literal["clamped", "pinned", "free", "guided", "roller"]
@@ -49,78 +51,13 @@ class Beam(_Strict):
     length: Real = Field(gt=0, allow_inf_nan=False)
 
 
-class Section(_Strict):
-    """Rectangle (``width``, ``height``) or given ``area``, ``inertia`` (and ``shear_factor``)."""
-
-    width: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
-    height: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
-    area: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
-    inertia: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
-    shear_factor: Real | None = Field(default=None, gt=0, le=1.5, allow_inf_nan=False)
-    torsion_constant: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
-
-    @model_validator(mode="after")
-    def _complete(self):
-        rect = self.width is not None and self.height is not None
-        given = self.area is not None and self.inertia is not None
-        if not rect and not given:
-            raise ValueError(
-                "give width and height (rectangle) or area and inertia; "
-                f"got width={self.width}, height={self.height}, area={self.area}, inertia={self.inertia}"
-            )
-        if (self.width is None) != (self.height is None):
-            raise ValueError("width and height go together; give both or neither")
-        both = [k for k in ("width", "height", "area", "inertia") if getattr(self, k) is not None]
-        if rect and (self.area is not None or self.inertia is not None):
-            raise ValueError(
-                f"{', '.join(both)} given: a section is a rectangle (width, height) or given by area and "
-                "inertia, not both (they would disagree); keep one pair"
-            )
-        return self
-
-    @property
-    def A(self) -> float:
-        return self.area if self.area is not None else self.width * self.height
-
-    @property
-    def I(self) -> float:  # noqa: E743 - the field's name
-        return self.inertia if self.inertia is not None else self.width * self.height**3 / 12.0
-
-    @property
-    def k(self) -> float:
-        return self.shear_factor if self.shear_factor is not None else 5.0 / 6.0
-
-    @property
-    def J(self) -> float | None:
-        """Saint-Venant torsion constant: given, or of the rectangle (series-fit formula
-        a b³ (1/3 - 0.21 (b/a)(1 - b⁴/(12 a⁴))), a >= b); None for an area/inertia section without it."""
-        if self.torsion_constant is not None:
-            return self.torsion_constant
-        if self.width is None:
-            return None
-        a, b = max(self.width, self.height), min(self.width, self.height)
-        return a * b**3 * (1.0 / 3.0 - 0.21 * (b / a) * (1.0 - b**4 / (12.0 * a**4)))
-
-    @property
-    def polar(self) -> float | None:
-        """Polar moment of area of the rectangle (rotary inertia of twist); None when not a rectangle."""
-        if self.width is None:
-            return None
-        return self.width * self.height * (self.width**2 + self.height**2) / 12.0
-
-    @property
-    def depth(self) -> float:
-        """Height of the section (for a given area/inertia: of the equivalent rectangle)."""
-        if self.height is not None:
-            return self.height
-        return math.sqrt(12.0 * self.I / self.A)
-
-
 class Material(_Strict):
     youngs_modulus: Real = Field(gt=0, allow_inf_nan=False)
     poissons_ratio: Real = Field(gt=-1.0, lt=0.5, allow_inf_nan=False)
     density: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
     shear_modulus: Real | None = Field(default=None, gt=0, allow_inf_nan=False)
+    yield_stress: Real | None = Field(default=None, gt=0, allow_inf_nan=False)  # elastic-perfectly plastic (Pa)
+    failure_strain: Real | None = Field(default=None, gt=0, allow_inf_nan=False)  # brittle: the fibre strain at failure
 
     @property
     def E(self) -> float:
@@ -255,7 +192,7 @@ class PointTorque(_Strict):
     value: Real = Field(allow_inf_nan=False)
 
 
-Load = Annotated[PointForce | PointMoment | Distributed | PointTorque, Field(discriminator="type")]
+Load = Annotated[PointForce | PointMoment | Distributed | PointTorque | Displacement, Field(discriminator="type")]
 
 
 class Axis(_Strict):
@@ -361,6 +298,7 @@ class Scene(_Strict):
     axis: Axis = Field(default_factory=Axis)
     dynamics: Dynamics | None = None
     segments: list[Segment] = Field(default_factory=list)
+    loading: Loading | None = None  # a load path (pdverify.core.loading)
 
     # -- derived quantities ------------------------------------------------------------------
     @property
@@ -439,7 +377,11 @@ class Scene(_Strict):
             raise InputError(f"slenderness = {slenderness!r}: give a positive, finite length / depth ratio")
         h_new = self.length / slenderness
         s = self.section
-        if s.height is not None:
+        if s.shape in ("I", "profile"):  # every height scaled: area ~ h, inertia ~ h^3
+            r = h_new / s.depth
+            keys = {"height": s.height * r, "flange_thickness": s.flange_thickness * r} if s.shape == "I" else {}
+            sec = s.model_copy(update=keys if s.shape == "I" else {"y": [v * r for v in s.y]})
+        elif s.height is not None:
             sec = s.model_copy(update={"height": h_new})
         else:
             r = h_new / s.depth
@@ -475,6 +417,7 @@ def rigid_rows(scene) -> np.ndarray:
     for inner in sup.inner:
         x = inner.position / scene.length
         rows += [(1.0, x)] * inner.holds_deflection + [(0.0, 1.0)] * inner.holds_rotation
+    rows += [(1.0, ld.position / scene.length) for ld in scene.loads if ld.type == "displacement"]
     return np.array(rows, float).reshape(-1, 2)
 
 
@@ -484,7 +427,7 @@ def straight_mechanism(scene) -> str | None:
     if not scene.is_straight:
         return None
     sup = scene.supports
-    if sup.simple:
+    if sup.simple and not any(ld.type == "displacement" for ld in scene.loads):
         if not is_mechanism(sup.left, sup.right):
             return None
         return (

@@ -13,6 +13,7 @@ from pydantic import ValidationError
 
 from .errors import InputError
 from .geometry import axis_length, mechanism_message
+from .loading import Displacement, Loading
 from .scene import (
     SUPPORTS,
     Axis,
@@ -35,10 +36,12 @@ from .scene import (
 
 def _loc(loc) -> str:
     parts = []
-    for p in loc:
+    for i, p in enumerate(loc):
         if isinstance(p, int):
             parts.append(f"[{p}]")
-        elif p in ("point_force", "point_moment", "distributed", "point_torque", "named", "spring"):
+        elif p in ("point_force", "point_moment", "distributed", "point_torque", "named", "spring") or (
+            p == "displacement" and i == 2 and loc[0] == "loads"
+        ):
             continue  # discriminator tag: not a field the user wrote
         else:
             parts.append(("." if parts else "") + str(p))
@@ -56,6 +59,7 @@ _TABLES = {
     "supports": Supports,
     "axis": Axis,
     "dynamics": Dynamics,
+    "loading": Loading,
 }
 
 
@@ -77,6 +81,7 @@ def _message(err: dict, data: dict) -> str:
                 "point_moment": PointMoment,
                 "distributed": Distributed,
                 "point_torque": PointTorque,
+                "displacement": Displacement,
             }.get(parent[2], Scene)
         import difflib
 
@@ -88,7 +93,8 @@ def _message(err: dict, data: dict) -> str:
     if kind == "union_tag_invalid" or kind == "union_tag_not_found":
         given = value.get("type") if isinstance(value, dict) else value
         return (
-            f"{loc}.type = {given!r}: unknown load type; allowed: point_force, point_moment, distributed, point_torque"
+            f"{loc}.type = {given!r}: unknown load type; allowed: point_force, point_moment, distributed, "
+            "point_torque, displacement"
         )
     if kind == "literal_error" and loc.startswith("supports.inner"):
         return f"{loc} = {value!r}: unknown support inside the span; allowed: pinned, roller, clamped, spring"
@@ -171,7 +177,7 @@ def _check_loads(scene: Scene) -> list[str]:
     lines = []
     L = scene.length
     for i, load in enumerate(scene.loads):
-        if isinstance(load, (PointForce, PointMoment, PointTorque)):
+        if isinstance(load, (PointForce, PointMoment, PointTorque, Displacement)):
             if not 0.0 <= load.position <= L:
                 lines.append(
                     f"loads[{i}].position = {load.position!r}: outside the beam [0, {L}]; "

@@ -318,6 +318,7 @@ class Solution:
 
 class ExactHigherOrder(Model):
     name = "exact-higher-order"
+    shapes = frozenset({"rectangle", "given"})  # its equations use the depth of a rectangle
     title = "exact higher-order beam (the local theory of Yang et al. 2020, Eq. 9)"
     source = "exact solution of the higher-order beam equations (Yang, Oterkus & Oterkus 2020, Eq. 2-9)"
     theory = "higher-order"

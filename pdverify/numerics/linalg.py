@@ -13,6 +13,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..core.errors import SolveError
+from . import factorcache
 from .band import Band, bandwidths, canonical_csr, csr_rows
 from .error_bound import (  # noqa: F401 - re-exported: the models import the bound's pieces from here
     BOUND_LIMIT,
@@ -56,14 +57,18 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
             raise np.linalg.LinAlgError(f"gbtrs info {inf}")
         return x
 
+    memo: list[float] = []  # the estimate, made once per factorisation (a shared one is asked again)
+
     def cond() -> float:
         """1-norm condition estimate ||A||_1 * est ||A^-1||_1 from the factors, rounded to 6 digits (an
         estimate has no use for 17, and sums differ in the last bit with the arrays' alignment).
         ||A^-1||_1 by Hager's method with Higham's extra test vector (the algorithm of LAPACK's dlacn2):
         a few band solves, linear in n. (LAPACK's dgbcon does the same, but its time as called here grows
         faster than n; scipy's onenormest costs a large share of a small solve.)"""
-        inv = hager_inverse_norm(solve, lambda y: solve(y, 1), n)
-        return float(f"{anorm * inv:.6g}") if np.isfinite(inv) else float("inf")
+        if not memo:
+            inv = hager_inverse_norm(solve, lambda y: solve(y, 1), n)
+            memo.append(float(f"{anorm * inv:.6g}") if np.isfinite(inv) else float("inf"))
+        return memo[0]
 
     solve.cond = cond
     return solve, (lambda y: solve(y, 1))
@@ -293,7 +298,9 @@ def solve_linear(
     s = diagonal_scaling(K.diagonal()) if scaling is None else np.asarray(scaling, float)
     lo, up = bandwidths(K)
     info: dict = {"system_unknowns": n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal"}
-    u, solve, solve_t, info["solver"], Ks = _lu_solve(K, s * b, s, lo, up, banded_max, what)
+    u, solve, solve_t, info["solver"], Ks, info["factorisation"], info["factorisation_shared"] = _lu_solve(
+        K, s * b, s, lo, up, banded_max, what
+    )
     if not np.all(np.isfinite(u)):
         raise SolveError(f"{what}: the solution is not finite; the system is singular or too ill-conditioned")
     with np.errstate(all="ignore"):
@@ -327,29 +334,31 @@ def _finite_system(K: sp.spmatrix, b: np.ndarray, what: str) -> tuple[sp.csr_mat
 
 
 def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int, banded_max: int, what: str):
-    """(y, solve, solve_t, solver, Ks): the LU of diag(s) K diag(s), banded (LAPACK gbtrf, :func:`banded_lu`) when
-    the bandwidth is at most ``banded_max`` and the band is narrow for the size, else sparse (SuperLU of the scaled
-    CSR matrix Ks; None on the banded path), factorised once for the solve of ``bs``, the refinement and the
-    condition estimate. SolveError naming ``what`` when a pivot is zero."""
-    Ks = None
-    try:
+    """(y, solve, solve_t, solver, Ks, key, shared): the LU of diag(s) K diag(s), banded (LAPACK gbtrf,
+    :func:`banded_lu`) when the bandwidth is at most ``banded_max`` and the band is narrow for the size, else sparse
+    (SuperLU of the scaled CSR matrix Ks; None on the banded path), factorised once for the solve of ``bs``, the
+    refinement and the condition estimate, or taken from :mod:`~pdverify.numerics.factorcache` when the same matrix
+    was factorised before (``key``: its digest; ``shared``: taken). SolveError naming ``what`` when a pivot is
+    zero."""
+    key = factorcache.digest(K.indptr, K.indices, K.data, s, params=(lo, up, banded_max))
+
+    def make():
         if max(lo, up) <= banded_max and K.shape[0] > 2 * (lo + up + 1):
-            solver = "banded LU (LAPACK gbtrf/gbtrs)"
             solve, solve_t = banded_lu(K, lo, up, s)  # factorised once, reused by refinement and cond
-            y = solve(bs)
-        else:
-            solver = "sparse LU (SuperLU)"
-            Ks = scale_symmetric(K, s)
-            lu = spla.splu(Ks.tocsc())
-            y = lu.solve(bs)
-            solve = lu.solve
-            solve_t = lambda z: lu.solve(z, trans="T")  # noqa: E731
+            return "banded LU (LAPACK gbtrf/gbtrs)", solve, solve_t, None
+        Ks = scale_symmetric(K, s)
+        lu = spla.splu(Ks.tocsc())
+        return "sparse LU (SuperLU)", lu.solve, (lambda z: lu.solve(z, trans="T")), Ks
+
+    try:
+        (solver, solve, solve_t, Ks), shared = factorcache.factorised(key, K.shape[0], make)
+        y = solve(bs)
     except (np.linalg.LinAlgError, RuntimeError) as exc:
         raise SolveError(
             f"{what}: the system matrix is singular ({exc}); the supports do not hold the beam "
             "(a mechanism) or the discretisation is degenerate"
         ) from None
-    return y, solve, solve_t, solver, Ks
+    return y, solve, solve_t, solver, Ks, key, shared
 
 
 def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, rounding=(1.0, None)) -> None:

@@ -150,7 +150,9 @@ def work_precision_figure(groups, accuracy: float, title: str) -> str:
     return figures._finish(fig, ax, "total time (s)", "max rel. error vs exact (–)", title, which="both")
 
 
-def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float]) -> Path:
+def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float], sharing=()) -> Path:
+    """The performance page ``out/index.html`` and ``out/bench.jsonl``: the rows of ``pdverify bench``, their cost
+    slopes, and ``sharing``, the factorisation-sharing rows of :func:`pdverify.apps.sharing.sharing_gain`."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     df = pd.DataFrame(rows)
@@ -213,8 +215,9 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
             ],
         ),
         slopes=table(pd.DataFrame([{"model": m, "cost_slope": s} for m, s in sorted(slopes.items())])),
+        sharing=table(pd.DataFrame(list(sharing))) if sharing else "",
     )
-    (out / "bench.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
+    (out / "bench.jsonl").write_text("".join(json.dumps(r) + "\n" for r in [*rows, *sharing]))
     index = out / "index.html"
     index.write_text(page, encoding="utf-8")
     return index

@@ -110,7 +110,7 @@ def _reference_text(items: tuple) -> str:
     return json.dumps(dict(items), sort_keys=True)
 
 
-INFO_KEYS = ("horizon", "cond", "error_bound", "load_steps", "history")
+INFO_KEYS = ("horizon", "cond", "error_bound", "load_steps", "history", "factorisation")
 
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
@@ -327,6 +327,9 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
     row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
     row["cond"] = info.get("cond")
+    # the digest of the factorised operator: the cases with the same one in a process share its LU
+    # (numerics/factorcache.py); whether this case made it or took it depends on the run's order, not recorded
+    row["factorisation"] = info.get("factorisation")
     row["status"], row["message"] = "ok", ""
     row.update(case_status(info))  # "suspect" when the round-off bound passes 1e-6 (docs/trust.md)
     if case.reference.get("model") != "none":  # ... or the reference's: the error is measured against it

@@ -10,12 +10,19 @@ equation          what                                                         i
 ================  ===========================================================  ====================================
 Eq. 1–2           the bond-pair energy, the angle between the bonds            ``nonlinear.NonlinearBondPair``
                                                                                (large rotations)
-Eq. 2, small      the linear stencil Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k     ``model.PDBondPair``
-rotations         - 4 w_{k-j} + w_{k-2j})
-§3.1              alpha calibrated on the family sum, EI / Σ omega xi^2 dx     ``model.PDBondPair.alpha``
-                  (``variant = corrected``); 3 EI / delta^3 is a reconstruction
-                  (``variant = paper``)
-ends              mirror (reflection) images and the axial condition           ``ends``
+Eq. 2, small      the linear stencil Σ_j c_j (w_{k+2j} - 4 w_{k+j} + 6 w_k     ``taylor``, ``pairs`` (phi = D w)
+rotations         - 4 w_{k-j} + w_{k-2j}); the pairs' deviations phi = D w
+Eq. 5, §3.1       alpha on the discrete family sum, EI / Σ omega xi^2 dx       ``calibration.alpha``
+                  (``variant = paper``: whole nodes; ``corrected``: the
+                  cells' parts); 3 EI / delta^3 a reconstruction
+                  (``continuous-alpha``)
+Eq. 6             the section weight omega = |xi| b(y), y = (xi / delta) c;    ``weights.weights``
+                  the fibre weight omega = b(y)
+Eq. 7             elastic-perfectly plastic pairs: capped force, critical      ``path``
+                  angle delta eps_y / c, plastic offsets
+Eq. 8, §3.2       brittle pairs broken for good, the most deformed first;      ``path``
+                  node health
+ends              mirror (reflection) images and the axial condition           ``ends``, ``pairs.ghost_rows``
 ================  ===========================================================  ====================================
 """
 

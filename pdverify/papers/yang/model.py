@@ -121,6 +121,7 @@ from .outputs import point_load_warnings, reactions, section_stresses
 
 class PDHigherOrder(Model):
     name = "pd-higher-order"
+    shapes = frozenset({"rectangle", "given"})  # its equations use the depth of a rectangle
     title = "PD higher-order beam (theta, theta*, w, w* per point)"
     source = "Yang et al. 2020, Peridynamic higher-order beam formulation"
     theory = "higher-order"

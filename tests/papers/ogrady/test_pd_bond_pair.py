@@ -6,7 +6,7 @@ from helpers import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.papers.ogrady.model import family, spring_constants
+from pdverify.papers.ogrady.model import pair_family, spring_constants
 from pdverify.registry import run
 
 LOADS = MIXED_LOADS
@@ -18,16 +18,20 @@ def err(scene, **opts):
     return np.abs(r.w - ex).max() / np.abs(ex).max()
 
 
-def test_discrete_calibration_reproduces_uniform_curvature_energy():
-    """corrected: Σ_j c_j xi_j^4 ... gives EI exactly; paper: too stiff by Σ/∫ (design note: 1.56 for m = 3)."""
+def test_discrete_calibrations_reproduce_uniform_curvature_energy():
+    """corrected and paper (O'Grady & Foster §3.1, whole nodes within delta): Σ_j c_j xi_j^4 gives EI exactly;
+    continuous-alpha (3 EI / delta^3, a reconstruction): too stiff by Σ/∫ (1.53 for m = 3)."""
     dx, EI = 0.01, 7.0
-    for m in (1.0, 2.0, 3.0, 4.5):
-        j, beta = family(m, dx, "corrected")
-        c = spring_constants(EI, m, dx, "corrected")
-        # operator applied to x^4 gives 24 Σ c_j j^4 dx^4 = 24 EI  (EI w'''' with w'''' = 24)
-        assert np.sum(c * (j * dx) ** 4) == pytest.approx(EI, rel=1e-13)
-    c_paper = spring_constants(EI, 3.0, dx, "paper")
-    ratio = np.sum(c_paper * (np.arange(1, 4) * dx) ** 4) / EI
+    for variant in ("corrected", "paper"):
+        for m in (1.0, 2.0, 3.0, 4.5, 4.9):
+            j, beta = pair_family(m, dx, variant)
+            c = spring_constants(EI, m, dx, variant)
+            # the operator applied to x^4 gives 24 Σ c_j j^4 dx^4 = 24 EI (EI w'''' with w'''' = 24)
+            assert np.sum(c * (j * dx) ** 4) == pytest.approx(EI, rel=1e-13)
+    j, beta = pair_family(4.9, dx, "paper")
+    assert j.tolist() == [1, 2, 3, 4] and beta.tolist() == [1.0] * 4  # the nodes within delta, each whole
+    c_cont = spring_constants(EI, 3.0, dx, "continuous-alpha")
+    ratio = np.sum(c_cont * (np.arange(1, 4) * dx) ** 4) / EI
     assert ratio == pytest.approx(14 * 3 / 3.015**3, rel=1e-12)  # alpha = 3EI/delta^3, Σ j^2 = 14
 
 
@@ -39,12 +43,22 @@ def test_corrected_taylor_within_one_percent_order_two(left, right):
     assert np.log2(e201 / e401) > 1.8  # measured 1.9-2.0
 
 
-def test_paper_variant_is_stiff_by_the_continuous_calibration():
-    """Measured 34-35 % at 201 and 401 points (design note: 36 % for m = 3): a property of the
-    continuous calibration on a grid, independent of dx."""
+def test_continuous_alpha_is_stiff_by_its_calibration():
+    """Measured 34-35 % at 201 and 401 points (1 - 1/1.53 for m = 3): a property of the continuous calibration
+    on a grid, independent of dx."""
     sc = parse_scene(scene_dict("pinned", "pinned", [{"type": "distributed", "value": -500.0}]))
-    e1, e2 = err(sc, points=201, variant="paper", ends="mirror"), err(sc, points=401, variant="paper", ends="mirror")
+    opts = {"variant": "continuous-alpha", "ends": "mirror"}
+    e1, e2 = err(sc, points=201, **opts), err(sc, points=401, **opts)
     assert 0.3 < e1 < 0.4 and abs(e1 - e2) < 0.01
+
+
+@pytest.mark.parametrize("ends", ["mirror", "taylor"])
+def test_paper_variant_converges_at_second_order(ends):
+    """The paper's calibration (§3.1) carries EI exactly, so the model converges to the beam (measured, uniform
+    load on a pinned-pinned beam, m = 3: mirror 1.2e-3 -> 3.0e-4, order 2.0; Taylor ends exact for the quartic)."""
+    sc = parse_scene(scene_dict("pinned", "clamped", MIXED_LOADS))
+    e1, e2 = err(sc, points=201, variant="paper", ends=ends), err(sc, points=401, variant="paper", ends=ends)
+    assert e1 < 1e-2 and np.log2(e1 / e2) > 1.8
 
 
 OFF_GRID = {
@@ -151,4 +165,5 @@ def test_nonlinear_path_needs_the_mirror_ghosts():
 
     sc = parse_scene(scene_dict("clamped", "free", [{"type": "point_moment", "position": 2.0, "value": 1.0}]))
     with pytest.raises(InputError, match="ends = taylor"):
-        run(sc, "pd-bond-pair", nonlinear=True)
+        run(sc, "pd-bond-pair", nonlinear=True, ends="taylor")
+    assert run(sc, "pd-bond-pair", nonlinear=True, points=41).info["ends"].startswith("mirror")  # auto

@@ -29,7 +29,7 @@ def test_capabilities_are_declared_data():
     for m in models().values():
         assert m.analyses and m.analyses <= {"static", "dynamic"}, m.name
         assert m.supports <= registry.SUPPORTS | {"roller"}, m.name
-        assert m.load_types <= registry.LOAD_TYPES | {"point_torque"}, m.name
+        assert m.load_types <= registry.LOAD_TYPES | {"point_torque", "displacement"}, m.name
         assert m.straight or m.curved, m.name
         assert all(isinstance(r, registry.Rule) for r in m.variant_rules), m.name
         assert not hasattr(m, "limit_system") and not hasattr(m, "kind"), m.name  # one contract: assemble()
@@ -162,8 +162,12 @@ def test_end_motion_of_an_unknown_the_model_lacks_is_named():
     [
         ("pd-eb", {"variant": "paper", "horizon": 2.5}, r"horizon = 2\.5: not defined by variant = paper .*Eq\. 32"),
         ("pd-eb", {"variant": "paper", "form": "mixed"}, r"form = 'mixed': not defined by variant = paper"),
-        ("pd-bond-pair", {"variant": "paper"}, r"ends = 'taylor': not defined by variant = paper .*use ends = mirror"),
-        ("pd-bond-pair", {"variant": "paper", "ends": "mirror", "horizon": 2.5}, r"horizon = 2\.5: .*whole"),
+        (
+            "pd-bond-pair",
+            {"variant": "continuous-alpha"},
+            r"ends = 'auto': not defined by variant = continuous-alpha .*use ends = mirror",
+        ),
+        ("pd-bond-pair", {"variant": "continuous-alpha", "ends": "mirror", "horizon": 2.5}, r"horizon = 2\.5: .*whole"),
         ("pd-higher-order", {"variant": "paper", "ends": "truncated"}, r"ends = 'truncated': .*Appendix B"),
         ("pd-higher-order", {"variant": "paper", "pin": "face"}, r"pin = 'face': .*Eq\. B41"),
         ("pd-higher-order", {"variant": "paper", "shear": "centred"}, r"shear = 'centred': .*Eq\. 14d-f"),
@@ -186,7 +190,8 @@ def test_variant_rules_reject_values_the_equations_do_not_define(model, given, m
     "model,given",
     [
         ("pd-eb", {"variant": "paper", "horizon": 2}),
-        ("pd-bond-pair", {"variant": "paper", "ends": "mirror"}),
+        ("pd-bond-pair", {"variant": "continuous-alpha", "ends": "mirror"}),
+        ("pd-bond-pair", {"variant": "paper", "horizon": 2.5}),
         ("pd-higher-order", {"variant": "paper", "ends": "mirror", "pin": "mid"}),
         ("pd-timoshenko", {"variant": "paper", "grid": "cells"}),
         ("pd-eb", {"variant": "corrected", "horizon": 2.5}),
@@ -271,9 +276,11 @@ def test_study_crossing_a_paper_variant_with_foreign_options_fails_when_loaded(t
     p.write_text(
         f'name = "x"\nscenes = ["{ROOT}/studies/paper_diyaroglu/clamped_free.toml", '
         f'"{ROOT}/studies/paper_diyaroglu/clamped_clamped.toml"]\nreference = "exact-eb"\n'
-        '[[runs]]\nmodel = "pd-bond-pair"\nvariant = ["paper", "corrected"]\nends = ["mirror", "taylor"]\n'
+        '[[runs]]\nmodel = "pd-bond-pair"\nvariant = ["continuous-alpha", "corrected"]\nends = ["mirror", "taylor"]\n'
         "points = [51, 101]\n"
     )
     with pytest.raises(InputError) as exc:
         load_study(p)
-    assert len([line for line in exc.value.lines if "ends = 'taylor': not defined by variant = paper" in line]) == 1
+    assert (
+        len([ln for ln in exc.value.lines if "ends = 'taylor': not defined by variant = continuous-alpha" in ln]) == 1
+    )

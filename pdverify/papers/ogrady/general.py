@@ -1,0 +1,194 @@
+"""The linear pair form of pd-bond-pair on any straight scene (:mod:`.pairs`, :mod:`.conditions`): supports inside
+the span, springs at the ends and inside, segments of their own section and material, prescribed deflections.
+
+Energy Π = ½ w^T (D^T A D + K_s) w - F^T w with the conditions C w = g of the supports, eliminated exactly
+(w = T z + w0: each condition fixes one point's w through the others, chosen by a pivoted QR of C). Segments: each
+pair's alpha comes from the harmonic mean of EI over the pair (:func:`pair_EI`; O'Grady & Foster write alpha(x) per
+point, §3.1, and give no interface). Reactions are the conditions' multipliers and the springs' forces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as la
+import scipy.sparse as sp
+
+from ...core.errors import SolveError
+from ...core.scene import Scene
+from .calibration import alpha, pair_family
+from .conditions import Conditions, conditions, nodal_loads
+from .mixed import solve_mixed
+from .pairs import Pairs, build_pairs
+
+
+def pair_EI(scene: Scene, centre: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """The EI of each pair centred at ``centre`` with bonds of length ``xi``: the harmonic mean of EI over
+    [centre - xi, centre + xi] weighted by the triangle (xi - |s - centre|) / xi² (the weight with which the pair's
+    deviation phi / xi averages the curvature). Under a moment M that varies little over the pair, phi = xi M <1/EI>,
+    so the pair's energy a phi² / 2 with alpha from this EI is the beam's complementary energy M² <1/EI> / 2 over
+    it: the pairs straddling an interface carry the flexibility of both sides (1 for a uniform beam, exactly). The
+    segments at the ends continue beyond them."""
+    pieces = scene.pieces()
+    flex = np.zeros(len(centre))
+    lo_all, hi_all = centre - xi, centre + xi
+    for i, (a, b, sec, mat) in enumerate(pieces):
+        a = -np.inf if i == 0 else a
+        b = np.inf if i == len(pieces) - 1 else b
+        lo, hi = np.maximum(lo_all, a), np.minimum(hi_all, b)
+        flex += _triangle_mass(lo, hi, centre, xi) / (mat.E * sec.I)
+    return 1.0 / flex
+
+
+def _triangle_mass(lo, hi, c, xi):
+    """∫_lo^hi (xi - |s - c|) / xi² ds for lo <= hi inside [c - xi, c + xi] (0 where lo >= hi)."""
+
+    def F(s):  # the antiderivative of the triangle from c - xi
+        t = (s - c) / xi
+        return np.where(t <= 0, 0.5 * (1 + t) ** 2, 1.0 - 0.5 * (1 - t) ** 2)
+
+    return np.where(hi > lo, F(np.maximum(hi, lo)) - F(lo), 0.0)
+
+
+def end_rules(scene: Scene) -> tuple[str, str]:
+    """The mirror ghost rule of each end: its support's name, ``free`` for a spring."""
+    return tuple(scene.supports.kind(s) if scene.supports.kind(s) != "spring" else "free" for s in ("left", "right"))
+
+
+def scene_pairs(scene: Scene, params: dict, omega: np.ndarray | None = None) -> Pairs:
+    """The pairs of ``scene`` with the options ``params`` (points, horizon, variant, ends) and weights ``omega``;
+    alpha per pair from :func:`pair_EI` (Eq. 5 / §3.1 with the local EI)."""
+    n = params["points"]
+    dx = scene.length / (n - 1)
+    m, variant = params["horizon"], params["variant"]
+    j, beta = pair_family(m, dx, variant)
+    om = np.ones(len(j)) if omega is None else np.asarray(omega, float)
+    pairs = build_pairs(n, dx, j, beta, om, np.ones(n), params["ends"], end_rules(scene))
+    if not scene.segments:
+        pairs.stiffness = pairs.stiffness * alpha(scene.EI, m, dx, variant, omega)
+    else:
+        EI = pair_EI(scene, pairs.centre * dx, pairs.xi)
+        pairs.stiffness = pairs.stiffness * alpha(EI, m, dx, variant, omega)
+    return pairs
+
+
+@dataclass
+class Elimination:
+    """w = T z + w0 satisfies C w = g for every z; ``dep`` the points the conditions fix, ``Cd`` = C[:, dep],
+    ``free`` the points z holds (in order)."""
+
+    T: sp.csr_matrix
+    w0: np.ndarray
+    dep: np.ndarray
+    Cd: np.ndarray
+    free: np.ndarray
+
+    def multipliers(self, residual: np.ndarray) -> np.ndarray:
+        """The conditions' multipliers lambda from the residual K w - F at the fixed points (C_d^T lambda = -r_dep):
+        the reactions the conditions exert (force up, moment counter-clockwise)."""
+        if not len(self.dep):
+            return np.zeros(0)
+        return la.solve(self.Cd.T, residual[self.dep])
+
+
+def eliminate(C: sp.csr_matrix, g: np.ndarray, n: int, what: str) -> Elimination:
+    """The elimination of the conditions C w = g (m of them on n points)."""
+    m = C.shape[0]
+    if m == 0:
+        return Elimination(sp.identity(n, format="csr"), np.zeros(n), np.zeros(0, int), np.zeros((0, 0)), np.arange(n))
+    cols = np.unique(C.indices)
+    Cs = C[:, cols].toarray()
+    _, R, piv = la.qr(Cs, pivoting=True, mode="economic")
+    d = np.abs(np.diag(R))
+    if len(d) < m or d.min() <= 1e-10 * d.max():
+        raise SolveError(f"{what}: the supports' conditions repeat or contradict one another; give each once")
+    dep = cols[piv[:m]]
+    ind = np.setdiff1d(np.arange(n), dep)
+    Cd = C[:, dep].toarray()
+    Cd_inv = la.inv(Cd)
+    top = sp.csr_matrix((np.ones(len(ind)), (ind, np.arange(len(ind)))), shape=(n, len(ind)))
+    dense = -Cd_inv @ C[:, ind].toarray()  # m rows: the fixed points' w in terms of the free ones
+    nz = np.nonzero(dense)
+    T = top + sp.csr_matrix((dense[nz], (dep[nz[0]], nz[1])), shape=(n, len(ind)))
+    w0 = np.zeros(n)
+    w0[dep] = Cd_inv @ g
+    return Elimination(T.tocsr(), w0, dep, Cd, ind)
+
+
+def reactions(cond: Conditions, elim: Elimination, residual: np.ndarray, w: np.ndarray) -> dict[str, float]:
+    """Every support's force and moment on the beam (up, counter-clockwise), named as exact-eb names them."""
+    out: dict[str, float] = {}
+    lam = elim.multipliers(residual)
+    for name, value in zip(cond.names, lam):
+        out[name] = out.get(name, 0.0) + float(value)
+    for name, row, k in cond.spring_rows:
+        out[name] = out.get(name, 0.0) - k * float(sum(c * w[p] for p, c in row.items()))
+    return out
+
+
+def linear_system(scene: Scene, params: dict, omega=None):
+    """(K_r, rhs, elimination, (pairs, conditions, K, F)): the reduced system K_r z = rhs of the linear pair form,
+    w = T z + w0."""
+    n = params["points"]
+    dx = scene.length / (n - 1)
+    pairs = scene_pairs(scene, params, omega)
+    cond = conditions(scene, n, dx)
+    elim = eliminate(cond.rows, cond.values, n, f"pd-bond-pair ({params['variant']}, {params['ends']} ends)")
+    K = pairs.stiffness_matrix() + cond.springs
+    F = nodal_loads(scene, n, dx)
+    Kr = (elim.T.T @ K @ elim.T).tocsr()
+    return Kr, elim.T.T @ (F - K @ elim.w0), elim, (pairs, cond, K, F)
+
+
+def reaction_couples(cond: Conditions, elim: Elimination, residual: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The nodal forces of the supports' couples (the rotations held inside the span, rotational springs): force pairs
+    that carry no shear (:func:`.recovery.shear`)."""
+    out = np.zeros(len(w))
+    lam = elim.multipliers(residual)
+    for name, value, row in zip(cond.names, lam, cond.rows):
+        if name.startswith("moment"):
+            out += value * row.toarray().ravel()
+    for name, row, k in cond.spring_rows:
+        if name.startswith("moment"):
+            r = np.zeros(len(w))
+            r[list(row)] = list(row.values())
+            out -= k * (r @ w) * r
+    return out
+
+
+def solve_pairs_linear(scene: Scene, params: dict, omega=None):
+    """(x, w, pairs, f, info): the linear pair form of ``scene`` solved in the mixed form (:mod:`.mixed`); ``f`` the
+    pair forces; info holds the reactions and the solve's info."""
+    n = params["points"]
+    dx = scene.length / (n - 1)
+    pairs = scene_pairs(scene, params, omega)
+    cond = conditions(scene, n, dx)
+    what = f"pd-bond-pair ({params['variant']}, {params['ends']} ends)"
+    elim = eliminate(cond.rows, cond.values, n, what)
+    F = nodal_loads(scene, n, dx)
+    w, f, info = solve_mixed(pairs, elim, cond.springs, F, what)
+    g = pairs.D.T @ f + cond.springs @ w  # the nodal forces of the pairs and springs: loads plus reactions
+    info["reactions"] = reactions(cond, elim, g - F, w)
+    info["nodal_forces"], info["reaction_couples"] = g, reaction_couples(cond, elim, g - F, w)
+    return np.arange(n) * dx, w, pairs, f, info
+
+
+def first_order_warnings(scene: Scene) -> list[str]:
+    """The supports the pair form holds at first order only (measured: docs/models/ogrady.md)."""
+    out = []
+    for i, s in enumerate(scene.supports.inner):
+        if s.type == "clamped" or (s.type == "spring" and s.rotational_stiffness):
+            out.append(
+                f"supports.inner[{i}] ({s.type}): the bond-pair beam holds the centred slope there, first order in "
+                "the spacing (measured order 0.99 for a clamp at mid-span; the deflection converges at order 2 "
+                "without it)"
+            )
+    for side in ("left", "right"):
+        end = getattr(scene.supports, side)
+        if not isinstance(end, str) and end.rotational_stiffness:
+            out.append(
+                f"supports.{side}: a rotational spring acts on the end slope of the bond-pair beam, which is first "
+                "order in the spacing (its boundary layer; measured order 1.0)"
+            )
+    return out

@@ -1,0 +1,71 @@
+"""pd-bond-pair's rotation, moment and shear (the statics of the bond-pair forces: O'Grady & Foster 2014, §2.2)."""
+
+import copy
+
+import numpy as np
+import pytest
+from helpers import BASE, MIXED_LOADS, OFF_GRID_LOADS, scene_dict
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.exact.straight import solve_straight
+from pdverify.registry import run
+from pdverify.study.runner import jumps
+
+QUANTITIES = (("w", "w"), ("rotation", "rotation"), ("moment", "M"), ("shear", "V"))
+
+
+def errors(sc, n, **opts):
+    r = run(sc, "pd-bond-pair", points=n, **opts)
+    f = solve_straight(sc, False).fields(r.x)
+    out = {}
+    for q, key in QUANTITIES:
+        keep = ~jumps(sc, r.x, q)
+        out[q] = np.abs(r.measured(q) - f[key])[keep].max() / np.abs(f[key]).max()
+    return out, r
+
+
+@pytest.mark.parametrize("ends", ["taylor", "mirror"])
+@pytest.mark.parametrize("left,right", [("pinned", "pinned"), ("clamped", "free"), ("guided", "pinned")])
+def test_statically_determinate_beams_have_the_exact_moment_and_shear(ends, left, right):
+    """The section moment of the pair forces is in equilibrium with the loads, so on a statically determinate beam it
+    is the exact moment at the points (loads between the points included): measured 1e-13 .. 1e-11 relative, up to
+    1.4e-7 at a guided end with a partial load on the Taylor path."""
+    sc = parse_scene(scene_dict(left, right, OFF_GRID_LOADS))
+    e, r = errors(sc, 201, ends=ends)
+    assert e["moment"] < 1e-6 and e["shear"] < 1e-6, e
+
+
+@pytest.mark.parametrize("ends", ["taylor", "mirror"])
+def test_indeterminate_beam_moment_and_shear_second_order(ends):
+    """clamped-clamped and clamped-pinned, mixed loads: measured orders 1.9-2.0 (101 -> 201)."""
+    for left, right in (("clamped", "clamped"), ("clamped", "pinned")):
+        sc = parse_scene(scene_dict(left, right, MIXED_LOADS[:4]))
+        (e1, _), (e2, _) = errors(sc, 101, ends=ends), errors(sc, 201, ends=ends)
+        for q in ("w", "moment", "shear"):
+            if e2[q] > 1e-9:
+                assert np.log2(e1[q] / e2[q]) > 1.8, (left, right, q, e1[q], e2[q])
+
+
+def test_rotation_first_order_near_a_point_moment_and_warned():
+    sc = parse_scene(scene_dict("pinned", "pinned", [{"type": "point_moment", "position": 1.3, "value": 150.0}]))
+    (e1, r), (e2, _) = errors(sc, 101), errors(sc, 201)
+    assert 0.8 < np.log2(e1["rotation"] / e2["rotation"]) < 1.2  # measured 0.99
+    assert any(w.startswith("rotation:") for w in r.info["warnings"])
+    plain = parse_scene(scene_dict("pinned", "clamped", [{"type": "distributed", "value": -500.0}]))
+    (e1, r), (e2, _) = errors(plain, 101), errors(plain, 201)
+    assert np.log2(e1["rotation"] / e2["rotation"]) > 1.8 and not r.info.get("warnings")
+
+
+def test_pair_form_reactions_and_moment_over_an_inner_support():
+    d = copy.deepcopy(BASE)
+    d["supports"] = {
+        "left": "free",
+        "right": "free",
+        "inner": [{"position": 0.4, "type": "pinned"}, {"position": 1.6, "type": "pinned"}],
+    }
+    d["loads"] = [{"type": "distributed", "value": -500.0}, {"type": "point_force", "position": 1.0, "value": -200.0}]
+    sc = parse_scene(d)  # statically determinate: the moment and shear are exact at the points
+    e, r = errors(sc, 201)
+    assert e["moment"] < 1e-9 and e["shear"] < 1e-9, e
+    ex = solve_straight(sc, False).reactions()
+    assert r.info["reactions"]["force_inner_0"] == pytest.approx(ex["force_inner_0"], rel=1e-9)
