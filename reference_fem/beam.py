@@ -39,7 +39,6 @@ from .beam_elements import (
     linear_shapes,
     linear_timoshenko,
     natural_band,
-    natural_magnitude,
     nodal_point_loads,
     reactions,
 )
@@ -65,10 +64,10 @@ class _BeamFE(Model):
         the band of :meth:`assemble_band` with the supported DOFs held (unit rows, cleared columns); free: the
         unknowns not held (two-field: w_i, w'_i or theta_i and the element end moments)."""
         if self.mixed(params):
-            K, b, nodes, s, magnitude, (rows, loads) = self.assemble_mixed(scene, params)
+            K, b, nodes, s, (rows, loads) = self.assemble_mixed(scene, params)
             fixed = constrained_dofs(scene, nodes)
             held = 4 * (fixed // 2) + fixed % 2
-            info = {"nodes": nodes, "scaling": s, "magnitude": magnitude, "held_rows": rows, "loads": loads}
+            info = {"nodes": nodes, "scaling": s, "held_rows": rows, "loads": loads}
             return System(K, b, np.delete(np.arange(K.n), held), info)
         K, F, nodes = self.assemble_band(scene, params)
         add_springs(scene, K, nodes)
@@ -91,7 +90,7 @@ class _BeamFE(Model):
         return None
 
     def assemble_mixed(self, scene: Scene, params: dict):
-        """(band, rhs, nodes, scaling, magnitude, (held rows, loads)) of the two-field system with the springs added
+        """(band, rhs, nodes, scaling, (held rows, loads)) of the two-field system with the springs added
         and the supports held (:func:`natural_band`); the held rows and the loads as they were before."""
         nodes = beam_nodes(scene, params["points"])
         EI, kGA = element_properties(scene, nodes)
@@ -106,14 +105,7 @@ class _BeamFE(Model):
         rows = held_rows(K, held), b.copy()  # the held rows and loads before K.fix: the reactions
         K.fix(held, b)
         s[held] = 1.0
-        terms = natural_magnitude(np.diff(nodes), EI, kGA, b)
-
-        def magnitude(z):  # a held row is the exact equation u = 0: it rounds nothing
-            m = terms(z)
-            m[held] = 0.0
-            return m
-
-        return K, b, nodes, s, magnitude, rows
+        return K, b, nodes, s, rows
 
     def element(self, params: dict) -> str:  # pragma: no cover - interface
         """The element's name, in info["element"]."""
@@ -171,7 +163,6 @@ class _BeamFE(Model):
                     what=what,
                     scaling=system.info["scaling"],
                     watch=np.arange(0, K.n, 4),
-                    magnitude=system.info["magnitude"],
                     refine_in_place=True,
                 )
             u = np.empty(2 * len(nodes))

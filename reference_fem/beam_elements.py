@@ -161,26 +161,6 @@ def flexibility(l: np.ndarray, EI: float, kGA: float | None) -> tuple[np.ndarray
     return l / (3 * EI) + (0.0 if kGA is None else 4 / (kGA * l)), l / EI
 
 
-def natural_magnitude(l: np.ndarray, EI: float, kGA: float | None, b: np.ndarray):
-    """u -> the size of each row's independently rounded terms in the system of :func:`natural_band`
-    (for :func:`pdverify.numerics.linalg.forward_error_bound`): a row of T holds one rounded 2/l for both w's, so
-    its term is 2 |w_i - w_j| / l, not 2 |w_i| / l + 2 |w_j| / l; the entries 1 are exact; F's entries and
-    the loads are rounded once each."""
-    fp, fq = flexibility(l, EI, kGA)
-
-    def magnitude(z):
-        w, p, q = z[0::4], z[2::4], z[3::4]
-        m = np.abs(b).copy()
-        m[2::4] += 2 * np.abs(np.diff(w)) / l + np.abs(fp * p)
-        m[3::4] += np.abs(fq * q)
-        pair = 2 * np.abs(p) / l
-        m[0:-2:4] += pair
-        m[4::4] += pair
-        return m
-
-    return magnitude
-
-
 def element_vector(fe: np.ndarray, n_nodes: int) -> np.ndarray:
     """(n_el, 4) element vectors summed into the global vector (DOFs 2e .. 2e + 3)."""
     F = np.zeros(2 * n_nodes)

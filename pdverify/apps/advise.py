@@ -12,8 +12,10 @@
    model and options, the error constant C and order p of clean convergence series, err = C (dx / L)^p, with
    the code digest they were made from; ``pdverify advise --rebuild-priors`` regenerates them) predict the
    points needed; the ladder of nested grids N, 2N-1, 4N-3 starts two refinements below that prediction
-   and stops when the a-posteriori estimate on this very scene (observed order p from three grids,
-   Richardson |w_2 - w_3| / (2^p - 1), relative to max|w|) is below the tolerance.
+   and stops when the a-posteriori estimate on this very scene (:func:`pdverify.measure.richardson.richardson`,
+   as ``solve --estimate``: observed order p from three grids, |w_2 - w_3| / (2^p - 1) relative to max |w|) is
+   below the tolerance with p near the model's promised order; an estimate outside that band is refined further
+   within the budget and, if kept, says it is not asymptotic.
 3. The cheapest candidate whose estimate is below the tolerance wins (cost = its measured solve time);
    the runner-up is the next cheapest. On straight scenes whose exact solution applies (no end motions)
    the exact error is printed as a check.
@@ -29,6 +31,7 @@ import numpy as np
 from ..core.errors import InputError, SolveError
 from ..core.scene import Scene, bends
 from ..exact.straight import solve_straight
+from ..measure.richardson import richardson
 from ..registry import get_model, models, problems, run
 from ..verify.suite import reference_for
 from .priors import (  # noqa: F401 (PRIORS, load_priors, fit_series, rebuild_priors: re-exported)
@@ -100,8 +103,9 @@ def estimate(
         options = dict(options, static=True)
     if name == "fem-plane-stress":
         max_points = min(max_points, 401)
+    model = models()[name]
     sols, n, spent = [], start, 0.0
-    est, order = np.inf, float("nan")
+    est, order, found = np.inf, float("nan"), None
     while n <= max_points:
         t0 = time.perf_counter()
         try:
@@ -114,27 +118,15 @@ def estimate(
         dt = time.perf_counter() - t0
         spent += dt
         sols.append((n, r, dt))
-        if len(sols) >= 3:
-            (_, r1, _), (_, r2, _), (_, r3, _) = sols[-3:]
-            f1, f2, f3 = (r.measured(models()[name].measures) for r in (r1, r2, r3))  # w, a rod's u, a twist
-            scale = np.abs(f3).max() or 1.0
-            # differences on the coarser grid's points (interpolated: FE meshes carry extra load nodes)
-            d12 = np.abs(f1 - np.interp(r1.x, r2.x, f2)).max() / scale
-            d23 = np.abs(f2 - np.interp(r2.x, r3.x, f3)).max() / scale
-            # the grids agree to their own round-off (the solves' bounds, at least 1e-10): the model is exact
-            # for this scene, and the differences are noise with no order in them
-            noise = max([1e-10] + [10 * float(r.info.get("error_bound", 0.0)) for r in (r1, r2, r3)])
-            if max(d12, d23) <= noise:
-                est, order = max(d12, d23, noise / 10), float("inf")
-            else:
-                order = float(np.log2(d12 / d23))
-                est = d23 / (2**order - 1) if order > 0.1 else np.inf
-            if est < tol:
+        if len(sols) >= 3:  # the three finest grids: pdverify.measure.richardson, the estimate solve --estimate gives
+            found = richardson([r for _, r, _ in sols[-3:]], 2, model.measures, model.order)
+            est, order = found.error, found.order
+            if found.error < tol and found.asymptotic:
                 break
         if spent > budget:
             break
         n = 2 * n - 1
-    if not np.isfinite(est) or est >= tol:
+    if found is None or not np.isfinite(est) or est >= tol:
         return None
     n_best, r_best, dt_best = sols[-1]
     ex = None
@@ -158,7 +150,9 @@ def estimate(
         order,
         dt_best,
         ex,
-        f"three-grid Richardson on this scene (N = {sols[-3][0]}, {sols[-2][0]}, {n_best}; p = {order:.2f}); {prior}",
+        f"three-grid Richardson on this scene (N = {sols[-3][0]}, {sols[-2][0]}, {n_best}; p = {order:.2f}"
+        + (f"; {'' if found.asymptotic else 'not asymptotic: '}{found.why}" if found.why else "")
+        + f"); {prior}",
     )
 
 

@@ -235,9 +235,18 @@ class Indeterminate:
                 key = ("u", "w", "rotation")[c] if kin else ("N", "Q", "M")[c]
                 rows.append([b[key][0] for b in basis[1:]])
                 rhs.append((0.0 if kin else target[c]) - basis[0][key][0])
-        self.cond = float(f"{np.linalg.cond(np.array(rows)):.3g}")  # the force method's system: cond eps round-off
+        # the conditions mix lengths, rotations, forces and moments, the amplitudes translations, a rotation, forces
+        # and a couple: each row divided by its largest coefficient, then each column, so the system (and its
+        # condition number, the fields' round-off is cond eps) is the same in any units
+        A, rhs = np.array(rows), np.array(rhs)
+        row = np.abs(A).max(axis=1)
+        col = np.abs(A / np.where(row > 0, row, 1.0)[:, None]).max(axis=0)
+        if not (row.all() and col.all()):
+            raise SolveError("exact-curved: the supports leave a rigid-body motion (a mechanism)")
+        A = A / row[:, None] / col[None, :]
+        self.cond = float(f"{np.linalg.cond(A):.3g}")
         try:
-            self.c = np.linalg.solve(np.array(rows), np.array(rhs))
+            self.c = np.linalg.solve(A, rhs / row) / col
         except np.linalg.LinAlgError:
             raise SolveError("exact-curved: the supports leave a rigid-body motion (a mechanism)") from None
 

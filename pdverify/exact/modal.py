@@ -25,6 +25,7 @@ from ..core.contract import POINTS, Model, Option
 from ..core.errors import InputError
 from ..core.result import Result, Timer, columns_csv
 from ..core.scene import HELD, Scene
+from ..numerics.steps import sample_count
 from .vibration import rod_frequencies
 
 MAX_MODES = 2**14  # 4096 modes in the sum (their octave above for the estimate): a point force ~1e-4
@@ -214,7 +215,7 @@ def modal_result(model: Model, scene: Scene, params: dict, timer: Timer, respons
     d = scene.dynamics
     x = np.linspace(0.0, scene.length, params["points"])
     probes = list(d.probes) or [scene.length / 2]
-    n_out = int(round(d.end_time / d.output_interval)) if d.output_interval else 2000
+    n_out = sample_count(d.end_time, d.output_interval) if d.output_interval else 2000
     t = np.linspace(0.0, d.end_time, n_out + 1)
     with timer("solve"):
         values, more, info = response(np.concatenate([probes, x]), np.append(t, d.end_time))

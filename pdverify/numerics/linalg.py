@@ -15,6 +15,17 @@ import scipy.sparse.linalg as spla
 from ..core.errors import SolveError
 from . import factorcache
 from .band import Band, bandwidths, canonical_csr, csr_rows
+from .error_bound import (  # noqa: F401 - re-exported: the models import the bound's pieces from here
+    BOUND_LIMIT,
+    ENTRY_ROUNDING,
+    _record_bound,
+    _weight,
+    bound_warning,
+    forward_error_bound,
+    hager_inverse_norm,
+    hager_norm1,
+)
+from .rounding import BandRounding, SharedRounding
 
 
 def diagonal_scaling(d: np.ndarray) -> np.ndarray:
@@ -61,90 +72,6 @@ def banded_lu(K: sp.csr_matrix, lower: int, upper: int, s: np.ndarray):
 
     solve.cond = cond
     return solve, (lambda y: solve(y, 1))
-
-
-def hager_inverse_norm(solve, solve_t, n: int, iterations: int = 5) -> float:
-    """Lower-bound estimate of ||A^-1||_1 from solves with A and A^T (Hager 1984, Higham 1988: LAPACK's
-    dlacn2 with t = 1): usually exact or within a factor of 3, deterministic (no random start)."""
-    return hager_norm1(solve, solve_t, n, iterations)
-
-
-def hager_norm1(apply, apply_t, n: int, iterations: int = 5) -> float:
-    """Lower-bound estimate of ||B||_1 of a linear operator B on R^n given only the products B x
-    (``apply``) and B^T y (``apply_t``): Hager's method with Higham's extra test vector (LAPACK dlacn2)."""
-    x = np.full(n, 1.0 / n)
-    est, j_old = 0.0, -1
-    for k in range(iterations):
-        y = apply(x)
-        est_new = float(np.abs(y).sum())
-        if k > 0 and est_new <= est:
-            break
-        est = est_new
-        if k == iterations - 1:  # no next vector to choose: spare the solve
-            break
-        z = apply_t(np.where(y >= 0, 1.0, -1.0))
-        j = int(np.argmax(np.abs(z)))
-        if k > 0 and (j == j_old or abs(z[j]) <= z @ x):
-            break
-        x = np.zeros(n)
-        x[j] = 1.0
-        j_old = j
-    alt = (-1.0) ** np.arange(n) * (1.0 + np.arange(n) / max(n - 1, 1))  # Higham's safeguard vector
-    est = max(est, 2.0 * float(np.abs(apply(alt)).sum()) / (3.0 * n))
-    return est
-
-
-BOUND_LIMIT = 1e-6  # relative round-off bound above which a result carries a warning (docs/trust.md)
-ENTRY_ROUNDING = 4  # relative uncertainty of each independently rounded term of a row, in units of eps: the few
-# roundings of an assembled entry (a product of the material, a power of the spacing and a stencil weight)
-
-
-def forward_error_bound(solve, solve_t, correction, magnitude, x, watch=None, iterations: int = 3) -> float:
-    """Round-off bound on max_i |x_i - x*_i| / max_i |x_i| over the unknowns ``watch`` (default all) of a
-    computed solution x of A x* = b, in two parts:
-
-    * the solve's own error, estimated by ``correction`` = A^-1 r, the refinement step of the residual r
-      computed in extended precision (Demmel et al., ACM TOMS 32 (2006), LAPACK xGERFSX);
-    * the data error of the float64 system, || |A^-1| c eps m ||_inf, with m = ``magnitude`` the size of
-      each row's independently rounded terms (|A| |x| + |b| when nothing better is known) and
-      c = ``ENTRY_ROUNDING``: the componentwise perturbation bound (Skeel; Higham, *Accuracy and
-      Stability*, eq. 7.31, LAPACK xGBRFS's FERR), which refinement cannot reduce.
-
-    || |A^-1| v ||_inf = || A^-1 diag(v) ||_inf is estimated by Hager's method on its transpose: a few
-    solves with A and A^T (``solve``, ``solve_t``), linear in n; like LAPACK's, an estimate of a bound,
-    usually within a factor of 3 of it."""
-    n = len(x)
-    idx = np.arange(n) if watch is None else np.asarray(watch, np.int64)
-    top = float(np.abs(x[idx]).max()) if len(idx) else 0.0
-    v = ENTRY_ROUNDING * np.finfo(float).eps * np.asarray(magnitude, float)
-    step = float(np.abs(np.asarray(correction)[idx]).max()) if len(idx) else 0.0
-    if not (np.all(np.isfinite(v)) and np.isfinite(step)):
-        return float("inf")
-    if top == 0.0:
-        return 0.0 if step == 0.0 and not v.any() else float("inf")
-
-    def bt(y):  # B^T y for B = (A^-1 diag(v)) restricted to the rows idx
-        z = np.zeros(n)
-        z[idx] = y
-        return v * solve_t(z)
-
-    est = hager_norm1(bt, lambda y: solve(v * y)[idx], len(idx), iterations) if v.any() else 0.0
-    total = (est + step) / top  # ||B^T||_1 = ||B||_inf
-    return float(f"{total:.3g}") if np.isfinite(total) else float("inf")
-
-
-def bound_warning(bound: float) -> str:
-    """The one-line warning a result carries when its round-off bound passes ``BOUND_LIMIT``."""
-    return (
-        f"round-off bound {bound:.2g} (relative error) exceeds {BOUND_LIMIT:g}: at this size the linear solve "
-        "may be wrong to that degree; use fewer points or a better-conditioned form"
-    )
-
-
-def _record_bound(info: dict, bound: float) -> None:
-    info["error_bound"] = bound
-    if not bound <= BOUND_LIMIT:
-        info.setdefault("warnings", []).append(bound_warning(bound))
 
 
 def scale_symmetric(K: sp.csr_matrix, s: np.ndarray) -> sp.csr_matrix:
@@ -208,6 +135,8 @@ def solve_band(
     watch=None,
     magnitude=None,
     refine: bool = False,
+    entry_rounding: float | None = None,
+    cancelling_rows=None,
 ) -> tuple[np.ndarray, dict]:
     """Solve B u = b for a :class:`~pdverify.numerics.band.Band` (B is consumed: scaled in place).
 
@@ -215,8 +144,9 @@ def solve_band(
     1/sqrt|diag|), LAPACK gbtrf on one copy, gbtrs; then the correction of a residual computed in extended
     precision (applied, one or two steps of iterative refinement, when ``refine``; else only measured, so the
     solution is that of the LU alone) and :func:`forward_error_bound` (``info["error_bound"]``, over the
-    unknowns ``watch``; ``magnitude(u)``: the size of each row's independently rounded terms, default
-    |B| |u| + |b|): a few extra banded solves and products, all linear in n. B's scaled band is kept
+    unknowns ``watch``; its data term over the band's entries grouped by the rounding they share,
+    :mod:`pdverify.numerics.rounding`, or ``magnitude(u)``, the size of each row's independently rounded terms):
+    a few extra banded solves and products, all linear in n. B's scaled band is kept
     beside its factors for the residual (one more band of memory)."""
     from scipy.linalg import lapack
 
@@ -253,28 +183,29 @@ def solve_band(
             "singular or too ill-conditioned"
         )
     steps, r0 = [], None
-    for _ in range(2 if refine else 1):  # the correction from a residual in extended precision: applied when
-        r = extended_residual(B, bs, y)  # refine,
-        r0 = r if r0 is None else r0  # a second step only when the first was large; while refinement
-        dy = solve(r)  # contracts, the last correction bounds the error it leaves (estimates it when not applied)
-        if refine:
-            y = y + dy
-        steps.append(float(np.abs(dy).max() / max(np.abs(y).max(), 1e-300)))
-        if steps[-1] <= 0.01 * BOUND_LIMIT:
+    while True:  # the correction of a residual in extended precision: applied when refine (a second time only when
+        r = extended_residual(B, bs, y)  # the first was large); the last one is measured, not applied: the
+        r0 = r if r0 is None else r0  # estimate of the error of the solution returned
+        dy = solve(r)
+        size = float(np.abs(dy).max() / max(np.abs(y).max(), 1e-300))
+        if not refine or len(steps) == 2 or (steps and size <= 0.01 * BOUND_LIMIT):
             break
+        y = y + dy
+        steps.append(size)
     if refine:
         info["refinement"] = steps
     with np.errstate(all="ignore"):
         u = s * y
     _require_finite(u, what)
+    # the data error's map: the scaled band's entries grouped by shared rounding (numerics/rounding.py)
     if magnitude is None:
-        np.abs(B.data, out=B.data)
-        m = B.matvec(np.abs(y)) + np.abs(bs)
+        m = BandRounding(B.data, B.upper, y, bs, _weight(entry_rounding), cancelling_rows)
     else:
         m = s * magnitude(u)
-    info["residual"] = float(np.abs(r0).max() / m.max()) if m.max() > 0 else 0.0  # of the unrefined solution
-    # the last step estimates the error left by the one before it: a conservative solve term
     _record_bound(info, _scaled_bound(solve, lambda z: solve(z, 1), s, s * dy, m, u, watch, 2))
+    np.abs(B.data, out=B.data)
+    size = (B.matvec(np.abs(y)) + np.abs(bs)).max()  # the residual relative to the size of its terms
+    info["residual"] = float(np.abs(r0).max() / size) if size > 0 else 0.0  # of the unrefined solution
     B.data = None  # consumed
     return u, info
 
@@ -325,6 +256,8 @@ def solve_linear(
     watch=None,
     magnitude=None,
     refine_in_place: bool = False,
+    entry_rounding: float | None = None,
+    cancelling_rows=None,
 ) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
@@ -338,11 +271,15 @@ def solve_linear(
     is converted and solved like a sparse matrix (same numbers as the sparse route).
 
     Every solve carries ``info["error_bound"]``, :func:`forward_error_bound` over the unknowns ``watch``
-    (default all; ``magnitude(u)``: the size of each row's independently rounded terms, default
-    |K| |u| + |b|), and a warning when it passes ``BOUND_LIMIT``. ``refine_in_place``: refine on the
-    in-place path too (:func:`solve_band`; off by default there, so its solutions are the LU's).
-    ``scaling``: the symmetric scaling s of
+    (default all; its data term over K's entries grouped by the rounding they share, or ``magnitude(u)``: the
+    size of each row's independently rounded terms), and a warning when it passes ``BOUND_LIMIT``.
+    ``refine_in_place``: refine on the in-place path too (:func:`solve_band`; off by default there, so its
+    solutions are the LU's). ``scaling``: the symmetric scaling s of
     diag(s) K diag(s) (default 1/sqrt|diag K|; a saddle-point system with zero diagonal needs its own).
+    ``entry_rounding``: the relative uncertainty of the matrix's entries in units of eps (default
+    ``ENTRY_ROUNDING``), for the bound's data term; entries that share one rounding count once
+    (:mod:`pdverify.numerics.rounding`). ``cancelling_rows``: rows computed as products of dense operators,
+    whose entries are uncertain to the row's largest entry (the same module).
     """
     if isinstance(K, Band):
         if (
@@ -352,7 +289,7 @@ def solve_linear(
             and K.lower <= banded_max
             and K.upper <= banded_max
         ):
-            return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place)
+            return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place, entry_rounding, cancelling_rows)
         K = K.tocsr()
     K, b = _finite_system(K, b, what)
     n = K.shape[0]
@@ -377,7 +314,8 @@ def solve_linear(
         refinement = n <= SMALL
     if refinement:
         u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r))
-    _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch)
+    rounding = (_weight(entry_rounding), cancelling_rows)
+    _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, rounding)
     if condition is None:
         condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised
@@ -423,7 +361,7 @@ def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int,
     return y, solve, solve_t, solver, Ks, key, shared
 
 
-def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch) -> None:
+def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, rounding=(1.0, None)) -> None:
     """``info["residual"]``: max |K u - b| relative to the size of its terms (the unscaled system), and the
     round-off bound of :func:`forward_error_bound` (``info["error_bound"]``, a warning past ``BOUND_LIMIT``) with
     the correction of the residual computed in extended precision."""
@@ -431,8 +369,8 @@ def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
     rl = np.asarray(np.asarray(b, np.longdouble) - K.astype(np.longdouble) @ np.asarray(u, np.longdouble), float)
-    m = np.abs(K) @ np.abs(u) + np.abs(b) if magnitude is None else magnitude(u)
-    _record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), s * m, u, watch))
+    m = SharedRounding.from_csr(K, u, b, s, *rounding) if magnitude is None else s * magnitude(u)
+    _record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), m, u, watch))
 
 
 def _condition(K, Ks, s, solve, solve_t) -> float:

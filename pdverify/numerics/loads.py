@@ -100,6 +100,17 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
     return out + narrow_load_warnings(scene, x)
 
 
+def moment_rotation_warnings(scene: Scene) -> list[str]:
+    """Point moments inside the beam: the curvature jumps there, and a PD model spreads the jump over its horizon, so
+    the rotation near the moment is first order (a few dx/L of max |rotation|) while w stays second order."""
+    return [
+        f"loads[{i}], a point moment at {load.position:g}: the rotation within a few spacings of it is first order "
+        "(an error of a few dx/L of max |rotation|); the deflection stays second order"
+        for i, load in enumerate(scene.loads)
+        if load.type == "point_moment" and 0.0 < load.position < scene.length
+    ]
+
+
 def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
     """Partial loads that lie inside one point's cell [x_i - dx/2, x_i + dx/2]: the PD models place distributed loads
     by cell averages, so such a load acts on that point as a whole, moved by up to half a spacing (a first-order

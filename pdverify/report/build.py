@@ -39,6 +39,8 @@ CONVERGENCE_COLUMNS = [
     "quantity",
     "n_grids",
     "observed_order",
+    "promised_order",
+    "below_order",
     "r2",
     "gci_order",
     "gci_fine",

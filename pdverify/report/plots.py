@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from markupsafe import Markup
 
-MAX_POINTS = 240  # points kept per line: more than a 600-pixel axis shows; the bins keep each one's extremes
+MAX_POINTS = 180  # points kept per line: a 600-pixel axis shows no more; the bins keep each one's extremes
+FIGURE_POINTS = 1000  # points kept per figure: a figure of many lines thins each further (to MIN_POINTS at least)
+MIN_POINTS = 40
 X_DIGITS, Y_DIGITS = 4, 3  # significant digits of positions along an axis and of the values drawn
 
 
@@ -109,9 +111,9 @@ class Series:
     labels: Sequence[str] | None = None
     guide: bool = False
 
-    def spec(self, ylog: bool) -> dict:
+    def spec(self, ylog: bool, limit: int = MAX_POINTS) -> dict:
         x, y = np.asarray(self.x, float), np.asarray(self.y, float)
-        idx = thin(x, y, ylog)
+        idx = thin(x, y, ylog, limit)
         labels = self.labels
         if len(idx) < len(x):
             x, y = x[idx], y[idx]
@@ -156,7 +158,9 @@ class Figure:
     id: str = ""
 
     def spec(self) -> dict:
-        out = {"x": self.x.spec(), "y": self.y.spec(), "s": [s.spec(self.y.log) for s in self.series]}
+        lines = max(1, sum(not s.guide for s in self.series))
+        limit = max(MIN_POINTS, min(MAX_POINTS, FIGURE_POINTS // lines))
+        out = {"x": self.x.spec(), "y": self.y.spec(), "s": [s.spec(self.y.log, limit) for s in self.series]}
         if self.notes:
             out["a"] = [
                 {"x": Raw(number(x, X_DIGITS)), "y": Raw(number(y, Y_DIGITS)), "t": t, "c": c}

@@ -22,7 +22,7 @@ from .text import label, unit_of
 QUANTITIES = ("rotation", "moment", "shear", "axial")  # in the order the page shows them
 SYMBOL = {"rotation": "rotation", "moment": "M", "shear": "V", "axial": "N"}
 NAME = {"rotation": "rotation", "moment": "bending moment M", "shear": "shear force V", "axial": "axial force N"}
-QUANTITY_POINTS = 80  # points kept per line of a quantity's error (the deflection's figure keeps plots.MAX_POINTS)
+QUANTITY_POINTS = 64  # points kept per line of a quantity's error (the deflection's figure keeps plots.MAX_POINTS)
 SHAPE_POINTS = 60  # points kept per line of a shape (a smooth curve): the page stays under 2 MB with every quantity
 SHAPE_LINES = 3  # runs drawn beside the reference in a shape figure: the ones furthest from it
 SHAPE_SCALE = 0.1  # the deformed axis' largest displacement drawn as this fraction of the beam's length

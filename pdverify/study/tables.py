@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 
 from ..measure.metrics import gci, locking_slope, observed_order, pareto
+from ..registry import models
 
 GROUP = ("scene", "model", "options", "slenderness")  # a convergence series: every option but the grid
 SHOWN = ("variant", "horizon_factor", "degree")  # columns repeated from the series' finest grid
@@ -30,6 +31,10 @@ ROUND_OFF_FACTOR = 100.0
 # ones and vice versa): thick, where the shear deformation ~ (h/L)² is above the 1 % trust tolerance for
 # any shear-flexible section; moderate; slender, where (L/h)² conditioning starts to matter
 SLENDERNESS_BANDS = (("thick", 0.0, 10.0), ("moderate", 10.0, 100.0), ("slender", 100.0, float("inf")))
+# a series converges far below the order its model's equations promise (Model.order) when its observed order is
+# under this fraction of it, on errors above round-off (the finest grid's error above ORDER_NOISE and 10x its bound)
+FAR_BELOW = 0.5
+ORDER_NOISE = 1e-10
 
 
 def slenderness_band(slenderness) -> str:
@@ -98,10 +103,21 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
                 errors=" ".join(f"{v:.3e}" for v in err),
                 observed_order=p,
                 r2=r2,
+                **order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound"))),
                 **(gci(h, w) if column == "err_max" else {}),
             )
         )
     return out
+
+
+def order_flag(model: str, observed: float, finest: float, bound: float) -> dict:
+    """``promised_order`` (the model's ``order``) and ``below_order``: the observed order is under FAR_BELOW of it
+    on errors above round-off (an error at round-off has no order)."""
+    m = models().get(model)
+    promised = float(m.order) if m is not None and m.order else float("nan")
+    resolved = finest > max(ORDER_NOISE, 10 * (bound if np.isfinite(bound) else 0.0))
+    below = bool(np.isfinite(observed) and np.isfinite(promised) and resolved and observed < FAR_BELOW * promised)
+    return {"promised_order": promised, "below_order": below}
 
 
 def _locking(key: tuple, rows: list[dict]) -> list[dict]:
@@ -284,7 +300,14 @@ def _rows(data) -> list[dict]:
     return rows_of(data) if isinstance(data, pd.DataFrame) else data
 
 
-EMPTY_CONVERGENCE = [*GROUP, "n_grids", "observed_order", "r2"]  # the header when no case is ok
+EMPTY_CONVERGENCE = [
+    *GROUP,
+    "n_grids",
+    "observed_order",
+    "r2",
+    "promised_order",
+    "below_order",
+]  # the header when no case is ok
 
 
 def convergence_rows(rows: list[dict]) -> list[dict]:

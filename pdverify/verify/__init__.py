@@ -203,8 +203,9 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
 def _judge(model, options: dict, p, df, expected: float, declined: dict | None = None) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
-    sets = ("convergence", "locking", "floor", "curved", "engineering")
+    sets = ("convergence", "locking", "floor", "curved", "engineering", "curved_locking")
     files = {s: [f for f, m in p.meta.items() if m["set"] == s and not (declined or {}).get(f)] for s in sets}
+    files["locking"] = files["locking"] + files["curved_locking"]  # one locking check, straight and curved axes
     # the theory-gap run (self-convergence only): the convergence scenes on the reference grid, finer than any other
     gap = (p.reference is None) & (df["points"] == finer(p.grids)) & df["scene_file"].isin(files["convergence"])
     df, gap_df = df[~gap], df[gap]

@@ -38,8 +38,9 @@ from ..registry.external import ExternalModel
 # 1.5: higher-order models against exact-higher-order with their loads and pin (Model.reference_options; were
 # self-converged); 1.6: the curved scenes' rotation, moment, shear and axial force (CURVED_QUANTITIES), each its own
 # convergence check; 1.7: scenes as engineers draw them (engineering_scenes) for models that take supports inside
-# the span, springs or segments
-SUITE_VERSION = "1.7"
+# the span, springs or segments; 1.8: locking on a curved axis (a clamped-free quarter circle under a uniform load,
+# L/h = 5 ... 10^4, against exact-curved) for the curved beam models
+SUITE_VERSION = "1.8"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
 FLOOR_GRIDS = (161, 641, 2561)
@@ -286,6 +287,20 @@ def engineering_scenes(kind: str | None = None) -> list[dict]:
     return scenes
 
 
+def curved_locking_scene(slenderness: float) -> dict:
+    """A clamped-free quarter circle (R = 1) under a uniform load, its section height L / ``slenderness``."""
+    half_pi = 1.5707963267948966
+    return {
+        "name": f"quarter circle, clamped-free, uniform, L/h = {slenderness:g}",
+        "beam": {"length": half_pi},
+        "section": {"width": 0.05, "height": half_pi / slenderness},
+        "material": dict(MATERIAL),
+        "axis": {"type": "arc", "radius": 1.0, "opening_angle_deg": 90.0},
+        "supports": {"left": "clamped", "right": "free"},
+        "loads": [{"type": "distributed", "value": -1000.0}],
+    }
+
+
 @dataclass
 class Plan:
     """The scenes of one verification: ``meta`` maps a scene file to what it tests."""
@@ -411,6 +426,16 @@ def plan(model, full: bool = False, options: dict | None = None) -> Plan:
             )
     reference = exact_reference(model, options or {})
     engineering = [sc for f, sc in scenes.items() if meta[f]["set"] == "engineering"]
+    # membrane and shear locking show on a curved axis (a straight one does not couple them): the beam models judged
+    # against exact-curved; a continuum strip at L/h = 10^4 needs far more elements than the suite's grids
+    for s in LOCKING_SLENDERNESS if model.curved and reference_for(model.theory) else ():
+        add(
+            "curved_locking",
+            curved_locking_scene(s),
+            pair="quarter circle clamped-free",
+            load="uniform",
+            slenderness=s,
+        )
     return Plan(
         scenes,
         meta,
@@ -484,7 +509,7 @@ def write_study(p: Plan, model, options: dict, folder: Path) -> Path:
             {
                 **run,
                 "points": list(p.grids),
-                "scenes": files("curved"),
+                "scenes": files("curved", "curved_locking"),
                 "reference": curved,
                 "quantities": list(CURVED_QUANTITIES),
             }

@@ -1,4 +1,5 @@
-"""A scaled scene gives the same relative result: every static model on a straight beam, the scene scaled in length
+"""A scaled scene gives the same relative result: every static model on a straight beam (and every axial and torsion
+model on a straight rod or shaft), the scene scaled in length
 (every length: the beam, its section, load positions and spans; 1e-6 to 1e6), in modulus (1e-3 to 1e15) and in
 load (1e-6 to 1e6), gives the same deflection relative to its largest value and the same warnings as the unscaled
 scene. A model whose numbers depend on the units (an absolute tolerance, a rank test on unscaled rows, a round-off
@@ -111,5 +112,52 @@ def test_the_plane_stress_reference_scales_too(length):
     base = run(parse_scene(scaled("clamped", "pinned", 1.0, 1.0, 1.0)), "fem-plane-stress", **options)
     other = run(parse_scene(scaled("clamped", "pinned", length, 1e3, 1e-3)), "fem-plane-stress", **options)
     diff = np.abs(relative(other) - relative(base)).max()
+    assert diff <= tolerance(base, other), (diff, tolerance(base, other))
+    assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))
+
+
+ROD_MODELS = sorted(n for n, m in models().items() if "static" in m.analyses and m.straight and not m.bending)
+
+
+def rod_loads(torsion: bool, length: float, load: float) -> list[dict]:
+    """A point load at 0.35 L and a line load over [0.1 L, 0.55 L]: torques for a shaft, axial forces for a rod."""
+    if torsion:
+        return [
+            {"type": "point_torque", "position": 0.7 * length, "value": 300.0 * load * length},
+            {"type": "distributed", "value": 0.0, "torque": 200.0 * load, "start": 0.2 * length, "end": 1.1 * length},
+        ]
+    return [
+        {"type": "point_force", "position": 0.7 * length, "value": 0.0, "axial": -300.0 * load},
+        {
+            "type": "distributed",
+            "value": 0.0,
+            "axial": 400.0 * load / length,
+            "start": 0.2 * length,
+            "end": 1.1 * length,
+        },
+    ]
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    pair=st.sampled_from([("clamped", "free"), ("free", "clamped"), ("clamped", "clamped")]),
+    length=st.sampled_from([1e-6, 1e-3, 1e3, 1e6]),
+    modulus=st.sampled_from([1e-3, 1e-9, 1e6]),
+    load=st.sampled_from([1e-6, 1e6]),
+)
+@pytest.mark.parametrize("name", ROD_MODELS)
+def test_a_scaled_rod_or_shaft_gives_the_same_relative_result(name, pair, length, modulus, load):
+    """The axial and torsion models: the same relative displacement or twist and the same warnings."""
+    model = models()[name]
+    options = {"points": 41} if model.option("points") is not None else {}
+
+    def solve(f_length, f_modulus, f_load):
+        d = scaled(*pair, f_length, f_modulus, f_load)
+        d["loads"] = rod_loads(model.torsion, f_length, f_load)
+        return run(parse_scene(d), name, **options)
+
+    base, other = solve(1.0, 1.0, 1.0), solve(length, modulus, load)
+    a, b = (np.asarray(r.measured(model.measures), float) for r in (base, other))
+    diff = np.abs(b / np.abs(b).max() - a / np.abs(a).max()).max()
     assert diff <= tolerance(base, other), (diff, tolerance(base, other))
     assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))

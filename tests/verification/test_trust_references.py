@@ -1,6 +1,15 @@
-"""Issue 27, item 2: the beam references stay within 1e-6 of the exact solution (relative to max |w|)
-up to 10^5 nodes and within 1e-4 at 10^6, for every support pair and load type, and their round-off
-bound (info.error_bound) holds their error without crying wolf."""
+"""The beam references stay within 1e-6 of the exact solution (relative to max |w|) up to 10^5 nodes and within
+1e-4 at 10^6, for every support pair and load type, and their round-off bound (``info["error_bound"]``) with the
+closed form's own rounding holds their error without crying wolf.
+
+The closed form is rounded too: w(x) = sum_j A_j(x) c_j + p(x), a sum of terms up to ~60 times max |w| on these
+scenes (measured at 10,001 points: 42 clamped-pinned, 63 clamped-clamped). Its rounding is bounded by
+REFERENCE_EPS eps times the terms' size: each term carries a few roundings (A's entries are integrals of
+polynomials, c the solution of a row-scaled 4 x 4 system) and their sum gamma_(k+3) (Higham 2002, eq. 4.4).
+Measured against the references at 10,001 points: errors 1.1e-14 and 1.5e-14 on those two, where the references'
+own bounds are 3.6e-15 and 4.1e-15 and their measured round-off (scaled copies of the scene and a refined solve,
+tests/verification/test_trust_sweep.py) 7e-16: the difference is the closed form's.
+"""
 
 import numpy as np
 import pytest
@@ -10,6 +19,8 @@ from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.numerics.linalg import BOUND_LIMIT
 from pdverify.registry import run
+
+REFERENCE_EPS = 16  # the closed form's rounding per unit of its terms' size (module docstring)
 
 MODELS = ("fem-eb", "fem-timoshenko")
 LOADS = {  # one of each load type, off-centre (a load on a node of the uniform grid or between two)
@@ -27,6 +38,14 @@ def error(model, scene, points, **options):
     return float(np.abs(r.w - exact).max() / np.abs(exact).max()), r
 
 
+def allowance(scene, r) -> float:
+    """The reference's round-off bound plus the closed form's rounding (module docstring), relative to max |w|."""
+    exact = solve_straight(scene, r.model == "fem-timoshenko")
+    A, p = exact._linear(np.asarray(r.x, float))["w"]
+    terms = (np.abs(A) @ np.abs(exact.c) + np.abs(p)).max() / np.abs(A @ exact.c + p).max()
+    return r.info["error_bound"] + REFERENCE_EPS * np.finfo(float).eps * terms
+
+
 @pytest.mark.parametrize("model", MODELS)
 @pytest.mark.parametrize("left,right", PAIRS)
 def test_every_support_pair_at_10_000_nodes(model, left, right):
@@ -35,7 +54,7 @@ def test_every_support_pair_at_10_000_nodes(model, left, right):
     sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
     e, r = error(model, sc, 10_001)
     assert e < 1e-12, (e, r.info.get("error_bound"))  # 10x the measured 1e-13: round-off, not discretisation
-    assert e <= r.info["error_bound"] < BOUND_LIMIT and "warnings" not in r.info
+    assert e <= allowance(sc, r) and r.info["error_bound"] < BOUND_LIMIT and "warnings" not in r.info
 
 
 @pytest.mark.parametrize("model", MODELS)
@@ -43,7 +62,7 @@ def test_every_support_pair_at_10_000_nodes(model, left, right):
 def test_every_load_type_at_10_000_nodes(model, load):
     sc = parse_scene(scene_dict("clamped", "pinned", [LOADS[load]]))
     e, r = error(model, sc, 10_001)
-    assert e < 1e-12 and e <= r.info["error_bound"] < BOUND_LIMIT  # measured <= 1e-13 (as above)
+    assert e < 1e-12 and e <= allowance(sc, r) and r.info["error_bound"] < BOUND_LIMIT  # measured <= 1e-13 (as above)
 
 
 @pytest.mark.slow
@@ -55,7 +74,7 @@ def test_every_support_pair_at_100_000_nodes(model, left, right):
     sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
     e, r = error(model, sc, 100_001)
     assert e < 1e-8, (e, r.info.get("error_bound"))  # the bound's scale, not the error's (other BLAS kernels)
-    assert e <= r.info["error_bound"] < BOUND_LIMIT
+    assert e <= allowance(sc, r) and r.info["error_bound"] < BOUND_LIMIT
 
 
 @pytest.mark.slow
@@ -67,7 +86,7 @@ def test_a_million_nodes(model):
     e, r = error(model, sc, 1_000_001)
     # 1e-12, over 100x the measured 8e-15: the round-off of a 10^6-node solve depends on the BLAS and processor;
     # the bound holding the error is the sharp check here, and 1e-12 is still 10^8 below the issue's 1e-4
-    assert e < 1e-12 and e <= r.info["error_bound"] < BOUND_LIMIT
+    assert e < 1e-12 and e <= allowance(sc, r) and r.info["error_bound"] < BOUND_LIMIT
 
 
 @pytest.mark.parametrize("model", MODELS)

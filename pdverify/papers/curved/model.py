@@ -68,7 +68,7 @@ from ...core.geometry import mechanism_message
 from ...core.result import Result, Timer
 from ...core.scene import Scene
 from ...numerics.band import Band
-from ...numerics.linalg import solve_linear
+from ...numerics.linalg import BOUND_LIMIT, ENTRY_ROUNDING, bound_warning, solve_linear
 from . import pddo as _pddo
 from .assembly import assemble_displacements, assemble_resultants
 from .particles import (
@@ -260,7 +260,12 @@ class PDCurved(Model):
         info = dict(infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))])
         if "reactions" in info:  # each solve's supports carry its loads: the sum
             info["reactions"] = {k: sum(i["reactions"][k] for i in infos) for k in info["reactions"]}
-        warnings = sorted({w for i in infos for w in i.get("warnings", [])})
+        info.update(superposed_bound(infos, total))
+        info.pop("bound_scale", None), info.pop("warnings", None)
+        warnings = {w for i in infos for w in i.get("warnings", []) if not w.startswith("round-off bound")}
+        if not info.get("error_bound", 0.0) <= BOUND_LIMIT:
+            warnings.add(bound_warning(info["error_bound"]))
+        warnings = sorted(warnings)
         if warnings:
             info["warnings"] = warnings
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
@@ -283,9 +288,18 @@ class PDCurved(Model):
         with timer("assemble"):
             B, b, d = self.assemble_band(scene, params, body)
         with timer("solve"):  # factorises B in place above 20,000 unknowns (solve_band), else as CSR
-            zi, info = solve_linear(B, b, what=f"pd-curved (degree {params['degree']}, {params['form']})")
+            N, nf = d["N"], d["nf"]
+            zi, info = solve_linear(
+                B,
+                b,
+                what=f"pd-curved (degree {params['degree']}, {params['form']})",
+                watch=np.flatnonzero(np.arange(nf * N) % nf < 2),  # the displacements u_t, u_n
+                # the mixed band's entries are the PDDO weights themselves (times section constants): a weight's
+                # rounding from the rounded positions; the primal band's are their compositions, whose entry-wise
+                # bound already exceeds that rounding (the entries' cancellation: docs/trust.md)
+                entry_rounding=weight_rounding(d["s"]) if nf == 6 else None,
+            )
         del B
-        N, nf = d["N"], d["nf"]
         Z = (zi * d["cscale_i"]).reshape(N, nf)  # row k: the unknowns of particle k
         ut, un, phi = Z[:, 0], Z[:, 1], Z[:, 2]
         if nf == 6:
@@ -305,6 +319,7 @@ class PDCurved(Model):
         t, nv = d["t"], d["n"]
         ux = ut * t[:, 0] + un * nv[:, 0]
         uy = ut * t[:, 1] + un * nv[:, 1]
+        info["bound_scale"] = float(max(np.abs(ux).max(), np.abs(uy).max()))  # the bound's 1 (superposed_bound)
         fields = {
             "x": d["x"],
             "w": T @ un,
@@ -356,6 +371,26 @@ class PDCurved(Model):
         return sp.csr_matrix(
             (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(points, offs[-1])
         )
+
+
+def weight_rounding(s: np.ndarray) -> float:
+    """Relative uncertainty, in units of eps, of a PDDO weight computed from the particles' arc lengths ``s``: an
+    offset s_j - s_i carries the rounding of s (eps L) relative to the spacing, and the weights follow the
+    offsets to first order (their spread along a uniform grid is about 0.6 L/ds eps at degree 2-6)."""
+    ds = np.diff(s)
+    ds = ds[ds > 0]
+    return ENTRY_ROUNDING + (float(np.abs(s).max() / ds.min()) if len(ds) else 0.0)
+
+
+def superposed_bound(infos: list[dict], total: dict) -> dict:
+    """The round-off bound of a sum of solves: each solve's bound (relative to its own largest displacement,
+    ``bound_scale``) in absolute terms, summed, relative to the sum's largest displacement."""
+    if any(i.get("error_bound") is None or "bound_scale" not in i for i in infos):
+        return {}
+    top = max(float(np.abs(total["ux"]).max()), float(np.abs(total["uy"]).max()))
+    absolute = sum(float(i["error_bound"]) * i["bound_scale"] for i in infos)
+    bound = float(f"{absolute / top:.3g}") if top > 0 else (0.0 if absolute == 0 else float("inf"))
+    return {"error_bound": bound}
 
 
 MODELS = [PDCurved()]

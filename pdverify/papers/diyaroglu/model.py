@@ -46,7 +46,7 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
-from ...numerics.loads import boundary_layer_warnings
+from ...numerics.loads import boundary_layer_warnings, moment_rotation_warnings
 from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import Series, beam_series
 from . import dynamics, mixed, outputs
@@ -323,6 +323,8 @@ class PDEulerBernoulli(Model):
         flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
         flags += inner_layer_warnings(scene, x, reach)
         flags += outputs.recovery_warnings(scene, params)
+        if params["variant"] == "paper":  # the corrected variant takes a couple by its kink: second order there
+            flags += moment_rotation_warnings(scene)
         if params["variant"] == "paper":
             flags.append(paper_bias(params["horizon"]))
         if flags:

@@ -8,6 +8,7 @@ import scipy.sparse as sp
 
 from ...core.errors import InputError, SolveError
 from ...core.scene import Scene
+from ...numerics.timeint import step_count
 from .model import PDEulerBernoulli
 
 
@@ -48,8 +49,9 @@ def simulate_eb(
     free = system.free
     n_all = params["points"]
     limit = central_difference_limit(Kf, rho)
+    given = dt is not None
     dt = safety * limit if dt is None else float(dt)
-    steps = int(np.ceil(t_end / dt))
+    steps = step_count(t_end, dt, "time_step" if given else "default")
     w = np.zeros(len(free))
     w_old = np.zeros(len(free))
     hist, times = [], []

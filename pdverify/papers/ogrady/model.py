@@ -38,6 +38,7 @@ from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import Series, beam_series
 from . import dynamics
+from .bias import bias_warnings
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
 from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
 from .nonlinear import NonlinearBondPair
@@ -179,7 +180,7 @@ class PDBondPair(Model):
             choices=WEIGHTS,
         ),
         Option("nonlinear", bool, False, "geometrically nonlinear path (Newton, load steps, mirror ghosts)"),
-        Option("steps", int, 10, "load steps of the nonlinear path", minimum=1),
+        Option("steps", int, 10, "load steps of the nonlinear path", minimum=1, maximum=100_000),
         *NONLOCAL,
         SOLVER,
         dynamics.ANALYSIS,
@@ -284,6 +285,7 @@ class PDBondPair(Model):
         dx = x[1] - x[0]
         reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
         flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach) + rotation_warnings(scene)
+        flags += bias_warnings(params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
@@ -448,9 +450,13 @@ class PDBondPair(Model):
             with timer("solve"):
                 fields["u"] = self.axial_displacement(scene, params)
         dx = x[1] - x[0]
-        flags = boundary_layer_warnings(
-            scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
-        ) + rotation_warnings(scene)
+        flags = (
+            boundary_layer_warnings(
+                scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
+            )
+            + rotation_warnings(scene)
+            + bias_warnings(params)
+        )
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(

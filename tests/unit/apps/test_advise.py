@@ -6,7 +6,8 @@ from helpers import ROOT, pdverify_process, scene_dict
 from pdverify.apps.advise import advise, estimate
 from pdverify.core.errors import InputError
 from pdverify.core.scene_file import load_scene, parse_scene
-from pdverify.registry import get_model
+from pdverify.measure.richardson import richardson
+from pdverify.registry import get_model, run
 
 
 def test_thick_beam_excludes_euler_bernoulli_models():
@@ -186,3 +187,15 @@ def test_a_rod_scene_is_advised_on_its_axial_displacement():
     true = np.abs(r.fields["u"] - u).max() / np.abs(u).max()
     assert true < 1e-3 and a.choice.estimate / 2 < true < 2 * a.choice.estimate
     assert a.choice.exact_error == pytest.approx(true, rel=1e-12)  # advise's own check against exact-rod
+
+
+def test_the_estimate_is_the_one_solve_estimate_gives():
+    """advise's three-grid estimate is pdverify.measure.richardson's on its three finest grids (the same numbers
+    `pdverify solve --estimate` prints), with the model's promised order deciding whether it is asymptotic."""
+    sc = parse_scene(scene_dict("clamped", "pinned", [{"type": "distributed", "value": -800.0}]))
+    c = estimate(sc, "pd-eb", {"variant": "corrected"}, tol=1e-4, budget=30)
+    grids = [int(g) for g in c.basis.split("N = ")[1].split(";")[0].split(", ")]
+    results = [run(sc, "pd-eb", variant="corrected", points=g) for g in grids]
+    found = richardson(results, 2, "w", get_model("pd-eb").order)
+    assert found.asymptotic and "not asymptotic" not in c.basis
+    assert (c.estimate, c.order, c.points) == (found.error, found.order, grids[-1])

@@ -260,7 +260,9 @@ def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
     study = tomllib.loads(write_study(p, model, {}, tmp_path).read_text())
     curved = [r for r in study["runs"] if r.get("quantities")]
     assert len(curved) == 1 and curved[0]["quantities"] == list(CURVED_QUANTITIES)
-    assert set(curved[0]["scenes"]) == {f for f, m in p.meta.items() if m["set"] == "curved"}
+    assert set(curved[0]["scenes"]) == {
+        f for f, m in p.meta.items() if m["set"] in ("curved", "curved_locking")
+    }  # locking on the arc too
     h = np.array([0.1, 0.05, 0.025, 0.0125])
     rows = pd.DataFrame(
         {

@@ -1,0 +1,147 @@
+"""The data error of an assembled float64 system: which of its entries share one rounding.
+
+A linear system assembled in floating point is the exact system with every entry rounded. The first-order
+change of the solution x of A x = b under relative entry perturbations a_ij (1 + d_ij), b_i (1 + e_i) is
+``dx = A^-1 (e b - (d A) x)``. Skeel's componentwise bound (Higham, *Accuracy and Stability of Numerical
+Algorithms*, 2nd ed., eq. 7.31) lets every d_ij take its worst sign independently: ``|A^-1| (|A| |x| + |b|)``.
+An assembly does not round that way. A stencil written once and repeated along the grid, a diagonal set to
+twice an off-diagonal, a rotation coupling written with opposite signs in two rows: these entries are one
+rounded number, copied (a copy, a sign change or a power of two leaves its relative error unchanged). Their
+perturbations are one d, so they keep what the exact entries keep: a difference stencil still annihilates a
+rigid motion, a uniform load stays uniform. Letting them differ turns a beam's rounding of its shear modulus into
+a spring of stiffness eps kGA / dx^2 under every point: a relative error of eps (L/dx)^2 (L/h)^2 where the
+solution moves by eps.
+
+This module groups the entries by their significand (``frexp``: equal significands are equal up to a power of
+two and a sign) and gives the linear map G from the groups' perturbations to the residual change,
+``G[:, g] = sum over the entries of group g of a_ij x_j`` (the matrix's groups) and ``b_i`` (the load vector's,
+grouped the same way), so that the worst case over one d per group in [-c eps, c eps] is
+``c eps || A^-1 G ||_inf`` (:func:`pdverify.numerics.error_bound.forward_error_bound` estimates it by Hager's method
+with products by G and G^T). A group holds entries computed alike: two independently rounded numbers share a
+significand by chance with probability about 2^-52 per pair, and entries that are exact (1, 2, 0.5) are
+counted as rounded.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def significand_groups(values: np.ndarray) -> tuple[np.ndarray, int]:
+    """(group id of each value, number of groups): values with equal |significand| share a group. Runs of equal
+    values (a diagonal's interior) are compressed first, so the sort is over the distinct runs only."""
+    m = np.frexp(np.abs(np.asarray(values, float).ravel()))[0]
+    if m.size == 0:
+        return np.zeros(0, np.int64), 0
+    starts = np.flatnonzero(np.concatenate(([True], m[1:] != m[:-1])))
+    keys, inverse = np.unique(m[starts], return_inverse=True)
+    return np.repeat(inverse, np.diff(np.append(starts, m.size))), len(keys)
+
+
+class _Rounding:
+    """What the two layouts share: the load vector's columns (grouped like the matrix's), the columns of the
+    cancelling rows (one each), and the products of those with z and y."""
+
+    def _rows_part(self, b, k_matrix: int, rows, row_terms) -> None:
+        bgid, kb = significand_groups(b)
+        self.bgid = bgid + k_matrix
+        self.bterms = np.asarray(b, float) * self.s
+        self.crows = np.asarray([] if rows is None else rows, np.int64)
+        self.cterms = row_terms[self.crows] if len(self.crows) else np.zeros(0)
+        self.k0 = k_matrix + kb
+        self.k = self.k0 + len(self.crows)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (self.n, self.k)
+
+    def _add_rows(self, out: np.ndarray, z: np.ndarray) -> np.ndarray:
+        out += self.bterms * z[self.bgid]
+        out[self.crows] += self.cterms * z[self.k0 :]
+        return out
+
+    def _rows_t(self, out: np.ndarray, y: np.ndarray) -> np.ndarray:
+        out += np.bincount(self.bgid, weights=self.bterms * y, minlength=self.k)
+        out[self.k0 :] += self.cterms * y[self.crows]
+        return out
+
+
+class SharedRounding(_Rounding):
+    """The map G (n x k) of the module docstring for a system given by its entries (``rows``, ``cols``, ``vals``; CSR
+    in :meth:`from_csr`) at the solution ``x`` with load vector ``b``; ``row_scale`` multiplies G's rows (the
+    symmetric scaling of a system solved as diag(s) A diag(s)); ``weight`` multiplies the matrix's columns (its
+    entries' rounding in units of the load vector's); ``cancelling``: rows whose entries are uncertain to the row's
+    largest. ``matvec(z)`` = G z (z in R^k), ``rmatvec(y)`` = G^T y. The entries should come diagonal by diagonal
+    (runs of equal entries together: a short sort)."""
+
+    def __init__(self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, cancelling=None):
+        self.n = int(n)
+        self.s = np.ones(self.n) if row_scale is None else np.asarray(row_scale, float)
+        x = weight * np.asarray(x, float)
+        self.rows = rows
+        self.terms = vals * x[cols] * self.s[rows]  # a_ij x_j, scaled by row
+        self.gid, k_matrix = significand_groups(vals)
+        big = np.zeros(self.n)  # in the scaled system diag(s) A diag(s), unknowns x / s: the row's largest entry
+        np.maximum.at(big, rows, np.abs(vals * self.s[rows] * self.s[cols]))
+        size = np.bincount(rows, weights=np.abs(x[cols] / self.s[cols]) * (vals != 0), minlength=self.n)
+        self._rows_part(b, k_matrix, cancelling, big * size)
+
+    @classmethod
+    def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, cancelling=None) -> SharedRounding:
+        K = K.tocoo()
+        order = np.lexsort((K.row, K.col.astype(np.int64) - K.row))
+        rows, cols = K.row[order].astype(np.int64), K.col[order].astype(np.int64)
+        return cls(rows, cols, K.data[order], x, b, row_scale, K.shape[0], weight, cancelling)
+
+    def matvec(self, z: np.ndarray) -> np.ndarray:
+        """G z: each entry's term times its group's weight, summed by row; plus the rows' own columns."""
+        z = np.asarray(z, float)
+        return self._add_rows(np.bincount(self.rows, weights=self.terms * z[self.gid], minlength=self.n), z)
+
+    def rmatvec(self, y: np.ndarray) -> np.ndarray:
+        """G^T y: each group's terms weighted by their rows' y, summed by group."""
+        y = np.asarray(y, float)
+        return self._rows_t(np.bincount(self.gid, weights=self.terms * y[self.rows], minlength=self.k), y)
+
+
+class BandRounding(_Rounding):
+    """:class:`SharedRounding` for a matrix held by diagonals (``data[upper - o, j] = A[j - o, j]``,
+    :class:`pdverify.numerics.band.Band`'s layout; the band's own scaling already applied): the products run
+    diagonal by diagonal on ``data`` itself, so the only copy is one group id per stored entry."""
+
+    def __init__(self, data: np.ndarray, upper: int, x, b, weight: float = 1.0, cancelling=None):
+        self.data, self.upper = data, int(upper)
+        self.x = weight * np.asarray(x, float)  # the weight of the matrix's columns, carried by x
+        self.n = data.shape[1]
+        self.s = np.ones(self.n)
+        gid, k_matrix = significand_groups(data)
+        self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64).reshape(data.shape)
+        big, size = np.zeros(self.n), np.zeros(self.n)
+        if cancelling is not None and len(cancelling):
+            for rs, cs, r in self._diagonals():
+                a = np.abs(self.data[r, cs])
+                big[rs] = np.maximum(big[rs], a)
+                size[rs] += np.abs(self.x[cs]) * (a > 0)
+        self._rows_part(b, k_matrix, cancelling, big * size)
+
+    def _diagonals(self):
+        """(row slice, column slice, data row) of every stored diagonal: entry j of the column slice is
+        A[j - o, j]."""
+        n = self.n
+        for r in range(self.data.shape[0]):  # the band's diagonals, not its points
+            o = self.upper - r
+            yield slice(max(0, -o), n - max(0, o)), slice(max(0, o), n + min(0, o)), r
+
+    def matvec(self, z: np.ndarray) -> np.ndarray:
+        z = np.asarray(z, float)
+        out = np.zeros(self.n)
+        for rs, cs, r in self._diagonals():
+            out[rs] += self.data[r, cs] * self.x[cs] * z[self.gid[r, cs]]
+        return self._add_rows(out, z)
+
+    def rmatvec(self, y: np.ndarray) -> np.ndarray:
+        y = np.asarray(y, float)
+        w = np.zeros(self.data.shape)  # each stored entry's term a_ij x_j y_i, then one sum by group
+        for rs, cs, r in self._diagonals():
+            w[r, cs] = self.data[r, cs] * self.x[cs] * y[rs]
+        return self._rows_t(np.bincount(self.gid.ravel(), weights=w.ravel(), minlength=self.k), y)

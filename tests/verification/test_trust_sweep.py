@@ -1,0 +1,47 @@
+"""The round-off bound against the round-off a solve makes (benchmarks/trust_sweep.py, one case each).
+
+The measured round-off of a case: the scene solved as given and with every length, the modulus and the loads scaled
+by factors that are not powers of two (in exact arithmetic the relative deflections are one; their largest
+difference samples the rounding of the assembled data), and once with every system refined in extended precision
+(the solve's own error); differences below a few eps count as a few eps. The bound ``info["error_bound"]`` must
+hold it (a bound below it misses), and the references' bound may exceed it by at most ~100x (a larger bound makes
+a reference row ``suspect`` where its error is fine: docs/trust.md).
+
+Measured (ratio bound / measured): fem-eb and fem-timoshenko at 10,001 points 5-22; pd-curved's mixed form 10-13 and
+its primal form 21-155 at 41-321 particles; pd-bond-pair 5-1200.
+"""
+
+import importlib.util
+
+import pytest
+from helpers import ROOT
+
+spec = importlib.util.spec_from_file_location("trust_sweep", ROOT / "benchmarks" / "trust_sweep.py")
+sweep = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(sweep)
+
+REFERENCE_RATIO = 100  # a reference's bound within this factor of its round-off (module docstring)
+
+
+@pytest.mark.parametrize("model", ["fem-eb", "fem-timoshenko"])
+@pytest.mark.parametrize("pair", [("clamped", "pinned"), ("pinned", "guided"), ("clamped", "free")])
+@pytest.mark.parametrize("slenderness", [20.0, 1e4])
+def test_a_reference_bound_holds_its_round_off_without_crying_wolf(model, pair, slenderness):
+    row = sweep.case(model, pair, 4001, slenderness)
+    assert row["status"] == "ok", row
+    assert row["measured"] <= row["bound"] <= REFERENCE_RATIO * row["measured"], row
+
+
+@pytest.mark.parametrize(
+    "model, points, pair",
+    [
+        ("pd-curved", 161, ("pinned", "guided")),
+        ("pd-bond-pair", 401, ("guided", "pinned")),
+        ("pd-eb", 401, ("clamped", "free")),
+        ("pd-timoshenko", 401, ("clamped", "pinned")),
+    ],
+)
+def test_a_model_bound_holds_its_round_off(model, points, pair):
+    row = sweep.case(model, pair, points, 1e4)
+    assert row["status"] == "ok", row
+    assert row["measured"] <= row["bound"], row
