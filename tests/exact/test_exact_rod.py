@@ -174,6 +174,7 @@ def test_rod_cards_fail_only_on_the_point_loads_and_the_exact_ones_pass(tmp_path
     assert verdicts["dynamics (natural frequencies)"] == "pass"
     assert verdicts["convergence (straight)"] == "fail"
     scenes = pd.DataFrame(card["scenes"])
+    scenes = scenes[scenes["set"] == "convergence"]  # the engineers' scenes have their own check (inner supports)
     slow = scenes[scenes["order"] < 1.7]
     assert (
         set(slow["load"]) <= {"point force", "point torque"}

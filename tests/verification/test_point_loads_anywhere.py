@@ -14,6 +14,7 @@ from helpers import PAIRS, scene_dict
 from pdverify.core.scene import SUPPORTS, is_mechanism
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
+from pdverify.measure.metrics import ROUND_OFF_LEVEL
 from pdverify.registry import run
 
 L = 2.0  # conftest's beam
@@ -62,7 +63,8 @@ def test_point_loads_anywhere_second_order(path):
         for kind, base, value in LOADS:
             e = [worst_error(name, opts, left, right, kind, base, value, n) for n in (101, 201, 401)]
             orders = np.log2(np.array(e[:-1]) / np.array(e[1:]))
-            if orders.min() < 1.8:
+            at_round_off = max(e[1:]) < ROUND_OFF_LEVEL  # exact from the second grid on: no order to fit
+            if orders.min() < 1.8 and not at_round_off:
                 low.append((left, right, kind, base, e, orders.round(2).tolist()))
     assert not low
 
