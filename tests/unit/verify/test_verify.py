@@ -238,7 +238,7 @@ def test_full_integration_timoshenko_elements_lock(tmp_path):
 def test_dynamics_check_measures_natural_frequencies():
     """Suite 1.1: a model with dynamics has its lowest three frequencies measured against the Timoshenko
     beam's on every support pair (pd-timoshenko corrected: orders 1.94-1.99, measured); the paper variant,
-    whose operator does not converge (orders -0.4..0.2, docs/models/moyer.md), fails; a static model is n/a."""
+    whose operator does not converge (orders -0.4..0.2, docs/models/moyer.md), fails; a static model (fem-eb) is n/a."""
     from pdverify.verify.dynamics import dynamics_check
 
     grids = (21, 41, 81, 161)
@@ -246,7 +246,7 @@ def test_dynamics_check_measures_natural_frequencies():
     assert good["verdict"] == "pass" and len(good["pairs"]) == 17, good["summary"]
     assert all(abs(r["order"] - 2) < 0.1 for r in good["pairs"]), good["summary"]
     assert dynamics_check(get_model("pd-timoshenko"), {"variant": "paper"}, grids, 2.0)["verdict"] == "fail"
-    assert dynamics_check(get_model("pd-eb"), {}, grids, 2.0)["verdict"] == "n/a"
+    assert dynamics_check(get_model("fem-eb"), {}, grids, 2.0)["verdict"] == "n/a"
 
 
 def test_curved_scenes_measure_rotation_moment_shear_and_axial_force(tmp_path):
