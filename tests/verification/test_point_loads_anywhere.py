@@ -36,8 +36,9 @@ PATHS = {
 }
 
 
-def worst_error(name, opts, left, right, kind, base, value, n):
-    """Largest max|w - exact| / max|exact| over the positions (floor(base / dx) + t) dx, t in T."""
+def worst_error(name, opts, left, right, kind, base, value, n, bounds=None):
+    """Largest max|w - exact| / max|exact| over the positions (floor(base / dx) + t) dx, t in T; the solves' largest
+    round-off bound (info error_bound) appended to ``bounds`` when given."""
     dx = L / (n - 1)
     out = 0.0
     for t in T:
@@ -46,6 +47,8 @@ def worst_error(name, opts, left, right, kind, base, value, n):
         r = run(sc, name, points=n, **opts)
         ex = solve_straight(sc, False).fields(r.x)["w"]
         out = max(out, np.abs(r.w - ex).max() / np.abs(ex).max())
+        if bounds is not None:
+            bounds.append(r.info["error_bound"])
     return out
 
 
@@ -55,15 +58,18 @@ def test_point_loads_anywhere_second_order(path):
     """Measured, 101 -> 201 -> 401 points, every pair and load: order >= 1.98 (Taylor mixed), 1.97 (Taylor
     direct), 1.99 (mirror, rollers included), 1.99 (pd-eb mixed), 1.94 (pd-eb direct). The direct forms
     reach their round-off floor (~1e-6, warned: round-off bound past 1e-6) from 401 points, so they are
-    read below it. pd-eb's paper variant does not converge at all (docs/models/diyaroglu.md). Moments on the
-    chord (i, i+1) and forces at the nearest point would be first order."""
+    read below it; where a model is exact (pd-eb on a cantilever under a couple) the error is round-off growing
+    like N^4 and is judged against each solve's own round-off bound. pd-eb's paper variant does not converge at all
+    (docs/models/diyaroglu.md). Moments on the chord (i, i+1) and forces at the nearest point would be first order."""
     name, opts, pairs = PATHS[path]
     low = []
     for left, right in pairs:
         for kind, base, value in LOADS:
-            e = [worst_error(name, opts, left, right, kind, base, value, n) for n in (101, 201, 401)]
+            bounds = [[], [], []]
+            e = [worst_error(name, opts, left, right, kind, base, value, n, b) for n, b in zip((101, 201, 401), bounds)]
             orders = np.log2(np.array(e[:-1]) / np.array(e[1:]))
-            at_round_off = max(e[1:]) < ROUND_OFF_LEVEL  # exact from the second grid on: no order to fit
+            # exact from the second grid on (the error is round-off, within each solve's own bound): no order to fit
+            at_round_off = all(ei < ROUND_OFF_LEVEL or ei <= max(b) for ei, b in zip(e[1:], bounds[1:]))
             if orders.min() < 1.8 and not at_round_off:
                 low.append((left, right, kind, base, e, orders.round(2).tolist()))
     assert not low

@@ -124,24 +124,20 @@ def spreads(load, scene: Scene, n: int, dx: float, J: int) -> bool:
 
 def distributed_kink(load, scene: Scene, n: int, dx: float, st: np.ndarray) -> np.ndarray | None:
     """The line load on the n points of a distributed load as the divergence of its particular moment,
-    q_p = D2[Mp]_p with Mp = S_a - S_b, S_e the moment of the load's shape acting from e on (zero before e): the
-    discrete moment is then the exact one where the load starts or ends too. Rows whose stencil lies past e take
-    D2 of the shape's own moment (uniform: 1; sine: sin(k x_p) 4/k^2 Σ c_j sin^2(k j dx / 2), the sine to
-    O(dx^2)), rows before it 0, rows across it S_e's kink in coordinates local to e (no cancellation). A span that
-    reaches an end of the beam continues beyond it. None when a span end lies inside 2J spacings of an end (its
-    rows would leave the grid: the caller keeps the cell averages)."""
+    q_p = D2[Mp]_p with Mp = S_a - S_b, S_e the moment of the load's shape acting from e on (zero before e), on the
+    rows whose stencil straddles e (S_e's kink in coordinates local to e: no cancellation); rows whose stencil lies
+    past e take the load itself (uniform: 1, which is D2 of x^2 / 2; sine: sin(k x_p), so that the PD equilibrium
+    Eq. 10a holds with the load of the paper, and the continuum at a fixed horizon is the paper's), rows before it 0.
+    A span that reaches an end of the beam continues beyond it. None when a span end lies inside 2J spacings of an
+    end (its rows would leave the grid: the caller keeps the cell averages)."""
     J = len(st) // 2
-    c = st[J + 1 :]
     L = scene.length
     a, b = scene.span(load)
     if not spreads(load, scene, n, dx, J):
         return None
     p = np.arange(n)
     k = np.pi / L
-    if load.shape == "uniform":
-        own = np.ones(n)
-    else:
-        own = np.sin(k * p * dx) * 4.0 / k**2 * np.sum(c * np.sin(k * np.arange(1, J + 1) * dx / 2) ** 2)
+    own = np.ones(n) if load.shape == "uniform" else np.sin(k * p * dx)  # the load itself (Eq. 10a's b)
 
     def d2s(t: float) -> np.ndarray:
         """D2[S_e] on every row, e = t dx."""
