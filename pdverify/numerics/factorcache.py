@@ -4,7 +4,8 @@ supports) is taken from a small cache instead of being made again.
 The key is a digest (BLAKE2b, 128 bits) of the matrix's canonical CSR arrays, its scaling and the solver's
 parameters, so two systems share a factorisation only when their matrices are the same to the bit; a solve from
 a shared factorisation is then the same to the bit as one made apart (the same factors, the same substitutions).
-The cache holds at most ``ENTRIES`` factorisations of at most ``MAX_UNKNOWNS`` unknowns each, per process.
+The cache holds at most ``ENTRIES`` factorisations per process, whose factors take at most ``BUDGET_BYTES``
+together (the least recently used go first; a factorisation larger than the budget is not kept).
 """
 
 from __future__ import annotations
@@ -15,8 +16,8 @@ from collections import OrderedDict
 import numpy as np
 
 ENTRIES = 16  # factorisations kept: a verification suite's scenes on one grid and supports differ in their loads
-MAX_UNKNOWNS = 20_000  # larger systems are rarely solved twice; their factors are not kept
-_cache: OrderedDict[str, object] = OrderedDict()
+BUDGET_BYTES = 512 * 2**20  # the factors kept, together (a 2D strip of 33,000 unknowns: ~20 MB)
+_cache: OrderedDict[str, tuple[object, int]] = OrderedDict()
 stats = {"made": 0, "shared": 0}
 
 
@@ -31,18 +32,19 @@ def digest(*arrays, params: tuple = ()) -> str:
     return h.hexdigest()
 
 
-def factorised(key: str, n: int, make):
-    """(factorisation, shared): the one kept under ``key``, else ``make()`` (kept when ``n`` is at most
-    ``MAX_UNKNOWNS``). ``shared`` says whether it was kept from an earlier solve."""
+def factorised(key: str, make):
+    """(factorisation, shared): the one kept under ``key``, else the first item of ``make()`` = (factorisation, the
+    bytes its factors take), kept within :data:`ENTRIES` and :data:`BUDGET_BYTES`. ``shared`` says whether it was
+    kept from an earlier solve."""
     if key in _cache:
         _cache.move_to_end(key)
         stats["shared"] += 1
-        return _cache[key], True
-    value = make()
+        return _cache[key][0], True
+    value, size = make()
     stats["made"] += 1
-    if n <= MAX_UNKNOWNS:
-        _cache[key] = value
-        while len(_cache) > ENTRIES:
+    if size <= BUDGET_BYTES:
+        _cache[key] = (value, size)
+        while len(_cache) > ENTRIES or sum(v[1] for v in _cache.values()) > BUDGET_BYTES:
             _cache.popitem(last=False)
     return value, False
 

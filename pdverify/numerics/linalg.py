@@ -343,15 +343,18 @@ def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int,
     key = factorcache.digest(K.indptr, K.indices, K.data, s, params=(lo, up, banded_max))
 
     def make():
-        if max(lo, up) <= banded_max and K.shape[0] > 2 * (lo + up + 1):
+        """(the factorisation, the bytes of its factors)."""
+        n = K.shape[0]
+        if max(lo, up) <= banded_max and n > 2 * (lo + up + 1):
             solve, solve_t = banded_lu(K, lo, up, s)  # factorised once, reused by refinement and cond
-            return "banded LU (LAPACK gbtrf/gbtrs)", solve, solve_t, None
+            return ("banded LU (LAPACK gbtrf/gbtrs)", solve, solve_t, None), 8 * n * (2 * lo + up + 1)
         Ks = scale_symmetric(K, s)
         lu = spla.splu(Ks.tocsc())
-        return "sparse LU (SuperLU)", lu.solve, (lambda z: lu.solve(z, trans="T")), Ks
+        size = 12 * (lu.L.nnz + lu.U.nnz) + Ks.data.nbytes + Ks.indices.nbytes  # values and indices
+        return ("sparse LU (SuperLU)", lu.solve, (lambda z: lu.solve(z, trans="T")), Ks), size
 
     try:
-        (solver, solve, solve_t, Ks), shared = factorcache.factorised(key, K.shape[0], make)
+        (solver, solve, solve_t, Ks), shared = factorcache.factorised(key, make)
         y = solve(bs)
     except (np.linalg.LinAlgError, RuntimeError) as exc:
         raise SolveError(

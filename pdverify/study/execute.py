@@ -33,24 +33,30 @@ def serial(run, todo, ids, artefacts):
         yield cid, run(case, artefacts, cid)
 
 
-def pool(run, todo, ids, artefacts, workers: int):
-    """The cases in ``workers`` processes. Ctrl-C: no further case starts, the cases already handed to the
-    workers (those running and up to ``workers + 1`` queued) finish and are yielded, then
-    KeyboardInterrupt goes on. Any other way out
-    (the caller's error, the generator closed) cancels the cases not started and waits for those in
-    flight, which are dropped. The workers are never killed from here: a worker killed while it sends a
-    record back leaves a partial message that the pool's reader then waits for forever."""
+def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None):
+    """The cases in ``workers`` processes, one batch of cases per task: the cases with the same key in ``groups``
+    (one key per case; None: each case alone) run one after another in one process, so that those on one operator
+    share its factorisation and their reference (:mod:`pdverify.numerics.factorcache`); the largest batches go
+    first. Ctrl-C: no further batch starts, the batches already handed to the workers (those running and up to
+    ``workers + 1`` queued) finish and are yielded, then KeyboardInterrupt goes on. Any other way out (the
+    caller's error, the generator closed) cancels the batches not started and waits for those in flight, which
+    are dropped. The workers are never killed from here: a worker killed while it sends a record back leaves a
+    partial message that the pool's reader then waits for forever."""
+    batches: dict = {}
+    for i, key in enumerate(groups if groups is not None else range(len(todo))):
+        batches.setdefault(key, []).append(i)
+    order = sorted(batches.values(), key=len, reverse=True)
     # fork on Linux whatever the Python version (3.14 made forkserver the default)
     ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
     ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),))
-    futs, given = {}, set()
+    futs, given = [], set()
     try:
-        for case, cid in zip(todo, ids):
-            futs[ex.submit(run, case, artefacts, cid)] = cid
+        for batch in order:
+            futs.append(ex.submit(_run_batch, run, [todo[i] for i in batch], artefacts, [ids[i] for i in batch]))
         for fut in as_completed(futs):
-            rec = fut.result()
+            records = fut.result()
             given.add(fut)
-            yield futs[fut], rec
+            yield from records
     except KeyboardInterrupt:
         ex.shutdown(wait=False, cancel_futures=True)
         # polled, not as_completed: a future the pool cancels at shutdown never tells its waiters (3.11)
@@ -59,11 +65,16 @@ def pool(run, todo, ids, artefacts, workers: int):
             for fut in [f for f in rest if f.done()]:
                 rest.remove(fut)
                 if not fut.cancelled() and fut.exception() is None:
-                    yield futs[fut], fut.result()
+                    yield from fut.result()
             time.sleep(0.02)
         raise
     finally:
         ex.shutdown(wait=True, cancel_futures=True)
+
+
+def _run_batch(run, cases, artefacts, ids) -> list:
+    """[(case id, record)] of a batch, in one process."""
+    return [(cid, run(case, artefacts, cid)) for case, cid in zip(cases, ids)]
 
 
 def _worker_start(parent: int) -> None:

@@ -378,7 +378,7 @@ def _run_study(
     if scheduler and todo:
         loop = execute.on_dask(run_case, todo_cases, todo_ids, scheduler)
     elif n > 1:
-        loop = execute.pool(run_case, todo_cases, todo_ids, files, n)
+        loop = execute.pool(run_case, todo_cases, todo_ids, files, n, [c.operator_group for c in todo_cases])
     else:
         loop = execute.serial(run_case, todo_cases, todo_ids, files)
     keep = Keeper(out, code_digest())

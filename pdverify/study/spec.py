@@ -111,6 +111,9 @@ def code_digest() -> str:
     return h.hexdigest()[:16]
 
 
+GRID_OPTIONS = ("points", "horizon", "horizon_length")  # options that set the grid, not the operator group
+
+
 @dataclass
 class Case:
     scene_file: str
@@ -142,6 +145,19 @@ class Case:
 
     def scene(self) -> Scene:
         return _scene(self.scene_text, self.scene_file, self.slenderness)
+
+    @property
+    def operator_group(self) -> str:
+        """The key of the cases that run in one process (:func:`pdverify.study.execute.pool`): the model, its options
+        but the grid, the slenderness, the reference and the scene without its loads. Cases with one key solve the
+        same operators (another load on the same grid) and the same references' operators, so one process
+        factorises each once (:mod:`pdverify.numerics.factorcache`)."""
+        try:
+            skeleton = {k: v for k, v in tomllib.loads(self.scene_text).items() if k != "loads"}
+        except tomllib.TOMLDecodeError:  # not a scene the case can solve: its failure is its own record
+            skeleton = self.scene_text
+        given = {k: v for k, v in self.given.items() if k not in GRID_OPTIONS}
+        return json.dumps([self.model, given, self.slenderness, self.reference, skeleton], sort_keys=True, default=str)
 
 
 @lru_cache(maxsize=256)
