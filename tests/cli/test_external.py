@@ -171,6 +171,7 @@ def test_study_goes_on_past_every_failure(tmp_path):
     assert len(failed) == len(MODES) - 1
 
 
+@pytest.mark.slow
 def test_models_path_lists_manifests_and_warns_once_for_a_bad_one(tmp_path):
     manifest(tmp_path)
     (tmp_path / "bad.toml").write_text('name = "bad one"\ncommand = ["x"]\n')
@@ -186,6 +187,7 @@ def test_models_path_lists_manifests_and_warns_once_for_a_bad_one(tmp_path):
     ]
 
 
+@pytest.mark.slow
 def test_the_example_command_reads_plain_json_without_pdverify(tmp_path):
     """examples/external_model: the command runs with pdverify not importable (the scene is plain JSON, as any
     language reads it), and the manifest's model gives the example plug-in's numbers through pdverify."""

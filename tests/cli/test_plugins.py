@@ -60,6 +60,7 @@ def cli(site, *args, timeout=300):
     )
 
 
+@pytest.mark.slow
 def test_models_lists_the_plugin_and_warns_once_per_broken_entry_point(site):
     r = cli(site, "models")
     assert r.returncode == 0, r.stderr

@@ -215,6 +215,7 @@ def test_timoshenko_tends_to_euler_bernoulli(make_scene):
     assert rel(F(x, stiff, True)["w"], F(x, scene, False)["w"]) < 1e-12
 
 
+@pytest.mark.slow
 def test_models_registered_and_solve_cli_json(tmp_path):
     import json
     import subprocess

@@ -100,6 +100,7 @@ def test_newmark_is_the_trapezoidal_rule_exactly():
     assert np.abs(u[:, 0] - F / w**2 * (1 - np.cos(wt * t))).max() < 1e-12 * F / w**2
 
 
+@pytest.mark.slow
 def test_fem_transient_converges_to_the_exact_modal_solution():
     """fem-timoshenko's Newmark transient (IIE stiffness, consistent linear mass, dt = the Courant-1 step) against
     exact-modal-timoshenko on a cantilever (studies/paper_moyer/beam_transient.toml): second order, 1.4e-3 ..

@@ -45,6 +45,7 @@ def test_an_interior_couple_converges_to_the_beam_not_away_from_it():
     assert r.info["load_resultant"][2] == pytest.approx(200.0, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_long_fine_meshes_assemble_their_loads():
     """Edge loads go through scikit-fem's FacetBasis, whose inverse mapping stopped Newton at an absolute 1e-12 that
     float64 cannot reach once an element is ~1e-4 of the coordinates: 10001 points along a 1 m beam raised

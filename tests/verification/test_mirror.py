@@ -105,7 +105,8 @@ OPTIONS = {"pd-bond-pair nonlinear": ("pd-bond-pair", {"nonlinear": True, "ends"
 SMALL = {"points": 41}
 
 
-NO_LOADS = ("exact-curved-manufactured", "pd-curved-mms")  # the manufactured problem is its own input
+NO_LOADS = ("exact-curved-manufactured", "pd-curved-mms")
+CURVED_SLOW = ("pd-curved", "exact-curved", "fem-plane-stress")  # the manufactured problem is its own input
 # options whose one-at-a-time change a variant rule refuses, with the partner the rule asks for
 PARTNERS = {
     ("pd-bond-pair", "variant", "continuous-alpha"): {"ends": "mirror"},
@@ -123,7 +124,8 @@ def _cases():
         if name in NO_LOADS:
             continue
         # modal references: point forces need thousands of modes (exact-modal-rod 8 s, -timoshenko 36 s)
-        slow = [pytest.mark.slow] if name.startswith("exact-modal-") else []
+        # and the 2D strip and the curved models' arcs and polynomial axes (2-3 s each): every tier but the default
+        slow = [pytest.mark.slow] if name.startswith("exact-modal-") or name in CURVED_SLOW else []
         out.append(pytest.param(name, name, {}, id=name, marks=slow))
     for label, (name, opts) in OPTIONS.items():
         # the nonlinear path (Newton over load steps, ~3 s): one axial meaning per end

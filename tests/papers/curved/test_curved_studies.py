@@ -98,6 +98,7 @@ def test_manufactured_loads_satisfy_the_equilibrium_equations(kind):
     assert rel(phi(s, 1)[inner] * sc.EI, f["M"][inner]) < 1e-6
 
 
+@pytest.mark.slow
 def test_bending_manufactured_solution_is_beam_like():
     """fields = bending: clamped ends, and every resultant and load scales with EI at fixed displacements (the
     membrane and shear strains are O(h^2/L^2) of the bending ones, as in a slender beam), so N L / M stays O(1)

@@ -96,6 +96,7 @@ def test_straight_sine_clamped_clamped_each_degree(P, form):
     assert rel(res.w, f["w"]) < 3 * SINE_81[form][P]
 
 
+@pytest.mark.slow
 def test_mixed_degree_6_has_no_error_floor_growing_with_the_particles():
     """Mixed form, P = 6, straight sine: with the default family (7 members, default_horizon) the error stays at
     round-off from 401 to 6401 particles (measured 4.0e-13, 5.3e-13, 1.8e-12); the 9-member family it replaced

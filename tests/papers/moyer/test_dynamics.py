@@ -218,6 +218,7 @@ def test_ledger_is_thinned_on_large_grids():
 # -- sampling and blow-up ------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_output_interval_below_the_step_is_no_blow_up():
     """Sampling every step used to set the blow-up scale from the first sample (the displacement after one
     step, dt² b/m) and to call the growth to the static state a blow-up (clamped–clamped beam, step load,
@@ -256,6 +257,7 @@ def test_blow_up_message_names_step_limit_and_cause():
         T.simulate(sc, {"points": 41, "horizon": 4, "variant": "corrected"}, t_end=0.02)
 
 
+@pytest.mark.slow
 def test_table1_cantilever_runs_at_smaller_steps():
     """Issue 30: the Table 1 cantilever (101 points, m = 3, 0.01 s) ran at 0.9 of the limit and blew up at 0.5
     and 0.3 (steps 17400 and 5782), because the stabilisation β = κ dt weakened with the step. With β fixed
@@ -334,6 +336,7 @@ def test_rod_closures_have_a_real_spectrum():
     "with a free end at L/h = 4, 20), worst 0.074 (free-clamped, m = 4, L/h = 20, complex eigenvalues); "
     "119 of 160 before the mirror ghosts of pinned and guided ends",
 )
+@pytest.mark.slow
 def test_closure_spectrum_has_no_growing_mode(record_property):
     """Every support pair x horizons 1-4 x L/h in {4, 20, 100, 1e4}: M⁻¹K of pd-timoshenko should have real
     positive eigenvalues (growth 0; 1e-6 allows the rounding of the dense eigenvalue solve: the stable cases
@@ -500,6 +503,7 @@ def test_undamped_rod_runs_at_the_limit_for_every_support_pair():
     assert worst < 1e-12, worst
 
 
+@pytest.mark.slow
 def test_ledger_energies_are_in_joules():
     """The ledger sums per-unit-length equations over the points, times the spacing, the end points a half
     spacing (the trapezoid): a damped cantilever at rest has the load's work ∫ q w dx of the static solve

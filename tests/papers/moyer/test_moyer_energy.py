@@ -189,6 +189,7 @@ def test_moment_field_and_reactions(left, right):
         assert err[-1] < 5e-5 and (max(err) < 1e-10 or np.all(rate > 1.7)), (load, err, rate)  # exact: determinate
 
 
+@pytest.mark.slow
 def test_a_long_grid_stays_sparse_and_second_order():
     """10^5 points (a dense n x n block in the moment field once asked for 75 GB): mixed loads on a clamped-pinned
     beam, L/h = 20, within 1e-6 of exact-timoshenko (measured 3.5e-8; 2.1e-5 at 1001 points)."""

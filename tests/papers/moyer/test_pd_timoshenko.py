@@ -379,6 +379,7 @@ def test_damped_dynamics_reach_the_direct_solve(variant, record_property):
     record_property("as_published_residual", np.abs(paper.final[0::2] - static.w).max() / 0.1)
 
 
+@pytest.mark.slow
 def test_table1_step_load_settles_to_static():
     sc = parse_scene(dict(TABLE1.to_dict(), material=dict(TABLE1.to_dict()["material"], density=7.324e-4)))
     params = {"points": 26, "horizon": 2}

@@ -84,7 +84,9 @@ def test_newton_converges_on_fine_grids(n):
         assert np.all(np.isfinite(nonlinear(sc, n).w)), (left, right)
 
 
-@pytest.mark.parametrize("n", [201, 801, pytest.param(3201, marks=pytest.mark.slow)])
+@pytest.mark.parametrize(
+    "n", [201, pytest.param(801, marks=pytest.mark.slow), pytest.param(3201, marks=pytest.mark.slow)]
+)
 def test_small_loads_linear_and_nonlinear_paths_agree_to_1e_10(n):
     """Loads x 1e-6 (rotations ~1e-9): the nonlinear terms are ~1e-9 relative, so both paths give the same
     discrete solution. Measured over the 17 pairs, on and off the grid: <= 8.7e-14 (201), 1.3e-12 (801),
@@ -146,6 +148,7 @@ def test_axial_load_with_no_end_holding_u_is_refused(left, right, opts):
     assert np.abs(run(sc, "pd-bond-pair", points=41, **opts).fields["u"]).max() < 1e-3
 
 
+@pytest.mark.slow
 def test_roller_frees_the_membrane_action():
     """Pinned-pinned under a large load carries it partly as a membrane (smaller deflection); pinned-roller
     does not, and mirrors roller-pinned."""
@@ -247,6 +250,7 @@ def test_tip_moment_circle_within_1e_4_at_801(frac):
     assert tip_error(load, 801) < 1e-4
 
 
+@pytest.mark.slow
 def test_tip_force_elastica_at_201():
     """P L^2 / EI = 2: measured 5.3e-5 L at 201 points."""
     assert tip_error({"type": "point_force", "position": 1.0, "value": -2 * EI_SLENDER}, 201) < 1e-4

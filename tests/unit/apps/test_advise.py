@@ -164,6 +164,7 @@ def test_dynamics_scene_needs_the_static_part_asked_for():
     assert f"choice: pd-timoshenko --points {a.choice.points} --variant energy -o static=true\n" in text
 
 
+@pytest.mark.slow
 def test_cli_advise_dynamics_scene_exit_2():
     r = pdverify_process("advise", "studies/paper_moyer/beam_example2.toml")
     assert r.returncode == 2 and r.stderr.startswith("error: dynamics:") and "--static" in r.stderr

@@ -133,6 +133,7 @@ def test_cli_bad_scene_one_line_exit_2(tmp_path):
     assert "supports.right = 'freee': unknown support" in r.stderr
 
 
+@pytest.mark.slow
 def test_cli_toml_syntax_error_and_missing_file(tmp_path):
     p = tmp_path / "broken.toml"
     p.write_text("name = 'x'\n[beam\nlength = 1\n")
@@ -142,6 +143,7 @@ def test_cli_toml_syntax_error_and_missing_file(tmp_path):
     assert r.returncode == 2 and "no such scene file" in r.stderr
 
 
+@pytest.mark.slow
 def test_cli_unknown_model_lists_available():
     r = cli("solve", "studies/examples/cantilever_tip_load.toml", "--model", "pd-nothing")
     assert (
@@ -149,6 +151,7 @@ def test_cli_unknown_model_lists_available():
     )
 
 
+@pytest.mark.slow
 def test_cli_option_the_model_does_not_take():
     r = cli("solve", "studies/examples/cantilever_tip_load.toml", "--model", "exact-eb", "--horizon", "3")
     assert r.returncode == 2 and "takes no option 'horizon'" in r.stderr

@@ -533,6 +533,7 @@ def test_the_delta_dx_plane_has_its_section_when_its_figures_come(tmp_path, monk
     assert 'href="#delta-dx"' in page and 'id="dd-pd-eb"' in section and "pd-eb: the δ–Δx plane" in section
 
 
+@pytest.mark.slow
 def test_axis_labels_carry_the_scene_units(tmp_path):
     """An inch-pound scene (Moyer's) labels lengths in inches; an SI scene in metres: on the index's figures (the
     error along the beam) and tables, and on the paper's page (the deflection). The page's drawing code is not

@@ -122,6 +122,7 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     assert json.loads((out / "meta.json").read_text())["resumed_cases"] == kept
 
 
+@pytest.mark.slow
 def test_a_locked_folder_is_one_line_exit_4_naming_it_and_the_other_run(tmp_path):
     """A second run into a folder another run holds stops at once (exit 4) naming the folder and the
     holder's pid, and computes nothing; once the holder ends, the run goes through."""
@@ -242,6 +243,7 @@ def test_a_malformed_scheduler_address_is_one_line_exit_2(tmp_path, address):
     assert not (tmp_path / "out").exists()  # refused before the folder is touched
 
 
+@pytest.mark.slow
 def test_a_malformed_scheduler_address_from_the_cli(tmp_path):
     p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [51]\n')
     line = one_error_line(

@@ -20,6 +20,7 @@ def _study(tmp_path: Path, extra: str) -> Path:
     return path
 
 
+@pytest.mark.slow
 def test_bad_verify_entries_are_one_line_each_and_nothing_runs(tmp_path):
     study = _study(
         tmp_path,
