@@ -32,7 +32,7 @@ from ..core.contract import (
     points_from_spacing,
     variant_problems,
 )
-from ..core.errors import InputError
+from ..core.errors import InputError, SolveError
 from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite
 from ..core.scene import Scene
@@ -210,8 +210,15 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if found:
         raise InputError(found)
     params = m.resolve(scene, given)  # the options, their variant's rules included
-    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        solved = continuum_solution(m, scene, params) if params.get("continuum") else m.solve(scene, params)
+    try:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            solved = continuum_solution(m, scene, params) if params.get("continuum") else m.solve(scene, params)
+    except MemoryError as exc:  # an allocation numpy or scipy refused: the grid is too large for this machine
+        size = f"points = {params['points']}: " if "points" in params else ""
+        raise SolveError(
+            f"{size}model {m.name} ran out of memory ({str(exc) or 'an allocation failed'}); use fewer points "
+            "(pdverify.solve and the command line estimate the limit before solving)"
+        ) from None
     result = check_finite(solved)
     if m.option("horizon") is not None:
         horizon_info(m, scene, params, result.info)

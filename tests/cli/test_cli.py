@@ -191,6 +191,20 @@ def test_out_of_memory_is_one_line(capsys, monkeypatch):
     assert code == 3 and err.startswith("error: out of memory") and err.count("\n") == 1
 
 
+@pytest.mark.parametrize("model", ["exact-eb", "pd-eb"])
+def test_an_impossible_grid_from_the_api_is_one_solve_error(model):
+    """registry.run, which studies call without the command line's estimate, turns the allocation numpy refuses
+    (10^12 points: 7.3 TiB for one array) into one SolveError naming the points and the model."""
+    from pdverify.core.errors import SolveError
+    from pdverify.core.scene_file import load_scene
+    from pdverify.registry import run
+
+    with pytest.raises(SolveError) as got:
+        run(load_scene(SCENE), model, points=10**12)
+    msg = str(got.value)
+    assert msg.startswith(f"points = {10**12}: model {model} ran out of memory") and "\n" not in msg
+
+
 def test_exit_codes_are_documented():
     """docs/cli.md lists every exit code the CLI uses."""
     text = (ROOT / "docs" / "cli.md").read_text()
