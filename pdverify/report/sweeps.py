@@ -123,7 +123,8 @@ def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
                 f"{scene}"
                 + (f", {extra}" if extra else "")
                 + (f": {NAME[quantity]}" if quantity else "")
-                + (f": p = {fixed(p, 2)}" if pd.notna(p) else ""),
+                + (f": p = {fixed(p, 2)}" if pd.notna(p) else "")
+                + (": exact to round-off, no order" if r.get("at_round_off") is True else ""),
                 Axis(f"Δx ({length})", length, log=True),
                 Axis(ERROR, "", log=True),
                 series,

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..measure.metrics import gci, locking_slope, observed_order, pareto
+from ..measure.metrics import ROUND_OFF_LEVEL, gci, locking_slope, observed_order, pareto
 from ..registry import models
 
 GROUP = ("scene", "model", "options", "slenderness")  # a convergence series: every option but the grid
@@ -74,7 +74,11 @@ def _ok(r: dict) -> bool:
 
 def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
     """The observed order of one series (fit of log error vs log spacing over its grids, R^2) and the GCI of
-    its three finest grids; nothing below three distinct grids (never an order from two points)."""
+    its three finest grids; nothing below three distinct grids (never an order from two points). ``series``: "grid"
+    (the horizon in spacings: it shrinks with the grid, the model's promised order applies) or "fixed horizon" (a
+    ``horizon_length`` held while the grid is refined: the error tends to the model error, its m-convergence is in
+    nonlocal.csv, so no order is promised here). A quantity whose every error is below the round-off level
+    (``metrics.ROUND_OFF_LEVEL``: the model is exact for it) gets no order (``at_round_off``)."""
     rows = [r for r in rows if _ok(r)]
     if not rows:
         return []
@@ -88,11 +92,17 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
     out = []
     # the model's own quantity first (an order check reads that row), then every other one the study measures
     extra = [c[len("err_max_") :] for c in dict.fromkeys(k for r in rows for k in r) if c.startswith("err_max_")]
+    series = "fixed horizon" if np.isfinite(_float(rows[0].get("horizon_length"))) else "grid"
     for quantity, column in [(rows[0].get("quantity") or "w", "err_max"), *((q, f"err_max_{q}") for q in extra)]:
         err = np.array([_float(r.get(column)) for r in rows])
         if column != "err_max" and not np.isfinite(err).any():
             continue  # the model or the reference gives none of it
-        p, r2 = observed_order(h, err)
+        finite = err[np.isfinite(err)]
+        at_round_off = bool(finite.size and np.all(np.abs(finite) < ROUND_OFF_LEVEL))
+        p, r2 = (float("nan"), float("nan")) if at_round_off else observed_order(h, err)
+        flag = order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound")))
+        if series != "grid":
+            flag = {"promised_order": float("nan"), "below_order": False}
         out.append(
             dict(
                 zip(GROUP, key),
@@ -103,7 +113,9 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
                 errors=" ".join(f"{v:.3e}" for v in err),
                 observed_order=p,
                 r2=r2,
-                **order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound"))),
+                series=series,
+                at_round_off=at_round_off,
+                **flag,
                 **(gci(h, w) if column == "err_max" else {}),
             )
         )
