@@ -26,16 +26,23 @@ from __future__ import annotations
 
 import numpy as np
 
+LAGS = 8  # a value equal to one of the previous LAGS is not a new group's candidate (interleaved unknowns per point)
+
 
 def significand_groups(values: np.ndarray) -> tuple[np.ndarray, int]:
-    """(group id of each value, number of groups): values with equal |significand| share a group. Runs of equal
-    values (a diagonal's interior) are compressed first, so the sort is over the distinct runs only."""
+    """(group id of each value, number of groups): values with equal |significand| share a group; the ids are
+    the ranks of the sorted distinct significands. The distinct values are found among the candidates only: a value
+    equal to one of the :data:`LAGS` before it is no value's first occurrence (a diagonal of a stencil repeated
+    along the grid, with up to LAGS unknowns interleaved per point, has a handful), so the sort is over those;
+    every value then finds its id by binary search."""
     m = np.frexp(np.abs(np.asarray(values, float).ravel()))[0]
     if m.size == 0:
         return np.zeros(0, np.int64), 0
-    starts = np.flatnonzero(np.concatenate(([True], m[1:] != m[:-1])))
-    keys, inverse = np.unique(m[starts], return_inverse=True)
-    return np.repeat(inverse, np.diff(np.append(starts, m.size))), len(keys)
+    first = np.ones(m.size, bool)
+    for lag in range(1, min(LAGS, m.size - 1) + 1):  # lags, not values
+        first[lag:] &= m[lag:] != m[:-lag]
+    keys = np.unique(m[first])
+    return np.searchsorted(keys, m).astype(np.int64), len(keys)
 
 
 class _Rounding:
