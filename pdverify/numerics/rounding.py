@@ -30,19 +30,20 @@ LAGS = 8  # a value equal to one of the previous LAGS is not a new group's candi
 
 
 def significand_groups(values: np.ndarray) -> tuple[np.ndarray, int]:
-    """(group id of each value, number of groups): values with equal |significand| share a group; the ids are
-    the ranks of the sorted distinct significands. The distinct values are found among the candidates only: a value
-    equal to one of the :data:`LAGS` before it is no value's first occurrence (a diagonal of a stencil repeated
-    along the grid, with up to LAGS unknowns interleaved per point, has a handful), so the sort is over those;
-    every value then finds its id by binary search."""
-    m = np.frexp(np.abs(np.asarray(values, float).ravel()))[0]
-    if m.size == 0:
+    """(group id of each value, number of groups): values with equal |significand| (``frexp``) share a group; the
+    ids are the ranks of the sorted distinct significands. The distinct values are found among candidates only: a
+    value equal to one of the :data:`LAGS` before it is no value's first occurrence (a diagonal of a stencil
+    repeated along the grid, with up to LAGS unknowns interleaved per point, has a handful). Those few are sorted
+    and grouped by significand, and every value finds its distinct value, hence its group, by binary search."""
+    v = np.asarray(values, float).ravel()
+    if v.size == 0:
         return np.zeros(0, np.int64), 0
-    first = np.ones(m.size, bool)
-    for lag in range(1, min(LAGS, m.size - 1) + 1):  # lags, not values
-        first[lag:] &= m[lag:] != m[:-lag]
-    keys = np.unique(m[first])
-    return np.searchsorted(keys, m).astype(np.int64), len(keys)
+    first = np.ones(v.size, bool)
+    for lag in range(1, min(LAGS, v.size - 1) + 1):  # lags, not values
+        first[lag:] &= v[lag:] != v[:-lag]
+    distinct = np.unique(v[first])
+    keys, group = np.unique(np.frexp(np.abs(distinct))[0], return_inverse=True)
+    return group.astype(np.int64, copy=False)[np.searchsorted(distinct, v)], len(keys)
 
 
 class _Rounding:
@@ -122,6 +123,7 @@ class BandRounding(_Rounding):
         self.n = data.shape[1]
         self.s = np.ones(self.n)
         gid, k_matrix = significand_groups(data)
+        self.k_matrix = k_matrix
         self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64).reshape(data.shape)
         big, size = np.zeros(self.n), np.zeros(self.n)
         if cancelling is not None and len(cancelling):
@@ -147,8 +149,16 @@ class BandRounding(_Rounding):
         return self._add_rows(out, z)
 
     def rmatvec(self, y: np.ndarray) -> np.ndarray:
+        """G^T y: each stored entry's term a_ij x_j y_i summed by group; diagonal by diagonal when the matrix has
+        fewer groups than rows (a stencil repeated along the grid), else in one sum over the whole band."""
         y = np.asarray(y, float)
-        w = np.zeros(self.data.shape)  # each stored entry's term a_ij x_j y_i, then one sum by group
+        if self.k_matrix <= self.n:
+            out = np.zeros(self.k)
+            for rs, cs, r in self._diagonals():
+                terms = self.data[r, cs] * self.x[cs] * y[rs]
+                out[: self.k_matrix] += np.bincount(self.gid[r, cs], weights=terms, minlength=self.k_matrix)
+            return self._rows_t(out, y)
+        w = np.zeros(self.data.shape)
         for rs, cs, r in self._diagonals():
             w[r, cs] = self.data[r, cs] * self.x[cs] * y[rs]
         return self._rows_t(np.bincount(self.gid.ravel(), weights=w.ravel(), minlength=self.k), y)
