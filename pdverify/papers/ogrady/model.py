@@ -199,8 +199,8 @@ class PDBondPair(Model):
     def eigenproblem(self, scene: Scene, params: dict):
         return dynamics.eigenproblem(self, scene, resolved_ends(scene, params))
 
-    def bench_dynamics(self, scene: Scene, params: dict):
-        return dynamics.bench(self, scene, resolved_ends(scene, params))
+    def bench_dynamics(self, scene: Scene, params: dict, steps: int = 200) -> float:
+        return dynamics.bench(self, scene, resolved_ends(scene, params), steps)
 
     full_volumes = "paper"  # its sums take full volumes up to delta
     nonlinear_when = (("nonlinear", True),)
