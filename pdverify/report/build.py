@@ -220,7 +220,14 @@ def render_index(env, data: StudyFolder, out: Path, pages: list[dict], waves, ge
     make = _tables(data, "")
     meta = data.meta
     conv, lock = data.table("convergence"), data.table("locking")
-    meta_rows = pd.DataFrame([{"item": k, "value": readable(v)} for k, v in meta.items() if k not in ("date",)])
+    rows = [{"item": k, "value": readable(v)} for k, v in meta.items() if k not in ("date",)]
+    cards_s = (read_index(data.d) or {}).get("wall_s")
+    if cards_s is not None and meta.get("wall_s") is not None:  # the verification cards run after the cases
+        rows += [
+            {"item": "cards_s (the verification cards)", "value": readable(cards_s)},
+            {"item": "cases and cards (s)", "value": readable(float(meta["wall_s"]) + float(cards_s))},
+        ]
+    meta_rows = pd.DataFrame(rows)
     performance = None
     for cand in (out / "bench" / "index.html", out.parent / "bench" / "index.html"):
         if cand.exists():

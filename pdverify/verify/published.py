@@ -5,6 +5,7 @@ the report reads (docs/verify.md, "Cards in a study's report")."""
 from __future__ import annotations
 
 import json
+import time
 from pathlib import Path
 
 from ..core.errors import OutputError
@@ -24,7 +25,7 @@ def run_cards(
     if not study.verify:  # a study that no longer asks for cards: its report lists none
         (root / INDEX).unlink(missing_ok=True)
         return []
-    done = []
+    done, t0 = [], time.perf_counter()
     for entry in study.verify:
         card = verify(
             entry["model"],
@@ -56,15 +57,16 @@ def run_cards(
                 + (f" ({', '.join(failed)})" if failed else "")
                 + f"; {root / entry['folder'] / 'card.html'}"
             )
-    write_index(root, done, study.verify_required)
+    write_index(root, done, study.verify_required, time.perf_counter() - t0)
     return done
 
 
-def write_index(root: Path, cards: list[dict], required: bool) -> None:
-
+def write_index(root: Path, cards: list[dict], required: bool, wall_s: float | None = None) -> None:
+    """``cards.json``: whether the study requires them, each card's summary and the seconds all of them took."""
     try:
         root.mkdir(parents=True, exist_ok=True)
-        write_atomic(root / INDEX, json.dumps({"required": required, "cards": cards}, indent=1) + "\n")
+        index = {"required": required, "cards": cards, "wall_s": wall_s}
+        write_atomic(root / INDEX, json.dumps(index, indent=1) + "\n")
     except OSError as exc:
         raise OutputError(
             f"{root / INDEX}: the list of cards could not be written ({exc.strerror or exc}); the "
