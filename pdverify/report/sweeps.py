@@ -124,7 +124,7 @@ def convergence_groups(data: StudyFolder, palette: Palette) -> list[Group]:
                 + (f", {extra}" if extra else "")
                 + (f": {NAME[quantity]}" if quantity else "")
                 + (f": p = {fixed(p, 2)}" if pd.notna(p) else "")
-                + (": exact to round-off, no order" if r.get("at_round_off") is True else ""),
+                + (": exact to round-off, no order" if r.get("at_round_off") in (True, "True") else ""),
                 Axis(f"Δx ({length})", length, log=True),
                 Axis(ERROR, "", log=True),
                 series,

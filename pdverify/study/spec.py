@@ -152,12 +152,19 @@ class Case:
         but the grid, the slenderness, the reference and the scene without its loads. Cases with one key solve the
         same operators (another load on the same grid) and the same references' operators, so one process
         factorises each once (:mod:`pdverify.numerics.factorcache`)."""
-        try:
-            skeleton = {k: v for k, v in tomllib.loads(self.scene_text).items() if k != "loads"}
-        except tomllib.TOMLDecodeError:  # not a scene the case can solve: its failure is its own record
-            skeleton = self.scene_text
         given = {k: v for k, v in self.given.items() if k not in GRID_OPTIONS}
-        return json.dumps([self.model, given, self.slenderness, self.reference, skeleton], sort_keys=True, default=str)
+        key = [self.model, given, self.slenderness, self.reference, _skeleton(self.scene_text)]
+        return json.dumps(key, sort_keys=True, default=str)
+
+
+@lru_cache(maxsize=256)
+def _skeleton(text: str) -> str:
+    """A scene file without its loads, as sorted JSON, once per scene (the text itself when it is no TOML: such a
+    case fails with its own record)."""
+    try:
+        return json.dumps({k: v for k, v in tomllib.loads(text).items() if k != "loads"}, sort_keys=True, default=str)
+    except tomllib.TOMLDecodeError:
+        return text
 
 
 @lru_cache(maxsize=256)

@@ -100,9 +100,11 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
         finite = err[np.isfinite(err)]
         at_round_off = bool(finite.size and np.all(np.abs(finite) < ROUND_OFF_LEVEL))
         p, r2 = (float("nan"), float("nan")) if at_round_off else observed_order(h, err)
-        flag = order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound")))
-        if series != "grid":
-            flag = {"promised_order": float("nan"), "below_order": False}
+        flag = (
+            order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound")))
+            if series == "grid"
+            else {"promised_order": float("nan"), "below_order": False}
+        )
         out.append(
             dict(
                 zip(GROUP, key),

@@ -174,9 +174,11 @@ def test_every_convergence_series_has_a_log_log_plot_with_its_order(study_dir):
     figs = [f for f in figures_of(page) if "small" in f["attrs"]["class"] and f["spec"]["x"]["l"] == "Δx (m)"]
     assert len(figs) == len(conv)
     by_series = {(f["attrs"]["data-scene"], f["spec"]["s"][0]["n"]): f["spec"] for f in figs}
+    titles = {(f["attrs"]["data-scene"], f["spec"]["s"][0]["n"]): f["title"] for f in figs}
     checked = 0
     for _, r in conv.iterrows():
         spec = by_series[(r["scene"], label(r))]
+        assert ("exact to round-off, no order" in titles[(r["scene"], label(r))]) == r["at_round_off"]
         assert spec["x"]["log"] == 1 and spec["y"]["log"] == 1
         assert np.all(np.array([float(v) for v in r["errors"].split()]) < 1e-7) == r["at_round_off"]
         if r["at_round_off"]:  # an exact quantity: no order fitted, and the figure says why
