@@ -24,10 +24,12 @@ from numpy.polynomial import polynomial as P
 
 from .scene import HELD, Axis
 
+_GL16 = np.polynomial.legendre.leggauss(16)
+
 
 def arclength_pairs(c: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """∫_a^b sqrt(1 + y'²) dx for arrays of intervals, 16-point Gauss–Legendre each."""
-    gx, gw = np.polynomial.legendre.leggauss(16)
+    gx, gw = _GL16
     dc = P.polyder(c)
     a, b = np.asarray(a, float)[:, None], np.asarray(b, float)[:, None]
     xs = (a + b) / 2 + (b - a) / 2 * gx[None, :]

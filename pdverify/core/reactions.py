@@ -20,9 +20,12 @@ _FORCE = {"clamped": True, "pinned": True, "roller": True, "guided": False, "fre
 _MOMENT = {"clamped": True, "pinned": False, "roller": False, "guided": True, "free": False}
 
 
+_GX, _GW = np.polynomial.legendre.leggauss(24)
+
+
 def load_resultants(scene: Scene) -> tuple[float, float]:
     """(total transverse load, its counter-clockwise moment about x = 0) of the scene's loads."""
-    gx, gw = np.polynomial.legendre.leggauss(24)
+    gx, gw = _GX, _GW
     P = Mo = 0.0
     for load in scene.loads:
         if isinstance(load, PointForce):

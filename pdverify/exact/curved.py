@@ -25,6 +25,8 @@ ux, uy at any s.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from numpy.polynomial import legendre as leg
 
@@ -46,10 +48,26 @@ def _ez(a: np.ndarray) -> np.ndarray:
 
 def integration_matrix(x: np.ndarray) -> np.ndarray:
     """S with (S f)_i = ∫_{-1}^{x_i} p(t) dt, p the polynomial interpolating f at the nodes x."""
+    return _integration_matrix(np.asarray(x, "<f8").tobytes()).copy()
+
+
+@functools.lru_cache(maxsize=8)
+def _integration_matrix(x_bytes: bytes) -> np.ndarray:
+    x = np.frombuffer(x_bytes, "<f8")
     n = len(x)
     Vinv = np.linalg.inv(leg.legvander(x, n - 1))
     lint = np.column_stack([leg.legint(np.eye(n)[k], lbnd=-1) for k in range(n)])  # (n + 1, n)
     return leg.legvander(x, n) @ lint @ Vinv
+
+
+@functools.lru_cache(maxsize=8)
+def _panel_rule(order: int) -> tuple[np.ndarray, np.ndarray]:
+    """A panel's nodes (its ends and ``order`` Gauss-Legendre nodes) and their integration matrix."""
+    gx, _ = leg.leggauss(order)
+    nodes = np.r_[-1.0, gx, 1.0]
+    S = integration_matrix(nodes)
+    nodes.flags.writeable = S.flags.writeable = False
+    return nodes, S
 
 
 def barycentric(nodes: np.ndarray, values: np.ndarray, xi: np.ndarray) -> np.ndarray:
@@ -92,9 +110,7 @@ class Cantilever:
         edges = edges[np.concatenate([[True], np.diff(edges) > 1e-12 * L])]
         edges[-1] = L
         self.edges = edges
-        gx, _ = leg.leggauss(self.ORDER)
-        self.nodes = np.r_[-1.0, gx, 1.0]  # panel ends + Gauss nodes
-        self.S = integration_matrix(self.nodes)
+        self.nodes, self.S = _panel_rule(self.ORDER)
         lo, hi = edges[:-1, None], edges[1:, None]
         self.half = (hi - lo)[:, 0] / 2
         sig = (lo + hi) / 2 + (hi - lo) / 2 * self.nodes[None, :]
@@ -303,6 +319,10 @@ class ExactCurved(Model):
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
         return self.solver(scene).fields(x)
+
+    def evaluator(self, scene: Scene, params: dict):
+        """The solution object built once, its fields at any x."""
+        return self.solver(scene).fields
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()

@@ -19,6 +19,8 @@ hold w and neither holds γ (pinned–pinned).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from ..core.errors import SolveError
@@ -120,7 +122,7 @@ class TimoshenkoBeam:
                 "the beam's natural frequencies are out of the floating-point range in these units; give the scene "
                 "in units that keep its numbers within about 1e-100..1e100"
             )
-        return w0 * unit.scan(count, resolution)
+        return w0 * _unit_scan(unit.kGA, unit.rI, self.left, self.right, count, resolution)
 
     def scan(self, count: int, resolution: int = 256) -> np.ndarray:
         """The first ``count`` circular frequencies (rad/s): sign changes of :meth:`determinant` on a scan, all
@@ -183,3 +185,17 @@ class TimoshenkoBeam:
             left = np.sign(self.determinant(mid)) == s_lo
             lo, hi = np.where(left, mid, lo), np.where(left, hi, mid)
         return 0.5 * (lo + hi)
+
+
+@functools.lru_cache(maxsize=256)
+def _unit_roots(kGA: float, rhoI: float, left: tuple, right: tuple, count: int, resolution: int) -> np.ndarray:
+    beam = TimoshenkoBeam(1.0, kGA, 1.0, rhoI, 1.0, left, right)
+    roots = beam.scan(count, resolution)
+    roots.flags.writeable = False
+    return roots
+
+
+def _unit_scan(kGA: float, rhoI: float, left: tuple, right: tuple, count: int, resolution: int) -> np.ndarray:
+    """The dimensionless beam's roots (:meth:`TimoshenkoBeam.scan`), kept per beam: a convergence series asks for
+    the same beam's frequencies on every grid."""
+    return _unit_roots(float(kGA), float(rhoI), tuple(left), tuple(right), count, resolution).copy()

@@ -11,6 +11,8 @@ bracketed by a scan in z and refined by Brent's method, are z_k; omega_k = z_k^2
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy.optimize import brentq
 
@@ -38,6 +40,11 @@ def determinant(z: float, left: tuple[bool, bool], right: tuple[bool, bool]) -> 
 def eb_roots(left: tuple[bool, bool], right: tuple[bool, bool], count: int, step: float = 0.01) -> np.ndarray:
     """The first ``count`` roots z = beta L > 0 of the frequency equation (``left``, ``right``: (w held, w' held)).
     The scan starts past z = 0, where every pair has a root of the rigid or static solutions."""
+    return np.array(_roots(tuple(left), tuple(right), count, step))
+
+
+@functools.lru_cache(maxsize=64)
+def _roots(left: tuple[bool, bool], right: tuple[bool, bool], count: int, step: float) -> tuple[float, ...]:
     out = []
     z0 = 0.05
     f0 = determinant(z0, left, right)
@@ -51,7 +58,7 @@ def eb_roots(left: tuple[bool, bool], right: tuple[bool, bool], count: int, step
         z0, f0 = z1, f1
         if z0 > (count + 2) * np.pi + 10:
             raise ValueError("no roots found: a mechanism")
-    return np.array(out[:count])
+    return tuple(out[:count])
 
 
 def eb_frequencies(EI: float, rhoA: float, length: float, left, right, count: int) -> np.ndarray:

@@ -64,11 +64,14 @@ def series(df, files: list[str], column: str = "err_max") -> list[dict]:
     """Per scene file: grids, spacings, errors (``column``: err_max, or a quantity's err_max_<q>), costs, pair
     orders, fitted order (ok rows only)."""
     out = []
+    wanted = set(files)
+    by_file = {f: g for f, g in df[df["scene_file"].isin(wanted)].groupby("scene_file", sort=False)}
     for f in files:
-        rows = df[(df["scene_file"] == f)].sort_values("points")
-        if rows.empty:  # the model's check() declined the scene: skipped, not judged
+        if f not in by_file:  # the model's check() declined the scene: skipped, not judged
             continue
-        ok = rows[rows["status"].isin(SOLVED)]
+        rows = by_file[f].sort_values("points", kind="stable")
+        solved = rows["status"].isin(SOLVED).to_numpy()
+        ok = rows[solved]
         h, e = ok["spacing"].to_numpy(float), ok[column].to_numpy(float)
         pair = [
             math.log(e[i] / e[i + 1]) / math.log(h[i] / h[i + 1]) if e[i] > 0 and e[i + 1] > 0 else float("nan")
@@ -96,8 +99,11 @@ def series(df, files: list[str], column: str = "err_max") -> list[dict]:
                 # converges faster than any order (the grid resolves the solution); None otherwise
                 "exact_from": _round_off_from(ok["points"].astype(int).tolist(), e),
                 "failed": [
-                    f"{int(r.points)} points: {r.message}" for r in rows[~rows["status"].isin(SOLVED)].itertuples()
-                ],
+                    f"{int(n)} points: {m}"
+                    for n, m in zip(rows["points"][~solved], rows["message"][~solved], strict=True)
+                ]
+                if not solved.all()
+                else [],
                 "reference_bound": reference_bound(ok),
             }
         )

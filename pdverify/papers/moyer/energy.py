@@ -29,7 +29,7 @@ other variants (:class:`~.system.Discrete`, its ``weights`` the volumes in units
 
 from __future__ import annotations
 
-from functools import cache
+from functools import cache, lru_cache
 
 import numpy as np
 import scipy.sparse as sp
@@ -112,9 +112,23 @@ def volumes(n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
     return vw, vg
 
 
+KEPT_POINTS = 20_000  # operators of grids up to this size are kept per (points, horizon): a study solves many loads
+
+
 def bending_laplacian(n: int, m: int, bond=None) -> sp.csr_matrix:
     """Σ_b ω_ab (γ_a - γ_b) as an n x n matrix (units EI/Δ): the interior bonds, the fitted ones at both ends;
     ``bond``: (a, b) -> each bond's stiffness EI_ab (segments: :func:`.pieces.bond_stiffness`), then in units 1/Δ."""
+    if bond is None and n <= KEPT_POINTS:
+        return _plain_laplacian(n, m).copy()
+    return _laplacian(n, m, bond)
+
+
+@lru_cache(maxsize=32)
+def _plain_laplacian(n: int, m: int) -> sp.csr_matrix:
+    return _laplacian(n, m, None)
+
+
+def _laplacian(n: int, m: int, bond) -> sp.csr_matrix:
     wj = bond_kernel(m)
     j = np.arange(1, m + 1)
     W = stencil_operator(n, 0, n, np.concatenate([j, -j]), np.concatenate([wj, wj]), truncate=True)
@@ -214,6 +228,28 @@ def shear_strain(n: int, dx: float) -> sp.csr_matrix:
 
 def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(K per length, ψ at the points) on n points: ∂U/∂u divided by the volumes, interleaved DOFs."""
+    if scene.uniform and n <= KEPT_POINTS:
+        K, P = _uniform_core(float(scene.kGA), float(scene.EI), n, float(dx), m)
+        return K.copy(), P.copy()
+    return _assemble_core(scene, n, dx, m)
+
+
+@lru_cache(maxsize=32)
+def _uniform_core(kGA: float, EI: float, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """:func:`_core` of a uniform beam, which depends on its kGA and EI only."""
+    return _assemble_core(_Uniform(kGA, EI), n, dx, m)
+
+
+class _Uniform:
+    """What :func:`_assemble_core` reads of a uniform scene."""
+
+    uniform = True
+
+    def __init__(self, kGA: float, EI: float):
+        self.kGA, self.EI = kGA, EI
+
+
+def _assemble_core(scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     B = shear_strain(n, dx)
     kga, bond = stiffnesses(scene, n, dx)
     if bond is None:
