@@ -17,7 +17,7 @@ import numpy as np
 
 ENTRIES = 16  # factorisations kept: a verification suite's scenes on one grid and supports differ in their loads
 BUDGET_BYTES = 512 * 2**20  # the factors kept, together (a 2D strip of 33,000 unknowns: ~20 MB)
-_cache: OrderedDict[str, tuple[object, int]] = OrderedDict()
+_cache: OrderedDict[str, list] = OrderedDict()  # key -> [factorisation, bytes, {name: derived object}]
 stats = {"made": 0, "shared": 0}
 
 
@@ -43,10 +43,31 @@ def factorised(key: str, make):
     value, size = make()
     stats["made"] += 1
     if size <= BUDGET_BYTES:
-        _cache[key] = (value, size)
-        while len(_cache) > ENTRIES or sum(v[1] for v in _cache.values()) > BUDGET_BYTES:
-            _cache.popitem(last=False)
+        _cache[key] = [value, size, {}]
+        _evict()
     return value, False
+
+
+def derived(key: str, name: str, make):
+    """An object derived from the matrix kept under ``key`` (its rounding layout, say), made once by ``make()`` =
+    (object, its bytes) and kept beside the factorisation, its bytes counted in :data:`BUDGET_BYTES`; made afresh
+    (and not kept) when no factorisation is kept under ``key``."""
+    entry = _cache.get(key)
+    if entry is None:
+        return make()[0]
+    if name not in entry[2]:
+        value, size = make()
+        entry[2][name] = value
+        entry[1] += size
+        _evict()
+        return value
+    return entry[2][name]
+
+
+def _evict() -> None:
+    """The least recently used entries out until :data:`ENTRIES` and :data:`BUDGET_BYTES` hold."""
+    while len(_cache) > ENTRIES or sum(v[1] for v in _cache.values()) > BUDGET_BYTES:
+        _cache.popitem(last=False)
 
 
 def clear() -> None:

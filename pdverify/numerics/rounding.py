@@ -82,24 +82,25 @@ class SharedRounding(_Rounding):
     largest. ``matvec(z)`` = G z (z in R^k), ``rmatvec(y)`` = G^T y. The entries should come diagonal by diagonal
     (runs of equal entries together: a short sort)."""
 
-    def __init__(self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, cancelling=None):
+    def __init__(
+        self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, cancelling=None, groups=None
+    ):
         self.n = int(n)
         self.s = np.ones(self.n) if row_scale is None else np.asarray(row_scale, float)
         x = weight * np.asarray(x, float)
         self.rows = rows
         self.terms = vals * x[cols] * self.s[rows]  # a_ij x_j, scaled by row
-        self.gid, k_matrix = significand_groups(vals)
+        self.gid, k_matrix = significand_groups(vals) if groups is None else groups
         big = np.zeros(self.n)  # in the scaled system diag(s) A diag(s), unknowns x / s: the row's largest entry
         np.maximum.at(big, rows, np.abs(vals * self.s[rows] * self.s[cols]))
         size = np.bincount(rows, weights=np.abs(x[cols] / self.s[cols]) * (vals != 0), minlength=self.n)
         self._rows_part(b, k_matrix, cancelling, big * size)
 
     @classmethod
-    def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, cancelling=None) -> SharedRounding:
-        K = K.tocoo()
-        order = np.lexsort((K.row, K.col.astype(np.int64) - K.row))
-        rows, cols = K.row[order].astype(np.int64), K.col[order].astype(np.int64)
-        return cls(rows, cols, K.data[order], x, b, row_scale, K.shape[0], weight, cancelling)
+    def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, cancelling=None, layout=None) -> SharedRounding:
+        """``layout``: :func:`csr_layout` of K made before (a matrix met again with another load)."""
+        rows, cols, vals, groups = csr_layout(K)[0] if layout is None else layout
+        return cls(rows, cols, vals, x, b, row_scale, K.shape[0], weight, cancelling, groups)
 
     def matvec(self, z: np.ndarray) -> np.ndarray:
         """G z: each entry's term times its group's weight, summed by row; plus the rows' own columns."""
@@ -110,6 +111,18 @@ class SharedRounding(_Rounding):
         """G^T y: each group's terms weighted by their rows' y, summed by group."""
         y = np.asarray(y, float)
         return self._rows_t(np.bincount(self.gid, weights=self.terms * y[self.rows], minlength=self.k), y)
+
+
+def csr_layout(K) -> tuple[tuple, int]:
+    """((rows, cols, values, (group ids, groups)), bytes): the entries of the CSR matrix K diagonal by diagonal and
+    their significand groups, what :class:`SharedRounding` needs of K whatever the solution and load."""
+    K = K.tocoo()
+    order = np.lexsort((K.row, K.col.astype(np.int64) - K.row))
+    rows, cols, vals = K.row[order].astype(np.int64), K.col[order].astype(np.int64), K.data[order]
+    gid, k = significand_groups(vals)
+    for a in (rows, cols, vals, gid):
+        a.flags.writeable = False
+    return (rows, cols, vals, (gid, k)), rows.nbytes + cols.nbytes + vals.nbytes + gid.nbytes
 
 
 class BandRounding(_Rounding):

@@ -11,7 +11,8 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..core.result import quantity_of
-from ..registry import get_model, run
+from ..registry import get_model
+from . import solves
 from .spec import Case
 
 
@@ -27,7 +28,7 @@ def measured(values: dict, quantity: str, model: str) -> np.ndarray:
     return np.asarray(got, float)
 
 
-@lru_cache(maxsize=64)
+@lru_cache(maxsize=256)  # a card: ~110 scenes, the curved ones with 5 quantities
 def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tuple, quantity: str = "w"):
     """(x -> the reference's ``quantity``, its solve's round-off bound), built once per (scene, slenderness,
     reference options, quantity): the reference model's ``evaluator`` where it has one (exact models: exact at any
@@ -41,7 +42,7 @@ def _reference_fn(scene_text: str, scene_file: str, slenderness, ref_items: tupl
     ev = model.evaluator(scene, model.resolve(scene, ref))
     if ev is not None:  # exact (no bound), or a solve's interpolant that carries its bound (fem-eb)
         return lambda x: measured(ev(x), quantity, model.name), getattr(ev, "error_bound", None)
-    solved = run(scene, model, **ref)
+    solved = solves.solve(scene_text, scene_file, slenderness, model.name, ref)
     values = {"w": solved.w, "rotation": solved.rotation, "fields": solved.fields}
     return CubicSpline(solved.x, measured(values, quantity, model.name)), solved.info.get("error_bound")
 

@@ -22,8 +22,8 @@ from ..measure.metrics import errors
 from ..measure.shapes import with_exact_shapes
 from ..measure.status import case_status, reference_status
 from ..numerics.timeint import ledger_columns
-from ..registry import get_model, run
-from . import execute
+from ..registry import get_model
+from . import execute, solves
 from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
 from .reference import _reference_text, measured, reference_at, reference_bound  # noqa: F401 (re-exported)
@@ -46,7 +46,7 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
     A failure's seconds are its cost: meta.json counts them as the models' time, not the runner's."""
     t0 = time.perf_counter()
     try:
-        result = run(case.scene(), case.model, **case.given)
+        result = solves.solve(case.scene_text, case.scene_file, case.slenderness, case.model, case.given)
         solved = {
             "x": np.asarray(result.x, "<f8"),
             "w": np.asarray(result.w, "<f8"),
@@ -378,7 +378,8 @@ def _run_study(
     if scheduler and todo:
         loop = execute.on_dask(run_case, todo_cases, todo_ids, scheduler)
     elif n > 1:
-        loop = execute.pool(run_case, todo_cases, todo_ids, files, n, [c.operator_group for c in todo_cases])
+        groups, sizes = [c.operator_group for c in todo_cases], [c.size for c in todo_cases]
+        loop = execute.pool(run_case, todo_cases, todo_ids, files, n, groups, sizes)
     else:
         loop = execute.serial(run_case, todo_cases, todo_ids, files)
     keep = Keeper(out, code_digest())

@@ -147,14 +147,26 @@ class Case:
         return _scene(self.scene_text, self.scene_file, self.slenderness)
 
     @property
+    def size(self) -> int:
+        """How large a case is, to run the largest batches first: its points and those of a reference it solves (a
+        reference of its own kind solved once per batch counts in each case; the order is what matters)."""
+        return _points(self.given.get("points")) + _points(self.reference.get("points"))
+
+    @property
     def operator_group(self) -> str:
         """The key of the cases that run in one process (:func:`pdverify.study.execute.pool`): the model, its options
-        but the grid, the slenderness, the reference and the scene without its loads. Cases with one key solve the
-        same operators (another load on the same grid) and the same references' operators, so one process
-        factorises each once (:mod:`pdverify.numerics.factorcache`)."""
+        but the grid, the slenderness and the scene without its loads, whatever their references. Cases with one key
+        solve the same operators (another load on the same grid) and the same references' operators, so one process
+        factorises each once (:mod:`pdverify.numerics.factorcache`), and a model's solve on its own reference grid is
+        made once for the case on that grid and the reference of the coarser ones (:mod:`.solves`)."""
         given = {k: v for k, v in self.given.items() if k not in GRID_OPTIONS}
-        key = [self.model, given, self.slenderness, self.reference, _skeleton(self.scene_text)]
+        key = [self.model, given, self.slenderness, _skeleton(self.scene_text)]
         return json.dumps(key, sort_keys=True, default=str)
+
+
+def _points(value) -> int:
+    """A grid's points as a number (0 when not given or not a number: the spacing sets the grid)."""
+    return value if isinstance(value, int) and not isinstance(value, bool) else 0
 
 
 @lru_cache(maxsize=256)

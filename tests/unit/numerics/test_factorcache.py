@@ -60,3 +60,24 @@ def test_a_model_on_two_loads_shares_and_matches(make_scene):
     for r, s in zip(together, scenes):
         factorcache.clear()
         assert np.array_equal(r.w, run(s, "pd-eb", points=101).w)
+
+
+def test_a_derived_object_is_made_once_beside_its_factorisation_and_counted_in_the_budget(monkeypatch):
+    """The rounding layout of a matrix met again (the round-off bound's entries grouped by significand) is kept with
+    its factors; without a kept factorisation it is made each time; its bytes count, so the budget evicts it."""
+    factorcache.clear()
+    made = []
+
+    def make():
+        made.append(1)
+        return "layout", 100
+
+    assert factorcache.derived("nothing kept", "layout", make) == "layout" and len(made) == 1
+    factorcache.derived("nothing kept", "layout", make)
+    assert len(made) == 2
+    factorcache.factorised("k", lambda: ("lu", 10))
+    assert [factorcache.derived("k", "layout", make) for _ in range(3)] == ["layout"] * 3 and len(made) == 3
+    monkeypatch.setattr(factorcache, "BUDGET_BYTES", 50)
+    factorcache.factorised("k2", lambda: ("lu2", 10))  # k's 110 bytes are over the budget now: evicted
+    assert factorcache.factorised("k", lambda: ("lu again", 10)) == ("lu again", False)
+    factorcache.clear()

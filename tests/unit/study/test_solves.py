@@ -1,0 +1,63 @@
+"""One solve per (scene, model, options) in a process: a self-converged card's reference grid and its theory-gap case
+share it (pdverify/study/solves.py), and both land in one pool batch (Case.operator_group)."""
+
+import os
+
+import numpy as np
+
+from pdverify.registry import run
+from pdverify.study import execute, solves
+from pdverify.study.spec import Case, _scene
+
+SCENE = """name = "cantilever"
+[beam]
+length = 2.0
+[section]
+width = 0.1
+height = 0.2
+[material]
+youngs_modulus = 2e11
+poissons_ratio = 0.3
+[supports]
+left = "clamped"
+right = "free"
+[[loads]]
+type = "point_force"
+position = 2.0
+value = -1000.0
+"""
+
+
+def test_a_second_call_returns_the_first_result_and_other_options_solve_again():
+    a = solves.solve(SCENE, "a.toml", None, "pd-eb", {"points": 41})
+    assert solves.solve(SCENE, "a.toml", None, "pd-eb", {"points": 41}) is a
+    other = solves.solve(SCENE, "a.toml", None, "pd-eb", {"points": 81})
+    assert other is not a and other.x.size == 81
+    fresh = run(_scene(SCENE, "a.toml", None), "pd-eb", points=41)  # a kept result is what a new solve gives
+    assert np.array_equal(fresh.w, a.w) and np.array_equal(fresh.x, a.x)
+
+
+def test_the_gap_case_and_the_cases_it_is_the_reference_of_share_a_batch():
+    reference = {"model": "pd-eb", "points": 161}
+    coarse = [Case("a.toml", SCENE, None, "pd-eb", {"points": n}, reference) for n in (21, 41)]
+    gap = Case("a.toml", SCENE, None, "pd-eb", {"points": 161}, {"model": "exact-timoshenko"})
+    assert {c.operator_group for c in coarse} == {gap.operator_group}
+    other_model = Case("a.toml", SCENE, None, "fem-eb", {"points": 21}, reference)
+    assert other_model.operator_group != gap.operator_group
+
+
+def _record(case, artefacts, cid):
+    return {"case": case, "pid": os.getpid()}
+
+
+def test_the_largest_batch_by_points_goes_first():
+    """A batch of few cases with a large reference (a floor scene: 3 grids, a 4x finer reference) starts before many
+    small cases, so the run does not end on it alone."""
+    small = [Case("a.toml", SCENE, None, "pd-eb", {"points": 21}, {}) for _ in range(6)]
+    large = Case("b.toml", SCENE.replace("cantilever", "floor"), None, "pd-eb", {"points": 641}, {"points": 10241})
+    todo = small + [large]
+    groups = ["small"] * 6 + ["large"]
+    got = list(execute.pool(_record, todo, list(range(7)), None, 1, groups, [c.size for c in todo]))
+    assert got[0][0] == 6 and large.size == 641 + 10241 and small[0].size == 21
+    by_count = list(execute.pool(_record, todo, list(range(7)), None, 1, groups))
+    assert by_count[-1][0] == 6  # by count alone it went last
