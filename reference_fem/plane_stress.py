@@ -48,6 +48,8 @@ each end's nodes (force along the end normal, axial, moment ccw about the end of
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -57,6 +59,7 @@ from pdverify.core.geometry import geometry, mechanism_message
 from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.core.stations import STATIONS_HELP, parse_stations
+from pdverify.numerics.factorcache import digest
 from pdverify.numerics.linalg import solve_linear
 from reference_fem import curved_mesh as cm
 from reference_fem import plane_scenes, q4_variants, vtu
@@ -106,6 +109,31 @@ def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
 
     lam, mu = lame_parameters(E, nu)
     return 2 * lam * mu / (lam + 2 * mu), mu
+
+
+_KEPT: OrderedDict[str, tuple] = OrderedDict()  # mesh digest -> (basis, K): another load on the same strip
+KEPT_MESHES = 2
+
+
+def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float):
+    """(the vector basis, K) of one material on ``mesh``, kept for the last :data:`KEPT_MESHES` meshes (by their
+    nodes' and elements' bytes, the element, the constants and the width): a study solves the same strip under
+    several loads, and the assembly is a deterministic function of these."""
+    import skfem as fem
+
+    key = digest(
+        mesh.p, mesh.t, params=(element, lam, mu, scene.material.E, scene.material.poissons_ratio, scene.section.width)
+    )
+    if key in _KEPT:
+        _KEPT.move_to_end(key)
+        return _KEPT[key]
+    basis = fem.Basis(mesh, fem.ElementVector(getattr(fem, ELEMENTS[element])()))
+    K = stiffness(basis, scene, element, lam, mu)
+    K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
+    _KEPT[key] = (basis, K)
+    while len(_KEPT) > KEPT_MESHES:
+        _KEPT.popitem(last=False)
+    return basis, K
 
 
 def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):
@@ -265,14 +293,14 @@ class FemPlaneStress(Model):
         timer = Timer()
         with timer("assemble"):
             bm = strip_mesh(scene, params["points"], params["layers"], el)
-            basis = fem.Basis(bm.mesh, fem.ElementVector(getattr(fem, ELEMENTS[el])()))
             lam, mu = plane_stress_lame(scene.material.E, scene.material.poissons_ratio)
             if scene.segments:  # each element its segment's constants (reference_fem.plane_scenes)
                 if el.startswith("q4-"):
                     raise InputError(f"segments: element = {el} takes one material; use element q8, q9 or q4")
+                basis = fem.Basis(bm.mesh, fem.ElementVector(getattr(fem, ELEMENTS[el])()))
                 K = plane_scenes.segment_stiffness(basis, scene, plane_stress_lame)
             else:
-                K = stiffness(basis, scene, el, lam, mu)
+                basis, K = basis_and_stiffness(bm.mesh, scene, el, lam, mu)
             top, mid = face_rows(scene, len(bm.t))
             tan_s, nor_s = bm.geo.frame(bm.s)
             F = load_vector(scene, bm, basis, tan_s, nor_s, top, mid)

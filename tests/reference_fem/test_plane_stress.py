@@ -138,3 +138,21 @@ def test_locking_elements_warn_and_the_default_does_not_lock():
         r = run(sc, "fem-plane-stress", element=el)
         assert abs(r.w[-1] / tip - 1) > 0.2  # locked (measured -27.9 % / -26.8 %)
         assert any(w.startswith(f"element = {el}: full integration locks in bending") for w in r.info["warnings"])
+
+
+def test_a_strip_met_again_takes_its_kept_assembly_and_gives_the_same_bits():
+    """Two loads on one strip: the second solve takes the first's basis and stiffness (reference_fem/plane_stress.py,
+    basis_and_stiffness) and its result is the same to the bit as a solve with nothing kept."""
+    from pdverify.numerics import factorcache
+    from reference_fem import plane_stress
+
+    sc = cantilever(20)
+    other = sc.model_copy(update={"loads": sc.loads[:0] + [sc.loads[0].model_copy(update={"value": 250.0})]})
+    plane_stress._KEPT.clear()
+    run(sc, "fem-plane-stress", points=41)
+    kept = run(other, "fem-plane-stress", points=41)
+    assert len(plane_stress._KEPT) == 1  # one strip: its assembly made once
+    plane_stress._KEPT.clear()
+    factorcache.clear()
+    apart = run(other, "fem-plane-stress", points=41)
+    assert np.array_equal(kept.w, apart.w) and kept.info["error_bound"] == apart.info["error_bound"]
