@@ -258,6 +258,7 @@ def solve_linear(
     refine_in_place: bool = False,
     entry_rounding: float | None = None,
     cancelling_rows=None,
+    bound: bool = True,
 ) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
@@ -279,7 +280,8 @@ def solve_linear(
     ``entry_rounding``: the relative uncertainty of the matrix's entries in units of eps (default
     ``ENTRY_ROUNDING``), for the bound's data term; entries that share one rounding count once
     (:mod:`pdverify.numerics.rounding`). ``cancelling_rows``: rows computed as products of dense operators,
-    whose entries are uncertain to the row's largest entry (the same module).
+    whose entries are uncertain to the row's largest entry (the same module). ``bound = False`` (a sparse K): no
+    residual, no bound (a Newton correction, whose error the next iteration's residual sees); the same solution.
     """
     if isinstance(K, Band):
         if (
@@ -314,11 +316,14 @@ def solve_linear(
         refinement = n <= SMALL
     if refinement:
         u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r))
-    rounding = (_weight(entry_rounding), cancelling_rows)
-    layout = (
-        None if magnitude is not None else factorcache.derived(info["factorisation"], "rounding", lambda: csr_layout(K))
-    )
-    _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, rounding, layout)
+    if bound:
+        rounding = (_weight(entry_rounding), cancelling_rows)
+        layout = (
+            None
+            if magnitude is not None
+            else factorcache.derived(info["factorisation"], "rounding", lambda: csr_layout(K))
+        )
+        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, rounding, layout)
     if condition is None:
         condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised

@@ -315,7 +315,7 @@ class NonlinearBondPair:
             if np.all(np.abs(R) <= floor * scale):
                 return P, it, True, 0.0
             K = self.tangent(P, lam)[free][:, free]
-            du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False)
+            du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False, bound=False)
             t, g0 = 1.0, float(R @ du)  # slope of the energy along du at t = 0 (< 0)
             for _ in range(12):
                 P_try = P.copy()
