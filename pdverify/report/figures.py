@@ -59,6 +59,15 @@ def deflection(
     return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({yunit or unit})", title)
 
 
+def load_deflection(curves: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
+    """Load factor against the deflection at one point, one line per run (label, factors, deflections, the point):
+    a load path's loading and unloading branches."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    for label, factor, w, x in curves:
+        ax.plot(w, factor, "-", lw=1.2, marker="o" if len(w) <= 40 else None, ms=3, label=f"{label} (x = {x:.4g})")
+    return _finish(fig, ax, f"w at x ({unit})", "load factor (–)", title)
+
+
 def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
     """log-log error vs spacing, fitted slope printed on each line."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))

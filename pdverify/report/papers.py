@@ -14,7 +14,7 @@ from markupsafe import Markup
 
 from . import figures
 from .inputs import StudyFolder
-from .path_figures import health_figures
+from .path_figures import health_figures, load_path_figures
 from .quantity_figures import QUANTITIES
 from .scene_figures import overlay_figures, resultant_figures
 from .text import fmt, folder, label, short_reference, slug
@@ -48,7 +48,7 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
         unit = data.length(sfile)
         force = "lbf" if data.units(sfile) == "inch-pound" else "N"
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
-            curves, ref, ylabels, resultant_curves, health = [], None, set(), [], []
+            curves, ref, ylabels, resultant_curves, health, paths = [], None, set(), [], [], []
             # at most one curve per (model, variant): the finest grid
             for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
@@ -61,6 +61,8 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
                 curves.append((label(r), c["x"], y))
                 if "health" in c.get("fields", {}):  # a load path's node health (path_figures.py)
                     health.append((label(r), c["x"], c["fields"]["health"]))
+                if c.get("load_path"):  # its load factor against the peak deflection (path_figures.py)
+                    paths.append((label(r), c["load_path"]))
                 if {"N", "Q"} <= set(c.get("fields", {})):
                     resultant_curves.append((label(r), c))
                 if ref is None or len(c["x"]) > len(ref[0]):
@@ -71,6 +73,7 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
             yunit = "rad" if ylabels == {"twist"} else unit
             figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w", unit, yunit))
             figs.extend(resultant_figures(resultant_curves, title, unit, force))
+            figs.extend(load_path_figures(paths, title, unit))
             figs.extend(health_figures(health, title, unit))
             overlay = []
             for _, r in gs.iterrows():

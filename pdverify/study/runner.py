@@ -19,6 +19,7 @@ from ..core.errors import InputError, OutputError, PdverifyError
 from ..core.result import columns_csv
 from ..core.version import __version__
 from ..measure.metrics import errors
+from ..measure.paths import peak_history
 from ..measure.shapes import with_exact_shapes
 from ..measure.status import case_status, reference_status
 from ..numerics.timeint import ledger_columns
@@ -57,6 +58,8 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
             "info": {k: _plain_scalar(result.info[k]) for k in INFO_KEYS if k in result.info},
             "warnings": "; ".join(str(w) for w in result.info.get("warnings", [])),
         }
+        if result.path:  # a load path: the load factor against the deflection at its peak point, for the report
+            solved["load_path"] = peak_history(result.x, result.path)
         hist = result.info.get("history")
         if artefacts and isinstance(hist, dict) and "t" in hist:  # the time histories as CSV, for other tools
             hdir = Path(artefacts).parent / "histories"
@@ -290,6 +293,8 @@ def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: 
         curve["rotation"] = solved["rotation"]
     if solved["fields"]:  # point fields (u, theta, N, Q, M ...): for positional benchmarks and other tools
         curve["fields"] = solved["fields"]
+    if solved.get("load_path"):  # a load path's load factor against its peak deflection (measure/paths.py)
+        curve["load_path"] = solved["load_path"]
     if "load_steps" in info:  # deformed shapes of a nonlinear path and the exact ones, for the report
         curve["load_steps"] = with_exact_shapes(scene, info["load_steps"])
     hist = info.get("history")
