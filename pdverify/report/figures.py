@@ -68,6 +68,23 @@ def load_deflection(curves: list[tuple[str, np.ndarray, np.ndarray, float]], tit
     return _finish(fig, ax, f"w at x ({unit})", "load factor (–)", title)
 
 
+def moment_curvature(
+    curves: list[tuple[str, np.ndarray, np.ndarray]],
+    ref: tuple[np.ndarray, np.ndarray] | None,
+    title: str,
+    units: str,
+    unit: str = "m",
+) -> str:
+    """A section's moment against its curvature, one line per run (label, kappa, M) over the classical fibre law
+    ``ref``; ``units``: the moment's (e.g. "N m"), ``unit``: the length's."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.4))
+    if ref is not None:
+        ax.plot(ref[0], ref[1], "k-", lw=2.5, alpha=0.35, label="fibre theory (exact-eb, fem-eb)")
+    for label, kappa, m in curves:
+        ax.plot(kappa, m, "-", lw=1.2, label=label)
+    return _finish(fig, ax, f"curvature (1/{unit})", f"M ({units})", title)
+
+
 def convergence(series: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
     """log-log error vs spacing, fitted slope printed on each line."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))

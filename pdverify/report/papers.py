@@ -14,7 +14,7 @@ from markupsafe import Markup
 
 from . import figures
 from .inputs import StudyFolder
-from .path_figures import health_figures, load_path_figures
+from .path_figures import health_figures, load_path_figures, moment_curvature_figures
 from .quantity_figures import QUANTITIES
 from .scene_figures import overlay_figures, resultant_figures
 from .text import fmt, folder, label, short_reference, slug
@@ -48,7 +48,7 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
         unit = data.length(sfile)
         force = "lbf" if data.units(sfile) == "inch-pound" else "N"
         for sl, gs in g.groupby(g["slenderness"].fillna(-1), sort=True):
-            curves, ref, ylabels, resultant_curves, health, paths = [], None, set(), [], [], []
+            curves, ref, ylabels, resultant_curves, health, paths, laws = [], None, set(), [], [], [], []
             # at most one curve per (model, variant): the finest grid
             for _, grp in gs.groupby(["model", gs["options"].fillna("")], sort=True):
                 r = grp.sort_values("points", na_position="first").iloc[-1]
@@ -63,6 +63,8 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
                     health.append((label(r), c["x"], c["fields"]["health"]))
                 if c.get("load_path"):  # its load factor against the peak deflection (path_figures.py)
                     paths.append((label(r), c["load_path"]))
+                if c.get("moment_curvature"):  # the section law its pairs follow (path_figures.py)
+                    laws.append((label(r), c["moment_curvature"]))
                 if {"N", "Q"} <= set(c.get("fields", {})):
                     resultant_curves.append((label(r), c))
                 if ref is None or len(c["x"]) > len(ref[0]):
@@ -74,6 +76,8 @@ def scene_figures(data: StudyFolder) -> list[PaperScene]:
             figs.append(figures.deflection(curves, ref, title, " / ".join(sorted(ylabels)) or "w", unit, yunit))
             figs.extend(resultant_figures(resultant_curves, title, unit, force))
             figs.extend(load_path_figures(paths, title, unit))
+            scene = data.scene(sfile, None if sl == -1 else sl) if laws else None
+            figs.extend(moment_curvature_figures(laws, scene, title, f"{force} {unit}", unit))
             figs.extend(health_figures(health, title, unit))
             overlay = []
             for _, r in gs.iterrows():

@@ -26,3 +26,18 @@ def load_path_figures(paths: list[tuple[str, dict]], title: str, unit: str) -> l
         return []
     curves = [(label, np.asarray(p["factor"]), np.asarray(p["w"]), float(p["x"])) for label, p in paths]
     return [figures.load_deflection(curves, f"{title}: load path", unit)]
+
+
+def moment_curvature_figures(laws: list[tuple[str, dict]], scene, title: str, units: str, unit: str) -> list[str]:
+    """One figure of every run's section law (``moment_curvature`` of its case: kappa, moment) over the fibre
+    theory's for the scene's section and yield stress (exact-eb's and fem-eb's, :meth:`Profile.fibre_moment`); none
+    without a law."""
+    if not laws:
+        return []
+    curves = [(label, np.asarray(law["kappa"]), np.asarray(law["moment"])) for label, law in laws]
+    ref = None
+    profile = scene.section.profile if scene is not None else None
+    if profile is not None and scene.material.yield_stress:
+        kappa = max((c[1] for c in curves), key=lambda k: k.max())
+        ref = (kappa, profile.fibre_moment(kappa, scene.material.E, scene.material.yield_stress))
+    return [figures.moment_curvature(curves, ref, f"{title}: moment-curvature of the section", units, unit)]

@@ -36,7 +36,7 @@ from .tables import trust_table  # noqa: F401 (re-exported)
 PARAM_COLUMNS = ("variant", "points", "horizon", "horizon_length", "degree", "element", "layers", "form")
 
 
-INFO_KEYS = ("horizon", "m", "cond", "error_bound", "load_steps", "history", "factorisation")
+INFO_KEYS = ("horizon", "m", "cond", "error_bound", "load_steps", "history", "factorisation", "moment_curvature")
 
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
@@ -295,6 +295,8 @@ def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: 
         curve["fields"] = solved["fields"]
     if solved.get("load_path"):  # a load path's load factor against its peak deflection (measure/paths.py)
         curve["load_path"] = solved["load_path"]
+    if "moment_curvature" in info:  # the section law a model's load path follows (pd-bond-pair's pairs)
+        curve["moment_curvature"] = {k: np.asarray(v, "<f8") for k, v in info["moment_curvature"].items()}
     if "load_steps" in info:  # deformed shapes of a nonlinear path and the exact ones, for the report
         curve["load_steps"] = with_exact_shapes(scene, info["load_steps"])
     hist = info.get("history")

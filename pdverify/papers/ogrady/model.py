@@ -45,7 +45,7 @@ from .nonlinear import NonlinearBondPair
 from .path import follows_path, plastic_warnings, solve_path
 from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
-from .weights import WEIGHTS, weights
+from .weights import WEIGHTS, moment_curvature_curve, weights
 
 ENDS = ("auto", "taylor", "mirror", "none")
 
@@ -327,6 +327,11 @@ class PDBondPair(Model):
         x = np.arange(pairs.n) * dx
         info.setdefault("warnings", []).extend(plastic_warnings(scene, params, dx) + rotation_warnings(scene))
         info.update(ends=params["ends"], spacing=dx, horizon_factor=params["horizon"])
+        if scene.material.yield_stress:  # the section law the pairs carry (Eq. 7), beside the fibre theory's
+            mat, m = scene.material, params["horizon"]
+            info["moment_curvature"] = moment_curvature_curve(
+                scene.section.profile, mat.E, mat.yield_stress, params["weight"], m, dx, params["variant"]
+            )
         fields = dict(pair_fields(scene, pairs, f, params["ends"] == "mirror"), health=path[-1]["health"])
         return self.new_result(
             scene,

@@ -88,3 +88,14 @@ def shape_factors(profile: Profile, weight: str, m: float, dx: float, variant: s
     My = float(pd_moment_curvature(profile, E, sy, weight, m, dx, variant, k_first))
     Mp = float(pd_moment_curvature(profile, E, sy, weight, m, dx, variant, 1e6 * k_first))
     return {"pd": Mp / My, "fibre": profile.shape_factor}
+
+
+def moment_curvature_curve(
+    profile: Profile, E: float, yield_stress: float, weight: str, m: float, dx: float, variant: str, points: int = 61
+) -> dict[str, list[float]]:
+    """:func:`pd_moment_curvature` from zero to six times the fibre theory's first-yield curvature
+    (yield_stress / (E c), c the extreme fibre's distance), as lists: what the pairs' section does beside the
+    classical law (:meth:`~pdverify.core.section.Profile.fibre_moment`)."""
+    kappa = np.linspace(0.0, 6.0 * yield_stress / (E * profile.extreme_fibre), points)
+    moment = pd_moment_curvature(profile, E, yield_stress, weight, m, dx, variant, kappa)
+    return {"kappa": kappa.tolist(), "moment": np.asarray(moment, float).tolist()}

@@ -42,3 +42,33 @@ def test_the_load_path_figure_draws_every_runs_factor_against_its_peak_deflectio
     build_report(tmp_path / "out")
     page = (tmp_path / "out" / "paper-paper-ogrady-plastic.html").read_text()
     assert "load path" in page and "load factor" in page
+
+
+def test_the_moment_curvature_figure_sets_the_pairs_law_over_the_fibre_theory():
+    """pd-bond-pair's load path carries its section's law (Eq. 7's pairs, from zero to six first-yield curvatures).
+    With weight = fibre it is the fibre theory's to second order in the members per horizon (measured 1.6e-2, 4.1e-3,
+    1.0e-3 at m = 4.95, 9.95, 19.95); the paper's weight (Eq. 6) stays below it, its shape factor being 1.41 at
+    m = 9.95 (weights.shape_factors), not the rectangle's 1.5."""
+    from pdverify.core.scene_file import load_scene
+    from pdverify.papers.ogrady.weights import shape_factors
+    from pdverify.registry import run
+    from pdverify.report.path_figures import moment_curvature_figures
+
+    sc = load_scene(ROOT / "studies" / "paper_ogrady_plastic" / "fig7_unloaded.toml")
+    profile, E, sy = sc.section.profile, sc.material.E, sc.material.yield_stress
+
+    def law(weight, m):
+        got = run(sc, "pd-bond-pair", weight=weight, points=41, horizon=m).info["moment_curvature"]
+        kappa, moment = np.asarray(got["kappa"]), np.asarray(got["moment"])
+        assert kappa[-1] == 6 * sy / (E * profile.extreme_fibre)
+        fibre = profile.fibre_moment(kappa, E, sy)
+        return got, np.abs(moment - fibre).max() / fibre.max(), moment[-1] / fibre[-1]
+
+    fibre, e10, _ = law("fibre", 9.95)
+    _, e20, _ = law("fibre", 19.95)
+    assert e10 < 1 / 9.95**2 and abs(np.log(e10 / e20) / np.log(19.95 / 9.95) - 2) < 0.1
+    paper, _, end = law("paper", 9.95)
+    assert shape_factors(profile, "paper", 9.95, 2.0 / 40, "corrected")["pd"] < 1.45 and end < 0.95
+    figs = moment_curvature_figures([("fibre", fibre), ("paper", paper)], sc, "Fig. 7", "N m", "m")
+    assert len(figs) == 1 and "fibre theory" in figs[0] and "curvature (1/m)" in figs[0]
+    assert moment_curvature_figures([], sc, "Fig. 7", "N m", "m") == []
