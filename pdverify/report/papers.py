@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from markupsafe import Markup
 
-from . import figures
+from . import figures, forked
 from .inputs import StudyFolder
 from .path_figures import health_figures, load_path_figures, moment_curvature_figures
 from .quantity_figures import QUANTITIES
@@ -214,8 +214,9 @@ def paper_pages(data: StudyFolder, waves: list[Dispersion]) -> list[dict]:
     """What each paper's page shows (in the order of the study's scenes): its title, file name, the verdicts of
     its benchmarks, its scenes and their figures, its sweep figures, its dispersion relations (each once), its
     plane-stress pictures."""
+    sweeps = forked.start(lambda: sweep_figures(data))  # in a second process while this one draws the scenes
     scenes = scene_figures(data)
-    sweeps = sweep_figures(data)
+    sweeps = sweeps()
     images = plane_stress_images(data)
     bench = data.table("benchmarks")
     pages = []
