@@ -136,7 +136,7 @@ def test_performance_page_states_targets_and_verdicts(tmp_path):
 
 
 def test_rows_carry_their_error_against_the_exact_solution():
-    """Issue 27: speed is never reported without accuracy. fem-eb's two-field form at 1001 nodes is at
+    """Speed is never reported without accuracy. fem-eb's two-field form at 1001 nodes is at
     round-off (measured 1e-15 on the example cantilever); exact-eb is the exact solution itself."""
     row = bench_case("fem-eb", 1001)
     assert 0 <= row["max_error"] < 1e-12 and row["error_bound"] < 1e-6

@@ -69,7 +69,7 @@ def test_every_load_type_at_10_000_nodes(model, load):
 @pytest.mark.parametrize("model", MODELS)
 @pytest.mark.parametrize("left,right", PAIRS)
 def test_every_support_pair_at_100_000_nodes(model, left, right):
-    """Issue 27: within 1e-6 at 10^5 nodes (measured, mixed loads, every pair: at most 1.7e-14, bounds at
+    """Within 1e-6 at 10^5 nodes (measured, mixed loads, every pair: at most 1.7e-14, bounds at
     most 6e-9; the direct form on the propped cantilever: 1.0 and 7e-5)."""
     sc = parse_scene(scene_dict(left, right, MIXED_LOADS))
     e, r = error(model, sc, 100_001)
@@ -80,7 +80,7 @@ def test_every_support_pair_at_100_000_nodes(model, left, right):
 @pytest.mark.slow
 @pytest.mark.parametrize("model", MODELS)
 def test_a_million_nodes(model):
-    """Issue 27: within 1e-4 at 10^6 nodes (measured 8e-15 both; before the symmetric/antisymmetric moments
+    """Within 1e-4 at 10^6 nodes (measured 8e-15 both; before the symmetric/antisymmetric moments
     fem-timoshenko was 6.7e-8 here, its bending flexibility the difference of two shear-dominated entries)."""
     sc = parse_scene(scene_dict("clamped", "pinned", [LOADS["force"], LOADS["sine"]]))
     e, r = error(model, sc, 1_000_001)

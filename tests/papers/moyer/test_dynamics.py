@@ -259,7 +259,7 @@ def test_blow_up_message_names_step_limit_and_cause():
 
 @pytest.mark.slow
 def test_table1_cantilever_runs_at_smaller_steps():
-    """Issue 30: the Table 1 cantilever (101 points, m = 3, 0.01 s) ran at 0.9 of the limit and blew up at 0.5
+    """The Table 1 cantilever (101 points, m = 3, 0.01 s) ran at 0.9 of the limit and blew up at 0.5
     and 0.3 (steps 17400 and 5782), because the stabilisation β = κ dt weakened with the step. With β fixed
     it runs at both, and the stabilisation dissipates the same work (measured 1.23e-3 of the load work at
     0.9, 0.5 and 0.3)."""
@@ -353,7 +353,7 @@ def test_closure_spectrum_has_no_growing_mode(record_property):
 
 
 def test_mirrored_beam_ends_have_a_real_spectrum():
-    """Issue 30 item 1, for the ends that allow it: with mirror-image ghosts (moyer_operator.mirror_ghosts) a
+    """For the ends that allow it: with mirror-image ghosts (moyer_operator.mirror_ghosts) a
     beam between pinned and guided ends is the periodic stencil restricted to one symmetry class, so M⁻¹K has a
     real positive spectrum at every horizon and slenderness (growth <= 1e-6, the dense solve's rounding;
     measured 0 except 7e-9 at guided-pinned, m = 1, L/h = 1e4). With the cubic fits these pairs grew at
@@ -407,7 +407,7 @@ def test_mirrored_beam_ends_converge_at_order_two_with_end_loads(slenderness):
 
 @pytest.mark.slow
 def test_mirrored_beam_ends_run_undamped_at_the_computed_step():
-    """Issue 30's Done-when, for the beam's pinned and guided ends: κ = 0 (no stabilisation, no damping), 41
+    """The beam's pinned and guided ends: κ = 0 (no stabilisation, no damping), 41
     points, every such pair x m = 1-4 x L/h in {4, 20, 100, 1e4}: 10^4 steps at 1.0x the computed stable
     step stay finite, and 1.05x blows up (the prediction is within 5 % of the threshold; measured: all 48)."""
     for left, right in [("pinned", "pinned"), ("pinned", "guided"), ("guided", "pinned")]:
@@ -436,7 +436,7 @@ def test_mirrored_beam_ends_run_undamped_at_the_computed_step():
 @pytest.mark.slow
 @pytest.mark.parametrize("m", [1, 2, 3])
 def test_damped_beam_settles_to_the_static_solve_for_every_support_pair(m):
-    """Issue 30: damped runs settle to the direct solve on the same grid. pd-timoshenko (corrected), 41 points,
+    """Damped runs settle to the direct solve on the same grid. pd-timoshenko (corrected), 41 points,
     ζ = 1 of the first mode, 0.5 s, m = 1, 2, 3: every support pair within 1e-8 of the static solution with the
     damping on every DOF (damping_on = "all", the default; measured worst 2.3e-12, 2.2e-11, 2.7e-11). On the
     translations alone (Eq. 36-37) the shear-rotation modes keep ringing where nothing else damps them: 5.0e-7,
@@ -458,7 +458,7 @@ def test_damped_beam_settles_to_the_static_solve_for_every_support_pair(m):
 @pytest.mark.parametrize("m", [1, 2, 3])
 @pytest.mark.slow
 def test_damped_rod_settles_to_the_static_solve_for_every_support_pair(m):
-    """Issue 30: damped runs settle to the direct solve on the same grid. pd-rod, 61 points, critical damping
+    """Damped runs settle to the direct solve on the same grid. pd-rod, 61 points, critical damping
     of the first mode (ζ = 1), 8 ms: every support pair within 1e-8 of the static solution (the criterion;
     measured <= 4.1e-13, 8.1e-13 with the fitted ghosts; m = 2 with a free end grew with the cubic traction
     fit, before the quartic one and the mirror-image ghosts)."""
@@ -479,7 +479,7 @@ def test_damped_rod_settles_to_the_static_solve_for_every_support_pair(m):
 
 @pytest.mark.slow
 def test_undamped_rod_runs_at_the_limit_for_every_support_pair():
-    """Issue 30's Done-when for pd-rod: κ = 0 (no stabilisation, no damping), 1.0 of the computed step, 10^4 steps,
+    """pd-rod: κ = 0 (no stabilisation, no damping), 1.0 of the computed step, 10^4 steps,
     41 points, every support pair x m = 1..4. The mirror-image ghosts make the operator times the end points'
     half cells symmetric (tested exactly), so the scheme's discrete energy is conserved to round-off (measured
     8.4e-14 at most) and every run blows up at 1.05 of the step (40 of 40): the computed step is the threshold.

@@ -48,7 +48,7 @@ def _scene_at(left, right, slenderness, loads=()):
 
 
 def test_operator_is_symmetric_in_the_volumes_with_a_real_spectrum():
-    """Issue 30 item 1 by the energy method: every support pair x horizons 1-4 x L/h in {4, 20, 100, 1e4}, 41 points:
+    """By the energy method: every support pair x horizons 1-4 x L/h in {4, 20, 100, 1e4}, 41 points:
     the operator times the volumes is symmetric (to the rounding of the row scaling) and, scaled by the mass, has
     eigenvalues >= 0 (a symmetric matrix: real). The corrected variant grows in 54 of these 160 cases
     (test_dynamics.test_closure_spectrum_has_no_growing_mode)."""
@@ -107,7 +107,7 @@ def test_too_few_points_is_one_clear_error():
 
 @pytest.mark.slow
 def test_undamped_runs_at_the_computed_step_conserve_the_scheme_energy():
-    """Issue 30's Done-when for the beam, variant energy: every support pair x m = 1-4 x L/h in {4, 20, 100, 1e4},
+    """The beam, variant energy: every support pair x m = 1-4 x L/h in {4, 20, 100, 1e4},
     41 points, no damping and no stabilisation, 10^4 steps at 1.0x the computed step: the scheme's discrete
     energy is conserved (measured 4.1e-11 at most; the criterion is 1e-6) and 1.05x blows up (measured 160 of 160:
     the computed step is the threshold within 5 %)."""
@@ -126,7 +126,7 @@ def test_undamped_runs_at_the_computed_step_conserve_the_scheme_energy():
 
 @pytest.mark.slow
 def test_damped_runs_settle_to_the_static_solve_for_every_support_pair():
-    """Issue 30: ζ = 1 of the first mode, 0.5 s, 41 points, every support pair x m = 1-4, damping on every DOF: within
+    """Damped, ζ = 1 of the first mode, 0.5 s, 41 points, every support pair x m = 1-4, damping on every DOF: within
     1e-8 of the static solve on the same grid (measured 8.6e-13 at most; m = 4 with a clamped and a free end blows
     up in the corrected variant)."""
     loads = LOADS + [{"type": "point_moment", "position": 1.5, "value": 50.0}]
@@ -256,7 +256,7 @@ def test_a_horizon_whose_end_bonds_are_not_definite_is_one_clear_error(m):
 
 @pytest.mark.parametrize("left,right", PAIRS)
 def test_transient_converges_at_order_two_in_dt(left, right):
-    """Issue 30's Done-when (order in dt), the default beam: 41 points, m = 3, L/h = 20, a sine load and a point couple
+    """Order in dt, the default beam: 41 points, m = 3, L/h = 20, a sine load and a point couple
     as steps from rest, no damping or stabilisation, dt = 0.2, 0.1, 0.05 of the stable step (about), sampled at the same
     50 times at x = 1 and 2, against the exact time solution of the same operator (its space error is the dx study's).
     RMS error over the samples: order 2 (measured 1.95-2.04 and 1.99-2.01 over the pairs; 1.37-1.96 from 0.4 of the

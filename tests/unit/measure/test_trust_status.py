@@ -1,4 +1,4 @@
-"""Issue 27, item 1: a result's round-off bound reaches every output: solve's table, CSV and JSON, a
+"""A result's round-off bound reaches every output: solve's table, CSV and JSON, a
 study row's status (``suspect``), the report; NaN/inf never leaves with exit 0."""
 
 import json

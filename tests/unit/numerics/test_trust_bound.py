@@ -1,4 +1,4 @@
-"""Issue 27, item 1: every solve carries a round-off bound, at every size, that holds its error.
+"""Every solve carries a round-off bound, at every size, that holds its error.
 
 The systems are integer matrices times integer solutions: b = A u* is exact in float64, so the error of
 the computed u against u* is the solve's alone."""
