@@ -113,12 +113,13 @@ def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
 
 _KEPT: OrderedDict[str, tuple] = OrderedDict()  # mesh digest -> (basis, K): another load on the same strip
 KEPT_MESHES = 2
+KEPT_DOFS = 200_000  # larger strips are not kept (a 10,241-station strip's basis takes gigabytes)
 
 
 def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float):
-    """(the vector basis, K) of one material on ``mesh``, kept for the last :data:`KEPT_MESHES` meshes (by their
-    nodes' and elements' bytes, the element, the constants and the width): a study solves the same strip under
-    several loads, and the assembly is a deterministic function of these."""
+    """(the vector basis, K) of one material on ``mesh``, kept for the last :data:`KEPT_MESHES` meshes of up to
+    :data:`KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element, the constants and the width): a
+    study solves the same strip under several loads, and the assembly is a deterministic function of these."""
     import skfem as fem
 
     key = digest(
@@ -129,6 +130,8 @@ def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float)
         return _KEPT[key]
     basis = fem.Basis(mesh, fem.ElementVector(getattr(fem, ELEMENTS[element])()))
     K = stiffness(basis, scene, element, lam, mu)
+    if basis.N > KEPT_DOFS:
+        return basis, K
     K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
     _KEPT[key] = (basis, K)
     while len(_KEPT) > KEPT_MESHES:

@@ -17,7 +17,7 @@ from ..registry import run
 from .spec import _scene
 
 KEPT = 8  # results kept per process, the most recent first out
-KEPT_DOFS = 200_000  # larger solves are not kept (their arrays)
+KEPT_DOFS = 50_000  # larger solves are not kept (their arrays, and a 2D strip's basis in its writers)
 _kept: OrderedDict[tuple, Result] = OrderedDict()
 
 
