@@ -48,8 +48,6 @@ each end's nodes (force along the end normal, axial, moment ccw about the end of
 
 from __future__ import annotations
 
-from collections import OrderedDict
-
 import numpy as np
 import scipy.sparse as sp
 
@@ -60,6 +58,7 @@ from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.core.stations import STATIONS_HELP, parse_stations
 from pdverify.numerics.factorcache import digest
+from pdverify.numerics.kept import Kept
 from pdverify.numerics.linalg import solve_linear
 from reference_fem import curved_mesh as cm
 from reference_fem import plane_scenes, q4_variants, vtu
@@ -111,13 +110,12 @@ def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
     return 2 * lam * mu / (lam + 2 * mu), mu
 
 
-_KEPT: OrderedDict[str, tuple] = OrderedDict()  # mesh digest -> (basis, K): another load on the same strip
-KEPT_MESHES = 2
+_KEPT = Kept(2)  # mesh digest -> (basis, K): another load on the same strip
 KEPT_DOFS = 200_000  # larger strips are not kept (a 10,241-station strip's basis takes gigabytes)
 
 
 def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float):
-    """(the vector basis, K) of one material on ``mesh``, kept for the last :data:`KEPT_MESHES` meshes of up to
+    """(the vector basis, K) of one material on ``mesh``, kept for the last two meshes of up to
     :data:`KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element, the constants and the width): a
     study solves the same strip under several loads, and the assembly is a deterministic function of these."""
     import skfem as fem
@@ -125,18 +123,14 @@ def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float)
     key = digest(
         mesh.p, mesh.t, params=(element, lam, mu, scene.material.E, scene.material.poissons_ratio, scene.section.width)
     )
-    if key in _KEPT:
-        _KEPT.move_to_end(key)
-        return _KEPT[key]
-    basis = fem.Basis(mesh, fem.ElementVector(getattr(fem, ELEMENTS[element])()))
-    K = stiffness(basis, scene, element, lam, mu)
-    if basis.N > KEPT_DOFS:
+
+    def make():
+        basis = fem.Basis(mesh, fem.ElementVector(getattr(fem, ELEMENTS[element])()))
+        K = stiffness(basis, scene, element, lam, mu)
+        K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
         return basis, K
-    K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
-    _KEPT[key] = (basis, K)
-    while len(_KEPT) > KEPT_MESHES:
-        _KEPT.popitem(last=False)
-    return basis, K
+
+    return _KEPT.get(key, make, keep=lambda kept: kept[0].N <= KEPT_DOFS)
 
 
 def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):

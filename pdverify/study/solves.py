@@ -10,27 +10,22 @@ result a second solve would give; its timings are those of the solve that made i
 from __future__ import annotations
 
 import json
-from collections import OrderedDict
 
 from ..core.result import Result
+from ..numerics.kept import Kept
 from ..registry import run
 from .spec import _scene
 
-KEPT = 8  # results kept per process, the most recent first out
 KEPT_DOFS = 50_000  # larger solves are not kept (their arrays, and a 2D strip's basis in its writers)
-_kept: OrderedDict[tuple, Result] = OrderedDict()
+_kept = Kept(8)  # results, the most recent first out
 
 
 def solve(scene_text: str, scene_file: str, slenderness, model: str, given: dict) -> Result:
     """``registry.run`` of the scene (its text, file name and slenderness, as a case holds them) with ``model`` and
     the ``given`` options, or the result of the same call made before in this process."""
     key = (scene_text, scene_file, slenderness, model, json.dumps(given, sort_keys=True, default=str))
-    if key in _kept:
-        _kept.move_to_end(key)
-        return _kept[key]
-    result = run(_scene(scene_text, scene_file, slenderness), model, **given)
-    if result.dofs <= KEPT_DOFS:
-        _kept[key] = result
-        while len(_kept) > KEPT:
-            _kept.popitem(last=False)
-    return result
+    return _kept.get(
+        key,
+        lambda: run(_scene(scene_text, scene_file, slenderness), model, **given),
+        keep=lambda result: result.dofs <= KEPT_DOFS,
+    )
