@@ -48,12 +48,6 @@ def _ez(a: np.ndarray) -> np.ndarray:
 
 def integration_matrix(x: np.ndarray) -> np.ndarray:
     """S with (S f)_i = ∫_{-1}^{x_i} p(t) dt, p the polynomial interpolating f at the nodes x."""
-    return _integration_matrix(np.asarray(x, "<f8").tobytes()).copy()
-
-
-@functools.lru_cache(maxsize=8)
-def _integration_matrix(x_bytes: bytes) -> np.ndarray:
-    x = np.frombuffer(x_bytes, "<f8")
     n = len(x)
     Vinv = np.linalg.inv(leg.legvander(x, n - 1))
     lint = np.column_stack([leg.legint(np.eye(n)[k], lbnd=-1) for k in range(n)])  # (n + 1, n)
@@ -62,7 +56,8 @@ def _integration_matrix(x_bytes: bytes) -> np.ndarray:
 
 @functools.lru_cache(maxsize=8)
 def _panel_rule(order: int) -> tuple[np.ndarray, np.ndarray]:
-    """A panel's nodes (its ends and ``order`` Gauss-Legendre nodes) and their integration matrix."""
+    """A panel's nodes (its ends and ``order`` Gauss-Legendre nodes) and their integration matrix, made once per
+    order (every solution object of every scene uses the same)."""
     gx, _ = leg.leggauss(order)
     nodes = np.r_[-1.0, gx, 1.0]
     S = integration_matrix(nodes)
