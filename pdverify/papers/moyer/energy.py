@@ -228,34 +228,30 @@ def shear_strain(n: int, dx: float) -> sp.csr_matrix:
 
 def _core(scene: Scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """(K per length, ψ at the points) on n points: ∂U/∂u divided by the volumes, interleaved DOFs."""
-    if scene.uniform and n <= KEPT_POINTS:
-        K, P = _uniform_core(float(scene.kGA), float(scene.EI), n, float(dx), m)
+    if scene.uniform:
+        args = (float(scene.kGA), float(scene.EI), n, float(dx), m)
+        if n > KEPT_POINTS:
+            return _uniform_core(*args)
+        K, P = _kept_uniform_core(*args)
         return K.copy(), P.copy()
-    return _assemble_core(scene, n, dx, m)
+    B = shear_strain(n, dx)  # segments: each interval's kGA and each bond's EI
+    kga, bond = stiffnesses(scene, n, dx)
+    Ke = B.T @ sp.diags(kga * dx) @ B + sp.kron(bending_laplacian(n, m, bond) / dx, GAMMA)
+    return _per_volume(Ke, B, n, dx, m)
 
 
-@lru_cache(maxsize=32)
 def _uniform_core(kGA: float, EI: float, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     """:func:`_core` of a uniform beam, which depends on its kGA and EI only."""
-    return _assemble_core(_Uniform(kGA, EI), n, dx, m)
-
-
-class _Uniform:
-    """What :func:`_assemble_core` reads of a uniform scene."""
-
-    uniform = True
-
-    def __init__(self, kGA: float, EI: float):
-        self.kGA, self.EI = kGA, EI
-
-
-def _assemble_core(scene, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
     B = shear_strain(n, dx)
-    kga, bond = stiffnesses(scene, n, dx)
-    if bond is None:
-        Ke = (scene.kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (scene.EI / dx), GAMMA)
-    else:  # segments: each interval's kGA and each bond's EI
-        Ke = B.T @ sp.diags(kga * dx) @ B + sp.kron(bending_laplacian(n, m, bond) / dx, GAMMA)
+    Ke = (kGA * dx) * (B.T @ B) + sp.kron(bending_laplacian(n, m) * (EI / dx), GAMMA)
+    return _per_volume(Ke, B, n, dx, m)
+
+
+_kept_uniform_core = lru_cache(maxsize=32)(_uniform_core)  # per grid and horizon: a study solves many loads
+
+
+def _per_volume(Ke: sp.spmatrix, B: sp.spmatrix, n: int, dx: float, m: int) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(the energy's rows divided by the points' volumes, ψ at the points)."""
     vw, vg = volumes(n, m)
     K = sp.diags(1.0 / (np.column_stack((vw, vg)).ravel() * dx)) @ Ke
     return K.tocsr(), (to_points(n) @ B).tocsr()

@@ -276,3 +276,17 @@ def test_transient_converges_at_order_two_in_dt(left, right):
         err.append(np.sqrt(((h.values - ref) ** 2).mean() / (ref**2).mean()))
     rate = np.log2(np.array(err[:-1]) / np.array(err[1:]))
     assert np.all(np.abs(rate - 2) < 0.1), (err, rate)
+
+
+def test_the_kept_uniform_core_is_the_one_assembled_apart(monkeypatch):
+    """A uniform beam's energy core is kept per grid and horizon up to KEPT_POINTS points and assembled each time above:
+    the same matrices either way."""
+    from pdverify.core.scene_file import parse_scene
+    from pdverify.papers.moyer import energy
+    from pdverify.verify.suite import loads_for, straight
+
+    sc = parse_scene(straight("clamped", "free", loads_for(None)["sine"]))
+    kept = energy._core(sc, 60, 1 / 59, 3)
+    monkeypatch.setattr(energy, "KEPT_POINTS", 10)
+    apart = energy._core(sc, 60, 1 / 59, 3)
+    assert all((a != b).nnz == 0 for a, b in zip(kept, apart, strict=True))
