@@ -1,7 +1,8 @@
 """Figures of a load path on its paper's page: node health along the beam (O'Grady & Foster 2014, §3.2, Fig. 9): the
 fraction of each point's bond pairs that never passed their critical angle (pd-bond-pair), the fraction of the
-section's area that never yielded (exact-eb, fem-eb); and the load factor against the deflection at the path's peak
-point (:mod:`pdverify.measure.paths`), loading and unloading. Curves in, inline SVG out (:mod:`.figures`)."""
+section's area that never yielded (exact-eb, fem-eb); the load factor against the deflection at the path's peak
+point (:mod:`pdverify.measure.paths`), loading and unloading; and the section's moment-curvature law (Eq. 7's pairs)
+over the fibre theory's. Curves in, inline SVG out (:mod:`.figures`)."""
 
 from __future__ import annotations
 
