@@ -47,7 +47,9 @@ ENTRY_ROUNDING = 4  # relative uncertainty of each independently rounded term of
 
 def forward_error_bound(solve, solve_t, correction, magnitude, x, watch=None, iterations: int = 3) -> float:
     """Round-off bound on max_i |x_i - x*_i| / max_i |x_i| over the unknowns ``watch`` (default all) of a
-    computed solution x of A x* = b, in two parts:
+    computed solution x of A x* = b; ``watch`` a tuple of index arrays (fields in different units: a deflection,
+    a rotation, a higher-order kinematic variable): the largest of the fields' bounds, each relative to its own
+    field's largest value. In two parts:
 
     * the solve's own error, estimated by ``correction`` = A^-1 r, the refinement step of the residual r
       computed in extended precision (Demmel et al., ACM TOMS 32 (2006), LAPACK xGERFSX);
@@ -62,6 +64,8 @@ def forward_error_bound(solve, solve_t, correction, magnitude, x, watch=None, it
     The norm is estimated by Hager's method on the transpose: a few solves with A and A^T (``solve``,
     ``solve_t``) and products with G, linear in n, deterministic; like LAPACK's, an estimate of a bound,
     usually within a factor of 3 of it."""
+    if isinstance(watch, tuple):
+        return max(forward_error_bound(solve, solve_t, correction, magnitude, x, f, iterations) for f in watch)
     n = len(x)
     idx = np.arange(n) if watch is None else np.asarray(watch, np.int64)
     top = float(np.abs(x[idx]).max()) if len(idx) else 0.0

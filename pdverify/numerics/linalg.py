@@ -136,7 +136,6 @@ def solve_band(
     magnitude=None,
     refine: bool = False,
     entry_rounding: float | None = None,
-    cancelling_rows=None,
 ) -> tuple[np.ndarray, dict]:
     """Solve B u = b for a :class:`~pdverify.numerics.band.Band` (B is consumed: scaled in place).
 
@@ -199,7 +198,7 @@ def solve_band(
     _require_finite(u, what)
     # the data error's map: the scaled band's entries grouped by shared rounding (numerics/rounding.py)
     if magnitude is None:
-        m = BandRounding(B.data, B.upper, y, bs, _weight(entry_rounding), cancelling_rows)
+        m = BandRounding(B.data, B.upper, y, bs, _weight(entry_rounding))
     else:
         m = s * magnitude(u)
     _record_bound(info, _scaled_bound(solve, lambda z: solve(z, 1), s, s * dy, m, u, watch, 2))
@@ -257,7 +256,6 @@ def solve_linear(
     magnitude=None,
     refine_in_place: bool = False,
     entry_rounding: float | None = None,
-    cancelling_rows=None,
     bound: bool = True,
 ) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
@@ -279,8 +277,8 @@ def solve_linear(
     diag(s) K diag(s) (default 1/sqrt|diag K|; a saddle-point system with zero diagonal needs its own).
     ``entry_rounding``: the relative uncertainty of the matrix's entries in units of eps (default
     ``ENTRY_ROUNDING``), for the bound's data term; entries that share one rounding count once
-    (:mod:`pdverify.numerics.rounding`). ``cancelling_rows``: rows computed as products of dense operators,
-    whose entries are uncertain to the row's largest entry (the same module). ``bound = False`` (a sparse K): no
+    (:mod:`pdverify.numerics.rounding`). ``watch`` a tuple of index arrays: the largest of the fields' bounds, each
+    relative to its own field (unknowns in different units). ``bound = False`` (a sparse K): no
     residual, no bound (a Newton correction, whose error the next iteration's residual sees); the same solution.
     """
     if isinstance(K, Band):
@@ -291,7 +289,7 @@ def solve_linear(
             and K.lower <= banded_max
             and K.upper <= banded_max
         ):
-            return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place, entry_rounding, cancelling_rows)
+            return solve_band(K, b, what, scaling, watch, magnitude, refine_in_place, entry_rounding)
         K = K.tocsr()
     K, b = _finite_system(K, b, what)
     n = K.shape[0]
@@ -317,7 +315,7 @@ def solve_linear(
     if refinement:
         u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r))
     if bound:
-        rounding = (_weight(entry_rounding), cancelling_rows)
+        rounding = (_weight(entry_rounding),)
         layout = (
             None
             if magnitude is not None
@@ -372,9 +370,7 @@ def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int,
     return y, solve, solve_t, solver, Ks, key, shared
 
 
-def _residual_and_bound(
-    info: dict, K, b, u, s, solve, solve_t, magnitude, watch, rounding=(1.0, None), layout=None
-) -> None:
+def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, rounding=(1.0,), layout=None) -> None:
     """``info["residual"]``: max |K u - b| relative to the size of its terms (the unscaled system), and the
     round-off bound of :func:`forward_error_bound` (``info["error_bound"]``, a warning past ``BOUND_LIMIT``) with
     the correction of the residual computed in extended precision. ``layout``: K's :func:`csr_layout`, kept with

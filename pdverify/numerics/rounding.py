@@ -47,17 +47,14 @@ def significand_groups(values: np.ndarray) -> tuple[np.ndarray, int]:
 
 
 class _Rounding:
-    """What the two layouts share: the load vector's columns (grouped like the matrix's), the columns of the
-    cancelling rows (one each), and the products of those with z and y."""
+    """What the two layouts share: the load vector's columns (grouped like the matrix's) and their products with z
+    and y."""
 
-    def _rows_part(self, b, k_matrix: int, rows, row_terms) -> None:
+    def _rows_part(self, b, k_matrix: int) -> None:
         bgid, kb = significand_groups(b)
         self.bgid = bgid + k_matrix
         self.bterms = np.asarray(b, float) * self.s
-        self.crows = np.asarray([] if rows is None else rows, np.int64)
-        self.cterms = row_terms[self.crows] if len(self.crows) else np.zeros(0)
-        self.k0 = k_matrix + kb
-        self.k = self.k0 + len(self.crows)
+        self.k = k_matrix + kb
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -65,12 +62,10 @@ class _Rounding:
 
     def _add_rows(self, out: np.ndarray, z: np.ndarray) -> np.ndarray:
         out += self.bterms * z[self.bgid]
-        out[self.crows] += self.cterms * z[self.k0 :]
         return out
 
     def _rows_t(self, out: np.ndarray, y: np.ndarray) -> np.ndarray:
         out += np.bincount(self.bgid, weights=self.bterms * y, minlength=self.k)
-        out[self.k0 :] += self.cterms * y[self.crows]
         return out
 
 
@@ -78,29 +73,23 @@ class SharedRounding(_Rounding):
     """The map G (n x k) of the module docstring for a system given by its entries (``rows``, ``cols``, ``vals``; CSR
     in :meth:`from_csr`) at the solution ``x`` with load vector ``b``; ``row_scale`` multiplies G's rows (the
     symmetric scaling of a system solved as diag(s) A diag(s)); ``weight`` multiplies the matrix's columns (its
-    entries' rounding in units of the load vector's); ``cancelling``: rows whose entries are uncertain to the row's
-    largest. ``matvec(z)`` = G z (z in R^k), ``rmatvec(y)`` = G^T y. The entries should come diagonal by diagonal
-    (runs of equal entries together: a short sort)."""
+    entries' rounding in units of the load vector's). ``matvec(z)`` = G z (z in R^k), ``rmatvec(y)`` = G^T y. The
+    entries should come diagonal by diagonal (runs of equal entries together: a short sort)."""
 
-    def __init__(
-        self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, cancelling=None, groups=None
-    ):
+    def __init__(self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, groups=None):
         self.n = int(n)
         self.s = np.ones(self.n) if row_scale is None else np.asarray(row_scale, float)
         x = weight * np.asarray(x, float)
         self.rows = rows
         self.terms = vals * x[cols] * self.s[rows]  # a_ij x_j, scaled by row
         self.gid, k_matrix = significand_groups(vals) if groups is None else groups
-        big = np.zeros(self.n)  # in the scaled system diag(s) A diag(s), unknowns x / s: the row's largest entry
-        np.maximum.at(big, rows, np.abs(vals * self.s[rows] * self.s[cols]))
-        size = np.bincount(rows, weights=np.abs(x[cols] / self.s[cols]) * (vals != 0), minlength=self.n)
-        self._rows_part(b, k_matrix, cancelling, big * size)
+        self._rows_part(b, k_matrix)
 
     @classmethod
-    def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, cancelling=None, layout=None) -> SharedRounding:
+    def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, layout=None) -> SharedRounding:
         """``layout``: :func:`csr_layout` of K made before (a matrix met again with another load)."""
         rows, cols, vals, groups = csr_layout(K)[0] if layout is None else layout
-        return cls(rows, cols, vals, x, b, row_scale, K.shape[0], weight, cancelling, groups)
+        return cls(rows, cols, vals, x, b, row_scale, K.shape[0], weight, groups)
 
     def matvec(self, z: np.ndarray) -> np.ndarray:
         """G z: each entry's term times its group's weight, summed by row; plus the rows' own columns."""
@@ -130,7 +119,7 @@ class BandRounding(_Rounding):
     :class:`pdverify.numerics.band.Band`'s layout; the band's own scaling already applied): the products run
     diagonal by diagonal on ``data`` itself, so the only copy is one group id per stored entry."""
 
-    def __init__(self, data: np.ndarray, upper: int, x, b, weight: float = 1.0, cancelling=None):
+    def __init__(self, data: np.ndarray, upper: int, x, b, weight: float = 1.0):
         self.data, self.upper = data, int(upper)
         self.x = weight * np.asarray(x, float)  # the weight of the matrix's columns, carried by x
         self.n = data.shape[1]
@@ -138,13 +127,7 @@ class BandRounding(_Rounding):
         gid, k_matrix = significand_groups(data)
         self.k_matrix = k_matrix
         self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64).reshape(data.shape)
-        big, size = np.zeros(self.n), np.zeros(self.n)
-        if cancelling is not None and len(cancelling):
-            for rs, cs, r in self._diagonals():
-                a = np.abs(self.data[r, cs])
-                big[rs] = np.maximum(big[rs], a)
-                size[rs] += np.abs(self.x[cs]) * (a > 0)
-        self._rows_part(b, k_matrix, cancelling, big * size)
+        self._rows_part(b, k_matrix)
 
     def _diagonals(self):
         """(row slice, column slice, data row) of every stored diagonal: entry j of the column slice is

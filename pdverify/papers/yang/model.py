@@ -107,7 +107,7 @@ from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
 from . import dynamics
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
-from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor, window_rows
+from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
 from .outputs import point_load_warnings, reactions, section_stresses
 from .supports import section_forces, with_supports
 
@@ -325,7 +325,6 @@ class PDHigherOrder(Model):
             info["clamp_layer"] = clamp_springs(B, scene, lay.n, lay.dx, span, drop)
         F = load_vector(scene, lay.x, self.choice(params, "loads") == "faces").ravel()
         info["end_rows"] = [(k, c0, D, F[NF * k : NF * k + NF].copy()) for k, c0, D in end_rows]
-        info["window_rows"] = window_rows(lay, J)
         b = held_system(B, F, drop, tie, lay.symmetric)
         info["stiffness_factor"] = stiffness_factor(J, lay.m, lay.dx, lay.variant, lay.fractions)
         info.update(pin=lay.pin, loads=self.choice(params, "loads"), clamp=lay.clamp)
@@ -419,12 +418,14 @@ class PDHigherOrder(Model):
             tie = binfo.pop("ties")
             end_rows = binfo.pop("end_rows")
             unknowns, scales = binfo.pop("unknowns"), binfo.pop("scales")
-            windows = binfo.pop("window_rows", None)
         with timer("solve"):
-            z, info = solve_linear(
-                system.matrix, system.rhs, what=f"pd-higher-order ({params['variant']})", cancelling_rows=windows
-            )
             n = params["points"]
+            z, info = solve_linear(
+                system.matrix,
+                system.rhs,
+                what=f"pd-higher-order ({params['variant']})",
+                watch=(np.arange(W, NF * n, NF), np.arange(TH, NF * n, NF)),  # in its own units each
+            )
             u, lam = z[: NF * n].copy(), z[NF * n :]
             for slave, master, c in tie:
                 u[slave] = c * u[master]

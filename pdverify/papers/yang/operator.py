@@ -186,13 +186,6 @@ def window_parts(n: int, J: int, calibrate: str, reach: int, cuts: tuple[int, ..
     return parts, span
 
 
-def window_rows(lay: Layout, J: int) -> np.ndarray:
-    """The band rows :func:`band_operator` writes from its dense windows (products of the extended grid's sparse
-    operators, whose entries are sums of cancelling terms: ``solve_linear``'s ``cancelling_rows``)."""
-    parts, _ = window_parts(lay.n, J, lay.calibrate, lay.reach, lay.cuts)
-    return np.unique(np.concatenate([np.arange(NF * (r0 + a), NF * (r0 + b)) for r0, _r1, a, b in parts]))
-
-
 def band_operator(lay: Layout, J: int):
     """(B, end_rows, span): the band of the constrained operator (end conditions as in :meth:`Layout.window`; the
     held DOFs not yet unit rows), the unconstrained rows of the two end points [(point, first column, rows)]

@@ -52,3 +52,16 @@ def test_the_bound_watches_the_named_unknowns():
     _, all_ = solve_linear(A.copy(), b)
     _, even = solve_linear(A.copy(), b, watch=np.arange(0, n, 2))
     assert even["error_bound"] > 1e3 * all_["error_bound"]
+
+
+@pytest.mark.parametrize("n", [4_000, SMALL + 10_000])
+def test_fields_in_other_units_are_bounded_each_against_its_own_size(n):
+    """A tuple of fields: the largest of the fields' bounds, each relative to its own field (both paths)."""
+    A = Band(n, 1, 1).add_stencil([-1, 0, 1], [-1.0, 4.0, -1.0])
+    u_star, _ = exact_pair(A, 2)
+    u_star[1::2] *= 1e6
+    b = A.matvec(u_star)
+    even, odd = np.arange(0, n, 2), np.arange(1, n, 2)
+    bounds = [solve_linear(A.copy(), b, watch=w)[1]["error_bound"] for w in (even, odd)]
+    _, both = solve_linear(A.copy(), b, watch=(odd, even))
+    assert both["error_bound"] == max(bounds)
