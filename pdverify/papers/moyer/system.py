@@ -136,7 +136,8 @@ def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tup
     the system is singular to working precision (condition estimate > 1/eps: e.g. the paper variant's pure
     extrapolation at a free rod end)."""
     B, rhs, held = static_system(scene, disc) if system is None else system
-    u, info = solve_linear(B, rhs, what=what)
+    fields = tuple(np.arange(f, len(rhs), disc.nf) for f in range(disc.nf))  # w and rotation: each in its units
+    u, info = solve_linear(B, rhs, what=what, watch=fields if disc.nf > 1 else None)
     cond = info.get("cond", 0.0)
     if cond * np.finfo(float).eps > 1.0:  # an infinite estimate too (a zero pivot); NaN (no estimate) is not
         free = (  # what an end leaves free: the beam's w and rotation, the rod's u, the bar's twist
