@@ -1,5 +1,5 @@
 """exact-higher-order: the exact solution of the local higher-order beam theory (Yang et al. 2020, Eq. 2-9), the
-reference pd-higher-order converges to (issue #32)."""
+reference pd-higher-order converges to."""
 
 import numpy as np
 import pytest

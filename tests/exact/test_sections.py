@@ -1,4 +1,4 @@
-"""Engineering outputs (issue #32 item 4): the exact sine-loaded strip (pdverify/exact/strip.py), through-section
+"""Engineering outputs: the exact sine-loaded strip (pdverify/exact/strip.py), through-section
 stresses at stations from fem-plane-stress and pd-higher-order (Eq. 6a-c), support reactions, and what
 ``pdverify solve`` writes."""
 

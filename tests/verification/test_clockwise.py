@@ -1,4 +1,4 @@
-"""Clockwise arcs and negative curvature (issue #31 item 3): every curved model on mirror-image axes.
+"""Clockwise arcs and negative curvature: every curved model on mirror-image axes.
 
 A clockwise arc (``direction = "clockwise"``) from start angle 180° - a0 is the reflection about the vertical
 line x = 0 of the counter-clockwise arc from a0, with the same arc length s at reflected points

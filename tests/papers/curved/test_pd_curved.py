@@ -100,7 +100,7 @@ def test_straight_sine_clamped_clamped_each_degree(P, form):
 def test_mixed_degree_6_has_no_error_floor_growing_with_the_particles():
     """Mixed form, P = 6, straight sine: with the default family (7 members, default_horizon) the error stays at
     round-off from 401 to 6401 particles (measured 4.0e-13, 5.3e-13, 1.8e-12); the 9-member family it replaced
-    (horizon 4) has the floor of issue #31 growing with n (3.9e-8, 2.2e-7, 1.2e-6)."""
+    (horizon 4) has an error floor growing with n (3.9e-8, 2.2e-7, 1.2e-6)."""
     sc = load_scene("studies/paper_curved/straight_sine.toml")
     new, old = [], []
     for n in (401, 1601, 6401):
@@ -338,7 +338,7 @@ def test_quintic_axis_every_support_pair_partial_load(pair):
     assert disp_error(res, get_model("exact-curved").evaluate(sc, {}, res.x)) < 2e-5
 
 
-# -- band assembly (issue #13) -----------------------------------------------------------------------
+# -- band assembly -----------------------------------------------------------------------
 
 
 def _sparse_resultant_system(model, sc, params, body=None):
@@ -487,7 +487,7 @@ def test_equilibrated_columns_and_interleaved_resultants():
         assert np.array_equal(d["cscale"][d["perm"]], d["cscale_i"])
 
 
-# -- non-uniform particles (issue #31, seed 004: "not limited to uniform distributions") -------------------
+# -- non-uniform particles (the curved PDDO paper: "not limited to uniform distributions") -------------------
 
 
 def _steep_error(n, **opts):

@@ -131,7 +131,7 @@ def _symbol_slope_at_pi(P, m):
 
 @pytest.mark.parametrize("P", [2, 3, 4, 5, 6, 7, 8, 9, 10])
 def test_default_mixed_families_keep_the_first_derivative_symbol_away_from_zero_near_pi(P):
-    """The cause of the P = 6 error floor of the mixed form (issue #31): with P + 3 members the Gaussian weight
+    """The cause of the P = 6 error floor of the mixed form: with P + 3 members the Gaussian weight
     sets the stencil's spare coefficients and the symbol's slope at pi collapses (P = 6: 0.017) or turns
     negative (P = 8, 10: -0.41, -0.82, a spurious null mode); default_horizon's families keep it >= 0.44
     (measured 0.67, 1.67, 0.45, 2.2, 2.2, 2.66, 2.66, 3.06, 3.06 for P = 2..10)."""

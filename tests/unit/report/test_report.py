@@ -603,7 +603,7 @@ def test_ci_requires_the_browser():
 
 @pytest.fixture(scope="module")
 def curved_dir(tmp_path_factory):
-    """A curved study measuring rotation, moment and axial force (seed 004's error measures)."""
+    """A curved study measuring rotation, moment and axial force (the curved PDDO paper's error measures)."""
     tmp_path = tmp_path_factory.mktemp("curved")
     p = tmp_path / "c.toml"
     p.write_text(f'''name = "c"
@@ -611,7 +611,7 @@ scenes = ["{ROOT}/studies/paper_curved/semicircle_normal.toml"]
 reference = "exact-curved-cantilever"
 quantities = ["rotation", "moment", "axial"]
 [papers]
-paper_curved = "seed 004"
+paper_curved = "Curved PDDO beam 2024"
 [[runs]]
 model = "pd-curved"
 degree = 2
