@@ -149,8 +149,11 @@ class Case:
     @property
     def size(self) -> int:
         """How large a case is, to run the largest batches first: its points and those of a reference it solves (a
-        reference of its own kind solved once per batch counts in each case; the order is what matters)."""
-        return _points(self.given.get("points")) + _points(self.reference.get("points"))
+        reference of its own kind solved once per batch counts in each case; the order is what matters); a transient
+        times the states it records (end_time / output_interval: a time step each at least), so that the few long
+        time-stepping runs start first instead of ending the study on one worker."""
+        points = _points(self.given.get("points")) + _points(self.reference.get("points"))
+        return points * _recorded_states(self.scene_text)
 
     @property
     def operator_group(self) -> str:
@@ -177,6 +180,17 @@ def _skeleton(text: str) -> str:
         return json.dumps({k: v for k, v in tomllib.loads(text).items() if k != "loads"}, sort_keys=True, default=str)
     except tomllib.TOMLDecodeError:
         return text
+
+
+@lru_cache(maxsize=256)
+def _recorded_states(text: str) -> int:
+    """The states a scene's transient records (end_time / output_interval, or / time_step when it gives no interval),
+    1 for a static scene, one that gives neither, or one not read."""
+    try:
+        dyn = tomllib.loads(text).get("dynamics")
+        return max(1, round(float(dyn["end_time"]) / float(dyn.get("output_interval") or dyn["time_step"])))
+    except (tomllib.TOMLDecodeError, AttributeError, KeyError, TypeError, ValueError, ZeroDivisionError, OverflowError):
+        return 1
 
 
 @lru_cache(maxsize=256)

@@ -61,3 +61,12 @@ def test_the_largest_batch_by_points_goes_first():
     assert got[0][0] == 6 and large.size == 641 + 10241 and small[0].size == 21
     by_count = list(execute.pool(_record, todo, list(range(7)), None, 1, groups))
     assert by_count[-1][0] == 6  # by count alone it went last
+
+
+def test_a_transient_is_as_large_as_the_states_it_records():
+    """A time-stepping run on few points outlasts a static one on many: it counts its points times its recorded
+    states (end_time / output_interval), so it starts first."""
+    dynamic = SCENE + "\n[dynamics]\nend_time = 0.6\noutput_interval = 2.0e-4\n"
+    transient = Case("t.toml", dynamic, None, "pd-timoshenko", {"points": 101}, {})
+    static = Case("s.toml", SCENE, None, "pd-timoshenko", {"points": 3201}, {})
+    assert transient.size == 101 * 3000 > static.size == 3201
