@@ -28,6 +28,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from pdverify.core.geometry import AxisGeometry, geometry
+from pdverify.numerics.factorcache import digest
+from pdverify.numerics.kept import Kept
+
+KEPT_DOFS = 200_000  # the bases of larger strips are not kept (a 10,241-station strip's basis takes gigabytes)
+_FACETS = Kept(8)  # (mesh, element, facets) digest -> FacetBasis: other loads on the same edges of one strip
 
 _GX, _GW = np.polynomial.legendre.leggauss(8)
 
@@ -139,13 +144,24 @@ def _facet_forces(bm: BeamMesh, basis, a: np.ndarray, b: np.ndarray, density) ->
     import skfem as fem
     from skfem.helpers import dot
 
-    fb = fem.FacetBasis(bm.mesh, basis.elem, facets=bm.facet_ids(a, b), intorder=15, mapping=_facet_mapping(bm.mesh))
+    facets = bm.facet_ids(a, b)
+    key = digest(bm.mesh.p, bm.mesh.t, np.asarray(facets), params=_element_name(basis.elem) + (basis.N,))
+    fb = _FACETS.get(
+        key,
+        lambda: fem.FacetBasis(bm.mesh, basis.elem, facets=facets, intorder=15, mapping=_facet_mapping(bm.mesh)),
+        keep=lambda _: basis.N <= KEPT_DOFS,
+    )
 
     @fem.LinearForm
     def work(v, w):
         return dot(density(w.x[0], w.x[1]), v)
 
     return work.assemble(fb)
+
+
+def _element_name(elem) -> tuple[str, str]:
+    """The element's class and, for a vector element, its scalar element's class: what its basis is made of."""
+    return type(elem).__name__, type(getattr(elem, "elem", None)).__name__
 
 
 def row_edges(bm: BeamMesh, j: int, lo: float = -np.inf, hi: float = np.inf):

@@ -110,14 +110,14 @@ def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
     return 2 * lam * mu / (lam + 2 * mu), mu
 
 
-_KEPT = Kept(2)  # mesh digest -> (basis, K): another load on the same strip
-KEPT_DOFS = 200_000  # larger strips are not kept (a 10,241-station strip's basis takes gigabytes)
+_KEPT = Kept(2)  # mesh digest -> (basis, K): another load on the same strip; strips of up to cm.KEPT_DOFS unknowns
 
 
 def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float):
     """(the vector basis, K) of one material on ``mesh``, kept for the last two meshes of up to
-    :data:`KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element, the constants and the width): a
-    study solves the same strip under several loads, and the assembly is a deterministic function of these."""
+    :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element, the
+    constants and the width): a study solves the same strip under several loads, and the assembly is a deterministic
+    function of these."""
     import skfem as fem
 
     key = digest(
@@ -130,7 +130,7 @@ def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float)
         K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
         return basis, K
 
-    return _KEPT.get(key, make, keep=lambda kept: kept[0].N <= KEPT_DOFS)
+    return _KEPT.get(key, make, keep=lambda kept: kept[0].N <= cm.KEPT_DOFS)
 
 
 def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):

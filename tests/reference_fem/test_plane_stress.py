@@ -156,3 +156,25 @@ def test_a_strip_met_again_takes_its_kept_assembly_and_gives_the_same_bits():
     factorcache.clear()
     apart = run(other, "fem-plane-stress", points=41)
     assert np.array_equal(kept.w, apart.w) and kept.info["error_bound"] == apart.info["error_bound"]
+
+
+def test_a_line_load_met_again_on_the_same_edges_takes_its_kept_facet_basis_and_gives_the_same_bits():
+    """Two line loads on the same edges of one strip: the second takes the first's FacetBasis
+    (reference_fem/curved_mesh.py) and its result is the same to the bit as a solve with nothing kept."""
+    from pdverify.numerics import factorcache
+    from reference_fem import curved_mesh, plane_stress
+
+    sc = cantilever(20)
+    line = [{"type": "distributed", "value": -1000.0, "start": 0.2, "end": 0.6}]
+    first = sc.model_copy(update={"loads": parse_scene(scene_dict("clamped", "free", line)).loads})
+    line[0]["value"] = 250.0
+    other = sc.model_copy(update={"loads": parse_scene(scene_dict("clamped", "free", line)).loads})
+    curved_mesh._FACETS.clear()
+    run(first, "fem-plane-stress", points=41)
+    kept = run(other, "fem-plane-stress", points=41)
+    assert len(curved_mesh._FACETS) == 1  # one set of edges: its basis made once
+    curved_mesh._FACETS.clear()
+    plane_stress._KEPT.clear()
+    factorcache.clear()
+    apart = run(other, "fem-plane-stress", points=41)
+    assert np.array_equal(kept.w, apart.w) and kept.info["error_bound"] == apart.info["error_bound"]
