@@ -204,6 +204,7 @@ class _MoyerModel(Model):
             with timer("solve"):
                 u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
             info.update(sinfo, analysis="static")
+        if info["analysis"] == "static":  # with supports at the ends or inside the span
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m) + point_force_order(self, scene, params)
             # variant energy applies a couple as the operator's action on its kink: second order there
             flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
@@ -218,6 +219,25 @@ class _MoyerModel(Model):
     def end_reactions(self, scene, params, disc, u, loads, inner, kinks) -> tuple[dict, str]:  # pragma: no cover
         """{(side, key): value} of the rigid ends' reactions and where they come from (.constraints.reactions)."""
         raise NotImplementedError
+
+
+def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
+    """pd-rod's and pd-torsion's first-order warning: a point force (torque) or a rigid support inside, m > 1."""
+    torsion = model.unknowns == "torsion"
+    inside = [
+        ld.position
+        for ld in scene.loads
+        if (ld.type == "point_torque" if torsion else ld.type == "point_force" and ld.axial != 0.0)
+        and 0.0 < ld.position < scene.length
+    ] + [s.position for s in scene.supports.inner if s.type != "spring"]
+    if params["horizon"] <= 1 or not inside:
+        return []
+    what = "a point torque" if torsion else "an axial point force"
+    return [
+        f"{model.name} converges at first order near {what} or a rigid support inside (x = {min(inside):g}): the "
+        "load on one point makes a spike about a horizon wide (2.15e-2, 1.07e-2, 5.37e-3 at 101, 201, 401 points on a "
+        "centre load, m = 3); with horizon = 1 the points are exact"
+    ]
 
 
 def _statics_only(scene: Scene, model: str, what: str) -> None:
@@ -257,12 +277,16 @@ def _context(scene: Scene, params: dict) -> str:
 
 
 def point_force_order(model, scene: Scene, params: dict) -> list[str]:
-    """The corrected beam's known loss of order: a transverse point force inside the beam is first order there (its
-    jump in shear falls between the collocation points' PD sums; docs/models/moyer.md, "Known limits")."""
+    """The known losses of order under a point load (docs/models/moyer.md, "Known limits"): the corrected beam's
+    transverse point force inside the beam (its jump in shear falls between the collocation points' PD sums); the
+    rod's and the bar's point force (torque) or rigid support inside, for m > 1 (the load on one point, P / (A Δ),
+    makes a spike of u about a horizon wide)."""
+    if not model.bending:
+        return rod_point_load_order(model, scene, params)
     inside = [
         ld for ld in scene.loads if ld.type == "point_force" and ld.value != 0.0 and 0.0 < ld.position < scene.length
     ]
-    if not (model.bending and params["variant"] == "corrected" and inside):
+    if not (params["variant"] == "corrected" and inside):
         return []
     return [
         "variant = corrected converges at first order near a point force inside the beam "

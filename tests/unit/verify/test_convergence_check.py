@@ -42,3 +42,16 @@ def test_round_off_on_one_grid_only_is_no_pass():
     rows = C.series(_rows({"b": [7e-2, 3e-2, 2e-2, 1e-12]}), ["b"])
     assert rows[0]["exact_from"] is None
     assert np.isnan(rows[0]["order"]) or rows[0]["order"] < 1.7
+
+
+def test_a_scene_below_the_order_that_the_model_warns_of_is_explained_and_still_fails():
+    """The card says why where the model does: the failing scenes carrying the model's own first-order warning at the
+    finest grid are counted and the warning quoted; the verdict is the same."""
+    errors = {"a": _second_order(1e-2), "b": [4e-2, 2e-2, 1e-2, 5e-3], "c": [4e-2, 2e-2, 1e-2, 5e-3]}
+    df = _rows(errors)
+    said = "model x converges at first order near a point load (x = 0.5): 2e-2, 1e-2 at 41, 81 points"
+    df["warnings"] = np.where(df["scene_file"] == "b", "a load in a boundary layer; " + said, "")
+    check = C.convergence(C.series(df, list(errors)), 2.0, "convergence (straight)")
+    assert check["verdict"] == "fail" and check["failing"] == ["b", "c"], check
+    assert check["summary"].endswith("; 1 of them warned by the model: " + said), check
+    assert C.convergence(C.series(_rows(errors), list(errors)), 2.0, "c")["summary"].count("warned") == 0
