@@ -23,8 +23,8 @@ of H): the variational statement of the same end conditions.
 Solution: exact piecewise by matrix exponentials. Every load is constant or a sine on a piece between the
 breakpoints (ends, point loads, spans' ends), so on each piece the state augmented with (1, sin kx, cos kx) obeys a
 constant linear system. In the modal coordinates of M (:func:`modal_basis`) it splits into three blocks: the slow
-one (the polynomial beam solutions, an exact 4 x 4 Jordan chain), the boundary layer's decaying pair (a complex pair
-of eigenvalues of order 1/h: layers a fraction of h wide), propagated from the piece's left end, and its growing
+one (the polynomial beam solutions, an exact 4 x 4 Jordan chain), the boundary layer's decaying pair (eigenvalues of
+order 1/h: layers a fraction of h wide), propagated from the piece's left end, and its growing
 pair, propagated back from the piece's right end, so no exponential exceeds the polynomial growth of the slow block
 however long the beam. Eight unknowns per piece meet the end conditions and, at every break, continuity and the
 jumps: one small dense system. Everything is written in units of h (length) and E' b h (force), where every
@@ -69,33 +69,23 @@ def modal_basis(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     the eigenvalue 0 (the polynomial beam solutions, w cubic), from the rigid translation z1 = e_w (M z1 = 0) by
     M z_(j+1) = z_j (least squares: the equations are consistent), whose block is the exact shift matrix (a
     round-off perturbation of a 4 x 4 Jordan block has eigenvalues ~1e-4, which grow without bound over a long
-    beam); decaying and growing: the boundary layer's pair -alpha +- i beta and its mirror, in real form."""
+    beam); decaying and growing: the boundary layer's two-dimensional invariant subspaces of the eigenvalues with
+    negative and positive real part (ordered real Schur forms: orthonormal bases, well conditioned since the layer's
+    eigenvalues, of order 1/h, are far from 0). Their eigenvalues are a complex pair -alpha +- i beta and its mirror
+    for a Poisson's ratio below about 0.4, two real pairs above it, and a defective double pair in between: the
+    subspaces hold in every case, where eigenvectors would not."""
     chain = [np.eye(8)[2]]
     for _ in range(3):
         chain.append(np.linalg.lstsq(M, chain[-1], rcond=None)[0])
-    lam, V = np.linalg.eig(M)
-    fast = [np.argmin(np.where(lam.imag > 0, sign * lam.real, np.inf)) for sign in (1.0, -1.0)]
-    layer = [inverse_iteration(M, lam[i], V[:, i]) for i in fast]
-    T = np.column_stack(chain + [np.column_stack([v.real, v.imag]) for v in layer])
+    gap = 1e-3 * np.abs(M).max()  # between the layer's eigenvalues (~1/h, here ~10) and the slow block's 0
+    layer = [sla.schur(M, output="real", sort=lambda re, im, s=sign: s * re > gap)[1][:, :2] for sign in (-1.0, 1.0)]
+    T = np.column_stack(chain + layer)
     B = np.linalg.solve(T, M @ T)
     exact = np.zeros((8, 8))
     exact[0, 1] = exact[1, 2] = exact[2, 3] = 1.0  # M z_(j+1) = z_j
     for blk in (BLOCKS["decay"], BLOCKS["grow"]):
         exact[blk, blk] = B[blk, blk]
     return T, exact
-
-
-def inverse_iteration(M: np.ndarray, lam: complex, v: np.ndarray, steps: int = 2) -> np.ndarray:
-    """The eigenvector of M for the simple eigenvalue near ``lam``, refined from ``v`` by inverse iteration with a
-    Rayleigh-quotient shift. LAPACK's eigenvectors of the layer modes of this M (which also has the defective
-    eigenvalue 0) can be off by ~1e-7 for one ulp of change in the material constants; two steps bring them to
-    round-off."""
-    n = len(v)
-    for _ in range(steps):
-        v = np.linalg.solve(M - lam * np.eye(n), v)
-        v = v / np.linalg.norm(v)
-        lam = np.vdot(v, M @ v)
-    return v
 
 
 def held(support: str, pin: str) -> np.ndarray:

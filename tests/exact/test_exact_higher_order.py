@@ -177,3 +177,17 @@ def test_a_point_load_between_grid_points_is_flagged():
         flagged.append(any("not on a cut grid point" in w for w in r.info.get("warnings", [])))
     assert flagged == [False, True]
     assert errs[1] > 5 * errs[0]
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.4, 0.45, 0.499])
+def test_every_poissons_ratio_has_its_boundary_layer_and_pd_higher_order_converges_to_it(nu):
+    """The layer's eigenvalues of Eq. 9's system are a complex pair below nu ~ 0.4, a double pair there and two real
+    pairs above (exact/higher_order.py, modal_basis); each is a solution pd-higher-order converges to at second
+    order (pinned-pinned, uniform load, L/h = 20)."""
+    sc = _scene("pinned", "pinned", UNIFORM, length=1.0, h=0.05)
+    sc = sc.model_copy(update={"material": sc.material.model_copy(update={"poissons_ratio": nu})})
+    errors = []
+    for n in (101, 201, 401):
+        exact, pd = run(sc, "exact-higher-order", points=n), run(sc, "pd-higher-order", points=n)
+        errors.append(np.abs(pd.w - exact.w).max() / np.abs(exact.w).max())
+    assert abs(np.log2(errors[1] / errors[2]) - 2) < 0.1, errors
