@@ -81,8 +81,6 @@ def forward_error_bound(solve, solve_t, correction, magnitude, x, watch=None, it
             return float("inf")
     if not np.isfinite(step):
         return float("inf")
-    if top == 0.0:
-        return 0.0 if step == 0.0 and not any_data else float("inf")
 
     def bt(y):  # B^T y for B = A^-1 G restricted to the rows idx
         z = np.zeros(n)
@@ -90,6 +88,8 @@ def forward_error_bound(solve, solve_t, correction, magnitude, x, watch=None, it
         return gtmul(solve_t(z))
 
     est = hager_norm1(bt, lambda y: solve(gmul(y))[idx], len(idx), iterations) if any_data and k else 0.0
+    if top == 0.0:  # nothing moves (every load on the supports): exact when no rounding reaches the unknowns
+        return 0.0 if est + step == 0.0 else float("inf")
     total = (est + step) / top  # ||B^T||_1 = ||B||_inf
     return float(f"{total:.3g}") if np.isfinite(total) else float("inf")
 

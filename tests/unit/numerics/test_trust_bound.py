@@ -65,3 +65,11 @@ def test_fields_in_other_units_are_bounded_each_against_its_own_size(n):
     bounds = [solve_linear(A.copy(), b, watch=w)[1]["error_bound"] for w in (even, odd)]
     _, both = solve_linear(A.copy(), b, watch=(odd, even))
     assert both["error_bound"] == max(bounds)
+
+
+def test_a_solution_that_does_not_move_is_exact_not_unbounded():
+    """Every load on the supports: b = 0, u = 0 exactly, whatever the matrix's rounding: bound 0, no warning (a
+    relative bound of a zero solution would read inf and warn of nothing)."""
+    A = fourth_difference(2_000)
+    u, info = solve_linear(A, np.zeros(2_000))
+    assert not u.any() and info["error_bound"] == 0.0 and "warnings" not in info
