@@ -162,11 +162,9 @@ def convergence(rows: list[dict], expected: float, label: str) -> dict:
 def order_warnings(bad: list[dict]) -> str:
     """Why scenes fall below the order, where the model says so: how many of ``bad`` carry its own warning of a lower
     order at the finest grid, and the first such warning."""
-    said = [w for r in bad for w in r.get("warnings", "").split("; ") if "first order" in w]
-    if not said:
-        return ""
-    n = sum(any("first order" in w for w in r.get("warnings", "").split("; ")) for r in bad)
-    return f"; {n} of them warned by the model: {said[0]}"
+    said = [next((w for w in r.get("warnings", "").split("; ") if "first order" in w), None) for r in bad]
+    said = [w for w in said if w]
+    return f"; {len(said)} of them warned by the model: {said[0]}" if said else ""
 
 
 def accuracy(rows: list[dict]) -> dict:

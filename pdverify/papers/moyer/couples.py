@@ -44,8 +44,8 @@ def couple_column(op, scene: Scene, x: np.ndarray, m: int, weights: np.ndarray, 
         near = np.repeat(np.abs(x - a) <= reach, 2)
         col = np.where(near, col, 0.0)
         couple, force = _resultants(col, x, a, weights)
-        # the rows' sums cancel terms of the shear stiffness's size: their rounding, (|K| |u_s|)'s sums times eps,
-        # grows as (L/h)^2 (5.8e-8 at L/h = 1e4, 41 points), beside the ramp's exactness
+        # the rows' sums cancel terms of the shear stiffness's size: their rounding, eps times the same sums of
+        # |K| |u_s|, grows as (L/h)^2 and is allowed beside the ramp's exactness
         size = np.where(near, abs(op.tocsr()) @ np.abs(us), 0.0)
         c_size, f_size = _resultants(size, x, a, weights, np.abs)
         tol = 1e-8 + RESULTANT_ROUNDING * np.finfo(float).eps * np.array([c_size, f_size * L])
