@@ -43,25 +43,13 @@ import scipy.linalg as sla
 from ..core.contract import POINTS, Model, Option
 from ..core.result import Result, Timer
 from ..core.scene import Distributed, PointForce, PointMoment, Scene
-from ..theory.higher_order import coefficients, point_work
+from ..theory.higher_order import point_work, system_matrix
 
-D1 = np.zeros((5, 4))
-D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e = w*' + ...
-D0 = np.zeros((5, 4))
-D0[[1, 3, 4], [3, 0, 1]] = 2.0, 1.0, 3.0  # s = 2 w*, g = ... + theta, e = ... + 3 theta*
 # the forcing's largest entry in the augmented generators: small beside the modal blocks (entries ~1-10), so their
 # exponential sets the Pade degree and scaling of expm (a very large entry would cost digits, and even one of 1
 # makes expm much slower)
 FORCING = 1e-7
 BLOCKS = {"slow": slice(0, 4), "decay": slice(4, 6), "grow": slice(6, 8)}  # the modal coordinates' blocks
-
-
-def system_matrix(nu: float, shear_ratio: float) -> np.ndarray:
-    """M (8 x 8) of z' = M z for z = (y, N), in units of h and E' b h; shear_ratio = G / E'."""
-    C = coefficients(1.0 - nu * nu, nu, shear_ratio, 1.0)  # E' = 1
-    K11, K10, K00 = D1.T @ C @ D1, D1.T @ C @ D0, D0.T @ C @ D0
-    Ki = np.linalg.inv(K11)
-    return np.block([[-Ki @ K10, Ki], [K00 - K10.T @ Ki @ K10, K10.T @ Ki]])
 
 
 def modal_basis(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -43,3 +43,26 @@ def point_work(load: PointForce | PointMoment, h: float, faces: bool, at_end: bo
         if faces and at_end:
             g[TS] = -load.value * 3 * h * h / 20
     return g
+
+
+D1 = np.zeros((5, 4))
+D1[[0, 2, 3, 4], [0, 1, 2, 3]] = 1.0  # a = theta', c = theta*', g = w' + ..., e = w*' + ...
+D0 = np.zeros((5, 4))
+D0[[1, 3, 4], [3, 0, 1]] = 2.0, 1.0, 3.0  # s = 2 w*, g = ... + theta, e = ... + 3 theta*
+
+
+def system_matrix(nu: float, shear_ratio: float) -> np.ndarray:
+    """M (8 x 8) of z' = M z for z = (y, N), the theory's equilibrium (Eq. 9) as a first-order system along the beam,
+    in units of h and E' b h; shear_ratio = G / E'."""
+    C = coefficients(1.0 - nu * nu, nu, shear_ratio, 1.0)  # E' = 1
+    K11, K10, K00 = D1.T @ C @ D1, D1.T @ C @ D0, D0.T @ C @ D0
+    Ki = np.linalg.inv(K11)
+    return np.block([[-Ki @ K10, Ki], [K00 - K10.T @ Ki @ K10, K10.T @ Ki]])
+
+
+def layer_width(nu: float, shear_ratio: float, h: float) -> float:
+    """The widest of the boundary layers an end or a load starts (the eigenvalues of :func:`system_matrix` off 0
+    are of order 1/h; the layer decays as exp(-Re(lambda) x / h)): h / min |Re lambda|. About 0.11 h at nu = 0.3."""
+    lam = np.linalg.eigvals(system_matrix(nu, shear_ratio))
+    fast = np.abs(lam.real)[np.abs(lam) > 1e-3 * np.abs(lam).max()]
+    return float(h / fast.min())

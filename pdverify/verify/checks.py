@@ -7,6 +7,7 @@ Orders and slopes come from :mod:`pdverify.measure.metrics`. A verdict is ``pass
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -159,10 +160,13 @@ def convergence(rows: list[dict], expected: float, label: str) -> dict:
     )
 
 
+LOWER_ORDER = re.compile(r"\bfirst order\b|instead of falling at second order")  # a model's own warning of it
+
+
 def order_warnings(bad: list[dict]) -> str:
-    """Why scenes fall below the order, where the model says so: how many of ``bad`` carry its own warning of a lower
-    order at the finest grid, and the first such warning."""
-    said = [next((w for w in r.get("warnings", "").split("; ") if "first order" in w), None) for r in bad]
+    """Why scenes fall below the order, where the model says so: how many of ``bad`` carry its own warning about its
+    order (first order near a load, a layer not yet resolved) at the finest grid, and the first such warning."""
+    said = [next((w for w in r.get("warnings", "").split("; ") if LOWER_ORDER.search(w)), None) for r in bad]
     said = [w for w in said if w]
     return f"; {len(said)} of them warned by the model: {said[0]}" if said else ""
 

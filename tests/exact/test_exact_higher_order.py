@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from pdverify.core.scene_file import load_scene, parse_scene
-from pdverify.exact.higher_order import D0, D1, Solution
+from pdverify.exact.higher_order import Solution
 from pdverify.registry import get_model, run
-from pdverify.theory.higher_order import coefficients
+from pdverify.theory.higher_order import D0, D1, coefficients
 
 E, NU, B = 2e11, 0.3, 0.05
 EXACT = get_model("exact-higher-order")

@@ -108,7 +108,7 @@ from . import dynamics
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
 from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
-from .outputs import point_load_warnings, reactions, section_stresses
+from .outputs import clamp_layer_warning, point_load_warnings, reactions, section_stresses
 from .supports import section_forces, with_supports
 
 
@@ -440,7 +440,7 @@ class PDHigherOrder(Model):
         flags = boundary_layer_warnings(scene, x, reach)
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        for flag in point_load_warnings(scene, params, info):
+        for flag in point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx):
             info.setdefault("warnings", []).append(flag)
         own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
         if unknowns:

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import PointForce, PointMoment, Scene
+from ...theory.higher_order import layer_width
 
 
 def section_stresses(
@@ -124,3 +125,26 @@ def recovery_warnings(scene: Scene, interior: list) -> list[str]:
             "second order (docs/models/yang.md)"
         )
     return out
+
+
+LAYER_RESOLVED, LAYER_UNSEEN = 1 / 8, 20  # spacings, in layer widths, between which a clamp's layer is in transition
+
+
+def clamp_layer_warning(scene: Scene, dx: float) -> list[str]:
+    """A clamped end on a grid in its layer's transition (:func:`~pdverify.theory.higher_order.layer_width` of
+    Eq. 9): w* turns within that layer; on spacings from :data:`LAYER_UNSEEN` widths (the layer too thin to matter)
+    down to :data:`LAYER_RESOLVED` of a width the errors change irregularly instead of falling at second order
+    (docs/models/yang.md, "Clamped ends": cantilevers at L/h = 5 to 10^4)."""
+    clamped = [side for side in ("left", "right") if getattr(scene.supports, side) == "clamped"]
+    if not clamped:
+        return []
+    mat = scene.material
+    width = layer_width(mat.poissons_ratio, mat.G * (1 - mat.poissons_ratio**2) / mat.E, scene.section.depth)
+    if not LAYER_RESOLVED * width < dx < LAYER_UNSEEN * width:
+        return []
+    points = int(np.ceil(scene.length / (LAYER_RESOLVED * width))) + 1
+    return [
+        f"clamped {' and '.join(clamped)} end: the spacing is {dx / width:.3g} widths of the clamp's layer of w* "
+        f"({width:.3g}, Eq. 9), in its transition: the error may change irregularly instead of falling at second "
+        f"order until the spacing is an eighth of a width (at least {points} points)"
+    ]

@@ -694,3 +694,15 @@ def test_clamp_layer_transition_study_measures_what_the_card_fails(tmp_path):
     errors = errors[np.argsort(points)]  # coarse to fine
     assert check.verdict == "expected-fail" and check.observed_order < 1.2, check
     assert errors[-1] < 1e-3 and errors[-1] < errors[0] / 3 and np.any(np.diff(errors) > 0), errors
+
+
+@pytest.mark.parametrize("slenderness, points, warned", [(20, 161, True), (20, 2561, False), (1e4, 161, False)])
+def test_a_clamp_layer_in_transition_is_warned(slenderness, points, warned):
+    """The clamp's layer of w* (theory.higher_order.layer_width, about 0.11 h): between 20 widths and an eighth of a
+    width per spacing the error changes irregularly (docs/models/yang.md, "Clamped ends"), and the result says so;
+    a grid that resolves it, or a beam so slender that the layer does not matter, is not warned."""
+    d = scene_dict("clamped", "free", [{"type": "distributed", "value": -1000.0}])
+    d["section"]["height"] = d["beam"]["length"] / slenderness
+    r = run(parse_scene(d), "pd-higher-order", points=points)
+    said = [w for w in r.info.get("warnings", []) if "layer of w*" in w]
+    assert bool(said) == warned, said
