@@ -6,6 +6,10 @@ three or more points (``observed_order``, with ``r2``) and the slope of its two 
 * ``model error``: ``err_model`` (continuum - local) against delta (one value per delta: its finest grid's);
 * ``dm-convergence``: ``err_max`` (discrete - local, the total) against delta at a fixed m = delta / dx.
 
+The first two are measured against the model's continuum, which reports its own error (``continuum_error``, an
+extrapolation's estimate): where that estimate is above a tenth of the smallest error of the fit, the continuum
+could decide the order, and the row gives none (``continuum_in_doubt``; its errors are still listed).
+
 A series is the rows of one scene, model, slenderness and option set but for the grid and the horizon.
 """
 
@@ -18,6 +22,7 @@ import numpy as np
 from ..measure.metrics import log_slope, observed_order
 
 KEY = ("scene", "model", "options", "slenderness")
+CONTINUUM_SHARE = 0.1  # a continuum whose own error estimate passes this share of an error could decide it
 HORIZON_KEYS = ("horizon", "horizon_length", "continuum", "continuum_m")  # not in a series' key
 PATHS = {
     "m-convergence": ("spacing", "err_disc", "horizon"),
@@ -46,13 +51,14 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
     for r in sorted(rows, key=lambda r: -_f(r.get("points"))):  # the finest grid first: kept per length
         x = round(_f(r.get(xcol)), 12)
         if np.isfinite(x) and x not in by_x:
-            by_x[x] = _f(r.get(ecol))
+            by_x[x] = (_f(r.get(ecol)), _f(r.get("continuum_error")))
     if len(by_x) < 3:
         return None
     x = np.array(sorted(by_x))
-    e = np.array([by_x[v] for v in x])
-    p, r2 = observed_order(x, e)
-    fine = log_slope(x[:2], e[:2])[0]
+    e, own = (np.array([by_x[v][i] for v in x]) for i in (0, 1))
+    doubt = path != "dm-convergence" and bool(np.nanmax(np.append(own, 0.0)) > CONTINUUM_SHARE * e.min())
+    p, r2 = observed_order(x, e) if not doubt else (float("nan"), float("nan"))
+    fine = log_slope(x[:2], e[:2])[0] if not doubt else float("nan")
     return {
         **base,
         "path": path,
@@ -63,6 +69,7 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
         "observed_order": p,
         "r2": r2,
         "finest_order": fine,
+        "continuum_in_doubt": doubt,
     }
 
 

@@ -1,0 +1,36 @@
+"""nonlocal.csv (pdverify/study/nonlocal_table.py): orders fitted against the model's continuum only where the
+continuum's own error estimate cannot decide them."""
+
+import numpy as np
+
+from pdverify.study.nonlocal_table import CONTINUUM_SHARE, nonlocal_rows
+
+
+def _rows(continuum_error):
+    """A second-order m-convergence series at delta = 0.1: err_disc = 0.1 (dx / 0.0125)^2 on four grids."""
+    out = []
+    for n in (81, 161, 321, 641):
+        dx = 1.0 / (n - 1)
+        e = 1e-3 * (dx / 0.0125) ** 2
+        out.append(
+            {
+                "status": "ok", "scene": "s", "model": "pd-x", "options": '{"horizon_length": 0.1}',
+                "slenderness": None, "points": n, "spacing": dx, "horizon": 0.1, "m": 0.1 / dx, "err_disc": e,
+                "err_model": 1e-2, "err_max": 1e-2 + e, "continuum_error": continuum_error,
+            }
+        )  # fmt: skip
+    return out
+
+
+def test_an_order_against_a_continuum_that_knows_its_error_is_fitted():
+    (row,) = [r for r in nonlocal_rows(_rows(None)) if r["path"] == "m-convergence"]
+    assert abs(row["observed_order"] - 2) < 1e-9 and not row["continuum_in_doubt"]
+
+
+def test_a_continuum_whose_own_error_could_decide_the_order_gives_none():
+    smallest = 1e-3 * ((1 / 640) / 0.0125) ** 2
+    (row,) = [r for r in nonlocal_rows(_rows(2 * CONTINUUM_SHARE * smallest)) if r["path"] == "m-convergence"]
+    assert row["continuum_in_doubt"] and np.isnan(row["observed_order"]) and np.isnan(row["finest_order"])
+    assert len(row["errors"].split()) == 4  # the errors are still listed
+    (ok,) = [r for r in nonlocal_rows(_rows(0.5 * CONTINUUM_SHARE * smallest)) if r["path"] == "m-convergence"]
+    assert not ok["continuum_in_doubt"] and abs(ok["observed_order"] - 2) < 1e-9
