@@ -30,11 +30,13 @@ def _orders(nonlocal_table: pd.DataFrame, scene: str, model: str, options: str) 
     sel = nonlocal_table[(nonlocal_table["scene"] == scene) & (nonlocal_table["model"] == model)]
     parts = []
     for _, r in sel.iterrows():
-        if _strip(r.get("options")) != options or pd.isna(r.get("observed_order")):
+        doubt = str(r.get("continuum_in_doubt")).lower() == "true"  # the continuum's own error could decide it
+        if _strip(r.get("options")) != options or (pd.isna(r.get("observed_order")) and not doubt):
             continue
         held = str(r.get("held") or "").replace("horizon = ", "δ = ")
         path = PATH_SHORT.get(r["path"], r["path"])
-        parts.append(f"{path} {fixed(r['observed_order'], 2)}" + (f" ({held})" if held else ""))
+        value = "none (continuum in doubt)" if doubt else fixed(r["observed_order"], 2)
+        parts.append(f"{path} {value}" + (f" ({held})" if held else ""))
     return "orders: " + ", ".join(parts) if parts else ""
 
 

@@ -34,3 +34,15 @@ def test_a_continuum_whose_own_error_could_decide_the_order_gives_none():
     assert len(row["errors"].split()) == 4  # the errors are still listed
     (ok,) = [r for r in nonlocal_rows(_rows(0.5 * CONTINUUM_SHARE * smallest)) if r["path"] == "m-convergence"]
     assert not ok["continuum_in_doubt"] and abs(ok["observed_order"] - 2) < 1e-9
+
+
+def test_the_plane_figure_says_when_the_continuum_is_in_doubt():
+    """The δ–Δx plane title (pdverify/report/planes.py) names a path without an order instead of dropping it."""
+    import pandas as pd
+
+    from pdverify.report.planes import _orders
+
+    smallest = 1e-3 * ((1 / 640) / 0.0125) ** 2
+    table = pd.DataFrame(nonlocal_rows(_rows(2 * CONTINUUM_SHARE * smallest)))
+    title = _orders(table, "s", "pd-x", "{}")
+    assert title == "orders: m none (continuum in doubt) (δ = 0.1)", title
