@@ -315,13 +315,12 @@ def solve_linear(
     if refinement:
         u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r))
     if bound:
-        rounding = (_weight(entry_rounding),)
         layout = (
             None
             if magnitude is not None
             else factorcache.derived(info["factorisation"], "rounding", lambda: csr_layout(K))
         )
-        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, rounding, layout)
+        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, _weight(entry_rounding), layout)
     if condition is None:
         condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised
@@ -370,7 +369,7 @@ def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int,
     return y, solve, solve_t, solver, Ks, key, shared
 
 
-def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, rounding=(1.0,), layout=None) -> None:
+def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, weight=1.0, layout=None) -> None:
     """``info["residual"]``: max |K u - b| relative to the size of its terms (the unscaled system), and the
     round-off bound of :func:`forward_error_bound` (``info["error_bound"]``, a warning past ``BOUND_LIMIT``) with
     the correction of the residual computed in extended precision. ``layout``: K's :func:`csr_layout`, kept with
@@ -379,7 +378,7 @@ def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
     rl = np.asarray(np.asarray(b, np.longdouble) - K.astype(np.longdouble) @ np.asarray(u, np.longdouble), float)
-    m = SharedRounding.from_csr(K, u, b, s, *rounding, layout=layout) if magnitude is None else s * magnitude(u)
+    m = SharedRounding.from_csr(K, u, b, s, weight, layout=layout) if magnitude is None else s * magnitude(u)
     _record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), m, u, watch))
 
 

@@ -50,7 +50,7 @@ class _Rounding:
     """What the two layouts share: the load vector's columns (grouped like the matrix's) and their products with z
     and y."""
 
-    def _rows_part(self, b, k_matrix: int) -> None:
+    def _load_part(self, b, k_matrix: int) -> None:
         bgid, kb = significand_groups(b)
         self.bgid = bgid + k_matrix
         self.bterms = np.asarray(b, float) * self.s
@@ -60,11 +60,11 @@ class _Rounding:
     def shape(self) -> tuple[int, int]:
         return (self.n, self.k)
 
-    def _add_rows(self, out: np.ndarray, z: np.ndarray) -> np.ndarray:
+    def _add_load(self, out: np.ndarray, z: np.ndarray) -> np.ndarray:
         out += self.bterms * z[self.bgid]
         return out
 
-    def _rows_t(self, out: np.ndarray, y: np.ndarray) -> np.ndarray:
+    def _load_t(self, out: np.ndarray, y: np.ndarray) -> np.ndarray:
         out += np.bincount(self.bgid, weights=self.bterms * y, minlength=self.k)
         return out
 
@@ -83,7 +83,7 @@ class SharedRounding(_Rounding):
         self.rows = rows
         self.terms = vals * x[cols] * self.s[rows]  # a_ij x_j, scaled by row
         self.gid, k_matrix = significand_groups(vals) if groups is None else groups
-        self._rows_part(b, k_matrix)
+        self._load_part(b, k_matrix)
 
     @classmethod
     def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, layout=None) -> SharedRounding:
@@ -92,14 +92,14 @@ class SharedRounding(_Rounding):
         return cls(rows, cols, vals, x, b, row_scale, K.shape[0], weight, groups)
 
     def matvec(self, z: np.ndarray) -> np.ndarray:
-        """G z: each entry's term times its group's weight, summed by row; plus the rows' own columns."""
+        """G z: each entry's term times its group's weight, summed by row; plus the load vector's."""
         z = np.asarray(z, float)
-        return self._add_rows(np.bincount(self.rows, weights=self.terms * z[self.gid], minlength=self.n), z)
+        return self._add_load(np.bincount(self.rows, weights=self.terms * z[self.gid], minlength=self.n), z)
 
     def rmatvec(self, y: np.ndarray) -> np.ndarray:
         """G^T y: each group's terms weighted by their rows' y, summed by group."""
         y = np.asarray(y, float)
-        return self._rows_t(np.bincount(self.gid, weights=self.terms * y[self.rows], minlength=self.k), y)
+        return self._load_t(np.bincount(self.gid, weights=self.terms * y[self.rows], minlength=self.k), y)
 
 
 def csr_layout(K) -> tuple[tuple, int]:
@@ -127,7 +127,7 @@ class BandRounding(_Rounding):
         gid, k_matrix = significand_groups(data)
         self.k_matrix = k_matrix
         self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64).reshape(data.shape)
-        self._rows_part(b, k_matrix)
+        self._load_part(b, k_matrix)
 
     def _diagonals(self):
         """(row slice, column slice, data row) of every stored diagonal: entry j of the column slice is
@@ -142,7 +142,7 @@ class BandRounding(_Rounding):
         out = np.zeros(self.n)
         for rs, cs, r in self._diagonals():
             out[rs] += self.data[r, cs] * self.x[cs] * z[self.gid[r, cs]]
-        return self._add_rows(out, z)
+        return self._add_load(out, z)
 
     def rmatvec(self, y: np.ndarray) -> np.ndarray:
         """G^T y: each stored entry's term a_ij x_j y_i summed by group; diagonal by diagonal when the matrix has
@@ -153,8 +153,8 @@ class BandRounding(_Rounding):
             for rs, cs, r in self._diagonals():
                 terms = self.data[r, cs] * self.x[cs] * y[rs]
                 out[: self.k_matrix] += np.bincount(self.gid[r, cs], weights=terms, minlength=self.k_matrix)
-            return self._rows_t(out, y)
+            return self._load_t(out, y)
         w = np.zeros(self.data.shape)
         for rs, cs, r in self._diagonals():
             w[r, cs] = self.data[r, cs] * self.x[cs] * y[rs]
-        return self._rows_t(np.bincount(self.gid.ravel(), weights=w.ravel(), minlength=self.k), y)
+        return self._load_t(np.bincount(self.gid.ravel(), weights=w.ravel(), minlength=self.k), y)
