@@ -64,7 +64,7 @@ import scipy.sparse as sp
 
 from ...core.contract import NONLOCAL, Model, Option, System
 from ...core.errors import InputError
-from ...core.geometry import mechanism_message
+from ...core.geometry import geometry, mechanism_message
 from ...core.result import Result, Timer
 from ...core.scene import Scene
 from ...numerics.band import Band
@@ -319,10 +319,10 @@ class PDCurved(Model):
             z = Z.T.ravel()
             EA, kGA, EI = particle_stiffness(scene, d["segs"])
             Nf, Qf, Mf = EA * (d["Eps"] @ z), kGA * (d["Gam"] @ z), EI * (d["Chi"] @ z)
-        if scene.is_straight:  # the supports' forces and moments, from the resultants at the particles
-            info["reactions"] = reactions(
-                scene, d["segs"], d["offs"], np.array([Nf, Qf, Mf]), lambda at: _point_loads(scene, at)
-            )
+        # the supports' forces and moments, from the resultants at the particles
+        info["reactions"] = reactions(
+            scene, d["segs"], d["offs"], np.array([Nf, Qf, Mf]), lambda at: _point_loads(scene, at)
+        )
         # output on the uniform grid of ``points`` positions (independent of the loads): the particle value
         # where a particle sits there, else the degree-P PDDO interpolant g^0 of its segment; at a break
         # the left segment's (left limit of the resultants)
@@ -408,9 +408,11 @@ MODELS = [PDCurved()]
 
 
 def _point_loads(scene: Scene, at: float) -> np.ndarray:
-    """(F_t, F_n, C) of the scene's point loads at ``at`` (a straight axis: t = +x, n = +z)."""
+    """(F_t, F_n, C) of the scene's point loads at arc length ``at``, in the axis' frame there (a straight axis:
+    t = +x, n = +z)."""
+    t, n = geometry(scene).frame(np.array(at))
     F = np.zeros(3)
     for load in scene.loads:
         if getattr(load, "position", None) is not None and abs(load.position - at) <= 1e-9 * scene.length:
-            F += force_components(load, np.array([1.0, 0.0]), np.array([0.0, 1.0]))
+            F += force_components(load, t, n)
     return F

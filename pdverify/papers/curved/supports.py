@@ -14,8 +14,9 @@ at s = 0: -R = F - k u). Each particle's EA, kGA and EI are its segment's (a seg
 interface being a break), so the constitutive law is exact piece by piece and N, Q, M are continuous across an
 interface.
 
-Reactions (``info["reactions"]``, keyed as exact-timoshenko's: force +z = along n, moment counter-clockwise): at an
-inner support -(R⁺ - R⁻) - F, at the ends -R(0) - F and R(L) - F, from the resultants at the particles.
+Reactions (``info["reactions"]``, keyed as exact-timoshenko's: ``force`` along n, ``axial`` along t, moment
+counter-clockwise): at an inner support -(R⁺ - R⁻) - F, at the ends -R(0) - F and R(L) - F, from the resultants at
+the particles. On a curved axis they are the ends' in the frame (t, n) of the axis there; on a straight one n = +z.
 """
 
 from __future__ import annotations
