@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.contract import POINTS, Model
+from ..core.contract import LOAD_TYPES, POINTS, Model
 from ..core.result import Result, Timer
 from ..core.scene import Scene
+from .brittle import BrittleDisplacement, displacement_load
 from .plastic import solve_path
 from .straight import solve_straight
 
@@ -14,7 +15,29 @@ from .straight import solve_straight
 def follows_path(scene: Scene) -> bool:
     """True when ``scene`` asks for a load path: a ``[loading]`` table, a yield stress or a failure strain."""
     mat = scene.material
-    return scene.loading is not None or bool(mat.yield_stress or mat.failure_strain)
+    displaced = any(ld.type == "displacement" for ld in scene.loads)
+    return scene.loading is not None or displaced or bool(mat.yield_stress or mat.failure_strain)
+
+
+def _path(scene: Scene, x: np.ndarray):
+    """(path, info, last-state fields at any x) of the scene's load path: a prescribed deflection on an elastic or
+    brittle beam (:mod:`.brittle`), else the elastic-perfectly plastic or brittle beam under forces
+    (:mod:`.plastic`)."""
+    load = displacement_load(scene)
+    if load is not None:
+        beam = BrittleDisplacement(scene, load)
+        path, info, (lam, failed) = beam.path(x)
+        return path, info, lambda s: beam.fields(s, lam, failed)
+    path, info, beam, (lam, peak) = solve_path(scene, x)
+
+    def fields(s):
+        s = np.asarray(s, float)
+        w, rot, _ = beam.deflection(s, lam, peak)
+        V = lam * beam.unit.fields(s)["V"]
+        health = path[-1]["health"] if s is x else beam.section_state(s, lam, peak)["health"]
+        return {"w": w, "rotation": rot, "M": lam * beam.M1(s), "V": V, "health": health}
+
+    return path, info, fields
 
 
 class ExactBeam(Model):
@@ -32,6 +55,7 @@ class ExactBeam(Model):
         if not shear:  # the fibre law along a load path (pdverify.exact.plastic), statically determinate scenes
             self.materials = frozenset({"yield_stress", "failure_strain"})
             self.load_path = True
+            self.load_types = LOAD_TYPES | {"displacement"}  # a prescribed deflection alone (pdverify.exact.brittle)
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
         return self.evaluator(scene, params)(x)
@@ -43,14 +67,8 @@ class ExactBeam(Model):
 
     def _path_evaluator(self, scene: Scene):
         """The last step's fields of the load path at any x."""
-        _, _, beam, (lam, peak) = solve_path(scene, np.array([0.0]))
-
-        def fields(x):
-            w, rot, _ = beam.deflection(x, lam, peak)
-            m1 = beam.M1(x)
-            return {"w": w, "rotation": rot, "M": lam * m1, "V": lam * beam.unit.fields(np.asarray(x, float))["V"]}
-
-        return fields
+        fields = _path(scene, np.array([0.0]))[2]
+        return lambda x: {k: v for k, v in fields(x).items() if k != "health"}
 
     def solve(self, scene: Scene, params: dict) -> Result:
         if not self.shear and follows_path(scene):
@@ -79,15 +97,15 @@ class ExactBeam(Model):
         timer = Timer()
         with timer("solve"):
             x = np.linspace(0.0, scene.length, params["points"])
-            path, info, beam, (lam, peak) = solve_path(scene, x)
-            w, rot, _ = beam.deflection(x, lam, peak)
+            path, info, fields = _path(scene, x)
+            f = fields(x)
         return self.new_result(
             scene,
             params,
             x,
-            w,
-            rotation=rot,
-            fields={"M": lam * beam.M1(x), "health": path[-1]["health"]},
+            f["w"],
+            rotation=f["rotation"],
+            fields={"M": f["M"], "health": f["health"]},
             dofs=4,
             timings=timer.timings,
             info=info,

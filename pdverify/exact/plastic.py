@@ -53,12 +53,6 @@ def check(scene: Scene) -> None:
         )
     if scene.segments:
         raise InputError("segments: exact-eb's load path takes one section and material; use fem-eb")
-    for i, ld in enumerate(scene.loads):
-        if ld.type == "displacement":
-            raise InputError(
-                f"loads[{i}]: a prescribed deflection makes the beam indeterminate; exact-eb's load path takes "
-                "forces, moments and distributed loads: use fem-eb"
-            )
     mat, prof = scene.material, scene.section.profile
     if (mat.yield_stress or mat.failure_strain) and (prof is None or not prof.symmetric):
         raise InputError(

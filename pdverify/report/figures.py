@@ -59,13 +59,18 @@ def deflection(
     return _finish(fig, ax, f"x ({unit})", f"{ylabel} ({yunit or unit})", title)
 
 
-def load_deflection(curves: list[tuple[str, np.ndarray, np.ndarray, float]], title: str, unit: str = "m") -> str:
-    """Load factor against the deflection at one point, one line per run (label, factors, deflections, the point):
-    a load path's loading and unloading branches."""
+def load_deflection(
+    curves: list[tuple[str, np.ndarray, np.ndarray, float]],
+    title: str,
+    unit: str = "m",
+    ylabel: str = "load factor (–)",
+) -> str:
+    """Load factor (or ``ylabel``'s quantity) against the deflection at one point, one line per run (label, load,
+    deflections, the point): a load path's loading and unloading branches."""
     fig, ax = plt.subplots(figsize=(6.4, 3.4))
-    for label, factor, w, x in curves:
-        ax.plot(w, factor, "-", lw=1.2, marker="o" if len(w) <= 40 else None, ms=3, label=f"{label} (x = {x:.4g})")
-    return _finish(fig, ax, f"w at x ({unit})", "load factor (–)", title)
+    for label, load, w, x in curves:
+        ax.plot(w, load, "-", lw=1.2, marker="o" if len(w) <= 40 else None, ms=3, label=f"{label} (x = {x:.4g})")
+    return _finish(fig, ax, f"w at x ({unit})", ylabel, title)
 
 
 def moment_curvature(

@@ -22,9 +22,12 @@ def health_figures(curves: list[tuple[str, np.ndarray, np.ndarray]], title: str,
 
 def load_path_figures(paths: list[tuple[str, dict]], title: str, unit: str) -> list[str]:
     """One figure of every run's load factor against its peak deflection (``load_path`` of its case: factor, w,
-    x); none without a path."""
+    x), or of the force a prescribed deflection takes where every path gives it; none without a path."""
     if not paths:
         return []
+    if all("force" in p for _, p in paths):  # deflection control: the force that holds the prescribed deflection
+        curves = [(label, np.asarray(p["force"]), np.asarray(p["w"]), float(p["x"])) for label, p in paths]
+        return [figures.load_deflection(curves, f"{title}: load path", unit, "force at the prescribed deflection (N)")]
     curves = [(label, np.asarray(p["factor"]), np.asarray(p["w"]), float(p["x"])) for label, p in paths]
     return [figures.load_deflection(curves, f"{title}: load path", unit)]
 
