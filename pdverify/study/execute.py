@@ -33,12 +33,13 @@ def serial(run, todo, ids, artefacts):
         yield cid, run(case, artefacts, cid)
 
 
-def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, sizes: list | None = None):
+def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, sizes: list | None = None, order=None):
     """The cases in ``workers`` processes, one batch of cases per task: the cases with the same key in ``groups``
     (one key per case; None: each case alone) run one after another in one process, so that those on one operator
     share its factorisation and their reference (:mod:`pdverify.numerics.factorcache`); the largest batches go
     first (by the sum of their cases' ``sizes``, one number per case, e.g. its points; else by their count), so
-    that the last batches to end are short ones. Ctrl-C: no further batch starts, the batches already handed to the
+    that the last batches to end are short ones. Inside a batch the cases run sorted by ``order`` (one sort key per
+    case; None: as given). Ctrl-C: no further batch starts, the batches already handed to the
     workers (those running and up to ``workers + 1`` queued) finish and are yielded, then KeyboardInterrupt goes on.
     Any other way out (the caller's error, the generator closed) cancels the batches not started and waits for those
     in flight, which are dropped. The workers are never killed from here: a worker killed while it sends a record
@@ -46,14 +47,16 @@ def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, si
     batches: dict = {}
     for i, key in enumerate(groups if groups is not None else range(len(todo))):
         batches.setdefault(key, []).append(i)
+    if order is not None:
+        batches = {k: sorted(b, key=lambda i: order[i]) for k, b in batches.items()}
     weight = (lambda b: sum(sizes[i] for i in b)) if sizes is not None else len
-    order = sorted(batches.values(), key=weight, reverse=True)
+    by_weight = sorted(batches.values(), key=weight, reverse=True)
     # fork on Linux whatever the Python version (3.14 made forkserver the default)
     ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
     ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),))
     futs, given = [], set()
     try:
-        for batch in order:
+        for batch in by_weight:
             futs.append(ex.submit(_run_batch, run, [todo[i] for i in batch], artefacts, [ids[i] for i in batch]))
         for fut in as_completed(futs):
             records = fut.result()

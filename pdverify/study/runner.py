@@ -386,7 +386,8 @@ def _run_study(
         loop = execute.on_dask(run_case, todo_cases, todo_ids, scheduler)
     elif n > 1:
         groups, sizes = [c.operator_group for c in todo_cases], [c.size for c in todo_cases]
-        loop = execute.pool(run_case, todo_cases, todo_ids, files, n, groups, sizes)
+        order = [c.batch_order for c in todo_cases]
+        loop = execute.pool(run_case, todo_cases, todo_ids, files, n, groups, sizes, order)
     else:
         loop = execute.serial(run_case, todo_cases, todo_ids, files)
     keep = Keeper(out, code_digest())

@@ -156,6 +156,14 @@ class Case:
         return points * _recorded_states(self.scene_text)
 
     @property
+    def batch_order(self) -> tuple:
+        """Where a case runs in its batch (:attr:`operator_group`): scene by scene, each scene's finest grid first.
+        A model judged against itself solves its reference grid as a case (the theory gap) and as the reference of
+        the coarser grids: one after the other, the second is the kept first (:mod:`.solves`), where a batch that
+        ran grid by grid would have pushed it out of the few results a process keeps."""
+        return (self.scene_file, str(self.slenderness), -_points(self.given.get("points")))
+
+    @property
     def operator_group(self) -> str:
         """The key of the cases that run in one process (:func:`pdverify.study.execute.pool`): the model, its options
         but the grid, the slenderness and the scene without its loads, whatever their references. Cases with one key
@@ -172,12 +180,17 @@ def _points(value) -> int:
     return value if isinstance(value, int) and not isinstance(value, bool) else 0
 
 
+_NOT_OPERATOR = ("loads", "name", "description")  # what a scene may change without changing its operators
+
+
 @lru_cache(maxsize=256)
 def _skeleton(text: str) -> str:
-    """A scene file without its loads, as sorted JSON, once per scene (the text itself when it is no TOML: such a
-    case fails with its own record)."""
+    """A scene file without its loads and its names, as sorted JSON, once per scene (the text itself when it is no
+    TOML: such a case fails with its own record)."""
     try:
-        return json.dumps({k: v for k, v in tomllib.loads(text).items() if k != "loads"}, sort_keys=True, default=str)
+        return json.dumps(
+            {k: v for k, v in tomllib.loads(text).items() if k not in _NOT_OPERATOR}, sort_keys=True, default=str
+        )
     except tomllib.TOMLDecodeError:
         return text
 

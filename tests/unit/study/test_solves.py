@@ -70,3 +70,33 @@ def test_a_transient_is_as_large_as_the_states_it_records():
     transient = Case("t.toml", dynamic, None, "pd-timoshenko", {"points": 101}, {})
     static = Case("s.toml", SCENE, None, "pd-timoshenko", {"points": 3201}, {})
     assert transient.size == 101 * 3000 > static.size == 3201
+
+
+def test_scenes_that_differ_in_their_loads_and_names_share_a_batch_scene_by_scene_finest_first():
+    """A card's scenes on one support pair differ in their loads and names only: one batch, so one process factorises
+    each grid's operator once; inside it each scene's reference grid runs first, then that scene's coarser grids, so
+    the kept solve of the reference grid is still there when they ask for it."""
+    uniform = SCENE.replace('name = "cantilever"', 'name = "cantilever, uniform"').replace(
+        'type = "point_force"\nposition = 2.0', 'type = "distributed"'
+    )
+    reference = {"model": "pd-eb", "points": 161}
+    cases = [
+        Case(f, text, None, "pd-eb", {"points": n}, reference if n < 161 else {"model": "exact-timoshenko"})
+        for n in (21, 41, 161)
+        for f, text in (("a.toml", SCENE), ("b.toml", uniform))
+    ]
+    assert len({c.operator_group for c in cases}) == 1
+    got = list(
+        execute.pool(
+            _record,
+            cases,
+            list(range(6)),
+            None,
+            1,
+            [c.operator_group for c in cases],
+            None,
+            [c.batch_order for c in cases],
+        )
+    )
+    ran = [(r["case"].scene_file, r["case"].given["points"]) for _, r in got]
+    assert ran == [("a.toml", 161), ("a.toml", 41), ("a.toml", 21), ("b.toml", 161), ("b.toml", 41), ("b.toml", 21)]
