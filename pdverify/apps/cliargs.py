@@ -5,6 +5,8 @@ model options."""
 from __future__ import annotations
 
 import functools
+import os
+from pathlib import Path
 
 import typer
 
@@ -40,8 +42,32 @@ def user_errors(fn):
                     "that keep its numbers within about 1e-100..1e100"
                 )
             )
+        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+            raise
+        except Exception as exc:  # a defect of pdverify, not of the input: one line, its own exit code
+            if os.environ.get("PDVERIFY_DEBUG"):
+                raise
+            _internal(exc)
 
     return wrapper
+
+
+INTERNAL_EXIT = 70  # a defect of pdverify itself (EX_SOFTWARE of sysexits.h): not 1, which CI reads as a failed check
+
+
+def _internal(exc: Exception) -> None:
+    """One line for an exception no input should cause, with where it was raised, and exit :data:`INTERNAL_EXIT`."""
+    import traceback
+
+    frames = traceback.extract_tb(exc.__traceback__)
+    where = f" at {Path(frames[-1].filename).name}:{frames[-1].lineno}" if frames else ""
+    text = str(exc).splitlines()[0] if str(exc) else ""
+    typer.echo(
+        f"error: internal error of pdverify ({exc.__class__.__name__}{': ' + text if text else ''}{where}); "
+        "please report it with the command and its input files; PDVERIFY_DEBUG=1 shows the traceback",
+        err=True,
+    )
+    raise typer.Exit(INTERNAL_EXIT)
 
 
 _SCENE_FILES: list = []  # scene files a command read, to name their extreme values when a computation overflows
