@@ -247,8 +247,12 @@ def _statics_only(scene: Scene, model: str, what: str) -> None:
         found.append("an elastic end (spring)")
     if found:
         raise InputError(
-            f"{', '.join(found)}: model {model} solves these statically only, not {what}; use -o analysis=static "
-            "(or drop the [dynamics] table)"
+            f"{', '.join(found)}: model {model} solves these statically only, not {what}; "
+            + (
+                "drop them for its frequencies (pdverify solve takes the scene statically)"
+                if what == "natural frequencies"
+                else "use -o analysis=static (or drop the [dynamics] table)"
+            )
         )
 
 
