@@ -14,6 +14,7 @@ class Horizon:
     whole_horizon: str = ""  # why its equations need m = delta / dx whole (the equation), "" when any m is defined
     full_volumes: str = ""  # the variant whose sums take full volumes up to delta (none: "")
     continuum_m: int = 128  # the finest m of the extrapolation to its continuum (its cost grows like N m^2)
+    dispersion: str = ""  # the kernel of pdverify.theory.symbols.FACTORS its waves follow ("" none known)
 
     def spacing(self, scene: Scene, params: dict) -> float:
         """The grid spacing dx of ``params`` (points x_k = k dx, ends included, by default)."""

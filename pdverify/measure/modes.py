@@ -23,6 +23,7 @@ from ..core.scene import HELD, ROD_HELD, Scene
 from ..exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
 from ..exact.vibration_eb import eb_frequencies
 from ..registry import get_model, models
+from ..theory.symbols import frequency_shift
 
 DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (every eigenvalue, cheap); ARPACK above
 ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
@@ -122,6 +123,8 @@ class ModeTable:
     analytic: np.ndarray  # ω (rad/s)
     roundoff: np.ndarray  # relative round-off estimate of each frequency
     warnings: list = field(default_factory=list)
+    nonlocal_shift: np.ndarray | None = None  # the continuum's own shift at the model's horizon (None: none known)
+    horizon: float | None = None  # delta of that shift
 
     @property
     def omega(self) -> np.ndarray:
@@ -134,11 +137,24 @@ class ModeTable:
             "frequency_hz": self.omega / (2 * np.pi),
             "analytic_hz": self.analytic / (2 * np.pi),
             "rel_error": self.omega / self.analytic - 1.0,
+            **({} if self.nonlocal_shift is None else {"nonlocal": self.nonlocal_shift}),
             "roundoff": self.roundoff,
         }
 
+    @property
+    def notes(self) -> list[str]:
+        """What the table's columns mean where that is not plain."""
+        if self.nonlocal_shift is None:
+            return []
+        return [
+            f"nonlocal: the shift of the model's continuum at its horizon delta = {self.horizon:.6g} (the operator's "
+            "symbol; exact for sine modes, the bulk wave's otherwise): the model's own error, which the grid does not "
+            "remove at a fixed delta; rel_error - nonlocal is the grid's"
+        ]
+
     def to_csv(self) -> str:
-        return "".join(f"# warning: {w}\n" for w in self.warnings) + columns_csv(self.columns(), fmt="%.12g")
+        head = [f"# {n}" for n in self.notes] + [f"# warning: {w}" for w in self.warnings]
+        return "".join(f"{line}\n" for line in head) + columns_csv(self.columns(), fmt="%.12g")
 
     def to_json(self) -> str:
         cols = self.columns()
@@ -152,6 +168,7 @@ class ModeTable:
             "dofs": self.dofs,
             "reference": self.reference,
             "modes": rows,
+            "notes": self.notes,
             "warnings": self.warnings,
         }
         return json.dumps(plain_json(doc), indent=1)
@@ -160,6 +177,7 @@ class ModeTable:
         lines = [f"# scene: {self.scene}   model: {self.model}   free dofs: {self.dofs}"]
         lines.append("# parameters: " + ", ".join(f"{k}={v}" for k, v in self.parameters.items()))
         lines.append(f"# reference: {self.reference}")
+        lines += [f"# {n}" for n in self.notes]
         lines += [f"# warning: {w}" for w in self.warnings]
         cols = self.columns()
         lines.append(f"{'mode':>5}" + "".join(f"{n:>16}" for n in list(cols)[1:]))
@@ -213,4 +231,19 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
             f"mode {worst + 1}: round-off may reach {roundoff[worst]:.1e} of the frequency (eps ||M^-1 K|| / "
             "eigenvalue); use fewer points"
         )
-    return ModeTable(scene.name, m.name, params, K.shape[0], reference, lam, analytic, roundoff, warnings)
+    table = ModeTable(scene.name, m.name, params, K.shape[0], reference, lam, analytic, roundoff, warnings)
+    if getattr(m, "dispersion", "") and params.get("horizon") is not None:
+        table.horizon = m.delta(bare, params)
+        table.nonlocal_shift = frequency_shift(m.dispersion, wave_numbers(scene, m.theory, analytic), table.horizon)
+    return table
+
+
+def wave_numbers(scene: Scene, theory: str, omega: np.ndarray) -> np.ndarray:
+    """The wave number k of each analytic frequency: ω = k² sqrt(EI / ρA) of a beam, ω = c k of a rod or torsion
+    bar."""
+    rho = scene.material.density
+    if theory == "axial":
+        return omega / np.sqrt(scene.EA / (rho * scene.section.A))
+    if theory == "torsion":
+        return omega / np.sqrt(scene.material.G * scene.section.J / (rho * scene.section.polar))
+    return np.sqrt(omega) * (rho * scene.section.A / scene.EI) ** 0.25

@@ -107,6 +107,21 @@ def shear_factor(z) -> np.ndarray:
     return _factor(z, lambda z: _quadrature(lambda t: np.sinc(t / np.pi), z) / z, lambda z: sici(z)[0] / z)
 
 
+# the factor f(k delta) = lambda / lambda_local of each kernel (module docstring): a wave of number k vibrates at
+# sqrt(f) times its local frequency
+FACTORS: dict[str, Callable] = {
+    "curvature": lambda z: curvature_factor(z) ** 2,
+    "bond-pair": bond_pair_factor,
+    "rod": rod_factor,
+}
+
+
+def frequency_shift(kernel: str, k, delta: float) -> np.ndarray:
+    """sqrt(f(k delta)) - 1: the relative frequency shift of a wave of number k in the continuum of ``kernel``'s
+    operator at the horizon delta (exact for the mirror modes, whose shape is that wave; the bulk wave's otherwise)."""
+    return np.sqrt(FACTORS[kernel](np.asarray(k, float) * delta)) - 1.0
+
+
 # -- closed forms: series of the mirror modes ------------------------------------------------------------------
 
 

@@ -93,6 +93,7 @@ def paper_bias(m: float) -> str:
 
 class PDEulerBernoulli(Model):
     name = "pd-eb"
+    dispersion = "curvature"  # its waves' frequencies (pdverify.theory.symbols)
     title = "ordinary state-based PD Euler–Bernoulli beam"
     source = "Diyaroglu et al. 2019, An Euler–Bernoulli beam formulation in an ordinary state-based PD framework"
     options = (

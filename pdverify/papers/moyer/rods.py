@@ -18,6 +18,7 @@ class _RodModel(_MoyerModel):
     """The rod kernel's models (axial and torsion): one field and its resultant, stiffness x the field's slope."""
 
     field, resultant = "u", "N"
+    dispersion = "rod"  # its waves' frequencies (pdverify.theory.symbols)
     # no stabilisation: with the mirror-image ghosts (ends.rod_mirror_ghosts) M^-1 K has a real spectrum
     # for every support pair and horizon (test_dynamics), so the scheme is stable undamped; damping is only what
     # the scene asks for

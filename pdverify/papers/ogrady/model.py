@@ -139,6 +139,7 @@ def refine(model, K, b, free, u, sweeps: int = 3) -> np.ndarray:
 
 class PDBondPair(Model):
     name = "pd-bond-pair"
+    dispersion = "bond-pair"  # its waves' frequencies (pdverify.theory.symbols)
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
     source = (
         "O'Grady & Foster 2014, Peridynamic beams: a non-ordinary, state-based model (alpha calibration and ghost "

@@ -5,7 +5,7 @@ import json
 
 import numpy as np
 import pytest
-from helpers import PAIRS, cli, scene_dict
+from helpers import PAIRS, ROOT, cli, scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
@@ -138,12 +138,12 @@ def test_modes_command_prints_frequencies_and_errors(scene_file, capsys):
     code, out, err = cli(["modes", path, "--model", "pd-rod", "-o", "points=41", "--count", "3"], capsys)
     assert code == 0 and "reference: rod clamped-free" in out
     rows = [line.split() for line in out.splitlines() if not line.startswith("#")]
-    assert rows[0] == ["mode", "frequency_hz", "analytic_hz", "rel_error", "roundoff"] and len(rows) == 4
+    assert rows[0] == ["mode", "frequency_hz", "analytic_hz", "rel_error", "nonlocal", "roundoff"] and len(rows) == 4
     assert [float(r[3]) for r in rows[1:]] == pytest.approx(ref.columns()["rel_error"], rel=1e-7)
     code, out, _ = cli(
         ["modes", path, "--model", "pd-rod", "-o", "points=41", "--count", "3", "--format", "csv"], capsys
     )
-    data = np.genfromtxt(out.splitlines(), delimiter=",", names=True, comments="#")
+    data = np.genfromtxt([line for line in out.splitlines() if not line.startswith("#")], delimiter=",", names=True)
     assert code == 0 and data["analytic_hz"] == pytest.approx(ref.analytic / (2 * np.pi), rel=1e-11)
     code, out, _ = cli(["modes", path, "--model", "pd-timoshenko", "--count", "2", "--format", "json"], capsys)
     doc = json.loads(out)
@@ -176,3 +176,36 @@ def test_modes_needs_density_and_a_held_rod(scene_file, capsys):
     assert code == 2 and "supports = guided-free: a mechanism" in err and err.count("\n") == 1
     code, _, err = cli(["modes", scene_file(left="roller", right="roller"), "--model", "pd-rod"], capsys)
     assert code == 2 and "roller-roller: neither end holds the axial displacement" in err and err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    "model, options, order",
+    [("pd-bond-pair", {"ends": "mirror"}, 2.0), ("pd-eb", {}, 1.0)],
+)
+def test_the_nonlocal_column_is_the_continuum_at_a_fixed_horizon(model, options, order):
+    """Pinned-pinned: the sine modes are the operator's eigenfunctions, so the symbol's shift is the continuum's
+    frequency at the horizon. At a fixed delta what remains (rel_error - nonlocal) is the grid's: it falls with dx at
+    the model's m-order (the bond pairs' mirror ends: 2; pd-eb's corrected calibration of the discrete sums: 1)."""
+    sc = parse_scene(scene_dict("pinned", "pinned", material=MATERIAL))
+    rest = []
+    for points in (201, 401, 801):
+        t = modes(sc, model, {"points": points, "horizon_length": 0.06, **options}, 5)
+        c = t.columns()
+        assert t.horizon == 0.06 and np.all(c["nonlocal"] < 0)
+        rest.append(np.abs(c["rel_error"] - c["nonlocal"]))
+    slopes = np.log2(rest[1] / rest[2])
+    assert np.all(np.abs(slopes - order) < 0.1), slopes
+    assert np.all(rest[2] < 0.1 * np.abs(c["nonlocal"])), (rest[2], c["nonlocal"])
+
+
+def test_the_nonlocal_column_is_shown_in_every_format(capsys):
+    """`pdverify modes` prints the column and the note on what it is in the table, CSV and JSON."""
+    path = ROOT / "studies/examples/cantilever_tip_load.toml"
+    table = cli(["modes", path, "-m", "pd-eb", "--points", "41"], capsys)[1]
+    assert "nonlocal" in table.splitlines()[4] and "# nonlocal: the shift of the model's continuum" in table
+    doc = json.loads(cli(["modes", path, "-m", "pd-eb", "--points", "41", "--format", "json"], capsys)[1])
+    assert "nonlocal" in doc["modes"][0] and doc["notes"][0].startswith("nonlocal:")
+    csv = cli(["modes", path, "-m", "pd-eb", "--points", "41", "--format", "csv"], capsys)[1]
+    assert csv.startswith("# nonlocal:") and "nonlocal" in csv.splitlines()[1]
+    fem = cli(["modes", path, "-m", "pd-timoshenko", "--points", "41"], capsys)[1]
+    assert "nonlocal" not in fem  # no symbol known for its two fields: no column
