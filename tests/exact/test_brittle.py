@@ -115,3 +115,30 @@ def test_exact_timoshenko_refuses_a_prescribed_deflection():
     with pytest.raises(InputError) as err:
         run(sc, "exact-timoshenko", points=21)
     assert "displacement" in err.value.lines[0]
+
+
+def test_a_scaled_beam_gives_the_same_relative_path():
+    """Lengths times s (1e-6, 1e3), the prescribed deflection with them: the same failure factor and the same w / s at
+    every step, unloading after the failure included (the hinge stays)."""
+
+    def path(s):
+        d = {"factors": [0.0, 1.0, 0.2], "steps": 7}
+        sc = parse_scene(
+            {
+                "name": "scaled",
+                "beam": {"length": L * s},
+                "section": {"width": B * s, "height": H * s},
+                "material": {"youngs_modulus": E, "poissons_ratio": 0.3, **BRITTLE},
+                "supports": {"left": "pinned", "right": "roller"},
+                "loads": [{"type": "displacement", "position": 0.35 * L * s, "value": -0.02 * s}],
+                "loading": d,
+            }
+        )
+        r = run(sc, "exact-eb", points=41)
+        return r.info["load_path"]["first_failure_factor"], np.array([p["w"] for p in r.path]) / s, r.path
+
+    f1, w1, p1 = path(1.0)
+    assert [p["broken"] for p in p1] == [0] * 3 + [1] * 12
+    for s in (1e-6, 1e3):
+        fs, ws, _ = path(s)
+        assert fs == pytest.approx(f1, rel=1e-14) and np.abs(ws - w1).max() <= 1e-14 * np.abs(w1).max()
