@@ -33,9 +33,7 @@ def _path(scene: Scene, x: np.ndarray):
     def fields(s):
         s = np.asarray(s, float)
         w, rot, _ = beam.deflection(s, lam, peak)
-        V = lam * beam.unit.fields(s)["V"]
-        health = path[-1]["health"] if s is x else beam.section_state(s, lam, peak)["health"]
-        return {"w": w, "rotation": rot, "M": lam * beam.M1(s), "V": V, "health": health}
+        return {"w": w, "rotation": rot, "M": lam * beam.M1(s), "V": lam * beam.unit.fields(s)["V"]}
 
     return path, info, fields
 
@@ -67,8 +65,7 @@ class ExactBeam(Model):
 
     def _path_evaluator(self, scene: Scene):
         """The last step's fields of the load path at any x."""
-        fields = _path(scene, np.array([0.0]))[2]
-        return lambda x: {k: v for k, v in fields(x).items() if k != "health"}
+        return _path(scene, np.array([0.0]))[2]
 
     def solve(self, scene: Scene, params: dict) -> Result:
         if not self.shear and follows_path(scene):
@@ -105,7 +102,7 @@ class ExactBeam(Model):
             x,
             f["w"],
             rotation=f["rotation"],
-            fields={"M": f["M"], "health": f["health"]},
+            fields={"M": f["M"], "health": path[-1]["health"]},
             dofs=4,
             timings=timer.timings,
             info=info,

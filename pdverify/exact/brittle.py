@@ -23,12 +23,10 @@ from ..core.loading import Loading
 from ..core.scene import HELD, PointForce, Scene
 from .plastic import TIE, PlasticBeam
 
-FAILED = "failed section"  # the key of the path's count of failed sections (0 or 1)
-
 
 def displacement_load(scene: Scene):
     """The scene's prescribed deflection, or None; InputError (one line) for what this module cannot take."""
-    shown = [(i, ld) for i, ld in enumerate(scene.loads) if ld.type == "displacement"]
+    shown = [ld for ld in scene.loads if ld.type == "displacement"]
     if not shown:
         return None
     if len(scene.loads) > 1:
@@ -42,7 +40,7 @@ def displacement_load(scene: Scene):
             "plastic beam under a prescribed deflection is not in closed form here); drop yield_stress or the "
             "displacement load"
         )
-    return shown[0][1]
+    return shown[0]
 
 
 class BrittleDisplacement:
@@ -92,24 +90,27 @@ class BrittleDisplacement:
             )
         return np.linalg.solve(A, np.array(rhs)) / np.array([1.0, L, 1.0, L])
 
+    def health(self, x, failed: bool) -> np.ndarray:
+        """The node health at x: 0 at the failed section, 1 elsewhere."""
+        xs = np.asarray(x, float)
+        return np.where(failed & (np.abs(xs - self.x_p) <= 1e-12 * self.L), 0.0, 1.0)
+
     def fields(self, x, lam: float, failed: bool) -> dict:
-        """w, rotation, M, V and the health (0 at the failed section, 1 elsewhere) at x for the factor ``lam``."""
+        """w, rotation, M and V at x for the factor ``lam``."""
         xs = np.asarray(x, float)
         if not failed:
             F = self.force(lam)
             w, rot, _ = self.beam.deflection(xs, 1.0, 1.0)
             V1 = self.beam.unit.fields(xs)["V"]
-            return {"w": F * w, "rotation": F * rot, "M": F * self.beam.M1(xs), "V": F * V1, "health": np.ones(len(xs))}
+            return {"w": F * w, "rotation": F * rot, "M": F * self.beam.M1(xs), "V": F * V1}
         p0, p1, q0, q1 = self.pieces(lam)
         left = xs <= self.x_p
         zero = np.zeros(len(xs))
-        at = np.abs(xs - self.x_p) <= 1e-12 * self.L
         return {
             "w": np.where(left, p0 + p1 * xs, q0 + q1 * xs),
             "rotation": np.where(left, p1, q1),
             "M": zero,
-            "V": zero.copy(),
-            "health": np.where(at, 0.0, 1.0),
+            "V": zero,
         }
 
     def reactions(self, lam: float, failed: bool) -> dict:
@@ -129,7 +130,7 @@ class BrittleDisplacement:
                     "w": f["w"],
                     "reactions": self.reactions(lam, failed),
                     "broken": int(failed),
-                    "health": f["health"],
+                    "health": self.health(x, failed),
                 }
             )
         info = {
