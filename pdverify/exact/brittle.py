@@ -105,12 +105,11 @@ class BrittleDisplacement:
             return {"w": F * w, "rotation": F * rot, "M": F * self.beam.M1(xs), "V": F * V1}
         p0, p1, q0, q1 = self.pieces(lam)
         left = xs <= self.x_p
-        zero = np.zeros(len(xs))
         return {
             "w": np.where(left, p0 + p1 * xs, q0 + q1 * xs),
             "rotation": np.where(left, p1, q1),
-            "M": zero,
-            "V": zero,
+            "M": np.zeros(len(xs)),
+            "V": np.zeros(len(xs)),
         }
 
     def reactions(self, lam: float, failed: bool) -> dict:
