@@ -159,8 +159,9 @@ class Case:
     def batch_order(self) -> tuple:
         """Where a case runs in its batch (:attr:`operator_group`): scene by scene, each scene's finest grid first.
         A model judged against itself solves its reference grid as a case (the theory gap) and as the reference of
-        the coarser grids: one after the other, the second is the kept first (:mod:`.solves`), where a batch that
-        ran grid by grid would have pushed it out of the few results a process keeps."""
+        the coarser grids: run one right after the other, the second takes the solve the first kept
+        (:mod:`.solves`), where a batch run grid by grid would have pushed it out of the few results a process
+        keeps."""
         return (self.scene_file, str(self.slenderness), -_points(self.given.get("points")))
 
     @property
