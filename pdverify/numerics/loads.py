@@ -100,6 +100,35 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
     return out + narrow_load_warnings(scene, x)
 
 
+# a point force d from an inner support that holds the rotation: the PD beams' error was measured up to about
+# FORCE_NEAR_HELD_ROTATION (dx / d)^2 (docs/trust.md, "a point force near a support that holds the rotation")
+FORCE_NEAR_HELD_ROTATION = 5.0
+NEAR_TOLERANCE = 1e-3  # the error above which that estimate is a warning
+
+
+def held_rotation_warnings(scene: Scene, dx: float, nearest: float = 4.0) -> list[str]:
+    """Point forces at least ``nearest`` spacings from an inner support that holds the rotation (clamped, or a spring
+    with a rotational stiffness) whose estimated error FORCE_NEAR_HELD_ROTATION (dx / d)^2 (at most 1: the
+    solution's own size) passes NEAR_TOLERANCE (nearer ones: the model's own warning of rows that straddle the load,
+    where it has one)."""
+    L, out = scene.length, []
+    for i, sup in enumerate(scene.supports.inner):
+        if not (sup.type == "clamped" or (sup.type == "spring" and (sup.rotational_stiffness or 0.0) > 0.0)):
+            continue
+        for j, ld in enumerate(scene.loads):
+            d = abs(ld.position - sup.position) if ld.type == "point_force" else 0.0
+            estimate = min(FORCE_NEAR_HELD_ROTATION * (dx / d) ** 2, 1.0) if d >= nearest * dx and d > 0.0 else 0.0
+            if estimate > NEAR_TOLERANCE:
+                need = int(np.ceil(L * np.sqrt(FORCE_NEAR_HELD_ROTATION / NEAR_TOLERANCE) / d)) + 1
+                out.append(
+                    f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
+                    f"{sup.position:g}, which holds the rotation: the error there falls at second order but from "
+                    f"up to about {FORCE_NEAR_HELD_ROTATION:g} (spacing / distance)^2 = {estimate:.2g}; use at least "
+                    f"{need} points for 1e-3"
+                )
+    return out
+
+
 def moment_rotation_warnings(scene: Scene) -> list[str]:
     """Point moments inside the beam: the curvature jumps there, and a PD model spreads the jump over its horizon, so
     the rotation near the moment is first order (a few dx/L of max |rotation|) while w stays second order."""

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import InnerSupport, PointForce, PointMoment, Scene, Spring
+from ...numerics.loads import held_rotation_warnings
 
 
 def pieces_flexibility(scene: Scene, EI0: float) -> tuple[np.ndarray, np.ndarray]:
@@ -293,32 +294,3 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
                 f"{int(np.ceil(4 * L / abs(b - a))) + 1} points"
             )
     return out + held_rotation_warnings(scene, dx)
-
-
-# a point force d from an inner support that holds the rotation: pd-eb's error there was measured up to about
-# FORCE_NEAR_HELD_ROTATION (dx / d)^2 (docs/trust.md, "a point force near a support that holds the rotation")
-FORCE_NEAR_HELD_ROTATION = 3.0
-NEAR_TOLERANCE = 1e-3  # the error above which that estimate is a warning
-
-
-def held_rotation_warnings(scene: Scene, dx: float) -> list[str]:
-    """Point forces 4 spacings or more from an inner support that holds the rotation (clamped, or a spring with a
-    rotational stiffness) whose estimated error FORCE_NEAR_HELD_ROTATION (dx / d)^2 passes NEAR_TOLERANCE (nearer
-    ones: the straddled rows' warning above)."""
-    L, out = scene.length, []
-    for i, sup in enumerate(scene.supports.inner):
-        holds = sup.type == "clamped" or (sup.type == "spring" and (sup.rotational_stiffness or 0.0) > 0.0)
-        if not holds:
-            continue
-        for j, ld in enumerate(scene.loads):
-            d = abs(ld.position - sup.position) if ld.type == "point_force" else 0.0
-            estimate = FORCE_NEAR_HELD_ROTATION * (dx / d) ** 2 if d >= 4 * dx else 0.0
-            if estimate > NEAR_TOLERANCE:
-                need = int(np.ceil(L * np.sqrt(FORCE_NEAR_HELD_ROTATION / NEAR_TOLERANCE) / d)) + 1
-                out.append(
-                    f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
-                    f"{sup.position:g}, which holds the rotation: the error there falls at second order but from "
-                    f"up to about {FORCE_NEAR_HELD_ROTATION:g} (spacing / distance)^2 = {estimate:.2g}; use at least "
-                    f"{need} points for 1e-3"
-                )
-    return out

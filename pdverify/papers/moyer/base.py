@@ -12,7 +12,7 @@ from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
-from ...numerics.loads import boundary_layer_warnings, moment_rotation_warnings
+from ...numerics.loads import boundary_layer_warnings, held_rotation_warnings, moment_rotation_warnings
 from .constraints import reactions, solve_with_holds
 from .ends import FIT_POINTS
 from .pieces import plain_ends
@@ -206,6 +206,7 @@ class _MoyerModel(Model):
             info.update(sinfo, analysis="static")
         if info["analysis"] == "static":  # with supports at the ends or inside the span
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m) + point_force_order(self, scene, params)
+            flags += held_rotation_warnings(scene, disc.x[1] - disc.x[0], nearest=0.0) if self.bending else []
             # variant energy applies a couple as the operator's action on its kink: second order there
             flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
             if flags:

@@ -70,36 +70,6 @@ def errors(sc, n, **opts):
     return out, r
 
 
-def _near_held(inner: dict, spacings: float, points: int = 201):
-    """A beam free at the left, pinned at the right, held inside at 0.5 by ``inner``, a point force ``spacings``
-    spacings right of it: (the largest error of w against exact-eb relative to its largest value, the warnings)."""
-    dx = 1.0 / (points - 1)
-    d = scene_dict("free", "pinned", [{"type": "point_force", "position": 0.5 + spacings * dx, "value": -1e3}])
-    d["supports"]["inner"] = [{"position": 0.5, **inner}]
-    d["beam"] = {"length": 1.0}
-    sc = parse_scene(d)
-    r = run(sc, "pd-eb", points=points)
-    exact = solve_straight(sc, False).fields(r.x)["w"]
-    return np.abs(r.w - exact).max() / np.abs(exact).max(), r.info.get("warnings", [])
-
-
-@pytest.mark.parametrize(
-    "inner", [{"type": "clamped"}, {"type": "spring", "stiffness": 1e9, "rotational_stiffness": 1e9}]
-)
-def test_a_point_force_near_a_support_that_holds_the_rotation_is_warned_with_an_estimate_above_its_error(inner):
-    """Beyond the straddled rows (4 spacings) the error near a support that holds the rotation is still large (second
-    order, but from about (spacing / distance)^2): the warning's estimate, 3 (spacing / distance)^2, is above the
-    error and says how many points bring it to 1e-3."""
-    for spacings in (4.7, 10.3, 24.3):
-        error, warnings = _near_held(inner, spacings)
-        said = [w for w in warnings if "which holds the rotation" in w]
-        assert len(said) == 1 and "supports.inner[0]" in said[0], warnings
-        estimate = float(said[0].split(" = ")[1].split(";")[0])
-        assert error <= estimate, (spacings, error, estimate)
-    pinned, warnings = _near_held({"type": "pinned"}, 4.7)
-    assert not any("holds the rotation" in w for w in warnings) and pinned < 1e-3
-
-
 @pytest.mark.parametrize("name", list(SCENES))
 def test_scene_converges_at_order_two_in_every_quantity(name):
     """w, rotation, moment and shear against exact-eb at 161, 241, 321, 481, 641 points: fitted order >= 1.8

@@ -1,0 +1,52 @@
+"""A point force near an inner support that holds the rotation (pdverify/numerics/loads.py: held_rotation_warnings):
+pd-eb and pd-timoshenko are second order there but from a large constant, so they warn with the estimate
+5 (spacing / distance)^2 and the points for 1e-3; the estimate is above the error wherever it warns, and where it
+does not the error is below the warning's threshold. A pinned inner support, which holds no rotation, is not warned."""
+
+import numpy as np
+import pytest
+from helpers import scene_dict
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.exact.straight import solve_straight
+from pdverify.numerics.loads import NEAR_TOLERANCE
+from pdverify.registry import run
+
+MODELS = [("pd-eb", False), ("pd-timoshenko", True)]
+HOLDS = [{"type": "clamped"}, {"type": "spring", "stiffness": 1e9, "rotational_stiffness": 1e9}]
+
+
+def near_held(model: str, shear: bool, inner: dict, spacings: float, ends=("free", "pinned"), points: int = 201):
+    """A 1 m beam held inside at 0.5 by ``inner``, a point force ``spacings`` spacings right of it: (the largest
+    error of w against the exact beam relative to its largest value, the held-rotation warnings)."""
+    d = scene_dict(*ends, [{"type": "point_force", "position": 0.5 + spacings / (points - 1), "value": -1e3}])
+    d["supports"]["inner"] = [{"position": 0.5, **inner}]
+    d["beam"] = {"length": 1.0}
+    sc = parse_scene(d)
+    r = run(sc, model, points=points)
+    exact = solve_straight(sc, shear).fields(r.x)["w"]
+    said = [w for w in r.info.get("warnings", []) if "which holds the rotation" in w]
+    return np.abs(r.w - exact).max() / np.abs(exact).max(), said
+
+
+@pytest.mark.parametrize("model,shear", MODELS)
+@pytest.mark.parametrize("inner", HOLDS, ids=["clamped", "rotational spring"])
+@pytest.mark.parametrize("ends", [("free", "pinned"), ("pinned", "pinned"), ("clamped", "free")])
+def test_the_estimate_is_above_the_error_where_it_warns_and_the_error_is_small_where_it_does_not(
+    model, shear, inner, ends
+):
+    for spacings in (4.7, 10.3, 24.3, 60.3, 90.3):
+        error, said = near_held(model, shear, inner, spacings, ends)
+        if said:
+            assert len(said) == 1 and "supports.inner[0]" in said[0], said
+            estimate = float(said[0].split(" = ")[1].split(";")[0])
+            assert error <= estimate, (spacings, error, estimate)
+        else:
+            assert error <= NEAR_TOLERANCE, (spacings, error)
+
+
+@pytest.mark.parametrize("model,shear", MODELS)
+def test_a_pinned_inner_support_is_not_warned(model, shear):
+    for spacings in (4.7, 24.3):
+        error, said = near_held(model, shear, {"type": "pinned"}, spacings)
+        assert not said and error < 1e-2, error
