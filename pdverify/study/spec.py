@@ -185,15 +185,23 @@ _NOT_OPERATOR = ("loads", "name", "description")  # what a scene may change with
 
 
 @lru_cache(maxsize=256)
+def _parsed(text: str) -> dict | None:
+    """A scene file's TOML, read once per scene (None when it is no TOML: such a case fails with its own record).
+    Shared by its callers: read it, never change it."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError:
+        return None
+
+
+@lru_cache(maxsize=256)
 def _skeleton(text: str) -> str:
     """A scene file without its loads and its names, as sorted JSON, once per scene (the text itself when it is no
-    TOML: such a case fails with its own record)."""
-    try:
-        return json.dumps(
-            {k: v for k, v in tomllib.loads(text).items() if k not in _NOT_OPERATOR}, sort_keys=True, default=str
-        )
-    except tomllib.TOMLDecodeError:
+    TOML)."""
+    data = _parsed(text)
+    if data is None:
         return text
+    return json.dumps({k: v for k, v in data.items() if k not in _NOT_OPERATOR}, sort_keys=True, default=str)
 
 
 @lru_cache(maxsize=256)
@@ -201,9 +209,9 @@ def _recorded_states(text: str) -> int:
     """The states a scene's transient records (end_time / output_interval, or / time_step when it gives no interval),
     1 for a static scene, one that gives neither, or one not read."""
     try:
-        dyn = tomllib.loads(text).get("dynamics")
+        dyn = (_parsed(text) or {}).get("dynamics")
         return max(1, round(float(dyn["end_time"]) / float(dyn.get("output_interval") or dyn["time_step"])))
-    except (tomllib.TOMLDecodeError, AttributeError, KeyError, TypeError, ValueError, ZeroDivisionError, OverflowError):
+    except (AttributeError, KeyError, TypeError, ValueError, ZeroDivisionError, OverflowError):
         return 1
 
 
