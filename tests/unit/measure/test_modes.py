@@ -207,5 +207,5 @@ def test_the_nonlocal_column_is_shown_in_every_format(capsys):
     assert "nonlocal" in doc["modes"][0] and doc["notes"][0].startswith("nonlocal:")
     csv = cli(["modes", path, "-m", "pd-eb", "--points", "41", "--format", "csv"], capsys)[1]
     assert csv.startswith("# nonlocal:") and "nonlocal" in csv.splitlines()[1]
-    fem = cli(["modes", path, "-m", "pd-timoshenko", "--points", "41"], capsys)[1]
-    assert "nonlocal" not in fem  # no symbol known for its two fields: no column
+    timoshenko = cli(["modes", path, "-m", "pd-timoshenko", "--points", "41"], capsys)[1]
+    assert "nonlocal" not in timoshenko  # no symbol known for its two fields: no column
