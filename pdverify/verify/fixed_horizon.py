@@ -3,8 +3,8 @@
 On the suite's member under a sine load, pinned-pinned (a beam) or clamped-clamped (a rod or torsion bar), L = 1 m:
 
 * the discretisation order: discrete - continuum at delta = 0.1 L on m = 8, 16, 32 (m-convergence) at the points of
-  the coarsest grid, which every finer one holds (Bobaru et al. 2009 compare m-convergence at common nodes), judged
-  like the convergence check (at least the expected order less the slack);
+  the coarsest grid, which every finer one holds, judged like the convergence check (at least the expected order less
+  the slack);
 * the model-error order: continuum - local at delta = 0.2, 0.1, 0.05 L at the points of each delta's m = 8 grid,
   reported, not judged (the order in delta of the model's nonlocality, 2 for every PD kernel, is a property of the
   model, not a defect).
@@ -15,7 +15,7 @@ solution.
 
 Not run for curved-axis models (their extrapolation in m does not settle), models whose continuum stops below
 m = :data:`CONTINUUM_M` (their cost) or a model without a horizon; a continuum at delta = 0.1 L whose own estimate
-passes :data:`SHARE` of the smallest discretisation error makes the check informative only.
+passes a tenth of the smallest discretisation error makes the check informative only.
 """
 
 from __future__ import annotations
@@ -26,14 +26,13 @@ from ..core.errors import PdverifyError
 from ..core.scene_file import parse_scene
 from ..measure.metrics import errors, observed_order
 from ..registry import run
+from ..study.nonlocal_table import CONTINUUM_SHARE
 from .checks import ORDER_SLACK, check
 from .suite import loads_for, rod_kind, straight
 
 NAME = "nonlocal (fixed horizon length)"
 M_PATH = (8, 16, 32)  # m at delta = 0.1 L
 DELTAS = (0.2, 0.1, 0.05)  # delta / L of the model-error path
-SHARE = 0.1  # a continuum whose estimate passes this share of the smallest error measured against it: shown, not
-# judged (the study's continuum_in_doubt, docs/nonlocal.md)
 CONTINUUM_M = 64  # the finest m of an extrapolated continuum
 
 
@@ -77,7 +76,7 @@ def nonlocal_check(model, options: dict, reference) -> dict:
         return check(NAME, "info", f"not measured: {' '.join(exc.lines)}")
     h = np.array([0.1 / m for m in M_PATH])
     disc, model_err = np.array(disc), np.array(model_err)
-    settled = cont[0.1][1] <= SHARE * disc.min()
+    settled = cont[0.1][1] <= CONTINUUM_SHARE * disc.min()  # as a study's continuum_in_doubt
     p_disc = observed_order(h, disc)[0] if np.all(disc > 0) else float("nan")
     p_model = observed_order(np.array(DELTAS), model_err)[0] if np.all(model_err > 0) else float("nan")
     expected = float(model.order)
