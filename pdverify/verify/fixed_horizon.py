@@ -31,7 +31,8 @@ from .checks import ORDER_SLACK, check
 from .suite import loads_for, rod_kind, straight
 
 NAME = "nonlocal (fixed horizon length)"
-M_PATH = (8, 16, 32)  # m at delta = 0.1 L
+M_PATH = (8, 16, 32)  # m at delta = M_DELTA
+M_DELTA = 0.1  # delta / L of the m-path
 DELTAS = (0.2, 0.1, 0.05)  # delta / L of the model-error path
 CONTINUUM_M = 64  # the finest m of an extrapolated continuum
 
@@ -57,26 +58,26 @@ def nonlocal_check(model, options: dict, reference) -> dict:
         return np.asarray(result.w if q == "w" else result.fields[q], float)
 
     try:
-        cont, model_err = {}, []
+        model_err = []
         for delta in DELTAS:  # each delta's continuum on the m-path's coarsest grid (levels m = 8 ... CONTINUUM_M)
             opts = {**options, "points": int(round(M_PATH[0] / delta)) + 1, "horizon_length": delta}
-            c = run(scene, model, **opts, continuum=True, continuum_m=CONTINUUM_M)
+            got = run(scene, model, **opts, continuum=True, continuum_m=CONTINUUM_M)
             r = run(scene, ref_name, points=opts["points"], **ref)
-            cont[delta] = (c, c.info.get("error_bound", np.inf))
-            model_err.append(errors(values(c), values(r))["err_max"])
-        c = cont[0.1][0]
+            model_err.append(errors(values(got), values(r))["err_max"])
+            if delta == M_DELTA:
+                c, own = got, got.info.get("error_bound", np.inf)
         disc = []
         for m in M_PATH:  # nested grids: every M_PATH[0]-th point of the finer ones is a point of the coarsest
-            d = run(scene, model, **options, points=int(round(m / 0.1)) + 1, horizon_length=0.1)
+            d = run(scene, model, **options, points=int(round(m / M_DELTA)) + 1, horizon_length=M_DELTA)
             stride = m // M_PATH[0]
             if not np.allclose(np.asarray(d.x)[::stride], c.x, rtol=0.0, atol=1e-9 * scene.length):
                 return check(NAME, "info", f"not measured: the grid of m = {m} does not hold the points of m = 8")
             disc.append(errors(values(d)[::stride], values(c))["err_max"])
     except PdverifyError as exc:
         return check(NAME, "info", f"not measured: {' '.join(exc.lines)}")
-    h = np.array([0.1 / m for m in M_PATH])
+    h = np.array([M_DELTA / m for m in M_PATH])
     disc, model_err = np.array(disc), np.array(model_err)
-    settled = cont[0.1][1] <= CONTINUUM_SHARE * disc.min()  # as a study's continuum_in_doubt
+    settled = own <= CONTINUUM_SHARE * disc.min()  # as a study's continuum_in_doubt
     p_disc = observed_order(h, disc)[0] if np.all(disc > 0) else float("nan")
     p_model = observed_order(np.array(DELTAS), model_err)[0] if np.all(model_err > 0) else float("nan")
     expected = float(model.order)
@@ -84,7 +85,7 @@ def nonlocal_check(model, options: dict, reference) -> dict:
         f"discretisation order {p_disc:.2f} at delta = 0.1 L (m = 8, 16, 32: {', '.join(f'{e:.1e}' for e in disc)}); "
         f"model-error order {p_model:.2f} in delta (delta = 0.2, 0.1, 0.05 L: "
         f"{', '.join(f'{e:.1e}' for e in model_err)}), the model's nonlocality, not judged; the continuum's own "
-        f"estimate {cont[0.1][1]:.1e} at delta = 0.1 L"
+        f"estimate {own:.1e} at delta = 0.1 L"
     )
     if not settled or not np.isfinite(p_disc):
         return check(NAME, "info", text + "; the continuum's estimate is too coarse to judge the discretisation order")
