@@ -68,7 +68,7 @@ class Horizon:
             return f"variant {self.full_volumes}'s sums take full volumes up to delta and depend on its fraction"
         return ""
 
-    def continuum_limit(self, params: dict) -> tuple[str, int] | None:
-        """(why, largest m) when the variant's discrete rules have no limit at fixed delta (its continuum is then
-        its own finest grid, flagged), else None."""
+    def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
+        """(why, largest m) when the variant's discrete rules have no limit at fixed delta on ``scene`` (its
+        continuum is then its own finest grid, flagged), else None."""
         return None

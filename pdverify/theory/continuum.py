@@ -55,7 +55,7 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
     x_user = None
     info = {"horizon": delta, "spacing": dx, "m": delta / dx}
     with timer("solve"):
-        series = model.continuum_series(scene, params)
+        series = None if model.continuum_limit(scene, base) else model.continuum_series(scene, params)
         solved = None
         if series is not None:
             x_user = _grid_of(model, scene, base, params["points"])
@@ -103,7 +103,7 @@ def _refined(model, scene: Scene, base: dict, r: int) -> int:
 def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float):
     """((x, w, rotation, fields), info) of the extrapolation in m (or the finest grid of a variant without limit)."""
     m_user = delta / dx
-    limit = model.continuum_limit(base)
+    limit = model.continuum_limit(scene, base)
     x_user = _grid_of(model, scene, base, base["points"])
     if limit is not None:
         why, m_top = limit

@@ -160,7 +160,7 @@ class PDCurved(Model):
         why = mechanism_message(scene) if scene.supports.simple else axial_mechanism(scene)
         return out + ([why] if why is not None else [])
 
-    def continuum_limit(self, params: dict) -> tuple[str, int] | None:
+    def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """The PDDO families (Eq. 27-35) are fitted to degree P on 2m + 1 particles: at fixed delta, larger m leaves
         the modes near the sawtooth held by ever smaller stencil symbols (:func:`.particles.default_horizon`), so the
         discrete solutions have no limit in m; the largest m is the model's own family."""

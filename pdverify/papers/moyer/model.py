@@ -69,7 +69,7 @@ class PDTimoshenko(_MoyerModel):
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
 
-    def continuum_limit(self, params: dict) -> tuple[str, int] | None:
+    def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """Variant energy's fitted end bonds exist for horizons 1-12 only (:mod:`.energy`): no limit at fixed delta."""
         if params["variant"] == "energy":
             return (

@@ -23,6 +23,8 @@ Eq. 7             elastic-perfectly plastic pairs: capped force, critical      `
 Eq. 8, §3.2       brittle pairs broken for good, the most deformed first;      ``path``
                   node health
 ends              mirror (reflection) images and the axial condition           ``ends``, ``pairs.ghost_rows``
+Eq. 5, omega = 1  no limit at fixed delta where one point carries a force       ``limit``
+                  (the symbol grows like |k|)
 ================  ===========================================================  ====================================
 """
 

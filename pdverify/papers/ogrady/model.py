@@ -41,6 +41,7 @@ from . import dynamics
 from .bias import bias_warnings
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
 from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
+from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
 from .path import follows_path, plastic_warnings, solve_path
 from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
@@ -234,6 +235,12 @@ class PDBondPair(Model):
     def horizon_offset(self, params: dict) -> float:
         """delta = (m + 0.015) dx with the continuous alpha (as in the other papers)."""
         return 0.015 if params["variant"] == "continuous-alpha" else 0.0
+
+    def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
+        """No limit at fixed delta where a single point carries a force, or at free and guided Taylor ends
+        (:func:`.limit.no_limit_reason`); the continuum is then the grid at ``continuum_m``."""
+        why = no_limit_reason(scene, resolved_ends(scene, params)["ends"])
+        return (why, int(params.get("continuum_m") or self.continuum_m)) if why else None
 
     def continuum_series(self, scene: Scene, params: dict) -> Series | None:
         """Mirror ends (linear path): a series of the mirror modes with the continuous bond-pair symbol (omega = 1)."""
