@@ -222,15 +222,22 @@ class _MoyerModel(Model):
         raise NotImplementedError
 
 
-def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
-    """pd-rod's and pd-torsion's first-order warning: a point force (torque) or a rigid support inside, m > 1."""
+def rod_points_loaded(model, scene: Scene) -> list[float]:
+    """Where a single point of pd-rod (pd-torsion) carries a force inside the member: its point forces (torques)
+    and rigid supports inside."""
     torsion = model.unknowns == "torsion"
-    inside = [
+    return [
         ld.position
         for ld in scene.loads
         if (ld.type == "point_torque" if torsion else ld.type == "point_force" and ld.axial != 0.0)
         and 0.0 < ld.position < scene.length
     ] + [s.position for s in scene.supports.inner if s.type != "spring"]
+
+
+def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
+    """pd-rod's and pd-torsion's first-order warning: a point force (torque) or a rigid support inside, m > 1."""
+    inside = rod_points_loaded(model, scene)
+    torsion = model.unknowns == "torsion"
     if params["horizon"] <= 1 or not inside:
         return []
     what = "a point torque" if torsion else "an axial point force"

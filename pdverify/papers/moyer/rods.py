@@ -8,7 +8,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.scene import ROD_HELD, PointForce, PointTorque, Scene
 from ...theory.symbols import Series, rod_series
-from .base import _MoyerModel
+from .base import _MoyerModel, rod_points_loaded
 from .operator import rod_operator
 from .pieces import bond_stiffness, holds_somewhere
 from .resultants import shear_at_points, stepped
@@ -36,6 +36,21 @@ class _RodModel(_MoyerModel):
         component = "axial" if self.axial else "torque"
         delta = self.delta(scene, params)
         return rod_series(scene, delta, self.stiffness(scene), tuple(ROD_HELD[kind]), component, self.field)
+
+    def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
+        """No limit at fixed delta where a single point inside carries a force (:func:`.base.rod_points_loaded`):
+        the rod kernel's symbol grows only like (4 E / delta^2) ln(k delta) (Moyer & Miraglia 2014, Eq. 3 and
+        13-19, c_j = w_j / j; docs/nonlocal.md), so the response there, ∫ dk / symbol up to k ~ pi / dx, grows
+        like m / ln m."""
+        inside = rod_points_loaded(self, scene)
+        if not inside:
+            return None
+        why = (
+            f"a point {'torque' if self.unknowns == 'torsion' else 'force'} or a rigid support inside "
+            f"(x = {min(inside):g}): a single point carries a force, and the rod kernel's symbol grows like "
+            "ln(k delta), so the field there grows without bound as m grows at fixed delta (docs/nonlocal.md): no limit"
+        )
+        return why, int(params.get("continuum_m") or self.continuum_m)
 
     @property
     def key(self) -> str:
