@@ -6,9 +6,12 @@
 * ``err_max``: discrete - local reference, the total, as in every study.
 
 Max errors relative to the largest value of the second field (``*_l2``: relative L2), ``continuum_error`` the
-continuum's own estimate. A case gets them when its model is a PD model (a ``horizon`` option), it gives its horizon as
-a length (``horizon_length``: then the series of one horizon share one continuum) and its run has a local reference. A
-run whose reference is ``{model = ..., continuum = true}`` measures against the continuum itself (:func:`continuum_at`).
+continuum's own estimate. Both are measured at the points of the coarsest grid with m >= 8 that the case's grid holds
+(``split_points`` of them: :func:`~pdverify.theory.continuum.coarsest_nested`), so that the rows of one horizon share
+one continuum extrapolated from m = 8 up, whatever their own m. A case gets them when its model is a PD model (a
+``horizon`` option), it gives its horizon as a length (``horizon_length``) and its run has a local reference. A run
+whose reference is ``{model = ..., continuum = true}`` measures against the continuum itself on its own grid
+(:func:`continuum_at`).
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from ..core.errors import InputError, PdverifyError
 from ..core.result import quantity_of
 from ..measure.metrics import errors
 from ..registry import get_model, run
+from ..theory.continuum import coarsest_nested
 from .spec import Case
 
 GRID = ("points", "spacing")
@@ -81,19 +85,23 @@ def split_errors(case: Case, scene, solved: dict, w_ref: np.ndarray, row: dict) 
     if not splits(case):
         return
     row.update(err_model=np.nan, err_disc=np.nan, err_model_l2=np.nan, err_disc_l2=np.nan, continuum_error=np.nan)
-    x = solved["x"]
+    x = np.asarray(solved["x"], float)
     quantity = row["quantity"]
     w = np.asarray(quantity_of(solved["w"], solved.get("rotation"), solved["fields"], quantity), float)
     try:
-        cont, bound = continuum_at(case, scene, x, own=True)
+        model = get_model(case.model)
+        params = model.resolve(scene, {k: v for k, v in case.given.items() if k not in ("continuum", "continuum_m")})
+        points, at = coarsest_nested(model, scene, params, x)
+        cont, bound = continuum_at(case, scene, x[at], own=True)
     except PdverifyError as exc:
         row["continuum_message"] = " ".join(exc.lines)
         return
-    d, m = errors(w, cont), errors(cont, w_ref)
+    d, m = errors(w[at], cont), errors(cont, np.asarray(w_ref, float)[at])
     row.update(
         err_model=m["err_max"],
         err_disc=d["err_max"],
         err_model_l2=m["err_l2"],
         err_disc_l2=d["err_l2"],
         continuum_error=np.nan if bound is None else float(bound),
+        split_points=points,
     )

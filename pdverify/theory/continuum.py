@@ -86,6 +86,31 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
     return model.new_result(scene, params, x, w, rotation=rot, fields=fields, dofs=0, timings=timer.timings, info=info)
 
 
+def coarsest_nested(model, scene: Scene, params: dict, x: np.ndarray) -> tuple[int, np.ndarray]:
+    """(points, indices into ``x``) of the coarsest grid whose m = delta / dx is at least :data:`M_MIN` and whose
+    points are points of the grid of ``params`` (its points ``x``; refined from it by a whole factor), the grid of
+    ``params`` itself when none is coarser. Its continuum has every level from m = M_MIN up, and the continua of a
+    series of grids at one horizon are one."""
+    n, dx = params["points"], model.spacing(scene, params)
+    base = {k: v for k, v in params.items() if k not in ("horizon", "continuum")}
+    base["horizon_length"] = horizon_of(model, scene, params)
+    m = base["horizon_length"] / dx
+    best = (n, np.arange(n))
+    for f in sorted({2**k for k in range(1, 31)} | {3**k for k in range(1, 20)}):
+        if m / f < M_MIN * (1 - 1e-9):
+            break
+        for cand in sorted({(n - 1) // f + 1, n // f}):
+            try:
+                if cand < 3 or _refined(model, scene, dict(base, points=cand), f) != n:
+                    continue
+                idx = _indices(np.asarray(x, float), _grid_of(model, scene, base, cand), scene.length)
+            except InputError:
+                continue
+            if idx is not None and cand < best[0]:
+                best = (cand, idx)
+    return best
+
+
 def _grid_of(model, scene: Scene, base: dict, points: int) -> np.ndarray:
     """The points of the model's grid with ``points`` (its own solve's x, from a solve of the grid)."""
     return np.asarray(_level(model, scene, base, points)["x"])
