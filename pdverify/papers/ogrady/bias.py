@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...core.scene import Scene
 from .calibration import pair_family
 
 
@@ -19,6 +20,27 @@ def continuous_alpha_bias(m: float) -> str:
     )
 
 
-def bias_warnings(params: dict) -> list[str]:
-    """The known bias of the run's variant, if it has one."""
-    return [continuous_alpha_bias(params["horizon"])] if params["variant"] == "continuous-alpha" else []
+TAYLOR_HORIZON = 4  # the largest horizon (spacings) at which Taylor ends at a free or guided end stay as accurate as
+# mirror ends under a load the ghost polynomial cannot follow (docs/models/ogrady.md, "Taylor ends at large horizons")
+
+
+def taylor_end_bias(scene: Scene, params: dict) -> list[str]:
+    """Taylor ghost ends (docs/design/formulas.md §1) carry a degree-4 polynomial fitted to the first points over the
+    whole horizon: at a free or guided end under a sine-shaped load (the scene's one load whose solution is not a
+    piecewise polynomial) their error grows much faster with the horizon than the model's nonlocality."""
+    kinds = {scene.supports.kind(side) for side in ("left", "right")}
+    sine = any(ld.type == "distributed" and ld.shape == "sine" for ld in scene.loads)
+    if params["ends"] != "taylor" or not kinds & {"free", "guided"} or not sine or params["horizon"] <= TAYLOR_HORIZON:
+        return []
+    return [
+        f"ends = taylor at a free or guided end with horizon {params['horizon']:g} > {TAYLOR_HORIZON}: the ghost "
+        "polynomial is carried over the whole horizon and its error grows faster than the model's (a cantilever "
+        "under a sine load, 321 points: 3.5e-4, 1.0e-3, 1.6e-2 at horizon 6, 8, 16, where mirror ends give 1.6e-4, "
+        f"2.8e-4, 1.2e-3); use ends = mirror or horizon <= {TAYLOR_HORIZON}"
+    ]
+
+
+def bias_warnings(scene: Scene, params: dict) -> list[str]:
+    """The known biases of the run's variant and ends, if it has any."""
+    out = [continuous_alpha_bias(params["horizon"])] if params["variant"] == "continuous-alpha" else []
+    return out + taylor_end_bias(scene, params)

@@ -293,7 +293,7 @@ class PDBondPair(Model):
         dx = x[1] - x[0]
         reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
         flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach) + rotation_warnings(scene)
-        flags += bias_warnings(params)
+        flags += bias_warnings(scene, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
@@ -468,7 +468,7 @@ class PDBondPair(Model):
                 scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
             )
             + rotation_warnings(scene)
-            + bias_warnings(params)
+            + bias_warnings(scene, params)
         )
         if flags:
             info.setdefault("warnings", []).extend(flags)

@@ -75,3 +75,24 @@ def test_limit_kept(where, options):
     model = get_model("pd-bond-pair")
     params = model.resolve(s, dict(options, points=41, horizon_length=DELTA))
     assert model.continuum_limit(s, params) is None
+
+
+def test_taylor_ends_at_a_free_end_warn_past_horizon_four():
+    """The warning's claim: under a sine load on a cantilever, Taylor ends at horizon 8 are further from the beam
+    than mirror ends (measured 3.6 times), at horizon 3 they are not; the warning is given exactly past horizon 4."""
+    s = load_scene(f"{NONLOCAL}/cf_sine.toml")
+    exact = np.asarray(run(s, "exact-eb", points=321).w)
+
+    def error(r):
+        return np.abs(np.asarray(r.w) - exact).max() / np.abs(exact).max()
+
+    said = {}
+    for h in (3, 4, 8):
+        t, m = (run(s, "pd-bond-pair", points=321, horizon=h, ends=e) for e in ("taylor", "mirror"))
+        said[h] = any("ends = taylor at a free or guided end" in w for w in t.info.get("warnings", []))
+        assert not any("ends = taylor" in w for w in m.info.get("warnings", []))
+        if h == 8:
+            assert error(t) > 2 * error(m)
+        if h == 3:
+            assert error(t) < 1.5 * error(m)
+    assert said == {3: False, 4: False, 8: True}
