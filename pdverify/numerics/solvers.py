@@ -2,8 +2,9 @@
 
 ``solve(K, b, what, solver=...)`` takes the model option ``solver`` (:data:`SOLVER`):
 
-* ``"banded"``: :func:`~pdverify.numerics.linalg.solve_linear` (banded LU, or sparse LU past its bandwidth
-  limit);
+* ``"banded"``: :func:`~pdverify.numerics.linalg.solve_linear`: LAPACK's band LU of an operator assembled as a band
+  (:class:`~pdverify.numerics.band.Band`) whatever its width; an operator assembled otherwise, or reached as the
+  fallback of ``"auto"``, by band LU up to the model's bandwidth limit and sparse LU past it;
 * ``"krylov"``: :func:`~pdverify.numerics.krylov.solve_krylov` whenever the operator is a band that is Toeplitz
   away from its ends (:func:`~pdverify.numerics.krylov.plan`); one line naming the reason otherwise;
 * ``"auto"`` (default): the Krylov path for a band of half-width at least ``KRYLOV_MIN_HALF_BANDWIDTH`` with
@@ -18,6 +19,7 @@ import numpy as np
 
 from ..core.contract import Option
 from ..core.errors import InputError
+from .band import Band
 from .krylov import SOLVERS, plan, solve_krylov
 from .linalg import SMALL, solve_linear
 
@@ -60,6 +62,8 @@ def solve(
             choice = "banded: the Krylov iteration did not converge"
         else:
             choice = f"banded: {why}"
+    if solver == "banded" and isinstance(K, Band):  # asked for: LAPACK's band LU whatever the width
+        banded["banded_max"] = max(banded.get("banded_max", 0), K.lower, K.upper)
     u, info = solve_linear(K, b, what, condition=condition, watch=watch, magnitude=magnitude, **banded)
     info["solver_choice"] = choice
     return u, info
