@@ -1,6 +1,7 @@
 import numpy as np
 import pytest
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from pdverify.core.errors import SolveError
 from pdverify.numerics.linalg import solve_linear
@@ -53,3 +54,32 @@ def test_banded_lu_of_the_scaled_matrix_solves_both_directions():
     assert np.allclose(solve(y), np.linalg.solve(Ks, y), rtol=1e-12, atol=0)
     assert np.allclose(solve_t(y), np.linalg.solve(Ks.T, y), rtol=1e-12, atol=0)
     assert np.array_equal(Band.from_sparse(K, lo, up).diag(0), K.diagonal())
+
+
+def _fourth_difference(n):
+    """The clamped-ends fourth difference (integer entries, stored exactly), condition ~ (n / pi)^4."""
+    e = np.ones(n)
+    K = sp.diags([e[:-2], -4 * e[:-1], 6 * e, -4 * e[:-1], e[:-2]], [-2, -1, 0, 1, 2]).tolil()
+    K[0, 0] = K[n - 1, n - 1] = 5
+    return K.tocsr()
+
+
+def test_refinement_goes_on_while_it_contracts():
+    """A correction solved by a single-precision LU of a fourth difference with condition ~ 2e6 gains about
+    cond * eps32 ~ 1/8 a step: past the three default steps refinement goes on while each step at least halves the
+    last (up to REFINE_MOST), and ends far closer than three steps to the limit of refinement (forty steps)."""
+    from pdverify.numerics.linalg import REFINE_MOST, refine
+
+    K = _fourth_difference(120)
+    b = K @ (np.sin(np.linspace(0.0, 3.0, 120)) + 0.1)
+    lu = spla.splu(K.tocsc().astype(np.float32))
+
+    def solve(r):
+        return lu.solve(np.asarray(r, np.float32)).astype(float)
+
+    u, steps = refine(K, b, solve(b), solve)
+    three, _ = refine(K, b, solve(b), solve, steps=3, most=3)
+    limit, _ = refine(K, b, solve(b), solve, steps=40, most=40)
+    assert 3 < len(steps) <= REFINE_MOST
+    assert all(b_ <= 0.5 * a for a, b_ in zip(steps[:-2], steps[1:-1]))  # each step but the last halved the one before
+    assert np.abs(u - limit).max() < 0.1 * np.abs(three - limit).max()
