@@ -24,7 +24,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..core.errors import InputError
+from ..core.errors import InputError, SolveError
 from ..core.result import Result, Timer
 from ..core.scene import Scene
 from .symbols import series_solution
@@ -158,10 +158,12 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float):
     key = model.measures
     r = r0
     top = base.get("continuum_m") or model.continuum_m
+    stopped = ""
     while m_user * r <= top * (1 + 1e-9) or len(levels) < 2:
         try:
             values.append(_values_at(model, scene, base, _refined(model, scene, base, r), x_user))
-        except InputError:  # the model refuses this grid (a memory or size limit): stop at the levels so far
+        except (InputError, SolveError) as exc:  # the model refuses this grid (a memory or size limit) or cannot
+            stopped = f"; the grid of m = {m_user * r:g} not solved: {exc.lines[0].split('; ')[0]}"  # solve it
             break
         levels.append(r)
         if len(levels) >= 3:
@@ -172,7 +174,8 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float):
     if best is None:
         best, est, each = values[-1], _change(values[0], values[-1]) if len(values) > 1 else math.inf, {}
     info = {
-        "continuum": f"extrapolated in m at fixed delta from m = {', '.join(f'{m_user * q:g}' for q in levels)}",
+        "continuum": f"extrapolated in m at fixed delta from m = {', '.join(f'{m_user * q:g}' for q in levels)}"
+        + stopped,
         "continuum_levels": [m_user * q for q in levels],
         "error_bound": est,
         "continuum_errors": each,

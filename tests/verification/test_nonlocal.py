@@ -170,3 +170,14 @@ def test_a_fractional_m_of_a_full_volume_variant_has_no_continuum_estimate():
     c = run(sc, "pd-eb", points=101, variant="paper", horizon_length=3.015 / 100, continuum=True, continuum_m=32)
     assert c.info["error_bound"] == np.inf
     assert any("m = 3.015 is not whole" in w for w in c.info["warnings"])
+
+
+def test_a_singular_level_ends_the_extrapolation():
+    """The extrapolation in m stops at the levels it could solve: pd-timoshenko corrected on a cantilever at
+    delta = 0.2 L is singular to working precision at m = 128 (its condition grows like m^6 at fixed delta), which
+    ends the levels with a note instead of failing the continuum."""
+    s = load_scene("studies/nonlocal/cf_sine.toml")
+    r = run(s, "pd-timoshenko", points=41, horizon_length=0.2, variant="corrected", continuum=True)
+    assert r.info["continuum_levels"] == [8.0, 16.0, 32.0, 64.0]
+    assert "the grid of m = 128 not solved: " in r.info["continuum"] and "singular" in r.info["continuum"]
+    assert np.isfinite(r.info["error_bound"]) and np.all(np.isfinite(r.w))
