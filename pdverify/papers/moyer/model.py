@@ -70,11 +70,24 @@ class PDTimoshenko(_MoyerModel):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])
 
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
-        """Variant energy's fitted end bonds exist for horizons 1-12 only (:mod:`.energy`): no limit at fixed delta."""
+        """Variant energy's fitted end bonds exist for horizons 1-12 only (:mod:`.energy`): no limit at fixed delta.
+        Under a transverse point force inside the beam the deflection at the load grows like ln m at fixed delta
+        (measured, docs/nonlocal.md: the shear kernel's response to a point force): no limit there either."""
         if params["variant"] == "energy":
             return (
                 "variant energy's fitted end bonds exist for horizons 1-12 only, so it has no limit at fixed delta",
                 12,
+            )
+        inside = [
+            ld.position
+            for ld in scene.loads
+            if ld.type == "point_force" and ld.value != 0.0 and 0.0 < ld.position < scene.length
+        ]
+        if inside:
+            return (
+                f"a point force inside the beam (x = {min(inside):g}): the deflection at the load grows like ln m at "
+                "fixed delta (docs/nonlocal.md), so there is no limit",
+                int(params.get("continuum_m") or self.continuum_m),
             )
         return None
 
