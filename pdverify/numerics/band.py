@@ -186,6 +186,33 @@ class Band:
             B.data[B.upper + rows - cols, cols] = K.data[a:b]
         return B
 
+    @classmethod
+    def gram(cls, A: sp.spmatrix, scale: float = 1.0) -> Band:
+        """scale A^T A of a sparse A whose rows each reach at most ``span`` columns, as a band of half-width ``span``:
+        the rows, ordered by their first column, in blocks of ``span`` rows, each block's dense Gram matrix by BLAS and
+        added diagonal by diagonal. The same matrix as the sparse product to round-off, at about 2 (3 span)^2 flops
+        per row in dense products where the sparse product makes about (2 span)^2 indexed ones."""
+        A = canonical_csr(A)
+        n = A.shape[1]
+        filled = np.flatnonzero(np.diff(A.indptr))
+        if not len(filled):
+            return cls(n, 0, 0)
+        first = np.minimum.reduceat(A.indices, A.indptr[filled])
+        last = np.maximum.reduceat(A.indices, A.indptr[filled])
+        span = int((last - first).max())
+        K = cls(n, span, span)
+        order = np.argsort(first, kind="stable")
+        rows, first, last = filled[order], first[order], last[order]
+        step = max(1, span)
+        for b0 in range(0, len(rows), step):
+            c0, c1 = int(first[b0 : b0 + step].min()), int(last[b0 : b0 + step].max()) + 1
+            M = A[rows[b0 : b0 + step]][:, c0:c1].toarray()
+            G = M.T @ M
+            for o in range(-min(span, c1 - c0 - 1), min(span, c1 - c0 - 1) + 1):
+                d = np.diagonal(G, o)  # element t: row c0 + t + max(0, -o), i.e. element c0 + t of K's diagonal o
+                K.diag(o)[c0 : c0 + len(d)] += scale * d
+        return K
+
     def matvec(self, x: np.ndarray) -> np.ndarray:
         x = np.asarray(x)
         y = np.zeros(self.n, dtype=np.result_type(x, float))

@@ -16,6 +16,7 @@ from ...numerics.ghosts import curvature_end_rows, poly_ghosts, taylor_ghosts
 from ...numerics.loads import body_loads, end_loads
 
 MIRROR_SIGN = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "roller": -1.0, "free": 0.0}  # Eq. 39–41
+GRAM_MIN_ROW = 128  # entries a row of DT above which K = a (DT)^T DT is formed by Band.gram (docs/performance.md)
 
 
 def curvature_weights(m: float, dx: float, variant: str) -> np.ndarray:
@@ -150,8 +151,9 @@ def paper_system(scene: Scene, x: np.ndarray, c: np.ndarray, a: float, A: float,
     T = mirror_map(n, G, left, right, layer)
     if reading in ("literal", "layer"):  # Eq. 37 on the fictitious points of supported ends as well
         D = sp.vstack([D, fictitious_curvature(T, n, G, c)]).tocsr()
-    DT = D @ T
-    K = Band.from_sparse(a * (DT.T @ DT))
+    DT = (D @ T).tocsr()
+    wide = int(np.diff(DT.indptr).max(initial=0)) > GRAM_MIN_ROW  # wide rows: the dense blocks' Gram by BLAS
+    K = Band.gram(DT, a) if wide else Band.from_sparse(a * (DT.T @ DT))
     b = body_loads(scene, x) / A
     fixed = fixed_points(scene, n)
     return K, b, fixed, {"ghosts_per_end": G, "boundary": "mirror images, Appendix free ends", "reading": reading}

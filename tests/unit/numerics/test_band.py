@@ -89,3 +89,25 @@ def test_in_place_solve_equals_sparse_solve_and_detects_singular():
     S.diag(-1)[:] = 0.0  # the zero matrix: singular
     with pytest.raises(SolveError, match="singular"):
         solve_band(S, np.ones(n), what="zero beam")
+
+
+@pytest.mark.parametrize("shape, reach", [((300, 300), 40), ((340, 300), 25), ((120, 300), 3)])
+def test_gram_is_the_sparse_product(shape, reach):
+    """Band.gram(A, s) = s A^T A entry by entry within the inner products' rounding: each entry sums at most L
+    products (L the most entries of a column), so each way is within gamma_L (|A|^T |A|) of the exact (Higham,
+    Accuracy and Stability, eq. 3.4), and the two within twice that. Rows in any order, some empty, some reaching
+    past the others (the appended rows of a ghost layer)."""
+    rng = np.random.default_rng(7)
+    nr, n = shape
+    centre = rng.integers(0, n, nr)
+    rows = np.repeat(np.arange(nr), 2 * reach + 1)
+    cols = (centre[:, None] + np.arange(-reach, reach + 1)).ravel()
+    keep = (cols >= 0) & (cols < n) & (rng.random(cols.size) < 0.9)
+    A = sp.csr_matrix((rng.standard_normal(keep.sum()), (rows[keep], cols[keep])), shape=shape)
+    A = A[np.r_[0 : nr // 2, nr // 2 + 5 : nr]]  # a few rows fewer, and empty rows kept by the shape below
+    A = sp.vstack([A, sp.csr_matrix((3, n))]).tocsr()
+    got = Band.gram(A, 2.5).toarray()
+    want = (2.5 * (A.T @ A)).toarray()
+    L = int(np.diff(A.tocsc().indptr).max())
+    gamma = L * np.finfo(float).eps / (1 - L * np.finfo(float).eps)
+    assert np.all(np.abs(got - want) <= 2 * gamma * 2.5 * (abs(A).T @ abs(A)).toarray() + 1e-300)
