@@ -16,7 +16,7 @@ from ...numerics.ghosts import curvature_end_rows, poly_ghosts, taylor_ghosts
 from ...numerics.loads import body_loads, end_loads
 
 MIRROR_SIGN = {"clamped": 1.0, "guided": 1.0, "pinned": -1.0, "roller": -1.0, "free": 0.0}  # Eq. 39–41
-GRAM_MIN_ROW = 128  # entries a row of DT above which K = a (DT)^T DT is formed by Band.gram (docs/performance.md)
+GRAM_MIN_ROW = 200  # entries a row of DT above which K = a (DT)^T DT is formed by Band.gram (docs/performance.md)
 
 
 def curvature_weights(m: float, dx: float, variant: str) -> np.ndarray:
