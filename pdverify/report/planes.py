@@ -35,7 +35,9 @@ def _orders(nonlocal_table: pd.DataFrame, scene: str, model: str, options: str) 
             continue
         held = str(r.get("held") or "").replace("horizon = ", "δ = ")
         path = PATH_SHORT.get(r["path"], r["path"])
-        value = "none (continuum in doubt)" if doubt else fixed(r["observed_order"], 2)
+        no_limit = isinstance(r.get("no_limit"), str) and bool(r.get("no_limit"))
+        value = "none (no limit at fixed δ)" if no_limit else "none (continuum in doubt)" if doubt else None
+        value = value or fixed(r["observed_order"], 2)
         parts.append(f"{path} {value}" + (f" ({held})" if held else ""))
     return "orders: " + ", ".join(parts) if parts else ""
 

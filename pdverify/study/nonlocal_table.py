@@ -8,7 +8,9 @@ three or more points (``observed_order``, with ``r2``) and the slope of its two 
 
 The first two are measured against the model's continuum, which reports its own error (``continuum_error``, an
 extrapolation's estimate): where that estimate is above a tenth of the smallest error of the fit, the continuum
-could decide the order, and the row gives none (``continuum_in_doubt``; its errors are still listed).
+could decide the order, and the row gives none (``continuum_in_doubt``; its errors are still listed). Where the model
+has no limit at that horizon (``continuum_no_limit`` of its rows) there is no continuum to converge to: the row gives
+none either and says why (``no_limit``).
 
 A series is the rows of one scene, model, slenderness and option set but for the grid and the horizon.
 """
@@ -35,6 +37,11 @@ def _f(v) -> float:
     return float("nan") if v is None else float(v)
 
 
+def _text(v) -> str:
+    """A text cell: "" for None or NaN (a column some rows lack)."""
+    return v if isinstance(v, str) else ""
+
+
 def series_options(options: str | None) -> str:
     """The options of a row without its grid and horizon (the key of a nonlocal series)."""
     try:
@@ -51,12 +58,15 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
     for r in sorted(rows, key=lambda r: -_f(r.get("points"))):  # the finest grid first: kept per length
         x = round(_f(r.get(xcol)), 12)
         if np.isfinite(x) and x not in by_x:
-            by_x[x] = (_f(r.get(ecol)), _f(r.get("continuum_error")))
+            by_x[x] = (_f(r.get(ecol)), _f(r.get("continuum_error")), _text(r.get("continuum_no_limit")))
     if len(by_x) < 3:
         return None
     x = np.array(sorted(by_x))
     e, own = (np.array([by_x[v][i] for v in x]) for i in (0, 1))
-    doubt = path != "dm-convergence" and bool(np.nanmax(np.append(own, 0.0)) > CONTINUUM_SHARE * e.min())
+    no_limit = "" if path == "dm-convergence" else next((by_x[v][2] for v in x if by_x[v][2]), "")
+    doubt = path != "dm-convergence" and (
+        bool(no_limit) or bool(np.nanmax(np.append(own, 0.0)) > CONTINUUM_SHARE * e.min())
+    )
     p, r2 = observed_order(x, e) if not doubt else (float("nan"), float("nan"))
     fine = log_slope(x[:2], e[:2])[0] if not doubt else float("nan")
     return {
@@ -70,6 +80,7 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
         "r2": r2,
         "finest_order": fine,
         "continuum_in_doubt": doubt,
+        "no_limit": no_limit,
     }
 
 

@@ -6,12 +6,13 @@
 * ``err_max``: discrete - local reference, the total, as in every study.
 
 Max errors relative to the largest value of the second field (``*_l2``: relative L2), ``continuum_error`` the
-continuum's own estimate. Both are measured at the points of the coarsest grid with m >= 8 that the case's grid holds
-(``split_points`` of them: :func:`~pdverify.theory.continuum.coarsest_nested`), so that the rows of one horizon share
-one continuum extrapolated from m = 8 up, whatever their own m. A case gets them when its model is a PD model (a
-``horizon`` option), it gives its horizon as a length (``horizon_length``) and its run has a local reference. A run
-whose reference is ``{model = ..., continuum = true}`` measures against the continuum itself on its own grid
-(:func:`continuum_at`).
+continuum's own estimate, ``continuum_no_limit`` why the model has no limit at this horizon ("" when it has one:
+docs/nonlocal.md, "A limit at fixed δ?"). Both are measured at the points of the coarsest grid with m >= 8 that the
+case's grid holds (``split_points`` of them: :func:`~pdverify.theory.continuum.coarsest_nested`), so that the rows
+of one horizon share one continuum extrapolated from m = 8 up, whatever their own m. A case gets them when its model
+is a PD model (a ``horizon`` option), it gives its horizon as a length (``horizon_length``) and its run has a local
+reference. A run whose reference is ``{model = ..., continuum = true}`` measures against the continuum itself on its
+own grid (:func:`continuum_at`).
 """
 
 from __future__ import annotations
@@ -47,8 +48,8 @@ def continuum_items(case: Case, own: bool = False) -> tuple[str, tuple]:
 
 @lru_cache(maxsize=64)
 def _continuum(scene_text: str, scene_file: str, slenderness, model: str, items: tuple, quantity: str, x_bytes: bytes):
-    """(values of ``quantity`` at the points x, the continuum's error estimate): the continuum solved on the grid
-    of len(x) points, which must hold x (the case's own grid)."""
+    """(values of ``quantity`` at the points x, the continuum's error estimate, why the model has no limit there or
+    ""): the continuum solved on the grid of len(x) points, which must hold x (the case's own grid)."""
     scene = Case(scene_file, scene_text, slenderness, "", {}, {}).scene()
     x = np.frombuffer(x_bytes, "<f8")
     result = run(scene, model, **dict(items), points=len(x))
@@ -59,12 +60,12 @@ def _continuum(scene_text: str, scene_file: str, slenderness, model: str, items:
         raise InputError(f"continuum of {model} gives no {quantity}")
     values = np.array(got, float)
     values.flags.writeable = False
-    return values, result.info.get("error_bound")
+    return values, result.info.get("error_bound"), result.info.get("no_limit", "")
 
 
 def continuum_at(case: Case, scene, x: np.ndarray, quantity: str | None = None, own: bool = False):
-    """(values, error estimate) of the case's continuum reference (``own``: its own model's continuum) of what its
-    model measures (or ``quantity``) at the points x."""
+    """(values, error estimate, why there is no limit or "") of the case's continuum reference (``own``: its own
+    model's continuum) of what its model measures (or ``quantity``) at the points x."""
     model, items = continuum_items(case, own)
     quantity = quantity or get_model(case.model).measures
     x = np.ascontiguousarray(x, "<f8")
@@ -92,7 +93,7 @@ def split_errors(case: Case, scene, solved: dict, w_ref: np.ndarray, row: dict) 
         model = get_model(case.model)
         params = model.resolve(scene, {k: v for k, v in case.given.items() if k not in ("continuum", "continuum_m")})
         points, at = coarsest_nested(model, scene, params, x)
-        cont, bound = continuum_at(case, scene, x[at], own=True)
+        cont, bound, no_limit = continuum_at(case, scene, x[at], own=True)
     except PdverifyError as exc:
         row["continuum_message"] = " ".join(exc.lines)
         return
@@ -104,4 +105,5 @@ def split_errors(case: Case, scene, solved: dict, w_ref: np.ndarray, row: dict) 
         err_disc_l2=d["err_l2"],
         continuum_error=np.nan if bound is None else float(bound),
         split_points=points,
+        continuum_no_limit=no_limit,
     )

@@ -39,3 +39,28 @@ def test_rows_of_one_horizon_share_the_continuum(tmp_path):
         assert points == 41 and own == c.info["error_bound"]
         want = np.abs(w - c.w).max() / np.abs(c.w).max()
         assert abs(got - want) <= 1e-12 * want  # the same operations: equal but for their order
+
+
+def test_a_series_without_a_limit_says_so(tmp_path):
+    """pd-bond-pair with mirror ends on a clamped-clamped beam has no limit at fixed delta (docs/nonlocal.md): its
+    rows carry the reason, nonlocal.csv's m-convergence and model-error rows give no order and say why, and the
+    δ–Δx plane's title names it."""
+    import pandas as pd
+
+    from pdverify.report.planes import _orders
+    from pdverify.study.nonlocal_table import series_options
+
+    p = tmp_path / "s.toml"
+    p.write_text(
+        f'name = "s"\nscenes = ["{SCENE.as_posix()}"]\nreference = "exact-eb"\n[[runs]]\nmodel = "pd-bond-pair"\n'
+        'ends = "mirror"\nhorizon_length = [0.2, 0.1, 0.05]\npoints = [41, 81, 161]\ncontinuum_m = 16\n'
+    )
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    assert df["continuum_no_limit"].str.contains("clamped end").all()
+    table = pd.read_csv(tmp_path / "out" / "nonlocal.csv")
+    split = table[table["path"].isin(["m-convergence", "model error"])]
+    assert len(split) and split["no_limit"].str.contains("ln m").all() and split["observed_order"].isna().all()
+    dm = table[table["path"] == "dm-convergence"]
+    assert len(dm) and dm["observed_order"].notna().all()  # at a fixed m it still converges
+    title = _orders(table, df["scene"].iloc[0], "pd-bond-pair", series_options(df["options"].iloc[0]))
+    assert "m none (no limit at fixed δ)" in title
