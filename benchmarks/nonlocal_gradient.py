@@ -41,7 +41,8 @@ def measure(model, opts, scene_name, ref, delta, top=64):
     points = int(round(8 * scene.length / delta)) + 1
     base = m.resolve(scene, dict(opts, points=points, horizon_length=delta, continuum_m=top))
     base = {k: v for k, v in base.items() if k not in ("horizon", "continuum")}
-    (x, w, _, fields), info = C._extrapolated(m, scene, base, delta, scene.length / (points - 1))
+    dx = scene.length / (points - 1)
+    (x, w, _, fields), info = C._extrapolated(m, scene, base, delta, dx, m.continuum_limit(scene, base))
     value = w if m.measures == "w" else fields[m.measures]
     e = run(scene, ref, points=points)
     local = e.w if m.measures == "w" else e.fields[m.measures]

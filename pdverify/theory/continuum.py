@@ -55,7 +55,8 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
     x_user = None
     info = {"horizon": delta, "spacing": dx, "m": delta / dx}
     with timer("solve"):
-        series = None if model.continuum_limit(scene, base) else model.continuum_series(scene, params)
+        limit = model.continuum_limit(scene, base)
+        series = None if limit else model.continuum_series(scene, params)
         solved = None
         if series is not None:
             x_user = _grid_of(model, scene, base, params["points"])
@@ -67,7 +68,7 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
                 w = q if series.quantity == "w" else np.zeros_like(q)
                 solved = (x_user, w, rot if series.quantity == "w" or series.slope is not None else None, fields)
         if solved is None:
-            solved, more = _extrapolated(model, scene, base, delta, dx)
+            solved, more = _extrapolated(model, scene, base, delta, dx, limit)
             info.update(more)
     x, w, rot, fields = solved
     whole = model.continuum_whole(params)
@@ -125,10 +126,10 @@ def _refined(model, scene: Scene, base: dict, r: int) -> int:
     raise InputError(f"model {model.name}: no grid of spacing dx / {r} found for the continuum")
 
 
-def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float):
-    """((x, w, rotation, fields), info) of the extrapolation in m (or the finest grid of a variant without limit)."""
+def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float, limit: tuple[str, int] | None):
+    """((x, w, rotation, fields), info) of the extrapolation in m, or the finest grid of a variant without limit
+    (``limit``: :meth:`~pdverify.core.contract.Model.continuum_limit`'s answer)."""
     m_user = delta / dx
-    limit = model.continuum_limit(scene, base)
     x_user = _grid_of(model, scene, base, base["points"])
     if limit is not None:
         why, m_top = limit

@@ -52,7 +52,7 @@ def _extrapolated(model, opts, scene, delta, points, top):
     m = get_model(model)
     base = m.resolve(scene, dict(opts, points=points, horizon_length=delta, continuum_m=top))
     base = {k: v for k, v in base.items() if k not in ("horizon", "continuum")}
-    return C._extrapolated(m, scene, base, delta, scene.length / (points - 1))
+    return C._extrapolated(m, scene, base, delta, scene.length / (points - 1), m.continuum_limit(scene, base))
 
 
 @pytest.mark.slow

@@ -6,6 +6,7 @@ import numpy as np
 
 from ...core.scene import Scene
 from .calibration import pair_family
+from .limit import end_kinds
 
 
 def continuous_alpha_bias(m: float) -> str:
@@ -28,7 +29,7 @@ def taylor_end_bias(scene: Scene, params: dict) -> list[str]:
     """Taylor ghost ends (docs/design/formulas.md §1) carry a degree-4 polynomial fitted to the first points over the
     whole horizon: at a free or guided end under a sine-shaped load (the scene's one load whose solution is not a
     piecewise polynomial) their error grows much faster with the horizon than the model's nonlocality."""
-    kinds = {scene.supports.kind(side) for side in ("left", "right")}
+    kinds = end_kinds(scene)
     sine = any(ld.type == "distributed" and ld.shape == "sine" for ld in scene.loads)
     if params["ends"] != "taylor" or not kinds & {"free", "guided"} or not sine or params["horizon"] <= TAYLOR_HORIZON:
         return []

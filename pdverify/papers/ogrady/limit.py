@@ -23,9 +23,14 @@ from ...core.scene import Scene
 POINT_LOADS = ("point_force", "point_moment", "displacement")
 
 
+def end_kinds(scene: Scene) -> set[str]:
+    """The supports of the scene's two ends (names of :data:`pdverify.core.scene.SUPPORTS` or "spring")."""
+    return {scene.supports.kind(side) for side in ("left", "right")}
+
+
 def no_limit_reason(scene: Scene, ends: str) -> str:
     """Why the bond-pair beam with (resolved) ``ends`` has no limit at fixed delta on ``scene``, "" when it has one."""
-    kinds = {scene.supports.kind(side) for side in ("left", "right")}
+    kinds = end_kinds(scene)
     loads = sorted({ld.type.replace("_", " ") for ld in scene.loads if ld.type in POINT_LOADS})
     held = []
     if loads:
