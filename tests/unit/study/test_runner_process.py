@@ -72,7 +72,7 @@ def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
         stderr=subprocess.DEVNULL,
         start_new_session=True,
     )
-    deadline = time.time() + 60
+    deadline = time.time() + 300  # a wait for the machine, not a check: a loaded one stores its first case later
     workers = []
     while time.time() < deadline and (len(workers) < 2 or not list((out / "cases").glob("*.case"))):
         workers = _children(proc.pid)
@@ -99,16 +99,17 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     p = write_study(
         tmp_path,
         '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-        "points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001]\n"
+        "points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001, 64001, 128001]\n"
         "horizon = [2, 3, 4]\n",
-    )
+    )  # 66 cases, the largest slow enough that the run cannot end between the signal and the workers' stop
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
     proc = start_in_own_group(cmd)
-    deadline = time.time() + 60
-    workers = []
-    while time.time() < deadline and (len(workers) < 2 or len(list((out / "cases").glob("*.case"))) < 3):
+    deadline = time.time() + 300  # a wait for the machine, not a check: a loaded one stores its cases later
+    workers, stored = [], 0
+    while time.time() < deadline and (len(workers) < 2 or stored < 3):
         workers = _children(proc.pid)
+        stored = len(list((out / "cases").glob("*.case")))
         time.sleep(0.02)
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)
@@ -116,7 +117,9 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     time.sleep(0.5)
     assert len(workers) == 2 and [w for w in workers if _alive(w)] == []
     kept = len(list((out / "cases").glob("*.case")))
-    assert 3 <= kept < 54 and not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
+    assert stored >= 3, f"only {stored} cases stored in 300 s"
+    assert stored <= kept < 66  # every case stored before the signal is kept, and the run was cut short
+    assert not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert json.loads((out / "meta.json").read_text())["resumed_cases"] == kept
