@@ -288,6 +288,15 @@ def _context(scene: Scene, params: dict) -> str:
     )
 
 
+def beam_points_loaded(scene: Scene) -> list[float]:
+    """Where a transverse point force acts inside the beam (not at its ends), in the scene's order."""
+    return [
+        ld.position
+        for ld in scene.loads
+        if ld.type == "point_force" and ld.value != 0.0 and 0.0 < ld.position < scene.length
+    ]
+
+
 def point_force_order(model, scene: Scene, params: dict) -> list[str]:
     """The known losses of order under a point load (docs/models/moyer.md, "Known limits"): the corrected beam's
     transverse point force inside the beam (its jump in shear falls between the collocation points' PD sums); the
@@ -295,13 +304,11 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
     makes a spike of u about a horizon wide)."""
     if not model.bending:
         return rod_point_load_order(model, scene, params)
-    inside = [
-        ld for ld in scene.loads if ld.type == "point_force" and ld.value != 0.0 and 0.0 < ld.position < scene.length
-    ]
+    inside = beam_points_loaded(scene)
     if not (params["variant"] == "corrected" and inside):
         return []
     return [
         "variant = corrected converges at first order near a point force inside the beam "
-        f"(x = {inside[0].position:g}): the error halves, not quarters, per halving of the spacing (1.0e-3, 5.0e-4, "
+        f"(x = {inside[0]:g}): the error halves, not quarters, per halving of the spacing (1.0e-3, 5.0e-4, "
         "2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5); variant = energy is second order there"
     ]

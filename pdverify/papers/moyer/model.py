@@ -26,7 +26,7 @@ from ...core.contract import Option, Rule
 from ...core.errors import InputError
 from ...core.scene import Scene
 from ...theory.symbols import Series, timoshenko_series
-from .base import _OPTIONS, _context, _MoyerModel, stabilisation_warning
+from .base import _OPTIONS, _context, _MoyerModel, beam_points_loaded, stabilisation_warning
 from .couples import couple_column
 from .ends import MIRRORED
 from .energy import moment_field, shear_force
@@ -78,11 +78,7 @@ class PDTimoshenko(_MoyerModel):
                 "variant energy's fitted end bonds exist for horizons 1-12 only, so it has no limit at fixed delta",
                 12,
             )
-        inside = [
-            ld.position
-            for ld in scene.loads
-            if ld.type == "point_force" and ld.value != 0.0 and 0.0 < ld.position < scene.length
-        ]
+        inside = beam_points_loaded(scene)
         if inside:
             return (
                 f"a point force inside the beam (x = {min(inside):g}): the deflection at the load grows like ln m at "
