@@ -27,6 +27,15 @@ def write_study(tmp_path, body, name="s"):
     return p
 
 
+# 12 cases of similar cost (each a large banded solve): the pool holds at most 2 running + 3 queued when it is
+# stopped, so a run stopped after its first stored cases cannot end in the meantime, whatever the machine's
+# speed (with many tiny cases a run can end, every case stored, between its 3rd stored case and the signal)
+SLOW_RUNS = (
+    '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [128001, 160001, 192001]\nhorizon = [2, 3, 4, 5]\n'
+)
+SLOW_CASES = 12
+
+
 def one_error_line(r, code):
     assert r.returncode == code and "Traceback" not in r.stderr, r.stderr
     lines = [line for line in r.stderr.splitlines() if line.strip()]
@@ -59,11 +68,7 @@ def _alive(pid: int) -> bool:
 def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
     """``kill -9`` of a study's main process while two pool workers solve: no worker is left after 5 s
     (they were left stuck on their queues for over 60 s before), and the cases stored so far resume."""
-    p = write_study(
-        tmp_path,
-        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-        "points = [2001, 3001, 4001, 6001, 8001, 12001, 16001]\nhorizon = [2, 3, 4]\n",
-    )
+    p = write_study(tmp_path, SLOW_RUNS)
     out = tmp_path / "out"
     proc = subprocess.Popen(
         [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"],
@@ -86,7 +91,7 @@ def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
         os.kill(w, signal.SIGKILL)
     assert left == []
     kept = len(list((out / "cases").glob("*.case")))
-    assert 1 <= kept < 42 and not (out / "results.csv").exists()
+    assert 1 <= kept < SLOW_CASES and not (out / "results.csv").exists()
     assert FolderLock(out).release() is None  # the kernel dropped the dead run's lock
 
 
@@ -96,12 +101,7 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) in a run with two pool workers:
     exit 130 without a traceback, the workers ended (they ignore SIGINT; the main process stops them), no
     tables for a partial study, and the next run resumes every stored case."""
-    p = write_study(
-        tmp_path,
-        '[[runs]]\nmodel = "pd-eb"\nvariant = ["paper", "corrected"]\n'
-        "points = [2001, 3001, 4001, 6001, 8001, 12001, 16001, 24001, 32001, 64001, 128001]\n"
-        "horizon = [2, 3, 4]\n",
-    )  # 66 cases, the largest slow enough that the run cannot end between the signal and the workers' stop
+    p = write_study(tmp_path, SLOW_RUNS)
     out = tmp_path / "out"
     cmd = [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "2", "--quiet"]
     proc = start_in_own_group(cmd)
@@ -118,7 +118,7 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     assert len(workers) == 2 and [w for w in workers if _alive(w)] == []
     kept = len(list((out / "cases").glob("*.case")))
     assert stored >= 3, f"only {stored} cases stored in 300 s"
-    assert stored <= kept < 66  # every case stored before the signal is kept, and the run was cut short
+    assert stored <= kept < SLOW_CASES  # every case stored before the signal is kept, and the run was cut short
     assert not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
