@@ -15,6 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from pdverify.core.scene import Distributed, PointForce, Scene
+from pdverify.numerics.factorcache import digest
+from pdverify.numerics.kept import Kept
 from reference_fem import curved_mesh as cm
 
 
@@ -174,29 +176,46 @@ def support_conditions(scene: Scene, pin: str, bm, basis, tan_s: np.ndarray, nor
     return fixed, pairs, tangents, crows
 
 
-def constrained_system(K, F: np.ndarray, N: int, fixed: list, pairs: list, tangents: list, crows: list):
+_REDUCED = Kept(4)  # (K, supports) digest -> the reduced operator: another load on the same strip and supports
+
+
+def constrained_system(K, F: np.ndarray, N: int, fixed: list, pairs: list, tangents: list, crows: list, key=None):
     """(Kf, Ff, free, T, S) of the supports of :func:`support_conditions`: u = T u' rotates the end faces' DOFs
     into their frames (T None when no rotation is needed), the held entries of u' are eliminated (``free``: the
-    others), and u'_free = S v eliminates one master DOF per constraint row (S None without such rows)."""
-    import skfem as fem  # scikit-fem is loaded by the model's solve only
+    others), and u'_free = S v eliminates one master DOF per constraint row (S None without such rows). The
+    reduced operator (Kf, free, T, S) depends on K and the supports only: it is kept for the last few (K,
+    supports) of up to :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns, and another load only reduces F.
+    ``key``: a digest that determines K (the caller's assembly key), else K's bytes are hashed."""
+    key = key or digest(K.data, K.indices, K.indptr)
+    key = digest(*fixed, *pairs, *tangents, *crows, params=(N, key))
+    Kf, free, T, S = _REDUCED.get(
+        key, lambda: _reduced_operator(K, N, fixed, pairs, tangents, crows), keep=lambda _: N <= cm.KEPT_DOFS
+    )
+    Ff = (F if T is None else T.T @ F)[free]  # the held DOFs are zero: condensing them leaves F's free rows
+    return Kf, (Ff if S is None else S.T @ Ff), free, T, S
 
+
+def _reduced_operator(K, N: int, fixed: list, pairs: list, tangents: list, crows: list):
+    """(Kf, free, T, S) of :func:`constrained_system`."""
     T = None
     if pairs:
         pr, tg = np.hstack(pairs), np.hstack(tangents)
         if not (np.all(tg[0] == 1.0) and np.all(tg[1] == 0.0)):
             T = cm.rotation_matrix(N, pr, tg)
             K = (T.T @ K @ T).tocsr()
-            F = T.T @ F
-    fixed = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
-    Kf, Ff, _, free = fem.condense(K, F, D=fixed)  # the held DOFs (zero) eliminated
+    held = np.unique(np.concatenate(fixed)) if fixed else np.zeros(0, dtype=np.int64)
+    free = np.setdiff1d(np.arange(N), held)
+    Kf = K[free][:, free].tocsr()
     S = None
     if crows:  # eliminate one master dof per face-mean constraint: u_f = S v
         C = np.vstack(crows)
         if T is not None:
             C = np.asarray((T.T @ C.T).T)
         S = cm.constraint_basis(C[:, free])
-        Kf, Ff = (S.T @ Kf @ S).tocsr(), S.T @ Ff
-    return Kf, Ff, free, T, S
+        Kf = (S.T @ Kf @ S).tocsr()
+    for a in (Kf.data, Kf.indices, Kf.indptr, free):
+        a.flags.writeable = False  # shared by the loads' solves
+    return Kf, free, T, S
 
 
 def reactions(r: np.ndarray, basis, geo, length: float) -> dict[str, float]:

@@ -114,10 +114,10 @@ _KEPT = Kept(2)  # mesh digest -> (basis, K): another load on the same strip; st
 
 
 def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float):
-    """(the vector basis, K) of one material on ``mesh``, kept for the last two meshes of up to
-    :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element, the
-    constants and the width): a study solves the same strip under several loads, and the assembly is a deterministic
-    function of these."""
+    """(the vector basis, K, the key that determines K) of one material on ``mesh``, kept for the last two meshes of
+    up to :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element,
+    the constants and the width): a study solves the same strip under several loads, and the assembly is a
+    deterministic function of these."""
     import skfem as fem
 
     key = digest(
@@ -130,7 +130,7 @@ def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float)
         K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
         return basis, K
 
-    return _KEPT.get(key, make, keep=lambda kept: kept[0].N <= cm.KEPT_DOFS)
+    return (*_KEPT.get(key, make, keep=lambda kept: kept[0].N <= cm.KEPT_DOFS), key)
 
 
 def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):
@@ -145,18 +145,23 @@ def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):
 
 def elasticity(basis, lam: float, mu: float) -> sp.csr_matrix:
     """∫ sigma(u) : eps(v) dx, sigma = lam tr(eps) I + 2 mu eps: the bilinear form of scikit-fem's
-    ``linear_elasticity``, every element's matrix from the basis functions' symmetric gradients in one product
-    (scikit-fem's assembly calls the form once per pair of basis functions)."""
+    ``linear_elasticity``. With each basis function's strain components (tr, exx, eyy, exy) at the quadrature
+    points as the rows of A_e, every element's matrix is A_e W A_eᵀ, W = (lam, 2 mu, 2 mu, 4 mu) times the
+    quadrature weights: one batched matrix product over the elements (scikit-fem's assembly calls the form once
+    per pair of basis functions)."""
     from skfem.helpers import sym_grad  # scikit-fem is loaded by the model's solve only
 
-    eps = np.array([sym_grad(phi[0]) for phi in basis.basis])  # (functions, 2, 2, elements, quadrature points)
-    tr = eps[:, 0, 0] + eps[:, 1, 1]
-    dx = basis.dx
-    ke = lam * np.einsum("ieq,jeq,eq->ije", tr, tr, dx, optimize=True)
-    ke += 2.0 * mu * np.einsum("iabeq,jabeq,eq->ije", eps, eps, dx, optimize=True)
-    dofs = basis.element_dofs  # (functions, elements)
-    rows = np.broadcast_to(dofs[:, None, :], ke.shape).ravel()
-    cols = np.broadcast_to(dofs[None, :, :], ke.shape).ravel()
+    eps = [sym_grad(phi[0]) for phi in basis.basis]  # per function (2, 2, elements, quadrature points)
+    nf, (ne, nq) = len(eps), basis.dx.shape
+    A = np.empty((ne, nf, 4, nq))
+    for i, e in enumerate(eps):  # a loop over the element's basis functions (8 to 18), not over elements
+        A[:, i, 0] = e[0, 0] + e[1, 1]
+        A[:, i, 1], A[:, i, 2], A[:, i, 3] = e[0, 0], e[1, 1], e[0, 1]
+    AW = A * (np.array([lam, 2.0 * mu, 2.0 * mu, 4.0 * mu])[:, None] * basis.dx[:, None, :])[:, None]
+    ke = np.matmul(AW.reshape(ne, nf, 4 * nq), A.reshape(ne, nf, 4 * nq).transpose(0, 2, 1))  # (elements, i, j)
+    dofs = basis.element_dofs.T  # (elements, functions)
+    rows = np.broadcast_to(dofs[:, :, None], ke.shape).ravel()
+    cols = np.broadcast_to(dofs[:, None, :], ke.shape).ravel()
     K = sp.coo_matrix((ke.ravel(), (rows, cols)), shape=(basis.N, basis.N)).tocsr()
     K.eliminate_zeros()  # as scikit-fem's assembly does
     return K
@@ -295,9 +300,9 @@ class FemPlaneStress(Model):
                 if el.startswith("q4-"):
                     raise InputError(f"segments: element = {el} takes one material; use element q8, q9 or q4")
                 basis = fem.Basis(bm.mesh, fem.ElementVector(getattr(fem, ELEMENTS[el])()))
-                K = plane_scenes.segment_stiffness(basis, scene, plane_stress_lame)
+                K, key = plane_scenes.segment_stiffness(basis, scene, plane_stress_lame), None
             else:
-                basis, K = basis_and_stiffness(bm.mesh, scene, el, lam, mu)
+                basis, K, key = basis_and_stiffness(bm.mesh, scene, el, lam, mu)
             top, mid = face_rows(scene, len(bm.t))
             tan_s, nor_s = bm.geo.frame(bm.s)
             F = load_vector(scene, bm, basis, tan_s, nor_s, top, mid)
@@ -305,7 +310,8 @@ class FemPlaneStress(Model):
             inner = plane_scenes.inner_conditions(scene, params["pin"], bm, basis, mid)
             conditions = tuple(a + b for a, b in zip(conditions, inner, strict=True))
             Ks = plane_scenes.springs(scene, bm, basis)
-            Kf, Ff, free, T, S = constrained_system(K if Ks is None else K + Ks, F, basis.N, *conditions)
+            elastic, key = (K, key) if Ks is None else (K + Ks, None)  # a spring's stiffness: K's key no longer
+            Kf, Ff, free, T, S = constrained_system(elastic, F, basis.N, *conditions, key=key)
         with timer("solve"):
             uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"))
             u = full_displacement(uf, free, basis.N, T, S)

@@ -142,17 +142,20 @@ def test_locking_elements_warn_and_the_default_does_not_lock():
 
 def test_a_strip_met_again_takes_its_kept_assembly_and_gives_the_same_bits():
     """Two loads on one strip: the second solve takes the first's basis and stiffness (reference_fem/plane_stress.py,
-    basis_and_stiffness) and its result is the same to the bit as a solve with nothing kept."""
+    basis_and_stiffness) and its supports' reduced operator (plane_conditions.constrained_system), and its result is
+    the same to the bit as a solve with nothing kept."""
     from pdverify.numerics import factorcache
-    from reference_fem import plane_stress
+    from reference_fem import plane_conditions, plane_stress
 
     sc = cantilever(20)
     other = sc.model_copy(update={"loads": sc.loads[:0] + [sc.loads[0].model_copy(update={"value": 250.0})]})
     plane_stress._KEPT.clear()
+    plane_conditions._REDUCED.clear()
     run(sc, "fem-plane-stress", points=41)
     kept = run(other, "fem-plane-stress", points=41)
-    assert len(plane_stress._KEPT) == 1  # one strip: its assembly made once
+    assert len(plane_stress._KEPT) == 1 and len(plane_conditions._REDUCED) == 1  # made once
     plane_stress._KEPT.clear()
+    plane_conditions._REDUCED.clear()
     factorcache.clear()
     apart = run(other, "fem-plane-stress", points=41)
     assert np.array_equal(kept.w, apart.w) and kept.info["error_bound"] == apart.info["error_bound"]
@@ -178,3 +181,22 @@ def test_a_line_load_met_again_on_the_same_edges_takes_its_kept_facet_basis_and_
     factorcache.clear()
     apart = run(other, "fem-plane-stress", points=41)
     assert np.array_equal(kept.w, apart.w) and kept.info["error_bound"] == apart.info["error_bound"]
+
+
+@pytest.mark.parametrize("element", ["ElementQuad1", "ElementQuadS2", "ElementQuad2"])
+@pytest.mark.parametrize("lam", [1.2e11, -3e9])  # a negative lambda*: Poisson's ratio below 0
+def test_the_batched_elasticity_form_is_scikit_fems(element, lam):
+    """reference_fem.plane_stress.elasticity (every element's A W Aᵀ in one batched product) assembles scikit-fem's
+    ``linear_elasticity`` on a distorted mesh; the two sum the same products in another order, so they agree to a
+    few eps of the largest entry (a 16-term quadrature sum of products: 1e-14 is ~50 eps)."""
+    import skfem
+    from skfem.models.elasticity import linear_elasticity
+
+    from reference_fem.plane_stress import elasticity
+
+    m = skfem.MeshQuad.init_tensor(np.linspace(0, 2, 9), np.linspace(0, 0.3, 5))
+    p = m.p.copy()
+    p[0] += 0.1 * np.sin(3 * p[1]) * p[0] * (2 - p[0])
+    b = skfem.Basis(skfem.MeshQuad(p, m.t), skfem.ElementVector(getattr(skfem, element)()))
+    K0, K1 = linear_elasticity(lam, 8e10).assemble(b), elasticity(b, lam, 8e10)
+    assert abs(K0 - K1).max() <= 1e-14 * abs(K0).max() and K1.nnz == K0.nnz

@@ -92,6 +92,8 @@ def test_a_theory_without_an_exact_solution_is_judged_against_itself_on_a_finer_
     ps = get_model("fem-plane-stress")
     study = tomllib.loads(write_study(plan(ps), ps, {}, tmp_path / "ps").read_text())
     assert study["runs"][-1]["reference"] == {"model": "fem-plane-stress", "points": 641}
+    # suite 1.9: the 2D continuum's floor scene one level coarser, its reference within its round-off reach
+    assert study["runs"][1]["points"] == [41, 161, 641] and study["runs"][1]["reference"]["points"] == 2561
     cur = get_model("pd-curved")
     study = tomllib.loads(write_study(plan(cur), cur, {}, tmp_path / "cur").read_text())
     assert study["runs"][-1]["reference"] == "exact-curved"
