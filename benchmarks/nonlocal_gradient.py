@@ -5,8 +5,9 @@
 On the nonlocal study's sine-loaded members (studies/nonlocal/: a pinned-pinned beam, a clamped-clamped rod and
 shaft, L = 1), the model's continuum at each horizon delta (its discrete solution extrapolated in m at fixed delta,
 pdverify.theory.continuum, never the series of its symbol) against the local solution at the largest value:
-g = (continuum / local - 1) / (k delta)^2, k = pi / L, beside the symbol's g (pdverify.theory.symbols.GRADIENT)
-and the extrapolation's own estimate.
+g = (continuum / local - 1) / (k delta)^2, k = pi / L, beside the symbol's g (pdverify.theory.symbols.GRADIENT;
+pd-higher-order's slender limit, higher_order_gradient, against its own theory, exact-higher-order with the loads and
+pins the model is given) and the extrapolation's own estimate.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 from pdverify.core.scene_file import load_scene
 from pdverify.registry import get_model, run
 from pdverify.theory import continuum as C
-from pdverify.theory.symbols import GRADIENT
+from pdverify.theory.symbols import GRADIENT, higher_order_gradient
 
 CASES = [  # (model, options, scene, symbol, local reference)
     ("pd-eb", {}, "pp_sine", "curvature", "exact-eb"),
@@ -31,7 +32,13 @@ CASES = [  # (model, options, scene, symbol, local reference)
     ("pd-rod", {"variant": "paper"}, "rod_cc_sine", "rod", "exact-rod"),
     ("pd-torsion", {}, "shaft_cc_sine", "rod", "exact-torsion"),
     ("pd-torsion", {"variant": "paper"}, "shaft_cc_sine", "rod", "exact-torsion"),
-    ("pd-higher-order", {}, "pp_sine", None, "exact-timoshenko"),
+    (
+        "pd-higher-order",
+        {"ends": "mirror", "pin": "mid", "loads": "mid"},
+        "pp_sine",
+        "higher-order",
+        ("exact-higher-order", {"pin": "mid", "loads": "mid"}),
+    ),
 ]
 
 
@@ -44,7 +51,8 @@ def measure(model, opts, scene_name, ref, delta, top=64):
     dx = scene.length / (points - 1)
     (x, w, _, fields), info = C._extrapolated(m, scene, base, delta, dx, m.continuum_limit(scene, base))
     value = w if m.measures == "w" else fields[m.measures]
-    e = run(scene, ref, points=points)
+    name, given = ref if isinstance(ref, tuple) else (ref, {})
+    e = run(scene, name, points=points, **given)
     local = e.w if m.measures == "w" else e.fields[m.measures]
     i = int(np.argmax(np.abs(local)))
     k = math.pi / scene.length
@@ -57,7 +65,8 @@ def main():
     args = ap.parse_args()
     for model, opts, scene, symbol, ref in CASES:
         got = [measure(model, opts, scene, ref, d) for d in args.deltas]
-        want = f"{GRADIENT[symbol]:.5f}" if symbol else "-"
+        nu = load_scene(f"studies/nonlocal/{scene}.toml").material.poissons_ratio
+        want = f"{higher_order_gradient(nu) if symbol == 'higher-order' else GRADIENT[symbol]:.5f}"
         text = "  ".join(f"delta={d:g}: g={g:.5f} (estimate {e:.1e})" for d, (g, e) in zip(args.deltas, got))
         name = model + "".join(f" {k}={v}" for k, v in opts.items())
         print(f"{name:40s} symbol g={want}  {text}", flush=True)

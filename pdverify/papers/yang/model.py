@@ -104,6 +104,7 @@ from ...numerics.linalg import solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
+from ...theory.symbols import higher_order_series
 from . import dynamics
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
@@ -244,6 +245,20 @@ class PDHigherOrder(Model):
         Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
         Rule(_PAPER, "clamp", "Eq. B39: w = w* = 0 at the clamped end point (face)", allowed=("auto", "face")),
     )
+
+    def continuum_series(self, scene: Scene, params: dict):
+        """The corrected variant with mirror layers (``ends = mirror``), pinned ends held on the mid-line, loads on
+        it and bonds measured along their path (``pin = mid``, ``loads = mid``, ``shear = path``): its continuum is a
+        series of the mirror modes with the continuous symbol (:func:`pdverify.theory.symbols.higher_order_series`)."""
+        if (
+            params["variant"] != "corrected"
+            or self.ends(params) != "mirror"
+            or self.choice(params, "pin") != "mid"
+            or self.choice(params, "loads") != "mid"
+            or params.get("shear", "auto") not in ("auto", "path")
+        ):
+            return None
+        return higher_order_series(scene, self.delta(scene, params), self.constants(scene)[0])
 
     def about(self, params: dict) -> str:
         """The mirror of the paper's fictitious layers: "boundary" or "point" (every other variant/end: "point")."""
