@@ -101,30 +101,37 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
 
 
 # a point force d from an inner support that holds the rotation: the PD beams' error was measured up to about
-# FORCE_NEAR_HELD_ROTATION (dx / d)^2 (docs/trust.md, "a point force near a support that holds the rotation")
+# FORCE_NEAR_HELD_ROTATION (dx / d)^2 at their default horizon of 3 dx (docs/trust.md, "a point force near a support
+# that holds the rotation"). It is the horizon's: the families reach across the support and carry the loaded span's
+# curvature into the other (an unloaded overhang turns), a model error that stays at a fixed horizon length; so the
+# estimate is FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2
 FORCE_NEAR_HELD_ROTATION = 5.0
 NEAR_TOLERANCE = 1e-3  # the error above which that estimate is a warning
 
 
-def held_rotation_warnings(scene: Scene, dx: float, nearest: float = 4.0) -> list[str]:
+def held_rotation_warnings(scene: Scene, dx: float, nearest: float = 4.0, delta: float | None = None) -> list[str]:
     """Point forces at least ``nearest`` spacings from an inner support that holds the rotation (clamped, or a spring
-    with a rotational stiffness) whose estimated error FORCE_NEAR_HELD_ROTATION (dx / d)^2 (at most 1: the
-    solution's own size) passes NEAR_TOLERANCE (nearer ones: the model's own warning of rows that straddle the load,
-    where it has one)."""
+    with a rotational stiffness) whose estimated error FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2 (at most 1:
+    the solution's own size; ``delta`` the horizon, default 3 dx) passes NEAR_TOLERANCE (nearer ones: the model's own
+    warning of rows that straddle the load, where it has one)."""
     L, out = scene.length, []
+    delta = 3.0 * dx if delta is None else float(delta)
+    h = max(dx, delta / 3.0)
     for i, sup in enumerate(scene.supports.inner):
         if not (sup.type == "clamped" or (sup.type == "spring" and (sup.rotational_stiffness or 0.0) > 0.0)):
             continue
         for j, ld in enumerate(scene.loads):
             d = abs(ld.position - sup.position) if ld.type == "point_force" else 0.0
-            estimate = min(FORCE_NEAR_HELD_ROTATION * (dx / d) ** 2, 1.0) if d >= nearest * dx and d > 0.0 else 0.0
+            estimate = min(FORCE_NEAR_HELD_ROTATION * (h / d) ** 2, 1.0) if d >= nearest * dx and d > 0.0 else 0.0
             if estimate > NEAR_TOLERANCE:
-                need = int(np.ceil(L * np.sqrt(FORCE_NEAR_HELD_ROTATION / NEAR_TOLERANCE) / d)) + 1
+                most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / FORCE_NEAR_HELD_ROTATION)  # the horizon that gives 1e-3
                 out.append(
                     f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
-                    f"{sup.position:g}, which holds the rotation: the error there falls at second order but from "
-                    f"up to about {FORCE_NEAR_HELD_ROTATION:g} (spacing / distance)^2 = {estimate:.2g}; use at least "
-                    f"{need} points for 1e-3"
+                    f"{sup.position:g}, which holds the rotation: the horizon's families reach across the support "
+                    f"(a model error of the horizon, not of the grid), up to about {FORCE_NEAR_HELD_ROTATION:g} "
+                    f"(max(spacing, horizon / 3) / distance)^2 = {estimate:.2g}; use a horizon of at most "
+                    f"{most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} points) "
+                    "for 1e-3"
                 )
     return out
 

@@ -322,7 +322,7 @@ class PDEulerBernoulli(Model):
         if params["variant"] == "paper":
             exact = []  # Eq. 25: the paper's loads are not spread by their kinks
         flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
-        flags += inner_layer_warnings(scene, x, reach)
+        flags += inner_layer_warnings(scene, x, reach, delta)
         flags += outputs.recovery_warnings(scene, params)
         if params["variant"] == "paper":  # the corrected variant takes a couple by its kink: second order there
             flags += moment_rotation_warnings(scene)

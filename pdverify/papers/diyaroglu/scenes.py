@@ -260,10 +260,11 @@ def measure_row(r: dict, n: int, dx: float) -> tuple[np.ndarray, np.ndarray]:
     return rotation_row(t0, n, dx)
 
 
-def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
+def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float | None = None) -> list[str]:
     """Supports inside the span and interfaces closer to an end than ``reach`` spacings: inside the ends' boundary
     layer, whose ghost polynomial assumes one smooth solution (as :func:`pdverify.numerics.loads
-    .boundary_layer_warnings` for loads)."""
+    .boundary_layer_warnings` for loads); and point forces near a support that holds the rotation (``delta``: the
+    horizon, :func:`~pdverify.numerics.loads.held_rotation_warnings`)."""
     dx = x[1] - x[0]
     L = scene.length
     spots = [(f"supports.inner[{i}]", s.position) for i, s in enumerate(scene.supports.inner)]
@@ -293,4 +294,4 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
                 f"one-sided rows (4 points a side) straddle it, first order there; use at least "
                 f"{int(np.ceil(4 * L / abs(b - a))) + 1} points"
             )
-    return out + held_rotation_warnings(scene, dx)
+    return out + held_rotation_warnings(scene, dx, delta=delta)

@@ -206,7 +206,8 @@ class _MoyerModel(Model):
             info.update(sinfo, analysis="static")
         if info["analysis"] == "static":  # with supports at the ends or inside the span
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m) + point_force_order(self, scene, params)
-            flags += held_rotation_warnings(scene, disc.x[1] - disc.x[0], nearest=0.0) if self.bending else []
+            dx = disc.x[1] - disc.x[0]
+            flags += held_rotation_warnings(scene, dx, nearest=0.0, delta=m * dx) if self.bending else []
             # variant energy applies a couple as the operator's action on its kink: second order there
             flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
             if flags:
