@@ -132,7 +132,7 @@ def integrate(
     st, apply_K = step_engine(disc, gains, clock.kappa)
     supports = SupportWork(disc, motions)
     ledger = energy_ledger(disc, supports.ledger_K(apply_K), gains, clock.dt, clock.kappa)
-    supports.start(st)
+    supports.start(st, clock.dt)
     # from rest: v^0 = 0 with the loads acting from t = 0, so v^{-1/2} = -dt/2 a^0 (second order; Eq. 12's
     # v^{-1/2} = 0 starts the step load with v^0 = dt/2 a^0, an O(dt) error of every later state)
     V0 = -0.5 * clock.dt * clock.dt * disc.b / disc.mass
@@ -238,6 +238,10 @@ def step_engine(disc: Discrete, gains: Gains, kappa: float):
     return StencilStep(disc, gains.gd, gains.alpha, kappa, gains.bG, gains.gd_field), disc.op.matvec
 
 
+MOTION_BLOCK = 4096  # steps whose prescribed motions are evaluated at once
+DENSE_REACTION_ENTRIES = 1 << 16  # the moving rows' operator as a dense array up to this many entries
+
+
 class SupportWork:
     """The prescribed motions of a run and the work of their supports, ∫ (K u - b)_p du_p (trapezoid per step,
     one small product per step); the ledger's K takes the rows of the moving DOFs as their columns (the
@@ -265,22 +269,37 @@ class SupportWork:
 
         return ledger_K
 
-    def start(self, st) -> None:
-        """The reactions and positions at rest, on the engine ``st``'s state."""
+    def start(self, st, dt: float) -> None:
+        """The reactions and positions at rest, on the engine ``st``'s state; ``dt`` the step."""
+        self.dt, self.block = dt, (0, np.zeros((0, len(self.pres))))
         if len(self.moving):
             self.Kp = st.on_state(self.Kcols)
+            if self.Kp.shape[0] * self.Kp.shape[1] <= DENSE_REACTION_ENTRIES:  # one numpy product per step
+                self.Kp = self.Kp.toarray()
             self.bp = (self.w * self.disc.b)[self.moving]
             self.react = self.Kp @ st.flat - self.bp
             self.up = np.zeros(len(self.moving))
 
-    def advance(self, st, t: float, ledger: EnergyLedger) -> None:
-        """Set the prescribed DOFs to their motions at t and add the step's support work to the ledger."""
-        up_new = [float(motion_value(mot, t)) for _, mot in self.pres]
+    def _motions(self, s: int) -> np.ndarray:
+        """The prescribed motions at step s (t = s dt), evaluated MOTION_BLOCK steps at a time."""
+        first, values = self.block
+        if not first <= s < first + len(values):
+            t = np.arange(s, s + MOTION_BLOCK) * self.dt
+            values = np.column_stack([motion_value(mot, t) for _, mot in self.pres]) if self.pres else values
+            self.block = (s, values)
+            first = s
+        return self.block[1][s - first]
+
+    def advance(self, st, s: int, ledger: EnergyLedger) -> None:
+        """Set the prescribed DOFs to their motions at step s (t = s dt) and add the step's support work to the
+        ledger."""
+        if not self.pres:
+            return
+        up_new = self._motions(s)
         for (dof, _), value in zip(self.pres, up_new):
             st.set(dof, value)
         if len(self.moving):
             r_new = self.Kp @ st.flat - self.bp
-            up_new = np.array(up_new)
             ledger.add_support_step(0.5 * (self.react + r_new), up_new - self.up)
             self.react, self.up = r_new, up_new
 
@@ -332,7 +351,7 @@ def _step_loop(disc, clock: Clock, gains: Gains, st, apply_K, supports, ledger, 
     for s in range(1, steps + 1):
         st.step()
         t = s * dt
-        supports.advance(st, t, ledger)
+        supports.advance(st, s, ledger)
         if s % clock.record_every == 0 or s == steps:
             if s - last_ledger >= clock.ledger_every or s == steps:
                 last_ledger = s
