@@ -12,7 +12,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from markupsafe import Markup
 
-from . import figures, forked
+from ..study import forked
+from . import figures
 from .inputs import StudyFolder
 from .path_figures import health_figures, load_path_figures, moment_curvature_figures
 from .quantity_figures import QUANTITIES

@@ -15,7 +15,7 @@ from ..core.errors import InputError
 from ..core.scene_file import parse_scene
 from ..core.version import __version__
 from ..registry import get_model, run
-from ..study import load_study, run_study
+from ..study import forked, load_study, run_study
 from ..study.checks import strict_type
 from . import checks as C
 from .card import write_card
@@ -203,6 +203,10 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
 def _judge(model, options: dict, p, df, expected: float, declined: dict | None = None) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
+    # the dynamics and nonlocal checks solve models of their own: in a forked copy while this process judges the rest
+    side = forked.start(
+        lambda: (dynamics_check(model, options, p.grids, expected), nonlocal_check(model, options, p.reference))
+    )
     sets = ("convergence", "locking", "floor", "curved", "engineering", "curved_locking")
     files = {s: [f for f, m in p.meta.items() if m["set"] == s and not (declined or {}).get(f)] for s in sets}
     files["locking"] = files["locking"] + files["curved_locking"]  # one locking check, straight and curved axes
@@ -224,8 +228,7 @@ def _judge(model, options: dict, p, df, expected: float, declined: dict | None =
         else C.check("convergence (curved axes)", "n/a", "the model does not declare curved axes")
     )
     found += [_curved_quantity(df, files["curved"], q, expected) for q in CURVED_QUANTITIES] if curved else []
-    found.append(dynamics_check(model, options, p.grids, expected))
-    found.append(nonlocal_check(model, options, p.reference))
+    found.extend(side())
     return found, [{**p.meta[r["scene_file"]], **r} for r in conv + engineering + curved], df
 
 

@@ -1,11 +1,11 @@
-"""A function run in a forked copy of the process (pdverify/report/forked.py): its value comes back; a failure in the
+"""A function run in a forked copy of the process (pdverify/study/forked.py): its value comes back; a failure in the
 copy runs the function here, where its error is raised as usual."""
 
 import os
 
 import pytest
 
-from pdverify.report import forked
+from pdverify.study import forked
 
 
 def test_the_value_comes_back_from_another_process():
@@ -25,3 +25,15 @@ def test_a_failure_in_the_copy_is_met_again_here():
     with pytest.raises(ValueError, match="bad figure"):
         result()
     assert calls == [os.getpid()]  # the copy's own call is not seen here: only the parent's
+
+
+def test_a_copy_that_starts_another_runs_it_itself():
+    """A copy cannot fork (it is daemonic): a function it starts runs in it, inline, and both values come back."""
+    parent = os.getpid()
+
+    def outer():
+        inner = forked.start(lambda: os.getpid())
+        return os.getpid(), inner()
+
+    got = forked.start(outer)()
+    assert got[0] != parent and got[1] == got[0]

@@ -1,7 +1,8 @@
-"""One more core for the report: a function run in a forked copy of this process while the caller goes on (Linux),
-its value sent back through a pipe. The copy shares what the caller has read (the study's tables and cases): nothing
-is pickled but the value. Where fork is unavailable, or the copy fails or dies, the function runs here when its value
-is asked for, so the report is the same either way (figures are deterministic: :mod:`.figures`)."""
+"""One more core: a function run in a forked copy of this process while the caller goes on (Linux), its value sent
+back through a pipe (the report's sweep figures, a card's dynamics and nonlocal checks). The copy shares what the caller
+has read (a study's tables and cases): nothing is pickled but the value. Where fork is unavailable, in a copy itself
+(a daemonic process cannot fork), or when the copy fails or dies, the function runs here when its value is asked for,
+so the result is the same either way (the functions given are deterministic)."""
 
 from __future__ import annotations
 
@@ -26,7 +27,9 @@ def start(fn):
     proc = ctx.Process(target=child, daemon=True)
     try:
         proc.start()
-    except OSError:  # no process to spare: run it here
+    except (OSError, AssertionError):  # no process to spare, or this is a (daemonic) copy itself: run it here
+        receive.close()
+        send.close()
         return fn
     send.close()
 
