@@ -100,8 +100,11 @@ def bond_weights(
         S = 2.0 * float(np.sum(beta * d * dx))
     out = {off: volumes * r / S for off, r in raw.items()}
     if calibrate == "patch":
-        for (kk, off), wv in end_layer_weights(n, float(m), float(dx), fractions).items():
-            out[off] = np.where(k == kk, wv, out[off])
+        K, O, W = end_layer_weights(n, float(m), float(dx), fractions)
+        for off in np.unique(O).tolist():  # the family's offsets, not its bonds
+            full, given = np.zeros(n), np.zeros(n, bool)
+            full[K[O == off]], given[K[O == off]] = W[O == off], True
+            out[off] = np.where(given[k], full[k], out[off])
     return out
 
 
@@ -123,8 +126,8 @@ def _cut_weights(n, m, dx, variant, points, fractions, cuts) -> dict[int, np.nda
 
 
 @functools.lru_cache(maxsize=64)
-def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> dict[tuple[int, int], float]:
-    """{(k, offset): V_k omega} of the bonds of the points within 2J of either end (corrected variant, truncated
+def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(points k, offsets, V_k omega) of the bonds of the points within 2J of either end (corrected variant, truncated
     families, trapezoidal volumes V = dx, dx/2 at the ends), replacing the per-point calibration there.
 
     Why: with the along-the-bond measures every bond measure is xi times the mean of nearest-neighbour segment
@@ -135,47 +138,45 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> dict[tuple
     forces: first order at m >= 2). Here both hold: the weights are the least change of the per-point ones,
     weighted by their size (min Σ ((w - w0) / w0)^2), subject to those linear conditions (a small dense
     solve per end layer; the interior keeps its weights, where both hold already). Mirror-symmetric by
-    construction; for m = 1 the per-point weights already satisfy both (no change)."""
+    construction; for m = 1 the per-point weights already satisfy both (no change). The conditions are built as
+    arrays over the bonds near the ends (no loop over points or bonds)."""
     d, beta = family(m, dx, "corrected", fractions)
     J = int(d.max())
     KL = min(2 * J, (n - 1) // 2)  # layer points per end (a short grid: the two layers meet)
-    offs = [(int(sg * dd), bb) for sg in (1, -1) for dd, bb in zip(d, beta)]
-    layer = sorted(set(range(KL + 1)) | set(range(n - 1 - KL, n)))
-    near = sorted(set(range(min(n, KL + 2 * J + 1))) | set(range(max(0, n - 1 - KL - 2 * J), n)))
+    off = np.concatenate([d, -d]).astype(np.int64)  # the family's offsets, this side first
+    bb = np.concatenate([beta, beta])
+    layer = np.array(sorted(set(range(KL + 1)) | set(range(n - 1 - KL, n))), np.int64)
+    near = np.array(sorted(set(range(min(n, KL + 2 * J + 1))) | set(range(max(0, n - 1 - KL - 2 * J), n))), np.int64)
     V = np.full(n, dx)
     V[[0, n - 1]] = dx / 2
-    w0 = {}  # per-point calibrated weights of the points near the ends
-    for k in near:
-        fam = [(o, bb / (abs(o) * dx)) for o, bb in offs if 0 <= k + o < n]
-        S = sum(r * (abs(o) * dx) ** 2 for o, r in fam)
-        w0.update({(k, o): V[k] * r / S for o, r in fam})
-    var = [b for b in w0 if b[0] in set(layer)]
-    col = {b: i for i, b in enumerate(var)}
-    rows, rhs = [], []
-    for k in layer:  # the point's calibration
-        a = np.zeros(len(var))
-        for o, _ in offs:
-            if (k, o) in col:
-                a[col[(k, o)]] = (abs(o) * dx) ** 2
-        rows.append(a)
-        rhs.append(V[k])
-    segs = sorted({sg for k, o in var for sg in range(min(k, k + o), max(k, k + o))})
-    for sg in segs:  # the segment's total: R_s = dx
-        a, c = np.zeros(len(var)), 0.0
-        for (k, o), wv in w0.items():
-            if min(k, k + o) <= sg < max(k, k + o):
-                if (k, o) in col:
-                    a[col[(k, o)]] += abs(o) * dx * dx
-                else:
-                    c += wv * abs(o) * dx * dx
-        rows.append(a)
-        rhs.append(dx - c)
-    A, b = np.array(rows), np.array(rhs)
-    x0 = np.array([w0[v] for v in var])
+    # the per-point calibrated weights of the bonds of the points near the ends, point by point, offsets in order
+    K, O = np.repeat(near, len(off)), np.tile(off, len(near))
+    r = np.tile(bb, len(near)) / (np.abs(O) * dx)
+    inside = (K + O >= 0) & (K + O < n)
+    K, O, r = K[inside], O[inside], r[inside]
+    xi2 = (np.abs(O) * dx) ** 2
+    S = np.bincount(np.searchsorted(near, K), weights=r * xi2, minlength=len(near))
+    w0 = V[K] * r / S[np.searchsorted(near, K)]
+    var = np.isin(K, layer)  # the bonds whose weights change
+    A_cal = (K[var][None, :] == layer[:, None]) * xi2[var][None, :]  # each layer point's calibration
+    lo, hi = np.minimum(K, K + O), np.maximum(K, K + O)  # the segments [lo, hi) a bond covers
+    cover = np.zeros(n + 1)
+    np.add.at(cover, lo[var], 1.0)
+    np.add.at(cover, hi[var], -1.0)
+    segs = np.flatnonzero(np.cumsum(cover)[: n - 1] > 0)  # the segments some changing bond covers
+    over = (segs[:, None] >= lo[None, :]) & (segs[:, None] < hi[None, :])  # segment x bond
+    share = np.abs(O) * dx * dx
+    A_seg = over[:, var] * share[var][None, :]
+    fixed = over[:, ~var] @ (w0[~var] * share[~var])  # the bonds that keep their weights
+    A = np.vstack([A_cal, A_seg])
+    b = np.concatenate([V[layer], dx - fixed])
+    x0 = w0[var]
     W = x0 * x0
     lam = np.linalg.lstsq((A * W) @ A.T, b - A @ x0, rcond=None)[0]
     x = x0 + W * (A.T @ lam)
-    return {v: float(xv) for v, xv in zip(var, x)}
+    for a in (K, O, x):
+        a.flags.writeable = False
+    return K[var], O[var], x
 
 
 def bond_pieces(C: np.ndarray, off: int, dx: float, h: float, centred: bool, path: bool) -> list[tuple]:
