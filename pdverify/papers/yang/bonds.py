@@ -197,6 +197,16 @@ def bond_pieces(C: np.ndarray, off: int, dx: float, h: float, centred: bool, pat
     return [(0, 0, B[:NF, :NF]), (0, off, B[:NF, NF:]), (off, -off, B[NF:, :NF]), (off, 0, B[NF:, NF:])]
 
 
+def _by_row(pieces: list[tuple]) -> list[tuple]:
+    """The pieces of :func:`bond_pieces` grouped by their row shift, in order: (row shift, columns, blocks); a row's
+    pieces sit in distinct columns, so each group is one slice update, and every entry of K still sums its terms in
+    the pieces' order."""
+    rows: dict[int, list] = {}
+    for row, col, block in pieces:
+        rows.setdefault(row, []).append((col, block))
+    return [(row, np.array([c for c, _ in got]), np.array([b for _, b in got])[None]) for row, got in rows.items()]
+
+
 def assemble_blocks(
     n: int,
     dx: float,
@@ -213,9 +223,9 @@ def assemble_blocks(
     Kb = np.zeros((n, 2 * J + 1, NF, NF))
     for off, wt in weights.items():
         lo, hi = max(0, -off), min(n, n - off)
-        t = wt[lo:hi, None, None]
-        for row, col, block in bond_pieces(C, off, dx, h, centred, path):
-            Kb[lo + row : hi + row, J + col] += t * block
+        t = wt[lo:hi, None, None, None]
+        for row, cols, blocks in _by_row(bond_pieces(C, off, dx, h, centred, path)):
+            Kb[lo + row : hi + row, J + cols] += t * blocks  # the pieces of one row: distinct columns
     cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
     ok = (cols >= 0) & (cols < n)
     indptr = np.r_[0, np.cumsum(ok.sum(axis=1))]
