@@ -37,7 +37,7 @@ CASES = [  # (model, options, scene, symbol, local reference)
         {"ends": "mirror", "pin": "mid", "loads": "mid"},
         "pp_sine",
         "higher-order",
-        ("exact-higher-order", {"pin": "mid", "loads": "mid"}),
+        ("exact-higher-order", {"pin": "held", "loads": "mid"}),
     ),
 ]
 

@@ -16,7 +16,8 @@ shear traction (w + h^2/20 w*) and end moments as a linear normal traction (thet
 puts them on the mid-surface (Eq. 16b). A point load makes N jump by minus its generalised force.
 
 End conditions: an end holds the combinations ``H y = 0`` of its support (clamped: all four, the whole end face
-fixed; guided: theta, theta*; pinned and roller: w + h^2/20 w* with ``pin = face``, w with ``pin = mid``; free:
+fixed; guided: theta, theta*; pinned and roller: w + h^2/20 w* with ``pin = face``, w with ``pin = mid``, w and w*
+with ``pin = held`` (the end conditions of pd-higher-order's mirror layers at a pinned end, Appendix B); free:
 none) and, in the complementary directions, the natural conditions Z^T (N -+ P_end) = 0 (Z spanning the null space
 of H): the variational statement of the same end conditions.
 
@@ -81,7 +82,7 @@ def held(support: str, pin: str) -> np.ndarray:
     rows = {
         "clamped": np.eye(4),
         "guided": np.eye(4)[:2],
-        "pinned": np.array([[0.0, 0.0, 1.0, 1.0 / 20]]) if pin == "face" else np.eye(4)[2:3],
+        "pinned": {"face": np.array([[0.0, 0.0, 1.0, 1.0 / 20]]), "mid": np.eye(4)[2:3], "held": np.eye(4)[2:4]}[pin],
         "free": np.zeros((0, 4)),
     }
     return rows["pinned" if support == "roller" else support]
@@ -310,7 +311,14 @@ class ExactHigherOrder(Model):
             "faces (as pd-higher-order's corrected variant) | mid (Eq. 16b)",
             choices=("faces", "mid"),
         ),
-        Option("pin", str, "face", "pinned end: face (w + h^2/20 w* = 0) | mid (w = 0)", choices=("face", "mid")),
+        Option(
+            "pin",
+            str,
+            "face",
+            "pinned end: face (w + h^2/20 w* = 0) | mid (w = 0) | held (w = w* = 0: pd-higher-order's mirror layers, "
+            "Appendix B, Eq. B41)",
+            choices=("face", "mid", "held"),
+        ),
     )
 
     def evaluator(self, scene: Scene, params: dict):
