@@ -285,8 +285,7 @@ class SupportWork:
         first, values = self.block
         if not first <= s < first + len(values):
             t = np.arange(s, s + MOTION_BLOCK) * self.dt
-            values = np.column_stack([motion_value(mot, t) for _, mot in self.pres]) if self.pres else values
-            self.block = (s, values)
+            self.block = (s, np.column_stack([motion_value(mot, t) for _, mot in self.pres]))
             first = s
         return self.block[1][s - first]
 
