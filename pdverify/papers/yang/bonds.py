@@ -102,8 +102,9 @@ def bond_weights(
     if calibrate == "patch":
         K, O, W = end_layer_weights(n, float(m), float(dx), fractions)
         for off in np.unique(O).tolist():  # the family's offsets, not its bonds
+            sel = O == off
             full, given = np.zeros(n), np.zeros(n, bool)
-            full[K[O == off]], given[K[O == off]] = W[O == off], True
+            full[K[sel]], given[K[sel]] = W[sel], True
             out[off] = np.where(given[k], full[k], out[off])
     return out
 
@@ -155,8 +156,8 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.n
     inside = (K + O >= 0) & (K + O < n)
     K, O, r = K[inside], O[inside], r[inside]
     xi2 = (np.abs(O) * dx) ** 2
-    S = np.bincount(np.searchsorted(near, K), weights=r * xi2, minlength=len(near))
-    w0 = V[K] * r / S[np.searchsorted(near, K)]
+    at = np.searchsorted(near, K)  # each bond's point among the near ones
+    w0 = V[K] * r / np.bincount(at, weights=r * xi2, minlength=len(near))[at]
     var = np.isin(K, layer)  # the bonds whose weights change
     A_cal = (K[var][None, :] == layer[:, None]) * xi2[var][None, :]  # each layer point's calibration
     lo, hi = np.minimum(K, K + O), np.maximum(K, K + O)  # the segments [lo, hi) a bond covers
@@ -174,9 +175,10 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.n
     W = x0 * x0
     lam = np.linalg.lstsq((A * W) @ A.T, b - A @ x0, rcond=None)[0]
     x = x0 + W * (A.T @ lam)
-    for a in (K, O, x):
+    out = (K[var], O[var], x)
+    for a in out:  # kept by the cache: read-only
         a.flags.writeable = False
-    return K[var], O[var], x
+    return out
 
 
 def bond_pieces(C: np.ndarray, off: int, dx: float, h: float, centred: bool, path: bool) -> list[tuple]:
