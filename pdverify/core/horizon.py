@@ -68,6 +68,16 @@ class Horizon:
             return f"variant {self.full_volumes}'s sums take full volumes up to delta and depend on its fraction"
         return ""
 
+    def fixed_horizon_order(self, params: dict) -> tuple[float, str]:
+        """(order, why) of the discretisation error in dx at a fixed horizon delta (m-convergence to the model's
+        continuum, ``params`` the user's options over the defaults): the model's :attr:`order`, or 1 for the variant
+        :attr:`full_volumes`, whose sums give each of the m bonds in a horizon a whole volume dx: a one-sided rule of
+        the horizon's integral, exact only as dx -> 0 (docs/nonlocal.md)."""
+        params = {o.name: o.default for o in getattr(self, "options", ())} | dict(params)
+        if self.full_volumes and params.get("variant") == self.full_volumes:
+            return 1.0, f"variant {self.full_volumes}'s sums give each bond a whole volume up to delta: first order"
+        return float(getattr(self, "order", 2.0)), ""
+
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """(why, largest m) when the variant's discrete rules have no limit at fixed delta on ``scene`` (its
         continuum is then its own finest grid, flagged), else None."""

@@ -159,6 +159,16 @@ class PDEulerBernoulli(Model):
         """Eq. 32: delta = (m + 0.015) dx in the paper variant."""
         return 0.015 if params["variant"] == "paper" else 0.0
 
+    def fixed_horizon_order(self, params: dict) -> tuple[float, str]:
+        """First order in dx at a fixed delta, both variants: ``paper``'s sums give each bond a whole volume
+        (Eq. 11a, 32); ``corrected`` normalises its weights c_j = beta_j / (j^2 dx^2 sum beta) by sum beta dx =
+        (m - 1/2) dx, the trapezoidal rule of the horizon's integral without its node at xi = 0 (where the kernel's
+        1/xi^2 has no value), so its nonlocal term is about 1 + 1/(2m) times the continuum's (docs/nonlocal.md)."""
+        params = {o.name: o.default for o in self.options} | dict(params)
+        if params["variant"] == "paper":
+            return super().fixed_horizon_order(params)
+        return 1.0, "its weights are normalised by sum beta dx = (m - 1/2) dx (the horizon without xi = 0): first order"
+
     def continuum_series(self, scene: Scene, params: dict) -> Series | None:
         """The paper variant's energy reading closes pinned (roller) ends by negative and guided ends by positive
         mirror images (Eq. 39-41): a series of the mirror modes with the continuous curvature symbol."""

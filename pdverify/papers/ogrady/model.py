@@ -236,6 +236,16 @@ class PDBondPair(Model):
         """delta = (m + 0.015) dx with the continuous alpha (as in the other papers)."""
         return 0.015 if params["variant"] == "continuous-alpha" else 0.0
 
+    def fixed_horizon_order(self, params: dict) -> tuple[float, str]:
+        """First order in dx at a fixed delta for ``paper`` (§3.1's family sum gives each node within delta a whole
+        volume) and for ``continuous-alpha``, whose alpha = 3 EI / delta^3 (Eq. 5) is the integral its family sum
+        reaches only as dx -> 0: stiffer by (m + 1)(2m + 1) / (2 m^2) = 1 + 3 / (2m) + ... (docs/nonlocal.md); else
+        the model's."""
+        params = {o.name: o.default for o in self.options} | dict(params)
+        if params["variant"] == "continuous-alpha":
+            return 1.0, "alpha = 3 EI / delta^3 over a family sum stiffer by (m + 1)(2m + 1) / (2 m^2): first order"
+        return super().fixed_horizon_order(params)
+
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """No limit at fixed delta where a single point carries a force, or at free and guided Taylor ends
         (:func:`.limit.no_limit_reason`); the continuum is then the grid at ``continuum_m``."""
