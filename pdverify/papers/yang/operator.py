@@ -116,6 +116,19 @@ class Layout:
             cuts=self.cuts if cuts is None else cuts,
         )
 
+    def extended(self, r0: int, r1: int):
+        """K of the extended points of the window r0..r1-1 (its ghosts included), Eq. 15 bond by bond
+        (:func:`~.bonds.assemble_blocks`); made once per window of the layout (a window's rows with and without
+        the end conditions share it)."""
+        kept = self.__dict__.setdefault("_extended", {})
+        if (r0, r1) not in kept:
+            G = self.G
+            k = np.arange(G[0] + r0 - (G[0] if r0 == 0 else 0), G[0] + r1 + (G[1] if r1 == self.n else 0))
+            K = assemble_blocks(len(k), self.dx, self.C, self.weights(k), self.h, self.centred, self.path)
+            K.data.flags.writeable = False  # shared by the window's two readings
+            kept[(r0, r1)] = K
+        return kept[(r0, r1)]
+
     def fold(self, nw: int, g: tuple[int, int]):
         """The ghost map of a window of nw real points with g ghosts per end (None without ghosts)."""
         if self.ends == "mirror":
@@ -131,8 +144,7 @@ class Layout:
         n, G = self.n, self.G
         g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
         nw = r1 - r0
-        k = np.arange(G[0] + r0 - g[0], G[0] + r1 + g[1])
-        Kx = assemble_blocks(len(k), self.dx, self.C, self.weights(k), self.h, self.centred, self.path)
+        Kx = self.extended(r0, r1)
         P = self.fold(nw, g)
         if P is None:
             K = Kx
