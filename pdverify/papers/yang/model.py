@@ -246,6 +246,19 @@ class PDHigherOrder(Model):
         Rule(_PAPER, "clamp", "Eq. B39: w = w* = 0 at the clamped end point (face)", allowed=("auto", "face")),
     )
 
+    def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
+        """``clamp = layer`` at a clamped end (the corrected variant's default there): the spring on w* at the end
+        point is fitted to the grid's own layer stiffness (:func:`.layer.clamp_springs`), a rule of the spacing, so
+        there is no limit at fixed delta (measured, docs/nonlocal.md: the changes per doubling of m stop falling or
+        grow by m = 32, where ``clamp = face`` converges at first order)."""
+        if "clamped" in (scene.supports.left, scene.supports.right) and self.clamp(params) == "layer":
+            return (
+                "clamp = layer: the w* spring of a clamped end is fitted to the grid's layer stiffness, so there is no "
+                "limit at fixed delta (clamp = face has one)",
+                int(params.get("continuum_m") or self.continuum_m),
+            )
+        return None
+
     def continuum_series(self, scene: Scene, params: dict):
         """The corrected variant with mirror layers (``ends = mirror``), pinned ends held on the mid-line, loads on
         it and bonds measured along their path (``pin = mid``, ``loads = mid``, ``shear = path``): its continuum is a
