@@ -31,12 +31,14 @@ def _orders(nonlocal_table: pd.DataFrame, scene: str, model: str, options: str) 
     parts = []
     for _, r in sel.iterrows():
         doubt = str(r.get("continuum_in_doubt")).lower() == "true"  # the continuum's own error could decide it
-        if _strip(r.get("options")) != options or (pd.isna(r.get("observed_order")) and not doubt):
+        exact = str(r.get("at_round_off")).lower() == "true"  # every error below the round-off level
+        if _strip(r.get("options")) != options or (pd.isna(r.get("observed_order")) and not (doubt or exact)):
             continue
         held = str(r.get("held") or "").replace("horizon = ", "δ = ")
         path = PATH_SHORT.get(r["path"], r["path"])
         no_limit = isinstance(r.get("no_limit"), str) and bool(r.get("no_limit"))
         value = "none (no limit at fixed δ)" if no_limit else "none (continuum in doubt)" if doubt else None
+        value = value or ("none (exact to round-off)" if exact else None)
         value = value or fixed(r["observed_order"], 2)
         parts.append(f"{path} {value}" + (f" ({held})" if held else ""))
     return "orders: " + ", ".join(parts) if parts else ""

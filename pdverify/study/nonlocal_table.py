@@ -10,7 +10,9 @@ The first two are measured against the model's continuum, which reports its own 
 extrapolation's estimate): where that estimate is above a tenth of the smallest error of the fit, the continuum
 could decide the order, and the row gives none (``continuum_in_doubt``; its errors are still listed). Where the model
 has no limit at that horizon (``continuum_no_limit`` of its rows) there is no continuum to converge to: the row gives
-none either and says why (``no_limit``).
+none either and says why (``no_limit``). A fit whose every error is below ``metrics.ROUND_OFF_LEVEL`` (the variant
+reproduces the load's solution: a uniform load on the corrected variants) gives none (``at_round_off``), as in
+convergence.csv.
 
 A series is the rows of one scene, model, slenderness and option set but for the grid and the horizon.
 """
@@ -21,7 +23,7 @@ import json
 
 import numpy as np
 
-from ..measure.metrics import log_slope, observed_order
+from ..measure.metrics import ROUND_OFF_LEVEL, log_slope, observed_order
 
 KEY = ("scene", "model", "options", "slenderness")
 CONTINUUM_SHARE = 0.1  # a continuum whose own error estimate passes this share of an error could decide it
@@ -67,8 +69,10 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
     doubt = path != "dm-convergence" and (
         bool(no_limit) or bool(np.nanmax(np.append(own, 0.0)) > CONTINUUM_SHARE * e.min())
     )
-    p, r2 = observed_order(x, e) if not doubt else (float("nan"), float("nan"))
-    fine = log_slope(x[:2], e[:2])[0] if not doubt else float("nan")
+    finite = e[np.isfinite(e)]
+    at_round_off = bool(finite.size and np.all(np.abs(finite) < ROUND_OFF_LEVEL))  # exact: no order to measure
+    p, r2 = observed_order(x, e) if not (doubt or at_round_off) else (float("nan"), float("nan"))
+    fine = log_slope(x[:2], e[:2])[0] if not (doubt or at_round_off) else float("nan")
     return {
         **base,
         "path": path,
@@ -81,6 +85,7 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
         "finest_order": fine,
         "continuum_in_doubt": doubt,
         "no_limit": no_limit,
+        "at_round_off": at_round_off,
     }
 
 

@@ -46,3 +46,20 @@ def test_the_plane_figure_says_when_the_continuum_is_in_doubt():
     table = pd.DataFrame(nonlocal_rows(_rows(2 * CONTINUUM_SHARE * smallest)))
     title = _orders(table, "s", "pd-x", "{}")
     assert title == "orders: m none (continuum in doubt) (δ = 0.1)", title
+
+
+def test_errors_at_round_off_give_no_order():
+    """A variant exact for the load (every error below metrics.ROUND_OFF_LEVEL) has no order to fit: the scatter of
+    round-off (1e-13 to 1e-15) would read as any order; as in convergence.csv, the row says at_round_off."""
+    import pandas as pd
+
+    from pdverify.report.planes import _orders
+
+    rows = _rows(None)
+    for r, e in zip(rows, (9.4e-13, 8.5e-14, 8.3e-15, 2.0e-13)):
+        r["err_disc"] = r["err_max"] = e
+    found = {r["path"]: r for r in nonlocal_rows(rows)}
+    m = found["m-convergence"]
+    assert m["at_round_off"] and np.isnan(m["observed_order"]) and np.isnan(m["finest_order"])
+    assert not any(r["at_round_off"] for r in nonlocal_rows(_rows(None)))  # errors of 1e-3 ... 1.6e-5: an order
+    assert _orders(pd.DataFrame([m]), "s", "pd-x", "{}") == "orders: m none (exact to round-off) (δ = 0.1)"
