@@ -26,24 +26,37 @@ from __future__ import annotations
 
 import numpy as np
 
-LAGS = 8  # a value equal to one of the previous LAGS is not a new group's candidate (interleaved unknowns per point)
+LAGS = 8  # the longest period of interleaved unknowns per point looked for
+SAMPLE = 1 << 16  # values sampled to choose the period
 
 
 def significand_groups(values: np.ndarray) -> tuple[np.ndarray, int]:
     """(group id of each value, number of groups): values with equal |significand| (``frexp``) share a group; the
-    ids are the ranks of the sorted distinct significands. The distinct values are found among candidates only: a
-    value equal to one of the :data:`LAGS` before it is no value's first occurrence (a diagonal of a stencil
-    repeated along the grid, with up to LAGS unknowns interleaved per point, has a handful). Those few are sorted
-    and grouped by significand, and every value finds its distinct value, hence its group, by binary search."""
+    ids (int32 below 2^31 groups) are the ranks of the sorted distinct significands. An assembled stencil repeats:
+    along each of the ``period`` sequences of interleaved unknowns (the lag up to :data:`LAGS` at which a sample
+    repeats most) a diagonal is a few runs of one value. The runs' values are sorted and grouped by significand once,
+    and each run's group is spread along it (the same ids whatever the period: it only decides the runs' lengths)."""
     v = np.asarray(values, float).ravel()
     if v.size == 0:
         return np.zeros(0, np.int64), 0
-    first = np.ones(v.size, bool)
-    for lag in range(1, min(LAGS, v.size - 1) + 1):  # lags, not values
-        first[lag:] &= v[lag:] != v[:-lag]
-    distinct = np.unique(v[first])
+    cut = SAMPLE // 16  # 16 stretches spread over the values (a band's first rows may be all padding)
+    head = v if v.size <= SAMPLE else np.concatenate([v[a : a + cut] for a in range(0, v.size - cut, v.size // 16)])
+    repeats = [int(np.count_nonzero(head[lag:] == head[:-lag])) for lag in range(1, min(LAGS, head.size - 1) + 1)]
+    period = 1 + int(np.argmax(repeats)) if repeats else 1
+    phases = [v[phase::period] for phase in range(period)]  # the interleaved sequences, not values
+    starts = [np.flatnonzero(np.r_[True, sub[1:] != sub[:-1]]) for sub in phases]  # runs of one value
+    distinct, run_id = np.unique(np.concatenate([sub[st] for sub, st in zip(phases, starts)]), return_inverse=True)
     keys, group = np.unique(np.frexp(np.abs(distinct))[0], return_inverse=True)
-    return group.astype(np.int64, copy=False)[np.searchsorted(distinct, v)], len(keys)
+    ids = np.int32 if len(keys) < 2**31 else np.int64  # a band's stored entries: half the bytes
+    run_group = group.astype(ids)[run_id]
+    out = np.zeros(v.size, ids)
+    at = 0
+    for phase, st in enumerate(starts):  # each run's group along it: a cumulative sum of steps, in place
+        seq = out[phase::period]
+        seq[st] = np.diff(run_group[at : at + len(st)], prepend=0)
+        np.cumsum(seq, out=seq)
+        at += len(st)
+    return out, len(keys)
 
 
 class _Rounding:
@@ -126,7 +139,7 @@ class BandRounding(_Rounding):
         self.s = np.ones(self.n)
         gid, k_matrix = significand_groups(data)
         self.k_matrix = k_matrix
-        self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64).reshape(data.shape)
+        self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64, copy=False).reshape(data.shape)
         self._load_part(b, k_matrix)
 
     def _diagonals(self):
