@@ -249,8 +249,8 @@ class PDHigherOrder(Model):
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """``clamp = layer`` at a clamped end (the corrected variant's default there): the spring on w* at the end
         point is fitted to the grid's own layer stiffness (:func:`.layer.clamp_springs`), a rule of the spacing, so
-        there is no limit at fixed delta (measured, docs/nonlocal.md: the changes per doubling of m stop falling or
-        grow by m = 32, where ``clamp = face`` converges at first order)."""
+        there is no limit at fixed delta (docs/nonlocal.md: the changes per doubling of m stop falling, where those
+        of ``clamp = face`` fall)."""
         if "clamped" in (scene.supports.left, scene.supports.right) and self.clamp(params) == "layer":
             return (
                 "clamp = layer: the w* spring of a clamped end is fitted to the grid's layer stiffness, so there is no "
