@@ -11,7 +11,6 @@ together (the least recently used go first; a factorisation larger than the budg
 from __future__ import annotations
 
 import hashlib
-import weakref
 from collections import OrderedDict
 
 import numpy as np
@@ -35,25 +34,23 @@ def digest(*arrays, params: tuple = ()) -> str:
 
 
 _FROZEN = 64  # read-only arrays whose digest is kept (an operator's CSR arrays, solved for one load after another)
-_frozen: OrderedDict[tuple, tuple] = OrderedDict()  # (address, shape, strides, dtype) -> (the owner, weakly; digest)
+_frozen: OrderedDict[tuple, tuple] = OrderedDict()  # (address, shape, strides, dtype) -> (the array, its digest)
 
 
 def _bytes_digest(a: np.ndarray) -> bytes:
-    """BLAKE2b of a's bytes (C order). Kept for memory that cannot change (a and every array it views are
-    read-only, down to the one that owns the memory) while its owner lives: the entry holds the owner by a weak
-    reference, so a kept digest keeps no memory alive, and memory owned anew at the same address is hashed afresh."""
-    owner = a
-    while isinstance(owner, np.ndarray) and not owner.flags.writeable and owner.base is not None:
-        owner = owner.base
-    if not isinstance(owner, np.ndarray) or owner.flags.writeable:  # writeable somewhere: hashed afresh
+    """BLAKE2b of a's bytes (C order). Kept for an array that cannot change: it and every array it views are
+    read-only, down to the one that owns the memory (the kept entry holds the array, so its address is not reused)."""
+    b = a
+    while isinstance(b, np.ndarray) and not b.flags.writeable:
+        b = b.base
+    if b is not None:  # writeable somewhere (or memory of another kind): hashed afresh
         return hashlib.blake2b(np.ascontiguousarray(a).tobytes(), digest_size=16).digest()
     key = (a.__array_interface__["data"][0], a.shape, a.strides, a.dtype.str)
-    entry = _frozen.get(key)
-    if entry is not None and entry[0]() is owner:
+    if key in _frozen:
         _frozen.move_to_end(key)
-        return entry[1]
+        return _frozen[key][1]
     d = hashlib.blake2b(np.ascontiguousarray(a).tobytes(), digest_size=16).digest()
-    _frozen[key] = (weakref.ref(owner), d)
+    _frozen[key] = (a, d)
     while len(_frozen) > _FROZEN:
         _frozen.popitem(last=False)
     return d
