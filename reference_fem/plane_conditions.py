@@ -213,9 +213,6 @@ def _reduced_operator(K, N: int, fixed: list, pairs: list, tangents: list, crows
             C = np.asarray((T.T @ C.T).T)
         S = cm.constraint_basis(C[:, free])
         Kf = (S.T @ Kf @ S).tocsr()
-    for name in ("data", "indices", "indptr"):  # each its own memory (not a view of a larger buffer), then read-only:
-        if getattr(Kf, name).base is not None:  # no one can change it, so its digest is kept (factorcache.digest)
-            setattr(Kf, name, getattr(Kf, name).copy())
     for a in (Kf.data, Kf.indices, Kf.indptr, free):
         a.flags.writeable = False  # shared by the loads' solves
     return Kf, free, T, S

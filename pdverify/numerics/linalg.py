@@ -331,8 +331,7 @@ def solve_linear(
             if magnitude is not None
             else factorcache.derived(info["factorisation"], "rounding", lambda: csr_layout(K))
         )
-        wide = factorcache.derived(info["factorisation"], "longdouble", lambda: _long_double(K))
-        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, _weight(entry_rounding), layout, wide)
+        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, _weight(entry_rounding), layout)
     if condition is None:
         condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised
@@ -381,24 +380,15 @@ def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int,
     return y, solve, solve_t, solver, Ks, key, shared
 
 
-def _long_double(K: sp.csr_matrix) -> tuple[sp.csr_matrix, int]:
-    """(K in extended precision, its bytes): the residual's matrix, kept with K's factorisation."""
-    wide = K.astype(np.longdouble)
-    return wide, wide.data.nbytes + wide.indices.nbytes + wide.indptr.nbytes
-
-
-def _residual_and_bound(
-    info: dict, K, b, u, s, solve, solve_t, magnitude, watch, weight=1.0, layout=None, wide=None
-) -> None:
+def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, weight=1.0, layout=None) -> None:
     """``info["residual"]``: max |K u - b| relative to the size of its terms (the unscaled system), and the
     round-off bound of :func:`forward_error_bound` (``info["error_bound"]``, a warning past ``BOUND_LIMIT``) with
-    the correction of the residual computed in extended precision. ``layout``: K's :func:`csr_layout`, ``wide``: K
-    in extended precision, each kept with its factorisation."""
+    the correction of the residual computed in extended precision. ``layout``: K's :func:`csr_layout`, kept with
+    its factorisation."""
     r = K @ u - b  # residual of the unscaled system, relative to the size of its terms
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
-    wide = K.astype(np.longdouble) if wide is None else wide
-    rl = np.asarray(np.asarray(b, np.longdouble) - wide @ np.asarray(u, np.longdouble), float)
+    rl = np.asarray(np.asarray(b, np.longdouble) - K.astype(np.longdouble) @ np.asarray(u, np.longdouble), float)
     m = SharedRounding.from_csr(K, u, b, s, weight, layout=layout) if magnitude is None else s * magnitude(u)
     _record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), m, u, watch))
 
