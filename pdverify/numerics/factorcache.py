@@ -22,38 +22,14 @@ stats = {"made": 0, "shared": 0}
 
 
 def digest(*arrays, params: tuple = ()) -> str:
-    """The key of a system: its arrays' dtypes, shapes and bytes (each array's bytes by their own digest, kept for an
-    array nobody can write: :func:`_bytes_digest`), and ``params``."""
+    """The key of a system: its arrays' bytes, dtypes and shapes, and ``params``."""
     h = hashlib.blake2b(digest_size=16)
     for a in arrays:
-        a = np.asarray(a)
+        a = np.ascontiguousarray(a)
         h.update(f"{a.dtype.str}{a.shape}".encode())
-        h.update(_bytes_digest(a))
+        h.update(a.tobytes())
     h.update(repr(params).encode())
     return h.hexdigest()
-
-
-_FROZEN = 64  # read-only arrays whose digest is kept (an operator's CSR arrays, solved for one load after another)
-_frozen: OrderedDict[tuple, tuple] = OrderedDict()  # (address, shape, strides, dtype) -> (the array, its digest)
-
-
-def _bytes_digest(a: np.ndarray) -> bytes:
-    """BLAKE2b of a's bytes (C order). Kept for an array that cannot change: it and every array it views are
-    read-only, down to the one that owns the memory (the kept entry holds the array, so its address is not reused)."""
-    b = a
-    while isinstance(b, np.ndarray) and not b.flags.writeable:
-        b = b.base
-    if b is not None:  # writeable somewhere (or memory of another kind): hashed afresh
-        return hashlib.blake2b(np.ascontiguousarray(a).tobytes(), digest_size=16).digest()
-    key = (a.__array_interface__["data"][0], a.shape, a.strides, a.dtype.str)
-    if key in _frozen:
-        _frozen.move_to_end(key)
-        return _frozen[key][1]
-    d = hashlib.blake2b(np.ascontiguousarray(a).tobytes(), digest_size=16).digest()
-    _frozen[key] = (a, d)
-    while len(_frozen) > _FROZEN:
-        _frozen.popitem(last=False)
-    return d
 
 
 def factorised(key: str, make):
@@ -95,7 +71,6 @@ def _evict() -> None:
 
 
 def clear() -> None:
-    """Forget every kept factorisation and digest (a test that solves apart)."""
+    """Forget every kept factorisation (a test that solves apart)."""
     _cache.clear()
-    _frozen.clear()
     stats.update(made=0, shared=0)
