@@ -136,6 +136,7 @@ class BandRounding(_Rounding):
         self.data, self.upper = data, int(upper)
         self.x = weight * np.asarray(x, float)  # the weight of the matrix's columns, carried by x
         self.n = data.shape[1]
+        self.live = np.flatnonzero(data.any(axis=1)).tolist()  # the diagonals that hold a nonzero entry
         self.s = np.ones(self.n)
         gid, k_matrix = significand_groups(data)
         self.k_matrix = k_matrix
@@ -143,10 +144,10 @@ class BandRounding(_Rounding):
         self._load_part(b, k_matrix)
 
     def _diagonals(self):
-        """(row slice, column slice, data row) of every stored diagonal: entry j of the column slice is
-        A[j - o, j]."""
+        """(row slice, column slice, data row) of every stored diagonal that holds a nonzero entry (an all-zero one
+        adds nothing: interleaved unknowns leave whole diagonals empty): entry j of the column slice is A[j - o, j]."""
         n = self.n
-        for r in range(self.data.shape[0]):  # the band's diagonals, not its points
+        for r in self.live:  # the band's diagonals, not its points
             o = self.upper - r
             yield slice(max(0, -o), n - max(0, o)), slice(max(0, o), n + min(0, o)), r
 
