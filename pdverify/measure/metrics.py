@@ -9,6 +9,14 @@ import numpy as np
 ROUND_OFF_LEVEL = 1e-7  # relative errors below this are round-off (eps x N^3 at a few thousand points): no order there
 
 
+def at_round_off(err) -> bool:
+    """True when every finite error (at least one) is below :data:`ROUND_OFF_LEVEL`: the model is exact for the
+    load, and the errors' scatter is round-off, with no order to fit."""
+    err = np.asarray(err, float)
+    finite = err[np.isfinite(err)]
+    return bool(finite.size and np.all(np.abs(finite) < ROUND_OFF_LEVEL))
+
+
 def _norm(v: np.ndarray) -> float:
     """Euclidean norm by numpy's pairwise sum, not BLAS: the same bits whatever the number of BLAS threads,
     and no BLAS thread left spinning. (OpenBLAS threads a dot product above ~10,000 entries, and its

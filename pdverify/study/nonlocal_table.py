@@ -23,7 +23,7 @@ import json
 
 import numpy as np
 
-from ..measure.metrics import ROUND_OFF_LEVEL, log_slope, observed_order
+from ..measure.metrics import at_round_off, log_slope, observed_order
 
 KEY = ("scene", "model", "options", "slenderness")
 CONTINUUM_SHARE = 0.1  # a continuum whose own error estimate passes this share of an error could decide it
@@ -69,10 +69,9 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
     doubt = path != "dm-convergence" and (
         bool(no_limit) or bool(np.nanmax(np.append(own, 0.0)) > CONTINUUM_SHARE * e.min())
     )
-    finite = e[np.isfinite(e)]
-    at_round_off = bool(finite.size and np.all(np.abs(finite) < ROUND_OFF_LEVEL))  # exact: no order to measure
-    p, r2 = observed_order(x, e) if not (doubt or at_round_off) else (float("nan"), float("nan"))
-    fine = log_slope(x[:2], e[:2])[0] if not (doubt or at_round_off) else float("nan")
+    exact = at_round_off(e)  # no order to measure
+    p, r2 = observed_order(x, e) if not (doubt or exact) else (float("nan"), float("nan"))
+    fine = log_slope(x[:2], e[:2])[0] if not (doubt or exact) else float("nan")
     return {
         **base,
         "path": path,
@@ -85,7 +84,7 @@ def _fit(path: str, held, rows: list[dict], base: dict) -> dict | None:
         "finest_order": fine,
         "continuum_in_doubt": doubt,
         "no_limit": no_limit,
-        "at_round_off": at_round_off,
+        "at_round_off": exact,
     }
 
 

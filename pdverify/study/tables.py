@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..measure.metrics import ROUND_OFF_LEVEL, gci, locking_slope, observed_order, pareto
+from ..measure.metrics import at_round_off, gci, locking_slope, observed_order, pareto
 from ..registry import models
 
 GROUP = ("scene", "model", "options", "slenderness")  # a convergence series: every option but the grid
@@ -97,9 +97,8 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
         err = np.array([_float(r.get(column)) for r in rows])
         if column != "err_max" and not np.isfinite(err).any():
             continue  # the model or the reference gives none of it
-        finite = err[np.isfinite(err)]
-        at_round_off = bool(finite.size and np.all(np.abs(finite) < ROUND_OFF_LEVEL))
-        p, r2 = (float("nan"), float("nan")) if at_round_off else observed_order(h, err)
+        exact = at_round_off(err)
+        p, r2 = (float("nan"), float("nan")) if exact else observed_order(h, err)
         flag = (
             order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound")))
             if series == "grid"
@@ -116,7 +115,7 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
                 observed_order=p,
                 r2=r2,
                 series=series,
-                at_round_off=at_round_off,
+                at_round_off=exact,
                 **flag,
                 **(gci(h, w) if column == "err_max" else {}),
             )
