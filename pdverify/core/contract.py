@@ -425,6 +425,11 @@ class Model(Horizon):
     def option(self, name: str) -> Option | None:
         return next((o for o in self.options if o.name == name), None)
 
+    def with_defaults(self, params: dict) -> dict:
+        """``params`` over the options' defaults, unchecked (:meth:`resolve` validates): for a method asked with the
+        user's options only (a card's check, the suite's reference)."""
+        return {o.name: o.default for o in self.options} | dict(params)
+
     def resolve(self, scene: Scene, given: dict, rules: bool = True) -> dict:
         """Validate ``given`` options against this model and fill in the defaults; ``rules``: also against
         its ``variant_rules`` (:func:`variant_problems`; off only to build a variant's operator with

@@ -73,10 +73,9 @@ class Horizon:
         continuum, ``params`` the user's options over the defaults): the model's :attr:`order`, or 1 for the variant
         :attr:`full_volumes`, whose sums give each of the m bonds in a horizon a whole volume dx: a one-sided rule of
         the horizon's integral, exact only as dx -> 0 (docs/nonlocal.md)."""
-        params = {o.name: o.default for o in getattr(self, "options", ())} | dict(params)
-        if self.full_volumes and params.get("variant") == self.full_volumes:
+        if self.full_volumes and self.with_defaults(params).get("variant") == self.full_volumes:
             return 1.0, f"variant {self.full_volumes}'s sums give each bond a whole volume up to delta: first order"
-        return float(getattr(self, "order", 2.0)), ""
+        return float(self.order), ""
 
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """(why, largest m) when the variant's discrete rules have no limit at fixed delta on ``scene`` (its

@@ -164,7 +164,7 @@ class PDEulerBernoulli(Model):
         (Eq. 11a, 32); ``corrected`` normalises its weights c_j = beta_j / (j^2 dx^2 sum beta) by sum beta dx =
         (m - 1/2) dx, the trapezoidal rule of the horizon's integral without its node at xi = 0 (where the kernel's
         1/xi^2 has no value), so its nonlocal term is about 1 + 1/(2m) times the continuum's (docs/nonlocal.md)."""
-        params = {o.name: o.default for o in self.options} | dict(params)
+        params = self.with_defaults(params)
         if params["variant"] == "paper":
             return super().fixed_horizon_order(params)
         return 1.0, "its weights are normalised by sum beta dx = (m - 1/2) dx (the horizon without xi = 0): first order"

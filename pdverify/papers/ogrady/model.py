@@ -241,7 +241,7 @@ class PDBondPair(Model):
         volume) and for ``continuous-alpha``, whose alpha = 3 EI / delta^3 (Eq. 5) is the integral its family sum
         reaches only as dx -> 0: stiffer by (m + 1)(2m + 1) / (2 m^2) = 1 + 3 / (2m) + ... (docs/nonlocal.md); else
         the model's."""
-        params = {o.name: o.default for o in self.options} | dict(params)
+        params = self.with_defaults(params)
         if params["variant"] == "continuous-alpha":
             return 1.0, "alpha = 3 EI / delta^3 over a family sum stiffer by (m + 1)(2m + 1) / (2 m^2): first order"
         return super().fixed_horizon_order(params)

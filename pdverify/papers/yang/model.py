@@ -328,7 +328,7 @@ class PDHigherOrder(Model):
     def reference_options(self, params: dict) -> dict | None:
         """exact-higher-order with the same loads and pin (its options of those names). None for the paper variant
         and mirror ends: their fictitious layers hold w' (symmetric images), not the theory's natural conditions."""
-        params = {o.name: o.default for o in self.options} | dict(params)
+        params = self.with_defaults(params)
         if params["variant"] == "paper" or self.ends(params) == "mirror":
             return None
         return {"loads": self.choice(params, "loads"), "pin": self.choice(params, "pin")}
