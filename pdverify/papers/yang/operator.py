@@ -11,7 +11,7 @@ whole-grid sparse route.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -82,6 +82,7 @@ class Layout:
     about: str
     clamp: str
     cuts: tuple[int, ...] = ()
+    _extended: dict = field(default_factory=dict, init=False, repr=False, compare=False)  # (r0, r1) -> extended()
 
     @property
     def n(self) -> int:
@@ -116,18 +117,21 @@ class Layout:
             cuts=self.cuts if cuts is None else cuts,
         )
 
+    def ghosts(self, r0: int, r1: int) -> tuple[int, int]:
+        """The ghosts per end of the window of real points r0..r1-1: those of the ends it reaches."""
+        return (self.G[0] if r0 == 0 else 0, self.G[1] if r1 == self.n else 0)
+
     def extended(self, r0: int, r1: int):
         """K of the extended points of the window r0..r1-1 (its ghosts included), Eq. 15 bond by bond
         (:func:`~.bonds.assemble_blocks`); made once per window of the layout (a window's rows with and without
         the end conditions share it)."""
-        kept = self.__dict__.setdefault("_extended", {})
-        if (r0, r1) not in kept:
-            G = self.G
-            k = np.arange(G[0] + r0 - (G[0] if r0 == 0 else 0), G[0] + r1 + (G[1] if r1 == self.n else 0))
+        if (r0, r1) not in self._extended:
+            g = self.ghosts(r0, r1)
+            k = np.arange(self.G[0] + r0 - g[0], self.G[0] + r1 + g[1])
             K = assemble_blocks(len(k), self.dx, self.C, self.weights(k), self.h, self.centred, self.path)
             K.data.flags.writeable = False  # shared by the window's two readings
-            kept[(r0, r1)] = K
-        return kept[(r0, r1)]
+            self._extended[(r0, r1)] = K
+        return self._extended[(r0, r1)]
 
     def fold(self, nw: int, g: tuple[int, int]):
         """The ghost map of a window of nw real points with g ghosts per end (None without ghosts)."""
@@ -141,9 +145,7 @@ class Layout:
         """Dense K (end conditions included) of the real points r0..r1-1 with the ghosts of the ends the
         window reaches: exact in the rows whose bonds and ghost images lie in the window. ``constrained =
         False``: before the end conditions (the rows of the held DOFs kept: the reactions K u - b)."""
-        n, G = self.n, self.G
-        g = (G[0] if r0 == 0 else 0, G[1] if r1 == n else 0)
-        nw = r1 - r0
+        n, g, nw = self.n, self.ghosts(r0, r1), r1 - r0
         Kx = self.extended(r0, r1)
         P = self.fold(nw, g)
         if P is None:
