@@ -440,12 +440,12 @@ def test_damped_beam_settles_to_the_static_solve_for_every_support_pair(m):
     ζ = 1 of the first mode, 0.5 s, m = 1, 2, 3: every support pair within 1e-8 of the static solution with the
     damping on every DOF (damping_on = "all", the default; measured worst 2.3e-12, 2.2e-11, 2.7e-11). On the
     translations alone (Eq. 36-37) the shear-rotation modes keep ringing where nothing else damps them: 5.0e-7,
-    6.5e-7, 9.7e-7, all between pinned and guided ends, which run without the stabilisation. m = 4 with a clamped
-    and a free end blows up whatever the damping."""
+    6.5e-7, 9.7e-7, all between pinned and guided ends, which run without the stabilisation (so those pairs only are
+    run on the translations). m = 4 with a clamped and a free end blows up whatever the damping."""
     loads = LOADS + [{"type": "point_moment", "position": 1.5, "value": 50.0}]
     worst = {"all": 0.0, "translations": 0.0}
     for left, right in PAIRS:
-        for on in worst:
+        for on in worst if {left, right} <= {"pinned", "guided"} else ["all"]:
             sc = _scene(left, right, loads=loads, end_time=0.5, damping_ratio=1.0, damping_on=on)
             static = run(
                 sc.model_copy(update={"dynamics": None}), "pd-timoshenko", points=41, horizon=m, variant="corrected"
