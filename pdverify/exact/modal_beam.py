@@ -69,10 +69,10 @@ class BeamModes:
 
     def fields(self, omega: np.ndarray, coef: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """w_k(x), γ_k(x), each (len(omega), len(x)); the cut-off mode is w = 0, γ = 1."""
-        C = self.beam._columns(omega, np.asarray(x, float))  # (modes, 4, 4, points)
+        C = self.beam._columns(omega, np.asarray(x, float), rows=(0, 2))  # (modes, [w, γ], 4, points)
         with np.errstate(invalid="ignore"):
             w = np.einsum("kfx,kf->kx", C[:, 0], coef)
-            g = np.einsum("kfx,kf->kx", C[:, 2], coef)
+            g = np.einsum("kfx,kf->kx", C[:, 1], coef)
         cut = np.isnan(coef[:, 0])
         w[cut], g[cut] = 0.0, 1.0
         return w, g

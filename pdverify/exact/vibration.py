@@ -26,6 +26,7 @@ import numpy as np
 from ..core.errors import SolveError
 from ..core.scene import HELD
 
+ROWS = (0, 1, 2, 3)  # w, w', γ, γ': the rows of the general solution's columns
 SCAN_LIMIT = 1e4  # per mode sought: the scan in z = L (rho A omega^2 / EI)^(1/4) stops at this times (count + 1)
 
 
@@ -54,8 +55,9 @@ class TimoshenkoBeam:
         """ω_c = sqrt(kGA / ρI): above it the second spectrum (both roots r < 0)."""
         return float(np.sqrt(self.kGA / self.rI))
 
-    def _columns(self, omega: np.ndarray, x) -> np.ndarray:
-        """(len(omega), 4 [w, w', γ, γ'], 4 functions) at a point x, or (..., len(x)) at the points x."""
+    def _columns(self, omega: np.ndarray, x, rows: tuple = ROWS) -> np.ndarray:
+        """(len(omega), 4 [w, w', γ, γ'], 4 functions) at a point x, or (..., len(x)) at the points x; ``rows``: those
+        of [w, w', γ, γ'] only (a mode's shape needs w and γ)."""
         w2 = omega**2
         a, b = self.EI * self.kGA, w2 * (self.kGA * self.rI + self.EI * self.rA)
         c = self.rA * w2 * (self.rI * w2 - self.kGA)
@@ -65,29 +67,35 @@ class TimoshenkoBeam:
         q = self.rA * w2 / self.kGA
         xs = np.atleast_1d(np.asarray(x, float))
         col = lambda v: v[:, None, None]  # noqa: E731 - per frequency, broadcast over (function, x)
-        out = np.empty((len(omega), 4, 4, len(xs)))
-        out[:, :, 2:] = self._trig(col(np.sqrt(-r2)), col(q), xs)
+        out = np.empty((len(omega), len(rows), 4, len(xs)))
+        out[:, :, 2:] = self._trig(col(np.sqrt(-r2)), col(q), xs, rows)
         s = np.sqrt(np.abs(r1))
         hyper = col(r1 > 0)[..., None]
-        out[:, :, :2] = np.where(hyper, self._hyper(col(s), col(q), xs), self._trig(col(s), col(q), xs))
+        out[:, :, :2] = np.where(hyper, self._hyper(col(s), col(q), xs, rows), self._trig(col(s), col(q), xs, rows))
         return out if np.ndim(x) else out[..., 0]
 
-    def _hyper(self, s, q, x):
-        """w = e^{-s x}, e^{-s(L - x)}: γ = -ra w, +ra w with ra = (s² + q)/s. (n, 4, 2, len(x))."""
+    def _hyper(self, s, q, x, rows: tuple = ROWS):
+        """w = e^{-s x}, e^{-s(L - x)}: γ = -ra w, +ra w with ra = (s² + q)/s. (n, len(rows), 2, len(x))."""
         sign = np.array([-1.0, 1.0])[:, None]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # s = 0 at the cut-off: NaN, unused
             ra = (s * s + q) / s
             g = np.concatenate([np.exp(-s * x), np.exp(-s * (self.L - x))], 1)  # (n, 2, len(x))
-            return np.stack([g, sign * s * g, sign * ra * g, ra * s * g], 1)
+            make = (lambda: g, lambda: sign * s * g, lambda: sign * ra * g, lambda: ra * s * g)
+            return np.stack([make[r]() for r in rows], 1)
 
-    def _trig(self, s, q, x):
-        """w = cos s x, sin s x: γ = sb sin, -sb cos with sb = (q - s²)/s. (n, 4, 2, len(x))."""
+    def _trig(self, s, q, x, rows: tuple = ROWS):
+        """w = cos s x, sin s x: γ = sb sin, -sb cos with sb = (q - s²)/s. (n, len(rows), 2, len(x))."""
         cs, sn = np.cos(s * x), np.sin(s * x)
         w = np.concatenate([cs, sn], 1)
-        dw = np.concatenate([-s * sn, s * cs], 1)
         with np.errstate(divide="ignore", invalid="ignore"):  # s = 0 at the cut-off: NaN, unused
             sb = (q - s * s) / s
-            return np.stack([w, dw, np.concatenate([sb * sn, -sb * cs], 1), sb * s * w], 1)
+            make = (
+                lambda: w,
+                lambda: np.concatenate([-s * sn, s * cs], 1),
+                lambda: np.concatenate([sb * sn, -sb * cs], 1),
+                lambda: sb * s * w,
+            )
+            return np.stack([make[r]() for r in rows], 1)
 
     def end_conditions(self, omega) -> tuple[np.ndarray, np.ndarray]:
         """(len(omega), 4, 4) the four end conditions (rows) on the four functions of the general solution
