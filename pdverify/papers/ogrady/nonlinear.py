@@ -304,11 +304,13 @@ class NonlinearBondPair:
         asks for less than the round-off floor on fine grids, where the pair forces are ~N² times the
         nodal loads), or when the residual has stopped falling (at the floor) after an increment below
         1e-10 of the displacements. Each step is shortened by secants on the slope of the energy along it
-        while the energy rises steeply at its end (a line search that needs the gradient only)."""
+        while the energy rises steeply at its end (a line search that needs the gradient only). A Newton direction
+        along which the energy rises, from a residual larger than the one it started from, ends the attempt
+        unconverged (the iterate has left the basin of the stable equilibrium; :meth:`solve` splits the step)."""
         free = self.free
         P = P.copy()
         R = self.gradient(P, lam)[free]
-        rn = np.abs(R).max()
+        rn = start = np.abs(R).max()
         floor = max(tol, 64 * np.finfo(float).eps)
         for it in range(max_iter):
             scale = self.force_scale(P, lam)[free]
@@ -317,6 +319,8 @@ class NonlinearBondPair:
             K = self.tangent(P, lam)[free][:, free]
             du, _ = solve_linear(K, -R, what="pd-bond-pair Newton step", condition=False, bound=False)
             t, g0 = 1.0, float(R @ du)  # slope of the energy along du at t = 0 (< 0)
+            if g0 > 0 and rn > start:  # an ascent direction from a worse state than the start: diverged
+                return P, it + 1, False, rn / max(scale.max(), 1e-300)
             for _ in range(12):
                 P_try = P.copy()
                 P_try[free] += t * du
