@@ -31,7 +31,7 @@ def write_study(tmp_path, body, name="s"):
 # stopped, so a run stopped after its first stored cases cannot end in the meantime, whatever the machine's
 # speed (with many tiny cases a run can end, every case stored, between its 3rd stored case and the signal)
 SLOW_RUNS = (
-    '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [128001, 160001, 192001]\nhorizon = [2, 3, 4, 5]\n'
+    '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [64001, 80001, 96001]\nhorizon = [2, 3, 4, 5]\n'
 )
 SLOW_CASES = 12
 
