@@ -18,7 +18,8 @@ is diagonalised by a sine transform. This module solves A x = b by
 
 The result carries the same round-off bound as the banded path (:func:`~pdverify.numerics.linalg.
 forward_error_bound`: the last refinement step, a conservative estimate of the solve's own error, plus
-|| |A^-1| c eps (|A| |x| + |b|) ||, estimated by Hager's method with inner solves). Every step is linear in the
+|| |A^-1| c eps (|A| |x| + |b|) ||, estimated by Hager's method with inner solves, or by one sample of random signs
+where that is larger: Hager's transposed solves may be inexact at a large condition). Every step is linear in the
 band's size or n log n: no factorisation, memory O(n) beside the band.
 """
 
