@@ -49,6 +49,7 @@ class TimoshenkoBeam:
     def __init__(self, EI, kGA, rhoA, rhoI, length, left: tuple[bool, bool], right: tuple[bool, bool]):
         self.EI, self.kGA, self.rA, self.rI, self.L = EI, kGA, rhoA, rhoI, length
         self.left, self.right = left, right
+        self._scans: dict[int, list] = {}  # resolution -> [z0, roots found below it] (:meth:`scan`)
 
     @property
     def cutoff(self) -> float:
@@ -139,14 +140,17 @@ class TimoshenkoBeam:
         pairs are found by :meth:`_brackets`.
         The scan steps by π/``resolution`` in z = L (ρA ω² / EI)^{1/4} (Euler–Bernoulli's βL, mode spacing
         ~π) while that is finer than π c / (L ``resolution``) in ω, c the lower of the shear and bending wave
-        speeds (the spacing of each spectrum where shear dominates), and by the latter above."""
+        speeds (the spacing of each spectrum where shear dominates), and by the latter above. The scan's state is
+        kept per ``resolution``: asked for more modes, it goes on from where it stopped, through the same chunks as a
+        scan from the start (the same roots)."""
         to_omega = lambda z: (z / self.L) ** 2 * np.sqrt(self.EI / self.rA)  # noqa: E731
         to_z = lambda w: self.L * (self.rA * w * w / self.EI) ** 0.25  # noqa: E731
         wave_step = np.pi * min(np.sqrt(self.kGA / self.rA), np.sqrt(self.EI / self.rI)) / (self.L * resolution)
         # where the z step, d omega = 2 omega / z dz, reaches wave_step: z = L^2 wave_step / (2 sqrt(EI/rhoA) dz)
         z_cross = self.L**2 * wave_step * resolution / (2 * np.pi * np.sqrt(self.EI / self.rA))
-        found = [self.cutoff] if self.left[0] and self.right[0] and not self.left[1] and not self.right[1] else []
-        z0, chunk = 1e-3, 8192
+        first = [self.cutoff] if self.left[0] and self.right[0] and not self.left[1] and not self.right[1] else []
+        state = self._scans.setdefault(resolution, [1e-3, first])  # [z0, roots found below it]
+        z0, found, chunk = state[0], state[1], 8192
         z_limit = SCAN_LIMIT * (count + 1)
         while len(found) < count:
             if not z0 < z_limit:
@@ -164,7 +168,7 @@ class TimoshenkoBeam:
             root = self._bisect(lo, hi, d_lo)
             real = np.abs(self.determinant(root)) <= 1e-6 * np.maximum(np.abs(d_lo), np.abs(d_hi))
             found += [w for w in root[real] if not np.isclose(w, self.cutoff, rtol=1e-9)]
-            z0 = to_z(omega[-1])
+            z0 = state[0] = to_z(omega[-1])
         return np.array(sorted(found)[:count])
 
     def _brackets(self, omega: np.ndarray, depth: int = 3, sub: int = 64) -> tuple:
@@ -196,14 +200,12 @@ class TimoshenkoBeam:
 
 
 @functools.lru_cache(maxsize=256)
-def _unit_roots(kGA: float, rhoI: float, left: tuple, right: tuple, count: int, resolution: int) -> np.ndarray:
-    beam = TimoshenkoBeam(1.0, kGA, 1.0, rhoI, 1.0, left, right)
-    roots = beam.scan(count, resolution)
-    roots.flags.writeable = False
-    return roots
+def _unit_beam(kGA: float, rhoI: float, left: tuple, right: tuple) -> TimoshenkoBeam:
+    """The dimensionless beam, kept with its scan (:meth:`TimoshenkoBeam.scan`): a convergence series asks for the
+    same beam's frequencies on every grid, and a modal sum asks for twice as many modes at each octave."""
+    return TimoshenkoBeam(1.0, kGA, 1.0, rhoI, 1.0, left, right)
 
 
 def _unit_scan(kGA: float, rhoI: float, left: tuple, right: tuple, count: int, resolution: int) -> np.ndarray:
-    """The dimensionless beam's roots (:meth:`TimoshenkoBeam.scan`), kept per beam: a convergence series asks for
-    the same beam's frequencies on every grid."""
-    return _unit_roots(float(kGA), float(rhoI), tuple(left), tuple(right), count, resolution).copy()
+    """The dimensionless beam's first ``count`` roots (:meth:`TimoshenkoBeam.scan`)."""
+    return _unit_beam(float(kGA), float(rhoI), tuple(left), tuple(right)).scan(count, resolution)
