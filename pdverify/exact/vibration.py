@@ -57,8 +57,8 @@ class TimoshenkoBeam:
         return float(np.sqrt(self.kGA / self.rI))
 
     def _columns(self, omega: np.ndarray, x, rows: tuple = ROWS) -> np.ndarray:
-        """(len(omega), 4 [w, w', γ, γ'], 4 functions) at a point x, or (..., len(x)) at the points x; ``rows``: those
-        of [w, w', γ, γ'] only (a mode's shape needs w and γ)."""
+        """(len(omega), len(rows), 4 functions) at a point x, or (..., len(x)) at the points x: the ``rows`` of
+        [w, w', γ, γ'] (all four by default; a mode's shape needs w and γ only)."""
         w2 = omega**2
         a, b = self.EI * self.kGA, w2 * (self.kGA * self.rI + self.EI * self.rA)
         c = self.rA * w2 * (self.rI * w2 - self.kGA)
