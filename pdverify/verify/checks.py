@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from ..measure.metrics import ROUND_OFF_LEVEL, errors, locking_slope, log_slope, observed_order
-from ..measure.status import reference_in_doubt
+from ..measure.status import in_doubt
 from ..numerics.linalg import BOUND_LIMIT
 
 EXACT = 1e-9  # an error this small at every grid: the model reproduces the solution (orders meaningless)
@@ -38,13 +38,13 @@ def check(name: str, verdict: str, summary: str, **data) -> dict:
 
 def reference_bound(rows) -> float:
     """The largest round-off bound of the reference solves behind these study rows that could decide their errors
-    (:func:`pdverify.measure.status.reference_in_doubt`; 0 when none: the column ``ref_error_bound``, docs/trust.md)."""
+    (:func:`pdverify.measure.status.in_doubt`; 0 when none: the column ``ref_error_bound``, docs/trust.md)."""
     if "ref_error_bound" not in rows:
         return 0.0
     doubt = [
         float(b)
         for b, e in zip(rows["ref_error_bound"], rows["err_max"], strict=True)
-        if not pd.isna(b) and reference_in_doubt(float(b), e)
+        if not pd.isna(b) and in_doubt(float(b), e)
     ]
     return max(doubt, default=0.0)
 

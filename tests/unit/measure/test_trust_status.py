@@ -37,6 +37,17 @@ def test_case_status_from_the_bound():
     assert case_status({"error_bound": math.inf})["status"] == "suspect"
 
 
+def test_a_bound_that_cannot_decide_the_error_leaves_the_row_ok():
+    """A bound past the limit but below a tenth of the measured error cannot change that error's first digit: the
+    row stays ok (the warning stays in its solve's output); at a tenth or more, or with no error measured, suspect."""
+    bound = 2 * BOUND_LIMIT
+    assert case_status({"error_bound": bound}, err=10.5 * bound) == {"error_bound": bound}
+    at_tenth = case_status({"error_bound": bound}, err=10 * bound)
+    assert at_tenth["status"] == "suspect" and "a tenth of the error" in at_tenth["message"]
+    assert case_status({"error_bound": bound}, err=math.nan)["status"] == "suspect"
+    assert case_status({"error_bound": math.inf}, err=1.0)["status"] == "suspect"
+
+
 def _cli(args, tmp_path, E="200e9"):
     from typer.testing import CliRunner
 
