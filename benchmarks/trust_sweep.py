@@ -116,11 +116,13 @@ def refined(sc, name: str, opts: dict):
         linalg.SMALL = small
 
 
-def case(name: str, pair, points: int, slenderness: float) -> dict:
+def case(name: str, pair, points: int, slenderness: float, options: dict | None = None) -> dict:
+    """One case of the sweep (module docstring); ``options``: the model's options besides ``points``."""
     model = get_model(name)
     q = quantity(model)
-    opts = {"points": points} if model.option("points") is not None else {}
+    opts = ({"points": points} if model.option("points") is not None else {}) | (options or {})
     row = {"model": name, "left": pair[0], "right": pair[1], "points": points, "slenderness": slenderness}
+    row |= {"options": ", ".join(f"{k}={v}" for k, v in sorted((options or {}).items()))}
     t0 = time.perf_counter()
     try:
         base = run(scene(model, pair, slenderness), name, **opts)

@@ -107,7 +107,8 @@ def bound_warning(bound: float) -> str:
     )
 
 
-def _record_bound(info: dict, bound: float) -> None:
+def record_bound(info: dict, bound: float) -> None:
+    """``info["error_bound"] = bound``, and the warning of :func:`bound_warning` when it passes ``BOUND_LIMIT``."""
     info["error_bound"] = bound
     if not bound <= BOUND_LIMIT:
         info.setdefault("warnings", []).append(bound_warning(bound))

@@ -18,12 +18,12 @@ from .band import Band, bandwidths, canonical_csr, csr_rows
 from .error_bound import (  # noqa: F401 - re-exported: the models import the bound's pieces from here
     BOUND_LIMIT,
     ENTRY_ROUNDING,
-    _record_bound,
     _weight,
     bound_warning,
     forward_error_bound,
     hager_inverse_norm,
     hager_norm1,
+    record_bound,
 )
 from .rounding import BandRounding, SharedRounding, csr_layout
 
@@ -212,7 +212,7 @@ def solve_band(
         m = BandRounding(B.data, B.upper, y, bs, _weight(entry_rounding))
     else:
         m = s * magnitude(u)
-    _record_bound(info, _scaled_bound(solve, lambda z: solve(z, 1), s, s * dy, m, u, watch, 2))
+    record_bound(info, _scaled_bound(solve, lambda z: solve(z, 1), s, s * dy, m, u, watch, 2))
     np.abs(B.data, out=B.data)
     size = (B.matvec(np.abs(y)) + np.abs(bs)).max()  # the residual relative to the size of its terms
     info["residual"] = float(np.abs(r0).max() / size) if size > 0 else 0.0  # of the unrefined solution
@@ -390,7 +390,7 @@ def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
     rl = np.asarray(np.asarray(b, np.longdouble) - K.astype(np.longdouble) @ np.asarray(u, np.longdouble), float)
     m = SharedRounding.from_csr(K, u, b, s, weight, layout=layout) if magnitude is None else s * magnitude(u)
-    _record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), m, u, watch))
+    record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), m, u, watch))
 
 
 def _condition(K, Ks, s, solve, solve_t) -> float:

@@ -33,7 +33,7 @@ from ...core.contract import LOAD_TYPES, NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer
 from ...core.scene import Scene
-from ...numerics.linalg import solve_linear
+from ...numerics.linalg import forward_error_bound, record_bound, solve_linear
 from ...numerics.loads import boundary_layer_warnings
 from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import Series, beam_series
@@ -119,11 +119,12 @@ def omega(scene: Scene, params: dict):
 __all__ = ["MODELS", "PDBondPair", "factored_stencils", "operator_stencil", "pair_family", "spring_constants"]
 
 
-def refine(model, K, b, free, u, sweeps: int = 3) -> np.ndarray:
+def refine(model, K, b, free, u, sweeps: int = 3) -> tuple[np.ndarray, float]:
     """Iterative refinement of K u = b with the residual from the element forces
     (:meth:`NonlinearBondPair.apply_linear`): the assembled K's round-off grows like N^4 eps, the element
     residual's like N^2 eps, so two or three sweeps give the discrete solution the nonlinear path
-    converges to (its first Newton iterate is this solve). Returns all 2n displacements."""
+    converges to (its first Newton iterate is this solve). Returns all 2n displacements and the round-off bound
+    of :func:`element_bound`."""
     import scipy.sparse.linalg as spla
 
     lu = spla.splu(sp.csc_matrix(K))
@@ -135,7 +136,29 @@ def refine(model, K, b, free, u, sweeps: int = 3) -> np.ndarray:
         full[free] += du
         if np.abs(du).max() <= 1e-14 * np.abs(full).max():
             break
-    return full
+    return full, element_bound(model, lu, b, free, full)
+
+
+def element_bound(model, lu, b, free, full) -> float:
+    """The round-off bound of a solution refined against the element residual (:func:`refine`), relative to the
+    largest deflection (and, with axial loads, to the largest axial displacement, each field its own): Skeel's
+    componentwise bound || |K^-1| (c eps g) ||, g the magnitude of the element forces meeting at each unknown
+    (:meth:`NonlinearBondPair.linear_force_scale`, the terms the residual sums), plus the next correction K^-1 r
+    (:func:`pdverify.numerics.linalg.forward_error_bound`). The fixed point of the refinement is the element
+    residual's, so the assembled K's rounding (its fourth differences) is not part of it."""
+    correction = lu.solve(b - model.apply_linear(full)[free])
+    at = np.searchsorted(free, np.arange(2 * model.n))  # each unknown's place among the free ones
+    kept = np.isin(np.arange(2 * model.n), free)
+    w = at[1::2][kept[1::2]]
+    fields = (w, at[0::2][kept[0::2]]) if model.scene.has_axial_loads else (w,)
+    return forward_error_bound(
+        lu.solve,
+        lambda z: lu.solve(z, trans="T"),
+        correction,
+        model.linear_force_scale(full)[free],
+        full[free],
+        fields,
+    )
 
 
 class PDBondPair(Model):
@@ -440,8 +463,11 @@ class PDBondPair(Model):
         if params["ends"] == "mirror":
             model = self.energy_model(scene, params)
             with timer("solve"):
-                u, info = solve(system.matrix, system.rhs, what, params["solver"])
-                full = refine(model, system.matrix, system.rhs, system.free, u)
+                # no bound of the assembled system (its fourth differences round like N^4 eps): the bound is the
+                # element residual's, to which the refinement converges
+                u, info = solve(system.matrix, system.rhs, what, params["solver"], bound=False)
+                full, bound = refine(model, system.matrix, system.rhs, system.free, u)
+                record_bound(info, bound)
             w, fields["u"] = full[1::2], full[0::2]
             dx = x[1] - x[0]
             pairs = mirror_pairs(scene.EI, params, len(x), dx, (scene.supports.left, scene.supports.right))

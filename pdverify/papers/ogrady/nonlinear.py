@@ -272,21 +272,34 @@ class NonlinearBondPair:
         h = 1e-30 / max(np.abs(P).max(), 1e-300)
         return self.gradient(1j * h * np.asarray(P, float), 0.0).imag / h
 
+    def _internal_scale(self, P: np.ndarray, size) -> np.ndarray:
+        """Per real DOF, the sum of ``size`` (an array's magnitudes) of every pair and bond force meeting there,
+        through |T| and |Tb|."""
+        Xe = (self.T @ P).reshape(-1, 2)
+        g = np.zeros((self.N, 2))
+        gp = size(pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx))
+        for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
+            np.add.at(g, idx, gp[:, 2 * t : 2 * t + 2])
+        Xb = (self.Tb @ P).reshape(-1, 2)
+        gb = size(bond_grad(Xb[self.ba], Xb[self.bc], self.bk, self.bxi))
+        h = np.zeros((self.N, 2))
+        np.add.at(h, self.ba, gb[:, :2])
+        np.add.at(h, self.bc, gb[:, 2:])
+        return self.T_abs.T @ g.ravel() + self.Tb_abs.T @ h.ravel()
+
+    def linear_force_scale(self, P: np.ndarray) -> np.ndarray:
+        """:meth:`force_scale` of the linear problem at rest: per real DOF the magnitudes of the terms
+        :meth:`apply_linear` sums (each pair and bond force's first order in P, by the same complex step) and of
+        the loads and couples at rest; eps times it is the round-off floor of the linear residual."""
+        step = 1e-30 / max(np.abs(P).max(), 1e-300)
+        linear = self._internal_scale(1j * step * np.asarray(P, float), lambda g: np.abs(g.imag) / step)
+        return linear + self.force_scale(np.zeros_like(P), 1.0)
+
     def force_scale(self, P: np.ndarray, lam: float) -> np.ndarray:
         """Per real DOF, the sum of the magnitudes of every force that meets there (pair and bond forces
         through |T|, couples, loads): the size of the terms whose sum is the residual, so eps times it is
         the residual's round-off floor."""
-        Xe = (self.T @ P).reshape(-1, 2)
-        g = np.zeros((self.N, 2))
-        gp = np.abs(pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx))
-        for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
-            np.add.at(g, idx, gp[:, 2 * t : 2 * t + 2])
-        Xb = (self.Tb @ P).reshape(-1, 2)
-        gb = np.abs(bond_grad(Xb[self.ba], Xb[self.bc], self.bk, self.bxi))
-        h = np.zeros((self.N, 2))
-        np.add.at(h, self.ba, gb[:, :2])
-        np.add.at(h, self.bc, gb[:, 2:])
-        out = self.T_abs.T @ g.ravel() + self.Tb_abs.T @ h.ravel() + np.abs(lam * self.F)
+        out = self._internal_scale(P, np.abs) + np.abs(lam * self.F)
         if len(self.cC):
             Pr = P.reshape(-1, 2)
             gc = np.abs(couple_grad(Pr[self.ca], Pr[self.cc], lam * self.cC, (self.cc - self.ca) * self.dx))
