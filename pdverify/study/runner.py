@@ -6,7 +6,6 @@ a run resumes where it stopped; then the tables (derived.py).
 from __future__ import annotations
 
 import json
-import math
 import operator
 import os
 import time
@@ -271,8 +270,7 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     # (numerics/factorcache.py); whether this case made it or took it depends on the run's order, not recorded
     row["factorisation"] = info.get("factorisation")
     row["status"], row["message"] = "ok", ""
-    # "suspect" when the round-off bound passes 1e-6 and could decide the measured error (docs/trust.md)
-    row.update(case_status(info, row.get("err_max", math.nan)))
+    row.update(case_status(info, row.get("err_max", np.nan)))  # suspect: a bound that could decide it (trust.md)
     if case.reference.get("continuum"):  # ... or the reference's: the error is measured against it
         row.update(reference_status(continuum_at(case, case.scene(), x)[1], row))
     elif case.reference.get("model") != "none":

@@ -60,7 +60,7 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
         solved = None
         if series is not None:
             x_user = _grid_of(model, scene, base, params["points"])
-            got = series_solution(scene, series, x_user)
+            got = series_solution(scene, series, x_user, need=SERIES_TOL)
             if got is not None and got[2] <= SERIES_TOL:
                 q, rot, est = got
                 info.update(continuum="closed form: series of the mirror modes", error_bound=est)

@@ -243,3 +243,23 @@ def test_a_singular_level_ends_the_extrapolation():
     assert r.info["continuum_levels"] == [8.0, 16.0, 32.0, 64.0]
     assert "the grid of m = 128 not solved: " in r.info["continuum"] and "singular" in r.info["continuum"]
     assert np.isfinite(r.info["error_bound"]) and np.all(np.isfinite(r.w))
+
+
+@pytest.mark.parametrize("scene, delta", [("pp_uniform", 0.2), ("pp_uniform", 0.05), ("pg_uniform", 0.1)])
+def test_a_series_out_of_reach_is_left_early_and_one_within_reach_is_not(scene, delta):
+    """pd-bond-pair's symbol grows like |k|, so a uniform load's series falls like 1 / terms: summed to 2^20 terms its
+    estimate ends at 2.4e-8 (pp, delta = 0.2) and 3.9e-10 (pp, 0.05), above the 1e-10 the continuum needs, and
+    pinned-guided at delta = 0.1 just below it (9.8e-11). With ``need`` the first two stop after a few thousand terms
+    (the continuum would not use them) and the third is summed as without it: the same values."""
+    sc = load_scene(str(STUDIES / "nonlocal" / f"{scene}.toml"))
+    m = get_model("pd-bond-pair")
+    n = round(8 / delta) + 1
+    series = m.continuum_series(sc, m.resolve(sc, dict(ends="mirror", points=n, horizon_length=delta)))
+    x = np.linspace(0.0, sc.length, n)
+    full = series_solution(sc, series, x)
+    early = series_solution(sc, series, x, need=1e-10)
+    assert (full[2] <= 1e-10) == (early[2] <= 1e-10)
+    if full[2] <= 1e-10:
+        assert np.array_equal(full[0], early[0]) and full[2] == early[2]
+    else:
+        assert early[2] > full[2]  # left before the end
