@@ -12,6 +12,7 @@ elsewhere).
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 import os
 import re
@@ -33,7 +34,17 @@ def serial(run, todo, ids, artefacts):
         yield cid, run(case, artefacts, cid)
 
 
-def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, sizes: list | None = None, order=None):
+def pool(
+    run,
+    todo,
+    ids,
+    artefacts,
+    workers: int,
+    groups: list | None = None,
+    sizes: list | None = None,
+    order=None,
+    interruptible: bool = False,
+):
     """The cases in ``workers`` processes, one batch of cases per task: the cases with the same key in ``groups``
     (one key per case; None: each case alone) run one after another in one process, so that those on one operator
     share its factorisation and their reference (:mod:`pdverify.numerics.factorcache`); the largest batches go
@@ -43,7 +54,12 @@ def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, si
     workers (those running and up to ``workers + 1`` queued) finish and are yielded, then KeyboardInterrupt goes on.
     Any other way out (the caller's error, the generator closed) cancels the batches not started and waits for those
     in flight, which are dropped. The workers are never killed from here: a worker killed while it sends a record
-    back leaves a partial message that the pool's reader then waits for forever."""
+    back leaves a partial message that the pool's reader then waits for forever.
+
+    ``interruptible`` (batches that take minutes, e.g. a verification card): Ctrl-C, or SIGINT to this process alone
+    (passed on to the workers), stops the batches in flight too, at their next step (a worker raises
+    KeyboardInterrupt only while it runs a batch; what the batch stores as it goes, e.g. a card's cases, is kept);
+    they are dropped, not yielded."""
     batches: dict = {}
     for i, key in enumerate(groups if groups is not None else range(len(todo))):
         batches.setdefault(key, []).append(i)
@@ -53,7 +69,9 @@ def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, si
     by_weight = sorted(batches.values(), key=weight, reverse=True)
     # fork on Linux whatever the Python version (3.14 made forkserver the default)
     ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
-    ex = ProcessPoolExecutor(max_workers=workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(),))
+    ex = ProcessPoolExecutor(
+        max_workers=workers, mp_context=ctx, initializer=_worker_start, initargs=(os.getpid(), interruptible)
+    )
     futs, given = [], set()
     try:
         for batch in by_weight:
@@ -63,7 +81,12 @@ def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, si
             given.add(fut)
             yield from records
     except KeyboardInterrupt:
+        procs = list((getattr(ex, "_processes", None) or {}).values())  # before the shutdown forgets them
         ex.shutdown(wait=False, cancel_futures=True)
+        if interruptible:  # a SIGINT sent to this process alone: to the workers too (a terminal's reached them)
+            for proc in procs:
+                with contextlib.suppress(OSError):
+                    os.kill(proc.pid, signal.SIGINT)
         # polled, not as_completed: a future the pool cancels at shutdown never tells its waiters (3.11)
         rest = [f for f in futs if f not in given]
         while rest:
@@ -77,14 +100,34 @@ def pool(run, todo, ids, artefacts, workers: int, groups: list | None = None, si
         ex.shutdown(wait=True, cancel_futures=True)
 
 
+_BUSY = [False]  # in a worker of an interruptible pool: whether it runs a batch (Ctrl-C stops it then only) ...
+_STOPPED = [False]  # ... and whether it had a Ctrl-C: the batches already queued to it are dropped too
+
+
 def _run_batch(run, cases, artefacts, ids) -> list:
     """[(case id, record)] of a batch, in one process."""
-    return [(cid, run(case, artefacts, cid)) for case, cid in zip(cases, ids)]
+    if _STOPPED[0]:
+        raise KeyboardInterrupt
+    _BUSY[0] = True
+    try:
+        return [(cid, run(case, artefacts, cid)) for case, cid in zip(cases, ids)]
+    finally:
+        _BUSY[0] = False
 
 
-def _worker_start(parent: int) -> None:
-    """A pool worker's first act: leave Ctrl-C to the main process, and die when it dies."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+def _interrupt_if_busy(signum, frame) -> None:
+    """SIGINT in a worker of an interruptible pool: KeyboardInterrupt in the batch it runs, nothing while it waits for
+    one (a worker interrupted there would die with a traceback and break the pool); the batches queued to it after
+    that are dropped."""
+    _STOPPED[0] = True
+    if _BUSY[0]:
+        raise KeyboardInterrupt
+
+
+def _worker_start(parent: int, interruptible: bool = False) -> None:
+    """A pool worker's first act: leave Ctrl-C to the main process (``interruptible``: stop the batch it runs, if
+    any), and die when it dies."""
+    signal.signal(signal.SIGINT, _interrupt_if_busy if interruptible else signal.SIG_IGN)
     if sys.platform.startswith("linux"):
         import ctypes
 

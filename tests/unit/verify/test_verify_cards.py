@@ -73,8 +73,9 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
     assert locking == "fail"
     index = (out / "index.html").read_text()
     assert 'id="cards"' in index
-    # the cards' own time and the whole run's, in "What was run" (the study's wall_s counts its cases only)
-    assert cards["wall_s"] >= sum(c["wall_s"] for c in cards["cards"]) > 0
+    # the cards' own time and the whole run's, in "What was run" (the study's wall_s counts its cases only); the
+    # cards run side by side, so the whole takes at least the longest card's time, not their sum
+    assert cards["wall_s"] >= max(c["wall_s"] for c in cards["cards"]) > 0
     run_table = index.split('id="run"', 1)[1]
     assert "cards_s (the verification cards)" in run_table and "cases and cards (s)" in run_table
     for folder in folders.values():
