@@ -59,7 +59,7 @@ def pool(
     ``interruptible`` (batches that take minutes, e.g. a verification card): Ctrl-C, or SIGINT to this process alone
     (passed on to the workers), stops the batches in flight too, at their next step (a worker raises
     KeyboardInterrupt only while it runs a batch; what the batch stores as it goes, e.g. a card's cases, is kept);
-    they are dropped, not yielded."""
+    they are dropped, not yielded, and the workers have ended when KeyboardInterrupt goes on."""
     batches: dict = {}
     for i, key in enumerate(groups if groups is not None else range(len(todo))):
         batches.setdefault(key, []).append(i)
@@ -95,6 +95,9 @@ def pool(
                 if not fut.cancelled() and fut.exception() is None:
                     yield from fut.result()
             time.sleep(0.02)
+        if interruptible:  # the shutdown above forgot them: they end once told (at once, their batches stopped)
+            for proc in procs:
+                proc.join()
         raise
     finally:
         ex.shutdown(wait=True, cancel_futures=True)

@@ -44,15 +44,21 @@ def run_cards(
             for e in study.verify
         )
     cards = {}
-    for folder, card in made:
-        cards[folder] = card
-        if echo is not None:
-            failed = [c["check"] for c in card["checks"] if c["verdict"] == "fail"]
-            echo(
-                f"card: {folder}: {card['verdict']}"
-                + (f" ({', '.join(failed)})" if failed else "")
-                + f"; {root / folder / 'card.html'}"
-            )
+    try:
+        for folder, card in made:
+            cards[folder] = card
+            if echo is not None:
+                failed = [c["check"] for c in card["checks"] if c["verdict"] == "fail"]
+                echo(
+                    f"card: {folder}: {card['verdict']}"
+                    + (f" ({', '.join(failed)})" if failed else "")
+                    + f"; {root / folder / 'card.html'}"
+                )
+    except execute.BrokenProcessPool:  # a worker killed: the cards' cases stored before are kept in their folders
+        raise OutputError(
+            f"a process running a verification card ended abruptly (killed: out of memory, a signal); the cards' "
+            f"cases finished before are kept in {root}: run the study again to resume"
+        ) from None
     done = [_summary(entry, cards[entry["folder"]]) for entry in study.verify]
     write_index(root, done, study.verify_required, time.perf_counter() - t0)
     return done
