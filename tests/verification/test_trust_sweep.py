@@ -53,8 +53,8 @@ def test_the_mirror_ends_bound_is_the_element_residuals(pair):
     """pd-bond-pair with mirror ends refines against the element residual, whose terms round like second
     differences: its bound is Skeel's over those terms (dimensionless: the same at L/h = 20 and 10^4), holds the
     round-off and grows like eps N^2 (the inverse of a fourth-order operator applied to terms of a second
-    difference's size; 4-17 eps N^2 measured at 1,001 points), not like the assembled matrix's cond eps ~ N^4 eps:
-    the bound it replaced was 2.6e-5 and 1.9e-4 here at L/h = 10^4, for a measured round-off of 3e-14."""
+    difference's size; 0.4-1.7 eps N^2 measured here at 1,001 points), not like the assembled matrix's bound,
+    ~ N^4 eps: 1.4e-4 and 2.4e-4 here, for a measured round-off of 1e-14 to 3e-14."""
     rows = [sweep.case("pd-bond-pair", pair, 1001, s, {"ends": "mirror"}) for s in (20.0, 1e4)]
     for row in rows:
         assert row["status"] == "ok", row
