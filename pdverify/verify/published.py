@@ -40,7 +40,17 @@ def run_cards(
         made = execute.pool(_card, study.verify, folders, root, n, sizes=_weights(study), interruptible=True)
     else:
         made = (
-            (e["folder"], verify(e["model"], root / e["folder"], e["options"], workers, scheduler, progress))
+            (
+                e["folder"],
+                verify(
+                    e["model"],
+                    root / e["folder"],
+                    e["options"],
+                    workers=workers,
+                    scheduler=scheduler,
+                    progress=progress,
+                ),
+            )
             for e in study.verify
         )
     cards = {}
