@@ -32,7 +32,7 @@ import scipy.sparse as sp
 
 from ..core.errors import InputError
 from .band import Band
-from .linalg import BOUND_LIMIT, ENTRY_ROUNDING, bound_warning, extended_residual, forward_error_bound, hager_norm1
+from .linalg import ENTRY_ROUNDING, extended_residual, forward_error_bound, hager_norm1, record_bound
 from .toeplitz import (
     SineSolve,
     ToeplitzProduct,
@@ -344,8 +344,7 @@ def solve_krylov(
             f"{what}: an inner Krylov iteration stopped at {INNER_MAXITER} steps unconverged; the round-off bound "
             "says how far the result may be from the solution; solver = banded solves it directly"
         )
-    if not bound <= BOUND_LIMIT:
-        info.setdefault("warnings", []).append(bound_warning(bound))
+    record_bound(info, bound)
     return u, info
 
 

@@ -147,10 +147,8 @@ def element_bound(model, lu, b, free, full) -> float:
     (:func:`pdverify.numerics.linalg.forward_error_bound`). The fixed point of the refinement is the element
     residual's, so the assembled K's rounding (its fourth differences) is not part of it."""
     correction = lu.solve(b - model.apply_linear(full)[free])
-    at = np.searchsorted(free, np.arange(2 * model.n))  # each unknown's place among the free ones
-    kept = np.isin(np.arange(2 * model.n), free)
-    w = at[1::2][kept[1::2]]
-    fields = (w, at[0::2][kept[0::2]]) if model.scene.has_axial_loads else (w,)
+    w = np.flatnonzero(free % 2 == 1)  # the deflections' places among the free unknowns (u, w per point, in order)
+    fields = (w, np.flatnonzero(free % 2 == 0)) if model.scene.has_axial_loads else (w,)
     return forward_error_bound(
         lu.solve,
         lambda z: lu.solve(z, trans="T"),
