@@ -34,6 +34,20 @@ def _norm(a):
     return np.sqrt(a[..., 0] ** 2 + a[..., 1] ** 2)  # complex-safe (no abs)
 
 
+def element_sum(size: int, points: tuple, forces: np.ndarray) -> np.ndarray:
+    """(size, 2): the elements' forces summed on their points. ``forces`` (n, 2 len(points)) holds the force on the
+    t-th point of each element in columns 2t, 2t + 1. Summed in order, the elements' first points first: the same
+    bits as np.add.at on zeros, by one bincount per component (complex forces part by part)."""
+    idx = np.concatenate(points)
+    cols = [np.concatenate([forces[:, 2 * t + c] for t in range(len(points))]) for c in (0, 1)]
+    if np.iscomplexobj(forces):
+        out = np.zeros((size, 2), complex)
+        for c, col in enumerate(cols):
+            out[:, c].real, out[:, c].imag = np.bincount(idx, col.real, size), np.bincount(idx, col.imag, size)
+        return out
+    return np.stack([np.bincount(idx, col, size) for col in cols], axis=1)
+
+
 def pair_grad(a, b, c, k, xi):
     """∂/∂(a, b, c) of k (1 + cos theta) for pairs centred at b; a, b, c are displacements (n, 2) of
     points at -xi, 0, +xi (the reference offsets are added exactly); returns (n, 6)."""
@@ -211,23 +225,15 @@ class NonlinearBondPair:
     def gradient(self, P: np.ndarray, lam: float) -> np.ndarray:
         """∂Π/∂(real displacements) at load factor lam (P: displacements of the real points)."""
         Xe = (self.T @ P).reshape(-1, 2)
-        g = np.zeros((self.N, 2), dtype=Xe.dtype)
         gp = pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx)
-        for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
-            np.add.at(g, idx, gp[:, 2 * t : 2 * t + 2])
+        g = element_sum(self.N, (self.pc - self.po, self.pc, self.pc + self.po), gp)
         Xb = (self.Tb @ P).reshape(-1, 2)
-        gb = bond_grad(Xb[self.ba], Xb[self.bc], self.bk, self.bxi)
-        h = np.zeros((self.N, 2), dtype=Xb.dtype)
-        np.add.at(h, self.ba, gb[:, :2])
-        np.add.at(h, self.bc, gb[:, 2:])
+        h = element_sum(self.N, (self.ba, self.bc), bond_grad(Xb[self.ba], Xb[self.bc], self.bk, self.bxi))
         out = self.T.T @ g.ravel() + self.Tb.T @ h.ravel()
         if len(self.cC):
             Pr = P.reshape(-1, 2)
             gc = couple_grad(Pr[self.ca], Pr[self.cc], lam * self.cC, (self.cc - self.ca) * self.dx)
-            o2 = np.zeros((self.n, 2), dtype=Pr.dtype)
-            np.add.at(o2, self.ca, gc[:, :2])
-            np.add.at(o2, self.cc, gc[:, 2:])
-            out = out + o2.ravel()
+            out = out + element_sum(self.n, (self.ca, self.cc), gc).ravel()
         return out - lam * self.F
 
     def tangent(self, P: np.ndarray, lam: float) -> sp.csr_matrix:
@@ -276,15 +282,10 @@ class NonlinearBondPair:
         """Per real DOF, the sum of ``size`` (an array's magnitudes) of every pair and bond force meeting there,
         through |T| and |Tb|."""
         Xe = (self.T @ P).reshape(-1, 2)
-        g = np.zeros((self.N, 2))
         gp = size(pair_grad(Xe[self.pc - self.po], Xe[self.pc], Xe[self.pc + self.po], self.pk, self.po * self.dx))
-        for t, idx in enumerate((self.pc - self.po, self.pc, self.pc + self.po)):
-            np.add.at(g, idx, gp[:, 2 * t : 2 * t + 2])
+        g = element_sum(self.N, (self.pc - self.po, self.pc, self.pc + self.po), gp)
         Xb = (self.Tb @ P).reshape(-1, 2)
-        gb = size(bond_grad(Xb[self.ba], Xb[self.bc], self.bk, self.bxi))
-        h = np.zeros((self.N, 2))
-        np.add.at(h, self.ba, gb[:, :2])
-        np.add.at(h, self.bc, gb[:, 2:])
+        h = element_sum(self.N, (self.ba, self.bc), size(bond_grad(Xb[self.ba], Xb[self.bc], self.bk, self.bxi)))
         return self.T_abs.T @ g.ravel() + self.Tb_abs.T @ h.ravel()
 
     def linear_force_scale(self, P: np.ndarray) -> np.ndarray:
@@ -303,10 +304,7 @@ class NonlinearBondPair:
         if len(self.cC):
             Pr = P.reshape(-1, 2)
             gc = np.abs(couple_grad(Pr[self.ca], Pr[self.cc], lam * self.cC, (self.cc - self.ca) * self.dx))
-            o2 = np.zeros((self.n, 2))
-            np.add.at(o2, self.ca, gc[:, :2])
-            np.add.at(o2, self.cc, gc[:, 2:])
-            out = out + o2.ravel()
+            out = out + element_sum(self.n, (self.ca, self.cc), gc).ravel()
         return out
 
     def newton(self, P: np.ndarray, lam: float, tol: float = 1e-11, max_iter: int = 30):

@@ -159,21 +159,20 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.n
     at = np.searchsorted(near, K)  # each bond's point among the near ones
     w0 = V[K] * r / np.bincount(at, weights=r * xi2, minlength=len(near))[at]
     var = np.isin(K, layer)  # the bonds whose weights change
-    A_cal = (K[var][None, :] == layer[:, None]) * xi2[var][None, :]  # each layer point's calibration
+    nv = int(var.sum())
+    A_cal = sp.csr_matrix((xi2[var], (np.searchsorted(layer, K[var]), np.arange(nv))), shape=(len(layer), nv))
     lo, hi = np.minimum(K, K + O), np.maximum(K, K + O)  # the segments [lo, hi) a bond covers
-    cover = np.zeros(n + 1)
-    np.add.at(cover, lo[var], 1.0)
-    np.add.at(cover, hi[var], -1.0)
-    segs = np.flatnonzero(np.cumsum(cover)[: n - 1] > 0)  # the segments some changing bond covers
-    over = (segs[:, None] >= lo[None, :]) & (segs[:, None] < hi[None, :])  # segment x bond
     share = np.abs(O) * dx * dx
-    A_seg = over[:, var] * share[var][None, :]
-    fixed = over[:, ~var] @ (w0[~var] * share[~var])  # the bonds that keep their weights
-    A = np.vstack([A_cal, A_seg])
+    seg_of, bond_of = _segments(lo[var], hi[var])  # sparse: a bond of d spacings covers d segments
+    segs, row = np.unique(seg_of, return_inverse=True)  # the segments some changing bond covers
+    A_seg = sp.csr_matrix((share[var][bond_of], (row, bond_of)), shape=(len(segs), nv))
+    seg_fix, bond_fix = _segments(lo[~var], hi[~var])  # the bonds that keep their weights
+    fixed = np.bincount(seg_fix, (w0[~var] * share[~var])[bond_fix], n)[segs]
+    A = sp.vstack([A_cal, A_seg]).tocsr()
     b = np.concatenate([V[layer], dx - fixed])
     x0 = w0[var]
     W = x0 * x0
-    lam = np.linalg.lstsq((A * W) @ A.T, b - A @ x0, rcond=None)[0]
+    lam = np.linalg.lstsq((A @ sp.diags(W) @ A.T).toarray(), b - A @ x0, rcond=None)[0]
     x = x0 + W * (A.T @ lam)
     out = (K[var], O[var], x)
     for a in out:  # kept by the cache: read-only
@@ -181,20 +180,17 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.n
     return out
 
 
-def bond_pieces(C: np.ndarray, off: int, dx: float, h: float, centred: bool, path: bool) -> list[tuple]:
-    """The Hessian of one bond (point p to p + ``off``) divided by h, as (row shift, column offset, 4x4 block):
-    the block sits in the row of point p + row shift at point offset ``col``. Plain bonds couple their two ends
-    (:func:`bond_block`); with ``path`` (:func:`path_measures`) every pair of points along the bond. The order is
-    the summation order of :func:`assemble_blocks` and :func:`uniform_blocks` (their rows agree bit for bit)."""
-    if path:
-        M = path_measures(off, dx)
-        B = M.T @ C @ M / h
-        sg, d = (1 if off > 0 else -1), abs(off)
-        return [
-            (sg * a, sg * (b - a), B[NF * a : NF * a + NF, NF * b : NF * b + NF])
-            for a in range(d + 1)
-            for b in range(d + 1)
-        ]
+def _segments(lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(segment, bond) of every segment [s, s + 1) that a bond [lo, hi) covers, bond by bond."""
+    d = hi - lo
+    first = np.repeat(np.cumsum(d) - d, d)
+    return np.repeat(lo, d) + np.arange(d.sum()) - first, np.repeat(np.arange(len(d)), d)
+
+
+def bond_pieces(C: np.ndarray, off: int, dx: float, h: float, centred: bool) -> list[tuple]:
+    """The Hessian of one plain bond (point p to p + ``off``, :func:`bond_block`) divided by h, as (row shift, column
+    offset, 4x4 block): the block sits in the row of point p + row shift at point offset ``col``, in the summation
+    order of :func:`assemble_blocks`."""
     B = bond_block(C, off * dx, centred) / h
     return [(0, 0, B[:NF, :NF]), (0, off, B[:NF, NF:]), (off, -off, B[NF:, :NF]), (off, 0, B[NF:, NF:])]
 
@@ -209,6 +205,18 @@ def _by_row(pieces: list[tuple]) -> list[tuple]:
     return [(row, np.array([c for c, _ in got]), np.array([b for _, b in got])[None]) for row, got in rows.items()]
 
 
+def path_classes(C: np.ndarray, off: int, dx: float, h: float) -> np.ndarray:
+    """(3, 3, NF, NF): the Hessian blocks of one path bond (:func:`path_measures`) divided by h between its point
+    classes 0 = the start, 1 = an interior point, 2 = the end. Every interior point has the same measures' columns
+    (c Z: the trapezoid weight of its rotations in g and e), so these nine blocks are all the bond's (d + 1)^2."""
+    d = abs(off)
+    M = path_measures(off, dx)
+    pts = [0, 1, d] if d > 1 else [0, 0, d]  # one-segment bonds have no interior (its class unused)
+    M3 = np.concatenate([M[:, NF * a : NF * a + NF] for a in pts], axis=1)
+    B = M3.T @ C @ M3 / h
+    return B.reshape(3, NF, 3, NF).transpose(0, 2, 1, 3)
+
+
 def assemble_blocks(
     n: int,
     dx: float,
@@ -220,19 +228,75 @@ def assemble_blocks(
 ) -> sp.csr_matrix:
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
     filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
-    ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it)."""
+    ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it; its (d + 1)^2 blocks
+    are nine distinct ones, added in O(n d) work per offset by :func:`_add_path_bonds`)."""
     J = max(abs(o) for o in weights)
-    Kb = np.zeros((n, 2 * J + 1, NF, NF))
-    for off, wt in weights.items():
-        lo, hi = max(0, -off), min(n, n - off)
-        t = wt[lo:hi, None, None, None]
-        for row, cols, blocks in _by_row(bond_pieces(C, off, dx, h, centred, path)):
-            Kb[lo + row : hi + row, J + cols] += t * blocks  # the pieces of one row: distinct columns
+    Kb = (_path_blocks if path else _plain_blocks)(n, J, dx, C, weights, h, centred)
     cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
     ok = (cols >= 0) & (cols < n)
     indptr = np.r_[0, np.cumsum(ok.sum(axis=1))]
     K = sp.bsr_matrix((Kb[ok], cols[ok], indptr), shape=(NF * n, NF * n))
     return K.tocsr()
+
+
+def _plain_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
+    """Kb[p, J + o] = K[p, p + o] (4x4 blocks) of the plain bonds (:func:`bond_pieces`)."""
+    Kb = np.zeros((n, 2 * J + 1, NF, NF))
+    for off, wt in weights.items():
+        lo, hi = max(0, -off), min(n, n - off)
+        t = wt[lo:hi, None, None, None]
+        for row, cols, blocks in _by_row(bond_pieces(C, off, dx, h, centred)):
+            Kb[lo + row : hi + row, J + cols] += t * blocks  # the pieces of one row: distinct columns
+    return Kb
+
+
+def _path_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
+    """Kb[p, J + o] = K[p, p + o] of the path bonds in O(n J) block operations (``centred`` does not apply).
+
+    A bond k -> k + sg d couples its start, its end and its d - 1 interior points, whose blocks are those of three
+    classes (:func:`path_classes`). The end-end blocks are placed offset by offset. An end meets each interior
+    point of its bond at one column offset, with the same block: the column o = +-b of an end row collects the bonds
+    longer than b, a running sum over the offsets from the longest down (``run``: indexed by the start or end point).
+    The interior-interior block is the same for every bond (c = xi / d = sg dx): the column o of an interior row
+    collects the weights of the bonds on which both points are interior, a prefix or suffix sum of length
+    d - 1 - |o| over the bond's interior points (``S``), times that block at the end."""
+    Kd, S = np.zeros((2 * J + 1, n, NF, NF)), np.zeros((2 * J + 1, n))
+    p = np.arange(n)
+    for sg in (1, -1):
+        run = np.zeros((4, n, NF, NF))  # start row, end row (both by the row), interior row to start, to end
+        for d in range(J, 0, -1):
+            off = sg * d
+            if off not in weights:
+                continue
+            t = np.zeros(n + 2 * d)  # t[d + k]: the weight of the bond from k (zero where it does not exist)
+            lo, hi = max(0, -off), min(n, n - off)
+            t[d + lo : d + hi] = np.asarray(weights[off], float)[lo:hi]
+            B = path_classes(C, off, dx, h)
+            start, end = t[d : d + n], t[d - off : d - off + n]  # by the row p: the bond from p, to p
+            for e, w in ((0, start), (2, end)):
+                Kd[J, :] += w[:, None, None] * B[e, e]
+                Kd[J + (off if e == 0 else -off)] += w[:, None, None] * B[e, 2 - e]
+            if d == 1:
+                continue
+            run += (
+                np.stack([start, end, start, t[d - off : d - off + n]])[:, :, None, None]
+                * B[[0, 2, 1, 1], [1, 1, 0, 2]][:, None]
+            )
+            b = d - 1  # the interior point b of the bonds longer than b, from the start and from the end
+            Kd[J + sg * b] += run[0]
+            Kd[J - sg * b] += run[1]
+            q = p - sg * b  # interior row p to the start k = p - sg b, and to the end q = p + sg b
+            Kd[J - sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[2][np.clip(q, 0, n - 1)], 0.0)
+            q = p + sg * b
+            Kd[J + sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[3][np.clip(q, 0, n - 1)], 0.0)
+            V = t[d + p[None, :] - sg * np.arange(1, d)[:, None]]  # V[a - 1, p]: the bond whose point a is p
+            ahead, behind = np.cumsum(V, axis=0), np.cumsum(V[::-1], axis=0)
+            o = np.arange(-(d - 2), d - 1)  # interior pairs' column offsets
+            L = d - 1 - np.abs(o)
+            S[J + o] += np.where((sg * o >= 0)[:, None], ahead[L - 1], behind[L - 1])
+    if J > 1:  # the interior-interior block, the same for every bond of two or more segments
+        Kd += S[:, :, None, None] * path_classes(C, J, dx, h)[1, 1]
+    return Kd.transpose(1, 0, 2, 3)
 
 
 def energy(
@@ -280,11 +344,10 @@ def uniform_blocks(
     C: np.ndarray, dx: float, weights: dict[int, float], h: float, centred: bool = False, path: bool = False
 ) -> dict[int, np.ndarray]:
     """{point offset o: 4x4 block K[p, p + o]} of a row p whose own bonds and whose partners' bonds all
-    carry the interior weights ``weights`` (offset -> V omega): Eq. 15's Hessian summed bond by bond in
-    the order of :func:`assemble_blocks` (the same bits as its interior rows)."""
+    carry the interior weights ``weights`` (offset -> V omega): the middle row of :func:`assemble_blocks` on
+    2J + 1 points of those weights (every bond that meets it lies on them), so the same bits as its interior rows."""
     J = max(abs(o) for o in weights)
-    blocks = {o: np.zeros((NF, NF)) for o in range(-J, J + 1)}
-    for off, wt in weights.items():
-        for _, col, block in bond_pieces(C, off, dx, h, centred, path):
-            blocks[col] += wt * block
-    return blocks
+    n = 2 * J + 1
+    K = assemble_blocks(n, dx, C, {o: np.full(n, float(w)) for o, w in weights.items()}, h, centred, path)
+    row = K[NF * J : NF * J + NF].toarray()
+    return {o: row[:, NF * (J + o) : NF * (J + o) + NF] for o in range(-J, J + 1)}
