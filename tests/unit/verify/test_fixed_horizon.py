@@ -1,6 +1,6 @@
 """The card's nonlocal check (pdverify/verify/fixed_horizon.py): at a fixed horizon length the discretisation order
 is judged against the order the variant's equations give there, the model-error order reported; a model without a
-horizon, a curved-axis model and a model whose continuum stops below m = 64 are not measured."""
+horizon and a curved-axis model are not measured, and a model without a limit at fixed delta there says so."""
 
 import pytest
 
@@ -68,6 +68,16 @@ def test_each_variant_declares_its_fixed_horizon_order(name, options, order):
     assert got == order and bool(why) == (order == 1.0)
 
 
-@pytest.mark.parametrize("name", ["exact-eb", "pd-curved", "pd-higher-order"])
+@pytest.mark.parametrize("name", ["exact-eb", "pd-curved"])
 def test_not_measured(name):
     assert card_check(name)["verdict"] == "n/a"
+
+
+def test_a_model_without_a_limit_at_fixed_delta_says_why():
+    """pd-higher-order's default path measures at pinned ends (docs/nonlocal.md, a limit at fixed delta)."""
+    c = card_check("pd-higher-order")
+    assert (
+        c["verdict"] == "info"
+        and c["summary"].startswith("no limit at a fixed horizon")
+        and "shear = path" in c["summary"]
+    )
