@@ -251,8 +251,10 @@ class PDHigherOrder(Model):
         ends have no limit at fixed delta at a pinned, roller or guided end, or at a clamped end held through its
         layer spring (``clamp = layer``, the default there): measured, not derived (docs/nonlocal.md, a limit at
         fixed delta): on slender beams the changes per doubling of m fall at first order to m = 32-64 and then grow
-        (to m = 256 at L/h = 100); a thick one (L/h = 10) converges, so the flag is conservative there. A free end,
-        ``clamp = face``, ``shear = centred`` and mirror ends converge."""
+        (to m = 256 at L/h = 100); a thick one (L/h = 10) converges, so the flag is conservative there. What grows is
+        an end mode of the higher-order fields: a pin (w held) or a guide (theta held) leaves the end point's theta*
+        and w* to the path measures, and their end values grow about like m. A free end, ``clamp = face`` (w* held),
+        ``shear = centred`` and mirror ends converge."""
         if params["variant"] == "paper" or self.ends(params) == "mirror":
             return None
         if params.get("shear", "auto") not in ("auto", "path"):
