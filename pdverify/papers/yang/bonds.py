@@ -229,7 +229,7 @@ def assemble_blocks(
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
     filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
     ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it; its (d + 1)^2 blocks
-    are nine distinct ones, added in O(n d) work per offset by :func:`_add_path_bonds`)."""
+    are nine distinct ones, added in O(n J) block operations by :func:`_path_blocks`)."""
     J = max(abs(o) for o in weights)
     Kb = (_path_blocks if path else _plain_blocks)(n, J, dx, C, weights, h, centred)
     cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
@@ -266,34 +266,30 @@ def _path_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
         run = np.zeros((4, n, NF, NF))  # start row, end row (both by the row), interior row to start, to end
         for d in range(J, 0, -1):
             off = sg * d
-            if off not in weights:
-                continue
-            t = np.zeros(n + 2 * d)  # t[d + k]: the weight of the bond from k (zero where it does not exist)
-            lo, hi = max(0, -off), min(n, n - off)
-            t[d + lo : d + hi] = np.asarray(weights[off], float)[lo:hi]
-            B = path_classes(C, off, dx, h)
-            start, end = t[d : d + n], t[d - off : d - off + n]  # by the row p: the bond from p, to p
-            for e, w in ((0, start), (2, end)):
-                Kd[J, :] += w[:, None, None] * B[e, e]
-                Kd[J + (off if e == 0 else -off)] += w[:, None, None] * B[e, 2 - e]
-            if d == 1:
-                continue
-            run += (
-                np.stack([start, end, start, t[d - off : d - off + n]])[:, :, None, None]
-                * B[[0, 2, 1, 1], [1, 1, 0, 2]][:, None]
-            )
-            b = d - 1  # the interior point b of the bonds longer than b, from the start and from the end
-            Kd[J + sg * b] += run[0]
-            Kd[J - sg * b] += run[1]
-            q = p - sg * b  # interior row p to the start k = p - sg b, and to the end q = p + sg b
-            Kd[J - sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[2][np.clip(q, 0, n - 1)], 0.0)
-            q = p + sg * b
-            Kd[J + sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[3][np.clip(q, 0, n - 1)], 0.0)
-            V = t[d + p[None, :] - sg * np.arange(1, d)[:, None]]  # V[a - 1, p]: the bond whose point a is p
-            ahead, behind = np.cumsum(V, axis=0), np.cumsum(V[::-1], axis=0)
-            o = np.arange(-(d - 2), d - 1)  # interior pairs' column offsets
-            L = d - 1 - np.abs(o)
-            S[J + o] += np.where((sg * o >= 0)[:, None], ahead[L - 1], behind[L - 1])
+            if off in weights:
+                t = np.zeros(n + 2 * d)  # t[d + k]: the weight of the bond from k (zero where it does not exist)
+                lo, hi = max(0, -off), min(n, n - off)
+                t[d + lo : d + hi] = np.asarray(weights[off], float)[lo:hi]
+                B = path_classes(C, off, dx, h)
+                start, end = t[d : d + n], t[d - off : d - off + n]  # by the row p: the bond from p, to p
+                for e, w in ((0, start), (2, end)):
+                    Kd[J, :] += w[:, None, None] * B[e, e]
+                    Kd[J + (off if e == 0 else -off)] += w[:, None, None] * B[e, 2 - e]
+                if d > 1:
+                    run += np.stack([start, end, start, end])[:, :, None, None] * B[[0, 2, 1, 1], [1, 1, 0, 2]][:, None]
+                    V = t[d + p[None, :] - sg * np.arange(1, d)[:, None]]  # V[a - 1, p]: the bond whose point a is p
+                    ahead, behind = np.cumsum(V, axis=0), np.cumsum(V[::-1], axis=0)
+                    o = np.arange(-(d - 2), d - 1)  # interior pairs' column offsets
+                    L = d - 1 - np.abs(o)
+                    S[J + o] += np.where((sg * o >= 0)[:, None], ahead[L - 1], behind[L - 1])
+            if d > 1:  # the interior point b = d - 1 of every bond longer than b, from its start and from its end
+                b = d - 1
+                Kd[J + sg * b] += run[0]
+                Kd[J - sg * b] += run[1]
+                q = p - sg * b  # interior row p to the start k = p - sg b, and to the end q = p + sg b
+                Kd[J - sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[2][np.clip(q, 0, n - 1)], 0.0)
+                q = p + sg * b
+                Kd[J + sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[3][np.clip(q, 0, n - 1)], 0.0)
     if J > 1:  # the interior-interior block, the same for every bond of two or more segments
         Kd += S[:, :, None, None] * path_classes(C, J, dx, h)[1, 1]
     return Kd.transpose(1, 0, 2, 3)
