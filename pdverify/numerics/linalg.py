@@ -98,15 +98,16 @@ REFINE_MOST = 10  # refinement steps at most: past ``steps``, only while each st
 
 
 def refine(
-    K: sp.spmatrix, b: np.ndarray, u: np.ndarray, solve, steps: int = 3, most: int = REFINE_MOST
+    K: sp.spmatrix, b: np.ndarray, u: np.ndarray, solve, steps: int = 3, most: int = REFINE_MOST, Kl=None
 ) -> tuple[np.ndarray, list[float]]:
     """Mixed-precision iterative refinement: residual r = b - K u in extended precision (x87 long
     double, eps 1.1e-19), correction solved in float64. Converges to the exact solution of the
     float64 matrix K while cond(K) * eps64 < 1, by a factor of about cond(K) * eps64 per step; it cannot repair
     the rounding of K's entries. ``steps`` steps, then more (up to ``most``) while each step at least halves the
     last and is above 4 eps: an ill-conditioned K contracts slowly, and a fixed count would leave its last step's
-    error in the solution (Wilkinson; Higham, *Accuracy and Stability*, §12.1)."""
-    Kl = K.astype(np.longdouble)
+    error in the solution (Wilkinson; Higham, *Accuracy and Stability*, §12.1). ``Kl``: K in long double, made
+    before (:func:`long_double`)."""
+    Kl = long_double(K)[0] if Kl is None else Kl
     bl = np.asarray(b, np.longdouble)
     ul = np.asarray(u, np.longdouble)
     history: list[float] = []
@@ -121,6 +122,13 @@ def refine(
         if i + 1 >= steps and (history[-1] <= 4 * eps or len(history) < 2 or history[-1] > 0.5 * history[-2]):
             break
     return np.asarray(ul, float), history
+
+
+def long_double(K: sp.spmatrix) -> tuple[sp.spmatrix, int]:
+    """(K with its entries in long double, in K's format, and the bytes it takes): the matrix of the
+    extended-precision residuals."""
+    Kl = K.astype(np.longdouble)
+    return Kl, sum(getattr(Kl, a).nbytes for a in ("data", "indices", "indptr") if hasattr(Kl, a))
 
 
 def eliminate(K: sp.spmatrix, b: np.ndarray, fixed) -> tuple[sp.csr_matrix, np.ndarray, np.ndarray]:
@@ -326,15 +334,19 @@ def solve_linear(
     # for the fourth-order operators); see tests/verification/test_hard_cases.py for the floor.
     if refinement is None:
         refinement = n <= SMALL
+    # K in long double for the extended-precision residuals: kept beside the factorisation up to SMALL unknowns
+    # (another load on the same operator takes it), made afresh above (its copy would crowd the kept factors out)
+    keep = n <= SMALL and (refinement or bound)
+    Kl = factorcache.derived(info["factorisation"], "long double", lambda: long_double(K)) if keep else None
     if refinement:
-        u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r))
+        u, info["refinement"] = refine(K, b, u, lambda r: s * solve(s * r), Kl=Kl)
     if bound:
         layout = (
             None
             if magnitude is not None
             else factorcache.derived(info["factorisation"], "rounding", lambda: csr_layout(K))
         )
-        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, _weight(entry_rounding), layout)
+        _residual_and_bound(info, K, b, u, s, solve, solve_t, magnitude, watch, _weight(entry_rounding), layout, Kl)
     if condition is None:
         condition = n <= SMALL
     if condition:  # of the scaled matrix, the one that was factorised
@@ -383,15 +395,18 @@ def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int,
     return y, solve, solve_t, solver, Ks, key, shared
 
 
-def _residual_and_bound(info: dict, K, b, u, s, solve, solve_t, magnitude, watch, weight=1.0, layout=None) -> None:
+def _residual_and_bound(
+    info: dict, K, b, u, s, solve, solve_t, magnitude, watch, weight=1.0, layout=None, Kl=None
+) -> None:
     """``info["residual"]``: max |K u - b| relative to the size of its terms (the unscaled system), and the
     round-off bound of :func:`forward_error_bound` (``info["error_bound"]``, a warning past ``BOUND_LIMIT``) with
     the correction of the residual computed in extended precision. ``layout``: K's :func:`csr_layout`, kept with
-    its factorisation."""
+    its factorisation; ``Kl``: K in long double (:func:`long_double`)."""
     r = K @ u - b  # residual of the unscaled system, relative to the size of its terms
     scale = np.abs(K).dot(np.abs(u)).max() + np.abs(b).max()
     info["residual"] = float(np.abs(r).max() / scale) if scale > 0 else 0.0
-    rl = np.asarray(np.asarray(b, np.longdouble) - K.astype(np.longdouble) @ np.asarray(u, np.longdouble), float)
+    Kl = long_double(K)[0] if Kl is None else Kl
+    rl = np.asarray(np.asarray(b, np.longdouble) - Kl @ np.asarray(u, np.longdouble), float)
     m = SharedRounding.from_csr(K, u, b, s, weight, layout=layout) if magnitude is None else s * magnitude(u)
     record_bound(info, _scaled_bound(solve, solve_t, s, s * solve(s * rl), m, u, watch))
 
