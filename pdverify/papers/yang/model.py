@@ -249,12 +249,12 @@ class PDHigherOrder(Model):
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """Bonds measured along their path (``shear = path``, the corrected variant's default) at truncated or Taylor
         ends have no limit at fixed delta at a pinned, roller or guided end, or at a clamped end held through its
-        layer spring (``clamp = layer``, the default there): measured, not derived (docs/nonlocal.md, a limit at
-        fixed delta): on slender beams the changes per doubling of m fall at first order to m = 32-64 and then grow
-        (to m = 256 at L/h = 100); a thick one (L/h = 10) converges, so the flag is conservative there. What grows is
-        an end mode of the higher-order fields: a pin (w held) or a guide (theta held) leaves the end point's theta*
-        and w* to the path measures, and their end values grow about like m. A free end, ``clamp = face`` (w* held),
-        ``shear = centred`` and mirror ends converge."""
+        layer spring (``clamp = layer``, the default there). Measured and explained in part (docs/nonlocal.md, a
+        limit at fixed delta): on slender beams the changes per doubling of m fall at first order to m = 32-64 and
+        then grow (to m = 256 at L/h = 100); a thick one (L/h = 10) converges, so the flag is conservative there. What
+        grows is an end mode of theta* and w* near a pin (w held) or a guide (theta held); the patch-test weights of
+        the bonds at the end point grow like m, and per-point weights do not converge either. ``clamp = face`` (w*
+        held), ``shear = centred`` and mirror ends converge."""
         if params["variant"] == "paper" or self.ends(params) == "mirror":
             return None
         if params.get("shear", "auto") not in ("auto", "path"):
