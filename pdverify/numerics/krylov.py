@@ -337,7 +337,9 @@ def solve_krylov(
         info["warnings"] = [
             f"{what}: the round-off bound is a sample of random signs ({floor:.2g}), above Hager's estimate of the "
             "same norm: the transposed inner solves that estimate needs are inexact at this condition, so the "
-            "worst case may be larger still; solver = banded gives LAPACK's estimate"
+            "worst case may be larger still"
+            + (", and cond (the same estimate's) may be low too" if condition else "")
+            + "; solver = banded gives LAPACK's estimate"
         ]
     if not inner.converged:
         info.setdefault("warnings", []).append(

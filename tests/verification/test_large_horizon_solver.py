@@ -127,3 +127,5 @@ def test_krylov_bound_covers_the_round_off_where_hager_alone_missed():
     assert measured > 1e-4  # the round-off is real here (measured 1.5e-3)
     assert a.info["error_bound"] >= measured and b.info["error_bound"] >= measured
     assert any("sample of random signs" in w for w in a.info["warnings"])
+    # cond is Hager's estimate through the same inexact transposed solves: said to be a possible underestimate too
+    assert "cond" in a.info and any("cond (the same estimate's) may be low" in w for w in a.info["warnings"])
