@@ -180,19 +180,20 @@ _REDUCED = Kept(4)  # (K, supports) digest -> the reduced operator: another load
 
 
 def constrained_system(K, F: np.ndarray, N: int, fixed: list, pairs: list, tangents: list, crows: list, key=None):
-    """(Kf, Ff, free, T, S) of the supports of :func:`support_conditions`: u = T u' rotates the end faces' DOFs
+    """(Kf, Ff, free, T, S, key) of the supports of :func:`support_conditions`: u = T u' rotates the end faces' DOFs
     into their frames (T None when no rotation is needed), the held entries of u' are eliminated (``free``: the
     others), and u'_free = S v eliminates one master DOF per constraint row (S None without such rows). The
     reduced operator (Kf, free, T, S) depends on K and the supports only: it is kept for the last few (K,
     supports) of up to :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns, and another load only reduces F.
-    ``key``: a digest that determines K (the caller's assembly key), else K's bytes are hashed."""
+    ``key``: a digest that determines K (the caller's assembly key), else K's bytes are hashed; the returned key
+    determines Kf (the solve's factorisation cache takes it instead of hashing Kf)."""
     key = key or digest(K.data, K.indices, K.indptr)
     key = digest(*fixed, *pairs, *tangents, *crows, params=(N, key))
     Kf, free, T, S = _REDUCED.get(
         key, lambda: _reduced_operator(K, N, fixed, pairs, tangents, crows), keep=lambda _: N <= cm.KEPT_DOFS
     )
     Ff = (F if T is None else T.T @ F)[free]  # the held DOFs are zero: condensing them leaves F's free rows
-    return Kf, (Ff if S is None else S.T @ Ff), free, T, S
+    return Kf, (Ff if S is None else S.T @ Ff), free, T, S, key
 
 
 def _reduced_operator(K, N: int, fixed: list, pairs: list, tangents: list, crows: list):

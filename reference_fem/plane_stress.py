@@ -311,9 +311,9 @@ class FemPlaneStress(Model):
             conditions = tuple(a + b for a, b in zip(conditions, inner, strict=True))
             Ks = plane_scenes.springs(scene, bm, basis)
             elastic, key = (K, key) if Ks is None else (K + Ks, None)  # a spring's stiffness: K's key no longer
-            Kf, Ff, free, T, S = constrained_system(elastic, F, basis.N, *conditions, key=key)
+            Kf, Ff, free, T, S, key = constrained_system(elastic, F, basis.N, *conditions, key=key)
         with timer("solve"):
-            uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"))
+            uf, info = solve_linear(Kf, Ff, what="fem-plane-stress", condition=el.startswith("q4-"), key=key)
             u = full_displacement(uf, free, basis.N, T, S)
         w, rot, fields = midline_fields(u, basis, bm, tan_s, nor_s, h)
         ns = len(bm.s)

@@ -279,6 +279,7 @@ def solve_linear(
     refine_in_place: bool = False,
     entry_rounding: float | None = None,
     bound: bool = True,
+    key: str | None = None,
 ) -> tuple[np.ndarray, dict]:
     """Solve K u = b. Banded LU when the bandwidth is at most ``banded_max``, else sparse LU.
 
@@ -302,6 +303,8 @@ def solve_linear(
     (:mod:`pdverify.numerics.rounding`). ``watch`` a tuple of index arrays: the largest of the fields' bounds, each
     relative to its own field (unknowns in different units). ``bound = False`` (a sparse K): no
     residual, no bound (a Newton correction, whose error the next iteration's residual sees); the same solution.
+    ``key``: a digest that determines K to the bit (the caller's: a reduced operator kept under it), used by the
+    factorisation cache (:mod:`~pdverify.numerics.factorcache`) instead of hashing K's arrays again.
     """
     if isinstance(K, Band):
         if (
@@ -321,7 +324,7 @@ def solve_linear(
     lo, up = bandwidths(K)
     info: dict = {"system_unknowns": n, "bandwidth_lower": lo, "bandwidth_upper": up, "scaling": "symmetric diagonal"}
     u, solve, solve_t, info["solver"], Ks, info["factorisation"], info["factorisation_shared"] = _lu_solve(
-        K, s * b, s, lo, up, banded_max, what
+        K, s * b, s, lo, up, banded_max, what, key
     )
     if not np.all(np.isfinite(u)):
         raise SolveError(f"{what}: the solution is not finite; the system is singular or too ill-conditioned")
@@ -364,14 +367,17 @@ def _finite_system(K: sp.spmatrix, b: np.ndarray, what: str) -> tuple[sp.csr_mat
     return K, b
 
 
-def _lu_solve(K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int, banded_max: int, what: str):
+def _lu_solve(
+    K: sp.csr_matrix, bs: np.ndarray, s: np.ndarray, lo: int, up: int, banded_max: int, what: str, key: str | None
+):
     """(y, solve, solve_t, solver, Ks, key, shared): the LU of diag(s) K diag(s), banded (LAPACK gbtrf,
     :func:`banded_lu`) when the bandwidth is at most ``banded_max`` and the band is narrow for the size, else sparse
     (SuperLU of the scaled CSR matrix Ks; None on the banded path), factorised once for the solve of ``bs``, the
     refinement and the condition estimate, or taken from :mod:`~pdverify.numerics.factorcache` when the same matrix
-    was factorised before (``key``: its digest; ``shared``: taken). SolveError naming ``what`` when a pivot is
-    zero."""
-    key = factorcache.digest(K.indptr, K.indices, K.data, s, params=(lo, up, banded_max))
+    was factorised before (``key``: its digest, of K's arrays or of the caller's ``key`` for K, with the scaling
+    and the solver's parameters; ``shared``: taken). SolveError naming ``what`` when a pivot is zero."""
+    arrays = (K.indptr, K.indices, K.data) if key is None else ()
+    key = factorcache.digest(*arrays, s, params=(lo, up, banded_max, key))
 
     def make():
         """(the factorisation, the bytes of its factors)."""
