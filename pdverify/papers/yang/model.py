@@ -269,7 +269,7 @@ class PDHigherOrder(Model):
             f"shear = path at a {' and a '.join(grows)} end (truncated or taylor ends): the changes per doubling of m "
             "at fixed delta fall to m = 32-64 and then grow on slender beams (measured to m = 256 at L/h = 100; at "
             "L/h = 10 they fall), so there is no limit to extrapolate (shear = centred, clamp = face and ends = mirror "
-            "have one)",
+            "have one; the patch-test weights of the bonds at the end point grow like m: docs/nonlocal.md)",
             int(params.get("continuum_m") or self.continuum_m),
         )
 
