@@ -58,3 +58,26 @@ def test_path_measures_at_a_pinned_end_stop_converging_where_centred_ones_conver
     assert path[1] > path[0]  # the changes grow
     assert centred[1] <= 0.6 * centred[0]  # order above 0.74
     assert face[1] <= 0.6 * face[0]
+
+
+def test_the_end_layer_weights_at_the_end_point_grow_like_m_at_a_fixed_horizon():
+    """``end_layer = patch`` holds every nearest-neighbour segment at the interior's total bond weight. The segment
+    next to an end is covered only by the bonds from or onto the end point, two per offset, where an interior segment
+    has 2d bonds of offset d, so at a fixed horizon those bonds' weights grow like m (docs/nonlocal.md; measured
+    12.5, 24.7, 47.8, 93.4 times the interior weight for the bond from point 1 onto the end at m = 8 ... 64), while a
+    bond away from the end point settles (1.35, 1.46, 1.53, 1.56): the order in m of the first is 1, of the second 0."""
+    from pdverify.numerics.families import family
+    from pdverify.papers.yang.bonds import end_layer_weights
+
+    def ratio(m: int, point: int, offset: int) -> float:
+        dx = 0.2 / m
+        k, off, w = end_layer_weights(int(round(1.0 / dx)) + 1, float(m), dx, "partial")
+        d, beta = family(m, dx, "corrected", "partial")
+        r = beta / (d * dx)
+        interior = dx * r[abs(offset) - 1] / (2.0 * np.sum(r * (d * dx) ** 2))  # the per-point weight inside
+        return float(w[(k == point) & (off == offset)][0] / interior)
+
+    onto_end = [ratio(m, 1, -1) for m in (16, 32, 64)]
+    inside = [ratio(m, m // 2, 1) for m in (16, 32, 64)]
+    assert np.all(np.abs(np.log2(np.divide(onto_end[1:], onto_end[:-1])) - 1) < 0.1), onto_end
+    assert np.all(np.abs(np.log2(np.divide(inside[1:], inside[:-1]))) < 0.1), inside
