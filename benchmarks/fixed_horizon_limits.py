@@ -39,6 +39,7 @@ CASES = [  # (model, options, members)
     ("pd-torsion", {"variant": "paper"}, ("shaft_cc", "shaft_cf")),
     ("pd-higher-order", {}, BEAM),
     ("pd-higher-order", {"shear": "centred"}, BEAM),
+    ("pd-higher-order", {"stretch": "path"}, BEAM),
     ("pd-higher-order", {"clamp": "face"}, ("cc", "cf")),
 ]
 M = (8, 16, 32, 64, 128)

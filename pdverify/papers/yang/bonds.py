@@ -32,12 +32,14 @@ def bond_measures(xi: float, centred: bool = False) -> np.ndarray:
     return M
 
 
-def path_measures(off: int, dx: float) -> np.ndarray:
+def path_measures(off: int, dx: float, stretch: bool = False) -> np.ndarray:
     """M (5 x 4(|off| + 1)): the bond measures of k -> k + off on the points k + sign(off) a, a = 0..|off|, with
     the shear measures summed over the bond's nearest-neighbour segments (``shear = path``):
     g = w_j - w_k + Σ_a c_a theta_a, e = w*_j - w*_k + 3 Σ_a c_a theta*_a, c_a = xi/|off| (1/2 at the ends), the
     trapezoid rule of the rotation along the bond; one bond (|off| = 1) is the centred measure. If every
-    nearest-neighbour shear measure vanishes so do all: no over-constraint of the J bonds (no locking)."""
+    nearest-neighbour shear measure vanishes so do all: no over-constraint of the J bonds (no locking).
+    ``stretch``: the stretch measure by the same trapezoid, s = 2 Σ_a c_a w*_a, instead of Eq. 14b's 2 xi w*_k
+    (``stretch = path``: every measure is then xi times a mean over the bond's segments)."""
     d = abs(off)
     xi = off * dx
     c = np.full(d + 1, xi / d)
@@ -45,7 +47,10 @@ def path_measures(off: int, dx: float) -> np.ndarray:
     M = np.zeros((5, NF * (d + 1)))
     j = NF * d
     M[0, [TH, j + TH]] = -1.0, 1.0  # a
-    M[1, WS] = 2.0 * xi  # s
+    if stretch:
+        M[1, NF * np.arange(d + 1) + WS] = 2 * c  # s along the bond
+    else:
+        M[1, WS] = 2.0 * xi  # s
     M[2, [TS, j + TS]] = -1.0, 1.0  # c
     M[3, [W, j + W]] = -1.0, 1.0  # g
     M[3, NF * np.arange(d + 1) + TH] += c
@@ -205,12 +210,13 @@ def _by_row(pieces: list[tuple]) -> list[tuple]:
     return [(row, np.array([c for c, _ in got]), np.array([b for _, b in got])[None]) for row, got in rows.items()]
 
 
-def path_classes(C: np.ndarray, off: int, dx: float, h: float) -> np.ndarray:
+def path_classes(C: np.ndarray, off: int, dx: float, h: float, stretch: bool = False) -> np.ndarray:
     """(3, 3, NF, NF): the Hessian blocks of one path bond (:func:`path_measures`) divided by h between its point
     classes 0 = the start, 1 = an interior point, 2 = the end. Every interior point has the same measures' columns
-    (c Z: the trapezoid weight of its rotations in g and e), so these nine blocks are all the bond's (d + 1)^2."""
+    (c Z: the trapezoid weight of its rotations in g and e, and of its w* in s with ``stretch``), so these nine
+    blocks are all the bond's (d + 1)^2."""
     d = abs(off)
-    M = path_measures(off, dx)
+    M = path_measures(off, dx, stretch)
     pts = [0, 1, d] if d > 1 else [0, 0, d]  # one-segment bonds have no interior (its class unused)
     M3 = np.concatenate([M[:, NF * a : NF * a + NF] for a in pts], axis=1)
     B = M3.T @ C @ M3 / h
@@ -225,13 +231,17 @@ def assemble_blocks(
     h: float,
     centred: bool = False,
     path: bool = False,
+    stretch: bool = False,
 ) -> sp.csr_matrix:
     """K = Σ_bonds (weight / h) bond_block, as a block-banded matrix (4x4 blocks, point offsets -J..J),
     filled offset by offset with array slices (no loop over points or bonds), then BSR -> CSR.
     ``path``: the bond measures of :func:`path_measures` (a bond couples the points along it; its (d + 1)^2 blocks
-    are nine distinct ones, added in O(n J) block operations by :func:`_path_blocks`)."""
+    are nine distinct ones, added in O(n J) block operations by :func:`_path_blocks`), with ``stretch`` its s too."""
     J = max(abs(o) for o in weights)
-    Kb = (_path_blocks if path else _plain_blocks)(n, J, dx, C, weights, h, centred)
+    if path:
+        Kb = _path_blocks(n, J, dx, C, weights, h, stretch)
+    else:
+        Kb = _plain_blocks(n, J, dx, C, weights, h, centred)
     cols = np.arange(n)[:, None] + np.arange(-J, J + 1)[None, :]
     ok = (cols >= 0) & (cols < n)
     indptr = np.r_[0, np.cumsum(ok.sum(axis=1))]
@@ -250,8 +260,8 @@ def _plain_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
     return Kb
 
 
-def _path_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
-    """Kb[p, J + o] = K[p, p + o] of the path bonds in O(n J) block operations (``centred`` does not apply).
+def _path_blocks(n, J, dx, C, weights, h, stretch) -> np.ndarray:
+    """Kb[p, J + o] = K[p, p + o] of the path bonds in O(n J) block operations (``stretch``: :func:`path_measures`).
 
     A bond k -> k + sg d couples its start, its end and its d - 1 interior points, whose blocks are those of three
     classes (:func:`path_classes`). The end-end blocks are placed offset by offset. An end meets each interior
@@ -270,7 +280,7 @@ def _path_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
                 t = np.zeros(n + 2 * d)  # t[d + k]: the weight of the bond from k (zero where it does not exist)
                 lo, hi = max(0, -off), min(n, n - off)
                 t[d + lo : d + hi] = np.asarray(weights[off], float)[lo:hi]
-                B = path_classes(C, off, dx, h)
+                B = path_classes(C, off, dx, h, stretch)
                 start, end = t[d : d + n], t[d - off : d - off + n]  # by the row p: the bond from p, to p
                 for e, w in ((0, start), (2, end)):
                     Kd[J, :] += w[:, None, None] * B[e, e]
@@ -291,7 +301,7 @@ def _path_blocks(n, J, dx, C, weights, h, centred) -> np.ndarray:
                 q = p + sg * b
                 Kd[J + sg * b] += np.where(((q >= 0) & (q < n))[:, None, None], run[3][np.clip(q, 0, n - 1)], 0.0)
     if J > 1:  # the interior-interior block, the same for every bond of two or more segments
-        Kd += S[:, :, None, None] * path_classes(C, J, dx, h)[1, 1]
+        Kd += S[:, :, None, None] * path_classes(C, J, dx, h, stretch)[1, 1]
     return Kd.transpose(1, 0, 2, 3)
 
 
@@ -303,9 +313,10 @@ def energy(
     h: float,
     centred: bool = False,
     path: bool = False,
+    stretch: bool = False,
 ) -> float:
     """Strain energy U = Σ_k V_k W_k (Eq. 13, 15) evaluated directly from the bond measures (for the
-    gradient checks: K must equal the Hessian of this function)."""
+    gradient checks: K must equal the Hessian of this function); ``stretch``: s along the path (with ``path``)."""
     u = np.asarray(u, float).reshape(-1, NF)
     n = len(x)
     dx = x[1] - x[0]
@@ -323,10 +334,13 @@ def energy(
             c[[0, d]] /= 2
             th = sum(ca * ua[:, TH] for ca, ua in zip(c, along))
             ts = sum(ca * ua[:, TS] for ca, ua in zip(c, along))
+            ws = sum(ca * ua[:, WS] for ca, ua in zip(c, along)) if stretch else uk[:, WS]
+        else:
+            ws = uk[:, WS]
         m = np.stack(
             [
                 uj[:, TH] - uk[:, TH],
-                2 * xi * uk[:, WS],
+                2 * xi * ws,
                 uj[:, TS] - uk[:, TS],
                 uj[:, W] - uk[:, W] + xi * th,
                 uj[:, WS] - uk[:, WS] + 3 * xi * ts,
@@ -337,13 +351,19 @@ def energy(
 
 
 def uniform_blocks(
-    C: np.ndarray, dx: float, weights: dict[int, float], h: float, centred: bool = False, path: bool = False
+    C: np.ndarray,
+    dx: float,
+    weights: dict[int, float],
+    h: float,
+    centred: bool = False,
+    path: bool = False,
+    stretch: bool = False,
 ) -> dict[int, np.ndarray]:
     """{point offset o: 4x4 block K[p, p + o]} of a row p whose own bonds and whose partners' bonds all
     carry the interior weights ``weights`` (offset -> V omega): the middle row of :func:`assemble_blocks` on
     2J + 1 points of those weights (every bond that meets it lies on them), so the same bits as its interior rows."""
     J = max(abs(o) for o in weights)
     n = 2 * J + 1
-    K = assemble_blocks(n, dx, C, {o: np.full(n, float(w)) for o, w in weights.items()}, h, centred, path)
+    K = assemble_blocks(n, dx, C, {o: np.full(n, float(w)) for o, w in weights.items()}, h, centred, path, stretch)
     row = K[NF * J : NF * J + NF].toarray()
     return {o: row[:, NF * (J + o) : NF * (J + o) + NF] for o in range(-J, J + 1)}

@@ -154,6 +154,14 @@ class PDHigherOrder(Model):
             choices=("auto", "point", "centred", "path"),
         ),
         Option(
+            "stretch",
+            str,
+            "point",
+            "the stretch measure s: point (Eq. 14b: 2 xi w*_k) | path (2 xi times the trapezoid mean of w* along the "
+            "bond, with shear = path: every measure along the bond; a limit at a fixed horizon, docs/nonlocal.md)",
+            choices=("point", "path"),
+        ),
+        Option(
             "loads",
             str,
             "auto",
@@ -242,6 +250,7 @@ class PDHigherOrder(Model):
             allowed=("auto", "mid"),
         ),
         Rule(_PAPER, "shear", "Eq. 14d-f: the shear measures use theta_k xi (point)", allowed=("auto", "point")),
+        Rule(_PAPER, "stretch", "Eq. 14b: s = 2 xi w*_k (point)", allowed=("point",)),
         Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
         Rule(_PAPER, "clamp", "Eq. B39: w = w* = 0 at the clamped end point (face)", allowed=("auto", "face")),
     )
@@ -253,11 +262,11 @@ class PDHigherOrder(Model):
         limit at fixed delta): on slender beams the changes per doubling of m fall at first order to m = 32-64 and
         then grow (to m = 256 at L/h = 100); a thick one (L/h = 10) converges, so the flag is conservative there. What
         grows is an end mode of theta* and w* near a pin (w held) or a guide (theta held); the patch-test weights of
-        the bonds at the end point grow like m, and per-point weights do not converge either. ``clamp = face`` (w*
-        held), ``shear = centred`` and mirror ends converge."""
+        the bonds at the end point grow like m, and per-point weights do not converge either. ``stretch = path`` (s
+        along the bond too), ``clamp = face`` (w* held), ``shear = centred`` and mirror ends converge."""
         if params["variant"] == "paper" or self.ends(params) == "mirror":
             return None
-        if params.get("shear", "auto") not in ("auto", "path"):
+        if params.get("shear", "auto") not in ("auto", "path") or params.get("stretch", "point") == "path":
             return None
         held = {scene.supports.left, scene.supports.right}
         grows = sorted(held & {"pinned", "roller", "guided"})
@@ -268,8 +277,8 @@ class PDHigherOrder(Model):
         return (
             f"shear = path at a {' and a '.join(grows)} end (truncated or taylor ends): the changes per doubling of m "
             "at fixed delta fall to m = 32-64 and then grow on slender beams (measured to m = 256 at L/h = 100; at "
-            "L/h = 10 they fall), so there is no limit to extrapolate (shear = centred, clamp = face and ends = mirror "
-            "have one; the patch-test weights of the bonds at the end point grow like m: docs/nonlocal.md)",
+            "L/h = 10 they fall), so there is no limit to extrapolate (stretch = path, shear = centred, clamp = face "
+            "and ends = mirror have one: docs/nonlocal.md)",
             int(params.get("continuum_m") or self.continuum_m),
         )
 
@@ -283,6 +292,7 @@ class PDHigherOrder(Model):
             or self.choice(params, "pin") != "mid"
             or self.choice(params, "loads") != "mid"
             or params.get("shear", "auto") not in ("auto", "path")
+            or params.get("stretch", "point") != "point"  # the series' symbol is Eq. 14b's
         ):
             return None
         return higher_order_series(scene, self.delta(scene, params), self.constants(scene)[0])
@@ -405,6 +415,10 @@ class PDHigherOrder(Model):
         path = shear == "path" or (shear == "auto" and variant != "paper")
         centred = shear == "centred"
         info["shear"] = "path" if path else "centred" if centred else "point"
+        stretch = params.get("stretch", "point") == "path"
+        if stretch and not path:
+            raise InputError(f"stretch = path measures s along the bond's path: it needs shear = path (not {shear})")
+        info["stretch"] = "path" if stretch else "point"
         G, calibrate, reach, described = ghost_layers(ends, J, p, left, right, about, params.get("end_layer", "patch"))
         info.update(described)
         cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
@@ -430,6 +444,7 @@ class PDHigherOrder(Model):
             about=about,
             clamp=clamp,
             cuts=cuts,
+            stretch=stretch,
         )
         return lay, J, info
 

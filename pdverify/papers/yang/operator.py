@@ -59,9 +59,9 @@ class Layout:
     volumes (``fractions``), the end treatment (``ends``: mirror, taylor or truncated; G ghosts per end, weights
     ``calibrate``d as :func:`~.bonds.bond_weights`, ghost extrapolation of degree p), the coefficients C of Eq. 9 and
     depth h, the shear measures (``centred``, ``path``), the supports and their options (``pin``, ``about``,
-    ``clamp``) and the points where the bonds are cut (``cuts``). ``symmetric``: the energy's Hessian folded onto
-    the real points (P^T K P); else (the paper's mirror layers) Eq. 22 at the real points with the images
-    substituted (K P)."""
+    ``clamp``), the points where the bonds are cut (``cuts``) and the stretch measure along the path (``stretch``).
+    ``symmetric``: the energy's Hessian folded onto the real points (P^T K P); else (the paper's mirror layers)
+    Eq. 22 at the real points with the images substituted (K P)."""
 
     x: np.ndarray
     m: float
@@ -82,6 +82,7 @@ class Layout:
     about: str
     clamp: str
     cuts: tuple[int, ...] = ()
+    stretch: bool = False
     _extended: dict = field(default_factory=dict, init=False, repr=False, compare=False)  # (r0, r1) -> extended()
 
     @property
@@ -128,7 +129,7 @@ class Layout:
         if (r0, r1) not in self._extended:
             g = self.ghosts(r0, r1)
             k = np.arange(self.G[0] + r0 - g[0], self.G[0] + r1 + g[1])
-            K = assemble_blocks(len(k), self.dx, self.C, self.weights(k), self.h, self.centred, self.path)
+            K = assemble_blocks(len(k), self.dx, self.C, self.weights(k), self.h, self.centred, self.path, self.stretch)
             K.data.flags.writeable = False  # shared by the window's two readings
             self._extended[(r0, r1)] = K
         return self._extended[(r0, r1)]
@@ -220,7 +221,7 @@ def band_operator(lay: Layout, J: int):
     if len(parts) > 1:
         mid = lay.G[0] + n // 2
         interior = {off: float(wt[0]) for off, wt in lay.weights(np.array([mid]), cuts=()).items()}
-        B.add_block_stencil(NF, uniform_blocks(lay.C, lay.dx, interior, lay.h, lay.centred, lay.path))
+        B.add_block_stencil(NF, uniform_blocks(lay.C, lay.dx, interior, lay.h, lay.centred, lay.path, lay.stretch))
     for r0, a, D in dense:
         put_rows(B, NF * (r0 + a), NF * r0, D)
     return B, end_rows, span

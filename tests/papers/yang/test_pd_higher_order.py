@@ -62,26 +62,31 @@ def test_stiffness_is_the_hessian_of_the_energy_finite_differences():
     assert np.abs(g - K @ u).max() <= 1e-6 * np.abs(K @ u).max()
 
 
-def test_path_shear_stiffness_is_the_hessian_of_the_energy():
-    """shear = path (bonds coupling the points along them): K = the Hessian of the directly evaluated energy,
-    U = u^T K u / 2 and K u = grad U (central differences, exact for a quadratic up to round-off)."""
+@pytest.mark.parametrize("stretch", [False, True])
+def test_path_shear_stiffness_is_the_hessian_of_the_energy(stretch):
+    """shear = path (bonds coupling the points along them), with Eq. 14b's stretch measure or the stretch along the
+    path too (stretch = path): K = the Hessian of the directly evaluated energy, U = u^T K u / 2 and K u = grad U
+    (central differences, exact for a quadratic up to round-off)."""
     x, C, _, h, _ = _small(n=11, m=3.0, variant="corrected")
     dx = x[1] - x[0]
     V = np.full(len(x), dx)
     V[[0, -1]] = dx / 2
     wts = bond_weights(len(x), 3.0, dx, "corrected", V, calibrate="point")
-    K = assemble_blocks(len(x), dx, C, wts, h, path=True)
+    K = assemble_blocks(len(x), dx, C, wts, h, path=True, stretch=stretch)
     rng = np.random.default_rng(2)
     scale = np.tile([1e-3, 1e-1, 1e-3, 1e-2], len(x))
     u = rng.standard_normal(NF * len(x)) * scale
-    U = energy(u, x, C, wts, h, path=True)
+    U = energy(u, x, C, wts, h, path=True, stretch=stretch)
     assert abs(U - 0.5 * u @ (K @ u)) <= 1e-12 * abs(U)
     g = np.empty_like(u)
     for i in range(len(u)):
         e = np.zeros_like(u)
         e[i] = scale[i] * 1e-3
-        g[i] = (energy(u + e, x, C, wts, h, path=True) - energy(u - e, x, C, wts, h, path=True)) / (2 * e[i])
+        up = energy(u + e, x, C, wts, h, path=True, stretch=stretch)
+        g[i] = (up - energy(u - e, x, C, wts, h, path=True, stretch=stretch)) / (2 * e[i])
     assert np.abs(g - K @ u).max() <= 1e-6 * np.abs(K @ u).max()
+    if stretch:
+        return
     # one-segment bonds are the centred measure
     w1 = {o: w for o, w in wts.items() if abs(o) == 1}
     assert np.allclose(
@@ -92,8 +97,10 @@ def test_path_shear_stiffness_is_the_hessian_of_the_energy():
     )
 
 
-@pytest.mark.parametrize("m, gaps", [(2.0, ()), (4.5, ()), (7.0, ()), (7.0, (2, -3))])
-def test_path_assembly_is_the_sum_of_every_bonds_blocks(m, gaps):
+@pytest.mark.parametrize(
+    "m, gaps, stretch", [(2.0, (), False), (4.5, (), False), (7.0, (), False), (7.0, (2, -3), False), (4.5, (), True)]
+)
+def test_path_assembly_is_the_sum_of_every_bonds_blocks(m, gaps, stretch):
     """The O(n J) path assembly (nine distinct blocks per bond, running sums over the offsets) equals K summed bond by
     bond from each bond's whole (d + 1)^2 blocks of path_measures, on a fractional family with uneven weights and on
     one whose offsets have gaps (the running sums still write the columns of a missing offset), to the round-off of
@@ -108,13 +115,13 @@ def test_path_assembly_is_the_sum_of_every_bonds_blocks(m, gaps):
     direct = np.zeros((NF * n, NF * n))
     for off, wt in wts.items():
         d = abs(off)
-        M = path_measures(off, dx)
+        M = path_measures(off, dx, stretch)
         B = M.T @ C @ M / h
         for k in np.flatnonzero(wt):
             if 0 <= k + off < n:
                 idx = (NF * (k + np.sign(off) * np.arange(d + 1))[:, None] + np.arange(NF)).ravel()
                 direct[np.ix_(idx, idx)] += wt[k] * B
-    K = assemble_blocks(n, dx, C, wts, h, path=True).toarray()
+    K = assemble_blocks(n, dx, C, wts, h, path=True, stretch=stretch).toarray()
     assert np.abs(K - direct).max() <= 64 * np.finfo(float).eps * np.abs(direct).max()
 
 

@@ -1,7 +1,7 @@
 """pd-higher-order at a fixed horizon (docs/nonlocal.md, "A limit at fixed delta?"): with bonds measured along their
 path (``shear = path``, the corrected default) at truncated ends, a pinned or guided end or a clamped end held
 through its layer spring (``clamp = layer``) has no limit as m grows at fixed delta, and its continuum says so;
-a free end, ``clamp = face`` and ``shear = centred`` converge."""
+a free end, ``clamp = face``, ``shear = centred`` and ``stretch = path`` converge."""
 
 import numpy as np
 import pytest
@@ -35,6 +35,8 @@ def changes(member: str, ms, delta: float = DELTA, **opts) -> list[float]:
         ("cf_sine", {"clamp": "face"}, False),
         ("pp_sine", {"shear": "centred"}, False),
         ("pp_sine", {"ends": "mirror", "pin": "mid", "loads": "mid"}, False),
+        ("pp_sine", {"stretch": "path"}, False),
+        ("cc_sine", {"stretch": "path"}, False),
     ],
 )
 def test_the_continuum_declares_no_limit_where_the_path_measures_grow(member, options, declared):
@@ -51,13 +53,28 @@ def test_path_measures_at_a_pinned_end_stop_converging_where_centred_ones_conver
     """delta = 0.2 m on the pinned-pinned sine load, m = 32, 64, 128 (round-off bounds below 1e-9, far below the
     changes): with the path measures the change from 64 to 128 is larger than the one from 32 to 64 (measured 1.5
     times: the sequence has no limit); with the centred measures it is 2.9 times smaller (order 1.52); a clamped face
-    with the path measures converges at about first order (clamped-free, m = 8 -> 32: order 1.04)."""
+    with the path measures converges at about first order (clamped-free, m = 8 -> 32: order 1.04), and so does the
+    stretch measured along the path too (``stretch = path``: 9.8e-5, 4.0e-5, order 1.30; 1.09 from 128 to 256)."""
     path = changes("pp_sine", (32, 64, 128), delta=0.2)
     centred = changes("pp_sine", (32, 64, 128), delta=0.2, shear="centred")
     face = changes("cf_sine", (8, 16, 32), delta=0.2, clamp="face")
+    stretch = changes("pp_sine", (32, 64, 128), delta=0.2, stretch="path")
     assert path[1] > path[0]  # the changes grow
     assert centred[1] <= 0.6 * centred[0]  # order above 0.74
     assert face[1] <= 0.6 * face[0]
+    assert stretch[1] <= 0.6 * stretch[0]
+
+
+def test_the_stretch_along_the_path_needs_the_shear_along_the_path():
+    """``stretch = path`` is defined on the path measures (path_measures): with other shear measures, or on the paper
+    variant (Eq. 14b), one line naming the option."""
+    from pdverify.core.errors import InputError
+
+    scene = load_scene(f"{NONLOCAL}/pp_sine.toml")
+    with pytest.raises(InputError, match="shear = path"):
+        run(scene, "pd-higher-order", points=41, stretch="path", shear="centred")
+    with pytest.raises(InputError, match="stretch"):
+        run(scene, "pd-higher-order", points=41, stretch="path", variant="paper")
 
 
 def test_the_end_layer_weights_at_the_end_point_grow_like_m_at_a_fixed_horizon():
