@@ -137,15 +137,15 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.n
     families, trapezoidal volumes V = dx, dx/2 at the ends), replacing the per-point calibration there.
 
     Why: with the along-the-bond measures every bond measure is xi times the mean of nearest-neighbour segment
-    measures (a, c, g, e) or xi times a point value (s = 2 xi w*_k), so U = Σ_k Σ_j w_kj xi^2 Q^(mean segment
-    strain, 2 w*_k) / 2h. A uniform state is in equilibrium (the patch test) only if every segment s carries the
-    same total R_s = Σ_{bonds over s} w_kj xi^2 / d = dx, and it has the right energy only if every point keeps
-    Σ_j w_kj xi^2 = V_k. The per-point calibration gives the second but not the first in the end layers (ghost
-    forces: first order at m >= 2). Here both hold: the weights are the least change of the per-point ones,
-    weighted by their size (min Σ ((w - w0) / w0)^2), subject to those linear conditions (a small dense
-    solve per end layer; the interior keeps its weights, where both hold already). Mirror-symmetric by
-    construction; for m = 1 the per-point weights already satisfy both (no change). The conditions are built as
-    arrays over the bonds near the ends (no loop over points or bonds)."""
+    measures (a, c, g, e; s too with ``stretch = path``) or xi times a point value (s = 2 xi w*_k), so U = Σ_k Σ_j
+    w_kj xi^2 Q^(mean segment strain, 2 w*_k) / 2h. A uniform state is in equilibrium (the patch test) only if every
+    segment s carries the same total R_s = Σ_{bonds over s} w_kj xi^2 / d = dx, and it has the right energy only if
+    every point keeps Σ_j w_kj xi^2 = V_k. The per-point calibration gives the second but not the first in the end
+    layers (ghost forces: first order at m >= 2). Here both hold: the weights are the least change of the per-point
+    ones, weighted by their size (min Σ ((w - w0) / w0)^2), subject to those linear conditions (a small dense solve
+    per end layer; the interior keeps its weights, where both hold already). Mirror-symmetric by construction; for
+    m = 1 the per-point weights already satisfy both (no change). The conditions are built as arrays over the bonds
+    near the ends (no loop over points or bonds)."""
     d, beta = family(m, dx, "corrected", fractions)
     J = int(d.max())
     KL = min(2 * J, (n - 1) // 2)  # layer points per end (a short grid: the two layers meet)
