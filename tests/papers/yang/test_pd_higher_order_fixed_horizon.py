@@ -1,7 +1,7 @@
 """pd-higher-order at a fixed horizon (docs/nonlocal.md, "A limit at fixed delta?"): with bonds measured along their
 path (``shear = path``, the corrected default) at truncated ends, a pinned or guided end or a clamped end held
 through its layer spring (``clamp = layer``) has no limit as m grows at fixed delta, and its continuum says so;
-a free end, ``clamp = face``, ``shear = centred`` and ``stretch = path`` converge."""
+a free end, ``clamp = face``, ``shear = centred`` and ``stretch = path`` (with the patch-test end layer) converge."""
 
 import numpy as np
 import pytest
@@ -37,6 +37,8 @@ def changes(member: str, ms, delta: float = DELTA, **opts) -> list[float]:
         ("pp_sine", {"ends": "mirror", "pin": "mid", "loads": "mid"}, False),
         ("pp_sine", {"stretch": "path"}, False),
         ("cc_sine", {"stretch": "path"}, False),
+        ("pp_sine", {"stretch": "path", "end_layer": "point"}, True),
+        ("pp_sine", {"stretch": "path", "ends": "taylor"}, True),
     ],
 )
 def test_the_continuum_declares_no_limit_where_the_path_measures_grow(member, options, declared):
