@@ -327,6 +327,7 @@ def energy(
         xi = off * dx
         th = (uk[:, TH] + uj[:, TH]) / 2 if centred else uk[:, TH]
         ts = (uk[:, TS] + uj[:, TS]) / 2 if centred else uk[:, TS]
+        ws = uk[:, WS]  # Eq. 14b: the stretch at the bond's start
         if path:  # trapezoid of the rotations along the bond (path_measures), as a mean rotation
             d, sg = abs(off), (1 if off > 0 else -1)
             along = [u[lo + sg * a : hi + sg * a] for a in range(d + 1)]
@@ -334,9 +335,8 @@ def energy(
             c[[0, d]] /= 2
             th = sum(ca * ua[:, TH] for ca, ua in zip(c, along))
             ts = sum(ca * ua[:, TS] for ca, ua in zip(c, along))
-            ws = sum(ca * ua[:, WS] for ca, ua in zip(c, along)) if stretch else uk[:, WS]
-        else:
-            ws = uk[:, WS]
+            if stretch:
+                ws = sum(ca * ua[:, WS] for ca, ua in zip(c, along))
         m = np.stack(
             [
                 uj[:, TH] - uk[:, TH],
