@@ -87,6 +87,21 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
     return model.new_result(scene, params, x, w, rotation=rot, fields=fields, dofs=0, timings=timer.timings, info=info)
 
 
+def no_limit_warning(model, scene: Scene, params: dict) -> str:
+    """The warning of a solve at a fixed horizon length (option ``horizon_length``, not its continuum) where the
+    variant has no limit at fixed delta on ``scene`` (:meth:`~pdverify.core.contract.Model.continuum_limit`): refining
+    such a grid at that horizon does not converge, so its result is one grid's; "" otherwise."""
+    if params.get("horizon_length") is None or params.get("continuum"):
+        return ""
+    limit = model.continuum_limit(scene, params)
+    if limit is None:
+        return ""
+    return (
+        f"{model.name} at horizon_length = {float(params['horizon_length']):g}: {limit[0]}; more points at this "
+        "horizon do not converge to a nonlocal solution, so this result is one grid's, not its continuum"
+    )
+
+
 def coarsest_nested(model, scene: Scene, params: dict, x: np.ndarray) -> tuple[int, np.ndarray]:
     """(points, indices into ``x``) of the coarsest grid whose m = delta / dx is at least :data:`M_MIN` and whose
     points are points of the grid of ``params`` (its points ``x``; refined from it by a whole factor), the grid of

@@ -185,6 +185,15 @@ def end_layer_weights(n: int, m: float, dx: float, fractions: str) -> tuple[np.n
     return out
 
 
+def end_layer_ratios(n: int, m: float, dx: float, fractions: str) -> np.ndarray:
+    """Each bond weight of :func:`end_layer_weights` over the interior weight of its offset (the same order)."""
+    K, O, W = end_layer_weights(n, float(m), float(dx), fractions)
+    d, beta = family(m, dx, "corrected", fractions)
+    r = beta / (d * dx)
+    interior = dx * r / (2.0 * np.sum(r * (d * dx) ** 2))  # V omega of a full family, offset by offset
+    return W / interior[np.searchsorted(d, np.abs(O))]
+
+
 def _segments(lo: np.ndarray, hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(segment, bond) of every segment [s, s + 1) that a bond [lo, hi) covers, bond by bond."""
     d = hi - lo

@@ -106,6 +106,7 @@ from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
 from ...theory.symbols import higher_order_series
 from . import dynamics
+from .bonds import end_layer_ratios
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
 from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
@@ -438,6 +439,11 @@ class PDHigherOrder(Model):
         cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
         if cuts:
             info["cuts"] = [float(x[c]) for c in cuts]
+        if calibrate == "patch" and variant != "paper":
+            bounds = [0, *cuts, n + G[0] + G[1] - 1]  # the sub-beams whose end layers are calibrated
+            least = min(float(end_layer_ratios(b - a + 1, m, dx, fractions).min()) for a, b in zip(bounds, bounds[1:]))
+            if least < 0:  # from m of about 8.5 (docs/nonlocal.md)
+                info["end_layer_negative_weight"] = least
         lay = Layout(
             x=x,
             m=m,

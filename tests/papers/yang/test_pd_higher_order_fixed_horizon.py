@@ -48,6 +48,26 @@ def test_the_continuum_declares_no_limit_where_the_path_measures_grow(member, op
     assert (model.continuum_limit(scene, params) is not None) == declared
     c = run(scene, "pd-higher-order", points=81, horizon_length=DELTA, continuum=True, **options)
     assert bool(c.info.get("no_limit")) == declared
+    # a solve at that fixed horizon says so in its warnings; the same grid with the horizon tied to it does not
+    said = [
+        w for w in run(scene, "pd-higher-order", points=81, horizon_length=DELTA, **options).info.get("warnings", [])
+    ]
+    assert any("horizon_length = 0.1" in w and "do not converge" in w for w in said) == declared, said
+    tied = run(scene, "pd-higher-order", points=81, horizon=8, **options).info.get("warnings", [])
+    assert not any("do not converge" in w for w in tied), tied
+
+
+@pytest.mark.parametrize("m, negative", [(3, False), (8, False), (9, True), (16, True)])
+def test_negative_end_layer_weights_are_recorded(m, negative):
+    """The patch-test end layer's weights at the end point grow like m and some turn negative from m of about 8.5
+    (benchmarks/end_layer_weights.py): the result records the least weight over the interior one of its offset."""
+    from pdverify.papers.yang.bonds import end_layer_ratios
+
+    scene = load_scene(f"{NONLOCAL}/pp_sine.toml")
+    r = run(scene, "pd-higher-order", points=10 * m + 1, horizon=m)
+    least = float(end_layer_ratios(10 * m + 1, m, scene.length / (10 * m), "partial").min())
+    assert (least < 0) == negative
+    assert r.info.get("end_layer_negative_weight") == (least if negative else None)
 
 
 @pytest.mark.slow
