@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
+import json
 import random
 import sys
 import tempfile
@@ -147,7 +148,10 @@ def silent(rng: random.Random, limit: float) -> tuple[bool, str | None]:
     if err <= limit or got.info.get("warnings"):
         return True, None
     loads = [(ld["type"], round(ld.get("position", -1.0) / sc.length, 6)) for ld in d["loads"]]
-    return True, f"silent: {name} at {n} points, {err:.2e} from {ref_name}: supports {d['supports']}, loads {loads}"
+    return True, (
+        f"silent: {name} at {n} points, {err:.2e} from {ref_name}: supports {d['supports']}, loads {loads}; "
+        f"scene {json.dumps(d)}"
+    )
 
 
 def deflection_scale(sc) -> float:

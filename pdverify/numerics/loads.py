@@ -133,6 +133,63 @@ def held_rotation_warnings(scene: Scene, dx: float, nearest: float = 4.0, delta:
                     f"{most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} points) "
                     "for 1e-3"
                 )
+    return out + distributed_near_held_warnings(scene, dx, delta)
+
+
+# distributed loads beside such a support: the same mechanism, measured (docs/trust.md; pd-eb and pd-timoshenko, 2,496
+# cases: benchmarks/loads_near_held_rotation.py) at most 6.9 (max(dx, delta / 3) / d)^2 max(l, d) / d with d the arm
+# of one side's distributed loads about the support and l the length of the other side, which the families turn,
+# weighted by that side's share of the loads' moment about the support (the median 46 times below the estimate)
+LOADS_NEAR_HELD_ROTATION = 8.0
+_GX, _GW = np.polynomial.legendre.leggauss(24)
+
+
+def side_loads(scene: Scene, at: float) -> tuple[np.ndarray, np.ndarray]:
+    """([left, right] ∫ |q| |x - at| dx, [left, right] ∫ |q| dx) of the distributed transverse loads on each side of
+    x = ``at`` (each load split there, its parts integrated by Gauss-Legendre: its shapes are smooth on each part)."""
+    moment, total = np.zeros(2), np.zeros(2)
+    for ld in scene.loads:
+        if isinstance(ld, Distributed) and ld.value != 0.0:
+            a, b = scene.span(ld)
+            for side, (lo, hi) in enumerate(((a, min(b, at)), (max(a, at), b))):
+                if hi > lo:
+                    xq = (lo + hi) / 2 + (hi - lo) / 2 * _GX
+                    q = np.abs(ld.value * scene.load_shape(ld, xq)) * (hi - lo) / 2
+                    moment[side] += float(np.sum(_GW * q * np.abs(xq - at)))
+                    total[side] += float(np.sum(_GW * q))
+    return moment, total
+
+
+def distributed_near_held_warnings(scene: Scene, dx: float, delta: float | None = None) -> list[str]:
+    """Distributed loads beside an inner support that holds the rotation (clamped, or a spring with a rotational
+    stiffness): the families reach across the support and turn the other side, measured up to about
+    LOADS_NEAR_HELD_ROTATION (h / d)^2 max(l, d) / d, h = max(dx, delta / 3) (``delta`` the horizon, default 3 dx), d
+    the arm of a side's distributed loads about the support, l the other side's length; warned past NEAR_TOLERANCE."""
+    L, out = scene.length, []
+    h = max(dx, (3.0 * dx if delta is None else float(delta)) / 3.0)
+    for i, sup in enumerate(scene.supports.inner):
+        if not (sup.type == "clamped" or (sup.type == "spring" and (sup.rotational_stiffness or 0.0) > 0.0)):
+            continue
+        moment, total = side_loads(scene, sup.position)
+        sides = [
+            (moment[s] / total[s], (sup.position, L - sup.position)[1 - s], moment[s] / moment.max())
+            for s in (0, 1)
+            if total[s] > 0.0
+        ]
+        if not sides:
+            continue
+        factor = max(share * max(other, d) / d**3 for d, other, share in sides)  # the worst side's
+        estimate = LOADS_NEAR_HELD_ROTATION * h**2 * factor  # may pass 1: the turned side moves more than the loaded
+        if estimate > NEAR_TOLERANCE:
+            most = 3.0 * np.sqrt(NEAR_TOLERANCE / (LOADS_NEAR_HELD_ROTATION * factor))  # the horizon that gives 1e-3
+            out.append(
+                f"distributed loads beside supports.inner[{i}] at {sup.position:g}, which holds the rotation: the "
+                "horizon's families reach across the support and turn the other side (a model error of the "
+                f"horizon, not of the grid), measured up to about {LOADS_NEAR_HELD_ROTATION:g} (max(spacing, horizon "
+                f"/ 3) / d)^2 max(l, d) / d = {estimate:.2g} (d: the loads' arm about the support, l: the other "
+                f"side's length); use a horizon of at most {most:.3g} (at a horizon of 3 spacings: at least "
+                f"{int(np.ceil(L / (most / 3.0))) + 1} points) for 1e-3"
+            )
     return out
 
 

@@ -137,12 +137,22 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
     return u, info, R, loads, kinks
 
 
+OWN_ROW_SHARE = 1e-2  # a held unknown's own row is the pivot where its load entry is at least this share of the largest
+
+
 def _pivots(rigid, fixed) -> list[int]:
-    """One row per rigid condition whose equation gives up its reaction for the condition: the largest entry of its
-    load column among the rows not taken yet."""
+    """One row per rigid condition whose equation gives up its reaction for the condition: the row of a held unknown
+    (the condition's own, as a held end's row is) where the load column's entry there is at least OWN_ROW_SHARE of
+    its largest (the other rows then take at most 1 / OWN_ROW_SHARE times that row), else the largest entry of the
+    column among the rows not taken yet. A couple applied on its kink (:mod:`.couples`) loads the rows of w around
+    the support most; pivoting on one of those left slender beams singular to working precision (clamped inside the
+    span, L/h = 100 and 1000)."""
     P = []
     for _, c, f, _ in rigid:
-        P.append(max((d for d in f if d not in P and d not in fixed), key=lambda d: (abs(f[d]), d in c)))
+        free = [d for d in f if d not in P and d not in fixed]
+        top = max(abs(f[d]) for d in free)
+        own = [d for d in free if d in c and abs(f[d]) >= OWN_ROW_SHARE * top]
+        P.append(max(own or free, key=lambda d: (abs(f[d]), d in c)))
     return P
 
 

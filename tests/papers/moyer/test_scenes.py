@@ -123,3 +123,65 @@ def test_rods_say_they_are_first_order_at_a_point_load_with_the_numbers_they_giv
     claim = f"({', '.join(said)} at 101, 201, 401 points on a centre load, m = 3)"
     assert claim in warning, (said, warning)
     assert not run(sc, model, points=101, horizon=1).info.get("warnings")
+
+
+def _clamped_inside(left: str, right: str, slenderness: float, at: float = 0.71, inner: str = "clamped"):
+    """A 1 m steel beam of square section held inside at ``at`` (by a clamp), under a uniform load."""
+    from pdverify.core.scene_file import parse_scene
+
+    h = 1.0 / slenderness
+    return parse_scene(
+        {
+            "name": "clamp inside",
+            "beam": {"length": 1.0},
+            "section": {"width": h, "height": h},
+            "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+            "supports": {"left": left, "right": right, "inner": [{"position": at, "type": inner}]},
+            "loads": [{"type": "distributed", "value": -1.0}],
+        }
+    )
+
+
+def _w_errors(sc, grids, **opts):
+    from pdverify.exact.straight import solve_straight
+
+    exact = solve_straight(sc, True)
+    out, said = [], []
+    for n in grids:
+        r = run(sc, "pd-timoshenko", points=n, **opts)
+        ex = exact.fields(r.x)["w"]
+        out.append(np.abs(r.w - ex).max() / np.abs(ex).max())
+        said.append(r.info.get("warnings", []))
+    return out, said
+
+
+@pytest.mark.parametrize("ends", [("free", "guided"), ("clamped", "clamped"), ("pinned", "pinned")])
+def test_a_clamp_inside_a_slender_beam_is_solved_at_second_order(ends):
+    """Variant energy applies the clamp's couple on its kink (.couples), whose rows of w carry shear terms that grow
+    like (L/h)^2; the rigid condition takes the row of the rotation it holds (.constraints._pivots): pivoting on the
+    largest of those rows leaves this system singular to working precision from 201 points on (free-guided: 7.4e15)."""
+    errors, said = _w_errors(_clamped_inside(*ends, 100.0), (201, 801))
+    assert _order(errors) >= 1.8, errors
+    assert not any("singular" in w for ws in said for w in ws), said
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ends", [("free", "guided"), ("clamped", "clamped")])
+def test_where_the_kinked_couple_is_singular_the_clamp_takes_two_points_and_says_so(ends):
+    """At L/h = 1000 the kinked couple leaves the system singular to working precision however the rows are taken; the
+    couple then goes on the two points around the clamp (as variant corrected): first order, in a warning."""
+    errors, said = _w_errors(_clamped_inside(*ends, 1000.0), (201, 801))
+    assert abs(_order(errors) - 1.0) < 0.2, errors
+    assert all(any("singular to working precision" in w and "first order" in w for w in ws) for ws in said), said
+
+
+@pytest.mark.parametrize("inner", ["clamped", "pinned"])
+def test_variant_corrected_says_it_is_first_order_at_a_rigid_support_inside(inner):
+    """Its reaction is a point force (and couple) on the two points around it: first order, warned; variant energy
+    applies it second order and does not say so."""
+    sc = _clamped_inside("pinned", "pinned", 20.0, at=0.3, inner=inner)
+    errors, said = _w_errors(sc, (401, 1601), variant="corrected")  # past the pre-asymptotic grids (1.4 at 101)
+    assert abs(_order(errors) - 1.0) < 0.3, errors
+    assert all(any("rigid support inside" in w for w in ws) for ws in said), said
+    _, energy = _w_errors(sc, (101,))
+    assert not any("rigid support inside" in w for ws in energy for w in ws)
