@@ -97,7 +97,8 @@ def scene(rng: random.Random, curved: bool = True) -> dict:
 def crash(rng: random.Random, folder: Path, i: int) -> str | None:
     """The one line of a finding of ``pdverify solve`` on a random scene, or None."""
     path = folder / f"scene{i}.toml"
-    path.write_text(toml_text(scene(rng)))
+    drawn = scene(rng)
+    path.write_text(toml_text(drawn))
     args = ["solve", str(path), "-m", rng.choice(CLI_MODELS), "--points", str(rng.choice([3, 11, 41, 101, 201, 1001]))]
     args += ["--format", rng.choice(["table", "csv", "json"])]
     args += ["--horizon", str(rng.choice([1, 2, 3, 5.5, 0.5]))] if rng.random() < 0.3 else []
@@ -114,7 +115,8 @@ def crash(rng: random.Random, folder: Path, i: int) -> str | None:
     text = err.getvalue()
     if code in (0, 2, 3) and "Traceback" not in text:
         return None
-    return f"crash: {' '.join(args[1:])}: exit {code}: {(text.strip().splitlines() or [''])[-1][:200]}"
+    last = (text.strip().splitlines() or [""])[-1][:200]
+    return f"crash: {' '.join(args[1:])}: exit {code}: {last}; scene {json.dumps(drawn)}"
 
 
 def silent(rng: random.Random, limit: float) -> tuple[bool, str | None]:

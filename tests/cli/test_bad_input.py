@@ -7,6 +7,7 @@ the CLI in-process (:func:`pdverify.apps.cli.main`, ~5 ms a case instead of ~0.3
 escaped would fail the test with its traceback); a sample runs as real processes too.
 """
 
+import json
 import os
 import re
 import subprocess
@@ -173,6 +174,21 @@ CLI_CASES = [
     ("unknown-command", ["nosuch"], 2, "nosuch"),
     ("unknown-global-option", ["--bogus"], 2, "--bogus"),
     ("models-extra-argument", ["models", "extra"], 2, "extra"),
+    (
+        "solve-inner-support-among-few-points",
+        [
+            "solve",
+            str(ROOT / "tests/bad_inputs/inner_support_among_few_points.toml"),
+            "-m",
+            "pd-eb",
+            "--points",
+            "6",
+            "--horizon",
+            "1",
+        ],
+        2,
+        "supports.inner[0] at 1 (its force) lies between points 2 and 3 of 6",
+    ),
 ]
 
 
@@ -391,3 +407,26 @@ def test_a_byte_order_mark_is_read(tmp_path):
     path = tmp_path / "bom.toml"
     path.write_bytes(b"\xef\xbb\xbf" + SCENE.read_bytes())
     assert pdverify.load_scene(path) == pdverify.load_scene(SCENE)
+
+
+def test_an_estimate_whose_coarser_grids_a_model_refuses_takes_finer_ones(capsys):
+    """pd-eb's support rows need four points on a side: --estimate at 11 points, whose coarser nested grid (6 points)
+    is refused, solves 21 and 41 points instead."""
+    code, out, err = cli(
+        [
+            "solve",
+            ROOT / "tests/bad_inputs/inner_support_among_few_points.toml",
+            "-m",
+            "pd-eb",
+            "--points",
+            "11",
+            "--horizon",
+            "1",
+            "--estimate",
+            "--format",
+            "json",
+        ],
+        capsys,
+    )
+    assert code == 0 and "Traceback" not in err, err
+    assert json.loads(out)["info"]["estimate"]["grids"] == [11, 21, 41]

@@ -51,7 +51,7 @@ from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import Series, beam_series
 from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
-from .scenes import inner_layer_warnings, spreads
+from .scenes import edge_layer_warnings, inner_layer_warnings, spreads
 
 
 def mirror_scene(scene: Scene) -> Scene:
@@ -333,6 +333,7 @@ class PDEulerBernoulli(Model):
             exact = []  # Eq. 25: the paper's loads are not spread by their kinks
         flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
         flags += inner_layer_warnings(scene, x, reach, delta)
+        flags += edge_layer_warnings(scene, x) if params["variant"] != "paper" else []
         flags += outputs.recovery_warnings(scene, params)
         if params["variant"] == "paper":  # the corrected variant takes a couple by its kink: second order there
             flags += moment_rotation_warnings(scene)
