@@ -158,7 +158,7 @@ def silent(rng: random.Random, limit: float) -> tuple[bool, str | None]:
 
 def deflection_scale(sc) -> float:
     """The size of the scene's deflections: each load's cantilever deflection summed (P L^3 + M L^2 + q L^4) / EI,
-    the rod's and the bar's with EA and GJ."""
+    the rod's and the bar's with EA and GJ, and the softest spring's give under the loads' resultant."""
     L, (E, G), sec = sc.length, (sc.material.E, sc.material.G), sc.section
     total = 0.0
     for ld in sc.loads:
@@ -171,6 +171,12 @@ def deflection_scale(sc) -> float:
             total += abs(ld.value) * L**2 / (E * sec.I)
         elif ld.type == "point_torque":
             total += abs(ld.value) * L / (G * sec.J)
+    springs = [s.stiffness for s in (sc.supports.left, sc.supports.right) if not isinstance(s, str) and s.stiffness]
+    springs += [s.stiffness for s in sc.supports.inner if s.type == "spring" and s.stiffness]
+    if springs:  # a spring's own give under the loads' resultant
+        force = sum(abs(ld.value) for ld in sc.loads if ld.type == "point_force")
+        force += sum(abs(ld.value) * L for ld in sc.loads if ld.type == "distributed")
+        total += force / min(springs)
     return total
 
 

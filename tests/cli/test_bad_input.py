@@ -175,6 +175,12 @@ CLI_CASES = [
     ("unknown-global-option", ["--bogus"], 2, "--bogus"),
     ("models-extra-argument", ["models", "extra"], 2, "extra"),
     (
+        "solve-spring-far-softer-than-the-beam",
+        ["solve", str(ROOT / "tests/bad_inputs/spring_far_softer_than_the_beam.toml"), "-m", "pd-timoshenko"],
+        3,
+        "supports.right is a spring far softer than the beam (k L^3 / EI = 2.4e-10)",
+    ),
+    (
         "solve-inner-support-among-few-points",
         [
             "solve",

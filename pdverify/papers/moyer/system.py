@@ -130,6 +130,28 @@ def static_system(scene: Scene, disc: Discrete) -> tuple[Band, np.ndarray, dict]
     return B, rhs, held
 
 
+SOFT_SPRING = 1e-6  # a spring this share of the beam's own stiffness EI / L^3 (GJ / L, EA / L) or below is "soft"
+
+
+def soft_springs(scene: Scene) -> str:
+    """The springs (at the ends or inside) whose stiffness against the beam's own is below SOFT_SPRING, named with
+    that ratio (k L^3 / EI for a deflection, k L / EI for a rotation), or "" when none is."""
+    L, EI = scene.length, scene.EI
+    found = []
+    sides = [(f"supports.{side}", getattr(scene.supports, side)) for side in ("left", "right")]
+    sides += [(f"supports.inner[{i}]", s) for i, s in enumerate(scene.supports.inner)]
+    for name, sup in sides:
+        if isinstance(sup, str) or getattr(sup, "type", "") != "spring":
+            continue
+        for value, scale, what in (
+            (sup.stiffness, L**3 / EI, "k L^3 / EI"),
+            (sup.rotational_stiffness, L / EI, "k L / EI"),
+        ):
+            if value and value * scale < SOFT_SPRING:
+                found.append(f"{name} is a spring far softer than the beam ({what} = {value * scale:.2g})")
+    return "; ".join(found)
+
+
 def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tuple[np.ndarray, dict]:
     """Direct banded solve of :func:`static_system` (or the given ``system``, which is consumed: factorised
     in place above 20,000 unknowns); prescribed DOFs take their settled values. Raises SolveError when
@@ -145,10 +167,13 @@ def static_solution(scene: Scene, disc: Discrete, what: str, system=None) -> tup
             if disc.nf == 2
             else "the axial displacement or twist at an end that does not hold it"
         )
+        soft = soft_springs(scene) if disc.nf == 2 else ""  # a beam's springs against its bending
         hint = (
             f"variant paper leaves an end's free unknowns ({free}) without a traction condition (Section 4 as "
             "published); use variant corrected"
             if "paper" in what
+            else f"{soft}: the beam is close to a mechanism; stiffen it or hold that point"
+            if soft
             else "use fewer points"
         )
         raise SolveError(f"{what}: the system is singular to working precision (condition estimate {cond:.2g}); {hint}")
