@@ -100,6 +100,32 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
     return out + narrow_load_warnings(scene, x)
 
 
+EDGE_LAYER = 3  # spacings of an end with fitted (Taylor) ghosts within which a load's edge spoils the fit (measured)
+FITTED_ENDS = ("free", "guided", "spring")  # the ends whose ghosts the PD beams fit to the real points' w
+
+
+def edge_layer_warnings(scene: Scene, x: np.ndarray, measured: str, kinds=FITTED_ENDS) -> list[str]:
+    """Edges of distributed loads strictly inside the first EDGE_LAYER spacings of an end of one of ``kinds``: ghosts
+    fitted there extrapolate one polynomial of w across the load's jump. ``measured``: the model's own errors there,
+    quoted in the warning."""
+    dx, L = x[1] - x[0], scene.length
+    ends = [(at, side) for at, side in ((0.0, "left"), (L, "right")) if scene.supports.kind(side) in kinds]
+    out = []
+    for i, ld in enumerate(scene.loads):
+        if ld.type != "distributed":
+            continue
+        for edge in scene.span(ld):
+            for at, side in ends:
+                d = abs(edge - at)
+                if 1e-12 * L < d < EDGE_LAYER * dx:
+                    out.append(
+                        f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
+                        f"({scene.supports.kind(side)}), inside the {EDGE_LAYER} spacings its ghosts are fitted on: "
+                        f"{measured}; use at least {int(np.ceil(EDGE_LAYER * L / d)) + 1} points"
+                    )
+    return out
+
+
 # a point force d from an inner support that holds the rotation: the PD beams' error was measured up to about
 # FORCE_NEAR_HELD_ROTATION (dx / d)^2 at their default horizon of 3 dx (docs/trust.md, "a point force near a support
 # that holds the rotation"). It is the horizon's: the families reach across the support and carry the loaded span's

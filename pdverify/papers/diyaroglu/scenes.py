@@ -269,32 +269,6 @@ def measure_row(r: dict, n: int, dx: float) -> tuple[np.ndarray, np.ndarray]:
     return rotation_row(t0, n, dx)
 
 
-EDGE_LAYER = 3  # spacings of a free, guided or spring end within which a load's edge spoils its ghost fit (measured)
-
-
-def edge_layer_warnings(scene: Scene, x: np.ndarray) -> list[str]:
-    """Edges of distributed loads strictly inside the first EDGE_LAYER spacings of a free, guided or spring end: the
-    corrected variant's Taylor ghosts there fit a polynomial to w across the load's jump (docs/models/diyaroglu.md)."""
-    dx, L = x[1] - x[0], scene.length
-    ends = [(0.0, "left"), (L, "right")]
-    ends = [(at, side) for at, side in ends if scene.supports.kind(side) in ("free", "guided", "spring")]
-    out = []
-    for i, ld in enumerate(scene.loads):
-        if ld.type != "distributed":
-            continue
-        for edge in scene.span(ld):
-            for at, side in ends:
-                d = abs(edge - at)
-                if 1e-12 * L < d < EDGE_LAYER * dx:
-                    out.append(
-                        f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
-                        f"({scene.supports.kind(side)}), inside the {EDGE_LAYER} spacings its ghosts are fitted on: "
-                        "errors of about 1e-2 there (1.1e-2 ... 5.8e-3 at 0.3 ... 1.5 spacings, 1e-3 at 2.5, 2e-4 "
-                        f"beyond); use at least {int(np.ceil(EDGE_LAYER * L / d)) + 1} points"
-                    )
-    return out
-
-
 def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float | None = None) -> list[str]:
     """Supports inside the span and interfaces closer to an end than ``reach`` spacings: inside the ends' boundary
     layer, whose ghost polynomial assumes one smooth solution (as :func:`pdverify.numerics.loads
