@@ -106,19 +106,19 @@ def test_cards_are_written_linked_and_change_the_exit_status_only_when_required(
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("workers", ["1", "2"])
-def test_a_card_in_a_study_is_the_card_of_pdverify_verify(tmp_path, workers):
-    """One card one after another (``--workers 1``, or a study with a single card) or side by side: the same card as
-    ``pdverify verify`` writes (its suite's default grids, its cases and checks), whatever path ran it."""
+def test_a_card_in_a_study_is_the_card_of_pdverify_verify(tmp_path):
+    """One card one after another (``--workers 1``, or a study with a single card) or side by side (``--workers 2``):
+    the same card as ``pdverify verify`` writes (its suite's default grids, its cases and checks), whatever path ran
+    it (one card alone, compared with both)."""
     study = _study(tmp_path, 'verify = ["exact-eb"]')
-    out = tmp_path / "out"
-    r = pdverify_process("study", study, "--out", out, "--quiet", "--workers", workers, cwd=tmp_path)
-    assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
     alone = pdverify_process("verify", "exact-eb", "--out", tmp_path / "alone", "--quiet", cwd=tmp_path)
     assert alone.returncode == 0, alone.stderr
-    card, own = (
-        json.loads(p.read_text()) for p in (out / "verify" / "exact_eb" / "card.json", tmp_path / "alone" / "card.json")
-    )
-    assert card["cases"] == own["cases"] and card["verdict"] == own["verdict"] == "pass"
-    judged = [(c["check"], c["verdict"]) for c in card["checks"] if c["check"] != "cost vs error"]
-    assert judged == [(c["check"], c["verdict"]) for c in own["checks"] if c["check"] != "cost vs error"]
+    own = json.loads((tmp_path / "alone" / "card.json").read_text())
+    for workers in ("1", "2"):
+        out = tmp_path / f"out{workers}"
+        r = pdverify_process("study", study, "--out", out, "--quiet", "--workers", workers, cwd=tmp_path)
+        assert r.returncode == 0 and "Traceback" not in r.stderr, r.stderr
+        card = json.loads((out / "verify" / "exact_eb" / "card.json").read_text())
+        assert card["cases"] == own["cases"] and card["verdict"] == own["verdict"] == "pass", workers
+        judged = [(c["check"], c["verdict"]) for c in card["checks"] if c["check"] != "cost vs error"]
+        assert judged == [(c["check"], c["verdict"]) for c in own["checks"] if c["check"] != "cost vs error"], workers
