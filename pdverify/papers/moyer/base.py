@@ -215,10 +215,19 @@ class _MoyerModel(Model):
         what = f"{self.name} ({params['variant']})"
         couples = self.couples(scene, params, disc)
         try:
-            return solve_with_holds(*args, what, couples)
+            out = solve_with_holds(*args, what, couples)
         except SolveError as exc:
             if couples is None or "singular" not in str(exc):
                 raise
+        else:
+            plain = [f"supports.{h.replace('inner_', 'inner[')}]" for h in out[1].pop("couples_on_two_points", [])]
+            if plain:
+                info.setdefault("warnings", []).append(
+                    f"{', '.join(plain)}: its couple could not be applied on its kink (no ramp fits in the beam, or "
+                    "the kink's rows do not carry it to within their rounding at this slenderness), so it is on the "
+                    "two points around the support: first order near it, as variant corrected"
+                )
+            return out
         held = [f"supports.inner[{i}]" for i, sup in enumerate(scene.supports.inner) if sup.type == "clamped"]
         info.setdefault("warnings", []).append(
             f"{', '.join(held) or 'a support inside the span'}: its couple applied on its kink left the system "

@@ -93,11 +93,13 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
     nf, x = disc.nf, disc.x
     B, rhs, held = static_system(scene, disc)
     fixed = set(disc.prescribed)
-    items, singular = [], {}
+    items, singular, plain = [], {}, []
     for h in holds(scene, kind):
         pts, wts = interpolation(x, h.position)
         c = {int(nf * p + h.slot): float(w) for p, w in zip(pts, wts) if nf * p + h.slot not in fixed}
         got = couples(h.position) if couples is not None and h.reaction == "moment" and h.label != "left" else None
+        if couples is not None and h.reaction == "moment" and h.label.startswith("inner") and got is None:
+            plain.append(h.label)  # no kink accepted there: the couple on the two points around it
         if got is not None and h.label != "right":
             nz = np.flatnonzero(got[0])
             f, singular[h] = {int(d): float(got[0][d]) for d in nz}, got[1]
@@ -121,6 +123,8 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
     if rigid:
         kept = _eliminate(B, rhs, rigid, P, fixed)
     u, info = static_solution(scene, disc, what, (B, rhs, held))
+    if plain:
+        info["couples_on_two_points"] = plain
     R = {}
     if kept is not None:
         G, rowsP, bP = kept
@@ -137,7 +141,7 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
     return u, info, R, loads, kinks
 
 
-OWN_ROW_SHARE = 1e-2  # a held unknown's own row is the pivot where its load entry is at least this share of the largest
+OWN_ROW_SHARE = 1e-3  # a held unknown's own row is the pivot where its load entry is at least this share of the largest
 
 
 def _pivots(rigid, fixed) -> list[int]:
@@ -145,8 +149,8 @@ def _pivots(rigid, fixed) -> list[int]:
     (the condition's own, as a held end's row is) where the load column's entry there is at least OWN_ROW_SHARE of
     its largest (the other rows then take at most 1 / OWN_ROW_SHARE times that row), else the largest entry of the
     column among the rows not taken yet. A couple applied on its kink (:mod:`.couples`) loads the rows of w around
-    the support most; pivoting on one of those left slender beams singular to working precision (clamped inside the
-    span, L/h = 100 and 1000)."""
+    the support most, by (L/h)^2 times its rotation row; pivoting on one of those leaves slender beams singular to
+    working precision (a clamp inside the span, L/h = 100 from 201 points; docs/models/moyer.md)."""
     P = []
     for _, c, f, _ in rigid:
         free = [d for d in f if d not in P and d not in fixed]
