@@ -4,7 +4,8 @@
 
 Each scene draws a length (1 µm to 100 km), a square section from L/3 to L/10^4, a material (E = 1 to 1e15 Pa,
 Poisson's ratio 0 to 0.499), end supports (a spring now and then, an inner support now and then), one to three loads
-anywhere, on the ends and on the supports included, and now and then an arc axis. Two findings:
+anywhere, on the ends and on the supports included, and now and then an arc axis (``--rich``: also rotational springs,
+a second support inside and a stiffer segment now and then). Two findings:
 
 * ``crash``: ``pdverify solve`` (in this process, the CLI's own entry point) ends other than with 0, 2 (bad input)
   or 3 (a failed computation), or prints a traceback;
@@ -63,6 +64,9 @@ def load(rng: random.Random, length: float) -> dict:
     return {"type": "distributed", "value": magnitude(rng), **({"shape": "sine"} if kind == "sine" else {})}
 
 
+RICH = False  # --rich: also rotational springs, a second support inside and a stiffer segment now and then
+
+
 def scene(rng: random.Random, curved: bool = True) -> dict:
     length = rng.choice([1.0, 2.0, 1e-6, 1e3, 0.37, 1e5])
     supports: dict = {"left": rng.choice(SUPPORTS), "right": rng.choice(SUPPORTS)}
@@ -72,6 +76,16 @@ def scene(rng: random.Random, curved: bool = True) -> dict:
         ]
     if rng.random() < 0.1:
         supports["right"] = {"type": "spring", "stiffness": magnitude(rng) * 1e5}
+    if RICH and rng.random() < 0.3:
+        supports["right"] = {
+            "type": "spring",
+            "stiffness": magnitude(rng) * 1e5,
+            "rotational_stiffness": magnitude(rng) * 1e3,
+        }
+    if RICH and rng.random() < 0.3:
+        supports["inner"] = supports.get("inner", []) + [
+            {"position": length * rng.choice([0.15, 0.62, 0.9]), "type": rng.choice(["pinned", "clamped"])}
+        ]
     h = length / rng.choice([3, 5, 20, 100, 1e4])
     d = {
         "name": "random scene",
@@ -84,7 +98,13 @@ def scene(rng: random.Random, curved: bool = True) -> dict:
         "supports": supports,
         "loads": [load(rng, length) for _ in range(rng.randint(1, 3))],
     }
-    if curved and rng.random() < 0.15:
+    if RICH and rng.random() < 0.25:
+        cut = length * rng.choice([0.4, 0.55])
+        d["segments"] = [
+            {"start": 0.0, "end": cut},
+            {"start": cut, "end": length, "section": {"width": 1.5 * h, "height": 1.5 * h}},
+        ]
+    if curved and rng.random() < 0.15 and "segments" not in d:
         d["axis"] = rng.choice(
             [
                 {"type": "arc", "radius": length / np.pi, "start_angle_deg": 180.0, "end_angle_deg": 0.0},
@@ -185,7 +205,10 @@ def main(argv=None) -> int:
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--count", type=int, default=300, help="scenes of each kind (CLI runs, judged solves)")
     p.add_argument("--limit", type=float, default=0.02)
+    p.add_argument("--rich", action="store_true", help="also rotational springs, two supports inside, segments")
     args = p.parse_args(argv)
+    global RICH
+    RICH = args.rich
     rng = random.Random(args.seed)
     findings, judged = [], 0
     with tempfile.TemporaryDirectory() as tmp:
