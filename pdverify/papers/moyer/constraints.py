@@ -98,6 +98,8 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
         pts, wts = interpolation(x, h.position)
         c = {int(nf * p + h.slot): float(w) for p, w in zip(pts, wts) if nf * p + h.slot not in fixed}
         got = couples(h.position) if couples is not None and h.reaction == "moment" and h.label != "left" else None
+        if got is not None and h.label.startswith("inner") and not _own_row_holds(got[0], c):
+            got = None  # its rows of w dwarf the held rotation's row (:func:`_pivots`): first order, but not wrong
         if couples is not None and h.reaction == "moment" and h.label.startswith("inner") and got is None:
             plain.append(h.label)  # no kink accepted there: the couple on the two points around it
         if got is not None and h.label != "right":
@@ -142,6 +144,12 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
 
 
 OWN_ROW_SHARE = 1e-3  # a held unknown's own row is the pivot where its load entry is at least this share of the largest
+
+
+def _own_row_holds(col: np.ndarray, c: dict) -> bool:
+    """Whether a couple's column has at least OWN_ROW_SHARE of its largest entry on a row the condition ``c`` holds."""
+    top = float(np.abs(col).max())
+    return any(abs(col[d]) >= OWN_ROW_SHARE * top for d in c)
 
 
 def _pivots(rigid, fixed) -> list[int]:
