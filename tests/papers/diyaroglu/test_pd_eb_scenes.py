@@ -3,7 +3,7 @@ its rotation, moment and shear on every support pair, against exact-eb."""
 
 import numpy as np
 import pytest
-from helpers import MIXED_LOADS, PAIRS, scene_dict
+from helpers import MIXED_LOADS, PAIRS, load_edge_error, scene_dict
 
 from pdverify.core.errors import InputError
 from pdverify.core.reactions import load_resultants
@@ -171,20 +171,7 @@ def test_a_load_edge_beside_a_taylor_ghost_end_is_warned(right):
     pinned end (odd mirror ghosts) is not affected."""
     affected = right != "pinned"
     for spacings in (0.3, 1.5, 3.5):
-        sc = parse_scene(
-            {
-                "name": "load edge by the end",
-                "beam": {"length": 1.0},
-                "section": {"width": 0.01, "height": 0.01},
-                "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
-                "supports": {"left": "clamped", "right": right},
-                "loads": [{"type": "distributed", "value": -1.0, "start": 0.3, "end": 1.0 - spacings / 100}],
-            }
-        )
-        r = run(sc, "pd-eb", points=101)
-        exact = solve_straight(sc, False).fields(r.x)["w"]
-        error = np.abs(r.w - exact).max() / np.abs(exact).max()
-        said = [w for w in r.info.get("warnings", []) if "its ghosts are fitted on" in w]
+        error, said = load_edge_error("pd-eb", right, spacings)
         inside = affected and spacings < 3
         assert bool(said) == inside, (spacings, said)
         assert (error > 5e-3) == inside and error < 2e-2, (spacings, error)

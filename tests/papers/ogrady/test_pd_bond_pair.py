@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from helpers import MIXED_LOADS, PAIRS, scene_dict
+from helpers import MIXED_LOADS, PAIRS, load_edge_error, scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
@@ -176,20 +176,7 @@ def test_a_load_edge_beside_a_taylor_ghost_end_is_warned(right, ends):
     numbers; mirror ends and a pinned end are not affected, and nothing is said."""
     affected = right != "pinned" and ends != "mirror"
     for spacings in (0.3, 1.5, 2.5):
-        sc = parse_scene(
-            {
-                "name": "load edge by the end",
-                "beam": {"length": 1.0},
-                "section": {"width": 0.01, "height": 0.01},
-                "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
-                "supports": {"left": "clamped", "right": right},
-                "loads": [{"type": "distributed", "value": -1.0, "start": 0.3, "end": 1.0 - spacings / 100}],
-            }
-        )
-        r = run(sc, "pd-bond-pair", points=101, ends=ends)
-        exact = solve_straight(sc, False).fields(r.x)["w"]
-        error = np.abs(r.w - exact).max() / np.abs(exact).max()
-        said = [w for w in r.info.get("warnings", []) if "its ghosts are fitted on" in w]
+        error, said = load_edge_error("pd-bond-pair", right, spacings, ends=ends)
         assert bool(said) == affected, (spacings, said)
         if affected and spacings < 2:
             assert 1e-2 < error < 3e-2, (spacings, error)
