@@ -257,12 +257,12 @@ def measure_row(r: dict, n: int, dx: float) -> tuple[np.ndarray, np.ndarray]:
     position (an end's on its end points)."""
     t0 = r["at"] / dx
     inner = 0.0 < t0 < n - 1 and abs(t0 - round(t0)) >= 1e-9  # between two points: four on a side are needed
-    if inner and not _one_sided(t0, n):
-        kind, _, where = r["key"].partition("_")
-        name = f"supports.inner[{where.split('_')[1]}]" if where.startswith("inner") else f"supports.{where}"
+    if inner and not _one_sided(t0, n):  # only a support inside the span lies between points (keys kind_inner_i)
+        kind, _, i = r["key"].partition("_inner_")
         raise InputError(
-            f"{name} at {r['at']:g} (its {kind}) lies between points {int(t0)} and {int(t0) + 1} of {n}, with fewer "
-            "than four points on either side for its measure of w: use more points (or a grid with a point on it)"
+            f"supports.inner[{i}] at {r['at']:g} (its {kind}) lies between points {int(t0)} and {int(t0) + 1} of "
+            f"{n}, with fewer than four points on either side for its measure of w: use more points (or a grid with a "
+            "point on it)"
         )
     if r["kind"] == "force":
         return deflection_row(t0, n)

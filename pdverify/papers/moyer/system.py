@@ -130,7 +130,7 @@ def static_system(scene: Scene, disc: Discrete) -> tuple[Band, np.ndarray, dict]
     return B, rhs, held
 
 
-SOFT_SPRING = 1e-6  # a spring this share of the beam's own stiffness EI / L^3 (GJ / L, EA / L) or below is "soft"
+SOFT_SPRING = 1e-6  # a spring at or below this share of the beam's bending stiffness (EI / L^3; EI / L rotational)
 
 
 def soft_springs(scene: Scene) -> str:
