@@ -182,7 +182,7 @@ class _MoyerModel(Model):
                 info.setdefault("warnings", []).append(flag)
         elif not scene.supports.simple:  # springs, supports inside the span (.constraints)
             with timer("solve"):
-                u, sinfo, R, loads, kinks = self._held(scene, params, disc, info)
+                u, sinfo, R, loads, kinks = self._held(scene, params, disc)
             info.update(sinfo, analysis="static")
             inner = [h for h in R if h.label.startswith("inner")]  # (ends' reactions are in the end rows' values)
             extra["reactions"] = [
@@ -207,7 +207,7 @@ class _MoyerModel(Model):
                 info.setdefault("warnings", []).extend(flags)
         return self.from_solution(scene, params, disc, u, fields, info, timer, writers, **extra)
 
-    def _held(self, scene, params, disc, info):
+    def _held(self, scene, params, disc):
         """:func:`.constraints.solve_with_holds` with the variant's couples on their kinks; where those leave the
         system singular to working precision (the kink's shear terms grow like (L/h)^2: a support that holds the
         rotation inside a slender beam), again with each support's couple on the two points around it, warned."""
@@ -222,20 +222,21 @@ class _MoyerModel(Model):
         else:
             plain = [f"supports.{h.replace('inner_', 'inner[')}]" for h in out[1].pop("couples_on_two_points", [])]
             if plain:
-                info.setdefault("warnings", []).append(
+                out[1].setdefault("warnings", []).append(
                     f"{', '.join(plain)}: its couple could not be applied on its kink (no ramp fits in the beam, or "
                     "the kink's rows do not carry it to within their rounding at this slenderness), so it is on the "
                     "two points around the support: first order near it, as variant corrected"
                 )
             return out
         held = [f"supports.inner[{i}]" for i, sup in enumerate(scene.supports.inner) if sup.type == "clamped"]
-        info.setdefault("warnings", []).append(
+        out = solve_with_holds(*args, what, None)
+        out[1].setdefault("warnings", []).append(
             f"{', '.join(held) or 'a support inside the span'}: its couple applied on its kink left the system "
             f"singular to working precision (slender beam: L/h = {scene.slenderness:.3g}), so it is applied "
             "on the two points around the support: first order near it, as variant corrected (2.9e-2, 1.5e-2, "
             "7.4e-3, 3.7e-3 at 101 ... 801 points, clamped-clamped with a clamp at 0.71 L under a uniform load)"
         )
-        return solve_with_holds(*args, what, None)
+        return out
 
     def couples(self, scene, params, disc):
         """a -> (rows, u_s) of a unit couple applied on its kink, or None (:mod:`.couples`; variant energy only)."""

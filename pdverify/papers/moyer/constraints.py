@@ -98,8 +98,6 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
         pts, wts = interpolation(x, h.position)
         c = {int(nf * p + h.slot): float(w) for p, w in zip(pts, wts) if nf * p + h.slot not in fixed}
         got = couples(h.position) if couples is not None and h.reaction == "moment" and h.label != "left" else None
-        if got is not None and h.label.startswith("inner") and not _own_row_holds(got[0], c):
-            got = None  # its rows of w dwarf the held rotation's row (:func:`_pivots`): first order, but not wrong
         if couples is not None and h.reaction == "moment" and h.label.startswith("inner") and got is None:
             plain.append(h.label)  # no kink accepted there: the couple on the two points around it
         if got is not None and h.label != "right":
@@ -143,27 +141,18 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
     return u, info, R, loads, kinks
 
 
-OWN_ROW_SHARE = 1e-3  # a held unknown's own row is the pivot where its load entry is at least this share of the largest
-
-
-def _own_row_holds(col: np.ndarray, c: dict) -> bool:
-    """Whether a couple's column has at least OWN_ROW_SHARE of its largest entry on a row the condition ``c`` holds."""
-    top = float(np.abs(col).max())
-    return any(abs(col[d]) >= OWN_ROW_SHARE * top for d in c)
-
-
 def _pivots(rigid, fixed) -> list[int]:
     """One row per rigid condition whose equation gives up its reaction for the condition: the row of a held unknown
-    (the condition's own, as a held end's row is) where the load column's entry there is at least OWN_ROW_SHARE of
-    its largest (the other rows then take at most 1 / OWN_ROW_SHARE times that row), else the largest entry of the
-    column among the rows not taken yet. A couple applied on its kink (:mod:`.couples`) loads the rows of w around
-    the support most, by (L/h)^2 times its rotation row; pivoting on one of those leaves slender beams singular to
-    working precision (a clamp inside the span, L/h = 100 from 201 points; docs/models/moyer.md)."""
+    (the condition's own, as a held end's row is) where the load column has an entry there, else the largest entry
+    of the column among the rows not taken yet. A couple applied on its kink (:mod:`.couples`) loads the rows of w
+    around the support most, by up to (L/h)^2 times its rotation row; pivoting on one of those leaves slender beams
+    singular to working precision (a clamp inside the span, L/h = 100 from 201 points), on the rotation's own row they
+    stay second order (L/h = 10^4, where that row holds 2e-4 to 5e-3 of the column; docs/models/moyer.md). Whatever
+    the elimination's multipliers cost in rounding is in the solve's round-off bound: its entries are the final ones."""
     P = []
     for _, c, f, _ in rigid:
         free = [d for d in f if d not in P and d not in fixed]
-        top = max(abs(f[d]) for d in free)
-        own = [d for d in free if d in c and abs(f[d]) >= OWN_ROW_SHARE * top]
+        own = [d for d in free if d in c and f[d] != 0.0]
         P.append(max(own or free, key=lambda d: (abs(f[d]), d in c)))
     return P
 
