@@ -46,6 +46,9 @@ from ..core.result import Result, Timer
 from ..core.scene import Distributed, PointForce, PointMoment, Scene
 from ..theory.higher_order import point_work, system_matrix
 
+# The generalised-force units of y's four components (theta, theta*, w, w*) in the solution's units of h
+UNITS = np.array([1, 3, 0, 2])
+
 # the forcing's largest entry in the augmented generators: small beside the modal blocks (entries ~1-10), so their
 # exponential sets the Pade degree and scaling of expm (a very large entry would cost digits, and even one of 1
 # makes expm much slower)
@@ -174,8 +177,14 @@ class Solution:
                 dist.append((a / h, b / h, load.shape, load.value / (self.Ep * self.b)))
             elif isinstance(load, (PointForce, PointMoment)) and load.value != 0.0:
                 point.append((load.position / h, load))
+        self.holds = [  # (label, kind, position / h) of each reaction a support inside the span gives
+            (f"{kind}_inner_{i}", kind, sup.position / h)
+            for i, sup in enumerate(scene.supports.inner)
+            for kind, held in (("force", sup.holds_deflection), ("moment", sup.holds_rotation))
+            if held
+        ]
         inner = {p for p, _ in point if 0 < p < L} | {v for d in dist for v in d[:2] if 0 < v < L}
-        self.breaks = np.array(sorted({0.0, L} | inner))
+        self.breaks = np.array(sorted({0.0, L} | inner | {at for *_, at in self.holds}))
         self.pieces = [
             Piece(x0, x1, self.generators(Ti, dist, (x0 + x1) / 2)) for x0, x1 in zip(self.breaks[:-1], self.breaks[1:])
         ]
@@ -183,12 +192,25 @@ class Solution:
         for pos, load in point:
             i = int(np.argmin(np.abs(self.breaks - pos)))
             self.jumps[i, 4:] -= self.generalised(load, at_end=i in (0, len(self.breaks) - 1))
-        self.U = self.solve_pieces(scene.supports.left, scene.supports.right, pin)
+        self.U, self.R = self.solve_pieces(scene.supports.left, scene.supports.right, pin)
+
+    def reaction_work(self, kind: str) -> tuple[np.ndarray, np.ndarray]:
+        """(J, c) of a unit reaction of a support inside the span (as pd-higher-order holds it, Yang et al. 2020,
+        Eq. 16b with its supports as multipliers: pdverify/papers/yang/supports.py): a force on the mid-line w, a
+        couple as an end's linear traction (-1 on theta, -3 h^2/20 on theta*). J: the jump of N (its force units)
+        per unit multiplier, the reaction being the multiplier times E' b h (force) or E' b h^2 (couple); c: the
+        combination of y (in units of h) the support holds, the work-conjugate of the same load."""
+        unit = (PointForce if kind == "force" else PointMoment)(
+            type="point_force" if kind == "force" else "point_moment", position=0.0, value=1.0
+        )
+        g = point_work(unit, self.h, kind == "moment", at_end=True)  # physical units
+        scale = self.F0 * (self.h if kind == "moment" else 1.0)
+        return scale * g / (self.F0 * self.h**UNITS), g * self.h ** np.array([0, -2, 1, -1])
 
     def generalised(self, load, at_end: bool) -> np.ndarray:
         """The generalised force on (theta, theta*, w, w*) of a point load (:func:`point_work`) in the units of N:
         E' b h times h, h^3, 1, h^2."""
-        return point_work(load, self.h, self.faces, at_end) / (self.F0 * self.h ** np.array([1, 3, 0, 2]))
+        return point_work(load, self.h, self.faces, at_end) / (self.F0 * self.h**UNITS)
 
     def generators(self, Ti: np.ndarray, dist: list, xm: float) -> dict:
         """The augmented generators of the three modal blocks on a piece whose midpoint is xm: zeta' = (modal
@@ -229,11 +251,13 @@ class Solution:
             cz += np.einsum("ij,njk,k->ni", self.T[:, blk], E[:, :n, n:], piece.A["scale"] * self.aug(np.array(x_ref)))
         return P, cz
 
-    def solve_pieces(self, left: str, right: str, pin: str) -> np.ndarray:
-        """U (pieces x 8): the end conditions and, at every break between pieces, z(x+) = z(x-) + jump; one
-        dense system of 8 unknowns per piece."""
-        n = len(self.pieces)
-        K, r = np.zeros((8 * n, 8 * n)), np.zeros(8 * n)
+    def solve_pieces(self, left: str, right: str, pin: str) -> tuple[np.ndarray, np.ndarray]:
+        """(U (pieces x 8), R (one multiplier per reaction of the supports inside the span)): the end conditions
+        and, at every break between pieces, z(x+) = z(x-) + jump, where a support inside the span adds its reactions'
+        jumps (unknown multipliers, :meth:`reaction_work`) and holds its combinations of y; one dense system of 8
+        unknowns per piece and one per such reaction."""
+        n, k = len(self.pieces), len(self.holds)
+        K, r = np.zeros((8 * n + k, 8 * n + k)), np.zeros(8 * n + k)
         for side, sup, p, at in (("left", left, 0, 0), ("right", right, n - 1, -1)):
             B = end_rows(sup, pin)
             P, c = self.maps(p, self.breaks[[at]])
@@ -248,6 +272,13 @@ class Solution:
             K[row : row + 8, 8 * p : 8 * p + 8] = Pl[0]
             K[row : row + 8, 8 * p + 8 : 8 * p + 16] = -Pr[0]
             r[row : row + 8] = cr[0] - cl[0] - self.jumps[p + 1]
+        for j, (_, kind, at) in enumerate(self.holds):  # z(a+) = z(a-) - R (0, J); c . y(a) = 0
+            p = int(np.argmin(np.abs(self.breaks - at))) - 1  # the piece that ends at the support
+            J, c = self.reaction_work(kind)
+            K[4 + 8 * p + 4 : 4 + 8 * p + 8, 8 * n + j] = -J
+            P, cz = self.maps(p, self.breaks[[p + 1]])
+            K[8 * n + j, 8 * p : 8 * p + 8] = c @ P[0, :4]
+            r[8 * n + j] = -c @ cz[0, :4]
         # rows (conditions on lengths, rotations, forces) and columns (a slow coordinate multiplies x^3 at the far end
         # of a long piece) of very different sizes: each row divided by its largest entry, then each column, so the
         # condition number (the fields' round-off is cond eps) measures the system, not its units
@@ -257,7 +288,8 @@ class Solution:
         col[col == 0] = 1.0
         Ks = K / row[:, None] / col[None, :]
         self.cond = float(f"{np.linalg.cond(Ks):.3g}")
-        return (np.linalg.solve(Ks, r / row) / col).reshape(n, 8)
+        out = np.linalg.solve(Ks, r / row) / col
+        return out[: 8 * n].reshape(n, 8), out[8 * n :]
 
     def states(self, x) -> np.ndarray:
         """z (n x 8) at x (physical), the left limit at a point load (as exact-eb: a load at a acts on x > a)."""
@@ -292,6 +324,8 @@ class Solution:
         for side, r in (("left", -z0[4:] + self.jumps[0, 4:]), ("right", zL[4:] + self.jumps[-1, 4:])):
             out[f"force_{side}"] = float(r[2] * self.F0)
             out[f"moment_{side}"] = float(-r[0] * self.F0 * self.h)
+        for (label, kind, _), R in zip(self.holds, self.R):
+            out[label] = float(R * self.F0 * (self.h if kind == "moment" else 1.0))
         return out
 
 
@@ -302,6 +336,7 @@ class ExactHigherOrder(Model):
     source = "exact solution of the higher-order beam equations (Yang, Oterkus & Oterkus 2020, Eq. 2-9)"
     theory = "higher-order"
     reference = True
+    inner_supports = True  # rigid ones, held as pd-higher-order holds them (Solution.reaction_work)
     options = (
         POINTS,
         Option(

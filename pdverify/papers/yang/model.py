@@ -101,7 +101,7 @@ from ...core.scene import Scene
 from ...core.stations import STATIONS_HELP, parse_stations
 from ...numerics.families import family
 from ...numerics.linalg import solve_linear
-from ...numerics.loads import boundary_layer_warnings
+from ...numerics.loads import HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION, boundary_layer_warnings, held_rotation_warnings
 from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
 from ...theory.symbols import higher_order_series
@@ -517,7 +517,11 @@ class PDHigherOrder(Model):
         flags = boundary_layer_warnings(scene, x, reach)
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        for flag in point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx):
+        # beside a support inside that holds the rotation the families turn the other side (a model error of the
+        # horizon); point forces nearer than the cut's 4J + 1 spacings carry their own warning (point_load_warnings)
+        J = int(np.ceil(delta / dx - 1e-9))
+        near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION)
+        for flag in point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx) + near:
             info.setdefault("warnings", []).append(flag)
         own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
         if unknowns:
