@@ -43,7 +43,7 @@ import scipy.linalg as sla
 
 from ..core.contract import POINTS, Model, Option
 from ..core.result import Result, Timer
-from ..core.scene import Distributed, PointForce, PointMoment, Scene
+from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring
 from ..theory.higher_order import point_work, system_matrix
 
 # The generalised-force units of y's four components (theta, theta*, w, w*) in the solution's units of h
@@ -177,14 +177,23 @@ class Solution:
                 dist.append((a / h, b / h, load.shape, load.value / (self.Ep * self.b)))
             elif isinstance(load, (PointForce, PointMoment)) and load.value != 0.0:
                 point.append((load.position / h, load))
-        self.holds = [  # (label, kind, position / h) of each reaction a support inside the span gives
-            (f"{kind}_inner_{i}", kind, sup.position / h)
+        self.holds = [  # (label, kind, position / h, stiffness or None, end or None) of each reaction as an unknown
+            (f"{kind}_inner_{i}", kind, sup.position / h, k if sup.type == "spring" else None, None)
             for i, sup in enumerate(scene.supports.inner)
-            for kind, held in (("force", sup.holds_deflection), ("moment", sup.holds_rotation))
+            for kind, held, k in (
+                ("force", sup.holds_deflection, sup.stiffness),
+                ("moment", sup.holds_rotation, sup.rotational_stiffness),
+            )
             if held
         ]
+        for end, side in enumerate(("left", "right")):  # a spring end: a free end loaded by its springs
+            sup = getattr(scene.supports, side)
+            if isinstance(sup, Spring):
+                for kind, k in (("force", sup.stiffness), ("moment", sup.rotational_stiffness)):
+                    if k:
+                        self.holds.append((f"{kind}_{side}", kind, end * L, k, end))
         inner = {p for p, _ in point if 0 < p < L} | {v for d in dist for v in d[:2] if 0 < v < L}
-        self.breaks = np.array(sorted({0.0, L} | inner | {at for *_, at in self.holds}))
+        self.breaks = np.array(sorted({0.0, L} | inner | {at for _, _, at, _, end in self.holds if end is None}))
         self.pieces = [
             Piece(x0, x1, self.generators(Ti, dist, (x0 + x1) / 2)) for x0, x1 in zip(self.breaks[:-1], self.breaks[1:])
         ]
@@ -192,20 +201,24 @@ class Solution:
         for pos, load in point:
             i = int(np.argmin(np.abs(self.breaks - pos)))
             self.jumps[i, 4:] -= self.generalised(load, at_end=i in (0, len(self.breaks) - 1))
-        self.U, self.R = self.solve_pieces(scene.supports.left, scene.supports.right, pin)
+        kinds = [s if isinstance(s, str) else "free" for s in (scene.supports.left, scene.supports.right)]
+        self.U, self.R = self.solve_pieces(*kinds, pin)
 
-    def reaction_work(self, kind: str) -> tuple[np.ndarray, np.ndarray]:
-        """(J, c) of a unit reaction of a support inside the span (as pd-higher-order holds it, Yang et al. 2020,
-        Eq. 16b with its supports as multipliers: pdverify/papers/yang/supports.py): a force on the mid-line w, a
-        couple as an end's linear traction (-1 on theta, -3 h^2/20 on theta*). J: the jump of N (its force units)
-        per unit multiplier, the reaction being the multiplier times E' b h (force) or E' b h^2 (couple); c: the
-        combination of y (in units of h) the support holds, the work-conjugate of the same load."""
+    def reaction_work(self, kind: str, end, pin: str) -> tuple[np.ndarray, np.ndarray, float]:
+        """(J, c, scale) of a unit reaction of a support inside the span or a spring end, as pd-higher-order holds it
+        (Yang et al. 2020, Eq. 16b, its supports as multipliers: pdverify/papers/yang/supports.py): inside the span
+        a force on the mid-line w, a couple as an end's linear traction (-1 on theta, -3 h^2/20 on theta*); at a
+        spring end the end's own loads (a force as the parabolic shear with ``loads = faces`` and ``pin = face``).
+        J: the jump of N (its force units) per unit multiplier, the reaction being the multiplier times ``scale``
+        (E' b h for a force, E' b h^2 for a couple); c: the combination of y (in units of h) the support holds, the
+        work-conjugate of the same load."""
         unit = (PointForce if kind == "force" else PointMoment)(
             type="point_force" if kind == "force" else "point_moment", position=0.0, value=1.0
         )
-        g = point_work(unit, self.h, kind == "moment", at_end=True)  # physical units
+        faces = kind == "moment" if end is None else self.faces and (kind == "moment" or pin == "face")
+        g = point_work(unit, self.h, faces, at_end=True)  # physical units
         scale = self.F0 * (self.h if kind == "moment" else 1.0)
-        return scale * g / (self.F0 * self.h**UNITS), g * self.h ** np.array([0, -2, 1, -1])
+        return scale * g / (self.F0 * self.h**UNITS), g * self.h ** np.array([0, -2, 1, -1]), scale
 
     def generalised(self, load, at_end: bool) -> np.ndarray:
         """The generalised force on (theta, theta*, w, w*) of a point load (:func:`point_work`) in the units of N:
@@ -252,10 +265,11 @@ class Solution:
         return P, cz
 
     def solve_pieces(self, left: str, right: str, pin: str) -> tuple[np.ndarray, np.ndarray]:
-        """(U (pieces x 8), R (one multiplier per reaction of the supports inside the span)): the end conditions
-        and, at every break between pieces, z(x+) = z(x-) + jump, where a support inside the span adds its reactions'
-        jumps (unknown multipliers, :meth:`reaction_work`) and holds its combinations of y; one dense system of 8
-        unknowns per piece and one per such reaction."""
+        """(U (pieces x 8), R (one multiplier per reaction of a support inside the span or a spring end)): the end
+        conditions (a spring end: a free one) and, at every break between pieces, z(x+) = z(x-) + jump, where each
+        such reaction adds its jump (an unknown multiplier, :meth:`reaction_work`) and holds its combination c of y:
+        c . y = 0 (rigid) or R + k c . y = 0 (a spring); one dense system of 8 unknowns per piece and one per
+        reaction."""
         n, k = len(self.pieces), len(self.holds)
         K, r = np.zeros((8 * n + k, 8 * n + k)), np.zeros(8 * n + k)
         for side, sup, p, at in (("left", left, 0, 0), ("right", right, n - 1, -1)):
@@ -272,13 +286,19 @@ class Solution:
             K[row : row + 8, 8 * p : 8 * p + 8] = Pl[0]
             K[row : row + 8, 8 * p + 8 : 8 * p + 16] = -Pr[0]
             r[row : row + 8] = cr[0] - cl[0] - self.jumps[p + 1]
-        for j, (_, kind, at) in enumerate(self.holds):  # z(a+) = z(a-) - R (0, J); c . y(a) = 0
-            p = int(np.argmin(np.abs(self.breaks - at))) - 1  # the piece that ends at the support
-            J, c = self.reaction_work(kind)
-            K[4 + 8 * p + 4 : 4 + 8 * p + 8, 8 * n + j] = -J
-            P, cz = self.maps(p, self.breaks[[p + 1]])
-            K[8 * n + j, 8 * p : 8 * p + 8] = c @ P[0, :4]
-            r[8 * n + j] = -c @ cz[0, :4]
+        for j, (_, kind, at, k_spring, end) in enumerate(self.holds):  # z(a+) = z(a-) - R (0, J); c . y(a) = 0
+            J, c, scale = self.reaction_work(kind, end, pin)
+            if end is None:
+                p = int(np.argmin(np.abs(self.breaks - at))) - 1  # the piece that ends at the support
+                K[4 + 8 * p + 4 : 4 + 8 * p + 8, 8 * n + j] = -J
+            else:  # the free end's N(0+) = -P(0) and N(L-) = P(L), with R one of its loads
+                p = 0 if end == 0 else n - 1
+                K[(0 if end == 0 else 8 * n - 4) + np.arange(4), 8 * n + j] = J if end == 0 else -J
+            P, cz = self.maps(p, np.array([at]) if end is not None else self.breaks[[p + 1]])
+            weight = 1.0 if k_spring is None else k_spring / scale  # R + k c . y = 0, R = multiplier * scale
+            K[8 * n + j, 8 * p : 8 * p + 8] = weight * (c @ P[0, :4])
+            K[8 * n + j, 8 * n + j] = 0.0 if k_spring is None else 1.0
+            r[8 * n + j] = -weight * (c @ cz[0, :4])
         # rows (conditions on lengths, rotations, forces) and columns (a slow coordinate multiplies x^3 at the far end
         # of a long piece) of very different sizes: each row divided by its largest entry, then each column, so the
         # condition number (the fields' round-off is cond eps) measures the system, not its units
@@ -324,8 +344,9 @@ class Solution:
         for side, r in (("left", -z0[4:] + self.jumps[0, 4:]), ("right", zL[4:] + self.jumps[-1, 4:])):
             out[f"force_{side}"] = float(r[2] * self.F0)
             out[f"moment_{side}"] = float(-r[0] * self.F0 * self.h)
-        for (label, kind, _), R in zip(self.holds, self.R):
-            out[label] = float(R * self.F0 * (self.h if kind == "moment" else 1.0))
+        for (label, kind, _, _, end), R in zip(self.holds, self.R):
+            if end is None:  # a spring end's is in its end's N above
+                out[label] = float(R * self.F0 * (self.h if kind == "moment" else 1.0))
         return out
 
 
@@ -336,7 +357,8 @@ class ExactHigherOrder(Model):
     source = "exact solution of the higher-order beam equations (Yang, Oterkus & Oterkus 2020, Eq. 2-9)"
     theory = "higher-order"
     reference = True
-    inner_supports = True  # rigid ones, held as pd-higher-order holds them (Solution.reaction_work)
+    inner_supports = True  # held as pd-higher-order holds them (Solution.reaction_work)
+    springs = True
     options = (
         POINTS,
         Option(

@@ -279,3 +279,46 @@ def test_pd_higher_order_converges_to_it_with_supports_inside_the_span(supports)
         r, e = run(sc, "pd-higher-order", points=n), run(sc, EXACT, points=n, **opts)
         errs.append(np.abs(r.w - e.w).max() / np.abs(e.w).max())
     assert abs(np.log2(errs[1] / errs[2]) - 2.0) < 0.25, errs
+
+
+def test_springs_hold_what_a_rigid_support_would_elastically():
+    """A spring inside the span or at an end gives R = -k times what its rigid support would hold (pd-higher-order's
+    springs: the mid-line w inside, the end's w + h^2/20 w* with pin = face, the section's mean rotation); as k grows
+    the deflection tends to the rigid support's, its distance falling like the spring's compliance 1/k."""
+    h = 0.05
+    spring_end = {"type": "spring", "stiffness": 1e6, "rotational_stiffness": 1e4}
+    inner = [{"position": 0.5, "type": "spring", "stiffness": 2e6, "rotational_stiffness": 3e4}]
+    sc = _inner("pinned", spring_end, inner, INSIDE, h)
+    x = np.array([0.5, 1.0])
+    f = EXACT.evaluate(sc, {}, x)
+    R = run(sc, EXACT, points=3).info["reactions"]
+    mean = f["theta"] + 3 * h * h / 20 * f["theta_star"]  # -(the rotation the couple's traction works on)
+    assert R["force_inner_0"] == pytest.approx(-2e6 * f["w"][0], rel=1e-9)
+    assert R["moment_inner_0"] == pytest.approx(3e4 * mean[0], rel=1e-9)
+    assert R["force_right"] == pytest.approx(-1e6 * (f["w"][1] + h * h / 20 * f["w_star"][1]), rel=1e-9)
+    assert R["moment_right"] == pytest.approx(1e4 * mean[1], rel=1e-9)
+    EI, xs = E * h**4 / 12, np.linspace(0.0, 1.0, 101)
+    rigid = EXACT.evaluate(_inner("pinned", "free", [{"position": 0.5, "type": "clamped"}], INSIDE, h), {}, xs)["w"]
+    apart = []
+    for k in (1e6, 1e9):  # k L^3 / EI and k_r L / EI
+        stiff = [{"position": 0.5, "type": "spring", "stiffness": k * EI, "rotational_stiffness": k * EI}]
+        w = EXACT.evaluate(_inner("pinned", "free", stiff, INSIDE, h), {}, xs)["w"]
+        apart.append(np.abs(w - rigid).max() / np.abs(rigid).max())
+    assert apart[0] / apart[1] == pytest.approx(1e3, rel=1e-2), apart  # the compliance: 1/k (measured 1.3e-4, 1.3e-7)
+
+
+def test_pd_higher_order_converges_to_it_on_springs():
+    """The card's beam on springs (a pinned end, a spring end of 1e6 N/m and 1e4 N m/rad, a 2e6 N/m spring at L/2) at
+    L/h = 100: second order (measured 1.98, 1.96, 2.02 from 101 to 801 points)."""
+    from pdverify.verify.suite import engineering_scenes
+
+    (d,) = [s for s in engineering_scenes() if s["name"] == "on springs"]
+    d = {**d, "section": {"width": 0.01, "height": 0.01}, "loads": [{"type": "distributed", "value": -1000.0}]}
+    sc = parse_scene(d)
+    opts = get_model("pd-higher-order").reference_options({})
+    errs = []
+    for n in (201, 401, 801):
+        r, e = run(sc, "pd-higher-order", points=n), run(sc, EXACT, points=n, **opts)
+        errs.append(np.abs(r.w - e.w).max() / np.abs(e.w).max())
+    rates = np.log2(np.array(errs[:-1]) / errs[1:])
+    assert np.all(np.abs(rates - 2.0) < 0.1), (errs, rates)

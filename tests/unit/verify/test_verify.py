@@ -84,8 +84,7 @@ def test_a_theory_without_an_exact_solution_is_judged_against_itself_on_a_finer_
     mid = {"loads": "mid"}
     study = tomllib.loads(write_study(plan(ho, options=mid), ho, mid, tmp_path / "ho2").read_text())
     exact = {"model": "exact-higher-order", "loads": "mid", "pin": "face"}
-    own = {"model": "pd-higher-order", **mid, "points": 641}  # exact-higher-order holds the ends only
-    assert [r["reference"] for r in study["runs"]] == [exact] * 2 + [own]
+    assert [r["reference"] for r in study["runs"]] == [exact] * 3  # suite 1.10: the engineers' scenes too
     study = tomllib.loads(write_study(plan(tim), tim, {}, tmp_path / "tim").read_text())
     assert [r["reference"] for r in study["runs"]] == ["exact-timoshenko"] * 3
     # a curved self-converged model (the 2D strip) is judged against itself on the arcs too, not exact-curved
@@ -328,15 +327,22 @@ def test_a_variant_that_refuses_an_engineers_scene_declines_it():
     assert not any(why for f, why in _declined(model, plan(model), {}).items() if p.meta[f]["set"] == "engineering")
 
 
-def test_the_engineers_scenes_take_the_exact_reference_only_where_it_holds_them_all(tmp_path):
-    """exact-timoshenko takes every engineers' scene; exact-higher-order holds its beams at the ends only, so
-    pd-higher-order's engineers' scenes are judged against pd-higher-order itself on the finer grid."""
+def test_the_engineers_scenes_take_the_exact_reference_where_it_holds_every_one_the_model_takes(tmp_path):
+    """exact-timoshenko takes every engineers' scene; exact-higher-order takes the supports inside the span and the
+    springs but not the segments, which pd-higher-order declines too: its four scenes are judged against the exact
+    theory. The paper variant, whose mirror layers are not the theory's conditions, against itself."""
+    from pdverify.verify.suite import engineering_scenes, takes_all
+
     timo = plan(get_model("pd-timoshenko"))
     assert timo.engineering_reference == "exact-timoshenko"
     model = get_model("pd-higher-order")
     p = plan(model)
-    assert p.engineering_reference is None
+    exact = {"model": "exact-higher-order", "loads": "faces", "pin": "face"}
+    assert p.engineering_reference == exact
+    assert not takes_all(exact, engineering_scenes())  # the stepped and bi-material beams
     study = tomllib.loads(write_study(p, model, {}, tmp_path).read_text())
     eng = {f for f, m in p.meta.items() if m["set"] == "engineering"}
     (run,) = [r for r in study["runs"] if set(r["scenes"]) == eng]
-    assert run["reference"] == {"model": "pd-higher-order", "points": finer(p.grids)}
+    assert run["reference"] == exact
+    paper = plan(model, options={"variant": "paper"})
+    assert paper.engineering_reference is None
