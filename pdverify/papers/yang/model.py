@@ -518,9 +518,13 @@ class PDHigherOrder(Model):
         if flags:
             info.setdefault("warnings", []).extend(flags)
         # beside a support inside that holds the rotation the families turn the other side (a model error of the
-        # horizon); point forces nearer than the cut's 4J + 1 spacings carry their own warning (point_load_warnings)
+        # horizon), more where its bonds are not cut; point forces nearer than the cut's 4J + 1 spacings carry their
+        # own warning (point_load_warnings)
         J = int(np.ceil(delta / dx - 1e-9))
-        near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION)
+        held = [s.position for s in scene.supports.inner if s.holds_rotation]
+        cut = all(any(abs(a - c) <= 1e-9 * scene.length for c in info.get("cuts", ())) for a in held)
+        constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["cut" if cut else "not cut"]
+        near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
         for flag in point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx) + near:
             info.setdefault("warnings", []).append(flag)
         own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
