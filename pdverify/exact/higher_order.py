@@ -42,6 +42,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..core.contract import POINTS, Model, Option
+from ..core.errors import SolveError
 from ..core.result import Result, Timer
 from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring
 from ..numerics.error_bound import BOUND_LIMIT
@@ -62,6 +63,11 @@ BLOCKS = {"slow": slice(0, 4), "decay": slice(4, 6), "grow": slice(6, 8)}  # the
 # (1.1e-5 at 1e5, 1.1e-3 at 1e6, 9.8e-2 at 1e7 on a cantilever). The results carry ROUNDOFF eps (L/h)^2 as their
 # round-off bound, warned past BOUND_LIMIT (from L/h of about 2e4).
 ROUNDOFF = 16.0
+# The pieces' dense system, rows and columns scaled: a condition number past this is dependent conditions (exact-eb's
+# rank test, pdverify/exact/straight.py, at the same relative tolerance), not a beam the supports hold
+DEPENDENT = 1e10
+# its solve's rounding: cond eps times a few dozen operations a value (tests/verification/test_scale.py)
+CLOSED_FORM = 64
 
 
 def modal_basis(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -173,7 +179,7 @@ class Solution:
         self.b = sec.A / h  # the equivalent rectangle's width
         self.F0 = self.Ep * self.b * h  # the force unit
         self.L = L = scene.length / h
-        self.error_bound = float(f"{ROUNDOFF * np.finfo(float).eps * L * L:.3g}")
+        self.defect = ROUNDOFF * np.finfo(float).eps * L * L  # the slow basis's (ROUNDOFF)
         self.k = np.pi / L  # the sine shape's wave number
         self.faces = loads == "faces"
         M = system_matrix(nu, mat.G / self.Ep)
@@ -212,6 +218,7 @@ class Solution:
             self.jumps[i, 4:] -= self.generalised(load, at_end=i in (0, len(self.breaks) - 1))
         kinds = [s if isinstance(s, str) else "free" for s in (scene.supports.left, scene.supports.right)]
         self.U, self.R = self.solve_pieces(*kinds, pin)
+        self.error_bound = float(f"{self.defect + CLOSED_FORM * self.cond * np.finfo(float).eps:.3g}")
 
     def reaction_work(self, kind: str, end, pin: str) -> tuple[np.ndarray, np.ndarray, float]:
         """(J, c, scale) of a unit reaction of a support inside the span or a spring end, as pd-higher-order holds it
@@ -317,6 +324,12 @@ class Solution:
         col[col == 0] = 1.0
         Ks = K / row[:, None] / col[None, :]
         self.cond = float(f"{np.linalg.cond(Ks):.3g}")
+        if not self.cond < DEPENDENT:
+            raise SolveError(
+                f"exact-higher-order: the supports' conditions are dependent at working precision (condition number "
+                f"{self.cond:.2g}): a spring far softer than the beam, or supports that nearly coincide; stiffen the "
+                "spring, or give the supports as one"
+            )
         out = np.linalg.solve(Ks, r / row) / col
         return out[: 8 * n].reshape(n, 8), out[8 * n :]
 
@@ -412,9 +425,10 @@ class ExactHigherOrder(Model):
         info["error_bound"] = sol.error_bound
         if sol.error_bound > BOUND_LIMIT:
             info["warnings"] = [
-                f"round-off bound {sol.error_bound:.2g} (relative error): the exact higher-order solution loses "
-                f"digits as {ROUNDOFF:g} eps (L/h)^2 on a beam this slender (L/h = {sol.L:.3g}); exact-timoshenko is "
-                "within about h/L of this theory here"
+                f"round-off bound {sol.error_bound:.2g} (relative error): {sol.defect:.2g} from its polynomial modes "
+                f"on a beam of L/h = {sol.L:.3g} ({ROUNDOFF:g} eps (L/h)^2), {sol.error_bound - sol.defect:.2g} from "
+                f"its pieces' system ({CLOSED_FORM} cond eps, cond {sol.cond:.2g}: a soft spring or nearly coincident "
+                "supports); exact-timoshenko is within about h/L of this theory on a slender beam"
             ]
         return self.new_result(
             scene,

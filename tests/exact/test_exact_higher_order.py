@@ -356,3 +356,18 @@ def test_its_round_off_on_very_slender_beams_is_in_its_bound(supports):
         apart = np.abs(r.w - t.w).max() / np.abs(t.w).max()
         assert apart <= r.info["error_bound"] + h, (apart, r.info["error_bound"])
         assert bool(r.info.get("warnings")) == warned
+
+
+def test_dependent_conditions_are_refused_and_a_poor_condition_is_in_the_bound():
+    """A spring of 1e-300 N/m under a pinned-free beam leaves its pieces' system dependent at working precision
+    (condition 9.5e14, past exact-eb's rank tolerance 1e-10): one line, exit 3, as exact-eb refuses it. Two supports
+    1e-7 apart are a beam, solved with their system's condition (4.4e8) times 64 eps in the round-off bound, warned."""
+    from pdverify.core.errors import SolveError
+
+    soft = [{"position": 0.5, "type": "spring", "stiffness": 1e-300, "rotational_stiffness": 1e-300}]
+    with pytest.raises(SolveError, match="dependent at working precision"):
+        run(_inner("pinned", "free", soft, INSIDE), EXACT, points=11)
+    close = [{"position": 0.5, "type": "pinned"}, {"position": 0.5000001, "type": "clamped"}]
+    r = run(_inner("pinned", "pinned", close, INSIDE), EXACT, points=11)
+    assert r.info["error_bound"] >= 64 * r.info["cond"] * np.finfo(float).eps > 1e-6
+    assert any("pieces' system" in w for w in r.info["warnings"])
