@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import SolveError
-from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring
+from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring, straight_mechanism
 
 
 def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:
@@ -250,6 +250,12 @@ class StraightSolution:
         row = np.abs(As).max(axis=1)
         As, b = As / row[:, None], b / row
         if np.linalg.matrix_rank(As, tol=1e-10) < As.shape[1]:
+            if straight_mechanism(self.scene) is None:  # the supports hold it: their conditions are near-dependent
+                raise SolveError(
+                    f"supports = {sup.kind('left')}-{sup.kind('right')}: the supports' conditions are dependent at "
+                    "working precision (the boundary system's rank test at 1e-10): a spring far softer than the "
+                    "beam, or supports that nearly coincide; stiffen the spring, or give the supports as one"
+                )
             raise SolveError(
                 f"supports = {sup.kind('left')}-{sup.kind('right')}: the beam is a mechanism; "
                 "fix the deflection at one end and the rotation somewhere"

@@ -181,6 +181,18 @@ CLI_CASES = [
         "supports.right is a spring far softer than the beam (k L^3 / EI = 2.4e-10)",
     ),
     (
+        "solve-supports-nearly-coincide",
+        ["solve", str(ROOT / "tests/bad_inputs/supports_nearly_coincide.toml"), "-m", "exact-eb"],
+        3,
+        "the supports' conditions are dependent at working precision",
+    ),
+    (
+        "solve-spring-of-1e-300-exact-higher-order",
+        ["solve", str(ROOT / "tests/bad_inputs/spring_of_1e-300.toml"), "-m", "exact-higher-order"],
+        3,
+        "exact-higher-order: the supports' conditions are dependent at working precision",
+    ),
+    (
         "solve-inner-support-among-few-points",
         [
             "solve",
