@@ -140,6 +140,18 @@ class Result:
         return [f"warning: {w}" for w in self.info.get("warnings", [])]
 
 
+def merge_info(info: dict, *parts: dict, **more) -> dict:
+    """``info.update(part, ..., **more)`` with the ``warnings`` lists joined in order: a solve's info merged into what
+    a model gathered before it keeps both's warnings (an update would keep only the last list)."""
+    said = list(info.get("warnings", []))
+    for part in (*parts, more):
+        said += [w for w in part.get("warnings", []) if w not in said]
+        info.update(part)
+    if said:
+        info["warnings"] = said
+    return info
+
+
 def check_finite(result: Result) -> Result:
     """A result holding NaN or inf is a failed computation, never an output: raises SolveError (exit 3)
     with one line naming the model and the first field that is not finite."""

@@ -43,7 +43,7 @@ import numpy as np
 
 from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
-from ...core.result import Result, Timer
+from ...core.result import Result, Timer, merge_info
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.loads import boundary_layer_warnings, edge_layer_warnings, moment_rotation_warnings
@@ -329,7 +329,7 @@ class PDEulerBernoulli(Model):
         if multipliers is not None:
             info["reactions"] = outputs.reactions(scene, x, M, out["V"], multipliers)
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
-        info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
+        merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         J = len(curvature_weights(params["horizon"], dx, params["variant"]))
         reach = 2 * J + 4
         exact = [f"loads[{i}] from" for i, ld in enumerate(scene.loads) if spreads(ld, scene, len(x), dx, J)]

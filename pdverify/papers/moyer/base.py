@@ -10,7 +10,7 @@ import numpy as np
 
 from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError, SolveError
-from ...core.result import Result, Timer
+from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.loads import boundary_layer_warnings, held_rotation_warnings, moment_rotation_warnings
 from .constraints import reactions, solve_with_holds
@@ -183,7 +183,7 @@ class _MoyerModel(Model):
         elif not scene.supports.simple:  # springs, supports inside the span (.constraints)
             with timer("solve"):
                 u, sinfo, R, loads, kinks = self._held(scene, params, disc)
-            info.update(sinfo, analysis="static")
+            merge_info(info, sinfo, analysis="static")
             inner = [h for h in R if h.label.startswith("inner")]  # (ends' reactions are in the end rows' values)
             extra["reactions"] = [
                 (h.position, R[h] if h.slot == 0 else 0.0, R[h] if h.slot == 1 else 0.0) for h in inner
@@ -196,7 +196,7 @@ class _MoyerModel(Model):
                 system = static_system(scene, disc)
             with timer("solve"):
                 u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
-            info.update(sinfo, analysis="static")
+            merge_info(info, sinfo, analysis="static")
         if info["analysis"] == "static":  # with supports at the ends or inside the span
             flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m) + point_force_order(self, scene, params)
             dx = disc.x[1] - disc.x[0]

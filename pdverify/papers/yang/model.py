@@ -96,7 +96,7 @@ import numpy as np
 
 from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
-from ...core.result import Result, Timer
+from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...core.stations import STATIONS_HELP, parse_stations
 from ...numerics.families import family
@@ -510,7 +510,7 @@ class PDHigherOrder(Model):
         x = self.grid(scene, params)
         dx = x[1] - x[0]
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
-        info.update(binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
+        merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
         fields.update(section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"]))
         reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
