@@ -110,7 +110,7 @@ from .bonds import end_layer_ratios
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
 from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
-from .outputs import clamp_layer_warning, point_load_warnings, reactions, section_stresses
+from .outputs import clamp_layer_warning, not_cut, point_load_warnings, reactions, section_stresses
 from .supports import section_forces, with_supports
 
 
@@ -522,8 +522,7 @@ class PDHigherOrder(Model):
         # own warning (point_load_warnings)
         J = int(np.ceil(delta / dx - 1e-9))
         held = [s.position for s in scene.supports.inner if s.holds_rotation]
-        cut = all(any(abs(a - c) <= 1e-9 * scene.length for c in info.get("cuts", ())) for a in held)
-        constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["cut" if cut else "not cut"]
+        constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["not cut" if not_cut(scene, held, info) else "cut"]
         near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
         for flag in point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx) + near:
             info.setdefault("warnings", []).append(flag)

@@ -66,6 +66,13 @@ def reactions(end_rows: list, u: np.ndarray, area: float) -> dict[str, float]:
     return out
 
 
+def not_cut(scene: Scene, positions, info: dict) -> list[float]:
+    """The positions (point loads, supports inside the span) that are not on a point whose bonds the solve cut
+    (``info["cuts"]``, within 1e-9 of the length)."""
+    cut = info.get("cuts", ())
+    return [a for a in positions if not any(abs(a - c) <= 1e-9 * scene.length for c in cut)]
+
+
 def point_load_warnings(scene: Scene, params: dict, info: dict) -> list[str]:
     """The warnings of interior point loads: one not on a cut grid point (corrected variant, ``ends = truncated``,
     ``cuts = loads``: its neighbours' bonds average the kink under it), and concentrated loads that deform the
@@ -78,9 +85,8 @@ def point_load_warnings(scene: Scene, params: dict, info: dict) -> list[str]:
         if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
     ]
     if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
-        cut = info.get("cuts", ())
         spots = [ld.position for ld in interior] + [s.position for s in scene.supports.inner]
-        uncut = [a for a in spots if not any(abs(a - c) <= 1e-9 * scene.length for c in cut)]
+        uncut = not_cut(scene, spots, info)
         if uncut:
             at = ", ".join(f"{a:.6g}" for a in uncut)
             out.append(
