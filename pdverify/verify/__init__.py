@@ -26,6 +26,7 @@ from .suite import (
     GAP_REFERENCE,
     SUITE_VERSION,
     end_force,
+    engineering_reference,
     finer,
     loads_for,
     mirror,
@@ -181,13 +182,25 @@ def verify(
         raise InputError(why)
     solved = next(f for f, why in declined.items() if not why)
     model.resolve(parse_scene(p.scenes[solved]), options)  # bad options: one line each before anything runs
-    refused = {f for f, why in declined.items() if why and p.meta[f]["set"] == "engineering"}  # not run
-    run_plan = replace(p, scenes={f: sc for f, sc in p.scenes.items() if f not in refused})
+    run_plan = runnable(p, declined)
     df = _run_suite(run_plan, model, options, out, workers, scheduler, progress)
     found, scenes, df = _judge(model, options, p, df, expected, declined)
     card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}
     write_card(card, out)
     return card
+
+
+def runnable(p, declined: dict):
+    """The plan without the engineers' scenes the model declines (its check or its options' refusal: not run), their
+    reference chosen over the scenes it takes (a variant that refuses the segments an exact reference cannot hold is
+    judged against that reference on the rest)."""
+    refused = {f for f, why in declined.items() if why and p.meta[f]["set"] == "engineering"}
+    taken = [sc for f, sc in p.scenes.items() if p.meta[f]["set"] == "engineering" and f not in refused]
+    return replace(
+        p,
+        scenes={f: sc for f, sc in p.scenes.items() if f not in refused},
+        engineering_reference=engineering_reference(p.reference, taken),
+    )
 
 
 def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress: bool):

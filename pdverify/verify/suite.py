@@ -322,6 +322,12 @@ class Plan:
     engineering_reference: str | dict | None = None  # the engineers' scenes': ``reference`` where it takes them all
 
 
+def engineering_reference(reference, taken: list[dict]):
+    """What the engineers' scenes ``taken`` (those the model, with its options, takes) are judged against: the suite's
+    ``reference`` where it takes every one of them, else None (the model against itself)."""
+    return reference if taken and takes_all(reference, taken) else None
+
+
 def takes_all(reference, scenes: list[dict]) -> bool:
     """True when the reference (a name or {model, options}) solves every one of ``scenes`` (its check)."""
     if reference is None:
@@ -460,8 +466,9 @@ def plan(model, full: bool = False, options: dict | None = None) -> Plan:
         # a theory judged against itself is so on curved axes too (exact-curved is a beam theory: the 2D strip
         # converges to its own solution, 1.7e-2 away on the clamped-pinned quarter circle)
         "exact-curved" if model.curved and reference_for(model.theory) else None,
-        # where the exact solution cannot hold one of them: the model against itself
-        reference if engineering and takes_all(reference, engineering) else None,
+        # where the exact solution cannot hold one of them: the model against itself (:func:`verify.verify` asks
+        # again of the scenes the model's options refuse too)
+        engineering_reference(reference, engineering),
     )
 
 

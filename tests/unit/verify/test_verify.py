@@ -346,3 +346,31 @@ def test_the_engineers_scenes_take_the_exact_reference_where_it_holds_every_one_
     assert run["reference"] == exact
     paper = plan(model, options={"variant": "paper"})
     assert paper.engineering_reference is None
+
+
+def test_the_engineers_scenes_reference_is_chosen_over_the_scenes_the_options_take(monkeypatch):
+    """A model whose check takes the segments but whose options refuse them (one line when it solves) is judged on the
+    rest against the exact reference that takes those: here pd-higher-order made to pass its check on every scene
+    and to refuse the segments when it solves, as pd-timoshenko's corrected variant does; its plan alone falls back to
+    itself."""
+    from pdverify.core.errors import InputError
+    from pdverify.verify import _declined, runnable
+
+    model = get_model("pd-higher-order")
+    solve = model.solve
+
+    def refusing(scene, *args, **kwargs):
+        if scene.segments:
+            raise InputError("segments: this variant takes one section and one material")
+        return solve(scene, *args, **kwargs)
+
+    monkeypatch.setattr(model, "check", lambda scene: [])
+    monkeypatch.setattr(model, "solve", refusing)
+    p = plan(model)
+    assert p.engineering_reference is None  # the plan counts the stepped and bi-material scenes as taken
+    declined = _declined(model, p, {})
+    refused = {p.meta[f]["name"] for f, why in declined.items() if why}
+    assert {"stepped", "bi-material"} <= refused
+    run_plan = runnable(p, declined)
+    assert run_plan.engineering_reference == p.reference
+    assert not {m["name"] for f, m in p.meta.items() if f in run_plan.scenes} & refused
