@@ -25,7 +25,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..core.errors import InputError, SolveError
-from ..core.result import Result, Timer
+from ..core.result import Result, Timer, merge_info
 from ..core.scene import Scene
 from .symbols import series_solution
 
@@ -69,7 +69,7 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
                 solved = (x_user, w, rot if series.quantity == "w" or series.slope is not None else None, fields)
         if solved is None:
             solved, more = _extrapolated(model, scene, base, delta, dx, limit)
-            info.update(more)
+            merge_info(info, more)
     x, w, rot, fields = solved
     whole = model.continuum_whole(params)
     if whole and "continuum_levels" in info and abs(info["m"] - round(info["m"])) > 1e-9 * info["m"]:

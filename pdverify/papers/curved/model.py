@@ -65,7 +65,7 @@ import scipy.sparse as sp
 from ...core.contract import NONLOCAL, Model, Option, System
 from ...core.errors import InputError
 from ...core.geometry import geometry, mechanism_message
-from ...core.result import Result, Timer
+from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.linalg import BOUND_LIMIT, ENTRY_ROUNDING, bound_warning, solve_linear
@@ -271,7 +271,7 @@ class PDCurved(Model):
         info = dict(infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))])
         if "reactions" in info:  # each solve's supports carry its loads: the sum
             info["reactions"] = {k: sum(i["reactions"][k] for i in infos) for k in info["reactions"]}
-        info.update(superposed_bound(infos, total))
+        merge_info(info, superposed_bound(infos, total))
         info.pop("bound_scale", None), info.pop("warnings", None)
         warnings = {w for i in infos for w in i.get("warnings", []) if not w.startswith("round-off bound")}
         if not info.get("error_bound", 0.0) <= BOUND_LIMIT:

@@ -31,7 +31,7 @@ import scipy.sparse as sp
 
 from ...core.contract import LOAD_TYPES, NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
-from ...core.result import Result, Timer
+from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.linalg import forward_error_bound, record_bound, solve_linear
 from ...numerics.loads import boundary_layer_warnings, edge_layer_warnings
@@ -512,7 +512,8 @@ class PDBondPair(Model):
             flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
         if flags:
             info.setdefault("warnings", []).extend(flags)
-        info.update(
+        merge_info(
+            info,
             binfo,
             spacing=dx,
             horizon_factor=params["horizon"],

@@ -435,7 +435,7 @@ class PDHigherOrder(Model):
             raise InputError(f"stretch = path measures s along the bond's path: it needs shear = path (not {shear})")
         info["stretch"] = "path" if stretch else "point"
         G, calibrate, reach, described = ghost_layers(ends, J, p, left, right, about, params.get("end_layer", "patch"))
-        info.update(described)
+        merge_info(info, described)
         cuts = self.cut_points(scene, params, x, J) if calibrate == "patch" and variant != "paper" else ()
         if cuts:
             info["cuts"] = [float(x[c]) for c in cuts]
