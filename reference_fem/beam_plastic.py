@@ -249,5 +249,5 @@ def solve_path(scene: Scene, points: int, fibres: int):
         "reactions": steps[-1]["reactions"],
     }
     if stop is not None:
-        info["warnings"] = [stop]
+        info.setdefault("warnings", []).append(stop)
     return beam.nodes, u, steps, info

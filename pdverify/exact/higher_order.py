@@ -424,12 +424,12 @@ class ExactHigherOrder(Model):
         info["cond"] = sol.cond
         info["error_bound"] = sol.error_bound
         if sol.error_bound > BOUND_LIMIT:
-            info["warnings"] = [
+            info.setdefault("warnings", []).append(
                 f"round-off bound {sol.error_bound:.2g} (relative error): {sol.defect:.2g} from its polynomial modes "
                 f"on a beam of L/h = {sol.L:.3g} ({ROUNDOFF:g} eps (L/h)^2), {sol.error_bound - sol.defect:.2g} from "
                 f"its pieces' system ({CLOSED_FORM} cond eps, cond {sol.cond:.2g}: a soft spring or nearly coincident "
                 "supports); exact-timoshenko is within about h/L of this theory on a slender beam"
-            ]
+            )
         return self.new_result(
             scene,
             params,

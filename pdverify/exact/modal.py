@@ -223,10 +223,10 @@ def modal_result(model: Model, scene: Scene, params: dict, timer: Timer, respons
     final, hist = values[-1, n:], values[:-1, :n]
     info = dict(info, analysis="dynamic")
     if info["truncation_error"] > params["tolerance"]:
-        info["warnings"] = [
+        info.setdefault("warnings", []).append(
             f"truncation error estimate {info['truncation_error']:.2g} above tolerance {params['tolerance']:g} "
             f"with {info['modes']} modes (a point force converges like 1/modes)"
-        ]
+        )
     series = {f"{key}(x={p_:g})": hist[:, k] for k, p_ in enumerate(probes)}
     info["history"] = {"t": t, "series": series, "ylabel": ylabel}
     beam = key == "w"

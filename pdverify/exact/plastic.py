@@ -338,7 +338,7 @@ def solve_path(scene: Scene, x: np.ndarray):
         "reactions": steps[-1]["reactions"],
     }
     if stop is not None:
-        info["warnings"] = [stop]
+        info.setdefault("warnings", []).append(stop)
     return steps, info, beam, (steps[-1]["factor"], peak)
 
 

@@ -334,13 +334,13 @@ def solve_krylov(
     if condition:
         info["cond"] = _cond(V, inner, estimate)
     if sampled:
-        info["warnings"] = [
+        info.setdefault("warnings", []).append(
             f"{what}: the round-off bound is a sample of random signs ({floor:.2g}), above Hager's estimate of the "
             "same norm: the transposed inner solves that estimate needs are inexact at this condition, so the "
             "worst case may be larger still"
             + (", and cond (the same estimate's) may be low too" if condition else "")
             + "; solver = banded gives LAPACK's estimate"
-        ]
+        )
     if not inner.converged:
         info.setdefault("warnings", []).append(
             f"{what}: an inner Krylov iteration stopped at {INNER_MAXITER} steps unconverged; the round-off bound "

@@ -26,21 +26,37 @@ def test_modules_are_short_or_say_why():
     assert not long, "split these or say why (# long module: ...):\n" + "\n".join(long)
 
 
+def _replaces_info(node) -> bool:
+    """``info.update(<a mapping>)`` (positional or ``**``) or ``info["warnings"] = ...``: what can replace the list."""
+    if isinstance(node, ast.Call):
+        f = node.func
+        return (
+            isinstance(f, ast.Attribute)
+            and f.attr == "update"
+            and isinstance(f.value, ast.Name)
+            and f.value.id == "info"
+            and bool(node.args or any(k.arg is None for k in node.keywords))
+        )
+    return isinstance(node, ast.Assign) and any(
+        isinstance(t, ast.Subscript)
+        and isinstance(t.value, ast.Name)
+        and t.value.id == "info"
+        and isinstance(t.slice, ast.Constant)
+        and t.slice.value == "warnings"
+        for t in node.targets
+    )
+
+
 def test_a_models_info_is_merged_not_replaced():
     """A dict merged into a result's ``info`` goes through ``core.result.merge_info``, which joins the two
-    ``warnings`` lists: ``info.update(other)`` keeps only ``other``'s, and a model's own warning was lost that way
-    (pd-timoshenko's couple on two points, under a solve's round-off warning). Keyword updates name what they set."""
-    found = []
-    for path in sorted([*(ROOT / "pdverify").rglob("*.py"), *(ROOT / "reference_fem").rglob("*.py")]):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if (
-                isinstance(node, ast.Call)
-                and isinstance(node.func, ast.Attribute)
-                and node.func.attr == "update"
-                and isinstance(node.func.value, ast.Name)
-                and node.func.value.id == "info"
-                and (node.args or any(k.arg is None for k in node.keywords))
-                and path.name != "result.py"  # merge_info itself
-            ):
-                found.append(f"{path.relative_to(ROOT)}:{node.lineno}")
-    assert not found, "merge these with core.result.merge_info:\n" + "\n".join(found)
+    ``warnings`` lists, and a warning is appended to the list: ``info.update(other)`` or ``info["warnings"] = [...]``
+    keeps only the last list, and a model's own warning was lost that way (pd-timoshenko's couple on two points,
+    under a solve's round-off warning). Keyword updates name what they set."""
+    found = [
+        f"{path.relative_to(ROOT)}:{node.lineno}"
+        for path in sorted([*(ROOT / "pdverify").rglob("*.py"), *(ROOT / "reference_fem").rglob("*.py")])
+        if path.name != "result.py"  # merge_info itself
+        for node in ast.walk(ast.parse(path.read_text()))
+        if _replaces_info(node)
+    ]
+    assert not found, "merge these with core.result.merge_info, or append the warning:\n" + "\n".join(found)

@@ -278,7 +278,7 @@ class PDCurved(Model):
             warnings.add(bound_warning(info["error_bound"]))
         warnings = sorted(warnings)
         if warnings:
-            info["warnings"] = warnings
+            merge_info(info, {"warnings": warnings})
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
         w, rot = total.pop("w"), total.pop("rotation")
         x = total.pop("x") / len(infos)

@@ -293,7 +293,7 @@ def solve_path(scene: Scene, params: dict, pairs: Pairs, what: str):
         "reactions": last["reactions"],
     }
     if stop is not None:
-        info["warnings"] = [stop]
+        info.setdefault("warnings", []).append(stop)
     return last["w"], last["f"], path, info, state
 
 
