@@ -268,17 +268,16 @@ class PDCurved(Model):
             total = out if total is None else {k: total[k] + out[k] for k in total}
             infos.append(info)
             dofs += n_dofs
-        info = dict(infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))])
+        worst = infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))]
+        info = {k: v for k, v in worst.items() if k not in ("bound_scale", "warnings")}  # warnings: every solve's
         if "reactions" in info:  # each solve's supports carry its loads: the sum
             info["reactions"] = {k: sum(i["reactions"][k] for i in infos) for k in info["reactions"]}
         merge_info(info, superposed_bound(infos, total))
-        info.pop("bound_scale", None), info.pop("warnings", None)
         warnings = {w for i in infos for w in i.get("warnings", []) if not w.startswith("round-off bound")}
         if not info.get("error_bound", 0.0) <= BOUND_LIMIT:
             warnings.add(bound_warning(info["error_bound"]))
-        warnings = sorted(warnings)
         if warnings:
-            merge_info(info, {"warnings": warnings})
+            info.setdefault("warnings", []).extend(sorted(warnings))
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
         w, rot = total.pop("w"), total.pop("rotation")
         x = total.pop("x") / len(infos)
