@@ -200,11 +200,14 @@ def _range(orders: list[float]) -> str:
 
 
 def _measured_cells(row: Row, conv_keys: set[str], scene_ids: set[str], cost_ids: set[str]) -> list[str]:
-    def link(text: str, anchor: str, present: set[str], title: str = "") -> str:
+    def link(text: str | list[str], anchor: str, present: set[str], title: str = "", klass: str = "") -> str:
+        """A cell of ``text`` (a list: one line each), linked to ``anchor`` where the page holds it."""
         t = f' title="{html.escape(title)}"' if title else ""
+        t += f' class="{klass}"' if klass else ""
+        shown = "<br>".join(map(html.escape, [text] if isinstance(text, str) else text))
         if anchor in present:
-            return f'<td{t}><a href="#{html.escape(anchor)}">{html.escape(text)}</a></td>'
-        return f"<td{t}>{html.escape(text)}</td>"
+            return f'<td{t}><a href="#{html.escape(anchor)}">{shown}</a></td>'
+        return f"<td{t}>{shown}</td>"
 
     out = []
     orders = [o for o in row.orders if np.isfinite(o)]
@@ -216,17 +219,16 @@ def _measured_cells(row: Row, conv_keys: set[str], scene_ids: set[str], cost_ids
     others = {q: [o for o in v if np.isfinite(o)] for q, v in row.quantity_orders.items()}
     others = {q: v for q, v in others.items() if v}
     if orders or others:
-        text = "; ".join(
-            ([_range(orders)] if orders else [])
-            + [f"{SYMBOL[q]}: {_range(v)}" for q in QUANTITIES if q in others for v in [others[q]]]
-        )
+        lines = ([_range(orders)] if orders else []) + [
+            f"{SYMBOL[q]}: {_range(v)}" for q in QUANTITIES if q in others for v in [others[q]]
+        ]
         named = [("the model's own quantity", orders), *((NAME[q], others[q]) for q in QUANTITIES if q in others)]
         title = "; ".join(
             f"{len(v)} convergence series of {name}; fitted orders: " + ", ".join(fixed(o, 3) for o in v)
             for name, v in named
             if v
         )
-        out.append(link(text, conv_anchor(row.key), conv_keys, title + exact))
+        out.append(link(lines, conv_anchor(row.key), conv_keys, title + exact, "orders"))
     elif row.exact_series:
         out.append(link("round-off", conv_anchor(row.key), conv_keys, exact.lstrip("; ")))
     else:

@@ -121,3 +121,16 @@ def test_orders_per_quantity_are_named_by_their_quantity():
     assert other_quantity({"quantity": "moment"}) == "moment" and other_quantity({"quantity": "w"}) is None
     assert other_quantity({"quantity": float("nan")}) is None and other_quantity({}) is None
     assert _range([1.951, 2.18]) == "1.95 to 2.18" and _range([2.001, 1.999]) == "2.00"
+
+
+def test_the_summary_gives_each_quantitys_orders_a_line_of_its_own():
+    """The observed-orders cell: the model's own quantity first, then one line per other quantity, each unbroken."""
+    from pdverify.report.summary import Row, _measured_cells, conv_anchor
+
+    row = Row(
+        "pd-curved", {}, "pd-curved", "", orders=[1.96, 5.66], quantity_orders={"moment": [1.99], "rotation": [2.0]}
+    )
+    cell = _measured_cells(row, {conv_anchor("pd-curved")}, set(), set())[0]
+    assert cell.startswith('<td title="') and 'class="orders"' in cell
+    shown = cell.split(f'href="#{conv_anchor("pd-curved")}">')[1].split("</a>")[0]
+    assert shown.split("<br>") == ["1.96 to 5.66", "rotation: 2.00", "M: 1.99"]
