@@ -93,6 +93,9 @@ COLUMNS = {
 }
 
 
+SERIES = {"points", "spacings", "errors", "pairwise_orders"}  # a series' values, one per grid, in one cell
+
+
 def column(name: str) -> Column:
     """The column's spec; a column not listed prints as text under its own name."""
     return COLUMNS.get(name, Column(name))
@@ -211,6 +214,8 @@ def table(
             if isinstance(units.get(c), list) and text and units[c][i]:
                 text = f"{text} {units[c][i]}"
             text = html.escape(text)
+            if c in SERIES and isinstance(v, str):  # one grid's value a line, none broken
+                text, klass = "<br>".join(text.split()), "nw"
             if c == "case_id" and case_link is not None and isinstance(v, str) and v:
                 text = f'<a href="{html.escape(case_link)}#{case_anchor(v)}">{text}</a>'
             cells.append(f'<td class="{klass}"{title}>{text}</td>')

@@ -142,20 +142,30 @@ def short_reference(ref) -> str:
     return f"{model} ({', '.join(f'{k}={v}' for k, v in sorted(d.items()))})" if d else str(model)
 
 
-def options_text(options) -> str:
-    """'analysis=auto, grid=nodes, horizon=2' for the JSON options of a row."""
+def options_text(options, model: str | None = None) -> str:
+    """'grid=cells, horizon=2' for the JSON options of a row: with ``model``, only the options that differ from its
+    defaults (the variant always; 'defaults' when nothing else differs); every option otherwise."""
     try:
         d = json.loads(options)
     except (TypeError, ValueError):
         return "" if missing(options) else str(options)
-    return ", ".join(f"{k}={v}" for k, v in sorted(d.items())) if isinstance(d, dict) else str(d)
+    if not isinstance(d, dict):
+        return str(d)
+    m = _model(model) if model else None
+    if m is not None:
+        d = {k: v for k, v in d.items() if k == "variant" or (o := m.option(k)) is None or o.default != v}
+    return ", ".join(f"{k}={v}" for k, v in sorted(d.items())) or ("defaults" if m is not None else "")
 
 
 def readable_options(df: pd.DataFrame) -> pd.DataFrame:
-    """``df`` with its JSON ``options`` column as 'key=value, ...' text."""
+    """``df`` with its JSON ``options`` column as 'key=value, ...' text: the options that differ from the row's
+    model's defaults (results.csv keeps them all)."""
     if df is None or df.empty or "options" not in df:
         return df
-    return df.assign(options=df["options"].map(options_text))
+    models = df["model"] if "model" in df else pd.Series(None, index=df.index)
+    return df.assign(
+        options=[options_text(o, m if isinstance(m, str) else None) for o, m in zip(df["options"], models)]
+    )
 
 
 def readable(v) -> str:
