@@ -74,20 +74,21 @@ def page(card: dict) -> str:
         if card.get("skipped")
         else ""
     )
+    also = f" and {e(card['curved_reference'])}" if card["curved_reference"] else ""
     q = e(card.get("measures", "w"))  # what the errors are of (w; a rod's u, a torsion bar's twist)
     return f"""<!doctype html><html><head><meta charset="utf-8"><title>pdverify verify {e(card["model"])}</title>
 <style>body{{font-family:sans-serif;margin:2em}} table{{border-collapse:collapse}} td,th{{border:1px solid #ccc;
-padding:2px 8px;text-align:right}} td:first-child{{text-align:left}} .pass td:nth-child(2){{color:#080}}
-.fail td:nth-child(2){{color:#c00;font-weight:bold}}</style></head><body>
+padding:2px 8px;text-align:right}} td:first-child,th:first-child,.checks td,.checks th{{text-align:left}}
+.pass td:nth-child(2){{color:#080}} .fail td:nth-child(2){{color:#c00;font-weight:bold}}</style></head><body>
 <h1>{e(card["model"])}: {card["verdict"].upper()}</h1>
-<p>{e(card["title"])} ({e(opts)}); theory {e(card["theory"])}, reference {e(card["reference"])}
-{("and " + e(card["curved_reference"])) if card["curved_reference"] else ""}. Suite {card["suite_version"]},
+<p>{e(card["title"])} ({e(opts)}); theory {e(card["theory"])}, reference {e(card["reference"])}{also}. Suite {card["suite_version"]},
 pdverify {card["pdverify_version"]}; {card["cases"]} cases ({card["failed_cases"]} failed,
 {card.get("suspect_cases", 0)} suspect: round-off
 bound above 1e-6, their measured errors judged), {card["wall_s"]:.1f} s.
 Expected order {card["expected_order"]:g}. Error: max |{q} - {q}_ref| / max |{q}_ref| at the model's points.</p>
-<h2>Checks</h2><table><tr><th>check</th><th>verdict</th><th>measured</th></tr>{rows}</table>
-<h2>Scenes</h2><table><tr><th>scene</th><th>L/h</th>{head}<th>orders per pair</th><th>fitted</th><th>failures</th></tr>
+<h2>Checks</h2><table class="checks"><tr><th>check</th><th>verdict</th><th>measured</th></tr>{rows}</table>
+<h2>Scenes</h2><p>Relative error at each grid (points), the orders between successive grids and the fitted order.</p>
+<table><tr><th>scene</th><th>L/h</th>{head}<th>orders per pair</th><th>fitted</th><th>failures</th></tr>
 {scenes}</table>{skipped}</body></html>
 """
 
