@@ -81,9 +81,9 @@ def page(card: dict) -> str:
 padding:2px 8px;text-align:right}} td:first-child,th:first-child,.checks td,.checks th{{text-align:left}}
 .pass td:nth-child(2){{color:#080}} .fail td:nth-child(2){{color:#c00;font-weight:bold}}</style></head><body>
 <h1>{e(card["model"])}: {card["verdict"].upper()}</h1>
-<p>{e(card["title"])} ({e(opts)}); theory {e(card["theory"])}, reference {e(card["reference"])}{also}. Suite {card["suite_version"]},
-pdverify {card["pdverify_version"]}; {card["cases"]} cases ({card["failed_cases"]} failed,
-{card.get("suspect_cases", 0)} suspect: round-off
+<p>{e(card["title"])} ({e(opts)}); theory {e(card["theory"])}, reference {e(card["reference"])}{also}.
+Suite {card["suite_version"]}, pdverify {card["pdverify_version"]};
+{card["cases"]} cases ({card["failed_cases"]} failed, {card.get("suspect_cases", 0)} suspect: round-off
 bound above 1e-6, their measured errors judged), {card["wall_s"]:.1f} s.
 Expected order {card["expected_order"]:g}. Error: max |{q} - {q}_ref| / max |{q}_ref| at the model's points.</p>
 <h2>Checks</h2><table class="checks"><tr><th>check</th><th>verdict</th><th>measured</th></tr>{rows}</table>
