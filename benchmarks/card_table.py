@@ -23,7 +23,7 @@ def row(card: dict) -> list[str]:
     cells += [checks[name]["verdict"] if name in checks else "–" for name in COLUMNS.values()]
     conv, acc = checks.get(COLUMNS["order"], {}), checks.get(COLUMNS["accuracy"], {})
     low = conv.get("lowest_order")
-    cells.append("exact" if low is None else f"{low:.2f}")
+    cells.append(f"{low:.2f}" if low is not None else "exact" if conv.get("verdict") == "pass" else "–")
     big = acc.get("largest")
     cells.append("–" if big is None else f"{big:.1e}")
     pts = checks.get("grids within 1 % and 0.1 %", {}).get("points", {})
