@@ -385,11 +385,20 @@ def main(argv: list[str] | None = None):  # console-script entry point
         typer.echo("error: aborted", err=True)
         sys.exit(130)
     except BrokenPipeError:  # stdout closed early (`pdverify solve ... | head`): stop quietly, as other tools do
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        sys.exit(1)
+        _closed_stdout()
+    try:  # what is still buffered meets a reader that left (`pdverify models | head -1`)
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _closed_stdout()
     sys.exit(rv if isinstance(rv, int) else 0)
+
+
+def _closed_stdout():
+    """Exit 1 without a word when stdout's reader has gone (no flush of what is left at exit)."""
+    import os
+
+    os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    sys.exit(1)
 
 
 if __name__ == "__main__":  # pragma: no cover

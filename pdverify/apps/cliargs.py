@@ -42,7 +42,7 @@ def user_errors(fn):
                     "that keep its numbers within about 1e-100..1e100"
                 )
             )
-        except (typer.Exit, typer.Abort, KeyboardInterrupt):
+        except (typer.Exit, typer.Abort, KeyboardInterrupt, BrokenPipeError):  # the CLI's own (cli.main)
             raise
         except Exception as exc:  # a defect of pdverify, not of the input: one line, its own exit code
             if os.environ.get("PDVERIFY_DEBUG"):

@@ -3,6 +3,7 @@ repeated --points, whole-or-nothing output files and the memory guard (docs/cli.
 
 import errno
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -246,6 +247,24 @@ def test_closed_stdout_is_no_traceback():
     err = p.stderr.read().decode()
     p.wait(timeout=60)
     assert "Traceback" not in err and p.returncode in (1, 2)
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["models"], ["solve", "studies/examples/cantilever_tip_load.toml", "-m", "exact-eb", "--points", "20001"]],
+    ids=["models", "solve"],
+)
+def test_a_reader_that_leaves_early_ends_the_command_quietly_with_exit_1(args):
+    """`pdverify solve ... | head -1` with stdout buffered (no PYTHONUNBUFFERED): the write that meets the closed
+    pipe, during the command or at its final flush, ends it with exit 1 and nothing on stderr (docs/cli.md)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONUNBUFFERED"}
+    p = subprocess.Popen(
+        [sys.executable, "-m", "pdverify", *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, cwd=ROOT, env=env
+    )
+    p.stdout.close()
+    err = p.stderr.read().decode()
+    p.wait(timeout=120)
+    assert p.returncode == 1 and "error" not in err and "Exception" not in err, err
 
 
 # -- the grid's options, the same on every command that takes a grid ----------------------------------------------
