@@ -75,7 +75,7 @@ def solve(
         None,
         "--option",
         "-o",
-        help="any other model option, key=value; static=true: the static part of a scene with [dynamics]",
+        help="any other model option, key=value; static=true: the static part of a scene with \\[dynamics]",
     ),
     fmt: Format | None = typer.Option(
         None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"
@@ -255,7 +255,7 @@ def advise(
     scene: Path | None = typer.Argument(None, help="scene TOML file"),
     tolerance: float = typer.Option(1e-3, "--tolerance", help="relative error you can accept"),
     budget: float = typer.Option(30.0, "--budget", help="seconds per candidate model for the grid search"),
-    static: bool = typer.Option(False, "--static", help="a scene with [dynamics]: advise on its static part"),
+    static: bool = typer.Option(False, "--static", help="a scene with \\[dynamics]: advise on its static part"),
     rebuild_priors: bool = typer.Option(
         False, "--rebuild-priors", help="regenerate pdverify/data/advisor_priors.json (a small study)"
     ),

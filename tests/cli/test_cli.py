@@ -322,3 +322,10 @@ def test_horizon_flags_refused_in_one_line(command, tmp_path, capsys):
     args = ["pd-rod"] if command == "verify" else [str(_rod_scene(tmp_path)), "-m", "pd-rod"]
     code, _, err = cli([command, *args, "--horizon", "2", "-o", "horizon=3"], capsys)
     assert code == 2 and err.startswith("error: --horizon 2") and "-o horizon=3: the same option twice" in err
+
+
+@pytest.mark.parametrize("command", ["solve", "advise"])
+def test_help_keeps_the_scenes_table_names(command, capsys):
+    """A help text naming a scene table ([dynamics]) shows it: the help's markup does not take it for a style."""
+    code, out, _ = cli([command, "-h"], capsys)
+    assert code == 0 and "[dynamics]" in out
