@@ -81,3 +81,28 @@ def test_no_dates_or_issue_numbers(doc):
     text = _text(doc)
     found = [m.group(0) for m in DATE.finditer(text)] + [m.group(0) for m in ISSUE.finditer(text)]
     assert not found, f"{doc.relative_to(ROOT)} holds history (dates, issue numbers): {found[:10]}"
+
+
+def test_the_contracts_table_of_variant_rules_lists_every_rule():
+    """docs/contract.md's table of variant rules names each (model, variant, option) a model's ``variant_rules``
+    holds: a rule the code checks is one the guide tells."""
+    from pdverify.registry import models
+
+    rows = [
+        [c.strip() for c in line.strip().strip("|").split("|")]
+        for line in (ROOT / "docs" / "contract.md").read_text(encoding="utf-8").splitlines()
+        if line.startswith("| pd-")
+    ]
+    missing = []
+    for name, model in models().items():
+        for rule in getattr(model, "variant_rules", ()):
+            variant = dict(rule.when).get("variant")
+            if not any(
+                name in row[0].split(", ")
+                and (variant is None or variant in row[1])
+                and rule.option in [o.strip() for o in row[2].split("/")]
+                for row in rows
+                if len(row) == 5
+            ):
+                missing.append((name, variant, rule.option))
+    assert not missing, f"docs/contract.md's variant-rule table lacks {missing}"
