@@ -264,7 +264,7 @@ def test_a_reader_that_leaves_early_ends_the_command_quietly_with_exit_1(args):
     p.stdout.close()
     err = p.stderr.read().decode()
     p.wait(timeout=120)
-    assert p.returncode == 1 and "error" not in err and "Exception" not in err, err
+    assert p.returncode == 1 and "error:" not in err and "Exception" not in err, err
 
 
 # -- the grid's options, the same on every command that takes a grid ----------------------------------------------
