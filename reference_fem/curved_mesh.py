@@ -32,7 +32,7 @@ from pdverify.numerics.factorcache import digest
 from pdverify.numerics.kept import Kept
 
 KEPT_DOFS = 200_000  # the bases of larger strips are not kept (a 10,241-station strip's basis takes gigabytes)
-_FACETS = Kept(8)  # (mesh, element, facets) digest -> FacetBasis: other loads on the same edges of one strip
+_FACETS = Kept(24)  # (mesh, element, facets) digest -> FacetBasis: other loads on the same edges of one strip
 
 _GX, _GW = np.polynomial.legendre.leggauss(8)
 

@@ -176,7 +176,8 @@ def support_conditions(scene: Scene, pin: str, bm, basis, tan_s: np.ndarray, nor
     return fixed, pairs, tangents, crows
 
 
-_REDUCED = Kept(4)  # (K, supports) digest -> the reduced operator: another load on the same strip and supports
+_REDUCED = Kept(6, budget=cm.KEPT_DOFS, size=lambda kept: kept[0].shape[0])  # (K, supports) digest -> the reduced
+# operator: another load on the same strip and supports, on each of a scene's grids
 
 
 def constrained_system(K, F: np.ndarray, N: int, fixed: list, pairs: list, tangents: list, crows: list, key=None):
@@ -189,9 +190,7 @@ def constrained_system(K, F: np.ndarray, N: int, fixed: list, pairs: list, tange
     determines Kf (the solve's factorisation cache takes it instead of hashing Kf)."""
     key = key or digest(K.data, K.indices, K.indptr)
     key = digest(*fixed, *pairs, *tangents, *crows, params=(N, key))
-    Kf, free, T, S = _REDUCED.get(
-        key, lambda: _reduced_operator(K, N, fixed, pairs, tangents, crows), keep=lambda _: N <= cm.KEPT_DOFS
-    )
+    Kf, free, T, S = _REDUCED.get(key, lambda: _reduced_operator(K, N, fixed, pairs, tangents, crows))
     Ff = (F if T is None else T.T @ F)[free]  # the held DOFs are zero: condensing them leaves F's free rows
     return Kf, (Ff if S is None else S.T @ Ff), free, T, S, key
 

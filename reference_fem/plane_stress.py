@@ -110,14 +110,16 @@ def plane_stress_lame(E: float, nu: float) -> tuple[float, float]:
     return 2 * lam * mu / (lam + 2 * mu), mu
 
 
-_KEPT = Kept(2)  # mesh digest -> (basis, K): another load on the same strip; strips of up to cm.KEPT_DOFS unknowns
+_KEPT = Kept(6, budget=cm.KEPT_DOFS, size=lambda kept: kept[0].N)  # mesh digest -> (basis, K): another load on
+# the same strip; the grids of a card's scene (641 ... 21 stations: 49,000 unknowns), bases of at most cm.KEPT_DOFS
+# unknowns together
 
 
 def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float):
-    """(the vector basis, K, the key that determines K) of one material on ``mesh``, kept for the last two meshes of
-    up to :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns (by their nodes' and elements' bytes, the element,
-    the constants and the width): a study solves the same strip under several loads, and the assembly is a
-    deterministic function of these."""
+    """(the vector basis, K, the key that determines K) of one material on ``mesh``, kept for the last six meshes of
+    up to :data:`reference_fem.curved_mesh.KEPT_DOFS` unknowns together (by their nodes' and elements' bytes, the
+    element, the constants and the width): a study solves the same strip under several loads, scene by scene on
+    each of its grids, and the assembly is a deterministic function of these."""
     import skfem as fem
 
     key = digest(
@@ -130,7 +132,7 @@ def basis_and_stiffness(mesh, scene: Scene, element: str, lam: float, mu: float)
         K.data.flags.writeable = False  # shared: every use makes new matrices (K + Ks, K @ u, constrained_system)
         return basis, K
 
-    return (*_KEPT.get(key, make, keep=lambda kept: kept[0].N <= cm.KEPT_DOFS), key)
+    return (*_KEPT.get(key, make), key)
 
 
 def stiffness(basis, scene: Scene, element: str, lam: float, mu: float):

@@ -29,9 +29,26 @@ SCHEDULER_TIMEOUT_S = 5  # how long to wait for a Dask scheduler to answer befor
 _ADDRESS = re.compile(r"(?:(?:tcp|tls|ws|wss|ucx)://)?(?:\[[0-9A-Fa-f:.]+\]|[A-Za-z0-9_.-]+):(\d{1,5})")
 
 
-def serial(run, todo, ids, artefacts):
-    for case, cid in zip(todo, ids):
-        yield cid, run(case, artefacts, cid)
+def serial(run, todo, ids, artefacts, groups: list | None = None, sizes: list | None = None, order=None):
+    """The cases one after another in this process, batch by batch as :func:`pool` would hand them out
+    (:func:`batches`): the cases on one operator back to back, so a kept factorisation or solve is met again
+    before the few a process keeps are pushed out."""
+    for batch in batches(len(todo), groups, sizes, order):
+        for i in batch:
+            yield ids[i], run(todo[i], artefacts, ids[i])
+
+
+def batches(n: int, groups: list | None = None, sizes: list | None = None, order=None) -> list[list[int]]:
+    """The indices of ``n`` cases in batches: the cases with the same key in ``groups`` (one key per case; None:
+    each case alone) in one batch, sorted inside by ``order`` (one sort key per case; None: as given); the largest
+    batches first (by the sum of their cases' ``sizes``, else by their count)."""
+    found: dict = {}
+    for i, key in enumerate(groups if groups is not None else range(n)):
+        found.setdefault(key, []).append(i)
+    if order is not None:
+        found = {k: sorted(b, key=lambda i: order[i]) for k, b in found.items()}
+    weight = (lambda b: sum(sizes[i] for i in b)) if sizes is not None else len
+    return sorted(found.values(), key=weight, reverse=True)
 
 
 def pool(
@@ -60,13 +77,7 @@ def pool(
     (passed on to the workers), stops the batches in flight too, at their next step (a worker raises
     KeyboardInterrupt only while it runs a batch; what the batch stores as it goes, e.g. a card's cases, is kept);
     they are dropped, not yielded, and the workers have ended when KeyboardInterrupt goes on."""
-    batches: dict = {}
-    for i, key in enumerate(groups if groups is not None else range(len(todo))):
-        batches.setdefault(key, []).append(i)
-    if order is not None:
-        batches = {k: sorted(b, key=lambda i: order[i]) for k, b in batches.items()}
-    weight = (lambda b: sum(sizes[i] for i in b)) if sizes is not None else len
-    by_weight = sorted(batches.values(), key=weight, reverse=True)
+    by_weight = batches(len(todo), groups, sizes, order)
     # fork on Linux whatever the Python version (3.14 made forkserver the default)
     ctx = multiprocessing.get_context("fork") if sys.platform.startswith("linux") else None
     ex = ProcessPoolExecutor(

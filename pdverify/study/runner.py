@@ -384,12 +384,13 @@ def _run_study(
     files = str(out / "vtu") if artefacts else None
     if scheduler and todo:
         loop = execute.on_dask(run_case, todo_cases, todo_ids, scheduler)
-    elif n > 1:
+    else:
         groups, sizes = [c.operator_group for c in todo_cases], [c.size for c in todo_cases]
         order = [c.batch_order for c in todo_cases]
-        loop = execute.pool(run_case, todo_cases, todo_ids, files, n, groups, sizes, order)
-    else:
-        loop = execute.serial(run_case, todo_cases, todo_ids, files)
+        if n > 1:
+            loop = execute.pool(run_case, todo_cases, todo_ids, files, n, groups, sizes, order)
+        else:
+            loop = execute.serial(run_case, todo_cases, todo_ids, files, groups, sizes, order)
     keep = Keeper(out, code_digest())
     bar = _progress(len(todo), progress)
     try:

@@ -19,3 +19,14 @@ def test_the_least_recently_used_goes_first_and_a_value_not_wanted_is_not_kept()
     assert made[-2:] == ["big", "big"]
     kept.clear()
     assert len(kept) == 0
+
+
+def test_a_budget_keeps_the_values_whose_sizes_fit_together():
+    kept = Kept(10, budget=10, size=len)
+    for k in ("aaaa", "bbbb", "cc"):
+        kept.get(k, lambda k=k: k)
+    assert len(kept) == 3
+    kept.get("ddd", lambda: "ddd")  # 13 > 10: the least recently used goes
+    assert len(kept) == 3 and "aaaa" not in kept._values
+    kept.get("x" * 11, lambda: "x" * 11)  # larger than the budget: returned, not kept
+    assert len(kept) == 3 and "x" * 11 not in kept._values

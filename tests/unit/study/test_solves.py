@@ -100,3 +100,26 @@ def test_scenes_that_differ_in_their_loads_and_names_share_a_batch_scene_by_scen
     )
     ran = [(r["case"].scene_file, r["case"].given["points"]) for _, r in got]
     assert ran == [("a.toml", 161), ("a.toml", 41), ("a.toml", 21), ("b.toml", 161), ("b.toml", 41), ("b.toml", 21)]
+
+
+def test_one_worker_runs_the_cases_in_the_pools_batches_and_order():
+    """With one worker (a card in the main job) the cases run in the batches and the order the pool would hand out:
+    a scene's reference grid right before its coarser grids, whatever order the study lists them in."""
+    other = SCENE.replace('left = "clamped"', 'left = "pinned"').replace('right = "free"', 'right = "roller"')
+    reference = {"model": "pd-eb", "points": 161}
+    cases = [
+        Case(f, text, None, "pd-eb", {"points": n}, reference if n < 161 else {"model": "exact-timoshenko"})
+        for n in (21, 41, 161)  # grid by grid, as a study lists them
+        for f, text in (("a.toml", SCENE), ("b.toml", other))
+    ]
+    groups, sizes, order = [c.operator_group for c in cases], [c.size for c in cases], [c.batch_order for c in cases]
+    serial = list(execute.serial(_record, cases, list(range(6)), None, groups, sizes, order))
+    pooled = list(execute.pool(_record, cases, list(range(6)), None, 1, groups, sizes, order))
+    ran = [(r["case"].scene_file, r["case"].given["points"]) for _, r in serial]
+    assert [i for i, _ in serial] == [i for i, _ in pooled]
+    assert ran[:3] in (
+        [("a.toml", 161), ("a.toml", 41), ("a.toml", 21)],
+        [("b.toml", 161), ("b.toml", 41), ("b.toml", 21)],
+    )
+    assert sorted(ran) == sorted((c.scene_file, c.given["points"]) for c in cases)
+    assert [i for i, _ in execute.serial(_record, cases, list(range(6)), None)] == list(range(6))  # no groups: as given
