@@ -357,7 +357,9 @@ class PDCurved(Model):
 
     @staticmethod
     def output_map(d: dict, L: float, points: int, degree: int) -> sp.csr_matrix:
-        """Sparse (points, particles) map from particle values to the uniform output grid."""
+        """Sparse (points, particles) map from particle values to the uniform output grid: a particle's value where
+        one sits, else the mean of the degree-P PDDO interpolants of the two families around the point
+        (:func:`.pddo.nearest_families`), so that a mirrored scene gives the mirrored output."""
         x = np.linspace(0.0, L, points)
         x[-1] = L
         d["x"] = x
@@ -375,9 +377,9 @@ class PDCurved(Model):
             rows.append(k[on]), cols.append(offs[i] + j[on]), vals.append(np.ones(on.sum()))
             if (~on).any():
                 xo = x[k[~on]]
-                fam = _pddo.nearest_families(g, xo, size)
-                c = _pddo.pddo_weights(g, fam, degree, (0,), centers=xo)[0]
-                rows.append(np.repeat(k[~on], size)), cols.append((offs[i] + fam).ravel()), vals.append(c.ravel())
+                for fam in _pddo.nearest_families(g, xo, size):  # the mean of the interpolants of the two families
+                    c = 0.5 * _pddo.pddo_weights(g, fam, degree, (0,), centers=xo)[0]  # around xo: mirror-symmetric
+                    rows.append(np.repeat(k[~on], size)), cols.append((offs[i] + fam).ravel()), vals.append(c.ravel())
         return sp.csr_matrix(
             (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(points, offs[-1])
         )

@@ -145,11 +145,15 @@ def pddo_weights(
     return out
 
 
-def nearest_families(s: np.ndarray, x: np.ndarray, size: int) -> np.ndarray:
-    """(len(x), size) indices of the ``size`` consecutive particles of s around each point x."""
-    idx = np.searchsorted(s, x)
-    start = np.clip(idx - size // 2, 0, len(s) - size)
-    return start[:, None] + np.arange(size)[None, :]
+def nearest_families(s: np.ndarray, x: np.ndarray, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """The (len(x), size) indices of the ``size`` consecutive particles of s centred on the particle at or right of
+    each point x, and of those centred on the particle at or left of it: a point between two particles has no
+    family centred on it (size odd), and these two are each other's mirror images (the same family for a point on
+    a particle, or where a family is shifted inside at an end of s)."""
+    right = np.searchsorted(s, x)
+    left = np.searchsorted(s, x, side="right") - 1
+    fam = [np.clip(c - size // 2, 0, len(s) - size)[:, None] + np.arange(size)[None, :] for c in (right, left)]
+    return fam[0], fam[1]
 
 
 def operator(fam: np.ndarray, coef: np.ndarray, n_cols: int | None = None) -> sp.csr_matrix:
