@@ -8,6 +8,15 @@ import numpy as np
 
 from ..core.scene import Distributed, PointForce, PointMoment, Scene
 
+TIE = 1e-9  # spacings: a distance this close to a threshold of whole spacings counts as on it, so that the rounding
+# of a position (a scaled or mirrored scene's) decides no warning either way
+
+
+def within(d: float, spacings: float, dx: float) -> bool:
+    """Whether the distance ``d`` is strictly less than ``spacings`` spacings ``dx`` (by more than ``TIE``)."""
+    return d < (spacings - TIE) * dx
+
+
 # -- loads -----------------------------------------------------------------------------------
 
 
@@ -91,7 +100,7 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str
     for i, load in enumerate(scene.loads):
         if hasattr(load, "position"):
             d = min(load.position, scene.length - load.position)
-            if 1e-12 * scene.length < d < reach * dx:
+            if 1e-12 * scene.length < d and within(d, reach, dx):
                 out.append(
                     f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the "
                     f"boundary layer of {reach} spacings: expect large errors; use at least "
@@ -117,7 +126,7 @@ def edge_layer_warnings(scene: Scene, x: np.ndarray, measured: str, kinds=FITTED
         for edge in scene.span(ld):
             for at, side in ends:
                 d = abs(edge - at)
-                if 1e-12 * L < d < EDGE_LAYER * dx:
+                if 1e-12 * L < d and within(d, EDGE_LAYER, dx):
                     out.append(
                         f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
                         f"({scene.supports.kind(side)}), inside the {EDGE_LAYER} spacings its ghosts are fitted on: "
@@ -151,7 +160,8 @@ def held_rotation_warnings(
             continue
         for j, ld in enumerate(scene.loads):
             d = abs(ld.position - sup.position) if ld.type == "point_force" else 0.0
-            estimate = min(FORCE_NEAR_HELD_ROTATION * (h / d) ** 2, 1.0) if d >= nearest * dx and d > 0.0 else 0.0
+            far = d > 0.0 and not within(d, nearest, dx)
+            estimate = min(FORCE_NEAR_HELD_ROTATION * (h / d) ** 2, 1.0) if far else 0.0
             if estimate > NEAR_TOLERANCE:
                 most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / FORCE_NEAR_HELD_ROTATION)  # the horizon that gives 1e-3
                 out.append(

@@ -19,7 +19,10 @@ from pdverify.core.errors import InputError, SolveError
 from pdverify.core.scene_file import parse_scene
 from pdverify.registry import models, run
 
-BENDING = MIXED_LOADS  # forces and moments anywhere and at the ends, partial and sine loads
+BENDING = MIXED_LOADS + [  # forces and moments anywhere and at the ends, partial and sine loads, and:
+    {"type": "distributed", "value": -200.0, "start": 0.3, "end": 1.0, "shape": "sine"},  # a partial sine, on points
+    {"type": "distributed", "value": 250.0, "start": 0.33, "end": 1.27},  # a span whose ends are between points
+]
 AXIAL = [
     {"type": "point_force", "position": 0.7, "value": 0.0, "axial": 4000.0},
     {"type": "distributed", "value": 0.0, "axial": -3000.0, "start": 0.4, "end": 1.7},

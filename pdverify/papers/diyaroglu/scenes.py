@@ -32,7 +32,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.scene import InnerSupport, PointForce, PointMoment, Scene, Spring
-from ...numerics.loads import held_rotation_warnings
+from ...numerics.loads import held_rotation_warnings, within
 
 
 def pieces_flexibility(scene: Scene, EI0: float) -> tuple[np.ndarray, np.ndarray]:
@@ -81,8 +81,9 @@ def flexibility(
 
 
 def spread_ok(t0: float, n: int, J: int) -> bool:
-    """A point load at t0 spacings is spread by its kink when every row it touches is real: 2J from both ends."""
-    return 2 * J <= t0 <= n - 1 - 2 * J
+    """A point load at t0 spacings is spread by its kink when every row it touches is real: 2J from both ends (within
+    1e-9 spacings, as :func:`_offset_grid` puts a load on a point: the rounding of t0 decides neither side)."""
+    return 2 * J - 1e-9 <= t0 <= n - 1 - 2 * J + 1e-9
 
 
 def _offset_grid(t0: float, J: int, reach: int) -> tuple[np.ndarray, np.ndarray]:
@@ -126,12 +127,15 @@ def spreads(load, scene: Scene, n: int, dx: float, J: int) -> bool:
 
 def distributed_kink(load, scene: Scene, n: int, dx: float, st: np.ndarray) -> np.ndarray | None:
     """The line load on the n points of a distributed load as the divergence of its particular moment,
-    q_p = D2[Mp]_p with Mp = S_a - S_b, S_e the moment of the load's shape acting from e on (zero before e), on the
-    rows whose stencil straddles e (S_e's kink in coordinates local to e: no cancellation); rows whose stencil lies
-    past e take the load itself (uniform: 1, which is D2 of x^2 / 2; sine: sin(k x_p), so that the PD equilibrium
-    Eq. 10a holds with the load of the paper, and the continuum at a fixed horizon is the paper's), rows before it 0.
-    A span that reaches an end of the beam continues beyond it. None when a span end lies inside 2J spacings of an
-    end (its rows would leave the grid: the caller keeps the cell averages)."""
+    q_p = D2[Mp]_p, Mp the mean of the two particular moments of the span [a, b], S_a - S_b and T_b - T_a (S_e the
+    moment of the load's shape acting from e on, zero before e; T_e the moment of the load acting up to e, zero past
+    e; the two differ by a linear function, which D2 annihilates, and each is the other's mirror image, so a mirrored
+    scene takes the mirrored load). On the rows whose stencil straddles e each takes D2 of its kink in coordinates
+    local to e (no cancellation); the rows whose stencil lies on the loaded side take the load itself (uniform: 1,
+    which is D2 of x^2 / 2; sine: sin(k x_p), so that the PD equilibrium Eq. 10a holds with the load of the paper,
+    and the continuum at a fixed horizon is the paper's), the rows on the other side 0. A span that reaches an end of
+    the beam continues beyond it. None when a span end lies inside 2J spacings of an end (its rows would leave the
+    grid: the caller keeps the cell averages)."""
     J = len(st) // 2
     L = scene.length
     a, b = scene.span(load)
@@ -141,25 +145,27 @@ def distributed_kink(load, scene: Scene, n: int, dx: float, st: np.ndarray) -> n
     k = np.pi / L
     own = np.ones(n) if load.shape == "uniform" else np.sin(k * p * dx)  # the load itself (Eq. 10a's b)
 
-    def d2s(t: float) -> np.ndarray:
-        """D2[S_e] on every row, e = t dx."""
-        out = own * (p - J >= t - 1e-9)
+    def kink(e: float, u: np.ndarray) -> np.ndarray:
+        """The moment at a distance u >= 0 on the loaded side of e of the load acting from e on (the sine's
+        phase from the end the moment starts at: sin(k (L - x)) = sin(k x))."""
+        if load.shape == "uniform":
+            return u**2 / 2
+        return (k * np.cos(k * e) * u - 2 * np.cos(k * (e + u / 2)) * np.sin(k * u / 2)) / k**2
+
+    def d2(t: float, side: int) -> np.ndarray:
+        """D2[S_e] (``side`` = 1) or D2[T_e] (``side`` = -1) on every row, e = t dx."""
+        out = own * (side * (p - t) >= J - 1e-9)
         rows, d = _offset_grid(t, J, J)
         across = (rows >= 0) & (rows < n) & (np.abs(rows - t) < J - 1e-9)
-        sv = d[across] * dx  # x - e per row and offset
-        if load.shape == "uniform":
-            S = np.maximum(sv, 0.0) ** 2 / 2
-        else:
-            e = t * dx
-            S = np.where(sv > 0, k * np.cos(k * e) * sv - 2 * np.cos(k * (e + sv / 2)) * np.sin(k * sv / 2), 0.0)
-            S = S / k**2
-        out[rows[across]] = S @ st
+        u = side * d[across] * dx  # distance from e on the loaded side, per row and offset
+        e = t * dx if side == 1 else L - t * dx
+        out[rows[across]] = np.where(u > 0, kink(e, np.maximum(u, 0.0)), 0.0) @ st
         return out
 
-    q = own if a <= 0.0 else d2s(a / dx)
-    if b < L:
-        q = q - d2s(b / dx)
-    return load.value * q
+    zero = np.zeros(n)
+    s_a, t_a = (own, zero) if a <= 0.0 else (d2(a / dx, 1), d2(a / dx, -1))
+    s_b, t_b = (zero, own) if b >= L else (d2(b / dx, 1), d2(b / dx, -1))
+    return load.value * 0.5 * ((s_a - s_b) + (t_b - t_a))
 
 
 # -- supports as measures of w ---------------------------------------------------------------------------------
@@ -281,7 +287,7 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
     out = []
     for name, a in spots:
         d = min(a, L - a)
-        if d < reach * dx:
+        if within(d, reach, dx):
             out.append(
                 f"{name} at {a:g} is {d / dx:.3g} spacings from an end, inside the boundary layer of {reach} "
                 f"spacings: expect large errors; use at least {int(np.ceil(reach * L / d)) + 1} points"
@@ -296,7 +302,8 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
     ]
     others += spots
     for name, a in spots[: len(scene.supports.inner)]:
-        near = [(o, b) for o, b in others if o != name and 0.0 < b < L and 0.0 < abs(b - a) < 4 * dx]
+        gap = [(o, b, abs(b - a)) for o, b in others if o != name and 0.0 < b < L]
+        near = [(o, b) for o, b, d in gap if 0.0 < d and within(d, 4, dx)]
         for o, b in near:
             out.append(
                 f"{name} at {a:g} and {o} at {b:g} are {abs(b - a) / dx:.3g} spacings apart: the support's "

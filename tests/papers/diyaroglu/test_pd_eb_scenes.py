@@ -177,3 +177,31 @@ def test_a_load_edge_beside_a_taylor_ghost_end_is_warned(right):
         assert (error > 5e-3) == inside and error < 2e-2, (spacings, error)
         if said:
             assert f"{spacings:.3g} spacings from the right end" in said[0] and "use at least" in said[0], said
+
+
+@pytest.mark.parametrize("scale", [1e-6, 1e-3, 7.0, 1e6])
+def test_a_distance_of_whole_spacings_warns_alike_at_every_scale(scale):
+    """Thresholds of whole spacings (an inner support 10 spacings from an end, a span end 4 spacings from it, a load
+    2J spacings from an end for its kink) decide alike whatever the rounding of the scaled positions: the same
+    warnings, and the same relative deflection, on a scene scaled in length."""
+    import re
+
+    def scaled(s: float) -> dict:
+        d = scene_dict(
+            "pinned",
+            "clamped",
+            [
+                {"type": "distributed", "value": -500.0, "start": 0.7 * s, "end": 1.5 * s},  # 4 spacings from 0.5
+                {"type": "distributed", "value": 200.0, "start": 0.3 * s, "end": 1.1 * s, "shape": "sine"},  # 2J
+                {"type": "point_force", "position": 1.7 * s, "value": -100.0 * s},  # 6 spacings from the end
+            ],
+            beam={"length": 2.0 * s},
+            section={"width": 0.05 * s, "height": 0.1 * s},
+        )
+        d["supports"]["inner"] = [{"type": "pinned", "position": 0.5 * s}]  # 10 spacings from the left end
+        return d
+
+    base, other = (run(parse_scene(scaled(s)), "pd-eb", points=41) for s in (1.0, scale))
+    words = lambda r: sorted(re.sub(r"[-+0-9.e]+", "#", w) for w in r.info.get("warnings", []))  # noqa: E731
+    assert words(other) == words(base)
+    assert np.allclose(other.w / np.abs(other.w).max(), base.w / np.abs(base.w).max(), rtol=0, atol=1e-12)
