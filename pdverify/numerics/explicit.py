@@ -207,6 +207,18 @@ def integrate(
     )
 
 
+def step_warnings(dt: float, limit: float) -> list[str]:
+    """The warning of a given time step above the explicit scheme's stable limit: the run is unstable, and one short
+    enough to end before its growth shows is wrong by as much without blowing up."""
+    if not dt > limit * (1 + 1e-9):
+        return []
+    return [
+        f"time_step = {dt:.4g} s is {dt / limit:.3g} x the stable limit {limit:.4g} s of the explicit scheme: the run "
+        f"is unstable and its history wrong even where it has not blown up yet; use time_step <= {limit:.4g} s or "
+        "leave time_step out"
+    ]
+
+
 def dynamic_info(run: Run, probes: np.ndarray, label: str = "w") -> tuple[dict, dict]:
     """(info, writers) of a transient result, as the other dynamic models give them: analysis, dt, dt_limit, steps,
     damping, omega1, energy_drift, scheme_drift and the history (t, one series per probe, the ledger); the
@@ -224,6 +236,8 @@ def dynamic_info(run: Run, probes: np.ndarray, label: str = "w") -> tuple[dict, 
         "energy_ledger": run.ledger,
         "history": {"t": run.t, "series": series, "energy": run.energy, "ylabel": "deflection"},
     }
+    if flags := step_warnings(run.dt, run.dt_limit):
+        info["warnings"] = flags
     cols = {"t": run.t, **{f"x={p:g}": run.values[:, k] for k, p in enumerate(probes)}}
     text = columns_csv({**cols, **ledger_columns(run.t, run.energy)}, fmt="%.12g")
     return info, {".csv": lambda path: Path(path).write_text(text)}

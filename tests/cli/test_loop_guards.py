@@ -63,3 +63,22 @@ def test_the_count_at_the_limit():
     for end in (1.0 + 1e-6, float("nan")):
         with pytest.raises(InputError, match="more than the limit"):
             step_count(end, 1.0 / MAX_STEPS, "time_step")
+
+
+@pytest.mark.parametrize(
+    "model, base",
+    [(m, BEAM) for m in ("pd-eb", "pd-bond-pair", "pd-timoshenko", "pd-higher-order")] + [("pd-rod", ROD)],
+)
+def test_a_time_step_above_the_stable_limit_is_warned(model, base, tmp_path):
+    """An explicit run whose given time_step is above its stable limit is unstable; one that ends before its growth
+    shows has not blown up, but its history is wrong: it carries a warning naming the limit (none at the limit)."""
+    from pdverify.registry import run
+
+    first = run(load_scene(scene(tmp_path, base, end_time=1e-3)), model, points=21)
+    limit = float(first.info["dt_limit"])
+    assert not any("stable limit" in w for w in first.info.get("warnings", []))
+    at = run(load_scene(scene(tmp_path, base, end_time=3 * limit, time_step=limit)), model, points=21)
+    assert not any("stable limit" in w for w in at.info.get("warnings", []))
+    over = run(load_scene(scene(tmp_path, base, end_time=6 * limit, time_step=3 * limit)), model, points=21)
+    flags = [w for w in over.info.get("warnings", []) if "stable limit" in w]
+    assert len(flags) == 1 and f"{limit:.4g}" in flags[0] and "3 x" in flags[0], over.info.get("warnings")

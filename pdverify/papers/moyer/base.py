@@ -12,6 +12,7 @@ from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError, SolveError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
+from ...numerics.explicit import step_warnings
 from ...numerics.loads import boundary_layer_warnings, held_rotation_warnings, moment_rotation_warnings
 from .constraints import reactions, solve_with_holds
 from .ends import FIT_POINTS
@@ -180,6 +181,8 @@ class _MoyerModel(Model):
             flag = stabilisation_warning(h, params)
             if flag:
                 info.setdefault("warnings", []).append(flag)
+            if fast := step_warnings(h.dt, h.dt_limit):
+                info.setdefault("warnings", []).extend(fast)
         elif not scene.supports.simple:  # springs, supports inside the span (.constraints)
             with timer("solve"):
                 u, sinfo, R, loads, kinks = self._held(scene, params, disc)
