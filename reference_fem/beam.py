@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicHermiteSpline
 
-from pdverify.core.contract import LOAD_TYPES, Model, Option, System
+from pdverify.core.contract import LOAD_TYPES, MAX_POINTS, Model, Option, System
 from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.numerics.band import Band
@@ -198,7 +198,9 @@ class FemEulerBernoulli(_BeamFE):
         "20,001 nodes); nodally exact (loads on nodes)"
     )
     options = (
-        Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),
+        Option(
+            "points", int, 101, "nodes along the beam before load positions are added", minimum=2, maximum=MAX_POINTS
+        ),
         FORM,
         Option("fibres", int, 400, "layers of each section along a load path (two fibres each)", minimum=1),
     )
@@ -308,7 +310,9 @@ class FemTimoshenko(_BeamFE):
         "ElementLineP1, one / two Gauss points, for contrast"
     )
     options = (
-        Option("points", int, 101, "nodes along the beam before load positions are added", minimum=2),
+        Option(
+            "points", int, 101, "nodes along the beam before load positions are added", minimum=2, maximum=MAX_POINTS
+        ),
         Option(
             "variant",
             str,

@@ -51,7 +51,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from pdverify.core.contract import Model, Option
+from pdverify.core.contract import MAX_POINTS, Model, Option
 from pdverify.core.errors import InputError
 from pdverify.core.geometry import geometry, mechanism_message
 from pdverify.core.result import Result, Timer
@@ -241,7 +241,14 @@ class FemPlaneStress(Model):
     inner_supports = True
     segments = True
     options = (
-        Option("points", int, 101, "nodes along the beam (elements + 1), load positions added", minimum=2),
+        Option(
+            "points",
+            int,
+            101,
+            "nodes along the beam (elements + 1), load positions added",
+            minimum=2,
+            maximum=MAX_POINTS,
+        ),
         Option("layers", int, 8, "elements through the thickness (even: the mid-line is a node row)", minimum=2),
         Option(
             "element",

@@ -166,6 +166,10 @@ def modes(
     sc = load_scene(scene)
     _SCENE_FILES[:] = [sc]
     given = grid_options(parse_options(option), points=points, horizon=horizon, horizon_length=horizon_length)
+    from ..measure.memory import check_memory
+    from ..registry import get_model, model_argument
+
+    check_memory(sc, get_model(model_argument(model)), given)
     table = _modes(sc, model, given, count)
     for w in table.warnings:
         typer.echo(f"warning: {w}", err=True)

@@ -97,7 +97,8 @@ class Option:
                 + (" (the horizon must cover at least one spacing)" if self.name == "horizon" else "")
             )
         if self.maximum is not None and v > self.maximum:
-            raise InputError(f"{self.name} = {value!r}: model {model} needs {self.name} <= {self.maximum:g}")
+            shown = format(v, ".3g") if isinstance(v, int) and v > 1e15 else repr(value)  # not 300 digits
+            raise InputError(f"{self.name} = {shown}: model {model} needs {self.name} <= {self.maximum:g}")
         return v
 
 
@@ -172,7 +173,10 @@ LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "poi
 # an end motion of [dynamics.left/right] and the load component (Model attribute) whose unknown it moves
 MOTION_COMPONENT = {"displacement": "bending", "rotation": "bending", "axial": "axial", "twist": "torsion"}
 
-POINTS = Option("points", int, 101, "material points / nodes along the axis, ends included", minimum=2)
+MAX_POINTS = 2**53  # a grid's points: a whole number float64 holds exactly (and a results table's int64)
+POINTS = Option(
+    "points", int, 101, "material points / nodes along the axis, ends included", minimum=2, maximum=MAX_POINTS
+)
 HORIZON_LENGTH = Option(
     "horizon_length",
     float,

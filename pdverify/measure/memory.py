@@ -16,6 +16,8 @@ from ..registry import run
 PROBE_FROM = 200_001  # points; below this a run needs < ~1 GB for every model (bench.jsonl) and is not probed
 PROBES = (201, 401)
 BYTES_PER_BAND_ENTRY = 6 * 8  # float64 entries, x6 the banded matrix for the copies and workspaces of a run
+BYTES_PER_POINT = 16 * 8  # the least any run holds per point: the grid and its output fields (x, w, rotation, the
+# resultants, their references and errors in a study), float64; the whole need of an exact model's run
 
 
 def available_bytes() -> int | None:
@@ -63,6 +65,13 @@ def check_memory(scene, model, given: dict) -> None:
     if not isinstance(points, int) or points < PROBE_FROM:
         return
     have = available_bytes()
+    if have is not None and BYTES_PER_POINT * points > have:  # the output alone (exact models: all of it)
+        raise SolveError(
+            f"points = {points if points < 1e15 else format(points, '.3g')}: model {model.name} would need at least "
+            f"{BYTES_PER_POINT * points / 2**30:.3g} GiB for "
+            f"its grid and fields, {have / 2**30:.1f} GiB is available; use at most about {have // BYTES_PER_POINT} "
+            "points"
+        )
     est = estimate_bytes(scene, model, params) if have is not None else None
     if est is None:
         return

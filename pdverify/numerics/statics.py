@@ -46,7 +46,9 @@ def closed_reactions(scene: Scene, model: dict[str, float]) -> dict:
     P, Mo = load_resultants(scene)
     L = scene.length
     first = next(k for k in keys if k[1] != 0.0)
-    second = next(k for k in keys if k is not first and abs(first[1] * k[2] - first[2] * k[1]) > 1e-9 * max(L, 1e-300))
+    # independent of the first force: another force 1e-9 L away from it (the determinant a length), or a moment (1)
+    scale = lambda k: max(L, 1e-300) if k[1] else 1.0  # noqa: E731
+    second = next(k for k in keys if k is not first and abs(first[1] * k[2] - first[2] * k[1]) > 1e-9 * scale(k))
     out = {f"{kind}_{side}": 0.0 for side in ("left", "right") for kind in ("force", "moment")}
     out.update({k: float(model.get(k, 0.0)) for k, _, _ in keys})
     rest_f = P + sum(out[k] * cf for k, cf, _ in keys if k not in (first[0], second[0]))

@@ -62,7 +62,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.contract import NONLOCAL, Model, Option, System
+from ...core.contract import MAX_POINTS, NONLOCAL, Model, Option, System
 from ...core.errors import InputError
 from ...core.geometry import geometry, mechanism_message
 from ...core.result import Result, Timer, merge_info
@@ -93,7 +93,7 @@ class PDCurved(Model):
         "(equations: docs/design/formulas.md §2–3)"
     )
     options = (
-        Option("points", int, 101, "particles along the axis, ends included", minimum=5),
+        Option("points", int, 101, "particles along the axis, ends included", minimum=5, maximum=MAX_POINTS),
         Option("degree", int, 4, "polynomial degree P of the PDDO functions", minimum=2, maximum=10),
         Option(
             "horizon",

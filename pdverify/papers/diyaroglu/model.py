@@ -41,7 +41,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.contract import NONLOCAL, Model, Option, Rule, System
+from ...core.contract import MAX_POINTS, NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Distributed, PointMoment, Scene
@@ -101,7 +101,7 @@ class PDEulerBernoulli(Model):
     title = "ordinary state-based PD Euler–Bernoulli beam"
     source = "Diyaroglu et al. 2019, An Euler–Bernoulli beam formulation in an ordinary state-based PD framework"
     options = (
-        Option("points", int, 101, "material points along the beam, ends included", minimum=5),
+        Option("points", int, 101, "material points along the beam, ends included", minimum=5, maximum=MAX_POINTS),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing (3 = the paper's 3.015 dx)", minimum=1.0),
         Option("variant", str, "corrected", "paper | corrected", choices=("paper", "corrected")),
         Option(

@@ -29,7 +29,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.contract import LOAD_TYPES, NONLOCAL, Model, Option, Rule, System
+from ...core.contract import LOAD_TYPES, MAX_POINTS, NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
@@ -172,7 +172,7 @@ class PDBondPair(Model):
         "rules: docs/design/formulas.md §1)"
     )
     options = (
-        Option("points", int, 201, "material points along the beam, ends included", minimum=5),
+        Option("points", int, 201, "material points along the beam, ends included", minimum=5, maximum=MAX_POINTS),
         Option("horizon", float, 3.0, "horizon as a multiple of the spacing", minimum=1.0),
         Option(
             "variant",
