@@ -21,6 +21,7 @@ from .scene import (
     Distributed,
     Dynamics,
     EndMotion,
+    InnerSupport,
     Material,
     Motion,
     PointForce,
@@ -28,6 +29,8 @@ from .scene import (
     PointTorque,
     Scene,
     Section,
+    Segment,
+    Spring,
     Supports,
     bends,
     straight_mechanism,
@@ -73,6 +76,10 @@ def _message(err: dict, data: dict) -> str:
         cls = Scene
         if parent and parent[0] == "dynamics":
             cls = {1: Dynamics, 2: EndMotion}.get(len(parent), Motion)
+        elif parent[:1] == ("supports",) and len(parent) >= 2:  # an end's spring table or an inner support
+            cls = InnerSupport if parent[1] == "inner" else Spring
+        elif parent[:1] == ("segments",):
+            cls = Segment
         elif parent and parent[0] in _TABLES:
             cls = _TABLES[parent[0]]
         elif parent and parent[0] == "loads" and len(parent) >= 3:
@@ -105,6 +112,11 @@ def _message(err: dict, data: dict) -> str:
         )
     if kind == "literal_error" and loc.startswith("supports."):
         return f"{loc} = {value!r}: unknown support; allowed: {', '.join(SUPPORTS)}, or a spring table"
+    if kind == "list_type" and loc in ("loads", "segments", "supports.inner") and isinstance(value, dict):
+        return (
+            f"{loc}: one table is given where a list of them is needed: write each as [[{loc}]] (double brackets), "
+            f"not [{loc}]"
+        )
     if kind == "float_type" and isinstance(value, bool):
         return f"{loc} = {str(value).lower()}: a number is needed here, not true/false"
     if kind == "float_type" and isinstance(value, str):
@@ -292,6 +304,13 @@ def _check_magnitudes(scene: Scene) -> list[str]:
             "EA": mat.E * sec.A,
             "kGA": sec.k * mat.G * sec.A,
         }
+        ratio = mat.G / mat.E  # the shear and bending stiffnesses' ratio, which the beam models divide by
+        if not 1e-100 <= ratio <= 1e100:
+            return [
+                f"{'material' if where == 'section' else where}: shear_modulus = {mat.G!r} and youngs_modulus = "
+                f"{mat.E!r} give G / E = {ratio!r}, outside "
+                "1e-100..1e100 (the models divide by it); give the two moduli of one material in one unit"
+            ]
         for name, value in derived.items():
             if not (math.isfinite(value) and value >= tiny):
                 return [
