@@ -38,6 +38,7 @@ from .beam_elements import (
     line_load,
     linear_shapes,
     linear_timoshenko,
+    merge_warnings,
     natural_band,
     nodal_point_loads,
     reactions,
@@ -118,6 +119,8 @@ class _BeamFE(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         u, info, dofs, nodes, timer = self.solve_nodal(scene, params, self.what(params))
         info.update(element=self.element(params), elements=len(nodes) - 1)
+        if merged := merge_warnings(scene, nodes):
+            info.setdefault("warnings", []).extend(merged)
         fields = self.resultants(scene, params, nodes, u) if self.element_matrices(scene, params, nodes) else {}
         return self.new_result(
             scene,

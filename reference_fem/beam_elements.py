@@ -34,6 +34,27 @@ def beam_nodes(scene: Scene, points: int) -> np.ndarray:
     return np.insert(x, i[new], e[new])  # sorted, no O(n log n) sort of the whole grid
 
 
+def merge_warnings(scene: Scene, nodes: np.ndarray) -> list[str]:
+    """A load, span end or inner support within 1e-12 L of a node, and further than its rounding, is taken on that node
+    (:func:`beam_nodes`): its distance to the node is lost, and a result that grows with it (a force beside a clamp
+    deflects the beam by its arm squared) is lost with it; one warning each."""
+    L = scene.length
+    marks = [(f"supports.inner[{i}]", s.position) for i, s in enumerate(scene.supports.inner)]
+    for i, ld in enumerate(scene.loads):
+        for v in scene.span(ld) if isinstance(ld, Distributed) else (ld.position,):
+            marks.append((f"loads[{i}]", v))
+    out = []
+    for name, v in marks:
+        d = np.abs(nodes - v).min()
+        if 1e-14 * L < d <= 1e-12 * L:  # a distance of more than the positions' rounding (a few eps L)
+            out.append(
+                f"{name} at {v:g} lies {d:.3g} from the node at {nodes[np.argmin(np.abs(nodes - v))]:g}, within "
+                "1e-12 of the length, and is taken on it: a result that depends on that distance is lost; give the "
+                "position on the node, or the scene in a shorter length"
+            )
+    return out
+
+
 def line_load(scene: Scene, x: np.ndarray) -> np.ndarray:
     """q(x) of all distributed loads (N/m) at points x (span ends are nodes: no straddling)."""
     q = np.zeros_like(x)

@@ -7,9 +7,18 @@ import numpy as np
 from ..core.contract import LOAD_TYPES, POINTS, Model
 from ..core.result import Result, Timer
 from ..core.scene import Scene
+from ..numerics.error_bound import record_bound
 from .brittle import BrittleDisplacement, displacement_load
 from .plastic import solve_path
 from .straight import solve_straight
+
+
+def bound_grid(scene: Scene) -> np.ndarray:
+    """Where the round-off bound of a closed form is taken (beside the points asked for): 1001 points along the
+    beam, its supports and its loads' positions and span ends."""
+    marks = [s.position for s in scene.supports.inner]
+    marks += [v for ld in scene.loads for v in ((ld.position,) if hasattr(ld, "position") else scene.span(ld))]
+    return np.concatenate([np.linspace(0.0, scene.length, 1001), np.asarray(marks, float)])
 
 
 def follows_path(scene: Scene) -> bool:
@@ -61,7 +70,13 @@ class ExactBeam(Model):
     def evaluator(self, scene: Scene, params: dict):
         if not self.shear and follows_path(scene):
             return self._path_evaluator(scene)
-        return solve_straight(scene, self.shear).fields  # the constants once, then any x
+        sol = solve_straight(scene, self.shear)  # the constants once, then any x
+
+        def fields(x):
+            return sol.fields(x)
+
+        fields.error_bound = sol.rounding(bound_grid(scene))  # a study's reference: its rows judge against it
+        return fields
 
     def _path_evaluator(self, scene: Scene):
         """The last step's fields of the load path at any x."""
@@ -76,6 +91,8 @@ class ExactBeam(Model):
         with timer("solve"):
             sol = solve_straight(scene, self.shear)
             f = sol.fields(x)
+        info = {"reactions": sol.reactions()}
+        record_bound(info, sol.rounding(np.concatenate([x, bound_grid(scene)])))
         return self.new_result(
             scene,
             params,
@@ -85,7 +102,7 @@ class ExactBeam(Model):
             fields={"M": f["M"], "V": f["V"]},
             dofs=4,
             timings=timer.timings,
-            info={"reactions": sol.reactions()},
+            info=info,
         )
 
     def solve_load_path(self, scene: Scene, params: dict) -> Result:

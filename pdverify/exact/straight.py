@@ -24,6 +24,7 @@ import numpy as np
 
 from ..core.errors import SolveError
 from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring, straight_mechanism
+from ..numerics.error_bound import ENTRY_ROUNDING
 
 
 def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:
@@ -260,12 +261,31 @@ class StraightSolution:
                 f"supports = {sup.kind('left')}-{sup.kind('right')}: the beam is a mechanism; "
                 "fix the deflection at one end and the rotation somewhere"
             )
+        self.cond = float(np.linalg.cond(As, 1))
         return np.linalg.solve(As, b) * scale
 
     # -- results ---------------------------------------------------------------------------------------------------
     def fields(self, x) -> dict[str, np.ndarray]:
         lin = self._linear(np.asarray(x, float))
         return {name: A @ self.c + p for name, (A, p) in lin.items() if name in ("w", "rotation", "M", "V")}
+
+    def rounding(self, x) -> float:
+        """Round-off bound of w and the rotation at the points x, each relative to its largest value there: a field
+        is the sum A c + p of its terms (the unknowns' and the loads'), which cancel where a load or support sits
+        close to an end relative to the length (a cantilever's tip under a force at a: terms of P L^3 / EI for a
+        result of P a^2 L / EI), so each rounds by about (ENTRY_ROUNDING + cond) eps of the sum of the terms'
+        magnitudes (Higham, *Accuracy and Stability*, 2nd ed., eq. 4.3: a sum's error bound; cond: the scaled
+        boundary system's 1-norm condition number, which carries c's own rounding)."""
+        lin = self._linear(np.asarray(x, float))
+        c = (ENTRY_ROUNDING + self.cond) * np.finfo(float).eps
+        out = 0.0
+        for name in ("w", "rotation"):
+            A, p = lin[name]
+            top = float(np.abs(A @ self.c + p).max())
+            size = float((np.abs(A) @ np.abs(self.c) + np.abs(p)).max())
+            if top > 0.0:
+                out = max(out, c * size / top)
+        return float(f"{out:.3g}")
 
     def reactions(self) -> dict[str, float]:
         """Support reactions (force +z, moment counter-clockwise on the beam): at the ends, and of each support
