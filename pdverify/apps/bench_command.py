@@ -47,12 +47,14 @@ def bench(
     from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models
 
     names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
+    names, points = list(dict.fromkeys(names)), list(dict.fromkeys(points or ())) or None  # each once
     if out is not None:
         check_folder(out, "--out")
-    if scene is not None:
-        load_scene(scene)  # a missing or bad scene: one line, exit 2, before any timing
+    sc = load_scene(scene) if scene is not None else None  # a missing or bad scene: one line, exit 2, before timing
     for n in names:
         m = get_model(n)
+        if sc is not None and (why := m.check(sc)):  # a model that cannot take the scene: before any timing
+            raise InputError([f"--scene {scene}: model {n} cannot solve it: {w}" for w in why])
         grid = m.option("points")
         for p in points or ():
             if grid is None:

@@ -9,6 +9,7 @@ from enum import Enum
 from pathlib import Path
 
 from ..core.errors import InputError, OutputError
+from ..core.result import one_line
 
 
 class Format(str, Enum):  # noqa: UP042 (typer reads str-Enum choices)
@@ -30,6 +31,7 @@ def result_table(result) -> str:
             lines.append(f"# {k}: {v}")
     lines += [f"# {w}" for w in result.warning_lines()]
     lines += [f"# {w}" for w in result.output_lines()]
+    lines = [one_line(line) for line in lines]
     lines.append("".join(f"{n:>16}" for n in names))
     n = len(cols["x"])
     for i in range(n):

@@ -117,7 +117,7 @@ class Result:
         without either it is a plain table)."""
         shown = self.info.get("sections") or self.info.get("estimate")
         head = self.warning_lines() + (self.output_lines() if shown else [])
-        return "".join(f"# {line}\n" for line in head) + columns_csv(self.columns())
+        return "".join(f"# {one_line(line)}\n" for line in head) + columns_csv(self.columns())
 
     def output_lines(self) -> list[str]:
         """``reactions: force_left=...`` and, per station of ``info["sections"]``, ``section x = ...: z,
@@ -200,6 +200,15 @@ def plain_json(v):
     if isinstance(v, np.bool_):
         return bool(v)
     return v
+
+
+_CONTROL = {c: f"\\x{c:02x}" for c in (*range(32), 127)} | {9: " ", 10: "\\n", 13: "\\r"}
+
+
+def one_line(text) -> str:
+    """``text`` on one line: its control characters (a newline in a scene's name, a NUL) written as escapes, so a
+    ``#`` comment line of a table or CSV stays one line."""
+    return str(text).translate(_CONTROL)
 
 
 class Timer:

@@ -99,10 +99,10 @@ def _message(err: dict, data: dict) -> str:
         return f"{loc}: missing; this key is required"
     if kind == "union_tag_invalid" or kind == "union_tag_not_found":
         given = value.get("type") if isinstance(value, dict) else value
-        return (
-            f"{loc}.type = {given!r}: unknown load type; allowed: point_force, point_moment, distributed, "
-            "point_torque, displacement"
-        )
+        kinds = "point_force, point_moment, distributed, point_torque, displacement"
+        if given is None:
+            return f"{loc}.type: missing; every load names its type: {kinds}"
+        return f"{loc}.type = {given!r}: unknown load type; allowed: {kinds}"
     if kind == "literal_error" and loc.startswith("supports.inner"):
         return f"{loc} = {value!r}: unknown support inside the span; allowed: pinned, roller, clamped, spring"
     if kind == "literal_error" and loc.startswith("supports.") and loc.endswith(".type"):

@@ -252,10 +252,17 @@ class StraightSolution:
         As, b = As / row[:, None], b / row
         if np.linalg.matrix_rank(As, tol=1e-10) < As.shape[1]:
             if straight_mechanism(self.scene) is None:  # the supports hold it: their conditions are near-dependent
+                many = len(sup.inner)
                 raise SolveError(
                     f"supports = {sup.kind('left')}-{sup.kind('right')}: the supports' conditions are dependent at "
-                    "working precision (the boundary system's rank test at 1e-10): a spring far softer than the "
-                    "beam, or supports that nearly coincide; stiffen the spring, or give the supports as one"
+                    f"working precision (the boundary system's rank test at 1e-10, {As.shape[0]} conditions): a spring "
+                    "far softer than the beam, or supports that nearly coincide"
+                    + (
+                        f", or the {many} supports.inner too many for the closed form (fem-eb solves them)"
+                        if many
+                        else ""
+                    )
+                    + "; stiffen the spring, or give the supports as one"
                 )
             raise SolveError(
                 f"supports = {sup.kind('left')}-{sup.kind('right')}: the beam is a mechanism; "

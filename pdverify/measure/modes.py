@@ -18,7 +18,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..core.errors import InputError, SolveError
-from ..core.result import columns_csv, plain_json
+from ..core.result import columns_csv, one_line, plain_json
 from ..core.scene import HELD, ROD_HELD, Scene
 from ..exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
 from ..exact.vibration_eb import eb_frequencies
@@ -154,7 +154,7 @@ class ModeTable:
 
     def to_csv(self) -> str:
         head = [f"# {n}" for n in self.notes] + [f"# warning: {w}" for w in self.warnings]
-        return "".join(f"{line}\n" for line in head) + columns_csv(self.columns(), fmt="%.12g")
+        return "".join(f"{one_line(line)}\n" for line in head) + columns_csv(self.columns(), fmt="%.12g")
 
     def to_json(self) -> str:
         cols = self.columns()
@@ -179,6 +179,7 @@ class ModeTable:
         lines.append(f"# reference: {self.reference}")
         lines += [f"# {n}" for n in self.notes]
         lines += [f"# warning: {w}" for w in self.warnings]
+        lines = [one_line(line) for line in lines]
         cols = self.columns()
         lines.append(f"{'mode':>5}" + "".join(f"{n:>16}" for n in list(cols)[1:]))
         for i in range(len(self.analytic)):

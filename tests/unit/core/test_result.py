@@ -12,3 +12,22 @@ def test_merge_info_keeps_the_warnings_of_both_and_updates_the_rest():
     assert got is info and info["warnings"] == ["the model's", "the solve's"]
     assert info["cond"] == 2.0 and info["analysis"] == "static"
     assert "warnings" not in merge_info({}, {"cond": 3.0})
+
+
+def test_comment_lines_stay_one_line_whatever_the_scene_name():
+    """A scene name with a newline or a NUL is written escaped in the table's and the CSV's # lines."""
+    from pdverify.apps.output import result_table
+    from pdverify.core.scene_file import parse_scene
+    from pdverify.registry import run
+
+    d = {
+        "name": "a\nb\x00c",
+        "beam": {"length": 1.0},
+        "section": {"width": 0.01, "height": 0.01},
+        "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+        "supports": {"left": "clamped", "right": "free"},
+        "loads": [{"type": "point_force", "position": 1.0, "value": -50.0}],
+    }
+    text = result_table(run(parse_scene(d), "exact-eb", points=3))
+    head = [line for line in text.splitlines() if not line.lstrip()[:1].isdigit() and not line.lstrip().startswith("-")]
+    assert all(line.startswith("#") for line in head[:-1]) and "a\\nb\\x00c" in head[0], head
