@@ -204,6 +204,9 @@ def _check_request(scene: Scene, tolerance: float, static: bool) -> None:
         )
     if not scene.loads and not moves_ends(scene):
         raise InputError("loads: the scene carries no load (its static response is zero); nothing to advise on")
+    carried = [ld for ld in scene.loads if any(getattr(ld, k, None) for k in ("value", "axial", "torque"))]
+    if not carried and not moves_ends(scene):
+        raise InputError("loads: every load is zero (the static response is zero); nothing to advise on")
 
 
 def _capable(scene: Scene, static: bool, include_reference: bool) -> tuple[list, list[str]]:

@@ -181,6 +181,7 @@ CLI_CASES = [
     ("report-shifted-results", ["report", "{shifted}"], 2, "line 2 has"),
     # extreme numbers of the scene refused in one line
     ("modes-density-tiny", ["modes", "{dyn_tiny_rho}", "-m", "pd-timoshenko"], 3, "floating-point range"),
+    ("advise-every-load-zero", ["advise", "{zero_load}"], 2, "every load is zero"),
     ("unknown-command", ["nosuch"], 2, "nosuch"),
     ("unknown-global-option", ["--bogus"], 2, "--bogus"),
     ("models-extra-argument", ["models", "extra"], 2, "extra"),
@@ -238,6 +239,7 @@ def files(tmp_path_factory):
     dyn = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
     (d / "dyn.toml").write_text(dyn)
     (d / "dyn_tiny_rho.toml").write_text(re.sub(r"density = [0-9.e+-]+", "density = 1e-300", dyn))
+    (d / "zero_load.toml").write_text(re.sub(r"value = [0-9.e+-]+", "value = 0.0", text))
     head = f'name = "bad"\nscenes = ["{SCENE.as_posix()}"]\nreference = "exact-eb"\n'
     runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
     (d / "study.toml").write_text(head + runs)
@@ -274,6 +276,7 @@ def files(tmp_path_factory):
         "link_dev": d / "link_dev.csv",
         "dyn": d / "dyn.toml",
         "dyn_tiny_rho": d / "dyn_tiny_rho.toml",
+        "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
         "study_checks": d / "study_checks.toml",
