@@ -317,6 +317,8 @@ def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
     name = data.get("name")
     if not isinstance(name, str) or not name:
         errors.append(f"{path}: name: missing; give the study a name")
+    if not isinstance(data.get("description", ""), str):
+        errors.append(f'{path}: description = {data["description"]!r}: give a text in quotes, e.g. description = "..."')
     scenes = data.get("scenes")
     if not isinstance(scenes, list) or not scenes or not all(isinstance(s, str) for s in scenes):
         given = "missing" if scenes is None else f"= {scenes!r}"

@@ -175,6 +175,7 @@ CLI_CASES = [
     ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
     # study files
     ("study-benchmarks-number", ["study", "{study_bench5}"], 2, "benchmarks = 5"),
+    ("study-description-list", ["study", "{study_description_list}"], 2, "description = ['a']: give a text"),
     ("study-checks-text", ["study", "{study_checks}"], 2, "checks = 'all'"),
     # damaged study folders
     ("report-empty-results", ["report", "{empty_results}"], 2, "no cases"),
@@ -244,6 +245,7 @@ def files(tmp_path_factory):
     runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
     (d / "study.toml").write_text(head + runs)
     (d / "study_bench5.toml").write_text(head + "benchmarks = 5\n" + runs)
+    (d / "study_description_list.toml").write_text(head + 'description = ["a"]\n' + runs)
     (d / "study_checks.toml").write_text(head + 'checks = "all"\n' + runs)
     header = "case_id,scene_file,scene,status,model,slenderness,points,err_max\n"
     (d / "empty_results").mkdir()
@@ -279,6 +281,7 @@ def files(tmp_path_factory):
         "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
+        "study_description_list": d / "study_description_list.toml",
         "study_checks": d / "study_checks.toml",
         "empty_results": d / "empty_results",
         "shifted": d / "shifted",
