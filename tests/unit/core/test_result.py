@@ -16,18 +16,13 @@ def test_merge_info_keeps_the_warnings_of_both_and_updates_the_rest():
 
 def test_comment_lines_stay_one_line_whatever_the_scene_name():
     """A scene name with a newline or a NUL is written escaped in the table's and the CSV's # lines."""
+    from helpers import scene_dict
+
     from pdverify.apps.output import result_table
     from pdverify.core.scene_file import parse_scene
     from pdverify.registry import run
 
-    d = {
-        "name": "a\nb\x00c",
-        "beam": {"length": 1.0},
-        "section": {"width": 0.01, "height": 0.01},
-        "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
-        "supports": {"left": "clamped", "right": "free"},
-        "loads": [{"type": "point_force", "position": 1.0, "value": -50.0}],
-    }
+    d = scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": -50.0}], name="a\nb\x00c")
     text = result_table(run(parse_scene(d), "exact-eb", points=3))
     head = [line for line in text.splitlines() if not line.lstrip()[:1].isdigit() and not line.lstrip().startswith("-")]
     assert all(line.startswith("#") for line in head[:-1]) and "a\\nb\\x00c" in head[0], head
