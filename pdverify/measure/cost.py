@@ -23,7 +23,7 @@ def cost_slope(rows: list[dict]) -> dict[str, float]:
         if accurate(r) and r.get("total_s"):
             by.setdefault(r["model"], []).append((r["points"], r["total_s"]))
     for m, pts in by.items():
-        if len(pts) >= 2:
+        if len({p for p, _ in pts}) >= 2:  # a slope needs two sizes (one size timed twice fits nothing)
             n, t = np.log(np.array(pts, float)).T
             out[m] = float(np.polyfit(n, t, 1)[0])
     return out

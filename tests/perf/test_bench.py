@@ -87,6 +87,8 @@ def test_cost_slope_recovers_power():
         for n in (10, 100, 1000)
     ]
     assert abs(cost_slope(rows)["m"] - 1.5) < 1e-12
+    twice = [dict(rows[0]), dict(rows[0], total_s=2e-5)]  # one size timed twice: no slope (polyfit of one x)
+    assert cost_slope(twice) == {}
 
 
 def test_performance_page_states_targets_and_verdicts(tmp_path):
