@@ -14,7 +14,7 @@ from .straight import solve_straight
 
 
 def bound_grid(scene: Scene) -> np.ndarray:
-    """Where the round-off bound of a closed form is taken (beside the points asked for): 1001 points along the
+    """Where the round-off bound of a closed form is taken, whatever points a solve asks for: 1001 points along the
     beam, its supports and its loads' positions and span ends."""
     marks = [s.position for s in scene.supports.inner]
     marks += [v for ld in scene.loads for v in ((ld.position,) if hasattr(ld, "position") else scene.span(ld))]

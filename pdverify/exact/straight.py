@@ -281,7 +281,7 @@ class StraightSolution:
         is the sum A c + p of its terms (the unknowns' and the loads'), which cancel where a load or support sits
         close to an end relative to the length (a cantilever's tip under a force at a: terms of P L^3 / EI for a
         result of P a^2 L / EI), so each rounds by about (ENTRY_ROUNDING + cond) eps of the sum of the terms'
-        magnitudes (Higham, *Accuracy and Stability*, 2nd ed., eq. 4.3: a sum's error bound; cond: the scaled
+        magnitudes (Higham, *Accuracy and Stability*, 2nd ed., ch. 4: a sum's error bound; cond: the scaled
         boundary system's 1-norm condition number, which carries c's own rounding)."""
         lin = self._linear(np.asarray(x, float))
         c = (ENTRY_ROUNDING + self.cond) * np.finfo(float).eps
