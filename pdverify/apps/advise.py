@@ -14,7 +14,8 @@
    points needed; the ladder of nested grids N, 2N-1, 4N-3 starts two refinements below that prediction
    and stops when the a-posteriori estimate on this very scene (:func:`pdverify.measure.richardson.richardson`,
    as ``solve --estimate``: observed order p from three grids, |w_2 - w_3| / (2^p - 1) relative to max |w|) is
-   below the tolerance with p near the model's promised order; an estimate outside that band is refined further
+   below the tolerance with p near the model's promised order and the coarsest of the three grids resolving the
+   scene's features (:func:`pdverify.measure.richardson.feature_gap`); an estimate that fails either is refined further
    within the budget and, if kept, says it is not asymptotic.
 3. The cheapest candidate whose estimate is below the tolerance wins (cost = its measured solve time);
    the runner-up is the next cheapest. On straight scenes whose exact solution applies (no end motions)
@@ -96,9 +97,10 @@ def estimate(
     start: int = 11,
     max_points: int = 20_001,
     static: bool = False,
-) -> Candidate | None:
-    """Refine nested grids until the Richardson estimate is below tol (or the budget/size runs out).
-    ``static``: the static part of a scene with a [dynamics] table (``run(..., static=True)``)."""
+) -> Candidate:
+    """Refine nested grids until the Richardson estimate is below tol; SolveError naming the last estimate when the
+    budget or the grid limit runs out first. ``static``: the static part of a scene with a [dynamics] table
+    (``run(..., static=True)``)."""
     if static:
         options = dict(options, static=True)
     if name == "fem-plane-stress":
@@ -119,15 +121,18 @@ def estimate(
         spent += dt
         sols.append((n, r, dt))
         if len(sols) >= 3:  # the three finest grids: pdverify.measure.richardson, the estimate solve --estimate gives
-            found = richardson([r for _, r, _ in sols[-3:]], 2, model.measures, model.order)
+            found = richardson([r for _, r, _ in sols[-3:]], 2, model.measures, model.order, scene)
             est, order = found.error, found.order
             if found.error < tol and found.asymptotic:
                 break
         if spent > budget:
             break
         n = 2 * n - 1
-    if found is None or not np.isfinite(est) or est >= tol:
-        return None
+    if found is None or not np.isfinite(est) or est >= tol or not found.resolved:
+        limit = f"its grid limit, {max_points} points" if n > max_points else f"the budget, {budget:g} s"
+        last = "no estimate" if found is None else f"estimate {est:.2g} on N = {found.grids}"
+        why = "" if found is None or found.asymptotic else f", not asymptotic: {found.why}"
+        raise SolveError(f"did not reach {tol:g} before {limit} ({last}{why})")
     n_best, r_best, dt_best = sols[-1]
     ex = None
     options = {k: v for k, v in options.items() if k != "static"}
@@ -177,8 +182,8 @@ def advise(
     rejected += failed + unable
     if not found:
         raise SolveError(
-            f"tolerance = {tolerance:g}: no installed model reaches it on this scene within "
-            f"{budget:g} s; " + "; ".join(rejected[:3])
+            f"tolerance = {tolerance:g}: no installed model reaches it on this scene within {budget:g} s each; "
+            + "; ".join(grouped(rejected))
         )
     return Advice(
         scene.name,
@@ -305,17 +310,22 @@ def _estimates(
         start = 11 if n_pred is None else max(11, min(5001, (n_pred - 1) // 4 + 1))
         try:
             c = estimate(scene, m.name, opts, tolerance, budget, start=start, static=static)
-            if c is not None:
-                c.basis += f"; start N = {start} ({why})"
         except (InputError, SolveError) as exc:
             rejected.append(f"{m.name}: {exc.lines[0]}")
             continue
-        if c is None:
-            rejected.append(f"{m.name}: did not reach {tolerance:g} within the budget ({budget:g} s) / grid limit")
-        else:
-            found.append(c)
+        c.basis += f"; start N = {start} ({why})"
+        found.append(c)
     found.sort(key=lambda c: c.seconds)
     return found, rejected
+
+
+def grouped(rejected: list[str]) -> list[str]:
+    """Lines ``"model: reason"`` with one reason joined into one line naming every model it rejects, in order."""
+    reasons: dict[str, list[str]] = {}
+    for line in rejected:
+        name, _, why = line.partition(": ")
+        reasons.setdefault(why, []).append(name)
+    return [f"{', '.join(names)}: {why}" for why, names in reasons.items()]
 
 
 def format_advice(a: Advice) -> str:

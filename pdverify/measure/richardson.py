@@ -4,8 +4,11 @@ Three solves on grids whose spacings halve (n, 2n - 1, 4n - 3 points, or the two
 differences d_coarse and d_fine of successive grids at the coarser grid's points, the observed order
 p = log2(d_coarse / d_fine) and the error of each grid, e_i = d_(i,i+1) 2^p / (2^p - 1), and of the finest,
 d_fine / (2^p - 1) (Richardson 1911; Roache 1998, ch. 5). The estimate is trusted only in the asymptotic range:
-the observed order within ASYMPTOTIC of the order the model's equations promise (``Model.order``). Where the grids
-agree to their round-off (the solves' own bounds) the model is exact on the scene up to that round-off.
+the observed order within ASYMPTOTIC of the order the model's equations promise (``Model.order``), and the coarsest
+grid fine enough to place the scene's features apart (:func:`feature_gap`: a load, support or break within one
+spacing of another is not resolved, and grids that do not resolve it can converge to each other with a clean order
+while all of them are far from the solution). Where the grids agree to their round-off (the solves' own bounds) the
+model is exact on the scene up to that round-off.
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ class Estimate:
     at: int
     asymptotic: bool
     why: str  # how the estimate was made, or why it is not to be trusted
+    resolved: bool = True  # the coarsest grid places the scene's features apart (False: the estimate means nothing)
 
     def line(self) -> str:
         """One line for every output format."""
@@ -49,6 +53,20 @@ def nested_grids(n: int, least: int) -> tuple[tuple[int, ...], int]:
     return (n, 2 * n - 1, 4 * n - 3), 0
 
 
+def feature_gap(scene) -> float:
+    """The shortest distance along the axis between two of the scene's features: its ends, the supports inside, the
+    positions of point loads and prescribed displacements, the ends of distributed loads and of segments. Features
+    within 1e-9 of the length of each other count as one."""
+    at = [0.0, scene.length] + [s.position for s in scene.supports.inner]
+    for load in scene.loads:
+        at += list(scene.span(load)) if load.type == "distributed" else [load.position]
+    for g in scene.segments:
+        at += [g.start, g.end]
+    gaps = np.diff(np.unique(np.asarray(at, float)))
+    gaps = gaps[gaps > 1e-9 * scene.length]
+    return float(gaps.min()) if len(gaps) else float(scene.length)
+
+
 def difference(coarse, fine, quantity: str, scale: float) -> float:
     """max |coarse - fine| at the coarser grid's points, relative to ``scale`` (nested grids: the finer one's
     values there, interpolated where a model adds points of its own, such as FE load nodes)."""
@@ -56,8 +74,9 @@ def difference(coarse, fine, quantity: str, scale: float) -> float:
     return float(np.abs(a - np.interp(coarse.x, fine.x, b)).max() / scale)
 
 
-def richardson(results: list, at: int, quantity: str = "w", promised: float | None = None) -> Estimate:
-    """The estimate for ``results[at]`` from three results on nested grids (coarse to fine)."""
+def richardson(results: list, at: int, quantity: str = "w", promised: float | None = None, scene=None) -> Estimate:
+    """The estimate for ``results[at]`` from three results on nested grids (coarse to fine); with ``scene``, not
+    asymptotic while the coarsest grid's spacing is wider than the scene's :func:`feature_gap`."""
     grids = tuple(len(r.x) for r in results)
     scale = float(np.abs(results[-1].measured(quantity)).max()) or 1.0
     d1, d2 = difference(results[0], results[1], quantity, scale), difference(results[1], results[2], quantity, scale)
@@ -69,6 +88,14 @@ def richardson(results: list, at: int, quantity: str = "w", promised: float | No
         return Estimate(max(d1, d2), p, grids, at, False, "the grids do not converge in themselves")
     q = 2.0**p
     error = (d1, d2)[at] * q / (q - 1) if at < 2 else d2 / (q - 1)
+    if scene is not None:
+        spacing, gap = float(np.diff(results[0].x).max()), feature_gap(scene)
+        if spacing > gap * (1 + 1e-9):
+            why = (
+                f"the coarsest grid's spacing ({spacing:.3g}) is wider than the distance between the scene's closest "
+                f"features ({gap:.3g}; ends, supports, loads, breaks): refine the grid"
+            )
+            return Estimate(max(error, d2), p, grids, at, False, why, resolved=False)
     if promised is None:
         return Estimate(error, p, grids, at, True, "")
     lo, hi = (f * promised for f in ASYMPTOTIC)
@@ -93,7 +120,7 @@ def with_estimate(scene, model, options: dict, run) -> object:
     except InputError:  # a coarser grid than the model's rules allow (e.g. its ends' families would overlap)
         grids, at = nested_grids(n, n + 1)
         results = [run(scene, model, **dict(options, points=g)) for g in grids]
-    est = richardson(results, at, model.measures, model.order)
+    est = richardson(results, at, model.measures, model.order, scene)
     result = results[at]
     result.info["estimate"] = {**est.__dict__, "grids": list(est.grids), "line": est.line()}
     if not est.asymptotic:

@@ -11,7 +11,7 @@ import pytest
 from helpers import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.core.scene_file import parse_scene
-from pdverify.measure.richardson import nested_grids, richardson, with_estimate
+from pdverify.measure.richardson import feature_gap, nested_grids, richardson, with_estimate
 from pdverify.registry import get_model, run
 
 ESTIMATE_FACTOR = 3.0  # the estimate within this factor of the true error
@@ -71,3 +71,43 @@ def test_the_estimate_of_a_second_order_model_from_three_grids():
     est = richardson(results, 1, "w", 2.0)
     assert est.asymptotic and abs(est.order - 2) < 0.1
     assert 1 / ESTIMATE_FACTOR <= est.error / true_error(scene, "pd-eb", results[1]) <= ESTIMATE_FACTOR
+
+
+def moment_near_the_clamp(position: float):
+    """A 1 m clamped-roller strip, 20 x 20 mm (L/h = 50), a couple of 100 N m at ``position``."""
+    d = scene_dict("clamped", "roller", [{"type": "point_moment", "position": position, "value": 100.0}])
+    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.02})
+    return parse_scene(d)
+
+
+def test_grids_that_do_not_resolve_the_scene_are_not_asymptotic():
+    """A couple 0.01 L from the clamp: fem-plane-stress's grids of 21, 41 and 81 stations (spacings 0.05 ... 0.0125 L)
+    all put it inside the clamp's first element, converge to each other at about order 2 and give an estimate tens of
+    times below the error of the finest (against 321 stations, itself still 1e-3 off). Their coarsest spacing is
+    wider than the couple's distance to the clamp, so the estimate is not asymptotic and says why; at 0.3 L the same
+    grids resolve the scene."""
+    scene = moment_near_the_clamp(0.01)
+    results = [run(scene, "fem-plane-stress", points=n) for n in (21, 41, 81)]
+    fine = run(scene, "fem-plane-stress", points=321)
+    err = float(np.abs(results[-1].w - np.interp(results[-1].x, fine.x, fine.w)).max() / np.abs(fine.w).max())
+    blind = richardson(results, 2, "w", 2.0)  # without the scene: the danger the rule is for
+    assert blind.asymptotic and blind.error < err / 10, (blind, err)
+    est = richardson(results, 2, "w", 2.0, scene)
+    assert not est.asymptotic and not est.resolved and "closest features (0.01" in est.why
+    assert feature_gap(moment_near_the_clamp(0.3)) == pytest.approx(0.3)
+    assert richardson(results, 2, "w", 2.0, moment_near_the_clamp(0.3)).resolved
+
+
+def test_the_feature_gap_counts_every_position_of_the_scene():
+    """Ends, inner supports, point loads, distributed loads' ends and segments' ends; coincident ones count once."""
+    d = scene_dict(
+        "clamped",
+        "free",
+        [
+            {"type": "point_force", "position": 0.5, "value": 1.0},
+            {"type": "distributed", "value": -1.0, "start": 0.5, "end": 1.3},
+        ],
+        supports={"left": "clamped", "right": "free", "inner": [{"position": 1.2, "type": "pinned"}]},
+    )
+    assert feature_gap(parse_scene(d)) == pytest.approx(0.1)  # 1.2 to 1.3 on a 2 m beam
+    assert feature_gap(parse_scene(scene_dict("pinned", "pinned"))) == pytest.approx(2.0)
