@@ -84,18 +84,21 @@ def richardson(results: list, at: int, quantity: str = "w", promised: float | No
     if max(d1, d2) <= max(noise, 16 * np.finfo(float).eps):
         return Estimate(max(d1, d2), math.inf, grids, at, True, "the grids agree to their round-off")
     p = math.log2(d1 / d2) if d1 > 0 and d2 > 0 else math.nan
-    if not p > 0:
-        return Estimate(max(d1, d2), p, grids, at, False, "the grids do not converge in themselves")
-    q = 2.0**p
-    error = (d1, d2)[at] * q / (q - 1) if at < 2 else d2 / (q - 1)
+    unresolved = ""
     if scene is not None:
         spacing, gap = float(np.diff(results[0].x).max()), feature_gap(scene)
         if spacing > gap * (1 + 1e-9):
-            why = (
+            unresolved = (
                 f"the coarsest grid's spacing ({spacing:.3g}) is wider than the distance between the scene's closest "
                 f"features ({gap:.3g}; ends, supports, loads, breaks): refine the grid"
             )
-            return Estimate(max(error, d2), p, grids, at, False, why, resolved=False)
+    if not p > 0:
+        why = "; ".join(filter(None, ["the grids do not converge in themselves", unresolved]))
+        return Estimate(max(d1, d2), p, grids, at, False, why, resolved=not unresolved)
+    q = 2.0**p
+    error = (d1, d2)[at] * q / (q - 1) if at < 2 else d2 / (q - 1)
+    if unresolved:
+        return Estimate(max(error, d2), p, grids, at, False, unresolved, resolved=False)
     if promised is None:
         return Estimate(error, p, grids, at, True, "")
     lo, hi = (f * promised for f in ASYMPTOTIC)

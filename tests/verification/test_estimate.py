@@ -95,6 +95,8 @@ def test_grids_that_do_not_resolve_the_scene_are_not_asymptotic():
     est = richardson(results, 2, "w", 2.0, scene)
     assert not est.asymptotic and not est.resolved and "closest features (0.01" in est.why
     assert feature_gap(moment_near_the_clamp(0.3)) == pytest.approx(0.3)
+    no_order = richardson(results[::-1], 2, "w", 2.0, scene)  # differences that grow: no order, and still unresolved
+    assert not no_order.resolved and "do not converge" in no_order.why and "closest features" in no_order.why
     assert richardson(results, 2, "w", 2.0, moment_near_the_clamp(0.3)).resolved
 
 
