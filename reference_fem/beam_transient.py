@@ -61,8 +61,10 @@ def transient(model, scene: Scene, params: dict) -> Result:
             omega1 = float(np.sqrt(eigsh(K.tocsc(), k=1, M=M.tocsc(), sigma=0.0, which="LM")[0][0]))
             D = 2 * d.damping_ratio * omega1
         C = D * (M if d.damping_on == "all" else translations @ M @ translations)
-        at = np.searchsorted(free, 2 * np.abs(nodes[:, None] - np.asarray(probes, float)).argmin(0))
-        observe = sp.csr_matrix((np.ones(len(probes)), (np.arange(len(probes)), at)), shape=(len(probes), len(free)))
+        dof = 2 * np.abs(nodes[:, None] - np.asarray(probes, float)).argmin(0)  # each probe's w
+        held = ~np.isin(dof, free)  # a probe on a held deflection reads 0, its row empty
+        at = np.searchsorted(free, dof[~held])
+        observe = sp.csr_matrix((np.ones(len(at)), (np.arange(len(probes))[~held], at)), shape=(len(probes), len(free)))
     sample = d.output_interval or d.end_time / DEFAULT_SAMPLES
     # default step: the sampling interval, or the time the fastest wave (sqrt(E/rho)) takes across the shortest
     # element if shorter (a Courant number of 1, which Newmark does not need for stability: the time error then

@@ -198,6 +198,20 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
         raise InputError(f"--count {count}: give a number of modes, 1 or more")
     if scene.material.density is None:
         raise InputError("material.density: needed for natural frequencies; add density to the scene")
+    beyond = [
+        what
+        for what, present in (
+            ("an elastic end (spring)", not scene.supports.simple and not scene.supports.inner),
+            ("supports.inner", bool(scene.supports.inner)),
+            ("segments", bool(scene.segments)),
+        )
+        if present
+    ]
+    if beyond:
+        raise InputError(
+            f"{', '.join(beyond)}: the analytic frequencies modes compares with are those of a uniform beam held at "
+            "its ends by named supports; drop them for natural frequencies"
+        )
     bare = scene.model_copy(update={"loads": [], "dynamics": None})  # the free vibration of the supported beam
     found = m.check(bare)
     if found:

@@ -25,6 +25,10 @@ TEXT_COLUMNS = frozenset(
     "study case_id code scene_file model reference version variant element form scene units options quantity "
     "status message warnings artefact_message check verdict name path held".split()
 )
+NUMBER_COLUMNS = frozenset(  # results.csv's columns the report computes with (and every err_* column)
+    "slenderness points horizon horizon_length degree layers horizon_factor w_at_max w_ref_at_max assemble_s solve_s "
+    "total_s dofs spacing m cond error_bound ref_error_bound continuum_error split_points".split()
+)
 DERIVED = ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust", "checks", "nonlocal")
 
 
@@ -170,6 +174,14 @@ def load(d: Path) -> StudyFolder:
     if short:
         line, got, want = short
         raise InputError(f"{d / 'results.csv'}: line {line} has {got} fields, the header {want}; {again}")
+    for col in res.columns:
+        if (col in NUMBER_COLUMNS or col.startswith("err_")) and not pd.api.types.is_numeric_dtype(res[col]):
+            bad = pd.to_numeric(res[col], errors="coerce").isna() & res[col].notna()
+            i = int(bad.to_numpy().argmax())
+            raise InputError(
+                f"{d / 'results.csv'}: line {i + 2}, column '{col}' = {str(res[col].iloc[i])[:40]!r}: not a number; "
+                f"{again}"
+            )
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; {again}")
     study = d / "study.toml"

@@ -180,6 +180,12 @@ CLI_CASES = [
     # damaged study folders
     ("report-empty-results", ["report", "{empty_results}"], 2, "no cases"),
     ("report-shifted-results", ["report", "{shifted}"], 2, "line 2 has"),
+    (
+        "report-text-in-a-number-column",
+        ["report", "{text_number}"],
+        2,
+        "line 3, column 'points' = 'many': not a number",
+    ),
     # extreme numbers of the scene refused in one line
     ("modes-density-tiny", ["modes", "{dyn_tiny_rho}", "-m", "pd-timoshenko"], 3, "floating-point range"),
     ("advise-every-load-zero", ["advise", "{zero_load}"], 2, "every load is zero"),
@@ -252,6 +258,10 @@ def files(tmp_path_factory):
     (d / "empty_results" / "results.csv").write_text(header)
     (d / "shifted").mkdir()
     (d / "shifted" / "results.csv").write_text(header + "s.toml,123,ok,pd-eb,,11,0.1\n")
+    (d / "text_number").mkdir()
+    (d / "text_number" / "results.csv").write_text(
+        header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\nc2,s.toml,s,ok,pd-eb,100,many,0.1\n"
+    )
     for name, results, meta in (
         ("broken_csv", 'a,b\n1,"2\n', "{}"),
         ("broken_meta", "case_id,scene_file,scene,status\n", "{not json"),
@@ -285,6 +295,7 @@ def files(tmp_path_factory):
         "study_checks": d / "study_checks.toml",
         "empty_results": d / "empty_results",
         "shifted": d / "shifted",
+        "text_number": d / "text_number",
     }
 
 

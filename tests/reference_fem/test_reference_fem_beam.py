@@ -125,3 +125,24 @@ def test_nodal_moment_and_shear_are_the_exact_ones(left, right, form):
         ex = get_model(exact).evaluate(sc, {}, at)
         for key in ("M", "V"):
             assert np.abs(r.fields[key] - ex[key]).max() <= 1e-9 * np.abs(ex[key]).max(), (fem, key)
+
+
+def test_transient_probes_on_held_deflections_read_zero():
+    """fem-timoshenko's transient observes each probe's w among the free unknowns: a probe on a held end (pinned at
+    0, clamped at L) reads 0, and the others read what they read alone (before, a probe at the clamped end indexed
+    past the free unknowns, and one at the pinned end read its rotation)."""
+    import numpy as np
+    from helpers import scene_dict
+
+    from pdverify.core.scene_file import parse_scene
+    from pdverify.registry import run
+
+    def history(probes):
+        d = scene_dict("pinned", "clamped", [{"type": "point_force", "position": 0.6, "value": -10.0}])
+        d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3, "density": 7850.0}
+        d["dynamics"] = {"end_time": 2e-3, "probes": probes, "output_interval": 1e-4}
+        return run(parse_scene(d), "fem-timoshenko", points=41).info["history"]["series"]
+
+    both, alone = history([0.0, 1.0, 2.0]), history([1.0])
+    assert not np.any(both["w(x=0)"]) and not np.any(both["w(x=2)"])
+    assert np.array_equal(both["w(x=1)"], alone["w(x=1)"]) and np.abs(alone["w(x=1)"]).max() > 0

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from helpers import PAIRS, ROOT, cli, scene_dict
 
+from pdverify.core.errors import InputError
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.vibration import TimoshenkoBeam, beam_end, rod_frequencies
 from pdverify.measure.modes import modes
@@ -209,3 +210,23 @@ def test_the_nonlocal_column_is_shown_in_every_format(capsys):
     assert csv.startswith("# nonlocal:") and "nonlocal" in csv.splitlines()[1]
     timoshenko = cli(["modes", path, "-m", "pd-timoshenko", "--points", "41"], capsys)[1]
     assert "nonlocal" not in timoshenko  # no symbol known for its two fields: no column
+
+
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ({"supports": {"left": "clamped", "right": "pinned", "inner": [{"position": 0.8, "type": "pinned"}]}}, "inner"),
+        ({"supports": {"left": "clamped", "right": {"type": "spring", "stiffness": 1e5}}}, "spring"),
+        ({"segments": [{"start": 0.0, "end": 2.0, "section": {"width": 0.05, "height": 0.1}}]}, "segments"),
+    ],
+    ids=["inner", "spring", "segments"],
+)
+def test_modes_refuses_a_beam_the_analytic_frequencies_do_not_describe(change, field):
+    """The analytic frequencies are those of a uniform beam held at its ends by named supports: fem-timoshenko,
+    which solves these statically, gave a table against them (the inner pin's first mode "127 % off"); now one
+    line naming what to drop."""
+    d = scene_dict("clamped", "pinned", [], material=MATERIAL)
+    d.update(change)
+    with pytest.raises(InputError, match=field) as exc:
+        modes(parse_scene(d), "fem-timoshenko", {"points": 41}, 4)
+    assert "uniform beam held at its ends" in exc.value.lines[0]
