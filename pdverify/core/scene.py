@@ -277,6 +277,13 @@ class Dynamics(_Strict):
     def _complete(self):
         if self.damping_ratio is not None and self.damping is not None:
             raise ValueError("give damping_ratio or damping, not both")
+        for key in ("time_step", "output_interval"):
+            value = getattr(self, key)
+            if value is not None and value > self.end_time:
+                raise ValueError(
+                    f"{key} = {value:g} s is longer than end_time = {self.end_time:g} s (the run would take one "
+                    f"step or record none); give a {key} below end_time"
+                )
         return self
 
 

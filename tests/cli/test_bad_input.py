@@ -189,6 +189,9 @@ CLI_CASES = [
     # extreme numbers of the scene refused in one line
     ("modes-density-tiny", ["modes", "{dyn_tiny_rho}", "-m", "pd-timoshenko"], 3, "floating-point range"),
     ("advise-every-load-zero", ["advise", "{zero_load}"], 2, "every load is zero"),
+    ("time-step-above-end-time", ["solve", "{dyn_long_step}", "-m", "fem-timoshenko"], 2, "longer than end_time"),
+    ("exact-torsion-profile-without-J", ["solve", "{shaft_profile}", "-m", "exact-torsion"], 2, "torsion_constant"),
+    ("pd-torsion-profile-without-J", ["solve", "{shaft_profile}", "-m", "pd-torsion"], 2, "J of every section"),
     ("unknown-command", ["nosuch"], 2, "nosuch"),
     ("unknown-global-option", ["--bogus"], 2, "--bogus"),
     ("models-extra-argument", ["models", "extra"], 2, "extra"),
@@ -246,7 +249,13 @@ def files(tmp_path_factory):
     dyn = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
     (d / "dyn.toml").write_text(dyn)
     (d / "dyn_tiny_rho.toml").write_text(re.sub(r"density = [0-9.e+-]+", "density = 1e-300", dyn))
+    (d / "dyn_long_step.toml").write_text(dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1.0\n"))
     (d / "zero_load.toml").write_text(re.sub(r"value = [0-9.e+-]+", "value = 0.0", text))
+    (d / "shaft_profile.toml").write_text(
+        'name = "T shaft"\nbeam = {length = 1.0}\nsection = {shape = "profile", y = [0.0, 0.2, 0.2, 0.24], '
+        "b = [0.02, 0.02, 0.15, 0.15]}\nmaterial = {youngs_modulus = 2e11, poissons_ratio = 0.3}\n"
+        'supports = {left = "clamped", right = "free"}\nloads = [{type = "point_torque", position = 1.0, value = 10.0}]\n'
+    )
     head = f'name = "bad"\nscenes = ["{SCENE.as_posix()}"]\nreference = "exact-eb"\n'
     runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
     (d / "study.toml").write_text(head + runs)
@@ -288,6 +297,8 @@ def files(tmp_path_factory):
         "link_dev": d / "link_dev.csv",
         "dyn": d / "dyn.toml",
         "dyn_tiny_rho": d / "dyn_tiny_rho.toml",
+        "shaft_profile": d / "shaft_profile.toml",
+        "dyn_long_step": d / "dyn_long_step.toml",
         "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",

@@ -147,8 +147,8 @@ def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial"
         J = scene.section.J
         if J is None:
             raise InputError(
-                "section.torsion_constant: pd-torsion needs the torsion constant J of a section given by "
-                "area and inertia; add torsion_constant (or give width and height)"
+                "section.torsion_constant: pd-torsion needs the torsion constant J of every section (a profile, I "
+                "or area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
             )
         stiff, component, key = scene.material.G * J, "torque", "twist"
         inertia = scene.section.polar if scene.section.polar is not None else np.nan

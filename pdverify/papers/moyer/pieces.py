@@ -35,8 +35,8 @@ def piece_stiffness(scene: Scene, key: str) -> list[tuple[float, float, float]]:
     for a, b, sec, mat in scene.pieces():
         if key == "GJ" and sec.J is None:
             raise InputError(
-                "section.torsion_constant: pd-torsion needs the torsion constant J of every segment's section; "
-                "add torsion_constant (or give width and height)"
+                "section.torsion_constant: pd-torsion needs the torsion constant J of every section (a profile, I "
+                "or area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
             )
         S = {"EI": mat.E * sec.I, "EA": mat.E * sec.A, "kGA": sec.k * mat.G * sec.A, "GJ": mat.G * (sec.J or 0.0)}
         out.append((a, b, S[key]))
