@@ -10,7 +10,11 @@ K_t du = lambda F - f_int(u) is exact once the set of yielded fibres repeats (th
 
 Supports hold their DOFs, springs add their stiffness, a prescribed deflection holds its node at lambda times its
 value. A step whose Newton does not settle is halved up to ``CUTS`` times; then the path stops with one line and
-keeps the steps so far (collapse: a hinge, no equilibrium past it). Arrays in, arrays out: no loops over elements or
+keeps the steps so far (collapse: a hinge, no equilibrium past it). The discrete beam's hinge is not a perfect
+mechanism (a Gauss point's section yields whole while its element's others keep an elastic core), so past collapse
+Newton can settle on deflections hundreds of lengths large: a step whose stiffness, dλ over the largest change of
+w, is below ``COLLAPSE`` times the first loading step's stops the path the same way (Bergan's current stiffness
+parameter; Bergan et al. 1978, Comput. Methods Appl. Mech. Eng. 14). Arrays in, arrays out: no loops over elements or
 fibres (the loop is over Newton iterations and steps).
 
 The fibres' quadrature of a yielded section is second order in the layer thickness (the elastic core's edge is a
@@ -41,6 +45,7 @@ GAUSS = 4  # Gauss points per element (the curvature is linear in each element; 
 CUTS = 8  # halvings of a step before the path stops
 NEWTON = 60  # Newton iterations per step at most
 TOL = 1e-13  # the residual relative to the element forces' scale (or: the yielded set repeats)
+COLLAPSE = 1e-4  # a step whose stiffness dλ / max|dw| falls below this share of the first step's is past collapse
 
 
 def fibre_rule(prof, count: int) -> tuple[np.ndarray, np.ndarray]:
@@ -200,7 +205,7 @@ def solve_path(scene: Scene, points: int, fibres: int):
     factors = (scene.loading or Loading()).path()
     N, shape = 2 * len(beam.nodes), (len(beam.l), GAUSS, len(beam.y))
     u, ep, ever = np.zeros(N), np.zeros(shape), np.zeros(shape, bool)
-    steps, stop, lam = [], None, 0.0
+    steps, stop, lam, first = [], None, 0.0, None  # first: the first loading step's stiffness d factor / max |dw|
     targets = list(factors)
     for target in targets:
         cut, t = 0, target
@@ -216,6 +221,16 @@ def solve_path(scene: Scene, points: int, fibres: int):
                     break
                 cut, t = cut + 1, lam + 0.5 * (t - lam)
                 continue
+            dw = float(np.abs(un[0::2] - u[0::2]).max())
+            stiff = abs(t - lam) / dw if dw > 0 else np.inf
+            if first is None and np.isfinite(stiff) and stiff > 0:
+                first = stiff
+            elif first is not None and stiff < COLLAPSE * first:
+                stop = (
+                    f"the path stops at load factor {lam:.6g}: the step to {t:.6g} has {stiff / first:.1e} of the "
+                    "first step's stiffness (a hinge: the beam collapses); the steps so far are kept"
+                )
+                break
             u, ep, lam = un, epn, t
             ever |= over
             health, zone = beam.health(ever)

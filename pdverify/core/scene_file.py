@@ -15,6 +15,7 @@ from .errors import InputError
 from .geometry import axis_length, mechanism_message
 from .loading import Displacement, Loading
 from .scene import (
+    HELD,
     SUPPORTS,
     Axis,
     Beam,
@@ -239,13 +240,28 @@ def _check_dynamics(scene: Scene) -> list[str]:
     return lines
 
 
+def _holds_w(supports, side: str) -> bool:
+    """True when the end ``side`` holds the deflection rigidly (a named support, not a spring)."""
+    end = getattr(supports, side)
+    return isinstance(end, str) and HELD[end][1]
+
+
 def _check_supports(scene: Scene) -> list[str]:
     """Supports inside the span: on the beam, one per position (and none at an end, which has its own support),
     on straight axes (a curved axis's supports are its ends')."""
     sup, L = scene.supports, scene.length
-    if not sup.inner and sup.simple:
-        return []
     lines = []
+    held = {0.0: f"supports.left = {sup.kind('left')!r}", L: f"supports.right = {sup.kind('right')!r}"}
+    held = {x: w for x, w, side in ((0.0, held[0.0], "left"), (L, held[L], "right")) if _holds_w(sup, side)}
+    held |= {s.position: f"supports.inner[{i}]" for i, s in enumerate(sup.inner) if s.type != "spring"}
+    for i, ld in enumerate(scene.loads):
+        if ld.type == "displacement" and ld.position in held:
+            lines.append(
+                f"loads[{i}].position = {ld.position!r}: {held[ld.position]} already holds the deflection there; "
+                "move the prescribed deflection or drop that support"
+            )
+    if not sup.inner and sup.simple:
+        return lines
     if not scene.is_straight:
         lines.append(
             f"supports: springs and supports inside the span are for straight beams; axis.type = {scene.axis.type!r}"

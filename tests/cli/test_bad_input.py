@@ -254,7 +254,8 @@ def files(tmp_path_factory):
     (d / "shaft_profile.toml").write_text(
         'name = "T shaft"\nbeam = {length = 1.0}\nsection = {shape = "profile", y = [0.0, 0.2, 0.2, 0.24], '
         "b = [0.02, 0.02, 0.15, 0.15]}\nmaterial = {youngs_modulus = 2e11, poissons_ratio = 0.3}\n"
-        'supports = {left = "clamped", right = "free"}\nloads = [{type = "point_torque", position = 1.0, value = 10.0}]\n'
+        'supports = {left = "clamped", right = "free"}\n'
+        'loads = [{type = "point_torque", position = 1.0, value = 10.0}]\n'
     )
     head = f'name = "bad"\nscenes = ["{SCENE.as_posix()}"]\nreference = "exact-eb"\n'
     runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'

@@ -155,3 +155,20 @@ def test_what_fem_eb_cannot_follow_is_one_line(change, match):
         return
     with pytest.raises(InputError, match=match):
         run(sc, "fem-eb", points=11)
+
+
+@pytest.mark.parametrize("points", [101, 401])
+def test_the_path_stops_at_collapse(points):
+    """A cantilever loaded past its plastic collapse (a force at 1.5 m and a line load on 0.2 ... 1.2 m; exact-eb's
+    collapse factor about 0.984): the discrete hinge keeps an elastic core at its element's other Gauss points, so
+    Newton settled on 75 m (401 points) or 4e6 m (101) of deflection at factor 1 on a 2 m beam and called the path
+    completed. The step whose stiffness falls below COLLAPSE of the first one stops it, warned, near the collapse."""
+    loads = [
+        {"type": "point_force", "position": 1.5, "value": -40000.0},
+        {"type": "distributed", "value": -5000.0, "start": 0.2, "end": 1.2},
+    ]
+    r = run(scene(loads=loads, loading={"factors": [0.0, 1.0, 0.0], "steps": 10}), "fem-eb", points=points)
+    path = r.info["load_path"]
+    assert not path["completed"] and 0.975 < path["last_factor"] < 0.995
+    assert np.abs(r.w).max() < 0.1 * L
+    assert any("collapses" in w for w in r.info["warnings"])
