@@ -202,6 +202,12 @@ CLI_CASES = [
         "supports.right is a spring far softer than the beam (k L^3 / EI = 2.4e-10)",
     ),
     (
+        "solve-spring-far-stiffer-than-the-beam",
+        ["solve", str(ROOT / "tests/bad_inputs/spring_far_stiffer_than_the_beam.toml"), "-m", "pd-bond-pair"],
+        3,
+        "supports.inner[1].stiffness = 1e+40 (k dx^3 / EI = ",
+    ),
+    (
         "solve-supports-nearly-coincide",
         ["solve", str(ROOT / "tests/bad_inputs/supports_nearly_coincide.toml"), "-m", "exact-eb"],
         3,

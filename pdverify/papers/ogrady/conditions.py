@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from ...core.errors import SolveError
 from ...core.scene import Distributed, PointForce, PointMoment, Scene, Spring
 from ...numerics.loads import cell_integral
 
@@ -89,6 +90,28 @@ def _sparse(rows: list[dict[int, float]], n: int) -> sp.csr_matrix:
     return sp.csr_matrix((v, (r.astype(int), np.asarray(c, int))), shape=(len(rows), n))
 
 
+def stiff_springs(scene: Scene, springs: list, dx: float) -> None:
+    """SolveError naming the springs whose stiffness against the beam's at one spacing (k dx^3 / EI for a deflection,
+    k dx / EI for a rotation, EI the least of the segments') passes 1/eps: added to the pairs' equations, the beam's
+    own stiffness there is lost in the spring's rounding (a spring of 1e40 N/m left a rigid support's beam 40 % off,
+    its round-off bound blind to it)."""
+    EI = min(mat.E * sec.I for _, _, sec, mat in scene.pieces())
+    found = []
+    for name, _, k in springs:
+        ratio = k * (dx**3 if name.startswith("force") else dx) / EI
+        if ratio * np.finfo(float).eps > 1.0:
+            what = "k dx^3 / EI" if name.startswith("force") else "k dx / EI"
+            kind, _, where = name.partition("_")
+            field = f"inner[{where[6:]}]" if where.startswith("inner_") else where
+            key = "stiffness" if kind == "force" else "rotational_stiffness"
+            found.append(f"supports.{field}.{key} = {k:g} ({what} = {ratio:.2g})")
+    if found:
+        raise SolveError(
+            f"pd-bond-pair: springs far stiffer than the beam at this spacing, beyond what float64 adds to it (1/eps): "
+            f"{'; '.join(found)}; give a rigid support there (pinned, clamped) instead"
+        )
+
+
 def conditions(scene: Scene, n: int, dx: float, factor: float = 1.0) -> Conditions:
     """The conditions and springs of ``scene``'s supports on ``n`` points (the rotation of a clamped or guided end is
     held by its mirror ghosts). Prescribed deflections (``[[loads]] type = "displacement"``) are conditions with
@@ -119,6 +142,7 @@ def conditions(scene: Scene, n: int, dx: float, factor: float = 1.0) -> Conditio
         if load.type == "displacement":
             rows.append(value_row(load.position, n, dx)), values.append(factor * load.value)
             names.append(f"force_displacement_{i}")
+    stiff_springs(scene, springs, dx)
     Ks = sp.csr_matrix((n, n))
     for _, row, k in springs:
         r = _sparse([row], n)
