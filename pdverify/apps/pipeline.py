@@ -95,6 +95,11 @@ def run(
     wall = time.perf_counter() - t0
     counts = dict(Counter(df["status"]).most_common())
     say(f"{study.name}: {len(df)} cases ({counts}); results in {out}/results.csv")
+    if study.skipped:  # combinations a run lists but its model cannot solve: not cases, and not silent
+        kinds = dict(Counter(line.split(": ", 1)[0] for line in study.skipped))
+        for what, n in kinds.items():
+            first = next(line for line in study.skipped if line.startswith(what + ": "))
+            say(f"skipped: {n} case{'s' * (n > 1)} of {first} (meta.json: skipped)")
     outcome = Outcome(study, out, df)
     for _, r in df[df["status"] != "ok"].iterrows():
         say(f"{r['status']}: {r['model']} on {r['scene_file']}: {r['message']}")  # failed / suspect

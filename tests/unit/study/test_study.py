@@ -2,6 +2,7 @@
 
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -725,3 +726,27 @@ def test_a_case_file_copied_over_another_is_computed_again(tmp_path):
     again = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
     assert sorted(again["points"]) == [11, 21]
     assert again.set_index("points")["err_max"].to_dict() == first.set_index("points")["err_max"].to_dict()
+
+
+def test_a_run_on_a_scene_its_model_cannot_solve_is_said(tmp_path, capsys):
+    """A run listing a scene its model refuses (pd-eb on a scene with a yield stress) expands to no case for it: the
+    study's output says how many and why, beside meta.json's ``skipped`` (it said nothing)."""
+    from helpers import cli
+
+    elastic, plastic = tmp_path / "elastic.toml", tmp_path / "plastic.toml"
+    text = (ROOT / "studies/examples/cantilever_tip_load.toml").read_text()
+    elastic.write_text(text)
+    plastic.write_text(
+        re.sub(r'^name = ".*"', 'name = "plastic"', text, flags=re.M).replace(
+            "[material]\n", "[material]\nyield_stress = 250e6\n"
+        )
+    )
+    study = tmp_path / "s.toml"
+    study.write_text(
+        f'name = "skips"\nscenes = ["{elastic.as_posix()}", "{plastic.as_posix()}"]\nreference = "exact-eb"\n'
+        '[[runs]]\nmodel = "pd-eb"\npoints = [21, 41]\n'
+    )
+    code, _, err = cli(["study", study, "--out", tmp_path / "out", "--workers", "1", "--quiet"], capsys)
+    assert code == 0, err
+    assert "skipped: 2 cases of pd-eb on " in err and "plastic.toml: material.yield_stress" in err
+    assert len(json.loads((tmp_path / "out" / "meta.json").read_text())["skipped"]) == 2
