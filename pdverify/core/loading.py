@@ -24,6 +24,9 @@ class Displacement(BaseModel):
     value: Real = Field(allow_inf_nan=False)
 
 
+MAX_PATH_STEPS = 10_000  # load steps along a whole path: fem-eb takes about 10 ms a step at 101 points
+
+
 class Loading(BaseModel):
     """``factors``: the load factor at the path's corners (default [0, 1]: load once); ``steps``: the increments of
     each segment between two corners (a whole number, at least 1)."""
@@ -41,6 +44,12 @@ class Loading(BaseModel):
             )
         if any(b == a for a, b in zip(self.factors, self.factors[1:])):
             raise ValueError(f"factors = {self.factors}: two equal factors in a row make an empty segment; drop one")
+        total = self.steps * (len(self.factors) - 1)
+        if total > MAX_PATH_STEPS:
+            raise ValueError(
+                f"steps = {self.steps} on {len(self.factors) - 1} segments asks for {total} load steps, more than the "
+                f"limit of {MAX_PATH_STEPS} (each step is a nonlinear solve); give fewer steps or corners"
+            )
         return self
 
     def path(self) -> np.ndarray:
