@@ -6,6 +6,7 @@ study.toml and meta.json.
 from __future__ import annotations
 
 import json
+import math
 import os
 import platform
 import shutil
@@ -42,7 +43,8 @@ def results_table(study: Study, rows: list[dict]):
     without pyarrow or when a column's values are of mixed types (then pandas builds it: :func:`results_frame`)."""
     if not rows:
         return None
-    return _rows_table([{"study": study.name, **r} for r in rows], ("study", *TEXT_OPTIONS))
+    missing = dict.fromkeys((c for c in MEASURED if not any(c in r for r in rows)), math.nan)  # every case failed
+    return _rows_table([{"study": study.name, **r, **missing} for r in rows], ("study", *TEXT_OPTIONS))
 
 
 def write_results(study: Study, out: Path, rows: list[dict], table=None) -> None:

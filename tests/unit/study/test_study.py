@@ -85,6 +85,19 @@ def test_failure_is_recorded_and_the_study_goes_on(tmp_path, synthetic):
     assert df[df["status"] == "failed"]["message"].str.contains("synthetic failure").all()
 
 
+def test_a_study_whose_every_case_fails_still_has_its_report(tmp_path, synthetic):
+    """results.csv has the measured columns even when no case was measured (it had none of them, and the report
+    refused the folder as "not a pdverify results table"): the report lists the failed cases."""
+    from pdverify.report import build_report
+
+    p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [5, 9]\nfail = true\n')
+    run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    res = pd.read_csv(tmp_path / "out" / "results.csv")
+    assert set(res["status"]) == {"failed"} and "err_max" in res and res["err_max"].isna().all()
+    index = build_report(tmp_path / "out")
+    assert "synthetic failure" in Path(index).read_text()
+
+
 @pytest.mark.parametrize("workers", [1, 2])
 def test_a_failed_case_records_what_it_cost(tmp_path, synthetic, workers):
     """A failed case's row carries the seconds its attempt took, and meta.json counts them as the models'
