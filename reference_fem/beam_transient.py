@@ -77,16 +77,17 @@ def transient(model, scene: Scene, params: dict) -> Result:
     with timer("solve"):
         t, hist, u = newmark(K, M, C, F, d.end_time / steps, steps, observe)
     every = max(1, int(round(sample / (d.end_time / steps))))
+    kept = np.unique(np.r_[np.arange(0, len(t), every), len(t) - 1])  # the samples and the end time
     full = np.zeros(2 * len(nodes))
     full[free] = u
-    series = {f"w(x={p:g})": hist[::every, k] for k, p in enumerate(probes)}
+    series = {f"w(x={p:g})": hist[kept, k] for k, p in enumerate(probes)}
     info = {
         "analysis": "dynamic",
         "integrator": "Newmark average acceleration (beta = 1/4, gamma = 1/2)",
         "time_step": d.end_time / steps,
         "steps": steps,
         "damping": D,
-        "history": {"t": t[::every], "series": series, "ylabel": "deflection"},
+        "history": {"t": t[kept], "series": series, "ylabel": "deflection"},
     }
     return model.new_result(
         scene,
@@ -97,5 +98,5 @@ def transient(model, scene: Scene, params: dict) -> Result:
         dofs=len(free),
         timings=timer.timings,
         info=info,
-        writers={".csv": lambda path: Path(path).write_text(columns_csv({"t": t[::every], **series}, fmt="%.12g"))},
+        writers={".csv": lambda path: Path(path).write_text(columns_csv({"t": t[kept], **series}, fmt="%.12g"))},
     )

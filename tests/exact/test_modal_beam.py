@@ -195,4 +195,6 @@ def test_fem_transient_writes_its_histories_as_csv(tmp_path):
     r = run(sc, "fem-timoshenko", points=21)
     r.writers[".csv"](str(tmp_path / "h.csv"))
     lines = (tmp_path / "h.csv").read_text().splitlines()
-    assert lines[0] == "t,w(x=1),w(x=2)" and len(lines) == 1 + len(r.info["history"]["t"]) == 12
+    t = r.info["history"]["t"]
+    assert lines[0] == "t,w(x=1),w(x=2)" and len(lines) == 1 + len(t) == 13  # 0 ... 9.9e-3 by 0.99e-3, then the end
+    assert t[-1] == pytest.approx(sc.dynamics.end_time, rel=1e-12)  # the run's last step is always recorded
