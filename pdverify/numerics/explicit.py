@@ -38,6 +38,7 @@ from scipy.sparse.csgraph import connected_components
 from ..core.contract import Option
 from ..core.errors import InputError, SolveError
 from ..core.result import columns_csv
+from .steps import sample_count
 from .timeint import EnergyLedger, ledger_columns
 
 ANALYSIS = Option(
@@ -165,6 +166,8 @@ def integrate(
         damping = 2.0 * damping_ratio * omega1
     dt = safety * limit if dt is None else float(dt)
     steps = int(np.ceil(t_end / dt - 1e-9)) if steps is None else int(steps)
+    if output_interval:
+        sample_count(t_end, output_interval)  # the limit of every model's histories (exit 2 past it)
     every = max(1, int(round(output_interval / dt))) if output_interval else max(1, steps // SAMPLES)
     n = Kt.shape[0]
     cd = damping * (np.ones(n) if damped is None else np.asarray(damped, float))

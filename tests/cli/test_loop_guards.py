@@ -34,6 +34,9 @@ def scene(tmp_path, base: str, **dynamics) -> str:
         ("fem-timoshenko", BEAM, {"end_time": 1e30}, "give a shorter dynamics.end_time"),
         ("exact-modal-timoshenko", BEAM, {"output_interval": 1e-30}, "lengthen output_interval"),
         ("exact-modal-rod", ROD, {"output_interval": 1e-30}, "lengthen output_interval"),
+        ("pd-timoshenko", BEAM, {"output_interval": 1e-12}, "lengthen output_interval"),
+        ("pd-rod", ROD, {"output_interval": 1e-12}, "lengthen output_interval"),
+        ("pd-eb", BEAM, {"output_interval": 1e-12}, "lengthen output_interval"),
     ],
 )
 def test_a_run_of_too_many_steps_is_refused_before_it_starts(model, base, dynamics, text, tmp_path, capsys):

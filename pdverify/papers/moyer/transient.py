@@ -20,6 +20,7 @@ import scipy.sparse as sp
 
 from ...core.errors import SolveError
 from ...core.result import columns_csv
+from ...numerics.steps import sample_count
 from ...numerics.timeint import EnergyLedger, ledger_columns, step_count
 from .kernels import motion_value
 from .spectrum import first_frequency, mass_scaled, stable_time_step
@@ -204,6 +205,7 @@ def sampling(disc: Discrete, t_end, dt: float, steps, record_every, output_inter
     if steps is None:
         steps = int(np.ceil(t_end / dt - 1e-9))
     if output_interval is not None:
+        sample_count(t_end, output_interval)  # the limit of every model's histories (exit 2 past it)
         record_every = max(1, int(round(output_interval / dt)))
     record_every = record_every or max(1, steps // 2000)
     if ledger_every is None:  # a ledger sample costs ~3 products with K (on large grids ~4 steps each)
