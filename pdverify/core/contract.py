@@ -349,8 +349,9 @@ class Model(Horizon):
         for where, mat in mats:
             for law in ("yield_stress", "failure_strain"):
                 if getattr(mat, law) is not None and law not in self.materials:
+                    takes = f"takes {', '.join(sorted(self.materials))} only" if self.materials else "is elastic only"
                     out.append(
-                        f"{where}.{law}: model {self.name} is elastic only; drop {law} or use a model that takes it "
+                        f"{where}.{law}: model {self.name} {takes}; drop {law} or use a model that takes it "
                         "(`pdverify models`: pd-bond-pair, ...)"
                     )
         if scene.loading is not None and not self.load_path:

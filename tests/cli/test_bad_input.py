@@ -208,6 +208,12 @@ CLI_CASES = [
         "supports.inner[1].stiffness = 1e+40 (k dx^3 / EI = ",
     ),
     (
+        "solve-supports-within-one-spacing",
+        ["solve", str(ROOT / "tests/bad_inputs/supports_within_one_spacing.toml"), "-m", "pd-timoshenko"],
+        2,
+        "supports.inner[0] and supports.inner[1] are within one spacing",
+    ),
+    (
         "solve-supports-nearly-coincide",
         ["solve", str(ROOT / "tests/bad_inputs/supports_nearly_coincide.toml"), "-m", "exact-eb"],
         3,

@@ -24,6 +24,8 @@ reactions balance, O(Δ²) where its discrete loads' moment differs from the sce
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ...core.errors import InputError
@@ -205,8 +207,9 @@ def _check_apart(rigid, x, scene):
         for d in c:
             if d in owner and owner[d] != h.label:
                 dx = x[1] - x[0]
+                a, b = (re.sub(r"^inner_(\d+)$", r"inner[\1]", v) for v in (owner[d], h.label))  # the scene's names
                 raise InputError(
-                    f"supports.{owner[d]} and supports.{h.label} are within one spacing ({dx:.4g}) of each other at "
+                    f"supports.{a} and supports.{b} are within one spacing ({dx:.4g}) of each other at "
                     f"points = {len(x)}; use more points (a spacing below their distance)"
                 )
             owner[d] = h.label

@@ -189,7 +189,7 @@ def test_mirror_image_paths_are_mirror_images():
             {"material": {"youngs_modulus": E, "poissons_ratio": 0.3, "failure_strain": 1e-3}},
             "fem-eb",
             {},
-            "material.failure_strain: model fem-eb is elastic only",
+            "material.failure_strain: model fem-eb takes yield_stress only",
         ),
         ({"loading": {"factors": [0.0, 1.0]}}, "pd-eb", {}, "loading: model pd-eb solves one load"),
         (
