@@ -249,8 +249,8 @@ def solve_path(scene: Scene, points: int, fibres: int):
             cut, t = 0, target
         if stop is not None:
             break
-    if not steps:
-        raise SolveError(f"fem-eb: {stop}")
+    if len(steps) < 2 and stop is not None:  # no step past the first corner: a failure, as in the other path models
+        raise SolveError(f"fem-eb: {stop.replace('; the steps so far are kept', '')}")
     info = {
         "load_path": {
             "factors": [float(v) for v in (scene.loading or Loading()).factors],

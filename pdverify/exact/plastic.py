@@ -321,7 +321,7 @@ def solve_path(scene: Scene, x: np.ndarray):
                 "health": state["health"],
             }
         )
-    if not steps:
+    if len(steps) < 2 and stop is not None:  # no step past the first corner: a failure, as in the other path models
         raise SolveError(f"exact-eb: {stop.replace('; the steps so far are kept', '')}")
     info = {
         "load_path": {

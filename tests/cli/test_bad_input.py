@@ -207,6 +207,15 @@ CLI_CASES = [
         3,
         "supports.inner[1].stiffness = 1e+40 (k dx^3 / EI = ",
     ),
+    *(
+        (
+            f"path-stops-at-its-start-{m}",
+            ["solve", str(ROOT / "tests/bad_inputs/loading_stops_at_its_start.toml"), "-m", m],
+            3,
+            "the path stops at load factor 0",
+        )
+        for m in ("exact-eb", "fem-eb", "pd-bond-pair")
+    ),
     (
         "solve-supports-within-one-spacing",
         ["solve", str(ROOT / "tests/bad_inputs/supports_within_one_spacing.toml"), "-m", "pd-timoshenko"],
