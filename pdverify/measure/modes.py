@@ -125,6 +125,7 @@ class ModeTable:
     warnings: list = field(default_factory=list)
     nonlocal_shift: np.ndarray | None = None  # the continuum's own shift at the model's horizon (None: none known)
     horizon: float | None = None  # delta of that shift
+    ignored: str = ""  # what of the scene plays no part in its free vibration (a yield stress, a load path)
 
     @property
     def omega(self) -> np.ndarray:
@@ -144,9 +145,10 @@ class ModeTable:
     @property
     def notes(self) -> list[str]:
         """What the table's columns mean where that is not plain."""
+        out = [self.ignored] if self.ignored else []
         if self.nonlocal_shift is None:
-            return []
-        return [
+            return out
+        return out + [
             f"nonlocal: the shift of the model's continuum at its horizon delta = {self.horizon:.6g} (the operator's "
             "symbol; exact for sine modes, the bulk wave's otherwise): the model's own error, which the grid does not "
             "remove at a fixed delta; rel_error - nonlocal is the grid's"
@@ -212,7 +214,9 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
             f"{', '.join(beyond)}: the analytic frequencies modes compares with are those of a uniform beam held at "
             "its ends by named supports; drop them for natural frequencies"
         )
-    bare = scene.model_copy(update={"loads": [], "dynamics": None})  # the free vibration of the supported beam
+    elastic = scene.material.model_copy(update={"yield_stress": None, "failure_strain": None})
+    # the free vibration of the supported, unloaded beam: elastic (a yield stress or a failure strain plays no part)
+    bare = scene.model_copy(update={"loads": [], "dynamics": None, "loading": None, "material": elastic})
     found = m.check(bare)
     if found:
         raise InputError(found)
@@ -247,6 +251,10 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
             "eigenvalue); use fewer points"
         )
     table = ModeTable(scene.name, m.name, params, K.shape[0], reference, lam, analytic, roundoff, warnings)
+    dropped = [k for k in ("yield_stress", "failure_strain") if getattr(scene.material, k) is not None]
+    dropped += ["[loading]"] if scene.loading is not None else []
+    if dropped:
+        table.ignored = f"{', '.join(dropped)}: not part of the free vibration of the unloaded beam, which is elastic"
     if getattr(m, "dispersion", "") and params.get("horizon") is not None:
         table.horizon = m.delta(bare, params)
         table.nonlocal_shift = frequency_shift(m.dispersion, wave_numbers(scene, m.theory, analytic), table.horizon)

@@ -54,7 +54,8 @@ def critical_angles(scene: Scene, pairs: Pairs, params: dict, law: str) -> np.nd
             out[on] = np.inf
             continue
         prof = sec.profile
-        where = "section" if i == 0 and not scene.segments else f"segments[{i}].section"
+        own = bool(scene.segments) and scene.segments[i].section is not None
+        where = f"segments[{i}].section" if own else "section"  # a segment without one takes the scene's
         if prof is None:
             raise InputError(
                 f"{where}: material.{law} needs the section's shape (its extreme fibre sets the pairs' critical "

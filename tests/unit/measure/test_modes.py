@@ -230,3 +230,17 @@ def test_modes_refuses_a_beam_the_analytic_frequencies_do_not_describe(change, f
     with pytest.raises(InputError, match=field) as exc:
         modes(parse_scene(d), "fem-timoshenko", {"points": 41}, 4)
     assert "uniform beam held at its ends" in exc.value.lines[0]
+
+
+@pytest.mark.parametrize("model", ["pd-bond-pair", "pd-eb", "fem-timoshenko"])
+def test_modes_of_a_beam_with_a_yield_stress_are_the_elastic_beam_s(model):
+    """The free vibration of the unloaded beam is elastic: a yield stress and a load path play no part (pd-bond-pair
+    refused such a scene as "u and w couple at rest", pd-eb as "elastic only"); the table says what it left out and
+    gives the elastic beam's frequencies to the bit."""
+    d = scene_dict("clamped", "pinned", [], material=MATERIAL)
+    plain = modes(parse_scene(d), model, {"points": 41}, 3)
+    d["material"] = dict(MATERIAL, yield_stress=250e6)
+    d["loading"] = {"factors": [0.0, 1.0, 0.0], "steps": 4}
+    plastic = modes(parse_scene(d), model, {"points": 41}, 3)
+    assert np.array_equal(plastic.eigenvalues, plain.eigenvalues)
+    assert plastic.notes[0].startswith("yield_stress, [loading]: not part of the free vibration")
