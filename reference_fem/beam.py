@@ -339,9 +339,7 @@ class FemTimoshenko(_BeamFE):
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
-        d = scene.dynamics
-        if d is not None and any(em is not None for em in (d.left, d.right)):
-            out.append("dynamics.left/right: fem-timoshenko's transient takes step loads, not prescribed end motions")
+        d = scene.dynamics  # prescribed end motions: the contract's check says it (Model.end_motions)
         if d is not None and scene.segments:
             out.append("segments: fem-timoshenko's transient takes one section and material (its mass is uniform)")
         return out

@@ -157,6 +157,9 @@ class StudyFolder:
 
 def load(d: Path) -> StudyFolder:
     """The study folder ``d``, checked: results.csv present, whole and a pdverify table; meta.json an object."""
+    if not d.is_dir():
+        what = "not a folder" if d.exists() else "no such folder"
+        raise InputError(f"{d}: {what}; give a study's output folder (`pdverify study STUDY.toml --out {d}` makes one)")
     if not (d / "results.csv").exists():
         raise InputError(f"{d}: no results.csv; run `pdverify study STUDY.toml --out {d}` first")
     again = f"run `pdverify study STUDY.toml --out {d}` again"

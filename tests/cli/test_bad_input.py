@@ -128,6 +128,8 @@ CLI_CASES = [
     ("study-file-is-folder", ["study", "{tmp}"], 2, "is a folder"),
     ("study-binary-file", ["study", "{bin}"], 2, "scene.bin: not a text file"),
     ("report-no-results", ["report", "{empty}"], 2, "no results.csv"),
+    ("report-no-such-folder", ["report", "{tmp}/no_such_study"], 2, "no_such_study: no such folder"),
+    ("report-on-a-file", ["report", "{file}"], 2, "not a folder"),
     ("report-broken-results", ["report", "{broken_csv}"], 2, "results.csv: not a readable CSV table"),
     ("report-foreign-results", ["report", "{no_cols}"], 2, "results.csv: no 'case_id' column"),
     ("report-broken-meta", ["report", "{broken_meta}"], 2, "meta.json: not valid JSON"),
