@@ -33,7 +33,8 @@ from pdverify.core.scene import SUPPORTS, is_mechanism
 from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, models, run
 
-FACTORS = [(1.1, 3.7, 0.3), (0.77, 1 / 7, 13.0), (math.pi, math.e, math.sqrt(2))]  # (length, modulus, load)
+FIXED = [(1.1, 3.7, 0.3), (0.77, 1 / 7, 13.0), (math.pi, math.e, math.sqrt(2))]  # (length, modulus, load)
+FACTORS = list(FIXED)  # the scaled copies of a case (--copies)
 FLOOR = 4 * np.finfo(float).eps
 SCALE_EPS = 64  # a closed form's rounding: a few dozen operations on each value (tests/verification/test_scale.py)
 PAIRS = [(a, b) for a in SUPPORTS for b in SUPPORTS if not is_mechanism(a, b) and "spring" not in (a, b)]
@@ -47,6 +48,14 @@ SKIP = {  # not a linear static model of the scene's loads, or a reference witho
     "exact-torsion",
     "exact-curved-cantilever",
 }
+
+
+def copies(n: int) -> list[tuple[float, float, float]]:
+    """The first ``n`` scalings (length, modulus, load): the three fixed ones, then log-uniform factors in 0.1 ... 10
+    from a seeded generator (the same on every run)."""
+    rng = np.random.default_rng(7)
+    extra = [tuple(float(v) for v in 10 ** rng.uniform(-1, 1, 3)) for _ in range(max(0, n - 3))]
+    return (FIXED + extra)[:n]
 
 
 def loads(model, length: float, load: float) -> list[dict]:
@@ -176,7 +185,11 @@ def main(argv=None) -> None:
     p.add_argument("--slenderness", nargs="+", type=float, default=[10.0, 300.0, 1e4])
     p.add_argument("--max-plane-points", type=int, default=401, help="fem-plane-stress (2D) only up to this size")
     p.add_argument("--out", default=None, help="write every case to this CSV")
+    p.add_argument(
+        "--copies", type=int, default=len(FACTORS), help="scaled copies per case (beyond the three: seeded random)"
+    )
     a = p.parse_args(argv)
+    FACTORS[:] = copies(a.copies)
     rows = []
     for name in a.models:
         for points in a.points:
