@@ -251,8 +251,8 @@ def _check_supports(scene: Scene) -> list[str]:
     on straight axes (a curved axis's supports are its ends')."""
     sup, L = scene.supports, scene.length
     lines = []
-    held = {0.0: f"supports.left = {sup.kind('left')!r}", L: f"supports.right = {sup.kind('right')!r}"}
-    held = {x: w for x, w, side in ((0.0, held[0.0], "left"), (L, held[L], "right")) if _holds_w(sup, side)}
+    ends = ((0.0, "left"), (L, "right"))
+    held = {at: f"supports.{side} = {sup.kind(side)!r}" for at, side in ends if _holds_w(sup, side)}
     held |= {s.position: f"supports.inner[{i}]" for i, s in enumerate(sup.inner) if s.type != "spring"}
     for i, ld in enumerate(scene.loads):
         if ld.type == "displacement" and ld.position in held:

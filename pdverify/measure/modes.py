@@ -203,7 +203,7 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
     beyond = [
         what
         for what, present in (
-            ("an elastic end (spring)", not scene.supports.simple and not scene.supports.inner),
+            ("an elastic end (spring)", any(scene.supports.kind(side) == "spring" for side in ("left", "right"))),
             ("supports.inner", bool(scene.supports.inner)),
             ("segments", bool(scene.segments)),
         )
