@@ -313,13 +313,16 @@ def _check_magnitudes(scene: Scene) -> list[str]:
         given = ", ".join(
             f"{k} = {getattr(sec, k)!r}" for k in ("width", "height", "area", "inertia") if getattr(sec, k) is not None
         )
-        derived = {
-            "area": sec.A,
-            "second moment of area": sec.I,
-            "EI": mat.E * sec.I,
-            "EA": mat.E * sec.A,
-            "kGA": sec.k * mat.G * sec.A,
-        }
+        try:
+            derived = {
+                "area": sec.A,
+                "second moment of area": sec.I,
+                "EI": mat.E * sec.I,
+                "EA": mat.E * sec.A,
+                "kGA": sec.k * mat.G * sec.A,
+            }
+        except OverflowError:  # a power of a float past the range (height³ of 1e200) raises rather than gives inf
+            derived = {"the section's properties": math.inf}
         ratio = mat.G / mat.E  # the shear and bending stiffnesses' ratio, which the beam models divide by
         if not 1e-100 <= ratio <= 1e100:
             return [

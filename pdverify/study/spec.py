@@ -414,6 +414,9 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
             for sl in run.slenderness:
                 scx = sc.with_slenderness(sl) if sl else sc
                 try:
+                    if sl and (sfile, sl) not in refs_checked:  # the scaled scene is a scene too (its numbers' range)
+                        refs_checked.add((sfile, sl))
+                        parse_scene(scx.to_dict(), source=f"{sfile} at slenderness = {sl!r}")
                     run.model.resolve(scx, given)
                 except InputError as exc:
                     errors.append(f"{run.where}: {exc.lines[0]}")

@@ -177,6 +177,12 @@ CLI_CASES = [
     ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
     # study files
     ("study-benchmarks-number", ["study", "{study_bench5}"], 2, "benchmarks = 5"),
+    (
+        "study-slenderness-overflows-the-section",
+        ["study", "{study_tiny_slenderness}", "--out", "{tmp}/o"],
+        2,
+        "at slenderness = 1e-300: section:",
+    ),
     ("study-description-list", ["study", "{study_description_list}"], 2, "description = ['a']: give a text"),
     ("study-checks-text", ["study", "{study_checks}"], 2, "checks = 'all'"),
     # damaged study folders
@@ -284,6 +290,7 @@ def files(tmp_path_factory):
     runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
     (d / "study.toml").write_text(head + runs)
     (d / "study_bench5.toml").write_text(head + "benchmarks = 5\n" + runs)
+    (d / "study_tiny_slenderness.toml").write_text(head + "[sweep]\nslenderness = [1e-300]\n" + runs)
     (d / "study_description_list.toml").write_text(head + 'description = ["a"]\n' + runs)
     (d / "study_checks.toml").write_text(head + 'checks = "all"\n' + runs)
     header = "case_id,scene_file,scene,status,model,slenderness,points,err_max\n"
@@ -326,6 +333,7 @@ def files(tmp_path_factory):
         "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
+        "study_tiny_slenderness": d / "study_tiny_slenderness.toml",
         "study_description_list": d / "study_description_list.toml",
         "study_checks": d / "study_checks.toml",
         "empty_results": d / "empty_results",
