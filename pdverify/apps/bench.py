@@ -45,10 +45,15 @@ def max_error(scene, model, result) -> float | None:
     """max |w - w_exact| / max |w_exact| at the result's points against the exact beam solution of the
     model's theory (Euler–Bernoulli for ``theory = "euler-bernoulli"``, Timoshenko otherwise: a
     higher-order or continuum model's distance from it is part of its error). None where pdverify has no
-    exact solution of the field: a curved axis, an axial or torsion model (w identically zero)."""
+    exact elastic solution of the field: a curved axis, an axial or torsion model (w identically zero), a material
+    past elasticity or a load path (yield_stress, failure_strain, [loading], prescribed deflections)."""
 
     w = np.asarray(result.w, float)
-    if not scene.is_straight or not np.any(w):
+    laws = any(
+        getattr(mat, k) is not None for _, _, _, mat in scene.pieces() for k in ("yield_stress", "failure_strain")
+    )
+    path = scene.loading is not None or any(ld.type == "displacement" for ld in scene.loads)
+    if not scene.is_straight or not np.any(w) or laws or path:
         return None
     shear = model.theory != "euler-bernoulli"
     exact = solve_straight(scene, shear).fields(result.x)["w"]

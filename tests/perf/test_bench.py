@@ -145,6 +145,18 @@ def test_rows_carry_their_error_against_the_exact_solution():
     assert bench_case("exact-eb", 101)["max_error"] == 0.0
 
 
+def test_no_error_against_the_elastic_solution_past_elasticity():
+    """A scene with a yield stress (O'Grady & Foster's Fig. 6 beam) has no elastic exact solution: bench's error is
+    unknown ("-"), not the distance from the elastic beam (it printed 0.12 for fem-eb, whose error against the
+    plastic reference is 5e-8)."""
+    from pdverify.apps.bench import max_error
+    from pdverify.core.scene_file import load_scene
+    from pdverify.registry import get_model, run
+
+    scene = load_scene(ROOT / "studies/paper_ogrady_plastic/fig6_loaded.toml")
+    assert max_error(scene, get_model("fem-eb"), run(scene, "fem-eb", points=101)) is None
+
+
 def test_inaccurate_runs_count_toward_no_target(tmp_path):
     """A run whose error is above 1e-6 is left out of every target, the slope and the cheapest run; a
     model with no accurate run fails the accuracy target instead of passing on speed."""
