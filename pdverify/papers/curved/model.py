@@ -84,6 +84,12 @@ from .particles import (
 )
 from .supports import axial_mechanism, particle_stiffness, reactions
 
+PRIMAL_LOCKS = (  # docs/models/curved.md, "Locking": studies/paper_curved_quintic_bending.toml, 201 particles, P = 2
+    "form = primal (the paper's second-derivative collocation) locks: at a fixed grid and degree its error grows like "
+    "(L/h)^2 (P = 2, 201 particles on the quintic arch: 2.5e-3 at L/h = 10, 0.20 at 100, 0.96 at 1000) and can be of "
+    "order 1 on coarse grids; form = mixed, the default, does not lock"
+)
+
 
 class PDCurved(Model):
     name = "pd-curved"
@@ -276,6 +282,8 @@ class PDCurved(Model):
         warnings = {w for i in infos for w in i.get("warnings", []) if not w.startswith("round-off bound")}
         if not info.get("error_bound", 0.0) <= BOUND_LIMIT:
             warnings.add(bound_warning(info["error_bound"]))
+        if params["form"] == "primal":
+            warnings.add(PRIMAL_LOCKS)
         if warnings:
             info.setdefault("warnings", []).extend(sorted(warnings))
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))

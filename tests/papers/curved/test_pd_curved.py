@@ -5,7 +5,7 @@ quadrature), itself checked against a sympy closed form of the semicircle and Cl
 
 import numpy as np
 import pytest
-from helpers import MIXED_LOADS, PAIRS, scene_dict
+from helpers import MIXED_LOADS, PAIRS, ROOT, scene_dict
 
 from pdverify.core.errors import InputError
 from pdverify.core.scene_file import load_scene, parse_scene
@@ -588,3 +588,13 @@ def test_bad_positions_are_refused_with_one_line_naming_the_option(positions, ma
     with pytest.raises(InputError, match=match) as exc:
         run(sc, "pd-curved", points=81, degree=4, positions=positions)
     assert str(exc.value).startswith("positions") and "\n" not in str(exc.value)
+
+
+def test_the_primal_form_says_it_locks():
+    """form = primal locks (docs/models/curved.md, "Locking"; errors near 1 on coarse thick arcs went unwarned): every
+    result says so, the default mixed form's does not."""
+    sc = load_scene(ROOT / "studies/curved/quarter_circle_tip_force.toml")
+    primal = run(sc, "pd-curved", form="primal", points=21)
+    assert any(w.startswith("form = primal") and "locks" in w for w in primal.info["warnings"])
+    mixed = run(sc, "pd-curved", points=21)
+    assert not any("locks" in w for w in mixed.info.get("warnings", []))
