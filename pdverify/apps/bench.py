@@ -49,9 +49,7 @@ def max_error(scene, model, result) -> float | None:
     past elasticity or a load path (yield_stress, failure_strain, [loading], prescribed deflections)."""
 
     w = np.asarray(result.w, float)
-    laws = any(
-        getattr(mat, k) is not None for _, _, _, mat in scene.pieces() for k in ("yield_stress", "failure_strain")
-    )
+    laws = any(mat.yield_stress is not None or mat.failure_strain is not None for *_, mat in scene.pieces())
     path = scene.loading is not None or any(ld.type == "displacement" for ld in scene.loads)
     if not scene.is_straight or not np.any(w) or laws or path:
         return None

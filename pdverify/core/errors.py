@@ -32,3 +32,11 @@ class OutputError(PdverifyError):
     """Results could not be written: disk full, permissions, a file where a directory should be (exit code 4)."""
 
     exit_code = 4
+
+
+class MissingQuantity(InputError, KeyError):
+    """A result asked for a quantity its model does not give (exit code 2); a KeyError too, for a caller that looks
+    a quantity up as it would a key."""
+
+    def __str__(self) -> str:  # KeyError's quotes its message
+        return "\n".join(self.lines)

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import SolveError
+from .errors import MissingQuantity, SolveError
 from .version import __version__
 
 # What a study can measure, and where a result holds it: its canonical name, then the names the models' fields use
@@ -71,10 +71,11 @@ class Result:
 
     def measured(self, quantity: str = "w") -> np.ndarray:
         """The output ``quantity`` (:data:`QUANTITIES`: w, rotation, moment, shear, axial, or a point field such
-        as a rod's u or a torsion bar's twist); KeyError when the result has none."""
-        got = quantity_of(self.w, self.rotation, self.fields, quantity)
+        as a rod's u or a torsion bar's twist); MissingQuantity (an InputError and a KeyError) when it has none."""
+        got = quantity_of(self.w, self.rotation, self.fields, quantity) if isinstance(quantity, str) else None
         if got is None:
-            raise KeyError(f"model {self.model} gives no {quantity}")
+            have = ", ".join(q for q in QUANTITIES if quantity_of(self.w, self.rotation, self.fields, q) is not None)
+            raise MissingQuantity(f"quantity = {quantity!r}: model {self.model} gives no such output; it gives {have}")
         return np.asarray(got, float)
 
     def to_dict(self) -> dict:

@@ -90,6 +90,8 @@ def parse_run(
     run_scenes = run.get("scenes", list(scene_objs))
     if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
         return None, [f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes"]
+    if not run_scenes:
+        return None, [f"{where}.scenes = []: the run would have no case; list scenes of the study's, or drop the key"]
     run_slen = slenderness
     if "slenderness" in run:  # this run's own slenderness sweep, in place of [sweep]'s
         run_slen = as_list(run["slenderness"])

@@ -177,6 +177,7 @@ CLI_CASES = [
     ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
     # study files
     ("study-benchmarks-number", ["study", "{study_bench5}"], 2, "benchmarks = 5"),
+    ("study-run-without-scenes", ["study", "{study_run_no_scenes}"], 2, "runs[1].scenes = []: the run would have"),
     (
         "study-slenderness-overflows-the-section",
         ["study", "{study_tiny_slenderness}", "--out", "{tmp}/o"],
@@ -291,6 +292,7 @@ def files(tmp_path_factory):
     (d / "study.toml").write_text(head + runs)
     (d / "study_bench5.toml").write_text(head + "benchmarks = 5\n" + runs)
     (d / "study_tiny_slenderness.toml").write_text(head + "[sweep]\nslenderness = [1e-300]\n" + runs)
+    (d / "study_run_no_scenes.toml").write_text(head + runs + runs.replace("points", "scenes = []\npoints"))
     (d / "study_description_list.toml").write_text(head + 'description = ["a"]\n' + runs)
     (d / "study_checks.toml").write_text(head + 'checks = "all"\n' + runs)
     header = "case_id,scene_file,scene,status,model,slenderness,points,err_max\n"
@@ -334,6 +336,7 @@ def files(tmp_path_factory):
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
         "study_tiny_slenderness": d / "study_tiny_slenderness.toml",
+        "study_run_no_scenes": d / "study_run_no_scenes.toml",
         "study_description_list": d / "study_description_list.toml",
         "study_checks": d / "study_checks.toml",
         "empty_results": d / "empty_results",

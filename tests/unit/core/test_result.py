@@ -1,4 +1,7 @@
-"""core.result: merging a solve's info into what a model gathered before it."""
+"""core.result: merging a solve's info into what a model gathered before it; a quantity a result lacks."""
+
+import pytest
+from helpers import ROOT
 
 from pdverify.core.result import merge_info
 
@@ -26,3 +29,17 @@ def test_comment_lines_stay_one_line_whatever_the_scene_name():
     text = result_table(run(parse_scene(d), "exact-eb", points=3))
     head = [line for line in text.splitlines() if not line.lstrip()[:1].isdigit() and not line.lstrip().startswith("-")]
     assert all(line.startswith("#") for line in head[:-1]) and "a\\nb\\x00c" in head[0], head
+
+
+def test_a_quantity_the_model_does_not_give_is_an_input_error():
+    """``Result.measured`` of a quantity the model does not give: one line naming the quantity and those it gives,
+    an InputError (exit 2 on the command line) that a KeyError handler also catches (it was a bare KeyError)."""
+    from pdverify.core.errors import InputError
+    from pdverify.core.scene_file import load_scene
+    from pdverify.registry import run
+
+    r = run(load_scene(ROOT / "studies/examples/cantilever_tip_load.toml"), "pd-eb", points=21)
+    for q in ("u", "bogus", "", None):
+        with pytest.raises(InputError, match="gives no such output; it gives w, rotation, moment, shear") as exc:
+            r.measured(q)
+        assert isinstance(exc.value, KeyError) and len(exc.value.lines) == 1
