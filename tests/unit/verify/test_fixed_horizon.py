@@ -81,3 +81,10 @@ def test_a_model_without_a_limit_at_fixed_delta_says_why():
         and c["summary"].startswith("no limit at a fixed horizon")
         and "shear = path" in c["summary"]
     )
+
+
+def test_a_card_s_horizon_factor_gives_way_to_the_check_s_horizon_length():
+    """`pdverify verify pd-eb --horizon 1` gave "not measured: horizon and horizon_length both given" though the
+    user gave only the factor: the check holds delta as a length and drops the card's factor (the same check as
+    without it)."""
+    assert card_check("pd-eb", {"horizon": 1.0}) == card_check("pd-eb")
