@@ -58,4 +58,5 @@ def check_ledger(r, kind):
     work = np.abs(e["load_work"]).max()
     assert np.max(e["kinetic"] + e["strain"]) <= work * (1 + 1e-6)
     assert i["energy_drift"] < 1e-5
-    assert i["dt"] == 0.9 * i["dt_limit"]
+    # the default step 0.9 x the limit, shortened to whole steps that end at end_time: by less than one step's share
+    assert i["dt"] <= 0.9 * i["dt_limit"] < i["dt"] * (1 + 1 / (i["steps"] - 1))

@@ -22,7 +22,7 @@ from ..core.errors import InputError
 from ..core.version import __version__
 from .bench_command import bench
 from .cliargs import _SCENE_FILES, HORIZON, HORIZON_LENGTH, POINTS, grid_options, parse_options, positive, user_errors
-from .output import Format, check_folder, check_writable, write_file
+from .output import Format, check_folder, check_writable, with_warnings, write_file
 from .output import out_format as _out_format
 from .output import result_table as _table
 
@@ -130,12 +130,12 @@ def solve(
         result = with_estimate(sc, m, given, run)
     else:
         result = run(sc, m, **given)
+    for w in result.warning_lines():  # on stderr too, whatever the format or file
+        typer.echo(w, err=True)
     if out is not None and out.suffix in result.writers:
-        write_file(out, result.writers[out.suffix], "--out")
+        write_file(out, with_warnings(result, out.suffix), "--out")
         typer.echo(f"wrote {out}", err=True)
         return
-    for w in result.warning_lines():  # on stderr too, whatever the format
-        typer.echo(w, err=True)
     text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
     if out is not None:
         text = text if text.endswith("\n") else text + "\n"

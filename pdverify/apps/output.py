@@ -111,3 +111,19 @@ def write_file(out: Path, write, option: str) -> None:
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def with_warnings(result, suffix: str):
+    """The result's writer of ``suffix``; a CSV (a transient's histories) gets the result's warnings as ``# warning:``
+    lines before its header, as ``solve --format csv`` does (read with ``pandas.read_csv(path, comment="#")``)."""
+    write = result.writers[suffix]
+    lines = [one_line(f"# {w}") for w in result.warning_lines()]
+    if suffix != ".csv" or not lines:
+        return write
+
+    def written(path: str) -> None:
+        write(path)
+        body = Path(path).read_text(encoding="utf-8")
+        Path(path).write_text("\n".join(lines) + "\n" + body, encoding="utf-8")
+
+    return written

@@ -27,6 +27,7 @@ the step and the limit.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -165,7 +166,10 @@ def integrate(
     if damping_ratio is not None:
         damping = 2.0 * damping_ratio * omega1
     dt = safety * limit if dt is None else float(dt)
-    steps = int(np.ceil(t_end / dt - 1e-9)) if steps is None else int(steps)
+    if steps is None:  # whole steps that end at t_end (each at most dt: as stable)
+        steps = int(np.ceil(t_end / dt - 1e-9))
+        dt = t_end / steps
+    steps = int(steps)
     if output_interval:
         sample_count(t_end, output_interval)  # the limit of every model's histories (exit 2 past it)
     every = max(1, int(round(output_interval / dt))) if output_interval else max(1, steps // SAMPLES)
@@ -215,10 +219,15 @@ def step_warnings(dt: float, limit: float) -> list[str]:
     enough to end before its growth shows is wrong by as much without blowing up."""
     if not dt > limit * (1 + 1e-9):
         return []
+    digits = next((d for d in range(4, 17) if f"{dt:.{d}g}" != f"{limit:.{d}g}"), 17)  # enough to tell them apart
+    unit = 10.0 ** (math.floor(math.log10(limit)) - digits + 1)
+    safe = math.floor(limit / unit) * unit  # the advice rounded down: never above the limit
+    ratio = dt / limit
+    shown = next((f"{ratio:.{d}g}" for d in range(3, 17) if f"{ratio:.{d}g}" != "1"), f"{ratio:.17g}")
     return [
-        f"time_step = {dt:.4g} s is {dt / limit:.3g} x the stable limit {limit:.4g} s of the explicit scheme: the run "
-        f"is unstable and its history wrong even where it has not blown up yet; use time_step <= {limit:.4g} s or "
-        "leave time_step out"
+        f"time_step = {dt:.{digits}g} s is {shown} x the stable limit {limit:.{digits}g} s of the "
+        f"explicit scheme: the run is unstable and its history wrong even where it has not blown up yet; use "
+        f"time_step <= {safe:.{digits}g} s or leave time_step out"
     ]
 
 

@@ -125,6 +125,7 @@ def integrate(
     dt, limit, kappa, damping, omega1 = time_step(disc, dt, damping, damping_ratio, safety, stabilisation)
     if steps is None:  # before any step: a run the machine cannot finish is refused (exit 2)
         steps = step_count(t_end, dt, "time_step" if given else "default", limit)
+        dt = t_end / steps  # whole steps that end at t_end (at most dt: as stable)
     steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
     clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
     probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
