@@ -272,7 +272,7 @@ def _straight_checks(model, p, df, gap_df, conv: list[dict], files: dict, expect
         else C.check(
             "locking (error vs slenderness 5 ... 10000)",
             "n/a",
-            f"the error of a {model.theory} model does not depend on the slenderness: no locking scenes",
+            f"the error of {model.theory} models does not depend on the slenderness: no locking scenes",
         ),
         C.floor(C.series(df, files["floor"])),
         C.cost(conv),
