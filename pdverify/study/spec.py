@@ -399,7 +399,8 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
     """Append the run's cases to ``study.cases``, every combination of its axes on every scene and slenderness,
     and those its model cannot solve to ``study.skipped``; the error lines of options the model does not take
     and of its reference. ``reasons_of``: (model, scene, slenderness) -> why the model cannot solve it;
-    ``refs_checked``: the (scene, slenderness, reference) validated, each once per study."""
+    ``refs_checked``: what was validated, each once per study: (scene, slenderness, reference) and, for a swept
+    slenderness, (scene, slenderness), the scaled scene itself."""
     combos = [dict(zip(run.axes, combo)) for combo in itertools.product(*run.axes.values())]
     ref_model = None
     if run.reference["model"] != "none":  # "none": no reference (e.g. large rotations), no errors
