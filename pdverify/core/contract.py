@@ -168,6 +168,19 @@ class Rule:
 
 
 SUPPORTS = frozenset({"clamped", "pinned", "roller", "guided", "free"})  # docs/supports.md: one meaning each
+
+
+def missing_torsion_constant(scene: Scene, model: str) -> str | None:
+    """The line naming a section without a torsion constant J (a profile, I or area-and-inertia section has none of
+    its own), which a torsion model needs; None when every piece of the beam has one."""
+    if all(sec.J is not None for _, _, sec, _ in scene.pieces()):
+        return None
+    return (
+        f"section.torsion_constant: {model} needs the torsion constant J of every section (a profile, I or "
+        "area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
+    )
+
+
 LOAD_TYPES = frozenset({"point_force", "point_moment", "distributed"})  # + "point_torque" for torsion models
 
 # an end motion of [dynamics.left/right] and the load component (Model attribute) whose unknown it moves
@@ -315,6 +328,8 @@ class Model(Horizon):
                             f"dynamics.{side}.{k}: model {self.name} has no such unknown to move; "
                             "use a model that carries it or drop the motion"
                         )
+        if self.theory == "torsion" and (lacks := missing_torsion_constant(scene, self.name)):
+            out.append(lacks)
         for i, load in enumerate(scene.loads):
             if load.type not in self.load_types and load.type != "point_torque":  # torques: the twist check below
                 out.append(

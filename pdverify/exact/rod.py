@@ -81,11 +81,6 @@ class ExactRod(Model):
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
-        if self.torsion and any(sec.J is None for _, _, sec, _ in scene.pieces()):
-            out.append(
-                f"section.torsion_constant: {self.name} needs the torsion constant J of every section (a profile, "
-                "I or area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
-            )
         sup = scene.supports
         held = [s in ROD_HELD[self.theory] for s in (sup.left, sup.right) if isinstance(s, str)]
         springs = [end_spring(scene, side, self.theory) for side in ("left", "right")]

@@ -68,6 +68,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ...core.contract import missing_torsion_constant
 from ...core.errors import InputError
 from ...core.scene import ROD_HELD, Scene
 from .ends import FIT_POINTS, beam_ghosts, rod_ghosts, shear_ghosts
@@ -146,10 +147,7 @@ def rod_operator(scene: Scene, n: int, m: int, variant: str, kind: str = "axial"
     else:
         J = scene.section.J
         if J is None:
-            raise InputError(
-                "section.torsion_constant: pd-torsion needs the torsion constant J of every section (a profile, I "
-                "or area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
-            )
+            raise InputError(missing_torsion_constant(scene, "pd-torsion"))
         stiff, component, key = scene.material.G * J, "torque", "twist"
         inertia = scene.section.polar if scene.section.polar is not None else np.nan
     q, _, ends = node_loads(scene, x, component, ends_apart=(variant == "corrected"))

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...core.contract import missing_torsion_constant
 from ...core.errors import InputError
 from ...core.scene import Scene, Spring, Supports
 
@@ -34,10 +35,7 @@ def piece_stiffness(scene: Scene, key: str) -> list[tuple[float, float, float]]:
     out = []
     for a, b, sec, mat in scene.pieces():
         if key == "GJ" and sec.J is None:
-            raise InputError(
-                "section.torsion_constant: pd-torsion needs the torsion constant J of every section (a profile, I "
-                "or area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
-            )
+            raise InputError(missing_torsion_constant(scene, "pd-torsion"))
         S = {"EI": mat.E * sec.I, "EA": mat.E * sec.A, "kGA": sec.k * mat.G * sec.A, "GJ": mat.G * (sec.J or 0.0)}
         out.append((a, b, S[key]))
     return out
