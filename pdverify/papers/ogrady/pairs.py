@@ -49,14 +49,23 @@ class Pairs:
         of every pair that straddles it (a pair's end forces f / xi at levers up to xi give a triangle of height f
         over [k - j, k + j]): EI kappa under uniform curvature. Sagging positive (f > 0 for a pair bent concave
         up). It balances the loads exactly: its second difference is the nodal load over dx² at every point whose
-        pairs all lie inside the beam."""
+        pairs all lie inside the beam.
+
+        The triangle's height at offset o from its centre is f (1 - |o| / j), so the pairs centred at k give the point
+        k + o the sum over j > |o| of f_kj - |o| f_kj / j: two suffix sums over the family, O(n J) (not a row per pair
+        and offset, O(n J²))."""
         k, j = self.centre, self.offset
         J = int(j.max())
-        o = np.arange(-(J - 1), J)  # the triangle's interior points, offsets from the centre
-        h = np.clip(j[:, None] - np.abs(o)[None, :], 0, None) / j[:, None]  # 1 at the centre, 0 at the ends
-        p = k[:, None] + o[None, :]
-        ok = (h > 0) & (p >= 0) & (p < self.n)
-        return np.bincount(p[ok], (f[:, None] * h)[ok], self.n)  # summed in order, as np.add.at
+        F = np.zeros((self.n, J + 1))  # F[k, j - 1] = f of pair (k, j); column J stays 0 (the empty suffix)
+        F[k, j - 1] = f
+        A = np.cumsum(F[:, ::-1], axis=1)[:, ::-1]  # A[k, q] = sum over j > q of f_kj
+        F[k, j - 1] = f / j
+        B = np.cumsum(F[:, ::-1], axis=1)[:, ::-1]  # B[k, q] = sum over j > q of f_kj / j
+        q = np.abs(np.arange(-(J - 1), J))  # |o| of the offsets o = -(J - 1) ... J - 1
+        G = A[:, q] - q * B[:, q]  # (n, 2J - 1): what the pairs at k give the point k + o
+        p = np.arange(self.n)[:, None] + np.arange(-(J - 1), J)[None, :]
+        ok = (p >= 0) & (p < self.n)
+        return np.bincount(p[ok], G[ok], self.n)
 
 
 def ghost_rows(rule: str, side: int, n: int, G: int):

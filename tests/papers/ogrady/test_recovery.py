@@ -69,3 +69,26 @@ def test_pair_form_reactions_and_moment_over_an_inner_support():
     assert e["moment"] < 1e-9 and e["shear"] < 1e-9, e
     ex = solve_straight(sc, False).reactions()
     assert r.info["reactions"]["force_inner_0"] == pytest.approx(ex["force_inner_0"], rel=1e-9)
+
+
+@pytest.mark.parametrize("n, J", [(7, 1), (30, 4), (61, 9), (12, 12)])
+def test_section_moment_is_the_sum_of_the_pairs_triangles(n, J):
+    """Pairs.section_moment against its definition, pair by pair: each pair (k, j) adds f (1 - |o| / j) at k + o,
+    |o| < j, inside the beam; some pairs absent (a beam's ends without ghosts). Round-off: each point's sum of at most
+    n J terms, against the sum of their magnitudes."""
+    from pdverify.papers.ogrady.pairs import Pairs
+
+    rng = np.random.default_rng(n * 100 + J)
+    k, j = (a.ravel() for a in np.meshgrid(np.arange(n), np.arange(1, J + 1), indexing="ij"))
+    keep = rng.random(k.size) < 0.8
+    k, j = k[keep], j[keep]
+    f = rng.standard_normal(k.size)
+    pairs = Pairs(k, j, j * 0.1, None, np.ones(k.size), np.ones(k.size), n, 0.1)
+    want, size = np.zeros(n), np.zeros(n)
+    for kk, jj, ff in zip(k, j, f):
+        for o in range(1 - jj, jj):
+            if 0 <= kk + o < n:
+                want[kk + o] += ff * (1 - abs(o) / jj)
+                size[kk + o] += abs(ff)
+    got = pairs.section_moment(f)
+    assert np.all(np.abs(got - want) <= 4 * n * J * np.finfo(float).eps * size)
