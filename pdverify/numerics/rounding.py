@@ -45,10 +45,10 @@ def significand_groups(values: np.ndarray) -> tuple[np.ndarray, int]:
     period = 1 + int(np.argmax(repeats)) if repeats else 1
     phases = [v[phase::period] for phase in range(period)]  # the interleaved sequences, not values
     starts = [np.flatnonzero(np.r_[True, sub[1:] != sub[:-1]]) for sub in phases]  # runs of one value
-    distinct, run_id = np.unique(np.concatenate([sub[st] for sub, st in zip(phases, starts)]), return_inverse=True)
-    keys, group = np.unique(np.frexp(np.abs(distinct))[0], return_inverse=True)
+    runs = np.concatenate([sub[st] for sub, st in zip(phases, starts)])
+    keys, group = np.unique(np.frexp(np.abs(runs))[0], return_inverse=True)  # one sort, of the runs' significands
     ids = np.int32 if len(keys) < 2**31 else np.int64  # a band's stored entries: half the bytes
-    run_group = group.astype(ids)[run_id]
+    run_group = group.astype(ids)
     out = np.zeros(v.size, ids)
     at = 0
     for phase, st in enumerate(starts):  # each run's group along it: a cumulative sum of steps, in place
@@ -119,7 +119,8 @@ def csr_layout(K) -> tuple[tuple, int]:
     """((rows, cols, values, (group ids, groups)), bytes): the entries of the CSR matrix K diagonal by diagonal and
     their significand groups, what :class:`SharedRounding` needs of K whatever the solution and load."""
     K = K.tocoo()
-    order = np.lexsort((K.row, K.col.astype(np.int64) - K.row))
+    n = np.int64(K.shape[0])
+    order = np.argsort((K.col.astype(np.int64) - K.row + n) * n + K.row, kind="stable")  # by diagonal, then row
     rows, cols, vals = K.row[order].astype(np.int64), K.col[order].astype(np.int64), K.data[order]
     gid, k = significand_groups(vals)
     for a in (rows, cols, vals, gid):
