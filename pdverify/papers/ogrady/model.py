@@ -43,7 +43,7 @@ from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_co
 from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
 from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
-from .path import follows_path, plastic_warnings, solve_path
+from .path import failure_warnings, follows_path, plastic_warnings, solve_path
 from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
 from .weights import WEIGHTS, moment_curvature_curve, weights
@@ -368,7 +368,11 @@ class PDBondPair(Model):
             w, f, path, info, _ = solve_path(scene, params, pairs, what)
         dx = pairs.dx
         x = np.arange(pairs.n) * dx
-        info.setdefault("warnings", []).extend(plastic_warnings(scene, params, dx) + rotation_warnings(scene))
+        info.setdefault("warnings", []).extend(
+            plastic_warnings(scene, params, dx)
+            + failure_warnings(params, x, info, path[-1]["health"])
+            + rotation_warnings(scene)
+        )
         info.update(ends=params["ends"], spacing=dx, horizon_factor=params["horizon"])
         if scene.material.yield_stress:  # the section law the pairs carry (Eq. 7), beside the fibre theory's
             mat, m = scene.material, params["horizon"]

@@ -147,6 +147,29 @@ def test_a_brittle_beam_breaks_first_at_the_peak_moment_within_one_step_and_form
     )
 
 
+@pytest.mark.parametrize("side", [1, -1])
+def test_an_off_centre_hinge_sits_at_the_averaged_curvatures_peak_a_first_order_shift(side):
+    """The deflection prescribed at 0.35 L (its mirror image at 0.65 L) to past failure: the longest pairs centred
+    one point towards the moment diagram's gentler side see a larger averaged curvature (the slope of the
+    triangle differs on the two sides), so the hinge forms there, not under the prescribed point; the broken beam's
+    deflection is off by that shift: first order in the spacing (order 1 within 0.1 from 201 to 401 points, against
+    exact-eb's hinge under the point), and the result says so."""
+    a = L / 2 - side * 0.15 * L
+    sc = scene(
+        loads=[{"type": "displacement", "position": a, "value": -0.02}],
+        material={"failure_strain": 1e-3},
+        loading={"factors": [0.0, 1.0], "steps": 30},
+    )
+    errors = []
+    for n in (201, 401):
+        r, e = run(sc, "pd-bond-pair", points=n), run(sc, "exact-eb", points=n)
+        hinge = r.x[np.argmin(r.fields["health"])]
+        assert hinge == pytest.approx(a + side * (r.x[1] - r.x[0]), abs=1e-9)  # one point towards the centre
+        assert any("pairs broke" in w and "first order" in w for w in r.info["warnings"])
+        errors.append(np.abs(r.w - e.w).max() / np.abs(e.w).max())
+    assert abs(np.log2(errors[0] / errors[1]) - 1.0) < 0.1
+
+
 def test_a_prescribed_deflection_carries_the_beams_stiffness():
     """Elastic, centre deflection d: the reaction there (on the beam, up positive) is 48 EI d / L³ within the pair
     form's usual error (second order; 3.1e-4 at 201 points measured)."""
