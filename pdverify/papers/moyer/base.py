@@ -200,15 +200,23 @@ class _MoyerModel(Model):
             with timer("solve"):
                 u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
             merge_info(info, sinfo, analysis="static")
-        if info["analysis"] == "static":  # with supports at the ends or inside the span
-            flags = boundary_layer_warnings(scene, disc.x, FIT_POINTS + m) + point_force_order(self, scene, params)
-            dx = disc.x[1] - disc.x[0]
-            flags += held_rotation_warnings(scene, dx, nearest=0.0, delta=m * dx) if self.bending else []
-            # variant energy applies a couple as the operator's action on its kink: second order there
-            flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
-            if flags:
-                info.setdefault("warnings", []).extend(flags)
+        if flags := self.discretisation_warnings(scene, params, disc.x):  # a transient's too: the same operator
+            info.setdefault("warnings", []).extend(flags)
         return self.from_solution(scene, params, disc, u, fields, info, timer, writers, **extra)
+
+    def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray) -> list[str]:
+        """The warnings of the space discretisation (the operator and the load vector on the points ``x``) for this
+        scene: loads inside the ends' fitted layer, the orders lost under point loads (:func:`point_force_order`),
+        point forces beside an inner support that holds the rotation, the rotation near a point moment. A static
+        solve and a transient share them: the transient integrates the same operator and the same loads (steps at
+        t = 0), so its histories converge in space no faster than the static solution."""
+        m = params["horizon"]
+        flags = boundary_layer_warnings(scene, x, FIT_POINTS + m) + point_force_order(self, scene, params)
+        dx = x[1] - x[0]
+        flags += held_rotation_warnings(scene, dx, nearest=0.0, delta=m * dx) if self.bending else []
+        # variant energy applies a couple as the operator's action on its kink: second order there
+        flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
+        return flags
 
     def _held(self, scene, params, disc):
         """:func:`.constraints.solve_with_holds` with the variant's couples on their kinks; where those leave the
