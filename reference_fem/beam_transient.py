@@ -17,7 +17,7 @@ from pdverify.core.result import Result, Timer, columns_csv
 from pdverify.core.scene import PointForce, Scene
 from pdverify.numerics.timeint import step_count
 
-from .beam_elements import add_springs, constrained_dofs, two_fields
+from .beam_elements import add_springs, constrained_dofs, merge_warnings, two_fields
 from .newmark import newmark
 
 DEFAULT_SAMPLES = 2000  # samples over end_time when the scene gives no output_interval
@@ -89,6 +89,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
         "damping": D,
         "history": {"t": t[kept], "series": series, "ylabel": "deflection"},
     }
+    if merged := merge_warnings(scene, nodes):  # the static solve's: a load taken on a node within 1e-12 L of it
+        info.setdefault("warnings", []).extend(merged)
     return model.new_result(
         scene,
         params,

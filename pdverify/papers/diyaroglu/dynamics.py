@@ -72,6 +72,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
     w = np.zeros(len(x))
     w[free] = run.final
     info.update(variant=params["variant"], spacing=x[1] - x[0], horizon_factor=params["horizon"])
+    if flags := model.discretisation_warnings(scene, params, x):  # the static solve's operator and loads
+        info.setdefault("warnings", []).extend(flags)
     return model.new_result(
         scene,
         params,

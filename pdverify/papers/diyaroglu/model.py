@@ -291,6 +291,27 @@ class PDEulerBernoulli(Model):
         K, b, fixed, info = self.assemble_full(scene, params)
         return System(K, b, np.delete(np.arange(params["points"]), fixed), info)
 
+    def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray) -> list[str]:
+        """The warnings of the space discretisation (the operator and the load vector on the points ``x``): loads and
+        supports inside the ends' layer, point forces near a support that holds the rotation, load edges in the
+        fitted ghosts' reach, the paper variant's rotation near a point moment and its bias. A static solve and a
+        transient share them (:mod:`.dynamics` integrates the same operator and loads); the recovered moment and
+        shear's own warnings are the static solve's (:func:`.outputs.recovery_warnings`)."""
+        dx = x[1] - x[0]
+        delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
+        J = len(curvature_weights(params["horizon"], dx, params["variant"]))
+        reach = 2 * J + 4
+        exact = [f"loads[{i}] from" for i, ld in enumerate(scene.loads) if spreads(ld, scene, len(x), dx, J)]
+        if params["variant"] == "paper":
+            exact = []  # Eq. 25: the paper's loads are not spread by their kinks
+        flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
+        flags += inner_layer_warnings(scene, x, reach, delta)
+        if params["variant"] != "paper":  # its Taylor ghosts at free, guided and spring ends (docs/models/diyaroglu.md)
+            flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
+        if params["variant"] == "paper":  # the corrected variant takes a couple by its kink: second order there
+            flags += moment_rotation_warnings(scene) + [paper_bias(params["horizon"])]
+        return flags
+
     def solve(self, scene: Scene, params: dict) -> Result:
         if dynamics.dynamic(scene, params):
             return dynamics.transient(self, scene, params)
@@ -330,20 +351,7 @@ class PDEulerBernoulli(Model):
             info["reactions"] = outputs.reactions(scene, x, M, out["V"], multipliers)
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
-        J = len(curvature_weights(params["horizon"], dx, params["variant"]))
-        reach = 2 * J + 4
-        exact = [f"loads[{i}] from" for i, ld in enumerate(scene.loads) if spreads(ld, scene, len(x), dx, J)]
-        if params["variant"] == "paper":
-            exact = []  # Eq. 25: the paper's loads are not spread by their kinks
-        flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
-        flags += inner_layer_warnings(scene, x, reach, delta)
-        if params["variant"] != "paper":  # its Taylor ghosts at free, guided and spring ends (docs/models/diyaroglu.md)
-            flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
-        flags += outputs.recovery_warnings(scene, params)
-        if params["variant"] == "paper":  # the corrected variant takes a couple by its kink: second order there
-            flags += moment_rotation_warnings(scene)
-        if params["variant"] == "paper":
-            flags.append(paper_bias(params["horizon"]))
+        flags = self.discretisation_warnings(scene, params, x) + outputs.recovery_warnings(scene, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return self.new_result(

@@ -96,6 +96,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
     w = u[w_at]
     fields = {"u": u[0::2]} if params["ends"] == "mirror" else {}
     info.update(variant=params["variant"], ends=params["ends"], spacing=x[1] - x[0], horizon_factor=params["horizon"])
+    if flags := model.discretisation_warnings(scene, params, x):  # the static solve's operator and loads
+        info.setdefault("warnings", []).extend(flags)
     return model.new_result(
         scene,
         params,

@@ -449,6 +449,23 @@ class PDBondPair(Model):
             },
         )
 
+    def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray) -> list[str]:
+        """The warnings of the linear operator's space discretisation on the points ``x`` (ends resolved): point
+        loads inside the ends' layer, the rotation near a point moment or a free end, the variant's and the Taylor
+        ends' biases, load edges in the fitted ghosts' reach. A static solve and a transient share them
+        (:mod:`.dynamics` integrates the same operator and loads)."""
+        dx = x[1] - x[0]
+        flags = (
+            boundary_layer_warnings(
+                scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
+            )
+            + rotation_warnings(scene)
+            + bias_warnings(scene, params)
+        )
+        if params["ends"] == "taylor":  # its Taylor ghosts at free and guided ends (docs/models/ogrady.md)
+            flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
+        return flags
+
     def solve(self, scene: Scene, params: dict) -> Result:
         params = resolved_ends(scene, params)
         if dynamics.dynamic(scene, params):
@@ -505,16 +522,7 @@ class PDBondPair(Model):
             with timer("solve"):
                 fields["u"] = self.axial_displacement(scene, params)
         dx = x[1] - x[0]
-        flags = (
-            boundary_layer_warnings(
-                scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
-            )
-            + rotation_warnings(scene)
-            + bias_warnings(scene, params)
-        )
-        if params["ends"] == "taylor":  # its Taylor ghosts at free and guided ends (docs/models/ogrady.md)
-            flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
-        if flags:
+        if flags := self.discretisation_warnings(scene, params, x):
             info.setdefault("warnings", []).extend(flags)
         merge_info(
             info,

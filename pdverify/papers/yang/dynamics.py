@@ -35,8 +35,9 @@ def point_mass(rho: float, h: float) -> np.ndarray:
 
 
 def operators(model, scene: Scene, params: dict):
-    """(K, M, F, free, T): the operator and the mass on the free DOFs, the load vector there, the free DOFs and the
-    map T (all DOFs x free) that restores every DOF (ties included) from the free ones."""
+    """(K, M, F, free, T, x, info): the operator and the mass on the free DOFs, the load vector there, the free DOFs,
+    the map T (all DOFs x free) that restores every DOF (ties included) from the free ones, the points and the
+    assembly's info."""
     if not scene.supports.simple:
         raise InputError(
             "supports: pd-higher-order's dynamics hold the beam at its ends only; springs and supports inside the "
@@ -62,7 +63,7 @@ def operators(model, scene: Scene, params: dict):
     T = T.tocsr()
     K = B.tocsr()[free][:, free]
     M = (T.T @ Mfull @ T).tocsr()
-    return K, M, b[free], free, T, x
+    return K, M, b[free], free, T, x, info
 
 
 def eigenproblem(model, scene: Scene, params: dict) -> tuple:
@@ -82,7 +83,7 @@ def transient(model, scene: Scene, params: dict) -> Result:
     timer = Timer()
     d = scene.dynamics
     with timer("assemble"):
-        K, M, F, free, T, x = operators(model, scene, params)
+        K, M, F, free, T, x, binfo = operators(model, scene, params)
     rows, probes = probe_rows(x, d.probes)
     n = len(x)
     w_of = (sp.csr_matrix((np.ones(n), (np.arange(n), NF * np.arange(n) + W)), shape=(n, NF * n)) @ T).tocsr()
@@ -108,6 +109,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
     info, writers = dynamic_info(run, probes)
     u = (T @ run.final).reshape(n, NF)
     info.update(variant=params["variant"], spacing=x[1] - x[0], horizon_factor=params["horizon"])
+    if flags := model.discretisation_warnings(scene, params, x, binfo):  # the static solve's operator and loads
+        info.setdefault("warnings", []).extend(flags)
     return model.new_result(
         scene,
         params,

@@ -110,7 +110,15 @@ from .bonds import end_layer_ratios
 from .ends import end_conditions, load_vector
 from .layer import clamp_springs
 from .operator import Layout, band_operator, ghost_layers, held_system, load_cuts, stiffness_factor
-from .outputs import clamp_layer_warning, not_cut, point_load_warnings, reactions, section_stresses
+from .outputs import (
+    clamp_layer_warning,
+    interior_point_loads,
+    not_cut,
+    point_load_warnings,
+    reactions,
+    recovery_warnings,
+    section_stresses,
+)
 from .supports import section_forces, with_supports
 
 
@@ -485,6 +493,26 @@ class PDHigherOrder(Model):
         A, rhs, free, unknowns, scales = with_supports(scene, params, B, b, drop, self.grid(scene, params), faces, pin)
         return System(A, rhs, free, dict(info, ties=tie, unknowns=unknowns, scales=scales))
 
+    def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray, info: dict) -> list[str]:
+        """The warnings of the space discretisation (the operator and the load vector on the points ``x``;
+        ``info``: the assembly's, its ``cuts``, ``ends`` and ``loads``): point loads inside the ends' layer, point
+        loads off a cut point or deforming the section, a clamp's layer in transition, loads beside a support inside
+        that holds the rotation. A static solve and a transient share them (:mod:`.dynamics` integrates the same
+        operator and loads); the recovered moment and shear's own warnings are the static solve's
+        (:func:`.outputs.recovery_warnings`)."""
+        dx = x[1] - x[0]
+        delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
+        reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
+        flags = boundary_layer_warnings(scene, x, reach)
+        # beside a support inside that holds the rotation the families turn the other side (a model error of the
+        # horizon), more where its bonds are not cut; point forces nearer than the cut's 4J + 1 spacings carry their
+        # own warning (point_load_warnings)
+        J = int(np.ceil(delta / dx - 1e-9))
+        held = [s.position for s in scene.supports.inner if s.holds_rotation]
+        constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["not cut" if not_cut(scene, held, info) else "cut"]
+        near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
+        return flags + point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx) + near
+
     def solve(self, scene: Scene, params: dict) -> Result:
         if dynamics.dynamic(scene, params):
             return dynamics.transient(self, scene, params)
@@ -513,19 +541,9 @@ class PDHigherOrder(Model):
         merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
         fields.update(section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"]))
-        reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
-        flags = boundary_layer_warnings(scene, x, reach)
-        if flags:
+        flags = self.discretisation_warnings(scene, params, x, info)
+        if flags := flags + recovery_warnings(scene, interior_point_loads(scene)):
             info.setdefault("warnings", []).extend(flags)
-        # beside a support inside that holds the rotation the families turn the other side (a model error of the
-        # horizon), more where its bonds are not cut; point forces nearer than the cut's 4J + 1 spacings carry their
-        # own warning (point_load_warnings)
-        J = int(np.ceil(delta / dx - 1e-9))
-        held = [s.position for s in scene.supports.inner if s.holds_rotation]
-        constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["not cut" if not_cut(scene, held, info) else "cut"]
-        near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
-        for flag in point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx) + near:
-            info.setdefault("warnings", []).append(flag)
         own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
         if unknowns:
             own = closed_reactions(

@@ -74,16 +74,13 @@ def not_cut(scene: Scene, positions, info: dict) -> list[float]:
 
 
 def point_load_warnings(scene: Scene, params: dict, info: dict) -> list[str]:
-    """The warnings of interior point loads: one not on a cut grid point (corrected variant, ``ends = truncated``,
-    ``cuts = loads``: its neighbours' bonds average the kink under it), and concentrated loads that deform the
-    section (a point moment, or any point load with ``loads = faces``: w*, theta* under it)."""
+    """The warnings of interior point loads on w: one not on a cut grid point (corrected variant, ``ends =
+    truncated``, ``cuts = loads``: its neighbours' bonds average the kink under it), and concentrated loads that
+    deform the section (a point moment, or any point load with ``loads = faces``: w*, theta* under it). Those of the
+    recovered moment and shear: :func:`recovery_warnings`."""
     out = []
     faces = info.get("loads") == "faces"
-    interior = [
-        ld
-        for ld in scene.loads
-        if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
-    ]
+    interior = interior_point_loads(scene)
     if params["variant"] != "paper" and info["ends"] == "truncated" and params.get("cuts", "loads") == "loads":
         spots = [ld.position for ld in interior] + [s.position for s in scene.supports.inner]
         uncut = not_cut(scene, spots, info)
@@ -103,7 +100,16 @@ def point_load_warnings(scene: Scene, params: dict, info: dict) -> list[str]:
             "docs/models/yang.md), so within a few depths of the load w is not beam theory's and does not "
             "converge to it (clamped-clamped, L/h = 7.4, load at 7/8 L: 7 % of the largest deflection)"
         )
-    return out + recovery_warnings(scene, interior)
+    return out
+
+
+def interior_point_loads(scene: Scene) -> list:
+    """The point forces and moments strictly inside the beam."""
+    return [
+        ld
+        for ld in scene.loads
+        if isinstance(ld, (PointForce, PointMoment)) and ld.value != 0.0 and 0.0 < ld.position < scene.length
+    ]
 
 
 def recovery_warnings(scene: Scene, interior: list) -> list[str]:
