@@ -129,7 +129,7 @@ def get_model(name: str) -> Model:
 
 def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
     """The scene and options of the static response to a scene's loads (``static = true``): a dynamic
-    model runs its static analysis (option ``analysis``); a static-only model gets the scene without its
+    model with an ``analysis`` option runs its static analysis; any other model gets the scene without its
     ``[dynamics]`` table, which it may drop only when the table prescribes no end motion."""
     d = scene.dynamics
     moved = [
@@ -139,10 +139,8 @@ def static_part(scene: Scene, m: Model, given: dict) -> tuple[Scene, dict]:
         for k in MOTION_COMPONENT
         if getattr(getattr(d, side), k) is not None
     ]
-    if "dynamic" in m.analyses and (m.end_motions or not moved):  # else its static part would drop the motion
-        if m.option("analysis") is None:
-            return scene, given
-        if given.get("analysis", "static") not in ("static", "auto"):
+    if "dynamic" in m.analyses and m.option("analysis") is not None and (m.end_motions or not moved):
+        if given.get("analysis", "static") not in ("static", "auto"):  # else its static part would drop the motion
             raise InputError(f"static = true and analysis = {given['analysis']!r}: give one of them")
         return scene, dict(given, analysis="static")
     if d is None:

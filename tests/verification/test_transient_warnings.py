@@ -57,7 +57,7 @@ def _ids(cases):
 
 def _warnings(model, options, loads, static):
     """The warnings of the transient, or (``static``) of the same scene without its [dynamics] table (with no end
-    motion, its static part; run's ``static = true`` keeps the table for a model without an ``analysis`` option)."""
+    motion, its static part)."""
     scene = transient_scene("clamped", "clamped", loads=loads, end_time=END_TIME)
     assert scene.material.density == MATERIAL["density"]
     if static:

@@ -139,7 +139,7 @@ def test_static_model_rejects_a_dynamics_scene_unless_the_static_part_is_asked()
         "clamped", "free", ONE_LOAD, material={"youngs_modulus": 70e9, "poissons_ratio": 0.33, "density": 2700.0}
     )
     dyn = parse_scene(dict(loaded, dynamics={"end_time": 0.1}))
-    for name in ("fem-eb", "pd-eb"):
+    for name in ("fem-eb", "pd-eb", "fem-timoshenko"):  # fem-timoshenko: dynamic, with no analysis option
         a = run(dyn, name, points=41, static=True)
         b = run(parse_scene(loaded), name, points=41)
         assert np.array_equal(a.w, b.w) and np.abs(a.w).max() > 0
