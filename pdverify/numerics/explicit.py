@@ -250,8 +250,7 @@ def dynamic_info(run: Run, probes: np.ndarray, label: str = "w") -> tuple[dict, 
     }
     if flags := step_warnings(run.dt, run.dt_limit):
         info.setdefault("warnings", []).extend(flags)
-    cols = {"t": run.t, **{f"x={p:g}": run.values[:, k] for k, p in enumerate(probes)}}
-    text = columns_csv({**cols, **ledger_columns(run.t, run.energy)}, fmt="%.12g")
+    text = columns_csv({"t": run.t, **series, **ledger_columns(run.t, run.energy)}, fmt="%.12g")
     return info, {".csv": lambda path: Path(path).write_text(text)}
 
 

@@ -177,7 +177,7 @@ class _MoyerModel(Model):
                     "ylabel": {"u": "axial displacement", "w": "deflection", "twist": "twist (rad)"}[label],
                 },
             )
-            writers[".csv"] = lambda path, h=h: Path(path).write_text(h.to_csv())
+            writers[".csv"] = lambda path, h=h, series=series: Path(path).write_text(h.to_csv(series))
             flag = stabilisation_warning(h, params)
             if flag:
                 info.setdefault("warnings", []).append(flag)

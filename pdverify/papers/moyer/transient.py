@@ -51,9 +51,9 @@ class History:
     energy_drift: float = 0.0  # max |balance| / max(stored energy, work put in)
     scheme_drift: float = 0.0  # max change of the scheme's discrete energy (dynamics.EnergyLedger.scheme_drift)
 
-    def to_csv(self) -> str:
-        cols = {"t": self.t, **{f"x={p:g}": self.values[:, k] for k, p in enumerate(self.probes)}}
-        return columns_csv({**cols, **ledger_columns(self.t, self.energy)}, fmt="%.12g")
+    def to_csv(self, series: dict) -> str:
+        """The histories ``series`` (named as the result's ``info.history``) and the ledger in columns after ``t``."""
+        return columns_csv({"t": self.t, **series, **ledger_columns(self.t, self.energy)}, fmt="%.12g")
 
 
 def _interp_rows(x: np.ndarray, probes: np.ndarray) -> sp.csr_matrix:
