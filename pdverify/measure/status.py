@@ -39,8 +39,11 @@ REFERENCE_SHARE = 0.1  # a bound below this share of the measured error cannot c
 
 def in_doubt(bound: float, err: float) -> bool:
     """Whether a round-off bound (a solve's, or its reference's) could decide the error measured with it: past
-    BOUND_LIMIT (or not finite) and not below REFERENCE_SHARE of the error (NaN: no error to compare, in doubt)."""
-    return not (bound <= BOUND_LIMIT or bound < REFERENCE_SHARE * float(err))
+    BOUND_LIMIT (or not finite) and not below REFERENCE_SHARE of the error (NaN: no error to compare, in doubt).
+    A bound of 1 or more is in doubt whatever the error: a first-order bound (Higham, *Accuracy and Stability*,
+    §7.1) holds only for perturbations small beside the solution, so past 1 it says the solution may be all
+    round-off, not how large its error may be."""
+    return not (bound <= BOUND_LIMIT or (bound < 1.0 and bound < REFERENCE_SHARE * float(err)))
 
 
 def reference_status(bound: float | None, row: dict) -> dict:

@@ -48,6 +48,14 @@ def test_a_bound_that_cannot_decide_the_error_leaves_the_row_ok():
     assert case_status({"error_bound": math.inf}, err=1.0)["status"] == "suspect"
 
 
+def test_a_bound_of_one_or_more_is_in_doubt_whatever_the_error():
+    """A relative bound of 1 or more says the solution may be all round-off (pd-curved at L/h = 1e12: error 891, bound
+    9.5, once ok): the row is suspect, however much larger the error."""
+    assert case_status({"error_bound": 9.5}, err=891.0)["status"] == "suspect"
+    assert case_status({"error_bound": 1.0}, err=1e6)["status"] == "suspect"
+    assert case_status({"error_bound": 0.99}, err=10.0) == {"error_bound": 0.99}
+
+
 def _cli(args, tmp_path, E="200e9"):
     from typer.testing import CliRunner
 
