@@ -18,7 +18,7 @@ from pathlib import Path
 
 import typer
 
-from ..core.errors import InputError
+from ..core.errors import InputError, OutputError
 from ..core.version import __version__
 from .bench_command import bench
 from .cliargs import _SCENE_FILES, HORIZON, HORIZON_LENGTH, POINTS, grid_options, parse_options, positive, user_errors
@@ -312,6 +312,7 @@ def verify_cmd(
     workers: int | None = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
     scheduler: str | None = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
+    junit: Path | None = typer.Option(None, "--junit", help="also write the checks as JUnit XML to FILE"),
 ):
     """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
     Exit code 1 when a check fails."""
@@ -319,6 +320,7 @@ def verify_cmd(
 
     from ..registry import model_argument
     from ..verify import verify
+    from ..verify.card import junit as card_junit
 
     if order is not None and not (math.isfinite(order) and order > 0):
         raise InputError(f"--order {order}: give the expected order of convergence, a positive number (e.g. 2)")
@@ -326,9 +328,17 @@ def verify_cmd(
     options = grid_options(parse_options(option), horizon=horizon, horizon_length=horizon_length)
     out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))
     check_folder(out, "--out")
+    if junit is not None:
+        check_writable(junit, "--junit")
     card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)
     for c in card["checks"]:
         typer.echo(f"{c['verdict']:>5}  {c['check']}: {c['summary']}")
+    if junit is not None:
+        try:
+            write_file(junit, lambda path: Path(path).write_text(card_junit(card), encoding="utf-8"), "--junit")
+        except OutputError as exc:
+            raise OutputError(f"{exc.lines[0]}; the card is in {out}") from None
+        typer.echo(f"junit: {junit}", err=True)
     typer.echo(f"{card['model']}: {card['verdict']} (suite {card['suite_version']}); card: {out}/card.html")
     if card["verdict"] == "fail":
         raise typer.Exit(1)

@@ -61,7 +61,8 @@ def target(out: Path, option: str) -> Path:
     real = Path(os.path.realpath(out)) if out.is_symlink() else out
     via = f" (a symlink to {real})" if real != out else ""
     if real.is_dir():
-        raise OutputError(f"{option} {out}{via}: is a folder; give a file name, e.g. {out / 'result.csv'}")
+        example = "pdverify.xml" if option == "--junit" else "result.csv"
+        raise OutputError(f"{option} {out}{via}: is a folder; give a file name, e.g. {out / example}")
     if os.path.lexists(real) and not real.is_file():
         raise OutputError(
             f"{option} {out}{via}: not a regular file (a device, FIFO or socket); pdverify writes regular files "

@@ -150,6 +150,12 @@ CLI_CASES = [
     ("study-out-is-file", ["study", "{study}", "--out", "{file}"], 4, "is a file, not a folder"),
     ("bench-out-is-file", ["bench", "-m", "pd-eb", "--points", "101", "--out", "{file}"], 4, "is a file, not a folder"),
     ("verify-out-is-file", ["verify", "pd-eb", "--out", "{file}"], 4, "is a file, not a folder"),
+    ("verify-junit-dev", ["verify", "exact-eb", "--out", "{tmp}/j5", "--junit", "/dev/full"], 4, "--junit /dev/full"),
+    ("verify-junit-folder", ["verify", "exact-eb", "--out", "{tmp}/j6", "--junit", "{tmp}"], 4, "is a folder"),
+    ("verify-junit-fifo", ["verify", "exact-eb", "--out", "{tmp}/j7", "--junit", "{fifo}"], 4, "not a regular file"),
+    ("verify-junit-link-dir", ["verify", "exact-eb", "--out", "{tmp}/j8", "--junit", "{link_dir}"], 4, "is a folder"),
+    ("verify-junit-link-dev", ["verify", "exact-eb", "--out", "{tmp}/j9", "--junit", "{link_dev}"], 4, "a symlink to"),
+    ("verify-junit-in-file", ["verify", "exact-eb", "--out", "{tmp}/j10", "--junit", "{file}/j.xml"], 4, "is a file"),
     # options checked before anything runs
     ("bench-points-0", ["bench", "-m", "pd-eb", "--points", "0"], 2, "points = 0"),
     ("bench-points-1", ["bench", "-m", "pd-eb", "--points", "1"], 2, "points = 1"),

@@ -329,3 +329,83 @@ def test_help_keeps_the_scenes_table_names(command, capsys):
     """A help text naming a scene table ([dynamics]) shows it: the help's markup does not take it for a style."""
     code, out, _ = cli([command, "-h"], capsys)
     assert code == 0 and "[dynamics]" in out
+
+
+def _stub_verify(monkeypatch, verdict="fail"):
+    """``pdverify verify`` with its suite replaced by a two-check card written as the real one is (card.json,
+    card.html, junit.xml): the command's own handling of --junit, without the suite's solves."""
+    import pdverify.verify
+    from pdverify.verify.card import write_card
+
+    ran = []
+
+    def fake(name, out, options, **kw):
+        ran.append(name)
+        checks = [
+            {"check": "convergence (straight)", "verdict": verdict, "summary": "order 1.0 < 1.7"},
+            {"check": "dynamics", "verdict": "n/a", "summary": "static model"},
+        ]
+        card = {"model": name, "verdict": verdict, "suite_version": "t", "checks": checks, "wall_s": 0.5}
+        page = dict.fromkeys(("title", "theory", "reference", "pdverify_version"), "x")
+        page |= {"options": {}, "grids": [], "scenes": [], "curved_reference": None, "cases": 0, "failed_cases": 0}
+        write_card(card | page | {"expected_order": 2.0}, out)
+        return card
+
+    monkeypatch.setattr(pdverify.verify, "verify", fake)
+    return ran
+
+
+def test_verify_junit_writes_the_cards_checks_to_the_file(tmp_path, capsys, monkeypatch):
+    """--junit FILE: the card's JUnit XML (one testcase per check) in FILE, its folder made, the same document as
+    junit.xml in --out (which stays); the exit code is the card's."""
+    import xml.etree.ElementTree as ET
+
+    _stub_verify(monkeypatch)
+    junit = tmp_path / "ci" / "verify.xml"
+    code, out, err = cli(["verify", "exact-eb", "--out", tmp_path / "card", "--quiet", "--junit", junit], capsys)
+    assert code == 1, err
+    assert junit.read_text() == (tmp_path / "card" / "junit.xml").read_text()
+    suite = ET.parse(junit).getroot()
+    assert suite.get("tests") == "2" and suite.get("failures") == "1" and suite.get("skipped") == "1"
+    assert f"junit: {junit}" in err and "exact-eb: fail" in out
+    assert not list(junit.parent.glob(".*tmp*")), "no temporary file is left"
+
+
+def test_verify_junit_refused_before_the_suite_runs(tmp_path, capsys, monkeypatch):
+    """A --junit that can never be written (a folder) is refused in one line, exit 4, before the suite runs."""
+    ran = _stub_verify(monkeypatch)
+    code, out, err = cli(["verify", "exact-eb", "--out", tmp_path / "card", "--junit", tmp_path], capsys)
+    assert code == 4 and out == "" and err.count("\n") == 1 and err.startswith(f"error: --junit {tmp_path}"), err
+    assert ran == [] and not (tmp_path / "card").exists()
+
+
+def test_verify_junit_that_fails_to_write_keeps_the_card(tmp_path, capsys, monkeypatch):
+    """A --junit write that fails after the suite (no permission by then) is exit 4 in one line naming where the card
+    is; nothing partial is left at FILE."""
+    import pdverify.apps.cli
+    import pdverify.apps.output
+
+    _stub_verify(monkeypatch, verdict="pass")
+
+    def full(path):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    real = pdverify.apps.output.write_file
+    monkeypatch.setattr(pdverify.apps.cli, "write_file", lambda out, write, option: real(out, full, option))
+    junit = tmp_path / "j.xml"
+    code, out, err = cli(["verify", "exact-eb", "--out", tmp_path / "card", "--quiet", "--junit", junit], capsys)
+    assert code == 4 and err.count("\n") == 1 and "No space left on device" in err, err
+    assert f"the card is in {tmp_path / 'card'}" in err and (tmp_path / "card" / "card.json").is_file()
+    assert not junit.exists() and list(tmp_path.glob(".j.tmp*")) == []
+
+
+@pytest.mark.slow
+def test_verify_junit_of_a_real_suite(tmp_path, capsys):
+    """The whole suite on exact-eb with --junit: the file holds every check of the card."""
+    import xml.etree.ElementTree as ET
+
+    junit = tmp_path / "verify.xml"
+    code, _, err = cli(["verify", "exact-eb", "--out", tmp_path / "card", "--quiet", "--junit", junit], capsys)
+    card = json.loads((tmp_path / "card" / "card.json").read_text())
+    assert code == 0, err
+    assert [c.get("name") for c in ET.parse(junit).getroot()] == [c["check"] for c in card["checks"]]
