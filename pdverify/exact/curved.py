@@ -35,6 +35,7 @@ from ..core.errors import SolveError
 from ..core.geometry import geometry, mechanism_message
 from ..core.result import Result, Timer
 from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene
+from ..theory.curved_beam import thick_ring_warning
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -325,6 +326,9 @@ class ExactCurved(Model):
             s = np.linspace(0.0, scene.length, params["points"])
             sol = self.solver(scene)
             f = sol.fields(s)
+        info = {"cond": getattr(sol, "cond", 1.0)}  # a cantilever solves nothing: statics and quadrature only
+        if thick := thick_ring_warning(scene):
+            info.setdefault("warnings", []).append(thick)
         return self.new_result(
             scene,
             params,
@@ -334,7 +338,7 @@ class ExactCurved(Model):
             fields={k: f[k] for k in ("u", "N", "Q", "M", "ux", "uy")},
             dofs=0,
             timings=timer.timings,
-            info={"cond": getattr(sol, "cond", 1.0)},  # a cantilever solves nothing: statics and quadrature only
+            info=info,
         )
 
 

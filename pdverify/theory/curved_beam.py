@@ -1,0 +1,60 @@
+"""Where curved-beam theory stops describing the solid it stands for: the ratio of the axis' radius of curvature R to
+the section's depth h.
+
+Curved Timoshenko–Ehrenfest beam theory (exact-curved, pd-curved) takes the straight beam's section law on a curved
+axis: a linear stress through the depth, N = EA ε, M = EI χ, no radial stress. The curved bar's own section law is
+Winkler–Bach's hyperbolic hoop stress (Timoshenko & Goodier, *Theory of Elasticity*, 3rd ed., ch. 4, pure bending
+of curved bars, Golovin's elasticity solution; Boresi & Schmidt, *Advanced Mechanics of Materials*, 6th ed., ch. 9):
+its bending compliance is 1 / (E A e R) with e = R - r_n, r_n = h / ln((R + h/2) / (R - h/2)) for a rectangle, so
+
+    A e R = I (1 + (h/R)² / 15 + O(h/R)⁴),
+
+and its energy has an axial–bending coupling M N / (E A R), of relative size (N R / M) (h/R)² / 12 to the bending
+energy. Both are of relative order (h/R)² in the displacements; in the stresses the hyperbolic law differs from the
+linear one at order h/R (the inner fibre's stress). So the beam theory's deflection differs from the plane-stress
+continuum's by c (h/R)², c depending on the loads and supports; with the largest c of circular cantilevers
+(:data:`GAP_PER_RATIO_SQUARED`, docs/trust.md) that gap can pass 1 % of max |w| below R/h = sqrt(c / 0.01) = 5
+(:data:`THICK_RATIO`), and there a solve carries a warning naming R/h and the gap to expect.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.geometry import geometry
+from ..core.scene import Scene
+
+# c of max |w_beam - w_2D| / max |w_2D| = c (h/R)^2 against fem-plane-stress on circular cantilevers under end forces
+# (docs/trust.md, "curved-beam theory on a thick ring"): 0.13 (semicircle, tangential tip force) to 0.25 (quarter
+# circle, normal tip force, R/h = 5)
+GAP_PER_RATIO_SQUARED = (0.13, 0.25)
+THICK_RATIO = 5.0  # R/h below which c (h/R)^2 can pass 1 %: sqrt(0.25 / 0.01) = 5
+_SAMPLES = 1001  # points of a polynomial axis at which its curvature is taken (its largest |κ|)
+
+
+def radius_to_depth(scene: Scene) -> float:
+    """R/h: the smallest radius of curvature of the axis over the largest section depth along the beam (inf on a
+    straight axis)."""
+    if scene.is_straight:
+        return math.inf
+    kappa = np.abs(geometry(scene).curvature(np.linspace(0.0, scene.length, _SAMPLES))).max()
+    depth = max(section.depth for _, _, section, _ in scene.pieces())
+    return math.inf if kappa == 0.0 else 1.0 / (kappa * depth)
+
+
+def thick_ring_warning(scene: Scene) -> str | None:
+    """The one-line warning of a curved axis whose R/h is below :data:`THICK_RATIO`, with the gap to the 2D
+    continuum it implies; None otherwise."""
+    ratio = radius_to_depth(scene)
+    if not ratio < THICK_RATIO:
+        return None
+    lo, hi = (c / ratio**2 for c in GAP_PER_RATIO_SQUARED)
+    return (
+        f"R/h = {ratio:.3g} (radius of curvature / section depth) is below {THICK_RATIO:g}: curved-beam theory drops "
+        f"terms of order (h/R)^2 = {1 / ratio**2:.2g} (Winkler-Bach hoop stress, radial stress); its deflection "
+        f"differs from the 2D continuum's (fem-plane-stress) by {100 * lo:.2g}-{100 * hi:.2g} % of max |w| here "
+        f"(c (h/R)^2, c = {GAP_PER_RATIO_SQUARED[0]:g}-{GAP_PER_RATIO_SQUARED[1]:g} measured on circular cantilevers "
+        "under end forces); for the solid's deflection use fem-plane-stress"
+    )
