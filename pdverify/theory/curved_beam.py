@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.polynomial import polynomial as P
 
 from ..core.geometry import geometry
 from ..core.scene import Scene
@@ -39,7 +40,14 @@ def radius_to_depth(scene: Scene) -> float:
     straight axis)."""
     if scene.is_straight:
         return math.inf
-    kappa = np.abs(geometry(scene).curvature(np.linspace(0.0, scene.length, _SAMPLES))).max()
+    axis = scene.axis
+    if axis.type == "arc":
+        kappa = abs(float(geometry(scene).curvature(0.0)))
+    else:  # a polynomial axis y(x): kappa = y'' / (1 + y'^2)^(3/2), sampled in x (no arc-length inversion)
+        c = np.asarray(axis.coefficients, float)
+        x = np.linspace(*(float(v) for v in axis.x_range), _SAMPLES)
+        d1, d2 = P.polyval(x, P.polyder(c)), P.polyval(x, P.polyder(c, 2))
+        kappa = float(np.abs(d2 / (1 + d1**2) ** 1.5).max())
     depth = max(section.depth for _, _, section, _ in scene.pieces())
     return math.inf if kappa == 0.0 else 1.0 / (kappa * depth)
 
