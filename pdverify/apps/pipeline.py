@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..core.errors import InputError, OutputError
+from ..core.errors import OutputError
 from ..report import build_report
 from ..study import load_study as _load_study
 from ..study import run_study as _run_study
@@ -88,7 +88,7 @@ def run(
             echo(line)
 
     if junit is not None and Path(junit).is_dir():
-        raise InputError(f"--junit {junit}: a directory; give a file name, e.g. {Path(junit) / 'pdverify.xml'}")
+        raise OutputError(f"--junit {junit}: is a folder; give a file name, e.g. {Path(junit) / 'pdverify.xml'}")
     out = Path(out)
     t0 = time.perf_counter()
     df = _run_study(study, out, workers=workers, scheduler=scheduler, progress=progress)

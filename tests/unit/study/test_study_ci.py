@@ -412,3 +412,13 @@ def test_report_shows_the_order_checks_with_their_verdicts(tmp_path):
     assert "Order checks" in page and '<tr class="pass f" ' in checks and '<tr class="fail f" ' in checks
     fitted = pd.read_csv(tmp_path / "out/checks.csv")["observed_order"]
     assert all(f">{v:.2f}<" in checks for v in fitted)  # an order to two decimals (report.tables.COLUMNS)
+
+
+def test_the_python_api_refuses_a_junit_folder_as_the_command_line_does(tmp_path):
+    """pipeline.run with a folder for ``junit``: the OutputError of the command line (exit 4), before any case."""
+    from pdverify.apps.pipeline import load_study, run
+    from pdverify.core.errors import OutputError
+
+    with pytest.raises(OutputError, match="--junit .*: is a folder; give a file name"):
+        run(load_study(ROOT / "studies" / "convergence.toml"), tmp_path / "out", junit=tmp_path)
+    assert not (tmp_path / "out").exists()
