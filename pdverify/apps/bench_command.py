@@ -9,7 +9,8 @@ from pathlib import Path
 
 import typer
 
-from ..core.errors import InputError
+from ..core.errors import InputError, OutputError
+from .cliargs import given_path
 from .output import Format, check_folder
 
 
@@ -23,7 +24,7 @@ def bench(
     fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
     scene: Path | None = typer.Option(None, help="scene to time (default: the example cantilever)"),
     out: Path | None = typer.Option(
-        None, "--out", help="also write DIR/bench.jsonl and the performance page DIR/index.html"
+        None, "--out", parser=given_path, help="also write DIR/bench.jsonl and the performance page DIR/index.html"
     ),
     sharing: list[str] | None = typer.Option(
         None, "--sharing", help="model(s) whose verification suite is timed with and without shared factorisations"
@@ -50,6 +51,12 @@ def bench(
     names, points = list(dict.fromkeys(names)), list(dict.fromkeys(points or ())) or None  # each once
     if out is not None:
         check_folder(out, "--out")
+        others = [f for f in ("results.csv", "card.json") if (out / f).exists()]  # a study's or a card's folder
+        if others:
+            raise OutputError(
+                f"--out {out}: holds another command's results ({others[0]}), whose index.html the performance page "
+                "would replace; give another folder"
+            )
     sc = load_scene(scene) if scene is not None else None  # a missing or bad scene: one line, exit 2, before timing
     for n in names:
         m = get_model(n)

@@ -21,7 +21,17 @@ import typer
 from ..core.errors import InputError, OutputError
 from ..core.version import __version__
 from .bench_command import bench
-from .cliargs import _SCENE_FILES, HORIZON, HORIZON_LENGTH, POINTS, grid_options, parse_options, positive, user_errors
+from .cliargs import (
+    _SCENE_FILES,
+    HORIZON,
+    HORIZON_LENGTH,
+    POINTS,
+    given_path,
+    grid_options,
+    parse_options,
+    positive,
+    user_errors,
+)
 from .output import Format, check_folder, check_writable, with_warnings, write_file
 from .output import out_format as _out_format
 from .output import result_table as _table
@@ -80,7 +90,7 @@ def solve(
     fmt: Format | None = typer.Option(
         None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"
     ),
-    out: Path | None = typer.Option(None, "--out", help="write the output here instead of stdout"),
+    out: Path | None = typer.Option(None, "--out", parser=given_path, help="write the output here instead of stdout"),
     tolerance: float | None = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
     estimate: bool = typer.Option(
         False, "--estimate", help="also solve two nested grids and print a Richardson estimate of the error"
@@ -207,7 +217,9 @@ def _slug(name: str) -> str:
 @user_errors
 def study(
     study_file: Path = typer.Argument(..., help="study TOML file"),
-    out: Path | None = typer.Option(None, "--out", help="output directory (default reports/<study file stem>)"),
+    out: Path | None = typer.Option(
+        None, "--out", parser=given_path, help="output directory (default reports/<study file stem>)"
+    ),
     workers: int | None = typer.Option(
         None, "--workers", help="local worker processes, 1 or more (default: all cores; 1: in this process)"
     ),
@@ -218,7 +230,9 @@ def study(
     ),
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
-    junit: Path | None = typer.Option(None, "--junit", help="also write the verdicts as JUnit XML to FILE"),
+    junit: Path | None = typer.Option(
+        None, "--junit", parser=given_path, help="also write the verdicts as JUnit XML to FILE"
+    ),
 ):
     """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts. The output
     folder is locked while the run uses it and holds one study (exit 4 otherwise: see docs/studies.md).
@@ -288,7 +302,9 @@ def advise(
 @user_errors
 def report(
     study_dir: Path = typer.Argument(..., help="a study output directory (holds results.csv)"),
-    out: Path | None = typer.Option(None, "--out", help="write the report here (default: the study directory)"),
+    out: Path | None = typer.Option(
+        None, "--out", parser=given_path, help="write the report here (default: the study directory)"
+    ),
 ):
     """Turn a study's results into a self-contained HTML report (index.html)."""
     from ..report import build_report
@@ -306,13 +322,17 @@ def verify_cmd(
     horizon: float | None = HORIZON,
     horizon_length: float | None = HORIZON_LENGTH,
     option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),
-    out: Path | None = typer.Option(None, "--out", help="output directory (default reports/verify/<model>)"),
+    out: Path | None = typer.Option(
+        None, "--out", parser=given_path, help="output directory (default reports/verify/<model>)"
+    ),
     full: bool = typer.Option(False, "--full", help="more and finer grids (slower)"),
     order: float | None = typer.Option(None, "--order", help="expected order (default: the model's, else 2)"),
     workers: int | None = typer.Option(None, "--workers", help="local worker processes (default: all cores)"),
     scheduler: str | None = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
-    junit: Path | None = typer.Option(None, "--junit", help="also write the checks as JUnit XML to FILE"),
+    junit: Path | None = typer.Option(
+        None, "--junit", parser=given_path, help="also write the checks as JUnit XML to FILE"
+    ),
 ):
     """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
     Exit code 1 when a check fails."""

@@ -138,3 +138,11 @@ def parse_options(pairs: list[str] | None) -> dict:
         k, v = item.split("=", 1)
         out[k.strip()] = v.strip()
     return out
+
+
+def given_path(text: str) -> Path:
+    """An ``--out`` / ``--junit`` path as given; an empty one (an unset shell variable: ``--out "$OUT"``) is a usage
+    error, not the current folder that ``Path("")`` would be."""
+    if not str(text).strip():
+        raise typer.BadParameter("an empty path; give a file or folder name ('.' for the current folder)")
+    return Path(text)

@@ -47,6 +47,11 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
     """The model's continuum at the horizon of ``params``, at the points of the grid of ``params`` (as a
     :class:`~pdverify.core.result.Result` with ``info``: the method, the levels, ``error_bound`` = its error estimate
     relative to the largest value, horizon, spacing and m of the asked grid)."""
+    if scene.dynamics is not None and params.get("analysis", "auto") != "static":
+        raise InputError(
+            "continuum = true: the nonlocal continuum is a static solution, and this scene has a [dynamics] table; "
+            "add -o static=true for its static part, or drop continuum"
+        )
     timer = Timer()
     delta = horizon_of(model, scene, params)
     dx = model.spacing(scene, params)
