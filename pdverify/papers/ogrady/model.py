@@ -368,9 +368,12 @@ class PDBondPair(Model):
             w, f, path, info, _ = solve_path(scene, params, pairs, what)
         dx = pairs.dx
         x = np.arange(pairs.n) * dx
+        reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4  # as the linear pair form
         info.setdefault("warnings", []).extend(
-            plastic_warnings(scene, params, dx)
-            + failure_warnings(params, x, info, path[-1]["health"])
+            first_order_warnings(scene)
+            + boundary_layer_warnings(scene, x, reach)
+            + plastic_warnings(scene, params, dx)
+            + failure_warnings(scene, params, x, info, path[-1]["health"])
             + rotation_warnings(scene)
         )
         info.update(ends=params["ends"], spacing=dx, horizon_factor=params["horizon"])

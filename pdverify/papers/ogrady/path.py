@@ -29,7 +29,7 @@ import scipy.sparse.linalg as spla
 
 from ...core.errors import InputError, SolveError
 from ...core.loading import Loading
-from ...core.scene import Scene
+from ...core.scene import HELD, Scene
 from .calibration import horizon_length
 from .conditions import conditions, nodal_loads
 from .general import eliminate, reactions
@@ -320,11 +320,14 @@ def plastic_warnings(scene: Scene, params: dict, dx: float) -> list[str]:
     ]
 
 
-def failure_warnings(params: dict, x: np.ndarray, info: dict, health: np.ndarray) -> list[str]:
+def failure_warnings(scene: Scene, params: dict, x: np.ndarray, info: dict, health: np.ndarray) -> list[str]:
     """Past failure the beam hinges where its broken pairs are: at the peak of the curvature averaged over each
     pair's ±xi (the pair's phi, Eq. 3), which lies up to a horizon from the local theory's peak (under an off-centre
     load, towards the gentler side of the moment diagram). The hinge's position, and with it the broken beam's
-    deflection, is therefore first order in the horizon, and so in the spacing at a fixed horizon factor."""
+    deflection, is therefore first order in the horizon, and so in the spacing at a fixed horizon factor. Where the
+    hinge forms beside a prescribed deflection at a, with the nearest supports that hold the deflection at a - l and
+    a + r, the broken halves are straight: a hinge Δ off a moves the deflections by about Δ (1/l + 1/r) of the
+    prescribed one, which the warning gives."""
     broken = info["load_path"]["broken_pairs"]
     if not broken:
         return []
@@ -332,8 +335,30 @@ def failure_warnings(params: dict, x: np.ndarray, info: dict, health: np.ndarray
     delta = horizon_length(params["horizon"], dx, params["variant"])
     at = x[np.flatnonzero(health == health.min())]
     where = f"x = {at[0]:.6g}" + (f" ... {at[-1]:.6g}" if len(at) > 1 else "")
-    return [
+    text = (
         f"{broken} pairs broke (the least healthy point at {where}): the hinge forms where the curvature averaged "
         f"over the horizon peaks, up to a horizon ({delta:.3g}) from the local beam theory's peak, so past failure "
-        "the deflection converges at first order in the spacing (docs/models/ogrady.md, brittle failure)"
-    ]
+        "the deflection converges at first order in the spacing"
+    )
+    hinge = float(at[len(at) // 2])
+    held = [0.0] * _holds_deflection(scene, "left") + [scene.length] * _holds_deflection(scene, "right")
+    held += [sup.position for sup in scene.supports.inner if sup.holds_deflection]
+    shown = [(i, ld) for i, ld in enumerate(scene.loads) if ld.type == "displacement"]
+    if shown:
+        i, ld = min(shown, key=lambda item: abs(item[1].position - hinge))
+        left = [ld.position - h for h in held if h < ld.position]
+        right = [h - ld.position for h in held if h > ld.position]
+        shift = abs(hinge - ld.position)
+        if shift > 1e-9 * dx and left and right:
+            size = shift * (1.0 / min(left) + 1.0 / min(right))
+            text += (
+                f"; the hinge is {shift:.3g} ({shift / dx:.3g} dx) from loads[{i}]'s prescribed deflection at "
+                f"{ld.position:g}, which moves the broken beam's deflections by about {100 * size:.2g} % of it"
+            )
+    return [text + " (docs/models/ogrady.md, brittle failure)"]
+
+
+def _holds_deflection(scene: Scene, side: str) -> bool:
+    """Whether the end ``side`` holds the deflection (:data:`pdverify.core.scene.HELD`; a spring does not)."""
+    kind = scene.supports.kind(side)
+    return kind in HELD and HELD[kind][1]

@@ -2,6 +2,7 @@
 elastic-perfectly plastic and brittle Euler-Bernoulli beam (exact-eb's load path: statics, the section's fibre law)."""
 
 import copy
+import re
 
 import numpy as np
 import pytest
@@ -153,7 +154,8 @@ def test_an_off_centre_hinge_sits_at_the_averaged_curvatures_peak_a_first_order_
     one point towards the moment diagram's gentler side see a larger averaged curvature (the slope of the
     triangle differs on the two sides), so the hinge forms there, not under the prescribed point; the broken beam's
     deflection is off by that shift: first order in the spacing (order 1 within 0.1 from 201 to 401 points, against
-    exact-eb's hinge under the point), and the result says so."""
+    exact-eb's hinge under the point), and the result says so, with the size of the shift's effect (to 5 %: the
+    warning's two significant digits)."""
     a = L / 2 - side * 0.15 * L
     sc = scene(
         loads=[{"type": "displacement", "position": a, "value": -0.02}],
@@ -165,9 +167,24 @@ def test_an_off_centre_hinge_sits_at_the_averaged_curvatures_peak_a_first_order_
         r, e = run(sc, "pd-bond-pair", points=n), run(sc, "exact-eb", points=n)
         hinge = r.x[np.argmin(r.fields["health"])]
         assert hinge == pytest.approx(a + side * (r.x[1] - r.x[0]), abs=1e-9)  # one point towards the centre
-        assert any("pairs broke" in w and "first order" in w for w in r.info["warnings"])
+        (said,) = [w for w in r.info["warnings"] if "pairs broke" in w and "first order" in w]
         errors.append(np.abs(r.w - e.w).max() / np.abs(e.w).max())
+        # the straight broken halves through a hinge one spacing off: dx (1/a + 1/(L - a)) of the deflection
+        size = float(re.search(r"by about ([0-9.e+-]+) %", said).group(1)) / 100
+        assert size == pytest.approx(errors[-1], rel=0.05)
     assert abs(np.log2(errors[0] / errors[1]) - 1.0) < 0.1
+
+
+def test_a_path_with_a_deflection_prescribed_in_the_end_layer_says_so():
+    """A load path with its deflection prescribed 0.05 spacings from a pinned end (pd-bond-pair 9x off exact-eb
+    there, once with no warning of it) carries the linear pair form's boundary-layer warning."""
+    sc = scene(
+        loads=[{"type": "displacement", "position": 0.001, "value": -0.02}],
+        material={"failure_strain": 1e-3},
+        loading={"factors": [0.0, 1.0], "steps": 10},
+    )
+    r = run(sc, "pd-bond-pair", points=201)
+    assert any(w.startswith("loads[0] at 0.001 is 0.1 spacings from an end") for w in r.info["warnings"])
 
 
 def test_a_prescribed_deflection_carries_the_beams_stiffness():
