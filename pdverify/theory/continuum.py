@@ -164,8 +164,13 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float, limi
             "error_bound": est,
             "no_limit": why,
             "warnings": [
-                f"{model.name}: {why}; its continuum here is its own finest grid (m = {m_user * r:g}), which differs "
-                f"from the next coarser by {est:.2g}: m-convergence measured against it is flagged"
+                f"{model.name}: {why}; its continuum here is its own finest grid (m = {m_user * r:g}), "
+                + (
+                    f"which differs from the next coarser by {est:.2g}"
+                    if len(values) > 1
+                    else "the asked grid itself: no coarser grid to estimate its error from (error_bound inf)"
+                )
+                + ": m-convergence measured against it is flagged"
             ],
         }
         return _unpack(x_user, fine), info
