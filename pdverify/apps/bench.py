@@ -46,12 +46,14 @@ def max_error(scene, model, result) -> float | None:
     model's theory (Euler–Bernoulli for ``theory = "euler-bernoulli"``, Timoshenko otherwise: a
     higher-order or continuum model's distance from it is part of its error). None where pdverify has no
     exact elastic solution of the field: a curved axis, an axial or torsion model (w identically zero), a material
-    past elasticity or a load path (yield_stress, failure_strain, [loading], prescribed deflections)."""
+    past elasticity, a load path (yield_stress, failure_strain, [loading], prescribed deflections) or a transient
+    (its w is the state at the end time, not the static deflection)."""
 
     w = np.asarray(result.w, float)
     laws = any(mat.yield_stress is not None or mat.failure_strain is not None for *_, mat in scene.pieces())
     path = scene.loading is not None or any(ld.type == "displacement" for ld in scene.loads)
-    if not scene.is_straight or not np.any(w) or laws or path:
+    transient = result.info.get("analysis") == "dynamic"
+    if not scene.is_straight or not np.any(w) or laws or path or transient:
         return None
     shear = model.theory != "euler-bernoulli"
     exact = solve_straight(scene, shear).fields(result.x)["w"]
