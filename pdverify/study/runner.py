@@ -24,6 +24,7 @@ from ..measure.shapes import with_exact_shapes
 from ..measure.status import case_status, reference_status
 from ..numerics.timeint import ledger_columns
 from ..registry import get_model
+from ..theory.curved_beam import thick_ring_warning
 from . import execute, solves
 from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
@@ -276,8 +277,20 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     elif case.reference.get("model") != "none":
         row.update(reference_status(reference_bound(case), row))
     row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
+    if (gap := theory_gap_warning(case)) is not None:  # ... and a reference theory's that the error measures
+        row["warnings"] = "; ".join(w for w in (row["warnings"], gap) if w)
     if "artefact_message" in solved:
         row["artefact_message"] = solved["artefact_message"]
+
+
+def theory_gap_warning(case: Case) -> str | None:
+    """The thick-ring warning of a curved-beam reference (:func:`pdverify.theory.curved_beam.thick_ring_warning`)
+    when the case's model is the 2D continuum: the error the row measures is then mostly the beam theory's own."""
+    ref = case.reference.get("model")
+    if ref in (None, "none") or get_model(case.model).theory != "continuum" or get_model(ref).theory == "continuum":
+        return None
+    found = thick_ring_warning(case.scene())
+    return None if found is None else f"the reference {ref}: {found}"
 
 
 def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: str) -> None:

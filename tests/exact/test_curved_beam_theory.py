@@ -80,3 +80,24 @@ def test_gap_to_the_2d_continuum_is_of_order_h_over_r_squared():
     assert np.all(np.abs(orders - 2) < 0.1), (gaps, orders)
     lo, hi = (c * (math.pi / 10) ** 2 for c in GAP_PER_RATIO_SQUARED)
     assert lo <= _gap(load_scene(THICK)) <= hi
+
+
+def test_a_study_row_of_the_2d_strip_against_curved_beam_theory_carries_the_thick_ring_warning():
+    """fem-plane-stress judged against exact-curved on a thick ring (R/h = 3.18: measured 1.9 % apart at 81 stations)
+    measures mostly the beam theory's own gap: its row carries the reference's warning; pd-curved (the same theory
+    as the reference) and a slender ring do not get it from the reference."""
+    from helpers import ROOT
+
+    from pdverify.study.runner import theory_gap_warning
+    from pdverify.study.spec import Case
+
+    path = ROOT / "studies/paper_curved/semicircle_normal.toml"
+    ring = path.read_text()
+
+    def case(model, text):
+        return Case(str(path), text, None, model, {}, {"model": "exact-curved"})
+
+    assert theory_gap_warning(case("fem-plane-stress", ring)).startswith("the reference exact-curved: R/h = 3.18")
+    assert theory_gap_warning(case("pd-curved", ring)) is None
+    slender = ring.replace("height = 0.3141592653589793", "height = 0.03141592653589793")  # R/h = 31.8
+    assert slender != ring and theory_gap_warning(case("fem-plane-stress", slender)) is None
