@@ -9,7 +9,8 @@ E or 0. The section's M = Σ sigma y dA and tangent Σ E_t y² dA are the consis
 K_t du = lambda F - f_int(u) is exact once the set of yielded fibres repeats (the law is piecewise linear).
 
 Supports hold their DOFs, springs add their stiffness, a prescribed deflection holds its node at lambda times its
-value. A step whose Newton does not settle is halved up to ``CUTS`` times; then the path stops with one line and
+value; a step's increment of it enters the first Newton iteration, linearised at the converged state (K_ff du_f =
+r_f - K_fh du_h), not as a kink imposed on that state. A step whose Newton does not settle is halved up to ``CUTS`` times; then the path stops with one line and
 keeps the steps so far (collapse: a hinge, no equilibrium past it). The discrete beam's hinge is not a perfect
 mechanism (a Gauss point's section yields whole while its element's others keep an elastic core), so past collapse
 Newton can settle on deflections hundreds of lengths large: a step whose stiffness, dλ over the largest change of
@@ -148,14 +149,24 @@ class FibreBeam:
     def equilibrium(self, factor: float, u0: np.ndarray, eps_p: np.ndarray):
         """(u, f_int, over, eps_p'): Newton from u0 at ``factor``; SolveError when it does not settle."""
         u = u0.copy()
-        u[self.held] = self.held_values(factor)[self.held]
+        dh = self.held_values(factor)[self.held] - u0[self.held]  # the prescribed deflections' increment
+        dh = dh if np.any(dh) else None
         F = factor * self.F1
         fr = self.free
         last, before = None, np.inf
         for _ in range(NEWTON):
             f, K, (over, ep), mag = self.forces(u, eps_p)
             r = (F - f)[fr]
-            size = np.abs(r).max()
+            if dh is not None:
+                # the first iteration is linearised at u0 with the held DOFs' increment inside it: K_ff du_f =
+                # r_f - K_fh du_h (Newton on the constrained system). Setting u_h first instead puts the increment
+                # as a kink in one element at the converged state (curvature ~ 6 du_h / l^2, growing with the grid),
+                # whose fibres yield before the step's load does
+                r = r - K[fr][:, self.held] @ dh
+                u[self.held] += dh
+                size, dh = np.inf, None
+            else:
+                size = np.abs(r).max()
             # the law is piecewise linear: once the yielded set at u is the one whose tangent gave u, the corrections
             # are iterative refinement of that linear system (the direct K rounds like N^4 eps); they stop when the
             # residual, computed from the element forces, no longer halves
