@@ -8,15 +8,15 @@ B u_e); its stress the return mapping sigma = E (eps - eps_p) capped at +-sigma_
 E or 0. The section's M = Σ sigma y dA and tangent Σ E_t y² dA are the consistent ones, so Newton on
 K_t du = lambda F - f_int(u) is exact once the set of yielded fibres repeats (the law is piecewise linear).
 
-Supports hold their DOFs, springs add their stiffness, a prescribed deflection holds its node at lambda times its
-value; a step's increment of it enters the first Newton iteration, linearised at the converged state (K_ff du_f =
-r_f - K_fh du_h), not as a kink imposed on that state. A step whose Newton does not settle is halved up to ``CUTS`` times; then the path stops with one line and
-keeps the steps so far (collapse: a hinge, no equilibrium past it). The discrete beam's hinge is not a perfect
-mechanism (a Gauss point's section yields whole while its element's others keep an elastic core), so past collapse
-Newton can settle on deflections hundreds of lengths large: a step whose stiffness, dλ over the largest change of
-w, is below ``COLLAPSE`` times the first loading step's stops the path the same way (Bergan's current stiffness
-parameter; Bergan et al. 1978, Comput. Methods Appl. Mech. Eng. 14). Arrays in, arrays out: no loops over elements or
-fibres (the loop is over Newton iterations and steps).
+Supports hold their DOFs, springs add their stiffness, a prescribed deflection holds its node at lambda times its value;
+a step's increment of it enters the first Newton iteration, linearised at the converged state (K_ff du_f = r_f - K_fh
+du_h), not as a kink imposed on that state. A step whose Newton does not settle is halved up to ``CUTS`` times; then the
+path stops with one line and keeps the steps so far (collapse: a hinge, no equilibrium past it). The discrete beam's
+hinge is not a perfect mechanism (a Gauss point's section yields whole while its element's others keep an elastic core),
+so past collapse Newton can settle on deflections hundreds of lengths large: a step whose stiffness, dλ over the largest
+change of w, is below ``COLLAPSE`` times the first loading step's stops the path the same way (Bergan's current
+stiffness parameter; Bergan et al. 1978, Comput. Methods Appl. Mech. Eng. 14). Arrays in, arrays out: no loops over
+elements or fibres (the loop is over Newton iterations and steps).
 
 The fibres' quadrature of a yielded section is second order in the layer thickness (the elastic core's edge is a
 kink of sigma(y) inside one layer), and the elements' of the curvature field at the plastic zone's edge likewise.
@@ -110,6 +110,7 @@ class FibreBeam:
         self.shown_dofs = [2 * int(np.argmin(np.abs(self.nodes - ld.position))) for ld in self.shown]
         self.held = np.array(sorted(set(held) | set(self.shown_dofs)), int)
         self.free = np.setdiff1d(np.arange(N), self.held)
+        self.iterations = 0  # Newton iterations (tangent solves) over the path, cut steps included
 
     def held_values(self, factor: float) -> np.ndarray:
         u = np.zeros(2 * len(self.nodes))
@@ -175,6 +176,7 @@ class FibreBeam:
             ):
                 return u, f, over, ep
             before = size if np.array_equal(over, last) else np.inf
+            self.iterations += 1
             try:
                 du = spla.splu(K[fr][:, fr].tocsc()).solve(r)
             except RuntimeError:
@@ -271,6 +273,7 @@ def solve_path(scene: Scene, points: int, fibres: int):
             "fibres": int(len(beam.y)),
             "gauss_points": GAUSS,
             "elements": int(len(beam.l)),
+            "newton_iterations": beam.iterations,
         },
         "reactions": steps[-1]["reactions"],
     }
