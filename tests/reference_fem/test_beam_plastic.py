@@ -172,3 +172,62 @@ def test_the_path_stops_at_collapse(points):
     assert not path["completed"] and 0.975 < path["last_factor"] < 0.995
     assert np.abs(r.w).max() < 0.1 * L
     assert any("collapses" in w for w in r.info["warnings"])
+
+
+H = RECT["height"]
+EI = E * RECT["width"] * H**3 / 12
+DELTA_Y = SY * L**2 / (6 * E * H)  # the centre deflection at first yield under a centre force: M_y L^2 / (12 EI)
+
+
+def centre_held(fraction, steps=10):
+    """Simply supported, the centre deflection prescribed to ``fraction`` of first yield's in ``steps`` steps (the
+    audit's yd_small, y9 and lp/yield_1.0_0.0002 scenes of O'Grady Fig. 6 and 9, in units of first yield)."""
+    return scene(
+        supports={"left": "pinned", "right": "pinned"},
+        loads=[{"type": "displacement", "position": L / 2, "value": -fraction * DELTA_Y}],
+        loading={"factors": [0.0, 1.0], "steps": steps},
+    )
+
+
+@pytest.mark.parametrize("points", [41, 401])
+def test_an_elastic_prescribed_deflection_takes_its_steps_uncut(points):
+    """The centre held at 0.3 of first yield: every step is linear, so Newton's first solve (linearised at the last
+    state, the held increment inside it) is the step's solution, and iterative refinement of the direct solve (error
+    ~N^4 eps, below 1e-5 here) reaches the residual's round-off in at most two more, where the halving test stops it:
+    3 tangent solves a step at most, no step cut. Setting the held node first made a one-element kink (curvature
+    6 du / l^2) whose fibres yielded: every step was cut, 188 steps for 10 at 41 points, past 120 s at 101."""
+    r = run(centre_held(0.3), "fem-eb", points=points)
+    lp = r.info["load_path"]
+    assert lp["completed"] and lp["steps"] == 11 and lp["newton_iterations"] <= 3 * 10, lp
+    assert all(s["cut_back"] == 0 and s["plastic_zone"] == 0 for s in r.path)
+
+
+@pytest.mark.parametrize("points", [41, 201])
+def test_a_plastic_prescribed_deflection_takes_its_steps_uncut(points):
+    """The centre held to 2.4 first yield in 30 steps (the audit's y9: Fig. 9's scene with yield_stress = 250e6):
+    the plastic law is piecewise linear and each step's Newton, started from the linearised step, settles without a
+    cut, so the path has the scene's 30 steps. The kink start cut them (263 steps at 21 points, 1111 at 41, over
+    600 s at 101)."""
+    r = run(centre_held(0.02 / DELTA_Y, steps=30), "fem-eb", points=points)
+    lp = r.info["load_path"]
+    assert lp["completed"] and lp["steps"] == 31, lp
+    assert all(s["cut_back"] == 0 for s in r.path) and r.path[-1]["plastic_zone"] > 0
+
+
+@pytest.mark.parametrize("points", [61, 101, 201])
+def test_the_first_step_of_a_prescribed_deflection_is_elastic(points):
+    """The centre held to 3.16 first yield in 10 steps (the audit's lp/yield_1.0_0.0002): the first step, 0.316 of
+    first yield, is elastic. The kink start's curvature is 0.158 n_el^2 times first yield's in the kinked element
+    whatever the step, so even the eighth halving yielded whole sections at 61 points and up: the path stopped at
+    load factor 0, 'singular'. Now it completes uncut and the first step's force is 48 EI delta / L^3 (Hermite
+    elements are nodally exact); its round-off is the element forces' cancellation, 12 EI delta / l^3 summed to
+    48 EI delta / L^3: n_el^3 / 4 eps, bounded here by n_el^3 eps."""
+    r = run(centre_held(3.16), "fem-eb", points=points)
+    lp = r.info["load_path"]
+    assert lp["completed"] and lp["steps"] == 11 and all(s["cut_back"] == 0 for s in r.path), lp
+    first = r.path[1]
+    assert first["factor"] == pytest.approx(0.1) and first["plastic_zone"] == 0
+    exact = -48 * EI * 0.316 * DELTA_Y / L**3
+    n_el = points - 1
+    assert abs(first["reactions"]["force_displacement_0"] / exact - 1) <= n_el**3 * np.finfo(float).eps
+    assert r.path[-1]["plastic_zone"] > 0
