@@ -480,6 +480,8 @@ class Model(Horizon):
         found = variant_problems(self, params) if rules else []
         if found:
             raise InputError(found)
+        if rules and (found := self.grid_problems(scene, params)):
+            raise InputError(found)
         return params
 
 

@@ -36,9 +36,18 @@ class Horizon:
         equations need a whole m and delta / dx is not one."""
         delta, dx = params["horizon_length"], self.spacing(scene, params)
         m = delta / dx
-        if abs(m - round(m)) <= 1e-9 * max(1.0, m):
+        if round(m) >= 1 and abs(m - round(m)) <= 1e-9 * max(1.0, m):
             m = float(round(m))  # a whole number of spacings, whatever the rounding of delta / dx
         opt = self.option("horizon")
+        least = opt.minimum if opt.minimum is not None else 0.0
+        if opt.kind is int or self.whole_horizon:
+            least = max(least, 1.0)  # a horizon of whole spacings covers one at least (pd-curved's 0: its default)
+        if m < least or m <= 0:
+            what = f"{least:g} spacing{'' if least == 1 else 's'}" if least > 0 else "more than 0 spacings"
+            raise InputError(
+                f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}, below the least horizon of model "
+                f"{self.name} ({what}); give horizon_length >= {max(least, 1.0) * dx:.6g} or more points"
+            )
         if (self.whole_horizon or opt.kind is int) and m != round(m):
             near = max(1, round(m))
             raise InputError(
@@ -46,14 +55,66 @@ class Horizon:
                 f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
                 f"{near * dx:.6g} or points with (points - 1) delta / length whole"
             )
-        least = opt.minimum if opt.minimum is not None else 0.0
-        if m < least or m <= 0:
-            raise InputError(
-                f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}, below the least horizon of model "
-                f"{self.name} ({least:g} spacing{'' if least == 1 else 's'}); give a longer horizon or more points"
-            )
         value = m - self.horizon_offset(params)
         return int(round(value)) if opt.kind is int else float(value)
+
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """What the model's grid refuses in the resolved ``params`` on ``scene``, found without solving (a horizon
+        whose family does not fit in the points, a variant defined only up to some horizon): one line each, checked
+        by :meth:`~pdverify.core.contract.Model.resolve`, so that a command and a study's up-front check refuse it
+        at once (exit 2). None by default; a model that refuses more inside its solve still does."""
+        return []
+
+    def family_problems(self, scene: Scene, params: dict, reach, stencil: bool = False) -> list[str]:
+        """The refusal of a family that does not fit in the points (:meth:`grid_problems` of a model whose family
+        reaches ``reach(m)`` points each side of a point, 2 reach + 1 <= points): none when it fits. ``stencil``:
+        the operator is the family applied twice (a stencil of 2 x reach points each side, 2 reach + 1 <= points
+        all the same)."""
+        n = params["points"]
+
+        def fits(k) -> bool:  # a family reaches at least floor(k) points: no arrays for a horizon past the grid
+            return k < n and 2 * reach(k) + 1 <= n
+
+        if fits(params["horizon"]):
+            return []
+        J = reach(params["horizon"]) if params["horizon"] < n else int(params["horizon"])
+        shape = f"the stencil (2 x {J} points)" if stencil else f"the family ({J} points each side)"
+        return [self.horizon_refusal(scene, params, f"{shape} does not fit in {n} points", fits)]
+
+    def horizon_named(self, scene: Scene, params: dict) -> str:
+        """The horizon as the user set it, for a refusal: ``horizon = 250``, or with ``horizon_length`` given
+        ``horizon_length = 5 (horizon = 250 spacings of 0.02)``."""
+        m = params["horizon"]
+        if params.get("horizon_length") is None:
+            return f"horizon = {m:g}"
+        dx = self.spacing(scene, params)
+        return f"horizon_length = {params['horizon_length']:g} (horizon = {m:g} spacings of {dx:.6g})"
+
+    def horizon_refusal(self, scene: Scene, params: dict, what: str, fits, fix: str = "", more_points=True) -> str:
+        """One line refusing the horizon of ``params`` on its grid before any work: the horizon as the user set it
+        (:meth:`horizon_named`), ``what`` is wrong, and the fix: with ``horizon`` a smaller horizon (the largest
+        whole one that ``fits(m)``, a predicate monotone in m) or more points; with ``horizon_length`` the longest
+        horizon_length that fits (more points do not help: the horizon's spacings grow with them). ``fix``: more
+        ways out (", or variant corrected"); ``more_points``: whether more points make a given horizon fit."""
+        most = 0
+        hi = max(1, int(params["horizon"]) + 1)
+        if fits(1):
+            lo = 1  # fits(lo), not fits(hi): bisect on whole m
+            while hi - lo > 1:
+                mid = (lo + hi) // 2
+                lo, hi = (mid, hi) if fits(mid) else (lo, mid)
+            most = lo
+        n = params.get("points")
+        if params.get("horizon_length") is None:
+            way = f"use horizon <= {most}" if most else "use more points"
+            if most and n is not None and more_points:
+                way = f"use more points or horizon <= {most} at {n} points"
+        elif most:
+            length = (most + self.horizon_offset(params)) * self.spacing(scene, params)
+            way = f"give horizon_length <= {length:.6g} ({most} spacings)"
+        else:
+            way = "give a shorter horizon_length"
+        return f"{self.horizon_named(scene, params)}: {what}; {way}{fix}"
 
     def continuum_series(self, scene: Scene, params: dict):
         """The closed form of the model's continuum on ``scene`` (:class:`pdverify.theory.nonlocal.Series`: the

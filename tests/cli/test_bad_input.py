@@ -47,7 +47,9 @@ def test_bad_scene_file(path, capsys):
     assert_one_error_line(*cli(["solve", path, "--model", "exact-eb"], capsys), 2, expected(path))
 
 
-SCENE = ROOT / "studies/examples/cantilever_tip_load.toml"
+SCENE_PATH = "studies/examples/cantilever_tip_load.toml"
+FITS = " points at this horizon, 21 given (the horizon and the end fits must fit in the grid)"
+SCENE = ROOT / SCENE_PATH
 CURVED = ROOT / "studies/curved/quarter_circle_tip_force.toml"
 
 # (id, arguments, exit code, text the error line must contain). Placeholders: {scene} a valid scene, {tmp} a
@@ -277,6 +279,65 @@ CLI_CASES = [
         ],
         2,
         "supports.inner[0] at 1 (its force) lies between points 2 and 3 of 6",
+    ),
+    # a horizon the grid refuses, before any work (Model.grid_problems), naming the field the user set: before, pd-
+    # timoshenko fitted energy end bonds at m = 250 for seconds, then named only "horizon = 250"
+    (
+        "solve-pd-timoshenko-energy-horizon-length",
+        ["solve", "{scene}", "-m", "pd-timoshenko", "--points", "51", "-o", "horizon_length=5"],
+        2,
+        "horizon_length = 5 (horizon = 250 spacings of 0.02): variant energy's fitted end bonds have an end mode of "
+        "negative bending energy past horizon 12 (horizons 1-12 are positive definite); give horizon_length <= 0.16 "
+        "(8 spacings) or variant corrected",
+    ),
+    (
+        "solve-pd-timoshenko-energy-horizon",
+        ["solve", "{scene}", "-m", "pd-timoshenko", "--points", "51", "-o", "horizon=250"],
+        2,
+        "horizon = 250: variant energy's fitted end bonds have an end mode of negative bending energy past horizon "
+        "12 (horizons 1-12 are positive definite); use horizon <= 8 or variant corrected",
+    ),
+    *[
+        (
+            f"solve-{model}-horizon-length-past-the-grid",
+            ["solve", str(ROOT / scene), "-m", model, "--points", "21", "-o", "horizon_length=30", *more],
+            2,
+            f"horizon_length = 30 (horizon = 600 spacings of 0.05): {what}; give horizon_length <= {most}",
+        )
+        for model, scene, more, what, most in (
+            ("pd-eb", SCENE_PATH, [], "the family (600 points each side) does not fit in 21 points", "0.5 (10"),
+            ("pd-bond-pair", SCENE_PATH, [], "the stencil (2 x 600 points) does not fit in 21 points", "0.5 (10"),
+            ("pd-higher-order", SCENE_PATH, [], "the family (600 points each side) does not fit in 21 points", "0.5"),
+            (
+                "pd-timoshenko",
+                SCENE_PATH,
+                ["-o", "variant=corrected"],
+                "model pd-timoshenko needs at least 1202" + FITS,
+                "0.45",
+            ),
+            (
+                "pd-rod",
+                "studies/examples/rod_tip_load.toml",
+                [],
+                "model pd-rod needs at least 1202" + FITS,
+                "0.45",
+            ),
+            (
+                "pd-torsion",
+                "studies/examples/shaft_tip_torque.toml",
+                [],
+                "model pd-torsion needs at least 1202" + FITS,
+                "0.45",
+            ),
+            ("pd-curved", SCENE_PATH, [], "a family (1201 particles for degree 4) is larger than the 21 points", "0.5"),
+        )
+    ],
+    (
+        "solve-pd-curved-horizon-length-1e-300",
+        ["solve", "{scene}", "-m", "pd-curved", "--points", "21", "-o", "horizon_length=1e-300"],
+        2,
+        "horizon_length = 1e-300: 2e-299 spacings of 0.05, below the least horizon of model pd-curved (1 spacing); "
+        "give horizon_length >= 0.05",
     ),
 ]
 

@@ -178,21 +178,33 @@ class PDCurved(Model):
             default_horizon(P, params["form"]),
         )
 
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """The family :meth:`discretise` refuses (too small for the degree, larger than the grid), before any work:
+        naming the horizon as the user set it (``horizon`` or ``horizon_length``)."""
+        P, n, given = params["degree"], params["points"], params.get("horizon_length") is not None
+        m = params["horizon"] or default_horizon(P, params["form"])
+        if 2 * m + 1 < P + 1:
+            low = int(np.ceil(P / 2))
+            fix = f"horizon_length >= {low * self.spacing(scene, params):.6g}" if given else f"horizon >= {low}"
+            what = f"a family of {2 * m + 1} particles cannot carry degree {P}"
+            return [
+                f"{self.horizon_named(scene, params)}: {what}; {'give' if given else 'use'} {fix} or a lower degree"
+            ]
+        if 2 * m + 1 > n and not given:
+            family = f"{2 * m + 1} particles for degree {P}, horizon {m}"
+            return [f"points = {n}: fewer than one family ({family}); use more points"]
+        if 2 * m + 1 > n:
+            what = f"a family ({2 * m + 1} particles for degree {P}) is larger than the {n} points"
+            return [self.horizon_refusal(scene, params, what, lambda k: 2 * k + 1 <= n)]
+        return []
+
     # ---------------------------------------------------------------------------------------
     def discretise(self, scene: Scene, params: dict):
         P = params["degree"]
         m = params["horizon"] or default_horizon(P, params["form"])
         size = 2 * m + 1
-        if size < P + 1:
-            raise InputError(
-                f"horizon = {m}: a family of {size} particles cannot carry degree {P}; "
-                f"use horizon >= {int(np.ceil(P / 2))} or a lower degree"
-            )
-        if size > params["points"]:
-            raise InputError(
-                f"points = {params['points']}: fewer than one family ({size} particles for "
-                f"degree {P}, horizon {m}); use more points"
-            )
+        if found := self.grid_problems(scene, params):  # resolve checked it; params built by hand (rules off)
+            raise InputError(found)
         bps, inner, ends = breakpoints(scene)
         if params.get("positions"):
             segs = given_grids(scene.length, bps, parse_positions(params["positions"], scene.length), size)

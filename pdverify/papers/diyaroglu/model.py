@@ -258,6 +258,12 @@ class PDEulerBernoulli(Model):
         """Master–slave elimination of the fixed points (w = 0): the rows/columns of the free points."""
         return eliminate(K, b, fixed)
 
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """A family that does not fit in the points (:meth:`assemble_full`, :meth:`layout`), before any work."""
+        dx = self.spacing(scene, params)
+        variant = "corrected" if self.form(params) == "mixed" else params["variant"]
+        return self.family_problems(scene, params, lambda k: len(curvature_weights(k, dx, variant)))
+
     def refuse(self, scene: Scene, params: dict) -> None:
         """InputError (one line) for what the chosen variant and form do not define."""
         if params.get("reading", "energy") != "energy" and params["variant"] != "paper":

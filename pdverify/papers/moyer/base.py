@@ -16,6 +16,7 @@ from ...numerics.explicit import step_warnings
 from ...numerics.loads import boundary_layer_warnings, held_rotation_warnings, moment_rotation_warnings
 from .constraints import reactions, solve_with_holds
 from .ends import FIT_POINTS
+from .energy import ENERGY_HORIZONS, zone
 from .pieces import plain_ends
 from .system import Discrete, prescribed_motions, static_solution, static_system
 from .transient import STABILISATION, History, integrate
@@ -73,6 +74,50 @@ class _MoyerModel(Model):
             allowed=("nodes",),
         ),
     )
+
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """The horizon the grid refuses, before any work (the operator's own checks: :func:`.operator._check_grid`,
+        variant energy's :func:`.energy.energy_beam_operator`, whose fit of m = 250 alone takes seconds)."""
+        m, n = params["horizon"], params["points"] - (1 if params.get("grid") == "cells" else 0)
+        if self.name == "pd-timoshenko" and params.get("variant") == "energy":
+
+            def need(k):
+                return max(2 * zone(k), 5)
+
+            if m > ENERGY_HORIZONS:
+                what = (
+                    f"variant energy's fitted end bonds have an end mode of negative bending energy past horizon "
+                    f"{ENERGY_HORIZONS} (horizons 1-{ENERGY_HORIZONS} are positive definite)"
+                )
+                return [
+                    self.horizon_refusal(
+                        scene,
+                        params,
+                        what,
+                        lambda k: k <= ENERGY_HORIZONS and n >= need(k),
+                        " or variant corrected",
+                        more_points=False,
+                    )
+                ]
+            what = "its two ends' fitted bonds must not overlap"
+        else:
+
+            def need(k):
+                return max(2 * k + 2, FIT_POINTS + 1)
+
+            what = "the horizon and the end fits must fit in the grid"
+        if n < need(m):
+            if params.get("horizon_length") is None:  # the points are short (advise refines on this "points = n:")
+                energy = (
+                    " (variant energy)" if params.get("variant") == "energy" and self.name == "pd-timoshenko" else ""
+                )
+                return [
+                    f"points = {n}: model {self.name}{energy} with horizon = {m} needs at least {need(m)} points "
+                    f"({what}); use more points or a smaller horizon"
+                ]
+            what = f"model {self.name} needs at least {need(m)} points at this horizon, {n} given ({what})"
+            return [self.horizon_refusal(scene, params, what, lambda k: n >= need(k))]
+        return []
 
     def operator(self, scene: Scene, params: dict) -> Discrete:  # pragma: no cover - interface
         raise NotImplementedError

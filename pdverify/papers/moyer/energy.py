@@ -44,6 +44,7 @@ from .resultants import moment_steps, point_loads, shear_at_points
 from .system import Discrete, beam_prescribed
 
 ZONE = 3  # bonds are refitted within ZONE m + 1 points of each end
+ENERGY_HORIZONS = 12  # the fitted bonds' energy is positive definite for m = 1..12, not from 13 on (definite)
 AVERAGE = np.array([-1.0, 13.0, 13.0, -1.0]) / 24  # interval average of a cubic from its 4 nearest points
 END_AVERAGE = np.array([9.0, 19.0, -5.0, 1.0]) / 24  # the same over the first interval, from the end's 4 points
 GAMMA = sp.csr_matrix(([1.0], ([1], [1])), shape=(2, 2))  # the γ slot of a point's interleaved DOFs (w, γ)

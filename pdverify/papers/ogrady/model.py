@@ -257,6 +257,16 @@ class PDBondPair(Model):
         ),
     )
 
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """A stencil that does not fit in the points (:func:`.taylor.assemble_taylor`, :func:`.taylor.assemble_mixed`:
+        the linear path with Taylor ends), before any work; the pair form and mirrored ends take any horizon."""
+        if params["nonlinear"] or needs_pairs(scene) or resolved_ends(scene, params)["ends"] != "taylor":
+            return []
+        dx = self.spacing(scene, params)
+        return self.family_problems(
+            scene, params, lambda k: int(pair_family(k, dx, params["variant"])[0].max(initial=0)), stencil=True
+        )
+
     def horizon_offset(self, params: dict) -> float:
         """delta = (m + 0.015) dx with the continuous alpha (as in the other papers)."""
         return 0.015 if params["variant"] == "continuous-alpha" else 0.0

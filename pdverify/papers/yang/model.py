@@ -407,6 +407,11 @@ class PDHigherOrder(Model):
             info.update(volumes=lay.fractions, mirror=lay.about)
         return B, b, (drop, tie), info
 
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """A family that does not fit in the points (:meth:`layout`), before any work."""
+        dx, fractions = self.spacing(scene, params), params.get("volumes", "partial")
+        return self.family_problems(scene, params, lambda k: int(family(k, dx, params["variant"], fractions)[0].max()))
+
     def layout(self, scene: Scene, params: dict) -> tuple[Layout, int, dict]:
         """(layout, J, info): the :class:`~.operator.Layout` of the options on ``scene`` (the variant's choices
         resolved), the family's reach J in points and the result's info so far (depth, ends, section, shear,

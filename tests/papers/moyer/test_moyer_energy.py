@@ -307,3 +307,22 @@ def test_a_couple_near_a_point_of_a_very_slender_beam_keeps_its_kink(offset):
         pd_, exact = run(sc, "pd-timoshenko", points=n), run(sc, "exact-timoshenko", points=n)
         errors.append(np.abs(pd_.rotation - exact.rotation).max() / np.abs(exact.rotation).max())
     assert abs(np.log2(errors[0] / errors[1]) - 2) < 0.1, errors
+
+
+@pytest.mark.parametrize("given", [{"horizon_length": 5.0}, {"horizon": 250}, {"horizon": 13}])
+def test_a_horizon_past_twelve_is_refused_before_any_fit(given, monkeypatch):
+    """Variant energy's end bonds have no definite energy past m = 12 (:func:`energy.definite`): the option check
+    (Model.grid_problems, in resolve) refuses such a horizon without fitting a bond; before, the fit at m = 250 ran
+    for seconds (``end_bonds``, ``definite``) and the line named only ``horizon = 250`` when horizon_length was set."""
+
+    def no_fit(*_):
+        raise AssertionError("fitted end bonds before refusing")
+
+    monkeypatch.setattr(E, "end_bonds", no_fit)
+    monkeypatch.setattr(E, "definite", no_fit)
+    sc = parse_scene(scene_dict("clamped", "free", MIXED_LOADS))  # L = 2 m
+    with pytest.raises(InputError) as exc:
+        run(sc, "pd-timoshenko", points=101, **given)
+    line = exc.value.lines[0]
+    named = "horizon_length = 5 (horizon = 250 spacings of 0.02)" if "horizon_length" in given else "horizon ="
+    assert line.startswith(named) and "past horizon 12" in line and "variant corrected" in line, line
