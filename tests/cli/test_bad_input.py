@@ -199,6 +199,12 @@ CLI_CASES = [
     ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
     # study files
     ("study-benchmarks-number", ["study", "{study_bench5}"], 2, "benchmarks = 5"),
+    (  # a grid the run's model refuses: refused with the study before anything runs, as solve refuses it (exit 2)
+        "study-grid-the-model-refuses",
+        ["study", "{study_grid}", "--out", "{tmp}/grid_out"],
+        2,
+        "{study_grid}: runs[0]: horizon = 3: the family (3 points each side) does not fit in 5 points",
+    ),
     ("study-run-without-scenes", ["study", "{study_run_no_scenes}"], 2, "runs[1].scenes = []: the run would have"),
     (
         "study-slenderness-overflows-the-section",
@@ -372,6 +378,7 @@ def files(tmp_path_factory):
     runs = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
     (d / "study.toml").write_text(head + runs)
     (d / "study_bench5.toml").write_text(head + "benchmarks = 5\n" + runs)
+    (d / "study_grid.toml").write_text(head + '[[runs]]\nmodel = "pd-eb"\nhorizon = 3\npoints = [5, 11]\n')
     (d / "study_tiny_slenderness.toml").write_text(head + "[sweep]\nslenderness = [1e-300]\n" + runs)
     (d / "study_run_no_scenes.toml").write_text(head + runs + runs.replace("points", "scenes = []\npoints"))
     (d / "study_description_list.toml").write_text(head + 'description = ["a"]\n' + runs)
@@ -416,6 +423,7 @@ def files(tmp_path_factory):
         "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
+        "study_grid": d / "study_grid.toml",
         "study_tiny_slenderness": d / "study_tiny_slenderness.toml",
         "study_run_no_scenes": d / "study_run_no_scenes.toml",
         "study_description_list": d / "study_description_list.toml",

@@ -763,3 +763,30 @@ def test_a_run_on_a_scene_its_model_cannot_solve_is_said(tmp_path, capsys):
     assert code == 0, err
     assert "skipped: 2 cases of pd-eb on " in err and "plastic.toml: material.yield_stress" in err
     assert len(json.loads((tmp_path / "out" / "meta.json").read_text())["skipped"]) == 2
+
+
+@pytest.mark.parametrize(
+    "options, refused",
+    [
+        ("horizon = 3\npoints = [5, 6, 11]", ["does not fit in 5 points", "does not fit in 6 points"]),
+        ('variant = "energy"\nhorizon_length = 0.1\npoints = [41, 161]', ["horizon = 16 spacings of 0.00625"]),
+    ],
+)
+def test_a_grid_the_model_refuses_is_refused_with_the_study(tmp_path, options, refused):
+    """A run whose grids the model refuses (Model.grid_problems: pd-eb's family of 3 points each side in 5 or 6
+    points; pd-timoshenko energy at m = 16) is refused when the study is loaded, one line per grid naming the run,
+    exit 2 like ``pdverify solve`` on the same input; before, those grids ran as failed cases (exit 1). Nothing
+    is run: the output folder is not made."""
+    model = "pd-timoshenko" if "energy" in options else "pd-eb"
+    p = write_study(tmp_path, f'[[runs]]\nmodel = "{model}"\n{options}\n')
+    with pytest.raises(InputError) as e:
+        load_study(p)
+    assert len(e.value.lines) == len(refused)
+    for line, want in zip(e.value.lines, refused):
+        assert line.startswith(f"{p}: runs[0]: ") and want in line, line
+    import pdverify
+
+    out = tmp_path / "out"
+    with pytest.raises(InputError):
+        pdverify.run_study(p, out=out)
+    assert not out.exists()
