@@ -17,8 +17,8 @@ import scipy.sparse as sp
 
 from pdverify.core.errors import InputError
 from pdverify.core.result import Result, Timer, columns_csv
-from pdverify.core.scene import PointForce, Scene
-from pdverify.numerics.timeint import step_count
+from pdverify.core.scene import Distributed, PointForce, Scene
+from pdverify.numerics.timeint import MAX_STEPS, step_count
 
 from .beam_elements import (
     add_springs,
@@ -99,6 +99,29 @@ def probe_rows(scene: Scene, params: dict, nodes: np.ndarray, free: np.ndarray, 
     return sp.csr_matrix((N[keep], (rows[keep], at)), shape=(len(probes), len(free)))
 
 
+def short_element(scene: Scene, nodes: np.ndarray, points: int, dt: float, end_time: float) -> None:
+    """InputError naming the scene's position that made the shortest element when that element, far shorter than the
+    grid's spacing, sets a default step past the step limit (a load 1e-7 from a node: a 1e-7 element); nothing when
+    the grid's own spacing sets it (step_count's "use fewer points" then applies)."""
+    k = int(np.argmin(np.diff(nodes)))
+    a, b = nodes[k], nodes[k + 1]
+    if b - a > 1e-3 * scene.length / (points - 1):
+        return
+    marks = [(f"supports.inner[{i}].position", s.position) for i, s in enumerate(scene.supports.inner)]
+    for i, ld in enumerate(scene.loads):
+        ends = scene.span(ld) if isinstance(ld, Distributed) else (ld.position,)
+        marks += [(f"loads[{i}].{'position' if len(ends) == 1 else key}", v) for key, v in zip(("start", "end"), ends)]
+    marks += [(f"segments[{i}].end", g.end) for i, g in enumerate(scene.segments[:-1])]
+    grid = np.linspace(0.0, scene.length, points)
+    name, v = min(marks, key=lambda m: min(abs(m[1] - a), abs(m[1] - b)), default=("a position", b))
+    near = grid[np.argmin(np.abs(grid - v))]
+    raise InputError(
+        f"{name} = {v!r} lies {abs(v - near):.3g} from the grid's node at {near:.12g}: an element of {b - a:.3g} whose "
+        f"default time step {dt:.3g} s asks for {end_time / dt:.3g} steps, more than the limit of {MAX_STEPS:.0e}; "
+        f"give {name} = {near:.12g}, or dynamics.time_step (Newmark's step is stable at any length)"
+    )
+
+
 def transient(model, scene: Scene, params: dict) -> Result:
     """The model's transient on the scene (``model``: fem-timoshenko)."""
     timer = Timer()
@@ -124,6 +147,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
     dt = d.time_step or min(sample, courant)
     from_sampling = d.output_interval is not None and sample < courant
     source = "time_step" if d.time_step else ("output_interval" if from_sampling else "default")
+    if source == "default" and d.end_time / dt > MAX_STEPS:
+        short_element(scene, nodes, params["points"], dt, d.end_time)
     steps = step_count(d.end_time, dt, source)  # before any step (exit 2 above the limit)
     with timer("solve"):
         t, hist, u = newmark(K, M, C, F, d.end_time / steps, steps, observe)

@@ -199,6 +199,14 @@ CLI_CASES = [
     ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
     # study files
     ("study-benchmarks-number", ["study", "{study_bench5}"], 2, "benchmarks = 5"),
+    (  # fem-timoshenko's transient: the 1e-7 m element a load makes, not the grid, sets the step ("use fewer points")
+        "solve-fem-timoshenko-transient-load-beside-a-node",
+        ["solve", "{dyn_load_beside_node}", "-m", "fem-timoshenko", "--points", "21"],
+        2,
+        "loads[0].position = 1.0000001 lies 1e-07 from the grid's node at 1: an element of 1e-07 whose default time "
+        "step 1.96e-11 s asks for 2.55e+09 steps, more than the limit of 1e+07; give loads[0].position = 1, or "
+        "dynamics.time_step",
+    ),
     (  # a grid the run's model refuses: refused with the study before anything runs, as solve refuses it (exit 2)
         "study-grid-the-model-refuses",
         ["study", "{study_grid}", "--out", "{tmp}/grid_out"],
@@ -366,6 +374,9 @@ def files(tmp_path_factory):
     dyn = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
     (d / "dyn.toml").write_text(dyn)
     (d / "dyn_tiny_rho.toml").write_text(re.sub(r"density = [0-9.e+-]+", "density = 1e-300", dyn))
+    (d / "dyn_load_beside_node.toml").write_text(  # a point force 1e-7 from a node: a 1e-7 m element
+        dyn.replace('type = "distributed"', 'type = "point_force"\nposition = 1.0000001')
+    )
     (d / "dyn_long_step.toml").write_text(dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1.0\n"))
     (d / "zero_load.toml").write_text(re.sub(r"value = [0-9.e+-]+", "value = 0.0", text))
     (d / "shaft_profile.toml").write_text(
@@ -424,6 +435,7 @@ def files(tmp_path_factory):
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
         "study_grid": d / "study_grid.toml",
+        "dyn_load_beside_node": d / "dyn_load_beside_node.toml",
         "study_tiny_slenderness": d / "study_tiny_slenderness.toml",
         "study_run_no_scenes": d / "study_run_no_scenes.toml",
         "study_description_list": d / "study_description_list.toml",
