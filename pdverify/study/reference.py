@@ -12,6 +12,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.result import quantity_of
 from ..registry import get_model
+from ..theory.curved_beam import thick_ring_warning
 from . import solves
 from .spec import Case
 
@@ -90,3 +91,13 @@ def reference_bound(case: Case) -> float | None:
 def _reference_text(items: tuple) -> str:
     """The reference's options as the results table stores them (one per study, not one per case)."""
     return json.dumps(dict(items), sort_keys=True)
+
+
+def theory_gap_warning(case: Case) -> str | None:
+    """The thick-ring warning of a curved-beam reference (:func:`pdverify.theory.curved_beam.thick_ring_warning`)
+    when the case's model is the 2D continuum: the error the row measures is then mostly the beam theory's own."""
+    ref = case.reference.get("model")
+    if ref in (None, "none") or get_model(case.model).theory != "continuum" or get_model(ref).theory == "continuum":
+        return None
+    found = thick_ring_warning(case.scene())
+    return None if found is None else f"the reference {ref}: {found}"

@@ -24,11 +24,10 @@ from ..measure.shapes import with_exact_shapes
 from ..measure.status import case_status, reference_status
 from ..numerics.timeint import ledger_columns
 from ..registry import get_model
-from ..theory.curved_beam import thick_ring_warning
 from . import execute, solves
 from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
-from .reference import _reference_text, measured, reference_at, reference_bound  # noqa: F401 (re-exported)
+from .reference import _reference_text, measured, reference_at, reference_bound, theory_gap_warning
 from .spec import Case, Study, code_digest
 from .split import continuum_at, split_errors
 from .store import write_atomic
@@ -259,7 +258,7 @@ def _measure_quantities(case: Case, scene, solved: dict, row: dict) -> dict:
 
 def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     """Fill the row's timings, dofs, spacing, horizon (length units), condition number, status (``suspect`` when
-    the model's or the reference's round-off bound is too large), message, and the model's warnings."""
+    the model's or the reference's round-off bound is too large), message, warnings (also a reference theory's gap)."""
     x, info = solved["x"], solved["info"]
     row.update(solved["timings"])
     row["dofs"] = solved["dofs"]
@@ -276,21 +275,9 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
         row.update(reference_status(continuum_at(case, case.scene(), x)[1], row))
     elif case.reference.get("model") != "none":
         row.update(reference_status(reference_bound(case), row))
-    row["warnings"] = solved.get("warnings", "")  # the model's own warnings, as every output shows them
-    if (gap := theory_gap_warning(case)) is not None:  # ... and a reference theory's that the error measures
-        row["warnings"] = "; ".join(w for w in (row["warnings"], gap) if w)
+    row["warnings"] = "; ".join(w for w in (solved.get("warnings", ""), theory_gap_warning(case)) if w)
     if "artefact_message" in solved:
         row["artefact_message"] = solved["artefact_message"]
-
-
-def theory_gap_warning(case: Case) -> str | None:
-    """The thick-ring warning of a curved-beam reference (:func:`pdverify.theory.curved_beam.thick_ring_warning`)
-    when the case's model is the 2D continuum: the error the row measures is then mostly the beam theory's own."""
-    ref = case.reference.get("model")
-    if ref in (None, "none") or get_model(case.model).theory != "continuum" or get_model(ref).theory == "continuum":
-        return None
-    found = thick_ring_warning(case.scene())
-    return None if found is None else f"the reference {ref}: {found}"
 
 
 def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: str) -> None:

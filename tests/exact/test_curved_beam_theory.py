@@ -88,7 +88,7 @@ def test_a_study_row_of_the_2d_strip_against_curved_beam_theory_carries_the_thic
     as the reference) and a slender ring do not get it from the reference."""
     from helpers import ROOT
 
-    from pdverify.study.runner import theory_gap_warning
+    from pdverify.study.reference import theory_gap_warning
     from pdverify.study.spec import Case
 
     path = ROOT / "studies/paper_curved/semicircle_normal.toml"

@@ -473,7 +473,7 @@ def test_cli_dynamic_scene_writes_time_history(tmp_path):
     )
     assert r.returncode == 0, r.stderr
     data = np.loadtxt(out, delimiter=",", skiprows=1)
-    assert out.read_text().startswith("t,w(x=50),rotation(x=50)")  # the columns as info.history names them
+    assert out.read_text().startswith("t,u(x=50),")  # the columns as info.history names them (pd-rod: u)
     assert data[-1, 1] == pytest.approx(0.05, abs=1e-7)
 
 
