@@ -39,15 +39,12 @@ def _history_label(h: dict, length: str) -> str:
     return text
 
 
-def scene_figures(data: StudyFolder, which=None) -> list[tuple[int, PaperScene]]:
-    """Each scene's figures (numbered in the study's order), per slenderness: the curves of every model and variant
-    at its finest grid over the reference, the resultants N and Q where the runs give them, each dynamic run's time
-    history and energy ledger, the overlay of several transient runs, a nonlinear run's deformed shapes.
-    ``which``: a test of the scene's number, to draw only those it passes (a process's share of them)."""
+def scene_figures(data: StudyFolder) -> list[PaperScene]:
+    """Each scene's figures (in the study's order), per slenderness: the curves of every model and variant at its
+    finest grid over the reference, the resultants N and Q where the runs give them, each dynamic run's time
+    history and energy ledger, the overlay of several transient runs, a nonlinear run's deformed shapes."""
     scenes = []
-    for number, (sfile, g) in enumerate(data.ok.groupby("scene_file", sort=False)):
-        if which is not None and not which(number):
-            continue
+    for sfile, g in data.ok.groupby("scene_file", sort=False):
         figs = []
         unit = data.length(sfile)
         force = "lbf" if data.units(sfile) == "inch-pound" else "N"
@@ -101,15 +98,12 @@ def scene_figures(data: StudyFolder, which=None) -> list[tuple[int, PaperScene]]
                     figs.append(figures.deformed_shapes(c["load_steps"], f"{label(r)}: deformed shapes", exact, unit))
             figs.extend(overlay_figures(overlay, title))
         scenes.append(
-            (
-                number,
-                PaperScene(
-                    g["scene"].iloc[0],
-                    sfile,
-                    folder(sfile),
-                    short_reference(g["reference"].iloc[0]) if "reference" in g else "",
-                    [Markup(f) for f in figs],
-                ),
+            PaperScene(
+                g["scene"].iloc[0],
+                sfile,
+                folder(sfile),
+                short_reference(g["reference"].iloc[0]) if "reference" in g else "",
+                [Markup(f) for f in figs],
             )
         )
     return scenes
@@ -221,12 +215,9 @@ def paper_pages(data: StudyFolder, waves: list[Dispersion]) -> list[dict]:
     """What each paper's page shows (in the order of the study's scenes): its title, file name, the verdicts of
     its benchmarks, its scenes and their figures, its sweep figures, its dispersion relations (each once), its
     plane-stress pictures."""
-    # a second process draws the sweeps and every third scene while this one draws the other scenes (the sweeps
-    # take about as long as a third of the scenes); the same figures as drawn in one process
-    theirs = forked.start(lambda: (sweep_figures(data), scene_figures(data, lambda number: number % 3 == 2)))
-    mine = scene_figures(data, lambda number: number % 3 != 2)
-    sweeps, other = theirs()
-    scenes = [s for _, s in sorted(mine + other, key=lambda item: item[0])]
+    sweeps = forked.start(lambda: sweep_figures(data))  # in a second process while this one draws the scenes
+    scenes = scene_figures(data)
+    sweeps = sweeps()
     images = plane_stress_images(data)
     bench = data.table("benchmarks")
     pages = []
