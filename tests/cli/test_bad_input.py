@@ -84,6 +84,19 @@ CLI_CASES = [
         "points and spacing",
     ),
     ("solve-bool-maybe", ["solve", "{scene}", "-m", "pd-bond-pair", "-o", "nonlinear=maybe"], 2, "nonlinear = 'maybe'"),
+    # mirror ghosts reflect the beam's own points: 5.2 times off exact-eb at horizon 30 on 21 points, once unwarned
+    (
+        "solve-mirror-horizon-past-the-beam",
+        ["solve", "{scene}", "-m", "pd-bond-pair", "--points", "21", "--horizon", "30", "-o", "ends=mirror"],
+        2,
+        "a pair reaches at most 20 spacings",
+    ),
+    (
+        "solve-nonlinear-horizon-past-the-beam",
+        ["solve", "{scene}", "-m", "pd-bond-pair", "--points", "21", "--horizon", "30", "-o", "nonlinear=true"],
+        2,
+        "horizon <= 20 at 21 points",
+    ),
     ("solve-bool-2", ["solve", "{scene}", "-m", "pd-bond-pair", "-o", "nonlinear=2"], 2, "nonlinear = '2'"),
     ("solve-bool-yes", ["solve", "{scene}", "-m", "pd-bond-pair", "-o", "nonlinear=yes"], 2, "nonlinear = 'yes'"),
     ("solve-number-from-bool", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=true"], 2, "horizon = 'true'"),

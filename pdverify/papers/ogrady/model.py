@@ -259,13 +259,24 @@ class PDBondPair(Model):
 
     def grid_problems(self, scene: Scene, params: dict) -> list[str]:
         """A stencil that does not fit in the points (:func:`.taylor.assemble_taylor`, :func:`.taylor.assemble_mixed`:
-        the linear path with Taylor ends), before any work; the pair form and mirrored ends take any horizon."""
-        if params["nonlinear"] or needs_pairs(scene) or resolved_ends(scene, params)["ends"] != "taylor":
+        the linear path with Taylor ends), before any work. Mirror ends (the nonlinear path, the pair form's default)
+        reflect the beam's own points, so a pair reaches at most points - 1 spacings past an end
+        (:func:`.pairs.ghost_rows`); ``ends = none`` takes any horizon (the pairs past the ends are absent, §3.1)."""
+        dx, n = self.spacing(scene, params), params["points"]
+
+        def reach(k) -> int:  # the longest pair's offset in spacings at horizon k
+            return int(pair_family(k, dx, params["variant"])[0].max(initial=0))
+
+        def fits(k) -> bool:
+            return reach(k) <= n - 1
+
+        ends = resolved_ends(scene, params)["ends"]
+        if ends == "mirror":
+            what = f"its mirror ghosts reflect the beam's {n} points, so a pair reaches at most {n - 1} spacings"
+            return [] if fits(params["horizon"]) else [self.horizon_refusal(scene, params, what, fits)]
+        if ends != "taylor" or params["nonlinear"] or needs_pairs(scene):
             return []
-        dx = self.spacing(scene, params)
-        return self.family_problems(
-            scene, params, lambda k: int(pair_family(k, dx, params["variant"])[0].max(initial=0)), stencil=True
-        )
+        return self.family_problems(scene, params, reach, stencil=True)
 
     def horizon_offset(self, params: dict) -> float:
         """delta = (m + 0.015) dx with the continuous alpha (as in the other papers)."""
