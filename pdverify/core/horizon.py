@@ -138,6 +138,12 @@ class Horizon:
             return 1.0, f"variant {self.full_volumes}'s sums give each bond a whole volume up to delta: first order"
         return float(self.order), ""
 
+    def gradient_coefficient(self, scene: Scene, params: dict) -> float | None:
+        """g of the model's nonlocal law: on a sine load of wave number k its continuum is softer than the local
+        theory by g (k delta)^2 + O((k delta)^4) (docs/nonlocal.md, the symbols' expansions in
+        :mod:`pdverify.theory.symbols`); None where it is not derived."""
+        return None
+
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """(why, largest m) when the variant's discrete rules have no limit at fixed delta on ``scene`` (its
         continuum is then its own finest grid, flagged), else None."""

@@ -37,7 +37,7 @@ from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite
 from ..core.scene import Scene
 from ..core.scene_file import parse_scene
-from ..theory.continuum import continuum_solution, no_limit_warning
+from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
 from .external import ExternalModel, load_manifest
 from .plugins import discover, remember_manifest
 
@@ -220,9 +220,9 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     result = check_finite(solved)
     if m.option("horizon") is not None:
         horizon_info(m, scene, params, result.info)
-        flag = no_limit_warning(m, scene, params)
-        if flag:
-            result.info.setdefault("warnings", []).append(flag)
+        for flag in (no_limit_warning(m, scene, params), model_error_warning(m, scene, result.info)):
+            if flag:
+                result.info.setdefault("warnings", []).append(flag)
     if (
         "reactions" not in result.info
         and scene.is_straight

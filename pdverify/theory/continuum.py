@@ -107,6 +107,29 @@ def no_limit_warning(model, scene: Scene, params: dict) -> str:
     )
 
 
+MODEL_ERROR_LIMIT = 0.01  # the nonlocal model error on the first sine mode above which a result says so
+
+
+def model_error_warning(model, scene: Scene, info: dict) -> str:
+    """The warning of a horizon long for the beam: the model's continuum is softer than the local theory by about
+    g (k delta)^2 on a mode of wave number k (:meth:`~pdverify.core.horizon.Horizon.gradient_coefficient`), which on
+    the beam's first sine mode (k = pi / L) passes :data:`MODEL_ERROR_LIMIT`; "" otherwise. The estimate is the
+    leading term only, and the first mode's: ends without a limit at fixed delta (docs/nonlocal.md) and shorter
+    spans between inner supports lose more."""
+    g, delta = model.gradient_coefficient(scene, {}), info.get("horizon")
+    if g is None or not delta:
+        return ""
+    size = g * (math.pi * float(delta) / scene.length) ** 2
+    if size <= MODEL_ERROR_LIMIT:
+        return ""
+    return (
+        f"{model.name}: the horizon {float(delta):.3g} is {100 * float(delta) / scene.length:.2g} % of the beam's "
+        f"length: its nonlocal model error on the beam's first sine mode is about g (pi delta / L)^2 = "
+        f"{100 * size:.2g} % (g = {g:.4g}, the model's gradient coefficient; more where its ends have no limit at "
+        "fixed delta: docs/nonlocal.md); a shorter horizon comes nearer the local beam theory"
+    )
+
+
 def coarsest_nested(model, scene: Scene, params: dict, x: np.ndarray) -> tuple[int, np.ndarray]:
     """(points, indices into ``x``) of the coarsest grid whose m = delta / dx is at least :data:`M_MIN` and whose
     points are points of the grid of ``params`` (its points ``x``; refined from it by a whole factor), the grid of

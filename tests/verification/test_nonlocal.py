@@ -263,3 +263,35 @@ def test_a_series_out_of_reach_is_left_early_and_one_within_reach_is_not(scene, 
         assert np.array_equal(full[0], early[0]) and full[2] == early[2]
     else:
         assert early[2] > full[2]  # left before the end
+
+
+@pytest.mark.parametrize(
+    ("model", "options"),
+    [
+        ("pd-bond-pair", {"ends": "mirror"}),
+        ("pd-eb", {"variant": "paper"}),
+        ("pd-timoshenko", {"variant": "corrected"}),
+    ],
+)
+def test_a_horizon_long_for_the_beam_says_its_model_error(model, options):
+    """A result whose horizon makes g (pi delta / L)^2 pass 1 % says so, and the number it gives is the model error
+    its own continuum has against the local theory on a pinned-pinned sine load (closed forms) within 5 % (the
+    leading term of the symbol's expansion: the next is O((k delta)^4)); at delta = 0.1 L (under 1 %) it is silent."""
+    import re
+
+    sc = load_scene(STUDIES / "nonlocal/pp_sine.toml")
+    local = np.abs(run(sc, "exact-eb", points=81).w).max()
+    for delta in (0.1, 0.2):
+        said = [
+            w
+            for w in run(sc, model, points=81, horizon_length=delta, **options).info.get("warnings", [])
+            if "nonlocal model error" in w
+        ]
+        if delta == 0.1:
+            assert said == []
+            continue
+        (line,) = said
+        size = float(re.search(r"\(pi delta / L\)\^2 = ([0-9.e+-]+) %", line).group(1)) / 100
+        continuum = run(sc, model, points=81, horizon_length=delta, continuum=True, **options)
+        measured = np.abs(continuum.w).max() / local - 1
+        assert size == pytest.approx(measured, rel=0.05)

@@ -48,7 +48,7 @@ from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.loads import boundary_layer_warnings, edge_layer_warnings, moment_rotation_warnings
 from ...numerics.solvers import SOLVER, solve
-from ...theory.symbols import Series, beam_series
+from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
 from .scenes import inner_layer_warnings, spreads
@@ -158,6 +158,10 @@ class PDEulerBernoulli(Model):
             allowed=("auto", "direct"),
         ),
     )
+
+    def gradient_coefficient(self, scene: Scene, params: dict) -> float:
+        """1/18: the curvature's symbol s(z)^2 = 1 - z^2/18 + ... (docs/nonlocal.md)."""
+        return GRADIENT["curvature"]
 
     def horizon_offset(self, params: dict) -> float:
         """Eq. 32: delta = (m + 0.015) dx in the paper variant."""

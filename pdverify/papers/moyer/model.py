@@ -25,7 +25,7 @@ import numpy as np
 from ...core.contract import Option, Rule
 from ...core.errors import InputError
 from ...core.scene import Scene
-from ...theory.symbols import Series, timoshenko_series
+from ...theory.symbols import GRADIENT, Series, timoshenko_series
 from .base import _OPTIONS, _context, _MoyerModel, beam_points_loaded, stabilisation_warning
 from .couples import couple_column
 from .ends import MIRRORED
@@ -65,6 +65,10 @@ class PDTimoshenko(_MoyerModel):
             allowed=("nodes",),
         ),
     )
+
+    def gradient_coefficient(self, scene: Scene, params: dict) -> float:
+        """7/72: the bending part of w's symbol, the larger of its two (the shear part's 1/18; docs/nonlocal.md)."""
+        return GRADIENT["timoshenko-bending"]
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])

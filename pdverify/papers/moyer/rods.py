@@ -7,7 +7,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.scene import ROD_HELD, PointForce, PointTorque, Scene
-from ...theory.symbols import Series, rod_series
+from ...theory.symbols import GRADIENT, Series, rod_series
 from .base import _MoyerModel, rod_points_loaded
 from .operator import rod_operator
 from .pieces import bond_stiffness, holds_somewhere
@@ -23,6 +23,10 @@ class _RodModel(_MoyerModel):
     # for every support pair and horizon (test_dynamics), so the scheme is stable undamped; damping is only what
     # the scene asks for
     stabilisation = 0.0
+
+    def gradient_coefficient(self, scene: Scene, params: dict) -> float:
+        """1/24: the rod kernel's symbol (docs/nonlocal.md)."""
+        return GRADIENT["rod"]
 
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
         raise NotImplementedError

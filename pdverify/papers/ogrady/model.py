@@ -36,7 +36,7 @@ from ...core.scene import Scene
 from ...numerics.linalg import forward_error_bound, record_bound, solve_linear
 from ...numerics.loads import boundary_layer_warnings, edge_layer_warnings
 from ...numerics.solvers import SOLVER, solve
-from ...theory.symbols import Series, beam_series
+from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics
 from .bias import bias_warnings
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
@@ -222,6 +222,10 @@ class PDBondPair(Model):
     assembles = True
     analyses = frozenset({"static", "dynamic"})  # the PD equation of motion with rho A w_tt (dynamics.py)
     modes = True
+
+    def gradient_coefficient(self, scene: Scene, params: dict) -> float:
+        """1/10: the bond-pair symbol with omega = 1 (docs/nonlocal.md; O'Grady & Foster 2014, Appendix B)."""
+        return GRADIENT["bond-pair"]
 
     def eigenproblem(self, scene: Scene, params: dict):
         return dynamics.eigenproblem(self, scene, resolved_ends(scene, params))

@@ -104,7 +104,7 @@ from ...numerics.linalg import solve_linear
 from ...numerics.loads import HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION, boundary_layer_warnings, held_rotation_warnings
 from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
-from ...theory.symbols import higher_order_series
+from ...theory.symbols import higher_order_gradient, higher_order_series
 from . import dynamics
 from .bonds import end_layer_ratios
 from .ends import end_conditions, load_vector
@@ -264,6 +264,10 @@ class PDHigherOrder(Model):
         Rule(_PAPER, "loads", "Eq. 16b: b_z on w, b_theta on theta (mid)", allowed=("auto", "mid")),
         Rule(_PAPER, "clamp", "Eq. B39: w = w* = 0 at the clamped end point (face)", allowed=("auto", "face")),
     )
+
+    def gradient_coefficient(self, scene: Scene, params: dict) -> float:
+        """(1 - 4 nu^2) / (24 (1 - nu^2)): the slender beam's symbol (docs/nonlocal.md)."""
+        return higher_order_gradient(scene.material.poissons_ratio)
 
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """Bonds measured along their path (``shear = path``, the corrected variant's default) at truncated or Taylor
