@@ -137,6 +137,11 @@ class Supports(_Strict):
         sup = getattr(self, side)
         return sup if isinstance(sup, str) else "spring"
 
+    def holds_deflection_at(self, side: str) -> bool:
+        """True when the end ``side`` holds the deflection rigidly (a named support, not a spring: :data:`HELD`)."""
+        end = getattr(self, side)
+        return isinstance(end, str) and HELD[end][1]
+
     @property
     def simple(self) -> bool:
         """True for a named support at each end and none inside (what every model represents)."""

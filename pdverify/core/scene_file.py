@@ -15,7 +15,6 @@ from .errors import InputError
 from .geometry import axis_length, mechanism_message
 from .loading import Displacement, Loading
 from .scene import (
-    HELD,
     SUPPORTS,
     Axis,
     Beam,
@@ -240,19 +239,13 @@ def _check_dynamics(scene: Scene) -> list[str]:
     return lines
 
 
-def _holds_w(supports, side: str) -> bool:
-    """True when the end ``side`` holds the deflection rigidly (a named support, not a spring)."""
-    end = getattr(supports, side)
-    return isinstance(end, str) and HELD[end][1]
-
-
 def _check_supports(scene: Scene) -> list[str]:
     """Supports inside the span: on the beam, one per position (and none at an end, which has its own support),
     on straight axes (a curved axis's supports are its ends')."""
     sup, L = scene.supports, scene.length
     lines = []
     ends = ((0.0, "left"), (L, "right"))
-    held = {at: f"supports.{side} = {sup.kind(side)!r}" for at, side in ends if _holds_w(sup, side)}
+    held = {at: f"supports.{side} = {sup.kind(side)!r}" for at, side in ends if sup.holds_deflection_at(side)}
     held |= {s.position: f"supports.inner[{i}]" for i, s in enumerate(sup.inner) if s.type != "spring"}
     for i, ld in enumerate(scene.loads):
         if ld.type == "displacement" and ld.position in held:

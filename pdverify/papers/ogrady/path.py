@@ -29,7 +29,7 @@ import scipy.sparse.linalg as spla
 
 from ...core.errors import InputError, SolveError
 from ...core.loading import Loading
-from ...core.scene import HELD, Scene
+from ...core.scene import Scene
 from .calibration import horizon_length
 from .conditions import conditions, nodal_loads
 from .general import eliminate, reactions
@@ -341,8 +341,9 @@ def failure_warnings(scene: Scene, params: dict, x: np.ndarray, info: dict, heal
         "the deflection converges at first order in the spacing"
     )
     hinge = float(at[len(at) // 2])
-    held = [0.0] * _holds_deflection(scene, "left") + [scene.length] * _holds_deflection(scene, "right")
-    held += [sup.position for sup in scene.supports.inner if sup.holds_deflection]
+    sup = scene.supports
+    held = [0.0] * sup.holds_deflection_at("left") + [scene.length] * sup.holds_deflection_at("right")
+    held += [s.position for s in sup.inner if s.holds_deflection]
     shown = [(i, ld) for i, ld in enumerate(scene.loads) if ld.type == "displacement"]
     if shown:
         i, ld = min(shown, key=lambda item: abs(item[1].position - hinge))
@@ -356,9 +357,3 @@ def failure_warnings(scene: Scene, params: dict, x: np.ndarray, info: dict, heal
                 f"{ld.position:g}, which moves the broken beam's deflections by about {100 * size:.2g} % of it"
             )
     return [text + " (docs/models/ogrady.md, brittle failure)"]
-
-
-def _holds_deflection(scene: Scene, side: str) -> bool:
-    """Whether the end ``side`` holds the deflection (:data:`pdverify.core.scene.HELD`; a spring does not)."""
-    kind = scene.supports.kind(side)
-    return kind in HELD and HELD[kind][1]
