@@ -24,6 +24,7 @@ LAYOUTS = {
     "three interleaved, with end rows": np.r_[rng.normal(size=7), np.tile([1.0, 7.0, 7.0], 2000), rng.normal(size=5)],
     "a band past the sample, padding first": np.r_[np.zeros(SAMPLE), np.tile([3.0, 5.0, -2.0, 0.1], SAMPLE // 2)],
     "a period longer than any looked for": np.tile(rng.normal(size=11), 700),
+    "past the sample, few repeats": np.r_[rng.normal(size=2 * SAMPLE), rng.choice([0.0, -0.0, 1.5], SAMPLE)],
 }
 
 
