@@ -34,7 +34,7 @@ from ..core.contract import (
 )
 from ..core.errors import InputError, SolveError
 from ..core.reactions import equilibrium_reactions
-from ..core.result import Result, check_finite
+from ..core.result import Result, check_finite, quantity_of
 from ..core.scene import Scene
 from ..core.scene_file import parse_scene
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
@@ -232,9 +232,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         and m.theory in ("euler-bernoulli", "timoshenko")
         and len(result.x) >= 4
     ):
-        result.info["reactions"] = equilibrium_reactions(
-            scene, result.x, result.w, result.rotation, result.fields.get("M")
-        )
+        moment = quantity_of(result.w, result.rotation, result.fields, "moment")  # M or moment, as it names it
+        result.info["reactions"] = equilibrium_reactions(scene, result.x, result.w, result.rotation, moment)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

@@ -141,16 +141,19 @@ def linear_system(scene: Scene, params: dict, omega=None):
     return Kr, elim.T.T @ (F - K @ elim.w0), elim, (pairs, cond, K, F)
 
 
-def reaction_couples(cond: Conditions, elim: Elimination, residual: np.ndarray, w: np.ndarray) -> np.ndarray:
+def reaction_couples(
+    cond: Conditions, elim: Elimination, residual: np.ndarray, w: np.ndarray, ends: bool = True
+) -> np.ndarray:
     """The nodal forces of the supports' couples (the rotations held inside the span, rotational springs): force pairs
-    that carry no shear (:func:`.recovery.shear`)."""
+    that carry no shear (:func:`.recovery.shear`). ``ends = False`` leaves out the end springs' couples: at mirror ends
+    the moment near the end is re-derived by statics (:func:`.recovery.end_statics`), with no force pair in it."""
     out = np.zeros(len(w))
     lam = elim.multipliers(residual)
     for name, value, row in zip(cond.names, lam, cond.rows):
         if name.startswith("moment"):
             out += value * row.toarray().ravel()
     for name, row, k in cond.spring_rows:
-        if name.startswith("moment"):
+        if name.startswith("moment") and (ends or "inner" in name):
             r = np.zeros(len(w))
             r[list(row)] = list(row.values())
             out -= k * (r @ w) * r
@@ -170,7 +173,8 @@ def solve_pairs_linear(scene: Scene, params: dict, omega=None):
     w, f, info = solve_mixed(pairs, elim, cond.springs, F, what)
     g = pairs.D.T @ f + cond.springs @ w  # the nodal forces of the pairs and springs: loads plus reactions
     info["reactions"] = reactions(cond, elim, g - F, w)
-    info["nodal_forces"], info["reaction_couples"] = g, reaction_couples(cond, elim, g - F, w)
+    info["nodal_forces"] = g
+    info["reaction_couples"] = reaction_couples(cond, elim, g - F, w, ends=params["ends"] != "mirror")
     return np.arange(n) * dx, w, pairs, f, info
 
 

@@ -363,20 +363,21 @@ class PDBondPair(Model):
             horizon_factor=params["horizon"],
             horizon=horizon_length(params["horizon"], dx, params["variant"]),
         )
+        mirror = params["ends"] == "mirror"
+        fields = pair_fields(
+            scene, pairs, f, mirror, g=info.pop("nodal_forces"), extra_couples=info.pop("reaction_couples")
+        )
+        if mirror:  # a clamped or guided end's couple is its mirror ghosts': the section moment there (statics)
+            for side, M_end in (("left", -fields["moment"][0]), ("right", fields["moment"][-1])):
+                if scene.supports.kind(side) in ("clamped", "guided"):
+                    info["reactions"].setdefault(f"moment_{side}", float(M_end))
         return self.new_result(
             scene,
             params,
             x,
             w,
             rotation=rotation(w, dx),
-            fields=pair_fields(
-                scene,
-                pairs,
-                f,
-                params["ends"] == "mirror",
-                g=info.pop("nodal_forces"),
-                extra_couples=info.pop("reaction_couples"),
-            ),
+            fields=fields,
             dofs=len(x),
             timings=timer.timings,
             info=info,

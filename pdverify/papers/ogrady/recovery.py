@@ -118,8 +118,16 @@ def couple_statics(moments: list, couples: np.ndarray, n: int, dx: float) -> np.
     x = np.arange(n) * dx
     S1, S2 = np.cumsum(couples), np.cumsum(couples * x)
     pair = np.r_[0.0, x[1:] * S1[:-1] - S2[:-1]]  # Σ_{i<p} F_i (x_p - x_i)
-    true = -sum(ld.value * (np.where(x > ld.position, 1.0, 0.0) + 0.5 * np.isclose(x, ld.position)) for ld in moments)
+    true = -sum(ld.value * jump_share(x, ld.position, dx) for ld in moments)
     return true - pair
+
+
+def jump_share(x: np.ndarray, at: float, dx: float) -> np.ndarray:
+    """The share of a unit jump at ``at`` that each point carries: 1 past it, 0 before, 1/2 on it (the mean of the two
+    sides). A point within 1e-9 spacings of ``at`` is on it, so that the rounding of a scaled grid's positions does not
+    decide the side."""
+    on = np.abs(x - at) <= 1e-9 * dx
+    return np.where(on, 0.5, np.where(x > at, 1.0, 0.0))
 
 
 def rotation_warnings(scene: Scene) -> list[str]:
