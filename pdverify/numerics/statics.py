@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.reactions import load_resultants
-from ..core.scene import HELD, Scene, Spring
+from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene, Spring
 
 
 def reaction_keys(scene: Scene) -> list[tuple[str, float, float]]:
@@ -61,3 +61,55 @@ def closed_reactions(scene: Scene, model: dict[str, float]) -> dict:
         f"; the model's own values for {', '.join(given)}" if given else " (statically determinate)"
     )
     return out
+
+
+_GX, _GW = np.polynomial.legendre.leggauss(24)
+
+
+def _jump(x: np.ndarray, at: float, dx: float) -> np.ndarray:
+    """1 past ``at``, 0 before, 1/2 within 1e-9 spacings of it (a point on a load carries the mean of its sides); a
+    load on an end point acts on the beam's side of it (the end point carries the value inside the beam)."""
+    if at <= x[0] + 1e-9 * dx:
+        return np.ones(len(x))
+    if at >= x[-1] - 1e-9 * dx:
+        return np.zeros(len(x))
+    return np.where(np.abs(x - at) <= 1e-9 * dx, 0.5, np.where(x > at, 1.0, 0.0))
+
+
+def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(Q, R) at the points ``x``: the shear and the moment that the transverse loads on [0, x] add, with V(0) = M(0) =
+    0 (dV/dx = q, dM/dx = V; a force P makes V jump by P, a couple C makes M jump by -C). Distributed loads by
+    Gauss-Legendre on each point's part of their span (their shapes are smooth on it)."""
+    x = np.asarray(x, float)
+    dx = float(x[1] - x[0]) if len(x) > 1 else scene.length
+    Q, R = np.zeros(len(x)), np.zeros(len(x))
+    for ld in scene.loads:
+        if isinstance(ld, PointForce) and ld.value:
+            Q += ld.value * _jump(x, ld.position, dx)
+            R += ld.value * np.maximum(x - ld.position, 0.0)
+        elif isinstance(ld, PointMoment) and ld.value:
+            R -= ld.value * _jump(x, ld.position, dx)
+        elif isinstance(ld, Distributed) and ld.value:
+            a, b = scene.span(ld)
+            hi = np.clip(x, a, b)[:, None]
+            s = (a + hi) / 2 + (hi - a) / 2 * _GX  # each point's part of the span, one row each
+            q = ld.value * scene.load_shape(ld, s) * (hi - a) / 2 * _GW
+            Q += q.sum(axis=1)
+            R += (q * (x[:, None] - s)).sum(axis=1)
+    return Q, R
+
+
+def layer_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, layer: int) -> tuple:
+    """(M, V) with the ``layer`` points next to each end re-derived by statics from the point just inside them (where
+    the model's M and V hold), continued to the end with the loads: the resultants of any beam theory are in
+    equilibrium with the loads, so they carry the interior point's error and no end layer's."""
+    n = len(x)
+    if n < 2 * layer + 3:
+        return M, V
+    M, V = np.array(M, float), np.array(V, float)
+    Q, R = statics_from_zero(scene, x)
+    for k, part in ((layer, slice(0, layer)), (n - 1 - layer, slice(n - layer, n))):
+        V0 = V[k] - Q[k]  # the shear at x = 0+ that the anchor's V implies
+        V[part] = V0 + Q[part]
+        M[part] = M[k] + V0 * (x[part] - x[k]) + R[part] - R[k]
+    return M, V

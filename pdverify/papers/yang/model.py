@@ -121,6 +121,10 @@ from .outputs import (
 )
 from .supports import section_forces, with_supports
 
+# the ends' layers of the recovered M and V, in horizons (J points each): their error falls about tenfold every three
+# points inward; at 3 J it is below 1e-4 of max |V| (docs/models/yang.md, "Scenes: supports inside the span ...")
+LAYER_HORIZONS = 3
+
 
 class PDHigherOrder(Model):
     name = "pd-higher-order"
@@ -549,7 +553,8 @@ class PDHigherOrder(Model):
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
-        fields.update(section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"]))
+        layer = LAYER_HORIZONS * int(np.ceil(params["horizon"] + 0.015))  # the ends' layers of M and V
+        fields.update(section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"], layer))
         flags = self.discretisation_warnings(scene, params, x, info)
         if flags := flags + recovery_warnings(scene, interior_point_loads(scene)):
             info.setdefault("warnings", []).extend(flags)

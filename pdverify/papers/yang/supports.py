@@ -30,6 +30,7 @@ import scipy.sparse as sp
 from ...core.errors import InputError
 from ...core.scene import PointForce, PointMoment, Scene, Spring
 from ...numerics.recovery import derivative, jump_positions
+from ...numerics.statics import layer_statics
 from ...theory.higher_order import NF, TH, point_work
 
 D1 = np.zeros((5, 4))
@@ -130,8 +131,10 @@ def with_supports(scene: Scene, params: dict, B, b: np.ndarray, held, x: np.ndar
     return A, rhs, np.r_[free, B.n + np.arange(len(unknowns))], unknowns, scales
 
 
-def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float) -> dict:
-    """{"M", "V"} at the points from u (n x 4) (module docstring)."""
+def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float, layer: int = 0) -> dict:
+    """{"M", "V"} at the points from u (n x 4) (module docstring); the ``layer`` points next to each end by statics
+    from the point inside them (:func:`pdverify.numerics.statics.layer_statics`), unless a support inside the span
+    stands there."""
     jumps = np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")]
     dx = x[1] - x[0]
     ends = [x[0] + dx / 2, x[-1] - dx / 2]  # no difference takes the end points' values, inside the ends' layers
@@ -141,7 +144,13 @@ def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h:
     if len(x) >= 4:  # the end points: extrapolated past the ends' layers of w*, theta* (M itself is smooth there)
         M[0] = 3 * M[1] - 3 * M[2] + M[3]
         M[-1] = 3 * M[-2] - 3 * M[-3] + M[-4]
-    return {"M": M, "V": derivative(x, M, jumps)}
+    V = derivative(x, M, jumps)
+    if layer:
+        inner = [s.position for s in scene.supports.inner]
+        dx = x[1] - x[0]
+        if not any(p <= x[layer] + dx or p >= x[-1 - layer] - dx for p in inner):
+            M, V = layer_statics(scene, x, M, V, layer)
+    return {"M": M, "V": V}
 
 
 __all__ = ["reaction_unknowns", "unit_vector", "augmented", "with_supports", "section_forces"]
