@@ -7,8 +7,9 @@ d_fine / (2^p - 1) (Richardson 1911; Roache 1998, ch. 5). The estimate is truste
 the observed order within ASYMPTOTIC of the order the model's equations promise (``Model.order``), and the coarsest
 grid fine enough to place the scene's features apart (:func:`feature_gap`: a load, support or break within one
 spacing of another is not resolved, and grids that do not resolve it can converge to each other with a clean order
-while all of them are far from the solution). Where the grids agree to their round-off (the solves' own bounds) the
-model is exact on the scene up to that round-off.
+while all of them are far from the solution), and no result saying that its model's error does not fall regularly
+on its grid (``info["irregular"]``: a layer in transition, whose errors can cancel between grids). Where the grids
+agree to their round-off (the solves' own bounds) the model is exact on the scene up to that round-off.
 """
 
 from __future__ import annotations
@@ -99,6 +100,9 @@ def richardson(results: list, at: int, quantity: str = "w", promised: float | No
     error = (d1, d2)[at] * q / (q - 1) if at < 2 else d2 / (q - 1)
     if unresolved:
         return Estimate(max(error, d2), p, grids, at, False, unresolved, resolved=False)
+    irregular = next((r.info["irregular"] for r in results if r.info.get("irregular")), "")
+    if irregular:  # the model knows its error does not fall at its order on these grids
+        return Estimate(max(error, d2), p, grids, at, False, f"the model's own warning: {irregular}")
     if promised is None:
         return Estimate(error, p, grids, at, True, "")
     lo, hi = (f * promised for f in ASYMPTOTIC)

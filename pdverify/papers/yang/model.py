@@ -558,6 +558,8 @@ class PDHigherOrder(Model):
         flags = self.discretisation_warnings(scene, params, x, info)
         if flags := flags + recovery_warnings(scene, interior_point_loads(scene)):
             info.setdefault("warnings", []).extend(flags)
+        if clamp := clamp_layer_warning(scene, dx):  # no Richardson estimate on such grids (measure/richardson.py)
+            info["irregular"] = clamp[0]
         own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
         if unknowns:
             own = closed_reactions(
