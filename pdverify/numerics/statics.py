@@ -99,17 +99,43 @@ def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return Q, R
 
 
+def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, spans, barriers=()) -> tuple:
+    """(M, V) with the points of each index span [lo, hi) re-derived by statics from the point next to it, where the
+    model's M and V hold (the mean of the continuations from the points before and after it), with the loads: the
+    resultants of any beam theory are in equilibrium with the loads, so they carry the anchor's error and none of the
+    span's layers. Overlapping or touching spans are merged; a merged span with a position of ``barriers`` on it
+    (supports inside the span, whose reactions the loads do not hold: give their own layers as spans too, so that no
+    anchor lies in them), or with no point left to anchor it, is left as it is; the third value lists those spans'
+    (first, last) positions."""
+    n = len(x)
+    M, V = np.array(M, float), np.array(V, float)
+    merged = []
+    for lo, hi in sorted((max(0, int(a)), min(n, int(b))) for a, b in spans):
+        if merged and lo <= merged[-1][1] + 1:  # touching spans too: an anchor between them would be spoiled
+            merged[-1][1] = max(merged[-1][1], hi)
+        elif hi > lo:
+            merged.append([lo, hi])
+    Q, R = statics_from_zero(scene, x)
+    M0, V0 = M.copy(), V.copy()  # the anchors' values, as the model gave them
+    kept = []
+    for lo, hi in merged:
+        anchors = [k for k in (lo - 1, hi) if 0 <= k < n]  # both sides of an inner span: the mean is mirror-symmetric
+        if not anchors or any(x[lo] <= b <= x[hi - 1] for b in barriers):
+            kept.append((float(x[lo]), float(x[hi - 1])))
+            continue
+        part = slice(lo, hi)
+        Vs, Ms = [], []
+        for k in anchors:
+            shear0 = V0[k] - Q[k]  # the shear at x = 0+ that the anchor's V implies
+            Vs.append(shear0 + Q[part])
+            Ms.append(M0[k] + shear0 * (x[part] - x[k]) + R[part] - R[k])
+        V[part], M[part] = np.mean(Vs, axis=0), np.mean(Ms, axis=0)
+    return M, V, kept
+
+
 def layer_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, layer: int) -> tuple:
-    """(M, V) with the ``layer`` points next to each end re-derived by statics from the point just inside them (where
-    the model's M and V hold), continued to the end with the loads: the resultants of any beam theory are in
-    equilibrium with the loads, so they carry the interior point's error and no end layer's."""
+    """:func:`statics_over` the ``layer`` points next to each end (none on fewer than 2 ``layer`` + 3 points)."""
     n = len(x)
     if n < 2 * layer + 3:
         return M, V
-    M, V = np.array(M, float), np.array(V, float)
-    Q, R = statics_from_zero(scene, x)
-    for k, part in ((layer, slice(0, layer)), (n - 1 - layer, slice(n - layer, n))):
-        V0 = V[k] - Q[k]  # the shear at x = 0+ that the anchor's V implies
-        V[part] = V0 + Q[part]
-        M[part] = M[k] + V0 * (x[part] - x[k]) + R[part] - R[k]
-    return M, V
+    return statics_over(scene, x, M, V, [(0, layer), (n - layer, n)])[:2]

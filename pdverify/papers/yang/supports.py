@@ -30,7 +30,7 @@ import scipy.sparse as sp
 from ...core.errors import InputError
 from ...core.scene import PointForce, PointMoment, Scene, Spring
 from ...numerics.recovery import derivative, jump_positions
-from ...numerics.statics import layer_statics
+from ...numerics.statics import statics_over
 from ...theory.higher_order import NF, TH, point_work
 
 D1 = np.zeros((5, 4))
@@ -131,10 +131,11 @@ def with_supports(scene: Scene, params: dict, B, b: np.ndarray, held, x: np.ndar
     return A, rhs, np.r_[free, B.n + np.arange(len(unknowns))], unknowns, scales
 
 
-def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float, layer: int = 0) -> dict:
-    """{"M", "V"} at the points from u (n x 4) (module docstring); the ``layer`` points next to each end by statics
-    from the point inside them (:func:`pdverify.numerics.statics.layer_statics`), unless a support inside the span
-    stands there."""
+def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float, layer: int = 0) -> tuple:
+    """({"M", "V"} at the points from u (n x 4) (module docstring), the point loads inside the beam whose layers are
+    left as recovered): the ``layer`` points next to each end and on each side of a point load by statics from the
+    point beside them (:func:`pdverify.numerics.statics.statics_over`), unless a support inside the span stands
+    there."""
     jumps = np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")]
     dx = x[1] - x[0]
     ends = [x[0] + dx / 2, x[-1] - dx / 2]  # no difference takes the end points' values, inside the ends' layers
@@ -145,12 +146,15 @@ def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h:
         M[0] = 3 * M[1] - 3 * M[2] + M[3]
         M[-1] = 3 * M[-2] - 3 * M[-3] + M[-4]
     V = derivative(x, M, jumps)
-    if layer:
-        inner = [s.position for s in scene.supports.inner]
-        dx = x[1] - x[0]
-        if not any(p <= x[layer] + dx or p >= x[-1 - layer] - dx for p in inner):
-            M, V = layer_statics(scene, x, M, V, layer)
-    return {"M": M, "V": V}
+    n = len(x)
+    loads = [ld for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and 0.0 < ld.position < x[-1]]
+    if not (layer and n >= 2 * layer + 3):
+        return {"M": M, "V": V}, loads
+    inner = [s.position for s in scene.supports.inner]  # their layers stay: no anchor in them
+    at = [(p - x[0]) / dx for p in [ld.position for ld in loads] + inner]  # in spacings; the two points around each
+    spans = [(0, layer), (n - layer, n)] + [(np.floor(t + 1e-9) - layer, np.ceil(t - 1e-9) + layer + 1) for t in at]
+    M, V, kept = statics_over(scene, x, M, V, spans, inner)
+    return {"M": M, "V": V}, [ld for ld in loads if any(a <= ld.position <= b for a, b in kept)]
 
 
 __all__ = ["reaction_unknowns", "unit_vector", "augmented", "with_supports", "section_forces"]
