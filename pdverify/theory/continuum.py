@@ -112,15 +112,16 @@ MODEL_ERROR_LIMIT = 0.01  # the nonlocal model error on the first sine mode abov
 
 def model_error_warning(model, scene: Scene, info: dict) -> str:
     """The warning of a horizon long for the beam: the model's continuum is softer than the local theory by about
-    g (k delta)^2 on a mode of wave number k (:meth:`~pdverify.core.horizon.Horizon.gradient_coefficient`), which on
-    the beam's first sine mode (k = pi / L) passes :data:`MODEL_ERROR_LIMIT`; "" otherwise. The estimate is the
+    g (k delta)^2 (stiffer where g < 0: pd-higher-order with Poisson's ratio below -1/2) on a mode of wave number k
+    (:meth:`~pdverify.core.horizon.Horizon.gradient_coefficient`), which on the beam's first sine mode (k = pi / L)
+    passes :data:`MODEL_ERROR_LIMIT` in size; "" otherwise. The estimate is the
     leading term only, and the first mode's: ends without a limit at fixed delta (docs/nonlocal.md) and shorter
     spans between inner supports lose more."""
     g, delta = model.gradient_coefficient(scene, {}), info.get("horizon")
     if g is None or not delta:
         return ""
-    size = g * (math.pi * float(delta) / scene.length) ** 2
-    if size <= MODEL_ERROR_LIMIT:
+    size = g * (math.pi * float(delta) / scene.length) ** 2  # negative: stiffer than the local theory
+    if abs(size) <= MODEL_ERROR_LIMIT:
         return ""
     return (
         f"{model.name}: the horizon {float(delta):.3g} is {100 * float(delta) / scene.length:.2g} % of the beam's "
