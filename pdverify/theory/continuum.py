@@ -79,6 +79,7 @@ def continuum_solution(model, scene: Scene, params: dict) -> Result:
     whole = model.continuum_whole(params)
     if whole and "continuum_levels" in info and abs(info["m"] - round(info["m"])) > 1e-9 * info["m"]:
         info["error_bound"] = math.inf  # the levels keep one fraction of m: their limit is not the continuum's
+        info["no_limit"] = f"m = {info['m']:.6g} is not whole and {whole}"  # a study flags its series
         info.setdefault("warnings", []).append(
             f"continuum of {model.name} at horizon {delta:g}: m = {info['m']:.6g} is not whole and {whole}: the "
             "extrapolation has no smooth limit to find; give points with (points - 1) delta / length whole"

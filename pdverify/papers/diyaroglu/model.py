@@ -78,13 +78,21 @@ def mirror_scene(scene: Scene) -> Scene:
 
 
 def paper_bias(m: float) -> str:
-    """The warning of the paper variant: with d = 1/(A delta), delta = (m + 0.015) dx (Eq. 32), the curvature of a
-    quadratic is too small by m/(m + 0.015), so the refined beam is too flexible by (1 + 0.015/m)^2 - 1."""
-    bias = (1.0 + 0.015 / m) ** 2 - 1.0
+    """The warning of the paper variant ("" when its bonds fill the horizon): with d = 1/(A delta), delta =
+    (m + 0.015) dx (Eq. 32), and J whole bonds of volume A dx in the family (the points within delta), the curvature
+    of a quadratic is J dx / delta of its own, so the refined beam is too flexible by (delta / (J dx))^2 - 1:
+    (1 + 0.015/m)^2 - 1 for a whole m, more where a ``horizon_length`` gives a fractional one (m = 15.99: J = 15
+    bonds, 13.6 %)."""
+    ratio = m + 0.015
+    J = int(np.floor(ratio + 1e-12))
+    bias = (ratio / J) ** 2 - 1.0
+    if bias <= 1e-9:  # a horizon_length of whole spacings: the family's bonds fill it
+        return ""
     return (
         f"variant = paper does not converge to the Euler-Bernoulli beam: d = 1/(A delta) with delta = "
-        f"({m:g} + 0.015) dx (Eq. 32) leaves the refined beam too flexible by (1 + 0.015/m)^2 - 1 = {bias:.2%} "
-        "(refined grids give deflections that much too large); use variant = corrected"
+        f"({m:g} + 0.015) dx (Eq. 32) over {J} whole bonds leaves the refined beam too flexible by "
+        f"(delta / ({J} dx))^2 - 1 = {bias:.2%} (refined grids give deflections that much too large); use variant = "
+        "corrected"
     )
 
 
@@ -319,7 +327,7 @@ class PDEulerBernoulli(Model):
         if params["variant"] != "paper":  # its Taylor ghosts at free, guided and spring ends (docs/models/diyaroglu.md)
             flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
         if params["variant"] == "paper":  # the corrected variant takes a couple by its kink: second order there
-            flags += moment_rotation_warnings(scene) + [paper_bias(params["horizon"])]
+            flags += moment_rotation_warnings(scene) + [b for b in [paper_bias(params["horizon"])] if b]
         return flags
 
     def solve(self, scene: Scene, params: dict) -> Result:
