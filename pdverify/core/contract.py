@@ -211,6 +211,7 @@ CONTINUUM_M = Option(
     None,
     "the finest m of the continuum's extrapolation (default: the model's; fewer is cheaper and less accurate)",
     minimum=8,
+    maximum=256,  # past m = 128 the extrapolation's levels gain round-off, not accuracy (docs/nonlocal.md)
 )
 NONLOCAL = (HORIZON_LENGTH, CONTINUUM, CONTINUUM_M)  # the options of every PD model (one with a ``horizon`` option)
 

@@ -10,7 +10,7 @@ import pytest
 from helpers import STUDIES
 from scipy.integrate import quad
 
-from pdverify.core.scene_file import load_scene
+from pdverify.core.scene_file import load_scene, parse_scene
 from pdverify.registry import get_model, run
 from pdverify.theory import continuum as C
 from pdverify.theory.symbols import GRADIENT, series_solution
@@ -334,3 +334,21 @@ def test_a_fractional_m_of_the_paper_variant_has_no_continuum_to_converge_to():
     sc = load_scene(STUDIES / "nonlocal/cc_sine.toml")
     r = run(sc, "pd-eb", points=81, variant="paper", horizon_length=0.13, continuum=True)
     assert r.info["error_bound"] == np.inf and "is not whole" in r.info["no_limit"]
+
+
+def test_continuum_m_is_bounded_where_its_cost_is():
+    """continuum_m past 256 is refused for every model (the levels past 128 gain round-off, not accuracy: 1024 took
+    over 4.8 GB on pd-eb); pd-bond-pair's continuum on the pair form stops at m = 32 (its own default 128 did not end
+    on a beam with a support inside) and refuses a larger continuum_m in one line."""
+    from pdverify.core.errors import InputError
+
+    sc = load_scene(STUDIES / "nonlocal/pp_sine.toml")
+    with pytest.raises(InputError, match="continuum_m <= 256"):
+        run(sc, "pd-eb", points=81, horizon_length=0.1, continuum=True, continuum_m=1024)
+    d = sc.model_dump(exclude_none=True)
+    d["supports"]["inner"] = [{"position": 0.5, "type": "pinned"}]
+    inner = parse_scene(d)
+    got = run(inner, "pd-bond-pair", points=81, horizon_length=0.1, continuum=True)
+    assert got.info["continuum_levels"][-1] <= 32 + 1e-9
+    with pytest.raises(InputError, match="give continuum_m <= 32"):
+        run(inner, "pd-bond-pair", points=81, horizon_length=0.1, continuum=True, continuum_m=64)

@@ -72,6 +72,9 @@ def needs_pairs(scene: Scene) -> bool:
     return not scene.supports.simple or bool(scene.segments) or displaced or follows_path(scene)
 
 
+PAIR_FORM_M = 32  # the finest m of a continuum on the pair form (continuum_limit)
+
+
 def pair_form(scene: Scene, params: dict) -> bool:
     """True when ``scene`` is solved on the pair form (:mod:`.general`): ``ends = none``, or a scene with supports
     inside the span, springs or segments (refused with Taylor ends, in one line)."""
@@ -298,9 +301,24 @@ class PDBondPair(Model):
 
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """No limit at fixed delta where a single point carries a force, or at free and guided Taylor ends
-        (:func:`.limit.no_limit_reason`); the continuum is then the grid at ``continuum_m``."""
-        why = no_limit_reason(scene, resolved_ends(scene, params)["ends"])
-        return (why, int(params.get("continuum_m") or self.continuum_m)) if why else None
+        (:func:`.limit.no_limit_reason`); the continuum is then the grid at ``continuum_m``, at most
+        :data:`PAIR_FORM_M` on the pair form (supports inside, springs, segments, prescribed deflections), whose
+        unknowns and bandwidth both grow with m (m = 16, 32, 48 on 81 points at delta = 0.1 L: 1 s, 3 s and 30 s
+        with 1.7 GB; 128 did not end)."""
+        params = resolved_ends(scene, params)
+        why = no_limit_reason(scene, params["ends"])
+        if not why:
+            return None
+        top = int(params.get("continuum_m") or self.continuum_m)
+        if pair_form(scene, params):
+            if params.get("continuum_m") and top > PAIR_FORM_M:
+                raise InputError(
+                    f"continuum_m = {top}: pd-bond-pair's continuum on the pair form (supports inside, springs, "
+                    f"segments, prescribed deflections) costs too much past m = {PAIR_FORM_M} (its unknowns and "
+                    f"bandwidth both grow with m); give continuum_m <= {PAIR_FORM_M}"
+                )
+            top = min(top, PAIR_FORM_M)
+        return why, top
 
     def continuum_series(self, scene: Scene, params: dict) -> Series | None:
         """Mirror ends (linear path): a series of the mirror modes with the continuous bond-pair symbol (omega = 1)."""
