@@ -53,7 +53,7 @@ class Horizon:
             raise InputError(
                 f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}; model {self.name} needs a whole "
                 f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
-                f"{near * dx:.6g} or points with (points - 1) delta / length whole"
+                f"{near * dx:.12g} or points with (points - 1) delta / length whole"  # digits enough to be whole
             )
         value = m - self.horizon_offset(params)
         return int(round(value)) if opt.kind is int else float(value)

@@ -11,13 +11,15 @@ from .limit import end_kinds
 
 def continuous_alpha_bias(m: float) -> str:
     """alpha = 3 EI / delta^3 (the continuous horizon integral of Eq. 5, delta = (m + 0.015) dx) on the family the
-    operator sums is stiffer than the beam by sum_j j^2 beta_j / ((m + 0.015)^3 / 3), so every deflection is too
-    small by 1 - 1 / that on any grid (docs/models/ogrady.md, "Calibration of alpha")."""
+    operator sums is stiffer than the beam by s = sum_j j^2 beta_j / ((m + 0.015)^3 / 3), so every deflection is too
+    small by 1 - 1 / s on any grid, or too large by 1 / s - 1 where s < 1 (docs/models/ogrady.md, "Calibration of
+    alpha")."""
     j, beta = pair_family(m, 1.0, "continuous-alpha")
     stiff = float(np.sum(j**2 * beta)) / ((m + 0.015) ** 3 / 3.0)
+    size = f"{1 - 1 / stiff:.1%} too small" if stiff >= 1 else f"{1 / stiff - 1:.1%} too large"
     return (
-        f"variant = continuous-alpha does not converge to the beam: its alpha makes every deflection "
-        f"{1 - 1 / stiff:.1%} too small at horizon {m:g}, on any grid; variant = paper or corrected converges"
+        f"variant = continuous-alpha does not converge to the beam: its alpha makes every deflection {size} at "
+        f"horizon {m:g}, on any grid; variant = paper or corrected converges"
     )
 
 
