@@ -131,11 +131,3 @@ def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, span
             Ms.append(M0[k] + shear0 * (x[part] - x[k]) + R[part] - R[k])
         V[part], M[part] = np.mean(Vs, axis=0), np.mean(Ms, axis=0)
     return M, V, kept
-
-
-def layer_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, layer: int) -> tuple:
-    """:func:`statics_over` the ``layer`` points next to each end (none on fewer than 2 ``layer`` + 3 points)."""
-    n = len(x)
-    if n < 2 * layer + 3:
-        return M, V
-    return statics_over(scene, x, M, V, [(0, layer), (n - layer, n)])[:2]

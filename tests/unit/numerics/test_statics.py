@@ -7,7 +7,7 @@ from helpers import MIXED_LOADS, PAIRS, scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.numerics.statics import closed_reactions, layer_statics
+from pdverify.numerics.statics import closed_reactions, statics_over
 
 
 def scene(length: float, left="clamped", right="free"):
@@ -40,10 +40,10 @@ def test_two_forces_apart_close_a_simply_supported_beam(length):
 
 
 @pytest.mark.parametrize("left,right", PAIRS)
-def test_layer_statics_continues_the_exact_resultants_to_the_ends(left, right):
-    """M and V spoiled in the 6 points next to each end come back by statics from the point inside them, to round-off,
-    with forces, a couple and partial and sine loads inside the layers (the end points' loads acting on the beam's
-    side: the end point carries the value inside the beam)."""
+def test_statics_continues_the_exact_resultants_over_spoiled_spans(left, right):
+    """M and V spoiled in the 6 points next to each end and around x = 1 come back by statics from the points beside
+    them, to round-off, with forces, a couple and partial and sine loads inside the spans (the end points' loads
+    acting on the beam's side: the end point carries the value inside the beam)."""
     loads = MIXED_LOADS[:4] + [
         {"type": "point_force", "position": 0.13, "value": 70.0},
         {"type": "point_moment", "position": 1.9, "value": -40.0},
@@ -55,7 +55,9 @@ def test_layer_statics_continues_the_exact_resultants_to_the_ends(left, right):
     M, V = exact["M"].copy(), exact["V"].copy()
     M[:6] += 5.0
     V[-6:] -= 3.0
-    M2, V2 = layer_statics(sc, x, M, V, 6)
+    M[18:23] -= 2.0
+    M2, V2, kept = statics_over(sc, x, M, V, [(0, 6), (35, 41), (18, 23)])
+    assert kept == []
     on = np.isclose(x, 1.9)  # on the couple: the mean of its sides, which exact-eb does not give
     assert np.abs(M2 - exact["M"])[~on].max() < 1e-12 * np.abs(exact["M"]).max()
     assert np.abs(V2 - exact["V"]).max() < 1e-12 * np.abs(exact["V"]).max()
