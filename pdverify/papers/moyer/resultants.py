@@ -4,9 +4,12 @@
 The beam's w rows say kGA (ψ̄_{i+½} - ψ̄_{i-½}) = -(the load at point i): the intervals' V̄ = -kGA ψ̄ step by each
 point's load, as the exact V steps by the loads between the intervals' middles. V̄ is then the exact V's average over
 its interval (to the second order of the distributed loads' cell integrals; exactly, where V is piecewise constant),
-and the value at a point follows from the loads on the interval before it (the first interval for the left end):
+and the value at a point follows from the loads on the interval before it,
 
     V(x_i) = V̄_{i-½} + (1/Δ) ∫_{x_{i-1}}^{x_i} (s - x_{i-1}) dV(s),    dV = q ds + point forces (reactions included),
+
+or on the one after it, V̄_{i+½} - (1/Δ) ∫_{x_i}^{x_{i+1}} (x_{i+1} - s) dV(s): the mean of the two at an inner point (a
+mirror scene gives the mirror shear), the one interval an end point has,
 
 with exact-timoshenko's convention at a load on a point (a load at a acts on x > a; at x = L on x = L too). The mean of
 the two intervals around a point would be wrong by O(Δ q') where q jumps and by up to half a point force next to
@@ -63,24 +66,30 @@ def point_loads(scene: Scene, extra=()) -> tuple[list, list]:
 def shear_at_points(
     Vbar: np.ndarray, x: np.ndarray, scene: Scene, forces: list, component: str = "transverse", sign: float = 1.0
 ) -> np.ndarray:
-    """V at the points from the intervals' V̄ (module docstring); a rod's N (``component`` axial) or a bar's T
-    (torque) with ``sign`` = -1: N' = -p."""
+    """V at the points from the intervals' V̄ (module docstring): at an inner point the mean of the values from the
+    interval before it and from the one after it, V̄_{i+½} - (1/Δ) ∫_{x_i}^{x_{i+1}} (x_{i+1} - s) dV(s) (so that a
+    mirror scene gives the mirror shear), at an end from its own interval; a rod's N (``component`` axial) or a bar's
+    T (torque) with ``sign`` = -1: N' = -p."""
     dx = x[1] - x[0]
     L = x[-1]
+    n = len(x)
     A, B = interval_moments(scene, x, component)
     A, B = sign * A, sign * B
     forces = [(at, sign * P) for at, P in forces]
-    V = np.empty(len(x))
-    V[1:] = Vbar + B / dx  # from the interval before each point
-    V[0] = Vbar[0] - (dx * A[0] - B[0]) / dx  # the left end from the first interval
+    before, after = np.empty(n), np.empty(n)
+    before[1:] = Vbar + B / dx  # from the interval before each point
+    after[:-1] = Vbar - (dx * A - B) / dx  # from the interval after it
     tol = 1e-9 * dx
     for at, P in forces:
-        i = int(np.clip(np.ceil((at - x[0]) / dx - 1e-9), 1, len(x) - 1))  # the interval (x_{i-1}, x_i] holding it
-        s = at - x[i - 1]
-        if at < x[i] - tol or (i == len(x) - 1 and at >= L - tol):  # on x_i: acts beyond it, except at x = L
-            V[i] += P * s / dx
-        if i == 1 and at < x[0] + tol:  # a force at the left end acts beyond it
-            V[0] -= P
+        i = int(np.clip(np.ceil((at - x[0]) / dx - 1e-9), 1, n - 1))  # the interval (x_{i-1}, x_i] holding it
+        if at < x[i] - tol or (i == n - 1 and at >= L - tol):  # on x_i: acts beyond it, except at x = L
+            before[i] += P * (at - x[i - 1]) / dx
+        k = int(np.clip(np.floor((at - x[0]) / dx + 1e-9), 0, n - 2))  # the interval [x_k, x_{k+1}) holding it
+        if at < L - tol:  # at x = L it acts on x = L, beyond every interval after a point
+            after[k] -= P * (x[k + 1] - at) / dx
+    V = before
+    V[0] = after[0]
+    V[1:-1] = 0.5 * (before[1:-1] + after[1:-1])
     return V
 
 
