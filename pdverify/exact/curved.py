@@ -35,7 +35,7 @@ from ..core.errors import SolveError
 from ..core.geometry import geometry, mechanism_message
 from ..core.result import Result, Timer
 from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene
-from ..theory.curved_beam import thick_ring_warning
+from ..theory.curved_beam import coupling_warning, thick_ring_warning
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -327,8 +327,9 @@ class ExactCurved(Model):
             sol = self.solver(scene)
             f = sol.fields(s)
         info = {"cond": getattr(sol, "cond", 1.0)}  # a cantilever solves nothing: statics and quadrature only
-        if thick := thick_ring_warning(scene):
-            info.setdefault("warnings", []).append(thick)
+        for flag in (thick_ring_warning(scene), coupling_warning(scene, s, f["N"], f["M"])):
+            if flag:
+                info.setdefault("warnings", []).append(flag)
         return self.new_result(
             scene,
             params,

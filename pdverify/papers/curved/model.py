@@ -69,7 +69,7 @@ from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.linalg import BOUND_LIMIT, ENTRY_ROUNDING, bound_warning, solve_linear
-from ...theory.curved_beam import thick_ring_warning
+from ...theory.curved_beam import coupling_warning, thick_ring_warning
 from . import pddo as _pddo
 from .assembly import assemble_displacements, assemble_resultants
 from .particles import (
@@ -297,8 +297,12 @@ class PDCurved(Model):
             warnings.add(bound_warning(info["error_bound"]))
         if params["form"] == "primal":
             warnings.add(PRIMAL_LOCKS)
-        if thick := thick_ring_warning(scene):
-            warnings.add(thick)
+        for flag in (
+            thick_ring_warning(scene),
+            coupling_warning(scene, total["x"] / len(infos), total["N"], total["M"]),
+        ):
+            if flag:
+                warnings.add(flag)
         if warnings:
             info.setdefault("warnings", []).extend(sorted(warnings))
         info.update(solves=len(infos), segments=max(i["segments"] for i in infos))
