@@ -46,18 +46,19 @@ def in_doubt(bound: float, err: float) -> bool:
     return not (bound <= BOUND_LIMIT or (bound < 1.0 and bound < REFERENCE_SHARE * float(err)))
 
 
-def reference_status(bound: float | None, row: dict) -> dict:
-    """Columns for the round-off bound of the case's reference solve (a model solved as the reference, e.g. its own
+def reference_status(bound: float | None, row: dict, what: str = "round-off bound") -> dict:
+    """Columns for the error bound of the case's reference solve (a model solved as the reference, e.g. its own
     solution on a fine grid; None for exact references): ``ref_error_bound`` and, when it passes BOUND_LIMIT (or is
     not finite) and is not below REFERENCE_SHARE of the row's measured error ``err_max`` (so it could be a tenth of
-    that error or more), ``status = "suspect"`` with a message naming it (added to the row's own)."""
+    that error or more), ``status = "suspect"`` with a message naming it (added to the row's own). ``what`` the
+    bound is: a solve's round-off bound, or a continuum's own error estimate."""
     if bound is None:
         return {"ref_error_bound": None}
     bound = float(bound)
     if not in_doubt(bound, row.get("err_max", math.nan)):
         return {"ref_error_bound": bound}
     said = (
-        f"the reference's round-off bound {_shown(bound)} exceeds {BOUND_LIMIT:g} and a tenth of the error measured "
+        f"the reference's {what} {_shown(bound)} exceeds {BOUND_LIMIT:g} and a tenth of the error measured "
         "here, which may be the reference's"
     )
     return {

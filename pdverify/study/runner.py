@@ -272,7 +272,7 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     row["status"], row["message"] = "ok", ""
     row.update(case_status(info, row.get("err_max", np.nan)))  # suspect: a bound that could decide it (trust.md)
     if case.reference.get("continuum"):  # ... or the reference's: the error is measured against it
-        row.update(reference_status(continuum_at(case, case.scene(), x)[1], row))
+        row.update(reference_status(continuum_at(case, case.scene(), x)[1], row, "continuum's error estimate"))
     elif case.reference.get("model") != "none":
         row.update(reference_status(reference_bound(case), row))
     row["warnings"] = "; ".join(w for w in (solved.get("warnings", ""), theory_gap_warning(case)) if w)
