@@ -152,7 +152,9 @@ class TimoshenkoBeam:
         state = self._scans.setdefault(resolution, [1e-3, first])  # [z0, roots found below it]
         z0, found, chunk = state[0], state[1], 8192
         z_limit = SCAN_LIMIT * (count + 1)
-        while len(found) < count:
+        # the cut-off (a mode of w = 0 and uniform rotation where both ends hold w and free the rotation) is known
+        # before the scan reaches it: it counts among the lowest modes only once the scan has passed it
+        while sum(w <= to_omega(z0) for w in found) < count:
             if not z0 < z_limit:
                 raise SolveError(
                     f"the characteristic determinant changed sign {len(found)} times up to z = {z_limit:g} (its "
