@@ -251,6 +251,20 @@ def moment_rotation_warnings(scene: Scene) -> list[str]:
     ]
 
 
+def couple_at_joint_warnings(scene: Scene, quantity: str, measured: str) -> list[str]:
+    """Point moments on a segment joint (within 1e-9 of the length): the kink that takes a couple and the joint's
+    change of section meet at one point, and ``quantity`` near it is first order in the spacing (``measured``: the
+    model's own errors, quoted)."""
+    joints = {g.end for g in scene.segments} & {g.start for g in scene.segments}
+    tol = 1e-9 * scene.length
+    return [
+        f"loads[{i}], a point moment at {load.position:g}, is on a segment joint: the {quantity} near it is first "
+        f"order in the spacing ({measured}); off the joint it is second order"
+        for i, load in enumerate(scene.loads)
+        if load.type == "point_moment" and load.value != 0.0 and any(abs(load.position - j) <= tol for j in joints)
+    ]
+
+
 def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
     """Partial loads that lie inside one point's cell [x_i - dx/2, x_i + dx/2]: the PD models place distributed loads
     by cell averages, so such a load acts on that point as a whole, moved by up to half a spacing (a first-order

@@ -9,13 +9,13 @@ here as the largest over positions base + t dx, t in {0.1, 0.5, 0.9}: that error
 
 import numpy as np
 import pytest
-from helpers import PAIRS, scene_dict
+from helpers import PAIRS, STUDIES, scene_dict
 
 from pdverify.core.scene import SUPPORTS, is_mechanism
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.measure.metrics import ROUND_OFF_LEVEL
-from pdverify.registry import run
+from pdverify.registry import get_model, run
 
 L = 2.0  # conftest's beam
 ALL_PAIRS = [(l, r) for l in SUPPORTS for r in SUPPORTS if not is_mechanism(l, r)]
@@ -135,3 +135,25 @@ def test_a_load_inside_one_cell_is_flagged(model):
         assert bool(said) == flagged and (err > 1e-3) == flagged, (n, err, said)
     whole = parse_scene(scene_dict("clamped", "clamped", [dict(NARROW, start=None, end=None)]))
     assert not any("cell" in w for w in run(whole, model, points=401).info.get("warnings", []))
+
+
+@pytest.mark.parametrize(
+    "name,reference,quantity", [("pd-eb", "exact-eb", "w"), ("pd-timoshenko", "exact-timoshenko", "rotation")]
+)
+def test_a_couple_on_a_segment_joint_is_first_order_and_warned(name, reference, quantity):
+    """A couple on the joint of two segments: the kink that takes it and the change of section meet at one point, and
+    pd-eb's deflection (pd-timoshenko's rotation) is first order there, 100 times the error of the same couple 0.1 m
+    off the joint; the result says so (it did not)."""
+    from pdverify.core.scene_file import load_scene
+
+    sc = load_scene(STUDIES / "examples/couple_at_joint.toml")
+    off = sc.model_copy(update={"loads": [sc.loads[0].model_copy(update={"position": 0.9})]})
+    errors = []
+    for scene in (sc, off):
+        r = run(scene, name, points=201)
+        exact = get_model(reference).evaluator(scene, {})(r.x)[quantity]
+        got = r.w if quantity == "w" else r.rotation
+        errors.append(np.abs(got - exact).max() / np.abs(exact).max())
+        said = [w for w in r.info.get("warnings", []) if "segment joint" in w]
+        assert len(said) == (scene is sc)
+    assert errors[0] > 10 * errors[1], errors
