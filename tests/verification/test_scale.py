@@ -110,7 +110,7 @@ def test_a_scaled_scene_gives_the_same_relative_result(name, pair, length, modul
 def test_a_free_end_s_fitted_ghosts_scale_too(pair, length):
     """pd-timoshenko corrected fits its free end's ghosts of w and the rotation by least squares under the end's
     conditions: the fit weighed metres against radians, so a scene scaled by 1e3 moved its tip by 7.2e-6 relative
-    (bound 1.4e-8). It now fits w and dx times the rotation, both lengths."""
+    (bound 1.4e-8). It now fits w and L times the rotation, both lengths."""
     opts = {"points": 81, "variant": "corrected", "horizon": 8}
     base = run(parse_scene(scaled(*pair, 1.0, 1.0, 1.0)), "pd-timoshenko", **opts)
     other = run(parse_scene(scaled(*pair, length, 1.0, 1.0)), "pd-timoshenko", **opts)

@@ -46,7 +46,7 @@ def beam_ghosts(scene: Scene, side: int, sup: str, variant: str, grid: str, G: i
     1 right) with support ``sup`` from its first npts real points. Paper: Taylor rows per field (Eq. 20–21, first
     order at a Dirichlet end; ``grid = "cells"``: about the end face, Section 4); corrected: mirror images at
     pinned, roller and guided ends (:func:`mirror_ghosts`), else the cubic per field, fitted by least squares to w
-    and dx γ at FIT_POINTS real points, that satisfies the support's conditions: clamped w = w_end, γ = γ_end; free
+    and L γ at FIT_POINTS real points, that satisfies the support's conditions: clamped w = w_end, γ = γ_end; free
     EI γ' = M̄ and kGA ψ = P̄ (``ends[side]`` = (P̄, C̄), s outward)."""
     EI, kGA = scene.EI, scene.kGA
     sigma = -1.0 if side == 0 else 1.0
@@ -64,20 +64,22 @@ def beam_ghosts(scene: Scene, side: int, sup: str, variant: str, grid: str, G: i
     P, C = ends[side]
     if sup in MIRRORED:
         return mirror_ghosts(sup, G, dx, sigma, P, C, end_line_load(scene, side), EI, kGA)
-    # the fit is of w and dx γ (both lengths, so that its least squares weighs them alike at any scale: of w and γ
-    # it weighed metres against radians, and a scaled scene moved the ghosts by 1e-5 of themselves)
+    # the fit is of w and L γ (both lengths, so that its least squares weighs them alike at any scale: of w and γ it
+    # weighed metres against radians, and a scaled scene moved the ghosts by 1e-5 of themselves; with dx γ instead,
+    # the clamped-free closures grew a mode the stabilisation does not hold at m = 2, 161 points)
+    ell = scene.length
     con = []
     if fix_w:
         con.append(({(0, 0): 1.0}, {(0, 0): 1.0}, 0.0))
     if fix_g:
         con.append(({(1, 0): 1.0}, {(1, 0): 1.0}, 0.0))
-    if not fix_g:  # moment: EI γ_s(0) = C̄ (both ends, s outward): (dx γ)_t = dx² γ_s
-        con.append(({(1, 1): 1.0}, {}, dx * dx * C / EI))
-    if not fix_w:  # shear: kGA (w_s - σ γ) = P̄: w_t - σ dx γ = dx P̄ / kGA
-        con.append(({(0, 1): 1.0, (1, 0): -sigma}, {}, dx * P / kGA))
+    if not fix_g:  # moment: EI γ_s(0) = C̄ (both ends, s outward): (ell γ)_t = ell dx γ_s
+        con.append(({(1, 1): 1.0}, {}, ell * dx * C / EI))
+    if not fix_w:  # shear: kGA (w_s - σ γ) = P̄: w_t - σ (dx / ell) (ell γ) = dx P̄ / kGA
+        con.append(({(0, 1): 1.0, (1, 0): -sigma * dx / ell}, {}, dx * P / kGA))
     R, r0 = constrained_ghosts(2, FIT_DEGREE, FIT_POINTS, G, con)
-    ghost = np.r_[np.ones(G), np.full(G, 1.0 / dx)]  # the ghosts' dx γ back to γ
-    data = np.r_[np.ones(FIT_POINTS), np.full(FIT_POINTS, dx)]  # the real points' γ as dx γ
+    ghost = np.r_[np.ones(G), np.full(G, 1.0 / ell)]  # the ghosts' ell γ back to γ
+    data = np.r_[np.ones(FIT_POINTS), np.full(FIT_POINTS, ell)]  # the real points' γ as ell γ
     return (ghost[:, None] * R * data[None, :], ghost * r0, FIT_POINTS)
 
 
