@@ -49,7 +49,7 @@ class Horizon:
                 f"{self.name} ({what}); give horizon_length >= {max(least, 1.0) * dx:.6g} or more points"
             )
         if (self.whole_horizon or opt.kind is int) and m != round(m):
-            near = max(1, round(m))
+            near = self.nearest_whole(scene, params, m)
             raise InputError(
                 f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}; model {self.name} needs a whole "
                 f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
@@ -57,6 +57,17 @@ class Horizon:
             )
         value = m - self.horizon_offset(params)
         return int(round(value)) if opt.kind is int else float(value)
+
+    def nearest_whole(self, scene: Scene, params: dict, m: float) -> int:
+        """The whole horizon nearest m whose family fits the grid (:meth:`grid_problems`), the nearer of floor and
+        ceil first; round(m) when neither fits (the refusal of a horizon too wide then follows)."""
+        lower = max(1, int(m))
+        for near in sorted({lower, lower + 1}, key=lambda k: (abs(k - m), k)):
+            value = near - self.horizon_offset(params)
+            trial = {**params, "horizon": int(round(value)) if self.option("horizon").kind is int else float(value)}
+            if not self.grid_problems(scene, trial):
+                return near
+        return max(1, round(m))
 
     def grid_problems(self, scene: Scene, params: dict) -> list[str]:
         """What the model's grid refuses in the resolved ``params`` on ``scene``, found without solving (a horizon

@@ -359,6 +359,24 @@ CLI_CASES = [
             ("pd-curved", SCENE_PATH, [], "a family (1201 particles for degree 4) is larger than the 21 points", "0.5"),
         )
     ],
+    # a fractional horizon refused with a whole one that fits the grid: before, 0.49 on 11 points suggested 0.5, which
+    # needs 12 points (the nearer whole horizon that fits is 0.4)
+    (
+        "solve-pd-rod-fractional-horizon-length-suggests-one-that-fits",
+        [
+            "solve",
+            str(ROOT / "studies/paper_moyer/rod_sine.toml"),
+            "-m",
+            "pd-rod",
+            "--points",
+            "11",
+            "-o",
+            "horizon_length=0.49",
+        ],
+        2,
+        "horizon_length = 0.49: 4.9 spacings of 0.1; model pd-rod needs a whole number (Eq. 13-19: the trapezoidal "
+        "rule over the nodes 0..m of the horizon delta = m dx); give horizon_length = 0.4 or points",
+    ),
     (
         "solve-pd-curved-horizon-length-1e-300",
         ["solve", "{scene}", "-m", "pd-curved", "--points", "21", "-o", "horizon_length=1e-300"],
