@@ -35,14 +35,20 @@ def gives_modes(model) -> bool:
 
 
 def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, float]:
-    """(λ, ||M⁻¹K||_∞): the ``count`` eigenvalues of K φ = λ M φ smallest in modulus, ordered by modulus. ``mass``:
-    the lumped mass (a vector), or a consistent mass matrix (sparse, symmetric positive definite; the norm then
-    takes its row sums, the lumped mass of the same element)."""
+    """(λ, ||D K D||_∞, D below): the ``count`` eigenvalues of K φ = λ M φ smallest in modulus, ordered by modulus.
+    ``mass``: the lumped mass (a vector), or a consistent mass matrix (sparse, symmetric positive definite; the
+    scaling then takes its diagonal: a row sum would add entries of different units where a block couples two kinds
+    of unknown).
+
+    The pair is solved as D K D, D M D with D = diag(M)^-1/2 (a congruence: the same eigenvalues), whose entries
+    all have the unit of λ, 1/s², whatever the unknowns' units: a rotation's row and a deflection's row of M⁻¹K differ
+    by the square of the length unit, so its eigenvalues (and the round-off estimate's norm) would depend on the
+    scene's units, where these do not."""
     import scipy.linalg as la
     import scipy.sparse.linalg as spla
 
     consistent = sp.issparse(mass)
-    lumped = np.asarray(mass.sum(1)).ravel() if consistent else np.asarray(mass, float)
+    lumped = mass.diagonal() if consistent else np.asarray(mass, float)
     # K / k0 and M / m0 (powers of two: exact) keep every entry an ordinary float whatever the units (a density of
     # 1e-300 overflows 1/M); the eigenvalues are k0 / m0 times those of the scaled pair
     k0 = 2.0 ** np.round(np.log2(abs(K).max()))
@@ -53,15 +59,16 @@ def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, 
             f"~{k0:.0e}, mass ~{m0:.0e}); give the scene in units that keep its numbers within about 1e-100..1e100"
         )
     K, lumped = K / k0, lumped / m0
-    mass = mass / m0 if consistent else lumped
-    A = sp.csr_matrix(sp.diags(1.0 / lumped) @ K)
+    D = sp.diags(1.0 / np.sqrt(lumped))
+    A = sp.csr_matrix(D @ K @ D)
+    mass = sp.csr_matrix(D @ (mass / m0) @ D) if consistent else None
     norm = float(abs(A).sum(1).max())
     n = A.shape[0]
     if n <= DENSE_DOFS or count >= n - 1:
-        lam = la.eigvals(K.toarray(), mass.toarray()) if consistent else la.eigvals(A.toarray())
+        lam = la.eigvals(A.toarray(), mass.toarray()) if consistent else la.eigvals(A.toarray())
     else:  # fixed start vector: the same digits on every run
         v0 = np.random.default_rng(0).standard_normal(n)
-        B, M = (sp.csc_matrix(K), sp.csc_matrix(mass)) if consistent else (A.tocsc(), None)
+        B, M = (A.tocsc(), sp.csc_matrix(mass)) if consistent else (A.tocsc(), None)
         lam = spla.eigs(B, k=count, M=M, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
     lam = lam[np.argsort(np.abs(lam), kind="stable")][:count]
     return lam * (k0 / m0), norm * (k0 / m0)
@@ -247,7 +254,7 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
     worst = int(np.argmax(roundoff))
     if roundoff[worst] > ROUNDOFF_WARN:
         warnings.append(
-            f"mode {worst + 1}: round-off may reach {roundoff[worst]:.1e} of the frequency (eps ||M^-1 K|| / "
+            f"mode {worst + 1}: round-off may reach {roundoff[worst]:.1e} of the frequency (eps ||D K D|| / "
             "eigenvalue); use fewer points"
         )
     table = ModeTable(scene.name, m.name, params, K.shape[0], reference, lam, analytic, roundoff, warnings)

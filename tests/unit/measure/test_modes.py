@@ -112,6 +112,35 @@ def test_mirror_scenes_have_the_same_modes():
     assert np.all(np.abs(a.omega / b.omega - 1) <= 10 * a.roundoff)
 
 
+BEAM_MODELS = ("pd-eb", "pd-bond-pair", "pd-timoshenko", "pd-higher-order", "fem-timoshenko")
+
+
+@pytest.mark.parametrize("model", BEAM_MODELS)
+@pytest.mark.parametrize("length, modulus", [(1e3, 1e5 / 70), (1e-3, 1.0), (1e-6, 1e15)])
+def test_modes_of_a_scaled_beam_scale_as_sqrt_of_e_over_length(model, length, modulus):
+    """Every length times ``length`` and E times ``modulus``: omega L / sqrt(E) is the same within the modes' own
+    round-off estimates, and so are the estimates and the warnings. Before, M^-1 K mixed rows of deflections and
+    rotations, whose ratio is the length unit squared: pd-higher-order's modes at L x 1e-3 were [0, 1081, 1081, ...]
+    and fem-timoshenko's mode 1 at L x 1e-6 was 0."""
+
+    def table(k, e):
+        scene = scene_dict(
+            "clamped",
+            "free",
+            [],
+            beam={"length": 2.0 * k},
+            section={"width": 0.05 * k, "height": 0.1 * k},
+            material=dict(MATERIAL, youngs_modulus=70e9 * e),
+        )
+        return modes(parse_scene(scene), model, {"points": 41}, 6)
+
+    a, b = table(1.0, 1.0), table(length, modulus)
+    scaled = b.omega * length / np.sqrt(modulus)
+    assert np.all(np.abs(scaled / a.omega - 1) <= 10 * (a.roundoff + b.roundoff)), scaled / a.omega - 1
+    np.testing.assert_allclose(b.roundoff, a.roundoff, rtol=1e-6)
+    assert b.warnings == a.warnings
+
+
 # -- the command ------------------------------------------------------------------------------------
 
 
