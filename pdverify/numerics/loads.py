@@ -90,6 +90,59 @@ def end_loads(scene: Scene) -> tuple[dict, dict]:
     return P, C
 
 
+def support_couples(scene: Scene) -> tuple[dict, Scene]:
+    """({side: C}, the scene without them): the couples on an end point whose support holds the rotation (clamped,
+    guided). Such a couple goes into the support and bends nothing; a model that can only spread a couple over a
+    spacing or two (a force pair) solves the scene without it and adds it to that end's reaction and to the end
+    point's moment (its support side, :func:`support_side`). ({}, the scene) when there is none."""
+    found, kept = {}, []
+    for load in scene.loads:
+        side = None
+        if isinstance(load, PointMoment):
+            for name, xe in (("left", 0.0), ("right", scene.length)):
+                on_end = abs(load.position - xe) <= 1e-12 * scene.length
+                if on_end and scene.supports.kind(name) in ("clamped", "guided"):
+                    side = name
+        if side is None:
+            kept.append(load)
+        else:
+            found[side] = found.get(side, 0.0) + load.value
+    return found, (scene.model_copy(update={"loads": kept}) if found else scene)
+
+
+def solve_without_support_couples(solve, scene: Scene, params: dict, field: str):
+    """``solve(scene, params)`` (a model's Result) of the scene without its :func:`support_couples`, which go into
+    their supports: the end point's ``field`` (the moment's name) on the support's side and the end's moment
+    reaction, where the model gives reactions (else the registry's statics read that moment)."""
+    couples, bare = support_couples(scene)
+    result = solve(bare, params)
+    if field in result.fields:  # (a large-rotation path gives none)
+        result.fields[field] = support_side(scene, result.fields[field], "moment", couples=couples)
+    reactions = result.info.get("reactions") or {}
+    for side, C in couples.items():
+        if f"moment_{side}" in reactions:
+            reactions[f"moment_{side}"] -= C
+    return result
+
+
+def support_side(scene: Scene, values: np.ndarray, field: str, sides=("left", "right"), couples=None) -> np.ndarray:
+    """``values`` (the moment or the shear at the points, ``field`` "moment" or "shear") with the end points of
+    ``sides`` moved from the beam's side of the loads on them to their support's side, the exact beams' end values
+    (whose reactions are -M(0), M(L), V(0) and -V(L)): M(0-) = M(0+) + C, M(L+) = M(L-) - C for a couple C on the end
+    point, V(0-) = V(0+) - P, V(L+) = V(L-) + P for a force P. ``couples``: {side: C} instead of the scene's couples on
+    the end points (:func:`support_couples`'). For a model whose end points carry the beam's side."""
+    P, C = end_loads(scene)
+    if couples is not None:
+        C = {0: couples.get("left", 0.0), 1: couples.get("right", 0.0)}
+    load, sign = (C, 1.0) if field == "moment" else (P, -1.0)
+    out = np.array(values, float)
+    if "left" in sides:
+        out[0] += sign * load[0]
+    if "right" in sides:
+        out[-1] -= sign * load[1]
+    return out
+
+
 def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int) -> list[str]:
     """Point loads (force, moment, torque) strictly inside the first ``reach`` spacings of an end: the
     ghost polynomial fitted there assumes a smooth solution, so such a load is under-resolved (large errors a

@@ -66,14 +66,18 @@ def closed_reactions(scene: Scene, model: dict[str, float]) -> dict:
 _GX, _GW = np.polynomial.legendre.leggauss(24)
 
 
-def _jump(x: np.ndarray, at: float, dx: float) -> np.ndarray:
-    """1 past ``at``, 0 before, 1/2 within 1e-9 spacings of it (a point on a load carries the mean of its sides); a
-    load on an end point acts on the beam's side of it (the end point carries the value inside the beam)."""
-    if at <= x[0] + 1e-9 * dx:
-        return np.ones(len(x))
-    if at >= x[-1] - 1e-9 * dx:
-        return np.zeros(len(x))
-    return np.where(np.abs(x - at) <= 1e-9 * dx, 0.5, np.where(x > at, 1.0, 0.0))
+def jump_share(x: np.ndarray, at: float, dx: float) -> np.ndarray:
+    """The share of a unit jump at ``at`` that each point's value carries: 1 past it, 0 before, 1/2 on a point within
+    1e-9 spacings of it (the mean of its two sides: a mirror image carries the same, and the rounding of a scaled grid's
+    positions decides no side); an end point on it carries its support's side (0 at x[0], 1 at x[-1]: the load acts on
+    the beam), as the exact beams' end values, whose reactions are -M(0), M(L), V(0) and -V(L)."""
+    on = np.abs(x - at) <= 1e-9 * dx
+    share = np.where(on, 0.5, np.where(x > at, 1.0, 0.0))
+    if on[0]:
+        share[0] = 0.0
+    if on[-1]:
+        share[-1] = 1.0
+    return share
 
 
 def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -85,10 +89,10 @@ def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarr
     Q, R = np.zeros(len(x)), np.zeros(len(x))
     for ld in scene.loads:
         if isinstance(ld, PointForce) and ld.value:
-            Q += ld.value * _jump(x, ld.position, dx)
+            Q += ld.value * jump_share(x, ld.position, dx)
             R += ld.value * np.maximum(x - ld.position, 0.0)
         elif isinstance(ld, PointMoment) and ld.value:
-            R -= ld.value * _jump(x, ld.position, dx)
+            R -= ld.value * jump_share(x, ld.position, dx)
         elif isinstance(ld, Distributed) and ld.value:
             a, b = scene.span(ld)
             hi = np.clip(x, a, b)[:, None]

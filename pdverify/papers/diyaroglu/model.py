@@ -51,6 +51,8 @@ from ...numerics.loads import (
     couple_at_joint_warnings,
     edge_layer_warnings,
     moment_rotation_warnings,
+    solve_without_support_couples,
+    support_couples,
 )
 from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import GRADIENT, Series, beam_series
@@ -343,6 +345,8 @@ class PDEulerBernoulli(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         if dynamics.dynamic(scene, params):
             return dynamics.transient(self, scene, params)
+        if params["variant"] == "paper" and support_couples(scene)[0]:  # Eq. 25's split couple bends the first spacing
+            return solve_without_support_couples(self.solve, scene, params, "M")
         timer = Timer()
         self.refuse(scene, params)
         x = self.grid(scene, params)
@@ -374,9 +378,9 @@ class PDEulerBernoulli(Model):
             ndofs, binfo, multipliers = system.unknowns, system.info, None
             c = curvature_weights(params["horizon"], dx, params["variant"])
             M = outputs.direct_moment(scene, w, dx, c, params["variant"], params.get("reading", "energy"))
-        out = outputs.fields(scene, x, w, M)
+        out = outputs.fields(scene, x, w, M, ends_inside=params["variant"] != "paper")
         if multipliers is not None:
-            info["reactions"] = outputs.reactions(scene, x, M, out["V"], multipliers)
+            info["reactions"] = outputs.reactions(scene, x, out["M"], out["V"], multipliers)
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         flags = self.discretisation_warnings(scene, params, x) + outputs.recovery_warnings(scene, params)

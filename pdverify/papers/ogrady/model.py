@@ -34,7 +34,12 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.linalg import forward_error_bound, record_bound, solve_linear
-from ...numerics.loads import boundary_layer_warnings, edge_layer_warnings
+from ...numerics.loads import (
+    boundary_layer_warnings,
+    edge_layer_warnings,
+    solve_without_support_couples,
+    support_couples,
+)
 from ...numerics.solvers import SOLVER, solve
 from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics
@@ -517,6 +522,8 @@ class PDBondPair(Model):
         params = resolved_ends(scene, params)
         if dynamics.dynamic(scene, params):
             return dynamics.transient(self, scene, params)
+        if params["ends"] != "taylor" and support_couples(scene)[0]:  # force pairs would bend the first spacing
+            return solve_without_support_couples(self.solve, scene, params, "moment")
         if params["nonlinear"]:
             return self.solve_nonlinear(scene, params)
         if follows_path(scene):

@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import Distributed, PointForce, PointMoment, Scene
-from ...numerics.loads import body_loads, cell_integral
+from ...numerics.loads import body_loads, cell_integral, support_side
+from ...numerics.statics import jump_share
 from .calibration import alpha, pair_family
 from .conditions import nodal_loads, value_row
 from .pairs import Pairs, build_pairs
@@ -78,14 +79,33 @@ def mirror_pairs(EI: float, params: dict, n: int, dx: float, rules: tuple[str, s
 def mixed_fields(scene: Scene, r: np.ndarray, k: np.ndarray, n: int, Jk: int, dx: float) -> dict:
     """{moment, shear} of the Taylor-ends mixed form: the section moment (EI / dx²) Σ_o r_o k_{p+o} at the real points
     (k = D1 w on the positions -Jk .. n-1+Jk; the operator is (EI / dx⁴) D1 r D1, so this is the same statics) and
-    its shear (the interior couples as the strong form places them, the ends' through the ghosts)."""
+    its shear (the interior couples as the strong form places them, the ends' through the ghosts).
+
+    A couple on an end point is in the ghosts' end conditions, so the section moment there is already the beam's side
+    of its jump; the end point reports the other side, the support's (M(0-) = M(0+) + C, M(L+) = M(L-) - C), as the
+    exact beams do."""
     h = (len(r) - 1) // 2
     full = np.convolve(k, r[::-1], mode="full")  # full[q] = Σ_o r_o k_{q - h + o}
     M = scene.EI / dx**2 * full[np.arange(n) + Jk + h]
     x = np.arange(n) * dx
     moments = [ld for ld in scene.loads if isinstance(ld, PointMoment)]
     couples = body_loads(scene.model_copy(update={"loads": moments}), x, skip_ends=skip_ends(n)) * dx
-    return {"moment": M + couple_statics(moments, couples, n, dx), "shear": shear(scene, M, dx, couples)}
+    inside = [ld for ld in moments if end_point(ld.position, n, dx) is None]
+    outside = np.zeros(n)
+    for ld in moments:
+        if (p := end_point(ld.position, n, dx)) is not None:
+            outside[p] += ld.value if p == 0 else -ld.value
+    V = support_side(scene, shear(scene, M, dx, couples), "shear")
+    return {"moment": M + couple_statics(inside, couples, n, dx) + outside, "shear": V}
+
+
+def end_point(position: float, n: int, dx: float) -> int | None:
+    """0 or n - 1 where ``position`` is on that end point (as :func:`~pdverify.numerics.loads.body_loads` rounds
+    it: within 1e-9 spacings), else None."""
+    pos = position / dx
+    if abs(pos) <= 1e-9:
+        return 0
+    return n - 1 if abs(pos - (n - 1)) <= 1e-9 else None
 
 
 def skip_ends(n: int) -> dict:
@@ -105,7 +125,7 @@ def pair_fields(scene: Scene, pairs: Pairs, f: np.ndarray, mirror: bool, g=None,
     moments = [ld for ld in scene.loads if isinstance(ld, PointMoment)]
     couples = nodal_loads(scene, n, dx, moments)
     all_couples = couples if extra_couples is None else couples + extra_couples
-    V = shear(scene, M, dx, all_couples)  # of the force pairs' statics, less the pairs' shear
+    V = support_side(scene, shear(scene, M, dx, all_couples), "shear")  # the force pairs' statics, less their shear
     return {"moment": M + couple_statics(moments, couples, n, dx), "shear": V}
 
 
@@ -120,14 +140,6 @@ def couple_statics(moments: list, couples: np.ndarray, n: int, dx: float) -> np.
     pair = np.r_[0.0, x[1:] * S1[:-1] - S2[:-1]]  # Σ_{i<p} F_i (x_p - x_i)
     true = -sum(ld.value * jump_share(x, ld.position, dx) for ld in moments)
     return true - pair
-
-
-def jump_share(x: np.ndarray, at: float, dx: float) -> np.ndarray:
-    """The share of a unit jump at ``at`` that each point carries: 1 past it, 0 before, 1/2 on it (the mean of the two
-    sides). A point within 1e-9 spacings of ``at`` is on it, so that the rounding of a scaled grid's positions does not
-    decide the side."""
-    on = np.abs(x - at) <= 1e-9 * dx
-    return np.where(on, 0.5, np.where(x > at, 1.0, 0.0))
 
 
 def rotation_warnings(scene: Scene) -> list[str]:
