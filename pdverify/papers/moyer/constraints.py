@@ -282,11 +282,15 @@ def _balance(scene: Scene, kind: str, out: dict, rows: list) -> float:
     w = np.array([1.0 if key in ("force", "axial", "torque") else L * L for _, key, at in rows])  # moment/L in N
     if kind == "torsion":
         w[:] = 1.0
+    # the moment equation over L, in the force equation's unit: where the rows cannot meet both (one inner support,
+    # the rest springs) the least-squares balance then weighs them alike in any length unit
+    S = np.array([1.0, 1.0 / L])[: A.shape[0], None]
+    A, residual = S * A, S[:, 0] * (target - total)
     M = (A * w) @ A.T
     rank = np.linalg.matrix_rank(M)
     if rank == 0:
         return 0.0
-    d = (A * w).T @ (np.linalg.pinv(M) @ (target - total))
+    d = (A * w).T @ (np.linalg.pinv(M) @ residual)
     for (name, _, _), dv in zip(rows, d):
         out[name] += float(dv)
     big = max(abs(v) for v in out.values() if isinstance(v, float)) or 1.0

@@ -220,3 +220,30 @@ def test_a_clamp_whose_kink_does_not_fit_says_its_couple_is_on_two_points():
     thin["segments"] = [dict(p, section={"width": 1.5e-4, "height": 1.5e-4}) if "section" in p else p for p in pieces]
     ws = run(parse_scene(thin), "pd-timoshenko", points=101).info["warnings"]
     assert any(w.startswith("round-off bound") for w in ws) and any("could not be applied on its kink" in w for w in ws)
+
+
+@pytest.mark.parametrize("variant", ["energy", "corrected", "paper"])
+def test_reactions_balanced_by_one_inner_support_do_not_depend_on_the_length_unit(variant):
+    """A free end, a spring end and one pin inside: the pin alone cannot balance both the forces and the moments, so
+    the balance is a least-squares one, whose moment equation is taken over L (in the force equation's unit). Before,
+    it mixed N and N m: the pin's reaction moved by 7.4e-6 (energy), 1.1e-4 (corrected) and 0.16 (paper) of itself
+    with the length unit (every length x 1e3, the springs and loads to match). Tolerance: a hundred eps of each
+    solve's condition estimate."""
+    from helpers import scene_dict
+
+    from pdverify.core.scene_file import parse_scene
+
+    def scaled(k):
+        loads = [
+            {"type": "point_force", "position": 0.733 * k, "value": -100.0},
+            {"type": "point_moment", "position": 1.417 * k, "value": 40.0 * k},
+            {"type": "distributed", "value": -70.0 / k, "start": 0.311 * k, "end": 1.29 * k},
+        ]
+        spring = {"type": "spring", "stiffness": 2e5 * k, "rotational_stiffness": 3e4 * k**3}
+        d = scene_dict("free", spring, loads, beam={"length": 2.0 * k}, section={"width": 0.05 * k, "height": 0.1 * k})
+        d["supports"]["inner"] = [{"position": 0.6 * k, "type": "pinned"}]
+        return parse_scene(d)
+
+    a, b = (run(scaled(k), "pd-timoshenko", points=41, variant=variant) for k in (1.0, 1e3))
+    tol = 100 * np.finfo(float).eps * max(a.info["cond"], b.info["cond"])
+    assert abs(b.info["reactions"]["force_inner_0"] / a.info["reactions"]["force_inner_0"] - 1) <= tol
