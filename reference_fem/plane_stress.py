@@ -74,6 +74,8 @@ from reference_fem.plane_conditions import (
 from reference_fem.render import render_png
 from reference_fem.stresses import through_section
 
+MAX_ELEMENTS = 200_000  # elements of a strip mesh (points - 1) x layers; more is refused before the mesh is built
+
 ELEMENTS = {
     "q4": "ElementQuad1",
     "q8": "ElementQuadS2",
@@ -272,6 +274,17 @@ class FemPlaneStress(Model):
         ),
         Option("stations", str, "", STATIONS_HELP + " (straight axes)"),
     )
+
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """A mesh of more than :data:`MAX_ELEMENTS` elements, refused before it is built."""
+        elements = (params["points"] - 1) * params["layers"]
+        if elements <= MAX_ELEMENTS:
+            return []
+        return [
+            f"points = {params['points']}, layers = {params['layers']}: {elements:,} elements, more than the "
+            f"{MAX_ELEMENTS:,} a reference mesh may have (its sparse LU holds about 50 kB an element: 80,000 q8 "
+            "elements took 4 GB and 19 s); use fewer points or layers"
+        ]
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)

@@ -44,8 +44,9 @@ def bench(
 
     from ..core.scene_file import load_scene
     from ..measure.cost import accurate, cost_slope
+    from ..measure.memory import check_memory
     from ..registry import get_model, model_argument
-    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models
+    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models, default_scene
 
     names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
     names, points = list(dict.fromkeys(names)), list(dict.fromkeys(points or ())) or None  # each once
@@ -67,6 +68,8 @@ def bench(
             if grid is None:
                 raise InputError(f"--points {p}: model {n} takes no grid; drop --points or the model")
             grid.coerce(n, p)  # below the model's least number of points: one line, exit 2
+            # a grid that cannot fit in memory: one line, exit 3, before any timing (as solve)
+            check_memory(sc if sc is not None else load_scene(default_scene(m)), m, {"points": p})
     rows = []
     for n in names:
         sizes = points or [p for p in DEFAULT_POINTS if p <= SMALL_MODELS.get(n, 10**9)]

@@ -8,6 +8,7 @@ import functools
 import os
 from pathlib import Path
 
+import numpy as np
 import typer
 
 from ..core.errors import InputError, PdverifyError, SolveError
@@ -26,7 +27,10 @@ def user_errors(fn):
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
         try:
-            return fn(*args, **kwargs)
+            # numpy's own RuntimeWarnings are not the command's: a result that holds NaN or inf is refused as a
+            # whole (check_finite), and far-out numbers are named in the error line below
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore", under="ignore"):
+                return fn(*args, **kwargs)
         except SolveError as exc:  # a failed computation on far-out numbers: name them (E = 1e-300 reads singular)
             extreme = _extreme_values()
             _fail(SolveError([exc.lines[0] + extreme, *exc.lines[1:]]) if extreme else exc)
@@ -34,7 +38,9 @@ def user_errors(fn):
             _fail(exc)
         except MemoryError:
             _fail(SolveError("out of memory during the computation; use fewer points (a larger spacing)"))
-        except (OverflowError, FloatingPointError) as exc:
+        except (OverflowError, FloatingPointError, ZeroDivisionError) as exc:
+            if isinstance(exc, ZeroDivisionError) and not _extreme_values():  # an underflow to 0 of far-out numbers,
+                _internal(exc)  # else a defect
             _fail(
                 SolveError(
                     f"the computation left the floating-point range ({exc.__class__.__name__}: "

@@ -73,8 +73,18 @@ def target(out: Path, option: str) -> Path:
 
 def check_writable(out: Path, option: str) -> None:
     """Before any computation: ``out`` can be created or replaced as a regular file (its folder may be missing: it
-    is made)."""
-    out = target(out, option)
+    is made), and its name (and that of the temporary file written beside it) is not too long for its folder."""
+    try:
+        out = target(out, option)
+        limit, tmp = _name_max(out.parent), f".{out.stem}.tmp-{os.getpid()}{out.suffix}"  # write_file's temporary
+        if len(tmp.encode()) > limit:
+            raise OutputError(
+                f"{option} {out}: a file name of {len(out.name.encode())} bytes, where this folder takes names of up "
+                f"to {limit} and pdverify first writes a temporary file {len(tmp) - len(out.name)} bytes longer "
+                "beside it; give a shorter name"
+            )
+    except OSError as exc:
+        raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); choose another path") from None
     parent = out.parent
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
@@ -82,6 +92,16 @@ def check_writable(out: Path, option: str) -> None:
         raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
+
+
+def _name_max(folder: Path) -> int:
+    """The longest file name (bytes) the file system of ``folder`` (or of its nearest existing parent) takes."""
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    try:
+        return os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError, AttributeError):  # no pathconf (Windows) or no answer: the common limit
+        return 255
 
 
 def check_folder(out: Path, option: str) -> None:
@@ -110,8 +130,10 @@ def write_file(out: Path, write, option: str) -> None:
     except OSError as exc:
         raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); nothing was written") from None
     finally:
-        if tmp.exists():
-            tmp.unlink()
+        try:
+            tmp.unlink(missing_ok=True)
+        except OSError:  # (a name too long to exist)
+            pass
 
 
 def with_warnings(result, suffix: str):

@@ -154,14 +154,19 @@ def merge_info(info: dict, *parts: dict, **more) -> dict:
 
 
 def check_finite(result: Result) -> Result:
-    """A result holding NaN or inf is a failed computation, never an output: raises SolveError (exit 3)
-    with one line naming the model and the first field that is not finite."""
+    """A result holding NaN or inf (in a field or a reaction) is a failed computation, never an output: raises
+    SolveError (exit 3) with one line naming the model and the first field that is not finite."""
 
     arrays = {
         "x": result.x,
         "w": result.w,
         "rotation": result.rotation,
         **{f"fields.{k}": v for k, v in result.fields.items()},
+        **{
+            f"reaction {k}": v
+            for k, v in (result.info.get("reactions") or {}).items()
+            if isinstance(v, (float, int)) and not isinstance(v, bool)
+        },
     }
     for name, v in arrays.items():
         if v is None:

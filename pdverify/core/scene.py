@@ -223,6 +223,15 @@ class Axis(_Strict):
             raise ValueError("an arc axis needs radius and opening_angle_deg")
         if self.type != "arc" and self.direction is not None:
             raise ValueError(f"direction applies to arc axes only (a {self.type} axis bends as its coefficients say)")
+        keys = {"arc": ("radius", "opening_angle_deg"), "polynomial": ("coefficients", "x_range")}
+        for kind, names in keys.items():
+            given = [k for k in names if getattr(self, k) is not None]
+            if self.type != kind and given:
+                verb, it = ("applies", "it") if len(given) == 1 else ("apply", "them")
+                raise ValueError(
+                    f"{' and '.join(given)} {verb} to {kind} axes only and this axis is {self.type}: set "
+                    f'type = "{kind}" or drop {it}'
+                )
         if self.type == "polynomial":
             if not self.coefficients or self.x_range is None:
                 raise ValueError("a polynomial axis needs coefficients (of y(x), constant first) and x_range")

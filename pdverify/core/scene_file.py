@@ -365,9 +365,21 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
     return scene
 
 
+MAX_TOML_BYTES = 64 * 2**20  # a scene or study file larger than this (64 MiB) is refused before it is read
+
+
 def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
     """(text, parsed table) of a TOML file, or InputError naming the file and what is wrong."""
     path = Path(path)
+    if (
+        path.exists() and not path.is_dir() and not path.is_file()
+    ):  # a device or a FIFO: never read (/dev/zero is endless)
+        raise InputError(f"{path}: not a regular file; give a {what} TOML file")
+    if path.is_file() and path.stat().st_size > MAX_TOML_BYTES:
+        raise InputError(
+            f"{path}: {path.stat().st_size:,} bytes, more than any {what} file (the limit is {MAX_TOML_BYTES:,}); "
+            f"give a {what} TOML file"
+        )
     try:
         text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (some Windows editors write one) is dropped
     except FileNotFoundError:
@@ -387,6 +399,10 @@ def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
         return text, tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{path}: TOML syntax error: {exc}") from None
+    except RecursionError:  # the parser recurses per level of nested arrays and tables
+        raise InputError(
+            f"{path}: TOML nested too deeply (arrays or tables within each other); give a {what} file"
+        ) from None
 
 
 def load_scene(path: str | Path) -> Scene:

@@ -25,6 +25,7 @@ import numpy as np
 from ..core.errors import SolveError
 from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring, straight_mechanism
 from ..numerics.error_bound import ENTRY_ROUNDING
+from ..numerics.loads import bends_nothing
 
 
 def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:
@@ -282,9 +283,12 @@ class StraightSolution:
         close to an end relative to the length (a cantilever's tip under a force at a: terms of P L^3 / EI for a
         result of P a^2 L / EI), so each rounds by about (ENTRY_ROUNDING + cond) eps of the sum of the terms'
         magnitudes (Higham, *Accuracy and Stability*, 2nd ed., ch. 4: a sum's error bound; cond: the scaled
-        boundary system's 1-norm condition number, which carries c's own rounding)."""
+        boundary system's 1-norm condition number, which carries c's own rounding). A scene whose loads all act on
+        supports that hold them has w = 0: its bound is then relative to the terms' size."""
         lin = self._linear(np.asarray(x, float))
         c = (ENTRY_ROUNDING + self.cond) * np.finfo(float).eps
+        if bends_nothing(self.scene):  # every load on a support that holds it: w = 0, its terms' rounding is all
+            return float(f"{c:.3g}")  # there is (relative to the terms' size)
         out = 0.0
         for name in ("w", "rotation"):
             A, p = lin[name]

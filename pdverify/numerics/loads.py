@@ -110,6 +110,21 @@ def support_couples(scene: Scene) -> tuple[dict, Scene]:
     return found, (scene.model_copy(update={"loads": kept}) if found else scene)
 
 
+def bends_nothing(scene: Scene) -> bool:
+    """True when every load of the scene acts on an end point that holds it (a force where the deflection is held,
+    a couple where the rotation is): the beam stays straight, w = 0 exactly."""
+    holds = {PointForce: ("clamped", "pinned", "roller"), PointMoment: ("clamped", "guided")}
+    for load in scene.loads:
+        if type(load) not in holds:
+            return False
+        ends = [
+            s for s, xe in (("left", 0.0), ("right", scene.length)) if abs(load.position - xe) <= 1e-12 * scene.length
+        ]
+        if not ends or scene.supports.kind(ends[0]) not in holds[type(load)]:
+            return False
+    return True
+
+
 def solve_without_support_couples(solve, scene: Scene, params: dict, field: str):
     """``solve(scene, params)`` (a model's Result) of the scene without its :func:`support_couples`, which go into
     their supports: the end point's ``field`` (the moment's name) on the support's side and the end's moment

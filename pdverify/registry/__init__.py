@@ -234,6 +234,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     ):
         moment = quantity_of(result.w, result.rotation, result.fields, "moment")  # M or moment, as it names it
         result.info["reactions"] = equilibrium_reactions(scene, result.x, result.w, result.rotation, moment)
+        check_finite(result)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

@@ -46,11 +46,14 @@ def finite_number(v) -> bool:
 
 def strict_type(option, value) -> str | None:
     """Why a study file's ``value`` cannot be model option ``option`` (None when it can): booleans only
-    from true/false, numbers never from booleans (TOML has both types; a coerced string or bool hides a typo)."""
+    from true/false, numbers never from booleans or quoted text (TOML has these types; a coerced string or bool hides
+    a typo)."""
     if option.kind is bool and not isinstance(value, bool):
         return f"{option.name} = {value!r}: give true or false"
     if option.kind in (int, float) and isinstance(value, bool):
         return f"{option.name} = {value!r}: give a number, not a boolean"
+    if option.kind in (int, float) and isinstance(value, str):
+        return f"{option.name} = {value!r}: write the number without quotes"
     return None
 
 

@@ -90,6 +90,8 @@ def parse_run(
     run_scenes = run.get("scenes", list(scene_objs))
     if not isinstance(run_scenes, list) or any(s not in scene_objs for s in run_scenes):
         return None, [f"{where}.scenes = {run_scenes!r}: must list scenes of the study's scenes"]
+    if not run_scenes and "scenes" not in run:  # the study's scenes did not load: their lines say why
+        return None, []
     if not run_scenes:
         return None, [f"{where}.scenes = []: the run would have no case; list scenes of the study's, or drop the key"]
     run_slen = slenderness

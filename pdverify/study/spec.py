@@ -43,6 +43,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 import tomllib
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -406,8 +407,9 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
     if run.reference["model"] != "none":  # "none": no reference (e.g. large rotations), no errors
         try:
             ref_model = get_model(run.reference["model"])
-        except InputError as exc:
-            return [f"{run.where}: reference: {exc.lines[0]}"] if combos and run.scenes else []
+        except InputError as exc:  # the study's own reference is reported once, as the study's
+            own = run.reference["model"] != study.reference["model"]
+            return [f"{run.where}: reference: {exc.lines[0]}"] if own and combos and run.scenes else []
     errors = []
     for given in combos:
         for sfile in run.scenes:
@@ -437,16 +439,31 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
     return errors
 
 
+MAX_CASES = 20_000  # cases of one study (the main job has about 450, a verification card about 450); more is refused
+
+
 def _expand_runs(study: Study, scene_objs: dict) -> list[str]:
     """Expand every run of the study into its cases (:func:`_run_cases`); the error lines."""
     errors: list[str] = []
     reasons_of: dict = {}
     refs_checked: set = set()
+    parsed_runs = []
     for i, run in enumerate(study.runs):
         parsed, found = parse_run(study.path, i, run, study.reference, study.slenderness, scene_objs, study.quantities)
         errors += found
         if parsed is not None:
-            errors += _run_cases(parsed, study, scene_objs, reasons_of, refs_checked)
+            parsed_runs.append(parsed)
+    sizes = [(math.prod(map(len, r.axes.values())) * len(r.scenes) * len(r.slenderness), r) for r in parsed_runs]
+    if sum(n for n, _ in sizes) > MAX_CASES:  # before any case is checked (each check may solve a little)
+        n, big = max(sizes, key=lambda t: t[0])
+        axes = " x ".join(f"{len(v)} {k}" for k, v in big.axes.items() if len(v) > 1) or "its options"
+        return errors + [
+            f"{study.path}: {sum(n for n, _ in sizes):,} cases, more than a study may have ({MAX_CASES:,}); the "
+            f"largest is {big.where} ({n:,}: {len(big.scenes)} scenes x {len(big.slenderness)} slenderness x "
+            f"{axes}): sweep fewer values or split the study"
+        ]
+    for parsed in parsed_runs:
+        errors += _run_cases(parsed, study, scene_objs, reasons_of, refs_checked)
     return errors
 
 

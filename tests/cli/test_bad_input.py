@@ -384,6 +384,26 @@ CLI_CASES = [
         "horizon_length = 1e-300: 2e-299 spacings of 0.05, below the least horizon of model pd-curved (1 spacing); "
         "give horizon_length >= 0.05",
     ),
+    # a fresh sweep of new inputs (each was a hang, an internal error or a silent wrong number before)
+    ("solve-dev-zero", ["solve", "/dev/zero", "-m", "exact-eb"], 2, "/dev/zero: not a regular file"),
+    ("study-scene-dev-zero", ["study", "{study_dev_zero}", "--out", "{tmp}/o1"], 2, "/dev/zero: not a regular file"),
+    ("solve-toml-nested-5000", ["solve", "{deep}", "-m", "exact-eb"], 2, "TOML nested too deeply"),
+    ("solve-out-name-too-long", ["solve", "{scene}", "-m", "exact-eb", "--out", "{long_out}"], 4, "shorter name"),
+    ("solve-length-1e-200", ["solve", "{tiny_length}", "-m", "exact-eb"], 3, "beam.length = 1e-200"),
+    ("study-quoted-points", ["study", "{study_quoted_points}", "--out", "{tmp}/o2"], 2, "without quotes"),
+    ("study-20002-cases", ["study", "{study_too_big}", "--out", "{tmp}/o3"], 2, "20,002 cases, more than"),
+    (
+        "solve-plane-stress-layers-100000",
+        ["solve", "{scene}", "-m", "fem-plane-stress", "-o", "layers=100000"],
+        2,
+        "10,000,000 elements, more than the 200,000",
+    ),
+    ("solve-straight-axis-with-radius", ["solve", "{straight_with_radius}", "-m", "pd-curved"], 2, "apply to arc axes"),
+    ("solve-load-path-1e300", ["solve", "{load_path_1e300}", "-m", "fem-eb", "--points", "11"], 3, "not finite"),
+    ("bench-out-of-memory", ["bench", "-m", "exact-eb", "--points", "100000000000"], 3, "would need at least"),
+    # one line, not a second one about the run's scenes or the same reference again for the run
+    ("study-missing-scene", ["study", "{study_missing_scene}", "--out", "{tmp}/o4"], 2, "nope.toml: no such scene"),
+    ("study-unknown-reference", ["study", "{study_unknown_reference}", "--out", "{tmp}/o5"], 2, "'nope': unknown"),
 ]
 
 
@@ -425,6 +445,20 @@ def files(tmp_path_factory):
     (d / "study_run_no_scenes.toml").write_text(head + runs + runs.replace("points", "scenes = []\npoints"))
     (d / "study_description_list.toml").write_text(head + 'description = ["a"]\n' + runs)
     (d / "study_checks.toml").write_text(head + 'checks = "all"\n' + runs)
+    (d / "study_quoted_points.toml").write_text(head + '[[runs]]\nmodel = "pd-eb"\npoints = ["11"]\n')
+    (d / "study_dev_zero.toml").write_text(head.replace(SCENE.as_posix(), "/dev/zero") + runs)
+    grid = ", ".join(str(k) for k in range(11, 10_012))  # 20,002 cases with two variants
+    (d / "study_too_big.toml").write_text(
+        head + f'[[runs]]\nmodel = "pd-eb"\npoints = [{grid}]\nvariant = ["paper", "corrected"]\n'
+    )
+    (d / "deep.toml").write_text(text + "x = " + "[" * 5000 + "]" * 5000 + "\n")
+    (d / "tiny_length.toml").write_text(
+        text.replace("length = 1.0", "length = 1e-200").replace("position = 1.0", "position = 1e-200")
+    )
+    (d / "straight_with_radius.toml").write_text(CURVED.read_text().replace('type = "arc"', 'type = "straight"'))
+    (d / "load_path_1e300.toml").write_text(text + "[loading]\nfactors = [0.0, 1e300]\n")
+    (d / "study_missing_scene.toml").write_text(head.replace(SCENE.as_posix(), "nope.toml") + runs)
+    (d / "study_unknown_reference.toml").write_text(head.replace('"exact-eb"', '"nope"') + runs)
     header = "case_id,scene_file,scene,status,model,slenderness,points,err_max\n"
     (d / "empty_results").mkdir()
     (d / "empty_results" / "results.csv").write_text(header)
@@ -471,6 +505,16 @@ def files(tmp_path_factory):
         "study_run_no_scenes": d / "study_run_no_scenes.toml",
         "study_description_list": d / "study_description_list.toml",
         "study_checks": d / "study_checks.toml",
+        "study_quoted_points": d / "study_quoted_points.toml",
+        "study_dev_zero": d / "study_dev_zero.toml",
+        "study_too_big": d / "study_too_big.toml",
+        "deep": d / "deep.toml",
+        "tiny_length": d / "tiny_length.toml",
+        "straight_with_radius": d / "straight_with_radius.toml",
+        "load_path_1e300": d / "load_path_1e300.toml",
+        "study_missing_scene": d / "study_missing_scene.toml",
+        "study_unknown_reference": d / "study_unknown_reference.toml",
+        "long_out": d / ("a" * 250 + ".csv"),
         "empty_results": d / "empty_results",
         "shifted": d / "shifted",
         "text_number": d / "text_number",

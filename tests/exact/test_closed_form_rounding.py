@@ -52,3 +52,19 @@ def test_a_load_merged_into_a_node_is_warned(model):
     assert any("within 1e-12 of the length" in w for w in merged.info.get("warnings", []))
     apart = run(cantilever(1e12, 3e11), model, points=11)
     assert not any("within 1e-12 of the length" in w for w in apart.info.get("warnings", []))
+
+
+@pytest.mark.parametrize("model", ["exact-eb", "exact-timoshenko"])
+@pytest.mark.parametrize(
+    "left, right, load",
+    [
+        ("clamped", "free", {"type": "point_force", "position": 0.0, "value": -50.0}),
+        ("clamped", "free", {"type": "point_moment", "position": 0.0, "value": 20.0}),
+        ("pinned", "pinned", {"type": "point_force", "position": 2.0, "value": 30.0}),
+    ],
+)
+def test_a_scene_whose_loads_all_go_into_the_supports_has_no_round_off_warning(left, right, load, model):
+    """w = 0 exactly: its terms cancel to their rounding, which is all there is, so the bound is that rounding
+    relative to the terms (cond eps), not to max |w| (before: "round-off bound 9.6 exceeds 1e-06")."""
+    r = run(parse_scene(scene_dict(left, right, [load])), model, points=5)
+    assert r.info["error_bound"] <= 1e-12 and not r.info.get("warnings")
