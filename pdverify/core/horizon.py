@@ -155,6 +155,11 @@ class Horizon:
         :mod:`pdverify.theory.symbols`); None where it is not derived."""
         return None
 
+    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+        """(factor, why): how many times the first sine mode's model error g (pi delta / L)^2 the variant's ends may
+        make it on ``scene``'s supports, measured (docs/nonlocal.md); (1, "") where its ends add nothing known."""
+        return 1.0, ""
+
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """(why, largest m) when the variant's discrete rules have no limit at fixed delta on ``scene`` (its
         continuum is then its own finest grid, flagged), else None."""

@@ -220,7 +220,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     result = check_finite(solved)
     if m.option("horizon") is not None:
         horizon_info(m, scene, params, result.info)
-        for flag in (no_limit_warning(m, scene, params), model_error_warning(m, scene, result.info)):
+        for flag in (no_limit_warning(m, scene, params), model_error_warning(m, scene, result.info, params)):
             if flag:
                 result.info.setdefault("warnings", []).append(flag)
     if (

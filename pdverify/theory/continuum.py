@@ -111,24 +111,27 @@ def no_limit_warning(model, scene: Scene, params: dict) -> str:
 MODEL_ERROR_LIMIT = 0.01  # the nonlocal model error on the first sine mode above which a result says so
 
 
-def model_error_warning(model, scene: Scene, info: dict) -> str:
+def model_error_warning(model, scene: Scene, info: dict, params: dict | None = None) -> str:
     """The warning of a horizon long for the beam: the model's continuum is softer than the local theory by about
     g (k delta)^2 (stiffer where g < 0: pd-higher-order with Poisson's ratio below -1/2) on a mode of wave number k
     (:meth:`~pdverify.core.horizon.Horizon.gradient_coefficient`), which on the beam's first sine mode (k = pi / L)
     passes :data:`MODEL_ERROR_LIMIT` in size; "" otherwise. The estimate is the
     leading term only, and the first mode's: ends without a limit at fixed delta (docs/nonlocal.md) and shorter
-    spans between inner supports lose more."""
+    spans between inner supports lose more. ``params``: the solve's options, whose variant's ends may multiply it
+    (:meth:`~pdverify.core.horizon.Horizon.model_error_ends`: measured, and said in the warning)."""
     g, delta = model.gradient_coefficient(scene, {}), info.get("horizon")
     if g is None or not delta:
         return ""
     size = g * (math.pi * float(delta) / scene.length) ** 2  # negative: stiffer than the local theory
-    if abs(size) <= MODEL_ERROR_LIMIT:
+    factor, why = model.model_error_ends(scene, params or {})
+    if abs(size) * factor <= MODEL_ERROR_LIMIT:
         return ""
+    ends = f"; {why} makes it up to {factor:g} times that, {100 * abs(size) * factor:.2g} %" if factor > 1 else ""
     return (
         f"{model.name}: the horizon {float(delta):.3g} is {100 * float(delta) / scene.length:.2g} % of the beam's "
         f"length: its nonlocal model error on the beam's first sine mode is about g (pi delta / L)^2 = "
-        f"{100 * size:.2g} % (g = {g:.4g}, the model's gradient coefficient; more where its ends have no limit at "
-        "fixed delta: docs/nonlocal.md); a shorter horizon comes nearer the local beam theory"
+        f"{100 * size:.2g} % (g = {g:.4g}, the model's gradient coefficient{ends}; more where its ends have no limit "
+        "at fixed delta: docs/nonlocal.md); a shorter horizon comes nearer the local beam theory"
     )
 
 
