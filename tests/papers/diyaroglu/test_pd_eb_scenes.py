@@ -143,6 +143,8 @@ def test_interface_calibration_keeps_second_order():
     pt = [errors(sc, n, interface="point")[0]["w"] for n in (81, 161, 321)]
     assert np.log2(cal[0] / cal[2]) / 2 > 1.95
     assert 0.9 < np.log2(pt[0] / pt[2]) / 2 < 1.1
+    said = lambda **o: [w for w in run(sc, "pd-eb", points=81, **o).info.get("warnings", []) if "interface" in w]  # noqa: E731
+    assert said(interface="point") and not said()  # the first-order joint says so (it was silent)
 
 
 @pytest.mark.parametrize("opts", [{"variant": "paper"}, {"form": "direct"}])
