@@ -87,3 +87,20 @@ def test_a_point_moment_warns_where_the_rotation_is_first_order_near_it(model, o
     assert abs(orders["rotation"] - rotation_order) < 0.2, orders
     r = run(SCENE, model, points=101, **options)
     assert not any("point moment" in w for w in r.info.get("warnings", []))
+
+
+@pytest.mark.parametrize(
+    "left, right, off",
+    [("clamped", "free", 1.0), ("clamped", "pinned", 1.0), ({"type": "spring", "stiffness": 5e5}, "clamped", 0.5)],
+)
+def test_pd_timoshenko_paper_says_an_end_without_traction_condition_does_not_converge(left, right, off):
+    """Section 4 as published gives no traction condition at an end that leaves an unknown free: the solution is
+    as far off as the warning says (more than ``off`` of max |w| at 161 points; it was silent), and clamped-clamped
+    converges and says nothing."""
+    U = [{"type": "distributed", "value": -1000.0}]
+    sc = parse_scene(scene_dict(left, right, U))
+    r, e = run(sc, "pd-timoshenko", points=161, variant="paper"), run(sc, "exact-timoshenko", points=161)
+    said = [w for w in r.info.get("warnings", []) if "no traction condition" in w]
+    assert len(said) == 1 and np.abs(r.w - e.w).max() > off * np.abs(e.w).max()
+    both = parse_scene(scene_dict("clamped", "clamped", U))
+    assert not [w for w in run(both, "pd-timoshenko", points=161, variant="paper").info.get("warnings", [])]

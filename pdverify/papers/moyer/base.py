@@ -57,6 +57,23 @@ _OPTIONS = (
 COUPLE_AT_JOINT = "measured 5.5e-2, 2.8e-2, 1.4e-2 of max |rotation| at 101, 201, 401 points on a two-material beam"
 
 
+def paper_end_warnings(scene: Scene) -> list[str]:
+    """The published beam (variant paper) at an end that does not hold both w and the rotation: Section 4 gives that
+    end's free unknowns no traction condition, so the solution does not converge to the beam (where both ends leave
+    one free it is singular, refused); measured against exact-timoshenko under a uniform load, L/h = 20."""
+    free = [
+        f"{side} ({scene.supports.kind(side)})" for side in ("left", "right") if scene.supports.kind(side) != "clamped"
+    ]
+    if not free:
+        return []
+    return [
+        f"variant = paper: the {' and '.join(free)} end{'s' if len(free) > 1 else ''} free unknowns have no traction "
+        "condition (Section 4 as published), so the solution does not converge to the beam (under a uniform load: "
+        "clamped-free 2.1 and 1.7 times max |w| off exact-timoshenko at 41 and 161 points, clamped-pinned 207 and "
+        "12 times, spring ends 1.2 and 0.95 times); use variant energy or corrected"
+    ]
+
+
 class _MoyerModel(Model):
     source = "Moyer & Miraglia 2014, Peridynamic solutions for Timoshenko beams"
     options = _OPTIONS
@@ -273,6 +290,8 @@ class _MoyerModel(Model):
         flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
         if self.bending and params["variant"] == "energy":
             flags += couple_at_joint_warnings(scene, "rotation", COUPLE_AT_JOINT)
+        if self.bending and params["variant"] == "paper":
+            flags += paper_end_warnings(scene)
         return flags
 
     def _held(self, scene, params, disc):
