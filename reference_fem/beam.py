@@ -141,16 +141,17 @@ class _BeamFE(Model):
 
     def resultants(self, scene: Scene, params: dict, nodes: np.ndarray, u: np.ndarray) -> dict:
         """The bending moment M (sagging positive) and shear force V = dM/dx at the nodes, from each element's end
-        forces ke u_e - fe (exact where the nodal values are: the element is in equilibrium with its loads). At a
-        node the value just right of it, where a point load makes V, and a couple M, jump; at the end nodes the
-        support's side, every load on them acting (as exact-eb gives them)."""
+        forces ke u_e - fe (exact where the nodal values are: the element is in equilibrium with its loads). At an
+        inner node the mean of its two elements' values, which differ where a point load makes V, and a couple M,
+        jump; at the end nodes the support's side, every load on them acting (as exact-eb gives them)."""
         ke, fe = self.element_matrices(scene, params, nodes)
         ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)
         end = np.einsum("eab,eb->ea", ke, ue) - fe  # (force, moment) on each element at its left and right end
         last = nodal_point_loads(scene, nodes, 2)[-2:]  # the force and couple at the right end's node
-        # on an element's left end the force is +V and the counter-clockwise moment -M; on its right end -V and +M
-        M = np.append(-end[:, 1], end[-1, 3] - last[1])
-        V = np.append(end[:, 0], -end[-1, 2] + last[0])
+        # on an element's left end the force is +V and the counter-clockwise moment -M; on its right end -V and +M;
+        # an inner node the mean of its two elements' (they differ by a point load's jump there)
+        M = np.r_[-end[0, 1], (end[:-1, 3] - end[1:, 1]) / 2, end[-1, 3] - last[1]]
+        V = np.r_[end[0, 0], (end[1:, 0] - end[:-1, 2]) / 2, -end[-1, 2] + last[0]]
         return {"M": support_side(scene, M, "moment", ("left",)), "V": support_side(scene, V, "shear", ("left",))}
 
     def solve_nodal(self, scene: Scene, params: dict, what: str):

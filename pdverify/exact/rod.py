@@ -28,7 +28,7 @@ from ..core.contract import POINTS, Model
 from ..core.errors import SolveError
 from ..core.result import Result, Timer
 from ..core.scene import ROD_HELD, Distributed, PointForce, PointTorque, Scene, Spring
-from .straight import _active, _distributed_terms
+from .straight import _distributed_terms, _share
 
 _RIGID = {"axial": ("pinned", "clamped"), "torsion": ("pinned", "roller", "clamped")}
 _SPRING = {"axial": "stiffness", "torsion": "rotational_stiffness"}
@@ -53,9 +53,9 @@ def load_integrals(scene: Scene, x, kind: str) -> tuple[np.ndarray, np.ndarray]:
             v = load.value
         else:
             continue
-        on = _active(x, load.position, L)
-        F += np.where(on, v, 0.0)
-        G += np.where(on, v * (x - load.position), 0.0)
+        share = _share(x, load.position, L)
+        F += v * share
+        G += np.where(share > 0, v * (x - load.position), 0.0)
     return F, G
 
 
@@ -171,7 +171,7 @@ def _general(scene: Scene, theory: str, measures: str, resultant: str, S0: float
         Ic = np.zeros((len(x), 2 + nq))  # ∫₀ˣ R / S
         Ip = np.zeros(len(x))
         for k, (_, at, _) in enumerate(hs):
-            Rc[:, 2 + k] = -_active(x, at, L).astype(float)
+            Rc[:, 2 + k] = -_share(x, at, L)
         for a, b, S in pieces:
             y = np.clip(x, a, b)
             Fa, Ga = load_integrals(scene, np.full(len(x), a), theory)

@@ -33,6 +33,18 @@ def _active(x: np.ndarray, a: float, length: float) -> np.ndarray:
     return (x > a) | ((x >= a) & (x >= length))
 
 
+def _share(x: np.ndarray, a: float, length: float) -> np.ndarray:
+    """The share of a point load at a in the fields at x: 1 past it, 0 before it, 1/2 within 64 eps L of it inside the
+    span (the mean of its two sides, so that neither the rounding of a scaled scene's positions, a few eps, nor a
+    mirror image decides a side); the end points their support's side (x = 0: no load acts yet; x = L: every load
+    acts)."""
+    tol = 64 * np.finfo(float).eps * length
+    share = np.where(x > a + tol, 1.0, np.where(x < a - tol, 0.0, 0.5))
+    share[x <= tol] = 0.0
+    share[x >= length - tol] = 1.0
+    return share
+
+
 def particular(scene: Scene, x: np.ndarray, loads=None) -> tuple[np.ndarray, ...]:
     """(Mp, Mp', I1, I2, Mv) at x: the loads' particular moment (of ``loads``, default the scene's), its slope,
     two integrals from 0, and Mv = ∫Mp' (Mp without the steps of point moments)."""
@@ -43,18 +55,18 @@ def particular(scene: Scene, x: np.ndarray, loads=None) -> tuple[np.ndarray, ...
     for load in scene.loads if loads is None else loads:
         if isinstance(load, PointForce):
             a, P = load.position, load.value
-            on = _active(x, a, L)
-            t = np.where(on, x - a, 0.0)
+            share = _share(x, a, L)
+            t = np.where(share > 0, x - a, 0.0)
             Mp += P * t
-            dMp += np.where(on, P, 0.0)
+            dMp += P * share
             I1 += P * t**2 / 2
             I2 += P * t**3 / 6
         elif isinstance(load, PointMoment):
             a, C = load.position, load.value
-            on = _active(x, a, L)
-            t = np.where(on, x - a, 0.0)
-            Mp += np.where(on, -C, 0.0)
-            steps += np.where(on, -C, 0.0)
+            share = _share(x, a, L)
+            t = np.where(share > 0, x - a, 0.0)
+            Mp += -C * share
+            steps += -C * share
             I1 += -C * t
             I2 += -C * t**2 / 2
         elif isinstance(load, Distributed):
