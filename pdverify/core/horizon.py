@@ -89,6 +89,7 @@ class Horizon:
         if fits(params["horizon"]):
             return []
         J = reach(params["horizon"]) if params["horizon"] < n else int(params["horizon"])
+        J = J if J < 10**15 else f"{float(J):.3g}"  # (a horizon of 1e308 spacings: not 309 digits)
         shape = f"the stencil (2 x {J} points)" if stencil else f"the family ({J} points each side)"
         return [self.horizon_refusal(scene, params, f"{shape} does not fit in {n} points", fits)]
 

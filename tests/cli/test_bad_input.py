@@ -401,6 +401,14 @@ CLI_CASES = [
     ("solve-straight-axis-with-radius", ["solve", "{straight_with_radius}", "-m", "pd-curved"], 2, "apply to arc axes"),
     ("solve-load-path-1e300", ["solve", "{load_path_1e300}", "-m", "fem-eb", "--points", "11"], 3, "not finite"),
     ("bench-out-of-memory", ["bench", "-m", "exact-eb", "--points", "100000000000"], 3, "would need at least"),
+    # a horizon of 1e308 spacings in the refusal as a number, not its 309 digits
+    ("solve-pd-eb-horizon-1e308", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=1e308"], 2, "(1e+308 points each"),
+    (
+        "solve-pd-curved-horizon-1e308",
+        ["solve", "{scene}", "-m", "pd-curved", "-o", "horizon=1e308"],
+        2,
+        "2 x 1e+308 + 1",
+    ),
     # one line, not a second one about the run's scenes or the same reference again for the run
     ("study-missing-scene", ["study", "{study_missing_scene}", "--out", "{tmp}/o4"], 2, "nope.toml: no such scene"),
     ("study-unknown-reference", ["study", "{study_unknown_reference}", "--out", "{tmp}/o5"], 2, "'nope': unknown"),

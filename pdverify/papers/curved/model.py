@@ -190,11 +190,12 @@ class PDCurved(Model):
             return [
                 f"{self.horizon_named(scene, params)}: {what}; {'give' if given else 'use'} {fix} or a lower degree"
             ]
+        size = 2 * m + 1 if m < 10**15 else f"2 x {float(m):.3g} + 1"  # (not 309 digits)
         if 2 * m + 1 > n and not given:
-            family = f"{2 * m + 1} particles for degree {P}, horizon {m}"
+            family = f"{size} particles for degree {P}, horizon {m if m < 10**15 else format(float(m), '.3g')}"
             return [f"points = {n}: fewer than one family ({family}); use more points"]
         if 2 * m + 1 > n:
-            what = f"a family ({2 * m + 1} particles for degree {P}) is larger than the {n} points"
+            what = f"a family ({size} particles for degree {P}) is larger than the {n} points"
             return [self.horizon_refusal(scene, params, what, lambda k: 2 * k + 1 <= n)]
         return []
 
