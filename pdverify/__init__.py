@@ -68,6 +68,9 @@ def run_study(study, out=None, workers=None, scheduler=None, progress=False, rep
         out = out if out is not None else Path("reports") / path.stem
     if out is None:
         raise TypeError("run_study: give out= (an output folder) with a loaded study")
+    from .apps.output import check_folder
+
+    check_folder(Path(out), "out =")  # a file, or an unwritable place: OutputError before any case (as the CLI)
     return run(study, Path(out), workers=workers, scheduler=scheduler, progress=progress, report=report, junit=junit)
 
 

@@ -790,3 +790,16 @@ def test_a_grid_the_model_refuses_is_refused_with_the_study(tmp_path, options, r
     with pytest.raises(InputError):
         pdverify.run_study(p, out=out)
     assert not out.exists()
+
+
+def test_the_api_refuses_an_output_file_before_any_case(tmp_path):
+    """pdverify.run_study(..., out=<a file>): OutputError naming it before a case is solved (it solved one, then
+    blamed the disk), and the file as it was."""
+    import pdverify
+    from pdverify.core.errors import OutputError
+
+    target = tmp_path / "notes.txt"
+    target.write_text("keep me\n")
+    with pytest.raises(OutputError, match="is a file, not a folder"):
+        pdverify.run_study(ROOT / "studies/convergence.toml", out=target)
+    assert target.read_text() == "keep me\n"
