@@ -401,6 +401,19 @@ CLI_CASES = [
     ("solve-straight-axis-with-radius", ["solve", "{straight_with_radius}", "-m", "pd-curved"], 2, "apply to arc axes"),
     ("solve-load-path-1e300", ["solve", "{load_path_1e300}", "-m", "fem-eb", "--points", "11"], 3, "not finite"),
     ("bench-out-of-memory", ["bench", "-m", "exact-eb", "--points", "100000000000"], 3, "would need at least"),
+    # ends a variant cannot hold: before, 98 % (rod) and 62 % (bond-pair) off with no warning
+    (
+        "solve-pd-rod-paper-spring-end",
+        ["solve", "{rod_spring}", "-m", "pd-rod", "-o", "variant=paper"],
+        2,
+        "spring end",
+    ),
+    (
+        "solve-pd-bond-pair-ends-none-rotational-spring",
+        ["solve", "{beam_springs}", "-m", "pd-bond-pair", "-o", "ends=none"],
+        2,
+        "supports.left.rotational_stiffness = 5e+06: ends = none",
+    ),
     # a horizon of 1e308 spacings in the refusal as a number, not its 309 digits
     ("solve-pd-eb-horizon-1e308", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=1e308"], 2, "(1e+308 points each"),
     (
@@ -465,6 +478,12 @@ def files(tmp_path_factory):
     )
     (d / "straight_with_radius.toml").write_text(CURVED.read_text().replace('type = "arc"', 'type = "straight"'))
     (d / "load_path_1e300.toml").write_text(text + "[loading]\nfactors = [0.0, 1e300]\n")
+    spring = '{type = "spring", stiffness = 5e7, rotational_stiffness = 5e6}'
+    rod = (ROOT / "studies/examples/rod_tip_load.toml").read_text()
+    (d / "rod_spring.toml").write_text(re.sub(r'right = "[a-z]+"', f"right = {spring}", rod))
+    (d / "beam_springs.toml").write_text(
+        re.sub(r'right = "[a-z]+"', f"right = {spring}", re.sub(r'left = "[a-z]+"', f"left = {spring}", text))
+    )
     (d / "study_missing_scene.toml").write_text(head.replace(SCENE.as_posix(), "nope.toml") + runs)
     (d / "study_unknown_reference.toml").write_text(head.replace('"exact-eb"', '"nope"') + runs)
     header = "case_id,scene_file,scene,status,model,slenderness,points,err_max\n"
@@ -521,6 +540,8 @@ def files(tmp_path_factory):
         "straight_with_radius": d / "straight_with_radius.toml",
         "load_path_1e300": d / "load_path_1e300.toml",
         "study_missing_scene": d / "study_missing_scene.toml",
+        "rod_spring": d / "rod_spring.toml",
+        "beam_springs": d / "beam_springs.toml",
         "study_unknown_reference": d / "study_unknown_reference.toml",
         "long_out": d / ("a" * 250 + ".csv"),
         "empty_results": d / "empty_results",

@@ -23,6 +23,7 @@ from .constraints import reactions, solve_with_holds
 from .ends import FIT_POINTS
 from .energy import ENERGY_HORIZONS, zone
 from .pieces import plain_ends
+from .published import paper_warnings
 from .system import Discrete, prescribed_motions, static_solution, static_system
 from .transient import STABILISATION, History, integrate
 
@@ -55,23 +56,6 @@ _OPTIONS = (
 # pd-timoshenko (energy), clamped-pinned 2 m beam, aluminium and steel segments joined at 0.8 m, a couple there:
 # the rotation's largest error against exact-timoshenko at 101, 201, 401 points (docs/models/moyer.md)
 COUPLE_AT_JOINT = "measured 5.5e-2, 2.8e-2, 1.4e-2 of max |rotation| at 101, 201, 401 points on a two-material beam"
-
-
-def paper_end_warnings(scene: Scene) -> list[str]:
-    """The published beam (variant paper) at an end that does not hold both w and the rotation: Section 4 gives that
-    end's free unknowns no traction condition, so the solution does not converge to the beam (where both ends leave
-    one free it is singular, refused); measured against exact-timoshenko under a uniform load, L/h = 20."""
-    free = [
-        f"{side} ({scene.supports.kind(side)})" for side in ("left", "right") if scene.supports.kind(side) != "clamped"
-    ]
-    if not free:
-        return []
-    return [
-        f"variant = paper: the {' and '.join(free)} end{'s' if len(free) > 1 else ''} free unknowns have no traction "
-        "condition (Section 4 as published), so the solution does not converge to the beam (under a uniform load: "
-        "clamped-free 2.1 and 1.7 times max |w| off exact-timoshenko at 41 and 161 points, clamped-pinned 207 and "
-        "12 times, spring ends 1.2 and 0.95 times); use variant energy or corrected"
-    ]
 
 
 class _MoyerModel(Model):
@@ -291,7 +275,7 @@ class _MoyerModel(Model):
         if self.bending and params["variant"] == "energy":
             flags += couple_at_joint_warnings(scene, "rotation", COUPLE_AT_JOINT)
         if self.bending and params["variant"] == "paper":
-            flags += paper_end_warnings(scene)
+            flags += paper_warnings(scene)
         return flags
 
     def _held(self, scene, params, disc):
@@ -355,8 +339,9 @@ def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
     what = "a point torque" if torsion else "an axial point force"
     return [
         f"{model.name} converges at first order near {what} or a rigid support inside (x = {min(inside):g}): the "
-        "load on one point makes a spike about a horizon wide (2.15e-2, 1.07e-2, 5.37e-3 at 101, 201, 401 points on a "
-        "centre load, m = 3); with horizon = 1 the points are exact"
+        "load on one point makes a spike about a horizon wide (m = 3: 2.15e-2, 1.07e-2, 5.37e-3 at 101, 201, 401 "
+        "points on a centre load; 1.2e-1, 3.0e-2, 7.6e-3 at 101, 401, 1601 on two spans over a rigid support under "
+        "a sine load; more at a longer horizon); with horizon = 1 the points are exact"
     ]
 
 
@@ -423,7 +408,16 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
         out.append(
             "variant = corrected converges at first order near a point force inside the beam "
             f"(x = {inside[0]:g}): the error halves, not quarters, per halving of the spacing (1.0e-3, 5.0e-4, "
-            "2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5); variant = energy is second order there"
+            "2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5), and the shear at the points beside it does "
+            "not converge (76 % of max |V| off at 81 to 641 points, clamped-clamped, L/h = 20); variant = energy is "
+            "second order there"
+        )
+    couples = [ld.position for ld in scene.loads if ld.type == "point_moment" and 0.0 < ld.position < scene.length]
+    if couples:
+        out.append(
+            f"variant = corrected: the moment at the points beside a couple inside the beam (x = {couples[0]:g}) does "
+            "not converge (54 % of max |M| off at 81 to 641 points, a centre couple on a clamped-clamped beam, L/h = "
+            "20); variant = energy is second order there"
         )
     rigid = [f"supports.inner[{i}]" for i, sup in enumerate(scene.supports.inner) if sup.type != "spring"]
     if rigid:

@@ -25,6 +25,7 @@ import numpy as np
 from ...core.contract import Option, Rule
 from ...core.errors import InputError
 from ...core.scene import Scene
+from ...numerics.loads import support_side
 from ...theory.symbols import GRADIENT, Series, timoshenko_series
 from .base import _OPTIONS, _context, _MoyerModel, beam_points_loaded, stabilisation_warning
 from .couples import couple_column
@@ -147,8 +148,10 @@ class PDTimoshenko(_MoyerModel):
             M = moment_field(u, scene, params["horizon"], dx, reactions, kinks)
             V = shear_force(u, scene, dx, reactions, kinks)
         else:
-            M = scene.EI * np.gradient(g, dx, edge_order=2)
-            V = -scene.kGA * psi
+            # their end closures carry the end loads as conditions (EI gamma' = M, kGA psi = P): the beam's side
+            M = support_side(scene, scene.EI * np.gradient(g, dx, edge_order=2), "moment")
+            V = support_side(scene, -scene.kGA * psi, "shear")
+            M, V = spring_end_values(scene, M, V, info.get("reactions") or {})
         fields = dict(fields, M=M, V=V, psi=psi)
         return self.new_result(
             scene,
@@ -162,6 +165,19 @@ class PDTimoshenko(_MoyerModel):
             info=info,
             writers=writers,
         )
+
+
+def spring_end_values(scene: Scene, M: np.ndarray, V: np.ndarray, reactions: dict) -> tuple[np.ndarray, np.ndarray]:
+    """M and V at a spring end's point from its reactions (the support's side: V(0) = force_left, M(0) =
+    -moment_left, V(L) = -force_right, M(L) = moment_right): the corrected and paper closures see a spring end as
+    a free one, so their end values leave the spring's force out (V there 66 % and 73 % of max |V| off at 81 and 321
+    points on a clamped-spring beam), while the reactions carry it."""
+    M, V = np.array(M, float), np.array(V, float)
+    for side, i, sign in (("left", 0, 1.0), ("right", -1, -1.0)):
+        if scene.supports.kind(side) == "spring" and f"force_{side}" in reactions:
+            V[i] = sign * reactions[f"force_{side}"]
+            M[i] = -sign * reactions.get(f"moment_{side}", 0.0)
+    return M, V
 
 
 def simulate(

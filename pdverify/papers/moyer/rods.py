@@ -28,6 +28,22 @@ class _RodModel(_MoyerModel):
         """1/24: the rod kernel's symbol (docs/nonlocal.md)."""
         return GRADIENT["rod"]
 
+    def grid_problems(self, scene: Scene, params: dict) -> list[str]:
+        """Variant paper at a spring end: Section 4 gives an end that does not hold the unknown no traction
+        condition (a free end is singular), so the spring's end was held as if rigid (u there 0: 98 % of max |u| off
+        on a clamped-spring rod under a uniform load, at every grid); refused, as its free end is."""
+        found = super().grid_problems(scene, params)
+        if params.get("variant") == "paper":
+            springs = [side for side in ("left", "right") if scene.supports.kind(side) == "spring"]
+            found += [
+                f"supports.{side} = spring: variant paper gives an end that does not hold the "
+                f"{ {'u': 'axial displacement'}.get(self.measures, self.measures) } no "
+                "traction condition (Section 4 as published), so a spring end cannot be represented; use variant "
+                "corrected"
+                for side in springs
+            ]
+        return found
+
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
         raise NotImplementedError
 

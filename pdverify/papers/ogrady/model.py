@@ -100,6 +100,14 @@ def pair_form(scene: Scene, params: dict) -> bool:
         )
     if params["ends"] == "none":
         for side in ("left", "right"):
+            end = getattr(scene.supports, side)
+            if getattr(end, "rotational_stiffness", None):  # an elastic end that holds a rotation: as a clamp
+                raise InputError(
+                    f"supports.{side}.rotational_stiffness = {end.rotational_stiffness:g}: ends = none has no points "
+                    "outside the beam to hold a rotation (O'Grady & Foster 2014, §3.2), so a rotational spring acts "
+                    "on a one-sided slope only (two such ends under a uniform load: w 62 % off at 81 points, 20 % at "
+                    "321); give -o ends=mirror"
+                )
             if scene.supports.kind(side) in ("clamped", "guided"):
                 raise InputError(
                     f"supports.{side} = {scene.supports.kind(side)}: ends = none has no points outside the beam to "

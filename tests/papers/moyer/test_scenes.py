@@ -120,7 +120,7 @@ def test_rods_say_they_are_first_order_at_a_point_load_with_the_numbers_they_giv
         err = np.abs(r.measured(field) - e.measured(field)).max() / np.abs(e.measured(field)).max()
         said.append(f"{err:.2e}".replace("e-0", "e-"))
         (warning,) = [w for w in r.info["warnings"] if "first order" in w]
-    claim = f"({', '.join(said)} at 101, 201, 401 points on a centre load, m = 3)"
+    claim = f"(m = 3: {', '.join(said)} at 101, 201, 401 points on a centre load;"
     assert claim in warning, (said, warning)
     assert not run(sc, model, points=101, horizon=1).info.get("warnings")
 
