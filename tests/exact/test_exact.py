@@ -292,3 +292,11 @@ def test_a_point_on_a_load_carries_the_mean_of_its_sides_at_any_scale(model):
         assert run(parse_scene(d), model, points=41).fields["V"][14] == pytest.approx(150.0, rel=1e-9)
     m = scene_dict("free", "clamped", [{"type": "point_force", "position": 1.3, "value": -300.0}])
     assert run(parse_scene(m), model, points=41).fields["V"][26] == pytest.approx(-150.0, rel=1e-9)
+
+
+def test_exact_higher_order_on_a_load_carries_the_mean_of_its_sides_at_any_scale():
+    """As exact-eb's (above): V at the force's point is 150 of 0 and 300 at L = 2 and 2000 (it was 0 and 300)."""
+    for k in (1.0, 1e3):
+        d = scene_dict("clamped", "free", [{"type": "point_force", "position": 0.7 * k, "value": -300.0}])
+        d.update(beam={"length": 2.0 * k}, section={"width": 0.05 * k, "height": 0.1 * k})
+        assert run(parse_scene(d), "exact-higher-order", points=41).fields["V"][14] == pytest.approx(150.0, rel=1e-9)
