@@ -12,9 +12,10 @@ from ..core.reactions import load_resultants
 from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene, Spring
 
 
-def reaction_keys(scene: Scene) -> list[tuple[str, float, float]]:
+def reaction_keys(scene: Scene, from_right: bool = False) -> list[tuple[str, float, float]]:
     """(key, force coefficient, moment coefficient about x = 0) of every reaction the supports give: rigid end and
-    inner forces, then springs' forces, then rigid moments, then springs' moments (the order statics picks from)."""
+    inner forces, then springs' forces, then rigid moments, then springs' moments (the order statics picks from),
+    each kind from the left end on (``from_right``: from the right end on, the mirror image's order)."""
     L = scene.length
     rigid_f, spring_f, rigid_m, spring_m = [], [], [], []
     for side, at in (("left", 0.0), ("right", L)):
@@ -35,14 +36,34 @@ def reaction_keys(scene: Scene) -> list[tuple[str, float, float]]:
             (spring_f if spring else rigid_f).append((f"force_inner_{i}", 1.0, s.position))
         if s.holds_rotation:
             (spring_m if spring else rigid_m).append((f"moment_inner_{i}", 0.0, 1.0))
-    return rigid_f + spring_f + rigid_m + spring_m
+
+    def at(key: str) -> float:
+        side = key.split("_", 1)[1]
+        return (
+            {"left": 0.0, "right": L}.get(side)
+            if side in ("left", "right")
+            else scene.supports.inner[int(side[6:])].position
+        )
+
+    kinds = (rigid_f, spring_f, rigid_m, spring_m)
+    return [k for kind in kinds for k in sorted(kind, key=lambda k: at(k[0]), reverse=from_right)]
 
 
 def closed_reactions(scene: Scene, model: dict[str, float]) -> dict:
     """Every reaction of ``scene``'s supports (zero where the supports give none): the model's values ``model``
     (missing ones count as unknown), two of them replaced by statics (the first force, then the first reaction
-    that makes the two equations independent); ``method`` says which."""
-    keys = reaction_keys(scene)
+    that makes the two equations independent), the mean of doing so from the left end on and from the right end on
+    (each balances the loads, so their mean does, and a mirror image gives the mirrored reactions); ``method`` says
+    which."""
+    left, right = _closed(scene, model, reaction_keys(scene)), _closed(scene, model, reaction_keys(scene, True))
+    out = {k: (v + right[k]) / 2 if isinstance(v, float) else v for k, v in left.items()}
+    if left["method"] != right["method"]:
+        out["method"] = f"the mean of {left['method']} and of {right['method']}"
+    return out
+
+
+def _closed(scene: Scene, model: dict[str, float], keys: list) -> dict:
+    """:func:`closed_reactions` with statics picking from ``keys`` in their order."""
     P, Mo = load_resultants(scene)
     L = scene.length
     first = next(k for k in keys if k[1] != 0.0)
