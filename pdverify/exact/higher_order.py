@@ -336,18 +336,16 @@ class Solution:
     def states(self, x) -> np.ndarray:
         """z (n x 8) at x (physical); at a break inside the span (a point load, a support, a joint: within 64 eps L of
         it, whatever the rounding of a scaled scene's positions) the mean of its two sides, as exact-eb's."""
-        xs = np.clip(np.asarray(x, float) / self.h, 0.0, self.L)
-        last = len(self.pieces) - 1
-        tol = 64 * np.finfo(float).eps * self.L
-        lo = np.clip(np.searchsorted(self.breaks, xs - tol, "left") - 1, 0, last)
-        hi = np.clip(np.searchsorted(self.breaks, xs + tol, "left") - 1, 0, last)
+        xs, tol = np.clip(np.asarray(x, float) / self.h, 0.0, self.L), 64 * np.finfo(float).eps * self.L
+        lo, hi = (
+            np.clip(np.searchsorted(self.breaks, xs + d, "left") - 1, 0, len(self.pieces) - 1) for d in (-tol, tol)
+        )
         out = np.zeros((len(xs), 8))
         for piece, share in ((lo, np.where(lo == hi, 1.0, 0.5)), (hi, np.where(lo == hi, 0.0, 0.5))):
-            for p in np.unique(piece):
+            for p in np.unique(piece[share > 0]):
                 on = (piece == p) & (share > 0)
-                if on.any():
-                    P, c = self.maps(p, xs[on])
-                    out[on] += share[on, None] * (P @ self.U[p] + c)
+                P, c = self.maps(p, xs[on])
+                out[on] += share[on, None] * (P @ self.U[p] + c)
         return out
 
     def fields(self, x) -> dict[str, np.ndarray]:
