@@ -371,9 +371,8 @@ MAX_TOML_BYTES = 64 * 2**20  # a scene or study file larger than this (64 MiB) i
 def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
     """(text, parsed table) of a TOML file, or InputError naming the file and what is wrong."""
     path = Path(path)
-    if (
-        path.exists() and not path.is_dir() and not path.is_file()
-    ):  # a device or a FIFO: never read (/dev/zero is endless)
+    # a device or a FIFO is never read (/dev/zero is endless)
+    if path.exists() and not path.is_dir() and not path.is_file():
         raise InputError(f"{path}: not a regular file; give a {what} TOML file")
     if path.is_file() and path.stat().st_size > MAX_TOML_BYTES:
         raise InputError(
