@@ -78,15 +78,21 @@ def body_loads(scene: Scene, x: np.ndarray, skip_ends: dict | None = None) -> np
     return q
 
 
+def end_side(scene: Scene, position: float) -> str | None:
+    """The end ("left" or "right") whose point ``position`` is on (within 1e-12 L), else None."""
+    for side, xe in (("left", 0.0), ("right", scene.length)):
+        if abs(position - xe) <= 1e-12 * scene.length:
+            return side
+    return None
+
+
 def end_loads(scene: Scene) -> tuple[dict, dict]:
     """Point force and moment applied exactly at the left (x = 0) and right (x = L) ends."""
     P = {0: 0.0, 1: 0.0}
     C = {0: 0.0, 1: 0.0}
     for load in scene.loads:
-        if isinstance(load, (PointForce, PointMoment)):
-            for side, xe in ((0, 0.0), (1, scene.length)):
-                if abs(load.position - xe) <= 1e-12 * scene.length:
-                    (P if isinstance(load, PointForce) else C)[side] += load.value
+        if isinstance(load, (PointForce, PointMoment)) and (side := end_side(scene, load.position)) is not None:
+            (P if isinstance(load, PointForce) else C)[0 if side == "left" else 1] += load.value
     return P, C
 
 
@@ -97,13 +103,8 @@ def support_couples(scene: Scene) -> tuple[dict, Scene]:
     point's moment (its support side, :func:`support_side`). ({}, the scene) when there is none."""
     found, kept = {}, []
     for load in scene.loads:
-        side = None
-        if isinstance(load, PointMoment):
-            for name, xe in (("left", 0.0), ("right", scene.length)):
-                on_end = abs(load.position - xe) <= 1e-12 * scene.length
-                if on_end and scene.supports.kind(name) in ("clamped", "guided"):
-                    side = name
-        if side is None:
+        side = end_side(scene, load.position) if isinstance(load, PointMoment) else None
+        if side is None or scene.supports.kind(side) not in ("clamped", "guided"):
             kept.append(load)
         else:
             found[side] = found.get(side, 0.0) + load.value
@@ -115,12 +116,8 @@ def bends_nothing(scene: Scene) -> bool:
     a couple where the rotation is): the beam stays straight, w = 0 exactly."""
     holds = {PointForce: ("clamped", "pinned", "roller"), PointMoment: ("clamped", "guided")}
     for load in scene.loads:
-        if type(load) not in holds:
-            return False
-        ends = [
-            s for s, xe in (("left", 0.0), ("right", scene.length)) if abs(load.position - xe) <= 1e-12 * scene.length
-        ]
-        if not ends or scene.supports.kind(ends[0]) not in holds[type(load)]:
+        side = end_side(scene, load.position) if type(load) in holds else None
+        if side is None or scene.supports.kind(side) not in holds[type(load)]:
             return False
     return True
 

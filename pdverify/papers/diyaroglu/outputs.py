@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import HELD, Scene, Spring
-from ...numerics.loads import support_couples, support_side
+from ...numerics.loads import end_side, support_couples, support_side
 from ...numerics.recovery import derivative, jump_positions
 from ...numerics.statics import closed_reactions
 from .mixed import point_load_terms
@@ -116,7 +116,7 @@ def recovery_warnings(scene: Scene, params: dict) -> list[str]:
 
     def bends(ld) -> bool:  # a force on an end that holds the deflection goes into the support (a couple on a
         # clamped or guided end point too: support_couples takes it off before the solve)
-        side = "left" if ld.position <= 0.0 else "right" if ld.position >= scene.length else None
+        side = end_side(scene, ld.position)
         return side is None or ld.type == "point_moment" or not scene.supports.holds_deflection_at(side)
 
     loads = support_couples(scene)[1].loads

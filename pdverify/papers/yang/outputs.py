@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import PointForce, PointMoment, Scene
+from ...numerics.loads import end_side
 from ...theory.higher_order import layer_width
 
 
@@ -93,15 +94,8 @@ def point_load_warnings(scene: Scene, params: dict, info: dict) -> list[str]:
                 "a grid point (points = L / spacing + 1)"
             )
     if params["variant"] == "paper":  # a couple on an end point that turns: not through the mirror layer's faces
-        ends = [
-            side
-            for side, at in (("left", 0.0), ("right", scene.length))
-            if scene.supports.kind(side) not in ("clamped", "guided")
-            and any(
-                isinstance(ld, PointMoment) and ld.value and abs(ld.position - at) <= 1e-12 * scene.length
-                for ld in scene.loads
-            )
-        ]
+        on = {end_side(scene, ld.position) for ld in scene.loads if isinstance(ld, PointMoment) and ld.value}
+        ends = [s for s in ("left", "right") if s in on and scene.supports.kind(s) not in ("clamped", "guided")]
         if ends:
             out.append(
                 f"variant = paper: a couple on the {' and '.join(ends)} end point does not converge (a couple on the "
