@@ -77,7 +77,7 @@ def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
     )
     deadline = time.time() + 300  # a wait for the machine, not a check: a loaded one stores its first case later
     workers = []
-    while time.time() < deadline and (len(workers) < 2 or not list((out / "cases").glob("*.case"))):
+    while time.time() < deadline and (len(workers) < 2 or not list((out / "cases").glob("[!.]*.case"))):
         workers = _children(proc.pid)
         time.sleep(0.05)
     assert len(workers) == 2, workers  # both pool workers up and at least one case stored
@@ -88,7 +88,7 @@ def test_kill_9_of_a_pool_run_leaves_no_worker(tmp_path):
     for w in left:  # not to leave them running when the test fails
         os.kill(w, signal.SIGKILL)
     assert left == []
-    kept = len(list((out / "cases").glob("*.case")))
+    kept = len(list((out / "cases").glob("[!.]*.case")))
     assert 1 <= kept < SLOW_CASES and not (out / "results.csv").exists()
     assert FolderLock(out).release() is None  # the kernel dropped the dead run's lock
 
@@ -107,14 +107,14 @@ def test_ctrl_c_of_a_pool_run_keeps_the_finished_cases_and_leaves_no_process(tmp
     workers, stored = [], 0
     while time.time() < deadline and (len(workers) < 2 or stored < 3):
         workers = _children(proc.pid)
-        stored = len(list((out / "cases").glob("*.case")))
+        stored = len(list((out / "cases").glob("[!.]*.case")))
         time.sleep(0.02)
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130 and b"Traceback" not in err, err
     time.sleep(0.5)
     assert len(workers) == 2 and [w for w in workers if _alive(w)] == []
-    kept = len(list((out / "cases").glob("*.case")))
+    kept = len(list((out / "cases").glob("[!.]*.case")))
     assert stored >= 3, f"only {stored} cases stored in 300 s"
     assert stored <= kept < SLOW_CASES  # every case stored before the signal is kept, and the run was cut short
     assert not list((out / "cases").glob(".tmp-*")) and not (out / "results.csv").exists()
@@ -195,7 +195,7 @@ def test_another_study_never_overwrites_a_folders_tables(tmp_path):
     line = one_error_line(pdverify_process("study", b, "--out", out, "--quiet"), 4)
     assert str(out) in line and "'first'" in line and "another --out" in line and f"remove {out}" in line, line
     assert {f.name: f.read_bytes() for f in out.iterdir() if f.is_file() and f.name != LOCK_NAME} == before
-    assert len(list((out / "cases").glob("*.case"))) == 2
+    assert len(list((out / "cases").glob("[!.]*.case"))) == 2
     assert run_study(load_study(a), out, workers=1, progress=False)["status"].eq("ok").all()  # the same study
     assert json.loads((out / "meta.json").read_text())["resumed_cases"] == 2
 

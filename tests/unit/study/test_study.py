@@ -168,11 +168,13 @@ def _cols(df):
 def _signal_mid_run(p, out, sig):
     """Start ``pdverify study`` serially in its own process group, send ``sig`` to the group once 5 case
     files are on disk (as a terminal sends Ctrl-C to the whole group) and wait; the process, its stderr
-    and the CLI command (to run the study again)."""
+    and the CLI command (to run the study again). Case files are counted as ``[!.]*.case``: a case being written is
+    ``.tmp-...-<id>.case`` until its rename, which ``*.case`` matches too (a run stopped then kept 4 of the 5 it
+    had counted)."""
     cmd = [sys.executable, "-m", "pdverify.apps.cli", "study", str(p), "--out", str(out), "--workers", "1", "--quiet"]
     proc = start_in_own_group(cmd)
     deadline = time.time() + 60
-    while time.time() < deadline and len(list((out / "cases").glob("*.case"))) < 5:
+    while time.time() < deadline and len(list((out / "cases").glob("[!.]*.case"))) < 5:
         time.sleep(0.02)
     os.killpg(proc.pid, sig)
     _, err = proc.communicate(timeout=60)
@@ -188,11 +190,11 @@ def test_resume_after_sigkill(tmp_path):
     )
     out = tmp_path / "out"
     _, _, cmd = _signal_mid_run(p, out, signal.SIGKILL)
-    partial = len(list((out / "cases").glob("*.case")))
+    partial = len(list((out / "cases").glob("[!.]*.case")))
     assert 5 <= partial < 42, partial
     # corrupt files are detected and recomputed: one truncated (killed mid-write elsewhere), one with a
     # single flipped bit inside its curve data (caught by the checksum, not by parsing)
-    truncated, flipped = sorted((out / "cases").glob("*.case"))[:2]
+    truncated, flipped = sorted((out / "cases").glob("[!.]*.case"))[:2]
     truncated.write_bytes(truncated.read_bytes()[:-100])
     raw = bytearray(flipped.read_bytes())
     raw[-9] ^= 0x01
