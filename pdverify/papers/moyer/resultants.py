@@ -85,7 +85,8 @@ def shear_at_points(
         if at < x[i] - tol or (i == n - 1 and at >= L - tol):  # on x_i: acts beyond it, except at x = L
             before[i] += P * (at - x[i - 1]) / dx
         k = int(np.clip(np.floor((at - x[0]) / dx + 1e-9), 0, n - 2))  # the interval [x_k, x_{k+1}) holding it
-        if at < L - tol:  # at x = L it acts on x = L, beyond every interval after a point
+        on_inner_point = k > 0 and abs(at - x[k]) <= tol  # the value after x_k is past it already (x_0: the support's
+        if at < L - tol and not on_inner_point:  # side); at x = L it acts on x = L, beyond every interval after a point
             after[k] -= P * (x[k + 1] - at) / dx
     V = before
     V[0] = after[0]

@@ -247,3 +247,25 @@ def test_reactions_balanced_by_one_inner_support_do_not_depend_on_the_length_uni
     a, b = (run(scaled(k), "pd-timoshenko", points=41, variant=variant) for k in (1.0, 1e3))
     tol = 100 * np.finfo(float).eps * max(a.info["cond"], b.info["cond"])
     assert abs(b.info["reactions"]["force_inner_0"] / a.info["reactions"]["force_inner_0"] - 1) <= tol
+
+
+@pytest.mark.parametrize("model, field, load", [
+    ("pd-rod", "N", {"type": "point_force", "position": 0.7, "value": 0.0, "axial": 4000.0}),
+    ("pd-torsion", "T", {"type": "point_torque", "position": 0.7, "value": 30.0}),
+    ("pd-timoshenko", "V", {"type": "point_force", "position": 0.7, "value": -300.0}),
+])  # fmt: skip
+def test_a_point_on_a_load_carries_the_mean_of_its_sides(model, field, load):
+    """x = 0.7 is the 15th of 41 points (its rounding 0.7000000000000001): the resultant there is the mean of its two
+    sides, in the scene and in its mirror image alike (before, the interval after the point counted the load too:
+    pd-rod's N was 4000 there and 0 in the mirror, where the exact rod gives 2000)."""
+    from helpers import scene_dict
+
+    from pdverify.core.scene_file import parse_scene
+
+    mirror = dict(load, position=2.0 - load["position"])
+    a = run(parse_scene(scene_dict("clamped", "free", [load])), model, points=41).fields[field]
+    b = run(parse_scene(scene_dict("free", "clamped", [mirror])), model, points=41).fields[field]
+    exact = run(parse_scene(scene_dict("clamped", "free", [load])), model.replace("pd-", "exact-"), points=41).fields[
+        field
+    ]
+    assert a[14] == pytest.approx(exact[14], rel=5e-3) and abs(a[14]) == pytest.approx(abs(b[26]), rel=1e-9)
