@@ -30,8 +30,14 @@ def write_study(tmp_path, body, name="s"):
 # 12 cases of similar cost (each a large banded solve): the pool holds at most 2 running + 3 queued when it is
 # stopped, so a run stopped after its first stored cases cannot end in the meantime, whatever the machine's
 # speed (with many tiny cases a run can end, every case stored, between its 3rd stored case and the signal)
-SLOW_RUNS = '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [64001, 80001, 96001]\nhorizon = [2, 3, 4, 5]\n'
-SLOW_CASES = 12
+# eight batches (one per horizon: an operator group) of three grids: a pool of two runs two and holds one queued, so a
+# stop after the first batch's three cases leaves batches unstarted (with four batches all four could be handed out by
+# then, and a run stopped on a fast machine kept all 12 cases)
+SLOW_RUNS = (
+    '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [64001, 80001, 96001]\n'
+    "horizon = [2, 3, 4, 5, 6, 7, 8, 9]\n"
+)
+SLOW_CASES = 24
 
 
 def one_error_line(r, code):
