@@ -48,18 +48,18 @@ def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, 
     import scipy.sparse.linalg as spla
 
     consistent = sp.issparse(mass)
-    lumped = mass.diagonal() if consistent else np.asarray(mass, float)
+    diag = mass.diagonal() if consistent else np.asarray(mass, float)  # a lumped mass is its own diagonal
     # K / k0 and M / m0 (powers of two: exact) keep every entry an ordinary float whatever the units (a density of
     # 1e-300 overflows 1/M); the eigenvalues are k0 / m0 times those of the scaled pair
     k0 = 2.0 ** np.round(np.log2(abs(K).max()))
-    m0 = 2.0 ** np.round(np.log2(np.abs(lumped).max()))
+    m0 = 2.0 ** np.round(np.log2(np.abs(diag).max()))
     if not np.log2(k0) - np.log2(m0) < 1023:  # k0 / m0 overflows
         raise SolveError(
             "the natural frequencies squared are out of the floating-point range in these units (stiffness "
             f"~{k0:.0e}, mass ~{m0:.0e}); give the scene in units that keep its numbers within about 1e-100..1e100"
         )
-    K, lumped = K / k0, lumped / m0
-    D = sp.diags(1.0 / np.sqrt(lumped))
+    D = sp.diags(1.0 / np.sqrt(diag / m0))
+    K = K / k0
     A = sp.csr_matrix(D @ K @ D)
     mass = sp.csr_matrix(D @ (mass / m0) @ D) if consistent else None
     norm = float(abs(A).sum(1).max())
@@ -68,8 +68,8 @@ def discrete_eigenvalues(K: sp.spmatrix, mass, count: int) -> tuple[np.ndarray, 
         lam = la.eigvals(A.toarray(), mass.toarray()) if consistent else la.eigvals(A.toarray())
     else:  # fixed start vector: the same digits on every run
         v0 = np.random.default_rng(0).standard_normal(n)
-        B, M = (A.tocsc(), sp.csc_matrix(mass)) if consistent else (A.tocsc(), None)
-        lam = spla.eigs(B, k=count, M=M, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
+        M = sp.csc_matrix(mass) if consistent else None
+        lam = spla.eigs(A.tocsc(), k=count, M=M, sigma=0.0, which="LM", return_eigenvectors=False, v0=v0)
     lam = lam[np.argsort(np.abs(lam), kind="stable")][:count]
     return lam * (k0 / m0), norm * (k0 / m0)
 
