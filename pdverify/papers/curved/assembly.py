@@ -75,6 +75,18 @@ def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, s
     return rows, np.array([rb[r] for r in rows]), (np.concatenate(rr), np.concatenate(rc), np.concatenate(rv))
 
 
+def resultant_units(length: float, EA: np.ndarray, EI: np.ndarray) -> np.ndarray:
+    """Column scales (interleaved per particle) that take (u_t, u_n, φ, N, Q, M) in the beam's own units: lengths
+    in L, forces in F = sqrt(EA EI) / L (the geometric mean of the axial force scale EA and the bending one EI / L²),
+    moments in F L. The matrix is then the same for a scene in any units, and so is its equilibration by largest
+    entries, which is not invariant under a change of the unknowns' units (an I-section at L x 1e6, E x 1e-3 had a
+    condition estimate of 2.5e25 where the same beam in metres had 2.2e11). Of the force scales EA, EI / L² and their
+    mean, the mean keeps the condition estimate lowest over thick and slender beams (table in docs/models/curved.md)."""
+    F = np.sqrt(EA * EI) / length
+    ones = np.ones_like(F)
+    return np.stack([length * ones, length * ones, ones, F, F, F * length], 1).ravel()
+
+
 def assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, loads):
     """Mixed form with N, Q, M as unknowns, straight into a band: (B, b, column scales), unknowns
     (u_t, u_n, φ, N, Q, M) and rows (constitutive t, n, φ; equilibrium t, n, φ) interleaved per particle:
@@ -83,9 +95,8 @@ def assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, loa
         D1 N - κ Q + p_t = 0,  D1 Q + κ N + p_n = 0,  D1 M + Q + m = 0   (Eq. 8–10)
 
     with ε = D1 u_t - κ u_n, γ = D1 u_n + κ u_t - φ, χ = D1 φ. Every entry is written once (no sums), then
-    each row is divided by its largest coefficient and each column by its largest after that: the same
-    numbers, bit for bit, as the sparse assembly this replaced (scipy's products by diagonal matrices
-    round each entry once, as here)."""
+    the unknowns are taken in the beam's own units (:func:`resultant_units`), each row is divided by its largest
+    coefficient and each column by its largest after that. The column scales returned include the units."""
     N, nf = len(kap), 6
     EA, kGA, EI = particle_stiffness(scene, segs)  # each particle's segment's (.supports)
     bw = nf * (size - 1)  # the end families reach size - 1 particles
@@ -133,18 +144,20 @@ def assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, loa
     b[:, 3], b[:, 4], b[:, 5] = -loads[0], -loads[1], -loads[2]
     b = b.ravel()
     b[rows] = vals
+    units = resultant_units(scene.length, EA, EI)
+    ext.scale(units, rows=False)
     # equilibrate: each row divided by its largest coefficient, then each column
     rs = 1.0 / ext.abs_max(rows=True)
     ext.scale(rs, rows=True)
     b *= rs
     cs = 1.0 / ext.abs_max(rows=False)
     ext.scale(cs, rows=False)
-    return B, b, cs
+    return B, b, cs * units
 
 
 def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, loads):
     """Three unknowns (u_t, u_n, φ) per particle: ``primal`` (Eq. 14–16) or ``mixed`` with the resultants
-    substituted. Sparse assembly: (K interleaved CSR, b, column scales (ones), strain operators)."""
+    substituted. Sparse assembly: (K interleaved CSR, b, column scales (the length L on u_t, u_n), strain operators)."""
     N = len(kap)
     D1s, D2s = [], []
     for g in segs:  # a few segments (load discontinuities), never a loop over particles
@@ -186,7 +199,10 @@ def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap,
     K = (sp.diags(keep) @ K + R).tocsr()
     b = b * keep
     b[rows] = vals
-    # equilibrate: each row divided by its largest coefficient
+    # the displacements in units of the beam's length (the rows' scales below then do not depend on the
+    # scene's units), and each row divided by its largest coefficient
+    units = np.concatenate([np.full(2 * N, scene.length), np.ones(N)])
+    K = (K @ sp.diags(units)).tocsr()
     scale = 1.0 / abs(K).max(axis=1).toarray().ravel()
     K = (sp.diags(scale) @ K).tocsr()
     b = b * scale
@@ -196,4 +212,4 @@ def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap,
     inv[perm] = np.arange(n_all)
     Cm = K.tocoo()
     K = sp.csr_matrix((Cm.data, (inv[Cm.row], inv[Cm.col])), shape=K.shape)
-    return K, b[perm], np.ones(n_all), dict(Eps=Eps, Gam=Gam, Chi=Chi)
+    return K, b[perm], units[perm], dict(Eps=Eps, Gam=Gam, Chi=Chi)

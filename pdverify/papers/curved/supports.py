@@ -92,12 +92,17 @@ def reactions(scene: Scene, segs, offs, resultants: np.ndarray, point_loads) -> 
     """The supports' forces and moments on the beam (module docstring): ``resultants`` (3, particles) of N, Q, M;
     ``point_loads(position) -> (F_t, F_n, C)`` the scene's point loads at a position."""
     L = scene.length
+
+    def carries(sup, c):  # a slot the support neither holds nor springs carries no reaction: 0, not a rounding
+        return held_slots(sup)[c] or spring_slots(sup)[c] > 0.0
+
     out = {}
     N_last = offs[-1] - 1
     for side, k, sign, at in (("left", 0, -1.0, 0.0), ("right", N_last, 1.0, L)):
         F = point_loads(at)
+        sup = getattr(scene.supports, side)
         for c in (1, 2):  # force and moment (the axial reaction beside them where the end holds u_t)
-            out[f"{_SLOT_KEYS[c]}_{side}"] = float(sign * resultants[c, k] - F[c])
+            out[f"{_SLOT_KEYS[c]}_{side}"] = float(sign * resultants[c, k] - F[c]) if carries(sup, c) else 0.0
         if held_slots(getattr(scene.supports, side))[0]:
             out[f"axial_{side}"] = float(sign * resultants[0, k] - F[0])
     for i, s in enumerate(scene.supports.inner):
@@ -105,7 +110,8 @@ def reactions(scene: Scene, segs, offs, resultants: np.ndarray, point_loads) -> 
         ka, kb = offs[j + 1] - 1, offs[j + 1]
         F = point_loads(s.position)
         for c in (1, 2):
-            out[f"{_SLOT_KEYS[c]}_inner_{i}"] = float(-(resultants[c, kb] - resultants[c, ka]) - F[c])
+            jump = float(-(resultants[c, kb] - resultants[c, ka]) - F[c])
+            out[f"{_SLOT_KEYS[c]}_inner_{i}"] = jump if carries(s, c) else 0.0
         if held_slots(s)[0]:
             out[f"axial_inner_{i}"] = float(-(resultants[0, kb] - resultants[0, ka]) - F[0])
     return out
