@@ -26,6 +26,11 @@ from ..registry import get_model, models
 from ..theory.symbols import frequency_shift
 
 DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (every eigenvalue, cheap); ARPACK above
+# an eigenvalue below this fraction of ||D K D|| (about 4,500 eps) is zero to round-off: a computed eigenvalue is
+# within eps ||A|| times its condition number of the exact one (Bauer-Fike; LAPACK Users' Guide 3rd ed., §4.8), and
+# the paper variants' non-symmetric closures' zero-energy modes came out at 1e-14 to 2e-14 ||D K D||, either sign,
+# with the scene's units; a true mode this small has a round-off estimate over 1e-4 and is warned of by it too
+ZERO_EIGENVALUE = 1e-12
 ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
 
 
@@ -236,8 +241,14 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
     # Bauer-Fike with a well-conditioned eigenbasis: |dλ| <= eps ||M⁻¹K||, half of it relative in ω
     roundoff = 0.5 * np.finfo(float).eps * norm / np.abs(lam)
     warnings = []
+    zero = ZERO_EIGENVALUE * norm  # below it an eigenvalue's sign and imaginary part are the rounding's
     for k, v in enumerate(lam):
-        if v.real <= 0 or abs(v.imag) > 1e-9 * abs(v):
+        if abs(v) <= zero:
+            warnings.append(
+                f"mode {k + 1}: the eigenvalue of M^-1 K is zero to round-off (below {ZERO_EIGENVALUE:g} ||D K D||): "
+                "a mode of zero energy (the boundary closures); its frequency is 0 to round-off"
+            )
+        elif v.real <= 0 or abs(v.imag) > max(1e-9 * abs(v), zero):
             warnings.append(
                 f"mode {k + 1}: the eigenvalue {v.real:.6g}{v.imag:+.3g}j of M^-1 K is not real positive (the boundary "
                 "closures); its frequency is Re sqrt(eigenvalue)"
