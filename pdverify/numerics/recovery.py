@@ -7,10 +7,10 @@ import numpy as np
 
 
 def jump_positions(scene, quantity: str) -> np.ndarray:
-    """Where ``quantity`` jumps or kinks, so that a difference of its parent must not straddle it: the shear (the
-    derivative of the moment) jumps at point forces and supports inside the span that hold the deflection and kinks
-    where a distributed load starts or ends; the moment (EI times the derivative of the rotation) jumps at couples
-    and clamped inner supports and the curvature at interfaces."""
+    """Where ``quantity`` jumps, so that a difference of its parent must not straddle it: the shear (the derivative
+    of the moment) at point forces and supports inside the span that hold the deflection; the moment (EI times the
+    derivative of the rotation) at couples and clamped inner supports and the curvature at interfaces. Where the
+    shear kinks: :func:`kink_positions`."""
     at = []
     for load in scene.loads:
         if quantity == "shear" and load.type == "point_force" and load.value != 0.0:
@@ -22,24 +22,49 @@ def jump_positions(scene, quantity: str) -> np.ndarray:
             at.append(s.position)
     if quantity == "moment":
         at += [g.start for g in scene.segments[1:]]
-    if quantity == "shear":  # where the load per length jumps, V kinks: a difference across it is first order
-        for load in scene.loads:
-            if load.type == "distributed" and load.value != 0.0:
-                at += [v for v in scene.span(load) if 0.0 < v < scene.length]
     return np.array(sorted(at), float)
 
 
-def derivative(x: np.ndarray, f: np.ndarray, jumps=()) -> np.ndarray:
+def kink_positions(scene) -> np.ndarray:
+    """Where the shear kinks (the load per length jumps: a distributed load's ends inside the span), so that a central
+    difference of the moment across it is first order there."""
+    at = [
+        v
+        for load in scene.loads
+        if load.type == "distributed" and load.value != 0.0
+        for v in scene.span(load)
+        if 0.0 < v < scene.length
+    ]
+    return np.array(sorted(at), float)
+
+
+def derivative(x: np.ndarray, f: np.ndarray, jumps=(), kinks=()) -> np.ndarray:
     """df/dx at the points x (uniform spacing) by second-order differences within each stretch between jumps
     (``numpy.gradient``: central inside a stretch, one-sided at its ends), so that no difference takes values from
-    both sides of a jump; first order on a stretch of two points, the neighbour's value on one of a single point. At
-    a point exactly on a jump (whose own value is ambiguous) the mean of the two stretches' quadratic
-    extrapolations to it (second order where the derivative only kinks there)."""
+    both sides of a jump; first order on a stretch of two points, interpolated from the nearest values on either side
+    on one of a single point. At a point exactly on a jump (whose own value is ambiguous) the mean of the two
+    stretches' quadratic extrapolations to it (second order where the derivative only kinks there). ``kinks``, where
+    df/dx only kinks, cut the same way where the stretches on both sides keep at least three points, and are
+    differenced across elsewhere (first order at a point, where one-sided differences over one or two points
+    would be first order over several)."""
     x, f = np.asarray(x, float), np.asarray(f, float)
     n = len(x)
     dx = x[1] - x[0]
-    t = (np.asarray(jumps, float) - x[0]) / dx
-    t = np.unique(t[(t > 1e-9) & (t < n - 1 - 1e-9)])  # a jump at an end point cuts nothing
+
+    def inside(at):  # positions in units of dx from x[0]; one at an end point cuts nothing
+        t = (np.asarray(at, float) - x[0]) / dx
+        return np.unique(t[(t > 1e-9) & (t < n - 1 - 1e-9)])
+
+    t, tk = inside(jumps), inside(kinks)
+    if len(tk):  # a kink is a cut where the points between it and the cuts beside it are at least 3 on each side
+        cuts = np.r_[-1.0, t, tk, float(n)]
+        cuts = np.unique(np.where(np.abs(cuts - np.round(cuts)) <= 1e-9, np.round(cuts), cuts))
+        keep = [
+            np.ceil(k - 1e-9) - np.floor(cuts[cuts < k - 1e-9].max() + 1e-9) - 1 >= 3
+            and np.ceil(cuts[cuts > k + 1e-9].min() - 1e-9) - np.floor(k + 1e-9) - 1 >= 3
+            for k in tk
+        ]
+        t = np.unique(np.r_[t, tk[np.asarray(keep, bool)]])
     on = np.round(t[np.abs(t - np.round(t)) <= 1e-9]).astype(np.int64)
     cuts = np.unique(np.r_[np.floor(t[np.abs(t - np.round(t)) > 1e-9]) + 0.5, on]).tolist()
     out = np.full(n, np.nan)
@@ -66,7 +91,8 @@ def derivative(x: np.ndarray, f: np.ndarray, jumps=()) -> np.ndarray:
         elif right == 2:
             vals.append((f[k + 2] - f[k + 1]) / dx)
         out[k] = np.mean(vals) if vals else np.nan
-    for k in np.flatnonzero(np.isnan(out)):  # a stretch of one point
-        nb = [out[j] for j in (k - 1, k + 1) if 0 <= j < n and np.isfinite(out[j])]
-        out[k] = np.mean(nb) if nb else 0.0
+    gaps = np.isnan(out)  # stretches of one point (and points on a jump between them): interpolated linearly
+    if gaps.all():  # between the nearest values on either side, all at once, so that a mirror image gets the same
+        return np.zeros(n)
+    out[gaps] = np.interp(x[gaps], x[~gaps], out[~gaps])
     return out

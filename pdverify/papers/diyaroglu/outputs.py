@@ -18,7 +18,7 @@ import numpy as np
 
 from ...core.scene import HELD, Scene, Spring
 from ...numerics.loads import end_side, support_couples, support_side
-from ...numerics.recovery import derivative, jump_positions
+from ...numerics.recovery import derivative, jump_positions, kink_positions
 from ...numerics.statics import closed_reactions
 from .mixed import point_load_terms
 from .operator import ghost_map, mirror_map, paper_curvature
@@ -67,7 +67,7 @@ def fields(scene: Scene, x: np.ndarray, w: np.ndarray, M: np.ndarray, ends_insid
     carry the end loads); the paper variant's mirror images leave the end points' curvature as it is (a couple on a
     pinned end point: 0, its support's side)."""
     rot = derivative(x, w, jump_positions(scene, "moment"))
-    V = derivative(x, M, np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")])
+    V = derivative(x, M, np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")], kink_positions(scene))
     if ends_inside:
         M = support_side(scene, M, "moment")
     return {"rotation": rot, "M": M, "V": support_side(scene, V, "shear")}

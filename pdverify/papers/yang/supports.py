@@ -29,7 +29,7 @@ import scipy.sparse as sp
 
 from ...core.errors import InputError
 from ...core.scene import PointForce, PointMoment, Scene, Spring
-from ...numerics.recovery import derivative, jump_positions
+from ...numerics.recovery import derivative, jump_positions, kink_positions
 from ...numerics.statics import statics_over
 from ...theory.higher_order import NF, TH, point_work
 
@@ -139,13 +139,14 @@ def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h:
     jumps = np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")]
     dx = x[1] - x[0]
     ends = [x[0] + dx / 2, x[-1] - dx / 2]  # no difference takes the end points' values, inside the ends' layers
-    dy = np.column_stack([derivative(x, u[:, k], np.r_[jumps, ends]) for k in range(NF)])
+    kinks = kink_positions(scene)
+    dy = np.column_stack([derivative(x, u[:, k], np.r_[jumps, ends], kinks) for k in range(NF)])
     m = dy @ D1.T + u @ D0.T  # the measures per point
     M = -(scene.section.A / h) * ((m @ C) @ D1)[:, TH]  # -b (D1^T C m)_theta
     if len(x) >= 4:  # the end points: extrapolated past the ends' layers of w*, theta* (M itself is smooth there)
         M[0] = 3 * M[1] - 3 * M[2] + M[3]
         M[-1] = 3 * M[-2] - 3 * M[-3] + M[-4]
-    V = derivative(x, M, jumps)
+    V = derivative(x, M, jumps, kinks)
     n = len(x)
     loads = [ld for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and 0.0 < ld.position < x[-1]]
     if not (layer and n >= 2 * layer + 3):
