@@ -35,6 +35,7 @@ from ..core.errors import SolveError
 from ..core.geometry import geometry, mechanism_message
 from ..core.result import Result, Timer
 from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene
+from ..numerics.loads import axis_support_side
 from ..theory.curved_beam import coupling_warning, thick_ring_warning
 
 
@@ -317,18 +318,19 @@ class ExactCurved(Model):
         return out + ([why] if why is not None else [])
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        return self.solver(scene).fields(x)
+        return axis_support_side(scene, x, self.solver(scene).fields(x))
 
     def evaluator(self, scene: Scene, params: dict):
-        """The solution object built once, its fields at any x."""
-        return self.solver(scene).fields
+        """The solution object built once, its fields at any x (the end points on their supports' side)."""
+        sol = self.solver(scene)
+        return lambda x: axis_support_side(scene, x, sol.fields(x))
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
             sol = self.solver(scene)
-            f = sol.fields(s)
+            f = axis_support_side(scene, s, sol.fields(s))  # the solution's ends hold the beam's side
         info = {"cond": getattr(sol, "cond", 1.0)}  # a cantilever solves nothing: statics and quadrature only
         for flag in (thick_ring_warning(scene), coupling_warning(scene, s, f["N"], f["M"])):
             if flag:

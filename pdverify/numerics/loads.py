@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.geometry import geometry
 from ..core.scene import Distributed, PointForce, PointMoment, Scene
 
 TIE = 1e-9  # spacings: a distance this close to a threshold of whole spacings counts as on it, so that the rounding
@@ -152,6 +153,39 @@ def support_side(scene: Scene, values: np.ndarray, field: str, sides=("left", "r
         out[0] += sign * load[0]
     if "right" in sides:
         out[-1] -= sign * load[1]
+    return out
+
+
+def axis_support_side(scene: Scene, s: np.ndarray, fields: dict) -> dict:
+    """``fields``' axis-frame resultants N, Q, M (and V = -Q where given) at the points of ``s`` (arc lengths) on an
+    end moved from the beam's side of the point loads there to their support's side, the contract's end values for a
+    curved axis: R(0-) = R(0+) + F, R(L+) = R(L-) - F with F = (F·t, F·n, C) in the axis' frame at the end (on a
+    straight axis :func:`support_side`'s values). A new dict; the other fields as they are."""
+    s = np.asarray(s, float)
+    out = dict(fields)
+    for side, sign in (("left", 1.0), ("right", -1.0)):
+        at = np.flatnonzero([end_side(scene, v) == side for v in s])
+        loads = [
+            ld
+            for ld in scene.loads
+            if isinstance(ld, (PointForce, PointMoment)) and end_side(scene, ld.position) == side
+        ]
+        if not len(at) or not loads:
+            continue
+        t, n = geometry(scene).frame(np.array([0.0 if side == "left" else scene.length]))
+        F = np.zeros(3)
+        for ld in loads:
+            if isinstance(ld, PointMoment):
+                F[2] += ld.value
+            else:
+                f = np.array([ld.axial, ld.value])
+                F[:2] += (f @ t[0], f @ n[0]) if ld.frame == "global" else f
+        for c, key in enumerate(("N", "Q", "M")):
+            if key in out:
+                out[key] = np.array(out[key], float)
+                out[key][at] += sign * F[c]
+        if "V" in out and "Q" in out:
+            out["V"] = -out["Q"]
     return out
 
 

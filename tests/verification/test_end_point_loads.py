@@ -43,6 +43,7 @@ MODELS = [
     ("pd-higher-order", {}),
     ("fem-eb", {}),
     ("fem-timoshenko", {}),
+    ("pd-curved", {}),
 ]
 
 

@@ -51,16 +51,16 @@ written straight into a :class:`~pdverify.numerics.band.Band` (6 x 6 block stenc
 offset; :meth:`PDCurved.assemble_band`), which ``solve_linear`` factorises in place above 20,000 unknowns;
 ``assemble`` returns the same band as CSR.
 
-Three modules, one idea each: the particles (axis frame, segments, uniform / graded / given distributions,
+Four modules, one idea each: the particles (axis frame, segments, uniform / graded / given distributions,
 family size, loads at the particles: :mod:`pdverify.papers.curved.particles`), the collocation system
-(:mod:`pdverify.papers.curved.assembly`), and here the model: its options, the superposed solves and the output
-map. PDDO functions: :mod:`pdverify.papers.curved.pddo`. Errors, orders, locking and cost: docs/models/curved.md.
+(:mod:`pdverify.papers.curved.assembly`), the output map and the round-off of the weights and of superposed solves
+(:mod:`pdverify.papers.curved.outputs`), and here the model: its options and the superposed solves. PDDO
+functions: :mod:`pdverify.papers.curved.pddo`. Errors, orders, locking and cost: docs/models/curved.md.
 """
 
 from __future__ import annotations
 
 import numpy as np
-import scipy.sparse as sp
 
 from ...core.contract import MAX_POINTS, NONLOCAL, Model, Option, System
 from ...core.errors import InputError
@@ -68,10 +68,11 @@ from ...core.geometry import geometry, mechanism_message
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.band import Band
-from ...numerics.linalg import BOUND_LIMIT, ENTRY_ROUNDING, bound_warning, solve_linear
+from ...numerics.linalg import BOUND_LIMIT, bound_warning, solve_linear
+from ...numerics.loads import axis_support_side
 from ...theory.curved_beam import coupling_warning, thick_ring_warning
-from . import pddo as _pddo
 from .assembly import assemble_displacements, assemble_resultants
+from .outputs import output_map, superposed_bound, weight_rounding
 from .particles import (
     axis_frame,
     breakpoints,
@@ -288,6 +289,7 @@ class PDCurved(Model):
             total = out if total is None else {k: total[k] + out[k] for k in total}
             infos.append(info)
             dofs += n_dofs
+        total = axis_support_side(scene, total["x"] / len(infos), total)  # the end points: their supports' side
         worst = infos[int(np.argmax([i.get("cond", 0.0) for i in infos]))]
         info = {k: v for k, v in worst.items() if k not in ("bound_scale", "warnings")}  # warnings: every solve's
         if "reactions" in info:  # each solve's supports carry its loads: the sum
@@ -353,7 +355,7 @@ class PDCurved(Model):
         # output on the uniform grid of ``points`` positions (independent of the loads): the particle value
         # where a particle sits there, else the degree-P PDDO interpolant g^0 of its segment; at a break
         # the left segment's (left limit of the resultants)
-        T = self.output_map(d, scene.length, params["points"], params["degree"])
+        T = output_map(d, scene.length, params["points"], params["degree"])
         t, nv = d["t"], d["n"]
         ux = ut * t[:, 0] + un * nv[:, 0]
         uy = ut * t[:, 1] + un * nv[:, 1]
@@ -382,55 +384,6 @@ class PDCurved(Model):
             particles=N,
         )
         return fields, info, d["nf"] * N
-
-    @staticmethod
-    def output_map(d: dict, L: float, points: int, degree: int) -> sp.csr_matrix:
-        """Sparse (points, particles) map from particle values to the uniform output grid: a particle's value where
-        one sits, else the mean of the degree-P PDDO interpolants of the two families around the point
-        (:func:`.pddo.nearest_families`), so that a mirrored scene gives the mirrored output."""
-        x = np.linspace(0.0, L, points)
-        x[-1] = L
-        d["x"] = x
-        segs, offs, size = d["segs"], d["offs"], d["family"]
-        bps = np.array([g[-1] for g in segs[:-1]])
-        seg = np.searchsorted(bps, x - 1e-12 * L, side="left")  # a break belongs to its left segment
-        rows, cols, vals = [], [], []
-        for i, g in enumerate(segs):  # a few segments
-            k = np.flatnonzero(seg == i)
-            if not len(k):
-                continue
-            j = np.clip(np.searchsorted(g, x[k]), 0, len(g) - 1)
-            j = np.where((j > 0) & (np.abs(g[j - 1] - x[k]) < np.abs(g[j] - x[k])), j - 1, j)
-            on = np.abs(g[j] - x[k]) <= 1e-12 * L
-            rows.append(k[on]), cols.append(offs[i] + j[on]), vals.append(np.ones(on.sum()))
-            if (~on).any():
-                xo = x[k[~on]]
-                for fam in _pddo.nearest_families(g, xo, size):  # the mean of the interpolants of the two families
-                    c = 0.5 * _pddo.pddo_weights(g, fam, degree, (0,), centers=xo)[0]  # around xo: mirror-symmetric
-                    rows.append(np.repeat(k[~on], size)), cols.append((offs[i] + fam).ravel()), vals.append(c.ravel())
-        return sp.csr_matrix(
-            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(points, offs[-1])
-        )
-
-
-def weight_rounding(s: np.ndarray) -> float:
-    """Relative uncertainty, in units of eps, of a PDDO weight computed from the particles' arc lengths ``s``: an
-    offset s_j - s_i carries the rounding of s (eps L) relative to the spacing, and the weights follow the
-    offsets to first order (their spread along a uniform grid is about 0.6 L/ds eps at degree 2-6)."""
-    ds = np.diff(s)
-    ds = ds[ds > 0]
-    return ENTRY_ROUNDING + (float(np.abs(s).max() / ds.min()) if len(ds) else 0.0)
-
-
-def superposed_bound(infos: list[dict], total: dict) -> dict:
-    """The round-off bound of a sum of solves: each solve's bound (relative to its own largest displacement,
-    ``bound_scale``) in absolute terms, summed, relative to the sum's largest displacement."""
-    if any(i.get("error_bound") is None or "bound_scale" not in i for i in infos):
-        return {}
-    top = max(float(np.abs(total["ux"]).max()), float(np.abs(total["uy"]).max()))
-    absolute = sum(float(i["error_bound"]) * i["bound_scale"] for i in infos)
-    bound = float(f"{absolute / top:.3g}") if top > 0 else (0.0 if absolute == 0 else float("inf"))
-    return {"error_bound": bound}
 
 
 MODELS = [PDCurved()]

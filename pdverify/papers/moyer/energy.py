@@ -186,9 +186,9 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), k
     """The bending moment M = EIγ' at the points: M' = V = -kGA ψ integrated interval by interval (each interval's V̄
     is the average of V over it, so each step is exact to the solution's error), the couples (the scene's and the
     supports' ``reactions``, (position, force, couple)) as steps in the interval that holds them
-    (:func:`.resultants.moment_steps`, exact-timoshenko's convention at a point), and the constant from the bond
-    sums' moment (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond sums
-    smear a point couple over the horizon, which would bias a mean to first order). Why not the bond sums themselves:
+    (:func:`.resultants.moment_steps`: a point on a couple carries the mean of its sides), and the constant from the
+    bond sums' moment (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond
+    sums smear a point couple over the horizon, which would bias a mean to first order). Why not the bond sums:
     near an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval
     averages) differ, so the discrete γ' is first order there."""
     n = len(u) // 2

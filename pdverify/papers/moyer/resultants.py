@@ -96,16 +96,19 @@ def shear_at_points(
 
 def moment_steps(Vbar: np.ndarray, x: np.ndarray, couples: list) -> np.ndarray:
     """M at the points up to a constant: M_0 = 0, M_{i+1} = M_i + Δ V̄_{i+½} - the couples in [x_i, x_{i+1})
-    (and at x = L in the last interval)."""
+    (at x = 0 beyond the end point, at x = L in the last interval: the ends carry their supports' side); a couple on
+    a point inside the span half in the step before it and half in the one after, so that the point carries the mean
+    of its two sides (docs/contract.md)."""
     dx = x[1] - x[0]
     steps = dx * np.asarray(Vbar, float).copy()
     tol = 1e-9 * dx
     for at, C in couples:
         i = int(np.clip(np.floor((at - x[0]) / dx + 1e-9), 0, len(x) - 2))
-        if at > x[0] + tol or i > 0:  # at x = 0 it acts beyond the end point: in the first step too
-            steps[i] -= C
+        if 0 < i and abs(at - x[i]) <= tol:
+            steps[i - 1] -= 0.5 * C
+            steps[i] -= 0.5 * C
         else:
-            steps[0] -= C
+            steps[i] -= C
     return np.concatenate([[0.0], np.cumsum(steps)])
 
 

@@ -24,21 +24,32 @@ def shear(scene: Scene, M: np.ndarray, dx: float, couples: np.ndarray) -> np.nda
     """V = dM/dx at the points. Between neighbours the statical shear (M_{p+1} - M_p) / dx less the shear of the force
     pairs that stand for couples (``couples``: their nodal forces; a couple carries no shear) is V at the middle
     x_{p+1/2} (the loads are the cells' integrals, cut at the half points); V at a point adds the distributed load on
-    the half cell between (V jumps at a point force: both sides' values are right, the point carries the left)."""
+    the half cell between (V jumps at a point force: a point on it inside the span carries the mean of its sides,
+    :func:`~pdverify.numerics.statics.jump_share`; an end point the beam's side, which ``support_side`` then moves)."""
     n = len(M)
     x = np.arange(n) * dx
     Vh = np.diff(M) / dx - np.cumsum(couples)[:-1]
     dist = [ld for ld in scene.loads if isinstance(ld, Distributed)]
     left = sum((cell_integral(ld, scene, np.clip(x - dx / 2, 0, None), x) for ld in dist), np.zeros(n))
     right = sum((cell_integral(ld, scene, x, np.clip(x + dx / 2, None, scene.length)) for ld in dist), np.zeros(n))
-    V = np.r_[Vh[0] - right[0], Vh + left[1:]]
+    V = np.r_[Vh[0] - right[0], Vh + left[1:]]  # from the interval before each point (after it at x = 0)
+    nodal = np.zeros(n)  # the point forces' nodal parts
     # a point force between two points is split onto both: the shear at the second carries the whole force
     for ld in scene.loads:
         if isinstance(ld, PointForce):
             parts = np.zeros(n)
             for p, c in value_row(ld.position, n, dx).items():
                 parts[p] += c * ld.value
-            V += ld.value * (x > ld.position + 1e-9 * dx) - np.r_[0.0, np.cumsum(parts)[:-1]]
+            nodal += parts
+            step = jump_share(x, ld.position, dx)
+            step[-1] = x[-1] > ld.position + 1e-9 * dx
+            V += ld.value * step - np.r_[0.0, np.cumsum(parts)[:-1]]
+    # a support inside the span on a point: its reaction, the jump between the values from the intervals before and
+    # after the point less the point forces there, half on the point (the mean of its sides)
+    for sup in scene.supports.inner:
+        p = int(round(sup.position / dx))
+        if sup.holds_deflection and 0 < p < n - 1 and abs(x[p] - sup.position) <= 1e-9 * dx:
+            V[p] += 0.5 * ((Vh[p] - right[p]) - (Vh[p - 1] + left[p]) - nodal[p])
     return V
 
 
