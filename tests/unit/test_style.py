@@ -60,3 +60,10 @@ def test_a_models_info_is_merged_not_replaced():
         if _replaces_info(node)
     ]
     assert not found, "merge these with core.result.merge_info, or append the warning:\n" + "\n".join(found)
+
+
+def test_test_modules_have_names_no_other_has():
+    """The tests' folders are not packages, so pytest imports each test module by its file name: two of one name
+    (tests/unit/numerics/test_recovery.py beside tests/papers/ogrady/test_recovery.py) stop the collection."""
+    names = [p.name for p in (ROOT / "tests").rglob("test_*.py")]
+    assert sorted({n for n in names if names.count(n) > 1}) == []
