@@ -55,6 +55,7 @@ from ...numerics.loads import (
     support_couples,
 )
 from ...numerics.solvers import SOLVER, solve
+from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
@@ -182,19 +183,9 @@ class PDEulerBernoulli(Model):
         return GRADIENT["curvature"]
 
     def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
-        """The paper variant's clamped ends (the Appendix's mirror images about the clamped point) add a model error
-        of the same order in delta: its continuum against exact-eb is 4.7-5.4 times g (pi delta / L)^2 clamped-clamped,
-        2.8-3.0 clamped-pinned and 1.2-1.3 clamped-guided (sine and uniform loads, delta = 0.05-0.2 L:
-        ``pdverify study studies/nonlocal.toml``, results.csv err_model); the largest of these where a clamp is
-        paired otherwise."""
-        if params.get("variant") != "paper":
-            return 1.0, ""
-        kinds = [{"roller": "pinned"}.get(k, k) for k in map(scene.supports.kind, ("left", "right"))]
-        if "clamped" not in kinds:
-            return 1.0, ""
-        other = kinds[1] if kinds[0] == "clamped" else kinds[0]
-        factor = {"clamped": 5.4, "pinned": 3.0, "guided": 1.3, "free": 1.0}.get(other, 5.4)
-        return factor, "variant paper's clamped end (the Appendix's mirror images)"
+        """Measured per variant and support pair (:mod:`pdverify.theory.model_error`): the paper variant's clamped
+        ends (the Appendix's mirror images about the clamped point) add a model error of the same order in delta."""
+        return pair_factor(scene, f"pd-eb {self.with_defaults(params)['variant']}")
 
     def horizon_offset(self, params: dict) -> float:
         """Eq. 32: delta = (m + 0.015) dx in the paper variant."""

@@ -26,6 +26,7 @@ from ...core.contract import Option, Rule
 from ...core.errors import InputError
 from ...core.scene import Scene
 from ...numerics.loads import support_side
+from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, timoshenko_series
 from .base import _OPTIONS, _context, _MoyerModel, beam_points_loaded, stabilisation_warning
 from .couples import couple_column
@@ -70,6 +71,10 @@ class PDTimoshenko(_MoyerModel):
     def gradient_coefficient(self, scene: Scene, params: dict) -> float:
         """7/72: the bending part of w's symbol, the larger of its two (the shear part's 1/18; docs/nonlocal.md)."""
         return GRADIENT["timoshenko-bending"]
+
+    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+        """Measured per variant and support pair (:mod:`pdverify.theory.model_error`)."""
+        return pair_factor(scene, f"pd-timoshenko {self.with_defaults(params)['variant']}")
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])

@@ -41,6 +41,7 @@ from ...numerics.loads import (
     support_couples,
 )
 from ...numerics.solvers import SOLVER, solve
+from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics
 from .bias import bias_warnings
@@ -242,6 +243,10 @@ class PDBondPair(Model):
     def gradient_coefficient(self, scene: Scene, params: dict) -> float:
         """1/10: the bond-pair symbol with omega = 1 (docs/nonlocal.md; O'Grady & Foster 2014, Appendix B)."""
         return GRADIENT["bond-pair"]
+
+    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+        """Measured per ends and support pair (:mod:`pdverify.theory.model_error`)."""
+        return pair_factor(scene, f"pd-bond-pair {resolved_ends(scene, self.with_defaults(params))['ends']}")
 
     def eigenproblem(self, scene: Scene, params: dict):
         return dynamics.eigenproblem(self, scene, resolved_ends(scene, params))
