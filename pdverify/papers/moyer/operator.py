@@ -190,17 +190,21 @@ def _rod_core(
     j = np.arange(1, m + 1)
     Iop = toeplitz(n, G, n + 2 * G, np.concatenate([[0], j, -j]), np.concatenate([[-2 * c.sum()], c, c]))
     if not scene.uniform:  # each bond's series stiffness over the reference (.pieces), the diagonal their sum
-        Iop = _bonds_weighted(Iop, scene, n, G, dx, "EA" if kind == "axial" else "GJ", stiff)
+        x0 = 0.5 * dx if grid == "cells" else 0.0  # the first point: a cell's centre (Section 4) or the end
+        Iop = _bonds_weighted(Iop, scene, n, G, dx, "EA" if kind == "axial" else "GJ", stiff, x0)
     B = 2.0 * stiff / delta**2  # ρA B = 2EA/δ² (Eq. 3): force per length per unit of I
     return (-B * (Iop @ E)).tocsr(), B * (Iop @ e0)
 
 
-def _bonds_weighted(Iop: sp.csr_matrix, scene: Scene, n: int, G: int, dx: float, key: str, ref: float):
+def _bonds_weighted(
+    Iop: sp.csr_matrix, scene: Scene, n: int, G: int, dx: float, key: str, ref: float, x0: float = 0.0
+) -> sp.csr_matrix:
     """The PD sum with each bond's series stiffness S_ab / ``ref`` (:func:`.pieces.bond_stiffness`; the extended
-    grid's point e is at x = (e - G) Δ), its diagonal minus the sum of the row's bonds."""
+    grid's point e is at x = x0 + (e - G) Δ, ``x0`` the first real point), its diagonal minus the sum of the row's
+    bonds."""
     C = Iop.tocoo()
-    x_row = C.row * dx
-    x_col = (C.col - G) * dx
+    x_row = x0 + C.row * dx
+    x_col = x0 + (C.col - G) * dx
     off = C.row + G != C.col
     vals = C.data.copy()
     vals[off] *= bond_stiffness(scene, x_row[off], x_col[off], key) / ref

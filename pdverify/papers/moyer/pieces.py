@@ -135,12 +135,13 @@ def holds_somewhere(scene: Scene, kind: str, held_ends: tuple[str, ...]) -> bool
 
 def interpolation(x: np.ndarray, a: float) -> tuple[np.ndarray, np.ndarray]:
     """(points, weights) of the linear interpolation at a on the uniform grid x: one point when a is on it (within
-    1e-9 of the spacing), else the two around it."""
+    1e-9 of the spacing), else the two around it; beyond either end point (an end face of the cell grid, half a cell
+    out) the extrapolation from the two nearest, alike at both ends."""
     dx = x[1] - x[0]
     pos = (a - x[0]) / dx
-    i = int(np.clip(np.floor(pos + 1e-9), 0, len(x) - 1))
+    i = int(np.clip(np.floor(pos + 1e-9), 0, len(x) - 2))
     t = pos - i
-    if abs(t) < 1e-9 or i == len(x) - 1:
+    if abs(t) < 1e-9:
         return np.array([i]), np.array([1.0])
     if abs(1 - t) < 1e-9:
         return np.array([i + 1]), np.array([1.0])
