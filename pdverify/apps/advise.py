@@ -121,7 +121,8 @@ def estimate(
         spent += dt
         sols.append((n, r, dt))
         if len(sols) >= 3:  # the three finest grids: pdverify.measure.richardson, the estimate solve --estimate gives
-            found = richardson([r for _, r, _ in sols[-3:]], 2, model.measures, model.order, scene)
+            promised = model.promised_order(model.with_defaults(options))
+            found = richardson([r for _, r, _ in sols[-3:]], 2, model.measures, promised, scene)
             est, order = found.error, found.order
             if found.error < tol and found.asymptotic:
                 break

@@ -254,6 +254,12 @@ class Model(Horizon):
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
     histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
 
+    def promised_order(self, params: dict) -> float:
+        """The order of convergence the equations promise with these options (``params`` over the defaults): the
+        model's :attr:`order`, unless a variant's degree sets it (pd-curved). What ``solve --estimate`` and ``advise``
+        hold an observed order against."""
+        return float(self.order)
+
     def check(self, scene: Scene) -> list[str]:
         """Reasons this model cannot solve ``scene`` (empty when it can): its declared capabilities first
         (subclasses add their own reasons to ``super().check(scene)``)."""

@@ -4,8 +4,8 @@ Three solves on grids whose spacings halve (n, 2n - 1, 4n - 3 points, or the two
 differences d_coarse and d_fine of successive grids at the coarser grid's points, the observed order
 p = log2(d_coarse / d_fine) and the error of each grid, e_i = d_(i,i+1) 2^p / (2^p - 1), and of the finest,
 d_fine / (2^p - 1) (Richardson 1911; Roache 1998, ch. 5). The estimate is trusted only in the asymptotic range:
-the observed order within ASYMPTOTIC of the order the model's equations promise (``Model.order``), and the coarsest
-grid fine enough to place the scene's features apart (:func:`feature_gap`: a load, support or break within one
+the observed order within ASYMPTOTIC of the order the model's equations promise (``Model.promised_order``), and the
+coarsest grid fine enough to place the scene's features apart (:func:`feature_gap`: a load, support or break within one
 spacing of another is not resolved, and grids that do not resolve it can converge to each other with a clean order
 while all of them are far from the solution), and no result saying that its model's error does not fall regularly
 on its grid (``info["irregular"]``: a layer in transition, whose errors can cancel between grids). Where the grids
@@ -130,7 +130,7 @@ def with_estimate(scene, model, options: dict, run) -> object:
     except InputError:  # a coarser grid than the model's rules allow (e.g. its ends' families would overlap)
         grids, at = nested_grids(n, n + 1)
         results = [run(scene, model, **dict(options, points=g)) for g in grids]
-    est = richardson(results, at, model.measures, model.order, scene)
+    est = richardson(results, at, model.measures, model.promised_order(params), scene)
     result = results[at]
     result.info["estimate"] = {**est.__dict__, "grids": list(est.grids), "line": est.line()}
     if not est.asymptotic:

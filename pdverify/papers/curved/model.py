@@ -216,6 +216,13 @@ class PDCurved(Model):
         segs = segment_grids(scene.length, bps, params["points"], size, density)
         return segs, inner, ends, m, size
 
+    def promised_order(self, params: dict) -> float:
+        """The mixed form converges at order 2 ceil(P / 2), the primal form at 2 floor(P / 2) (docs/models/curved.md,
+        the table of observed orders at L/h = 10)."""
+        p = self.with_defaults(params)
+        P = int(p["degree"])
+        return float(2 * ((P + 1) // 2) if p["form"] == "mixed" else 2 * (P // 2))
+
     def assemble(self, scene: Scene, params: dict, body=None) -> System:
         """The collocation system of all the scene's loads as one :class:`~pdverify.numerics.band.Band`
         (:meth:`assemble_band`), z = (u_t, u_n, φ[, N, Q, M]) interleaved per particle; every unknown is
