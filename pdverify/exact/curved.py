@@ -35,7 +35,7 @@ from ..core.errors import SolveError
 from ..core.geometry import geometry, mechanism_message
 from ..core.result import Result, Timer
 from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene
-from ..numerics.loads import axis_support_side
+from ..numerics.loads import axis_support_side, onto_end_points
 from ..theory.curved_beam import coupling_warning, thick_ring_warning
 
 
@@ -318,10 +318,12 @@ class ExactCurved(Model):
         return out + ([why] if why is not None else [])
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
-        return axis_support_side(scene, x, self.solver(scene).fields(x))
+        return self.evaluator(scene, params)(x)
 
     def evaluator(self, scene: Scene, params: dict):
-        """The solution object built once, its fields at any x (the end points on their supports' side)."""
+        """The solution object built once, its fields at any x (the end points on their supports' side; a point
+        load a few eps from an end is on it, :func:`~pdverify.numerics.loads.onto_end_points`)."""
+        scene = onto_end_points(scene)
         sol = self.solver(scene)
         return lambda x: axis_support_side(scene, x, sol.fields(x))
 
@@ -329,6 +331,7 @@ class ExactCurved(Model):
         timer = Timer()
         with timer("solve"):
             s = np.linspace(0.0, scene.length, params["points"])
+            scene = onto_end_points(scene)
             sol = self.solver(scene)
             f = axis_support_side(scene, s, sol.fields(s))  # the solution's ends hold the beam's side
         info = {"cond": getattr(sol, "cond", 1.0)}  # a cantilever solves nothing: statics and quadrature only

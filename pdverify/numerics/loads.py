@@ -87,6 +87,20 @@ def end_side(scene: Scene, position: float) -> str | None:
     return None
 
 
+def onto_end_points(scene: Scene) -> Scene:
+    """The scene with every point load within :func:`end_side`'s reach of an end moved exactly onto it: a solution
+    whose end conditions take only a load at 0 or L exactly would take one a few eps inside the span in its field and
+    then, at the end point, once more as that end's load."""
+    loads = [
+        ld.model_copy(update={"position": 0.0 if side == "left" else scene.length})
+        if isinstance(ld, (PointForce, PointMoment)) and (side := end_side(scene, ld.position)) is not None
+        else ld
+        for ld in scene.loads
+    ]
+    changed = any(a is not b for a, b in zip(loads, scene.loads))
+    return scene.model_copy(update={"loads": loads}) if changed else scene
+
+
 def end_loads(scene: Scene) -> tuple[dict, dict]:
     """Point force and moment applied exactly at the left (x = 0) and right (x = L) ends."""
     P = {0: 0.0, 1: 0.0}

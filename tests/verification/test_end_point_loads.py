@@ -138,3 +138,22 @@ def test_pd_timoshenko_spring_end_values_carry_the_spring(variant):
     for q in ("V", "M"):
         err = np.abs(r.fields[q] - ex.fields[q]) / np.abs(ex.fields[q]).max()
         assert err[-1] <= 2 * err[2:-2].max() + 1e-9, (q, err[-1])
+
+
+@pytest.mark.parametrize("model, right", [("exact-curved", "pinned"), ("exact-curved-cantilever", "free")])
+@pytest.mark.parametrize("offset", [4.4e-16, 1e-13])
+def test_a_load_a_few_eps_from_an_end_is_on_it(model, right, offset):
+    """A point load within 1e-12 L of an end is that end's (`pdverify.numerics.loads.end_side`). exact-curved took one
+    4.4e-16 inside the span into its field and, at the end point, once more as the end's load: M(0) -120 for -60, the
+    forces twice (and its straight-axis reactions off by the same)."""
+    arc = {"type": "arc", "radius": 2.0 / np.deg2rad(200.0), "opening_angle_deg": 200.0, "start_angle_deg": -40.0}
+
+    def fields(dp):
+        loads = [C(dp, -60.0), F(dp, 90.0), F(2.0 - 2 * dp, 25.0)]
+        d = scene_dict("clamped", right, loads, axis=arc, section={"width": 0.05, "height": 0.05})
+        return run(parse_scene(d), model, points=41).fields
+
+    exact, near = fields(0.0), fields(offset)
+    for key in ("N", "Q", "M"):
+        scale = np.abs(exact[key]).max()
+        assert np.abs(near[key] - exact[key]).max() <= 1e-9 * scale, key
