@@ -7,6 +7,7 @@ None for a missing value (:func:`rows_of` turns a results DataFrame into them).
 
 from __future__ import annotations
 
+import json
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -31,7 +32,7 @@ ROUND_OFF_FACTOR = 100.0
 # ones and vice versa): thick, where the shear deformation ~ (h/L)² is above the 1 % trust tolerance for
 # any shear-flexible section; moderate; slender, where (L/h)² conditioning starts to matter
 SLENDERNESS_BANDS = (("thick", 0.0, 10.0), ("moderate", 10.0, 100.0), ("slender", 100.0, float("inf")))
-# a series converges far below the order its model's equations promise (Model.order) when its observed order is
+# a series converges far below the order its model's equations promise (Model.promised_order) when its observed order is
 # under this fraction of it, on errors above round-off (the finest grid's error above ORDER_NOISE and 10x its bound)
 FAR_BELOW = 0.5
 ORDER_NOISE = 1e-10
@@ -100,7 +101,7 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
         exact = at_round_off(err)
         p, r2 = (float("nan"), float("nan")) if exact else observed_order(h, err)
         flag = (
-            order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound")))
+            order_flag(key[1], p, err[-1], _float(rows[-1].get("error_bound")), rows[0].get("options"))
             if series == "grid"
             else {"promised_order": float("nan"), "below_order": False}
         )
@@ -123,11 +124,14 @@ def _convergence(key: tuple, rows: list[dict]) -> list[dict]:
     return out
 
 
-def order_flag(model: str, observed: float, finest: float, bound: float) -> dict:
-    """``promised_order`` (the model's ``order``) and ``below_order``: the observed order is under FAR_BELOW of it
-    on errors above round-off (an error at round-off has no order)."""
+def order_flag(model: str, observed: float, finest: float, bound: float, options=None) -> dict:
+    """``promised_order`` (the model's :meth:`~pdverify.core.contract.Model.promised_order` with the series'
+    ``options``, a dict or its JSON text) and ``below_order``: the observed order is under FAR_BELOW of it on errors
+    above round-off (an error at round-off has no order)."""
     m = models().get(model)
-    promised = float(m.order) if m is not None and m.order else float("nan")
+    if isinstance(options, str):
+        options = json.loads(options) if options.strip() else {}
+    promised = float(m.promised_order(options or {})) if m is not None and m.order else float("nan")
     resolved = finest > max(ORDER_NOISE, 10 * (bound if np.isfinite(bound) else 0.0))
     below = bool(np.isfinite(observed) and np.isfinite(promised) and resolved and observed < FAR_BELOW * promised)
     return {"promised_order": promised, "below_order": below}

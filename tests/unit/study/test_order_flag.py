@@ -38,3 +38,13 @@ def test_a_series_far_below_its_promised_order_is_flagged(errors, bound, flagged
     (row,) = convergence_rows(series("pd-timoshenko", errors, bound))
     assert row["promised_order"] == 2.0 and FAR_BELOW * 2.0 == 1.0
     assert row["below_order"] is flagged, row
+
+
+def test_pd_curved_s_series_are_held_to_its_degree_s_order():
+    """pd-curved promises 2 ceil(P / 2) in the mixed form (Model.promised_order): a degree-4 series at order 1.03 is
+    far below its 4, where against the 2 every model declared it was not flagged."""
+    rows = series("pd-curved", [1e-2, 4.9e-3, 2.4e-3, 1.17e-3])
+    for r in rows:
+        r["options"] = '{"degree": 4, "form": "mixed"}'
+    (row,) = convergence_rows(rows)
+    assert row["promised_order"] == 4.0 and row["below_order"] is True
