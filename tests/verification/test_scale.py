@@ -127,6 +127,18 @@ def test_pd_curved_solves_the_same_system_in_any_units(options, factors):
     assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))
 
 
+@pytest.mark.parametrize("modulus", [1e300 / 70e9, 1e-300 / 70e9])
+def test_pd_curved_solves_moduli_near_the_float_range_s_ends(modulus):
+    """E = 1e300 or 1e-300: sqrt(EA EI) overflowed (the system held inf: refused), and the load vector of the
+    beam's units came within a few powers of ten of overflow (the round-off bound inf). Both solve as E = 70 GPa."""
+    base = run(parse_scene(scaled("clamped", "free", 1.0, 1.0, 1.0)), "pd-curved", points=21)
+    other = run(parse_scene(scaled("clamped", "free", 1.0, modulus, 1.0)), "pd-curved", points=21)
+    assert other.info["error_bound"] <= 10 * base.info["error_bound"]
+    diff = np.abs(relative(other) - relative(base)).max()
+    assert diff <= tolerance(base, other), (diff, tolerance(base, other))
+    assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))
+
+
 @pytest.mark.parametrize("length", [2.0, 1e3, 1e-3])
 @pytest.mark.parametrize("pair", [("clamped", "free"), ("free", "clamped")])
 def test_a_free_end_s_fitted_ghosts_scale_too(pair, length):

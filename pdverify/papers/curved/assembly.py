@@ -75,6 +75,14 @@ def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, s
     return rows, np.array([rb[r] for r in rows]), (np.concatenate(rr), np.concatenate(rc), np.concatenate(rv))
 
 
+def unit_load(b: np.ndarray) -> float:
+    """The power of two nearest max |b| (1 for a zero or non-finite b): the system solved for b / it and the column
+    scales times it, the same bits, so that neither the solution nor its round-off bound's products come near the
+    float range's ends (E = 1e-300 put max |b| at 7e303 and the bound at inf)."""
+    top = float(np.abs(b).max()) if len(b) else 0.0
+    return float(2.0 ** np.round(np.log2(top))) if top > 0 and np.isfinite(top) else 1.0
+
+
 def resultant_units(length: float, EA: np.ndarray, EI: np.ndarray) -> np.ndarray:
     """Column scales (interleaved per particle) that take (u_t, u_n, φ, N, Q, M) in the beam's own units: lengths
     in L, forces in F = sqrt(EA EI) / L (the geometric mean of the axial force scale EA and the bending one EI / L²),
@@ -82,7 +90,7 @@ def resultant_units(length: float, EA: np.ndarray, EI: np.ndarray) -> np.ndarray
     entries, which is not invariant under a change of the unknowns' units (an I-section at L x 1e6, E x 1e-3 had a
     condition estimate of 2.5e25 where the same beam in metres had 2.2e11). Of the force scales EA, EI / L² and their
     mean, the mean keeps the condition estimate lowest over thick and slender beams (table in docs/models/curved.md)."""
-    F = np.sqrt(EA * EI) / length
+    F = np.sqrt(EA) * np.sqrt(EI) / length  # not sqrt(EA EI): the product overflows at E ~ 1e300
     ones = np.ones_like(F)
     return np.stack([length * ones, length * ones, ones, F, F, F * length], 1).ravel()
 
@@ -152,7 +160,8 @@ def assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, loa
     b *= rs
     cs = 1.0 / ext.abs_max(rows=False)
     ext.scale(cs, rows=False)
-    return B, b, cs * units
+    beta = unit_load(b)
+    return B, b / beta, cs * units * beta
 
 
 def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap, dkap, t, nv, loads):
@@ -212,4 +221,5 @@ def assemble_displacements(scene, params, segs, offs, inner, ends, size, P, kap,
     inv[perm] = np.arange(n_all)
     Cm = K.tocoo()
     K = sp.csr_matrix((Cm.data, (inv[Cm.row], inv[Cm.col])), shape=K.shape)
-    return K, b[perm], units[perm], dict(Eps=Eps, Gam=Gam, Chi=Chi)
+    beta = unit_load(b)
+    return K, b[perm] / beta, units[perm] * beta, dict(Eps=Eps, Gam=Gam, Chi=Chi)

@@ -350,7 +350,7 @@ def _sparse_resultant_system(model, sc, params, body=None):
     import scipy.sparse as sp
 
     from pdverify.papers.curved import pddo as _pddo
-    from pdverify.papers.curved.assembly import conditions, resultant_units
+    from pdverify.papers.curved.assembly import conditions, resultant_units, unit_load
     from pdverify.papers.curved.particles import axis_frame, distributed_loads
 
     segs, inner, ends, m, size = model.discretise(sc, params)
@@ -393,7 +393,8 @@ def _sparse_resultant_system(model, sc, params, body=None):
     Cm = K.tocoo()
     K = sp.csr_matrix((Cm.data, (inv[Cm.row], inv[Cm.col])), shape=K.shape)
     K.eliminate_zeros()
-    return K, b[perm], cscale[perm]
+    beta = unit_load(b)
+    return K, b[perm] / beta, cscale[perm] * beta
 
 
 def _groups(sc):
