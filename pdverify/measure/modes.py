@@ -27,9 +27,9 @@ from ..theory.symbols import frequency_shift
 
 DENSE_DOFS = 300  # up to this many free DOFs a dense eigenvalue solve (every eigenvalue, cheap); ARPACK above
 # an eigenvalue below this fraction of ||D K D|| (about 4,500 eps) is zero to round-off: a computed eigenvalue is
-# within eps ||A|| times its condition number of the exact one (Bauer-Fike; LAPACK Users' Guide 3rd ed., §4.8), and
-# the paper variants' non-symmetric closures' zero-energy modes came out at 1e-14 to 2e-14 ||D K D||, either sign,
-# with the scene's units; a true mode this small has a round-off estimate over 1e-4 and is warned of by it too
+# within eps ||A|| times its condition number of the exact one (Bauer-Fike; LAPACK Users' Guide 3rd ed., §4.8), which
+# for the paper variants' non-symmetric closures' zero-energy modes is far above eps (docs/cli.md); a true mode this
+# small has a round-off estimate over 1e-4 and is warned of by it too
 ZERO_EIGENVALUE = 1e-12
 ROUNDOFF_WARN = 1e-6  # a mode whose round-off estimate exceeds this carries a warning (as solve's bound does)
 

@@ -78,19 +78,18 @@ def conditions(scene: Scene, N: int, offs, segs, inner, ends, t, nv, eq0: int, s
 def unit_load(b: np.ndarray) -> float:
     """The power of two nearest max |b| (1 for a zero or non-finite b): the system solved for b / it and the column
     scales times it, the same bits, so that neither the solution nor its round-off bound's products come near the
-    float range's ends (E = 1e-300 put max |b| at 7e303 and the bound at inf)."""
+    ends of the float range (a modulus of 1e-300 or 1e300)."""
     top = float(np.abs(b).max()) if len(b) else 0.0
     return float(2.0 ** np.round(np.log2(top))) if top > 0 and np.isfinite(top) else 1.0
 
 
 def resultant_units(length: float, EA: np.ndarray, EI: np.ndarray) -> np.ndarray:
     """Column scales (interleaved per particle) that take (u_t, u_n, φ, N, Q, M) in the beam's own units: lengths
-    in L, forces in F = sqrt(EA EI) / L (the geometric mean of the axial force scale EA and the bending one EI / L²),
-    moments in F L. The matrix is then the same for a scene in any units, and so is its equilibration by largest
-    entries, which is not invariant under a change of the unknowns' units (an I-section at L x 1e6, E x 1e-3 had a
-    condition estimate of 2.5e25 where the same beam in metres had 2.2e11). Of the force scales EA, EI / L² and their
-    mean, the mean keeps the condition estimate lowest over thick and slender beams (table in docs/models/curved.md)."""
-    F = np.sqrt(EA) * np.sqrt(EI) / length  # not sqrt(EA EI): the product overflows at E ~ 1e300
+    in L, forces in F = sqrt(EA) sqrt(EI) / L (the geometric mean of the axial force scale EA and the bending one
+    EI / L²), moments in F L. The matrix is then the same for a scene in any units, and so is its equilibration by
+    largest entries, which a change of the unknowns' units alone would alter. Of the force scales EA, EI / L² and
+    their mean, the mean keeps the condition estimate lowest over thick and slender beams (docs/models/curved.md)."""
+    F = np.sqrt(EA) * np.sqrt(EI) / length
     ones = np.ones_like(F)
     return np.stack([length * ones, length * ones, ones, F, F, F * length], 1).ravel()
 

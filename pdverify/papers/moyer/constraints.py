@@ -282,8 +282,8 @@ def _balance(scene: Scene, kind: str, out: dict, rows: list) -> float:
     w = np.array([1.0 if key in ("force", "axial", "torque") else L * L for _, key, at in rows])  # moment/L in N
     if kind == "torsion":
         w[:] = 1.0
-    # the moment equation about mid-span (a mirror image's is the same equation mirrored; about x = 0 the compromise
-    # below moved with the end it was taken from) and over L, in the force equation's unit: where the rows cannot meet
+    # the moment equation about mid-span (a mirror image's is the same equation mirrored; about an end, the
+    # compromise below would depend on which end) and over L, in the force equation's unit: where the rows cannot meet
     # both (one inner support, the rest springs) the least-squares balance then weighs them alike in any length unit
     # and in the mirror image
     S = np.array([[1.0, 0.0], [-0.5, 1.0 / L]])[: A.shape[0], : A.shape[0]]  # (force, moment about 0 / L - force / 2)
