@@ -35,7 +35,7 @@ FACTORS = {  # variant -> {unordered support pair: factor}
     "pd-bond-pair taylor": {"clamped-clamped": 1.9, "clamped-pinned": 1.6, "pinned-pinned": 1.2},
     "pd-bond-pair mirror": {"pinned-pinned": 1.2},
 }  # fmt: skip
-WHY = "its ends and a partial or point load on this support pair (measured: docs/nonlocal.md)"
+WHY = "the measured effect of its ends and of partial or point loads on this support pair (docs/nonlocal.md)"
 
 
 def pair_factor(scene: Scene, variant: str) -> tuple[float, str]:
