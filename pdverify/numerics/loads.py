@@ -170,6 +170,17 @@ def support_side(scene: Scene, values: np.ndarray, field: str, sides=("left", "r
     return out
 
 
+def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
+    """(F·t, F·n, C) of a point load at a point with unit tangent t and normal n (``frame = global``: (axial, value)
+    are its global x and y components)."""
+    if isinstance(load, PointMoment):
+        return 0.0, 0.0, load.value
+    if load.frame == "global":
+        F = np.array([load.axial, load.value])
+        return float(F @ t), float(F @ n), 0.0
+    return load.axial, load.value, 0.0
+
+
 def axis_support_side(scene: Scene, s: np.ndarray, fields: dict) -> dict:
     """``fields``' axis-frame resultants N, Q, M (and V = -Q where given) at the points of ``s`` (arc lengths) on an
     end moved from the beam's side of the point loads there to their support's side, the contract's end values for a
@@ -187,13 +198,7 @@ def axis_support_side(scene: Scene, s: np.ndarray, fields: dict) -> dict:
         if not len(at) or not loads:
             continue
         t, n = geometry(scene).frame(np.array([0.0 if side == "left" else scene.length]))
-        F = np.zeros(3)
-        for ld in loads:
-            if isinstance(ld, PointMoment):
-                F[2] += ld.value
-            else:
-                f = np.array([ld.axial, ld.value])
-                F[:2] += (f @ t[0], f @ n[0]) if ld.frame == "global" else f
+        F = sum((np.array(force_components(ld, t[0], n[0])) for ld in loads), np.zeros(3))
         for c, key in enumerate(("N", "Q", "M")):
             if key in out:
                 out[key] = np.array(out[key], float)

@@ -10,8 +10,8 @@ import scipy.sparse as sp
 
 from ...core.scene import Scene
 from ...numerics.band import Band, Extent
+from ...numerics.loads import force_components
 from . import pddo as _pddo
-from .particles import force_components
 from .supports import held_slots, particle_stiffness, spring_slots, support_at
 
 

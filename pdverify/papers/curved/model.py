@@ -69,7 +69,7 @@ from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.linalg import BOUND_LIMIT, bound_warning, solve_linear
-from ...numerics.loads import axis_support_side
+from ...numerics.loads import axis_support_side, force_components
 from ...theory.curved_beam import coupling_warning, thick_ring_warning
 from .assembly import assemble_displacements, assemble_resultants
 from .outputs import output_map, superposed_bound, weight_rounding
@@ -78,7 +78,6 @@ from .particles import (
     breakpoints,
     default_horizon,
     distributed_loads,
-    force_components,
     given_grids,
     grading_density,
     parse_positions,

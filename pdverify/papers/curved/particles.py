@@ -160,16 +160,6 @@ def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
     return s, m / m[-1]
 
 
-def force_components(load, t: np.ndarray, n: np.ndarray) -> tuple[float, float, float]:
-    """(F·t, F·n, C) of a point load at a point with unit tangent t and normal n."""
-    if isinstance(load, PointMoment):
-        return 0.0, 0.0, load.value
-    if load.frame == "global":
-        F = np.array([load.axial, load.value])
-        return float(F @ t), float(F @ n), 0.0
-    return load.axial, load.value, 0.0
-
-
 def distributed_loads(
     scene: Scene, s: np.ndarray, t: np.ndarray, n: np.ndarray, inside: float
 ) -> tuple[np.ndarray, np.ndarray]:
