@@ -79,10 +79,13 @@ def body_loads(scene: Scene, x: np.ndarray, skip_ends: dict | None = None) -> np
     return q
 
 
+END_POINT = 1e-12  # of the length: a position this close to an end is on its end point
+
+
 def end_side(scene: Scene, position: float) -> str | None:
-    """The end ("left" or "right") whose point ``position`` is on (within 1e-12 L), else None."""
+    """The end ("left" or "right") whose point ``position`` is on (within END_POINT L), else None."""
     for side, xe in (("left", 0.0), ("right", scene.length)):
-        if abs(position - xe) <= 1e-12 * scene.length:
+        if abs(position - xe) <= END_POINT * scene.length:
             return side
     return None
 
@@ -188,8 +191,8 @@ def axis_support_side(scene: Scene, s: np.ndarray, fields: dict) -> dict:
     straight axis :func:`support_side`'s values). A new dict; the other fields as they are."""
     s = np.asarray(s, float)
     out = dict(fields)
-    for side, sign in (("left", 1.0), ("right", -1.0)):
-        at = np.flatnonzero([end_side(scene, v) == side for v in s])
+    for side, sign, xe in (("left", 1.0, 0.0), ("right", -1.0, scene.length)):
+        at = np.flatnonzero(np.abs(s - xe) <= END_POINT * scene.length)
         loads = [
             ld
             for ld in scene.loads
@@ -197,7 +200,7 @@ def axis_support_side(scene: Scene, s: np.ndarray, fields: dict) -> dict:
         ]
         if not len(at) or not loads:
             continue
-        t, n = geometry(scene).frame(np.array([0.0 if side == "left" else scene.length]))
+        t, n = geometry(scene).frame(np.array([xe]))
         F = sum((np.array(force_components(ld, t[0], n[0])) for ld in loads), np.zeros(3))
         for c, key in enumerate(("N", "Q", "M")):
             if key in out:
