@@ -68,7 +68,8 @@ def load_column(build, scene: Scene, disc: Discrete, hold: Hold) -> dict[int, fl
         with_load = scene.model_copy(update={"loads": [_unit_load(hold.reaction, hold.position)]})
         without = scene.model_copy(update={"loads": []})
         col = build(with_load).b - build(without).b
-    nz = np.flatnonzero(np.abs(col) > 1e-14 * np.abs(col).max())
+    size = np.abs(col).reshape(-1, nf).max(axis=0)  # each field's rows in their own units (w and γ: a length apart)
+    nz = np.flatnonzero(np.abs(col) > 1e-14 * np.tile(size, len(x)))
     return {int(d): float(col[d]) for d in nz}
 
 
