@@ -171,7 +171,7 @@ def verify(
     t0 = time.perf_counter()
     options = dict(options or {})
     model = get_model(model_name)
-    expected = order if order is not None else model.order
+    expected = expected_order(model, options, order)
     out = Path(out)
     grid = [f"{k}: the suite sets the grids; drop it" for k in options if k in ("points", "spacing")]
     if grid:
@@ -188,6 +188,12 @@ def verify(
     card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}
     write_card(card, out)
     return card
+
+
+def expected_order(model, options: dict, order: float | None = None) -> float:
+    """The order a card holds the model to: ``order`` (``--order``) when given, else the order its equations
+    promise with these options (:meth:`~pdverify.core.contract.Model.promised_order`: pd-curved's degree sets it)."""
+    return float(order) if order is not None else model.promised_order(model.with_defaults(options))
 
 
 def runnable(p, declined: dict):

@@ -374,3 +374,25 @@ def test_the_engineers_scenes_reference_is_chosen_over_the_scenes_the_options_ta
     run_plan = runnable(p, declined)
     assert run_plan.engineering_reference == p.reference
     assert not {m["name"] for f, m in p.meta.items() if f in run_plan.scenes} & refused
+
+
+@pytest.mark.parametrize(
+    "options, order",
+    [
+        ({}, 4.0),
+        ({"degree": 2}, 2.0),
+        ({"degree": 3}, 4.0),
+        ({"degree": 6}, 6.0),
+        ({"degree": 3, "form": "primal"}, 2.0),
+    ],
+)
+def test_a_card_holds_pd_curved_to_the_order_its_degree_promises(options, order):
+    """pd-curved's mixed form converges at 2 ceil(P / 2), its primal at 2 floor(P / 2) (docs/models/curved.md): a
+    card of the default degree 4 or of 6 expected order 2 (Model.order) and passed a model converging at that order."""
+    from pdverify.registry import get_model
+    from pdverify.verify import expected_order
+
+    model = get_model("pd-curved")
+    assert expected_order(model, options) == order
+    assert expected_order(model, options, order=1.5) == 1.5
+    assert expected_order(get_model("pd-eb"), {}) == get_model("pd-eb").order
