@@ -40,7 +40,7 @@ from ..core.contract import Option
 from ..core.errors import InputError, SolveError
 from ..core.result import columns_csv
 from .steps import sample_count
-from .timeint import EnergyLedger, ledger_columns
+from .timeint import EnergyLedger, ledger_columns, step_count
 
 ANALYSIS = Option(
     "analysis",
@@ -165,9 +165,10 @@ def integrate(
         omega1 = float(np.sqrt(extreme_eigenvalue(Kt, smallest=True)))
     if damping_ratio is not None:
         damping = 2.0 * damping_ratio * omega1
+    source = "default" if dt is None else "time_step"
     dt = safety * limit if dt is None else float(dt)
-    if steps is None:  # whole steps that end at t_end (each at most dt: as stable)
-        steps = int(np.ceil(t_end / dt - 1e-9))
+    if steps is None:  # whole steps that end at t_end (each at most dt: as stable); exit 2 past the limit
+        steps = step_count(t_end, dt, source, limit)
         dt = t_end / steps
     steps = int(steps)
     if output_interval:

@@ -248,6 +248,20 @@ CLI_CASES = [
     ("modes-density-tiny", ["modes", "{dyn_tiny_rho}", "-m", "pd-timoshenko"], 3, "floating-point range"),
     ("advise-every-load-zero", ["advise", "{zero_load}"], 2, "every load is zero"),
     ("time-step-above-end-time", ["solve", "{dyn_long_step}", "-m", "fem-timoshenko"], 2, "longer than end_time"),
+    # the explicit transients of pd-eb, pd-bond-pair and pd-higher-order counted their steps without the limit (hang)
+    *[
+        (
+            f"{model}-transient-{what}-above-the-step-limit",
+            ["solve", f"{{{scene}}}", "-m", model, "--points", "21"],
+            2,
+            text,
+        )
+        for model in ("pd-eb", "pd-bond-pair", "pd-higher-order")
+        for what, scene, text in (
+            ("time-step", "dyn_tiny_step", "dynamics.time_step = 1e-13 s with end_time = 0.05 s asks for 5e+11 steps"),
+            ("end-time", "dyn_end_1e300", "dynamics.end_time = 1e+300 s with the model's time step"),
+        )
+    ],
     ("exact-torsion-profile-without-J", ["solve", "{shaft_profile}", "-m", "exact-torsion"], 2, "torsion_constant"),
     ("pd-torsion-profile-without-J", ["solve", "{shaft_profile}", "-m", "pd-torsion"], 2, "J of every section"),
     ("unknown-command", ["nosuch"], 2, "nosuch"),
@@ -450,6 +464,8 @@ def files(tmp_path_factory):
         dyn.replace('type = "distributed"', 'type = "point_force"\nposition = 1.0000001')
     )
     (d / "dyn_long_step.toml").write_text(dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1.0\n"))
+    (d / "dyn_tiny_step.toml").write_text(dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1e-13\n"))
+    (d / "dyn_end_1e300.toml").write_text(re.sub(r"end_time = [0-9.e+-]+", "end_time = 1e300", dyn))
     (d / "zero_load.toml").write_text(re.sub(r"value = [0-9.e+-]+", "value = 0.0", text))
     (d / "shaft_profile.toml").write_text(
         'name = "T shaft"\nbeam = {length = 1.0}\nsection = {shape = "profile", y = [0.0, 0.2, 0.2, 0.24], '
@@ -523,6 +539,8 @@ def files(tmp_path_factory):
         "dyn_tiny_rho": d / "dyn_tiny_rho.toml",
         "shaft_profile": d / "shaft_profile.toml",
         "dyn_long_step": d / "dyn_long_step.toml",
+        "dyn_tiny_step": d / "dyn_tiny_step.toml",
+        "dyn_end_1e300": d / "dyn_end_1e300.toml",
         "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",
         "study_bench5": d / "study_bench5.toml",
