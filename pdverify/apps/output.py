@@ -56,10 +56,12 @@ def out_format(out: Path | None, fmt: Format | None) -> Format:
 
 def target(out: Path, option: str) -> Path:
     """The file a write to ``out`` replaces: ``out``, or the file a symlink at ``out`` names. Only a regular file, or
-    one that does not exist yet, is ever written: a folder, a device (``/dev/full``), a FIFO or a socket, or a
-    symlink to one, is refused (OutputError, exit 4) before anything is computed."""
+    one that does not exist yet, is ever written: a folder, a device (``/dev/full``), a FIFO or a socket, a symlink to
+    one, or a symlink to nothing, is refused (OutputError, exit 4) before anything is computed."""
     real = Path(os.path.realpath(out)) if out.is_symlink() else out
     via = f" (a symlink to {real})" if real != out else ""
+    if via and not os.path.lexists(real):  # writing there would make its folders anywhere the link points
+        raise OutputError(f"{option} {out}{via}: a symlink to nothing; give a file path, or make {real} first")
     if real.is_dir():
         example = "pdverify.xml" if option == "--junit" else "result.csv"
         raise OutputError(f"{option} {out}{via}: is a folder; give a file name, e.g. {out / example}")

@@ -160,6 +160,12 @@ CLI_CASES = [
     ("solve-out-fifo", ["solve", "{scene}", "-m", "exact-eb", "--out", "{fifo}"], 4, "not a regular file"),
     ("solve-out-link-to-folder", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dir}"], 4, "is a folder"),
     ("solve-out-link-to-device", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dev}"], 4, "a symlink to"),
+    (  # writing through it made the folders of its target, wherever it points
+        "solve-out-link-to-nothing",
+        ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_nothing}"],
+        4,
+        "a symlink to nothing",
+    ),
     ("study-junit-device", ["study", "{study}", "--out", "{tmp}/o1", "--junit", "/dev/full"], 4, "--junit /dev/full"),
     ("study-junit-folder", ["study", "{study}", "--out", "{tmp}/o2", "--junit", "{tmp}"], 4, "--junit"),
     ("study-out-is-file", ["study", "{study}", "--out", "{file}"], 4, "is a file, not a folder"),
@@ -457,6 +463,7 @@ def files(tmp_path_factory):
     os.mkfifo(d / "fifo.csv")
     (d / "link_dir").symlink_to(d / "empty")
     (d / "link_dev.csv").symlink_to("/dev/full")
+    (d / "link_nothing.csv").symlink_to(d / "missing" / "x.csv")
     dyn = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
     (d / "dyn.toml").write_text(dyn)
     (d / "dyn_tiny_rho.toml").write_text(re.sub(r"density = [0-9.e+-]+", "density = 1e-300", dyn))
@@ -535,6 +542,7 @@ def files(tmp_path_factory):
         "fifo": d / "fifo.csv",
         "link_dir": d / "link_dir",
         "link_dev": d / "link_dev.csv",
+        "link_nothing": d / "link_nothing.csv",
         "dyn": d / "dyn.toml",
         "dyn_tiny_rho": d / "dyn_tiny_rho.toml",
         "shaft_profile": d / "shaft_profile.toml",
@@ -578,6 +586,7 @@ def test_bad_cli_input(args, code, text, files, capsys):
     argv = [a.format(**files) for a in args]
     assert_one_error_line(*cli(argv, capsys), code, text.format(**files))
     assert not list(files["tmp"].glob("*.json")) and not list(files["tmp"].glob(".*tmp*"))  # nothing half-written
+    assert not files["link_nothing"].parent.joinpath("missing").exists()  # no folder made along a symlink
 
 
 @pytest.mark.parametrize(
