@@ -45,6 +45,20 @@ from .result import Result
 from .scene import Scene, straight_mechanism
 
 
+def _whole(value) -> int:
+    """``value`` as a whole number: an integer (or its digits) exactly, whatever its size (2**53 + 1 through a float
+    would be 2**53); a number with a fractional part is a ValueError."""
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    try:
+        return int(str(value).strip())
+    except ValueError:
+        f = float(value)
+        if f != int(f):
+            raise ValueError from None
+        return int(f)
+
+
 @dataclass(frozen=True)
 class Option:
     """One option a model takes. ``minimum`` is inclusive unless ``strict``."""
@@ -63,10 +77,7 @@ class Option:
             if isinstance(value, bool) and self.kind in (int, float):
                 raise ValueError  # numbers never from true/false
             if self.kind is int:
-                f = float(value)
-                if f != int(f):
-                    raise ValueError
-                v = int(f)
+                v = _whole(value)
             elif self.kind is float:
                 v = float(value)
                 if not np.isfinite(v):

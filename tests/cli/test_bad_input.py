@@ -70,6 +70,12 @@ CLI_CASES = [
         2,
         "points <= 9.0072e+15",
     ),
+    (  # through a float 2**53 + 1 was 2**53, within the limit: the memory guard's exit 3
+        "solve-points-past-2-53",
+        ["solve", "{scene}", "-m", "exact-eb", "--points", str(2**53 + 1)],
+        2,
+        "points <= 9.0072e+15",
+    ),
     ("solve-spacing-1e-300", ["solve", "{scene}", "-m", "exact-eb", "--spacing", "1e-300"], 2, "points = 1e+300"),
     ("solve-exact-points-beyond-memory", ["solve", "{scene}", "-m", "exact-eb", "--points", str(2**52)], 3, "GiB"),
     ("modes-points-beyond-memory", ["modes", "{dyn}", "-m", "pd-timoshenko", "--points", str(2**52)], 3, "GiB"),
