@@ -207,3 +207,42 @@ def test_a_distance_of_whole_spacings_warns_alike_at_every_scale(scale):
     words = lambda r: sorted(re.sub(r"[-+0-9.e]+", "#", w) for w in r.info.get("warnings", []))  # noqa: E731
     assert words(other) == words(base)
     assert np.allclose(other.w / np.abs(other.w).max(), base.w / np.abs(base.w).max(), rtol=0, atol=1e-12)
+
+
+JOINT_SCENE = {
+    "name": "stepped beam clamped at its step",
+    "beam": {"length": 2.0},
+    "section": {"width": 0.05, "height": 0.1},
+    "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+    "supports": {"left": "pinned", "right": "roller", "inner": [{"position": 0.8, "type": "clamped"}]},
+    "loads": [{"type": "point_moment", "position": 1.2, "value": 300.0}],
+    "segments": [{"start": 0.0, "end": 0.8, "section": {"width": 0.05, "height": 0.03}}, {"start": 0.8, "end": 2.0}],
+}
+
+
+@pytest.mark.parametrize("support", ["clamped", "pinned", "rotational spring"])
+def test_a_support_holding_the_rotation_on_a_segment_joint_says_it_is_first_order(support):
+    """A clamp (or a rotational spring) on a joint: the moment jumps by its couple where the joint's calibrated
+    flexibility assumes it continuous, and the deflection converges at first order with a large constant (the
+    numbers the warning quotes: scenes.SUPPORT_ON_JOINT). It gave no warning: a clamp 1e-3 off the joint was
+    flagged (its rows straddle the joint), one on it was not. A pinned support there holds no couple: no warning,
+    second order."""
+    d = dict(JOINT_SCENE)
+    inner = {"clamped": {"type": "clamped"}, "pinned": {"type": "pinned"}}.get(
+        support, {"type": "spring", "stiffness": 1e9, "rotational_stiffness": 1e6}
+    )
+    d["supports"] = dict(d["supports"], inner=[{"position": 0.8, **inner}])
+    sc = parse_scene(d)
+    errors, said = [], []
+    for points in (41, 161, 641):
+        r = run(sc, "pd-eb", points=points)
+        w = np.asarray(run(sc, "exact-eb", points=points).w)
+        errors.append(np.abs(np.asarray(r.w) - w).max() / np.abs(w).max())
+        said.append([m for m in r.info.get("warnings", []) if "is on a segment joint" in m])
+    order = np.log(errors[1] / errors[2]) / np.log(4)
+    if support == "pinned":
+        assert not any(said) and order > 1.8, (errors, said)
+        return
+    assert all(len(s) == 1 for s in said) and order < 1.2, (errors, said)
+    if support == "clamped":
+        assert np.allclose(errors, [0.27, 0.11, 0.035], rtol=0.05), errors  # SUPPORT_ON_JOINT quotes them
