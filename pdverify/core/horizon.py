@@ -156,9 +156,10 @@ class Horizon:
         :mod:`pdverify.theory.symbols`); None where it is not derived."""
         return None
 
-    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+    def model_error_ends(self, scene: Scene, params: dict, delta: float) -> tuple[float, str]:
         """(factor, why): how many times the first sine mode's model error g (pi delta / L)^2 the variant's ends may
-        make it on ``scene``'s supports, measured (docs/nonlocal.md); (1, "") where its ends add nothing known."""
+        make it on ``scene``'s supports at the horizon ``delta`` (a length), measured (docs/nonlocal.md); (1, "")
+        where its ends add nothing known."""
         return 1.0, ""
 
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:

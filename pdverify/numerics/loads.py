@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.geometry import geometry
-from ..core.scene import Distributed, PointForce, PointMoment, Scene
+from ..core.scene import Distributed, PointForce, PointMoment, PointTorque, Scene
 
 TIE = 1e-9  # spacings: a distance this close to a threshold of whole spacings counts as on it, so that the rounding
 # of a position (a scaled or mirrored scene's) decides no warning either way
@@ -80,6 +80,33 @@ def body_loads(scene: Scene, x: np.ndarray, skip_ends: dict | None = None) -> np
 
 
 END_POINT = 1e-12  # of the length: a position this close to an end is on its end point
+POINT_SPAN = 1e-9  # of the length: a grid model's narrowest distributed load (Model.point_span)
+
+
+def narrow_spans_as_points(scene: Scene, fraction: float) -> Scene:
+    """The scene with each distributed load narrower than ``fraction`` of the length replaced by its resultant at
+    its span's middle (a point force; its torque a point torque, listed after the loads): a grid model's loads
+    round span ends to its points, and such a span's two ends to one (the load lost), while the point force differs
+    from it by O((span / L)^2) relative. The loads keep their indices."""
+    L = scene.length
+    loads, torques = [], []
+    for load in scene.loads:
+        a, b = scene.span(load) if isinstance(load, Distributed) else (0.0, L)
+        if not (isinstance(load, Distributed) and b - a < fraction * L):
+            loads.append(load)
+            continue
+        mid, width = 0.5 * (a + b), b - a
+        value = load.value * float(scene.load_shape(load, mid)) * width
+        loads.append(
+            PointForce(type="point_force", position=mid, value=value, axial=load.axial * width, frame=load.frame)
+        )
+        if load.torque:
+            torques.append(PointTorque(type="point_torque", position=mid, value=load.torque * width))
+    return (
+        scene
+        if len(torques) == 0 and all(a is b for a, b in zip(loads, scene.loads))
+        else scene.model_copy(update={"loads": loads + torques})
+    )
 
 
 def end_side(scene: Scene, position: float) -> str | None:

@@ -123,7 +123,7 @@ def model_error_warning(model, scene: Scene, info: dict, params: dict | None = N
     if g is None or not delta:
         return ""
     size = g * (math.pi * float(delta) / scene.length) ** 2  # negative: stiffer than the local theory
-    factor, why = model.model_error_ends(scene, params or {})
+    factor, why = model.model_error_ends(scene, params or {}, float(delta))
     if abs(size) * factor <= MODEL_ERROR_LIMIT:
         return ""
     ends = f"; {why} makes it up to {factor:g} times that, {100 * abs(size) * factor:.2g} %" if factor > 1 else ""

@@ -47,6 +47,7 @@ from ...core.result import Result, Timer, merge_info
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.loads import (
+    POINT_SPAN,
     boundary_layer_warnings,
     couple_at_joint_warnings,
     edge_layer_warnings,
@@ -159,6 +160,7 @@ class PDEulerBernoulli(Model):
     eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params)
     springs = True
     inner_supports = True
+    point_span = POINT_SPAN  # a span whose ends round to one point (numerics.loads)
     segments = True
     full_volumes = "paper"  # its sums take full volumes up to delta
     variant_rules = (
@@ -182,10 +184,10 @@ class PDEulerBernoulli(Model):
         """1/18: the curvature's symbol s(z)^2 = 1 - z^2/18 + ... (docs/nonlocal.md)."""
         return GRADIENT["curvature"]
 
-    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+    def model_error_ends(self, scene: Scene, params: dict, delta: float) -> tuple[float, str]:
         """Measured per variant and support pair (:mod:`pdverify.theory.model_error`): the paper variant's clamped
         ends (the Appendix's mirror images about the clamped point) add a model error of the same order in delta."""
-        return pair_factor(scene, f"pd-eb {self.with_defaults(params)['variant']}")
+        return pair_factor(scene, f"pd-eb {self.with_defaults(params)['variant']}", delta)
 
     def horizon_offset(self, params: dict) -> float:
         """Eq. 32: delta = (m + 0.015) dx in the paper variant."""

@@ -72,9 +72,9 @@ class PDTimoshenko(_MoyerModel):
         """7/72: the bending part of w's symbol, the larger of its two (the shear part's 1/18; docs/nonlocal.md)."""
         return GRADIENT["timoshenko-bending"]
 
-    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+    def model_error_ends(self, scene: Scene, params: dict, delta: float) -> tuple[float, str]:
         """Measured per variant and support pair (:mod:`pdverify.theory.model_error`)."""
-        return pair_factor(scene, f"pd-timoshenko {self.with_defaults(params)['variant']}")
+        return pair_factor(scene, f"pd-timoshenko {self.with_defaults(params)['variant']}", delta)
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])

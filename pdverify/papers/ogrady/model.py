@@ -244,9 +244,10 @@ class PDBondPair(Model):
         """1/10: the bond-pair symbol with omega = 1 (docs/nonlocal.md; O'Grady & Foster 2014, Appendix B)."""
         return GRADIENT["bond-pair"]
 
-    def model_error_ends(self, scene: Scene, params: dict) -> tuple[float, str]:
+    def model_error_ends(self, scene: Scene, params: dict, delta: float) -> tuple[float, str]:
         """Measured per ends and support pair (:mod:`pdverify.theory.model_error`)."""
-        return pair_factor(scene, f"pd-bond-pair {resolved_ends(scene, self.with_defaults(params))['ends']}")
+        ends = resolved_ends(scene, self.with_defaults(params))["ends"]
+        return pair_factor(scene, f"pd-bond-pair {ends}", delta)
 
     def eigenproblem(self, scene: Scene, params: dict):
         return dynamics.eigenproblem(self, scene, resolved_ends(scene, params))
