@@ -403,3 +403,27 @@ def test_continuum_m_is_bounded_where_its_cost_is():
     assert got.info["continuum_levels"][-1] <= 32 + 1e-9
     with pytest.raises(InputError, match="give continuum_m <= 32"):
         run(inner, "pd-bond-pair", points=81, horizon_length=0.1, continuum=True, continuum_m=64)
+
+
+def test_the_factor_follows_the_horizon():
+    """Up to 0.1 L the factors measured at 0.05 and 0.1 L; past it the larger of those and 0.2 L's; past 0.2 L the
+    same, said to be unmeasured there (pdverify/theory/model_error.py)."""
+    from pdverify.theory.model_error import FACTORS, FACTORS_02, pair_factor
+
+    sc = parse_scene(
+        {
+            "name": "t",
+            "beam": {"length": 2.0},
+            "section": {"width": 0.01, "height": 0.01},
+            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+            "supports": {"left": "clamped", "right": "clamped"},
+            "loads": [],
+        }  # fmt: skip
+    )
+    near = FACTORS["pd-eb corrected"]["clamped-clamped"]
+    far = max(near, FACTORS_02["pd-eb corrected"]["clamped-clamped"])
+    assert pair_factor(sc, "pd-eb corrected", 0.1 * 2.0)[0] == near
+    assert pair_factor(sc, "pd-eb corrected", 0.15 * 2.0)[0] == far > near
+    factor, why = pair_factor(sc, "pd-eb corrected", 0.3 * 2.0)
+    assert factor == far and "measured up to delta = 0.2 L" in why
+    assert "measured up to" not in pair_factor(sc, "pd-eb corrected", 0.2 * 2.0)[1]
