@@ -151,4 +151,6 @@ def given_path(text: str) -> Path:
     error, not the current folder that ``Path("")`` would be."""
     if not str(text).strip():
         raise typer.BadParameter("an empty path; give a file or folder name ('.' for the current folder)")
+    if str(text).strip() == "-":  # not standard output: a file named "-" would be written
+        raise typer.BadParameter("'-': output goes to standard output without --out; give a file or folder name")
     return Path(text)

@@ -166,6 +166,7 @@ CLI_CASES = [
     ("solve-out-fifo", ["solve", "{scene}", "-m", "exact-eb", "--out", "{fifo}"], 4, "not a regular file"),
     ("solve-out-link-to-folder", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dir}"], 4, "is a folder"),
     ("solve-out-link-to-device", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dev}"], 4, "a symlink to"),
+    ("solve-out-dash", ["solve", "{scene}", "-m", "exact-eb", "--out", "-"], 2, "'-': output goes to standard output"),
     (  # writing through it made the folders of its target, wherever it points
         "solve-out-link-to-nothing",
         ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_nothing}"],
