@@ -21,7 +21,7 @@ from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.numerics.band import Band
 from pdverify.numerics.linalg import solve_linear
-from pdverify.numerics.loads import POINT_SPAN, support_side
+from pdverify.numerics.loads import support_side
 
 from .beam_elements import (
     add_springs,
@@ -54,7 +54,6 @@ class _BeamFE(Model):
 
     springs = True
     inner_supports = True
-    point_span = POINT_SPAN  # a span whose ends round to one point (numerics.loads)
     segments = True
 
     def assemble_band(self, scene: Scene, params: dict):  # pragma: no cover - interface

@@ -247,8 +247,6 @@ class Model(Horizon):
     segments: bool = False  # sections and materials that change along the axis ([[segments]])
     shapes: frozenset[str] = frozenset({"rectangle", "given", "I", "profile"})  # section kinds (Section.kind) it takes
     load_types: frozenset[str] = LOAD_TYPES  # loads[i].type it applies
-    point_span: float = 0.0  # a distributed load narrower than this fraction of the length acts as its resultant at
-    # its middle (numerics.loads.narrow_spans_as_points): a grid model whose span ends round to its points
     materials: frozenset[str] = frozenset()  # material laws past elasticity it takes: yield_stress, failure_strain
     load_path: bool = False  # follows a [loading] path (load factors, steps, unloading)
     end_motions: bool = False  # prescribed end motions ([dynamics.left/right]) in its solution

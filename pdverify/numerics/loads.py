@@ -80,14 +80,15 @@ def body_loads(scene: Scene, x: np.ndarray, skip_ends: dict | None = None) -> np
 
 
 END_POINT = 1e-12  # of the length: a position this close to an end is on its end point
-POINT_SPAN = 1e-9  # of the length: a grid model's narrowest distributed load (Model.point_span)
+POINT_SPAN = 1e-9  # of the length: a narrower distributed load is a point force (narrow_spans_as_points)
 
 
 def narrow_spans_as_points(scene: Scene, fraction: float) -> Scene:
     """The scene with each distributed load narrower than ``fraction`` of the length replaced by its resultant at
-    its span's middle (a point force; its torque a point torque, listed after the loads): a grid model's loads
-    round span ends to its points, and such a span's two ends to one (the load lost), while the point force differs
-    from it by O((span / L)^2) relative. The loads keep their indices."""
+    its span's middle (a point force; its torque a point torque, listed after the loads), which differs from it by
+    O((span / L)^2) relative: below eps / 100 for ``fraction`` = :data:`POINT_SPAN`, where the models that round
+    span ends to their points or nodes round both ends to one and lose the load, and others lose digits. The loads
+    keep their indices."""
     L = scene.length
     loads, torques = [], []
     for load in scene.loads:

@@ -37,7 +37,7 @@ from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite, quantity_of
 from ..core.scene import Scene
 from ..core.scene_file import parse_scene
-from ..numerics.loads import narrow_spans_as_points
+from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
 from .external import ExternalModel, load_manifest
 from .plugins import discover, remember_manifest
@@ -209,8 +209,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if found:
         raise InputError(found)
     params = m.resolve(scene, given)  # the options, their variant's rules included
-    if m.point_span:
-        scene = narrow_spans_as_points(scene, m.point_span)
+    scene = narrow_spans_as_points(scene, POINT_SPAN)  # a span whose two ends would round to one point
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             solved = continuum_solution(m, scene, params) if params.get("continuum") else m.solve(scene, params)

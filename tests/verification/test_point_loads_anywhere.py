@@ -159,7 +159,10 @@ def test_a_couple_on_a_segment_joint_is_first_order_and_warned(name, reference, 
     assert errors[0] > 10 * errors[1], errors
 
 
-NARROW_MODELS = ["pd-eb", "pd-curved", "fem-eb", "fem-timoshenko", "pd-timoshenko", "pd-bond-pair", "exact-eb"]
+NARROW_MODELS = [
+    "pd-eb", "pd-curved", "fem-eb", "fem-timoshenko", "pd-timoshenko", "pd-bond-pair", "pd-higher-order", "exact-eb",
+    "exact-curved", "exact-higher-order", "fem-plane-stress",
+]  # fmt: skip
 
 
 @pytest.mark.parametrize("width", [1e-12, 1e-10, 1e-9])
@@ -167,8 +170,9 @@ NARROW_MODELS = ["pd-eb", "pd-curved", "fem-eb", "fem-timoshenko", "pd-timoshenk
 def test_a_load_on_a_narrow_span_acts_as_its_resultant(model, width):
     """1 N spread over a span of 1e-12 ... 1e-9 m at 0.7 m of a 2 m cantilever acts as a 1 N force in its middle: the
     two differ by O(width / L) in w. pd-eb and pd-curved rounded such a span's two ends to one point and lost the
-    load (w = 0 everywhere, no warning: pd-curved from 1e-9 m down, pd-eb from 1e-11 m); fem-eb made it an element
-    1e-12 m long and lost 4e-5 of w to its rounding (round-off bound 4e-15)."""
+    load (w = 0 everywhere, no warning: pd-curved from 1e-9 m down, pd-eb from 1e-11 m), and so did fem-plane-stress
+    and exact-curved at 1e-12 m; fem-eb made it an element 1e-12 m long and lost 4e-5 of w to its rounding (round-off
+    bound 4e-15), exact-higher-order 2.2e-5 of it."""
     span = (0.7 + width) - 0.7  # the span the floats hold (1.0000889e-12 for 1e-12)
     d = scene_dict("clamped", "free", [{"type": "distributed", "value": -1.0 / span, "start": 0.7, "end": 0.7 + width}])
     spread = run(parse_scene(d), model, points=41)

@@ -69,7 +69,7 @@ from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.band import Band
 from ...numerics.linalg import BOUND_LIMIT, bound_warning, solve_linear
-from ...numerics.loads import POINT_SPAN, axis_support_side, force_components
+from ...numerics.loads import axis_support_side, force_components
 from ...theory.curved_beam import coupling_warning, thick_ring_warning
 from .assembly import assemble_displacements, assemble_resultants
 from .outputs import output_map, superposed_bound, weight_rounding
@@ -157,7 +157,6 @@ class PDCurved(Model):
     assembles = True
     springs = True  # straight axes (the scene's rule): breaks with their own conditions (.supports)
     inner_supports = True
-    point_span = POINT_SPAN  # a span whose ends round to one point (numerics.loads)
     segments = True
     whole_horizon = "Eq. 27-35: PDDO families of 2m + 1 particles"
 

@@ -47,7 +47,6 @@ from ...core.result import Result, Timer, merge_info
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.loads import (
-    POINT_SPAN,
     boundary_layer_warnings,
     couple_at_joint_warnings,
     edge_layer_warnings,
@@ -160,7 +159,6 @@ class PDEulerBernoulli(Model):
     eigenproblem, bench_dynamics = dynamics.eigenproblem, dynamics.bench  # (self, scene, params)
     springs = True
     inner_supports = True
-    point_span = POINT_SPAN  # a span whose ends round to one point (numerics.loads)
     segments = True
     full_volumes = "paper"  # its sums take full volumes up to delta
     variant_rules = (
