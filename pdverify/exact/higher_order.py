@@ -189,7 +189,9 @@ class Solution:
         for load in scene.loads:
             if isinstance(load, Distributed) and load.value != 0.0:
                 a, b = scene.span(load)
-                dist.append((a / h, b / h, load.shape, load.value / (self.Ep * self.b)))
+                A, B = a / h, b / h  # in depths, each end rounded: the span's resultant kept as given
+                keep = (b - a) / h / (B - A) if B > A else 1.0
+                dist.append((A, B, load.shape, keep * load.value / (self.Ep * self.b)))
             elif isinstance(load, (PointForce, PointMoment)) and load.value != 0.0:
                 point.append((load.position / h, load))
         self.holds = [  # (label, kind, position / h, stiffness or None, end or None) of each reaction as an unknown
