@@ -188,10 +188,8 @@ class Solution:
         point, dist = [], []
         for load in scene.loads:
             if isinstance(load, Distributed) and load.value != 0.0:
-                a, b = scene.span(load)
-                A, B = a / h, b / h  # in depths, each end rounded: the span's resultant kept as given
-                keep = (b - a) / h / (B - A) if B > A else 1.0
-                dist.append((A, B, load.shape, keep * load.value / (self.Ep * self.b)))
+                a, b = scene.span(load)  # its resultant: the width (b - a) / h, not that of its ends rounded in depths
+                dist.append((a / h, b / h, load.shape, (b - a) / h / (b / h - a / h) * load.value / (self.Ep * self.b)))
             elif isinstance(load, (PointForce, PointMoment)) and load.value != 0.0:
                 point.append((load.position / h, load))
         self.holds = [  # (label, kind, position / h, stiffness or None, end or None) of each reaction as an unknown
