@@ -83,6 +83,7 @@ from .particles import (
     parse_positions,
     segment_grids,
 )
+from .resolution import frame_defect, resolution_warning
 from .supports import axial_mechanism, particle_stiffness, reactions
 
 PRIMAL_LOCKS = (  # docs/models/curved.md, "Locking": studies/paper_curved_quintic_bending.toml, 201 particles, P = 2
@@ -255,7 +256,7 @@ class PDCurved(Model):
         if body is not None:
             bt, bn, bm = body(s, xa)
             pt, pn, mm = pt + bt, pn + bn, mm + bm
-        data = dict(s=s, segs=segs, offs=offs, N=N, t=t, n=nv, horizon=m, family=size)
+        data = dict(s=s, segs=segs, offs=offs, N=N, t=t, n=nv, kappa=kap, horizon=m, family=size)
         if six:
             B, b, cs = assemble_resultants(scene, segs, offs, inner, ends, size, P, kap, t, nv, (pt, pn, mm))
             nf = 6
@@ -306,9 +307,13 @@ class PDCurved(Model):
             warnings.add(bound_warning(info["error_bound"]))
         if params["form"] == "primal":
             warnings.add(PRIMAL_LOCKS)
+        defect = max(i.get("frame_defect", 0.0) for i in infos)
+        if params["form"] == "mixed":
+            info["frame_defect"] = defect
         for flag in (
             thick_ring_warning(scene),
             coupling_warning(scene, total["x"] / len(infos), total["N"], total["M"]),
+            resolution_warning(defect, params["degree"]) if params["form"] == "mixed" else "",
         ):
             if flag:
                 warnings.add(flag)
@@ -366,6 +371,9 @@ class PDCurved(Model):
         ux = ut * t[:, 0] + un * nv[:, 0]
         uy = ut * t[:, 1] + un * nv[:, 1]
         info["bound_scale"] = float(max(np.abs(ux).max(), np.abs(uy).max()))  # the bound's 1 (superposed_bound)
+        if params["form"] == "mixed":  # the primal form warns of its locking whatever the grid
+            frames = [(t[a:b], nv[a:b], d["kappa"][a:b]) for a, b in zip(d["offs"][:-1], d["offs"][1:])]
+            info["frame_defect"] = frame_defect(d["segs"], frames, params["degree"], d["family"], scene.length)
         fields = {
             "x": d["x"],
             "w": T @ un,
