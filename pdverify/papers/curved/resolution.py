@@ -17,7 +17,7 @@ from . import pddo as _pddo
 # frame_defect past which, in the mixed form of degree P, most of the measured runs were more than 10 % off: 87
 # curved scenes (arcs of 10 to 350 degrees, quadratic, cubic and sine axes, the studies' scenes; support pairs;
 # L/h = 5 to 1e4) at 11 to 321 particles (benchmarks/curved_resolution.py, docs/models/curved.md)
-LIMITS = {2: 0.02, 4: 0.015, 6: 1.1e-4}
+LIMITS = {2: 0.02, 3: 0.0015, 4: 0.015, 5: 3e-4, 6: 1.1e-4}
 STRAIGHT = 1e-12  # max |kappa| L below this: a straight axis (no frame to resolve)
 
 
@@ -38,10 +38,8 @@ def frame_defect(segs: list[np.ndarray], frames: list[tuple[np.ndarray, np.ndarr
 
 
 def limit(degree: int) -> float:
-    """The limit of a degree: its own, else the smallest of the measured degrees around it (3: those of 2 and 4; past
-    6: 6's)."""
-    near = [v for P, v in LIMITS.items() if abs(P - degree) <= 1] or [LIMITS[max(LIMITS)]]
-    return min(near)
+    """The limit of a degree: its own; past the measured ones, the highest measured degree's."""
+    return LIMITS.get(degree, LIMITS[max(LIMITS)])
 
 
 def resolution_warning(defect: float, degree: int) -> str:
@@ -49,11 +47,11 @@ def resolution_warning(defect: float, degree: int) -> str:
     the degree's :func:`limit`; "" otherwise."""
     if not defect > limit(degree):
         return ""
-    measured = "" if degree in LIMITS else f" (degree {degree} not measured: the limit of its neighbours)"
+    measured = "" if degree in LIMITS else f" (degree {degree} not measured: degree {max(LIMITS)}'s limit)"
     return (
         f"pd-curved: the particles resolve the curved axis too coarsely for degree {degree}: its derivative of the "
         f"axis frame strains a rigid translation by {defect:.2g} of the largest curvature, past "
-        f"{limit(degree):g}{measured}; of the measured runs past that limit 77 % were more than 10 % off (median "
-        "47 %) and 7 % within 1 % (docs/models/curved.md); use more particles, or check the result with `pdverify "
+        f"{limit(degree):g}{measured}; of the measured runs past that limit 75 % were more than 10 % off (median "
+        "45 %) and 9 % within 1 % (docs/models/curved.md); use more particles, or check the result with `pdverify "
         "solve --estimate`"
     )
