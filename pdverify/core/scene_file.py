@@ -349,8 +349,14 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
         + _check_segments(scene)
     )
     if not scene.is_straight:
-        arc = axis_length(scene.axis)
-        if abs(arc - scene.length) > 1e-6 * arc:
+        with np.errstate(all="ignore"):
+            arc = axis_length(scene.axis)
+        if not np.isfinite(arc):  # its positions overflow: no geometry (nor rigid-body modes) to check
+            lines.append(
+                f"axis: the {scene.axis.type} axis's arc length overflows a float64 ({arc}); give smaller "
+                + ("coefficients or a shorter x_range" if scene.axis.type == "polynomial" else "a smaller radius")
+            )
+        elif abs(arc - scene.length) > 1e-6 * arc:
             lines.append(
                 f"beam.length = {scene.length!r}: the {scene.axis.type} axis is {arc:.12g} m long (arc length); "
                 "set beam.length to it"

@@ -255,6 +255,11 @@ class Indeterminate:
         # and a couple: each row divided by its largest coefficient, then each column, so the system (and its
         # condition number, the fields' round-off is cond eps) is the same in any units
         A, rhs = np.array(rows), np.array(rhs)
+        if not (np.all(np.isfinite(A)) and np.all(np.isfinite(rhs))):  # a radius or length near the float range's end
+            raise SolveError(
+                "exact-curved: the end conditions overflow a float64 at this size; give the scene in another length "
+                "unit (e.g. km for m)"
+            )
         row = np.abs(A).max(axis=1)
         col = np.abs(A / np.where(row > 0, row, 1.0)[:, None]).max(axis=0)
         if not (row.all() and col.all()):

@@ -34,6 +34,7 @@ higher-order`` converges to, and the theory's own answer to questions such as wh
 load peaks (docs/models/yang.md).
 """
 
+# long module: one closed form (its modal basis, pieces, end and support conditions, fields) of one derivation
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -83,7 +84,8 @@ def modal_basis(M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     chain = [np.eye(8)[2]]
     for _ in range(3):
         chain.append(np.linalg.lstsq(M, chain[-1], rcond=None)[0])
-    gap = 1e-3 * np.abs(M).max()  # between the layer's eigenvalues (~1/h, here ~10) and the slow block's 0
+    re = np.sort(np.abs(np.linalg.eigvals(M).real))  # the slow block's four (0 but for round-off), the layer's four
+    gap = np.sqrt(re[3] * re[4])  # between them, whatever the ratio of G to E
     layer = [sla.schur(M, output="real", sort=lambda re, im, s=sign: s * re > gap)[1][:, :2] for sign in (-1.0, 1.0)]
     T = np.column_stack(chain + layer)
     B = np.linalg.solve(T, M @ T)
@@ -327,8 +329,9 @@ class Solution:
         if not self.cond < DEPENDENT:
             raise SolveError(
                 f"exact-higher-order: the supports' conditions are dependent at working precision (condition number "
-                f"{self.cond:.2g}): a spring far softer than the beam, or supports that nearly coincide; stiffen the "
-                "spring, or give the supports as one"
+                f"{self.cond:.2g}): a spring far softer than the beam, supports that nearly coincide or a shear "
+                "modulus far below E (the layer and the beam's modes meet); stiffen the spring, give the supports as "
+                "one, or use exact-timoshenko"
             )
         out = np.linalg.solve(Ks, r / row) / col
         return out[: 8 * n].reshape(n, 8), out[8 * n :]

@@ -166,6 +166,18 @@ CLI_CASES = [
     ("solve-out-fifo", ["solve", "{scene}", "-m", "exact-eb", "--out", "{fifo}"], 4, "not a regular file"),
     ("solve-out-link-to-folder", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dir}"], 4, "is a folder"),
     ("solve-out-link-to-device", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_dev}"], 4, "a symlink to"),
+    (  # exit 70 before (an internal error): the end conditions' SVD did not converge on inf entries
+        "solve-exact-curved-arc-radius-1e300",
+        ["solve", "{arc_radius_1e300}", "-m", "exact-curved", "--points", "11"],
+        3,
+        "exact-curved: the end conditions overflow a float64",
+    ),
+    (  # exit 70 before, for every model: the arc length overflowed and the rigid-body modes' SVD met NaN
+        "solve-polynomial-axis-1e200",
+        ["solve", "{poly_1e200}", "-m", "pd-curved"],
+        2,
+        "axis: the polynomial axis's arc length overflows a float64",
+    ),
     ("solve-out-dash", ["solve", "{scene}", "-m", "exact-eb", "--out", "-"], 2, "'-': output goes to standard output"),
     (  # writing through it made the folders of its target, wherever it points
         "solve-out-link-to-nothing",
@@ -507,6 +519,18 @@ def files(tmp_path_factory):
         text.replace("length = 1.0", "length = 1e-200").replace("position = 1.0", "position = 1e-200")
     )
     (d / "straight_with_radius.toml").write_text(CURVED.read_text().replace('type = "arc"', 'type = "straight"'))
+    huge_arc = (
+        CURVED.read_text()
+        .replace("radius = 1.0", "radius = 1e300")
+        .replace("1.5707963267948966", "1.5707963267948966e300")
+    )
+    (d / "arc_radius_1e300.toml").write_text(huge_arc)
+    (d / "poly_1e200.toml").write_text(
+        CURVED.read_text().replace(
+            'type = "arc"\nradius = 1.0\nopening_angle_deg = 90.0',
+            'type = "polynomial"\ncoefficients = [0.0, 0.0, 1e200]\nx_range = [0.0, 1.0]',
+        )
+    )
     (d / "load_path_1e300.toml").write_text(text + "[loading]\nfactors = [0.0, 1e300]\n")
     spring = '{type = "spring", stiffness = 5e7, rotational_stiffness = 5e6}'
     rod = (ROOT / "studies/examples/rod_tip_load.toml").read_text()
@@ -570,6 +594,8 @@ def files(tmp_path_factory):
         "study_too_big": d / "study_too_big.toml",
         "deep": d / "deep.toml",
         "tiny_length": d / "tiny_length.toml",
+        "arc_radius_1e300": d / "arc_radius_1e300.toml",
+        "poly_1e200": d / "poly_1e200.toml",
         "straight_with_radius": d / "straight_with_radius.toml",
         "load_path_1e300": d / "load_path_1e300.toml",
         "study_missing_scene": d / "study_missing_scene.toml",
