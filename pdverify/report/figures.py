@@ -31,9 +31,10 @@ def _finish(fig, ax, xlabel: str, ylabel: str, title: str, which: str = "major")
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
     ax.grid(alpha=0.3, which=which)
-    if len(ax.get_legend_handles_labels()[0]) > 6:  # many curves: the legend beside the axes, not over the data
+    labelled = len(ax.get_legend_handles_labels()[0])
+    if labelled > 6:  # many curves: the legend beside the axes, not over the data
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    else:
+    elif labelled:  # none (every case's curve gone): no legend, and no matplotlib warning
         ax.legend(fontsize=7)
     return _svg(fig)
 

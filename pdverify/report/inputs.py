@@ -187,6 +187,8 @@ def load(d: Path) -> StudyFolder:
             )
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; {again}")
+    if not (d / "cases").is_dir():  # every figure's curves: each would be drawn empty
+        raise InputError(f"{d}: no cases folder (the cases' curves); {again}, which recomputes them")
     study = d / "study.toml"
     titles, description, text = {}, "", ""
     if study.exists():

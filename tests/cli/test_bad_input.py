@@ -262,6 +262,7 @@ CLI_CASES = [
     ("study-checks-text", ["study", "{study_checks}"], 2, "checks = 'all'"),
     # damaged study folders
     ("report-empty-results", ["report", "{empty_results}"], 2, "no cases"),
+    ("report-no-cases-folder", ["report", "{text_only}"], 2, "no cases folder"),
     ("report-shifted-results", ["report", "{shifted}"], 2, "line 2 has"),
     (
         "report-text-in-a-number-column",
@@ -545,6 +546,8 @@ def files(tmp_path_factory):
     (d / "empty_results" / "results.csv").write_text(header)
     (d / "shifted").mkdir()
     (d / "shifted" / "results.csv").write_text(header + "s.toml,123,ok,pd-eb,,11,0.1\n")
+    (d / "text_only").mkdir()  # a whole results table, its cases' curves gone (exit 0 with empty figures before)
+    (d / "text_only" / "results.csv").write_text(header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\n")
     (d / "text_number").mkdir()
     (d / "text_number" / "results.csv").write_text(
         header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\nc2,s.toml,s,ok,pd-eb,100,many,0.1\n"
@@ -606,6 +609,7 @@ def files(tmp_path_factory):
         "empty_results": d / "empty_results",
         "shifted": d / "shifted",
         "text_number": d / "text_number",
+        "text_only": d / "text_only",
     }
 
 
