@@ -147,9 +147,12 @@ class StraightSolution:
         p = np.stack(particular(self.scene, x)) if self.scene.loads else np.zeros((5, len(x)))
         return np.stack(cols, axis=1), p
 
-    def _integrated(self, F, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _integrated(self, F, x: np.ndarray, size: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """(Phi, W): ∫₀^x M / EI and ∫₀^x (∫ M / EI) - ∫₀^x V / kGA of moment functions F = (M, V, I1, I2, Vi)
-        evaluated at the segments' ends and at x (F: callable x -> (5, ..., len(x)))."""
+        evaluated at the segments' ends and at x (F: callable x -> (5, ..., len(x))). ``size``: instead, the sums of
+        the magnitudes of the terms they add and subtract, whose rounding they carry (a segment's increments are
+        differences of the antiderivatives from 0 at its ends: on a segment short beside its position they cancel)."""
+        d = (lambda u, v: np.abs(u) + np.abs(v)) if size else (lambda u, v: u - v)
         ends = np.array([a for a, _, _, _ in self.pieces] + [self.pieces[-1][1]])
         Fe = F(ends)  # (5, ..., pieces + 1): F at every segment's ends, once
         Phi = 0.0
@@ -160,15 +163,16 @@ class StraightSolution:
             Fy = F(y)
             Fa = Fe[..., i : i + 1]
             dy = y - a
-            Phi = Phi + (Fy[2] - Fa[2]) / EI
-            W = W + Phi_a[..., None] * dy + (Fy[3] - Fa[3] - Fa[2] * dy) / EI
+            Phi = Phi + d(Fy[2], Fa[2]) / EI
+            W = W + (np.abs(Phi_a[..., None]) if size else Phi_a[..., None]) * dy + d(d(Fy[3], Fa[3]), Fa[2] * dy) / EI
             if self.shear:
-                W = W - (Fy[4] - Fa[4]) / kGA
-            Phi_a = Phi_a + (Fe[2][..., i + 1] - Fe[2][..., i]) / EI
+                W = W + d(Fy[4], Fa[4]) / kGA if size else W - (Fy[4] - Fa[4]) / kGA
+            Phi_a = Phi_a + d(Fe[2][..., i + 1], Fe[2][..., i]) / EI
         return Phi, W
 
-    def _linear(self, x: np.ndarray) -> dict:
-        """{field: (A, p)}: field(x) = A @ u + p for u = (c0, c1, reactions..., c2, c3)."""
+    def _linear(self, x: np.ndarray, size: bool = False) -> dict:
+        """{field: (A, p)}: field(x) = A @ u + p for u = (c0, c1, reactions..., c2, c3); ``size``: the magnitudes of
+        the terms that make each entry (:meth:`_integrated`), for the rounding."""
         x = np.asarray(x, float)
         k = 2 + len(self.units)
 
@@ -176,7 +180,7 @@ class StraightSolution:
             B, p = self._moment_basis(y)
             return np.concatenate([B, p[:, None, :]], axis=1)  # (5, k + 1, len(y)): the unknowns' and the loads'
 
-        Phi, W = self._integrated(moment_part, x)  # (k + 1, len(x)) each
+        Phi, W = self._integrated(moment_part, x, size)  # (k + 1, len(x)) each
         F = moment_part(x)
         n = len(x)
         out = {}
@@ -291,21 +295,23 @@ class StraightSolution:
 
     def rounding(self, x) -> float:
         """Round-off bound of w and the rotation at the points x, each relative to its largest value there: a field
-        is the sum A c + p of its terms (the unknowns' and the loads'), which cancel where a load or support sits
+        is the sum A c + p of its terms (the unknowns' and the loads', each itself a sum over the segments of
+        differences of antiderivatives: :meth:`_integrated`), which cancel where a load or support sits
         close to an end relative to the length (a cantilever's tip under a force at a: terms of P L^3 / EI for a
         result of P a^2 L / EI), so each rounds by about (ENTRY_ROUNDING + cond) eps of the sum of the terms'
         magnitudes (Higham, *Accuracy and Stability*, 2nd ed., ch. 4: a sum's error bound; cond: the scaled
         boundary system's 1-norm condition number, which carries c's own rounding). A scene whose loads all act on
         supports that hold them has w = 0: its bound is then relative to the terms' size."""
-        lin = self._linear(np.asarray(x, float))
+        lin, mag = self._linear(np.asarray(x, float)), self._linear(np.asarray(x, float), size=True)
         c = (ENTRY_ROUNDING + self.cond) * np.finfo(float).eps
         if bends_nothing(self.scene):  # every load on a support that holds it: w = 0, its terms' rounding is all
             return float(f"{c:.3g}")  # there is (relative to the terms' size)
         out = 0.0
         for name in ("w", "rotation"):
             A, p = lin[name]
+            Am, pm = mag[name]
             top = float(np.abs(A @ self.c + p).max())
-            size = float((np.abs(A) @ np.abs(self.c) + np.abs(p)).max())
+            size = float((np.abs(Am) @ np.abs(self.c) + np.abs(pm)).max())
             if top > 0.0:
                 out = max(out, c * size / top)
         return float(f"{out:.3g}")
