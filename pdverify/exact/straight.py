@@ -302,7 +302,9 @@ class StraightSolution:
         magnitudes (Higham, *Accuracy and Stability*, 2nd ed., ch. 4: a sum's error bound; cond: the scaled
         boundary system's 1-norm condition number, which carries c's own rounding). A scene whose loads all act on
         supports that hold them has w = 0: its bound is then relative to the terms' size."""
-        lin, mag = self._linear(np.asarray(x, float)), self._linear(np.asarray(x, float), size=True)
+        lin = self._linear(np.asarray(x, float))
+        mag = lin if len(self.pieces) == 1 else self._linear(np.asarray(x, float), size=True)  # one piece from 0: no
+        # difference of antiderivatives cancels (each is taken from 0)
         c = (ENTRY_ROUNDING + self.cond) * np.finfo(float).eps
         if bends_nothing(self.scene):  # every load on a support that holds it: w = 0, its terms' rounding is all
             return float(f"{c:.3g}")  # there is (relative to the terms' size)
