@@ -246,3 +246,14 @@ def test_a_support_holding_the_rotation_on_a_segment_joint_says_it_is_first_orde
     assert all(len(s) == 1 for s in said) and order < 1.2, (errors, said)
     if support == "clamped":
         assert np.allclose(errors, [0.27, 0.11, 0.035], rtol=0.05), errors  # SUPPORT_ON_JOINT quotes them
+
+
+def test_pd_bond_pair_s_clamp_on_a_joint_says_its_constant():
+    """pd-bond-pair warns that its clamp's centred slope is first order; on a joint it quotes the joint's large
+    constant too (the deflection 0.31, 0.12, 0.039 off at 41, 161, 641 points)."""
+    sc = parse_scene(JOINT_SCENE)
+    r = run(sc, "pd-bond-pair", points=161)
+    w = np.asarray(run(sc, "exact-eb", points=161).w)
+    error = np.abs(np.asarray(r.w) - w).max() / np.abs(w).max()
+    (line,) = [m for m in r.info.get("warnings", []) if "centred slope" in m]
+    assert "on a segment joint" in line and error == pytest.approx(0.12, rel=0.05)
