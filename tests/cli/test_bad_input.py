@@ -274,6 +274,12 @@ CLI_CASES = [
     ("modes-density-tiny", ["modes", "{dyn_tiny_rho}", "-m", "pd-timoshenko"], 3, "floating-point range"),
     ("advise-every-load-zero", ["advise", "{zero_load}"], 2, "every load is zero"),
     ("time-step-above-end-time", ["solve", "{dyn_long_step}", "-m", "fem-timoshenko"], 2, "longer than end_time"),
+    (  # it blew up (exit 3) advising more damping: the damping term of the step grows past c = damping x dt = 2
+        "pd-timoshenko-time-step-past-the-damping-s-limit",
+        ["solve", "{dyn_overdamped_step}", "-m", "pd-timoshenko", "--points", "21"],
+        2,
+        "dynamics.time_step = 1e-05 s with a damping of",
+    ),
     # the explicit transients of pd-eb, pd-bond-pair and pd-higher-order counted their steps without the limit (hang)
     *[
         (
@@ -492,6 +498,9 @@ def files(tmp_path_factory):
     )
     (d / "dyn_long_step.toml").write_text(dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1.0\n"))
     (d / "dyn_tiny_step.toml").write_text(dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1e-13\n"))
+    (d / "dyn_overdamped_step.toml").write_text(
+        dyn.replace("[dynamics]\n", "[dynamics]\ntime_step = 1e-5\ndamping_ratio = 1000.0\n")
+    )
     (d / "dyn_end_1e300.toml").write_text(re.sub(r"end_time = [0-9.e+-]+", "end_time = 1e300", dyn))
     (d / "zero_load.toml").write_text(re.sub(r"value = [0-9.e+-]+", "value = 0.0", text))
     (d / "shaft_profile.toml").write_text(
@@ -582,6 +591,7 @@ def files(tmp_path_factory):
         "shaft_profile": d / "shaft_profile.toml",
         "dyn_long_step": d / "dyn_long_step.toml",
         "dyn_tiny_step": d / "dyn_tiny_step.toml",
+        "dyn_overdamped_step": d / "dyn_overdamped_step.toml",
         "dyn_end_1e300": d / "dyn_end_1e300.toml",
         "zero_load": d / "zero_load.toml",
         "study": d / "study.toml",

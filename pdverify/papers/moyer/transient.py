@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ...core.errors import SolveError
+from ...core.errors import InputError, SolveError
 from ...core.result import columns_csv
 from ...numerics.steps import sample_count
 from ...numerics.timeint import EnergyLedger, ledger_columns, step_count
@@ -182,7 +182,8 @@ def time_step(
     disc: Discrete, dt: float | None, damping: float, damping_ratio: float | None, safety: float, stabilisation: float
 ):
     """(dt, limit, kappa, damping, omega1) of a run: the stable limit 2 / (ω_max sqrt(1 + 2κ)) of the stabilised
-    step (κ = ``stabilisation``), dt = ``safety`` x the limit unless given, β / dt of the stabilisation
+    step (κ = ``stabilisation``), dt = ``safety`` x the limit unless given (at most 1 / damping: a given step
+    past that is refused), β / dt of the stabilisation
     β = κ dt_ref with dt_ref = DEFAULT_SAFETY x the limit, the damping c_d / ρ (2 ζ ω1 from ``damping_ratio``
     when given) and ω1 (None unless needed for that)."""
     limit = stable_time_step(disc) / np.sqrt(1.0 + 2.0 * stabilisation)
@@ -191,7 +192,15 @@ def time_step(
         omega1 = first_frequency(disc)
         damping = 2.0 * damping_ratio * omega1
     dt_ref = DEFAULT_SAFETY * limit
+    if dt is not None and damping * float(dt) > 1.0:  # Gains: alpha = 1 - c + c^2/2, beta = 1 - c/2 with c = D dt
+        raise InputError(
+            f"dynamics.time_step = {float(dt):.4g} s with a damping of {damping:.4g} 1/s: the explicit step damps by "
+            f"c = damping x dt = {damping * float(dt):.3g}, and needs c <= 1; give time_step <= {1.0 / damping:.4g} s "
+            "or less damping"
+        )
     dt = safety * limit if dt is None else float(dt)
+    if damping * dt > 1.0:  # heavy damping: its term sets the step (a larger c grows, whatever the stiffness)
+        dt = 1.0 / damping
     # β = κ dt_ref (seconds), the same for every step: with β = κ dt a smaller step damped the closures'
     # growing modes less (Table 1 cantilever: stable at 0.9 of the limit, blew up at 0.5 and 0.3) and the
     # scheme converged at order 1 in dt to a damping that vanishes. kappa: β / dt, what the step uses

@@ -518,3 +518,20 @@ def test_ledger_energies_are_in_joules():
     st = run(sc.model_copy(update={"dynamics": None}), "pd-timoshenko", points=81, horizon=1)
     work = np.trapezoid(-1000.0 * st.w, st.x)
     assert abs(e["load_work"][-1] / work - 1) < 1e-9 and abs(e["strain"][-1] / e["load_work"][-1] - 0.5) < 1e-9
+
+
+def test_heavy_damping_sets_the_step():
+    """damping_ratio = 1000 (c = 2 zeta omega_1 ~ 1e6 1/s): the step's damping term c dt past 2 grew, the run blew up
+    (exit 3, advising more damping). The default step is now at most 1 / c: the run creeps towards the static
+    deflection, never past it."""
+    d = {"name": "b", "beam": {"length": 2.0}, "section": {"width": 0.05, "height": 0.1},
+         "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3, "density": 7850.0},
+         "supports": {"left": "clamped", "right": "pinned"},
+         "loads": [{"type": "point_force", "position": 0.7, "value": -1000.0}],
+         "dynamics": {"end_time": 2e-3, "damping_ratio": 1000.0}}  # fmt: skip
+    r = run(parse_scene(d), "pd-timoshenko", points=21)
+    d.pop("dynamics")
+    static = run(parse_scene(d), "pd-timoshenko", points=21)
+    w, w0 = np.asarray(r.w), np.asarray(static.w)
+    assert r.info["dt"] * r.info["damping"] <= 1.0
+    assert np.all(np.isfinite(w)) and 0 < np.abs(w).max() <= np.abs(w0).max()
