@@ -76,6 +76,8 @@ class Option:
         try:
             if isinstance(value, bool) and self.kind in (int, float):
                 raise ValueError  # numbers never from true/false
+            if isinstance(value, str) and "_" in value and self.kind in (int, float):
+                raise ValueError  # Python reads "3_0" as 30: a typo, not a number
             if self.kind is int:
                 v = _whole(value)
             elif self.kind is float:

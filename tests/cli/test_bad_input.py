@@ -62,6 +62,7 @@ CLI_CASES = [
     ("solve-points-text", ["solve", "{scene}", "-m", "exact-eb", "--points", "abc"], 2, "--points"),
     ("solve-points-1", ["solve", "{scene}", "-m", "pd-eb", "--points", "1"], 2, "points = 1"),
     ("solve-fibres-0", ["solve", "{scene}", "-m", "fem-eb", "-o", "fibres=0"], 2, "fibres = '0'"),
+    ("solve-horizon-underscore", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=3_0"], 2, "horizon = '3_0'"),
     ("solve-points-negative", ["solve", "{scene}", "-m", "pd-eb", "--points", "-5"], 2, "points"),
     ("bench-scene-refused", ["bench", "-m", "pd-rod", "--points", "101", "--scene", "{scene}"], 2, "cannot solve it"),
     (
