@@ -7,7 +7,7 @@ symbol's leading term g (k delta)^2 (k delta <= 0.3)."""
 
 import numpy as np
 import pytest
-from helpers import STUDIES
+from helpers import STUDIES, scene_dict
 from scipy.integrate import quad
 
 from pdverify.core.scene_file import load_scene, parse_scene
@@ -410,16 +410,7 @@ def test_the_factor_follows_the_horizon():
     same, said to be unmeasured there (pdverify/theory/model_error.py)."""
     from pdverify.theory.model_error import FACTORS, FACTORS_02, pair_factor
 
-    sc = parse_scene(
-        {
-            "name": "t",
-            "beam": {"length": 2.0},
-            "section": {"width": 0.01, "height": 0.01},
-            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
-            "supports": {"left": "clamped", "right": "clamped"},
-            "loads": [],
-        }  # fmt: skip
-    )
+    sc = parse_scene(scene_dict("clamped", "clamped"))  # L = 2
     near = FACTORS["pd-eb corrected"]["clamped-clamped"]
     far = max(near, FACTORS_02["pd-eb corrected"]["clamped-clamped"])
     assert pair_factor(sc, "pd-eb corrected", 0.1 * 2.0)[0] == near
