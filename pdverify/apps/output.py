@@ -60,13 +60,13 @@ def target(out: Path, option: str) -> Path:
     one, or a symlink to nothing, is refused (OutputError, exit 4) before anything is computed."""
     real = Path(os.path.realpath(out)) if out.is_symlink() else out
     via = f" (a symlink to {real})" if real != out else ""
-    if via and not os.path.lexists(real) and not str(real).startswith("/proc/"):  # (a process's stream: below)
-        raise OutputError(f"{option} {out}{via}: a symlink to nothing; give a file path, or make {real} first")
     if via and str(real).startswith("/proc/") and not real.is_file():  # /dev/stdout: a pipe or a terminal
         raise OutputError(
             f"{option} {out}{via}: not a regular file (a process's stream); pdverify writes regular files only: "
             "give a file path, or leave --out out to write to standard output"
         )
+    if via and not os.path.lexists(real):  # writing there would make its folders anywhere the link points
+        raise OutputError(f"{option} {out}{via}: a symlink to nothing; give a file path, or make {real} first")
     if real.is_dir():
         example = "pdverify.xml" if option == "--junit" else "result.csv"
         raise OutputError(f"{option} {out}{via}: is a folder; give a file name, e.g. {out / example}")

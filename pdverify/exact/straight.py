@@ -165,8 +165,8 @@ class StraightSolution:
             dy = y - a
             Phi = Phi + d(Fy[2], Fa[2]) / EI
             W = W + (np.abs(Phi_a[..., None]) if size else Phi_a[..., None]) * dy + d(d(Fy[3], Fa[3]), Fa[2] * dy) / EI
-            if self.shear:
-                W = W + d(Fy[4], Fa[4]) / kGA if size else W - (Fy[4] - Fa[4]) / kGA
+            if self.shear:  # minus the shear's part (its size: plus)
+                W = W + (1.0 if size else -1.0) * d(Fy[4], Fa[4]) / kGA
             Phi_a = Phi_a + d(Fe[2][..., i + 1], Fe[2][..., i]) / EI
         return Phi, W
 
@@ -302,9 +302,8 @@ class StraightSolution:
         magnitudes (Higham, *Accuracy and Stability*, 2nd ed., ch. 4: a sum's error bound; cond: the scaled
         boundary system's 1-norm condition number, which carries c's own rounding). A scene whose loads all act on
         supports that hold them has w = 0: its bound is then relative to the terms' size."""
-        lin = self._linear(np.asarray(x, float))
-        mag = lin if len(self.pieces) == 1 else self._linear(np.asarray(x, float), size=True)  # one piece from 0: no
-        # difference of antiderivatives cancels (each is taken from 0)
+        lin = self._linear(np.asarray(x, float))  # a single piece starts at 0, where every antiderivative is 0
+        mag = lin if len(self.pieces) == 1 else self._linear(np.asarray(x, float), size=True)
         c = (ENTRY_ROUNDING + self.cond) * np.finfo(float).eps
         if bends_nothing(self.scene):  # every load on a support that holds it: w = 0, its terms' rounding is all
             return float(f"{c:.3g}")  # there is (relative to the terms' size)
