@@ -80,6 +80,7 @@ from .particles import (
     distributed_loads,
     given_grids,
     grading_density,
+    merged_break_warnings,
     parse_positions,
     segment_grids,
 )
@@ -314,6 +315,7 @@ class PDCurved(Model):
             thick_ring_warning(scene),
             coupling_warning(scene, total["x"] / len(infos), total["N"], total["M"]),
             resolution_warning(defect, params["degree"]) if params["form"] == "mixed" else "",
+            *merged_break_warnings(scene),
         ):
             if flag:
                 warnings.add(flag)

@@ -82,6 +82,32 @@ def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
     return np.array(bps), loads, ends
 
 
+def merged_break_warnings(scene: Scene) -> list[str]:
+    """Breaks that :func:`breakpoints` takes as one (within 1e-9 L) and that lie further apart than the positions'
+    rounding (1e-14 L): a support or segment joint beside another or beside a load or a span's end. The model puts
+    them on the first one's place, so a result that depends on their distance is lost (and the scene's mirror image
+    merges them on the other's place). One warning per pair, as the beam elements' (reference_fem)."""
+    L = scene.length
+    held = [(f"supports.inner[{i}]", s.position) for i, s in enumerate(scene.supports.inner)]
+    held += [(f"segments[{i}].end", g.end) for i, g in enumerate(scene.segments[:-1])] if scene.segments else []
+    marks = list(held)
+    for i, load in enumerate(scene.loads):
+        if isinstance(load, (PointForce, PointMoment)):
+            marks.append((f"loads[{i}]", load.position))
+        elif isinstance(load, Distributed):
+            marks += [(f"loads[{i}] (span)", v) for v in scene.span(load) if 0.0 < v < L]
+    out = []
+    for k, (a, x) in enumerate(held):
+        for b, y in marks[k + 1 :]:
+            if 1e-14 * L < abs(x - y) <= 1e-9 * L:
+                out.append(
+                    f"{a} at {x:g} and {b} at {y:g} lie {abs(x - y):.3g} apart, within 1e-9 of the length: pd-curved "
+                    "takes them as one break, and a result that depends on that distance is lost; give them one "
+                    "position, or the scene in a shorter length"
+                )
+    return out
+
+
 def segment_grids(L: float, bps: np.ndarray, points: int, min_points: int, density=None) -> list[np.ndarray]:
     """Particles on each segment [b_i, b_{i+1}], about (points - 1) intervals in all, at least ``min_points``
     per segment. ``density`` None: uniform (a uniform grid of ``points`` particles when the breaks fall on

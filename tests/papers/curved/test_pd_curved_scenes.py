@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from helpers import scene_dict
 
 from pdverify.core.errors import InputError
 from pdverify.core.scene_file import parse_scene
@@ -83,3 +84,14 @@ def test_a_beam_on_springs_alone_slides_along_its_axis_and_is_refused_in_one_lin
 def test_the_manufactured_harness_refuses_supports_inside_the_span():
     sc = scene(CASES[0][1])
     assert any(p.startswith("supports.inner") for p in get_model("pd-curved-mms").check(sc))
+
+
+@pytest.mark.parametrize("offset, said", [(0.0, False), (1e-9, True), (1e-6, False)])
+def test_a_load_merged_with_a_support_says_so(offset, said):
+    """pd-curved takes breaks within 1e-9 L as one: a couple 1e-9 m beside an inner pin was put on the pin, 3.7e-9
+    off (round-off bound 6e-13) and not mirror-symmetric, unwarned. It says so where the two lie further apart than
+    the positions' rounding and within the merge; on the support or clearly beside it, nothing."""
+    d = scene_dict("pinned", "roller", [{"type": "point_moment", "position": 0.8 + offset, "value": 500.0}])
+    d["supports"]["inner"] = [{"position": 0.8, "type": "pinned"}]
+    r = run(parse_scene(d), "pd-curved", points=41)
+    assert any("takes them as one break" in w for w in r.info.get("warnings", [])) == said
