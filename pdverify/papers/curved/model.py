@@ -85,7 +85,7 @@ from .particles import (
     segment_grids,
 )
 from .resolution import frame_defect, resolution_warning
-from .supports import axial_mechanism, particle_stiffness, reactions
+from .supports import BREAK, axial_mechanism, particle_stiffness, reactions
 
 PRIMAL_LOCKS = (  # docs/models/curved.md, "Locking": studies/paper_curved_quintic_bending.toml, 201 particles, P = 2
     "form = primal (the paper's second-derivative collocation) locks: at a fixed grid and degree its error grows like "
@@ -411,6 +411,6 @@ def _point_loads(scene: Scene, at: float) -> np.ndarray:
     t, n = geometry(scene).frame(np.array(at))
     F = np.zeros(3)
     for load in scene.loads:
-        if getattr(load, "position", None) is not None and abs(load.position - at) <= 1e-9 * scene.length:
+        if getattr(load, "position", None) is not None and abs(load.position - at) <= BREAK * scene.length:
             F += force_components(load, t, n)
     return F

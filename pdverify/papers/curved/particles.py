@@ -13,7 +13,7 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.geometry import axis_abscissae, geometry
 from ...core.scene import Distributed, PointForce, PointMoment, Scene
-from .supports import support_breaks
+from .supports import BREAK, support_breaks
 
 # -- geometry ---------------------------------------------------------------------------------
 
@@ -54,7 +54,7 @@ def breakpoints(scene: Scene) -> tuple[np.ndarray, dict, dict]:
     """Interior break positions (sorted), the point loads there {index: [loads]} and the end point
     loads {0: [...], 1: [...]} (loads exactly at s = 0 or s = L)."""
     L = scene.length
-    tol = 1e-9 * L
+    tol = BREAK * L
     pos, at = [], []
     ends = {0: [], 1: []}
     for load in scene.loads:
@@ -99,11 +99,11 @@ def merged_break_warnings(scene: Scene) -> list[str]:
     out = []
     for k, (a, x) in enumerate(held):
         for b, y in marks[k + 1 :]:
-            if 1e-14 * L < abs(x - y) <= 1e-9 * L:
+            if 1e-14 * L < abs(x - y) <= BREAK * L:
                 out.append(
-                    f"{a} at {x:g} and {b} at {y:g} lie {abs(x - y):.3g} apart, within 1e-9 of the length: pd-curved "
-                    "takes them as one break, and a result that depends on that distance is lost; give them one "
-                    "position, or the scene in a shorter length"
+                    f"{a} at {x:g} and {b} at {y:g} lie {abs(x - y):.3g} apart, within {BREAK:g} of the length: "
+                    "pd-curved takes them as one break, and a result that depends on that distance is lost; give them "
+                    "one position, or the scene in a shorter length"
                 )
     return out
 
@@ -153,7 +153,7 @@ def given_grids(L: float, bps: np.ndarray, s: np.ndarray, min_points: int) -> li
     """The particles s (from :func:`parse_positions`) split at the breaks: each segment [a, b] takes the given
     positions strictly inside it (those within 1e-9 L of a break dropped) and its two ends."""
     edges = np.concatenate([[0.0], bps, [L]])
-    tol = 1e-9 * L
+    tol = BREAK * L
     out = []
     for a, b in zip(edges[:-1], edges[1:]):
         g = np.concatenate([[a], s[(s > a + tol) & (s < b - tol)], [b]])

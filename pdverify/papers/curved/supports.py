@@ -42,6 +42,9 @@ def spring_slots(sup) -> tuple[float, float, float]:
     return 0.0, 0.0, 0.0
 
 
+BREAK = 1e-9  # of the length: positions this close are one break (a support on a load's place, merged breaks)
+
+
 def support_breaks(scene: Scene) -> list[float]:
     """The positions inside the span that are breaks without a load: the inner supports and the segments' ends."""
     out = [s.position for s in scene.supports.inner]
@@ -50,9 +53,9 @@ def support_breaks(scene: Scene) -> list[float]:
 
 
 def support_at(scene: Scene, position: float):
-    """The inner support at ``position`` (within 1e-9 L), or None."""
+    """The inner support at ``position`` (within BREAK L), or None."""
     for s in scene.supports.inner:
-        if abs(s.position - position) <= 1e-9 * scene.length:
+        if abs(s.position - position) <= BREAK * scene.length:
             return s
     return None
 
