@@ -72,7 +72,7 @@ def _root(
 def solve(
     scene: Path = typer.Argument(..., help="scene TOML file"),
     model: str = typer.Option(..., "--model", "-m", help="model name (see `pdverify models`)"),
-    points: int | None = POINTS,
+    points: str | None = POINTS,
     spacing: float | None = typer.Option(None, help="grid spacing in metres (instead of --points)"),
     horizon: float | None = HORIZON,
     horizon_length: float | None = HORIZON_LENGTH,
@@ -160,7 +160,7 @@ def solve(
 def modes(
     scene: Path = typer.Argument(..., help="scene TOML file (its supports, section and material; density needed)"),
     model: str = typer.Option(..., "--model", "-m", help="a model with a mass operator: pd-rod, pd-timoshenko, ..."),
-    points: int | None = POINTS,
+    points: str | None = POINTS,
     horizon: float | None = HORIZON,
     horizon_length: float | None = HORIZON_LENGTH,
     option: list[str] | None = typer.Option(None, "--option", "-o", help="model option, key=value (repeatable)"),

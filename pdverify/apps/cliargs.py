@@ -108,7 +108,10 @@ def _extreme_values() -> str:
 
 # the grid's options, the same on every command that takes a grid (solve, modes; verify: the horizon only, the suite
 # sets the grids); each is the model option of its name (-o points=... works as well), refused by a model without it
-POINTS = typer.Option(None, "--points", help="material points / nodes along the axis, ends included")
+# read by the model like ``-o points=N`` (so ``--points 1e3`` is 1000 both ways, ``--points 1e3.5`` refused both ways)
+POINTS = typer.Option(
+    None, "--points", metavar="N", help="material points / nodes along the axis, ends included (a whole number)"
+)
 HORIZON = typer.Option(None, "--horizon", help="horizon as a multiple of the spacing (3 = the papers' 3.015)")
 HORIZON_LENGTH = typer.Option(
     None, "--horizon-length", help="horizon in metres (option horizon_length; models that take one)"

@@ -505,7 +505,14 @@ class Model(Horizon):
         return params
 
 
+# a spacing is taken when length / spacing is a whole number to this relative tolerance: a decimal spacing's
+# round-off (1e-16), not a spacing typed to a few digits (0.0571428 for 2/35 is 1.2e-6 off and refused)
+SPACING_DIGITS = 1e-9
+
+
 def points_from_spacing(length: float, spacing) -> int:
+    """The number of points of a uniform grid of ``spacing`` on ``length``; InputError where the spacing does not
+    divide the length into whole intervals (to :data:`SPACING_DIGITS`)."""
     try:
         dx = float(spacing)
     except (TypeError, ValueError):
@@ -515,10 +522,12 @@ def points_from_spacing(length: float, spacing) -> int:
     n = length / dx
     if n < 1 - 1e-9:
         raise InputError(f"spacing = {dx:g}: larger than the beam length {length:g}")
-    if abs(n - round(n)) > 1e-6 * max(1.0, n):
+    if abs(n - round(n)) > SPACING_DIGITS * max(1.0, n):
+        k = max(1, round(n))
         raise InputError(
-            f"spacing = {dx:g}: does not divide the length {length:g} into whole intervals ({n:.6g}); "
-            "choose length / spacing an integer, or give --points"
+            f"spacing = {dx!r}: does not divide the length {length!r} into whole intervals ({n!r}); "
+            f"give length / spacing an integer to {SPACING_DIGITS:g} (the nearest: spacing = {length / k!r}), "
+            f"or --points {k + 1}"
         )
     return int(round(n)) + 1
 

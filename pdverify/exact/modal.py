@@ -28,6 +28,7 @@ from ..core.scene import HELD, Scene
 from ..numerics.steps import sample_count
 from .vibration import rod_frequencies
 
+MAX_TOLERANCE = 0.01  # the largest truncation tolerance a reference takes (a percent of the static response)
 MAX_MODES = 2**14  # 4096 modes in the sum (their octave above for the estimate): a point force ~1e-4
 
 
@@ -180,7 +181,14 @@ class ExactModalRod(ModalReference):
     source = "modal superposition (textbook); the transient reference of pd-rod"
     options = (
         POINTS,
-        Option("tolerance", float, 1e-6, "truncation error estimate, relative to max |u_static|", minimum=1e-14),
+        Option(
+            "tolerance",
+            float,
+            1e-6,
+            "truncation error estimate, relative to max |u_static|",
+            minimum=1e-14,
+            maximum=MAX_TOLERANCE,
+        ),
     )
     axial = True
     bending = False

@@ -30,7 +30,7 @@ from ..core.contract import POINTS, Option
 from ..core.errors import InputError
 from ..core.result import Result, Timer
 from ..core.scene import PointForce, PointMoment, Scene
-from .modal import ModalReference, modal_result, modal_sum, scene_damping, tail_bound
+from .modal import MAX_TOLERANCE, ModalReference, modal_result, modal_sum, scene_damping, tail_bound
 from .vibration import TimoshenkoBeam, beam_end
 
 MAX_MODES = 1024  # the sum's modes at most (their octave above them is computed for the estimate)
@@ -149,7 +149,14 @@ class ExactModalTimoshenko(ModalReference):
     source = "modal superposition, modes from the characteristic determinant; the transient reference of pd-timoshenko"
     options = (
         POINTS,
-        Option("tolerance", float, 1e-5, "truncation error estimate, relative to max |w_static|", minimum=1e-12),
+        Option(
+            "tolerance",
+            float,
+            1e-5,
+            "truncation error estimate, relative to max |w_static|",
+            minimum=1e-12,
+            maximum=MAX_TOLERANCE,
+        ),
     )
     theory = "timoshenko"
     load_types = frozenset({"point_force", "point_moment", "distributed"})

@@ -32,10 +32,18 @@ NUMBER_COLUMNS = frozenset(  # results.csv's columns the report computes with (a
 DERIVED = ("convergence", "locking", "speed_error", "speed_error_summary", "benchmarks", "trust", "checks", "nonlocal")
 
 
+def present(p: Path) -> bool:
+    """Whether the study folder's file ``p`` is there; InputError when it is there but not a regular file (a device,
+    a FIFO or a folder, or a symlink to one: reading /dev/zero would never end)."""
+    if p.exists() and not p.is_file():
+        raise InputError(f"{p}: not a regular file; run `pdverify study STUDY.toml --out {p.parent}` again")
+    return p.exists()
+
+
 def read_table(d: Path, name: str) -> pd.DataFrame:
     """``d/name.csv`` (empty when absent), text columns as text."""
     p = d / f"{name}.csv"
-    if not p.exists() or p.stat().st_size == 0:
+    if not present(p) or p.stat().st_size == 0:
         return pd.DataFrame()
     try:
         header = pd.read_csv(p, nrows=0).columns
@@ -160,11 +168,11 @@ def load(d: Path) -> StudyFolder:
     if not d.is_dir():
         what = "not a folder" if d.exists() else "no such folder"
         raise InputError(f"{d}: {what}; give a study's output folder (`pdverify study STUDY.toml --out {d}` makes one)")
-    if not (d / "results.csv").exists():
+    if not present(d / "results.csv"):
         raise InputError(f"{d}: no results.csv; run `pdverify study STUDY.toml --out {d}` first")
     again = f"run `pdverify study STUDY.toml --out {d}` again"
     try:
-        meta = json.loads((d / "meta.json").read_text()) if (d / "meta.json").exists() else {"study": d.name}
+        meta = json.loads((d / "meta.json").read_text()) if present(d / "meta.json") else {"study": d.name}
     except (ValueError, UnicodeDecodeError):
         raise InputError(f"{d / 'meta.json'}: not valid JSON; {again}") from None
     res = read_table(d, "results")
@@ -191,7 +199,7 @@ def load(d: Path) -> StudyFolder:
         raise InputError(f"{d}: no cases folder (the cases' curves); {again}, which recomputes them")
     study = d / "study.toml"
     titles, description, text = {}, "", ""
-    if study.exists():
+    if present(study):
         text = study.read_text(encoding="utf-8", errors="replace")
         try:
             spec = tomllib.loads(text)

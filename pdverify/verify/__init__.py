@@ -150,10 +150,16 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
         return [why]
     solved = [f for f, why in declined.items() if not why]
     try:
-        model.resolve(parse_scene(p.scenes[solved[0]]), options)
+        _resolve_coarsest(model, p, solved[0], options)
     except InputError as exc:
         return list(exc.lines)
     return []
+
+
+def _resolve_coarsest(model, p, scene_file: str, options: dict) -> None:
+    """The options resolved on one of the suite's scenes at its coarsest grid (InputError, one line each, before
+    anything is written: a horizon that does not fit the grid is refused here, not by the suite's study)."""
+    model.resolve(parse_scene(p.scenes[scene_file]), {**options, "points": min(p.grids)})
 
 
 def verify(
@@ -181,7 +187,7 @@ def verify(
     if why := _solves_none(model, declined):
         raise InputError(why)
     solved = next(f for f, why in declined.items() if not why)
-    model.resolve(parse_scene(p.scenes[solved]), options)  # bad options: one line each before anything runs
+    _resolve_coarsest(model, p, solved, options)  # bad options: one line each before anything runs
     run_plan = runnable(p, declined)
     df = _run_suite(run_plan, model, options, out, workers, scheduler, progress)
     found, scenes, df = _judge(model, options, p, df, expected, declined)

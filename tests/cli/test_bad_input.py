@@ -59,8 +59,9 @@ CURVED = ROOT / "studies/curved/quarter_circle_tip_force.toml"
 CLI_CASES = [
     ("solve-no-model", ["solve", "{scene}"], 2, "--model"),
     ("solve-unknown-model", ["solve", "{scene}", "-m", "nosuch"], 2, "model = 'nosuch'"),
-    ("solve-points-text", ["solve", "{scene}", "-m", "exact-eb", "--points", "abc"], 2, "--points"),
-    ("solve-points-1", ["solve", "{scene}", "-m", "pd-eb", "--points", "1"], 2, "points = 1"),
+    ("solve-points-text", ["solve", "{scene}", "-m", "exact-eb", "--points", "abc"], 2, "points = 'abc'"),
+    ("solve-points-fraction", ["solve", "{scene}", "-m", "pd-eb", "--points", "1e3.5"], 2, "points = '1e3.5'"),
+    ("solve-points-1", ["solve", "{scene}", "-m", "pd-eb", "--points", "1"], 2, "points = '1'"),
     ("solve-fibres-0", ["solve", "{scene}", "-m", "fem-eb", "-o", "fibres=0"], 2, "fibres = '0'"),
     ("solve-horizon-underscore", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=3_0"], 2, "horizon = '3_0'"),
     ("solve-points-negative", ["solve", "{scene}", "-m", "pd-eb", "--points", "-5"], 2, "points"),
@@ -83,6 +84,12 @@ CLI_CASES = [
     ("solve-horizon-0", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "0"], 2, "horizon = 0"),
     ("solve-horizon-nan", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "nan"], 2, "horizon = nan"),
     ("solve-spacing-not-dividing", ["solve", "{scene}", "-m", "pd-eb", "--spacing", "0.3"], 2, "spacing = 0.3"),
+    (  # 2/35 to seven digits: was taken as 2/35, 1.2e-6 off the spacing given
+        "solve-spacing-to-a-few-digits",
+        ["solve", "{scene}", "-m", "pd-eb", "--spacing", "0.0285714"],
+        2,
+        "the nearest: spacing = 0.02857142857142857",
+    ),
     ("solve-spacing-negative", ["solve", "{scene}", "-m", "pd-eb", "--spacing", "-1"], 2, "spacing = -1"),
     (
         "solve-points-and-spacing",
@@ -154,6 +161,8 @@ CLI_CASES = [
     ("report-on-a-file", ["report", "{file}"], 2, "not a folder"),
     ("report-broken-results", ["report", "{broken_csv}"], 2, "results.csv: not a readable CSV table"),
     ("report-foreign-results", ["report", "{no_cols}"], 2, "results.csv: no 'case_id' column"),
+    ("report-results-a-device", ["report", "{dev_results}"], 2, "results.csv: not a regular file"),
+    ("report-meta-a-device", ["report", "{dev_meta}"], 2, "meta.json: not a regular file"),
     ("report-broken-meta", ["report", "{broken_meta}"], 2, "meta.json: not valid JSON"),
     ("report-out-below-file", ["report", "{broken_meta}", "--out", "{file}/rep"], 4, "is a file, not a folder"),
     ("advise-tolerance-text", ["advise", "{scene}", "--tolerance", "abc"], 2, "--tolerance"),
@@ -226,6 +235,18 @@ CLI_CASES = [
     ("solve-auto-tolerance-0", ["solve", "{scene}", "-m", "auto", "--tolerance", "0"], 2, "--tolerance 0"),
     ("verify-points", ["verify", "pd-eb", "-o", "points=3", "--out", "{tmp}/v1"], 2, "the suite sets the grids"),
     ("verify-spacing", ["verify", "pd-eb", "-o", "spacing=0.1", "--out", "{tmp}/v2"], 2, "the suite sets the grids"),
+    (  # was two lines naming the suite's own study file, written into --out first
+        "verify-horizon-past-the-coarsest-grid",
+        ["verify", "pd-eb", "--horizon", "40", "--out", "{tmp}/v40"],
+        2,
+        "horizon = 40: the family (40 points each side) does not fit in 21 points",
+    ),
+    (  # a reference truncated at 200 % of its static response was accepted
+        "solve-modal-tolerance-2",
+        ["solve", "{dyn}", "-m", "exact-modal-timoshenko", "-o", "tolerance=2"],
+        2,
+        "tolerance <= 0.01",
+    ),
     ("verify-order-nan", ["verify", "pd-eb", "--order", "nan"], 2, "--order nan"),
     ("verify-order-0", ["verify", "pd-eb", "--order", "0"], 2, "--order 0"),
     ("verify-order-negative", ["verify", "pd-eb", "--order", "-1"], 2, "--order -1"),
@@ -562,6 +583,11 @@ def files(tmp_path_factory):
     (d / "text_number" / "results.csv").write_text(
         header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\nc2,s.toml,s,ok,pd-eb,100,many,0.1\n"
     )
+    (d / "dev_results").mkdir()  # results.csv a symlink to a device: was read as "no cases"; meta.json's never ended
+    (d / "dev_results" / "results.csv").symlink_to("/dev/zero")
+    (d / "dev_meta").mkdir()
+    (d / "dev_meta" / "results.csv").write_text(header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\n")
+    (d / "dev_meta" / "meta.json").symlink_to("/dev/zero")
     for name, results, meta in (
         ("broken_csv", 'a,b\n1,"2\n', "{}"),
         ("broken_meta", "case_id,scene_file,scene,status\n", "{not json"),
@@ -582,6 +608,8 @@ def files(tmp_path_factory):
         "empty": d / "empty",
         "broken_csv": d / "broken_csv",
         "broken_meta": d / "broken_meta",
+        "dev_results": d / "dev_results",
+        "dev_meta": d / "dev_meta",
         "no_cols": d / "no_cols",
         "fifo": d / "fifo.csv",
         "link_dir": d / "link_dir",
@@ -635,6 +663,7 @@ def test_bad_cli_input(args, code, text, files, capsys):
     assert_one_error_line(*cli(argv, capsys), code, text.format(**files))
     assert not list(files["tmp"].glob("*.json")) and not list(files["tmp"].glob(".*tmp*"))  # nothing half-written
     assert not files["link_nothing"].parent.joinpath("missing").exists()  # no folder made along a symlink
+    assert not files["tmp"].joinpath("v40").exists()  # verify refuses its options before writing its suite
 
 
 @pytest.mark.parametrize(
