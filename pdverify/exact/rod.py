@@ -28,15 +28,19 @@ from ..core.contract import POINTS, Model
 from ..core.errors import SolveError
 from ..core.result import Result, Timer
 from ..core.scene import ROD_HELD, Distributed, PointForce, PointTorque, Scene, Spring
+from ..numerics.error_bound import ENTRY_ROUNDING, record_bound
+from .beam import bound_grid
 from .straight import _distributed_terms, _share
 
 _RIGID = {"axial": ("pinned", "clamped"), "torsion": ("pinned", "roller", "clamped")}
 _SPRING = {"axial": "stiffness", "torsion": "rotational_stiffness"}
 
 
-def load_integrals(scene: Scene, x, kind: str) -> tuple[np.ndarray, np.ndarray]:
-    """(F, G) at x: the axial load (``kind = "axial"``) or the torque (``"torsion"``) on [0, x], and its integral."""
+def load_integrals(scene: Scene, x, kind: str, size: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    """(F, G) at x: the axial load (``kind = "axial"``) or the torque (``"torsion"``) on [0, x], and its integral;
+    ``size``: the sums of the loads' magnitudes instead (what their rounding is relative to)."""
     x = np.asarray(x, dtype=float)
+    mag = np.abs if size else (lambda v: v)
     L = scene.length
     F, G = np.zeros_like(x), np.zeros_like(x)
     for load in scene.loads:
@@ -45,7 +49,7 @@ def load_integrals(scene: Scene, x, kind: str) -> tuple[np.ndarray, np.ndarray]:
             if v != 0.0:
                 a, b = scene.span(load)
                 g, f = _distributed_terms(load.model_copy(update={"value": v}), a, b, L, x)[:2]
-                F, G = F + f, G + g
+                F, G = F + mag(f), G + mag(g)
             continue
         if kind == "axial" and isinstance(load, PointForce):
             v = load.axial
@@ -54,8 +58,8 @@ def load_integrals(scene: Scene, x, kind: str) -> tuple[np.ndarray, np.ndarray]:
         else:
             continue
         share = _share(x, load.position, L)
-        F += v * share
-        G += np.where(share > 0, v * (x - load.position), 0.0)
+        F += mag(v * share)
+        G += mag(np.where(share > 0, v * (x - load.position), 0.0))
     return F, G
 
 
@@ -98,7 +102,12 @@ class ExactRod(Model):
 
     def evaluator(self, scene: Scene, params: dict):
         """x -> {measures: f, resultant: R}, the constants f₀, R₀ (and the supports' Q_k) found once (module
-        docstring)."""
+        docstring); its ``error_bound`` (:meth:`rounding`) for a study's reference rows."""
+        fields = self._evaluator(scene)
+        fields.error_bound = self.rounding(scene, fields)
+        return fields
+
+    def _evaluator(self, scene: Scene):
         if scene.supports.simple and scene.uniform:
             L, S = scene.length, self.stiffness(scene)
             held = [s in ROD_HELD[self.theory] for s in (scene.supports.left, scene.supports.right)]
@@ -109,12 +118,29 @@ class ExactRod(Model):
                 F, G = load_integrals(scene, x, self.theory)
                 return {self.measures: f0 + (R0 * np.asarray(x, float) - G) / S, self.resultant: R0 - F}
 
+            def size(x):
+                return (
+                    abs(f0) + (np.abs(R0 * np.asarray(x, float)) + load_integrals(scene, x, self.theory, True)[1]) / S
+                )
+
             fields.reactions = {"left": -R0, "right": R0 - FL}
+            fields.size, fields.cond = size, 1.0
             return fields
         return _general(scene, self.theory, self.measures, self.resultant, self.stiffness(scene))
 
     def evaluate(self, scene: Scene, params: dict, x: np.ndarray) -> dict[str, np.ndarray]:
         return self.evaluator(scene, params)(x)
+
+    def rounding(self, scene: Scene, fields) -> float:
+        """Round-off bound of the unknown (u or the twist) relative to its largest value, over :func:`bound_grid`:
+        each value is a sum of terms (the constants' and the loads' integrals, on segments differences of them),
+        which rounds by about (ENTRY_ROUNDING + cond) eps of the sum of the terms' magnitudes (Higham, *Accuracy
+        and Stability*, 2nd ed., ch. 4; cond: the scaled constants' system's 1-norm condition number, 1 where the
+        constants are explicit). Relative to the terms' size where nothing moves."""
+        x = bound_grid(scene)
+        c = (ENTRY_ROUNDING + fields.cond) * np.finfo(float).eps
+        top = float(np.abs(fields(x)[self.measures]).max())
+        return float(f"{c * float(fields.size(x).max()) / top:.3g}") if top > 0.0 else float(f"{c:.3g}")
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
@@ -124,10 +150,9 @@ class ExactRod(Model):
             f = ev(x)
         key = "axial" if self.theory == "axial" else "torque"
         # the supports' reactions on the bar (+x, or right-handed about +x): -R(0) at the left, R(L) at the right
-        reactions = {f"{key}_{k}": float(v) for k, v in ev.reactions.items()}
-        return self.new_result(
-            scene, params, x, np.zeros_like(x), fields=f, dofs=2, timings=timer.timings, info={"reactions": reactions}
-        )
+        info = {"reactions": {f"{key}_{k}": float(v) for k, v in ev.reactions.items()}}
+        record_bound(info, ev.error_bound)
+        return self.new_result(scene, params, x, np.zeros_like(x), fields=f, dofs=2, timings=timer.timings, info=info)
 
 
 def end_spring(scene: Scene, side: str, theory: str) -> float:
@@ -161,9 +186,11 @@ def _general(scene: Scene, theory: str, measures: str, resultant: str, S0: float
     pieces = _pieces(scene, theory)
     nq = len(hs)
 
-    def parts(x):
-        """(f, R) at x as (len(x), 2 + nq) coefficient rows for (f0, R0, Q...) and the loads' (len(x),) part."""
+    def parts(x, size: bool = False):
+        """(f, R) at x as (len(x), 2 + nq) coefficient rows for (f0, R0, Q...) and the loads' (len(x),) part;
+        ``size``: f's terms' magnitudes (each segment's increment a difference of two integrals from 0)."""
         x = np.asarray(x, float)
+        mag = np.abs if size else (lambda v: v)
         F, G = load_integrals(scene, x, theory)
         Rc = np.zeros((len(x), 2 + nq))
         Rc[:, 1] = 1.0
@@ -174,12 +201,13 @@ def _general(scene: Scene, theory: str, measures: str, resultant: str, S0: float
             Rc[:, 2 + k] = -_share(x, at, L)
         for a, b, S in pieces:
             y = np.clip(x, a, b)
-            Fa, Ga = load_integrals(scene, np.full(len(x), a), theory)
-            Fy, Gy = load_integrals(scene, y, theory)
-            Ic[:, 1] += (y - a) / S
-            Ip += -(Gy - Ga) / S
+            Fa, Ga = load_integrals(scene, np.full(len(x), a), theory, size)
+            Fy, Gy = load_integrals(scene, y, theory, size)
+            Ic[:, 1] += (mag(y) + mag(a)) / S if size else (y - a) / S
+            Ip += (Gy + Ga) / S if size else -(Gy - Ga) / S
             for k, (_, at, _) in enumerate(hs):
-                Ic[:, 2 + k] += -(np.maximum(y - at, 0.0) - np.maximum(a - at, 0.0)) / S
+                ya, aa = np.maximum(y - at, 0.0), np.maximum(a - at, 0.0)
+                Ic[:, 2 + k] += (ya + aa) / S if size else -(ya - aa) / S
         fc = Ic.copy()
         fc[:, 0] = 1.0
         return fc, Ip, Rc, Rp
@@ -216,6 +244,12 @@ def _general(scene: Scene, theory: str, measures: str, resultant: str, S0: float
     def fields(x):
         fc, fp, Rc, Rp = parts(x)
         return {measures: fc @ c + fp, resultant: Rc @ c + Rp}
+
+    def size(x):
+        fc, fp, _, _ = parts(x, size=True)
+        return np.abs(fc) @ np.abs(c) + fp
+
+    fields.size, fields.cond = size, float(np.linalg.cond(As, 1))
 
     R_end = fields(np.array([0.0, L]))[resultant]
     out = {"left": -float(c[1]), "right": float(R_end[1])}  # zero at a free end

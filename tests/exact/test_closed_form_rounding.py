@@ -7,7 +7,7 @@ import pytest
 from helpers import scene_dict
 
 from pdverify.core.scene_file import parse_scene
-from pdverify.registry import run
+from pdverify.registry import get_model, run
 
 
 def cantilever(length: float, at: float):
@@ -88,3 +88,24 @@ def test_a_short_soft_segment_s_cancellation_is_in_the_bound(model, fem):
     keep = np.isin(np.asarray(ref.x), np.asarray(exact.x))
     error = np.abs(np.asarray(ref.w)[keep] - exact.w).max() / np.abs(exact.w).max()
     assert 1e-9 < error <= exact.info["error_bound"], (error, exact.info["error_bound"])
+
+
+@pytest.mark.parametrize("ratio", [1e-2, 1e-4, 1e-6, 1e-8])
+@pytest.mark.parametrize("segments", [False, True])
+def test_the_rod_s_bound_covers_a_force_beside_a_clamp(ratio, segments):
+    """exact-rod (it had no bound): a clamped-clamped rod, an axial force F at a = ratio L; beyond it u = F a (L - x)
+    / (L EA), at most F a / EA, from terms of F L / EA (R0 x and the force's own integral, which cancel): a relative
+    error of about eps / ratio, which the bound covers (on two segments of one section, too: the same rod)."""
+    L, F = 2.0, 1000.0
+    d = scene_dict("clamped", "clamped", [{"type": "point_force", "position": ratio * L, "value": 0.0, "axial": F}])
+    d["beam"] = {"length": L}
+    if segments:
+        d["segments"] = [{"start": 0.0, "end": 0.5 * L}, {"start": 0.5 * L, "end": L}]
+    sc = parse_scene(d)
+    r = run(sc, "exact-rod", points=11)
+    a = ratio * L
+    x = np.linspace(a, L, 1001)
+    exact = F * a * (L - x) / (L * sc.EA)
+    error = np.abs(get_model("exact-rod").evaluate(sc, {}, x)["u"] - exact).max() / exact[0]
+    assert 0.0 < r.info["error_bound"] and error <= r.info["error_bound"], (error, r.info["error_bound"])
+    assert (r.info["error_bound"] > 1e-6) == any("round-off bound" in w for w in r.info.get("warnings", []))
