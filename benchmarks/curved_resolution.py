@@ -6,7 +6,8 @@ on a curved axis"; pdverify/papers/curved/resolution.py):
 Scenes: the curved studies' scenes (studies/curved, studies/paper_curved's semicircles and steep quintic); a cubic
 axis y = 0.1 - 0.5 x + 0.8 x^2 + 0.6 x^3 on [-0.5, 1] (h = 0.05) on every support pair of clamped, pinned, roller,
 free and guided ends that holds it; arcs of 10, 90, 180 and 350 degrees (R = 1) clamped-free, clamped-clamped,
-pinned-roller and pinned-pinned at L/h = 10 and 1000; quadratic, cubic and sine axes (two steepnesses each) clamped-
+pinned-roller and pinned-pinned at L/h = 10 and 1000; rings of 359 and 359.9 degrees pinned-pinned (near mechanisms)
+at L/h = 10 and 1000; quadratic, cubic and sine axes (two steepnesses each) clamped-
 free at L/h = 5 and 1e4, pinned-roller at 5, 100 and 1e4, clamped-clamped at 100. Loads (not on the studies' scenes):
 a point force with an axial part at 0.25 L, a couple at 0.7 L, a global line load from 0.4 L, forces at both ends.
 Each at 11, 21, 41, 81, 161 and 321 particles, degree 2 to 6, the mixed form; error = max |w - w_exact| / max
@@ -79,6 +80,12 @@ def scenes() -> list[tuple[str, dict]]:
         for a, b in pairs:
             for slender in (10, 1000):
                 out.append((f"arc{angle}:{a}-{b}:{slender}", scene(arc, a, b, math.radians(angle) / slender)))
+    for angle in (359, 359.9):  # near mechanisms: pins a degree and a tenth of one apart (resolution.amplification)
+        arc = {"type": "arc", "radius": 1.0, "opening_angle_deg": float(angle)}
+        for slender in (10, 1000):
+            out.append(
+                (f"ring{angle}:pinned-pinned:{slender}", scene(arc, "pinned", "pinned", math.radians(angle) / slender))
+            )
     axes = {
         "quad0.25": {"type": "polynomial", "coefficients": [0, 0, 0.25], "x_range": [0.0, 2.0]},
         "quad2": {"type": "polynomial", "coefficients": [0, 0, 2.0], "x_range": [-1.0, 1.0]},
@@ -120,6 +127,7 @@ def rows_of(item: tuple[str, dict]) -> list[dict]:
                     "degree": P,
                     "error": float(np.abs(r.w - exact.w).max() / top),
                     "frame_defect": r.info["frame_defect"],
+                    "amplification": r.info.get("amplification", 1.0),
                     "warned": any("too coarsely" in w for w in r.info.get("warnings", [])),
                 }  # fmt: skip
             )

@@ -84,7 +84,7 @@ from .particles import (
     parse_positions,
     segment_grids,
 )
-from .resolution import frame_defect, resolution_warning
+from .resolution import amplification, frame_defect, resolution_warning
 from .supports import BREAK, axial_mechanism, particle_stiffness, reactions
 
 PRIMAL_LOCKS = (  # docs/models/curved.md, "Locking": studies/paper_curved_quintic_bending.toml, 201 particles, P = 2
@@ -309,12 +309,17 @@ class PDCurved(Model):
         if params["form"] == "primal":
             warnings.add(PRIMAL_LOCKS)
         defect = max(i.get("frame_defect", 0.0) for i in infos)
+        amplified = 1.0
         if params["form"] == "mixed":
             info["frame_defect"] = defect
+            if defect > 0.0 and body is None:
+                amplified = info["amplification"] = amplification(
+                    float(np.hypot(total["ux"], total["uy"]).max()), scene
+                )
         for flag in (
             thick_ring_warning(scene),
             coupling_warning(scene, total["x"] / len(infos), total["N"], total["M"]),
-            resolution_warning(defect, params["degree"]) if params["form"] == "mixed" else "",
+            resolution_warning(defect, params["degree"], amplified) if params["form"] == "mixed" else "",
             *merged_break_warnings(scene),
         ):
             if flag:

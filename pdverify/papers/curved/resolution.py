@@ -5,8 +5,10 @@ A rigid translation c has the components c.t and c.n along the axis frame, and i
 (t' = kappa n: Frenet). The model takes t, n and kappa exactly from the axis but differentiates with the PDDO weights
 of its families, so the translation strains by c.(D1 t - kappa n). :func:`frame_defect`, the largest of that over the
 particles relative to the largest curvature, falls at the order of the derivative as the particles are refined; it is
-0 on a straight axis. Past :data:`LIMITS` (the mixed form) most measured runs were more than 10 % off their exact
-solution, where the model said nothing else (``PYTHONPATH=. python benchmarks/curved_resolution.py``)."""
+0 on a straight axis. Where the supports leave the beam near a mechanism its response is mostly a rigid motion and
+the defect counts that much more (:func:`amplification`). Past :data:`LIMITS` (the mixed form) most measured runs
+were more than 10 % off their exact solution, where the model said nothing else (``PYTHONPATH=. python
+benchmarks/curved_resolution.py``)."""
 
 from __future__ import annotations
 
@@ -16,7 +18,8 @@ from . import pddo as _pddo
 
 # frame_defect past which, in the mixed form of degree P, most of the measured runs were more than 10 % off: 87
 # curved scenes (arcs of 10 to 350 degrees, quadratic, cubic and sine axes, the studies' scenes; support pairs;
-# L/h = 5 to 1e4) at 11 to 321 particles (benchmarks/curved_resolution.py, docs/models/curved.md)
+# L/h = 5 to 1e4) at 11 to 321 particles (benchmarks/curved_resolution.py, docs/models/curved.md); with the
+# amplification of near mechanisms, 91 scenes (rings of 359 and 359.9 degrees pinned at both ends added)
 LIMITS = {2: 0.02, 3: 0.0015, 4: 0.015, 5: 3e-4, 6: 1.1e-4}
 STRAIGHT = 1e-12  # max |kappa| L below this: a straight axis (no frame to resolve)
 
@@ -37,21 +40,49 @@ def frame_defect(segs: list[np.ndarray], frames: list[tuple[np.ndarray, np.ndarr
     return worst / top
 
 
+def amplification(displacement: float, scene) -> float:
+    """How near the supports leave the beam to a mechanism: its largest ``displacement`` relative to a cantilever's
+    of the same length and the smallest EI under loads of the same sizes (a force F: F L^3 / 3 EI, a couple M:
+    M L^2 / 2 EI, a line load of resultant Q at most: Q L^3 / 8 EI, summed). About 1 or below on a beam held as a
+    cantilever or more firmly; large where the supports nearly let it move rigidly (a ring pinned at two points a
+    degree apart: 260), where the response is mostly a rigid motion and the strain the defect gives a rigid motion
+    counts that much more. 1 without loads (a manufactured body load)."""
+    L = scene.length
+    EI = min(mat.E * sec.I for _, _, sec, mat in scene.pieces())
+    size = 0.0
+    for load in scene.loads:
+        if load.type == "point_force":
+            size += np.hypot(load.value, load.axial) * L**3 / 3
+        elif load.type == "point_moment":
+            size += abs(load.value) * L**2 / 2
+        elif load.type == "distributed":
+            a, b = scene.span(load)
+            size += np.hypot(load.value, load.axial) * (b - a) * L**3 / 8
+    return float(displacement * EI / size) if size > 0 else 1.0
+
+
 def limit(degree: int) -> float:
     """The limit of a degree: its own; past the measured ones, the highest measured degree's."""
     return LIMITS.get(degree, LIMITS[max(LIMITS)])
 
 
-def resolution_warning(defect: float, degree: int) -> str:
-    """The warning of a mixed-form solve whose ``defect`` (:func:`frame_defect`, the largest over its solves) passes
-    the degree's :func:`limit`; "" otherwise."""
-    if not defect > limit(degree):
+def resolution_warning(defect: float, degree: int, amplified: float = 1.0) -> str:
+    """The warning of a mixed-form solve whose ``defect`` (:func:`frame_defect`, the largest over its solves), times
+    its :func:`amplification` ``amplified`` where that passes 1, passes the degree's :func:`limit`; "" otherwise."""
+    amplified = max(1.0, amplified)
+    if not defect * amplified > limit(degree):
         return ""
     measured = "" if degree in LIMITS else f" (degree {degree} not measured: degree {max(LIMITS)}'s limit)"
+    near = (
+        ""
+        if amplified == 1.0
+        else f", times {amplified:.2g} where the supports leave the beam near a mechanism (its displacement that many "
+        f"times a cantilever's under these loads, mostly a rigid motion): {defect * amplified:.2g}"
+    )
     return (
         f"pd-curved: the particles resolve the curved axis too coarsely for degree {degree}: its derivative of the "
-        f"axis frame strains a rigid translation by {defect:.2g} of the largest curvature, past "
-        f"{limit(degree):g}{measured}; of the measured runs past that limit 75 % were more than 10 % off (median "
-        "45 %) and 9 % within 1 % (docs/models/curved.md); use more particles, or check the result with `pdverify "
+        f"axis frame strains a rigid translation by {defect:.2g} of the largest curvature{near}, past "
+        f"{limit(degree):g}{measured}; of the measured runs past that limit 76 % were more than 10 % off (median "
+        "59 %) and 8 % within 1 % (docs/models/curved.md); use more particles, or check the result with `pdverify "
         "solve --estimate`"
     )
