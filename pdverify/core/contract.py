@@ -34,6 +34,7 @@ author.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from decimal import Decimal
 from typing import Any
 
 import numpy as np
@@ -57,6 +58,14 @@ def _whole(value) -> int:
         if f != int(f):
             raise ValueError from None
         return int(f)
+
+
+def _short(v: int) -> str:
+    """A whole number past 1e15 in three digits (1e+20), past the float range too (1.00e+400)."""
+    try:
+        return format(float(v), ".3g")
+    except OverflowError:
+        return format(Decimal(v), ".3g")
 
 
 @dataclass(frozen=True)
@@ -110,7 +119,7 @@ class Option:
                 + (" (the horizon must cover at least one spacing)" if self.name == "horizon" else "")
             )
         if self.maximum is not None and v > self.maximum:
-            shown = format(v, ".3g") if isinstance(v, int) and v > 1e15 else repr(value)  # not 300 digits
+            shown = _short(v) if isinstance(v, int) and v > 10**15 else repr(value)  # not 400 digits
             raise InputError(f"{self.name} = {shown}: model {model} needs {self.name} <= {self.maximum:g}")
         return v
 
@@ -466,9 +475,15 @@ class Model(Horizon):
         return next((o for o in self.options if o.name == name), None)
 
     def with_defaults(self, params: dict) -> dict:
-        """``params`` over the options' defaults, unchecked (:meth:`resolve` validates): for a method asked with the
-        user's options only (a card's check, the suite's reference)."""
-        return {o.name: o.default for o in self.options} | dict(params)
+        """``params`` over the options' defaults, each of this model's options read as its type (``-o degree=4.0``
+        is 4; a value that is not: InputError) but not checked against the scene or the variant rules
+        (:meth:`resolve` does that): for a method asked with the user's options only (a card's check, the suite's
+        reference)."""
+        given = {
+            k: (o.coerce(self.name, v) if v is not None and (o := self.option(k)) is not None else v)
+            for k, v in params.items()
+        }
+        return {o.name: o.default for o in self.options} | given
 
     def resolve(self, scene: Scene, given: dict, rules: bool = True) -> dict:
         """Validate ``given`` options against this model and fill in the defaults; ``rules``: also against

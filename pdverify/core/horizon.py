@@ -51,7 +51,7 @@ class Horizon:
         if (self.whole_horizon or opt.kind is int) and m != round(m):
             near = self.nearest_whole(scene, params, m)
             raise InputError(
-                f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}; model {self.name} needs a whole "
+                f"horizon_length = {float(delta)!r}: {m:.10g} spacings of {dx:.10g}; model {self.name} needs a whole "
                 f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
                 f"{near * dx:.12g} or points with (points - 1) delta / length whole"  # digits enough to be whole
             )

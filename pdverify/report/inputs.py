@@ -149,7 +149,7 @@ class StudyFolder:
     def _scene_texts(self) -> dict:
         try:
             return json.loads((self.d / SCENES).read_text())
-        except (OSError, ValueError):  # a study run before scenes.json was written
+        except (OSError, ValueError, RecursionError):  # a study run before scenes.json was written (or it is damaged)
             return {}
 
     def scene(self, scene_file: str, slenderness=None) -> Scene | None:
@@ -163,6 +163,16 @@ class StudyFolder:
             return None
 
 
+def _json_object(text) -> bool:
+    """Whether a results row's options cell is empty or a JSON object."""
+    if text is None or (isinstance(text, str) and not text.strip()) or (isinstance(text, float) and text != text):
+        return True
+    try:
+        return isinstance(json.loads(text), dict)
+    except (TypeError, ValueError, RecursionError):
+        return False
+
+
 def load(d: Path) -> StudyFolder:
     """The study folder ``d``, checked: results.csv present, whole and a pdverify table; meta.json an object."""
     if not d.is_dir():
@@ -173,7 +183,7 @@ def load(d: Path) -> StudyFolder:
     again = f"run `pdverify study STUDY.toml --out {d}` again"
     try:
         meta = json.loads((d / "meta.json").read_text()) if present(d / "meta.json") else {"study": d.name}
-    except (ValueError, UnicodeDecodeError):
+    except (ValueError, UnicodeDecodeError, RecursionError):  # nested past Python's recursion limit: damaged too
         raise InputError(f"{d / 'meta.json'}: not valid JSON; {again}") from None
     res = read_table(d, "results")
     if res.empty:
@@ -193,6 +203,13 @@ def load(d: Path) -> StudyFolder:
                 f"{d / 'results.csv'}: line {i + 2}, column '{col}' = {str(res[col].iloc[i])[:40]!r}: not a number; "
                 f"{again}"
             )
+    if "options" in res:  # every figure and table reads a row's options as a JSON object
+        for i, text in enumerate(res["options"]):
+            if not _json_object(text):
+                raise InputError(
+                    f"{d / 'results.csv'}: line {i + 2}, column 'options' = {str(text)[:40]!r}: not a JSON object; "
+                    f"{again}"
+                )
     if not isinstance(meta, dict):
         raise InputError(f"{d / 'meta.json'}: not a JSON object; {again}")
     if not (d / "cases").is_dir():  # every figure's curves: each would be drawn empty

@@ -91,7 +91,7 @@ def decode_record(raw: bytes) -> dict | None:
         return None
     try:
         rec = json.loads(bytes(header))
-    except ValueError:
+    except (ValueError, RecursionError):
         return None
 
     def unpack(v):
@@ -204,7 +204,7 @@ def decode_array(v) -> np.ndarray:
 def _read_legacy(raw: bytes) -> dict | None:
     try:
         rec = json.loads(raw)
-    except ValueError:
+    except (ValueError, RecursionError):
         return None
     if not isinstance(rec, dict) or not isinstance(rec.get("curve"), dict):
         return rec

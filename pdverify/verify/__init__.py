@@ -177,7 +177,6 @@ def verify(
     t0 = time.perf_counter()
     options = dict(options or {})
     model = get_model(model_name)
-    expected = expected_order(model, options, order)
     out = Path(out)
     grid = [f"{k}: the suite sets the grids; drop it" for k in options if k in ("points", "spacing")]
     if grid:
@@ -188,6 +187,9 @@ def verify(
         raise InputError(why)
     solved = next(f for f, why in declined.items() if not why)
     _resolve_coarsest(model, p, solved, options)  # bad options: one line each before anything runs
+    typed = model.with_defaults(options)
+    options = {k: typed[k] for k in options}  # -o degree=4.0: 4, as solve reads it (the suite's study file holds it)
+    expected = expected_order(model, options, order)
     run_plan = runnable(p, declined)
     df = _run_suite(run_plan, model, options, out, workers, scheduler, progress)
     found, scenes, df = _judge(model, options, p, df, expected, declined)

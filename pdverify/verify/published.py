@@ -121,6 +121,6 @@ def read_index(out: Path) -> dict | None:
     p = Path(out) / "verify" / INDEX
     try:
         data = json.loads(p.read_text())
-    except (OSError, ValueError, UnicodeDecodeError):
+    except (OSError, ValueError, UnicodeDecodeError, RecursionError):
         return None
     return data if isinstance(data, dict) and isinstance(data.get("cards"), list) else None

@@ -72,6 +72,18 @@ CLI_CASES = [
         2,
         "points <= 9.0072e+15",
     ),
+    (  # the value, its count of spacings and the suggestion were all rounded to 2: the line contradicted itself
+        "solve-horizon-length-a-hair-off-whole",
+        ["solve", "{scene}", "-m", "pd-timoshenko", "--points", "41", "--horizon-length", "0.1500001"],
+        2,
+        "horizon_length = 0.1500001: 6.000004 spacings of 0.025",
+    ),
+    (  # its message's float overflowed: exit 3 with advice on units
+        "solve-points-400-digits",
+        ["solve", "{scene}", "-m", "fem-eb", "-o", "points=" + "9" * 400],
+        2,
+        "points = 1.00e+400: model fem-eb needs points <= 9.0072e+15",
+    ),
     (  # through a float 2**53 + 1 was 2**53, within the limit: the memory guard's exit 3
         "solve-points-past-2-53",
         ["solve", "{scene}", "-m", "exact-eb", "--points", str(2**53 + 1)],
@@ -161,6 +173,8 @@ CLI_CASES = [
     ("report-on-a-file", ["report", "{file}"], 2, "not a folder"),
     ("report-broken-results", ["report", "{broken_csv}"], 2, "results.csv: not a readable CSV table"),
     ("report-foreign-results", ["report", "{no_cols}"], 2, "results.csv: no 'case_id' column"),
+    ("report-meta-nested-deep", ["report", "{deep_meta}"], 2, "meta.json: not valid JSON"),
+    ("report-options-not-an-object", ["report", "{bad_options}"], 2, "column 'options' = '[1, 2]': not a JSON object"),
     ("report-results-a-device", ["report", "{dev_results}"], 2, "results.csv: not a regular file"),
     ("report-meta-a-device", ["report", "{dev_meta}"], 2, "meta.json: not a regular file"),
     ("report-broken-meta", ["report", "{broken_meta}"], 2, "meta.json: not valid JSON"),
@@ -246,6 +260,12 @@ CLI_CASES = [
         ["solve", "{dyn}", "-m", "exact-modal-timoshenko", "-o", "tolerance=2"],
         2,
         "tolerance <= 0.01",
+    ),
+    (  # read by the model's option parser, as solve reads it: an internal error (int('0x4')) before
+        "verify-degree-not-an-integer",
+        ["verify", "pd-curved", "-o", "degree=0x4", "--out", "{tmp}/vdeg"],
+        2,
+        "degree = '0x4': model pd-curved needs an integer here",
     ),
     ("verify-order-nan", ["verify", "pd-eb", "--order", "nan"], 2, "--order nan"),
     ("verify-order-0", ["verify", "pd-eb", "--order", "0"], 2, "--order 0"),
@@ -583,6 +603,13 @@ def files(tmp_path_factory):
     (d / "text_number" / "results.csv").write_text(
         header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\nc2,s.toml,s,ok,pd-eb,100,many,0.1\n"
     )
+    (d / "deep_meta").mkdir()  # nested past Python's recursion limit: was an internal error (RecursionError)
+    (d / "deep_meta" / "results.csv").write_text(header + "c1,s.toml,s,ok,pd-eb,100,11,0.1\n")
+    (d / "deep_meta" / "meta.json").write_text("[" * 100_000 + "]" * 100_000)
+    (d / "bad_options").mkdir()  # an options cell that is not a JSON object: the papers' pages read it as one
+    (d / "bad_options" / "results.csv").write_text(
+        header.replace("err_max", "err_max,options") + 'c1,s.toml,s,ok,pd-eb,100,11,0.1,"[1, 2]"\n'
+    )
     (d / "dev_results").mkdir()  # results.csv a symlink to a device: was read as "no cases"; meta.json's never ended
     (d / "dev_results" / "results.csv").symlink_to("/dev/zero")
     (d / "dev_meta").mkdir()
@@ -609,6 +636,8 @@ def files(tmp_path_factory):
         "broken_csv": d / "broken_csv",
         "broken_meta": d / "broken_meta",
         "dev_results": d / "dev_results",
+        "deep_meta": d / "deep_meta",
+        "bad_options": d / "bad_options",
         "dev_meta": d / "dev_meta",
         "no_cols": d / "no_cols",
         "fifo": d / "fifo.csv",

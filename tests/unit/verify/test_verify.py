@@ -396,3 +396,13 @@ def test_a_card_holds_pd_curved_to_the_order_its_degree_promises(options, order)
     assert expected_order(model, options) == order
     assert expected_order(model, options, order=1.5) == 1.5
     assert expected_order(get_model("pd-eb"), {}) == get_model("pd-eb").order
+
+
+def test_a_card_reads_its_options_as_solve_does():
+    """`verify pd-curved -o degree=4.0` was an internal error (int('4.0') in the promised order) where `solve` reads
+    4: the options a card holds its model to are its option parser's values."""
+    from pdverify.verify import expected_order
+
+    model = get_model("pd-curved")
+    assert model.with_defaults({"degree": "4.0"})["degree"] == 4
+    assert expected_order(model, {"degree": "6.0"}) == model.promised_order({"degree": 6}) == 6.0
