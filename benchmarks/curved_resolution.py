@@ -129,6 +129,7 @@ def rows_of(item: tuple[str, dict]) -> list[dict]:
                     "frame_defect": r.info["frame_defect"],
                     "amplification": r.info.get("amplification", 1.0),
                     "warned": any("too coarsely" in w for w in r.info.get("warnings", [])),
+                    "near": any("near a mechanism (" in w for w in r.info.get("warnings", [])),
                 }  # fmt: skip
             )
     return out
@@ -153,6 +154,13 @@ def main():
             lim = f" {limit(P):g}" if P != "all" else ""
             split = f"> 10 %: {(e > 0.1).sum()}, 1-10 %: {((e >= 0.01) & (e <= 0.1)).sum()}, < 1 %: {(e < 0.01).sum()}"
             print(f"degree {P}, {where} the limit{lim}: {len(h)} runs, {split}, median {e.median():.2g}")
+    for said, h in (
+        ("warned (too coarsely or near a mechanism)", df[df.warned | df.near]),
+        ("silent", df[~(df.warned | df.near)]),
+    ):
+        e = h.error
+        split = f"> 10 %: {(e > 0.1).sum()}, 1-10 %: {((e >= 0.01) & (e <= 0.1)).sum()}, < 1 %: {(e < 0.01).sum()}"
+        print(f"{said}: {len(h)} runs, {split}")
 
 
 if __name__ == "__main__":

@@ -84,7 +84,14 @@ from .particles import (
     parse_positions,
     segment_grids,
 )
-from .resolution import amplification, frame_defect, resolution_warning
+from .resolution import (
+    amplification,
+    frame_defect,
+    near_mechanism_warning,
+    pinned_note,
+    pinned_segments,
+    resolution_warning,
+)
 from .supports import BREAK, axial_mechanism, particle_stiffness, reactions
 
 PRIMAL_LOCKS = (  # docs/models/curved.md, "Locking": studies/paper_curved_quintic_bending.toml, 201 particles, P = 2
@@ -309,17 +316,20 @@ class PDCurved(Model):
         if params["form"] == "primal":
             warnings.add(PRIMAL_LOCKS)
         defect = max(i.get("frame_defect", 0.0) for i in infos)
-        amplified = 1.0
+        pinned = sorted({p for i in infos for p in i.get("pinned_segments", [])})
+        info.pop("pinned_segments", None)
+        if note := pinned_note(pinned, infos[0].get("family", 0)):
+            info["irregular"] = note
         if params["form"] == "mixed":
             info["frame_defect"] = defect
-            if defect > 0.0 and body is None:
-                amplified = info["amplification"] = amplification(
-                    float(np.hypot(total["ux"], total["uy"]).max()), scene
-                )
+        amplified = 1.0
+        if not scene.is_straight and body is None:  # near a mechanism (on a curved axis: a rigid motion strains)
+            amplified = info["amplification"] = amplification(float(np.hypot(total["ux"], total["uy"]).max()), scene)
         for flag in (
             thick_ring_warning(scene),
             coupling_warning(scene, total["x"] / len(infos), total["N"], total["M"]),
             resolution_warning(defect, params["degree"], amplified) if params["form"] == "mixed" else "",
+            near_mechanism_warning(amplified, pinned),
             *merged_break_warnings(scene),
         ):
             if flag:
@@ -378,6 +388,10 @@ class PDCurved(Model):
         ux = ut * t[:, 0] + un * nv[:, 0]
         uy = ut * t[:, 1] + un * nv[:, 1]
         info["bound_scale"] = float(max(np.abs(ux).max(), np.abs(uy).max()))  # the bound's 1 (superposed_bound)
+        # a segment of one family on a curved axis: its error does not fall with the grid (on a straight axis its
+        # families carry the fields' polynomials; measured: docs/models/curved.md); uniform particles only
+        if not scene.is_straight and not params.get("positions") and params.get("grading", 1.0) == 1.0:
+            info["pinned_segments"] = pinned_segments(d["segs"], params["points"], d["family"], scene.length)
         if params["form"] == "mixed":  # the primal form warns of its locking whatever the grid
             frames = [(t[a:b], nv[a:b], d["kappa"][a:b]) for a, b in zip(d["offs"][:-1], d["offs"][1:])]
             info["frame_defect"] = frame_defect(d["segs"], frames, params["degree"], d["family"], scene.length)
