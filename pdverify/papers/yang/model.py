@@ -118,6 +118,7 @@ from .outputs import (
     reactions,
     recovery_warnings,
     section_stresses,
+    shear_stiff_warning,
 )
 from .supports import section_forces, with_supports
 
@@ -524,7 +525,8 @@ class PDHigherOrder(Model):
         held = [s.position for s in scene.supports.inner if s.holds_rotation]
         constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["not cut" if not_cut(scene, held, info) else "cut"]
         near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
-        return flags + point_load_warnings(scene, params, info) + clamp_layer_warning(scene, dx) + near
+        layer = clamp_layer_warning(scene, dx)
+        return flags + point_load_warnings(scene, params, info) + layer + near + shear_stiff_warning(scene)
 
     def solve(self, scene: Scene, params: dict) -> Result:
         if dynamics.dynamic(scene, params):

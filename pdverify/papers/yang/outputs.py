@@ -150,6 +150,24 @@ def recovery_warnings(scene: Scene, interior: list) -> list[str]:
     return out
 
 
+SHEAR_STIFF = 1.0  # G / E past which the discretisation error grows (measured: docs/models/yang.md, Known limits)
+
+
+def shear_stiff_warning(scene: Scene) -> list[str]:
+    """A material whose shear modulus passes :data:`SHEAR_STIFF` times its Young's modulus (an auxetic one: nu below
+    -0.5): the discretisation error grows with G / E, and the higher-order theory leaves plane-stress elasticity."""
+    ratio = max(mat.G / mat.E for _, _, _, mat in scene.pieces())
+    if not ratio > SHEAR_STIFF:
+        return []
+    return [
+        f"G / E = {ratio:.3g} (poissons_ratio {min(m.poissons_ratio for *_, m in scene.pieces()):g}): the "
+        "discretisation error grows with G / E past 1 (clamped-pinned, L/h = 20, a force and a couple, 641 points: "
+        "3.9e-5 at G / E <= 1, 2.7e-4 at 1.5, 2.4e-3 at 5, 2.0e-2 at 50, falling at about second order) and the "
+        "theory leaves plane-stress elasticity (fem-plane-stress 2.5 % off exact-higher-order at nu = -0.99); check "
+        "with `pdverify solve --estimate` (docs/models/yang.md)"
+    ]
+
+
 LAYER_RESOLVED, LAYER_UNSEEN = 1 / 8, 20  # spacings, in layer widths, between which a clamp's layer is in transition
 
 
