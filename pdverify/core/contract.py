@@ -272,6 +272,7 @@ class Model(Horizon):
     theory: str = "euler-bernoulli"  # euler-bernoulli | timoshenko | higher-order | continuum | axial | torsion
     measures: str = "w"  # the output a study measures against its reference: w, or a point field (u, twist)
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
+    breaks: bool = False  # places its particles at the scene's features (pd-curved's segments), whatever the grid
     order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
     histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import InputError
+from ..numerics.features import features
 
 ASYMPTOTIC = (0.75, 1.5)  # the observed order's band around the promised one, as fractions of it
 NOISE = 10.0  # grids closer than this many times their round-off bounds agree to round-off
@@ -55,16 +56,10 @@ def nested_grids(n: int, least: int) -> tuple[tuple[int, ...], int]:
 
 
 def feature_gap(scene) -> float:
-    """The shortest distance along the axis between two of the scene's features: its ends, the supports inside, the
-    positions of point loads and prescribed displacements, the ends of distributed loads and of segments. Features
-    within 1e-9 of the length of each other count as one."""
-    at = [0.0, scene.length] + [s.position for s in scene.supports.inner]
-    for load in scene.loads:
-        at += list(scene.span(load)) if load.type == "distributed" else [load.position]
-    for g in scene.segments:
-        at += [g.start, g.end]
-    gaps = np.diff(np.unique(np.asarray(at, float)))
-    gaps = gaps[gaps > 1e-9 * scene.length]
+    """The shortest distance along the axis between two of the scene's features
+    (:func:`~pdverify.numerics.features.features`: its ends, the supports inside, the positions of point loads and
+    prescribed displacements, the ends of distributed loads and of segments; within 1e-9 of the length, one)."""
+    gaps = np.diff(features(scene))
     return float(gaps.min()) if len(gaps) else float(scene.length)
 
 

@@ -102,6 +102,7 @@ PRIMAL_LOCKS = (  # docs/models/curved.md, "Locking": studies/paper_curved_quint
 
 
 class PDCurved(Model):
+    breaks = True  # a segment of particles between each two features (a short one: info["irregular"], resolution.py)
     name = "pd-curved"
     title = "PDDO curved Timoshenko–Ehrenfest beam (u_t, u_n, φ), any degree"
     source = (
