@@ -5,6 +5,7 @@ file), and a solve's result as a table."""
 from __future__ import annotations
 
 import os
+import stat
 from enum import Enum
 from pathlib import Path
 
@@ -96,9 +97,19 @@ def check_writable(out: Path, option: str) -> None:
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
     if not parent.is_dir():
-        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
+        raise OutputError(f"{option} {out}: {parent} is {_kind(parent)}, not a folder; choose another path")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
+
+
+def _kind(path: Path) -> str:
+    """'a file', 'a FIFO', 'a device' or 'a socket': what ``path`` (which exists and is not a folder) is."""
+    mode = os.stat(path).st_mode if os.path.exists(path) else 0
+    if stat.S_ISFIFO(mode):
+        return "a FIFO"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    return "a socket" if stat.S_ISSOCK(mode) else "a file"
 
 
 def _name_max(folder: Path) -> int:
@@ -115,12 +126,12 @@ def check_folder(out: Path, option: str) -> None:
     """Before any computation: ``out`` is a folder pdverify can write into, or can be made as one."""
     real = Path(os.path.realpath(out))
     if os.path.lexists(real) and not real.is_dir():
-        raise OutputError(f"{option} {out}: is a file, not a folder; give a folder (it is made if missing)")
+        raise OutputError(f"{option} {out}: is {_kind(real)}, not a folder; give a folder (it is made if missing)")
     parent = real
     while not parent.exists() and parent != parent.parent:
         parent = parent.parent
     if not parent.is_dir():
-        raise OutputError(f"{option} {out}: {parent} is a file, not a folder; choose another path")
+        raise OutputError(f"{option} {out}: {parent} is {_kind(parent)}, not a folder; choose another path")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
 

@@ -85,8 +85,8 @@ class Option:
         try:
             if isinstance(value, bool) and self.kind in (int, float):
                 raise ValueError  # numbers never from true/false
-            if isinstance(value, str) and "_" in value and self.kind in (int, float):
-                raise ValueError  # Python reads "3_0" as 30: a typo, not a number
+            if isinstance(value, str) and ("_" in value or not value.isascii()) and self.kind in (int, float):
+                raise ValueError  # Python reads "3_0" as 30 and Arabic-Indic "٤١" as 41: not a number as written
             if self.kind is int:
                 v = _whole(value)
             elif self.kind is float:

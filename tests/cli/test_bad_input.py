@@ -178,6 +178,8 @@ CLI_CASES = [
     ("report-results-a-device", ["report", "{dev_results}"], 2, "results.csv: not a regular file"),
     ("report-meta-a-device", ["report", "{dev_meta}"], 2, "meta.json: not a regular file"),
     ("report-broken-meta", ["report", "{broken_meta}"], 2, "meta.json: not valid JSON"),
+    ("report-out-fifo", ["report", "{broken_meta}", "--out", "{fifo}"], 4, "is a FIFO, not a folder"),
+    ("solve-points-arabic-indic", ["solve", "{scene}", "-m", "pd-eb", "-o", "points=\u0664\u0661"], 2, "points = "),
     ("report-out-below-file", ["report", "{broken_meta}", "--out", "{file}/rep"], 4, "is a file, not a folder"),
     ("advise-tolerance-text", ["advise", "{scene}", "--tolerance", "abc"], 2, "--tolerance"),
     ("advise-tolerance-0", ["advise", "{scene}", "--tolerance", "0"], 2, "--tolerance 0"),
