@@ -37,3 +37,28 @@ def unresolved_features_warnings(scene: Scene, spacing: float) -> list[str]:
         f"{gaps[i]:.3g} apart, within one spacing ({spacing:.3g}): the grid does not place them apart, so the result "
         f"near them is not the model's converged one; use at least {int(np.ceil(scene.length / gaps[i])) + 1} points"
     ]
+
+
+STIFFNESS_STEP = 1000.0  # EI changing this many times at a joint: the PD beams' error constant has grown 20-fold
+# (a 2 m clamped-pinned beam with a soft middle fifth at 161 points; docs/models/diyaroglu.md, Known limits)
+
+
+def stiffness_step_warnings(scene: Scene) -> list[str]:
+    """A segment joint where EI changes :data:`STIFFNESS_STEP` times or more: the PD beams' families reach across it,
+    and their error, second order still, has a constant that grows with the step until the soft side is a hinge."""
+    pieces = scene.pieces()
+    steps = [
+        (b, max(EI, EJ) / min(EI, EJ))
+        for (_, b, s1, m1), (_, _, s2, m2) in zip(pieces[:-1], pieces[1:])
+        if min(EI := m1.E * s1.I, EJ := m2.E * s2.I) > 0.0
+    ]
+    big = [(at, r) for at, r in steps if r >= STIFFNESS_STEP]
+    if not big:
+        return []
+    at, r = max(big, key=lambda s: s[1])
+    return [
+        f"EI changes {r:.3g}-fold at the segment joint x = {at:.6g}: the error near such a joint grows with the step "
+        "(a 2 m clamped-pinned beam, a middle fifth softer, at 161 points: pd-eb 1.9e-4, 3.8e-3, 1.8e-2 and 2.9e-2 "
+        "of max |w| at 1e2-, 1e3-, 1e4- and 1e6-fold, pd-bond-pair 1.0e-3 to 4.5e-2, pd-timoshenko 5.0e-4 to 7.2e-3; "
+        "second order, 16 times less at 641 points); check with `pdverify solve --estimate`"
+    ]

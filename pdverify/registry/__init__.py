@@ -37,7 +37,7 @@ from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite, quantity_of
 from ..core.scene import Scene
 from ..core.scene_file import parse_scene
-from ..numerics.features import unresolved_features_warnings
+from ..numerics.features import stiffness_step_warnings, unresolved_features_warnings
 from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
 from .external import ExternalModel, load_manifest
@@ -224,6 +224,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if m.option("horizon") is not None:
         horizon_info(m, scene, params, result.info)
         unresolved = [] if m.breaks else unresolved_features_warnings(scene, float(result.info["spacing"]))
+        if not m.breaks and m.theory in ("euler-bernoulli", "timoshenko"):
+            unresolved += stiffness_step_warnings(scene)
         for flag in (
             no_limit_warning(m, scene, params),
             model_error_warning(m, scene, result.info, params),
