@@ -21,7 +21,7 @@ import scipy.sparse as sp
 from ...core.errors import InputError, SolveError
 from ...core.result import columns_csv
 from ...numerics.steps import sample_count
-from ...numerics.timeint import EnergyLedger, ledger_columns, step_count
+from ...numerics.timeint import EnergyLedger, aligned_steps, ledger_columns, step_count
 from .kernels import motion_value
 from .spectrum import first_frequency, mass_scaled, stable_time_step
 from .steps import StencilStep, WholeStep
@@ -124,8 +124,14 @@ def integrate(
     given = dt is not None
     dt, limit, kappa, damping, omega1 = time_step(disc, dt, damping, damping_ratio, safety, stabilisation)
     if steps is None:  # before any step: a run the machine cannot finish is refused (exit 2)
+        beta = kappa * dt  # the stabilisation's β (s), the same whatever the step
         steps = step_count(t_end, dt, "time_step" if given else "default", limit)
         dt = t_end / steps  # whole steps that end at t_end (at most dt: as stable)
+        if not given and output_interval and sample_count(t_end, output_interval):
+            if al := aligned_steps(t_end, dt, output_interval):
+                steps, dt = al  # the samples on the multiples of output_interval
+                step_count(t_end, dt, "default", limit)
+        kappa = beta / dt
     steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
     clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
     probes = np.atleast_1d(np.asarray(probes if probes is not None and len(probes) else [disc.x[-1] / 2], float))
