@@ -58,6 +58,9 @@ def bench(
                 f"--out {out}: holds another command's results ({others[0]}), whose index.html the performance page "
                 "would replace; give another folder"
             )
+    sharing = list(dict.fromkeys(model_argument(n) for n in sharing or ()))  # each once; an unknown one: exit 2 now
+    for n in sharing:
+        get_model(n)
     sc = load_scene(scene) if scene is not None else None  # a missing or bad scene: one line, exit 2, before timing
     for n in names:
         m = get_model(n)
@@ -93,8 +96,8 @@ def bench(
     shared = []
     from .sharing import sharing_gain
 
-    for n in sharing or ():
-        shared.append(sharing_gain(model_argument(n)) | {"kind": "sharing"})
+    for n in sharing:
+        shared.append(sharing_gain(n) | {"kind": "sharing"})
         r = shared[-1]
         typer.echo(
             _json.dumps(r)

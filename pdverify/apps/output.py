@@ -124,6 +124,8 @@ def _name_max(folder: Path) -> int:
 
 def check_folder(out: Path, option: str) -> None:
     """Before any computation: ``out`` is a folder pdverify can write into, or can be made as one."""
+    if os.path.islink(out) and not os.path.exists(out):  # mkdir would fail on the link itself
+        raise OutputError(f"{option} {out}: a symlink to nothing; give a folder (it is made if missing)")
     real = Path(os.path.realpath(out))
     if os.path.lexists(real) and not real.is_dir():
         raise OutputError(f"{option} {out}: is {_kind(real)}, not a folder; give a folder (it is made if missing)")

@@ -19,7 +19,7 @@ from markupsafe import Markup
 from ..core.version import __version__
 from ..measure.cost import ACCURACY, accurate
 from . import figures
-from .output import environment
+from .output import environment, write
 from .tables import table
 
 RATIO_TARGET = 2.0  # total time / banded solve of the same matrix, at the largest size
@@ -217,9 +217,9 @@ def build_performance(rows: list[dict], out: str | Path, slopes: dict[str, float
         slopes=table(pd.DataFrame([{"model": m, "cost_slope": s} for m, s in sorted(slopes.items())])),
         sharing=table(pd.DataFrame(list(sharing))) if sharing else "",
     )
-    (out / "bench.jsonl").write_text("".join(json.dumps(r) + "\n" for r in [*rows, *sharing]))
+    write(out / "bench.jsonl", "".join(json.dumps(r) + "\n" for r in [*rows, *sharing]))  # whole, renamed over
     index = out / "index.html"
-    index.write_text(page, encoding="utf-8")
+    write(index, page)
     return index
 
 
@@ -262,7 +262,7 @@ def build_large_horizon(rows: list[dict], out: str | Path) -> Path:
             large_horizon=table(df, [c for c in LARGE_HORIZON_COLUMNS if c in df]),
         )
     )
-    (out / "bench_large_horizon.jsonl").write_text("".join(json.dumps(r) + "\n" for r in rows))
+    write(out / "bench_large_horizon.jsonl", "".join(json.dumps(r) + "\n" for r in rows))
     index = out / "index.html"
-    index.write_text(page, encoding="utf-8")
+    write(index, page)
     return index

@@ -168,6 +168,8 @@ def case_file(cases_dir: Path, case_id: str, names: set[str] | None = None) -> P
 def read_case(path: Path) -> dict | None:
     """A finished case, or None when the file is missing, partial or corrupt (then it is recomputed)."""
     path = Path(path)
+    if not path.is_file():  # a FIFO or a device under a case's name: reading it would block or never end
+        return None
     try:
         raw = path.read_bytes()
     except OSError:

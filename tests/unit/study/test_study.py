@@ -313,6 +313,9 @@ def test_case_record_round_trips_exactly_and_rejects_damage(tmp_path):
     p = tmp_path / "c.case"
     write_atomic(p, encode_record(rec))
     assert read_case(p)["row"] == rec["row"] and read_case(tmp_path / "missing.case") is None
+    fifo = tmp_path / "fifo.case"  # a FIFO under a case's name: reading it blocked the resume and the report
+    os.mkfifo(fifo)
+    assert read_case(fifo) is None
 
 
 def test_a_write_stopped_by_ctrl_c_leaves_the_old_file_and_no_temporary(tmp_path, monkeypatch):
