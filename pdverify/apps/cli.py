@@ -32,7 +32,7 @@ from .cliargs import (
     positive,
     user_errors,
 )
-from .output import Format, check_folder, check_writable, with_warnings, write_file
+from .output import Format, check_apart, check_folder, check_writable, with_warnings, write_file
 from .output import out_format as _out_format
 from .output import result_table as _table
 
@@ -42,6 +42,12 @@ from .output import result_table as _table
 # thread. Set before numpy is first imported: the commands import it lazily.
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
+
+# what a study writes into its --out (pdverify/study/derived.py, the report): a --junit there would replace one
+STUDY_FILES = tuple(
+    f"{t}.{e}" for t in ("results", "convergence", "locking", "speed_error") for e in ("csv", "parquet")
+) + ("speed_error_summary.csv", "trust.csv", "benchmarks.csv", "checks.csv", "nonlocal.csv", "meta.json", "scenes.json",
+     "study.toml", ".pdverify.lock")  # fmt: skip
 
 app = typer.Typer(
     add_completion=False,
@@ -251,6 +257,7 @@ def study(
     check_folder(out, "--out")
     if junit is not None:
         check_writable(junit, "--junit")
+        check_apart(junit, out, STUDY_FILES, ("cases", "histories", "verify", "vtu"))
     done = run(
         spec,
         out,
@@ -350,6 +357,7 @@ def verify_cmd(
     check_folder(out, "--out")
     if junit is not None:
         check_writable(junit, "--junit")
+        check_apart(junit, out, ("card.json", "card.html"), ("study", "suite"))
     card = verify(name, out, options, full=full, order=order, workers=workers, scheduler=scheduler, progress=not quiet)
     for c in card["checks"]:
         typer.echo(f"{c['verdict']:>5}  {c['check']}: {c['summary']}")

@@ -102,6 +102,19 @@ def check_writable(out: Path, option: str) -> None:
         raise OutputError(f"{option} {out}: no permission to write in {parent}; choose another path")
 
 
+def check_apart(junit: Path, out: Path, own_files: tuple[str, ...], own_folders: tuple[str, ...]) -> None:
+    """Before any computation: ``--junit`` is not one of the files the command writes into ``out`` (its
+    ``own_files``, or anything under its ``own_folders``), which the XML would replace or be replaced by."""
+    j, o = Path(os.path.realpath(junit)), Path(os.path.realpath(out))
+    inside = j.parent == o and (j.name in own_files or j.name.endswith(".html"))
+    inside = inside or any(o / f in j.parents for f in own_folders)
+    if inside:
+        raise OutputError(
+            f"--junit {junit}: one of the files the command writes into --out {out}; give another name (e.g. "
+            f"{out / 'junit.xml'}) or another folder"
+        )
+
+
 def _kind(path: Path) -> str:
     """'a file', 'a FIFO', 'a device' or 'a socket': what ``path`` (which exists and is not a folder) is."""
     mode = os.stat(path).st_mode if os.path.exists(path) else 0

@@ -65,6 +65,18 @@ CLI_CASES = [
     ("solve-fibres-0", ["solve", "{scene}", "-m", "fem-eb", "-o", "fibres=0"], 2, "fibres = '0'"),
     ("solve-horizon-underscore", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=3_0"], 2, "horizon = '3_0'"),
     ("solve-points-negative", ["solve", "{scene}", "-m", "pd-eb", "--points", "-5"], 2, "points"),
+    (  # the XML replaced the results table (exit 0)
+        "study-junit-onto-its-own-table",
+        ["study", "{study}", "--out", "{tmp}/sj", "--junit", "{tmp}/sj/results.csv"],
+        4,
+        "one of the files the command writes into --out",
+    ),
+    (  # the XML replaced the card (exit 0)
+        "verify-junit-onto-the-card",
+        ["verify", "pd-eb", "--out", "{tmp}/vj", "--junit", "{tmp}/vj/card.json"],
+        4,
+        "one of the files the command writes into --out",
+    ),
     ("bench-sharing-unknown", ["bench", "--sharing", "pd-xx"], 2, "model = 'pd-xx': unknown model"),  # after timing
     ("bench-out-dangling", ["bench", "-m", "pd-eb", "--points", "101", "--out", "{link_nothing}"], 4, "to nothing"),
     ("bench-scene-refused", ["bench", "-m", "pd-rod", "--points", "101", "--scene", "{scene}"], 2, "cannot solve it"),
