@@ -39,8 +39,8 @@ from scipy.sparse.csgraph import connected_components
 from ..core.contract import Option
 from ..core.errors import InputError, SolveError
 from ..core.result import columns_csv
-from .steps import sample_count
-from .timeint import EnergyLedger, aligned_steps, ledger_columns, step_count
+from .steps import aligned_steps, sample_count
+from .timeint import EnergyLedger, ledger_columns, step_count
 
 ANALYSIS = Option(
     "analysis",
@@ -170,10 +170,8 @@ def integrate(
     if steps is None:  # whole steps that end at t_end (each at most dt: as stable); exit 2 past the limit
         steps = step_count(t_end, dt, source, limit)
         dt = t_end / steps
-        if source == "default" and output_interval and sample_count(t_end, output_interval):
-            if al := aligned_steps(t_end, dt, output_interval):
-                steps, dt = al  # the samples on the multiples of output_interval
-                step_count(t_end, dt, source, limit)
+        if source == "default" and (al := aligned_steps(t_end, dt, output_interval, limit)):
+            steps, dt = al  # the samples on the multiples of output_interval
     steps = int(steps)
     if output_interval:
         sample_count(t_end, output_interval)  # the limit of every model's histories (exit 2 past it)

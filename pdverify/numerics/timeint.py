@@ -59,22 +59,6 @@ def step_count(end_time: float, dt: float, source: str = "default", limit: float
     raise InputError(f"{field} asks for {ratio:.3g} steps, more than the limit of {MAX_STEPS:.0e}; {fix}")
 
 
-def aligned_steps(end_time: float, dt: float, output_interval: float | None) -> tuple[int, float] | None:
-    """(steps, step) of a run whose histories are sampled every ``output_interval``: the largest step at most ``dt``
-    that divides the interval, so that the samples fall on its multiples exactly (where a reference samples them:
-    a step that does not divide it leaves each sample up to half a step off, a first-order error of a comparison),
-    when ``end_time`` is a whole number of intervals; None otherwise, or without an interval, or with one shorter
-    than ``dt`` (every step is then a sample)."""
-    if not output_interval or float(output_interval) < float(dt):
-        return None
-    intervals = float(end_time) / float(output_interval)
-    whole = round(intervals)
-    if whole < 1 or abs(intervals - whole) > 1e-9 * max(1.0, intervals):
-        return None
-    per = max(1, int(np.ceil(float(output_interval) / float(dt) - 1e-9)))
-    return whole * per, float(end_time) / (whole * per)
-
-
 @dataclass
 class EnergyLedger:
     """Energy of a transient at its recorded steps (see the module docstring); one entry per sample.

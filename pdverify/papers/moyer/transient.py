@@ -20,8 +20,8 @@ import scipy.sparse as sp
 
 from ...core.errors import InputError, SolveError
 from ...core.result import columns_csv
-from ...numerics.steps import sample_count
-from ...numerics.timeint import EnergyLedger, aligned_steps, ledger_columns, step_count
+from ...numerics.steps import aligned_steps, sample_count
+from ...numerics.timeint import EnergyLedger, ledger_columns, step_count
 from .kernels import motion_value
 from .spectrum import first_frequency, mass_scaled, stable_time_step
 from .steps import StencilStep, WholeStep
@@ -127,10 +127,8 @@ def integrate(
         beta = kappa * dt  # the stabilisation's β (s), the same whatever the step
         steps = step_count(t_end, dt, "time_step" if given else "default", limit)
         dt = t_end / steps  # whole steps that end at t_end (at most dt: as stable)
-        if not given and output_interval and sample_count(t_end, output_interval):
-            if al := aligned_steps(t_end, dt, output_interval):
-                steps, dt = al  # the samples on the multiples of output_interval
-                step_count(t_end, dt, "default", limit)
+        if not given and (al := aligned_steps(t_end, dt, output_interval, limit)):
+            steps, dt = al  # the samples on the multiples of output_interval
         kappa = beta / dt
     steps, record_every, ledger_every = sampling(disc, t_end, dt, steps, record_every, output_interval, ledger_every)
     clock = Clock(dt, limit, kappa, damping, omega1, steps, record_every, ledger_every)
