@@ -147,6 +147,8 @@ class StudyFolder:
 
     @cached_property
     def _scene_texts(self) -> dict:
+        if not (self.d / SCENES).is_file():  # missing, or a FIFO or device under its name (reading it would block)
+            return {}
         try:
             return json.loads((self.d / SCENES).read_text())
         except (OSError, ValueError, RecursionError):  # a study run before scenes.json was written (or it is damaged)

@@ -682,3 +682,12 @@ def test_curved_quantity_figures_draw_in_chromium(curved_dir, tmp_path):
         shape = next(f for t, f in zip(titles, state["figures"], strict=True) if "deformed axis" in t)
         assert not shape["hidden"] and "exact-curved-cantilever" not in shape["lines"]
         assert any("exact-curved-cantilever" in text for text in shape["legend"])
+
+
+def test_a_scenes_file_that_is_a_fifo_is_not_read(tmp_path):
+    """scenes.json as a FIFO: its read blocked the report (the case files' and meta.json's twin); it reads as a
+    study run before scenes.json was written."""
+    from pdverify.report.inputs import SCENES, StudyFolder
+
+    os.mkfifo(tmp_path / SCENES)
+    assert StudyFolder(tmp_path, {}, pd.DataFrame())._scene_texts == {}
