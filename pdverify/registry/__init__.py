@@ -223,13 +223,13 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     result = check_finite(solved)
     if m.option("horizon") is not None:
         horizon_info(m, scene, params, result.info)
-        unresolved = [] if m.breaks else unresolved_features_warnings(scene, float(result.info["spacing"]))
+        grid_flags = [] if m.breaks else unresolved_features_warnings(scene, float(result.info["spacing"]))
         if not m.breaks and m.theory in ("euler-bernoulli", "timoshenko"):
-            unresolved += stiffness_step_warnings(scene)
+            grid_flags += stiffness_step_warnings(scene)
         for flag in (
             no_limit_warning(m, scene, params),
             model_error_warning(m, scene, result.info, params),
-            *unresolved,
+            *grid_flags,
         ):
             if flag:
                 result.info.setdefault("warnings", []).append(flag)
