@@ -26,6 +26,7 @@ from .cliargs import (
     HORIZON,
     HORIZON_LENGTH,
     POINTS,
+    given_file,
     given_path,
     grid_options,
     parse_options,
@@ -96,7 +97,9 @@ def solve(
     fmt: Format | None = typer.Option(
         None, "--format", help="output format (default: from the --out extension .csv/.json/.txt, else table)"
     ),
-    out: Path | None = typer.Option(None, "--out", parser=given_path, help="write the output here instead of stdout"),
+    out: Path | None = typer.Option(
+        None, "--out", parser=given_file("result.csv"), help="write the output here instead of stdout"
+    ),
     tolerance: float | None = typer.Option(None, "--tolerance", help="with --model auto: accepted relative error"),
     estimate: bool = typer.Option(
         False, "--estimate", help="also solve two nested grids and print a Richardson estimate of the error"
@@ -237,7 +240,7 @@ def study(
     report: bool = typer.Option(False, "--report", help="also write the HTML report into the output directory"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     junit: Path | None = typer.Option(
-        None, "--junit", parser=given_path, help="also write the verdicts as JUnit XML to FILE"
+        None, "--junit", parser=given_file("junit.xml"), help="also write the verdicts as JUnit XML to FILE"
     ),
 ):
     """Run a study: every case of the sweep, errors against the reference, derived tables, verdicts. The output
@@ -338,7 +341,7 @@ def verify_cmd(
     scheduler: str | None = typer.Option(None, "--scheduler", help="Dask scheduler address tcp://HOST:PORT"),
     quiet: bool = typer.Option(False, "--quiet", help="no progress bar"),
     junit: Path | None = typer.Option(
-        None, "--junit", parser=given_path, help="also write the checks as JUnit XML to FILE"
+        None, "--junit", parser=given_file("junit.xml"), help="also write the checks as JUnit XML to FILE"
     ),
 ):
     """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
@@ -348,9 +351,13 @@ def verify_cmd(
     from ..registry import model_argument
     from ..verify import verify
     from ..verify.card import junit as card_junit
+    from ..verify.suite import MAX_ORDER
 
-    if order is not None and not (math.isfinite(order) and order > 0):
-        raise InputError(f"--order {order}: give the expected order of convergence, a positive number (e.g. 2)")
+    if order is not None and not (math.isfinite(order) and 0 < order <= MAX_ORDER):
+        raise InputError(
+            f"--order {order}: give the expected order of convergence, a positive number up to {MAX_ORDER:.3g} "
+            "(e.g. 2; a higher order cannot be observed on the suite's grids within float64's round-off)"
+        )
     name = model_argument(model)
     options = grid_options(parse_options(option), horizon=horizon, horizon_length=horizon_length)
     out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))

@@ -157,3 +157,17 @@ def given_path(text: str) -> Path:
     if str(text).strip() == "-":  # not standard output: a file named "-" would be written
         raise typer.BadParameter("'-': output goes to standard output without --out; give a file or folder name")
     return Path(text)
+
+
+def given_file(example: str):
+    """The parser of a file option's path (``solve --out``, ``--junit``): :func:`given_path`, and not one that ends in
+    a path separator (``--out results/``: a folder meant, where ``Path`` would drop the separator and write a file of
+    that name); ``example``: the file name its message suggests."""
+
+    def parse(text: str) -> Path:
+        path = given_path(text)
+        if str(text).rstrip().endswith(tuple(s for s in (os.sep, os.altsep) if s)):
+            raise typer.BadParameter(f"{text!r} ends in a separator, a folder; give a file, e.g. {path / example}")
+        return path
+
+    return parse

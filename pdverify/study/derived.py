@@ -180,7 +180,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
                         "scene": b["scene"],
                         "model": b["model"],
                         "verdict": "missing",
-                        "message": f"quantity {quantity!r} not among the case's outputs",
+                        "message": f"quantity {quantity!r} not among the case's outputs ({_outputs(c)})",
                     }
                 )
                 continue
@@ -222,6 +222,12 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
             }
         )
     return pd.DataFrame(rows)
+
+
+def _outputs(curve: dict) -> str:
+    """The names a benchmark's ``quantity`` can take on a case's curve: w, rotation and its fields."""
+    names = [q for q in ("w", "rotation") if curve.get(q) is not None] + sorted(curve.get("fields", {}))
+    return ", ".join(names) or "none"
 
 
 @lru_cache(maxsize=1)

@@ -500,7 +500,10 @@ def _benchmark_output_errors(bench: dict, where: str, length: float) -> list[str
     if not isinstance(q, str):
         errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
     elif q != measures and "position" not in bench:
-        errors.append(f"{where}.quantity = {q!r}: a quantity other than {measures} needs a position")
+        errors.append(
+            f"{where}.quantity = {q!r}: a quantity other than {measures} (rotation or a field of the model's result, "
+            "e.g. u, theta, M) is read at a point: give its position"
+        )
     elif q != measures and "target" not in bench:
         errors.append(f"{where}.quantity = {q!r}: the reference gives {measures} only; give a target")
     return errors

@@ -46,6 +46,10 @@ from ..registry.external import ExternalModel
 SUITE_VERSION = "1.10"
 GRIDS = (21, 41, 81, 161)
 FULL_GRIDS = (11, 21, 41, 81, 161, 321, 641)
+# the largest order a card can observe: an error of order p falls 2^p-fold from one grid to the next, and between the
+# suite's coarsest and finest grids (three halvings) it stays within float64's range of relative errors, from 1 down to
+# 2^-52, only when 3 p <= 52
+MAX_ORDER = 52 / (len(GRIDS) - 1)
 FLOOR_GRIDS = (161, 641, 2561)
 FULL_FLOOR_GRIDS = (161, 641, 2561, 10241)
 # a 2D continuum (theory "continuum", judged against itself): its floor reference, SELF_REFINEMENT times the finest

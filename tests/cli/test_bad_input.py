@@ -219,6 +219,9 @@ CLI_CASES = [
         "axis: the polynomial axis's arc length overflows a float64",
     ),
     ("solve-out-dash", ["solve", "{scene}", "-m", "exact-eb", "--out", "-"], 2, "'-': output goes to standard output"),
+    # a file named like the folder was written before (Path drops the separator)
+    ("solve-out-folder-slash", ["solve", "{scene}", "-m", "exact-eb", "--out", "{tmp}/new/"], 2, "ends in a separator"),
+    ("verify-junit-folder-slash", ["verify", "pd-eb", "--out", "{tmp}/j12", "--junit", "{tmp}/x/"], 2, "e.g. "),
     (  # writing through it made the folders of its target, wherever it points
         "solve-out-link-to-nothing",
         ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_nothing}"],
@@ -286,6 +289,8 @@ CLI_CASES = [
     ("verify-order-nan", ["verify", "pd-eb", "--order", "nan"], 2, "--order nan"),
     ("verify-order-0", ["verify", "pd-eb", "--order", "0"], 2, "--order 0"),
     ("verify-order-negative", ["verify", "pd-eb", "--order", "-1"], 2, "--order -1"),
+    # accepted before, and every order check failed: no order above 52/3 is observable on the suite's grids
+    ("verify-order-1e300", ["verify", "pd-eb", "--order", "1e300"], 2, "up to 17.3"),
     ("verify-bad-option", ["verify", "pd-eb", "-o", "bogus=1", "--out", "{tmp}/v3"], 2, "bogus"),
     ("verify-bad-variant", ["verify", "pd-eb", "-o", "variant=nosuch", "--out", "{tmp}/v4"], 2, "variant = 'nosuch'"),
     ("advise-budget-negative", ["advise", "{scene}", "--budget", "-5"], 2, "--budget -5"),

@@ -463,8 +463,20 @@ position = 0.5
     with pytest.raises(InputError) as e:
         load_study(bad)
     assert any("position = 99.0" in l for l in e.value.lines) and any(
-        "needs" in l or "target" in l for l in e.value.lines
+        "position" in l or "target" in l for l in e.value.lines
     )
+
+
+def test_a_benchmark_of_an_output_the_case_lacks_names_those_it_has(tmp_path, synthetic):
+    """An unknown quantity is known only once the case has run: its row is "missing" and names the case's outputs."""
+    p = write_study(
+        tmp_path,
+        f'[[runs]]\nmodel = "synthetic-dx2"\npoints = 11\n[[benchmarks]]\nname = "b"\nscene = "{SCENE}"\n'
+        'model = "synthetic-dx2"\npoints = 11\nquantity = "zz"\nposition = 0.5\ntarget = 1.0\n',
+    )
+    run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    b = pd.read_csv(tmp_path / "out" / "benchmarks.csv").iloc[0]
+    assert b["verdict"] == "missing" and b["message"].startswith("quantity 'zz' not among the case's outputs (w")
 
 
 def test_expected_fail_verdicts():
