@@ -142,6 +142,13 @@ class Profile:
             total += 0.5 * (y1 - y0) * np.sum(_GL_W * np.where(b > 0, Q**2 / np.where(b > 0, b, 1.0), 0.0))
         return self.inertia**2 / (self.area * total)
 
+    @cached_property
+    def lateral_inertia(self) -> float:
+        """Second moment about the vertical axis of symmetry, ∫ b(y)³ / 12 dy (exact on linear pieces:
+        ∫ b³ dy = (y1 - y0)(b0 + b1)(b0² + b1²) / 4)."""
+        y0, y1, b0, b1 = self.pieces.T
+        return float(np.sum((y1 - y0) * (b0 + b1) * (b0**2 + b1**2)) / 48.0)
+
     @property
     def symmetric(self) -> bool:
         """b(yc + s) = b(yc - s) at every breakpoint (to 1e-12 of the height and widths)."""
@@ -335,7 +342,12 @@ class Section(BaseModel):
 
     @property
     def polar(self) -> float | None:
-        """Polar moment of area of the rectangle (rotary inertia of twist); None when not a rectangle."""
+        """Polar moment of area about the axis of twist, I + ∫ b³ / 12 dy (the rotary inertia of Saint-Venant
+        torsion, warping's left out): of a rectangle, an I or a doubly symmetric profile, whose centroid is the shear
+        centre; None for an area/inertia section or a singly symmetric profile (its twist axis is the shear centre,
+        and twist couples with bending there)."""
+        if self.shape in ("I", "profile"):
+            return self.profile.inertia + self.profile.lateral_inertia if self.profile.symmetric else None
         if self.width is None:
             return None
         return self.width * self.height * (self.width**2 + self.height**2) / 12.0

@@ -169,7 +169,10 @@ class _MoyerModel(Model):
         _statics_only(scene, self.name, "natural frequencies")
         disc = self.operator(scene, params)
         if not np.all(np.isfinite(disc.mass)):
-            raise InputError("section: pd-torsion needs the polar moment of a rectangle; give width and height")
+            raise InputError(
+                "section: pd-torsion needs the polar moment of the section: "
+                "give a rectangle (width and height), an I or a doubly symmetric profile"
+            )
         free = disc.free
         return disc.K[free][:, free], disc.mass[free]
 

@@ -168,7 +168,8 @@ class PDTorsion(_RodModel):
         )
         if self._dynamic(scene, params) and not np.all(np.isfinite(disc.mass)):
             raise InputError(
-                "section: pd-torsion dynamics needs the polar moment of a rectangle; give width and height"
+                "section: pd-torsion dynamics needs the polar moment of the section: "
+                "give a rectangle (width and height), an I or a doubly symmetric profile"
             )
         return disc
 
