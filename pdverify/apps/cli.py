@@ -346,18 +346,10 @@ def verify_cmd(
 ):
     """Run the verification suite on a model and write its report card (card.html, card.json, junit.xml).
     Exit code 1 when a check fails."""
-    import math
-
     from ..registry import model_argument
     from ..verify import verify
     from ..verify.card import junit as card_junit
-    from ..verify.suite import MAX_ORDER
 
-    if order is not None and not (math.isfinite(order) and 0 < order <= MAX_ORDER):
-        raise InputError(
-            f"--order {order}: give the expected order of convergence, a positive number up to {MAX_ORDER:.3g} "
-            "(e.g. 2; a higher order cannot be observed on the suite's grids within float64's round-off)"
-        )
     name = model_argument(model)
     options = grid_options(parse_options(option), horizon=horizon, horizon_length=horizon_length)
     out = out or Path("reports") / "verify" / _slug(name + "".join(f"_{k}_{v}" for k, v in options.items()))

@@ -7,6 +7,7 @@ superposition solve a handful of scenes here. The card (:mod:`.card`) is JSON, H
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -24,6 +25,7 @@ from .fixed_horizon import nonlocal_check
 from .suite import (
     CURVED_QUANTITIES,
     GAP_REFERENCE,
+    MAX_ORDER,
     SUITE_VERSION,
     end_force,
     engineering_reference,
@@ -200,7 +202,13 @@ def verify(
 
 def expected_order(model, options: dict, order: float | None = None) -> float:
     """The order a card holds the model to: ``order`` (``--order``) when given, else the order its equations
-    promise with these options (:meth:`~pdverify.core.contract.Model.promised_order`: pd-curved's degree sets it)."""
+    promise with these options (:meth:`~pdverify.core.contract.Model.promised_order`: pd-curved's degree sets it).
+    InputError unless ``order`` is a positive number up to :data:`~pdverify.verify.suite.MAX_ORDER`."""
+    if order is not None and not (math.isfinite(order) and 0 < order <= MAX_ORDER):
+        raise InputError(
+            f"--order {order}: give the expected order of convergence, a positive number up to {MAX_ORDER:.3g} "
+            "(e.g. 2; a higher order cannot be observed on the suite's grids within float64's round-off)"
+        )
     return float(order) if order is not None else model.promised_order(model.with_defaults(options))
 
 
