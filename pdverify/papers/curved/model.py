@@ -79,6 +79,7 @@ from .particles import (
     default_horizon,
     distributed_loads,
     given_grids,
+    graded_families_warning,
     grading_density,
     merged_break_warnings,
     parse_positions,
@@ -185,14 +186,21 @@ class PDCurved(Model):
         return (
             f"its PDDO families of degree {P} hold the high-frequency modes only for small families, so it has no "
             "limit at fixed delta",
-            default_horizon(P, params["form"]),
+            self.family_half_width(params),
         )
+
+    @staticmethod
+    def family_half_width(params: dict) -> int:
+        """m of the 2m + 1-member families: ``horizon``, else :func:`~.particles.default_horizon` of the degree, the
+        form and the particles (graded by ends or not)."""
+        graded_ends = params.get("grading", 1.0) > 1.0 and params.get("graded_by") == "ends"
+        return params["horizon"] or default_horizon(params["degree"], params["form"], graded_ends)
 
     def grid_problems(self, scene: Scene, params: dict) -> list[str]:
         """The family :meth:`discretise` refuses (too small for the degree, larger than the grid), before any work:
         naming the horizon as the user set it (``horizon`` or ``horizon_length``)."""
         P, n, given = params["degree"], params["points"], params.get("horizon_length") is not None
-        m = params["horizon"] or default_horizon(P, params["form"])
+        m = self.family_half_width(params)
         if 2 * m + 1 < P + 1:
             low = int(np.ceil(P / 2))
             fix = f"horizon_length >= {low * self.spacing(scene, params):.6g}" if given else f"horizon >= {low}"
@@ -211,8 +219,7 @@ class PDCurved(Model):
 
     # ---------------------------------------------------------------------------------------
     def discretise(self, scene: Scene, params: dict):
-        P = params["degree"]
-        m = params["horizon"] or default_horizon(P, params["form"])
+        m = self.family_half_width(params)
         size = 2 * m + 1
         if found := self.grid_problems(scene, params):  # resolve checked it; params built by hand (rules off)
             raise InputError(found)
@@ -332,6 +339,7 @@ class PDCurved(Model):
             resolution_warning(defect, params["degree"], amplified) if params["form"] == "mixed" else "",
             near_mechanism_warning(amplified, pinned),
             *merged_break_warnings(scene),
+            graded_families_warning(params, infos[0]["horizon_factor"]),
         ):
             if flag:
                 warnings.add(flag)
