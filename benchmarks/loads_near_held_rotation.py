@@ -1,5 +1,5 @@
 """Distributed loads beside a clamp inside the span: the PD beams' error against the exact beam beside the estimate of
-their warning (pdverify/numerics/loads.py: distributed_near_held_warnings; docs/trust.md):
+their warning (pdverify/numerics/load_warnings.py: distributed_near_held_warnings; docs/trust.md):
 
     PYTHONPATH=. python benchmarks/loads_near_held_rotation.py [--slenderness 10 100] [--points 101 401] [--models ...]
 
@@ -19,7 +19,7 @@ import numpy as np
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.numerics.loads import NEAR_TOLERANCE
+from pdverify.numerics.load_warnings import NEAR_TOLERANCE
 from pdverify.registry import get_model, run
 
 MODELS = ("pd-eb", "pd-timoshenko", "pd-higher-order")

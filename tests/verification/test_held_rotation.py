@@ -1,5 +1,6 @@
-"""A point force near an inner support that holds the rotation (pdverify/numerics/loads.py: held_rotation_warnings):
-pd-eb and pd-timoshenko are second order there but from a large constant, so they warn with the estimate
+"""A point force near an inner support that holds the rotation (pdverify/numerics/load_warnings.py:
+held_rotation_warnings): pd-eb and pd-timoshenko are second order there but from a large constant, so they warn with
+the estimate
 5 (spacing / distance)^2 and the points for 1e-3; the estimate is above the error wherever it warns, and where it
 does not the error is below the warning's threshold. A pinned inner support, which holds no rotation, is not warned."""
 
@@ -9,7 +10,7 @@ from helpers import scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
-from pdverify.numerics.loads import NEAR_TOLERANCE
+from pdverify.numerics.load_warnings import NEAR_TOLERANCE
 from pdverify.registry import get_model, run
 
 MODELS = [("pd-eb", False), ("pd-timoshenko", True)]

@@ -46,14 +46,14 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
-from ...numerics.loads import (
+from ...numerics.load_warnings import (
     boundary_layer_warnings,
     couple_at_joint_warnings,
     edge_layer_warnings,
+    horizon_layer,
     moment_rotation_warnings,
-    solve_without_support_couples,
-    support_couples,
 )
+from ...numerics.loads import solve_without_support_couples, support_couples
 from ...numerics.solvers import SOLVER, solve
 from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, beam_series
@@ -338,7 +338,8 @@ class PDEulerBernoulli(Model):
         exact = [f"loads[{i}] from" for i, ld in enumerate(scene.loads) if spreads(ld, scene, len(x), dx, J)]
         if params["variant"] == "paper":
             exact = []  # Eq. 25: the paper's loads are not spread by their kinks
-        flags = [f for f in boundary_layer_warnings(scene, x, reach) if not any(f.startswith(e) for e in exact)]
+        layer = boundary_layer_warnings(scene, x, reach, horizon_layer(params, dx, reach, 2))
+        flags = [f for f in layer if not any(f.startswith(e) for e in exact)]
         flags += inner_layer_warnings(scene, x, reach, delta)
         if params["variant"] != "paper":  # its Taylor ghosts at free, guided and spring ends (docs/models/diyaroglu.md)
             flags += edge_layer_warnings(scene, x, EDGE_ERRORS)

@@ -32,7 +32,8 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.scene import InnerSupport, PointForce, PointMoment, Scene, Spring
-from ...numerics.loads import held_rotation_warnings, within
+from ...numerics.load_warnings import held_rotation_warnings
+from ...numerics.loads import within
 
 
 def pieces_flexibility(scene: Scene, EI0: float) -> tuple[np.ndarray, np.ndarray]:
@@ -279,7 +280,7 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
     """Supports inside the span and interfaces closer to an end than ``reach`` spacings: inside the ends' boundary
     layer, whose ghost polynomial assumes one smooth solution (as :func:`pdverify.numerics.loads
     .boundary_layer_warnings` for loads); and point forces near a support that holds the rotation (``delta``: the
-    horizon, :func:`~pdverify.numerics.loads.held_rotation_warnings`)."""
+    horizon, :func:`~pdverify.numerics.load_warnings.held_rotation_warnings`)."""
     dx = x[1] - x[0]
     L = scene.length
     spots = [(f"supports.inner[{i}]", s.position) for i, s in enumerate(scene.supports.inner)]

@@ -13,10 +13,11 @@ from ...core.errors import InputError, SolveError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.explicit import step_warnings
-from ...numerics.loads import (
+from ...numerics.load_warnings import (
     boundary_layer_warnings,
     couple_at_joint_warnings,
     held_rotation_warnings,
+    horizon_layer,
     moment_rotation_warnings,
 )
 from .constraints import reactions, solve_with_holds
@@ -269,9 +270,9 @@ class _MoyerModel(Model):
         point forces beside an inner support that holds the rotation, the rotation near a point moment. A static
         solve and a transient share them: the transient integrates the same operator and the same loads (steps at
         t = 0), so its histories converge in space no faster than the static solution."""
-        m = params["horizon"]
-        flags = boundary_layer_warnings(scene, x, FIT_POINTS + m) + point_force_order(self, scene, params)
-        dx = x[1] - x[0]
+        m, dx = params["horizon"], x[1] - x[0]
+        layer = horizon_layer(params, dx, FIT_POINTS + m, 1)
+        flags = boundary_layer_warnings(scene, x, FIT_POINTS + m, layer) + point_force_order(self, scene, params)
         flags += held_rotation_warnings(scene, dx, nearest=0.0, delta=m * dx) if self.bending else []
         # variant energy applies a couple as the operator's action on its kink: second order there
         flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []

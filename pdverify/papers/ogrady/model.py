@@ -34,12 +34,8 @@ from ...core.errors import InputError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
 from ...numerics.linalg import forward_error_bound, record_bound, solve_linear
-from ...numerics.loads import (
-    boundary_layer_warnings,
-    edge_layer_warnings,
-    solve_without_support_couples,
-    support_couples,
-)
+from ...numerics.load_warnings import boundary_layer_warnings, edge_layer_warnings, horizon_layer
+from ...numerics.loads import solve_without_support_couples, support_couples
 from ...numerics.solvers import SOLVER, solve
 from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, beam_series
@@ -138,6 +134,14 @@ def omega(scene: Scene, params: dict):
 
 
 __all__ = ["MODELS", "PDBondPair", "factored_stencils", "operator_stencil", "pair_family", "spring_constants"]
+
+
+def end_layer_warnings(scene: Scene, params: dict, x: np.ndarray) -> list[str]:
+    """:func:`~pdverify.numerics.load_warnings.boundary_layer_warnings` over the ends' layer of 4 J + 4 spacings (J the
+    longest pair's offset in spacings: the pairs' reach past an end and the points a ghost rule is fitted on)."""
+    dx = x[1] - x[0]
+    reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
+    return boundary_layer_warnings(scene, x, reach, horizon_layer(params, dx, reach, 4))
 
 
 def refine(model, K, b, free, u, sweeps: int = 3) -> tuple[np.ndarray, float]:
@@ -388,8 +392,7 @@ class PDBondPair(Model):
         with timer("solve"):
             x, w, pairs, f, info = solve_pairs_linear(scene, params, omega(scene, params))
         dx = x[1] - x[0]
-        reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
-        flags = first_order_warnings(scene) + boundary_layer_warnings(scene, x, reach) + rotation_warnings(scene)
+        flags = first_order_warnings(scene) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
         flags += bias_warnings(scene, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
@@ -431,10 +434,9 @@ class PDBondPair(Model):
             w, f, path, info, _ = solve_path(scene, params, pairs, what)
         dx = pairs.dx
         x = np.arange(pairs.n) * dx
-        reach = 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4  # as the linear pair form
         info.setdefault("warnings", []).extend(
             first_order_warnings(scene)
-            + boundary_layer_warnings(scene, x, reach)
+            + end_layer_warnings(scene, params, x)
             + plastic_warnings(scene, params, dx)
             + failure_warnings(scene, params, x, info, path[-1]["health"])
             + rotation_warnings(scene)
@@ -520,14 +522,7 @@ class PDBondPair(Model):
         loads inside the ends' layer, the rotation near a point moment or a free end, the variant's and the Taylor
         ends' biases, load edges in the fitted ghosts' reach. A static solve and a transient share them
         (:mod:`.dynamics` integrates the same operator and loads)."""
-        dx = x[1] - x[0]
-        flags = (
-            boundary_layer_warnings(
-                scene, x, 4 * int(pair_family(params["horizon"], dx, params["variant"])[0].max()) + 4
-            )
-            + rotation_warnings(scene)
-            + bias_warnings(scene, params)
-        )
+        flags = end_layer_warnings(scene, params, x) + rotation_warnings(scene) + bias_warnings(scene, params)
         if params["ends"] == "taylor":  # its Taylor ghosts at free and guided ends (docs/models/ogrady.md)
             flags += edge_layer_warnings(scene, x, EDGE_ERRORS)
         return flags

@@ -101,7 +101,12 @@ from ...core.scene import Scene
 from ...core.stations import STATIONS_HELP, parse_stations
 from ...numerics.families import family
 from ...numerics.linalg import solve_linear
-from ...numerics.loads import HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION, boundary_layer_warnings, held_rotation_warnings
+from ...numerics.load_warnings import (
+    HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION,
+    boundary_layer_warnings,
+    held_rotation_warnings,
+    horizon_layer,
+)
 from ...numerics.statics import closed_reactions
 from ...theory.higher_order import NF, TH, TS, WS, W, coefficients
 from ...theory.symbols import higher_order_gradient, higher_order_series
@@ -517,7 +522,7 @@ class PDHigherOrder(Model):
         dx = x[1] - x[0]
         delta = (params["horizon"] + (0.015 if params["variant"] == "paper" else 0.0)) * dx
         reach = 2 * int(np.ceil(params["horizon"] + 0.015)) + 2  # the end layer of 2J + 1 points and one bond
-        flags = boundary_layer_warnings(scene, x, reach)
+        flags = boundary_layer_warnings(scene, x, reach, horizon_layer(params, dx, reach, 2))
         # beside a support inside that holds the rotation the families turn the other side (a model error of the
         # horizon), more where its bonds are not cut; point forces nearer than the cut's 4J + 1 spacings carry their
         # own warning (point_load_warnings)

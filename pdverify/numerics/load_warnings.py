@@ -1,0 +1,233 @@
+"""The warnings a grid's loads and supports call for in the one-dimensional PD models: a point load inside an end's
+boundary layer (and what leaves it, at a horizon given as a multiple of the spacing or as a length), a load's edge in
+the reach of fitted ghosts, loads beside a support that holds the rotation, a couple at a segment joint, a load
+narrower than the grid resolves."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core.scene import Distributed, Scene
+from .loads import within
+
+
+def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int, fixed: tuple | None = None) -> list[str]:
+    """Point loads (force, moment, torque) strictly inside the first ``reach`` spacings of an end: the
+    ghost polynomial fitted there assumes a smooth solution, so such a load is under-resolved (large errors a
+    spacing from the support: docs/models/diyaroglu.md, docs/models/moyer.md). Flag it instead of hiding it.
+    Positions in the scene's length unit. ``fixed``: (a, b, delta) when the horizon is a given length delta and the
+    layer is a delta + b spacings wide (reach = a m + b, m = delta / dx): more points do not leave it, and the fix
+    named is a shorter horizon (:func:`layer_fix`)."""
+    dx = x[1] - x[0]
+    out = []
+    for i, load in enumerate(scene.loads):
+        if hasattr(load, "position"):
+            d = min(load.position, scene.length - load.position)
+            if 1e-12 * scene.length < d and within(d, reach, dx):
+                fix = layer_fix(d, dx, scene.length, reach, fixed)
+                out.append(
+                    f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the "
+                    f"boundary layer of {reach} spacings: expect large errors; {fix}"
+                )
+    return out + narrow_load_warnings(scene, x)
+
+
+def horizon_layer(params: dict, dx: float, reach: float, per_horizon: float) -> tuple | None:
+    """``fixed`` of :func:`boundary_layer_warnings` for a model whose end layer is ``reach`` = per_horizon m + b
+    spacings: (per_horizon, b, delta) when ``params`` give the horizon as a length delta (m = delta / dx), b taken one
+    horizon's rounding wider (m rounds up to whole spacings), else None."""
+    if params.get("horizon_length") is None:
+        return None
+    delta = float(params["horizon_length"])
+    return (per_horizon, reach - per_horizon * (delta / dx) + per_horizon, delta)
+
+
+def layer_fix(d: float, dx: float, length: float, reach: float, fixed: tuple | None) -> str:
+    """What leaves a layer of ``reach`` spacings ``dx`` a distance ``d`` from its end: more points when the horizon
+    is a multiple of the spacing; at a fixed horizon length delta (``fixed`` = (a, b, delta): the layer is a delta + b
+    spacings) a shorter horizon, and more points too when the b spacings leave no room for a horizon of a spacing."""
+    if fixed is None:
+        return f"use at least {int(np.ceil(reach * length / d)) + 1} points"
+    a, b, delta = fixed
+    head = f"at horizon_length = {delta:.6g} the layer is {a:g} horizons and {b:g} spacings wide, so more points alone "
+    if d - b * dx > a * dx:  # room for a horizon of a spacing at least
+        return head + f"do not leave it: give horizon_length below {(d - b * dx) / a:.3g}"
+    return head + (
+        f"do not leave it: give horizon_length below {d / (2 * a):.3g} and at least "
+        f"{int(np.ceil(2 * b * length / d)) + 1} points"
+    )
+
+
+EDGE_LAYER = 3  # spacings of an end with fitted (Taylor) ghosts within which a load's edge spoils the fit (measured)
+FITTED_ENDS = ("free", "guided", "spring")  # the ends whose ghosts the PD beams fit to the real points' w
+
+
+def edge_layer_warnings(scene: Scene, x: np.ndarray, measured: str, kinds=FITTED_ENDS) -> list[str]:
+    """Edges of distributed loads strictly inside the first EDGE_LAYER spacings of an end of one of ``kinds``: ghosts
+    fitted there extrapolate one polynomial of w across the load's jump. ``measured``: the model's own errors there,
+    quoted in the warning."""
+    dx, L = x[1] - x[0], scene.length
+    ends = [(at, side) for at, side in ((0.0, "left"), (L, "right")) if scene.supports.kind(side) in kinds]
+    out = []
+    for i, ld in enumerate(scene.loads):
+        if ld.type != "distributed":
+            continue
+        for edge in scene.span(ld):
+            for at, side in ends:
+                d = abs(edge - at)
+                if 1e-12 * L < d and within(d, EDGE_LAYER, dx):
+                    out.append(
+                        f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
+                        f"({scene.supports.kind(side)}), inside the {EDGE_LAYER} spacings its ghosts are fitted on: "
+                        f"{measured}; use at least {int(np.ceil(EDGE_LAYER * L / d)) + 1} points"
+                    )
+    return out
+
+
+# a point force d from an inner support that holds the rotation: the PD beams' error was measured up to about
+# FORCE_NEAR_HELD_ROTATION (dx / d)^2 at their default horizon of 3 dx (docs/trust.md, "a point force near a support
+# that holds the rotation"). It is the horizon's: the families reach across the support and carry the loaded span's
+# curvature into the other (an unloaded overhang turns), a model error that stays at a fixed horizon length; so the
+# estimate is FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2
+FORCE_NEAR_HELD_ROTATION = 5.0
+NEAR_TOLERANCE = 1e-3  # the error above which that estimate is a warning
+
+
+def held_rotation_warnings(
+    scene: Scene, dx: float, nearest: float = 4.0, delta: float | None = None, loads_constant: float | None = None
+) -> list[str]:
+    """Point forces at least ``nearest`` spacings from an inner support that holds the rotation (clamped, or a spring
+    with a rotational stiffness) whose estimated error FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2 (at most 1:
+    the solution's own size; ``delta`` the horizon, default 3 dx) passes NEAR_TOLERANCE (nearer ones: the model's own
+    warning of rows that straddle the load, where it has one); and :func:`distributed_near_held_warnings` with the
+    model's ``loads_constant`` (default LOADS_NEAR_HELD_ROTATION)."""
+    L, out = scene.length, []
+    delta = 3.0 * dx if delta is None else float(delta)
+    h = max(dx, delta / 3.0)
+    for i, sup in enumerate(scene.supports.inner):
+        if not (sup.type == "clamped" or (sup.type == "spring" and (sup.rotational_stiffness or 0.0) > 0.0)):
+            continue
+        for j, ld in enumerate(scene.loads):
+            d = abs(ld.position - sup.position) if ld.type == "point_force" else 0.0
+            far = d > 0.0 and not within(d, nearest, dx)
+            estimate = min(FORCE_NEAR_HELD_ROTATION * (h / d) ** 2, 1.0) if far else 0.0
+            if estimate > NEAR_TOLERANCE:
+                most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / FORCE_NEAR_HELD_ROTATION)  # the horizon that gives 1e-3
+                out.append(
+                    f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
+                    f"{sup.position:g}, which holds the rotation: the horizon's families reach across the support "
+                    f"(a model error of the horizon, not of the grid), up to about {FORCE_NEAR_HELD_ROTATION:g} "
+                    f"(max(spacing, horizon / 3) / distance)^2 = {estimate:.2g}; use a horizon of at most "
+                    f"{most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} points) "
+                    "for 1e-3"
+                )
+    return out + distributed_near_held_warnings(scene, dx, delta, loads_constant or LOADS_NEAR_HELD_ROTATION)
+
+
+# distributed loads beside such a support: the same mechanism, measured (docs/trust.md; pd-eb and pd-timoshenko, 2,496
+# cases: benchmarks/loads_near_held_rotation.py) at most 6.9 (max(dx, delta / 3) / d)^2 max(l, d) / d with d the arm
+# of one side's distributed loads about the support and l the length of the other side, which the families turn,
+# weighted by that side's share of the loads' moment about the support (the median 46 times below the estimate)
+LOADS_NEAR_HELD_ROTATION = 8.0
+# pd-higher-order (corrected) against exact-higher-order on the same scenes (1,248 cases each, 101 and 401 points): at
+# most 11.4 (max(dx, delta / 3) / d)^2 max(l, d) / d where the clamp is on a point the grid cuts (7.4 a spring of
+# 1000 EI / L^3 and 1000 EI / L), and where it is not 14.3 (21.4 the spring)
+HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION = {"cut": 14.0, "not cut": 24.0}
+_GX, _GW = np.polynomial.legendre.leggauss(24)
+
+
+def side_loads(scene: Scene, at: float) -> tuple[np.ndarray, np.ndarray]:
+    """([left, right] ∫ |q| |x - at| dx, [left, right] ∫ |q| dx) of the distributed transverse loads on each side of
+    x = ``at`` (each load split there, its parts integrated by Gauss-Legendre: its shapes are smooth on each part)."""
+    moment, total = np.zeros(2), np.zeros(2)
+    for ld in scene.loads:
+        if isinstance(ld, Distributed) and ld.value != 0.0:
+            a, b = scene.span(ld)
+            for side, (lo, hi) in enumerate(((a, min(b, at)), (max(a, at), b))):
+                if hi > lo:
+                    xq = (lo + hi) / 2 + (hi - lo) / 2 * _GX
+                    q = np.abs(ld.value * scene.load_shape(ld, xq)) * (hi - lo) / 2
+                    moment[side] += float(np.sum(_GW * q * np.abs(xq - at)))
+                    total[side] += float(np.sum(_GW * q))
+    return moment, total
+
+
+def distributed_near_held_warnings(
+    scene: Scene, dx: float, delta: float | None = None, constant: float = LOADS_NEAR_HELD_ROTATION
+) -> list[str]:
+    """Distributed loads beside an inner support that holds the rotation (clamped, or a spring with a rotational
+    stiffness): the families reach across the support and turn the other side, measured up to about ``constant``
+    (h / d)^2 max(l, d) / d, h = max(dx, delta / 3) (``delta`` the horizon, default 3 dx), d the arm of a side's
+    distributed loads about the support, l the other side's length (the model's constant: LOADS_NEAR_HELD_ROTATION
+    for pd-eb and pd-timoshenko, one of HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION for pd-higher-order); warned past
+    NEAR_TOLERANCE."""
+    L, out = scene.length, []
+    h = max(dx, (3.0 * dx if delta is None else float(delta)) / 3.0)
+    for i, sup in enumerate(scene.supports.inner):
+        if not (sup.type == "clamped" or (sup.type == "spring" and (sup.rotational_stiffness or 0.0) > 0.0)):
+            continue
+        moment, total = side_loads(scene, sup.position)
+        sides = [
+            (moment[s] / total[s], (sup.position, L - sup.position)[1 - s], moment[s] / moment.max())
+            for s in (0, 1)
+            if total[s] > 0.0
+        ]
+        if not sides:
+            continue
+        factor = max(share * max(other, d) / d**3 for d, other, share in sides)  # the worst side's
+        estimate = constant * h**2 * factor  # may pass 1: the turned side moves more than the loaded
+        if estimate > NEAR_TOLERANCE:
+            most = 3.0 * np.sqrt(NEAR_TOLERANCE / (constant * factor))  # the horizon that gives 1e-3
+            out.append(
+                f"distributed loads beside supports.inner[{i}] at {sup.position:g}, which holds the rotation: the "
+                "horizon's families reach across the support and turn the other side (a model error of the "
+                f"horizon, not of the grid), measured up to about {constant:g} (max(spacing, horizon "
+                f"/ 3) / d)^2 max(l, d) / d = {estimate:.2g} (d: the loads' arm about the support, l: the other "
+                f"side's length); use a horizon of at most {most:.3g} (at a horizon of 3 spacings: at least "
+                f"{int(np.ceil(L / (most / 3.0))) + 1} points) for 1e-3"
+            )
+    return out
+
+
+def moment_rotation_warnings(scene: Scene) -> list[str]:
+    """Point moments inside the beam: the curvature jumps there, and a PD model spreads the jump over its horizon, so
+    the rotation near the moment is first order (a few dx/L of max |rotation|) while w stays second order."""
+    return [
+        f"loads[{i}], a point moment at {load.position:g}: the rotation within a few spacings of it is first order "
+        "(an error of a few dx/L of max |rotation|); the deflection stays second order"
+        for i, load in enumerate(scene.loads)
+        if load.type == "point_moment" and 0.0 < load.position < scene.length
+    ]
+
+
+def couple_at_joint_warnings(scene: Scene, quantity: str, measured: str) -> list[str]:
+    """Point moments on a segment joint (within 1e-9 of the length): the kink that takes a couple and the joint's
+    change of section meet at one point, and ``quantity`` near it is first order in the spacing (``measured``: the
+    model's own errors, quoted)."""
+    joints = {g.end for g in scene.segments} & {g.start for g in scene.segments}
+    tol = 1e-9 * scene.length
+    return [
+        f"loads[{i}], a point moment at {load.position:g}, is on a segment joint: the {quantity} near it is first "
+        f"order in the spacing ({measured}); off the joint it is second order"
+        for i, load in enumerate(scene.loads)
+        if load.type == "point_moment" and load.value != 0.0 and any(abs(load.position - j) <= tol for j in joints)
+    ]
+
+
+def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
+    """Partial loads that lie inside one point's cell [x_i - dx/2, x_i + dx/2]: the PD models place distributed loads
+    by cell averages, so such a load acts on that point as a whole, moved by up to half a spacing (a first-order
+    error: docs/regression.md, tests/verification/test_point_loads_anywhere.py). Flag it."""
+    dx = x[1] - x[0]
+    out = []
+    for i, load in enumerate(scene.loads):
+        if isinstance(load, Distributed) and (load.start is not None or load.end is not None):
+            a = 0.0 if load.start is None else float(load.start)
+            b = scene.length if load.end is None else float(load.end)
+            if np.floor((a - x[0]) / dx + 0.5) == np.floor((b - x[0]) / dx + 0.5):
+                out.append(
+                    f"loads[{i}] from {a:g} to {b:g} lies inside one point's cell (spacing {dx:.3g}): it acts on "
+                    "that point as a whole, moved by up to half a spacing (a first-order error); use at least "
+                    f"{int(np.ceil(2 * scene.length / (b - a))) + 1} points"
+                )
+    return out
