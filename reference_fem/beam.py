@@ -139,6 +139,56 @@ class _BeamFE(Model):
         """(ke, fe): each element's stiffness (n_el, 4, 4) and work-equivalent loads (n_el, 4), or None."""
         return None
 
+    def evaluator(self, scene, params):
+        """Solve once; x -> the FE solution between the nodes (:meth:`interpolant`) and its moment and shear
+        (:meth:`statics`: exact where the nodal values are; none from elements that report none). The function
+        carries the solve's round-off bound as ``error_bound`` (a study row measured against it is suspect when the
+        bound passes 1e-6, pdverify.measure.status)."""
+        r = self.solve(scene, params)
+        between = self.interpolant(r)
+        resultants = self.statics(scene, params, r) if "M" in r.fields else None
+
+        def fields(x):
+            x = np.asarray(x, float)
+            w, rotation = between(x)
+            out = {"w": w, "rotation": rotation}
+            return out if resultants is None else out | resultants(x)
+
+        fields.error_bound = r.info.get("error_bound")
+        return fields
+
+    def interpolant(self, r: Result):
+        """x -> (w, rotation) between the nodes: cubic splines through the nodal values."""
+        from scipy.interpolate import CubicSpline
+
+        w, rotation = CubicSpline(r.x, r.w), CubicSpline(r.x, r.rotation)
+        return lambda x: (w(x), rotation(x))
+
+    def statics(self, scene: Scene, params: dict, r: Result):
+        """x -> {"M", "V"} anywhere on the beam: each element's left-end moment and shear (its end forces ke u_e - fe,
+        exact where the nodal values are) carried across it by its distributed load q (M'' = V' = q; point loads,
+        supports and span ends are nodes): V = V_0 + ∫ q, M = M_0 + V_0 t + ∫ (t - s) q(s) ds, by 8-point Gauss. On
+        a node, the element to its right (the left end's for the last node)."""
+        nodes = r.x
+        ke, fe = self.element_matrices(scene, params, nodes)
+        u = np.empty(2 * len(nodes))
+        u[0::2], u[1::2] = r.w, r.rotation
+        ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)
+        end = np.einsum("eab,eb->ea", ke, ue) - fe  # on an element's left end the force is +V, the moment -M
+        m0, v0 = -end[:, 1], end[:, 0]
+        g, wg = np.polynomial.legendre.leggauss(8)
+
+        def resultants(x):
+            e = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 2)
+            t = x - nodes[e]
+            s = t[..., None] * (g + 1) / 2  # Gauss points on [0, t]
+            q = line_load(scene, nodes[e][..., None] + s, nodes)
+            V = v0[e] + t / 2 * np.sum(wg * q, axis=-1)
+            M = m0[e] + v0[e] * t + t / 2 * np.sum(wg * (t[..., None] - s) * q, axis=-1)
+            return {"M": M, "V": V}
+
+        return resultants
+
     def resultants(self, scene: Scene, params: dict, nodes: np.ndarray, u: np.ndarray) -> dict:
         """The bending moment M (sagging positive) and shear force V = dM/dx at the nodes, from each element's end
         forces ke u_e - fe (exact where the nodal values are: the element is in equilibrium with its loads). At an
@@ -288,18 +338,10 @@ class FemEulerBernoulli(_BeamFE):
             path=path,
         )
 
-    def evaluator(self, scene, params):
-        """Solve once; x -> the FE solution between the nodes (the Hermite interpolant of w and w'). The function
-        carries the solve's round-off bound as ``error_bound`` (a study row measured against it is suspect when the
-        bound passes 1e-6, pdverify.measure.status)."""
-        r = self.solve(scene, params)
+    def interpolant(self, r: Result):
+        """x -> (w, w') between the nodes: the Hermite interpolant of w and w' (the element's own shape)."""
         spline = CubicHermiteSpline(r.x, r.w, r.rotation)
-
-        def fields(x):
-            return {"w": spline(x), "rotation": spline(x, 1)}
-
-        fields.error_bound = r.info.get("error_bound")
-        return fields
+        return lambda x: (spline(x), spline(x, 1))
 
     def element(self, params: dict) -> str:
         return "ElementLineHermite"
