@@ -29,6 +29,11 @@ QUANTITIES = {
 FIELD_NAMES = {"moment": ("moment", "M"), "shear": ("shear", "V"), "axial": ("axial", "N")}
 
 
+def canonical(name: str) -> str:
+    """The :data:`QUANTITIES` name of an output (``M`` -> moment, ``V`` -> shear, ``N`` -> axial), else the name."""
+    return next((q for q, names in FIELD_NAMES.items() if name in names), name)
+
+
 def quantity_of(w, rotation, fields: dict, quantity: str):
     """The values of ``quantity`` (:data:`QUANTITIES`) among a solution's w, rotation and fields; None when it
     has none."""

@@ -26,6 +26,7 @@ try:  # imported with the runner (its one-time cost belongs to start-up, not to 
 except ImportError:  # pragma: no cover - parquet is optional, the CSV tables are always written (by pandas)
     pa = None
 
+from ..core.result import canonical, quantity_of
 from ..core.version import __version__
 from .checks import match_benchmark, write_checks
 from .checks import verdict as _verdict
@@ -172,7 +173,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
         if "position" in b:
             path = case_file(cases_dir, r["case_id"]) if cases_dir else None
             c = read_curve(path) if path is not None else {}
-            arr = c.get(quantity) if quantity in ("w", "rotation") else c.get("fields", {}).get(quantity)
+            arr = quantity_of(c.get("w"), c.get("rotation"), c.get("fields", {}), quantity) if c else None
             if arr is None:
                 rows.append(
                     {
@@ -186,8 +187,19 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
                 continue
             computed = float(np.interp(float(b["position"]), c["x"], arr))
             if "target" not in b:
-                at = float(b["position"])
-                target = float(np.interp(at, c["x"], c["w_ref"])) if quantity == measures else float("nan")
+                ref = c["w_ref"] if quantity == measures else c.get("references", {}).get(canonical(quantity))
+                if ref is None:  # a quantity the study measures, that the reference gives none of
+                    rows.append(
+                        {
+                            "name": b["name"],
+                            "scene": b["scene"],
+                            "model": b["model"],
+                            "verdict": "missing",
+                            "message": f"the reference gives no {quantity}; give a target",
+                        }
+                    )
+                    continue
+                target = float(np.interp(float(b["position"]), c["x"], ref))
         rel = abs(computed - target) / abs(target) if target else float("nan")
         tol = b.get("tolerance", 0.01)
         order = float("nan")

@@ -50,6 +50,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..core.errors import InputError
+from ..core.result import QUANTITIES, canonical
 from ..core.scene import Scene
 from ..core.scene_file import load_scene, parse_scene, read_toml
 from ..core.version import __version__
@@ -480,12 +481,24 @@ def _benchmark_rows_errors(study: Study, scene_objs: dict) -> list[str]:
             errors.append(f"{where}.scene = {bench['scene']!r}: not one of the study's scenes")
             continue
         errors += _benchmark_errors(bench, where, study)
-        errors += _benchmark_output_errors(bench, where, scene_objs[bench["scene"]][1].length)
+        errors += _benchmark_output_errors(bench, where, scene_objs[bench["scene"]][1].length, _measured(study, bench))
     return errors
 
 
-def _benchmark_output_errors(bench: dict, where: str, length: float) -> list[str]:
-    """The error lines of a benchmark row's position (on a beam of ``length``), expected and quantity."""
+def _measured(study: Study, bench: dict) -> set:
+    """The quantities the study measures besides the models' own on the runs of the benchmark's model (the study's
+    ``quantities`` and its runs'): their references are kept in the cases, so a benchmark of one needs no target."""
+    runs = [r for r in study.runs if isinstance(r, dict) and r.get("model") == bench["model"]]
+    out = set(study.quantities)
+    for r in runs:
+        if isinstance(r.get("quantities"), list):
+            out |= {q for q in r["quantities"] if isinstance(q, str)}
+    return out
+
+
+def _benchmark_output_errors(bench: dict, where: str, length: float, measured: set = frozenset()) -> list[str]:
+    """The error lines of a benchmark row's position (on a beam of ``length``), expected and quantity (``measured``:
+    the other quantities whose reference the study keeps, :func:`_measured`)."""
     errors = []
     if "position" in bench:
         pos = bench["position"]
@@ -504,8 +517,12 @@ def _benchmark_output_errors(bench: dict, where: str, length: float) -> list[str
             f"{where}.quantity = {q!r}: a quantity other than {measures} (rotation or a field of the model's result, "
             "e.g. u, theta, M) is read at a point: give its position"
         )
-    elif q != measures and "target" not in bench:
-        errors.append(f"{where}.quantity = {q!r}: the reference gives {measures} only; give a target")
+    elif q != measures and "target" not in bench and canonical(q) not in measured:
+        add = f'add "{canonical(q)}" to the study\'s quantities, or ' if canonical(q) in QUANTITIES else ""
+        errors.append(
+            f"{where}.quantity = {q!r}: the study keeps the reference of {measures} and of the quantities it measures "
+            f"({', '.join(sorted(measured)) or 'none other'}) only; {add}give a target"
+        )
     return errors
 
 

@@ -73,6 +73,25 @@ def test_a_finite_element_reference_gives_the_moment_and_shear(tmp_path):
         np.testing.assert_allclose(fem[f"err_max_{q}"], exact[f"err_max_{q}"], rtol=1e-6)
 
 
+@pytest.mark.parametrize("quantity, key", [("rotation", "rotation"), ("M", "moment"), ("moment", "moment")])
+def test_a_benchmark_of_a_measured_quantity_takes_its_reference_as_target(tmp_path, quantity, key):
+    """A benchmark of a quantity the study measures needs no target: the case keeps that quantity's reference ("the
+    reference gives w only; give a target" was refused before, though the study measured it against that reference)."""
+    bench = f'[[benchmarks]]\nname = "b"\nscene = "{SCENE.as_posix()}"\nmodel = "pd-timoshenko"\npoints = 41\n'
+    bench += f'quantity = "{quantity}"\nposition = 0.5\n'
+    run = '[[runs]]\nmodel = "pd-timoshenko"\npoints = [41]\n'
+    with pytest.raises(InputError, match=f'add "{key}" to the study\'s quantities, or give a target'):
+        load_study(write(tmp_path, run + bench))
+    run_study(load_study(write(tmp_path, f'quantities = ["{key}"]\n' + run + bench)), tmp_path / "o", workers=1)
+    b = pd.read_csv(tmp_path / "o" / "benchmarks.csv").iloc[0]
+    from pdverify.core.scene_file import load_scene
+    from pdverify.registry import get_model
+
+    exact = get_model("exact-timoshenko").evaluate(load_scene(SCENE), {}, np.array([0.5]))
+    field = {"rotation": "rotation", "moment": "M"}[key]
+    assert b["target"] == pytest.approx(float(exact[field][0]), rel=1e-12) and b["verdict"] == "pass"
+
+
 @pytest.mark.parametrize("where", ["top", "run"])
 def test_an_unknown_quantity_is_one_line(tmp_path, where):
     run = '[[runs]]\nmodel = "pd-eb"\npoints = [11]\n'
