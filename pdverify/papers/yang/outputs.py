@@ -125,7 +125,8 @@ def interior_point_loads(scene: Scene) -> list:
 def recovery_warnings(scene: Scene, interior: list) -> list[str]:
     """Where the recovered moment and shear (:func:`.supports.section_forces`) do not converge at second order:
     within a few depths of a support inside the span, or of a point load (``interior``) whose layers statics did not
-    replace (the section's layers of w*, theta*, about 0.1 h wide, resolved only once the spacing is below that), and
+    replace (the section's layers of w*, theta*, about 0.1 h wide: the moment resolved only once the spacing is below
+    that, the shear at the 3 points either side not even then), and
     the shear next to where a distributed load starts or ends inside the beam (the bonds average the load's jump:
     first order there)."""
     out = []
@@ -134,9 +135,11 @@ def recovery_warnings(scene: Scene, interior: list) -> list[str]:
         at = ", ".join(f"{a:.6g}" for a in spots)
         out.append(
             f"moment and shear within 3 depths of x = {at} (point loads, supports inside the span) carry the "
-            "section's layers (w*, theta*, ~0.1 h wide): they converge at no measured order until the spacing is "
-            "below 0.1 h (L/h = 100: 0.1 % to 0.7 % of the largest moment between 641 and 1281 points); w and the "
-            "rotation converge at second order (docs/models/yang.md)"
+            "section's layers (w*, theta*, ~0.1 h wide): the moment converges at no measured order until the spacing "
+            "is below 0.1 h (L/h = 100: 0.1 % to 0.7 % of the largest moment between 641 and 1281 points); the shear "
+            "at the 3 points either side does not converge at all (one spacing from a support inside the span, at "
+            "spacings h/32 and h/128: 0.065 to 0.49 of the largest shear); w and the rotation converge at second "
+            "order (docs/models/yang.md)"
         )
     edges = [v for ld in scene.loads if ld.type == "distributed" and ld.value != 0.0 for v in scene.span(ld)]
     edges = sorted({v for v in edges if 0.0 < v < scene.length})
