@@ -283,6 +283,12 @@ class Model(Horizon):
         hold an observed order against."""
         return float(self.order)
 
+    def refusals(self, scene: Scene, params: dict) -> list[str]:
+        """Reasons this model cannot solve ``scene`` with these options (``params``, resolved), before any work: a
+        variant or form that does not define what the scene holds (pd-bond-pair's Taylor ends and a support inside
+        the span). Empty by default; the solve raises the same line. A study lists such combinations as skipped."""
+        return []
+
     def check(self, scene: Scene) -> list[str]:
         """Reasons this model cannot solve ``scene`` (empty when it can): its declared capabilities first
         (subclasses add their own reasons to ``super().check(scene)``)."""

@@ -421,13 +421,13 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
                     if sl and (sfile, sl) not in refs_checked:  # the scaled scene is a scene too (its numbers' range)
                         refs_checked.add((sfile, sl))
                         parse_scene(scx.to_dict(), source=f"{sfile} at slenderness = {sl!r}")
-                    run.model.resolve(scx, given)
+                    params = run.model.resolve(scx, given)
                 except InputError as exc:
                     errors.append(f"{run.where}: {exc.lines[0]}")
                     continue
                 if (run.model.name, sfile, sl) not in reasons_of:  # the same for every option set
                     reasons_of[(run.model.name, sfile, sl)] = run.model.check(scx)
-                if reasons := reasons_of[(run.model.name, sfile, sl)]:
+                if reasons := reasons_of[(run.model.name, sfile, sl)] or run.model.refusals(scx, params):
                     study.skipped.append(f"{run.written} on {sfile}: {reasons[0]}")
                     continue
                 ref_key = (sfile, sl, repr(sorted(run.reference.items())))

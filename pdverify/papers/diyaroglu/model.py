@@ -292,6 +292,14 @@ class PDEulerBernoulli(Model):
         variant = "corrected" if self.form(params) == "mixed" else params["variant"]
         return self.family_problems(scene, params, lambda k: len(curvature_weights(k, dx, variant)))
 
+    def refusals(self, scene: Scene, params: dict) -> list[str]:
+        """:meth:`refuse`'s line, as a list."""
+        try:
+            self.refuse(scene, params)
+        except InputError as exc:
+            return list(exc.lines)
+        return []
+
     def refuse(self, scene: Scene, params: dict) -> None:
         """InputError (one line) for what the chosen variant and form do not define."""
         if params.get("reading", "energy") != "energy" and params["variant"] != "paper":

@@ -287,6 +287,14 @@ class PDBondPair(Model):
         ),
     )
 
+    def refusals(self, scene: Scene, params: dict) -> list[str]:
+        """The ends and loads the chosen ends do not take (:func:`pair_form`'s line)."""
+        try:
+            pair_form(scene, params)
+        except InputError as exc:
+            return list(exc.lines)
+        return []
+
     def grid_problems(self, scene: Scene, params: dict) -> list[str]:
         """A stencil that does not fit in the points (:func:`.taylor.assemble_taylor`, :func:`.taylor.assemble_mixed`:
         the linear path with Taylor ends), before any work. Mirror ends (the nonlinear path, the pair form's default)

@@ -783,6 +783,37 @@ def test_a_run_on_a_scene_its_model_cannot_solve_is_said(tmp_path, capsys):
 
 
 @pytest.mark.parametrize(
+    "model, options, why",
+    [
+        ("pd-bond-pair", 'ends = ["taylor", "mirror"]', "supports inside the span: ends = taylor solves one"),
+        ("pd-eb", 'variant = ["paper", "corrected"]', "variant = paper (the paper's equations hold a beam"),
+    ],
+)
+def test_a_run_whose_options_a_scene_refuses_skips_those_cases(tmp_path, capsys, model, options, why):
+    """Options a scene cannot be solved with (pd-bond-pair's Taylor ends, pd-eb's paper variant, and a support inside
+    the span) are skipped with the reason, as a scene its model refuses is: they were failed cases, and the study
+    exited 1."""
+    from helpers import cli
+
+    two_spans = tmp_path / "two_spans.toml"
+    two_spans.write_text(
+        (ROOT / "studies/examples/cantilever_tip_load.toml")
+        .read_text()
+        .replace('right = "free"', 'right = "free"\n[[supports.inner]]\nposition = 0.5\ntype = "pinned"')
+    )
+    study = tmp_path / "s.toml"
+    study.write_text(
+        f'name = "skips"\nscenes = ["{two_spans.as_posix()}"]\nreference = "exact-eb"\n'
+        f'[[runs]]\nmodel = "{model}"\npoints = [21, 41]\n{options}\n'
+    )
+    code, _, err = cli(["study", study, "--out", tmp_path / "out", "--workers", "1", "--quiet"], capsys)
+    assert code == 0, err
+    assert f"skipped: 2 cases of {model} on " in err and why in err
+    df = pd.read_csv(tmp_path / "out" / "results.csv")
+    assert len(df) == 2 and (df["status"] == "ok").all()
+
+
+@pytest.mark.parametrize(
     "options, refused",
     [
         ("horizon = 3\npoints = [5, 6, 11]", ["does not fit in 5 points", "does not fit in 6 points"]),
