@@ -35,6 +35,7 @@ from ..core.errors import SolveError
 from ..core.geometry import geometry, mechanism_message
 from ..core.result import Result, Timer
 from ..core.scene import HELD, Distributed, PointForce, PointMoment, Scene
+from ..numerics.error_bound import ENTRY_ROUNDING, record_bound
 from ..numerics.loads import axis_support_side, onto_end_points
 from ..theory.curved_beam import coupling_warning, thick_ring_warning
 
@@ -125,6 +126,14 @@ class Cantilever:
         eps, gam, chi = N / EA, Q / kGA, M / EI
         f = np.column_stack([eps[:, None] * t + gam[:, None] * n, chi, chi[:, None] * r])
         self.I = self._cumulative(f.reshape(sig.shape + (5,)))  # (panels, nodes, 5)
+        # round-off of u = I_01 + e_z x (I_2 r - I_34) (or the same of ∫_s^L): the quadrature's chains of sums, an
+        # entry of ORDER nodes then up to one per panel, each of terms at most ∫ |f| (Higham, *Accuracy and
+        # Stability*, 2nd ed., ch. 4), then the combination's own rounding
+        size = np.abs(self._cumulative(np.abs(f).reshape(sig.shape + (5,)))[-1, -1])
+        reach = float(np.hypot(*r.T).max())
+        terms = size[0] + size[1] + size[2] * reach + size[3] + size[4]
+        self.rounding = (ENTRY_ROUNDING + self.ORDER + len(edges)) * np.finfo(float).eps * terms
+        self.nodes_s = sig.ravel()
 
     def _line_load(self, s: np.ndarray, inside: np.ndarray) -> np.ndarray:
         """Global line load vector at s (``inside``: a point of the same panel, to decide the spans)."""
@@ -270,6 +279,17 @@ class Indeterminate:
             self.c = np.linalg.solve(A, rhs / row) / col
         except np.linalg.LinAlgError:
             raise SolveError("exact-curved: the supports leave a rigid-body motion (a mechanism)") from None
+        # round-off of the sum of the states: each cantilever state's own (times its amplitude), and the amplitudes'
+        # from the conditions' entries, each a value rounded once (ENTRY_ROUNDING): Skeel's componentwise bound
+        # |A^-1| (|A| |a| + |b|) c eps of the scaled system (Higham, *Accuracy and Stability*, eq. 7.31)
+        self.nodes_s = self.part.nodes_s
+        states = self._states(self.nodes_s)[1:]
+        size = np.array([float(np.hypot(st["ux"], st["uy"]).max()) for st in states])
+        own = np.array([0.0, 0.0, np.finfo(float).eps * size[2]] + [u.rounding for u in self.units])  # rigid: exact
+        a = self.c * col  # the scaled system's solution
+        entries = ENTRY_ROUNDING * np.finfo(float).eps
+        da = np.abs(np.linalg.inv(A)) @ (np.abs(A) @ np.abs(a) + np.abs(rhs / row)) * entries
+        self.rounding = self.part.rounding + float(np.sum(np.abs(self.c) * own + da / col * size))
 
     def _states(self, s: np.ndarray) -> list[dict]:
         """Fields of the particular solution and of the six load-free states at s."""
@@ -300,6 +320,15 @@ class Indeterminate:
         return {k: states[0][k] + sum(c * st[k] for c, st in zip(self.c, states[1:])) for k in states[0]}
 
 
+def relative_rounding(sol, fields: dict) -> float:
+    """The solution's round-off bound (its ``rounding``: an absolute displacement) relative to the largest
+    displacement of ``fields`` (3 digits); relative to the rounding itself, eps, where nothing moves."""
+    top = float(np.hypot(fields["ux"], fields["uy"]).max())
+    if top == 0.0:
+        return 0.0 if sol.rounding == 0.0 else float("inf")
+    return float(f"{sol.rounding / top:.3g}")
+
+
 class ExactCurved(Model):
     name = "exact-curved"
     title = "exact curved Timoshenko–Ehrenfest beam, any supports (statics + quadrature + force method)"
@@ -327,10 +356,16 @@ class ExactCurved(Model):
 
     def evaluator(self, scene: Scene, params: dict):
         """The solution object built once, its fields at any x (the end points on their supports' side; a point
-        load a few eps from an end is on it, :func:`~pdverify.numerics.loads.onto_end_points`)."""
+        load a few eps from an end is on it, :func:`~pdverify.numerics.loads.onto_end_points`), with its round-off
+        bound (:func:`relative_rounding`) as ``error_bound``."""
         scene = onto_end_points(scene)
         sol = self.solver(scene)
-        return lambda x: axis_support_side(scene, x, sol.fields(x))
+
+        def fields(x):
+            return axis_support_side(scene, x, sol.fields(x))
+
+        fields.error_bound = relative_rounding(sol, sol.fields(sol.nodes_s))
+        return fields
 
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
@@ -340,6 +375,7 @@ class ExactCurved(Model):
             sol = self.solver(scene)
             f = axis_support_side(scene, s, sol.fields(s))  # the solution's ends hold the beam's side
         info = {"cond": getattr(sol, "cond", 1.0)}  # a cantilever solves nothing: statics and quadrature only
+        record_bound(info, relative_rounding(sol, f))
         for flag in (thick_ring_warning(scene), coupling_warning(scene, s, f["N"], f["M"])):
             if flag:
                 info.setdefault("warnings", []).append(flag)
