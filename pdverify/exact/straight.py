@@ -274,12 +274,8 @@ class StraightSolution:
                     f"supports = {sup.kind('left')}-{sup.kind('right')}: the supports' conditions are dependent at "
                     f"working precision (the boundary system's rank test at 1e-10, {As.shape[0]} conditions): a spring "
                     "far softer than the beam, or supports that nearly coincide"
-                    + (
-                        f", or the {many} supports.inner too many for the closed form (fem-eb solves them)"
-                        if many
-                        else ""
-                    )
-                    + "; stiffen the spring, or give the supports as one"
+                    + (f", or the {many} supports.inner too many for the closed form" if many else "")
+                    + "; stiffen the spring, or give the supports as one (fem-eb and fem-timoshenko solve such scenes)"
                 )
             raise SolveError(
                 f"supports = {sup.kind('left')}-{sup.kind('right')}: the beam is a mechanism; "

@@ -393,7 +393,7 @@ CLI_CASES = [
         "solve-supports-nearly-coincide",
         ["solve", str(ROOT / "tests/bad_inputs/supports_nearly_coincide.toml"), "-m", "exact-eb"],
         3,
-        "the supports' conditions are dependent at working precision",
+        "give the supports as one (fem-eb and fem-timoshenko solve such scenes)",
     ),
     (
         "solve-spring-of-1e-300-exact-higher-order",
