@@ -264,8 +264,7 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     row["dofs"] = solved["dofs"]
     row["spacing"] = float(np.diff(x).max()) if len(x) > 1 else float("nan")
     row["horizon"] = info.get("horizon", (params["horizon"] * row["spacing"]) if params.get("horizon") else None)
-    row["m"] = info.get("m")
-    row["cond"] = info.get("cond")
+    row["m"], row["cond"] = info.get("m"), info.get("cond")
     # the digest of the factorised operator: the cases with the same one in a process share its LU
     # (numerics/factorcache.py); whether this case made it or took it depends on the run's order, not recorded
     row["factorisation"] = info.get("factorisation")
@@ -275,7 +274,8 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
         row.update(reference_status(continuum_at(case, case.scene(), x)[1], row, "continuum's error estimate"))
     elif case.reference.get("model") != "none":
         row.update(reference_status(reference_bound(case), row))
-    row["warnings"] = "; ".join(w for w in (solved.get("warnings", ""), theory_gap_warning(case)) if w)
+    gap = theory_gap_warning(case, x, row.get("err_max", np.nan))
+    row["warnings"] = "; ".join(w for w in (solved.get("warnings", ""), gap) if w)
     if "artefact_message" in solved:
         row["artefact_message"] = solved["artefact_message"]
 
