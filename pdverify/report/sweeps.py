@@ -47,9 +47,12 @@ def other_quantity(r) -> str | None:
 
 
 def _check_bands(checks: pd.DataFrame) -> dict[tuple, tuple[float, str]]:
-    """Per checked series: the slope to draw (the middle of its band, or its lower bound) and its legend text."""
+    """Per checked series: the slope to draw (the middle of its band, or its lower bound) and its legend text. A
+    check that matched no series (verdict missing: no scene) draws none."""
     out = {}
     for _, c in checks.iterrows() if not checks.empty else ():
+        if not isinstance(c.get("scene"), str):
+            continue
         lo, hi = c.get("min"), c.get("max")
         if pd.notna(lo) and pd.notna(hi):
             out[_series_key(c)] = (0.5 * (float(lo) + float(hi)), f"order check: {lo:g} to {hi:g}")

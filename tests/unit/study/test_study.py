@@ -813,6 +813,28 @@ def test_a_run_whose_options_a_scene_refuses_skips_those_cases(tmp_path, capsys,
     assert len(df) == 2 and (df["status"] == "ok").all()
 
 
+def test_a_report_whose_every_order_check_is_missing_is_written(tmp_path, capsys):
+    """Every order check missing (its variant's cases all skipped) left checks.csv without a scene column, and the
+    report failed on it (exit 70, no index.html, the study's verdict lost): now written, exit 1 for the missing check."""
+    from helpers import cli
+
+    two_spans = tmp_path / "two_spans.toml"
+    two_spans.write_text(
+        (ROOT / "studies/examples/cantilever_tip_load.toml")
+        .read_text()
+        .replace('right = "free"', 'right = "free"\n[[supports.inner]]\nposition = 0.5\ntype = "pinned"')
+    )
+    study = tmp_path / "s.toml"
+    study.write_text(
+        f'name = "missing"\nscenes = ["{two_spans.as_posix()}"]\nreference = "exact-eb"\n[[runs]]\nmodel = "pd-eb"\n'
+        'points = [21, 41, 81]\nvariant = ["paper", "corrected"]\n'
+        '[[checks]]\nmodel = "pd-eb"\nvariant = "paper"\nobserved_order = { min = 1.5 }\n'
+    )
+    code, _, err = cli(["study", study, "--out", tmp_path / "out", "--workers", "1", "--quiet", "--report"], capsys)
+    assert code == 1 and "internal error" not in err, err
+    assert (tmp_path / "out" / "index.html").is_file()
+
+
 @pytest.mark.parametrize(
     "options, refused",
     [
