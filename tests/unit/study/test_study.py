@@ -815,7 +815,7 @@ def test_a_run_whose_options_a_scene_refuses_skips_those_cases(tmp_path, capsys,
 
 def test_a_report_whose_every_order_check_is_missing_is_written(tmp_path, capsys):
     """Every order check missing (its variant's cases all skipped) left checks.csv without a scene column, and the
-    report failed on it (exit 70, no index.html, the study's verdict lost): now written, exit 1 for the missing check."""
+    report failed on it (exit 70, no index.html, the study's verdict lost): now written, exit 1 for the check."""
     from helpers import cli
 
     two_spans = tmp_path / "two_spans.toml"
