@@ -171,7 +171,8 @@ def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
     largest spacing is about ``ratio`` times the smallest. ``by``: ``curvature`` (f = sqrt(|κ| / max |κ|):
     particles gather where the axis bends; the square root spreads them over the bend's flanks, which on
     y = 10 x^5 needed fewer particles than f = |κ / max κ|) or ``ends`` (f = exp(-d / (L/10)), d the distance
-    to the nearer end or to a point load inside the beam: particles gather at the supports and at point loads)."""
+    to the nearer end, support inside the span, segment joint or point load: particles gather at the supports, the
+    joints and the point loads)."""
     L = scene.length
     s = np.linspace(0.0, L, samples)
     if by == "curvature":
@@ -179,6 +180,7 @@ def grading_density(scene: Scene, ratio: float, by: str, samples: int = 4001):
         f = np.sqrt(kap / kap.max()) if kap.max() > 0 else np.zeros_like(s)
     else:
         marks = [0.0, L] + [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment))]
+        marks += [sup.position for sup in scene.supports.inner] + [g.start for g in scene.segments[1:]]
         d = np.min(np.abs(s[:, None] - np.array(marks)[None, :]), axis=1)
         f = np.exp(-d / (0.1 * L))
     rho = 1.0 + (ratio - 1.0) * f
