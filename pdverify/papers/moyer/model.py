@@ -32,7 +32,7 @@ from .base import _OPTIONS, _context, _MoyerModel, beam_points_loaded, stabilisa
 from .couples import couple_column
 from .ends import MIRRORED
 from .energy import moment_field, shear_force
-from .operator import beam_operator
+from .operator import beam_operator, segments_refusal
 from .rods import PDRod, PDTorsion
 from .system import prescribed_motions
 from .transient import History, integrate
@@ -75,6 +75,11 @@ class PDTimoshenko(_MoyerModel):
     def model_error_ends(self, scene: Scene, params: dict, delta: float) -> tuple[float, str]:
         """Measured per variant and support pair (:mod:`pdverify.theory.model_error`)."""
         return pair_factor(scene, f"pd-timoshenko {self.with_defaults(params)['variant']}", delta)
+
+    def refusals(self, scene: Scene, params: dict) -> list[str]:
+        """Segments in the paper and corrected variants (:func:`.operator.segments_refusal`)."""
+        why = segments_refusal(scene, params["variant"])
+        return [why] if why else []
 
     def operator(self, scene, params):
         return beam_operator(scene, params["points"], params["horizon"], params["variant"], grid=params["grid"])

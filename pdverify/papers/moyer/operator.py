@@ -231,17 +231,24 @@ def _grid(scene: Scene, n: int, grid: str, variant: str, name: str) -> tuple[int
     return nc, (np.arange(nc) + 0.5) * (L / nc)
 
 
+def segments_refusal(scene: Scene, variant: str) -> str:
+    """The line refusing segments in pd-timoshenko's paper and corrected variants ("" where the variant takes them)."""
+    if variant == "energy" or scene.uniform:
+        return ""
+    return (
+        f"segments: variant {variant} of pd-timoshenko takes one section and one material (its ghost closures "
+        "and shear sums are written for one); use variant energy (the default)"
+    )
+
+
 def beam_operator(scene: Scene, n: int, m: int, variant: str, grid: str = "nodes") -> Discrete:
     """Static operator of the PD Timoshenko beam on the interleaved DOFs (w_0, γ_0, w_1, γ_1, ...):
     assembled in full on a short grid (:func:`_beam_core`, Eq. 45–49 as written) and extended by its
     stencil (:class:`~.kernels.EndPatched`); variant ``energy``: :func:`.energy.energy_beam_operator`."""
     if variant == "energy":
         return energy_beam_operator(scene, n, m)
-    if not scene.uniform:
-        raise InputError(
-            f"segments: variant {variant} of pd-timoshenko takes one section and one material (its ghost closures "
-            "and shear sums are written for one); use variant energy (the default)"
-        )
+    if why := segments_refusal(scene, variant):
+        raise InputError(why)
     n, x = _grid(scene, n, grid, variant, "pd-timoshenko")
     _check_grid(n, m, "pd-timoshenko")
     dx = x[1] - x[0]

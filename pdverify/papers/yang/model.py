@@ -125,7 +125,7 @@ from .outputs import (
     section_stresses,
     shear_stiff_warning,
 )
-from .supports import section_forces, with_supports
+from .supports import paper_supports_refusal, section_forces, with_supports
 
 # the ends' layers of the recovered M and V, in horizons (J points each): their error falls about tenfold every three
 # points inward; at 3 J, 2e-6 to 7.6e-4 of the largest value on six scenes (docs/models/yang.md, "Scenes: ...")
@@ -420,6 +420,11 @@ class PDHigherOrder(Model):
         if lay.variant == "paper":
             info.update(volumes=lay.fractions, mirror=lay.about)
         return B, b, (drop, tie), info
+
+    def refusals(self, scene: Scene, params: dict) -> list[str]:
+        """Springs and supports inside the span in variant paper (:func:`.supports.paper_supports_refusal`)."""
+        why = paper_supports_refusal(scene, params)
+        return [why] if why else []
 
     def grid_problems(self, scene: Scene, params: dict) -> list[str]:
         """A family that does not fit in the points (:meth:`layout`), before any work."""

@@ -115,14 +115,21 @@ def augmented(B, b: np.ndarray, held, unknowns: list, x: np.ndarray, h: float, f
     return A, np.r_[b, np.zeros(len(unknowns))], scales
 
 
+def paper_supports_refusal(scene: Scene, params: dict) -> str:
+    """The line refusing springs and supports inside the span in ``variant = paper`` ("" where the scene has none)."""
+    if params["variant"] != "paper" or scene.supports.simple:
+        return ""
+    return (
+        "variant = paper: Appendix B's fictitious layers hold a beam at its ends only; springs and supports "
+        "inside the span need variant = corrected"
+    )
+
+
 def with_supports(scene: Scene, params: dict, B, b: np.ndarray, held, x: np.ndarray, faces: bool, pin: str):
     """(matrix, rhs, free, unknowns, scales): the band B as it is when the supports are the ends' alone, else the
     :func:`augmented` system; ``variant = paper`` refuses springs and supports inside the span in one line."""
-    if params["variant"] == "paper" and not scene.supports.simple:
-        raise InputError(
-            "variant = paper: Appendix B's fictitious layers hold a beam at its ends only; springs and supports "
-            "inside the span need variant = corrected"
-        )
+    if why := paper_supports_refusal(scene, params):
+        raise InputError(why)
     free = np.delete(np.arange(B.n), held)
     unknowns = reaction_unknowns(scene)
     if not unknowns:

@@ -782,24 +782,43 @@ def test_a_run_on_a_scene_its_model_cannot_solve_is_said(tmp_path, capsys):
     assert len(json.loads((tmp_path / "out" / "meta.json").read_text())["skipped"]) == 2
 
 
+INNER_PIN = '\n[[supports.inner]]\nposition = 0.5\ntype = "pinned"'
+SEGMENTS = (
+    "\n[[segments]]\nstart = 0.0\nend = 0.5\n[[segments]]\nstart = 0.5\nend = 1.0\n"
+    "[segments.section]\nwidth = 0.01\nheight = 0.008"
+)
+
+
 @pytest.mark.parametrize(
-    "model, options, why",
+    "model, options, why, extra",
     [
-        ("pd-bond-pair", 'ends = ["taylor", "mirror"]', "supports inside the span: ends = taylor solves one"),
-        ("pd-eb", 'variant = ["paper", "corrected"]', "variant = paper (the paper's equations hold a beam"),
+        (
+            "pd-bond-pair",
+            'ends = ["taylor", "mirror"]',
+            "supports inside the span: ends = taylor solves one",
+            INNER_PIN,
+        ),
+        ("pd-eb", 'variant = ["paper", "corrected"]', "variant = paper (the paper's equations hold a beam", INNER_PIN),
+        ("pd-higher-order", 'variant = ["paper", "corrected"]', "Appendix B's fictitious layers hold", INNER_PIN),
+        (
+            "pd-timoshenko",
+            'variant = ["corrected", "energy"]',
+            "variant corrected of pd-timoshenko takes one",
+            SEGMENTS,
+        ),
     ],
 )
-def test_a_run_whose_options_a_scene_refuses_skips_those_cases(tmp_path, capsys, model, options, why):
-    """Options a scene cannot be solved with (pd-bond-pair's Taylor ends, pd-eb's paper variant, and a support inside
-    the span) are skipped with the reason, as a scene its model refuses is: they were failed cases, and the study
-    exited 1."""
+def test_a_run_whose_options_a_scene_refuses_skips_those_cases(tmp_path, capsys, model, options, why, extra):
+    """Options a scene cannot be solved with (pd-bond-pair's Taylor ends, the paper variants of pd-eb and
+    pd-higher-order, and a support inside the span; pd-timoshenko's corrected variant and segments) are skipped with
+    the reason, as a scene its model refuses is: they were failed cases, and the study exited 1."""
     from helpers import cli
 
     two_spans = tmp_path / "two_spans.toml"
     two_spans.write_text(
         (ROOT / "studies/examples/cantilever_tip_load.toml")
         .read_text()
-        .replace('right = "free"', 'right = "free"\n[[supports.inner]]\nposition = 0.5\ntype = "pinned"')
+        .replace('right = "free"', 'right = "free"' + extra)
     )
     study = tmp_path / "s.toml"
     study.write_text(
