@@ -160,14 +160,15 @@ def given_path(text: str) -> Path:
 
 
 def given_file(example: str):
-    """The parser of a file option's path (``solve --out``, ``--junit``): :func:`given_path`, and not one that ends in
-    a path separator (``--out results/``: a folder meant, where ``Path`` would drop the separator and write a file of
-    that name); ``example``: the file name its message suggests."""
+    """The parser of a file option's path (``solve --out``, ``--junit``): :func:`given_path`, and not one whose last
+    component names a folder (``--out results/``, ``results/.``: ``Path`` would drop it and write a file named
+    results); ``example``: the file name its message suggests."""
 
     def parse(text: str) -> Path:
         path = given_path(text)
-        if str(text).rstrip().endswith(tuple(s for s in (os.sep, os.altsep) if s)):
-            raise typer.BadParameter(f"{text!r} ends in a separator, a folder; give a file, e.g. {path / example}")
+        last = str(text).replace(os.altsep or os.sep, os.sep).rsplit(os.sep, 1)[-1]
+        if last in ("", ".", ".."):  # "x/", "x/." and "x/..": a folder, where Path drops what says so
+            raise typer.BadParameter(f"{text!r} names a folder; give a file, e.g. {Path(text) / example}")
         return path
 
     return parse

@@ -220,7 +220,8 @@ CLI_CASES = [
     ),
     ("solve-out-dash", ["solve", "{scene}", "-m", "exact-eb", "--out", "-"], 2, "'-': output goes to standard output"),
     # a file named like the folder was written before (Path drops the separator)
-    ("solve-out-folder-slash", ["solve", "{scene}", "-m", "exact-eb", "--out", "{tmp}/new/"], 2, "ends in a separator"),
+    ("solve-out-folder-slash", ["solve", "{scene}", "-m", "exact-eb", "--out", "{tmp}/new/"], 2, "names a folder"),
+    ("solve-out-folder-dot", ["solve", "{scene}", "-m", "exact-eb", "--out", "{tmp}/new/."], 2, "names a folder"),
     ("verify-junit-folder-slash", ["verify", "pd-eb", "--out", "{tmp}/j12", "--junit", "{tmp}/x/"], 2, "e.g. "),
     (  # writing through it made the folders of its target, wherever it points
         "solve-out-link-to-nothing",
