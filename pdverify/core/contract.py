@@ -193,12 +193,13 @@ SUPPORTS = frozenset({"clamped", "pinned", "roller", "guided", "free"})  # docs/
 
 
 def missing_torsion_constant(scene: Scene, model: str) -> str | None:
-    """The line naming a section without a torsion constant J (a profile, I or area-and-inertia section has none of
-    its own), which a torsion model needs; None when every piece of the beam has one."""
+    """The line naming a section without a torsion constant J (a profile or area-and-inertia section has none of its
+    own; a rectangle and a thin-walled I have), which a torsion model needs; None when every piece of the beam has
+    one."""
     if all(sec.J is not None for _, _, sec, _ in scene.pieces()):
         return None
     return (
-        f"section.torsion_constant: {model} needs the torsion constant J of every section (a profile, I or "
+        f"section.torsion_constant: {model} needs the torsion constant J of every section (a profile or "
         "area-and-inertia section has none of its own); add torsion_constant (or give width and height)"
     )
 
