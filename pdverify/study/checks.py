@@ -261,9 +261,15 @@ def match_benchmark(b: dict, df: pd.DataFrame):
     }
 
 
-def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
+def skipped_note(skipped: list) -> str:
+    """What a missing benchmark or check row adds when the study skipped combinations (it may name one of them)."""
+    return f"; the study skipped {len(skipped)} combinations its models refuse (meta.json: skipped)" if skipped else ""
+
+
+def check_rows(checks: list[dict], rows: list[dict], skipped: list = ()) -> list[dict]:
     """The rows of ``checks.csv``: every check against every series it matches (results ``rows`` as dicts,
-    None for a missing value), in the checks' order; a check matching no series is one ``missing`` row."""
+    None for a missing value), in the checks' order; a check matching no series is one ``missing`` row (``skipped``:
+    the study's skipped combinations, which it may have named)."""
     series = grouped("convergence", rows, compute=lambda key, group: group)  # the convergence table's series
     out = []
     for check in checks:
@@ -277,7 +283,7 @@ def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
                 "max": check["observed_order"].get("max"),
                 "expected": check.get("expected", "pass"),
                 "verdict": "missing",
-                "message": "no series of the sweep matches the check's model and filters",
+                "message": "no series of the sweep matches the check's model and filters" + skipped_note(skipped),
             }
         ]
     return out
@@ -286,7 +292,8 @@ def check_rows(checks: list[dict], rows: list[dict]) -> list[dict]:
 def write_checks(study, out: Path, rows: list[dict]) -> None:
     """``checks.csv`` in the output folder (only for a study with checks), written atomically."""
     if study.checks:
-        write_atomic(Path(out) / "checks.csv", pd.DataFrame(check_rows(study.checks, rows)).to_csv(index=False))
+        table = pd.DataFrame(check_rows(study.checks, rows, study.skipped))
+        write_atomic(Path(out) / "checks.csv", table.to_csv(index=False))
 
 
 # ---- a finished study's verdict ---------------------------------------------------------------------------

@@ -28,7 +28,7 @@ except ImportError:  # pragma: no cover - parquet is optional, the CSV tables ar
 
 from ..core.result import canonical, quantity_of
 from ..core.version import __version__
-from .checks import match_benchmark, write_checks
+from .checks import match_benchmark, skipped_note, write_checks
 from .checks import verdict as _verdict
 from .nonlocal_table import nonlocal_rows
 from .spec import Study, code_digest
@@ -164,6 +164,8 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
     for b in study.benchmarks:
         r, unmatched = match_benchmark(b, df)  # its case, or the row of a missing / failed case
         if unmatched is not None:
+            if unmatched["verdict"] == "missing":
+                unmatched = dict(unmatched, message=unmatched["message"] + skipped_note(study.skipped))
             rows.append(unmatched)
             continue
         target = b.get("target", r["w_ref_at_max"])
@@ -188,14 +190,18 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
             computed = float(np.interp(float(b["position"]), c["x"], arr))
             if "target" not in b:
                 ref = c["w_ref"] if quantity == measures else c.get("references", {}).get(canonical(quantity))
-                if ref is None:  # a quantity the study measures, that the reference gives none of
+                if ref is None:  # the reference gives none, or the case's run does not measure it
+                    q = canonical(quantity)
+                    gives_none = q in str(r.get("missing_quantities") or "").split()
+                    why = f"the reference gives no {q}" if gives_none else f"the run of its case does not measure {q}"
+                    why += "" if gives_none else f" (add {q} to its quantities)"
                     rows.append(
                         {
                             "name": b["name"],
                             "scene": b["scene"],
                             "model": b["model"],
                             "verdict": "missing",
-                            "message": f"the reference gives no {quantity}; give a target",
+                            "message": why + "; give a target",
                         }
                     )
                     continue

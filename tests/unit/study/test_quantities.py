@@ -98,3 +98,15 @@ def test_an_unknown_quantity_is_one_line(tmp_path, where):
     body = ('quantities = ["curvature"]\n' + run) if where == "top" else run + 'quantities = ["curvature"]\n'
     with pytest.raises(InputError, match="quantities = \\['curvature'\\]: give a list of w, rotation"):
         load_study(write(tmp_path, body))
+
+
+def test_a_benchmark_of_a_quantity_its_run_does_not_measure_says_so(tmp_path):
+    """Another run of the model measures the moment, the benchmark's case's run does not: its row is missing and says
+    that (it said the reference gives no moment, which exact-timoshenko does)."""
+    run = '[[runs]]\nmodel = "pd-timoshenko"\npoints = [41]\n'
+    other = '[[runs]]\nmodel = "pd-timoshenko"\npoints = [41]\nhorizon = 2\nquantities = ["moment"]\n'
+    bench = f'[[benchmarks]]\nname = "b"\nscene = "{SCENE.as_posix()}"\nmodel = "pd-timoshenko"\npoints = 41\n'
+    bench += 'horizon = 3\nquantity = "moment"\nposition = 0.5\n'
+    run_study(load_study(write(tmp_path, run + other + bench)), tmp_path / "o", workers=1, progress=False)
+    b = pd.read_csv(tmp_path / "o" / "benchmarks.csv").iloc[0]
+    assert b["verdict"] == "missing" and b["message"].startswith("the run of its case does not measure moment")
