@@ -11,25 +11,13 @@ each measured peak), and the estimate takes 6 x that.
 from __future__ import annotations
 
 from ..core.errors import SolveError
+from ..numerics.memory import BYTES_PER_BAND_ENTRY, available_bytes
 from ..registry import run
 
 PROBE_FROM = 200_001  # points; below this a run needs < ~1 GB for every model (bench.jsonl) and is not probed
 PROBES = (201, 401)
-BYTES_PER_BAND_ENTRY = 6 * 8  # float64 entries, x6 the banded matrix for the copies and workspaces of a run
 BYTES_PER_POINT = 16 * 8  # the least any run holds per point: the grid and its output fields (x, w, rotation, the
 # resultants, their references and errors in a study), float64; the whole need of an exact model's run
-
-
-def available_bytes() -> int | None:
-    """MemAvailable of /proc/meminfo (Linux), else None (then nothing is refused)."""
-    try:
-        with open("/proc/meminfo") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
 
 
 def estimate_bytes(scene, model, params: dict) -> tuple[int, float, int] | None:

@@ -165,7 +165,7 @@ def test_memory_estimate_covers_the_measured_peak(model, points):
 def test_memory_guard_refuses_pd_curved_at_ten_million_points(capsys):
     """pd-curved at 10^7 points: refused before the large allocation with the estimate (was: MemoryError after
     allocating 32 GiB)."""
-    from pdverify.measure.memory import available_bytes
+    from pdverify.numerics.memory import available_bytes
 
     have = available_bytes()
     if have is None or have > 200 * 2**30:

@@ -15,7 +15,9 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from ...numerics.band import bandwidths
 from ...numerics.linalg import solve_linear
+from ...numerics.memory import check_band
 
 
 def solve_mixed(pairs, elim, Ks, F, what: str, a=None, elastic=None, fixed=None, offset=None):
@@ -45,6 +47,9 @@ def solve_mixed(pairs, elim, Ks, F, what: str, a=None, elastic=None, fixed=None,
     ]
     perm = _banded_order(pairs.centre, pairs.offset, elim.free)
     Mp = M[perm][:, perm]
+    lower, upper = bandwidths(Mp)
+    fix = "use fewer points, or a shorter horizon (at a fixed horizon_length the band grows with the points)"
+    check_band(Mp.shape[0], lower, upper, what, fix)
     inv = np.empty_like(perm)
     inv[perm] = np.arange(len(perm))
     y, info = solve_linear(Mp, rhs[perm], what=what, scaling=s[perm], watch=inv[P:])

@@ -173,3 +173,21 @@ def test_section_moment_is_the_sum_of_the_pairs_triangles(n, J):
                 size[kk + o] += abs(ff)
     got = pairs.section_moment(f)
     assert np.all(np.abs(got - want) <= 4 * n * J * np.finfo(float).eps * size)
+
+
+def test_a_pair_form_too_large_for_the_memory_is_refused_before_its_factorisation(monkeypatch):
+    """At a fixed horizon_length the pair form's band grows with the points (641 points at horizon_length = 0.2 on a
+    2 m beam: 6.8 GB and 494 s, 961 points about 20 GB, past the memory guard's probes): the band's LU is estimated
+    before it is made and refused, naming the estimate, where it passes the memory available."""
+    from pdverify.core.errors import SolveError
+    from pdverify.numerics import memory
+
+    d = copy.deepcopy(BASE)
+    d["supports"] = {"left": "pinned", "right": "roller", "inner": [{"position": 0.8, "type": "clamped"}]}
+    d["loads"] = [{"type": "point_force", "position": 1.4, "value": -1000.0}]
+    sc = parse_scene(d)
+    r = run(sc, "pd-bond-pair", points=81, horizon_length=0.2)  # fits
+    monkeypatch.setattr(memory, "available_bytes", lambda: 2**20)
+    with pytest.raises(SolveError, match=r"unknowns in a band of [\d,]+, whose factorisation would need about"):
+        run(sc, "pd-bond-pair", points=81, horizon_length=0.2)
+    assert r.w.any()
