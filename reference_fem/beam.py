@@ -150,9 +150,10 @@ class _BeamFE(Model):
 
         def fields(x):
             x = np.asarray(x, float)
+            if resultants is not None:
+                return resultants(x)
             w, rotation = between(x)
-            out = {"w": w, "rotation": rotation}
-            return out if resultants is None else out | resultants(x)
+            return {"w": w, "rotation": rotation}
 
         fields.error_bound = r.info.get("error_bound")
         return fields
@@ -165,10 +166,13 @@ class _BeamFE(Model):
         return lambda x: (w(x), rotation(x))
 
     def statics(self, scene: Scene, params: dict, r: Result):
-        """x -> {"M", "V"} anywhere on the beam: each element's left-end moment and shear (its end forces ke u_e - fe,
-        exact where the nodal values are) carried across it by its distributed load q (M'' = V' = q; point loads,
-        supports and span ends are nodes): V = V_0 + ∫ q, M = M_0 + V_0 t + ∫ (t - s) q(s) ds, by 8-point Gauss. On
-        a node, the element to its right (the left end's for the last node)."""
+        """x -> {"w", "rotation", "M", "V"} anywhere on the beam: each element's left-end values (the nodal w and
+        rotation, its end forces ke u_e - fe: exact where the nodal values are) carried across it by its distributed
+        load q (point loads, supports and span ends are nodes). With M'' = V' = q, theta' = M / EI and
+        w' - theta = -V / kGA (Euler-Bernoulli: 0): V = V_0 + ∫ q, M = M_0 + V_0 t + ∫ (t - u) q, theta = theta_0 +
+        (M_0 t + V_0 t²/2 + ∫ (t - u)²/2 q) / EI, w = w_0 + theta_0 t + (M_0 t²/2 + V_0 t³/6 + ∫ (t - u)³/6 q) / EI
+        - (V_0 t + ∫ (t - u) q) / kGA, the integrals by 8-point Gauss. On a node, the element to its right (the
+        left end's for the last node)."""
         nodes = r.x
         ke, fe = self.element_matrices(scene, params, nodes)
         u = np.empty(2 * len(nodes))
@@ -176,16 +180,26 @@ class _BeamFE(Model):
         ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)
         end = np.einsum("eab,eb->ea", ke, ue) - fe  # on an element's left end the force is +V, the moment -M
         m0, v0 = -end[:, 1], end[:, 0]
+        EI, kGA = element_properties(scene, nodes)
+        flex = np.zeros_like(kGA) if self.theory == "euler-bernoulli" else 1.0 / kGA  # shear flexibility
         g, wg = np.polynomial.legendre.leggauss(8)
 
         def resultants(x):
             e = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 2)
             t = x - nodes[e]
             s = t[..., None] * (g + 1) / 2  # Gauss points on [0, t]
-            q = line_load(scene, nodes[e][..., None] + s, nodes)
-            V = v0[e] + t / 2 * np.sum(wg * q, axis=-1)
-            M = m0[e] + v0[e] * t + t / 2 * np.sum(wg * (t[..., None] - s) * q, axis=-1)
-            return {"M": M, "V": V}
+            q = t[..., None] / 2 * wg * line_load(scene, nodes[e][..., None] + s, nodes)  # weights folded in
+            d = t[..., None] - s
+            V = v0[e] + np.sum(q, axis=-1)
+            M = m0[e] + v0[e] * t + np.sum(d * q, axis=-1)
+            rotation = r.rotation[e] + (m0[e] * t + v0[e] * t**2 / 2 + np.sum(d**2 / 2 * q, axis=-1)) / EI[e]
+            w = (
+                r.w[e]
+                + r.rotation[e] * t
+                + (m0[e] * t**2 / 2 + v0[e] * t**3 / 6 + np.sum(d**3 / 6 * q, axis=-1)) / EI[e]
+            )
+            w = w - flex[e] * (v0[e] * t + np.sum(d * q, axis=-1))
+            return {"w": w, "rotation": rotation, "M": M, "V": V}
 
         return resultants
 
