@@ -222,9 +222,11 @@ def mechanism_message(scene) -> str | None:
     modes = rigid_body_modes(scene)
     if len(modes) == 0:
         return None
-    what = _describe(modes[0], scene) if len(modes) == 1 else f"{len(modes)} independent rigid-body motions"
+    one = len(modes) == 1
+    what = _describe(modes[0], scene) if one else f"{len(modes)} independent rigid-body motions"
     return (
         f"supports = {scene.supports.left}-{scene.supports.right}: a mechanism on this {scene.axis.type} axis "
-        f"({what} is not held by the supports' displacement and rotation conditions); hold more at one end "
+        f"({what} {'is' if one else 'are'} not held by the supports' displacement and rotation conditions); hold "
+        "more at one end "
         "(e.g. clamped, or pinned instead of roller)"
     )

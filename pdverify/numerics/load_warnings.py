@@ -51,7 +51,11 @@ def layer_fix(d: float, dx: float, length: float, reach: float, fixed: tuple | N
     a, b, delta = fixed
     head = f"at horizon_length = {delta:.6g} the layer is {a:g} horizons and {b:g} spacings wide, so more points alone "
     if d - b * dx > a * dx:  # room for a horizon of a spacing at least
-        return head + f"do not leave it: give horizon_length below {(d - b * dx) / a:.3g}"
+        below = (d - b * dx) / a
+        whole = int(np.floor(below / dx * (1 - 1e-9)))  # the largest whole number of spacings below it
+        return (
+            head + f"do not leave it: give horizon_length below {below:.3g} (e.g. {whole * dx:.6g}, {whole} spacings)"
+        )
     return head + (
         f"do not leave it: give horizon_length below {d / (2 * a):.3g} and at least "
         f"{int(np.ceil(2 * b * length / d)) + 1} points"

@@ -441,5 +441,7 @@ def test_a_load_in_the_end_layer_at_a_fixed_horizon_length_is_told_the_fix_that_
         more = int(flag.rsplit("at least ", 1)[1].split()[0]) if flag.endswith(" points") else points
         dx = 2.0 / (more - 1)
         shorter = np.floor(0.99 * below / dx) * dx  # a whole number of spacings below it
+        if "(e.g. " in flag:  # the value it names: a whole number of spacings, which every model takes
+            shorter = float(flag.split("(e.g. ")[1].split(",")[0])
         assert shorter >= dx
         assert not flags(run(scene, model, points=more, horizon_length=shorter, **options)), (more, below, shorter)
