@@ -445,3 +445,11 @@ def test_a_load_in_the_end_layer_at_a_fixed_horizon_length_is_told_the_fix_that_
             shorter = float(flag.split("(e.g. ")[1].split(",")[0])
         assert shorter >= dx
         assert not flags(run(scene, model, points=more, horizon_length=shorter, **options)), (more, below, shorter)
+
+
+def test_pd_curved_s_continuum_names_its_own_family():
+    """pd-curved has no limit at fixed delta: its continuum is its finest grids' (continuum_limit names its default
+    family, 2m + 1 with m of the particles; a KeyError when the options held no horizon, found by the slow tier)."""
+    scene = parse_scene(scene_dict("pinned", "pinned", [{"type": "distributed", "value": -1000.0, "shape": "sine"}]))
+    r = run(scene, "pd-curved", points=41, continuum=True, continuum_m=8)
+    assert np.isfinite(r.w).all() and np.abs(r.w).max() > 0

@@ -186,7 +186,7 @@ class PDCurved(Model):
         return (
             f"its PDDO families of degree {P} hold the high-frequency modes only for small families, so it has no "
             "limit at fixed delta",
-            self.family_half_width(params),
+            self.family_half_width({**params, "horizon": 0}),  # the default family of these particles
         )
 
     @staticmethod
