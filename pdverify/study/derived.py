@@ -177,15 +177,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
             c = read_curve(path) if path is not None else {}
             arr = quantity_of(c.get("w"), c.get("rotation"), c.get("fields", {}), quantity) if c else None
             if arr is None:
-                rows.append(
-                    {
-                        "name": b["name"],
-                        "scene": b["scene"],
-                        "model": b["model"],
-                        "verdict": "missing",
-                        "message": f"quantity {quantity!r} not among the case's outputs ({_outputs(c)})",
-                    }
-                )
+                rows.append(_missing(b, f"quantity {quantity!r} not among the case's outputs ({_outputs(c)})"))
                 continue
             computed = float(np.interp(float(b["position"]), c["x"], arr))
             if "target" not in b:
@@ -195,15 +187,7 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
                     gives_none = q in str(r.get("missing_quantities") or "").split()
                     why = f"the reference gives no {q}" if gives_none else f"the run of its case does not measure {q}"
                     why += "" if gives_none else f" (add {q} to its quantities)"
-                    rows.append(
-                        {
-                            "name": b["name"],
-                            "scene": b["scene"],
-                            "model": b["model"],
-                            "verdict": "missing",
-                            "message": why + "; give a target",
-                        }
-                    )
+                    rows.append(_missing(b, why + "; give a target"))
                     continue
                 target = float(np.interp(float(b["position"]), c["x"], ref))
         rel = abs(computed - target) / abs(target) if target else float("nan")
@@ -240,6 +224,11 @@ def benchmark_table(study: Study, df: pd.DataFrame, conv: pd.DataFrame, cases_di
             }
         )
     return pd.DataFrame(rows)
+
+
+def _missing(b: dict, message: str) -> dict:
+    """A benchmark's row when its case gives it nothing to read: verdict missing, with why."""
+    return {"name": b["name"], "scene": b["scene"], "model": b["model"], "verdict": "missing", "message": message}
 
 
 def _outputs(curve: dict) -> str:
