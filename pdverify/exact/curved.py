@@ -133,7 +133,14 @@ class Cantilever:
         reach = float(np.hypot(*r.T).max())
         terms = size[0] + size[1] + size[2] * reach + size[3] + size[4]
         self.rounding = (ENTRY_ROUNDING + self.ORDER + len(edges)) * np.finfo(float).eps * terms
-        self.nodes_s = sig.ravel()
+        self.sizes_at = edges  # where a state's size is read for the bound (its panels' ends: the sizes, not the sums)
+        ends, re = self.I[:, -1], self.geo.position(edges[1:])  # the integrals at each panel's end
+        if self.free_right:
+            u = ends[:, 0:2] + _ez(ends[:, 2:3] * re - ends[:, 3:5])
+        else:
+            D = self.I[-1, -1][None, :] - ends
+            u = -D[:, 0:2] + _ez(D[:, 3:5] - D[:, 2:3] * re)
+        self.size = float(np.hypot(*u.T).max())  # its largest displacement at the panels' ends
 
     def _line_load(self, s: np.ndarray, inside: np.ndarray) -> np.ndarray:
         """Global line load vector at s (``inside``: a point of the same panel, to decide the spans)."""
@@ -282,10 +289,10 @@ class Indeterminate:
         # round-off of the sum of the states: each cantilever state's own (times its amplitude), and the amplitudes'
         # from the conditions' entries, each a value rounded once (ENTRY_ROUNDING): Skeel's componentwise bound
         # |A^-1| (|A| |a| + |b|) c eps of the scaled system (Higham, *Accuracy and Stability*, eq. 7.31)
-        self.nodes_s = self.part.nodes_s
-        states = self._states(self.nodes_s)[1:]
-        size = np.array([float(np.hypot(st["ux"], st["uy"]).max()) for st in states])
-        own = np.array([0.0, 0.0, np.finfo(float).eps * size[2]] + [u.rounding for u in self.units])  # rigid: exact
+        self.sizes_at = self.part.sizes_at
+        arm = float(np.hypot(*(self.geo.position(self.sizes_at) - r0[None, :]).T).max())  # the rigid rotation's
+        size = np.array([1.0, 1.0, arm] + [u.size for u in self.units])
+        own = np.array([0.0, 0.0, np.finfo(float).eps * arm] + [u.rounding for u in self.units])  # rigid: exact
         a = self.c * col  # the scaled system's solution
         entries = ENTRY_ROUNDING * np.finfo(float).eps
         da = np.abs(np.linalg.inv(A)) @ (np.abs(A) @ np.abs(a) + np.abs(rhs / row)) * entries
@@ -364,7 +371,7 @@ class ExactCurved(Model):
         def fields(x):
             return axis_support_side(scene, x, sol.fields(x))
 
-        fields.error_bound = relative_rounding(sol, sol.fields(sol.nodes_s))
+        fields.error_bound = relative_rounding(sol, sol.fields(sol.sizes_at))
         return fields
 
     def solve(self, scene: Scene, params: dict) -> Result:

@@ -111,11 +111,11 @@ def theory_gap_warning(case: Case, x: np.ndarray | None = None, err: float = flo
     if model.theory == "continuum" and reference.theory != "continuum":
         found = thick_ring_warning(case.scene())
         return None if found is None else f"the reference {ref}: {found}"
-    scene = case.scene()
     own = EXACT_OF.get(model.theory)
-    if x is None or own is None or reference.theory == model.theory or model.measures != "w":
+    if x is None or own is None or reference.theory == model.theory or model.measures != "w" or not np.isfinite(err):
         return None
-    if not scene.is_straight or scene.dynamics is not None or not np.isfinite(err):
+    scene = case.scene()  # read only for a row of two theories: a case's scene is parsed from its text
+    if not scene.is_straight or scene.dynamics is not None:
         return None
     try:
         exact = get_model(own)
