@@ -66,3 +66,16 @@ def test_particles_graded_by_ends_gather_at_the_supports_inside_and_the_joints()
     scene = parse_scene(d)
     errors = [_error(scene, n, degree=2, grading=1000.0, graded_by="ends")[0] for n in (321, 641)]
     assert abs(np.log2(errors[0] / errors[1]) - 2) < 0.1, errors
+
+
+def test_the_primal_form_on_particles_graded_by_ends_warns():
+    """The primal form's families are lopsided where the particles gather too: past ENDS_GRADING it warns (a quarter
+    circle pinned at both ends, P = 3, grading 20: 0.26, 0.35, 0.047 off at 81, 161, 321 particles with its locking
+    warning only)."""
+    scene = _sine_beam()
+    flag = "grading = 100 by ends in the primal form"
+    assert any(flag in w for w in _error(scene, 81, form="primal", grading=100.0, graded_by="ends")[1])
+    assert not any(
+        "by ends in the primal form" in w
+        for w in _error(scene, 81, form="primal", grading=ENDS_GRADING, graded_by="ends")[1]
+    )
