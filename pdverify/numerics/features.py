@@ -43,16 +43,21 @@ STIFFNESS_STEP = 1000.0  # EI changing this many times at a joint: the PD beams'
 # (a 2 m clamped-pinned beam with a soft middle fifth at 161 points; docs/models/diyaroglu.md, Known limits)
 
 
+def joint_steps(scene: Scene) -> list[tuple[int, float, float]]:
+    """(i, x, r) of each segment joint where EI is positive on both sides: segments[i] starts at x, and EI changes
+    r-fold there (the larger side's over the smaller's, 1 where it does not change)."""
+    pieces = scene.pieces()
+    return [
+        (i + 1, b, max(EI, EJ) / min(EI, EJ))
+        for i, ((_, b, s1, m1), (_, _, s2, m2)) in enumerate(zip(pieces[:-1], pieces[1:]))
+        if min(EI := m1.E * s1.I, EJ := m2.E * s2.I) > 0.0
+    ]
+
+
 def stiffness_step_warnings(scene: Scene) -> list[str]:
     """A segment joint where EI changes :data:`STIFFNESS_STEP` times or more: the PD beams' families reach across it,
     and their error, second order still, has a constant that grows with the step until the soft side is a hinge."""
-    pieces = scene.pieces()
-    steps = [
-        (b, max(EI, EJ) / min(EI, EJ))
-        for (_, b, s1, m1), (_, _, s2, m2) in zip(pieces[:-1], pieces[1:])
-        if min(EI := m1.E * s1.I, EJ := m2.E * s2.I) > 0.0
-    ]
-    big = [(at, r) for at, r in steps if r >= STIFFNESS_STEP]
+    big = [(at, r) for _, at, r in joint_steps(scene) if r >= STIFFNESS_STEP]
     if not big:
         return []
     at, r = max(big, key=lambda s: s[1])

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import Distributed, PointForce, PointMoment, Scene
+from ...numerics.features import joint_steps
 from ...numerics.loads import body_loads, cell_integral, support_side
 from ...numerics.statics import jump_share
 from .calibration import alpha, pair_family
@@ -164,12 +165,7 @@ def rotation_warnings(scene: Scene) -> list[str]:
     joint (docs/models/ogrady.md); say so."""
     ends = [s for s in ("left", "right") if scene.supports.kind(s) in ("free", "spring")]
     moments = [i for i, ld in enumerate(scene.loads) if isinstance(ld, PointMoment)]
-    pieces = scene.pieces()
-    joints = [  # a step of EI of at least JOINT_STEP
-        i + 1
-        for i, ((_, _, s1, m1), (_, _, s2, m2)) in enumerate(zip(pieces[:-1], pieces[1:]))
-        if abs(m1.E * s1.I - m2.E * s2.I) > JOINT_STEP * max(m1.E * s1.I, m2.E * s2.I)
-    ]
+    joints = [i for i, _, r in joint_steps(scene) if 1.0 - 1.0 / r > JOINT_STEP]  # EI steps by JOINT_STEP or more
     if not (ends or moments or joints):
         return []
     where = ", ".join(
