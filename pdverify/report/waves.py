@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from ..core.errors import PdverifyError
-from ..core.scene import Scene
+from ..core.scene import Scene, Supports
 from ..numerics.dispersion import stencil_branches, timoshenko_branches
 from ..papers.moyer import operator as O
 from . import figures
@@ -50,9 +50,10 @@ def dispersion_data(scene: Scene, model: str, points: int, variant: str) -> Disp
     """The branches for ``model`` (pd-rod or pd-timoshenko) at ``points``; None for other models, a scene without
     density or a grid no horizon fits."""
     rho = scene.material.density
-    if model not in MODELS or rho is None:
+    if model not in MODELS or rho is None or scene.segments:  # segments: no one relation along the beam
         return None
     beam = model == "pd-timoshenko"
+    scene = bulk(scene)
     kdx = np.linspace(np.pi / 200, np.pi, 200)
     discrete = []
     for m in HORIZONS:
@@ -74,6 +75,13 @@ def dispersion_data(scene: Scene, model: str, points: int, variant: str) -> Disp
     else:
         continuum = [("rod: c k", k, np.sqrt(scene.EA / (rho * A)) * k)]
     return Dispersion(model, variant, points, discrete, continuum, scene.length_unit)
+
+
+def bulk(scene: Scene) -> Scene:
+    """The scene's beam, section and material between clamped ends, unloaded: the interior stencil the relation is of
+    (a spring end, a support inside the span or a load changes the rows near them only)."""
+    supports = Supports(left="clamped", right="clamped")
+    return scene.model_copy(update={"supports": supports, "loads": [], "dynamics": None, "loading": None})
 
 
 def dispersion_figure(scene: Scene, model: str, points: int, variant: str) -> str | None:
