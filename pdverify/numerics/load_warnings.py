@@ -50,9 +50,9 @@ def layer_fix(d: float, dx: float, length: float, reach: float, fixed: tuple | N
         return f"use at least {int(np.ceil(reach * length / d)) + 1} points"
     a, b, delta = fixed
     head = f"at horizon_length = {delta:.6g} the layer is {a:g} horizons and {b:g} spacings wide, so more points alone "
-    if d - b * dx > a * dx:  # room for a horizon of a spacing at least
-        below = (d - b * dx) / a
-        whole = int(np.floor(below / dx * (1 - 1e-9)))  # the largest whole number of spacings below it
+    below = (d - b * dx) / a
+    whole = int(np.floor(below / dx * (1 - 1e-9)))  # the largest whole number of spacings below it
+    if whole >= 1:  # room for a horizon of a spacing at least
         return (
             head + f"do not leave it: give horizon_length below {below:.3g} (e.g. {whole * dx:.6g}, {whole} spacings)"
         )
