@@ -101,8 +101,9 @@ def _weight(entry_rounding: float | None) -> float:
 
 def bound_warning(bound: float) -> str:
     """The one-line warning a result carries when its round-off bound passes ``BOUND_LIMIT``."""
+    shown = next((f"{bound:.{d}g}" for d in range(2, 17) if float(f"{bound:.{d}g}") != BOUND_LIMIT), f"{bound!r}")
     return (
-        f"round-off bound {bound:.2g} (relative error) exceeds {BOUND_LIMIT:g}: at this size the linear solve "
+        f"round-off bound {shown} (relative error) exceeds {BOUND_LIMIT:g}: at this size the linear solve "
         "may be wrong to that degree; use fewer points or a better-conditioned form"
     )
 

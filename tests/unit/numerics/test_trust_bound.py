@@ -73,3 +73,13 @@ def test_a_solution_that_does_not_move_is_exact_not_unbounded():
     A = fourth_difference(2_000)
     u, info = solve_linear(A, np.zeros(2_000))
     assert not u.any() and info["error_bound"] == 0.0 and "warnings" not in info
+
+
+@pytest.mark.parametrize("bound", [BOUND_LIMIT * (1 + 1e-9), 1.04e-6, 3e-3])
+def test_the_warning_tells_the_bound_from_the_limit(bound):
+    """The warning's bound is shown with the digits that tell it from the limit ("round-off bound 1e-06 exceeds
+    1e-06" before)."""
+    from pdverify.numerics.error_bound import bound_warning
+
+    shown = bound_warning(bound).split("round-off bound ")[1].split(" ")[0]
+    assert float(shown) > BOUND_LIMIT and abs(float(shown) - bound) <= 0.05 * bound
