@@ -21,6 +21,7 @@ from ...numerics.load_warnings import (
     moment_rotation_warnings,
 )
 from .constraints import reactions, solve_with_holds
+from .couples import couple_warnings
 from .ends import FIT_POINTS
 from .energy import ENERGY_HORIZONS, zone
 from .pieces import plain_ends
@@ -278,6 +279,7 @@ class _MoyerModel(Model):
         flags += moment_rotation_warnings(scene) if self.bending and params["variant"] != "energy" else []
         if self.bending and params["variant"] == "energy":
             flags += couple_at_joint_warnings(scene, "rotation", COUPLE_AT_JOINT)
+            flags += couple_warnings(scene, m, dx, horizon_layer(params, dx, m + 3, 1))
         if self.bending and params["variant"] == "paper":
             flags += paper_warnings(scene)
         return flags

@@ -191,9 +191,13 @@ def test_variant_corrected_says_it_is_first_order_at_a_rigid_support_inside(inne
 
 
 def test_a_clamp_whose_kink_does_not_fit_says_its_couple_is_on_two_points():
-    """The kink's ramp runs from the clamp to one end and may not cross a segment interface (.couples): with one on
-    either side the couple goes on the two points around the clamp on every grid, warned; without them it does not."""
+    """The kink's ramp runs from the clamp to one end, through segment joints on the way (.couples: γ_s' = -1/EI piece
+    by piece), but a joint within the kink's (m + 3) rows leaves the couple on the two points around the clamp,
+    warned: at 101 points (joints 5 spacings away), not from 201. Measured on a load left of the clamp (rotation
+    against exact-timoshenko): 1.4e-3, 3.5e-4, 8.9e-5, 2.2e-5 at 201 ... 1601 points, second order; with the ramp
+    kept from crossing a joint, 7.0e-3, 3.5e-3, 1.7e-3, 8.7e-4, first order and warned."""
     from pdverify.core.scene_file import parse_scene
+    from pdverify.exact.straight import solve_straight
 
     plain = {
         "name": "clamp inside a stiffer piece",
@@ -201,20 +205,24 @@ def test_a_clamp_whose_kink_does_not_fit_says_its_couple_is_on_two_points():
         "section": {"width": 0.02, "height": 0.02},
         "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
         "supports": {"left": "pinned", "right": "pinned", "inner": [{"position": 0.5, "type": "clamped"}]},
-        "loads": [{"type": "distributed", "value": -1.0}],
+        "loads": [{"type": "distributed", "value": -1.0, "start": 0.0, "end": 0.25}],
     }
     pieces = [
         {"start": 0.0, "end": 0.45},
         {"start": 0.45, "end": 0.55, "section": {"width": 0.03, "height": 0.03}},
         {"start": 0.55, "end": 1.0},
     ]
-    for segments, said in (([], False), (pieces, True)):
-        sc = parse_scene(dict(plain, segments=segments))
-        for n in (101, 401):
-            ws = run(sc, "pd-timoshenko", points=n).info.get("warnings", [])
-            assert (
-                any(w.startswith("supports.inner[0]: its couple could not be applied on its kink") for w in ws) == said
-            )
+    on_two = "supports.inner[0]: its couple could not be applied on its kink"
+    sc = parse_scene(dict(plain, segments=pieces))
+    errors = []
+    for n in (101, 401, 1601):
+        r = run(sc, "pd-timoshenko", points=n)
+        assert any(w.startswith(on_two) for w in r.info.get("warnings", [])) == (n == 101)
+        exact = solve_straight(sc, True).fields(r.x)["rotation"]
+        errors.append(np.abs(r.rotation - exact).max() / np.abs(exact).max())
+    assert abs(np.log2(errors[1] / errors[2]) / 2 - 2) < 0.1, errors
+    ws = run(parse_scene(plain), "pd-timoshenko", points=101).info.get("warnings", [])
+    assert not any(w.startswith(on_two) for w in ws)
     # beside the solve's own warnings (a round-off bound of 2e-5 at L/h = 10^4, free-guided), not instead of them
     thin = dict(plain, section={"width": 1e-4, "height": 1e-4}, supports=dict(plain["supports"], left="free"))
     thin["segments"] = [dict(p, section={"width": 1.5e-4, "height": 1.5e-4}) if "section" in p else p for p in pieces]
@@ -269,3 +277,41 @@ def test_a_point_on_a_load_carries_the_mean_of_its_sides(model, field, load):
         field
     ]
     assert a[14] == pytest.approx(exact[14], rel=5e-3) and abs(a[14]) == pytest.approx(abs(b[26]), rel=1e-9)
+
+
+def test_a_couple_between_two_joints_keeps_its_rotation_second_order():
+    """Variant energy's couple between two segment joints (Moyer & Miraglia's beam with a thinner middle piece): its
+    kink's ramp crosses a joint to reach an end, the moment -1 through it (.couples). The rotation against
+    exact-timoshenko: 2.9e-4, 7.3e-5, 1.8e-5 at 161, 321, 641 points, second order (4.7e-2, 2.3e-2, 1.2e-2 and
+    unwarned when the ramp could cross no joint). A couple within its rows' reach of a joint (3.2 spacings at 161
+    points) is on two points, warned, and not once the rows leave the joint (321 points)."""
+    from pdverify.core.scene_file import parse_scene
+    from pdverify.exact.straight import solve_straight
+
+    d = {
+        "name": "couple between joints",
+        "beam": {"length": 2.0},
+        "section": {"width": 0.05, "height": 0.1},
+        "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+        "supports": {"left": "clamped", "right": "pinned"},
+        "loads": [{"type": "point_moment", "position": 1.0, "value": 500.0}],
+        "segments": [
+            {"start": 0.0, "end": 0.6},
+            {"start": 0.6, "end": 1.4, "section": {"width": 0.05, "height": 0.08}},
+            {"start": 1.4, "end": 2.0},
+        ],
+    }
+    sc = parse_scene(d)
+    errors = []
+    for n in (161, 321, 641):
+        r = run(sc, "pd-timoshenko", points=n)
+        assert not r.info.get("warnings"), r.info.get("warnings")
+        exact = solve_straight(sc, True).fields(r.x)["rotation"]
+        errors.append(np.abs(r.rotation - exact).max() / np.abs(exact).max())
+    assert abs(np.log2(errors[1] / errors[2]) - 2) < 0.1, errors
+    near = parse_scene(dict(d, loads=[dict(d["loads"][0], position=1.44)]))
+    said = [
+        "from the segment joint at 1.4" in " ".join(run(near, "pd-timoshenko", points=n).warning_lines())
+        for n in (161, 321)
+    ]
+    assert said == [True, False]
