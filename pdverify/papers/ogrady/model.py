@@ -46,7 +46,7 @@ from .general import first_order_warnings, linear_system, scene_pairs, solve_pai
 from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
 from .path import failure_warnings, follows_path, plastic_warnings, solve_path
-from .recovery import mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
+from .recovery import inner_forces, mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
 from .weights import WEIGHTS, moment_curvature_curve, weights
 
@@ -413,7 +413,13 @@ class PDBondPair(Model):
         )
         mirror = params["ends"] == "mirror"
         fields = pair_fields(
-            scene, pairs, f, mirror, g=info.pop("nodal_forces"), extra_couples=info.pop("reaction_couples")
+            scene,
+            pairs,
+            f,
+            mirror,
+            g=info.pop("nodal_forces"),
+            extra_couples=info.pop("reaction_couples"),
+            reactions=inner_forces(scene, info["reactions"]),
         )
         if mirror:  # a clamped or guided end's couple is its mirror ghosts': the section moment there (statics)
             for side, M_end in (("left", -fields["moment"][0]), ("right", fields["moment"][-1])):
@@ -455,7 +461,9 @@ class PDBondPair(Model):
             info["moment_curvature"] = moment_curvature_curve(
                 scene.section.profile, mat.E, mat.yield_stress, params["weight"], m, dx, params["variant"]
             )
-        fields = dict(pair_fields(scene, pairs, f, params["ends"] == "mirror"), health=path[-1]["health"])
+        mirror = params["ends"] == "mirror"
+        inner = inner_forces(scene, info["reactions"])
+        fields = dict(pair_fields(scene, pairs, f, mirror, reactions=inner), health=path[-1]["health"])
         return self.new_result(
             scene,
             params,

@@ -21,12 +21,14 @@ from .conditions import nodal_loads, value_row
 from .pairs import Pairs, build_pairs
 
 
-def shear(scene: Scene, M: np.ndarray, dx: float, couples: np.ndarray) -> np.ndarray:
+def shear(scene: Scene, M: np.ndarray, dx: float, couples: np.ndarray, reactions=()) -> np.ndarray:
     """V = dM/dx at the points. Between neighbours the statical shear (M_{p+1} - M_p) / dx less the shear of the force
     pairs that stand for couples (``couples``: their nodal forces; a couple carries no shear) is V at the middle
     x_{p+1/2} (the loads are the cells' integrals, cut at the half points); V at a point adds the distributed load on
     the half cell between (V jumps at a point force: a point on it inside the span carries the mean of its sides,
-    :func:`~pdverify.numerics.statics.jump_share`; an end point the beam's side, which ``support_side`` then moves)."""
+    :func:`~pdverify.numerics.statics.jump_share`; an end point the beam's side, which ``support_side`` then moves).
+    ``reactions``: (position, force) of the supports inside the span, whose conditions split their force onto the two
+    points around them as a point force's; those between two points are corrected as one."""
     n = len(M)
     x = np.arange(n) * dx
     Vh = np.diff(M) / dx - np.cumsum(couples)[:-1]
@@ -36,15 +38,15 @@ def shear(scene: Scene, M: np.ndarray, dx: float, couples: np.ndarray) -> np.nda
     V = np.r_[Vh[0] - right[0], Vh + left[1:]]  # from the interval before each point (after it at x = 0)
     nodal = np.zeros(n)  # the point forces' nodal parts
     # a point force between two points is split onto both: the shear at the second carries the whole force
-    for ld in scene.loads:
-        if isinstance(ld, PointForce):
-            parts = np.zeros(n)
-            for p, c in value_row(ld.position, n, dx).items():
-                parts[p] += c * ld.value
-            nodal += parts
-            step = jump_share(x, ld.position, dx)
-            step[-1] = x[-1] > ld.position + 1e-9 * dx
-            V += ld.value * step - np.r_[0.0, np.cumsum(parts)[:-1]]
+    between = [(a, R) for a, R in reactions if np.abs(x - a).min() > 1e-9 * dx]
+    for position, value in [(ld.position, ld.value) for ld in scene.loads if isinstance(ld, PointForce)] + between:
+        parts = np.zeros(n)
+        for p, c in value_row(position, n, dx).items():
+            parts[p] += c * value
+        nodal += parts
+        step = jump_share(x, position, dx)
+        step[-1] = x[-1] > position + 1e-9 * dx
+        V += value * step - np.r_[0.0, np.cumsum(parts)[:-1]]
     # a support inside the span on a point: its reaction, the jump between the values from the intervals before and
     # after the point less the point forces there, half on the point (the mean of its sides)
     for sup in scene.supports.inner:
@@ -52,6 +54,11 @@ def shear(scene: Scene, M: np.ndarray, dx: float, couples: np.ndarray) -> np.nda
         if sup.holds_deflection and 0 < p < n - 1 and abs(x[p] - sup.position) <= 1e-9 * dx:
             V[p] += 0.5 * ((Vh[p] - right[p]) - (Vh[p - 1] + left[p]) - nodal[p])
     return V
+
+
+def inner_forces(scene: Scene, reactions: dict) -> list[tuple[float, float]]:
+    """(position, force) of each support inside the span, from the solve's ``reactions`` (``force_inner_i``)."""
+    return [(s.position, reactions.get(f"force_inner_{i}", 0.0)) for i, s in enumerate(scene.supports.inner)]
 
 
 def end_statics(M: np.ndarray, g: np.ndarray, dx: float, reach: int) -> np.ndarray:
@@ -125,11 +132,13 @@ def skip_ends(n: int) -> dict:
     return {0: {"point_force", "point_moment"}, n - 1: {"point_force", "point_moment"}}
 
 
-def pair_fields(scene: Scene, pairs: Pairs, f: np.ndarray, mirror: bool, g=None, extra_couples=None) -> dict:
+def pair_fields(
+    scene: Scene, pairs: Pairs, f: np.ndarray, mirror: bool, g=None, extra_couples=None, reactions=()
+) -> dict:
     """{moment, shear} of a pair-form solution (pair forces ``f``): the section moment, re-derived by statics near
     mirror ends from the nodal forces ``g`` (default D^T f: loads and reactions), and its shear.
     ``extra_couples``: nodal forces of reaction couples (clamps and rotational springs) that, like the scene's
-    couples, carry no shear."""
+    couples, carry no shear; ``reactions``: (position, force) of the supports inside the span (:func:`shear`)."""
     dx, n = pairs.dx, pairs.n
     M = pairs.section_moment(f)
     if mirror:
@@ -137,7 +146,7 @@ def pair_fields(scene: Scene, pairs: Pairs, f: np.ndarray, mirror: bool, g=None,
     moments = [ld for ld in scene.loads if isinstance(ld, PointMoment)]
     couples = nodal_loads(scene, n, dx, moments)
     all_couples = couples if extra_couples is None else couples + extra_couples
-    V = support_side(scene, shear(scene, M, dx, all_couples), "shear")  # the force pairs' statics, less their shear
+    V = support_side(scene, shear(scene, M, dx, all_couples, reactions), "shear")  # the pairs' statics, less couples
     return {"moment": M + couple_statics(moments, couples, n, dx), "shear": V}
 
 
