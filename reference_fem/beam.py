@@ -21,7 +21,6 @@ from pdverify.core.result import Result, Timer
 from pdverify.core.scene import Scene
 from pdverify.numerics.band import Band
 from pdverify.numerics.linalg import solve_linear
-from pdverify.numerics.loads import support_side
 
 from .beam_elements import (
     add_springs,
@@ -45,6 +44,7 @@ from .beam_elements import (
     reactions,
 )
 from .beam_plastic import solve_path
+from .beam_resultants import end_forces, nodal, statics
 from .beam_transient import free_system, transient
 
 
@@ -117,23 +117,34 @@ class _BeamFE(Model):
         """The solve's name in its messages."""
         return self.name
 
+    def routed(self, scene: Scene, params: dict) -> Result | None:
+        """The result of a scene another solve takes (a transient, a load path), else None."""
+        return None
+
     def solve(self, scene: Scene, params: dict) -> Result:
-        u, info, dofs, nodes, timer = self.solve_nodal(scene, params, self.what(params))
+        return self.routed(scene, params) or self.static(scene, params)[0]
+
+    def static(self, scene: Scene, params: dict) -> tuple[Result, np.ndarray | None]:
+        """(the static solution, its elements' end forces: :func:`~reference_fem.beam_resultants.end_forces`, None for
+        elements that report no moment)."""
+        u, info, dofs, nodes, timer, moments = self.solve_nodal(scene, params, self.what(params))
         info.update(element=self.element(params), elements=len(nodes) - 1)
         if merged := merge_warnings(scene, nodes):
             info.setdefault("warnings", []).extend(merged)
-        fields = self.resultants(scene, params, nodes, u) if self.element_matrices(scene, params, nodes) else {}
-        return self.new_result(
+        matrices = self.element_matrices(scene, params, nodes)
+        end = None if matrices is None else end_forces(*matrices, nodes, u, moments)
+        result = self.new_result(
             scene,
             params,
             nodes,
             u[0::2],
             rotation=u[1::2],
-            fields=fields,
+            fields={} if end is None else nodal(scene, nodes, end),
             dofs=dofs,
             timings=timer.timings,
             info=info,
         )
+        return result, end
 
     def element_matrices(self, scene: Scene, params: dict, nodes: np.ndarray):
         """(ke, fe): each element's stiffness (n_el, 4, 4) and work-equivalent loads (n_el, 4), or None."""
@@ -141,12 +152,13 @@ class _BeamFE(Model):
 
     def evaluator(self, scene, params):
         """Solve once; x -> the FE solution between the nodes (:meth:`interpolant`) and its moment and shear
-        (:meth:`statics`: exact where the nodal values are; none from elements that report none). The function
-        carries the solve's round-off bound as ``error_bound`` (a study row measured against it is suspect when the
-        bound passes 1e-6, pdverify.measure.status)."""
-        r = self.solve(scene, params)
+        (:func:`~reference_fem.beam_resultants.statics`: exact where the nodal values are; none from elements that
+        report none). The function carries the solve's round-off bound as ``error_bound`` (a study row measured
+        against it is suspect when the bound passes 1e-6, pdverify.measure.status)."""
+        r, end = (routed, None) if (routed := self.routed(scene, params)) is not None else self.static(scene, params)
         between = self.interpolant(r)
-        resultants = self.statics(scene, params, r) if "M" in r.fields else None
+        shear = self.theory != "euler-bernoulli"
+        resultants = None if end is None else statics(scene, r.x, end, r.w, r.rotation, shear)
 
         def fields(x):
             x = np.asarray(x, float)
@@ -165,61 +177,9 @@ class _BeamFE(Model):
         w, rotation = CubicSpline(r.x, r.w), CubicSpline(r.x, r.rotation)
         return lambda x: (w(x), rotation(x))
 
-    def statics(self, scene: Scene, params: dict, r: Result):
-        """x -> {"w", "rotation", "M", "V"} anywhere on the beam: each element's left-end values (the nodal w and
-        rotation, its end forces ke u_e - fe: exact where the nodal values are) carried across it by its distributed
-        load q (point loads, supports and span ends are nodes). With M'' = V' = q, theta' = M / EI and
-        w' - theta = -V / kGA (Euler-Bernoulli: 0): V = V_0 + ∫ q, M = M_0 + V_0 t + ∫ (t - u) q, theta = theta_0 +
-        (M_0 t + V_0 t²/2 + ∫ (t - u)²/2 q) / EI, w = w_0 + theta_0 t + (M_0 t²/2 + V_0 t³/6 + ∫ (t - u)³/6 q) / EI
-        - (V_0 t + ∫ (t - u) q) / kGA, the integrals by 8-point Gauss. On a node, the element to its right (the
-        left end's for the last node)."""
-        nodes = r.x
-        ke, fe = self.element_matrices(scene, params, nodes)
-        u = np.empty(2 * len(nodes))
-        u[0::2], u[1::2] = r.w, r.rotation
-        ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)
-        end = np.einsum("eab,eb->ea", ke, ue) - fe  # on an element's left end the force is +V, the moment -M
-        m0, v0 = -end[:, 1], end[:, 0]
-        EI, kGA = element_properties(scene, nodes)
-        flex = np.zeros_like(kGA) if self.theory == "euler-bernoulli" else 1.0 / kGA  # shear flexibility
-        g, wg = np.polynomial.legendre.leggauss(8)
-
-        def resultants(x):
-            e = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, len(nodes) - 2)
-            t = x - nodes[e]
-            s = t[..., None] * (g + 1) / 2  # Gauss points on [0, t]
-            q = t[..., None] / 2 * wg * line_load(scene, nodes[e][..., None] + s, nodes)  # weights folded in
-            d = t[..., None] - s
-            V = v0[e] + np.sum(q, axis=-1)
-            M = m0[e] + v0[e] * t + np.sum(d * q, axis=-1)
-            rotation = r.rotation[e] + (m0[e] * t + v0[e] * t**2 / 2 + np.sum(d**2 / 2 * q, axis=-1)) / EI[e]
-            w = (
-                r.w[e]
-                + r.rotation[e] * t
-                + (m0[e] * t**2 / 2 + v0[e] * t**3 / 6 + np.sum(d**3 / 6 * q, axis=-1)) / EI[e]
-            )
-            w = w - flex[e] * (v0[e] * t + np.sum(d * q, axis=-1))
-            return {"w": w, "rotation": rotation, "M": M, "V": V}
-
-        return resultants
-
-    def resultants(self, scene: Scene, params: dict, nodes: np.ndarray, u: np.ndarray) -> dict:
-        """The bending moment M (sagging positive) and shear force V = dM/dx at the nodes, from each element's end
-        forces ke u_e - fe (exact where the nodal values are: the element is in equilibrium with its loads). At an
-        inner node the mean of its two elements' values, which differ where a point load makes V, and a couple M,
-        jump; at the end nodes the support's side, every load on them acting (as exact-eb gives them)."""
-        ke, fe = self.element_matrices(scene, params, nodes)
-        ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)
-        end = np.einsum("eab,eb->ea", ke, ue) - fe  # (force, moment) on each element at its left and right end
-        last = nodal_point_loads(scene, nodes, 2)[-2:]  # the force and couple at the right end's node
-        # on an element's left end the force is +V and the counter-clockwise moment -M; on its right end -V and +M;
-        # an inner node the mean of its two elements' (they differ by a point load's jump there)
-        M = np.r_[-end[0, 1], (end[:-1, 3] - end[1:, 1]) / 2, end[-1, 3] - last[1]]
-        V = np.r_[end[0, 0], (end[1:, 0] - end[:-1, 2]) / 2, -end[-1, 2] + last[0]]
-        return {"M": support_side(scene, M, "moment", ("left",)), "V": support_side(scene, V, "shear", ("left",))}
-
     def solve_nodal(self, scene: Scene, params: dict, what: str):
-        """(u, info, free DOF count, nodes, timer): nodal DOFs (w_i, w'_i or theta_i) interleaved."""
+        """(u, info, free DOF count, nodes, timer, moments): nodal DOFs (w_i, w'_i or theta_i) interleaved; the
+        two-field form's element moments (p, q) (:func:`natural_band`), None for the direct form."""
         timer = Timer()
         if self.mixed(params):
             with timer("assemble"):
@@ -238,7 +198,7 @@ class _BeamFE(Model):
             u[0::2], u[1::2] = z[0::4], z[1::4]
             info["form"] = "two-field (displacements and element end moments, K = T^T F^-1 T)"
             info["reactions"] = reactions(scene, nodes, system.info["held_rows"], z, system.info["loads"], stride=4)
-            return u, info, system.unknowns, nodes, timer
+            return u, info, system.unknowns, nodes, timer, (z[2::4], z[3::4])
         with timer("assemble"):
             system = self.assemble(scene, params)
         with timer("solve"):
@@ -246,7 +206,7 @@ class _BeamFE(Model):
         info["form"] = "direct (the assembled stiffness K)"
         nodes = system.info["nodes"]
         info["reactions"] = reactions(scene, nodes, system.info["held_rows"], u, system.info["loads"])
-        return u, info, system.unknowns, nodes, timer
+        return u, info, system.unknowns, nodes, timer, None
 
 
 FORM = Option(
@@ -278,13 +238,15 @@ class FemEulerBernoulli(_BeamFE):
     load_types = LOAD_TYPES | {"displacement"}  # held nodes, solved on the load path's fibre beam
 
     SKFEM_MAX_NODES = 20_001  # ElementLineHermite inverts a global-coordinate Vandermonde per element:
-    # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there
+    # singular in float64 for elements below ~1e-4 of the coordinates; the closed form takes over there, and wherever
+    # an element is shorter than the uniform elements of this many nodes (a load beside a node)
 
     def assemble_band(self, scene: Scene, params: dict, use_skfem: bool | None = None):
         """(K, F, nodes) before the supports, K a :class:`Band`."""
         nodes = beam_nodes(scene, params["points"])
         if use_skfem is None:
-            use_skfem = len(nodes) <= self.SKFEM_MAX_NODES
+            shortest = scene.length / (self.SKFEM_MAX_NODES - 1)
+            use_skfem = len(nodes) <= self.SKFEM_MAX_NODES and np.diff(nodes).min() >= shortest
         EI, _ = element_properties(scene, nodes)
         if not use_skfem:
             l = np.diff(nodes)
@@ -326,11 +288,11 @@ class FemEulerBernoulli(_BeamFE):
     def evaluate(self, scene, params, x):  # noqa: D401 - the FE solution itself between nodes
         return self.evaluator(scene, params)(x)
 
-    def solve(self, scene: Scene, params: dict) -> Result:
+    def routed(self, scene: Scene, params: dict) -> Result | None:
         shown = any(ld.type == "displacement" for ld in scene.loads)
         if scene.loading is not None or scene.material.yield_stress is not None or shown:
             return self.solve_load_path(scene, params)
-        return super().solve(scene, params)
+        return None
 
     def solve_load_path(self, scene: Scene, params: dict) -> Result:
         """Fibre sections along the scene's load path (:mod:`.beam_plastic`): the last step's fields, every step in
@@ -402,10 +364,8 @@ class FemTimoshenko(_BeamFE):
             out.append("segments: fem-timoshenko's transient takes one section and material (its mass is uniform)")
         return out
 
-    def solve(self, scene: Scene, params: dict) -> Result:
-        if scene.dynamics is not None:
-            return transient(self, scene, params)
-        return super().solve(scene, params)
+    def routed(self, scene: Scene, params: dict) -> Result | None:
+        return transient(self, scene, params) if scene.dynamics is not None else None
 
     def nodal_loads(self, scene: Scene, params: dict, nodes: np.ndarray) -> np.ndarray:
         EI, kGA = element_properties(scene, nodes)
