@@ -46,7 +46,15 @@ from .general import first_order_warnings, linear_system, scene_pairs, solve_pai
 from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
 from .path import failure_warnings, follows_path, plastic_warnings, solve_path
-from .recovery import inner_forces, mirror_pairs, mixed_fields, pair_fields, rotation, rotation_warnings
+from .recovery import (
+    force_beside_support_warnings,
+    inner_forces,
+    mirror_pairs,
+    mixed_fields,
+    pair_fields,
+    rotation,
+    rotation_warnings,
+)
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
 from .weights import WEIGHTS, moment_curvature_curve, weights
 
@@ -401,6 +409,7 @@ class PDBondPair(Model):
             x, w, pairs, f, info = solve_pairs_linear(scene, params, omega(scene, params))
         dx = x[1] - x[0]
         flags = first_order_warnings(scene) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
+        flags += force_beside_support_warnings(scene, dx)
         flags += bias_warnings(scene, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
@@ -454,6 +463,7 @@ class PDBondPair(Model):
             + plastic_warnings(scene, params, dx)
             + failure_warnings(scene, params, x, info, path[-1]["health"])
             + rotation_warnings(scene)
+            + force_beside_support_warnings(scene, dx)
         )
         info.update(ends=params["ends"], spacing=dx, horizon_factor=params["horizon"])
         if scene.material.yield_stress:  # the section law the pairs carry (Eq. 7), beside the fibre theory's
