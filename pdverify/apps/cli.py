@@ -13,6 +13,7 @@ Imports are lazy: each command imports what it runs, so ``pdverify --help`` star
 from __future__ import annotations
 
 import os
+import shlex
 import sys
 from pathlib import Path
 
@@ -153,13 +154,13 @@ def solve(
         typer.echo(w, err=True)
     if out is not None and out.suffix in result.writers:
         write_file(out, with_warnings(result, out.suffix), "--out")
-        typer.echo(f"wrote {out}", err=True)
+        typer.echo(f"wrote {shlex.quote(str(out))}", err=True)  # a name ending in a space shows it
         return
     text = {Format.json: result.to_json, Format.csv: result.to_csv, Format.table: lambda: _table(result)}[fmt]()
     if out is not None:
         text = text if text.endswith("\n") else text + "\n"
         write_file(out, lambda path: Path(path).write_text(text, encoding="utf-8"), "--out")
-        typer.echo(f"wrote {out}", err=True)
+        typer.echo(f"wrote {shlex.quote(str(out))}", err=True)  # a name ending in a space shows it
     else:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")
 

@@ -57,6 +57,13 @@ def test_format_from_the_out_extension(suffix, check, tmp_path, capsys):
     assert check(out)
 
 
+def test_the_file_written_is_named_as_the_shell_would_take_it(tmp_path, capsys):
+    """A name ending in a space is a regular file named so; the line says which ("wrote x/ " showed no space)."""
+    (tmp_path / "x").mkdir()
+    code, _, err = cli(["solve", SCENE, "-m", "exact-eb", "--points", "11", "--out", f"{tmp_path}/x/ "], capsys)
+    assert code == 0 and err == f"wrote '{tmp_path}/x/ '\n" and (tmp_path / "x" / " ").is_file()
+
+
 def test_format_given_and_matching_the_extension(tmp_path, capsys):
     out = tmp_path / "r.json"
     code, _, _ = cli(["solve", SCENE, "-m", "exact-eb", "--points", "11", "--format", "json", "--out", out], capsys)
