@@ -416,3 +416,31 @@ def test_verify_junit_of_a_real_suite(tmp_path, capsys):
     card = json.loads((tmp_path / "card" / "card.json").read_text())
     assert code == 0, err
     assert [c.get("name") for c in ET.parse(junit).getroot()] == [c["check"] for c in card["checks"]]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="RLIMIT_AS and /proc/self/status: Linux")
+def test_the_memory_guard_counts_the_address_space_limit(tmp_path):
+    """Under ``ulimit -v`` the memory a run may take is the limit's room, not the machine's MemAvailable (the guard
+    read MemAvailable only, so a run in a 2 GiB address space past its estimate was not refused): pd-curved at 10^6
+    points (about 13 GiB by its estimate) is refused in one line with exit 3 before allocating."""
+
+    limit = 2 * 2**30
+    code = (
+        "import resource, sys\n"
+        f"resource.setrlimit(resource.RLIMIT_AS, ({limit}, {limit}))\n"
+        "from pdverify.numerics.memory import available_bytes\n"
+        "print(available_bytes())\n"
+    )
+    have = int(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout)
+    assert 0 < have < limit
+    scene = ROOT / "studies/paper_curved/semicircle_normal.toml"
+    run = (
+        "import resource, sys\n"
+        f"resource.setrlimit(resource.RLIMIT_AS, ({limit}, {limit}))\n"
+        "from pdverify.apps.cli import main\n"
+        f"sys.argv = ['pdverify', 'solve', '{scene}', '-m', 'pd-curved', '--points', '1000000']\n"
+        "main()\n"
+    )
+    done = subprocess.run([sys.executable, "-c", run], capture_output=True, text=True, cwd=tmp_path)
+    assert done.returncode == 3 and done.stderr.count("\n") == 1, done.stderr
+    assert "would need about" in done.stderr and "GiB is available" in done.stderr
