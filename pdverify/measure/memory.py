@@ -20,10 +20,11 @@ BYTES_PER_POINT = 16 * 8  # the least any run holds per point: the grid and its 
 # resultants, their references and errors in a study), float64; the whole need of an exact model's run
 
 
-def estimate_bytes(scene, model, params: dict) -> tuple[int, float, int] | None:
-    """(bytes, unknowns, bandwidth) of a run of ``model`` with resolved ``params`` on ``scene``, from two probe
-    solves; None when the model assembles no banded system (exact, explicit dynamics) or a probe fails."""
-
+def probe_sizes(scene, model, params: dict) -> list[tuple[int, int, int]] | None:
+    """(points, unknowns, bandwidth) of ``model`` on ``scene`` at the :data:`PROBES` sizes with resolved ``params``;
+    None when the model assembles no banded system (exact, explicit dynamics) or a probe fails."""
+    if params.get("horizon_length") is not None:  # the factor it resolved to is the full grid's: each probe its own
+        params = {k: v for k, v in params.items() if k != "horizon"}
     sizes = []
     for n in PROBES:
         try:
@@ -34,11 +35,32 @@ def estimate_bytes(scene, model, params: dict) -> tuple[int, float, int] | None:
         if lo is None or up is None or not r.dofs:
             return None
         sizes.append((n, r.dofs, int(lo) + int(up) + 1))
+    return sizes
+
+
+def extrapolated(sizes, points: int) -> tuple[float, int]:
+    """(unknowns, bandwidth) at ``points`` from the probes' (points, unknowns, bandwidth), each linear in the points:
+    the unknowns always, the bandwidth where it grows (a horizon given as a length spans more points on a finer
+    grid), else the probes' largest."""
     (n0, d0, b0), (n1, d1, b1) = sizes
-    per_point = (d1 - d0) / (n1 - n0)
-    dofs = d1 + per_point * (params["points"] - n1)
-    band = max(b0, b1)
-    return int(BYTES_PER_BAND_ENTRY * dofs * band), dofs, band
+    dofs = d1 + (d1 - d0) / (n1 - n0) * (points - n1)
+    band = max(b0, b1, int(round(b1 + (b1 - b0) / (n1 - n0) * (points - n1))))
+    return dofs, band
+
+
+def need_bytes(sizes, points: int) -> int:
+    """The run's estimated peak at ``points`` (module docstring)."""
+    dofs, band = extrapolated(sizes, points)
+    return int(BYTES_PER_BAND_ENTRY * dofs * band)
+
+
+def estimate_bytes(scene, model, params: dict) -> tuple[int, float, int] | None:
+    """(bytes, unknowns, bandwidth) of a run of ``model`` with resolved ``params`` on ``scene``, from two probe
+    solves (:func:`probe_sizes`); None when there is no banded system to probe."""
+    sizes = probe_sizes(scene, model, params)
+    if sizes is None:
+        return None
+    return (need_bytes(sizes, params["points"]), *extrapolated(sizes, params["points"]))
 
 
 def check_memory(scene, model, given: dict) -> None:
@@ -60,13 +82,17 @@ def check_memory(scene, model, given: dict) -> None:
             f"its grid and fields, {have / 2**30:.1f} GiB is available; use at most about {have // BYTES_PER_POINT} "
             "points"
         )
-    est = estimate_bytes(scene, model, params) if have is not None else None
-    if est is None:
+    sizes = probe_sizes(scene, model, params) if have is not None else None
+    if sizes is None:
         return
-    need, dofs, band = est
+    need = need_bytes(sizes, points)
     if need > have:
-        fits = int(have / (BYTES_PER_BAND_ENTRY * band * dofs / points))
+        dofs, band = extrapolated(sizes, points)
+        lo, hi = PROBES[-1], points  # the largest grid that fits: need grows with the points
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (mid, hi) if need_bytes(sizes, mid) <= have else (lo, mid)
         raise SolveError(
             f"points = {points}: model {model.name} would need about {need / 2**30:.1f} GiB ({dofs:.3g} unknowns x "
-            f"bandwidth {band}), {have / 2**30:.1f} GiB is available; use at most about {fits} points"
+            f"bandwidth {band}), {have / 2**30:.1f} GiB is available; use at most about {lo} points"
         )

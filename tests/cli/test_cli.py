@@ -444,3 +444,25 @@ def test_the_memory_guard_counts_the_address_space_limit(tmp_path):
     done = subprocess.run([sys.executable, "-c", run], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 3 and done.stderr.count("\n") == 1, done.stderr
     assert "would need about" in done.stderr and "GiB is available" in done.stderr
+
+
+def test_the_memory_guard_extrapolates_a_band_that_grows_with_the_points(capsys, monkeypatch):
+    """At a fixed horizon_length the band widens with the grid (m = delta / dx): the guard's probes took the factor the
+    full grid resolved to beside horizon_length (refused: both given), so nothing was checked and the run died in
+    its allocation (107 GiB for one array at 300,001 points); now the bandwidth is extrapolated with the points and
+    the run refused before it, naming the largest grid whose estimate fits (8 GiB available, as if)."""
+    from pdverify.core.scene_file import load_scene
+    from pdverify.measure import memory
+    from pdverify.registry import get_model
+
+    have = 8 * 2**30
+    monkeypatch.setattr(memory, "available_bytes", lambda: have)
+    scene = ROOT / "studies/paper_yang/ss_uniform.toml"
+    argv = ["solve", scene, "-m", "pd-eb", "--points", "300001", "--horizon-length", "0.05"]
+    code, out, err = cli(argv, capsys)
+    assert code == 3 and out == "" and err.count("\n") == 1 and "would need about" in err, err
+    fits = int(err.rsplit("use at most about ", 1)[1].split()[0])
+    m, sc = get_model("pd-eb"), load_scene(scene)
+    sizes = memory.probe_sizes(sc, m, m.resolve(sc, {"points": 300001, "horizon_length": 0.05}))
+    assert sizes[1][2] > sizes[0][2]  # the band grows with the points
+    assert memory.need_bytes(sizes, fits) <= have < memory.need_bytes(sizes, fits + 1)
