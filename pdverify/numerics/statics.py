@@ -124,14 +124,17 @@ def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return Q, R
 
 
-def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, spans, barriers=()) -> tuple:
-    """(M, V) with the points of each index span [lo, hi) re-derived by statics from the point next to it, where the
-    model's M and V hold (the mean of the continuations from the points before and after it), with the loads: the
-    resultants of any beam theory are in equilibrium with the loads, so they carry the anchor's error and none of the
+def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, spans, barriers=(), two_sided=()) -> tuple:
+    """(M, V) with the points of each index span [lo, hi) re-derived by statics with the loads from the points next to
+    it, where the model's M and V hold: between two such points the statics that meets the model's M at both (the
+    shear from their moments: a model's M converges faster than its V), from one the continuation of its M and V. The
+    resultants of any beam theory are in equilibrium with the loads, so they carry the anchors' error and none of the
     span's layers. Overlapping or touching spans are merged; a merged span with a position of ``barriers`` on it
     (supports inside the span, whose reactions the loads do not hold: give their own layers as spans too, so that no
-    anchor lies in them), or with no point left to anchor it, is left as it is; the third value lists those spans'
-    (first, last) positions."""
+    anchor lies in them), or with no point left to anchor it, is left as it is, and so is one with a position of
+    ``two_sided`` on it and a point next to it on one side only (a support whose reaction is among the loads, beside
+    an end's layers: a continuation from one point carries that point's V error across the whole stretch); the third
+    value lists those spans' (first, last) positions."""
     n = len(x)
     M, V = np.array(M, float), np.array(V, float)
     merged = []
@@ -145,14 +148,15 @@ def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, span
     kept = []
     for lo, hi in merged:
         anchors = [k for k in (lo - 1, hi) if 0 <= k < n]  # both sides of an inner span: the mean is mirror-symmetric
-        if not anchors or any(x[lo] <= b <= x[hi - 1] for b in barriers):
+        on = [any(x[lo] <= b <= x[hi - 1] for b in points) for points in (barriers, two_sided)]
+        if not anchors or on[0] or (len(anchors) == 1 and on[1]):
             kept.append((float(x[lo]), float(x[hi - 1])))
             continue
-        part = slice(lo, hi)
-        Vs, Ms = [], []
-        for k in anchors:
+        part, k = slice(lo, hi), anchors[0]
+        if len(anchors) == 2:  # the moments at both anchors fix the shear between (a model's V converges slower)
+            a, b = anchors
+            shear0 = (M0[b] - M0[a] - (R[b] - R[a])) / (x[b] - x[a])
+        else:
             shear0 = V0[k] - Q[k]  # the shear at x = 0+ that the anchor's V implies
-            Vs.append(shear0 + Q[part])
-            Ms.append(M0[k] + shear0 * (x[part] - x[k]) + R[part] - R[k])
-        V[part], M[part] = np.mean(Vs, axis=0), np.mean(Ms, axis=0)
+        V[part], M[part] = shear0 + Q[part], M0[k] + shear0 * (x[part] - x[k]) + R[part] - R[k]
     return M, V, kept

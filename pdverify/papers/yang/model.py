@@ -566,13 +566,6 @@ class PDHigherOrder(Model):
         merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         fields = {"theta": u[:, TH], "theta_star": u[:, TS], "w_star": u[:, WS]}
         layer = LAYER_HORIZONS * int(np.ceil(params["horizon"] + 0.015))  # the ends' layers of M and V
-        forces, unrecovered = section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"], layer)
-        fields.update(forces)
-        flags = self.discretisation_warnings(scene, params, x, info)
-        if flags := flags + recovery_warnings(scene, [ld for ld in interior_point_loads(scene) if ld in unrecovered]):
-            info.setdefault("warnings", []).extend(flags)
-        if clamp := clamp_layer_warning(scene, dx):  # no Richardson estimate on such grids (measure/richardson.py)
-            info["irregular"] = clamp[0]
         own = reactions(end_rows, u.ravel(), scene.section.A) if end_rows else {}
         if unknowns:
             own = closed_reactions(
@@ -580,6 +573,15 @@ class PDHigherOrder(Model):
             )
         if own:
             info["reactions"] = own
+        forces, loads, supports = section_forces(scene, x, u, self.constants(scene)[0], binfo["depth"], layer, own)
+        fields.update(forces)
+        flags = self.discretisation_warnings(scene, params, x, info)
+        if flags := flags + recovery_warnings(
+            scene, [ld for ld in interior_point_loads(scene) if ld in loads], supports
+        ):
+            info.setdefault("warnings", []).extend(flags)
+        if clamp := clamp_layer_warning(scene, dx):  # no Richardson estimate on such grids (measure/richardson.py)
+            info["irregular"] = clamp[0]
         stations = parse_stations(params.get("stations", ""), scene.length)
         if len(stations):
             mat = scene.material

@@ -122,15 +122,15 @@ def interior_point_loads(scene: Scene) -> list:
     ]
 
 
-def recovery_warnings(scene: Scene, interior: list) -> list[str]:
+def recovery_warnings(scene: Scene, interior: list, supports: list) -> list[str]:
     """Where the recovered moment and shear (:func:`.supports.section_forces`) do not converge at second order:
-    within a few depths of a support inside the span, or of a point load (``interior``) whose layers statics did not
-    replace (the section's layers of w*, theta*, about 0.1 h wide: the moment resolved only once the spacing is below
-    that, the shear at the 3 points either side not even then), and
+    within a few depths of a point load (``interior``) or a support inside the span (``supports``: positions) whose
+    layers statics did not replace (the section's layers of w*, theta*, about 0.1 h wide: the moment resolved only
+    once the spacing is below that, the shear at the 3 points either side not even then), and
     the shear next to where a distributed load starts or ends inside the beam (the bonds average the load's jump:
     first order there)."""
     out = []
-    spots = [ld.position for ld in interior] + [s.position for s in scene.supports.inner]
+    spots = [ld.position for ld in interior] + list(supports)
     if spots:
         at = ", ".join(f"{a:.6g}" for a in spots)
         out.append(

@@ -138,11 +138,14 @@ def with_supports(scene: Scene, params: dict, B, b: np.ndarray, held, x: np.ndar
     return A, rhs, np.r_[free, B.n + np.arange(len(unknowns))], unknowns, scales
 
 
-def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float, layer: int = 0) -> tuple:
-    """({"M", "V"} at the points from u (n x 4) (module docstring), the point loads inside the beam whose layers are
-    left as recovered): the ``layer`` points next to each end and on each side of a point load by statics from the
-    point beside them (:func:`pdverify.numerics.statics.statics_over`), unless a support inside the span stands
-    there."""
+def section_forces(
+    scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float, layer: int = 0, reactions=None
+) -> tuple:
+    """({"M", "V"} at the points from u (n x 4) (module docstring), the point loads inside the beam and the positions
+    of the supports inside the span whose layers are left as recovered): the ``layer`` points next to each end, on
+    each side of a point load and of a support inside the span by statics from the point beside them
+    (:func:`pdverify.numerics.statics.statics_over`), the supports' ``reactions`` (the solve's, named as exact-eb
+    names them) acting as loads; a support whose reaction is not given keeps its layers as recovered."""
     jumps = np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")]
     dx = x[1] - x[0]
     ends = [x[0] + dx / 2, x[-1] - dx / 2]  # no difference takes the end points' values, inside the ends' layers
@@ -156,13 +159,31 @@ def section_forces(scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h:
     V = derivative(x, M, jumps, kinks)
     n = len(x)
     loads = [ld for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and 0.0 < ld.position < x[-1]]
+    inner = [s.position for s in scene.supports.inner]
     if not (layer and n >= 2 * layer + 3):
-        return {"M": M, "V": V}, loads
-    inner = [s.position for s in scene.supports.inner]  # their layers stay: no anchor in them
+        return {"M": M, "V": V}, loads, inner
+    held, unknown = reaction_loads(scene, reactions or {})
     at = [(p - x[0]) / dx for p in [ld.position for ld in loads] + inner]  # in spacings; the two points around each
     spans = [(0, layer), (n - layer, n)] + [(np.floor(t + 1e-9) - layer, np.ceil(t - 1e-9) + layer + 1) for t in at]
-    M, V, kept = statics_over(scene, x, M, V, spans, inner)
-    return {"M": M, "V": V}, [ld for ld in loads if any(a <= ld.position <= b for a, b in kept)]
+    loaded = scene.model_copy(update={"loads": list(scene.loads) + held})
+    known = [p for p in inner if p not in unknown]
+    M, V, kept = statics_over(loaded, x, M, V, spans, unknown, known)  # a support without its reaction: layers stay
+    left = lambda at: any(a <= at <= b for a, b in kept)  # noqa: E731 - in a span statics left as recovered
+    return {"M": M, "V": V}, [ld for ld in loads if left(ld.position)], [p for p in inner if left(p)]
+
+
+def reaction_loads(scene: Scene, reactions: dict) -> tuple[list, list[float]]:
+    """(the supports inside the span's reactions as point loads, the positions of those whose reactions are not in
+    ``reactions``): a force ``force_inner_i`` (up) and a couple ``moment_inner_i`` (counter-clockwise) each."""
+    loads, unknown = [], []
+    for i, s in enumerate(scene.supports.inner):
+        keys = [("force", PointForce)] * s.holds_deflection + [("moment", PointMoment)] * s.holds_rotation
+        if any(f"{kind}_inner_{i}" not in reactions for kind, _ in keys):
+            unknown.append(s.position)
+            continue
+        for kind, cls in keys:
+            loads.append(cls(type=f"point_{kind}", position=s.position, value=reactions[f"{kind}_inner_{i}"]))
+    return loads, unknown
 
 
 __all__ = ["reaction_unknowns", "unit_vector", "augmented", "with_supports", "section_forces"]
