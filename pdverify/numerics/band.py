@@ -108,9 +108,15 @@ class Band:
         (first, stop), row ndof p + a gets ``blocks[o][a, b]`` at column ndof (p + o) + b. A block entry may be
         a scalar or an array over the points of ``points`` (position-dependent coefficients). Entries
         outside the matrix are dropped."""
+        for _ in self.written(ndof, blocks, points):
+            pass
+        return self
+
+    def written(self, ndof: int, blocks: dict, points: tuple[int, int] | None = None):
+        """:meth:`add_block_stencil`, yielding (offset, slice of :meth:`diag`) of each stretch as it writes it."""
         for off, sl, c, (i0, i1) in self.block_stretches(ndof, blocks, points):
             self.diag(off)[sl] += c if np.isscalar(c) else np.asarray(c, float)[i0:i1]
-        return self
+            yield off, sl
 
     def values(self, rows, cols) -> np.ndarray:
         """A[rows, cols] element by element (arrays of one shape; 0 outside the band)."""
@@ -268,8 +274,7 @@ class Extent:
 
     def block(self, ndof: int, o: int, C, p0: int, p1: int):
         """``B.add_block_stencil(ndof, {o: C}, points=(p0, p1))`` and the stretches it wrote."""
-        self.B.add_block_stencil(ndof, {o: C}, points=(p0, p1))
-        for off, sl, _, _ in self.B.block_stretches(ndof, {o: C}, (p0, p1)):
+        for off, sl in self.B.written(ndof, {o: C}, (p0, p1)):
             self._mark(off, sl.start, sl.stop)
 
     def entries(self, rows: np.ndarray, cols: np.ndarray):
