@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.text import apart
+
 
 def hager_inverse_norm(solve, solve_t, n: int, iterations: int = 5) -> float:
     """Lower-bound estimate of ||A^-1||_1 from solves with A and A^T (Hager 1984, Higham 1988: LAPACK's
@@ -101,10 +103,9 @@ def _weight(entry_rounding: float | None) -> float:
 
 def bound_warning(bound: float) -> str:
     """The one-line warning a result carries when its round-off bound passes ``BOUND_LIMIT``."""
-    shown = next((f"{bound:.{d}g}" for d in range(2, 17) if float(f"{bound:.{d}g}") != BOUND_LIMIT), f"{bound!r}")
     return (
-        f"round-off bound {shown} (relative error) exceeds {BOUND_LIMIT:g}: at this size the linear solve "
-        "may be wrong to that degree; use fewer points or a better-conditioned form"
+        f"round-off bound {apart(bound, BOUND_LIMIT)} (relative error) exceeds {BOUND_LIMIT:g}: at this size the "
+        "linear solve may be wrong to that degree; use fewer points or a better-conditioned form"
     )
 
 

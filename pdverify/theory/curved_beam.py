@@ -28,6 +28,7 @@ from numpy.polynomial import polynomial as P
 
 from ..core.geometry import geometry
 from ..core.scene import Scene
+from ..core.text import apart
 
 # c of max |w_beam - w_2D| / max |w_2D| = c (h/R)^2 against fem-plane-stress on circular cantilevers under end forces
 # (docs/trust.md, "curved-beam theory on a thick ring"): 0.13 (semicircle, tangential tip force) to 0.25 (quarter
@@ -57,16 +58,17 @@ def radius_to_depth(scene: Scene) -> float:
 def thick_ring_warning(scene: Scene) -> str | None:
     """The one-line warning of a curved axis whose R/h is below :data:`THICK_RATIO`, with the gap to the 2D
     continuum it implies; None otherwise."""
-    ratio = radius_to_depth(scene)
+    ratio = float(f"{radius_to_depth(scene):.12g}")  # a scaled copy's rounding decides no side of the limit
     if not ratio < THICK_RATIO:
         return None
     lo, hi = (c / ratio**2 for c in GAP_PER_RATIO_SQUARED)
     return (
-        f"R/h = {ratio:.3g} (radius of curvature / section depth) is below {THICK_RATIO:g}: curved-beam theory drops "
-        f"terms of order (h/R)^2 = {1 / ratio**2:.2g} (Winkler-Bach hoop stress, radial stress); its deflection "
-        f"differs from the 2D continuum's (fem-plane-stress) by {100 * lo:.2g}-{100 * hi:.2g} % of max |w| here "
-        f"(c (h/R)^2, c = {GAP_PER_RATIO_SQUARED[0]:g}-{GAP_PER_RATIO_SQUARED[1]:g} measured on circular cantilevers "
-        "under end forces); for the solid's deflection use fem-plane-stress"
+        f"R/h = {apart(ratio, THICK_RATIO, 3)} (radius of curvature / section depth) is below {THICK_RATIO:g}: "
+        f"curved-beam theory drops terms of order (h/R)^2 = {1 / ratio**2:.2g} (Winkler-Bach hoop stress, radial "
+        "stress); its deflection differs from the 2D continuum's (fem-plane-stress) by "
+        f"{100 * lo:.2g}-{100 * hi:.2g} % of max |w| here (c (h/R)^2, c = {GAP_PER_RATIO_SQUARED[0]:g}-"
+        f"{GAP_PER_RATIO_SQUARED[1]:g} measured on circular cantilevers under end forces); for the solid's deflection "
+        "use fem-plane-stress"
     )
 
 

@@ -127,3 +127,30 @@ def test_the_arch_s_gap_to_the_2d_continuum_is_what_its_warning_says():
     gap_w = np.abs(beam.w - solid.w).max() / np.abs(solid.w).max()
     gap_rot = np.abs(beam.rotation - solid.rotation).max() / np.abs(solid.rotation).max()
     assert 0.01 < gap_w < 0.31 and 0.05 < gap_rot < 0.31, (gap_w, gap_rot)
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-3, 1e3])
+def test_the_thick_ring_warning_does_not_depend_on_the_scale(scale):
+    """An arc of R/h = 5 to the last digit of its numbers (R = 0.41089 m, h = 0.082178 m): its copy scaled by 1e-3
+    read R/h = 4.999999999999999 and warned "R/h = 5 ... is below 5", the original not. R/h is compared to 12 digits,
+    and a warned ratio is shown with the digits that tell it from 5."""
+    from pdverify.core.scene_file import parse_scene
+    from pdverify.core.text import apart
+    from pdverify.theory.curved_beam import thick_ring_warning
+
+    def arc(radius):
+        return parse_scene(
+            {
+                "name": "arc",
+                "beam": {"length": radius * math.radians(149.7)},
+                "section": {"width": 0.03940219 * scale, "height": 0.082178 * scale},
+                "material": {"youngs_modulus": 11e9, "poissons_ratio": 0.35},
+                "supports": {"left": "pinned", "right": "guided"},
+                "loads": [{"type": "distributed", "value": -40.84}],
+                "axis": {"type": "arc", "radius": radius, "opening_angle_deg": 149.7, "start_angle_deg": -30.44},
+            }
+        )
+
+    assert thick_ring_warning(arc(0.41089 * scale)) is None
+    assert thick_ring_warning(arc(0.41089 * scale * (1 - 1e-6))).startswith("R/h = 4.999995 ")
+    assert apart(1.0000001e-6, 1e-6) == "1.0000001e-06" and apart(3e-3, 1e-6) == "0.003"
