@@ -510,9 +510,14 @@ class Model(Horizon):
                 raise InputError(
                     f"{key}: model {self.name} takes no option '{key}'; it takes: {', '.join(names) or 'none'}"
                 )
-        params = {}
+        params, short = {}, None
         for opt in self.options:
-            params[opt.name] = opt.coerce(self.name, given[opt.name]) if opt.name in given else opt.default
+            try:
+                params[opt.name] = opt.coerce(self.name, given[opt.name]) if opt.name in given else opt.default
+            except InputError:
+                if opt.name != "points" or (short := _below(opt, given["points"])) is None:
+                    raise
+                params["points"] = short  # below the model's least: refused below, with the least at its horizon
         if params.get("horizon_length") is not None:
             if "horizon" in given:
                 raise InputError(
@@ -523,9 +528,34 @@ class Model(Horizon):
         found = variant_problems(self, params) if rules else []
         if found:
             raise InputError(found)
+        if short is not None:
+            raise InputError(self._too_few_points(scene, params))
         if rules and (found := self.grid_problems(scene, params)):
             raise InputError(found)
         return params
+
+    def _too_few_points(self, scene: Scene, params: dict) -> str:
+        """The refusal of ``points`` below the option's least: the least number of points the grid takes with the
+        other options given (:meth:`grid_problems` at each; a wider horizon needs more), not the bare least."""
+        least = int(self.option("points").minimum)
+        fits = lambda n: not self.grid_problems(scene, {**params, "points": n})  # noqa: E731
+        n = least
+        while not fits(n) and n < least + 4096:  # the grids' floors are a few families wide
+            n += 1
+        at = f" with horizon = {params['horizon']:g}" if params.get("horizon") and n > least else ""
+        return f"points = {params['points']}: model {self.name}{at} needs points >= {n}"
+
+
+def _below(opt: Option, value) -> int | None:
+    """``value`` as a whole number when it is one below ``opt``'s least (a refusal that names the least at the model's
+    horizon instead, :meth:`Model._too_few_points`), else None (another refusal)."""
+    if isinstance(value, bool):
+        return None
+    try:
+        v = _whole(value)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return v if opt.minimum is not None and v < opt.minimum and (opt.maximum is None or v <= opt.maximum) else None
 
 
 # a spacing is taken when length / spacing is a whole number to this relative tolerance: a decimal spacing's

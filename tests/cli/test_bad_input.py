@@ -61,7 +61,12 @@ CLI_CASES = [
     ("solve-unknown-model", ["solve", "{scene}", "-m", "nosuch"], 2, "model = 'nosuch'"),
     ("solve-points-text", ["solve", "{scene}", "-m", "exact-eb", "--points", "abc"], 2, "points = 'abc'"),
     ("solve-points-fraction", ["solve", "{scene}", "-m", "pd-eb", "--points", "1e3.5"], 2, "points = '1e3.5'"),
-    ("solve-points-1", ["solve", "{scene}", "-m", "pd-eb", "--points", "1"], 2, "points = '1'"),
+    (
+        "solve-points-1",
+        ["solve", "{scene}", "-m", "pd-eb", "--points", "1"],
+        2,
+        "points = 1: model pd-eb with horizon = 3 needs points >= 7",
+    ),
     ("solve-fibres-0", ["solve", "{scene}", "-m", "fem-eb", "-o", "fibres=0"], 2, "fibres = '0'"),
     ("solve-horizon-underscore", ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=3_0"], 2, "horizon = '3_0'"),
     ("solve-points-negative", ["solve", "{scene}", "-m", "pd-eb", "--points", "-5"], 2, "points"),

@@ -292,3 +292,34 @@ def test_study_crossing_a_paper_variant_with_foreign_options_fails_when_loaded(t
     assert (
         len([ln for ln in exc.value.lines if "ends = 'taylor': not defined by variant = continuous-alpha" in ln]) == 1
     )
+
+
+ROD = [{"type": "distributed", "value": 0.0, "axial": 100.0}]
+TORQUE = [{"type": "distributed", "value": 0.0, "torque": 10.0}]
+
+
+@pytest.mark.parametrize(
+    "model, loads, options",
+    [
+        ("pd-eb", None, {}),
+        ("pd-bond-pair", None, {}),
+        ("pd-timoshenko", None, {}),
+        ("pd-timoshenko", None, {"variant": "corrected", "horizon": 5}),
+        ("pd-higher-order", None, {}),
+        ("pd-curved", None, {}),
+        ("pd-rod", ROD, {}),
+        ("pd-torsion", TORQUE, {}),
+    ],
+)
+def test_too_few_points_names_the_least_the_model_takes(model, loads, options):
+    """points below a model's least: the refusal names the least its grid takes at the options given (pd-torsion said
+    "needs points >= 6", then at 6 "with horizon = 3 needs at least 8 points"), and that many run."""
+    d = scene_dict("clamped", "pinned", [{"type": "distributed", "value": -100.0}] if loads is None else loads)
+    sc = parse_scene(d)
+    with pytest.raises(InputError) as got:
+        registry.run(sc, model, points=2, **options)
+    (line,) = got.value.lines
+    least = int(line.rsplit(">= ", 1)[1])
+    assert line.startswith(f"points = 2: model {model}")
+    r = registry.run(sc, model, points=least, **options)
+    assert len(r.x) >= least and np.isfinite(r.w).all()
