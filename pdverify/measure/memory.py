@@ -72,7 +72,9 @@ def check_memory(scene, model, given: dict) -> None:
     except Exception:  # noqa: BLE001 - invalid options are reported by the run itself
         return
     points = params.get("points")
-    if not isinstance(points, int) or points < PROBE_FROM:
+    # at a fixed horizon_length the band widens with the grid: a few thousand points may already need gigabytes
+    least = 2 * PROBES[-1] if params.get("horizon_length") is not None else PROBE_FROM
+    if not isinstance(points, int) or points < least:
         return
     have = available_bytes()
     if have is not None and BYTES_PER_POINT * points > have:  # the output alone (exact models: all of it)
