@@ -466,3 +466,7 @@ def test_the_memory_guard_extrapolates_a_band_that_grows_with_the_points(capsys,
     sizes = memory.probe_sizes(sc, m, m.resolve(sc, {"points": 300001, "horizon_length": 0.05}))
     assert sizes[1][2] > sizes[0][2]  # the band grows with the points
     assert memory.need_bytes(sizes, fits) <= have < memory.need_bytes(sizes, fits + 1)
+    # probed from 803 points at a fixed horizon_length (from 200,001 otherwise)
+    monkeypatch.setattr(memory, "available_bytes", lambda: memory.need_bytes(sizes, 5001) // 2)
+    code, _, err = cli(argv[:4] + ["5001"] + argv[5:], capsys)
+    assert code == 3 and "would need about" in err
