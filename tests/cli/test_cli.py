@@ -468,5 +468,5 @@ def test_the_memory_guard_extrapolates_a_band_that_grows_with_the_points(capsys,
     assert memory.need_bytes(sizes, fits) <= have < memory.need_bytes(sizes, fits + 1)
     # probed from 803 points at a fixed horizon_length (from 200,001 otherwise)
     monkeypatch.setattr(memory, "available_bytes", lambda: memory.need_bytes(sizes, 5001) // 2)
-    code, _, err = cli(argv[:4] + ["5001"] + argv[5:], capsys)
+    code, _, err = cli(argv[:5] + ["5001"] + argv[6:], capsys)
     assert code == 3 and "would need about" in err
