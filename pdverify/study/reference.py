@@ -13,6 +13,7 @@ from ..core.errors import InputError, SolveError
 from ..core.result import quantity_of
 from ..registry import get_model
 from ..theory.curved_beam import thick_ring_warning
+from ..theory.deep_beam import deep_beam_warning
 from . import solves
 from .spec import Case
 
@@ -99,8 +100,9 @@ GAP_SHARE = 0.1  # a theories' difference above this share of a row's error may 
 
 def theory_gap_warning(case: Case, x: np.ndarray | None = None, err: float = float("nan")) -> str | None:
     """What of the row's error (``err`` at the model's points ``x``) may be the difference of the model's theory and
-    its reference's, not the model's own: the thick-ring warning of a curved-beam reference
-    (:func:`pdverify.theory.curved_beam.thick_ring_warning`) when the model is the 2D continuum; and on a straight
+    its reference's, not the model's own: when the model is the 2D continuum and the reference a beam theory, the
+    thick-ring warning of a curved axis (:func:`pdverify.theory.curved_beam.thick_ring_warning`) and the deep-beam one
+    of a short beam (:func:`pdverify.theory.deep_beam.deep_beam_warning`); and on a straight
     static scene, a beam model (Euler-Bernoulli, Timoshenko, higher-order) against a reference of another theory,
     when the exact solution of the model's own theory differs from the reference by more than GAP_SHARE of the
     row's error (pd-eb against exact-timoshenko on a thick beam)."""
@@ -109,8 +111,9 @@ def theory_gap_warning(case: Case, x: np.ndarray | None = None, err: float = flo
         return None
     model, reference = get_model(case.model), get_model(ref)
     if model.theory == "continuum" and reference.theory != "continuum":
-        found = thick_ring_warning(case.scene())
-        return None if found is None else f"the reference {ref}: {found}"
+        scene = case.scene()
+        found = [w for w in (thick_ring_warning(scene), deep_beam_warning(scene)) if w]
+        return "; ".join(f"the reference {ref}: {w}" for w in found) or None
     own = EXACT_OF.get(model.theory)
     if x is None or own is None or reference.theory == model.theory or model.measures != "w" or not np.isfinite(err):
         return None
