@@ -90,9 +90,9 @@ def coupling_warning(scene: Scene, s: np.ndarray, N: np.ndarray, M: np.ndarray) 
     if not share > COUPLING_LIMIT:
         return None
     return (
-        f"the beam carries its loads largely by axial force: curved-beam theory leaves out the coupling of N and M "
-        f"through the axis' curvature (Winkler-Bach: a curvature N / (E A R) beside M / (E I)), here max |N I / "
-        f"(A R)| / max |M| = {share:.2g} of the bending curvature, whatever R/h (a 120 deg pinned arch under a uniform "
-        "normal load, 0.31: 1.5 % of max |w| and 8 % of the rotation from the 2D continuum); for the solid's "
-        "displacements use fem-plane-stress"
+        "the beam carries part of its loads by axial force: curved-beam theory leaves out the coupling of N and M "
+        "through the axis' curvature (Winkler-Bach: a curvature N / (E A R) beside M / (E I)), here max |N I / "
+        f"(A R)| / max |M| = {apart(share, COUPLING_LIMIT)} of the bending curvature, whatever R/h (a 120 deg pinned "
+        "arch under a uniform normal load, 0.31: 1.5 % of max |w| and 8 % of the rotation from the 2D continuum); for "
+        "the solid's displacements use fem-plane-stress"
     )
