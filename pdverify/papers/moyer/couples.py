@@ -58,6 +58,18 @@ def couple_column(op, scene: Scene, x: np.ndarray, m: int, weights: np.ndarray, 
     return None
 
 
+def shear_free(scene: Scene, x: np.ndarray, a: float, us: np.ndarray) -> np.ndarray:
+    """The kink of a couple's singular part ``us`` (interleaved w, γ; ramped to the side where it is not zero) at a
+    alone: γ = -(x - a)₊ / EI(a) and w with w' = γ on that side, through any joint. Its intervals' discrete shear strain
+    is zero away from a (a quadratic w, a linear γ), where ``us``'s is not at the joints it bends at: what the
+    recovered shear takes out of the solution instead of ``us``."""
+    g = us[1::2]
+    side = 1 if np.abs(g[x > a]).max(initial=0.0) > 0.0 else -1
+    EI = float(scene.stiffness_at(np.array([a]))["EI"][0])
+    r = np.maximum(side * (x - a), 0.0)
+    return np.column_stack((-side * r**2 / (2 * EI), -r / EI)).ravel()
+
+
 def near_joint(scene: Scene, a: float, reach: float) -> float | None:
     """The segment joint nearest a when it lies within ``reach`` of it (the couple's rows), else None."""
     cuts = [g.end for g in scene.segments[:-1]]

@@ -37,7 +37,7 @@ import scipy.sparse as sp
 from ...core.errors import InputError
 from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.families import stencil_operator
-from .couples import couple_column
+from .couples import couple_column, shear_free
 from .kernels import EndPatched, node_loads, rod_kernel, toeplitz
 from .pieces import bond_stiffness
 from .resultants import moment_steps, point_loads, shear_at_points
@@ -203,12 +203,14 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), k
 
 def interval_shear(u: np.ndarray, scene: Scene, dx: float, kinks=()) -> np.ndarray:
     """V̄ = -kGA ψ̄ of the n - 1 intervals (segments: each interval's series kGA); ``kinks`` (position, couple C,
-    singular part u_s) of the couples applied on their kink (:mod:`.couples`): their u_s has no shear strain, so its
-    intervals' ψ̄ (the 13/24 average of a kinked γ) are left out."""
+    singular part u_s) of the couples applied on their kink (:mod:`.couples`): their kink at the couple has no shear
+    strain, so its intervals' ψ̄ (the 13/24 average of a kinked γ) are left out (:func:`.couples.shear_free`: the kink
+    alone, not u_s's bends at the joints it crosses)."""
     n = len(u) // 2
     kga, _ = stiffnesses(scene, n, dx)
-    for _, C, us in kinks:
-        u = u - C * us
+    x = np.arange(n) * dx
+    for a, C, us in kinks:
+        u = u - C * shear_free(scene, x, a, us)
     return -kga * (shear_strain(n, dx) @ u)
 
 
