@@ -534,16 +534,25 @@ class Model(Horizon):
             raise InputError(found)
         return params
 
-    def _too_few_points(self, scene: Scene, params: dict) -> str:
+    def _too_few_points(self, scene: Scene, params: dict) -> list[str]:
         """The refusal of ``points`` below the option's least: the least number of points the grid takes with the
-        other options given (:meth:`grid_problems` at each; a wider horizon needs more), not the bare least."""
+        other options given (:meth:`grid_problems`; a wider horizon needs more: doubled until one fits, then bisected),
+        not the bare least; where none up to :data:`LEAST_SEARCH` fits, the grid's own reason there."""
         least = int(self.option("points").minimum)
-        fits = lambda n: not self.grid_problems(scene, {**params, "points": n})  # noqa: E731
-        n = least
-        while not fits(n) and n < least + 4096:  # the grids' floors are a few families wide
-            n += 1
-        at = f" with horizon = {params['horizon']:g}" if params.get("horizon") and n > least else ""
-        return f"points = {params['points']}: model {self.name}{at} needs points >= {n}"
+        problems = lambda n: self.grid_problems(scene, {**params, "points": n})  # noqa: E731
+        lo, hi = least - 1, least  # problems(lo) or lo below the least; the least that fits is in (lo, hi]
+        while found := problems(hi):
+            if hi >= LEAST_SEARCH:
+                return found
+            lo, hi = hi, min(2 * hi, LEAST_SEARCH)
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (lo, mid) if not problems(mid) else (mid, hi)
+        at = f" with horizon = {params['horizon']:g}" if params.get("horizon") and hi > least else ""
+        return [f"points = {params['points']}: model {self.name}{at} needs points >= {hi}"]
+
+
+LEAST_SEARCH = 1 << 20  # points up to which the least a grid takes is searched (Model._too_few_points)
 
 
 def _below(opt: Option, value) -> int | None:

@@ -323,3 +323,19 @@ def test_too_few_points_names_the_least_the_model_takes(model, loads, options):
     assert line.startswith(f"points = 2: model {model}")
     r = registry.run(sc, model, points=least, **options)
     assert len(r.x) >= least and np.isfinite(r.w).all()
+
+
+def test_the_least_points_search_finds_a_wide_family_s_and_names_a_grid_that_never_fits():
+    """The least is searched by doubling and bisection (it stopped 4,096 points above the bare least and named that:
+    pd-eb at horizon 3000 was told 4,101, which is refused; 6,001 is its least), and where no grid up to 2^20 points
+    fits, the grid's own reason is given (pd-curved, degree 8 on families of 7: it named 4,101 points)."""
+    sc = parse_scene(scene_dict("clamped", "pinned", [{"type": "distributed", "value": -100.0}]))
+    with pytest.raises(InputError) as got:
+        registry.run(sc, "pd-eb", points=2, horizon=3000)
+    assert got.value.lines == ["points = 2: model pd-eb with horizon = 3000 needs points >= 6001"]
+    m = registry.get_model("pd-eb")
+    assert not m.grid_problems(sc, m.with_defaults({"points": 6001, "horizon": 3000}))
+    assert m.grid_problems(sc, m.with_defaults({"points": 6000, "horizon": 3000}))
+    with pytest.raises(InputError) as got:
+        registry.run(sc, "pd-curved", points=2, degree=8, horizon=3)
+    assert got.value.lines[0].startswith("horizon = 3: a family of 7 particles cannot carry degree 8")
