@@ -70,9 +70,10 @@ def bench(
         for p in points or ():
             if grid is None:
                 raise InputError(f"--points {p}: model {n} takes no grid; drop --points or the model")
-            grid.coerce(n, p)  # below the model's least number of points: one line, exit 2
+            bench_scene = sc if sc is not None else load_scene(default_scene(m))
+            m.resolve(bench_scene, {"points": p})  # not a grid the model takes (its least named): one line, exit 2
             # a grid that cannot fit in memory: one line, exit 3, before any timing (as solve)
-            check_memory(sc if sc is not None else load_scene(default_scene(m)), m, {"points": p})
+            check_memory(bench_scene, m, {"points": p})
     rows = []
     for n in names:
         sizes = points or [p for p in DEFAULT_POINTS if p <= SMALL_MODELS.get(n, 10**9)]

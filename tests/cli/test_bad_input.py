@@ -205,6 +205,8 @@ CLI_CASES = [
     ("advise-missing-scene", ["advise", "{tmp}/missing.toml"], 2, "missing.toml"),
     ("bench-unknown-model", ["bench", "-m", "nosuch"], 2, "model = 'nosuch'"),
     ("bench-points-text", ["bench", "-m", "exact-eb", "--points", "abc"], 2, "--points"),
+    # below the least its grid takes (it named the bare least 6, then failed a row at 6 and exited 0)
+    ("bench-points-below-least", ["bench", "-m", "pd-timoshenko", "--points", "6"], 2, "needs at least 20 points"),
     ("bench-format-unknown", ["bench", "--format", "xml"], 2, "--format"),
     # output paths: only a regular file (or a new one) is written, refused before any work
     ("solve-out-device", ["solve", "{scene}", "-m", "exact-eb", "--out", "/dev/full"], 4, "not a regular file"),
