@@ -167,6 +167,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
     }
     if merged := merge_warnings(scene, nodes):  # the static solve's: a load taken on a node within 1e-12 L of it
         info.setdefault("warnings", []).extend(merged)
+    if near := step_beside_clamp(scene, params["points"]):
+        info.setdefault("warnings", []).extend(near)
     return model.new_result(
         scene,
         params,
@@ -178,3 +180,31 @@ def transient(model, scene: Scene, params: dict) -> Result:
         info=info,
         writers={".csv": lambda path: Path(path).write_text(columns_csv({"t": t[kept], **series}, fmt="%.12g"))},
     )
+
+
+NEAR_CLAMP = 10  # spacings from a clamp within which a step force's history is off by more than ~1 % (measured below)
+
+
+def step_beside_clamp(scene: Scene, points: int) -> list[str]:
+    """Point forces (steps at t = 0) within :data:`NEAR_CLAMP` spacings of a clamp, at an end or inside the span: the
+    modes such a force excites grow in share as it nears the clamp, and the mesh resolves them at about first order
+    in spacing over distance (a roller-clamped timber strip, L/h = 100, a step force 3 depths from the clamp: 2.4 %,
+    1.25 %, 0.44 % of the largest deflection off exact-modal-timoshenko at 161, 321, 641 points, the same at a
+    quarter of the time step; 1.7 % and 0.73 % at 8 and 16 spacings; 5.3e-4 at mid-span)."""
+    dx = scene.length / (points - 1)
+    clamps = [(0.0, "the left end")] * (scene.supports.kind("left") == "clamped")
+    clamps += [(scene.length, "the right end")] * (scene.supports.kind("right") == "clamped")
+    clamps += [(s.position, f"supports.inner[{i}]") for i, s in enumerate(scene.supports.inner) if s.type == "clamped"]
+    out = []
+    for i, ld in enumerate(scene.loads):
+        if not isinstance(ld, PointForce) or ld.value == 0.0 or not clamps:
+            continue
+        at, name = min(clamps, key=lambda c: abs(c[0] - ld.position))
+        d = abs(at - ld.position)
+        if 1e-12 * scene.length < d < NEAR_CLAMP * dx:
+            out.append(
+                f"loads[{i}], a step force {d / dx:.2g} spacings from the clamp at {name}: the modes it excites there "
+                "are resolved at about first order (measured 2.4 %, 1.25 %, 0.44 % of max |w| at 161, 321, 641 points "
+                f"3 depths from a clamp); use at least {int(np.floor(NEAR_CLAMP * scene.length / d)) + 2} points"
+            )
+    return out
