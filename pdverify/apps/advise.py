@@ -337,9 +337,10 @@ def format_advice(a: Advice) -> str:
             continue
         opts = [f"--{k} {v}" for k, v in c.options.items()] + (["-o static=true"] if a.static else [])
         lines.append(" ".join([f"{label}: {c.model} --points {c.points}", *opts]))
-        lines.append(f"  estimated error {c.estimate:.2e} ({c.basis})")
+        of = get_model(c.model).measures  # the error is of what the model is measured on: w, u or the twist
+        lines.append(f"  estimated error of {of} {c.estimate:.2e} ({c.basis})")
         if c.exact_error is not None:
-            lines.append(f"  check against the exact solution: {c.exact_error:.2e}")
+            lines.append(f"  check against the exact solution ({of}): {c.exact_error:.2e}")
         lines.append(f"  expected cost {c.seconds:.3g} s")
     lines += [f"  not chosen: {r}" for r in a.rejected]
     return "\n".join(lines)

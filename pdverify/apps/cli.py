@@ -136,7 +136,10 @@ def solve(
             raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
         positive("--tolerance", tolerance)
         choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
-        typer.echo(f"auto: {choice.model} --points {choice.points} (estimated error {choice.estimate:.2e})", err=True)
+        of = get_model(choice.model).measures
+        typer.echo(
+            f"auto: {choice.model} --points {choice.points} (estimated error of {of} {choice.estimate:.2e})", err=True
+        )
         model = choice.model
         given = dict(choice.options, points=choice.points, static=given.get("static", False))
     from ..measure.memory import check_memory

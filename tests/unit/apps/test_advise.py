@@ -162,6 +162,7 @@ def test_dynamics_scene_needs_the_static_part_asked_for():
     assert "nan" not in text and "0.00e+00" not in text
     # how to solve it: the candidate's options (pd-timoshenko's variant energy) and the static part
     assert f"choice: pd-timoshenko --points {a.choice.points} --variant energy -o static=true\n" in text
+    assert f"  estimated error of w {a.choice.estimate:.2e} (" in text  # of what the model is measured on
 
 
 @pytest.mark.slow
