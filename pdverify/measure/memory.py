@@ -60,7 +60,8 @@ def estimate_bytes(scene, model, params: dict) -> tuple[int, float, int] | None:
     sizes = probe_sizes(scene, model, params)
     if sizes is None:
         return None
-    return (need_bytes(sizes, params["points"]), *extrapolated(sizes, params["points"]))
+    dofs, band = extrapolated(sizes, params["points"])
+    return int(BYTES_PER_BAND_ENTRY * dofs * band), dofs, band
 
 
 def check_memory(scene, model, given: dict) -> None:

@@ -42,7 +42,7 @@ def couple_column(op, scene: Scene, x: np.ndarray, m: int, weights: np.ndarray, 
         far = L - a if side == 1 else a
         if far <= reach + dx:
             continue
-        g, w = singular_part(scene, x, a, side)
+        g, w = singular_part(stiffness_pieces(scene), x, a, side)
         us = np.column_stack((w, g)).ravel()
         col = op @ us
         near = np.repeat(np.abs(x - a) <= reach, 2)
@@ -63,11 +63,10 @@ def shear_free(scene: Scene, x: np.ndarray, a: float, us: np.ndarray) -> np.ndar
     alone: γ = -(x - a)₊ / EI(a) and w with w' = γ on that side, through any joint. Its intervals' discrete shear strain
     is zero away from a (a quadratic w, a linear γ), where ``us``'s is not at the joints it bends at: what the
     recovered shear takes out of the solution instead of ``us``."""
-    g = us[1::2]
-    side = 1 if np.abs(g[x > a]).max(initial=0.0) > 0.0 else -1
+    side = 1 if np.abs(us[1::2][x > a]).max(initial=0.0) > 0.0 else -1
     EI = float(scene.stiffness_at(np.array([a]))["EI"][0])
-    r = np.maximum(side * (x - a), 0.0)
-    return np.column_stack((-side * r**2 / (2 * EI), -r / EI)).ravel()
+    g, w = singular_part([(float(x[0]), float(x[-1]), EI)], x, a, side)  # one piece: the stiffness at a throughout
+    return np.column_stack((w, g)).ravel()
 
 
 def near_joint(scene: Scene, a: float, reach: float) -> float | None:
@@ -107,18 +106,23 @@ def _resultants(col, x, a, weights, arm=lambda v: v):
     return couple, float((col[0::2] * weights[0::2]).sum() * dx)
 
 
-def singular_part(scene: Scene, x: np.ndarray, a: float, side: int) -> tuple[np.ndarray, np.ndarray]:
+def stiffness_pieces(scene: Scene) -> list[tuple[float, float, float]]:
+    """(start, end, EI) of each stretch of the beam (:meth:`~pdverify.core.scene.Scene.pieces`)."""
+    return [(start, end, mat.E * sec.I) for start, end, sec, mat in scene.pieces()]
+
+
+def singular_part(pieces, x: np.ndarray, a: float, side: int) -> tuple[np.ndarray, np.ndarray]:
     """(γ_s, w_s) at x of a unit couple at a, ramped towards the end ``side`` (+1 right, -1 left): the moment -1 on
-    that side, γ_s' = -1/EI through every segment on the way (γ_s = -∫ ds/EI, the compliance integrated piece by
-    piece), w_s' = γ_s; zero on the other side."""
+    that side, γ_s' = -1/EI through every piece (start, end, EI) of ``pieces`` on the way (γ_s = -∫ ds/EI, the
+    compliance integrated piece by piece), w_s' = γ_s; zero on the other side."""
     t = side * (x - a)  # the distance from a towards that end
     g, w = np.zeros_like(x), np.zeros_like(x)
-    for start, end, sec, mat in scene.pieces():
+    for start, end, EI in pieces:
         q0, q1 = sorted((side * (start - a), side * (end - a)))
         q0 = max(q0, 0.0)
         if q1 <= q0:
             continue
         length, s = q1 - q0, np.clip(t - q0, 0.0, q1 - q0)  # the stretch of [a, x] in this piece
-        g -= s / (mat.E * sec.I)
-        w -= (s * s / 2 + length * np.maximum(t - q1, 0.0)) / (mat.E * sec.I)  # its integral over [a, x]
+        g -= s / EI
+        w -= (s * s / 2 + length * np.maximum(t - q1, 0.0)) / EI  # its integral over [a, x]
     return g, side * w
