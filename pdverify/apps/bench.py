@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.errors import SolveError
 from ..core.scene_file import load_scene
 from ..exact.straight import solve_straight
 from ..numerics.band import Band
@@ -153,3 +154,14 @@ SMALL_MODELS = {
 def default_models() -> list[str]:
 
     return [n for n, m in models().items() if m.assembles or "dynamic" in m.analyses]
+
+
+def failed_runs(rows: list[dict]) -> None:
+    """After every row is printed and written: SolveError (exit 3) naming the failed runs, if any."""
+    failed = [r for r in rows if r.get("status") != "ok"]
+    if failed:
+        first = failed[0]
+        raise SolveError(
+            f"{len(failed)} of {len(rows)} timed runs failed (first: {first['model']} at {first['points']} points: "
+            f"{first.get('message')}); the other rows are printed and written"
+        )

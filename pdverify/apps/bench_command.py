@@ -46,7 +46,7 @@ def bench(
     from ..measure.cost import accurate, cost_slope
     from ..measure.memory import check_memory
     from ..registry import get_model, model_argument
-    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models, default_scene
+    from .bench import DEFAULT_POINTS, SMALL_MODELS, bench_subprocess, default_models, default_scene, failed_runs
 
     names = [model_argument(n) for n in model] if model else default_models()  # a manifest path: an external model
     names, points = list(dict.fromkeys(names)), list(dict.fromkeys(points or ())) or None  # each once
@@ -117,3 +117,4 @@ def bench(
         page = build_performance(rows, out, slopes, shared)
         if fmt != Format.json:
             typer.echo(f"performance page: {page}")
+    failed_runs(rows)

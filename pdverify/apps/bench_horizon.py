@@ -21,6 +21,7 @@ import numpy as np
 from ..core.errors import InputError
 from ..core.scene_file import load_scene
 from ..registry import run
+from .bench import failed_runs
 from .output import check_folder
 
 SCENE = Path(__file__).resolve().parents[2] / "studies" / "nonlocal" / "pp_sine.toml"
@@ -120,3 +121,4 @@ def bench_command(names, points, as_json: bool, scene, out, echo) -> None:
         page = build_large_horizon(rows, out)
         if not as_json:
             echo(f"performance page: {page}")
+    failed_runs(rows)

@@ -119,9 +119,15 @@ def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
     ):
         calls.clear()
         code, out, err = cli(["bench", "-m", "exact-eb", *args], capsys)
-        assert code == 0, err
         models = ["exact-eb", "pd-eb"] if "pd-eb" in args else ["exact-eb"]
         assert calls == [(m, p) for m in models for p in (101, 201)]
+        # every run failed: each row printed, then one line and exit 3 (a computation failed), not 0
+        assert code == 3, err
+        assert out.count("failed: not run") == len(calls)
+        assert err.strip().splitlines() == [
+            f"error: {len(calls)} of {len(calls)} timed runs failed (first: exact-eb at 101 points: not run); "
+            "the other rows are printed and written"
+        ]
     code, _, err = cli(["bench", "-m", "exact-eb", "--points", "101", "x"], capsys)
     assert code == 2 and "--points" in err
 
