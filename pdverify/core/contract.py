@@ -528,8 +528,8 @@ class Model(Horizon):
         found = variant_problems(self, params) if rules else []
         if found:
             raise InputError(found)
-        if short is not None:
-            raise InputError(self._too_few_points(scene, params))
+        if short is not None:  # what no number of points changes first (the variant and the scene), then the least
+            raise InputError(self.refusals(scene, params) or self._too_few_points(scene, params))
         if rules and (found := self.grid_problems(scene, params)):
             raise InputError(found)
         return params

@@ -233,6 +233,8 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
     if found:
         raise InputError(found)
     params = m.resolve(bare, given)
+    if found := m.refusals(bare, params):  # what the variant does not define on these supports
+        raise InputError(found)
     K, mass = m.eigenproblem(bare, params)
     if count > K.shape[0]:
         raise InputError(f"--count {count}: the operator has {K.shape[0]} free DOFs; use fewer modes or more points")

@@ -210,6 +210,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if found:
         raise InputError(found)
     params = m.resolve(scene, given)  # the options, their variant's rules included
+    if found := m.refusals(scene, params):  # what the variant does not define on this scene: before any work
+        raise InputError(found)
     scene = narrow_spans_as_points(scene, POINT_SPAN)  # a span whose two ends would round to one point
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):

@@ -63,8 +63,15 @@ def _solve(scene: dict, model, options: dict, points: int):
     return run(parse_scene(scene), model, **options, points=points)
 
 
-def _declines(model, scene: dict) -> bool:
-    return bool(model.check(parse_scene(scene)))
+def _declines(model, scene: dict, options: dict) -> bool:
+    """Whether the model declines the scene, or refuses it with these options (a variant's ``refusals``)."""
+    sc = parse_scene(scene)
+    if model.check(sc):
+        return True
+    try:
+        return bool(model.refusals(sc, model.resolve(sc, dict(options))))
+    except InputError:  # bad options: the solve says so
+        return False
 
 
 def symmetry(model, options: dict, points: int) -> list[tuple[str, float]]:
@@ -72,7 +79,7 @@ def symmetry(model, options: dict, points: int) -> list[tuple[str, float]]:
     for left, right in MIRROR_PAIRS:
         for load, lds in asymmetric(kind).items():
             sc = straight(left, right, lds, name=f"{left}-{right}, {load}")
-            if _declines(model, sc) or _declines(model, mirror(sc)):
+            if _declines(model, sc, options) or _declines(model, mirror(sc), options):
                 continue
             a, b = _solve(sc, model, options, points), _solve(mirror(sc), model, options, points)
             out.append((sc["name"], C.mirrored(a, b, model.measures, MIRROR_SIGN[kind])))
@@ -94,7 +101,7 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
         a = loads[next(iter(loads))] + (loads["point moment"] if kind is None else loads["uniform"])
         b = loads["sine"] + (end_force(left, right, kind) or loads["partial"])
         a, b = sharing_positions(a, b), sharing_positions(b, a)
-        if any(_declines(model, straight(left, right, lds)) for lds in (a, b, a + b)):
+        if any(_declines(model, straight(left, right, lds), options) for lds in (a, b, a + b)):
             continue
         ra, rb, rab = (_solve(straight(left, right, lds), model, options, points) for lds in (a, b, a + b))
         what = "force + moment" if kind is None else "point + uniform"
@@ -107,16 +114,21 @@ def superposition(model, options: dict, points: int) -> list[tuple[str, float]]:
 def _declined(model, p, options: dict | None = None) -> dict:
     """Why the model declines each scene of the plan (the floor scene repeats a convergence scene: left out); an
     engineers' scene also when the model with these options refuses it as input (a variant that takes no segments:
-    a solve on the coarsest grid, one line)."""
+    a solve on the coarsest grid, one line); any scene whose supports the variant does not define (``refusals``)."""
     out = {f: model.check(parse_scene(sc)) for f, sc in p.scenes.items() if p.meta[f]["set"] != "floor"}
     for f, why in out.items():
-        if not why and p.meta[f]["set"] == "engineering" and options is not None:
-            try:
-                run(parse_scene(p.scenes[f]), model, **options, points=p.grids[0])
-            except InputError as exc:
-                out[f] = list(exc.lines)
-            except Exception:  # noqa: BLE001 - a failed solve is judged by the suite, not declined here
-                pass
+        if why or options is None:
+            continue
+        scene = parse_scene(p.scenes[f])
+        try:
+            if p.meta[f]["set"] == "engineering":
+                run(scene, model, **options, points=p.grids[0])
+            else:
+                out[f] = model.refusals(scene, model.resolve(scene, {**options, "points": p.grids[0]}))
+        except InputError as exc:
+            out[f] = list(exc.lines)
+        except Exception:  # noqa: BLE001 - a failed solve is judged by the suite, not declined here
+            pass
     return out
 
 

@@ -251,6 +251,8 @@ def locking(df, files: list[str], meta: dict) -> dict:
 def floor(rows: list[dict]) -> dict:
     """Round-off: the fine-grid scene's error should keep falling; where it rises (the condition number grows
     as N^4 for a fourth-order operator), it must stay below FLOOR at the finest grid."""
+    if not rows:  # the model with these options declines the fine-grid scene (a variant's refusal)
+        return check("accuracy floor (round-off)", "n/a", "the model declines the fine-grid scene (Scenes it declines)")
     r = rows[0]
     if r["failed"]:
         return check("accuracy floor (round-off)", "fail", "the fine-grid solves failed: " + "; ".join(r["failed"][:2]))
@@ -311,7 +313,7 @@ def mirrored(a, b, quantity: str = "w", sign: float = 1.0) -> float:
 
 def identity(name: str, diffs: list[tuple[str, float]]) -> dict:
     if not diffs:
-        return check(name, "n/a", "no scene")
+        return check(name, "n/a", "no scene: the model declines or refuses every scene of this check")
     worst = max(d for _, d in diffs)
     failed = [label for label, _ in diffs if label.startswith("failed:")]
     summary = (

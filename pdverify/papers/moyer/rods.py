@@ -30,19 +30,37 @@ class _RodModel(_MoyerModel):
 
     def grid_problems(self, scene: Scene, params: dict) -> list[str]:
         """Variant paper at a spring end: Section 4 gives an end that does not hold the unknown no traction
-        condition (a free end is singular), so the spring's end was held as if rigid (u there 0: 98 % of max |u| off
-        on a clamped-spring rod under a uniform load, at every grid); refused, as its free end is."""
+        condition, so the spring's end was held as if rigid (u there 0: 98 % of max |u| off on a clamped-spring rod
+        under a uniform load, at every grid); refused, as a free end is (:meth:`refusals`)."""
         found = super().grid_problems(scene, params)
         if params.get("variant") == "paper":
-            springs = [side for side in ("left", "right") if scene.supports.kind(side) == "spring"]
             found += [
-                f"supports.{side} = spring: variant paper gives an end that does not hold the "
-                f"{ {'u': 'axial displacement'}.get(self.measures, self.measures) } no "
+                f"supports.{side} = spring: variant paper gives an end that does not hold the {self._unknown()} no "
                 "traction condition (Section 4 as published), so a spring end cannot be represented; use variant "
                 "corrected"
-                for side in springs
+                for side in ("left", "right")
+                if scene.supports.kind(side) == "spring"
             ]
         return found
+
+    def refusals(self, scene: Scene, params: dict) -> list[str]:
+        """Variant paper at a free, guided or roller end that does not hold the unknown (Moyer & Miraglia,
+        Section 4: such an end has no traction condition, only its ghosts' extrapolation): a static solve's system
+        is singular (condition estimate ~1e17 at every grid and horizon), and the operator's lowest natural
+        frequencies and a transient are wrong (studies/paper_moyer/rod_transient.toml, a clamped-free rod: 21 times
+        max |u| off exact-modal-rod at 41, 81 and 161 points)."""
+        if params.get("variant") != "paper":
+            return []
+        held = ROD_HELD["axial" if self.axial else "torsion"] + ("spring",)  # a spring end: grid_problems
+        return [
+            f"supports.{side} = {kind}: variant paper gives an end that does not hold the {self._unknown()} no "
+            "traction condition (Section 4 as published), so its system is singular; use variant corrected"
+            for side in ("left", "right")
+            if (kind := scene.supports.kind(side)) not in held
+        ]
+
+    def _unknown(self) -> str:
+        return {"u": "axial displacement"}.get(self.measures, self.measures)
 
     def stiffness(self, scene) -> float:  # pragma: no cover - interface
         raise NotImplementedError

@@ -273,19 +273,23 @@ def test_rod_static_any_supports(left, right, end):
         assert abs(np.log2(e["sine", m, 201] / e["sine", m, 401]) - 2) < 0.05, e
 
 
-def test_rod_paper_variant_free_end_is_singular():
-    """Section 4's recipe for a free rod end (end force as body force, second-order extrapolation) sets no
-    traction condition: condition estimate 1.6e18, reported as a SolveError instead of a number."""
+@pytest.mark.parametrize("right", ["free", "guided", "roller"])
+def test_rod_paper_variant_refuses_an_end_that_does_not_hold_u(right):
+    """Section 4's recipe for a rod end that does not hold u (end force as body force, second-order extrapolation)
+    sets no traction condition: its static system is singular (condition estimate ~1e17-1e18, and exactly singular
+    at 81 points) and its transient runs away (21 times max |u| off exact-modal-rod, studies/paper_moyer/
+    rod_transient.toml): refused before any work, whatever the points, static or transient."""
     sc = parse_scene(
-        scene_dict("clamped", "free", [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 10.0}])
+        scene_dict("clamped", right, [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 10.0}])
     )
-    with pytest.raises(SolveError, match="singular to working precision") as exc:
-        run(sc, "pd-rod", points=101, variant="paper")
-    assert "the axial displacement or twist at an end that does not hold it" in str(exc.value)  # not the beam's
-    # at 81 points the estimate is infinite (a zero pivot): that solve used to pass, with a round-off bound of 28
-    with pytest.raises(SolveError, match=r"condition estimate inf"):
-        run(sc, "pd-rod", points=81, variant="paper")
-    assert run(sc, "pd-rod", points=101).fields["u"][-1] == pytest.approx(10.0 * 2.0 / sc.EA, rel=1e-9)
+    for n in (8, 81, 101):
+        with pytest.raises(InputError, match=f"supports.right = {right}: variant paper gives an end that does not"):
+            run(sc, "pd-rod", points=n, variant="paper")
+    transient = load_scene(ROOT / "studies/paper_moyer/rod_transient.toml")
+    with pytest.raises(InputError, match="so its system is singular; use variant corrected"):
+        run(transient, "pd-rod", points=41, variant="paper")
+    if right == "free":
+        assert run(sc, "pd-rod", points=101).fields["u"][-1] == pytest.approx(10.0 * 2.0 / sc.EA, rel=1e-9)
 
 
 def test_load_inside_the_boundary_layer_is_flagged():

@@ -339,3 +339,22 @@ def test_the_least_points_search_finds_a_wide_family_s_and_names_a_grid_that_nev
     with pytest.raises(InputError) as got:
         registry.run(sc, "pd-curved", points=2, degree=8, horizon=3)
     assert got.value.lines[0].startswith("horizon = 3: a family of 7 particles cannot carry degree 8")
+
+
+@pytest.mark.parametrize(
+    "model, right, options, refusal",
+    [
+        ("pd-eb", "pinned", {"reading": "layer"}, "reading = 'layer': a reading of the paper's boundary treatment"),
+        ("pd-rod", "free", {"variant": "paper"}, "supports.right = free: variant paper gives an end that does not"),
+        ("pd-torsion", "guided", {"variant": "paper"}, "supports.right = guided: variant paper gives an end that"),
+    ],
+)
+def test_too_few_points_comes_after_what_no_number_of_points_changes(model, right, options, refusal):
+    """A variant's refusal of the options or supports comes before the least points (sweep 11: 23 combinations were
+    sent to a least that was then refused for another reason)."""
+    loads = {"pd-rod": ROD, "pd-torsion": TORQUE}.get(model, [{"type": "distributed", "value": -100.0}])
+    sc = parse_scene(scene_dict("clamped", right, loads))
+    for points in (2, 101):
+        with pytest.raises(InputError) as got:
+            registry.run(sc, model, points=points, **options)
+        assert got.value.lines[0].startswith(refusal), got.value.lines
