@@ -18,6 +18,7 @@ import scipy.sparse as sp
 from pdverify.core.errors import InputError
 from pdverify.core.result import Result, Timer, columns_csv
 from pdverify.core.scene import Distributed, PointForce, Scene
+from pdverify.numerics.steps import aligned_steps
 from pdverify.numerics.timeint import MAX_STEPS, step_count
 
 from .beam_elements import (
@@ -150,6 +151,8 @@ def transient(model, scene: Scene, params: dict) -> Result:
     if source == "default" and d.end_time / dt > MAX_STEPS:
         short_element(scene, nodes, params["points"], dt, d.end_time)
     steps = step_count(d.end_time, dt, source)  # before any step (exit 2 above the limit)
+    if source != "time_step" and (al := aligned_steps(d.end_time, dt, sample)):
+        steps = al[0]  # a step that divides the sampling interval: every grid's samples on its multiples
     with timer("solve"):
         t, hist, u = newmark(K, M, C, F, d.end_time / steps, steps, observe)
     every = max(1, int(round(sample / (d.end_time / steps))))
