@@ -371,6 +371,16 @@ class PDBondPair(Model):
         j, beta = pair_family(params["horizon"], dx, params["variant"])
         return NonlinearBondPair(scene, n, j, beta, alpha(scene.EI, params["horizon"], dx, params["variant"]))
 
+    def mirror_system(self, scene: Scene, params: dict):
+        """(System, energy model) of mirror ends: the energy's tangent at rest reduced to the free DOFs, and the
+        :class:`NonlinearBondPair` it comes from (whose element residual refines the solve)."""
+        model = self.energy_model(scene, params)
+        K = model.tangent(np.zeros(2 * model.n), 0.0)
+        free = model.free
+        b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
+        info = {"ghosts_per_end": model.G, "form": "energy tangent"}
+        return System(K[free][:, free].tocsr(), b[free], free, info), model
+
     def assemble(self, scene: Scene, params: dict) -> System:
         """The linear system ``solve`` factorises.
 
@@ -387,13 +397,7 @@ class PDBondPair(Model):
             free = np.setdiff1d(np.arange(params["points"]), elim.dep)
             return System(K, rhs, free, {"form": "pair form (supports, springs, segments)", "ends": params["ends"]})
         if params["ends"] == "mirror":
-            model = self.energy_model(scene, params)
-            K = model.tangent(np.zeros(2 * model.n), 0.0)
-            free = model.free
-            b = -model.gradient(np.zeros(2 * model.n), 1.0)  # dead loads and the couples' forces at rest
-            return System(
-                K[free][:, free].tocsr(), b[free], free, {"ghosts_per_end": model.G, "form": "energy tangent"}
-            )
+            return self.mirror_system(scene, params)[0]
         dx = scene.length / (params["points"] - 1)
         j, _ = pair_family(params["horizon"], dx, params["variant"])
         c = spring_constants(scene.EI, params["horizon"], dx, params["variant"], omega(scene, params))
@@ -570,10 +574,10 @@ class PDBondPair(Model):
         x = np.linspace(0.0, scene.length, params["points"])
         fields = {}
         with timer("assemble"):
-            system = self.assemble(scene, params)
+            mirror = params["ends"] == "mirror"
+            system, model = self.mirror_system(scene, params) if mirror else (self.assemble(scene, params), None)
         binfo = dict(system.info)
         if params["ends"] == "mirror":
-            model = self.energy_model(scene, params)
             with timer("solve"):
                 # no bound of the assembled system (its fourth differences round like N^4 eps): the bound is the
                 # element residual's, to which the refinement converges
