@@ -260,14 +260,27 @@ def _check_supports(scene: Scene) -> list[str]:
             f"supports: springs and supports inside the span are for straight beams; axis.type = {scene.axis.type!r}"
         )
     seen: dict[float, int] = {}
+    apart = SUPPORTS_APART * L
     for i, s in enumerate(sup.inner):
         where = f"supports.inner[{i}].position = {s.position!r}"
+        near = [(f"supports.{side} (the {side} end)", at) for at, side in ends]
+        near += [(f"supports.inner[{j}]", sup.inner[j].position) for j in seen.values()]
+        close = [(name, at) for name, at in near if abs(s.position - at) <= apart]
         if not 0.0 < s.position < L:
             lines.append(f"{where}: not inside the beam (0, {L}); an end's support is supports.left or supports.right")
         elif s.position in seen:
             lines.append(f"{where}: supports.inner[{seen[s.position]}] is at the same position; give one support there")
+        elif close:
+            lines.append(
+                f"{where}: within {apart:.3g} ({SUPPORTS_APART:g} of the length) of {close[0][0]} at {close[0][1]!r}, "
+                "where the models take the two as one point (their split of the reaction is not defined); give one "
+                f"support there, or place them at least {apart:.3g} apart"
+            )
         seen.setdefault(s.position, i)
     return lines
+
+
+SUPPORTS_APART = 1e-9  # of the length: supports closer than this are one point to the grids (numerics/features.py)
 
 
 def _check_segments(scene: Scene) -> list[str]:

@@ -395,7 +395,8 @@ CLI_CASES = [
         "solve-supports-within-one-spacing",
         ["solve", str(ROOT / "tests/bad_inputs/supports_within_one_spacing.toml"), "-m", "pd-timoshenko"],
         2,
-        "supports.inner[0] and supports.inner[1] are within one spacing",
+        "supports.inner[1].position = 1.1000000000010002: within 3e-09 (1e-09 of the length) of supports.inner[0] at "
+        "1.1, where the models take the two as one point",
     ),
     (
         "solve-supports-nearly-coincide",
