@@ -346,6 +346,25 @@ def _check_magnitudes(scene: Scene) -> list[str]:
     return []
 
 
+LOAD_FLOOR = float(np.finfo(float).tiny / np.finfo(float).eps)  # 1.0e-292: loads all nearer 0 than this leave
+# their fields (and the models' products on the way) below float64's normal range, where they lose their digits
+
+
+def _check_loads_range(scene: Scene) -> list[str]:
+    """The largest load component, unless 0, at least :data:`LOAD_FLOOR` in size: loads of 1e-317 N (subnormal
+    floats) gave exact-eb's M 21 % off and pd-eb's M and V 0, unwarned. A small component beside larger ones is
+    kept (it only adds nothing)."""
+    sizes = [(abs(getattr(ld, k, 0.0)), i, k) for i, ld in enumerate(scene.loads) for k in ("value", "axial", "torque")]
+    size, i, k = max(sizes, default=(0.0, 0, "value"))
+    if 0.0 < size < LOAD_FLOOR:
+        return [
+            f"loads[{i}].{k} = {getattr(scene.loads[i], k)!r}: the largest load is below {LOAD_FLOOR:.1e} in size, so "
+            "its fields fall below float64's normal range (2.2e-308) and lose their digits; give the scene in units "
+            "that keep its numbers within about 1e-100..1e100"
+        ]
+    return []
+
+
 def parse_scene(data: dict, source: str = "scene") -> Scene:
     """Validate a scene given as a dict (parsed TOML) and return it, or raise InputError."""
     if not isinstance(data, dict):
@@ -356,6 +375,7 @@ def parse_scene(data: dict, source: str = "scene") -> Scene:
         raise InputError([f"{source}: {m}" for m in _messages(exc.errors(), data)]) from None
     lines = (
         _check_magnitudes(scene)
+        + _check_loads_range(scene)
         + _check_loads(scene)
         + _check_dynamics(scene)
         + _check_supports(scene)

@@ -196,5 +196,6 @@ def test_fem_transient_writes_its_histories_as_csv(tmp_path):
     r.writers[".csv"](str(tmp_path / "h.csv"))
     lines = (tmp_path / "h.csv").read_text().splitlines()
     t = r.info["history"]["t"]
-    assert lines[0] == "t,w(x=1),w(x=2)" and len(lines) == 1 + len(t) == 13  # 0 ... 9.9e-3 by 0.99e-3, then the end
+    assert lines[0] == "t,w(x=1),w(x=2)" and len(lines) == 1 + len(t) == 12  # 0 ... end_time by output_interval
+    np.testing.assert_allclose(t, np.arange(11) * 1e-3, rtol=0, atol=1e-12 * sc.dynamics.end_time)
     assert t[-1] == pytest.approx(sc.dynamics.end_time, rel=1e-12)  # the run's last step is always recorded
