@@ -412,7 +412,7 @@ class PDBondPair(Model):
         with timer("solve"):
             x, w, pairs, f, info = solve_pairs_linear(scene, params, omega(scene, params))
         dx = x[1] - x[0]
-        flags = first_order_warnings(scene) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
+        flags = first_order_warnings(scene, dx) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
         flags += force_beside_support_warnings(scene, dx)
         flags += bias_warnings(scene, params)
         if flags:
@@ -462,7 +462,7 @@ class PDBondPair(Model):
         dx = pairs.dx
         x = np.arange(pairs.n) * dx
         info.setdefault("warnings", []).extend(
-            first_order_warnings(scene)
+            first_order_warnings(scene, dx)
             + end_layer_warnings(scene, params, x)
             + plastic_warnings(scene, params, dx)
             + failure_warnings(scene, params, x, info, path[-1]["health"])
