@@ -32,6 +32,7 @@ from .cliargs import (
     grid_options,
     parse_options,
     positive,
+    prepared,
     user_errors,
 )
 from .output import Format, check_apart, check_folder, check_writable, with_warnings, write_file
@@ -384,27 +385,6 @@ def version():
     typer.echo(__version__)
 
 
-def _spread_repeats(argv: list[str], option: str = "--points") -> list[str]:
-    """``--points 1000 10000`` (as the README writes it) -> ``--points 1000 --points 10000``: the values that follow
-    the option up to the next option. Only for ``bench``, whose --points takes several sizes and which takes no
-    other argument."""
-    command = next((a for a in argv if not a.startswith("-")), None)  # the global options take no values
-    if command != "bench":
-        return argv
-    out, after = [], 0  # after: how many values the last --points has taken
-    for arg in argv:
-        if arg == option:
-            after = 0
-        elif arg.startswith("-"):
-            after = -1
-        elif after >= 0:
-            after += 1
-            if after > 1:
-                out.append(option)
-        out.append(arg)
-    return out
-
-
 def main(argv: list[str] | None = None):  # console-script entry point
     """Run the CLI; a usage error (unknown option, bad value of an option) is one ``error:`` line, exit code 2."""
     try:  # typer >= 0.2x carries its own copy of click
@@ -416,7 +396,7 @@ def main(argv: list[str] | None = None):  # console-script entry point
     argv = list(sys.argv[1:] if argv is None else argv)
     command = typer.main.get_command(app)
     try:
-        rv = command.main(args=_spread_repeats(argv), prog_name="pdverify", standalone_mode=False)
+        rv = command.main(args=prepared(command, argv), prog_name="pdverify", standalone_mode=False)
     except no_args as exc:
         text = exc.ctx.get_help() if exc.ctx is not None else ""  # typer's rich help prints itself, returns ""
         if text:

@@ -144,8 +144,12 @@ def parse_options(pairs: list[str] | None) -> dict:
     for item in pairs or []:
         if "=" not in item:
             raise InputError(f"--option {item!r}: write key=value")
-        k, v = item.split("=", 1)
-        out[k.strip()] = v.strip()
+        k, v = (part.strip() for part in item.split("=", 1))
+        if not k:
+            raise InputError(f"--option {item!r}: no option name before '='; write key=value")
+        if k in out:
+            raise InputError(f"-o {k}={out[k]} and -o {k}={v}: the same option twice; give one")
+        out[k] = v
     return out
 
 
@@ -172,3 +176,62 @@ def given_file(example: str):
         return path
 
     return parse
+
+
+def spread_repeats(argv: list[str], option: str = "--points") -> list[str]:
+    """``--points 1000 10000`` (as the README writes it) -> ``--points 1000 --points 10000``: the values that follow
+    the option up to the next option. Only for ``bench``, whose --points takes several sizes and which takes no
+    other argument."""
+    command = next((a for a in argv if not a.startswith("-")), None)  # the global options take no values
+    if command != "bench":
+        return argv
+    out, after = [], 0  # after: how many values the last --points has taken
+    for arg in argv:
+        if arg == option:
+            after = 0
+        elif arg.startswith("-"):
+            after = -1
+        elif after >= 0:
+            after += 1
+            if after > 1:
+                out.append(option)
+        out.append(arg)
+    return out
+
+
+def single_repeats(command, argv: list[str]) -> str | None:
+    """The line refusing a single-valued option of the command given twice (``--points 41 --points 81`` took the
+    last), or None. ``command``: the click group of the app."""
+    name = next((a for a in argv if not a.startswith("-")), None)
+    sub = getattr(command, "commands", {}).get(name)
+    if sub is None:
+        return None
+    flags = {
+        o: p.name
+        for p in sub.params
+        if getattr(p, "param_type_name", "") == "option" and not p.multiple and not p.is_flag and p.nargs == 1
+        for o in p.opts + p.secondary_opts
+    }
+    seen: dict[str, tuple[str, str]] = {}
+    for i, arg in enumerate(argv):
+        flag, eq, value = arg.partition("=") if arg.startswith("--") else (arg, "", "")
+        if flag not in flags:
+            continue
+        value = value if eq else (argv[i + 1] if i + 1 < len(argv) else "")
+        if flags[flag] in seen:
+            first, before = seen[flags[flag]]
+            return f"{first} {before} and {flag} {value}: the same option twice; give one"
+        seen[flags[flag]] = (flag, value)
+    return None
+
+
+def prepared(command, argv: list[str]) -> list[str]:
+    """The command line as the app reads it (:func:`spread_repeats`), or a usage error naming an option given twice."""
+    try:  # typer >= 0.2x carries its own copy of click (as main)
+        from typer._click import exceptions as click
+    except ImportError:  # pragma: no cover - older typer: click itself
+        from click import exceptions as click
+
+    if line := single_repeats(command, argv):
+        raise click.UsageError(line)
+    return spread_repeats(argv)

@@ -60,6 +60,32 @@ CLI_CASES = [
     ("solve-no-model", ["solve", "{scene}"], 2, "--model"),
     ("solve-unknown-model", ["solve", "{scene}", "-m", "nosuch"], 2, "model = 'nosuch'"),
     ("solve-points-text", ["solve", "{scene}", "-m", "exact-eb", "--points", "abc"], 2, "points = 'abc'"),
+    # a single-valued option given twice took the last (sweep 12)
+    (
+        "solve-points-flag-twice",
+        ["solve", "{scene}", "-m", "pd-eb", "--points", "41", "--points", "81"],
+        2,
+        "--points 41 and --points 81: the same option twice",
+    ),
+    (
+        "solve-o-option-twice",
+        ["solve", "{scene}", "-m", "pd-eb", "-o", "horizon=3", "-o", "horizon=4"],
+        2,
+        "-o horizon=3 and -o horizon=4: the same option twice",
+    ),
+    ("solve-option-no-name", ["solve", "{scene}", "-m", "pd-eb", "-o", "=3"], 2, "no option name before '='"),
+    (
+        "advise-tolerance-twice",
+        ["advise", "{scene}", "--tolerance", "1e-3", "--tolerance", "1e-2"],
+        2,
+        "--tolerance 1e-3 and --tolerance 1e-2: the same option twice",
+    ),
+    (
+        "verify-order-twice",
+        ["verify", "pd-eb", "--order", "2", "--order", "3"],
+        2,
+        "--order 2 and --order 3: the same option twice",
+    ),
     ("solve-points-fraction", ["solve", "{scene}", "-m", "pd-eb", "--points", "1e3.5"], 2, "points = '1e3.5'"),
     (
         "solve-points-1",

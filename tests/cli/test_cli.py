@@ -133,7 +133,7 @@ def test_bench_points_as_the_readme_writes_them(capsys, monkeypatch):
 
 
 def test_spread_repeats_only_touches_bench_points():
-    from pdverify.apps.cli import _spread_repeats
+    from pdverify.apps.cliargs import spread_repeats as _spread_repeats
 
     assert _spread_repeats(["bench", "--points", "1", "2", "-m", "a"]) == [
         "bench",
