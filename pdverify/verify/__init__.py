@@ -206,7 +206,7 @@ def verify(
     expected = expected_order(model, options, order)
     run_plan = runnable(p, declined)
     df = _run_suite(run_plan, model, options, out, workers, scheduler, progress)
-    found, scenes, df = _judge(model, options, p, df, expected, declined)
+    found, scenes, df = _judge(model, options, p, df, expected, declined, order)
     card = _card(model, options, p, expected, found, scenes, df, declined) | {"wall_s": time.perf_counter() - t0}
     write_card(card, out)
     return card
@@ -247,12 +247,12 @@ def _run_suite(p, model, options: dict, out: Path, workers, scheduler, progress:
     )
 
 
-def _judge(model, options: dict, p, df, expected: float, declined: dict | None = None) -> tuple:
+def _judge(model, options: dict, p, df, expected: float, declined: dict | None = None, order=None) -> tuple:
     """The card's checks in their order, its scenes (the straight and curved convergence series) and the results
     they judge (the theory-gap run, judged on its own, left out)."""
     # the dynamics and nonlocal checks solve models of their own: in a forked copy while this process judges the rest
     side = forked.start(
-        lambda: (dynamics_check(model, options, p.grids, expected), nonlocal_check(model, options, p.reference))
+        lambda: (dynamics_check(model, options, p.grids, expected), nonlocal_check(model, options, p.reference, order))
     )
     sets = ("convergence", "locking", "floor", "curved", "engineering", "curved_locking")
     files = {s: [f for f, m in p.meta.items() if m["set"] == s and not (declined or {}).get(f)] for s in sets}

@@ -38,8 +38,9 @@ DELTAS = (0.2, 0.1, 0.05)  # delta / L of the model-error path
 CONTINUUM_M = 64  # the finest m of an extrapolated continuum
 
 
-def nonlocal_check(model, options: dict, reference) -> dict:
-    """The card's nonlocal check of ``model`` with ``options`` against the local ``reference`` (its name or table)."""
+def nonlocal_check(model, options: dict, reference, order: float | None = None) -> dict:
+    """The card's nonlocal check of ``model`` with ``options`` against the local ``reference`` (its name or table);
+    ``order`` (``verify --order``): the discretisation order it expects, else the model's at a fixed horizon."""
     if model.option("horizon") is None:
         return check(NAME, "n/a", f"model {model.name} has no horizon")
     if model.curved:
@@ -88,7 +89,7 @@ def nonlocal_check(model, options: dict, reference) -> dict:
     settled = own <= CONTINUUM_SHARE * disc.min()  # as a study's continuum_in_doubt
     p_disc = observed_order(h, disc)[0] if np.all(disc > 0) else float("nan")
     p_model = observed_order(np.array(DELTAS), model_err)[0] if np.all(model_err > 0) else float("nan")
-    expected, why = model.fixed_horizon_order(options)
+    expected, why = (float(order), "--order") if order is not None else model.fixed_horizon_order(options)
     text = (
         f"discretisation order {p_disc:.2f} at delta = 0.1 L (m = 8, 16, 32: {', '.join(f'{e:.1e}' for e in disc)}); "
         f"model-error order {p_model:.2f} in delta (delta = 0.2, 0.1, 0.05 L: "

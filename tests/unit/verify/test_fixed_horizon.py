@@ -88,3 +88,12 @@ def test_a_card_s_horizon_factor_gives_way_to_the_check_s_horizon_length():
     user gave only the factor: the check holds delta as a length and drops the card's factor (the same check as
     without it)."""
     assert card_check("pd-eb", {"horizon": 1.0}) == card_check("pd-eb")
+
+
+def test_verify_order_sets_the_discretisation_order_it_expects():
+    """`verify --order P` reaches this check too (it kept the model's own: pd-rod --order 1 printed "expected
+    discretisation order 2", sweep 12): at P = 3 the rod's second order fails, at P = 1 it passes."""
+    m = get_model("pd-rod")
+    c = nonlocal_check(m, {}, exact_reference(m, {}), order=3.0)
+    assert c["verdict"] == "fail" and "expected discretisation order 3 (--order)" in c["summary"]
+    assert nonlocal_check(m, {}, exact_reference(m, {}), order=1.0)["verdict"] == "pass"
