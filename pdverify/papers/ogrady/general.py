@@ -178,13 +178,12 @@ def solve_pairs_linear(scene: Scene, params: dict, omega=None):
     return np.arange(n) * dx, w, pairs, f, info
 
 
-def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
-    """The supports the pair form holds at first order only, or (a clamp or rotational spring inside the span between
-    two points of the grid of spacing ``dx``) not at all in M (measured: docs/models/ogrady.md)."""
+def off_grid_holds(scene: Scene, dx: float) -> list[str]:
+    """A clamp or rotational spring inside the span between two points of the grid of spacing ``dx``: the pair form
+    spreads its couple over them, and M beside it does not converge (docs/models/ogrady.md, "Known limits")."""
     out = []
-    joints = {g.start for g in scene.segments[1:]}
     for i, s in enumerate(scene.supports.inner):
-        off = dx is not None and abs(s.position / dx - round(s.position / dx)) > 1e-9 * scene.length / dx
+        off = abs(s.position / dx - round(s.position / dx)) > 1e-9 * scene.length / dx
         if (s.type == "clamped" or (s.type == "spring" and s.rotational_stiffness)) and off:
             out.append(
                 f"supports.inner[{i}] ({s.type}) at x = {s.position:g} lies between two points of the grid: the "
@@ -192,7 +191,18 @@ def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
                 "% of max |M| off at 161-1281 points, a clamp at 1.07 m of a 2 m beam; w 1.1 %, 1.3 %, 0.25 %, 0.35 "
                 "%, not first order); give points that put it on a grid point, or use pd-eb or pd-timoshenko"
             )
-        elif s.type == "clamped" or (s.type == "spring" and s.rotational_stiffness):
+    return out
+
+
+def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
+    """The supports the pair form holds at first order only, or (a clamp or rotational spring inside the span between
+    two points of the grid of spacing ``dx``) not at all in M (measured: docs/models/ogrady.md)."""
+    out = off_grid_holds(scene, dx) if dx is not None else []
+    joints = {g.start for g in scene.segments[1:]}
+    for i, s in enumerate(scene.supports.inner):
+        if any(line.startswith(f"supports.inner[{i}] ") for line in out):
+            continue
+        if s.type == "clamped" or (s.type == "spring" and s.rotational_stiffness):
             on = any(abs(s.position - j) <= 1e-9 * scene.length for j in joints)
             joint = (  # docs/models/diyaroglu.md, "Known limits": the same scene, EI stepping 37-fold at the clamp
                 "; on a segment joint the constant is large: 0.31, 0.12, 0.039 of max |w| at 41, 161, 641 points "

@@ -42,7 +42,7 @@ from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics
 from .bias import bias_warnings
 from .calibration import VARIANTS, alpha, horizon_length, pair_family, spring_constants
-from .general import first_order_warnings, linear_system, scene_pairs, solve_pairs_linear
+from .general import first_order_warnings, linear_system, off_grid_holds, scene_pairs, solve_pairs_linear
 from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
 from .path import failure_warnings, follows_path, plastic_warnings, solve_path
@@ -412,6 +412,8 @@ class PDBondPair(Model):
         with timer("solve"):
             x, w, pairs, f, info = solve_pairs_linear(scene, params, omega(scene, params))
         dx = x[1] - x[0]
+        if off := off_grid_holds(scene, dx):  # the error does not fall regularly: no Richardson estimate from it
+            info["irregular"] = off[0]
         flags = first_order_warnings(scene, dx) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
         flags += force_beside_support_warnings(scene, dx)
         flags += bias_warnings(scene, params)
