@@ -584,6 +584,11 @@ def points_from_spacing(length: float, spacing) -> int:
     n = length / dx
     if n < 1 - 1e-9:
         raise InputError(f"spacing = {dx:g}: larger than the beam length {length:g}")
+    if not n < 2.0**53:
+        raise InputError(
+            f"spacing = {dx:g}: {n:.3g} intervals of the length {length:g}, more than a grid can count exactly "
+            "(2^53); give a larger spacing"
+        )
     if abs(n - round(n)) > SPACING_DIGITS * max(1.0, n):
         k = max(1, round(n))
         raise InputError(

@@ -135,7 +135,12 @@ CLI_CASES = [
         2,
         "points <= 9.0072e+15",
     ),
-    ("solve-spacing-1e-300", ["solve", "{scene}", "-m", "exact-eb", "--spacing", "1e-300"], 2, "points = 1e+300"),
+    (
+        "solve-spacing-1e-300",
+        ["solve", "{scene}", "-m", "exact-eb", "--spacing", "1e-300"],
+        2,
+        "spacing = 1e-300: 1e+300 intervals",
+    ),
     ("solve-exact-points-beyond-memory", ["solve", "{scene}", "-m", "exact-eb", "--points", str(2**52)], 3, "GiB"),
     ("modes-points-beyond-memory", ["modes", "{dyn}", "-m", "pd-timoshenko", "--points", str(2**52)], 3, "GiB"),
     ("solve-horizon-0", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "0"], 2, "horizon = 0"),
