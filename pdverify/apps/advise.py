@@ -3,7 +3,9 @@
 1. What the scene needs. Curved axis -> models with ``curved``; shear: the exact Euler–Bernoulli and
    Timoshenko solutions of the scene are compared; when the shear deflection is below half the tolerance,
    Euler–Bernoulli models qualify, else only models whose ``theory`` includes shear. 2D effects: when
-   (h/L)^2 exceeds half the tolerance, a q8 plane-stress solve is compared with exact Timoshenko; if they
+   h / span (a clamp or a point load: their layers) or (h / span)^2 (none) exceeds half the tolerance, span the
+   shortest between the ends and the supports inside (:func:`pdverify.theory.deep_beam.span_slenderness`), a q8
+   plane-stress solve is compared with exact Timoshenko; if they
    differ by more than half the tolerance only the continuum model qualifies. Dynamics: the estimate is
    of static solutions, so a scene with a ``[dynamics]`` table is refused unless the static part is asked
    for (``static = True``, CLI ``--static``): then only models that can solve that part qualify (the
@@ -34,6 +36,7 @@ from ..core.scene import Scene, bends
 from ..exact.straight import solve_straight
 from ..measure.richardson import richardson
 from ..registry import get_model, models, problems, run
+from ..theory.deep_beam import span_slenderness
 from ..verify.suite import reference_for
 from .priors import (  # noqa: F401 (PRIORS, load_priors, fit_series, rebuild_priors: re-exported)
     CANDIDATE_OPTIONS,
@@ -277,12 +280,19 @@ def _shear_need(scene: Scene, tolerance: float, cands: list) -> tuple[str, list[
 
 
 def _continuum_need(scene: Scene, tolerance: float, cands: list) -> tuple[list[str], list[str], list]:
-    """Whether beam theory is enough: (h/L)^2 against half the tolerance, else exact Timoshenko against a q8
-    plane-stress solve; the needs (none when fem-plane-stress cannot tell), the candidates rejected when only the
-    continuum model qualifies, and the candidates left."""
-    twod = (1.0 / scene.slenderness) ** 2  # order of the 2D corrections to beam theory
+    """Whether beam theory is enough: h / span or (h / span)^2 (module docstring) against half the tolerance, else
+    exact Timoshenko against a q8 plane-stress solve; the needs (none when fem-plane-stress cannot tell), the
+    candidates rejected when only the continuum model qualifies, and the candidates left."""
+    ratio, what = span_slenderness(scene)  # the shortest span's: a short span is a short beam
+    layer = any(scene.supports.kind(side) == "clamped" for side in ("left", "right")) or any(
+        s.type == "clamped" for s in scene.supports.inner
+    )
+    layer = layer or any(ld.type in ("point_force", "point_moment") for ld in scene.loads)
+    power = 1 if layer else 2  # a clamp's or a point load's layer: first order in h / span (theory/deep_beam.py)
+    twod = (1.0 / ratio) ** power  # order of the 2D corrections to beam theory
     if twod <= tolerance / 2:
-        return [f"beam theory is enough: 2D corrections are of order (h/L)^2 = {twod:.1e} <= tolerance/2"], [], cands
+        order = f"(h/{what[:-2]})" + ("" if power == 1 else "^2")
+        return [f"beam theory is enough: 2D corrections are of order {order} = {twod:.1e} <= tolerance/2"], [], cands
     if "fem-plane-stress" not in models() or models()["fem-plane-stress"].check(scene):
         return [], [], cands
     gap2 = continuum_gap(scene)

@@ -219,3 +219,21 @@ def test_a_scene_the_grids_cannot_resolve_is_refused_with_every_reason():
     assert "beam theory misses 2D effects" in line and "fem-timoshenko" in line
     assert "fem-plane-stress: did not reach 0.0001 before its grid limit, 401 points" in line
     assert "closest features (0.01" in line
+
+
+def test_a_short_span_between_supports_is_a_short_beam():
+    """A 14-depth beam whose point force sits in a span of 2.9 depths between an inner clamp and an inner pin (sweep
+    13, rnd 511): the (h/L)^2 shortcut on the whole beam (4.9e-3) passed beam theory at tolerance 1e-2, 8 % off plane
+    stress. The shortcut takes the shortest span and, with a clamp or a point load, first order in h / span: the gap
+    is measured and beam theory rejected."""
+    from pdverify.apps.advise import _continuum_need
+    from pdverify.registry import models
+
+    d = scene_dict("spring", "pinned", [{"type": "point_force", "position": 0.4653e-3, "value": -7.162e-05}])
+    d.update(beam={"length": 0.693e-3}, section={"width": 3.8131e-05, "height": 4.834e-05})
+    d["supports"]["left"] = {"type": "spring", "stiffness": 159.9}
+    d["supports"]["inner"] = [{"position": 0.38e-3, "type": "clamped"}, {"position": 0.5188e-3, "type": "pinned"}]
+    sc = parse_scene(d)
+    needs, rejected, cands = _continuum_need(sc, 1e-2, [models()["fem-timoshenko"]])
+    assert needs[0].startswith("2D effects matter: Timoshenko and a q8 plane-stress solution differ by 8.")
+    assert [m.name for m in cands] == ["fem-plane-stress"]
