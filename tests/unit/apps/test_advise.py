@@ -237,3 +237,6 @@ def test_a_short_span_between_supports_is_a_short_beam():
     needs, rejected, cands = _continuum_need(sc, 1e-2, [models()["fem-timoshenko"]])
     assert needs[0].startswith("2D effects matter: Timoshenko and a q8 plane-stress solution differ by 8.")
     assert [m.name for m in cands] == ["fem-plane-stress"]
+    from pdverify.theory.deep_beam import deep_beam_warning
+
+    assert deep_beam_warning(sc).startswith("span/h = 2.87 (the shortest span between supports / section depth)")
