@@ -33,7 +33,7 @@ def layer_constants(E: float, nu: float, G: float, h: float) -> tuple[float, flo
     D = G h^5 / 80 (Eq. 9's h^5/80 G e^2) and R = E' h^3 / 3 (Eq. 9's E' h^3/12 s^2, s = 2 xi w*)."""
     D = G * h**5 / 80
     R = E / (1.0 - nu * nu) * h**3 / 3
-    return float(np.sqrt(D * R) / h), float(np.sqrt(D / R))
+    return float(np.sqrt(D) * np.sqrt(R) / h), float(np.sqrt(D / R))  # sqrt(D R) would overflow for E past ~1e159
 
 
 def block_window(B: Band, points: np.ndarray) -> sp.csc_matrix:
@@ -66,7 +66,7 @@ def spring(s_d: float, S: float) -> float:
     """k = S s_d / (s_d - S): the spring that, in series with the grid's layer s_d, has the continuous layer's
     stiffness S; inf (the face condition w* = 0) where the grid's layer is already as stiff or softer, or where
     S is not a positive number (a degenerate material: the solve reports it)."""
-    return S * s_d / (s_d - S) if 0 < S < s_d else np.inf
+    return S / (1.0 - S / s_d) if 0 < S < s_d else np.inf  # S s_d / (s_d - S), without the product's overflow
 
 
 def clamp_springs(B: Band, scene: Scene, n: int, dx: float, reach: int, drop: list) -> dict:

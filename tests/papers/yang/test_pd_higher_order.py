@@ -739,3 +739,23 @@ def test_a_clamp_layer_in_transition_is_warned(slenderness, points, warned):
     r = run(parse_scene(d), "pd-higher-order", points=points)
     said = [w for w in r.info.get("warnings", []) if "layer of w*" in w]
     assert bool(said) == warned, said
+
+
+@pytest.mark.parametrize("factor", [1e290, 1e-170])
+def test_the_clamp_layer_keeps_its_spring_at_any_modulus(factor):
+    """E and the loads scaled together leave w unchanged: sqrt(D R) and S s_d overflowed past E ~ 2e159 (underflowed
+    at 1e-170 x), so the clamp's w* was held instead of sprung: w 9.5e-4 of max |w| off the unscaled scene
+    (sweep 13)."""
+    loads = [
+        {"type": "point_force", "position": 0.7, "value": -1000.0},
+        {"type": "distributed", "value": -300.0, "start": 0.2, "end": 1.3},
+        {"type": "point_moment", "position": 1.5, "value": 300.0},
+    ]
+    d = scene_dict("clamped", "pinned", loads)
+    a = run(parse_scene(d), "pd-higher-order", points=81)
+    d["material"] = dict(d["material"], youngs_modulus=d["material"]["youngs_modulus"] * factor)
+    for ld in d["loads"]:
+        ld["value"] *= factor
+    b = run(parse_scene(d), "pd-higher-order", points=81)
+    assert b.info["clamp_layer"]["left"]["w_star"] == a.info["clamp_layer"]["left"]["w_star"] == "spring"
+    assert np.abs(a.w - b.w).max() <= 1e-10 * np.abs(a.w).max()
