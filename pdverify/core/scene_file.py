@@ -358,7 +358,7 @@ def _check_loads_range(scene: Scene) -> list[str]:
     size, i, k = max(sizes, default=(0.0, 0, "value"))
     if 0.0 < size < LOAD_FLOOR:
         return [
-            f"loads[{i}].{k} = {getattr(scene.loads[i], k)!r}: the largest load is below {LOAD_FLOOR:.1e} in size, so "
+            f"loads[{i}].{k} = {getattr(scene.loads[i], k)!r}: the largest load is below {LOAD_FLOOR:.4g} in size, so "
             "its fields fall below float64's normal range (2.2e-308) and lose their digits; give the scene in units "
             "that keep its numbers within about 1e-100..1e100"
         ]

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 
 def apart(value: float, limit: float, digits: int = 2) -> str:
     """``value`` with the fewest significant digits, at least ``digits``, that tell it from ``limit`` (a bound
@@ -10,3 +12,15 @@ def apart(value: float, limit: float, digits: int = 2) -> str:
         (f"{value:.{d}g}" for d in range(digits, 18) if float(f"{value:.{d}g}") != float(f"{limit:.{d}g}")),
         repr(value),
     )
+
+
+PRACTICAL_POINTS = 10**8  # a grid past this many points does not fit a workstation's memory for any model
+
+
+def more_points(points: float) -> str:
+    """The advice "use at least N points" (N = ceil(points)), or, past :data:`PRACTICAL_POINTS`, that no practical grid
+    does it (a point load 1e-15 m beside a support asked for 7,205,759,403,792,795 points)."""
+    n = int(min(math.ceil(points), 2**63)) if math.isfinite(points) else 2**63
+    if n <= PRACTICAL_POINTS:
+        return f"use at least {n} points"
+    return f"no practical grid does it (about {float(points):.2g} points): move the two apart or give them as one"

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.scene import Scene
+from ..core.text import more_points
 
 
 def features(scene: Scene) -> np.ndarray:
@@ -35,7 +36,7 @@ def unresolved_features_warnings(scene: Scene, spacing: float) -> list[str]:
     return [
         f"features at x = {at[i]:.6g} and {at[i + 1]:.6g} (supports, point loads, load and segment ends) lie "
         f"{gaps[i]:.3g} apart, within one spacing ({spacing:.3g}): the grid does not place them apart, so the result "
-        f"near them is not the model's converged one; use at least {int(np.ceil(scene.length / gaps[i])) + 1} points"
+        f"near them is not the model's converged one; {more_points(np.ceil(scene.length / gaps[i]) + 1)}"
     ]
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.scene import Distributed, Scene
+from ..core.text import more_points
 from .loads import within
 
 
@@ -47,7 +48,7 @@ def layer_fix(d: float, dx: float, length: float, reach: float, fixed: tuple | N
     is a multiple of the spacing; at a fixed horizon length delta (``fixed`` = (a, b, delta): the layer is a delta + b
     spacings) a shorter horizon, and more points too when the b spacings leave no room for a horizon of a spacing."""
     if fixed is None:
-        return f"use at least {int(np.ceil(reach * length / d)) + 1} points"
+        return more_points(np.ceil(reach * length / d) + 1)
     a, b, delta = fixed
     head = f"at horizon_length = {delta:.6g} the layer is {a:g} horizons and {b:g} spacings wide, so more points alone "
     below = (d - b * dx) / a
@@ -83,7 +84,7 @@ def edge_layer_warnings(scene: Scene, x: np.ndarray, measured: str, kinds=FITTED
                     out.append(
                         f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
                         f"({scene.supports.kind(side)}), inside the {EDGE_LAYER} spacings its ghosts are fitted on: "
-                        f"{measured}; use at least {int(np.ceil(EDGE_LAYER * L / d)) + 1} points"
+                        f"{measured}; {more_points(np.ceil(EDGE_LAYER * L / d) + 1)}"
                     )
     return out
 

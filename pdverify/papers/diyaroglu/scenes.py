@@ -32,6 +32,7 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.scene import InnerSupport, PointForce, PointMoment, Scene, Spring
+from ...core.text import more_points
 from ...numerics.load_warnings import held_rotation_warnings
 from ...numerics.loads import within
 
@@ -291,7 +292,7 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
         if within(d, reach, dx):
             out.append(
                 f"{name} at {a:g} is {d / dx:.3g} spacings from an end, inside the boundary layer of {reach} "
-                f"spacings: expect large errors; use at least {int(np.ceil(reach * L / d)) + 1} points"
+                f"spacings: expect large errors; {more_points(np.ceil(reach * L / d) + 1)}"
             )
     # a support's measures reach 4 points either side (deflection_row, rotation_row): another kink there spoils them
     others = [(f"loads[{i}]", ld.position) for i, ld in enumerate(scene.loads) if hasattr(ld, "position")]

@@ -35,8 +35,8 @@ class _RodModel(_MoyerModel):
         found = super().grid_problems(scene, params)
         if params.get("variant") == "paper":
             found += [
-                f"supports.{side} = spring: variant paper gives an end that does not hold the {self._unknown()} no "
-                "traction condition (Section 4 as published), so a spring end cannot be represented; use variant "
+                f"supports.{side} = spring: variant paper sets no traction condition at an end that does not hold the "
+                f"{self._unknown()} (Section 4 as published), so a spring end cannot be represented; use variant "
                 "corrected"
                 for side in ("left", "right")
                 if scene.supports.kind(side) == "spring"
@@ -53,8 +53,8 @@ class _RodModel(_MoyerModel):
             return []
         held = ROD_HELD["axial" if self.axial else "torsion"] + ("spring",)  # a spring end: grid_problems
         return [
-            f"supports.{side} = {kind}: variant paper gives an end that does not hold the {self._unknown()} no "
-            "traction condition (Section 4 as published), so its system is singular; use variant corrected"
+            f"supports.{side} = {kind}: variant paper sets no traction condition at an end that does not hold the "
+            f"{self._unknown()} (Section 4 as published), so its system is singular; use variant corrected"
             for side in ("left", "right")
             if (kind := scene.supports.kind(side)) not in held
         ]

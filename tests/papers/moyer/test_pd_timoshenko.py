@@ -283,7 +283,7 @@ def test_rod_paper_variant_refuses_an_end_that_does_not_hold_u(right):
         scene_dict("clamped", right, [{"type": "point_force", "position": 2.0, "value": 0.0, "axial": 10.0}])
     )
     for n in (8, 81, 101):
-        with pytest.raises(InputError, match=f"supports.right = {right}: variant paper gives an end that does not"):
+        with pytest.raises(InputError, match=f"supports.right = {right}: variant paper sets no traction condition at"):
             run(sc, "pd-rod", points=n, variant="paper")
     transient = load_scene(ROOT / "studies/paper_moyer/rod_transient.toml")
     with pytest.raises(InputError, match="so its system is singular; use variant corrected"):

@@ -345,8 +345,13 @@ def test_the_least_points_search_finds_a_wide_family_s_and_names_a_grid_that_nev
     "model, right, options, refusal",
     [
         ("pd-eb", "pinned", {"reading": "layer"}, "reading = 'layer': a reading of the paper's boundary treatment"),
-        ("pd-rod", "free", {"variant": "paper"}, "supports.right = free: variant paper gives an end that does not"),
-        ("pd-torsion", "guided", {"variant": "paper"}, "supports.right = guided: variant paper gives an end that"),
+        ("pd-rod", "free", {"variant": "paper"}, "supports.right = free: variant paper sets no traction condition at"),
+        (
+            "pd-torsion",
+            "guided",
+            {"variant": "paper"},
+            "supports.right = guided: variant paper sets no traction condition",
+        ),
     ],
 )
 def test_too_few_points_comes_after_what_no_number_of_points_changes(model, right, options, refusal):

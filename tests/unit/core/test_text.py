@@ -1,0 +1,19 @@
+"""core.text: numbers in messages."""
+
+from helpers import scene_dict
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.core.text import PRACTICAL_POINTS, more_points
+from pdverify.numerics.features import unresolved_features_warnings
+
+
+def test_advice_of_more_points_stops_at_a_practical_grid():
+    """A point load 1e-15 m beside a support asked for "at least 7205759403792795 points" (sweep 13): past
+    PRACTICAL_POINTS the advice says no practical grid does it, and what to do instead."""
+    assert more_points(1000.2) == "use at least 1001 points"
+    assert more_points(PRACTICAL_POINTS) == f"use at least {PRACTICAL_POINTS} points"
+    assert more_points(7.2e15).startswith("no practical grid does it (about 7.2e+15 points): move the two apart")
+    d = scene_dict("clamped", "pinned", [{"type": "point_force", "position": 1.0 + 1e-8, "value": -1.0}])
+    d["supports"]["inner"] = [{"position": 1.0, "type": "pinned"}]
+    (line,) = unresolved_features_warnings(parse_scene(d), 0.01)
+    assert "no practical grid does it" in line and "use at least" not in line
