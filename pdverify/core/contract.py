@@ -290,6 +290,15 @@ class Model(Horizon):
         the span). Empty by default; the solve raises the same line. A study lists such combinations as skipped."""
         return []
 
+    def declines(self, scene: Scene, options: dict) -> list[str]:
+        """Why the model does not take ``scene`` with ``options``: its capabilities (:meth:`check`), else what the
+        variant does not define there (:meth:`refusals`); empty when it takes it, or when the options themselves are
+        bad (the solve says so)."""
+        try:
+            return self.check(scene) or self.refusals(scene, self.resolve(scene, dict(options)))
+        except InputError:
+            return []
+
     def check(self, scene: Scene) -> list[str]:
         """Reasons this model cannot solve ``scene`` (empty when it can): its declared capabilities first
         (subclasses add their own reasons to ``super().check(scene)``)."""

@@ -64,14 +64,7 @@ def _solve(scene: dict, model, options: dict, points: int):
 
 
 def _declines(model, scene: dict, options: dict) -> bool:
-    """Whether the model declines the scene, or refuses it with these options (a variant's ``refusals``)."""
-    sc = parse_scene(scene)
-    if model.check(sc):
-        return True
-    try:
-        return bool(model.refusals(sc, model.resolve(sc, dict(options))))
-    except InputError:  # bad options: the solve says so
-        return False
+    return bool(model.declines(parse_scene(scene), options))
 
 
 def symmetry(model, options: dict, points: int) -> list[tuple[str, float]]:

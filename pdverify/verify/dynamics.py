@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.errors import InputError
 from ..core.scene_file import parse_scene
 from ..measure.metrics import ROUND_OFF_LEVEL, observed_order
 from ..measure.modes import gives_modes, modes
@@ -28,7 +27,7 @@ def frequency_series(model, options: dict, grids: tuple) -> list[dict]:
         d = straight(left, right, [], name=f"{left}-{right}, free vibration")
         d["material"] = dict(d["material"], density=DENSITY)
         scene = parse_scene(d)
-        if model.check(scene) or _refused(model, scene, dict(options, points=grids[0])):
+        if model.declines(scene, dict(options, points=grids[0])):  # its capabilities, its variant's refusals
             continue
         errors, failed = [], []
         for n in grids:
@@ -54,14 +53,6 @@ def frequency_series(model, options: dict, grids: tuple) -> list[dict]:
             }
         )
     return out
-
-
-def _refused(model, scene, options: dict) -> bool:
-    """Whether the variant refuses the support pair (``refusals``: a rod's paper variant at a free end)."""
-    try:
-        return bool(model.refusals(scene, model.resolve(scene, options)))
-    except InputError:  # bad options: the eigensolve says so
-        return False
 
 
 def dynamics_check(model, options: dict, grids: tuple, expected: float) -> dict:
