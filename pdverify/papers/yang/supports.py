@@ -30,7 +30,7 @@ import scipy.sparse as sp
 from ...core.errors import InputError
 from ...core.scene import PointForce, PointMoment, Scene, Spring
 from ...numerics.recovery import derivative, jump_positions, kink_positions
-from ...numerics.statics import statics_over
+from ...numerics.statics import statics_from_zero, statics_over
 from ...theory.higher_order import NF, TH, point_work
 
 D1 = np.zeros((5, 4))
@@ -168,8 +168,40 @@ def section_forces(
     loaded = scene.model_copy(update={"loads": list(scene.loads) + held})
     known = [p for p in inner if p not in unknown]
     M, V, kept = statics_over(loaded, x, M, V, spans, unknown, known)  # a support without its reaction: layers stay
+    M, V = from_ends(loaded, x, M, V, reactions or {}, layer, h, [a for a, _ in spans[2:]], [b for _, b in spans[2:]])
     left = lambda at: any(a <= at <= b for a, b in kept)  # noqa: E731 - in a span statics left as recovered
     return {"M": M, "V": V}, [ld for ld in loads if left(ld.position)], [p for p in inner if left(p)]
+
+
+CLAMP_DEPTHS = 2  # depths from a clamped end over which M and V are taken by statics from its reactions
+
+
+def from_ends(scene: Scene, x, M, V, reactions: dict, layer: int, h: float, starts=(), stops=()) -> tuple:
+    """(M, V) with the ``layer`` points next to each end (:data:`CLAMP_DEPTHS` depths ``h`` next to a clamped end,
+    whose layer of w* the recovered shear carries that far) taken by statics from the end itself: V(0) = force_left,
+    M(0) = -moment_left, V(L) = -force_right, M(L) = moment_right (the model's ``reactions``, two of them closed by
+    statics: docs/contract.md), each stretch stopping short of the stretches of the point loads and supports inside
+    the span (index spans from ``starts`` to ``stops``) and of the beam's middle. An end whose reactions are not
+    given keeps its values."""
+    if not {"force_left", "moment_left", "force_right", "moment_right"} <= set(reactions) or len(x) < 4:
+        return M, V
+    n, dx = len(x), x[1] - x[0]
+    Q, R = statics_from_zero(scene, x)
+    M, V = np.array(M, float), np.array(V, float)
+    for side in ("left", "right"):
+        k = layer if scene.supports.kind(side) != "clamped" else max(layer, int(np.ceil(CLAMP_DEPTHS * h / dx)))
+        if side == "left":
+            k = min([k, n // 2, *(int(a) for a in starts)])
+            v0, m0 = reactions["force_left"], -reactions["moment_left"]
+            at = slice(0, max(k, 0))
+        else:
+            k = min([k, n // 2, *(n - int(b) for b in stops)])
+            v0 = -reactions["force_right"] - Q[-1]  # V(0) and M(0) that give the right end's values
+            m0 = reactions["moment_right"] - v0 * x[-1] - R[-1]
+            at = slice(n - max(k, 0), n)
+        V[at] = v0 + Q[at]
+        M[at] = m0 + v0 * x[at] + R[at]
+    return M, V
 
 
 def reaction_loads(scene: Scene, reactions: dict) -> tuple[list, list[float]]:
