@@ -47,6 +47,7 @@ from ..core.errors import SolveError
 from ..core.result import Result, Timer
 from ..core.scene import Distributed, PointForce, PointMoment, Scene, Spring
 from ..numerics.error_bound import BOUND_LIMIT
+from ..numerics.loads import axis_support_side
 from ..theory.higher_order import point_work, system_matrix
 
 # The generalised-force units of y's four components (theta, theta*, w, w*) in the solution's units of h
@@ -413,7 +414,7 @@ class ExactHigherOrder(Model):
         sol = Solution(scene, params.get("loads", "faces"), params.get("pin", "face"))
 
         def fields(x):
-            return sol.fields(x)
+            return support_sides(scene, x, sol.fields(x))
 
         fields.error_bound = sol.error_bound
         return fields
@@ -426,7 +427,7 @@ class ExactHigherOrder(Model):
         with timer("solve"):
             sol = Solution(scene, params["loads"], params["pin"])
             x = np.linspace(0.0, scene.length, params["points"])
-            f = sol.fields(x)
+            f = support_sides(scene, x, sol.fields(x))
         info = {"reactions": sol.reactions(), "depth": sol.h, "loads": params["loads"], "pin": params["pin"]}
         info["cond"] = sol.cond
         info["error_bound"] = sol.error_bound
@@ -448,6 +449,14 @@ class ExactHigherOrder(Model):
             timings=timer.timings,
             info=info,
         )
+
+
+def support_sides(scene: Scene, x: np.ndarray, f: dict) -> dict:
+    """The fields ``f`` at the points ``x`` with M and V at an end point on its support's side, every load on that
+    point acting (docs/contract.md: moment_left = -M(0), force_left = V(0), moment_right = M(L), force_right =
+    -V(L)); the solution's pieces end on the beam's side."""
+    g = axis_support_side(scene, x, {"M": f["M"], "Q": -np.asarray(f["V"], float)})
+    return dict(f, M=g["M"], V=-g["Q"])
 
 
 MODELS = [ExactHigherOrder()]
