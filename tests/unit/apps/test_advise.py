@@ -217,7 +217,7 @@ def test_a_scene_the_grids_cannot_resolve_is_refused_with_every_reason():
     line = exc.value.lines[0]
     assert "fem-eb, pd-bond-pair, pd-eb: Euler–Bernoulli theory misses the shear deflection" in line
     assert "beam theory misses 2D effects" in line and "fem-timoshenko" in line
-    assert "fem-plane-stress: did not reach 0.0001 before its grid limit, 401 points" in line
+    assert "fem-plane-stress: did not reach 0.0001 / 3 before its grid limit, 401 points" in line
     assert "closest features (0.01" in line
 
 
@@ -240,3 +240,36 @@ def test_a_short_span_between_supports_is_a_short_beam():
     from pdverify.theory.deep_beam import deep_beam_warning
 
     assert deep_beam_warning(sc).startswith("span/h = 2.87 (the shortest span between supports / section depth)")
+
+
+def test_the_choice_meets_the_tolerance_where_its_estimate_is_a_factor_two_low():
+    """Sweep 14: three supports inside the span (pinned, clamped, a spring), loads on each, L/h = 50: advise at 1e-3
+    chose fem-plane-stress at 41 points on an estimate of 7.8e-4 whose true error was 1.35e-3 (against 641 points);
+    the estimate was within the factor 3 docs/cli.md gives, but the choice missed the tolerance. A candidate now needs
+    an estimate below a third of the tolerance (advise.SPREAD), and the choice's error meets it."""
+    import numpy as np
+
+    inner = [
+        {"position": 0.75, "type": "pinned"},
+        {"position": 1.5, "type": "clamped"},
+        {"position": 2.25, "type": "spring", "stiffness": 5e5, "rotational_stiffness": 2e4},
+    ]
+    loads = [
+        {"type": "point_moment", "position": 0.75, "value": 400.0},
+        {"type": "point_moment", "position": 1.5, "value": -250.0},
+        {"type": "point_force", "position": 1.5, "value": -800.0},
+        {"type": "point_force", "position": 2.25, "value": -1200.0},
+        {"type": "point_moment", "position": 2.25, "value": 150.0},
+        {"type": "distributed", "value": -500.0, "start": 0.3, "end": 2.7},
+    ]
+    d = scene_dict("pinned", "guided", loads)
+    d["supports"]["inner"] = inner
+    d.update(beam={"length": 3.0}, section={"width": 0.04, "height": 0.06})
+    d["material"] = {"youngs_modulus": 70e9, "poissons_ratio": 0.33}
+    sc = parse_scene(d)
+    c = advise(sc, 1e-3).choice
+    assert c.model == "fem-plane-stress" and c.estimate * 3 < 1e-3
+    got = run(sc, c.model, points=c.points, **c.options)
+    fine = run(sc, c.model, points=(c.points - 1) * 8 + 1, **c.options)  # its own error there is about 1/64 of got's
+    err = np.abs(got.w - fine.w[::8]).max() / np.abs(fine.w).max()
+    assert err < 1e-3, err
