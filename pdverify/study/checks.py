@@ -30,6 +30,7 @@ import pandas as pd
 
 from ..core.errors import InputError
 from ..core.result import QUANTITIES
+from ..core.text import close_match
 from ..measure.metrics import ROUND_OFF_LEVEL, log_slope
 from ..registry import get_model
 from .store import write_atomic
@@ -87,7 +88,12 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
     for j, c in enumerate(checks):
         where = f"{path}: checks[{j}]"
         if not isinstance(c, dict) or not isinstance(c.get("model"), str):
-            errors.append(f"{where}: model: missing; every check names a model of the study's runs")
+            typo = close_match("model", c) if isinstance(c, dict) and "model" not in c else None
+            errors.append(
+                f"{where}: unknown key '{typo}'; did you mean 'model'?"
+                if typo
+                else f"{where}: model: missing; every check names a model of the study's runs"
+            )
             continue
         if c["model"] not in models:
             errors.append(

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ..core.errors import InputError
 from ..core.result import QUANTITIES
+from ..core.text import close_match
 from ..registry import Model, get_model, models
 from .checks import finite_number, strict_type
 
@@ -73,6 +74,9 @@ def parse_run(
     the model is measured on."""
     where = f"{path}: runs[{i}]"
     if not isinstance(run, dict) or not isinstance(run.get("model"), str):
+        typo = close_match("model", run) if isinstance(run, dict) and "model" not in run else None
+        if typo:
+            return None, [f"{where}: unknown key '{typo}'; did you mean 'model'?"]
         return None, [f"{where}: model: missing; every run names a model"]
     try:
         model = get_model(run["model"])

@@ -53,6 +53,7 @@ from ..core.errors import InputError
 from ..core.result import QUANTITIES, canonical
 from ..core.scene import Scene
 from ..core.scene_file import load_scene, parse_scene, read_toml
+from ..core.text import close_match
 from ..core.version import __version__
 from ..registry import Model, get_model, models, use_manifest
 from ..registry.plugins import GROUP
@@ -311,24 +312,28 @@ def _external(path: Path, manifests) -> list[str]:
 def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
     """The study's name, scene files and runs (as listed; an unusable list is empty), and the error lines of
     those, of unknown top-level keys and of ``[papers]``."""
+    meant = {key: close_match(key, STUDY_KEYS - set(data)) for key in data if key not in STUDY_KEYS}
     errors = [
-        f"{path}: unknown key '{key}'; allowed: {', '.join(sorted(STUDY_KEYS))}"
-        for key in data
-        if key not in STUDY_KEYS
+        f"{path}: unknown key '{key}'; "
+        + (f"did you mean '{close}'?" if close else f"allowed: {', '.join(sorted(STUDY_KEYS))}")
+        for key, close in meant.items()
     ]
+    misspelt = set(meant.values())  # a key misspelt is one problem: its "missing" line goes
     name = data.get("name")
-    if not isinstance(name, str) or not name:
+    if (not isinstance(name, str) or not name) and "name" not in misspelt:
         errors.append(f"{path}: name: missing; give the study a name")
     if not isinstance(data.get("description", ""), str):
         errors.append(f'{path}: description = {data["description"]!r}: give a text in quotes, e.g. description = "..."')
     scenes = data.get("scenes")
     if not isinstance(scenes, list) or not scenes or not all(isinstance(s, str) for s in scenes):
         given = "missing" if scenes is None else f"= {scenes!r}"
-        errors.append(f"{path}: scenes {given}: give a non-empty list of scene files (a run's scenes pick from it)")
+        if "scenes" not in misspelt:
+            errors.append(f"{path}: scenes {given}: give a non-empty list of scene files (a run's scenes pick from it)")
         scenes = []
     runs = data.get("runs")
     if not isinstance(runs, list) or not runs:
-        errors.append(f"{path}: runs: missing or empty; add at least one [[runs]] table with a model")
+        if "runs" not in misspelt:
+            errors.append(f"{path}: runs: missing or empty; add at least one [[runs]] table with a model")
         runs = []
     papers = data.get("papers", {})
     if not isinstance(papers, dict) or not all(isinstance(v, str) for v in papers.values()):
@@ -475,7 +480,14 @@ def _benchmark_rows_errors(study: Study, scene_objs: dict) -> list[str]:
     for j, bench in enumerate(study.benchmarks):
         where = f"{study.path}: benchmarks[{j}]"
         if not isinstance(bench, dict) or not {"name", "scene", "model"} <= set(bench):
-            errors.append(f"{where}: needs name, scene and model")
+            lost = sorted({"name", "scene", "model"} - set(bench)) if isinstance(bench, dict) else []
+            typo = [(close_match(k, bench), k) for k in lost]
+            typo = [(t, k) for t, k in typo if t and t not in ("name", "scene", "model")]
+            errors.append(
+                f"{where}: unknown key '{typo[0][0]}'; did you mean '{typo[0][1]}'?"
+                if typo
+                else f"{where}: needs name, scene and model"
+            )
             continue
         if bench["scene"] not in scene_objs:
             errors.append(f"{where}.scene = {bench['scene']!r}: not one of the study's scenes")

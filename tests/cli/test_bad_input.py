@@ -362,6 +362,11 @@ CLI_CASES = [
     ),
     ("study-description-list", ["study", "{study_description_list}"], 2, "description = ['a']: give a text"),
     ("study-checks-text", ["study", "{study_checks}"], 2, "checks = 'all'"),
+    # a misspelt key names the key it stands for, one line (was two: "unknown key" and "runs: missing")
+    ("study-runs-misspelt", ["study", "{study_run_typo}"], 2, "unknown key 'run'; did you mean 'runs'?"),
+    ("study-run-model-misspelt", ["study", "{study_model_typo}"], 2, "runs[0]: unknown key 'modle'; did you mean"),
+    ("study-check-model-misspelt", ["study", "{study_check_model_typo}"], 2, "checks[0]: unknown key 'modle'"),
+    ("study-benchmark-scene-misspelt", ["study", "{study_bench_scene_typo}"], 2, "unknown key 'scnee'; did you mean"),
     # damaged study folders
     ("report-empty-results", ["report", "{empty_results}"], 2, "no cases"),
     ("report-no-cases-folder", ["report", "{text_only}"], 2, "no cases folder"),
@@ -621,6 +626,12 @@ def files(tmp_path_factory):
     (d / "study_run_no_scenes.toml").write_text(head + runs + runs.replace("points", "scenes = []\npoints"))
     (d / "study_description_list.toml").write_text(head + 'description = ["a"]\n' + runs)
     (d / "study_checks.toml").write_text(head + 'checks = "all"\n' + runs)
+    (d / "study_run_typo.toml").write_text(head + runs.replace("[[runs]]", "[[run]]"))
+    (d / "study_model_typo.toml").write_text(head + runs.replace("model", "modle"))
+    check = '[[checks]]\nmodle = "pd-eb"\nscene = "x"\nobserved_order = {min = 1.5}\n'
+    (d / "study_check_model_typo.toml").write_text(head + runs + check)
+    bench = f'[[benchmarks]]\nname = "b"\nscene = "{SCENE.as_posix()}"\nmodel = "pd-eb"\nposition = 0.5\n'
+    (d / "study_bench_scene_typo.toml").write_text(head + runs + bench.replace("scene =", "scnee ="))
     (d / "study_quoted_points.toml").write_text(head + '[[runs]]\nmodel = "pd-eb"\npoints = ["11"]\n')
     (d / "study_dev_zero.toml").write_text(head.replace(SCENE.as_posix(), "/dev/zero") + runs)
     grid = ", ".join(str(k) for k in range(11, 10_012))  # 20,002 cases with two variants
@@ -721,6 +732,10 @@ def files(tmp_path_factory):
         "study_run_no_scenes": d / "study_run_no_scenes.toml",
         "study_description_list": d / "study_description_list.toml",
         "study_checks": d / "study_checks.toml",
+        "study_run_typo": d / "study_run_typo.toml",
+        "study_model_typo": d / "study_model_typo.toml",
+        "study_check_model_typo": d / "study_check_model_typo.toml",
+        "study_bench_scene_typo": d / "study_bench_scene_typo.toml",
         "study_quoted_points": d / "study_quoted_points.toml",
         "study_dev_zero": d / "study_dev_zero.toml",
         "study_too_big": d / "study_too_big.toml",
