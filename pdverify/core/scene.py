@@ -454,9 +454,9 @@ def straight_mechanism(scene) -> str | None:
         if not is_mechanism(sup.left, sup.right):
             return None
         return (
-            f"supports = {sup.left}-{sup.right}: a mechanism (the beam can move as a rigid body) that cannot carry "
-            "the loads; fix the deflection at one end and the rotation somewhere (clamped, or pinned/roller at both "
-            "ends, or pinned with guided)"
+            f"supports = {sup.left}-{sup.right}: a mechanism (the beam can move as a rigid body: no static solution, "
+            "and rigid-body modes, which the models do not compute); fix the deflection at one end and the rotation "
+            "somewhere (clamped, or pinned/roller at both ends, or pinned with guided)"
         )
     if np.linalg.matrix_rank(rigid_rows(scene)) == 2:
         return None
