@@ -9,6 +9,7 @@ from pathlib import Path
 
 import typer
 
+from ..core.contract import _whole
 from ..core.errors import InputError, OutputError
 from .cliargs import given_path
 from .output import Format, check_folder
@@ -18,8 +19,8 @@ def bench(
     model: list[str] | None = typer.Option(
         None, "--model", "-m", help="model(s) to time; default: all with an assembled system"
     ),
-    points: list[int] | None = typer.Option(
-        None, "--points", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"
+    points: list[str] | None = typer.Option(
+        None, "--points", metavar="N", help="sizes; default 1e3 1e4 1e5 1e6 (1e5 max for 4-DOF/PDDO models)"
     ),
     fmt: Format = typer.Option(Format.table, "--format", help="table, or json (one object per line)"),
     scene: Path | None = typer.Option(None, help="scene to time (default: the example cantilever)"),
@@ -36,6 +37,7 @@ def bench(
     ),
 ):
     """Time assembly and solve against the banded-solve limit of the same matrix, per model and size."""
+    points = [_points(p) for p in points] if points else None
     if large_horizon:
         from .bench_horizon import bench_command
 
@@ -118,3 +120,12 @@ def bench(
         if fmt != Format.json:
             typer.echo(f"performance page: {page}")
     failed_runs(rows)
+
+
+def _points(text: str) -> int:
+    """``--points`` as a whole number, as ``solve --points`` reads it (``1e3`` is 1000); InputError otherwise."""
+    try:
+        n = _whole(text)
+    except (ValueError, OverflowError):
+        raise InputError(f"--points {text}: give a whole number of points, e.g. 1000 or 1e3") from None
+    return n

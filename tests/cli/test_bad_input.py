@@ -235,7 +235,8 @@ CLI_CASES = [
     ("advise-tolerance-0", ["advise", "{scene}", "--tolerance", "0"], 2, "--tolerance 0"),
     ("advise-missing-scene", ["advise", "{tmp}/missing.toml"], 2, "missing.toml"),
     ("bench-unknown-model", ["bench", "-m", "nosuch"], 2, "model = 'nosuch'"),
-    ("bench-points-text", ["bench", "-m", "exact-eb", "--points", "abc"], 2, "--points"),
+    ("bench-points-text", ["bench", "-m", "exact-eb", "--points", "abc"], 2, "--points abc: give a whole number"),
+    ("bench-points-fraction", ["bench", "-m", "pd-eb", "--points", "41.5"], 2, "--points 41.5: give a whole number"),
     # below the least its grid takes (it named the bare least 6, then failed a row at 6 and exited 0)
     ("bench-points-below-least", ["bench", "-m", "pd-timoshenko", "--points", "6"], 2, "needs at least 20 points"),
     ("bench-format-unknown", ["bench", "--format", "xml"], 2, "--format"),

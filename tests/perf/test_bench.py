@@ -231,3 +231,12 @@ def test_inaccurate_runs_count_toward_no_target(tmp_path):
     assert "no run within" in ch.loc["c", "statement"] and "1.6" in ch.loc["c", "statement"]
     page = build_performance(rows, tmp_path, cost_slope(rows)).read_text()
     assert page.count("<svg") == 2 and "work-precision" in page and "cheapest run within 1e-06" in page
+
+
+@pytest.mark.parametrize("text, n", [("4.1e1", 41), ("1e3", 1000), ("101", 101), ("9007199254740993", 2**53 + 1)])
+def test_points_read_as_solve_reads_them(text, n):
+    """Sweep 13: `bench --points 4.1e1` was refused (an integer option) where `solve --points 4.1e1` solves 41
+    points; both read a whole number in any notation now (pdverify.core.contract._whole)."""
+    from pdverify.apps.bench_command import _points
+
+    assert _points(text) == n
