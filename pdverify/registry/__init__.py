@@ -40,6 +40,7 @@ from ..core.scene_file import parse_scene
 from ..numerics.features import stiffness_step_warnings, unresolved_features_warnings
 from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
+from .close_supports import close_supports_warning
 from .external import ExternalModel, load_manifest
 from .plugins import discover, remember_manifest
 
@@ -247,6 +248,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         moment = quantity_of(result.w, result.rotation, result.fields, "moment")  # M or moment, as it names it
         result.info["reactions"] = equilibrium_reactions(scene, result.x, result.w, result.rotation, moment)
         check_finite(result)
+    if "reactions" in result.info and m.bending and (close := close_supports_warning(scene)):
+        result.info.setdefault("warnings", []).append(close)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

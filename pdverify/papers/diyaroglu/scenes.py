@@ -303,10 +303,12 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
         for v in scene.span(ld)
     ]
     others += spots
+    said = set()  # two supports near each other: one line for the pair
     for (name, a), sup in zip(spots, scene.supports.inner):
         gap = [(o, b, abs(b - a)) for o, b in others if o != name and 0.0 < b < L]
-        near = [(o, b) for o, b, d in gap if 0.0 < d and within(d, 4, dx)]
+        near = [(o, b) for o, b, d in gap if 0.0 < d and within(d, 4, dx) and (o, name) not in said]
         for o, b in near:
+            said.add((name, o))
             out.append(
                 f"{name} at {a:g} and {o} at {b:g} are {abs(b - a) / dx:.3g} spacings apart: the support's "
                 f"one-sided rows (4 points a side) straddle it, first order there; use at least "
