@@ -142,10 +142,11 @@ def section_forces(
     scene: Scene, x: np.ndarray, u: np.ndarray, C: np.ndarray, h: float, layer: int = 0, reactions=None
 ) -> tuple:
     """({"M", "V"} at the points from u (n x 4) (module docstring), the point loads inside the beam and the positions
-    of the supports inside the span whose layers are left as recovered): the ``layer`` points next to each end, on
-    each side of a point load and of a support inside the span by statics from the point beside them
-    (:func:`pdverify.numerics.statics.statics_over`), the supports' ``reactions`` (the solve's, named as exact-eb
-    names them) acting as loads; a support whose reaction is not given keeps its layers as recovered."""
+    of the supports inside the span whose layers are left as recovered). By statics over the sections' layers
+    (:data:`DEPTHS` depths, at least ``layer`` points): next to each end from the end's ``reactions`` (the solve's,
+    named as exact-eb names them: :func:`from_ends`), then on each side of a point load and of a support inside the
+    span from the points beside them (:func:`pdverify.numerics.statics.statics_over`), the supports' reactions acting
+    as loads; a support whose reaction is not given keeps its layers as recovered."""
     jumps = np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")]
     dx = x[1] - x[0]
     ends = [x[0] + dx / 2, x[-1] - dx / 2]  # no difference takes the end points' values, inside the ends' layers
@@ -160,48 +161,49 @@ def section_forces(
     n = len(x)
     loads = [ld for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and 0.0 < ld.position < x[-1]]
     inner = [s.position for s in scene.supports.inner]
-    if not (layer and n >= 2 * layer + 3):
+    if not layer or n < 4:
         return {"M": M, "V": V}, loads, inner
     held, unknown = reaction_loads(scene, reactions or {})
-    at = [(p - x[0]) / dx for p in [ld.position for ld in loads] + inner]  # in spacings; the two points around each
-    spans = [(0, layer), (n - layer, n)] + [(np.floor(t + 1e-9) - layer, np.ceil(t - 1e-9) + layer + 1) for t in at]
     loaded = scene.model_copy(update={"loads": list(scene.loads) + held})
+    wide = max(layer, int(np.ceil(DEPTHS * h / dx)))  # the stretch each side: the layers reach about half a depth
+    M, V, kl, kr = from_ends(loaded, x, M, V, reactions or {}, wide, unknown)
+    at = [(p - x[0]) / dx for p in [ld.position for ld in loads] + inner]  # in spacings; the two points around each
+    spans = [(np.floor(t + 1e-9) - wide, np.ceil(t - 1e-9) + wide + 1) for t in at]
+    spans = [(max(a, kl), min(b, n - kr)) for a, b in spans]  # the ends' stretches hold already: anchors for the rest
     known = [p for p in inner if p not in unknown]
     M, V, kept = statics_over(loaded, x, M, V, spans, unknown, known)  # a support without its reaction: layers stay
-    M, V = from_ends(loaded, x, M, V, reactions or {}, layer, h, [a for a, _ in spans[2:]], [b for _, b in spans[2:]])
     left = lambda at: any(a <= at <= b for a, b in kept)  # noqa: E731 - in a span statics left as recovered
     return {"M": M, "V": V}, [ld for ld in loads if left(ld.position)], [p for p in inner if left(p)]
 
 
-CLAMP_DEPTHS = 2  # depths from a clamped end over which M and V are taken by statics from its reactions
+DEPTHS = 2  # depths next to each end, point load and support inside the span over which M and V are taken by statics
 
 
-def from_ends(scene: Scene, x, M, V, reactions: dict, layer: int, h: float, starts=(), stops=()) -> tuple:
-    """(M, V) with the ``layer`` points next to each end (:data:`CLAMP_DEPTHS` depths ``h`` next to a clamped end,
-    whose layer of w* the recovered shear carries that far) taken by statics from the end itself: V(0) = force_left,
-    M(0) = -moment_left, V(L) = -force_right, M(L) = moment_right (the model's ``reactions``, two of them closed by
-    statics: docs/contract.md), each stretch stopping short of the stretches of the point loads and supports inside
-    the span (index spans from ``starts`` to ``stops``) and of the beam's middle. An end whose reactions are not
-    given keeps its values."""
-    if not {"force_left", "moment_left", "force_right", "moment_right"} <= set(reactions) or len(x) < 4:
-        return M, V
+def from_ends(scene: Scene, x, M, V, reactions: dict, wide: int, barriers=()) -> tuple:
+    """(M, V, the points taken at the left end, at the right end) with the ``wide`` points next to each end taken by
+    statics from the end itself: V(0) = force_left, M(0) = -moment_left, V(L) = -force_right, M(L) = moment_right
+    (the model's ``reactions``, two of them closed by statics: docs/contract.md), the loads of ``scene`` (the supports
+    inside the span with their reactions among them) acting on the way. A stretch stops at the beam's middle (a
+    middle point both reach: the mean of the two) and before a support of ``barriers`` (positions: reactions not
+    known). No reactions given: as they are."""
+    if not {"force_left", "moment_left", "force_right", "moment_right"} <= set(reactions):
+        return M, V, 0, 0
     n, dx = len(x), x[1] - x[0]
+    at = [(p - x[0]) / dx for p in barriers]
+    kl = min([wide, (n + 1) // 2, *(int(np.ceil(t - 1e-9)) for t in at)])
+    kr = min([wide, (n + 1) // 2, *(n - 1 - int(np.floor(t + 1e-9)) for t in at)])
     Q, R = statics_from_zero(scene, x)
+    vl, ml = reactions["force_left"], -reactions["moment_left"]
+    vr = -reactions["force_right"] - Q[-1]  # V(0) and M(0) that give the right end's values
+    mr = reactions["moment_right"] - vr * x[-1] - R[-1]
     M, V = np.array(M, float), np.array(V, float)
-    for side in ("left", "right"):
-        k = layer if scene.supports.kind(side) != "clamped" else max(layer, int(np.ceil(CLAMP_DEPTHS * h / dx)))
-        if side == "left":
-            k = min([k, n // 2, *(int(a) for a in starts)])
-            v0, m0 = reactions["force_left"], -reactions["moment_left"]
-            at = slice(0, max(k, 0))
-        else:
-            k = min([k, n // 2, *(n - int(b) for b in stops)])
-            v0 = -reactions["force_right"] - Q[-1]  # V(0) and M(0) that give the right end's values
-            m0 = reactions["moment_right"] - v0 * x[-1] - R[-1]
-            at = slice(n - max(k, 0), n)
-        V[at] = v0 + Q[at]
-        M[at] = m0 + v0 * x[at] + R[at]
-    return M, V
+    both = kl + kr > n  # an odd grid whose middle point both stretches reach
+    for v0, m0, part in ((vl, ml, slice(0, kl)), (vr, mr, slice(n - kr, n))):
+        V[part], M[part] = v0 + Q[part], m0 + v0 * x[part] + R[part]
+    if both:
+        c = n // 2
+        V[c], M[c] = (vl + vr) / 2 + Q[c], (ml + mr) / 2 + (vl + vr) / 2 * x[c] + R[c]
+    return M, V, kl, kr
 
 
 def reaction_loads(scene: Scene, reactions: dict) -> tuple[list, list[float]]:
