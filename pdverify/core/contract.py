@@ -44,6 +44,7 @@ from .errors import InputError
 from .horizon import Horizon
 from .result import Result
 from .scene import Scene, straight_mechanism
+from .text import close_match
 
 
 def _whole(value) -> int:
@@ -109,8 +110,11 @@ class Option:
                 + " here"
             ) from None
         if self.choices is not None and v not in self.choices:
+            close = close_match(v, self.choices) if isinstance(v, str) else None
+            hint = f"did you mean '{close}'? " if close else ""
             raise InputError(
-                f"{self.name} = {value!r}: not an option of model {model}; allowed: {', '.join(map(str, self.choices))}"
+                f"{self.name} = {value!r}: not an option of model {model}; {hint}allowed: "
+                + ", ".join(map(str, self.choices))
             )
         if self.minimum is not None and (v < self.minimum or (self.strict and v == self.minimum)):
             raise InputError(
@@ -516,8 +520,10 @@ class Model(Horizon):
         names = [o.name for o in self.options]
         for key in given:
             if key not in names:
+                close = close_match(key, names)
+                hint = f"did you mean '{close}'? " if close else ""
                 raise InputError(
-                    f"{key}: model {self.name} takes no option '{key}'; it takes: {', '.join(names) or 'none'}"
+                    f"{key}: model {self.name} takes no option '{key}'; {hint}it takes: {', '.join(names) or 'none'}"
                 )
         params, short = {}, None
         for opt in self.options:

@@ -26,10 +26,10 @@ def more_points(points: float) -> str:
     return f"no practical grid does it (about {float(points):.2g} points): move the two apart or give them as one"
 
 
-def close_match(word: str, choices) -> str | None:
-    """The one of ``choices`` that ``word`` looks like a misspelling of (difflib's ratio at least 0.75, as a scene
-    file's "did you mean"), or None."""
+def close_match(word: str, choices, cutoff: float = 0.75) -> str | None:
+    """The one of ``choices`` that ``word`` looks like a misspelling of (difflib's ratio at least ``cutoff``, 0.75 as
+    a scene file's "did you mean"), or None."""
     import difflib
 
-    found = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=0.75)
+    found = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=cutoff)
     return found[0] if found else None

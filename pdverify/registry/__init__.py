@@ -37,6 +37,7 @@ from ..core.reactions import equilibrium_reactions
 from ..core.result import Result, check_finite, quantity_of
 from ..core.scene import Scene
 from ..core.scene_file import parse_scene
+from ..core.text import close_match
 from ..numerics.features import stiffness_step_warnings, unresolved_features_warnings
 from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
@@ -126,7 +127,9 @@ def model_argument(name: str) -> str:
 def get_model(name: str) -> Model:
     reg = models()
     if name not in reg:
-        raise InputError(f"model = {name!r}: unknown model; available: {', '.join(reg)}")
+        close = close_match(name, reg)
+        hint = f"did you mean '{close}'? " if close else ""
+        raise InputError(f"model = {name!r}: unknown model; {hint}available: {', '.join(reg)}")
     return reg[name]
 
 

@@ -58,14 +58,25 @@ def strict_type(option, value) -> str | None:
     return None
 
 
-def option_filter_errors(model, filters: dict, where: str) -> list[str]:
-    """Errors of the option filters of a benchmark or check (keys the model's options, values of their type)."""
+def misspelt(key: str, row_keys, model) -> str:
+    """The line of a key of a study row (a run, benchmark or check) that is neither the row's own (``row_keys``) nor an
+    option of ``model``: "did you mean" the one it looks like, else the model's options."""
+    names = [o.name for o in model.options]
+    close = close_match(key, [*row_keys, *names])
+    if close:
+        return f"unknown key '{key}'; did you mean '{close}'?"
+    return f"model {model.name} takes no option '{key}'; it takes: {', '.join(names)}"
+
+
+def option_filter_errors(model, filters: dict, where: str, row_keys=()) -> list[str]:
+    """Errors of the option filters of a benchmark or check (keys the model's options, values of their type;
+    ``row_keys``: the row's own keys, which a misspelt key may stand for)."""
     errors = []
     names = {o.name: o for o in model.options}
     for k, v in filters.items():
         opt = names.get(k)
         if opt is None:
-            errors.append(f"{where}.{k}: model {model.name} takes no option '{k}'; it takes: {', '.join(names)}")
+            errors.append(f"{where}.{k}: {misspelt(k, row_keys, model)}")
             continue
         why = strict_type(opt, v)
         if why is None:
@@ -95,6 +106,8 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
                 else f"{where}: model: missing; every check names a model of the study's runs"
             )
             continue
+        if not models:  # no run parsed: the runs' own lines say why
+            continue
         if c["model"] not in models:
             errors.append(
                 f"{where}.model = {c['model']!r}: no run of the study uses it; runs: {', '.join(sorted(models))}"
@@ -105,8 +118,20 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
         if "quantity" in c and c["quantity"] not in QUANTITIES:
             errors.append(f"{where}.quantity = {c['quantity']!r}: give one of {', '.join(QUANTITIES)}")
         bounds = c.get("observed_order")
-        if not isinstance(bounds, dict) or not bounds or set(bounds) - {"min", "max"}:
-            errors.append(f"{where}.observed_order = {bounds!r}: give a table {{min = 1.9}}, {{max = 2.1}} or both")
+        if bounds is None and any(close_match(k, ["observed_order"]) for k in c if k not in CHECK_KEYS):
+            pass  # a misspelt observed_order: its own line says so (option_filter_errors)
+        elif not isinstance(bounds, dict) or not bounds or set(bounds) - {"min", "max"}:
+            typo = (
+                [(k, close_match(k, ["min", "max"], 0.6)) for k in bounds if k not in ("min", "max")]
+                if isinstance(bounds, dict)
+                else []
+            )
+            typo = [t for t in typo if t[1]]
+            errors.append(
+                f"{where}.observed_order.{typo[0][0]}: unknown key '{typo[0][0]}'; did you mean '{typo[0][1]}'?"
+                if typo
+                else f"{where}.observed_order = {bounds!r}: give a table {{min = 1.9}}, {{max = 2.1}} or both"
+            )
         elif not all(finite_number(v) for v in bounds.values()):
             errors.append(f"{where}.observed_order = {bounds!r}: min and max are finite numbers")
         elif bounds.get("min", -math.inf) > bounds.get("max", math.inf):
@@ -123,7 +148,7 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
             errors.append(f"{where}: a check is over every grid of a series; drop points/spacing")
             continue
         filters = {k: v for k, v in c.items() if k not in CHECK_KEYS}
-        errors += option_filter_errors(get_model(c["model"]), filters, where)
+        errors += option_filter_errors(get_model(c["model"]), filters, where, CHECK_KEYS)
     return errors
 
 

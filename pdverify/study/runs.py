@@ -12,7 +12,7 @@ from ..core.errors import InputError
 from ..core.result import QUANTITIES
 from ..core.text import close_match
 from ..registry import Model, get_model, models
-from .checks import finite_number, strict_type
+from .checks import finite_number, misspelt, strict_type
 
 RUN_KEYS = {"model", "reference", "scenes", "slenderness", "quantities"}
 
@@ -34,6 +34,9 @@ def reference_table(value, where: str) -> dict:
         return {"model": value}
     if isinstance(value, dict) and isinstance(value.get("model"), str):
         return dict(value)
+    typo = close_match("model", value) if isinstance(value, dict) and "model" not in value else None
+    if typo:
+        raise InputError(f"{where}reference.{typo}: unknown key '{typo}'; did you mean 'model'?")
     raise InputError(f"{where}reference = {value!r}: give a model name or a table {{model = ..., options...}}")
 
 
@@ -119,6 +122,9 @@ def _run_axes(where: str, run: dict, model: Model) -> tuple[dict | None, list[st
     """The run's sweep axes and their error lines: values of the wrong type (then None: the coerced values
     would only add confusing errors) or an empty list."""
     axes = {k: as_list(v) for k, v in run.items() if k not in RUN_KEYS}
+    unknown = [k for k in axes if model.option(k) is None and k != "spacing"]
+    if unknown:  # before the types: a misspelt key's values would only add confusing lines
+        return None, [f"{where}.{k}: {misspelt(k, RUN_KEYS | {'spacing'}, model)}" for k in unknown]
     typed = [
         f"{where}.{why}"
         for k, v in axes.items()

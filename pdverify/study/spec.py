@@ -284,7 +284,7 @@ def _benchmark_errors(bench: dict, where: str, study: Study) -> list[str]:
         if refs == {"none"}:
             errors.append(f'{where}.target: missing, and its run has no reference (reference = "none"); give a target')
     filters = {k: v for k, v in bench.items() if k not in BENCH_KEYS | {"points", "slenderness"}}
-    errors += option_filter_errors(model, filters, where)
+    errors += option_filter_errors(model, filters, where, BENCH_KEYS | {"points", "slenderness"})
     if "points" in bench and not (
         isinstance(bench["points"], int) and not isinstance(bench["points"], bool) and bench["points"] >= 2
     ):
@@ -345,12 +345,35 @@ def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
     return (name, scenes, runs), errors
 
 
+def _papers_errors(path: Path, papers, scenes: list) -> list[str]:
+    """A ``[papers]`` key that names no folder of the study's scenes (its page would keep the folder's own name)."""
+    if not isinstance(papers, dict):
+        return []  # said by _head
+    folders = {Path(str(s)).parent.name or "scenes" for s in scenes}
+    out = []
+    for key in papers:
+        if key not in folders:
+            close = close_match(key, folders)
+            hint = f"did you mean '{close}'?" if close else f"the scenes' folders: {', '.join(sorted(folders))}"
+            out.append(f"{path}: papers.{key}: no scene of the study is in a folder '{key}'; {hint}")
+    return out
+
+
 def _sweep(path: Path, data: dict) -> tuple[list, list[str]]:
     """``[sweep]``'s slenderness list (``[None]``: the scenes' own sections) and its error lines."""
     errors = []
     sweep = data.get("sweep", {})
     if not isinstance(sweep, dict) or set(sweep) - {"slenderness"}:
-        errors.append(f"{path}: sweep = {sweep!r}: only 'slenderness' (a list) can be swept here")
+        typo = (
+            [k for k in sweep if k != "slenderness" and close_match(k, ["slenderness"])]
+            if isinstance(sweep, dict)
+            else []
+        )
+        errors.append(
+            f"{path}: sweep.{typo[0]}: unknown key '{typo[0]}'; did you mean 'slenderness'?"
+            if typo
+            else f"{path}: sweep = {sweep!r}: only 'slenderness' (a list) can be swept here"
+        )
         sweep = {}
     slen = as_list(sweep.get("slenderness", [None]))
     if not slen:
@@ -571,7 +594,8 @@ def load_study(path: str | Path, card_errors=None) -> Study:
     errors += _expand_runs(study, scene_objs)
     errors += _benchmark_rows_errors(study, scene_objs)
     run_models = {r["model"] for r in runs if isinstance(r, dict) and isinstance(r.get("model"), str)}
-    errors += validate_checks(checks, scene_objs, run_models, path)
+    errors += validate_checks(checks, scene_objs, run_models & set(models()), path)
+    errors += _papers_errors(path, data.get("papers"), scenes)
     study.verify, study.verify_required, found = verify_entries(data, path, card_errors)
     errors += found
     if errors:

@@ -11,7 +11,7 @@ import numpy as np
 from ...core.contract import NONLOCAL, Model, Option, Rule, System
 from ...core.errors import InputError, SolveError
 from ...core.result import Result, Timer, merge_info
-from ...core.scene import Scene, Spring
+from ...core.scene import Scene
 from ...numerics.explicit import step_warnings
 from ...numerics.load_warnings import (
     boundary_layer_warnings,
@@ -25,6 +25,7 @@ from .couples import couple_warnings
 from .ends import FIT_POINTS
 from .energy import ENERGY_HORIZONS, zone
 from .pieces import plain_ends
+from .point_loads import point_force_order
 from .published import paper_warnings
 from .system import Discrete, prescribed_motions, static_solution, static_system
 from .transient import STABILISATION, History, integrate
@@ -324,33 +325,6 @@ class _MoyerModel(Model):
         raise NotImplementedError
 
 
-def rod_points_loaded(model, scene: Scene) -> list[float]:
-    """Where a single point of pd-rod (pd-torsion) carries a force inside the member: its point forces (torques)
-    and rigid supports inside."""
-    torsion = model.unknowns == "torsion"
-    return [
-        ld.position
-        for ld in scene.loads
-        if (ld.type == "point_torque" if torsion else ld.type == "point_force" and ld.axial != 0.0)
-        and 0.0 < ld.position < scene.length
-    ] + [s.position for s in scene.supports.inner if s.type != "spring"]
-
-
-def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
-    """pd-rod's and pd-torsion's first-order warning: a point force (torque) or a rigid support inside, m > 1."""
-    inside = rod_points_loaded(model, scene)
-    torsion = model.unknowns == "torsion"
-    if params["horizon"] <= 1 or not inside:
-        return []
-    what = "a point torque" if torsion else "an axial point force"
-    return [
-        f"{model.name} converges at first order near {what} or a rigid support inside (x = {min(inside):g}): the "
-        "load on one point makes a spike about a horizon wide (m = 3: 2.15e-2, 1.07e-2, 5.37e-3 at 101, 201, 401 "
-        "points on a centre load; 1.2e-1, 3.0e-2, 7.6e-3 at 101, 401, 1601 on two spans over a rigid support under "
-        "a sine load; more at a longer horizon); with horizon = 1 the points are exact"
-    ]
-
-
 def _statics_only(scene: Scene, model: str, what: str) -> None:
     """Supports inside the span, springs and segments are solved statically (one line otherwise)."""
     found = [k for k, on in (("supports.inner", scene.supports.inner), ("segments", scene.segments)) if on]
@@ -389,69 +363,3 @@ def _context(scene: Scene, params: dict) -> str:
         f"supports {scene.supports.left}-{scene.supports.right}, horizon = {params['horizon']}, "
         f"points = {params['points']}, variant {params['variant']}"
     )
-
-
-def beam_points_loaded(scene: Scene) -> list[float]:
-    """Where a transverse point force acts inside the beam (not at its ends), in the scene's order."""
-    return [
-        ld.position
-        for ld in scene.loads
-        if ld.type == "point_force" and ld.value != 0.0 and 0.0 < ld.position < scene.length
-    ]
-
-
-def point_force_order(model, scene: Scene, params: dict) -> list[str]:
-    """The known losses of order under a point load (docs/models/moyer.md, "Known limits"): the corrected beam's
-    transverse point force inside the beam (its jump in shear falls between the collocation points' PD sums); the
-    rod's and the bar's point force (torque) or rigid support inside, for m > 1 (the load on one point, P / (A Δ),
-    makes a spike of u about a horizon wide)."""
-    if not model.bending:
-        return rod_point_load_order(model, scene, params)
-    if params["variant"] != "corrected":
-        return []
-    out, inside = [], beam_points_loaded(scene)
-    if inside:
-        out.append(
-            "variant = corrected converges at first order near a point force inside the beam "
-            f"(x = {inside[0]:g}): the error halves, not quarters, per halving of the spacing (1.0e-3, 5.0e-4, "
-            "2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5), and the shear at the points beside it does "
-            "not converge (76 % of max |V| off at 81 to 641 points, clamped-clamped, L/h = 20); variant = energy is "
-            "second order there"
-        )
-    couples = [ld.position for ld in scene.loads if ld.type == "point_moment" and 0.0 < ld.position < scene.length]
-    if couples:
-        out.append(
-            f"variant = corrected: the moment at the points beside a couple inside the beam (x = {couples[0]:g}) does "
-            "not converge (54 % of max |M| off at 81 to 641 points, a centre couple on a clamped-clamped beam, L/h = "
-            "20); variant = energy is second order there"
-        )
-    rigid = [f"supports.inner[{i}]" for i, sup in enumerate(scene.supports.inner) if sup.type != "spring"]
-    springs = [f"supports.inner[{i}]" for i, sup in enumerate(scene.supports.inner) if sup.type == "spring"]
-    if springs:
-        out.append(
-            f"variant = corrected converges at first order near a spring inside the beam ({', '.join(springs)}): its "
-            "force is a point force on the two points around it, and the shear at the points beside it does not "
-            "converge (34 % of max |V| off at 101, 401 and 1601 points, M 2.5e-2, 6.2e-3, 1.6e-3 of max |M|: a "
-            "spring of 2e6 N/m at mid-span of a pinned-pinned beam under a uniform load, L/h = 25); variant = energy "
-            "is second order there"
-        )
-    ends = [
-        s for s in ("left", "right") if isinstance(e := getattr(scene.supports, s), Spring) and e.rotational_stiffness
-    ]
-    if ends:
-        out.append(
-            f"variant = corrected: the shear at the point next to a spring end with rotational stiffness "
-            f"({' and '.join(ends)}) converges at first order (1.08, 0.27, 0.067 of max |V| off at 101, 401, 1601 "
-            "points: a cantilever on a spring of 1e6 N/m and 5e4 N m/rad under a tip force; w and M are not "
-            "affected); variant = energy is exact there"
-        )
-    if rigid:
-        out.append(
-            f"variant = corrected converges at first order near a rigid support inside the beam ({', '.join(rigid)}): "
-            "its reaction is a point force (and couple) on the two points around it (2.9e-2, 1.4e-2, 7.1e-3, 3.5e-3 "
-            "at 101 ... 801 points, a clamp at 0.3 L of a pinned-pinned beam under a uniform load, L/h = 20; "
-            "1.3e-2 ... 1.1e-3 with a pin at mid-span), and the shear at the points beside it does not converge (73 % "
-            "of max |V| off at 41 to 641 points, a pin at 0.6 L of a pinned-free beam under a uniform load, L/h = 20; "
-            "at a clamp there V 74 % and M 12 %); variant = energy is second order there"
-        )
-    return out

@@ -28,11 +28,12 @@ from ...core.scene import Scene
 from ...numerics.loads import support_side
 from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, timoshenko_series
-from .base import _OPTIONS, _context, _MoyerModel, beam_points_loaded, stabilisation_warning
+from .base import _OPTIONS, _context, _MoyerModel, stabilisation_warning
 from .couples import couple_column
 from .ends import MIRRORED
 from .energy import moment_field, shear_force
 from .operator import beam_operator, segments_refusal
+from .point_loads import beam_points_loaded
 from .rods import PDRod, PDTorsion
 from .system import prescribed_motions
 from .transient import History, integrate

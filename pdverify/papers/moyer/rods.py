@@ -8,9 +8,10 @@ import numpy as np
 from ...core.errors import InputError
 from ...core.scene import ROD_HELD, PointForce, PointTorque, Scene
 from ...theory.symbols import GRADIENT, Series, rod_series
-from .base import _MoyerModel, rod_points_loaded
+from .base import _MoyerModel
 from .operator import rod_operator
 from .pieces import bond_stiffness, holds_somewhere
+from .point_loads import rod_points_loaded
 from .resultants import shear_at_points, stepped
 
 
@@ -76,7 +77,7 @@ class _RodModel(_MoyerModel):
         return rod_series(scene, delta, self.stiffness(scene), tuple(ROD_HELD[kind]), component, self.field)
 
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
-        """No limit at fixed delta where a single point inside carries a force (:func:`.base.rod_points_loaded`):
+        """No limit at fixed delta where a single point inside carries a force (:func:`.point_loads.rod_points_loaded`):
         the rod kernel's symbol grows only like (4 E / delta^2) ln(k delta) (Moyer & Miraglia 2014, Eq. 3 and
         13-19, c_j = w_j / j; docs/nonlocal.md), so the response there, ∫ dk / symbol up to k ~ pi / dx, grows
         like m / ln m."""

@@ -343,7 +343,7 @@ BAD = {  # body -> the text the single error line must contain
     "slenderness inf": ("[sweep]\nslenderness = [inf]\n", "sweep.slenderness value inf"),
     "slenderness boolean": ("[sweep]\nslenderness = [true]\n", "sweep.slenderness value True"),
     "points a boolean": (None, "runs[0].points = True: give a number, not a boolean"),
-    "benchmark option typo": (bench("b", 0.01, extra='varaint = "paper"\n'), "takes no option 'varaint'"),
+    "benchmark option typo": (bench("b", 0.01, extra='varaint = "paper"\n'), "'varaint'; did you mean 'variant'?"),
     "benchmark variant unknown": (bench("b", 0.01, variant="corected"), "variant = 'corected'"),
     "benchmark points a boolean": (None, "benchmarks[0].points = True: give a whole number"),
     "reference option a boolean": (None, "reference.points = True: give a number, not a boolean"),
@@ -356,7 +356,16 @@ BAD = {  # body -> the text the single error line must contain
     ),
     "check points": (check("corrected", "{ min = 2 }", "points = 41\n"), "drop points/spacing"),
     "check expected": (check("corrected", "{ min = 2 }", 'expected = "maybe"\n'), "checks[0].expected = 'maybe'"),
-    "check option typo": (check("corrected", "{ min = 2 }", "horizn = 3\n"), "takes no option 'horizn'"),
+    "check option typo": (check("corrected", "{ min = 2 }", "horizn = 3\n"), "'horizn'; did you mean 'horizon'?"),
+    "check bound typo": (check("corrected", "{ mni = 2 }"), "observed_order.mni: unknown key 'mni'; did you mean"),
+    "check order typo": (
+        check("corrected", "{ min = 2 }").replace("observed_order", "observed_ordr"),
+        "'observed_ordr'; did",
+    ),
+    "run key typo": ('[[runs]]\nmodel = "pd-eb"\nrefernce = "exact-eb"\npoints = [11]\n', "did you mean 'reference'?"),
+    "run model typo": ('[[runs]]\nmodel = "pd-ebb"\npoints = [11]\n', "unknown model; did you mean 'pd-eb'?"),
+    "sweep key typo": ("[sweep]\nslendernes = [10]\n", "sweep.slendernes: unknown key 'slendernes'; did you mean"),
+    "papers folder typo": ('[papers]\nnowhere = "A"\n', "papers.nowhere: no scene of the study is in a folder"),
 }
 
 
