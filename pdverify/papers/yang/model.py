@@ -124,6 +124,7 @@ from .outputs import (
     recovery_warnings,
     section_stresses,
     shear_stiff_warning,
+    spurious_shear_warning,
 )
 from .supports import paper_supports_refusal, section_forces, with_supports
 
@@ -536,7 +537,8 @@ class PDHigherOrder(Model):
         constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["not cut" if not_cut(scene, held, info) else "cut"]
         near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
         layer = clamp_layer_warning(scene, dx)
-        return flags + point_load_warnings(scene, params, info) + layer + near + shear_stiff_warning(scene)
+        spurious = spurious_shear_warning(scene, delta) if info.get("shear") == "point" else []
+        return flags + point_load_warnings(scene, params, info) + layer + near + shear_stiff_warning(scene) + spurious
 
     def solve(self, scene: Scene, params: dict) -> Result:
         if dynamics.dynamic(scene, params):

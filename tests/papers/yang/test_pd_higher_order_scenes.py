@@ -295,3 +295,21 @@ def test_a_shear_modulus_above_young_s_is_said(nu, far, said):
     r, exact = run(sc, "pd-higher-order", points=641), run(sc, "exact-higher-order", points=641)
     err = np.abs(r.w - exact.w).max() / np.abs(exact.w).max()
     assert (err > far) == said and said == any(w.startswith("G / E = ") for w in r.info.get("warnings", [])), err
+
+
+@pytest.mark.parametrize("points, said", [(101, True), (401, True), (801, False)])
+def test_the_paper_variants_spurious_shear_is_said_with_its_size(points, said):
+    """Sweep 15: variant paper (shear = point, Eq. 14d-f) was 19 % off exact-higher-order at 101 points on a slender
+    pinned-pinned beam (L/h = 20), unwarned: its spurious shear energy stiffens the beam by (G/E) 1.5 (delta/h)^2, 0.21
+    here at 101 points. Past 1 % the result says so; the measured error follows the estimate within a fifth."""
+    d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -3000.0}])
+    d.update(beam={"length": 1.0}, section={"width": 0.05, "height": 0.05})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+    sc = parse_scene(d)
+    r = run(sc, "pd-higher-order", points=points, variant="paper")
+    flags = [w for w in r.info.get("warnings") or [] if w.startswith("shear = point")]
+    assert bool(flags) == said
+    ref = get_model("exact-higher-order").evaluate(sc, get_model("pd-higher-order").reference_options({}), r.x)
+    err = np.abs(r.w - ref["w"]).max() / np.abs(ref["w"]).max()
+    estimate = sc.material.G / sc.material.E * 1.5 * (3.015 / (points - 1) / 0.05) ** 2
+    assert abs(err / estimate - 1) < 0.2, (err, estimate)
