@@ -2,7 +2,7 @@
 the beam theory, not of the beam. Two supports d apart hold the beam like a clamp of width d: Euler–Bernoulli theory
 turns the couple between them into reactions of order M / d, Timoshenko theory's shear compliance over d spreads them
 evenly, and a plane-stress strip (or the real support) gives something else again. Their sum, and the deflection
-away from them, do not depend on it (docs/supports.md, "Supports close together")."""
+away from them, differ between the theories no more than elsewhere (docs/supports.md, "Supports close together")."""
 
 from __future__ import annotations
 
@@ -48,11 +48,11 @@ def close_supports_warning(scene: Scene) -> str:
                 continue
             split = (
                 f" (exact-eb: {eb[ka]:.4g} and {eb[kb]:.4g}, exact-timoshenko: {ti[ka]:.4g} and {ti[kb]:.4g}; "
-                f"their sum {eb[ka] + eb[kb]:.4g} in both)"
+                f"their sums {eb[ka] + eb[kb]:.4g} and {ti[ka] + ti[kb]:.4g})"
             )
         return (
             f"supports at x = {xa:.12g} and {xb:.12g} are {xb - xa:.3g} apart, {(xb - xa) / h:.3g} depths: how the "
             f"load splits between their reactions {ka} and {kb} is the beam theory's, not the beam's{split}; their sum "
-            "and the deflection away from them do not depend on it (docs/supports.md)"
+            "and the deflection away from them depend on it no more than on the theory elsewhere (docs/supports.md)"
         )
     return ""
