@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import json
 import re
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from ..core.scene import UNITS
 from ..registry import get_model
+from ..study.spec import scene_folder
 
 
 def missing(v) -> bool:
@@ -62,7 +62,7 @@ def slug(text: str) -> str:
 
 def folder(scene_file) -> str:
     """The name of the scene's folder (one report page per folder: a paper's scenes)."""
-    return Path(str(scene_file)).parent.name or "scenes"
+    return scene_folder(scene_file)
 
 
 def options_of(options) -> dict:

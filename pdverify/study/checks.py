@@ -58,6 +58,11 @@ def strict_type(option, value) -> str | None:
     return None
 
 
+def meant_key(row, key: str) -> str | None:
+    """The key of the table ``row`` that looks like a misspelt ``key`` it lacks (None: none, or ``row`` is no table)."""
+    return close_match(key, row) if isinstance(row, dict) and key not in row else None
+
+
 def misspelt(key: str, row_keys, model) -> str:
     """The line of a key of a study row (a run, benchmark or check) that is neither the row's own (``row_keys``) nor an
     option of ``model``: "did you mean" the one it looks like, else the model's options."""
@@ -99,7 +104,7 @@ def validate_checks(checks, scenes, models: set, path) -> list[str]:
     for j, c in enumerate(checks):
         where = f"{path}: checks[{j}]"
         if not isinstance(c, dict) or not isinstance(c.get("model"), str):
-            typo = close_match("model", c) if isinstance(c, dict) and "model" not in c else None
+            typo = meant_key(c, "model")
             errors.append(
                 f"{where}: unknown key '{typo}'; did you mean 'model'?"
                 if typo

@@ -10,9 +10,8 @@ from pathlib import Path
 
 from ..core.errors import InputError
 from ..core.result import QUANTITIES
-from ..core.text import close_match
 from ..registry import Model, get_model, models
-from .checks import finite_number, misspelt, strict_type
+from .checks import finite_number, meant_key, misspelt, strict_type
 
 RUN_KEYS = {"model", "reference", "scenes", "slenderness", "quantities"}
 
@@ -34,7 +33,7 @@ def reference_table(value, where: str) -> dict:
         return {"model": value}
     if isinstance(value, dict) and isinstance(value.get("model"), str):
         return dict(value)
-    typo = close_match("model", value) if isinstance(value, dict) and "model" not in value else None
+    typo = meant_key(value, "model")
     if typo:
         raise InputError(f"{where}reference.{typo}: unknown key '{typo}'; did you mean 'model'?")
     raise InputError(f"{where}reference = {value!r}: give a model name or a table {{model = ..., options...}}")
@@ -77,7 +76,7 @@ def parse_run(
     the model is measured on."""
     where = f"{path}: runs[{i}]"
     if not isinstance(run, dict) or not isinstance(run.get("model"), str):
-        typo = close_match("model", run) if isinstance(run, dict) and "model" not in run else None
+        typo = meant_key(run, "model")
         if typo:
             return None, [f"{where}: unknown key '{typo}'; did you mean 'model'?"]
         return None, [f"{where}: model: missing; every run names a model"]

@@ -57,7 +57,7 @@ from ..core.text import close_match
 from ..core.version import __version__
 from ..registry import Model, get_model, models, use_manifest
 from ..registry.plugins import GROUP
-from .checks import BENCH_VALUES, finite_number, option_filter_errors, strict_type, validate_checks
+from .checks import BENCH_VALUES, finite_number, meant_key, option_filter_errors, strict_type, validate_checks
 from .entries import model_errors, verify_entries
 from .runs import Run, as_list, parse_quantities, parse_run, reference_table
 
@@ -345,11 +345,16 @@ def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
     return (name, scenes, runs), errors
 
 
+def scene_folder(scene_file) -> str:
+    """The name of a scene file's folder: a report's page (a paper's scenes) and a ``[papers]`` key."""
+    return Path(str(scene_file)).parent.name or "scenes"
+
+
 def _papers_errors(path: Path, papers, scenes: list) -> list[str]:
     """A ``[papers]`` key that names no folder of the study's scenes (its page would keep the folder's own name)."""
     if not isinstance(papers, dict):
         return []  # said by _head
-    folders = {Path(str(s)).parent.name or "scenes" for s in scenes}
+    folders = {scene_folder(s) for s in scenes}
     out = []
     for key in papers:
         if key not in folders:
@@ -503,8 +508,7 @@ def _benchmark_rows_errors(study: Study, scene_objs: dict) -> list[str]:
     for j, bench in enumerate(study.benchmarks):
         where = f"{study.path}: benchmarks[{j}]"
         if not isinstance(bench, dict) or not {"name", "scene", "model"} <= set(bench):
-            lost = sorted({"name", "scene", "model"} - set(bench)) if isinstance(bench, dict) else []
-            typo = [(close_match(k, bench), k) for k in lost]
+            typo = [(meant_key(bench, k), k) for k in ("name", "scene", "model")]
             typo = [(t, k) for t, k in typo if t and t not in ("name", "scene", "model")]
             errors.append(
                 f"{where}: unknown key '{typo[0][0]}'; did you mean '{typo[0][1]}'?"
