@@ -113,10 +113,10 @@ def estimate(
     max_points: int = 20_001,
     static: bool = False,
 ) -> Candidate:
-    """Refine nested grids until the Richardson estimate is below tol / :data:`SPREAD`; SolveError naming the last
-    estimate when the
-    budget or the grid limit runs out first. ``static``: the static part of a scene with a [dynamics] table
-    (``run(..., static=True)``)."""
+    """Refine nested grids until the Richardson estimate is below tol / :data:`SPREAD` (asymptotic, or at a steady
+    order below the promised one: :func:`steady_below`); SolveError naming the last estimate when the budget or the
+    grid limit runs out first. ``static``: the static part of a scene with a [dynamics] table (``run(...,
+    static=True)``)."""
     if static:
         options = dict(options, static=True)
     if name == "fem-plane-stress":

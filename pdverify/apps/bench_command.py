@@ -9,7 +9,7 @@ from pathlib import Path
 
 import typer
 
-from ..core.contract import _whole
+from ..core.contract import whole_number
 from ..core.errors import InputError, OutputError
 from .cliargs import given_path
 from .output import Format, check_folder
@@ -125,7 +125,7 @@ def bench(
 def _points(text: str) -> int:
     """``--points`` as a whole number, as ``solve --points`` reads it (``1e3`` is 1000); InputError otherwise."""
     try:
-        n = _whole(text)
+        n = whole_number(text)
     except (ValueError, OverflowError):
         raise InputError(f"--points {text}: give a whole number of points, e.g. 1000 or 1e3") from None
     return n

@@ -47,7 +47,7 @@ from .scene import Scene, straight_mechanism
 from .text import close_match
 
 
-def _whole(value) -> int:
+def whole_number(value) -> int:
     """``value`` as a whole number: an integer (or its digits) exactly, whatever its size (2**53 + 1 through a float
     would be 2**53); a number with a fractional part is a ValueError."""
     if isinstance(value, (int, np.integer)):
@@ -89,7 +89,7 @@ class Option:
             if isinstance(value, str) and ("_" in value or not value.isascii()) and self.kind in (int, float):
                 raise ValueError  # Python reads "3_0" as 30 and Arabic-Indic "٤١" as 41: not a number as written
             if self.kind is int:
-                v = _whole(value)
+                v = whole_number(value)
             elif self.kind is float:
                 v = float(value)
                 if not np.isfinite(v):
@@ -576,7 +576,7 @@ def _below(opt: Option, value) -> int | None:
     if isinstance(value, bool):
         return None
     try:
-        v = _whole(value)
+        v = whole_number(value)
     except (TypeError, ValueError, OverflowError):
         return None
     return v if opt.minimum is not None and v < opt.minimum and (opt.maximum is None or v <= opt.maximum) else None

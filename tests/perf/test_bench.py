@@ -236,7 +236,7 @@ def test_inaccurate_runs_count_toward_no_target(tmp_path):
 @pytest.mark.parametrize("text, n", [("4.1e1", 41), ("1e3", 1000), ("101", 101), ("9007199254740993", 2**53 + 1)])
 def test_points_read_as_solve_reads_them(text, n):
     """Sweep 13: `bench --points 4.1e1` was refused (an integer option) where `solve --points 4.1e1` solves 41
-    points; both read a whole number in any notation now (pdverify.core.contract._whole)."""
+    points; both read a whole number in any notation now (pdverify.core.contract.whole_number)."""
     from pdverify.apps.bench_command import _points
 
     assert _points(text) == n
