@@ -14,12 +14,14 @@ SPLIT = 0.05  # the two theories' reactions apart by more than this fraction of 
 
 
 def rigid_stations(scene: Scene) -> list[tuple[float, str]]:
-    """(position, reaction key) of every support that holds the deflection rigidly, ends and inside the span."""
+    """(position, reaction key) of every support that holds the deflection, ends and inside the span: rigidly, or a
+    spring inside whose split against its neighbour the two theories' reactions then judge (a stiff one splits as a
+    rigid support does, a soft one as the theories agree)."""
     out = [(0.0, "force_left")] * scene.supports.holds_deflection_at("left")
     out += [
         (s.position, f"force_inner_{i}")
         for i, s in enumerate(scene.supports.inner)
-        if s.type != "spring" and s.holds_deflection
+        if s.holds_deflection
     ]
     out += [(scene.length, "force_right")] * scene.supports.holds_deflection_at("right")
     return sorted(out)

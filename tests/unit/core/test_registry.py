@@ -390,3 +390,30 @@ def test_supports_closer_than_a_depth_say_their_split_is_the_theorys(model, gap,
         eb, ti = (solve_straight(sc, s).reactions() for s in (False, True))
         assert f"exact-eb: {eb['force_inner_0']:.4g} and {eb['force_inner_1']:.4g}" in flags[0]
         assert abs(eb["force_inner_0"] - ti["force_inner_0"]) > 0.05 * 1250.0  # what the warning is for
+
+
+@pytest.mark.parametrize("stiffness, warned", [(1e12, True), (1e6, False)])
+def test_a_stiff_spring_beside_a_support_says_its_split_is_the_theorys(stiffness, warned):
+    """Sweep 16: a spring of 1e12 N/m 0.4 depths from a clamp split the load -8013 / 9644 N in Euler-Bernoulli theory
+    and -905 / 2531 N in Timoshenko's, unwarned (the warning took rigid supports only). A spring inside now counts;
+    the two theories' splits decide, so a soft one (1e6 N/m: theirs agree) is not warned."""
+    from pdverify.core.scene_file import parse_scene
+
+    d = {
+        "name": "stiff spring near a clamp",
+        "beam": {"length": 1.0},
+        "section": {"width": 0.02, "height": 0.05},
+        "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+        "supports": {
+            "left": "clamped",
+            "right": "pinned",
+            "inner": [{"position": 0.02, "type": "spring", "stiffness": stiffness}],
+        },
+        "loads": [
+            {"type": "point_force", "position": 0.01, "value": -1000.0},
+            {"type": "distributed", "value": -1000.0},
+        ],
+    }
+    for model in ("exact-eb", "exact-timoshenko"):
+        flags = run(parse_scene(d), model, points=201).info.get("warnings") or []
+        assert any("depths: how the load" in w for w in flags) == warned, flags
