@@ -330,9 +330,10 @@ class Solution:
         if not self.cond < DEPENDENT:
             raise SolveError(
                 f"exact-higher-order: the supports' conditions are dependent at working precision (condition number "
-                f"{self.cond:.2g}): a spring far softer than the beam, supports that nearly coincide or a shear "
-                "modulus far below E (the layer and the beam's modes meet); stiffen the spring, give the supports as "
-                "one, or use exact-timoshenko"
+                f"{self.cond:.2g}): a spring far softer than the beam, supports that nearly coincide, a shear "
+                "modulus far below E (the layer and the beam's modes meet) or a beam so slender (here L/h = "
+                f"{self.L:.3g}) that the layers' modes are lost beside the "
+                "beam's; stiffen the spring, give the supports as one, or use exact-timoshenko"
             )
         out = np.linalg.solve(Ks, r / row) / col
         return out[: 8 * n].reshape(n, 8), out[8 * n :]
@@ -411,7 +412,7 @@ class ExactHigherOrder(Model):
     def evaluator(self, scene: Scene, params: dict):
         """The fields at any x, carrying the solution's round-off bound as ``error_bound`` (a study row measured
         against it is suspect where the bound could decide its error)."""
-        sol = Solution(scene, params.get("loads", "faces"), params.get("pin", "face"))
+        sol = solution(scene, params.get("loads", "faces"), params.get("pin", "face"))
 
         def fields(x):
             return support_sides(scene, x, sol.fields(x))
@@ -425,7 +426,7 @@ class ExactHigherOrder(Model):
     def solve(self, scene: Scene, params: dict) -> Result:
         timer = Timer()
         with timer("solve"):
-            sol = Solution(scene, params["loads"], params["pin"])
+            sol = solution(scene, params["loads"], params["pin"])
             x = np.linspace(0.0, scene.length, params["points"])
             f = support_sides(scene, x, sol.fields(x))
         info = {"reactions": sol.reactions(), "depth": sol.h, "loads": params["loads"], "pin": params["pin"]}
@@ -449,6 +450,20 @@ class ExactHigherOrder(Model):
             timings=timer.timings,
             info=info,
         )
+
+
+def solution(scene: Scene, loads: str, pin: str) -> Solution:
+    """:class:`Solution`, or SolveError (exit 3) where the beam's numbers leave the float range on the way (a length
+    of 1e100 m: the boundary layers' exponentials and their eigenvectors overflow, LAPACK's SVD fails)."""
+    try:
+        with np.errstate(all="ignore"):
+            return Solution(scene, loads, pin)
+    except (np.linalg.LinAlgError, ValueError, OverflowError, FloatingPointError) as exc:
+        raise SolveError(
+            f"exact-higher-order: the closed form overflows on this beam ({type(exc).__name__}: "
+            f"{str(exc).splitlines()[0] if str(exc) else 'no detail'}; length {scene.length:g}, depth "
+            f"{scene.section.depth:g}): give the scene in units that keep its numbers near 1"
+        ) from None
 
 
 def support_sides(scene: Scene, x: np.ndarray, f: dict) -> dict:

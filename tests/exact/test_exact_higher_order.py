@@ -425,3 +425,15 @@ def test_end_points_give_their_support_side(left, right, mirror):
     side = -1 if mirror else 0  # the loaded end: the Timoshenko beam's support side, within the theories' distance
     # there, about (h / L)^2 = 2.5e-3 of the largest moment on this beam (L/h = 20)
     assert abs(M[side] - ref["M"][side]) <= 1e-2 * np.abs(M).max()
+
+
+@pytest.mark.parametrize("length", [1e100, 1e308])
+def test_a_beam_whose_numbers_overflow_is_refused_in_one_line(length):
+    """Sweep 16: a clamped-free beam of length 1e100 (and up to 1e308) ended in LinAlgError (exit 70, an internal
+    error) where every other model refuses such numbers (exit 3). Now SolveError, one line naming the length."""
+    from pdverify.core.errors import SolveError
+
+    sc = _scene("clamped", "free", [{"type": "point_force", "position": length, "value": -1.0}], length=length, h=5e-5)
+    with pytest.raises(SolveError) as e:
+        run(sc, "exact-higher-order", points=41)
+    assert len(e.value.lines) == 1 and "overflows" in e.value.lines[0] and f"length {length:g}" in e.value.lines[0]
