@@ -18,11 +18,7 @@ def rigid_stations(scene: Scene) -> list[tuple[float, str]]:
     spring inside whose split against its neighbour the two theories' reactions then judge (a stiff one splits as a
     rigid support does, a soft one as the theories agree)."""
     out = [(0.0, "force_left")] * scene.supports.holds_deflection_at("left")
-    out += [
-        (s.position, f"force_inner_{i}")
-        for i, s in enumerate(scene.supports.inner)
-        if s.holds_deflection
-    ]
+    out += [(s.position, f"force_inner_{i}") for i, s in enumerate(scene.supports.inner) if s.holds_deflection]
     out += [(scene.length, "force_right")] * scene.supports.holds_deflection_at("right")
     return sorted(out)
 

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ..core.errors import InputError
 from ..core.result import QUANTITIES
+from ..core.text import close_match
 from ..registry import Model, get_model, models
 from .checks import finite_number, meant_key, misspelt, strict_type
 
@@ -64,7 +65,10 @@ def parse_quantities(value, where: str) -> tuple[tuple, list[str]]:
     if value is None:
         return (), []
     if not isinstance(value, list) or not all(isinstance(q, str) and q in QUANTITIES for q in value):
-        return (), [f"{where}quantities = {value!r}: give a list of {', '.join(QUANTITIES)}"]
+        bad = [q for q in value if q not in QUANTITIES] if isinstance(value, list) else []
+        close = close_match(bad[0], QUANTITIES) if bad and isinstance(bad[0], str) else None
+        hint = f"'{bad[0]}': did you mean '{close}'? " if close else ""
+        return (), [f"{where}quantities = {value!r}: {hint}give a list of {', '.join(QUANTITIES)}"]
     return tuple(dict.fromkeys(value)), []
 
 

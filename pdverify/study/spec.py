@@ -50,7 +50,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from ..core.errors import InputError
-from ..core.result import QUANTITIES, canonical
+from ..core.result import FIELD_NAMES, QUANTITIES, canonical
 from ..core.scene import Scene
 from ..core.scene_file import load_scene, parse_scene, read_toml
 from ..core.text import close_match
@@ -549,8 +549,11 @@ def _benchmark_output_errors(bench: dict, where: str, length: float, measured: s
         )
     measures = models()[bench["model"]].measures if bench["model"] in models() else "w"
     q = bench.get("quantity", measures)
+    names = [*QUANTITIES, *(n for ns in FIELD_NAMES.values() for n in ns)]
     if not isinstance(q, str):
         errors.append(f"{where}.quantity = {q!r}: give an output name (w, rotation, u, theta, M ...)")
+    elif q not in names and (close := close_match(q, names)):  # a misspelt name, before what else the row lacks
+        errors.append(f"{where}.quantity = {q!r}: no such output; did you mean '{close}'?")
     elif q != measures and "position" not in bench:
         errors.append(
             f"{where}.quantity = {q!r}: a quantity other than {measures} (rotation or a field of the model's result, "

@@ -365,6 +365,11 @@ BAD = {  # body -> the text the single error line must contain
     "run key typo": ('[[runs]]\nmodel = "pd-eb"\nrefernce = "exact-eb"\npoints = [11]\n', "did you mean 'reference'?"),
     "run model typo": ('[[runs]]\nmodel = "pd-ebb"\npoints = [11]\n', "unknown model; did you mean 'pd-eb'?"),
     "sweep key typo": ("[sweep]\nslendernes = [10]\n", "sweep.slendernes: unknown key 'slendernes'; did you mean"),
+    "benchmark quantity typo": (
+        bench("b", 0.01, extra='quantity = "momnt"\n'),
+        "benchmarks[0].quantity = 'momnt': no such output; did you mean 'moment'?",
+    ),
+    "quantities typo": ('quantities = ["momnet"]\n', "'momnet': did you mean 'moment'?"),
     "papers folder typo": ('[papers]\nnowhere = "A"\n', "papers.nowhere: no scene of the study is in a folder"),
 }
 
