@@ -101,8 +101,18 @@ def _weight(entry_rounding: float | None) -> float:
     return 1.0 if entry_rounding is None else max(1.0, float(entry_rounding) / ENTRY_ROUNDING)
 
 
+NO_DIGIT = 0.1  # a round-off bound above which the result may have no correct digit (the bound is an estimate)
+
+
 def bound_warning(bound: float) -> str:
-    """The one-line warning a result carries when its round-off bound passes ``BOUND_LIMIT``."""
+    """The one-line warning a result carries when its round-off bound passes ``BOUND_LIMIT`` (past :data:`NO_DIGIT`:
+    the estimate is within a factor 3 or so, so the result may have no correct digit at all)."""
+    if not bound <= NO_DIGIT:
+        return (
+            f"round-off bound {apart(bound, BOUND_LIMIT)} (relative error, an estimate within a factor of about 3): "
+            "the result may have no correct digit (a near-mechanism, e.g. a spring far softer than the beam, or far "
+            "too many points); stiffen the spring, use fewer points or a better-conditioned form"
+        )
     return (
         f"round-off bound {apart(bound, BOUND_LIMIT)} (relative error) exceeds {BOUND_LIMIT:g}: at this size the "
         "linear solve may be wrong to that degree; use fewer points or a better-conditioned form"
