@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from helpers import scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.registry import run
@@ -20,14 +21,9 @@ def test_shear_between_two_close_point_loads_follows_statics(first, gap):
         {"type": first, "position": 0.5, "value": value},
         {"type": "point_force", "position": 0.5 + gap * dx, "value": -490.0},
     ]
-    d = {
-        "name": "two close loads",
-        "beam": {"length": 1.0},
-        "section": {"width": 0.02, "height": 0.05},
-        "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
-        "supports": {"left": "clamped", "right": "clamped"},
-        "loads": loads,
-    }
+    d = scene_dict("clamped", "clamped", loads)
+    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
     sc = parse_scene(d)
     r, e = run(sc, "pd-eb", points=201), run(sc, "exact-eb", points=201)
     err = np.abs(r.fields["V"] - e.fields["V"]).max() / np.abs(e.fields["V"]).max()
