@@ -74,11 +74,11 @@ def fields(scene: Scene, x: np.ndarray, w: np.ndarray, M: np.ndarray, ends_insid
     return {"rotation": rot, "M": M, "V": support_side(scene, V, "shear")}
 
 
-CLOSE_LOADS = 3  # spacings: point loads closer than this leave M's differences no stretch between them
+CLOSE_LOADS = 3  # spacings: point loads this close leave M's differences no stretch of three points between them
 
 
 def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray) -> tuple:
-    """(M, V) with the points from one before to one after each cluster of point loads (forces, couples) less than
+    """(M, V) with the points from one before to one after each cluster of point loads (forces, couples) at most
     :data:`CLOSE_LOADS` spacings apart taken by statics between the points beside it, whose M holds
     (:func:`~pdverify.numerics.statics.statics_over`; a point on a load the mean of its two sides): the differences of
     M have no stretch of three points between such loads (V 35-58 % of max |V| off at and between two loads 1 and 2
@@ -92,7 +92,7 @@ def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.nda
     spans = [
         (np.floor((a - x[0]) / dx + 1e-9) - 1, np.ceil((b - x[0]) / dx - 1e-9) + 2)
         for a, b in zip(at, at[1:])
-        if b - a < CLOSE_LOADS * dx * (1 - 1e-9)
+        if b - a <= CLOSE_LOADS * dx * (1 + 1e-9)
     ]
     if not spans:
         return M, V
