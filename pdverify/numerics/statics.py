@@ -85,6 +85,8 @@ def _closed(scene: Scene, model: dict[str, float], keys: list) -> dict:
 
 
 _GX, _GW = np.polynomial.legendre.leggauss(24)
+_GX8, _GW8 = np.polynomial.legendre.leggauss(8)  # the statics M / EI on a piece between loads and interfaces: a
+# quadratic under uniform loads (exact), smooth under sine loads (degree 15 exact)
 
 
 def jump_share(x: np.ndarray, at: float, dx: float) -> np.ndarray:
@@ -101,12 +103,14 @@ def jump_share(x: np.ndarray, at: float, dx: float) -> np.ndarray:
     return share
 
 
-def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def statics_from_zero(scene: Scene, x: np.ndarray, dx: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """(Q, R) at the points ``x``: the shear and the moment that the transverse loads on [0, x] add, with V(0) = M(0) =
     0 (dV/dx = q, dM/dx = V; a force P makes V jump by P, a couple C makes M jump by -C). Distributed loads by
-    Gauss-Legendre on each point's part of their span (their shapes are smooth on it)."""
+    Gauss-Legendre on each point's part of their span (their shapes are smooth on it). ``dx``: the grid's spacing,
+    whose 1e-9 decides whether a position is on a load (default: that of ``x``, a grid)."""
     x = np.asarray(x, float)
-    dx = float(x[1] - x[0]) if len(x) > 1 else scene.length
+    if dx is None:
+        dx = float(x[1] - x[0]) if len(x) > 1 else scene.length
     Q, R = np.zeros(len(x)), np.zeros(len(x))
     for ld in scene.loads:
         if isinstance(ld, PointForce) and ld.value:
@@ -124,6 +128,18 @@ def statics_from_zero(scene: Scene, x: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return Q, R
 
 
+def merge_spans(spans, n: int) -> list[list[int]]:
+    """The index spans [lo, hi) clipped to the n points, sorted, overlapping and touching ones merged (an anchor
+    between two touching spans would be spoiled by both)."""
+    merged = []
+    for lo, hi in sorted((max(0, int(a)), min(n, int(b))) for a, b in spans):
+        if merged and lo <= merged[-1][1] + 1:
+            merged[-1][1] = max(merged[-1][1], hi)
+        elif hi > lo:
+            merged.append([lo, hi])
+    return merged
+
+
 def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, spans, barriers=(), two_sided=()) -> tuple:
     """(M, V) with the points of each index span [lo, hi) re-derived by statics with the loads from the points next to
     it, where the model's M and V hold: between two such points the statics that meets the model's M at both (the
@@ -137,12 +153,7 @@ def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, span
     value lists those spans' (first, last) positions."""
     n = len(x)
     M, V = np.array(M, float), np.array(V, float)
-    merged = []
-    for lo, hi in sorted((max(0, int(a)), min(n, int(b))) for a, b in spans):
-        if merged and lo <= merged[-1][1] + 1:  # touching spans too: an anchor between them would be spoiled
-            merged[-1][1] = max(merged[-1][1], hi)
-        elif hi > lo:
-            merged.append([lo, hi])
+    merged = merge_spans(spans, n)
     Q, R = statics_from_zero(scene, x)
     M0, V0 = M.copy(), V.copy()  # the anchors' values, as the model gave them
     kept = []
@@ -160,3 +171,42 @@ def statics_over(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, span
             shear0 = V0[k] - Q[k]  # the shear at x = 0+ that the anchor's V implies
         V[part], M[part] = shear0 + Q[part], M0[k] + shear0 * (x[part] - x[k]) + R[part] - R[k]
     return M, V, kept
+
+
+def rotation_over(scene: Scene, x: np.ndarray, M: np.ndarray, rotation: np.ndarray, spans, kept=()) -> np.ndarray:
+    """The Euler-Bernoulli rotation on the index spans that :func:`statics_over` re-derived (``spans`` as given to it,
+    ``kept`` its third value): from the rotation at the points next to a span, where it holds, by the integral of the
+    curvature M / EI (dθ/dx = M / EI), M the statics through the span's moments (M = A + B x + R(x), exact between
+    the loads, a couple's jump included) on Gauss-Legendre points of the pieces between the grid points, the point
+    loads, the distributed loads' ends and the interfaces. Between two anchors the integrals from both, weighted by
+    the distance (mirror-symmetric). Differences of w across two loads a few spacings apart straddle the jumps and
+    kinks of the curvature there."""
+    n = len(x)
+    out = np.array(rotation, float)
+    dx = float(x[1] - x[0])
+    _, R = statics_from_zero(scene, x)
+    breaks = [g.start for g in scene.segments[1:]]
+    for ld in scene.loads:
+        breaks += list(scene.span(ld)) if isinstance(ld, Distributed) else [ld.position]
+    for lo, hi in merge_spans(spans, n):
+        anchors = [k for k in (lo - 1, hi) if 0 <= k < n]
+        if not anchors or (float(x[lo]), float(x[hi - 1])) in kept:
+            continue
+        first, last = min(anchors[0], lo), max(anchors[-1], hi - 1)
+        k = anchors[0]  # the statics through the anchor and the span's first point (statics_over's M meets both)
+        B = ((M[lo] - R[lo]) - (M[k] - R[k])) / (x[lo] - x[k])
+        A = M[k] - R[k] - B * x[k]
+        cuts = np.unique(np.r_[x[first : last + 1], [c for c in breaks if x[first] < c < x[last]]])
+        mid, half = (cuts[1:] + cuts[:-1]) / 2, (cuts[1:] - cuts[:-1]) / 2
+        s = (mid[:, None] + half[:, None] * _GX8).ravel()
+        curvature = (A + B * s + statics_from_zero(scene, s, dx)[1]) / scene.stiffness_at(s)["EI"]
+        total = np.r_[0.0, np.cumsum((curvature.reshape(len(mid), -1) * _GW8).sum(axis=1) * half)]
+        integral = total[np.searchsorted(cuts, x[first : last + 1])]  # ∫ from x[first] to each point
+        part = slice(lo - first, hi - first)
+        ends = [out[a] + integral - integral[a - first] for a in anchors]  # from each anchor
+        if len(ends) == 1:
+            out[lo:hi] = ends[0][part]
+            continue
+        t = (x[first : last + 1] - x[first]) / (x[last] - x[first])
+        out[lo:hi] = ((1 - t) * ends[0] + t * ends[1])[part]
+    return out

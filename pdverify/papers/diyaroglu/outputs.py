@@ -19,7 +19,7 @@ import numpy as np
 from ...core.scene import HELD, PointForce, PointMoment, Scene, Spring
 from ...numerics.loads import end_side, support_couples, support_side
 from ...numerics.recovery import derivative, jump_positions, kink_positions
-from ...numerics.statics import closed_reactions, statics_over
+from ...numerics.statics import closed_reactions, rotation_over, statics_over
 from .mixed import point_load_terms
 from .operator import ghost_map, mirror_map, paper_curvature
 
@@ -68,7 +68,7 @@ def fields(scene: Scene, x: np.ndarray, w: np.ndarray, M: np.ndarray, ends_insid
     pinned end point: 0, its support's side)."""
     rot = derivative(x, w, jump_positions(scene, "moment"))
     V = derivative(x, M, np.r_[jump_positions(scene, "shear"), jump_positions(scene, "moment")], kink_positions(scene))
-    M, V = close_loads_by_statics(scene, x, M, V)
+    M, V, rot = close_loads_by_statics(scene, x, M, V, rot)
     if ends_inside:
         M = support_side(scene, M, "moment")
     return {"rotation": rot, "M": M, "V": support_side(scene, V, "shear")}
@@ -77,12 +77,14 @@ def fields(scene: Scene, x: np.ndarray, w: np.ndarray, M: np.ndarray, ends_insid
 CLOSE_LOADS = 3  # spacings: point loads this close leave M's differences no stretch of three points between them
 
 
-def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray) -> tuple:
-    """(M, V) with the points from one before to one after each cluster of point loads (forces, couples) at most
-    :data:`CLOSE_LOADS` spacings apart taken by statics between the points beside it, whose M holds
-    (:func:`~pdverify.numerics.statics.statics_over`; a point on a load the mean of its two sides): the differences of
-    M have no stretch of three points between such loads (V 35-58 % of max |V| off at and between two loads 1 and 2
-    spacings apart, 201 points, clamped-clamped). A cluster with a support inside the span keeps its values."""
+def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, rotation: np.ndarray) -> tuple:
+    """(M, V, rotation) with the points from one before to one after each cluster of point loads (forces, couples) at
+    most :data:`CLOSE_LOADS` spacings apart taken by statics between the points beside it, whose M and rotation hold
+    (:func:`~pdverify.numerics.statics.statics_over`, a point on a load the mean of its two sides; the rotation by the
+    integral of M / EI, :func:`~pdverify.numerics.statics.rotation_over`): the differences of M and w have no stretch
+    of three points between such loads (V 35-58 % of max |V| off at and between two loads 1 and 2 spacings apart, the
+    rotation 1.9 % of max |rotation| between two couples 1 spacing apart, 201 points, clamped-clamped). A cluster
+    with a support inside the span keeps its values."""
     dx = x[1] - x[0]
     at = sorted(
         ld.position
@@ -95,9 +97,9 @@ def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.nda
         if b - a <= CLOSE_LOADS * dx * (1 + 1e-9)
     ]
     if not spans:
-        return M, V
-    M, V, _ = statics_over(scene, x, M, V, spans, [s.position for s in scene.supports.inner])
-    return M, V
+        return M, V, rotation
+    M, V, kept = statics_over(scene, x, M, V, spans, [s.position for s in scene.supports.inner])
+    return M, V, rotation_over(scene, x, M, rotation, spans, kept)
 
 
 def reactions(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, multipliers: dict) -> dict:
