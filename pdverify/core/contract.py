@@ -279,6 +279,7 @@ class Model(Horizon):
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
     breaks: bool = False  # places its particles at the scene's features (pd-curved's segments), whatever the grid
     order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
+    jump_rotation: float = 0.0  # c of its rotation's error c |J| h² / EI next to a jump J of the shear (measured)
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
     histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
 

@@ -43,6 +43,7 @@ from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
 from .close_supports import close_supports_warning
 from .external import ExternalModel, load_manifest
+from .jump_rotation import jump_rotation_warning
 from .plugins import discover, remember_manifest
 
 __all__ = [
@@ -253,6 +254,9 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         check_finite(result)
     if "reactions" in result.info and m.bending and (close := close_supports_warning(scene)):
         result.info.setdefault("warnings", []).append(close)
+    if m.jump_rotation and "reactions" in result.info and scene.dynamics is None and not params.get("continuum"):
+        if jump := jump_rotation_warning(m.jump_rotation, scene, result.rotation, result.info):
+            result.info.setdefault("warnings", []).append(jump)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

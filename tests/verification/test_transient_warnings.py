@@ -24,7 +24,9 @@ NEAR_END = [
     {"type": "point_force", "value": -1000.0, "position": 0.013},
     {"type": "point_moment", "value": 50.0, "position": 1.3},
 ]
-RECOVERED = re.compile(r"\bmoment and shear\b")  # the recovered fields' warnings: the transient has no M, V
+# the recovered fields' warnings (the transient has no M, V) and the static rotation's beside a jump of the shear (its
+# estimate takes the static reactions; docs/trust.md says the transient's is not estimated)
+RECOVERED = re.compile(r"\bmoment and shear\b|^rotation beside ")
 SMOOTH_AXIAL = [{"type": "distributed", "value": 0.0, "axial": 3000.0, "shape": "sine"}]
 SMOOTH_FORCE = [{"type": "distributed", "value": -1000.0, "shape": "sine"}]
 SMOOTH_TORQUE = [{"type": "distributed", "value": 0.0, "torque": 30.0, "shape": "sine"}]

@@ -6,7 +6,8 @@ rotation and the support reactions, and the mirror image of a result. Arrays in,
   (corrected: Taylor ghosts; paper: the mirror images and the Appendix's free-end rows);
 * shear V = dM/dx and rotation w' by second-order differences that never straddle a jump
   (:func:`pdverify.numerics.recovery.derivative`: V jumps at point forces and inner supports, w'' at couples,
-  clamped inner supports and interfaces);
+  clamped inner supports and interfaces); between point loads a few spacings apart, where no such stretch fits, by
+  statics from the points beside them (M, V) and the integral of M / EI (the rotation);
 * reactions: the mixed form's multipliers (springs, inner supports), the moment at ends that hold the rotation and
   the shear at ends that hold the deflection, two of them closed by statics
   (:func:`pdverify.numerics.statics.closed_reactions`).

@@ -47,7 +47,6 @@ from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
 from .path import failure_warnings, follows_path, plastic_warnings, solve_path
 from .recovery import (
-    force_beside_support_warnings,
     inner_forces,
     mirror_pairs,
     mixed_fields,
@@ -194,6 +193,7 @@ def element_bound(model, lu, b, free, full) -> float:
 
 class PDBondPair(Model):
     name = "pd-bond-pair"
+    jump_rotation = 1.5  # above the largest ratio of benchmarks/jump_rotation.py (docs/trust.md)
     dispersion = "bond-pair"  # its waves' frequencies (pdverify.theory.symbols)
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
     source = (
@@ -415,7 +415,6 @@ class PDBondPair(Model):
         if off := off_grid_holds(scene, dx):  # the error does not fall regularly: no Richardson estimate from it
             info["irregular"] = off[0]
         flags = first_order_warnings(scene, dx) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
-        flags += force_beside_support_warnings(scene, dx)
         flags += bias_warnings(scene, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
@@ -469,7 +468,6 @@ class PDBondPair(Model):
             + plastic_warnings(scene, params, dx)
             + failure_warnings(scene, params, x, info, path[-1]["health"])
             + rotation_warnings(scene)
-            + force_beside_support_warnings(scene, dx)
         )
         info.update(ends=params["ends"], spacing=dx, horizon_factor=params["horizon"])
         if scene.material.yield_stress:  # the section law the pairs carry (Eq. 7), beside the fibre theory's

@@ -163,29 +163,6 @@ def couple_statics(moments: list, couples: np.ndarray, n: int, dx: float) -> np.
     return true - pair
 
 
-FORCE_BESIDE_SUPPORT = 5  # spacings between a point force and a support inside the span below which the rotation is
-# off by more than 2 % of its largest at 161 points (measured 2.1e-2, 1.4e-2, 1.0e-2 at 4, 6, 8 spacings)
-
-
-def force_beside_support_warnings(scene: Scene, dx: float) -> list[str]:
-    """Point forces within ``FORCE_BESIDE_SUPPORT`` spacings of a support inside the span that holds the deflection:
-    the centred differences of w between them straddle two jumps of the shear, and the beam's rotations there are
-    small beside that error until the spacing is well below their distance (second order, with a constant that
-    grows as they close)."""
-    out = []
-    for i, ld in enumerate(scene.loads):
-        for j, s in enumerate(scene.supports.inner):
-            d = abs(ld.position - s.position) if isinstance(ld, PointForce) and s.holds_deflection else np.inf
-            if 1e-9 * dx < d < FORCE_BESIDE_SUPPORT * dx and ld.value != 0.0:
-                out.append(
-                    f"loads[{i}], a point force at {ld.position:g}, is {d / dx:.2g} spacings from supports.inner[{j}] "
-                    f"at {s.position:g}: the rotation near them is off by a few % of its largest (measured 5.7e-2, "
-                    "2.0e-2, 4.4e-3 at 161, 321, 641 points, 1.3 spacings apart at 161; second order); use at least "
-                    f"{int(np.floor(FORCE_BESIDE_SUPPORT * scene.length / d)) + 2} points"
-                )
-    return out
-
-
 JOINT_STEP = 1e-2  # relative step of EI at a joint below which it is not named: the rotation's first-order error
 # there is about 1.8 x step x dx / L of max |rotation| (steps of 0.65: 1.15 % at dx = L / 160), 1.1e-4 at this step
 

@@ -1,0 +1,55 @@
+"""The rotation beside a jump of the shear (pdverify/registry/jump_rotation.py): a point force near a support inside
+that holds the deflection leaves pd-eb's, pd-timoshenko's and pd-bond-pair's rotation off by about c |J| h² / EI at
+the points next to the support (J its reaction), large beside max |rotation| (sweep 17 N3, N4). Each warns with that
+estimate where it passes 1e-3 of max |rotation|: the estimate is above the error wherever it warns, the error below
+1e-3 wherever it does not, and a mirror image warns alike."""
+
+import numpy as np
+import pytest
+from helpers import scene_dict
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.registry import run
+from pdverify.registry.jump_rotation import TOLERANCE
+
+MODELS = {"pd-eb": "exact-eb", "pd-timoshenko": "exact-timoshenko", "pd-bond-pair": "exact-eb"}
+
+
+def beside(model: str, spacings: float, inner: dict, mirror: bool = False, points: int = 201):
+    """A pinned-pinned 1 m beam held inside at 0.5 + 0.41 spacings by ``inner``, a point force ``spacings`` spacings
+    right of it (left in the ``mirror`` image), with a uniform load: (the rotation's largest error against the exact
+    beam relative to its largest value, the estimate the warning gives or 0)."""
+    dx = 1.0 / (points - 1)
+    at = 0.5 + 0.41 * dx
+    force = at + spacings * dx
+    loads = [{"type": "point_force", "position": 1.0 - force if mirror else force, "value": -700.0}]
+    d = scene_dict("pinned", "pinned", loads + [{"type": "distributed", "value": -100.0}])
+    d["supports"]["inner"] = [{"position": 1.0 - at if mirror else at, **inner}]
+    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+    sc = parse_scene(d)
+    r, e = run(sc, model, points=points), run(sc, MODELS[model], points=points)
+    said = [w for w in r.info.get("warnings", []) if w.startswith("rotation beside")]
+    estimate = float(said[0].split(" here ")[1].split()[0]) if said else 0.0
+    return float(np.abs(r.rotation - e.rotation).max() / np.abs(e.rotation).max()), estimate
+
+
+@pytest.mark.parametrize("model", list(MODELS))
+@pytest.mark.parametrize("inner", [{"type": "pinned"}, {"type": "spring", "stiffness": 1e9}], ids=["pin", "spring"])
+def test_the_estimate_is_above_the_error_where_it_warns_and_the_error_is_small_where_it_does_not(model, inner):
+    for spacings in (1.0, 3.5, 6.0, 12.4, 40.0):
+        error, estimate = beside(model, spacings, inner)
+        assert error <= max(estimate, TOLERANCE), (spacings, error, estimate)
+
+
+@pytest.mark.parametrize("model", list(MODELS))
+def test_a_mirror_image_warns_alike(model):
+    """The old 5-spacing rule of pd-bond-pair warned a force 5 spacings right of a pin and not its mirror image, whose
+    distance rounded above 5 spacings: the estimate is continuous in the distance and mirror images give it alike."""
+    for spacings in (2.0, 5.0, 9.0):
+        (e1, s1), (e2, s2) = (
+            beside(model, spacings, {"type": "pinned"}),
+            beside(model, spacings, {"type": "pinned"}, True),
+        )
+        assert (s1 > 0) == (s2 > 0) and abs(s1 - s2) <= 0.01 * s1, (spacings, s1, s2)
+        assert abs(e1 - e2) <= 1e-6 * e1, (e1, e2)
