@@ -104,6 +104,8 @@ def parse_run(
         return None, []
     if not run_scenes:
         return None, [f"{where}.scenes = []: the run would have no case; list scenes of the study's, or drop the key"]
+    if dup := twice(f"{where}.scenes", run_scenes):
+        return None, [dup]
     run_slen = slenderness
     if "slenderness" in run:  # this run's own slenderness sweep, in place of [sweep]'s
         run_slen = as_list(run["slenderness"])
@@ -111,6 +113,8 @@ def parse_run(
             return None, [
                 f"{where}.slenderness = {run['slenderness']!r}: give positive finite numbers (length / height)"
             ]
+        if dup := twice(f"{where}.slenderness", run_slen):
+            return None, [dup]
     axes, errors = _run_axes(where, run, model)
     if axes is None:
         return None, errors
@@ -139,4 +143,15 @@ def _run_axes(where: str, run: dict, model: Model) -> tuple[dict | None, list[st
         return None, typed
     return axes, [
         f"{where}.{k} = []: an empty sweep runs nothing; give values or drop the key" for k, v in axes.items() if not v
-    ]
+    ] + [twice(f"{where}.{k}", v) for k, v in axes.items() if twice("", v)]
+
+
+def twice(where: str, values: list) -> str:
+    """The error line of a list that gives a value twice (a case runs once, so the second would vanish silently),
+    or ""."""
+    seen = []
+    for v in values:
+        if v in seen:
+            return f"{where} = {values!r}: {v!r} is listed twice (a case runs once); give each value once"
+        seen.append(v)
+    return ""

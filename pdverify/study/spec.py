@@ -59,7 +59,7 @@ from ..registry import Model, get_model, models, use_manifest
 from ..registry.plugins import GROUP
 from .checks import BENCH_VALUES, finite_number, meant_key, option_filter_errors, strict_type, validate_checks
 from .entries import model_errors, verify_entries
-from .runs import Run, as_list, parse_quantities, parse_run, reference_table
+from .runs import Run, as_list, parse_quantities, parse_run, reference_table, twice
 
 STUDY_KEYS = {
     "name",
@@ -330,6 +330,8 @@ def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
         if "scenes" not in misspelt:
             errors.append(f"{path}: scenes {given}: give a non-empty list of scene files (a run's scenes pick from it)")
         scenes = []
+    elif dup := twice(f"{path}: scenes", scenes):
+        errors.append(dup)
     runs = data.get("runs")
     if not isinstance(runs, list) or not runs:
         if "runs" not in misspelt:
@@ -386,6 +388,8 @@ def _sweep(path: Path, data: dict) -> tuple[list, list[str]]:
     for s in slen:
         if s is not None and not (finite_number(s) and s > 0):
             errors.append(f"{path}: sweep.slenderness value {s!r}: must be a positive finite number (length / height)")
+    if dup := twice(f"{path}: sweep.slenderness", slen):
+        errors.append(dup)
     return slen, errors
 
 

@@ -371,6 +371,14 @@ BAD = {  # body -> the text the single error line must contain
     ),
     "quantities typo": ('quantities = ["momnet"]\n', "'momnet': did you mean 'moment'?"),
     "papers folder typo": ('[papers]\nnowhere = "A"\n', "papers.nowhere: no scene of the study is in a folder"),
+    "points twice": (
+        None,
+        "runs[0].points = [21, 41, 21]: 21 is listed twice (a case runs once); give each value once",
+    ),
+    "slenderness twice": (
+        "[sweep]\nslenderness = [10, 10.0]\n",
+        "sweep.slenderness = [10, 10.0]: 10.0 is listed twice",
+    ),
 }
 
 
@@ -383,6 +391,8 @@ def test_bad_study_file_is_one_line_and_exit_2(tmp_path, case):
         body = f'[[benchmarks]]\nname = "b"\nscene = "{CC}"\nmodel = "pd-eb"\nvariant = "corrected"\npoints = 41\n'
     elif case == "points a boolean":
         runs, body = PD_EB.replace("points = [21, 41, 81]", "points = [21, true]"), ""
+    elif case == "points twice":
+        runs, body = PD_EB.replace("points = [21, 41, 81]", "points = [21, 41, 21]"), ""
     elif case == "reference option a boolean":
         runs, body = PD_EB + 'reference = {model = "fem-eb", points = true}\n', ""
     elif case == "benchmark points a boolean":
