@@ -279,7 +279,8 @@ class Model(Horizon):
     reference: bool = False  # closed-form or reference model (not a candidate of `pdverify advise` by default)
     breaks: bool = False  # places its particles at the scene's features (pd-curved's segments), whatever the grid
     order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
-    jump_rotation: float = 0.0  # c of its rotation's error c |J| h² / EI next to a jump J of the shear (measured)
+    jump_rotation: tuple[float, float] = (0.0, 0.0)  # c of its rotation's error c |J| h² / EI next to a jump J of the
+    # shear inside the span and at an end (measured on its default variant: registry/jump_rotation.py)
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
     histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
 

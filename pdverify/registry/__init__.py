@@ -254,7 +254,14 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         check_finite(result)
     if "reactions" in result.info and m.bending and (close := close_supports_warning(scene)):
         result.info.setdefault("warnings", []).append(close)
-    if m.jump_rotation and "reactions" in result.info and scene.dynamics is None and not params.get("continuum"):
+    default = (opt := m.option("variant")) is None or params.get("variant") == opt.default  # where c was measured
+    if (
+        any(m.jump_rotation)
+        and default
+        and "reactions" in result.info
+        and scene.dynamics is None
+        and not params.get("continuum")
+    ):
         if jump := jump_rotation_warning(m.jump_rotation, scene, result.rotation, result.info):
             result.info.setdefault("warnings", []).append(jump)
     result.timings["total_s"] = time.perf_counter() - t0

@@ -1,8 +1,8 @@
-"""The warning of a rotation that is small beside a jump of the shear: a point force or a support's reaction inside
-the span makes V jump by J, and the PD models' w (or rotation unknown) carries an error of about c |J| h² / EI in the
-rotation at the points next to it (h = max(spacing, horizon / 3), c the model's ``jump_rotation``): second order, but
-large beside max |rotation| where the rotation is small and the shear large, as between a point force and a support
-close to it (docs/trust.md, "The rotation beside a jump of the shear")."""
+"""The warning of a rotation that is small beside a jump of the shear: a point force or a support's reaction makes V
+jump by J (at an end, from nothing to the reaction), and the PD models' w (or rotation unknown) carries an error of
+about c |J| h² / EI in the rotation at the points next to it (h = max(spacing, horizon / 3), c the model's
+``jump_rotation``): second order, but large beside max |rotation| where the rotation is small and the shear large, as
+between a point force and a support close to it (docs/trust.md, "The rotation beside a jump of the shear")."""
 
 from __future__ import annotations
 
@@ -14,43 +14,62 @@ TOLERANCE = 1e-3  # the estimated error (of max |rotation|) above which it is a 
 MARGIN = 1.1  # on the points the warning asks for: the estimate divides by the model's max |rotation|, off by its error
 
 
-def shear_jumps(scene: Scene, reactions: dict) -> list[tuple[str, float, float]]:
-    """(name, position, J) of every jump of the shear inside the span: the point forces and the reactions of the
-    supports inside that hold the deflection (``reactions``: the result's, ``force_inner_i``)."""
+def shear_jumps(scene: Scene, reactions: dict, dx: float) -> list[tuple[str, float, float]]:
+    """(name, position, J) of every jump of the shear: the point forces, the ends' forces and the reactions of the
+    supports inside that hold the deflection (``reactions``: the result's ``force_left``, ``force_right``,
+    ``force_inner_i``; none at a free end), those within 1e-9 spacings of each other one jump (a force on a support:
+    their sum), in the order of position."""
     L = scene.length
-    out = [
+    parts = [
         (f"loads[{i}] (a point force at {ld.position:g})", ld.position, ld.value)
         for i, ld in enumerate(scene.loads)
-        if isinstance(ld, PointForce) and ld.value and 0.0 < ld.position < L
+        if isinstance(ld, PointForce) and ld.value
     ]
-    out += [
+    parts += [
         (f"supports.inner[{i}] at {s.position:g}", s.position, float(reactions.get(f"force_inner_{i}", 0.0)))
         for i, s in enumerate(scene.supports.inner)
         if s.holds_deflection
     ]
+    parts += [
+        (f"the {side} end", at, float(reactions.get(f"force_{side}", 0.0)))
+        for side, at in (("left", 0.0), ("right", L))
+    ]
+    out: list[tuple[str, float, float]] = []
+    for name, at, J in sorted(parts, key=lambda p: p[1]):
+        if out and abs(at - out[-1][1]) <= 1e-9 * dx:
+            out[-1] = (f"{out[-1][0]} and {name}", out[-1][1], out[-1][2] + J)
+        else:
+            out.append((name, at, J))
     return out
 
 
-def jump_rotation_warning(constant: float, scene: Scene, rotation: np.ndarray, info: dict) -> str:
-    """The one-line warning where ``constant`` |J| h² / EI passes :data:`TOLERANCE` of max |rotation| beside some jump
-    J (:func:`shear_jumps`), naming the largest and the points that bring it to the tolerance; "" otherwise."""
+def jump_estimates(constants: tuple[float, float], scene: Scene, rotation, info: dict) -> tuple:
+    """(the jumps of :func:`shear_jumps`, each one's c, each one's c |J| h² / (EI max |rotation|)), c the first of
+    ``constants`` inside the span and the second at an end; empty where nothing is estimated (no rotation, no
+    spacing)."""
     top = float(np.abs(rotation).max()) if rotation is not None and len(rotation) else 0.0
     dx, delta = float(info.get("spacing", 0.0)), float(info.get("horizon", 0.0))
-    if not constant or top == 0.0 or not dx:
-        return ""
+    if top == 0.0 or not dx:
+        return [], np.zeros(0), np.zeros(0)
     h = max(dx, delta / 3.0)
-    jumps = shear_jumps(scene, info.get("reactions", {}))
-    if not jumps:
+    jumps = shear_jumps(scene, info.get("reactions", {}), dx)
+    at = np.array([p for _, p, _ in jumps])
+    end = (at <= 1e-9 * dx) | (at >= scene.length - 1e-9 * dx)
+    c = np.where(end, constants[1], constants[0])
+    return jumps, c, c * np.abs([J for _, _, J in jumps]) * h**2 / scene.stiffness_at(at)["EI"] / top
+
+
+def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation, info: dict) -> str:
+    """The one-line warning where c |J| h² / EI passes :data:`TOLERANCE` of max |rotation| beside some jump J
+    (:func:`jump_estimates`), naming the largest and the points that bring it to the tolerance; "" otherwise."""
+    jumps, c, est = jump_estimates(constants, scene, rotation, info)
+    if not len(est) or est.max() <= TOLERANCE:
         return ""
-    EI = scene.stiffness_at([p for _, p, _ in jumps])["EI"]
-    est = constant * np.abs([J for _, _, J in jumps]) * h**2 / EI / top
-    worst = int(np.argmax(est))
-    if est[worst] <= TOLERANCE:
-        return ""
+    worst, dx = int(np.argmax(est)), float(info["spacing"])
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1
     return (
         f"rotation beside {jumps[worst][0]}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
-        f"points next to it is off by about {constant:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
+        f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
         f"{est[worst]:.2g} of max |rotation| (large where the rotation is small beside the shear: a point force near "
-        f"a support inside; docs/trust.md); second order: use at least {points} points for 1e-3"
+        f"a support, a clamp; docs/trust.md); second order: use at least {points} points for 1e-3"
     )

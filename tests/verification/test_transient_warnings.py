@@ -84,4 +84,5 @@ def test_a_transient_under_a_smooth_load_has_no_discretisation_warning(model, op
     dynamic = _warnings(model, options, loads, static=False)
     assert not [w for w in static if "first order" in w], static
     assert not [w for w in dynamic if "first order" in w], dynamic
-    assert [w for w in static if w not in dynamic] == []  # pd-higher-order's clamp layer: both warn of it
+    # pd-higher-order's clamp layer: both warn of it; the static rotation's estimate beside the ends is the static's
+    assert [w for w in static if w not in dynamic and not RECOVERED.search(w)] == []

@@ -53,7 +53,9 @@ def test_rotation_first_order_near_a_point_moment_and_warned():
     assert any(w.startswith("rotation:") for w in r.info["warnings"])
     plain = parse_scene(scene_dict("pinned", "clamped", [{"type": "distributed", "value": -500.0}]))
     (e1, r), (e2, _) = errors(plain, 101), errors(plain, 201)
-    assert np.log2(e1["rotation"] / e2["rotation"]) > 1.8 and not r.info.get("warnings")
+    assert np.log2(e1["rotation"] / e2["rotation"]) > 1.8  # second order, not warned of its order:
+    assert all(w.startswith("rotation beside the right end") for w in r.info.get("warnings", []))  # the clamp's
+    # reaction (9.9e-4 at 101 points against the estimate's 1.05e-3)
 
 
 def test_rotation_first_order_at_a_segment_joint_and_warned():
