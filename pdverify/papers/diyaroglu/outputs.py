@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.scene import HELD, PointForce, PointMoment, Scene, Spring
+from ...core.scene import HELD, Distributed, PointForce, PointMoment, Scene, Spring
 from ...numerics.loads import end_side, support_couples, support_side
 from ...numerics.recovery import derivative, jump_positions, kink_positions
 from ...numerics.statics import closed_reactions, rotation_over, statics_over
@@ -79,19 +79,18 @@ CLOSE_LOADS = 3  # spacings: point loads this close leave M's differences no str
 
 
 def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.ndarray, rotation: np.ndarray) -> tuple:
-    """(M, V, rotation) with the points from one before to one after each cluster of point loads (forces, couples) at
-    most :data:`CLOSE_LOADS` spacings apart taken by statics between the points beside it, whose M and rotation hold
+    """(M, V, rotation) with the points from one before to one after each cluster of point loads (forces, couples) and
+    ends of distributed loads at most :data:`CLOSE_LOADS` spacings apart (a short patch: V 0.49 of max |V| off at its
+    ends when it spans one spacing) taken by statics between the points beside it, whose M and rotation hold
     (:func:`~pdverify.numerics.statics.statics_over`, a point on a load the mean of its two sides; the rotation by the
     integral of M / EI, :func:`~pdverify.numerics.statics.rotation_over`): the differences of M and w have no stretch
     of three points between such loads (V 35-58 % of max |V| off at and between two loads 1 and 2 spacings apart, the
     rotation 1.9 % of max |rotation| between two couples 1 spacing apart, 201 points, clamped-clamped). A cluster
     with a support inside the span keeps its values."""
     dx = x[1] - x[0]
-    at = sorted(
-        ld.position
-        for ld in scene.loads
-        if isinstance(ld, (PointForce, PointMoment)) and ld.value and 0.0 < ld.position < scene.length
-    )
+    at = [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and ld.value]
+    at += [e for ld in scene.loads if isinstance(ld, Distributed) and ld.value for e in scene.span(ld)]
+    at = sorted(a for a in at if 0.0 < a < scene.length)
     spans = [
         (np.floor((a - x[0]) / dx + 1e-9) - 1, np.ceil((b - x[0]) / dx - 1e-9) + 2)
         for a, b in zip(at, at[1:])
