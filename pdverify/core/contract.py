@@ -281,6 +281,8 @@ class Model(Horizon):
     order: float = 2.0  # the order of convergence its equations promise (what `pdverify verify` expects)
     jump_rotation: tuple[float, float] = (0.0, 0.0)  # c of its rotation's error c |J| h² / EI next to a jump J of the
     # shear inside the span and at an end (measured on its default variant: registry/jump_rotation.py)
+    end_load_error: dict = {}  # C of its deflection's error C (h / d)² under a load d from a clamped or pinned end
+    # ({"clamped": C, "pinned": C}; measured on its default variant: registry/end_loads.py)
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
     histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
 

@@ -42,6 +42,7 @@ from ..numerics.features import stiffness_step_warnings, unresolved_features_war
 from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
 from .close_supports import close_supports_warning
+from .end_loads import end_load_warnings
 from .external import ExternalModel, load_manifest
 from .jump_rotation import jump_rotation_warning
 from .plugins import discover, remember_manifest
@@ -254,14 +255,14 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         check_finite(result)
     if "reactions" in result.info and m.bending and (close := close_supports_warning(scene)):
         result.info.setdefault("warnings", []).append(close)
-    default = (opt := m.option("variant")) is None or params.get("variant") == opt.default  # where c was measured
-    if (
-        any(m.jump_rotation)
-        and default
-        and "reactions" in result.info
-        and scene.dynamics is None
-        and not params.get("continuum")
-    ):
+    # the variant the constants were measured on; a transient integrates the static solve's operator and loads, so
+    # the loads' estimate is its too, but the rotation's takes the static reactions
+    measured = not params.get("continuum") and (
+        (opt := m.option("variant")) is None or params["variant"] == opt.default
+    )
+    if measured and m.end_load_error and (flags := end_load_warnings(m.end_load_error, scene, result.info)):
+        result.info.setdefault("warnings", []).extend(flags)
+    if measured and any(m.jump_rotation) and "reactions" in result.info and scene.dynamics is None:
         if jump := jump_rotation_warning(m.jump_rotation, scene, result.rotation, result.info):
             result.info.setdefault("warnings", []).append(jump)
     result.timings["total_s"] = time.perf_counter() - t0

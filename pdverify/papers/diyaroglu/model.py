@@ -117,6 +117,7 @@ EDGE_ERRORS = "errors of about 1e-2 there (1.1e-2 ... 5.8e-3 at 0.3 ... 1.5 spac
 class PDEulerBernoulli(Model):
     name = "pd-eb"
     jump_rotation = (0.65, 0.35)  # inside, at an end: above the ratios of benchmarks/jump_rotation.py (docs/trust.md)
+    end_load_error = {"clamped": 1.3, "pinned": 0.3}  # above the values of benchmarks/end_loads.py (docs/trust.md)
     dispersion = "curvature"  # its waves' frequencies (pdverify.theory.symbols)
     title = "ordinary state-based PD Euler–Bernoulli beam"
     source = "Diyaroglu et al. 2019, An Euler–Bernoulli beam formulation in an ordinary state-based PD framework"

@@ -44,6 +44,7 @@ __all__ = ["MODELS", "PDRod", "PDTimoshenko", "PDTorsion", "simulate", "stabilis
 class PDTimoshenko(_MoyerModel):
     name = "pd-timoshenko"
     jump_rotation = (0.65, 0.65)  # inside, at an end: above the ratios of benchmarks/jump_rotation.py (docs/trust.md)
+    end_load_error = {"clamped": 0.65, "pinned": 0.15}  # above the values of benchmarks/end_loads.py (docs/trust.md)
     title = "micro-elastic PD Timoshenko beam (w, rotation)"
     theory = "timoshenko"
     options = tuple(

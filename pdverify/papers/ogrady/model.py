@@ -194,6 +194,7 @@ def element_bound(model, lu, b, free, full) -> float:
 class PDBondPair(Model):
     name = "pd-bond-pair"
     jump_rotation = (1.7, 0.35)  # inside, at an end: above the ratios of benchmarks/jump_rotation.py (docs/trust.md)
+    end_load_error = {"clamped": 2.3, "pinned": 0.8}  # above the values of benchmarks/end_loads.py (docs/trust.md)
     dispersion = "bond-pair"  # its waves' frequencies (pdverify.theory.symbols)
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
     source = (
