@@ -17,6 +17,14 @@ def apart(value: float, limit: float, digits: int = 2) -> str:
 PRACTICAL_POINTS = 10**8  # a grid past this many points does not fit a workstation's memory for any model
 
 
+def rounded_up(value: float, digits: int = 2) -> str:
+    """``value`` to ``digits`` significant digits, rounded up (an upper estimate printed is not below itself)."""
+    if not (value > 0 and math.isfinite(value)):
+        return f"{value:.{digits}g}"
+    step = 10.0 ** (math.floor(math.log10(value)) - digits + 1)
+    return f"{math.ceil(value / step * (1 - 1e-12)) * step:.{digits}g}"
+
+
 def more_points(points: float) -> str:
     """The advice "use at least N points" (N = ceil(points)), or, past :data:`PRACTICAL_POINTS`, that no practical grid
     does it (a point load 1e-15 m beside a support asked for 7,205,759,403,792,795 points)."""

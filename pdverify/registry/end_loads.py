@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.scene import Distributed, PointForce, Scene
+from ..core.text import rounded_up
 
 TOLERANCE = 1e-3  # the estimated error (of max |w|) above which it is a warning
 CLOSEST = 2.5  # in h: nearer, the estimate is not measured (benchmarks/end_loads.py starts there) and the error can
@@ -67,7 +68,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict) -> list[str]:
         points = int(np.ceil(scene.length / dx * np.sqrt(est / TOLERANCE))) + 1
         out.append(
             f"{head}: the deflection is off by about {c:g} (h / d)² of the load's own (h = max(spacing, horizon / 3), "
-            f"d its distance), here {est:.2g}, which a load close to the end makes large beside max |w| "
+            f"d its distance), here {rounded_up(est)}, which a load close to the end makes large beside max |w| "
             f"(docs/trust.md); second order: use at least {points} points for 1e-3"
         )
     return out

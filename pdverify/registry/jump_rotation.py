@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.scene import PointForce, Scene
+from ..core.text import rounded_up
 
 TOLERANCE = 1e-3  # the estimated error (of max |rotation|) above which it is a warning
 MARGIN = 1.1  # on the points the warning asks for: the estimate divides by the model's max |rotation|, off by its error
@@ -70,6 +71,6 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     return (
         f"rotation beside {jumps[worst][0]}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
         f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
-        f"{est[worst]:.2g} of max |rotation| (large where the rotation is small beside the shear: a point force near "
-        f"a support, a clamp; docs/trust.md); second order: use at least {points} points for 1e-3"
+        f"{rounded_up(est[worst])} of max |rotation| (large where the rotation is small beside the shear: a point "
+        f"force near a support, a clamp; docs/trust.md); second order: use at least {points} points for 1e-3"
     )

@@ -17,3 +17,16 @@ def test_advice_of_more_points_stops_at_a_practical_grid():
     d["supports"]["inner"] = [{"position": 1.0, "type": "pinned"}]
     (line,) = unresolved_features_warnings(parse_scene(d), 0.01)
     assert "no practical grid does it" in line and "use at least" not in line
+
+
+def test_an_estimate_printed_is_rounded_up():
+    """Sweep 18: an estimate 0.01748 printed "0.017" read below its error 0.01710: upper estimates round up."""
+    from pdverify.core.text import rounded_up
+
+    assert [rounded_up(v) for v in (0.01748, 0.017, 1e-3, 0.00099999, 0.1)] == [
+        "0.018",
+        "0.017",
+        "0.001",
+        "0.001",
+        "0.1",
+    ]
