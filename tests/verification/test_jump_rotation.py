@@ -15,16 +15,9 @@ from pdverify.registry.jump_rotation import TOLERANCE, shear_jumps
 MODELS = {"pd-eb": "exact-eb", "pd-timoshenko": "exact-timoshenko", "pd-bond-pair": "exact-eb"}
 
 
-def beside(model: str, spacings: float, inner: dict, mirror: bool = False, points: int = 201):
-    """A pinned-pinned 1 m beam held inside at 0.5 + 0.41 spacings by ``inner``, a point force ``spacings`` spacings
-    right of it (left in the ``mirror`` image), with a uniform load: (the rotation's largest error against the exact
-    beam relative to its largest value, the estimate the warning gives or 0)."""
-    dx = 1.0 / (points - 1)
-    at = 0.5 + 0.41 * dx
-    force = at + spacings * dx
-    loads = [{"type": "point_force", "position": 1.0 - force if mirror else force, "value": -700.0}]
-    d = scene_dict("pinned", "pinned", loads + [{"type": "distributed", "value": -100.0}])
-    d["supports"]["inner"] = [{"position": 1.0 - at if mirror else at, **inner}]
+def rotation_error(d: dict, model: str, points: int):
+    """(the rotation's largest error against the exact beam relative to its largest value, the estimate the warning
+    gives or 0) of the scene ``d`` on a 1 m steel beam, 20 x 50 mm."""
     d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
     d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
     sc = parse_scene(d)
@@ -32,6 +25,18 @@ def beside(model: str, spacings: float, inner: dict, mirror: bool = False, point
     said = [w for w in r.info.get("warnings", []) if w.startswith("rotation beside")]
     estimate = float(said[0].split(" here ")[1].split()[0]) if said else 0.0
     return float(np.abs(r.rotation - e.rotation).max() / np.abs(e.rotation).max()), estimate
+
+
+def beside(model: str, spacings: float, inner: dict, mirror: bool = False, points: int = 201):
+    """:func:`rotation_error` of a pinned-pinned beam held inside at 0.5 + 0.41 spacings by ``inner``, a point force
+    ``spacings`` spacings right of it (left in the ``mirror`` image), with a uniform load."""
+    dx = 1.0 / (points - 1)
+    at = 0.5 + 0.41 * dx
+    force = at + spacings * dx
+    loads = [{"type": "point_force", "position": 1.0 - force if mirror else force, "value": -700.0}]
+    d = scene_dict("pinned", "pinned", loads + [{"type": "distributed", "value": -100.0}])
+    d["supports"]["inner"] = [{"position": 1.0 - at if mirror else at, **inner}]
+    return rotation_error(d, model, points)
 
 
 @pytest.mark.parametrize("model", list(MODELS))
@@ -56,16 +61,8 @@ def test_a_mirror_image_warns_alike(model):
 
 
 def end_case(model: str, left: str, right: str, loads: list, points: int):
-    """(the rotation's largest error against the exact beam relative to its largest value, the estimate or 0) of a
-    1 m steel beam, 20 x 50 mm, on ``left`` and ``right`` ends under ``loads``."""
-    d = scene_dict(left, right, loads)
-    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
-    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
-    sc = parse_scene(d)
-    r, e = run(sc, model, points=points), run(sc, MODELS[model], points=points)
-    said = [w for w in r.info.get("warnings", []) if w.startswith("rotation beside")]
-    estimate = float(said[0].split(" here ")[1].split()[0]) if said else 0.0
-    return float(np.abs(r.rotation - e.rotation).max() / np.abs(e.rotation).max()), estimate
+    """:func:`rotation_error` on ``left`` and ``right`` ends under ``loads``."""
+    return rotation_error(scene_dict(left, right, loads), model, points)
 
 
 @pytest.mark.parametrize("model", list(MODELS))
