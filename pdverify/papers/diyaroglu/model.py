@@ -111,7 +111,10 @@ def paper_bias(m: float) -> str:
 # deflection's largest error against exact-eb at 101, 201, 401 points (docs/models/diyaroglu.md)
 COUPLE_AT_JOINT = "measured 3.0e-3, 1.5e-3, 7.7e-4 of max |w| at 101, 201, 401 points on a two-material beam"
 # measured on a clamped-free, -guided and -spring beam, L/h = 100, 101 points (docs/models/diyaroglu.md)
-EDGE_ERRORS = "errors of about 1e-2 there (1.1e-2 ... 5.8e-3 at 0.3 ... 1.5 spacings, 1e-3 at 2.5, 2e-4 beyond)"
+EDGE_ERRORS = (
+    "errors of about 1e-2 there (w 1.1e-2 ... 5.8e-3 with the edge 0.3 ... 1.5 spacings from a free end; V 3.2e-2, "
+    "1.9e-2, 9.9e-3, 7.8e-3 at 2.5, 3, 4, 5 spacings from a guided or free end, at any number of points)"
+)
 
 
 class PDEulerBernoulli(Model):

@@ -63,7 +63,10 @@ FORM_HELP = "taylor ends: auto (= mixed) | direct (one fourth-order system) | mi
 
 
 # measured on a clamped-free and -guided beam, L/h = 100, 101 points, Taylor ends (docs/models/ogrady.md)
-EDGE_ERRORS = "errors of about 2e-2 there (2.7e-2 ... 1.3e-2 at 0.3 ... 1.5 spacings, 2e-4 at 2.5)"
+EDGE_ERRORS = (
+    "errors of about 1e-2 there (2.7e-2 ... 1.3e-2 at 0.3 ... 1.5 spacings from a free end; w and V 1e-2, 5e-3, 1e-3 "
+    "at 3, 4, 5 spacings from a guided end, at any number of points)"
+)
 
 
 def resolved_ends(scene: Scene, params: dict) -> dict:
