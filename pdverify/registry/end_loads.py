@@ -18,8 +18,22 @@ CLOSEST = 2.5  # in h: nearer, the estimate is not measured (benchmarks/end_load
 NEAR = 0.25  # a load is near an end when d is below this share of the length: farther off the end's part is no larger
 # than the beam's own discretisation error (a uniform load: 7.4e-4 at 41 points where C (h / d)² is 1.6e-3), which
 # --estimate gives
-KIND = {"clamped": "clamped", "pinned": "pinned", "roller": "pinned"}  # the constant each end takes (guided, spring
-# and free ends: not measured, not estimated)
+KIND = {"clamped": "clamped", "pinned": "pinned", "roller": "pinned"}  # the constant each end takes (guided and free
+# ends: not measured, not estimated)
+
+
+def end_kind(scene: Scene, side: str) -> str:
+    """The constant an end takes: its :data:`KIND`; a spring end that holds the deflection the pinned end's, the clamped
+    end's when it holds the rotation too (a stiff spring is the rigid support, a soft one moves with the load and the
+    estimate is an upper one); "" for the others."""
+    sup = getattr(scene.supports, side)
+    if isinstance(sup, str):
+        return KIND.get(sup, "")
+    if not sup.stiffness:
+        return ""
+    return "clamped" if sup.rotational_stiffness else "pinned"
+
+
 _GX, _GW = np.polynomial.legendre.leggauss(16)
 
 
@@ -35,7 +49,7 @@ def arm(scene: Scene, load, end: float) -> float:
 
 def end_load_warnings(constants: dict, scene: Scene, info: dict) -> list[str]:
     """One line per load whose ``constants[kind]`` (h / d)² passes :data:`TOLERANCE` at an end it is near (d below
-    :data:`NEAR` of the length; kind: the end's :data:`KIND`; the larger of the two ends), with the points that bring
+    :data:`NEAR` of the length; kind: :func:`end_kind`; the larger of the two ends), with the points that bring
     it to the tolerance; none for a load an earlier warning in ``info`` names."""
     dx, delta = float(info.get("spacing", 0.0)), float(info.get("horizon", 0.0))
     if not dx:
@@ -48,7 +62,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict) -> list[str]:
             continue
         ends = []  # (estimate, side, d, c) at each end that takes a constant
         for side, end in (("left", 0.0), ("right", scene.length)):
-            c = constants.get(KIND.get(scene.supports.kind(side), ""), 0.0)
+            c = constants.get(end_kind(scene, side), 0.0)
             d = arm(scene, ld, end)
             if c and 1e-9 * dx < d < NEAR * scene.length:
                 ends.append((min(c * (h / d) ** 2, 1.0), side, d, c))
