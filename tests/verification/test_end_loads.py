@@ -61,9 +61,9 @@ def test_the_cantilever_loaded_beside_its_clamp_is_warned_and_a_mirror_image_ali
 def test_a_stiff_spring_end_is_estimated_as_the_support_it_stands_for(model):
     """Sweep 19 I1: a spring end of 1e12 N/m under a patch on [0, 0.06] gave pd-eb's errors of the pinned end to the
     digit (w 4.34e-3 at 201 points) and no warning. A spring end that holds the deflection now takes the pinned end's
-    constant (the clamped end's if it holds the rotation too): the same estimate as the pin."""
+    constant (the clamped end's if it holds the rotation too): the same estimate as the pin, above both errors."""
     load = {"type": "distributed", "value": -5000.0, "start": 0.0, "end": 0.06}
     (e1, s1), (e2, s2) = (
         near_end(model, (end, "pinned"), load) for end in ("pinned", {"type": "spring", "stiffness": 1e12})
     )
-    assert s1 == s2 and abs(e1 - e2) <= 1e-3 * e1 and e2 <= max(s2, TOLERANCE), (e1, s1, e2, s2)
+    assert s1 == s2 and max(e1, e2) <= max(s2, TOLERANCE), (e1, s1, e2, s2)
