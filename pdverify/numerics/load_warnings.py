@@ -68,8 +68,10 @@ EDGE_LAYER = 6  # spacings of an end with fitted (Taylor) ghosts within which a 
 FITTED_ENDS = ("free", "guided", "spring")  # the ends whose ghosts the PD beams fit to the real points' w
 
 
-def edge_layer_warnings(scene: Scene, x: np.ndarray, measured: str, kinds=FITTED_ENDS) -> list[str]:
-    """Edges of distributed loads strictly inside the first EDGE_LAYER spacings of an end of one of ``kinds``: ghosts
+def edge_layer_warnings(
+    scene: Scene, x: np.ndarray, measured: str, kinds=FITTED_ENDS, layer: int = EDGE_LAYER
+) -> list[str]:
+    """Edges of distributed loads strictly inside the first ``layer`` spacings of an end of one of ``kinds``: ghosts
     fitted there extrapolate one polynomial of w across the load's jump. ``measured``: the model's own errors there,
     quoted in the warning."""
     dx, L = x[1] - x[0], scene.length
@@ -81,11 +83,11 @@ def edge_layer_warnings(scene: Scene, x: np.ndarray, measured: str, kinds=FITTED
         for edge in scene.span(ld):
             for at, side in ends:
                 d = abs(edge - at)
-                if 1e-12 * L < d and within(d, EDGE_LAYER, dx):
+                if 1e-12 * L < d and within(d, layer, dx):
                     out.append(
                         f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
-                        f"({scene.supports.kind(side)}), inside the {EDGE_LAYER} spacings its ghosts are fitted on: "
-                        f"{measured}; {more_points(np.ceil(EDGE_LAYER * L / d) + 1)}"
+                        f"({scene.supports.kind(side)}), inside the {layer} spacings its ghosts are fitted on: "
+                        f"{measured}; {more_points(np.ceil(layer * L / d) + 1)}"
                     )
     return out
 

@@ -182,3 +182,21 @@ def test_a_load_edge_beside_a_taylor_ghost_end_is_warned(right, ends):
             assert 1e-2 < error < 3e-2, (spacings, error)
         else:
             assert error < 4e-3, (spacings, error)
+
+
+def test_a_patch_edge_up_to_ten_spacings_from_a_guided_end_is_warned():
+    """Sweeps 19 and 20 (I2, J3): a patch from a guided end to 4 spacings in left w 4.8e-3 off at every grid, and one
+    from 6 to 9 spacings off it 1.4e-3 ... 9e-4, unwarned (the edge warning reached 3, then 6 spacings). Its Taylor ends
+    warn of an edge within 10 spacings now, and an edge 11 spacings in is within 1e-3."""
+    for start, end, warned in ((0, 4, True), (6, 9, True), (11, 14, False)):
+        d = scene_dict(
+            "guided", "clamped", [{"type": "distributed", "value": -5000.0, "start": start / 200, "end": end / 200}]
+        )
+        d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
+        d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+        sc = parse_scene(d)
+        r = run(sc, "pd-bond-pair", points=201)
+        exact = solve_straight(sc, False).fields(r.x)["w"]
+        error = np.abs(r.w - exact).max() / np.abs(exact).max()
+        said = [w for w in r.info.get("warnings", []) if "its ghosts are fitted on" in w]
+        assert bool(said) == warned and (warned or error < 1e-3), (start, end, error, said)
