@@ -2,8 +2,8 @@
 distributed load a distance d (its centroid's) from a clamped or pinned end is off by about C (h / d)² of the load's
 own deflection, h = max(spacing, horizon / 3): second order at a fixed d, but at a fixed number of spacings it does
 not fall, and a load close to a clamp bends the beam little, so the error is large beside max |w| (the ends' ghosts
-and the families at the support carry the load's curvature; docs/trust.md, "Loads near an end"). A load an earlier
-warning names (in the end's layer, a load edge among the fitted ghosts) is left to it."""
+and the families at the support carry the load's curvature; docs/trust.md, "Loads near an end"). A point load in
+the end's layer is left to that layer's warning."""
 
 from __future__ import annotations
 
@@ -20,8 +20,6 @@ NEAR = 0.25  # a load is near an end when d is below this share of the length: f
 # --estimate gives
 KIND = {"clamped": "clamped", "pinned": "pinned", "roller": "pinned"}  # the constant each end takes (guided and free
 # ends: not measured, not estimated)
-
-
 STIFF = 100.0  # k L³ / EI from which a spring end holds the deflection as a pin does (the PD beams' errors of the pin
 # to 3 digits at 1e8-1e12 N/m on a 1 m beam of EI 4.2e4 N m², k L³ / EI 2.4e3-2.4e7); a softer one moves with the load
 
