@@ -11,8 +11,8 @@ import numpy as np
 
 from ..core.scene import Distributed, PointForce, Scene
 from ..core.text import rounded_up
+from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
-TOLERANCE = 1e-3  # the estimated error (of max |w|) above which it is a warning
 CLOSEST = 2.5  # in h: nearer, the estimate is not measured (benchmarks/end_loads.py starts there) and the error can
 # pass the solution's own size (a patch on the first 2 spacings of a cantilever: 0.86 of max |w| at 201 points)
 NEAR = 0.25  # a load is near an end when d is below this share of the length: farther off the end's part is no larger
@@ -58,18 +58,19 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict) -> list[str]:
         return []
     h = max(dx, delta / 3.0)
     said = info.get("warnings", [])
+    sides = (("left", 0.0), ("right", scene.length))
+    ends = [(side, at, constants.get(end_kind(scene, side), 0.0)) for side, at in sides]  # once per end
     out = []
     for i, ld in enumerate(scene.loads):
         layer = any(w.startswith(f"loads[{i}] at ") and "boundary layer" in w for w in said)  # the layer's own
         if not isinstance(ld, (PointForce, Distributed)) or not ld.value or layer:
             continue
-        ends = []  # (estimate, side, d, c) at each end that takes a constant
-        for side, end in (("left", 0.0), ("right", scene.length)):
-            c = constants.get(end_kind(scene, side), 0.0)
+        near = []  # (estimate, side, d, c) at each end that takes a constant
+        for side, end, c in ends:
             d = arm(scene, ld, end)
             if c and 1e-9 * dx < d < NEAR * scene.length:
-                ends.append((min(c * (h / d) ** 2, 1.0), side, d, c))
-        if not ends or (top := max(ends))[0] <= TOLERANCE:
+                near.append((min(c * (h / d) ** 2, 1.0), side, d, c))
+        if not near or (top := max(near))[0] <= TOLERANCE:
             continue
         est, side, d, c = top
         what = "a point force at" if isinstance(ld, PointForce) else "a distributed load, its centroid at"

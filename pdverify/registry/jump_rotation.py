@@ -10,8 +10,8 @@ import numpy as np
 
 from ..core.scene import PointForce, Scene
 from ..core.text import rounded_up
+from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
-TOLERANCE = 1e-3  # the estimated error (of max |rotation|) above which it is a warning
 MARGIN = 1.1  # on the points the warning asks for: the estimate divides by the model's max |rotation|, off by its error
 
 

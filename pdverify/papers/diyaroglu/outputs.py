@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...core.scene import HELD, Distributed, PointForce, PointMoment, Scene, Spring
+from ...core.scene import HELD, PointForce, PointMoment, Scene, Spring
 from ...numerics.loads import end_side, support_couples, support_side
 from ...numerics.recovery import derivative, jump_positions, kink_positions
 from ...numerics.statics import closed_reactions, rotation_over, statics_over
@@ -89,8 +89,7 @@ def close_loads_by_statics(scene: Scene, x: np.ndarray, M: np.ndarray, V: np.nda
     with a support inside the span keeps its values."""
     dx = x[1] - x[0]
     at = [ld.position for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and ld.value]
-    at += [e for ld in scene.loads if isinstance(ld, Distributed) and ld.value for e in scene.span(ld)]
-    at = sorted(a for a in at if 0.0 < a < scene.length)
+    at = sorted([a for a in at if 0.0 < a < scene.length] + list(kink_positions(scene)))  # distributed loads' ends
     spans = [
         (np.floor((a - x[0]) / dx + 1e-9) - 1, np.ceil((b - x[0]) / dx - 1e-9) + 2)
         for a, b in zip(at, at[1:])

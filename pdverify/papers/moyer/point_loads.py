@@ -4,6 +4,7 @@ numbers (docs/models/moyer.md, "Known limits"): arrays and scenes in, lines out.
 from __future__ import annotations
 
 from ...core.scene import Scene, Spring
+from ...numerics.recovery import kink_positions
 
 
 def rod_points_loaded(model, scene: Scene) -> list[float]:
@@ -60,14 +61,8 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
             "not converge (76 % of max |V| off at 81 to 641 points, clamped-clamped, L/h = 20); variant = energy is "
             "second order there"
         )
-    edges = [
-        e
-        for ld in scene.loads
-        if ld.type == "distributed" and ld.value != 0.0
-        for e in scene.span(ld)
-        if 0.0 < e < scene.length
-    ]
-    if edges:
+    edges = kink_positions(scene)  # the distributed loads' ends inside the beam
+    if len(edges):
         out.append(
             f"variant = corrected: the shear beside a distributed load's edge inside the beam (x = {edges[0]:g}) "
             "converges at first order (1.14e-2, 5.7e-3, 2.8e-3 of max |V| at 101, 201, 401 points: a cantilever "
