@@ -18,11 +18,21 @@ import argparse
 
 import numpy as np
 
+from pdverify.core.result import quantity_of
 from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, run
+from pdverify.registry.end_loads import CLOSEST, NEAR
 
 MODELS = {"pd-eb": "exact-eb", "pd-timoshenko": "exact-timoshenko", "pd-bond-pair": "exact-eb"}
 ENDS = [("clamped", "free"), ("clamped", "pinned"), ("clamped", "clamped"), ("pinned", "pinned"), ("pinned", "clamped")]
+# spring ends on the left (EI 4.17e4 N m²): soft (k L³ / EI 24), stiff, with a soft and a stiff rotational one
+SPRINGS = {
+    "soft spring": {"type": "spring", "stiffness": 1e6},
+    "stiff spring": {"type": "spring", "stiffness": 1e12},
+    "spring kr 1e4": {"type": "spring", "stiffness": 1e12, "rotational_stiffness": 1e4},
+    "spring kr 1e12": {"type": "spring", "stiffness": 1e12, "rotational_stiffness": 1e12},
+}
+ENDS += [(name, right) for name in SPRINGS for right in ("pinned", "clamped")]
 ARMS = (2.5, 5, 10, 20, 40)  # spacings
 
 
@@ -44,15 +54,18 @@ def scene(left: str, right: str, kind: str, arm: float):
             "beam": {"length": 1.0},
             "section": {"width": 0.02, "height": 0.05},
             "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
-            "supports": {"left": left, "right": right},
+            "supports": {"left": SPRINGS.get(left, left), "right": right},
             "loads": loads(kind, arm),
         }
     )
 
 
-def error(sc, name: str, n: int, m: float):
-    r, e = run(sc, name, points=n, horizon=m), run(sc, MODELS[name], points=n)
-    return np.abs(r.w - e.w).max() / np.abs(e.w).max(), r.info.get("warnings", [])
+def error(sc, name: str, n: int, m: float, options: dict | None = None):
+    """(the larger of w's and M's largest errors, each relative to its own largest value, the warnings)."""
+    r, e = run(sc, name, points=n, horizon=m, **(options or {})), run(sc, MODELS[name], points=n)
+    M, Me = (quantity_of(x.w, x.rotation, x.fields, "moment") for x in (r, e))
+    errors = [np.abs(a - b).max() / np.abs(b).max() for a, b in ((r.w, e.w), (M, Me)) if b is not None and b.any()]
+    return max(errors), r.info.get("warnings", [])
 
 
 def main() -> None:
@@ -60,29 +73,38 @@ def main() -> None:
     ap.add_argument("--points", type=int, nargs="+", default=[101, 201, 401])
     ap.add_argument("--models", nargs="+", default=list(MODELS))
     ap.add_argument("--horizons", type=float, nargs="+", default=[3.0, 5.0])
+    ap.add_argument("-o", "--option", action="append", default=[], help="model option key=value (repeatable)")
     args = ap.parse_args()
+    options = dict(kv.split("=", 1) for kv in args.option)
     for name in args.models:
         for m in args.horizons:
-            worst, silent = (0.0, ""), []
+            worst, silent, need = (0.0, ""), [], {}
             for left, right in ENDS:
                 for n in args.points:
                     dx = 1.0 / (n - 1)
                     for kind in ("patch from the end", "patch off the end", "force"):
                         for k in ARMS:
-                            err, said = error(scene(left, right, kind, k * dx), name, n, m)
+                            err, said = error(scene(left, right, kind, k * dx), name, n, m, options)
                             # the same load k spacings off at twice the points: the end's part stays, the rest falls
                             # 4 times
-                            finer, _ = error(scene(left, right, kind, k * dx / 2), name, 2 * n - 1, m)
+                            finer, _ = error(scene(left, right, kind, k * dx / 2), name, 2 * n - 1, m, options)
                             end = max((4 * finer - err) / 3, finer)
                             label = f"{kind} arm {k} spacings, {left}-{right}, {n} points"
+                            h = max(dx, m * dx / 3)
+                            if (
+                                CLOSEST * h <= k * dx < NEAR
+                            ):  # the constant this case needs where it is estimated: end's part / (h/d)²
+                                need[left] = max(need.get(left, (0.0, "")), (end / (h / (k * dx)) ** 2, label))
                             mine = [w for w in said if "spacings from the left end" in w and "(h / d)" in w]
                             if mine:
                                 est = float(mine[0].split(", here ")[1].split(",")[0])
                                 worst = max(worst, (end / est, label))
                             elif err > 1e-3 and not said:
                                 silent.append(f"{label}: {err:.2g} (the end's part {end:.2g})")
-            c = get_model(name).end_load_error
+            c = get_model(name).estimate_constants(scene("clamped", "free", "force", 0.1), options)[0]
             print(f"{name} horizon {m:g}, C = {c}: largest error / estimate {worst[0]:.3f} ({worst[1]})")
+            for kind, (c_need, label) in sorted(need.items()):
+                print(f"  the {kind} end's cases need C >= {c_need:.3g} ({label})")
             for line in silent:
                 print(f"  unwarned over 1e-3: {line}")
 

@@ -68,16 +68,20 @@ def main() -> None:
     ap.add_argument("--points", type=int, nargs="+", default=[201, 401])
     ap.add_argument("--models", nargs="+", default=list(MODELS))
     ap.add_argument("--horizons", type=float, nargs="+", default=[3.0, 5.0])
+    ap.add_argument("-o", "--option", action="append", default=[], help="model option key=value (repeatable)")
     args = ap.parse_args()
+    options = dict(kv.split("=", 1) for kv in args.option)
     for name in args.models:
         for m in args.horizons:
-            worst, flagged, silent = (0.0, ""), (0.0, ""), []
+            worst, flagged, silent, used = (0.0, ""), (0.0, ""), [], set()
             for n in args.points:
                 dx = 1.0 / (n - 1)
                 for label, sc in cases(dx):
-                    r, e = run(sc, name, points=n, horizon=m), run(sc, MODELS[name], points=n)
+                    r, e = run(sc, name, points=n, horizon=m, **options), run(sc, MODELS[name], points=n)
                     err = np.abs(r.rotation - e.rotation)
-                    _, _, est = jump_estimates(get_model(name).jump_rotation, sc, r.rotation, r.info)
+                    c = get_model(name).estimate_constants(sc, options)[1]  # the options' (pd-bond-pair's ends)
+                    used.add(c)
+                    _, _, est = jump_estimates(c, sc, r.rotation, r.info)
                     ratio = err.max() / np.abs(e.rotation).max() / est.max()
                     others = [w for w in r.info.get("warnings", []) if not w.startswith("rotation beside")]
                     if others:  # the case's error has another cause its warnings name (a load in an end's layer)
@@ -87,7 +91,7 @@ def main() -> None:
                     rel = err.max() / np.abs(e.rotation).max()
                     if rel > 1e-3 and not r.info.get("warnings"):
                         silent.append(f"{label}, {n} points: {rel:.2g}")
-            c = get_model(name).jump_rotation
+            c = " and ".join(map(str, sorted(used)))
             print(f"{name} horizon {m:g}, c = {c}: largest error / estimate {worst[0]:.3f} ({worst[1]})")
             print(f"  largest where another warning names the cause: {flagged[0]:.3f} ({flagged[1]})")
             for line in silent:

@@ -292,6 +292,15 @@ class Model(Horizon):
         hold an observed order against."""
         return float(self.order)
 
+    def estimate_constants(self, scene: Scene, params: dict) -> tuple[dict, tuple[float, float]]:
+        """(:attr:`end_load_error`, :attr:`jump_rotation`) for these options (``params``, or the defaults where they
+        name none): the attributes, measured on the default variant, for that variant, nothing for another. A model
+        whose other variants or options change the constants and were measured on them gives theirs here."""
+        opt = self.option("variant")
+        if opt is None or params.get("variant", opt.default) == opt.default:
+            return self.end_load_error, self.jump_rotation
+        return {}, (0.0, 0.0)
+
     def refusals(self, scene: Scene, params: dict) -> list[str]:
         """Reasons this model cannot solve ``scene`` with these options (``params``, resolved), before any work: a
         variant or form that does not define what the scene holds (pd-bond-pair's Taylor ends and a support inside

@@ -194,6 +194,12 @@ def horizon_info(m: Model, scene: Scene, params: dict, info: dict) -> None:
     info.update(horizon=float(delta), spacing=float(dx), m=round(float(delta) / float(dx), 9))
 
 
+def exact_on(points: int):
+    """scene -> exact Euler-Bernoulli theory's result on ``points`` points (what the end-load estimate weighs each
+    load's response with)."""
+    return lambda scene: run(scene, "exact-eb", points=points)
+
+
 def run(scene: Scene, model: str | Model, **given) -> Result:
     """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
 
@@ -255,15 +261,13 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         check_finite(result)
     if "reactions" in result.info and m.bending and (close := close_supports_warning(scene)):
         result.info.setdefault("warnings", []).append(close)
-    # the variant the constants were measured on; a transient integrates the static solve's operator and loads, so
-    # the loads' estimate is its too, but the rotation's takes the static reactions
-    measured = not params.get("continuum") and (
-        (opt := m.option("variant")) is None or params["variant"] == opt.default
-    )
-    if measured and m.end_load_error and (flags := end_load_warnings(m.end_load_error, scene, result.info)):
+    # a transient integrates the static solve's operator and loads, so the loads' estimate is its too, but the
+    # rotation's takes the static reactions
+    end_load, jump_constants = ({}, (0.0, 0.0)) if params.get("continuum") else m.estimate_constants(scene, params)
+    if end_load and (flags := end_load_warnings(end_load, scene, result.info, exact_on(len(result.x)))):
         result.info.setdefault("warnings", []).extend(flags)
-    if measured and any(m.jump_rotation) and "reactions" in result.info and scene.dynamics is None:
-        if jump := jump_rotation_warning(m.jump_rotation, scene, result.rotation, result.info):
+    if any(jump_constants) and "reactions" in result.info and scene.dynamics is None:
+        if jump := jump_rotation_warning(jump_constants, scene, result.rotation, result.info):
             result.info.setdefault("warnings", []).append(jump)
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)

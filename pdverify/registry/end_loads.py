@@ -9,7 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.errors import InputError, SolveError
+from ..core.result import quantity_of
 from ..core.scene import Distributed, PointForce, Scene
+from ..core.scene_file import parse_scene
 from ..core.text import rounded_up
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
@@ -19,21 +22,19 @@ NEAR = 0.25  # a load is near an end when d is below this share of the length: f
 # than the beam's own discretisation error (a uniform load: 7.4e-4 at 41 points where C (h / d)² is 1.6e-3), which
 # --estimate gives
 KIND = {"clamped": "clamped", "pinned": "pinned", "roller": "pinned"}  # the constant each end takes (guided and free
-# ends: not measured, not estimated)
-STIFF = 100.0  # k L³ / EI from which a spring end holds the deflection as a pin does (the PD beams' errors of the pin
-# to 3 digits at 1e8-1e12 N/m on a 1 m beam of EI 4.2e4 N m², k L³ / EI 2.4e3-2.4e7); a softer one moves with the load
+# ends: not measured, not estimated; springs: :func:`end_kind`)
 
 
 def end_kind(scene: Scene, side: str) -> str:
-    """The constant an end takes: its :data:`KIND`; a spring end of translational stiffness only, past :data:`STIFF`,
-    the pinned end's; "" for the others (a soft spring, whose end moves with the load; a rotational spring, where
-    the PD beams' own warnings of a first-order end apply)."""
+    """The constant an end takes: its :data:`KIND`; a spring end "spring" (its M and the deflection beside it carry
+    the pin's error whatever its stiffness: a soft one moves with the load, so w's share is smaller) or, with a
+    rotational stiffness, "rotational spring" (pd-eb's and pd-timoshenko's clamped constant, an upper one for a soft
+    rotational spring; pd-bond-pair takes none: its end slope there is first order, its own warning); "" for the
+    others."""
     sup = getattr(scene.supports, side)
     if isinstance(sup, str):
         return KIND.get(sup, "")
-    EI = float(scene.stiffness_at([0.0 if side == "left" else scene.length])["EI"][0])
-    stiff = sup.stiffness * scene.length**3 >= STIFF * EI
-    return "pinned" if stiff and not sup.rotational_stiffness else ""
+    return "rotational spring" if sup.rotational_stiffness else "spring"
 
 
 _GX, _GW = np.polynomial.legendre.leggauss(16)
@@ -49,10 +50,38 @@ def arm(scene: Scene, load, end: float) -> float:
     return abs(float((q * s).sum() / q.sum()) - end) if q.sum() > 0 else 0.0
 
 
-def end_load_warnings(constants: dict, scene: Scene, info: dict) -> list[str]:
-    """One line per load whose ``constants[kind]`` (h / d)² passes :data:`TOLERANCE` at an end it is near (d below
-    :data:`NEAR` of the length; kind: :func:`end_kind`; the larger of the two ends), with the points that bring
-    it to the tolerance; none for a point load in the end's layer, which its own warning in ``info`` names."""
+def shares(scene: Scene, exact):
+    """i -> the response to ``loads[i]`` alone beside the whole's, in ``exact`` (scene -> the exact beam's result on
+    the result's points): the larger of max |w_i| / max |w| and max |M_i| / max |M| (1 for the only load; loads that
+    oppose each other make the whole smaller than one's own, and an error that is the load's own larger beside it);
+    1 where the exact beam does not solve the scene (its dynamics dropped: the loads' static part). The whole solved
+    once."""
+    base = {k: v for k, v in scene.to_dict().items() if k != "dynamics"}
+    whole: list = []
+
+    def response(loads: list) -> np.ndarray:
+        r = exact(parse_scene({**base, "loads": loads}, source="end-load share"))
+        return np.array([np.abs(r.w).max(), np.abs(quantity_of(r.w, r.rotation, r.fields, "moment")).max()])
+
+    def share(i: int) -> float:
+        if len(scene.loads) == 1:
+            return 1.0
+        try:
+            whole[:] = whole or [response(base["loads"])]
+            own = response([base["loads"][i]])
+        except (InputError, SolveError):
+            return 1.0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return float(np.nanmax(np.where(whole[0] > 0, own / whole[0], np.inf)))
+
+    return share
+
+
+def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[str]:
+    """One line per load whose ``constants[kind]`` (h / d)² times its share (:func:`shares`, ``exact`` the exact
+    beam's solve) passes :data:`TOLERANCE` at an end it is near (d below :data:`NEAR` of the length; kind:
+    :func:`end_kind`; the larger of the two ends), with the points that bring it to the tolerance; none for a point
+    load in the end's layer, which its own warning in ``info`` names."""
     dx, delta = float(info.get("spacing", 0.0)), float(info.get("horizon", 0.0))
     if not dx:
         return []
@@ -60,33 +89,39 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict) -> list[str]:
     said = info.get("warnings", [])
     sides = (("left", 0.0), ("right", scene.length))
     ends = [(side, at, constants.get(end_kind(scene, side), 0.0)) for side, at in sides]  # once per end
-    out = []
+    out, share = [], shares(scene, exact)
     for i, ld in enumerate(scene.loads):
         layer = any(w.startswith(f"loads[{i}] at ") and "boundary layer" in w for w in said)  # the layer's own
         if not isinstance(ld, (PointForce, Distributed)) or not ld.value or layer:
             continue
-        near = []  # (estimate, side, d, c) at each end that takes a constant
+        near = []  # (C (h / d)², side, d, c) at each end that takes a constant
         for side, end, c in ends:
             d = arm(scene, ld, end)
             if c and 1e-9 * dx < d < NEAR * scene.length:
-                near.append((min(c * (h / d) ** 2, 1.0), side, d, c))
-        if not near or (top := max(near))[0] <= TOLERANCE:
+                near.append((c * (h / d) ** 2, side, d, c))
+        if not near:
             continue
-        est, side, d, c = top
+        own, side, d, c = max(near)
+        part = share(i)
+        if (est := min(own * part, 1.0)) <= TOLERANCE:
+            continue
         what = "a point force at" if isinstance(ld, PointForce) else "a distributed load, its centroid at"
         at = d if side == "left" else scene.length - d
         head = f"loads[{i}] ({what} {at:g}) is {d / dx:.3g} spacings from the {side} end ({scene.supports.kind(side)})"
         if d < CLOSEST * h:
-            points = int(np.ceil(scene.length / d * max(CLOSEST, np.sqrt(c / TOLERANCE)) * (h / dx))) + 1
+            more = int(np.ceil(scene.length / d * max(CLOSEST, np.sqrt(c / TOLERANCE)) * (h / dx))) + 1
             out.append(
-                f"{head}: nearer than {CLOSEST:g} h (h = max(spacing, horizon / 3)) its deflection is not estimated: "
-                f"expect large errors, up to the solution's own size (docs/trust.md); use at least {points} points"
+                f"{head}: nearer than {CLOSEST:g} h (h = max(spacing, horizon / 3)) its deflection and moment are not "
+                f"estimated: expect large errors, up to the solution's own size (docs/trust.md); use at least {more} "
+                "points"
             )
             continue
-        points = int(np.ceil(scene.length / dx * np.sqrt(est / TOLERANCE))) + 1
+        more = int(np.ceil(scene.length / dx * np.sqrt(est / TOLERANCE))) + 1
+        whole = "" if part == 1.0 else f" ({part:.2g} times the whole's: the loads' own response beside theirs)"
         out.append(
-            f"{head}: the deflection is off by about {c:g} (h / d)² of the load's own (h = max(spacing, horizon / 3), "
-            f"d its distance), here {rounded_up(est)}, which a load close to the end makes large beside max |w| "
-            f"(docs/trust.md); second order: use at least {points} points for 1e-3"
+            f"{head}: the deflection and the moment are off by about {c:g} (h / d)² of the load's own (h = "
+            f"max(spacing, horizon / 3), d its distance){whole}, here {rounded_up(est)}, which a load close to the end "
+            f"makes large beside their largest values (docs/trust.md); second order: use at least {more} points for "
+            "1e-3"
         )
     return out

@@ -195,10 +195,20 @@ def element_bound(model, lu, b, free, full) -> float:
     )
 
 
+# (jump_rotation, end_load_error) per variant and resolved ends, each above the ratios of benchmarks/jump_rotation.py
+# and benchmarks/end_loads.py run with those options (docs/trust.md); mirror ends carry a larger error in the rotation
+# at a clamped end, the paper variant beside a support inside and at a clamp
+ESTIMATES = {
+    ("corrected", "taylor"): ((1.7, 0.35), {"clamped": 2.3, "pinned": 0.8, "spring": 0.8}),
+    ("corrected", "mirror"): ((1.7, 3.9), {"clamped": 2.3, "pinned": 0.8, "spring": 0.8}),
+    ("paper", "taylor"): ((2.3, 0.35), {"clamped": 2.5, "pinned": 0.8, "spring": 0.8}),
+    ("paper", "mirror"): ((2.3, 5.0), {"clamped": 2.3, "pinned": 0.8, "spring": 0.8}),
+}
+
+
 class PDBondPair(Model):
     name = "pd-bond-pair"
-    jump_rotation = (1.7, 0.35)  # inside, at an end: above the ratios of benchmarks/jump_rotation.py (docs/trust.md)
-    end_load_error = {"clamped": 2.3, "pinned": 0.8}  # above the values of benchmarks/end_loads.py (docs/trust.md)
+    jump_rotation, end_load_error = ESTIMATES[("corrected", "taylor")]  # the defaults' (variant, ends = auto)
     dispersion = "bond-pair"  # its waves' frequencies (pdverify.theory.symbols)
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
     source = (
@@ -299,6 +309,13 @@ class PDBondPair(Model):
             allowed=("uniform",),
         ),
     )
+
+    def estimate_constants(self, scene: Scene, params: dict) -> tuple[dict, tuple[float, float]]:
+        """The constants of :data:`ESTIMATES` for the variant and the ends these options resolve to (none for
+        continuous-alpha and for ends = none, not measured)."""
+        p = resolved_ends(scene, {**{o.name: o.default for o in self.options}, **params})
+        jump, end_load = ESTIMATES.get((p["variant"], p["ends"]), ((0.0, 0.0), {}))
+        return end_load, jump
 
     def refusals(self, scene: Scene, params: dict) -> list[str]:
         """The ends and loads the chosen ends do not take (:func:`pair_form`'s line)."""

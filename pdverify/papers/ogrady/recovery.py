@@ -184,5 +184,6 @@ def rotation_warnings(scene: Scene) -> list[str]:
     )
     return [
         f"rotation: centred differences of w, first order in the spacing near {where} (measured order 1.0; second "
-        "order elsewhere); the deflection, moment and shear are not affected"
+        "order elsewhere): this line is the rotation's recovery from w only and says nothing of the deflection's, "
+        "moment's or shear's own errors"
     ]
