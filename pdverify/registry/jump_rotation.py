@@ -12,6 +12,7 @@ from ..core.scene import PointForce, Scene
 from ..core.text import rounded_up
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
+NEAR = 0.25  # a jump this share of the length from a support the model holds at first order is beside it
 MARGIN = 1.1  # on the points the warning asks for: the estimate divides by the model's max |rotation|, off by its error
 
 
@@ -68,9 +69,21 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
         return ""
     worst, dx = int(np.argmax(est)), float(info["spacing"])
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1
+    name, at = jumps[worst][0], jumps[worst][1]
+    # beside a support the model holds at first order only (its own warning, e.g. pd-bond-pair's inner clamps): the
+    # rotation there falls as the spacing, so no second-order count
+    said = [w for w in info.get("warnings", []) if "first order" in w]
+    supports = [(f"supports.inner[{i}] ", s.position) for i, s in enumerate(scene.supports.inner)]
+    supports += [("supports.left", 0.0), ("supports.right", scene.length)]
+    first = any(w.startswith(tag) and abs(pos - at) < NEAR * scene.length for tag, pos in supports for w in said)
+    more = (
+        "the model is first order at that support (its own warning): more points help only as the spacing"
+        if first
+        else f"second order: use at least {points} points for 1e-3"
+    )
     return (
-        f"rotation beside {jumps[worst][0]}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
+        f"rotation beside {name}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
         f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
         f"{rounded_up(est[worst])} of max |rotation| (large where the rotation is small beside the shear: a point "
-        f"force near a support, a clamp; docs/trust.md); second order: use at least {points} points for 1e-3"
+        f"force near a support, a clamp; docs/trust.md); {more}"
     )

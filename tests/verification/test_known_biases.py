@@ -36,6 +36,20 @@ def test_a_variant_that_does_not_converge_states_its_bias(model, options, points
     assert abs(error - stated(r)) <= 0.05 * stated(r), (error, stated(r))
 
 
+def test_pd_eb_paper_states_its_shear_beside_a_clamp():
+    """Sweep 21: the paper variant's shear beside a clamp is 3.3e-2 ... 3.8e-2 of max |V| off at 101 ... 1601 points
+    (no convergence) and its warning quoted the deflection's bias only. The numbers it quotes are the errors."""
+    d = scene_dict("clamped", "free", [{"type": "distributed", "value": -1000.0}])
+    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+    sc = parse_scene(d)
+    r, e = run(sc, "pd-eb", points=401, variant="paper"), run(sc, "exact-eb", points=401)
+    error = np.abs(r.fields["V"] - e.fields["V"]).max() / np.abs(e.fields["V"]).max()
+    (line,) = [w for w in r.info["warnings"] if "does not converge to the" in w]
+    quoted = float(re.search(r"V beside the clamp [0-9.e-]+, ([0-9.e-]+),", line).group(1))
+    assert "shear" in line and abs(error - quoted) <= 0.05 * quoted, (error, line)
+
+
 @pytest.mark.parametrize(
     "model, variant", [("pd-eb", "corrected"), ("pd-bond-pair", "corrected"), ("pd-bond-pair", "paper")]
 )
@@ -134,3 +148,14 @@ def test_pd_higher_order_paper_says_a_couple_on_a_turning_end_does_not_converge(
     r, e = run(sc, "pd-higher-order", points=321, variant="paper"), run(sc, "exact-higher-order", points=321)
     assert [w for w in r.info["warnings"] if "right end point does not converge" in w]
     assert np.abs(r.w - e.w).max() > 0.5 * np.abs(e.w).max()
+
+
+def test_pd_timoshenko_corrected_names_every_load_edge():
+    """Sweep 21: on q over [0.02, 0.1] of a cantilever the line named x = 0.02 only, while the largest shear error
+    (3.6e-3 at 401 points) is beside the edge at 0.1. It names every edge inside the beam."""
+    d = scene_dict("clamped", "free", [{"type": "distributed", "value": -1000.0, "start": 0.02, "end": 0.1}])
+    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+    said = run(parse_scene(d), "pd-timoshenko", points=101, variant="corrected").info["warnings"]
+    (line,) = [w for w in said if "distributed load's edge" in w]
+    assert "(x = 0.02, 0.1)" in line, line

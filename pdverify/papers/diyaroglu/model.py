@@ -99,7 +99,9 @@ def paper_bias(m: float) -> str:
     return (
         f"variant = paper does not converge to the Euler-Bernoulli beam: d = 1/(A delta) with delta = "
         f"({m:g} + 0.015) dx (Eq. 32) over {J} whole bonds leaves the refined beam too flexible by "
-        f"(delta / ({J} dx))^2 - 1 = {bias:.2%} (refined grids give deflections that much too large); use variant = "
+        f"(delta / ({J} dx))^2 - 1 = {bias:.2%} (refined grids give deflections that much too large; the moment and "
+        "shear do not converge either: on a uniformly loaded cantilever at horizon 3, M 1.5e-2, 7.5e-3, 5.6e-3 and V "
+        "beside the clamp 3.3e-2, 3.7e-2, 3.8e-2 of their largest values off at 101, 401, 1601 points); use variant = "
         "corrected"
     )
 

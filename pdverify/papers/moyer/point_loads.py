@@ -56,22 +56,24 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
     if inside:
         out.append(
             "variant = corrected converges at first order near a point force inside the beam "
-            f"(x = {inside[0]:g}): the error halves, not quarters, per halving of the spacing (1.0e-3, 5.0e-4, "
-            "2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5), and the shear at the points beside it does "
-            "not converge (76 % of max |V| off at 81 to 641 points, clamped-clamped, L/h = 20); variant = energy is "
-            "second order there"
+            f"(x = {', '.join(f'{a:g}' for a in inside)}): the error halves, not quarters, per halving of the spacing "
+            "(1.0e-3, 5.0e-4, 2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5), and the shear at the points "
+            "beside it does not converge (76 % of max |V| off at 81 to 641 points, clamped-clamped, L/h = 20); "
+            "variant = energy is second order there"
         )
     edges = kink_positions(scene)  # the distributed loads' ends inside the beam
     if len(edges):
         out.append(
-            f"variant = corrected: the shear beside a distributed load's edge inside the beam (x = {edges[0]:g}) "
-            "converges at first order (1.14e-2, 5.7e-3, 2.8e-3 of max |V| at 101, 201, 401 points: a cantilever "
-            "loaded on its first 0.1 m, L/h = 20); variant = energy is second order there"
+            "variant = corrected: the shear beside a distributed load's edge inside the beam (x = "
+            f"{', '.join(f'{a:g}' for a in edges)}) converges at first order (1.14e-2, 5.7e-3, 2.8e-3 of max |V| at "
+            "101, 201, 401 points: a cantilever loaded on its first 0.1 m, L/h = 20); variant = energy is second "
+            "order there"
         )
     couples = [ld.position for ld in scene.loads if ld.type == "point_moment" and 0.0 < ld.position < scene.length]
     if couples:
         out.append(
-            f"variant = corrected: the moment at the points beside a couple inside the beam (x = {couples[0]:g}) does "
+            "variant = corrected: the moment at the points beside a couple inside the beam (x = "
+            f"{', '.join(f'{a:g}' for a in couples)}) does "
             "not converge (54 % of max |M| off at 81 to 641 points, a centre couple on a clamped-clamped beam, L/h = "
             "20); variant = energy is second order there"
         )
