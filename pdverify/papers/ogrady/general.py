@@ -213,13 +213,18 @@ def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
             out.append(
                 f"supports.inner[{i}] ({s.type}): the bond-pair beam holds the centred slope there, first order in "
                 "the spacing (measured order 0.99 for a clamp at mid-span; the deflection converges at order 2 "
-                f"without it){joint}"
+                "without it; on a pinned-pinned beam clamped at mid-span w 3.2 h / L and M 2.4 h / L of their largest "
+                "values off under a force at L / 4, h the spacing, and w 0.21, 0.15, 0.086 at 201, 401, 801 points "
+                f"under a force 0.01 L from the clamp; pd-eb and pd-timoshenko are second order there){joint}"
             )
     for side in ("left", "right"):
         end = getattr(scene.supports, side)
         if not isinstance(end, str) and end.rotational_stiffness:
             out.append(
                 f"supports.{side}: a rotational spring acts on the end slope of the bond-pair beam, which is first "
-                "order in the spacing (its boundary layer; measured order 1.0)"
+                "order in the spacing (its boundary layer; measured order 1.0; with k = kr = 1e12 on a 1 m steel beam "
+                "M 3.7 h / L of max |M| off, w 5.4 h / L under a uniform load and up to 46 h / L under a force "
+                "0.05 L from the end, h the spacing; a soft one, kr L / EI below 1, far less; pd-eb and "
+                "pd-timoshenko are second order there)"
             )
     return out
