@@ -78,10 +78,12 @@ def shares(scene: Scene, exact):
 
 
 def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[str]:
-    """One line per load whose ``constants[kind]`` (h / d)² times its share (:func:`shares`, ``exact`` the exact
-    beam's solve) passes :data:`TOLERANCE` at an end it is near (d below :data:`NEAR` of the length; kind:
-    :func:`end_kind`; the larger of the two ends), with the points that bring it to the tolerance; none for a point
-    load in the end's layer, which its own warning in ``info`` names."""
+    """One line per end where the sum over the loads near it (d below :data:`NEAR` of the length, each at the end
+    where its estimate is the larger) of ``constants[kind]`` (h / d)² times the load's share (:func:`shares`,
+    ``exact`` the exact beam's solve) passes :data:`TOLERANCE` (kind: :func:`end_kind`), with the points that bring it
+    to the tolerance (the errors of loads near one end add: a patch cut into pieces is the patch); one line per load
+    nearer than :data:`CLOSEST` h, not estimated; none for a point load in the end's layer, which its own warning in
+    ``info`` names."""
     dx, delta = float(info.get("spacing", 0.0)), float(info.get("horizon", 0.0))
     if not dx:
         return []
@@ -89,7 +91,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
     said = info.get("warnings", [])
     sides = (("left", 0.0), ("right", scene.length))
     ends = [(side, at, constants.get(end_kind(scene, side), 0.0)) for side, at in sides]  # once per end
-    out, share = [], shares(scene, exact)
+    out, share, parts = [], shares(scene, exact), {side: [] for side, _ in sides}
     for i, ld in enumerate(scene.loads):
         layer = any(w.startswith(f"loads[{i}] at ") and "boundary layer" in w for w in said)  # the layer's own
         if not isinstance(ld, (PointForce, Distributed)) or not ld.value or layer:
@@ -103,25 +105,50 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
             continue
         own, side, d, c = max(near)
         part = share(i)
-        if (est := min(own * part, 1.0)) <= TOLERANCE:
-            continue
-        what = "a point force at" if isinstance(ld, PointForce) else "a distributed load, its centroid at"
-        at = d if side == "left" else scene.length - d
-        head = f"loads[{i}] ({what} {at:g}) is {d / dx:.3g} spacings from the {side} end ({scene.supports.kind(side)})"
-        if d < CLOSEST * h:
+        est = min(own * part, 1.0)
+        if d >= CLOSEST * h:
+            parts[side].append((i, est, d, part))
+        elif est > TOLERANCE:
+            at = d if side == "left" else scene.length - d
             more = int(np.ceil(scene.length / d * max(CLOSEST, np.sqrt(c / TOLERANCE)) * (h / dx))) + 1
             out.append(
-                f"{head}: nearer than {CLOSEST:g} h (h = max(spacing, horizon / 3)) its deflection and moment are not "
-                f"estimated: expect large errors, up to the solution's own size (docs/trust.md); use at least {more} "
-                "points"
+                f"loads[{i}] ({describe(ld)} {at:g}) is {d / dx:.3g} spacings from the {side} end "
+                f"({scene.supports.kind(side)}): nearer than {CLOSEST:g} h (h = max(spacing, horizon / 3)) its "
+                "deflection and moment are not estimated: expect large errors, up to the solution's own size "
+                f"(docs/trust.md); use at least {more} points"
             )
+    c_of = {side: c for side, _, c in ends}
+    for side, items in parts.items():
+        total = min(sum(est for _, est, _, _ in items), 1.0)
+        if total <= TOLERANCE:
             continue
-        more = int(np.ceil(scene.length / dx * np.sqrt(est / TOLERANCE))) + 1
-        whole = "" if part == 1.0 else f" ({part:.2g} times the whole's: the loads' own response beside theirs)"
+        more = int(np.ceil(scene.length / dx * np.sqrt(total / TOLERANCE))) + 1
+        kind = scene.supports.kind(side)
+        if len(items) == 1:
+            (i, _, d, part), ld = items[0], scene.loads[items[0][0]]
+            at = d if side == "left" else scene.length - d
+            head = f"loads[{i}] ({describe(ld)} {at:g}) is {d / dx:.3g} spacings from the {side} end ({kind})"
+            whole = "" if part == 1.0 else f" ({part:.2g} times the whole's: the load's own response beside all's)"
+            what = f"of the load's own (h = max(spacing, horizon / 3), d its distance){whole}"
+        else:
+            names = ", ".join(str(i) for i, *_ in items[:6]) + (", ..." if len(items) > 6 else "")
+            nearest = min(d for *_, d, _ in items)
+            head = (
+                f"loads[{names}] ({len(items)} loads in the quarter of the beam next to the {side} end ({kind}), the "
+                f"nearest {nearest / dx:.3g} spacings from it)"
+            )
+            what = (
+                "of each load's own (h = max(spacing, horizon / 3), d its distance), summed with each load's response "
+                "beside the whole's"
+            )
         out.append(
-            f"{head}: the deflection and the moment are off by about {c:g} (h / d)² of the load's own (h = "
-            f"max(spacing, horizon / 3), d its distance){whole}, here {rounded_up(est)}, which a load close to the end "
-            f"makes large beside their largest values (docs/trust.md); second order: use at least {more} points for "
-            "1e-3"
+            f"{head}: the deflection and the moment are off by about {c_of[side]:g} (h / d)² {what}, here "
+            f"{rounded_up(total)}, which a load close to the end makes large beside their largest values "
+            f"(docs/trust.md); second order: use at least {more} points for 1e-3"
         )
     return out
+
+
+def describe(load) -> str:
+    """How a warning names where a load acts: a point force's position, a distributed load's centroid."""
+    return "a point force at" if isinstance(load, PointForce) else "a distributed load, its centroid at"

@@ -65,25 +65,22 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     """The one-line warning where c |J| h² / EI passes :data:`TOLERANCE` of max |rotation| beside some jump J
     (:func:`jump_estimates`), naming the largest and the points that bring it to the tolerance; "" otherwise."""
     jumps, c, est = jump_estimates(constants, scene, rotation, info)
+    # beside a support the model holds at first order only (its own warning, e.g. pd-bond-pair's inner clamps and
+    # rotational springs, gives that error): this second-order estimate is far below it there, so not given
+    said = [w for w in info.get("warnings", []) if "first order in the spacing" in w]
+    supports = [(f"supports.inner[{i}] ", s.position) for i, s in enumerate(scene.supports.inner)]
+    supports += [("supports.left", 0.0), ("supports.right", scene.length)]
+    first = [(tag, pos) for tag, pos in supports if any(w.startswith(tag) for w in said)]
+    beside = [any(abs(pos - at) < NEAR * scene.length for _, pos in first) for _, at, _ in jumps]
+    est = np.where(beside, 0.0, est) if len(est) else est
     if not len(est) or est.max() <= TOLERANCE:
         return ""
     worst, dx = int(np.argmax(est)), float(info["spacing"])
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1
-    name, at = jumps[worst][0], jumps[worst][1]
-    # beside a support the model holds at first order only (its own warning, e.g. pd-bond-pair's inner clamps): the
-    # rotation there falls as the spacing, so no second-order count
-    said = [w for w in info.get("warnings", []) if "first order" in w]
-    supports = [(f"supports.inner[{i}] ", s.position) for i, s in enumerate(scene.supports.inner)]
-    supports += [("supports.left", 0.0), ("supports.right", scene.length)]
-    first = any(w.startswith(tag) and abs(pos - at) < NEAR * scene.length for tag, pos in supports for w in said)
-    more = (
-        "the model is first order at that support (its own warning): more points help only as the spacing"
-        if first
-        else f"second order: use at least {points} points for 1e-3"
-    )
+    name = jumps[worst][0]
     return (
         f"rotation beside {name}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
         f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
         f"{rounded_up(est[worst])} of max |rotation| (large where the rotation is small beside the shear: a point "
-        f"force near a support, a clamp; docs/trust.md); {more}"
+        f"force near a support, a clamp; docs/trust.md); second order: use at least {points} points for 1e-3"
     )

@@ -86,3 +86,12 @@ def test_a_transient_under_a_smooth_load_has_no_discretisation_warning(model, op
     assert not [w for w in dynamic if "first order" in w], dynamic
     # pd-higher-order's clamp layer: both warn of it; the static rotation's estimate beside the ends is the static's
     assert [w for w in static if w not in dynamic and not RECOVERED.search(w)] == []
+
+
+def test_a_pd_bond_pair_transient_on_a_rotational_spring_says_it_is_first_order():
+    """Sweep 22 M3: a pd-bond-pair transient with a rotational spring end dropped the static solve's "first order"
+    line (its final w 1.8e-3 off at 101 points, with only the rotation's line). The transient carries it."""
+    spring = {"type": "spring", "stiffness": 1e12, "rotational_stiffness": 1e12}
+    scene = transient_scene(spring, "pinned", loads=SMOOTH_FORCE, end_time=END_TIME)
+    said = run(scene, "pd-bond-pair", points=41).info.get("warnings", [])
+    assert any(w.startswith("supports.left: a rotational spring") and "first order" in w for w in said), said

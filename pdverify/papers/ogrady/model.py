@@ -436,9 +436,7 @@ class PDBondPair(Model):
         dx = x[1] - x[0]
         if off := off_grid_holds(scene, dx):  # the error does not fall regularly: no Richardson estimate from it
             info["irregular"] = off[0]
-        flags = first_order_warnings(scene, dx) + end_layer_warnings(scene, params, x) + rotation_warnings(scene)
-        flags += bias_warnings(scene, params)
-        if flags:
+        if flags := self.discretisation_warnings(scene, params, x):  # mirror ends: no Taylor edge layer
             info.setdefault("warnings", []).extend(flags)
         info.update(
             form="pair form (supports, springs, segments)",
@@ -570,11 +568,12 @@ class PDBondPair(Model):
         )
 
     def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray) -> list[str]:
-        """The warnings of the linear operator's space discretisation on the points ``x`` (ends resolved): point
-        loads inside the ends' layer, the rotation near a point moment or a free end, the variant's and the Taylor
-        ends' biases, load edges in the fitted ghosts' reach. A static solve and a transient share them
-        (:mod:`.dynamics` integrates the same operator and loads)."""
-        flags = end_layer_warnings(scene, params, x) + rotation_warnings(scene) + bias_warnings(scene, params)
+        """The warnings of the linear operator's space discretisation on the points ``x`` (ends resolved): supports
+        held at first order, point loads inside the ends' layer, the rotation near a point moment or a free end, the
+        variant's and the Taylor ends' biases, load edges in the fitted ghosts' reach. A static solve and a transient
+        share them (:mod:`.dynamics` integrates the same operator and loads)."""
+        flags = first_order_warnings(scene, x[1] - x[0]) + end_layer_warnings(scene, params, x)
+        flags += rotation_warnings(scene) + bias_warnings(scene, params)
         if params["ends"] == "taylor":  # its Taylor ghosts at free and guided ends (docs/models/ogrady.md)
             flags += edge_layer_warnings(scene, x, EDGE_ERRORS, layer=EDGE_LAYER)
         return flags
