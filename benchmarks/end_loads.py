@@ -1,15 +1,18 @@
-"""Loads near an end that holds the deflection: each PD beam's deflection error against its exact beam (relative to
-max |w|) against the estimate of its warning, C (h / d)², d the load's distance from the end (a distributed load's
-centroid), h = max(spacing, horizon / 3) and C the model's ``end_load_error`` for the end's kind
-(pdverify/registry/end_loads.py; docs/trust.md). Where it warns the ratio error / estimate must be below 1:
+"""Loads near an end that holds the deflection: each PD beam's deflection and moment errors against its exact beam
+(each relative to its largest value, the larger of the two) against the estimate of its warning, C (h / d)², d the
+load's distance from the end (a distributed load's centroid), h = max(spacing, horizon / 3) and C the model's
+constant for the end's kind (``Model.estimate_constants``; pdverify/registry/end_loads.py; docs/trust.md). Where it
+warns the ratio error / estimate must be below 1:
 
-    PYTHONPATH=. python benchmarks/end_loads.py [--points 101 201 401] [--models pd-eb ...] [--horizons 3 5]
+    PYTHONPATH=. python benchmarks/end_loads.py [--points 101 201 401] [--models pd-eb ...] [--horizons 3 5] [-o k=v]
 
-A 1 m steel beam, 20 x 50 mm, on five end pairs (the left end clamped or pinned), under one load near the left end: a
-patch from the end or off it, or a point force, its arm 2.5 to 40 spacings. Printed per model and horizon: the largest
-ratio of the end's part of the error to the estimate where the warning estimates (the end's part: with the load the
-same number of spacings off at twice the points it stays while the rest falls 4 times; cases an earlier warning names
-are left out: a point load in the end's layer), and the cases over 1e-3 of max |w| no warning names.
+A 1 m steel beam, 20 x 50 mm, on thirteen end pairs (the left end clamped, pinned, or a spring: soft, stiff, with a
+soft or a stiff rotational stiffness), under one load near the left end: a patch from the end or off it, or a point
+force, its arm 2.5 to 40 spacings. Printed per model and horizon: the largest ratio of the end's part of the error to
+the estimate where the warning estimates (the end's part: with the load the same number of spacings off at twice the
+points it stays while the rest falls 4 times; cases an earlier warning names are left out: a point load in the end's
+layer), the constant each end kind's cases need, and the cases over 1e-3 no warning names. ``-o key=value``: a model
+option (pd-bond-pair's variant and ends).
 """
 
 from __future__ import annotations

@@ -104,3 +104,14 @@ def test_no_second_order_estimate_beside_a_support_the_model_holds_at_first_orde
     said = run(parse_scene(d), "pd-bond-pair", points=401).info["warnings"]
     assert any(w.startswith("supports.inner[0]") and "first order in the spacing" in w for w in said), said
     assert not [w for w in said if w.startswith("rotation beside")], said
+
+
+@pytest.mark.parametrize("model", SPECS)
+def test_a_load_over_an_end_is_estimated(model):
+    """Sweep 19 I4: q on [0, 0.7] of a pinned-pinned beam left the rotation at the loaded pin 1.19 (pd-eb) and 1.66
+    (pd-bond-pair) times the estimate at 401 points (1.15 and 1.61 at 41 and 61). The ends' constants now come from
+    benchmarks/jump_rotation.py with such patches, on 41 to 401 points: the estimate is above the error."""
+    for points in (41, 61, 401):
+        d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -100.0, "start": 0.0, "end": 0.7}])
+        error, estimate = rotation_error(d, model, points)
+        assert error <= max(estimate, TOLERANCE), (points, error, estimate)
