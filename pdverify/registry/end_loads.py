@@ -106,7 +106,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
         own, side, d, c = max(near)
         part = share(i)
         est = min(own * part, 1.0)
-        if d >= CLOSEST * h:
+        if d >= CLOSEST * h * (1.0 - 1e-9):  # at the bound whatever the rounding of a scaled scene's positions
             parts[side].append((i, est, d, part))
         elif est > TOLERANCE:
             at = d if side == "left" else scene.length - d

@@ -66,14 +66,14 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     (:func:`jump_estimates`), naming the largest and the points that bring it to the tolerance; "" otherwise."""
     jumps, c, est = jump_estimates(constants, scene, rotation, info)
     # beside a support the model holds at first order only (its own warning, e.g. pd-bond-pair's inner clamps and
-    # rotational springs, gives that error): this second-order estimate is far below it there, so not given
+    # rotational springs, gives that error): this second-order estimate is far below the rotation's error there and
+    # any other jump's would read as it, so none is given
     said = [w for w in info.get("warnings", []) if "first order in the spacing" in w]
     supports = [(f"supports.inner[{i}] ", s.position) for i, s in enumerate(scene.supports.inner)]
     supports += [("supports.left", 0.0), ("supports.right", scene.length)]
     first = [(tag, pos) for tag, pos in supports if any(w.startswith(tag) for w in said)]
     beside = [any(abs(pos - at) < NEAR * scene.length for _, pos in first) for _, at, _ in jumps]
-    est = np.where(beside, 0.0, est) if len(est) else est
-    if not len(est) or est.max() <= TOLERANCE:
+    if any(beside) or not len(est) or est.max() <= TOLERANCE:  # beside one: the rotation's error is that support's
         return ""
     worst, dx = int(np.argmax(est)), float(info["spacing"])
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1

@@ -4,6 +4,8 @@ H2: a cantilever loaded on its first 0.05 m was 13 % low at the tip at 101 point
 unwarned). Each warns with that estimate where it passes 1e-3: the estimate is above the error wherever it warns,
 the error below 1e-3 wherever it does not, and a mirror image warns alike."""
 
+import re
+
 import numpy as np
 import pytest
 from helpers import scene_dict
@@ -136,3 +138,24 @@ def test_a_patch_cut_into_pieces_is_estimated_as_the_patch(model):
     for points in (201, 401):
         error, estimate, _ = near_end(model, ("clamped", "clamped"), pieces[0], points, more=tuple(pieces[1:]))
         assert error <= max(estimate, TOLERANCE), (points, error, estimate)
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1e3])
+def test_a_load_at_the_closest_bound_is_judged_alike_on_a_scaled_beam(scale):
+    """Sweep 23 N3: a piece whose centroid sits exactly 2.5 spacings from the end turned "not estimated" on the beam
+    scaled by 1e-3 (its positions' rounding), one line more and the sum 0.049 -> 0.038. The bound holds whatever the
+    rounding: the same lines on the scaled beam."""
+
+    def said(k: float):
+        loads = [
+            {"type": "distributed", "value": -5000.0, "start": 0.0, "end": 0.05 * k},
+            {"type": "distributed", "value": -5000.0, "start": 0.05 * k, "end": 0.1 * k},
+        ]
+        d = scene_dict("clamped", "pinned", loads)
+        d.update(beam={"length": 1.0 * k}, section={"width": 0.02 * k, "height": 0.05 * k})
+        d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+        return [w for w in run(parse_scene(d), "pd-eb", points=101).info.get("warnings", []) if "end (" in w]
+
+    base, scaled = said(1.0), said(scale)
+    numbers = [re.sub(r"[0-9.e+-]+", "#", w) for w in base]  # the same lines, whatever their numbers' rounding
+    assert numbers == [re.sub(r"[0-9.e+-]+", "#", w) for w in scaled], (base, scaled)

@@ -115,3 +115,17 @@ def test_a_load_over_an_end_is_estimated(model):
         d = scene_dict("pinned", "pinned", [{"type": "distributed", "value": -100.0, "start": 0.0, "end": 0.7}])
         error, estimate = rotation_error(d, model, points)
         assert error <= max(estimate, TOLERANCE), (points, error, estimate)
+
+
+def test_no_rotation_line_elsewhere_when_a_support_holds_it_at_first_order():
+    """Sweep 23 N1: with the jump beside a first-order support left out, the line named the next one ("rotation
+    beside the right end ... here 0.026" on a pinned-pinned beam clamped at mid-span, a force at 0.515 and a uniform
+    load, 101 points) while the rotation was 0.133 off beside the clamp. The support's own line gives the size."""
+    loads = [{"type": "point_force", "position": 0.515, "value": -700.0}, {"type": "distributed", "value": -100.0}]
+    d = scene_dict("pinned", "pinned", loads)
+    d["supports"]["inner"] = [{"type": "clamped", "position": 0.5}]
+    d.update(beam={"length": 1.0}, section={"width": 0.02, "height": 0.05})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+    said = run(parse_scene(d), "pd-bond-pair", points=101).info["warnings"]
+    assert not [w for w in said if w.startswith("rotation beside")], said
+    assert any(w.startswith("supports.inner[0]") and "the rotation too" in w for w in said), said

@@ -212,19 +212,24 @@ def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
             )
             out.append(
                 f"supports.inner[{i}] ({s.type}): the bond-pair beam holds the centred slope there, first order in "
-                "the spacing (measured order 0.99 for a clamp at mid-span; the deflection converges at order 2 "
-                "without it; on a pinned-pinned beam clamped at mid-span w 3.2 h / L and M 2.4 h / L of their largest "
-                "values off under a force at L / 4, h the spacing, and w 0.21, 0.15, 0.086 at 201, 401, 801 points "
-                f"under a force 0.01 L from the clamp; pd-eb and pd-timoshenko are second order there){joint}"
+                "the spacing, the rotation too (measured order 0.99 for a clamp at mid-span; the deflection converges "
+                "at order 2 without it; examples, each relative to its largest value, h the spacing: on a "
+                "pinned-pinned beam clamped at mid-span w 3.2 h / L, the rotation 6.1 h / L and M 2.4 h / L off "
+                "under a force at L / 4, w about 0.8 h / d and the rotation 1.6 h / d under a force d from the clamp "
+                "(w 0.21, 0.15, 0.086 at 201, 401, 801 points at d = 0.01 L), more on other supports (w 0.57 at 801 "
+                "points on a cantilever clamped inside at 0.5 L, a force 0.01 L from it); `solve --estimate` gives "
+                f"this scene's; pd-eb and pd-timoshenko are second order there){joint}"
             )
     for side in ("left", "right"):
         end = getattr(scene.supports, side)
         if not isinstance(end, str) and end.rotational_stiffness:
             out.append(
                 f"supports.{side}: a rotational spring acts on the end slope of the bond-pair beam, which is first "
-                "order in the spacing (its boundary layer; measured order 1.0; with k = kr = 1e12 on a 1 m steel beam "
-                "M 3.7 h / L of max |M| off, w 5.4 h / L under a uniform load and up to 46 h / L under a force "
-                "0.05 L from the end, h the spacing; a soft one, kr L / EI below 1, far less; pd-eb and "
+                "order in the spacing, and with it w, the rotation and M (its boundary layer; measured order 1.0; "
+                "examples with k = kr = 1e12 on a 1 m steel beam, each relative to its largest value, h the spacing: "
+                "M 3.7 h / L; w 5.4 h / L and the rotation 9.1 h / L under a uniform load; w about 2.4 h / d and the "
+                "rotation 3.2 h / d under a force d from the end (w 46 h / L at d = 0.05 L, 115 h / L at 0.02 L); a "
+                "soft spring, kr L / EI below 1, far less; `solve --estimate` gives this scene's; pd-eb and "
                 "pd-timoshenko are second order there)"
             )
     return out
