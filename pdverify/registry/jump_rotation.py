@@ -66,7 +66,7 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     jumps, c, est = jump_estimates(constants, scene, rotation, info)
     # a support the model holds at first order only (its own line, e.g. pd-bond-pair's inner clamps and rotational
     # spring ends, gives the size): the rotation's error is that support's, far above this second-order estimate of
-    # any jump, which would read as it (3.8 to 1,700 times below in the audit sweeps), so none is given
+    # any jump, which would read as it (docs/trust.md), so none is given
     held = any(w.startswith("supports.") and "first order in the spacing" in w for w in info.get("warnings", []))
     if held or not len(est) or est.max() <= TOLERANCE:
         return ""
