@@ -17,9 +17,8 @@ option (pd-bond-pair's variant and ends).
 
 from __future__ import annotations
 
-import argparse
-
 import numpy as np
+from estimate_args import parse
 
 from pdverify.core.result import quantity_of
 from pdverify.core.scene_file import parse_scene
@@ -72,13 +71,7 @@ def error(sc, name: str, n: int, m: float, options: dict | None = None):
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--points", type=int, nargs="+", default=[101, 201, 401])
-    ap.add_argument("--models", nargs="+", default=list(MODELS))
-    ap.add_argument("--horizons", type=float, nargs="+", default=[3.0, 5.0])
-    ap.add_argument("-o", "--option", action="append", default=[], help="model option key=value (repeatable)")
-    args = ap.parse_args()
-    options = dict(kv.split("=", 1) for kv in args.option)
+    args, options = parse(__doc__, [101, 201, 401], list(MODELS))
     for name in args.models:
         for m in args.horizons:
             worst, silent, need = (0.0, ""), [], {}

@@ -16,9 +16,8 @@ a model option (pd-bond-pair's variant and ends).
 
 from __future__ import annotations
 
-import argparse
-
 import numpy as np
+from estimate_args import parse
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, run
@@ -68,13 +67,7 @@ def cases(dx: float):
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--points", type=int, nargs="+", default=[41, 61, 101, 201, 401])
-    ap.add_argument("--models", nargs="+", default=list(MODELS))
-    ap.add_argument("--horizons", type=float, nargs="+", default=[3.0, 5.0])
-    ap.add_argument("-o", "--option", action="append", default=[], help="model option key=value (repeatable)")
-    args = ap.parse_args()
-    options = dict(kv.split("=", 1) for kv in args.option)
+    args, options = parse(__doc__, [41, 61, 101, 201, 401], list(MODELS))
     for name in args.models:
         for m in args.horizons:
             worst, flagged, silent, used = (0.0, ""), (0.0, ""), [], set()
