@@ -12,6 +12,7 @@ from ..core.scene import PointForce, Scene
 from ..core.text import rounded_up
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
+NEAR = 0.25  # a jump within this share of the length of a support held at first order is beside it
 MARGIN = 1.1  # on the points the warning asks for: the estimate divides by the model's max |rotation|, off by its error
 
 
@@ -65,16 +66,28 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     (:func:`jump_estimates`), naming the largest and the points that bring it to the tolerance; "" otherwise."""
     jumps, c, est = jump_estimates(constants, scene, rotation, info)
     # a support the model holds at first order only (its own line, e.g. pd-bond-pair's inner clamps and rotational
-    # spring ends, gives the size): the rotation's error is that support's, far above this second-order estimate of
-    # any jump, which would read as it (docs/trust.md), so none is given
-    held = any(w.startswith("supports.") and "first order in the spacing" in w for w in info.get("warnings", []))
-    if held or not len(est) or est.max() <= TOLERANCE:
+    # spring ends, gives the size): beside it the rotation's error is that support's, far above this second-order
+    # estimate (docs/trust.md); the jumps there are left out, and a line for another says where it does not hold
+    said = [w for w in info.get("warnings", []) if "first order in the spacing" in w]
+    held = [(tag, pos) for tag, pos in support_tags(scene) if any(w.startswith(tag) for w in said)]
+    beside = [any(abs(pos - at) < NEAR * scene.length for _, pos in held) for _, at, _ in jumps]
+    est = np.where(beside, 0.0, est) if len(est) else est
+    if not len(est) or est.max() <= TOLERANCE:
         return ""
     worst, dx = int(np.argmax(est)), float(info["spacing"])
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1
+    where = ", ".join(tag.strip() for tag, _ in held)
+    elsewhere = f"; not within {NEAR:g} L of {where}: first order there, its own line gives the size" if held else ""
     return (
         f"rotation beside {jumps[worst][0]}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
         f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
         f"{rounded_up(est[worst])} of max |rotation| (large where the rotation is small beside the shear: a point "
-        f"force near a support, a clamp; docs/trust.md); second order: use at least {points} points for 1e-3"
+        f"force near a support, a clamp; docs/trust.md){elsewhere}; second order: use at least {points} points for "
+        "1e-3"
     )
+
+
+def support_tags(scene: Scene) -> list[tuple[str, float]]:
+    """(the prefix a support's warnings start with, its position) of every support."""
+    tags = [(f"supports.inner[{i}] ", s.position) for i, s in enumerate(scene.supports.inner)]
+    return tags + [("supports.left", 0.0), ("supports.right", scene.length)]
