@@ -14,6 +14,11 @@ def apart(value: float, limit: float, digits: int = 2) -> str:
     )
 
 
+def listed(values) -> str:
+    """Positions or values in a message, each with ``g`` formatting: "0.02, 0.1"."""
+    return ", ".join(f"{v:g}" for v in values)
+
+
 PRACTICAL_POINTS = 10**8  # a grid past this many points does not fit a workstation's memory for any model
 
 

@@ -7,6 +7,8 @@ the end's layer is left to that layer's warning."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from ..core.errors import InputError, SolveError
@@ -57,22 +59,24 @@ def shares(scene: Scene, exact):
     1 where the exact beam does not solve the scene (its dynamics dropped: the loads' static part). The whole solved
     once."""
     base = {k: v for k, v in scene.to_dict().items() if k != "dynamics"}
-    whole: list = []
 
     def response(loads: list) -> np.ndarray:
         r = exact(parse_scene({**base, "loads": loads}, source="end-load share"))
         return np.array([np.abs(r.w).max(), np.abs(quantity_of(r.w, r.rotation, r.fields, "moment")).max()])
 
+    @functools.cache
+    def whole() -> np.ndarray:
+        return response(base["loads"])
+
     def share(i: int) -> float:
         if len(scene.loads) == 1:
             return 1.0
         try:
-            whole[:] = whole or [response(base["loads"])]
-            own = response([base["loads"][i]])
+            own, all_ = response([base["loads"][i]]), whole()
         except (InputError, SolveError):
             return 1.0
         with np.errstate(divide="ignore", invalid="ignore"):
-            return float(np.nanmax(np.where(whole[0] > 0, own / whole[0], np.inf)))
+            return float(np.nanmax(np.where(all_ > 0, own / all_, np.inf)))
 
     return share
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import HELD, PointForce, PointMoment, Scene, Spring
+from ...core.text import listed
 from ...numerics.loads import end_side, support_couples, support_side
 from ...numerics.recovery import derivative, jump_positions, kink_positions
 from ...numerics.statics import closed_reactions, rotation_over, statics_over
@@ -152,7 +153,7 @@ def recovery_warnings(scene: Scene, params: dict) -> list[str]:
     if not at:
         return []
     return [
-        f"variant = paper: the moment and shear near the point loads at x = {', '.join(f'{a:g}' for a in at)} are the "
+        f"variant = paper: the moment and shear near the point loads at x = {listed(at)} are the "
         "PD curvature of Eq. 25's split load, smeared over the horizon: beside the simply supported benchmark's "
         "centre force the shear is 3.8 % of its largest value off at 101, 401 and 1601 points (no convergence), "
         "the moment 2.1 %, 0.90 %, 0.60 %; beside a load on an end point the shear grows like 1 / dx (a couple on a "

@@ -4,6 +4,7 @@ numbers (docs/models/moyer.md, "Known limits"): arrays and scenes in, lines out.
 from __future__ import annotations
 
 from ...core.scene import Scene, Spring
+from ...core.text import listed
 from ...numerics.recovery import kink_positions
 
 
@@ -56,7 +57,7 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
     if inside:
         out.append(
             "variant = corrected converges at first order near a point force inside the beam "
-            f"(x = {', '.join(f'{a:g}' for a in inside)}): the error halves, not quarters, per halving of the spacing "
+            f"(x = {listed(inside)}): the error halves, not quarters, per halving of the spacing "
             "(1.0e-3, 5.0e-4, 2.5e-4 at 321, 641, 1281 points on a centre force, L/h = 5), and the shear at the points "
             "beside it does not converge (76 % of max |V| off at 81 to 641 points, clamped-clamped, L/h = 20); "
             "variant = energy is second order there"
@@ -65,7 +66,7 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
     if len(edges):
         out.append(
             "variant = corrected: the shear beside a distributed load's edge inside the beam (x = "
-            f"{', '.join(f'{a:g}' for a in edges)}) converges at first order (1.14e-2, 5.7e-3, 2.8e-3 of max |V| at "
+            f"{listed(edges)}) converges at first order (1.14e-2, 5.7e-3, 2.8e-3 of max |V| at "
             "101, 201, 401 points: a cantilever loaded on its first 0.1 m, L/h = 20); variant = energy is second "
             "order there"
         )
@@ -73,7 +74,7 @@ def point_force_order(model, scene: Scene, params: dict) -> list[str]:
     if couples:
         out.append(
             "variant = corrected: the moment at the points beside a couple inside the beam (x = "
-            f"{', '.join(f'{a:g}' for a in couples)}) does "
+            f"{listed(couples)}) does "
             "not converge (54 % of max |M| off at 81 to 641 points, a centre couple on a clamped-clamped beam, L/h = "
             "20); variant = energy is second order there"
         )

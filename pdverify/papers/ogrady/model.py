@@ -313,7 +313,7 @@ class PDBondPair(Model):
     def estimate_constants(self, scene: Scene, params: dict) -> tuple[dict, tuple[float, float]]:
         """The constants of :data:`ESTIMATES` for the variant and the ends these options resolve to (none for
         continuous-alpha and for ends = none, not measured)."""
-        p = resolved_ends(scene, {**{o.name: o.default for o in self.options}, **params})
+        p = resolved_ends(scene, self.with_defaults(params))
         jump, end_load = ESTIMATES.get((p["variant"], p["ends"]), ((0.0, 0.0), {}))
         return end_load, jump
 
