@@ -96,8 +96,12 @@ def edge_layer_warnings(
 # FORCE_NEAR_HELD_ROTATION (dx / d)^2 at their default horizon of 3 dx (docs/trust.md, "a point force near a support
 # that holds the rotation"). It is the horizon's: the families reach across the support and carry the loaded span's
 # curvature into the other (an unloaded overhang turns), a model error that stays at a fixed horizon length; so the
-# estimate is FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2
+# estimate is FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2, times (l / a)^TURNED_POWER where the loaded side a
+# is shorter than the other side l (to the beam's ends), which turns: relative to the loaded span's own small
+# deflection, the other side's turn counts l / a times more, and where nothing holds its deflection (a free or guided
+# end, a spring) it swings about the support, (l / a)^1.5 (measured: docs/trust.md)
 FORCE_NEAR_HELD_ROTATION = 5.0
+TURNED_POWER = {"held": 1.0, "swings": 1.5}
 NEAR_TOLERANCE = 1e-3  # the error above which that estimate is a warning
 
 
@@ -117,19 +121,42 @@ def held_rotation_warnings(
             continue
         for j, ld in enumerate(scene.loads):
             d = abs(ld.position - sup.position) if ld.type == "point_force" else 0.0
-            far = d > 0.0 and not within(d, nearest, dx)
-            estimate = min(FORCE_NEAR_HELD_ROTATION * (h / d) ** 2, 1.0) if far else 0.0
+            if d == 0.0 or within(d, nearest, dx):
+                continue
+            turned, how = turned_side(scene, i, ld.position)
+            constant = FORCE_NEAR_HELD_ROTATION * turned
+            estimate = constant * (h / d) ** 2  # may pass 1: the turned side moves more than the loaded
             if estimate > NEAR_TOLERANCE:
-                most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / FORCE_NEAR_HELD_ROTATION)  # the horizon that gives 1e-3
+                most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / constant)  # the horizon that gives 1e-3
                 out.append(
                     f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
                     f"{sup.position:g}, which holds the rotation: the horizon's families reach across the support "
                     f"(a model error of the horizon, not of the grid), up to about {FORCE_NEAR_HELD_ROTATION:g} "
-                    f"(max(spacing, horizon / 3) / distance)^2 = {estimate:.2g}; use a horizon of at most "
+                    f"(max(spacing, horizon / 3) / distance)^2{how} = {estimate:.2g}; use a horizon of at most "
                     f"{most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} points) "
                     "for 1e-3"
                 )
     return out + distributed_near_held_warnings(scene, dx, delta, loads_constant or LOADS_NEAR_HELD_ROTATION)
+
+
+def turned_side(scene: Scene, i: int, at: float) -> tuple[float, str]:
+    """(max(1, l / a)^TURNED_POWER, its term in the warning's formula) for a load at ``at`` beside
+    ``scene.supports.inner[i]``: a the loaded side's length, l the other side's, each to the beam's end; the other side
+    "swings" when neither its end (a free or guided end, a spring) nor a support inside on it holds the deflection."""
+    L, pos = scene.length, scene.supports.inner[i].position
+    right = at > pos
+    loaded, other = (L - pos, pos) if right else (pos, L - pos)
+    if other <= loaded:
+        return 1.0, ""
+    end = "left" if right else "right"
+    held = scene.supports.holds_deflection_at(end) or any(
+        s.holds_deflection and ((s.position < pos) if right else (s.position > pos))
+        for k, s in enumerate(scene.supports.inner)
+        if k != i
+    )
+    power = TURNED_POWER["held" if held else "swings"]
+    term = f" (l / a)^{power:g} (a, l: the loaded side's and the other side's lengths, {loaded:.3g} and {other:.3g})"
+    return (other / loaded) ** power, term
 
 
 # distributed loads beside such a support: the same mechanism, measured (docs/trust.md; pd-eb and pd-timoshenko, 2,496

@@ -217,8 +217,11 @@ def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
                 "pinned-pinned beam clamped at mid-span w 3.2 h / L, the rotation 6.1 h / L and M 2.4 h / L off "
                 "under a force at L / 4, w about 0.8 h / d and the rotation 1.6 h / d under a force d from the clamp "
                 "(w 0.21, 0.15, 0.086 at 201, 401, 801 points at d = 0.01 L), more on other supports (w 0.57 at 801 "
-                "points on a cantilever clamped inside at 0.5 L, a force 0.01 L from it); `solve --estimate` gives "
-                f"this scene's; pd-eb and pd-timoshenko are second order there){joint}"
+                "points on a cantilever clamped inside at 0.5 L, a force 0.01 L from it) and far more where the force "
+                "is in a short span beside a long side that the clamp's slope turns (a cantilever clamped inside at "
+                "0.3 L: w 0.28, 0.15 at 801, 1601 points under a force at 0.25 L; 1.31, 0.71 at 0.29 L); `solve "
+                "--estimate` gives this scene's where its grids are asymptotic and says so where they are not; pd-eb "
+                f"and pd-timoshenko are second order there){joint}"
             )
     for side in ("left", "right"):
         end = getattr(scene.supports, side)
