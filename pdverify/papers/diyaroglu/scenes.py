@@ -311,8 +311,8 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
             said.add((name, o))
             out.append(
                 f"{name} at {a:g} and {o} at {b:g} are {abs(b - a) / dx:.3g} spacings apart: the support's "
-                f"one-sided rows (4 points a side) straddle it, first order there; use at least "
-                f"{int(np.ceil(4 * L / abs(b - a))) + 1} points"
+                f"one-sided rows (4 points a side) straddle it, first order there; at least "
+                f"{int(np.ceil(4 * L / abs(b - a))) + 1} points set them 4 spacings apart"
             )
         joint = [o for o, b, d in gap if o.startswith("segments") and d <= 1e-9 * L]
         if joint and sup.holds_rotation:
