@@ -67,7 +67,7 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     jumps, c, est = jump_estimates(constants, scene, rotation, info)
     # a support the model holds at first order only (its own line, e.g. pd-bond-pair's inner clamps and rotational
     # spring ends, gives the size): beside it the rotation's error is that support's, far above this second-order
-    # estimate (docs/trust.md); the jumps there are left out, and a line for another says where it does not hold
+    # estimate (docs/trust.md); the jumps there are left out, and a line for another gives only the jump's own part
     said = [w for w in info.get("warnings", []) if "first order in the spacing" in w]
     held = [(tag, pos) for tag, pos in support_tags(scene) if any(w.startswith(tag) for w in said)]
     beside = [any(abs(pos - at) < NEAR * scene.length for _, pos in held) for _, at, _ in jumps]
@@ -77,13 +77,19 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     worst, dx = int(np.argmax(est)), float(info["spacing"])
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1
     where = ", ".join(tag.strip() for tag, _ in held)
-    elsewhere = f"; not within {NEAR:g} L of {where}: first order there, its own line gives the size" if held else ""
+    # the first-order support's error is not confined to its neighbourhood: it turns the whole span (docs/trust.md),
+    # so the jump's own part is all this line gives there, and no count of points brings the rotation to 1e-3
+    tail = (
+        f"; that is the jump's own part: the rotation everywhere also carries the first-order error of {where}, "
+        "whose own line gives its size (more points reduce it at first order only)"
+        if held
+        else f"; second order: use at least {points} points for 1e-3"
+    )
     return (
         f"rotation beside {jumps[worst][0]}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
         f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
         f"{rounded_up(est[worst])} of max |rotation| (large where the rotation is small beside the shear: a point "
-        f"force near a support, a clamp; docs/trust.md){elsewhere}; second order: use at least {points} points for "
-        "1e-3"
+        f"force near a support, a clamp; docs/trust.md){tail}"
     )
 
 
