@@ -40,7 +40,7 @@ from ...numerics.families import stencil_operator
 from .couples import couple_column, shear_free
 from .kernels import EndPatched, node_loads, rod_kernel, toeplitz
 from .pieces import bond_stiffness
-from .resultants import moment_steps, point_loads, shear_at_points
+from .resultants import interval_averages, moment_steps, point_loads, shear_at_points
 from .system import Discrete, beam_prescribed
 
 ZONE = 3  # bonds are refitted within ZONE m + 1 points of each end
@@ -202,7 +202,8 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), k
 
 
 def interval_shear(u: np.ndarray, scene: Scene, dx: float, kinks=()) -> np.ndarray:
-    """V̄ = -kGA ψ̄ of the n - 1 intervals (segments: each interval's series kGA); ``kinks`` (position, couple C,
+    """V̄ of the n - 1 intervals: -kGA ψ̄ (segments: each interval's series kGA), the value at each interval's middle,
+    as its average (:func:`.resultants.interval_averages`); ``kinks`` (position, couple C,
     singular part u_s) of the couples applied on their kink (:mod:`.couples`): their kink at the couple has no shear
     strain, so its intervals' ψ̄ (the 13/24 average of a kinked γ) are left out (:func:`.couples.shear_free`: the kink
     alone, not u_s's bends at the joints it crosses)."""
@@ -211,7 +212,7 @@ def interval_shear(u: np.ndarray, scene: Scene, dx: float, kinks=()) -> np.ndarr
     x = np.arange(n) * dx
     for a, C, us in kinks:
         u = u - C * shear_free(scene, x, a, us)
-    return -kga * (shear_strain(n, dx) @ u)
+    return interval_averages(-kga * (shear_strain(n, dx) @ u), x, scene)
 
 
 def shear_strain(n: int, dx: float) -> sp.csr_matrix:

@@ -2,9 +2,12 @@
 (Moyer & Miraglia 2014, Eq. 33: V = -kGA ψ; :mod:`.energy`).
 
 The beam's w rows say kGA (ψ̄_{i+½} - ψ̄_{i-½}) = -(the load at point i): the intervals' V̄ = -kGA ψ̄ step by each
-point's load, as the exact V steps by the loads between the intervals' middles. V̄ is then the exact V's average over
-its interval (to the second order of the distributed loads' cell integrals; exactly, where V is piecewise constant),
-and the value at a point follows from the loads on the interval before it,
+point's load, as the exact V steps by the loads between the intervals' middles. For the distributed loads, whose
+points take their cells' integrals, V̄ is then the exact V at the interval's middle, which :func:`interval_averages`
+turns into V's average over the interval by the loads on its two halves (the middle's value differs from the average
+by O(Δ q) where a load's edge falls inside the interval: a shear off by a few per cent that did not converge); a point
+force split linearly between its two points gives the average already. The value at a point follows from the loads
+on the interval before it,
 
     V(x_i) = V̄_{i-½} + (1/Δ) ∫_{x_{i-1}}^{x_i} (s - x_{i-1}) dV(s),    dV = q ds + point forces (reactions included),
 
@@ -48,6 +51,20 @@ def interval_moments(scene: Scene, x: np.ndarray, component: str = "transverse")
         A += (q * gw).sum(1) * half
         B += (q * (s - lo[:, None]) * gw).sum(1) * half
     return A, B
+
+
+def interval_averages(
+    mid: np.ndarray, x: np.ndarray, scene: Scene, component: str = "transverse", sign: float = 1.0
+) -> np.ndarray:
+    """The intervals' averages of V from their values at the intervals' middles ``mid`` (module docstring: the points'
+    equations step V̄ by the cell integrals of the distributed loads, whose cells end at the middles):
+    (1/Δ) ∫ V = V(m) - (1/Δ) ∫_{x_i}^{m} (s - x_i) dV(s) + (1/Δ) ∫_{m}^{x_{i+1}} (x_{i+1} - s) dV(s), dV = ``sign`` q ds
+    (the distributed loads only: a point force's linear split already gives the average)."""
+    dx = x[1] - x[0]
+    halves = np.empty(2 * len(x) - 1)
+    halves[0::2], halves[1::2] = x, (x[:-1] + x[1:]) / 2
+    A, B = interval_moments(scene, halves, component)  # per half interval
+    return mid + sign * (-B[0::2] + 0.5 * dx * A[1::2] - B[1::2]) / dx
 
 
 def point_loads(scene: Scene, extra=()) -> tuple[list, list]:

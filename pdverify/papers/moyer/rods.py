@@ -12,7 +12,7 @@ from .base import _MoyerModel
 from .operator import rod_operator
 from .pieces import bond_stiffness, holds_somewhere
 from .point_loads import rod_points_loaded
-from .resultants import shear_at_points, stepped
+from .resultants import interval_averages, shear_at_points, stepped
 
 
 class _RodModel(_MoyerModel):
@@ -111,11 +111,13 @@ class _RodModel(_MoyerModel):
         x = disc.x
         dx = x[1] - x[0]
         stiff = self.stiffness(scene) if scene.uniform else bond_stiffness(scene, x[:-1], x[1:], self.key)
-        local = stiff * np.diff(u) / dx
-        Nbar = stepped(-(disc.op @ u) * dx, local)
+        local = stiff * np.diff(u) / dx  # the intervals' averages
+        component = "axial" if self.unknowns == "axial" else "torque"
+        # the steps give N at the intervals' middles (the points' cell integrals); to their averages by the loads
+        to_average = interval_averages(np.zeros(len(local)), x, scene, component, sign=-1.0)
+        Nbar = stepped(-(disc.op @ u) * dx, local - to_average) + to_average
         ends = np.minimum(np.arange(len(local)), np.arange(len(local))[::-1]) <= params["horizon"]
         Nbar[ends] = local[ends]  # the ghosts' bonds cross the cuts there: the local strain
-        component = "axial" if self.unknowns == "axial" else "torque"
         forces = [(ld.position, v) for ld in scene.loads if (v := _point_value(ld, component))]
         forces += [(at, f) for at, f, _ in reactions if f]
         N = shear_at_points(Nbar, x, scene, forces, component, sign=-1.0)
