@@ -47,6 +47,7 @@ from .limit import no_limit_reason
 from .nonlinear import NonlinearBondPair
 from .path import failure_warnings, follows_path, plastic_warnings, solve_path
 from .recovery import (
+    couple_deflection_warnings,
     inner_forces,
     mirror_pairs,
     mixed_fields,
@@ -436,7 +437,9 @@ class PDBondPair(Model):
         dx = x[1] - x[0]
         if off := off_grid_holds(scene, dx):  # the error does not fall regularly: no Richardson estimate from it
             info["irregular"] = off[0]
-        if flags := self.discretisation_warnings(scene, params, x):  # mirror ends: no Taylor edge layer
+        flags = self.discretisation_warnings(scene, params, x)  # mirror ends: no Taylor edge layer
+        flags += couple_deflection_warnings(scene, x, w, horizon_length(params["horizon"], dx, params["variant"]))
+        if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
             form="pair form (supports, springs, segments)",
@@ -636,7 +639,9 @@ class PDBondPair(Model):
             with timer("solve"):
                 fields["u"] = self.axial_displacement(scene, params)
         dx = x[1] - x[0]
-        if flags := self.discretisation_warnings(scene, params, x):
+        flags = self.discretisation_warnings(scene, params, x)
+        flags += couple_deflection_warnings(scene, x, w, horizon_length(params["horizon"], dx, params["variant"]))
+        if flags:
             info.setdefault("warnings", []).extend(flags)
         merge_info(
             info,
