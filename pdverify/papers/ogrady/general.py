@@ -219,7 +219,9 @@ def first_order_warnings(scene: Scene, dx: float | None = None) -> list[str]:
                 "(w 0.21, 0.15, 0.086 at 201, 401, 801 points at d = 0.01 L), more on other supports (w 0.57 at 801 "
                 "points on a cantilever clamped inside at 0.5 L, a force 0.01 L from it) and far more where the force "
                 "is in a short span beside a long side that the clamp's slope turns (a cantilever clamped inside at "
-                "0.3 L: w 0.28, 0.15 at 801, 1601 points under a force at 0.25 L; 1.31, 0.71 at 0.29 L); `solve "
+                "0.3 L: w 0.28, 0.15 at 801, 1601 points under a force at 0.25 L; 1.31, 0.71 at 0.29 L), and M and V "
+                "in a short span beside it (a clamp 0.04 L from a pinned end: V 0.60, 0.19, 0.10 of max |V| and M "
+                "0.096, 0.034, 0.018 of max |M| at 201, 801, 1601 points); `solve "
                 "--estimate` gives this scene's where its grids are asymptotic and says so where they are not; pd-eb "
                 f"and pd-timoshenko are second order there){joint}"
             )
