@@ -4,6 +4,7 @@ file), and a solve's result as a table."""
 
 from __future__ import annotations
 
+import errno
 import os
 import stat
 from enum import Enum
@@ -59,6 +60,8 @@ def target(out: Path, option: str) -> Path:
     """The file a write to ``out`` replaces: ``out``, or the file a symlink at ``out`` names. Only a regular file, or
     one that does not exist yet, is ever written: a folder, a device (``/dev/full``), a FIFO or a socket, a symlink to
     one, or a symlink to nothing, is refused (OutputError, exit 4) before anything is computed."""
+    if out.is_symlink() and _loops(out):
+        raise OutputError(f"{option} {out}: a symlink that leads back to itself; give a file path")
     real = Path(os.path.realpath(out)) if out.is_symlink() else out
     via = f" (a symlink to {real})" if real != out else ""
     if via and str(real).startswith("/proc/") and not real.is_file():  # /dev/stdout: a pipe or a terminal
@@ -135,8 +138,21 @@ def _name_max(folder: Path) -> int:
         return 255
 
 
+def _loops(path: Path) -> bool:
+    """True when the symlink ``path`` leads back to itself (a loop: resolving it never ends)."""
+    try:
+        path.resolve(strict=True)
+    except RuntimeError:  # Python < 3.13: a loop
+        return True
+    except OSError as exc:  # ELOOP (Python 3.13 and later), or missing
+        return exc.errno == errno.ELOOP
+    return False
+
+
 def check_folder(out: Path, option: str) -> None:
     """Before any computation: ``out`` is a folder pdverify can write into, or can be made as one."""
+    if os.path.islink(out) and _loops(out):
+        raise OutputError(f"{option} {out}: a symlink that leads back to itself; give a folder (it is made if missing)")
     if os.path.islink(out) and not os.path.exists(out):  # mkdir would fail on the link itself
         raise OutputError(f"{option} {out}: a symlink to nothing; give a folder (it is made if missing)")
     real = Path(os.path.realpath(out))

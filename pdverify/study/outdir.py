@@ -17,6 +17,7 @@ back (resume) and each new one stored at once and atomically.
 
 from __future__ import annotations
 
+import errno
 import json
 import os
 import time
@@ -37,9 +38,16 @@ LOCK_NAME = ".pdverify.lock"
 
 
 def output_error(out: Path, exc: OSError, what: str = "a case file") -> OutputError:
+    """The one line of a write that failed: the fix the error's cause calls for (a full disk: space; else another
+    folder), and that the cases written are kept."""
+    fix = (
+        "free disk space or give another --out"
+        if exc.errno in (errno.ENOSPC, errno.EDQUOT)
+        else "give a writable --out"
+    )
     return OutputError(
-        f"output directory {out}: {what} could not be written ({exc}); free disk space or "
-        "give a writable --out. The cases already written are kept: run the study again to resume."
+        f"output directory {out}: {what} could not be written ({exc}); {fix}. The cases already written are kept: "
+        "run the study again to resume."
     )
 
 

@@ -83,6 +83,10 @@ def parse_run(
         typo = meant_key(run, "model")
         if typo:
             return None, [f"{where}: unknown key '{typo}'; did you mean 'model'?"]
+        if isinstance(run, dict) and "model" in run:
+            return None, [
+                f'{where}: model = {run["model"]!r}: not a model name; give one in quotes, e.g. model = "pd-eb"'
+            ]
         return None, [f"{where}: model: missing; every run names a model"]
     try:
         model = get_model(run["model"])

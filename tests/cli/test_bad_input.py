@@ -268,6 +268,10 @@ CLI_CASES = [
         4,
         "a symlink to nothing",
     ),
+    # a symlink to itself was called "a device, FIFO or socket" (--out of solve, --junit) or "a symlink to nothing"
+    ("solve-out-link-loop", ["solve", "{scene}", "-m", "exact-eb", "--out", "{link_loop}"], 4, "leads back to itself"),
+    ("study-out-link-loop", ["study", "{study}", "--out", "{link_loop}"], 4, "leads back to itself"),
+    ("study-junit-link-loop", ["study", "{study}", "--out", "{tmp}/o4", "--junit", "{link_loop}"], 4, "back to itself"),
     ("study-junit-device", ["study", "{study}", "--out", "{tmp}/o1", "--junit", "/dev/full"], 4, "--junit /dev/full"),
     ("study-junit-folder", ["study", "{study}", "--out", "{tmp}/o2", "--junit", "{tmp}"], 4, "--junit"),
     ("study-out-is-file", ["study", "{study}", "--out", "{file}"], 4, "is a file, not a folder"),
@@ -599,6 +603,7 @@ def files(tmp_path_factory):
     (d / "link_dir").symlink_to(d / "empty")
     (d / "link_dev.csv").symlink_to("/dev/full")
     (d / "link_nothing.csv").symlink_to(d / "missing" / "x.csv")
+    (d / "link_loop").symlink_to(d / "link_loop")
     dyn = (ROOT / "studies/paper_moyer/beam_transient.toml").read_text()
     (d / "dyn.toml").write_text(dyn)
     (d / "dyn_tiny_rho.toml").write_text(re.sub(r"density = [0-9.e+-]+", "density = 1e-300", dyn))
@@ -717,6 +722,7 @@ def files(tmp_path_factory):
         "link_dir": d / "link_dir",
         "link_dev": d / "link_dev.csv",
         "link_nothing": d / "link_nothing.csv",
+        "link_loop": d / "link_loop",
         "dyn": d / "dyn.toml",
         "dyn_tiny_rho": d / "dyn_tiny_rho.toml",
         "shaft_profile": d / "shaft_profile.toml",

@@ -133,6 +133,8 @@ BAD_STUDIES = {
     "bad reference": ('reference2 = 1\n[[runs]]\nmodel = "pd-eb"\n', "unknown key 'reference2'"),
     "typo key": ('[[runs]]\nmodel = "pd-eb"\nvariant = "papr"\n', "variant = 'papr'"),
     "bad slenderness": ('[sweep]\nslenderness = [-3]\n[[runs]]\nmodel = "pd-eb"\n', "slenderness value -3"),
+    # a model or name of the wrong type was called "missing"
+    "model a number": ("[[runs]]\nmodel = 3\n", "runs[0]: model = 3: not a model name"),
 }
 
 
@@ -149,6 +151,25 @@ def test_bad_study_one_line_exit_2(tmp_path, what):
     )
     assert r.returncode == 2 and "Traceback" not in r.stderr and msg in r.stderr, r.stderr
     assert not (tmp_path / "o").exists()  # validated before running anything
+
+
+def test_a_name_that_is_not_a_text_is_named_as_such(tmp_path):
+    """Sweep 25 O6: name = {a = 1} was reported as "name: missing"."""
+    p = tmp_path / "s.toml"
+    p.write_text(f'name = {{a = 1}}\nscenes = ["{SCENE}"]\n[[runs]]\nmodel = "pd-eb"\n')
+    with pytest.raises(InputError, match=r"name = \{'a': 1\}: not a text"):
+        load_study(p)
+
+
+def test_a_write_that_failed_names_the_fix_its_cause_calls_for():
+    """Sweep 25 O6: --out /proc was told to "free disk space"; only a full disk is."""
+    import errno
+
+    from pdverify.study.outdir import output_error
+
+    full = str(output_error(Path("o"), OSError(errno.ENOSPC, "No space left on device")))
+    missing = str(output_error(Path("/proc"), OSError(errno.ENOENT, "No such file or directory")))
+    assert "free disk space" in full and "free disk space" not in missing and "give a writable --out" in missing
 
 
 def test_missing_scene_and_syntax_error(tmp_path):
