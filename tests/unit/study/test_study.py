@@ -662,7 +662,7 @@ def test_full_disk_during_a_run_is_an_output_error(tmp_path, synthetic, monkeypa
 
     monkeypatch.setattr(outdir, "write_atomic", full_disk)
     p = write_study(tmp_path, '[[runs]]\nmodel = "synthetic-dx2"\npoints = [11, 21, 31, 41, 51]\n')
-    with pytest.raises(OutputError, match="No space left on device.*writable --out"):
+    with pytest.raises(OutputError, match="No space left on device.*free disk space or give another --out"):
         run_study(load_study(p), tmp_path / "out", workers=workers, progress=False)
     assert len(list((tmp_path / "out" / "cases").glob("*.case"))) == 2
 
