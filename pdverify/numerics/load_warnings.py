@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.scene import Distributed, Scene
-from ..core.text import more_points
+from ..core.scene import Distributed, PointMoment, Scene
+from ..core.text import more_points, rounded_up
 from .loads import within
 
 
@@ -265,4 +265,31 @@ def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
                     "that point as a whole, moved by up to half a spacing (a first-order error); use at least "
                     f"{int(np.ceil(2 * scene.length / (b - a))) + 1} points"
                 )
+    return out
+
+
+def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta: float, constant: float) -> list[str]:
+    """The point moments inside the span whose estimate ``constant`` |C| h² / (EI max |w|) (h = max(spacing,
+    ``delta`` / 3), ``delta`` the horizon) of the deflection's error beside them passes NEAR_TOLERANCE, with the points
+    that bring it there: a model that takes a couple C as a force pair on the points around it leaves w beside it
+    off by about c |C| h² / EI, second order, large beside max |w| where the couple deflects the beam little (the
+    model's ``constant``, measured: docs/trust.md)."""
+    top = float(np.abs(w).max()) if len(w) else 0.0
+    if top == 0.0:
+        return []
+    L, dx = scene.length, float(x[1] - x[0])
+    h, out = max(dx, delta / 3.0), []
+    for i, ld in enumerate(scene.loads):
+        if not (isinstance(ld, PointMoment) and ld.value and 0.0 < ld.position < L):
+            continue
+        EI = float(scene.stiffness_at(np.array([ld.position]))["EI"][0])
+        estimate = constant * abs(ld.value) * h**2 / EI / top
+        if estimate > NEAR_TOLERANCE:
+            points = int(np.ceil(1.1 * L / dx * np.sqrt(estimate / NEAR_TOLERANCE))) + 1
+            out.append(
+                f"loads[{i}], a point moment at {ld.position:g}: the deflection beside it is off by up to about "
+                f"{constant:g} |C| h² / EI (h = max(spacing, horizon / 3)), here {rounded_up(estimate)} of max |w| "
+                f"(large where the couple deflects the beam little); second order: use at least {points} points for "
+                "1e-3"
+            )
     return out

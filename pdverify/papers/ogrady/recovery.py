@@ -13,9 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import Distributed, PointForce, PointMoment, Scene
-from ...core.text import rounded_up
 from ...numerics.features import joint_steps
-from ...numerics.load_warnings import NEAR_TOLERANCE
 from ...numerics.loads import body_loads, cell_integral, support_side
 from ...numerics.statics import jump_share
 from .calibration import alpha, pair_family
@@ -189,35 +187,3 @@ def rotation_warnings(scene: Scene) -> list[str]:
         "order elsewhere): this line is the rotation's recovery from w only and says nothing of the deflection's, "
         "moment's or shear's own errors"
     ]
-
-
-# a point moment C inside the span: the pair form takes it as a force pair on the points around it, and w beside it is
-# off by about c |C| h² / EI (second order, h = max(spacing, horizon / 3)), large beside max |w| where the couple
-# deflects the beam little: measured c = 0.64 (a couple at mid-span, pinned-pinned or clamped-clamped) to 1.1 (a
-# cantilever), up to 2.4 just outside an end's layer (20 spacings from a free end), over every variant and end
-# treatment (docs/models/ogrady.md); inside the layer the layer's own line gives the size
-COUPLE_DEFLECTION = 2.5
-
-
-def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta: float) -> list[str]:
-    """The point moments inside the span whose estimate COUPLE_DEFLECTION |C| h² / (EI max |w|) of the deflection's
-    error beside them passes NEAR_TOLERANCE (``delta`` the horizon), with the points that bring it to it."""
-    top = float(np.abs(w).max()) if len(w) else 0.0
-    if top == 0.0:
-        return []
-    L, dx = scene.length, float(x[1] - x[0])
-    h, out = max(dx, delta / 3.0), []
-    for i, ld in enumerate(scene.loads):
-        if not (isinstance(ld, PointMoment) and ld.value and 0.0 < ld.position < L):
-            continue
-        EI = float(scene.stiffness_at(np.array([ld.position]))["EI"][0])
-        estimate = COUPLE_DEFLECTION * abs(ld.value) * h**2 / EI / top
-        if estimate > NEAR_TOLERANCE:
-            points = int(np.ceil(1.1 * L / dx * np.sqrt(estimate / NEAR_TOLERANCE))) + 1
-            out.append(
-                f"loads[{i}], a point moment at {ld.position:g}: the deflection beside it is off by up to about "
-                f"{COUPLE_DEFLECTION:g} |C| h² / EI (h = max(spacing, horizon / 3)), here {rounded_up(estimate)} of "
-                f"max |w| (large where the couple deflects the beam little); second order: use at least {points} "
-                "points for 1e-3"
-            )
-    return out
