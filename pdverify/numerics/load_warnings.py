@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.scene import Distributed, PointMoment, Scene
-from ..core.text import more_points, rounded_up
+from ..core.text import listed, more_points, rounded_up
 from .loads import within
 
 
@@ -110,7 +110,8 @@ def held_rotation_warnings(
 ) -> list[str]:
     """Point forces at least ``nearest`` spacings from an inner support that holds the rotation (clamped, or a spring
     with a rotational stiffness) whose estimated error FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2 (at most 1:
-    the solution's own size; ``delta`` the horizon, default 3 dx) passes NEAR_TOLERANCE (nearer ones: the model's own
+    the solution's own size; ``delta`` the horizon, default 3 dx), times the other side's turn (:func:`turned_side`),
+    passes NEAR_TOLERANCE (nearer ones: the model's own
     warning of rows that straddle the load, where it has one); and :func:`distributed_near_held_warnings` with the
     model's ``loads_constant`` (default LOADS_NEAR_HELD_ROTATION)."""
     L, out = scene.length, []
@@ -125,14 +126,17 @@ def held_rotation_warnings(
                 continue
             turned, how = turned_side(scene, i, ld.position)
             constant = FORCE_NEAR_HELD_ROTATION * turned
-            estimate = constant * (h / d) ** 2  # may pass 1: the turned side moves more than the loaded
+            # at most the solution's own size beside the support (d under a spacing: the estimate's power law does not
+            # hold), times the turn of the other side, which may pass it
+            estimate = min(FORCE_NEAR_HELD_ROTATION * (h / d) ** 2, 1.0) * turned
             if estimate > NEAR_TOLERANCE:
                 most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / constant)  # the horizon that gives 1e-3
                 out.append(
                     f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
                     f"{sup.position:g}, which holds the rotation: the horizon's families reach across the support "
                     f"(a model error of the horizon, not of the grid), up to about {FORCE_NEAR_HELD_ROTATION:g} "
-                    f"(max(spacing, horizon / 3) / distance)^2{how} = {estimate:.2g}; use a horizon of at most "
+                    f"(max(spacing, horizon / 3) / distance)^2 (at most 1){how} = {estimate:.2g}; use a horizon of at "
+                    "most "
                     f"{most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} points) "
                     "for 1e-3"
                 )
@@ -141,11 +145,14 @@ def held_rotation_warnings(
 
 def turned_side(scene: Scene, i: int, at: float) -> tuple[float, str]:
     """(max(1, l / a)^TURNED_POWER, its term in the warning's formula) for a load at ``at`` beside
-    ``scene.supports.inner[i]``: a the loaded side's length, l the other side's, each to the beam's end; the other side
-    "swings" when neither its end (a free or guided end, a spring) nor a support inside on it holds the deflection."""
+    ``scene.supports.inner[i]``: a the loaded span's length (to the next support inside that holds the deflection on
+    that side, else to the beam's end), l the other side's (to the beam's end); the other side "swings" when neither
+    its end (a free or guided end, a spring) nor a support inside on it holds the deflection."""
     L, pos = scene.length, scene.supports.inner[i].position
     right = at > pos
-    loaded, other = (L - pos, pos) if right else (pos, L - pos)
+    others = [s.position for k, s in enumerate(scene.supports.inner) if k != i and s.holds_deflection]
+    loaded = min([L - pos if right else pos] + [abs(p - pos) for p in others if (p > pos) == right and p != pos])
+    other = pos if right else L - pos
     if other <= loaded:
         return 1.0, ""
     end = "left" if right else "right"
@@ -269,27 +276,37 @@ def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
 
 
 def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta: float, constant: float) -> list[str]:
-    """The point moments inside the span whose estimate ``constant`` |C| h² / (EI max |w|) (h = max(spacing,
-    ``delta`` / 3), ``delta`` the horizon) of the deflection's error beside them passes NEAR_TOLERANCE, with the points
-    that bring it there: a model that takes a couple C as a force pair on the points around it leaves w beside it
-    off by about c |C| h² / EI, second order, large beside max |w| where the couple deflects the beam little (the
-    model's ``constant``, measured: docs/trust.md)."""
+    """One line where the estimate ``constant`` Σ |C| h² / (EI max |w|) of the deflection's error beside the point
+    moments inside the span passes NEAR_TOLERANCE (h = max(spacing, ``delta`` / 3), ``delta`` the horizon; the sum
+    over the couples: their errors add where they are near each other), with the points that bring it there: a model
+    that takes a couple C as a force pair on the points around it leaves w beside it off by about c |C| h² / EI,
+    second order, large beside max |w| where the couples deflect the beam little (the model's ``constant``, measured:
+    docs/trust.md)."""
     top = float(np.abs(w).max()) if len(w) else 0.0
-    if top == 0.0:
+    L = scene.length
+    couples = [
+        (i, ld)
+        for i, ld in enumerate(scene.loads)
+        if isinstance(ld, PointMoment) and ld.value and 0.0 < ld.position < L
+    ]
+    if top == 0.0 or not couples:
         return []
-    L, dx = scene.length, float(x[1] - x[0])
-    h, out = max(dx, delta / 3.0), []
-    for i, ld in enumerate(scene.loads):
-        if not (isinstance(ld, PointMoment) and ld.value and 0.0 < ld.position < L):
-            continue
-        EI = float(scene.stiffness_at(np.array([ld.position]))["EI"][0])
-        estimate = constant * abs(ld.value) * h**2 / EI / top
-        if estimate > NEAR_TOLERANCE:
-            points = int(np.ceil(1.1 * L / dx * np.sqrt(estimate / NEAR_TOLERANCE))) + 1
-            out.append(
-                f"loads[{i}], a point moment at {ld.position:g}: the deflection beside it is off by up to about "
-                f"{constant:g} |C| h² / EI (h = max(spacing, horizon / 3)), here {rounded_up(estimate)} of max |w| "
-                f"(large where the couple deflects the beam little); second order: use at least {points} points for "
-                "1e-3"
-            )
-    return out
+    dx = float(x[1] - x[0])
+    h = max(dx, delta / 3.0)
+    at = np.array([ld.position for _, ld in couples])
+    size = np.sum(np.abs([ld.value for _, ld in couples]) / scene.stiffness_at(at)["EI"])  # Σ |C| / EI
+    estimate = constant * size * h**2 / top
+    if not estimate > NEAR_TOLERANCE:
+        return []
+    points = int(np.ceil(1.1 * L / dx * np.sqrt(estimate / NEAR_TOLERANCE))) + 1
+    names = ", ".join(str(i) for i, _ in couples)
+    which = (
+        f"loads[{names}], a point moment at {at[0]:g}: the deflection beside it"
+        if len(couples) == 1
+        else f"loads[{names}], point moments at {listed(at)}: the deflection beside them"
+    )
+    return [
+        f"{which} is off by up to about {constant:g} {'|C|' if len(couples) == 1 else 'Σ |C|'} h² / EI (h = "
+        f"max(spacing, horizon / 3)), here {rounded_up(estimate)} of max |w| (large where the couples deflect the "
+        f"beam little); second order: use at least {points} points for 1e-3"
+    ]

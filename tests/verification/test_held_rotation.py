@@ -75,6 +75,43 @@ def test_a_force_in_a_short_span_beside_a_long_other_side_is_estimated_from_abov
             assert max(errors) <= estimate, (d, points, errors, estimate)
 
 
+def test_a_loaded_span_closed_by_a_second_support_inside_counts_its_own_length():
+    """Sweep 26 P2: the loaded span measured to the beam's end (0.3) where a second support closes it at 0.1 (a
+    free-pinned beam clamped at 0.7, a stiff spring at 0.8, the force at 0.73): pd-eb's w 1.13-1.17 times the
+    estimate at 201-801 points. The loaded span ends at the next support that holds the deflection."""
+    d = scene_dict("free", "pinned", [{"type": "point_force", "position": 0.73, "value": -1e3}])
+    d["supports"]["inner"] = [
+        {"type": "clamped", "position": 0.7},
+        {"type": "spring", "position": 0.8, "stiffness": 2.9e10, "rotational_stiffness": 0.0},
+    ]
+    d["beam"] = {"length": 1.0}
+    sc = parse_scene(d)
+    for points in (201, 401, 801):
+        r = run(sc, "pd-eb", points=points)
+        exact = solve_straight(sc, False).fields(r.x)
+        error = max(np.abs(getattr(r, q) - exact[q]).max() / np.abs(exact[q]).max() for q in ("w", "rotation"))
+        said = [w for w in r.info.get("warnings", []) if "which holds the rotation" in w]
+        assert len(said) == 1 and "0.1 and 0.7" in said[0], said
+        assert error <= float(said[0].split(" = ")[-1].split(";")[0]), (points, error)
+
+
+def test_a_force_within_a_spacing_of_the_support_is_not_overstated_beyond_the_turn():
+    """Sweep 26 P1: uncapped, 5 (h / d)^2 (l / a)^p quoted 71, 18, 4.5 times max |w| at 101-401 points for
+    pd-timoshenko with the force half a spacing from the clamp (errors 10-1000 times smaller); the (h / d)^2 part is at
+    most 1 (the solution's own size beside the support), times the other side's turn."""
+    d = scene_dict("free", "pinned", [{"type": "point_force", "position": 0.705, "value": -1e3}])
+    d["supports"]["inner"] = [{"type": "clamped", "position": 0.7}]
+    d["beam"] = {"length": 1.0}
+    sc = parse_scene(d)
+    turn = (0.7 / 0.3) ** 1.5  # the free side swings; the line prints two digits
+    for points in (101, 201, 401):
+        r = run(sc, "pd-timoshenko", points=points)
+        exact = solve_straight(sc, True).fields(r.x)["w"]
+        said = [w for w in r.info.get("warnings", []) if "which holds the rotation" in w]
+        estimate = float(said[0].split(" = ")[-1].split(";")[0])
+        assert np.abs(r.w - exact).max() / np.abs(exact).max() <= estimate <= float(f"{turn:.2g}"), (points, estimate)
+
+
 @pytest.mark.parametrize("model,shear", MODELS)
 def test_a_pinned_inner_support_is_not_warned(model, shear):
     for spacings in (4.7, 24.3):

@@ -10,7 +10,7 @@ from pdverify.exact.straight import solve_straight
 from pdverify.papers.ogrady.model import factored_stencils, operator_stencil, pair_family, spring_constants
 from pdverify.registry import run
 
-COUPLE = ", a point moment at "  # the line of the deflection beside a couple: "loads[i], a point moment at ..."
+COUPLE = ": the deflection beside it is off"  # the line of the deflection beside a couple (test_couple_deflection.py)
 
 
 def err(scene, **opts):

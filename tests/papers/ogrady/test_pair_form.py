@@ -19,7 +19,7 @@ MIXED = [
     {"type": "distributed", "value": -500.0, "start": 0.2, "end": 1.1},
 ]
 
-COUPLE = ", a point moment at "  # the line of the deflection beside a couple: "loads[i], a point moment at ..."
+COUPLE = ": the deflection beside it is off"  # the line of the deflection beside a couple (test_couple_deflection.py)
 
 
 def scene(left, right, inner=(), loads=UDL, segments=None):
