@@ -5,8 +5,9 @@ into the interval's average. Read as the average, V (N, T) was off by up to 3.4 
 edge at every grid (q on [0.657, 0.667]: 3.4e-2, 3.0e-2, 3.8e-3, 7.6e-3 at 101, 201, 401, 801 points), silent; M
 2.0e-3 at 101. The discrete statics being exact, the resultants match the exact theory's to round-off (the tolerance
 1e3 eps times the points: the cumulative sums' rounding grows with their count; measured at most 8.8e-12 at 1601
-points, below 1e3 * 2.2e-16 * 1601 = 3.6e-10) where the reactions are statics (a cantilever); where they are not
-(clamped-pinned), the reactions' own discretisation error, second order."""
+points, below 1e3 * 2.2e-16 * 1601 = 3.6e-10) where the reactions are statics (a cantilever) and the edges are outside
+the ends' fitted layers; where the reactions are not statics (clamped-pinned), their own discretisation error, second
+order; inside a layer, the line that says so."""
 
 import numpy as np
 import pytest
@@ -76,3 +77,22 @@ def test_the_resultants_of_an_indeterminate_beam_converge_at_second_order_beside
     round-off."""
     e201, e801 = errors(model, reference, fields, component, ("clamped", "pinned"), span, (201, 801))
     assert e801 <= 1e3 * EPS * 801 or e201 / e801 >= 4**1.7, (e201, e801)
+
+
+@pytest.mark.parametrize("model,reference,fields,component", CASES[1:])
+@pytest.mark.parametrize("ends", [("clamped", "free"), ("free", "clamped")])
+def test_a_load_edge_in_an_ends_fitted_layer_is_warned(model, reference, fields, component, ends):
+    """Sweep 26 P3: a distributed load's edge 1-3 spacings from an end of a rod or a bar left N (T) 1.09e-2 (4.76e-3)
+    off at 101 (201) points, first order, silent: the ghosts fitted through the end's first points spoil the resultant
+    there. Inside the fitted layer (4 + m spacings) a line says so with the measured sizes (at most 1.2e-2 at 101
+    points, halving with twice the points); outside it the resultant is within 1e-3."""
+    for points in (101, 201):
+        dx = 1.0 / (points - 1)
+        for k in (0.4, 1.6, 3.2, 4.6, 6.6, 7.4, 12.0):
+            sc = scene(ends, 0.5, 1.0 - k * dx, component)
+            (error,) = errors(model, reference, fields, component, ends, (0.5, 1.0 - k * dx), (points,))
+            said = [w for w in run(sc, model, points=points).info.get("warnings", []) if "fitted on: N (T)" in w]
+            if k < 7:
+                assert said and error <= 1.2e-2 * 100 * dx, (points, k, error)
+            else:
+                assert not said and error <= 1e-3, (points, k, error)
