@@ -190,15 +190,29 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), k
     bond sums' moment (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond
     sums smear a point couple over the horizon, which would bias a mean to first order). Why not the bond sums:
     near an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval
-    averages) differ, so the discrete γ' is first order there."""
+    averages) differ, so the discrete γ' is first order there. Where an end holds no moment (pinned, roller, free, a
+    spring without rotational stiffness) and takes no couple, M is zero there: the constant is statics instead (the
+    median carries the bond sums' error, a few 1e-3 of max |M| on a coarse grid)."""
     n = len(u) // 2
     _, bond = stiffnesses(scene, n, dx)
     _, couples = point_loads(scene, reactions)
     M = moment_steps(interval_shear(u, scene, dx, kinks), np.arange(n) * dx, couples)
+    if _moment_free(scene, "left"):  # M_0 = 0 already
+        return M
+    if _moment_free(scene, "right"):
+        return M - M[-1]
     flux = bond_moment(u[1::2], m, scene.EI, dx, bond)
     Z = 2 * zone(m)
     inner = slice(Z, n - Z) if n > 2 * Z + 2 else slice(None)
     return M + np.median(flux[inner] - M[inner])
+
+
+def _moment_free(scene: Scene, side: str) -> bool:
+    """Whether the end ``side`` holds no moment and takes no couple: M is zero there."""
+    end = getattr(scene.supports, side)
+    free = end in ("pinned", "roller", "free") if isinstance(end, str) else not end.rotational_stiffness
+    at = 0.0 if side == "left" else scene.length
+    return free and not any(isinstance(ld, PointMoment) and ld.value and ld.position == at for ld in scene.loads)
 
 
 def interval_shear(u: np.ndarray, scene: Scene, dx: float, kinks=()) -> np.ndarray:
