@@ -96,10 +96,11 @@ def edge_layer_warnings(
 # FORCE_NEAR_HELD_ROTATION (dx / d)^2 at their default horizon of 3 dx (docs/trust.md, "a point force near a support
 # that holds the rotation"). It is the horizon's: the families reach across the support and carry the loaded span's
 # curvature into the other (an unloaded overhang turns), a model error that stays at a fixed horizon length; so the
-# estimate is FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2, times (l / a)^TURNED_POWER where the loaded side a
-# is shorter than the other side l (to the beam's ends), which turns: relative to the loaded span's own small
-# deflection, the other side's turn counts l / a times more, and where nothing holds its deflection (a free or guided
-# end, a spring) it swings about the support, (l / a)^1.5 (measured: docs/trust.md)
+# estimate is FORCE_NEAR_HELD_ROTATION (max(dx, delta / 3) / d)^2 (at most 1), times (l / a)^TURNED_POWER where the
+# loaded span a (to the next support that holds the deflection, else the beam's end) is shorter than the other side l
+# (to the beam's end), which turns: relative to the loaded span's own small deflection, the other side's turn counts
+# l / a times more, and where nothing holds its deflection (a free or guided end, a spring) it swings about the
+# support, (l / a)^1.5 (measured: docs/trust.md)
 FORCE_NEAR_HELD_ROTATION = 5.0
 TURNED_POWER = {"held": 1.0, "swings": 1.5}
 NEAR_TOLERANCE = 1e-3  # the error above which that estimate is a warning
@@ -135,10 +136,9 @@ def held_rotation_warnings(
                     f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
                     f"{sup.position:g}, which holds the rotation: the horizon's families reach across the support "
                     f"(a model error of the horizon, not of the grid), up to about {FORCE_NEAR_HELD_ROTATION:g} "
-                    f"(max(spacing, horizon / 3) / distance)^2 (at most 1){how} = {estimate:.2g}; use a horizon of at "
-                    "most "
-                    f"{most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} points) "
-                    "for 1e-3"
+                    f"(max(spacing, horizon / 3) / distance)^2 (at most 1){how} = {estimate:.2g}; use a horizon of "
+                    f"at most {most:.3g} (at a horizon of 3 spacings: at least {int(np.ceil(L / (most / 3.0))) + 1} "
+                    "points) for 1e-3"
                 )
     return out + distributed_near_held_warnings(scene, dx, delta, loads_constant or LOADS_NEAR_HELD_ROTATION)
 

@@ -321,7 +321,7 @@ def _head(path: Path, data: dict) -> tuple[tuple[str, list, list], list[str]]:
     misspelt = set(meant.values())  # a key misspelt is one problem: its "missing" line goes
     name = data.get("name")
     if (not isinstance(name, str) or not name) and "name" not in misspelt:
-        given = "missing" if name is None else f"= {name!r}: not a text"
+        given = "missing" if name is None else "empty" if name == "" else f"= {name!r}: not a text"
         errors.append(f'{path}: name {given}; give the study a name in quotes, e.g. name = "my study"')
     if not isinstance(data.get("description", ""), str):
         errors.append(f'{path}: description = {data["description"]!r}: give a text in quotes, e.g. description = "..."')

@@ -214,7 +214,7 @@ ESTIMATES = {
 # a point moment C inside the span: the pair form takes it as a force pair on the points around it, and w beside it is
 # off by about c |C| h² / EI: measured c = 0.64 (a couple at mid-span, pinned-pinned or clamped-clamped) to 1.1 (a
 # cantilever), up to 2.4 just outside an end's layer (20 spacings from a free end), over every variant, end treatment
-# and horizons 3 and 5 (docs/models/ogrady.md; tests/papers/ogrady/test_couple_deflection.py)
+# and horizons 3 and 5 (docs/models/ogrady.md; tests/verification/test_couple_deflection.py)
 COUPLE_DEFLECTION = 2.5
 
 
@@ -449,9 +449,7 @@ class PDBondPair(Model):
         if off := off_grid_holds(scene, dx):  # the error does not fall regularly: no Richardson estimate from it
             info["irregular"] = off[0]
         flags = self.discretisation_warnings(scene, params, x)  # mirror ends: no Taylor edge layer
-        flags += couple_deflection_warnings(
-            scene, x, w, horizon_length(params["horizon"], dx, params["variant"]), COUPLE_DEFLECTION
-        )
+        flags += self.couple_lines(scene, params, x, w)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         info.update(
@@ -583,6 +581,12 @@ class PDBondPair(Model):
             },
         )
 
+    @staticmethod
+    def couple_lines(scene: Scene, params: dict, x: np.ndarray, w: np.ndarray) -> list[str]:
+        """The deflection beside the point moments inside the span (a static solution ``w``): COUPLE_DEFLECTION."""
+        delta = horizon_length(params["horizon"], x[1] - x[0], params["variant"])
+        return couple_deflection_warnings(scene, x, w, delta, COUPLE_DEFLECTION)
+
     def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray) -> list[str]:
         """The warnings of the linear operator's space discretisation on the points ``x`` (ends resolved): supports
         held at first order, point loads inside the ends' layer, the rotation near a point moment or a free end, the
@@ -653,9 +657,7 @@ class PDBondPair(Model):
                 fields["u"] = self.axial_displacement(scene, params)
         dx = x[1] - x[0]
         flags = self.discretisation_warnings(scene, params, x)
-        flags += couple_deflection_warnings(
-            scene, x, w, horizon_length(params["horizon"], dx, params["variant"]), COUPLE_DEFLECTION
-        )
+        flags += self.couple_lines(scene, params, x, w)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         merge_info(
