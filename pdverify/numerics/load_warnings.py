@@ -307,6 +307,7 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
     )
     return [
         f"{which} is off by up to about {constant:g} {'|C|' if len(couples) == 1 else 'Σ |C|'} h² / EI (h = "
-        f"max(spacing, horizon / 3)), here {rounded_up(estimate)} of max |w| (large where the couples deflect the "
-        f"beam little); second order: use at least {points} points for 1e-3"
+        f"max(spacing, horizon / 3)), here {rounded_up(estimate)} of max |w| (large where the "
+        f"{'couple deflects' if len(couples) == 1 else 'couples deflect'} the beam little); second order: use at "
+        f"least {points} points for 1e-3"
     ]

@@ -190,21 +190,35 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), k
     bond sums' moment (:func:`bond_moment`): the median of their difference away from the ends' fitted zones (the bond
     sums smear a point couple over the horizon, which would bias a mean to first order). Why not the bond sums:
     near an end their cells (the fitted volumes) and the shear couple's (the columns of the cubic's interval
-    averages) differ, so the discrete γ' is first order there. Where an end holds no moment (pinned, roller, free, a
-    spring without rotational stiffness) and takes no couple, M is zero there: the constant is statics instead (the
-    median carries the bond sums' error, a few 1e-3 of max |M| on a coarse grid)."""
+    averages) differ, so the discrete γ' is first order there. On a statically determinate beam (its steps are
+    statics) with an end that holds no moment (pinned, roller, free, a spring without rotational stiffness) and takes
+    no couple, M is zero there: the constant is statics instead (the median carries the bond sums' error, a few 1e-3 of
+    max |M| on a coarse grid); on an indeterminate one the steps carry the reactions' error, which the median spreads
+    and an anchor at one end would gather at the other."""
     n = len(u) // 2
     _, bond = stiffnesses(scene, n, dx)
     _, couples = point_loads(scene, reactions)
     M = moment_steps(interval_shear(u, scene, dx, kinks), np.arange(n) * dx, couples)
-    if _moment_free(scene, "left"):  # M_0 = 0 already
-        return M
-    if _moment_free(scene, "right"):
-        return M - M[-1]
+    if _reactions(scene) == 2:  # statically determinate: the reactions, and so the steps, are statics
+        if _moment_free(scene, "left"):  # M_0 = 0 already
+            return M
+        if _moment_free(scene, "right"):
+            return M - M[-1]
     flux = bond_moment(u[1::2], m, scene.EI, dx, bond)
     Z = 2 * zone(m)
     inner = slice(Z, n - Z) if n > 2 * Z + 2 else slice(None)
     return M + np.median(flux[inner] - M[inner])
+
+
+def _reactions(scene: Scene) -> int:
+    """The count of the beam's unknown reactions (forces and couples of the ends and of the supports inside): 2 for
+    a statically determinate beam."""
+    rigid = {"clamped": 2, "pinned": 1, "roller": 1, "guided": 1, "free": 0}
+    count = 0
+    for sup in (scene.supports.left, scene.supports.right, *scene.supports.inner):
+        kind = sup if isinstance(sup, str) else sup.type
+        count += bool(sup.stiffness) + bool(sup.rotational_stiffness) if kind == "spring" else rigid[kind]
+    return count
 
 
 def _moment_free(scene: Scene, side: str) -> bool:

@@ -9,29 +9,35 @@ from ...numerics.recovery import kink_positions
 
 
 def rod_points_loaded(model, scene: Scene) -> list[float]:
-    """Where a single point of pd-rod (pd-torsion) carries a force inside the member: its point forces (torques)
-    and rigid supports inside."""
+    """Where a single point of pd-rod (pd-torsion) carries a force inside the member: its point forces (torques),
+    and the supports and springs inside that act on its unknown (a rod: pinned, clamped, a spring's ``stiffness``; a
+    bar: pinned, roller, clamped, a spring's ``rotational_stiffness``; :mod:`.pieces`)."""
     torsion = model.unknowns == "torsion"
+    rigid, spring = (
+        (("pinned", "roller", "clamped"), "rotational_stiffness") if torsion else (("pinned", "clamped"), "stiffness")
+    )
     return [
         ld.position
         for ld in scene.loads
         if (ld.type == "point_torque" if torsion else ld.type == "point_force" and ld.axial != 0.0)
         and 0.0 < ld.position < scene.length
-    ] + [s.position for s in scene.supports.inner if s.type != "spring"]
+    ] + [s.position for s in scene.supports.inner if s.type in rigid or (s.type == "spring" and getattr(s, spring))]
 
 
 def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
-    """pd-rod's and pd-torsion's first-order warning: a point force (torque) or a rigid support inside, m > 1."""
+    """pd-rod's and pd-torsion's first-order warning: a point force (torque), a support or a spring inside, m > 1."""
     inside = rod_points_loaded(model, scene)
     torsion = model.unknowns == "torsion"
     if params["horizon"] <= 1 or not inside:
         return []
     what = "a point torque" if torsion else "an axial point force"
     return [
-        f"{model.name} converges at first order near {what} or a rigid support inside (x = {min(inside):g}): the "
-        "load on one point makes a spike about a horizon wide (m = 3: 2.15e-2, 1.07e-2, 5.37e-3 at 101, 201, 401 "
+        f"{model.name} converges at first order near {what}, a support or a spring inside (x = {listed(inside)}): "
+        "the load on one point makes a spike about a horizon wide (m = 3: 2.15e-2, 1.07e-2, 5.37e-3 at 101, 201, 401 "
         "points on a centre load; 1.2e-1, 3.0e-2, 7.6e-3 at 101, 401, 1601 on two spans over a rigid support under "
-        "a sine load; more at a longer horizon); with horizon = 1 the points are exact"
+        "a sine load; a stiff spring at mid-span of a free-free bar 5.1e-2, 2.6e-2, 1.3e-2 at 101, 201, 401; more at "
+        "a longer horizon, and the resultant near a spring a few spacings from an end up to 0.2 of its largest); "
+        "with horizon = 1 the points are exact"
     ]
 
 

@@ -85,7 +85,7 @@ class _RodModel(_MoyerModel):
         if not inside:
             return None
         why = (
-            f"a point {'torque' if self.unknowns == 'torsion' else 'force'} or a rigid support inside "
+            f"a point {'torque' if self.unknowns == 'torsion' else 'force'}, a support or a spring inside "
             f"(x = {min(inside):g}): a single point carries a force, and the rod kernel's symbol grows like "
             "ln(k delta), so the field there grows without bound as m grows at fixed delta (docs/nonlocal.md): no limit"
         )

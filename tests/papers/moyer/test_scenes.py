@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from pdverify.core.scene_file import parse_scene
 from pdverify.registry import get_model, run
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "exact"))
@@ -305,7 +306,9 @@ def test_a_couple_between_two_joints_keeps_its_rotation_second_order():
     errors = []
     for n in (161, 321, 641):
         r = run(sc, "pd-timoshenko", points=n)
-        assert not r.info.get("warnings"), r.info.get("warnings")
+        # the deflection's estimate beside the couple (an upper one: 0.0012 at 161 points for w 2.8e-4) aside
+        others = [w for w in r.info.get("warnings", []) if ": the deflection beside it is off" not in w]
+        assert not others, others
         exact = solve_straight(sc, True).fields(r.x)["rotation"]
         errors.append(np.abs(r.rotation - exact).max() / np.abs(exact).max())
     assert abs(np.log2(errors[1] / errors[2]) - 2) < 0.1, errors
@@ -402,3 +405,34 @@ def test_corrected_shear_at_a_distributed_load_edge_is_first_order_and_warned():
         errs.append(np.abs(r.fields["V"] - e.fields["V"]).max() / np.abs(e.fields["V"]).max())
         assert any("distributed load's edge" in w and "first order" in w for w in r.info.get("warnings", []))
     assert abs(np.log2(errs[0] / errs[1]) - 1) < 0.1, errs
+
+
+@pytest.mark.parametrize(
+    "model,reference,field,stiffness",
+    [
+        ("pd-torsion", "exact-torsion", "twist", "rotational_stiffness"),
+        ("pd-rod", "exact-rod", "u", "stiffness"),
+    ],
+)
+def test_a_spring_inside_a_rod_or_a_bar_is_said_first_order(model, reference, field, stiffness):
+    """Sweep 27 Q5: a spring inside a free-free bar (k = kr = 1e10 at mid-span, a uniform load) left the twist 5.1e-2,
+    2.6e-2, 1.3e-2 of its largest off at 101-401 points (u 4.4e-2 ...), first order, silent: the first-order line named
+    rigid supports only. A spring's force is a point force on the points around it; the line names it."""
+    component = "torque" if model == "pd-torsion" else "axial"
+    d = {
+        "name": "spring inside",
+        "beam": {"length": 1.0},
+        "section": {"width": 0.01, "height": 0.01},
+        "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+        "supports": {"left": "free", "right": "free", "inner": [{"type": "spring", "position": 0.5, stiffness: 1e10}]},
+        "loads": [{"type": "distributed", "value": 0.0, component: -500.0}],
+    }
+    sc = parse_scene(d)
+    errors = []
+    for points in (101, 201, 401):
+        r, e = run(sc, model, points=points), run(sc, reference, points=points)
+        a, b = np.asarray(r.fields[field]), np.asarray(e.fields[field])
+        errors.append(np.abs(a - b).max() / np.abs(b).max())
+        said = [w for w in r.info.get("warnings", []) if "converges at first order" in w and "a spring inside" in w]
+        assert said, r.info.get("warnings")
+    assert abs(np.log2(errors[0] / errors[2]) / 2 - 1.0) < 0.1, errors  # first order, as the line says
