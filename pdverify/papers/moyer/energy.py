@@ -35,7 +35,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...core.errors import InputError
-from ...core.scene import Distributed, PointMoment, Scene
+from ...core.scene import HELD, Distributed, PointMoment, Scene
 from ...numerics.families import stencil_operator
 from .couples import couple_column, shear_free
 from .kernels import EndPatched, node_loads, rod_kernel, toeplitz
@@ -213,11 +213,10 @@ def moment_field(u: np.ndarray, scene: Scene, m: int, dx: float, reactions=(), k
 def _reactions(scene: Scene) -> int:
     """The count of the beam's unknown reactions (forces and couples of the ends and of the supports inside): 2 for
     a statically determinate beam."""
-    rigid = {"clamped": 2, "pinned": 1, "roller": 1, "guided": 1, "free": 0}
     count = 0
     for sup in (scene.supports.left, scene.supports.right, *scene.supports.inner):
         kind = sup if isinstance(sup, str) else sup.type
-        count += bool(sup.stiffness) + bool(sup.rotational_stiffness) if kind == "spring" else rigid[kind]
+        count += bool(sup.stiffness) + bool(sup.rotational_stiffness) if kind == "spring" else sum(HELD[kind][1:])
     return count
 
 

@@ -6,22 +6,20 @@ from __future__ import annotations
 from ...core.scene import Scene, Spring
 from ...core.text import listed
 from ...numerics.recovery import kink_positions
+from .pieces import holds
 
 
 def rod_points_loaded(model, scene: Scene) -> list[float]:
     """Where a single point of pd-rod (pd-torsion) carries a force inside the member: its point forces (torques),
-    and the supports and springs inside that act on its unknown (a rod: pinned, clamped, a spring's ``stiffness``; a
-    bar: pinned, roller, clamped, a spring's ``rotational_stiffness``; :mod:`.pieces`)."""
+    and the supports and springs inside that act on its unknown (:func:`.pieces.holds`: a rod's pinned, clamped and
+    a spring's ``stiffness``; a bar's pinned, roller, clamped and a spring's ``rotational_stiffness``)."""
     torsion = model.unknowns == "torsion"
-    rigid, spring = (
-        (("pinned", "roller", "clamped"), "rotational_stiffness") if torsion else (("pinned", "clamped"), "stiffness")
-    )
     return [
         ld.position
         for ld in scene.loads
         if (ld.type == "point_torque" if torsion else ld.type == "point_force" and ld.axial != 0.0)
         and 0.0 < ld.position < scene.length
-    ] + [s.position for s in scene.supports.inner if s.type in rigid or (s.type == "spring" and getattr(s, spring))]
+    ] + [h.position for h in holds(scene, model.unknowns) if h.label.startswith("inner")]
 
 
 def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
