@@ -22,6 +22,7 @@ from ...numerics.load_warnings import (
     horizon_layer,
     moment_rotation_warnings,
 )
+from ...numerics.span_warnings import short_span_warnings
 from .constraints import reactions, solve_with_holds
 from .couples import couple_warnings
 from .ends import FIT_POINTS
@@ -74,6 +75,11 @@ ROD_EDGE = (
 # kink, c up to 0.12 over five end pairs, couples at 0.1 ... 0.9 L, L/h = 20 and 100, horizons 3 and 5, 101 and 401
 # points, and 0.3 with two pins inside and a free overhang (docs/models/moyer.md)
 COUPLE_DEFLECTION = {"energy": 0.35, "corrected": 3.5, "paper": 3.5}
+# the moment and shear of a short span between two supports that hold w (energy): c (h / a)² of their largest in the
+# span, measured c up to 1.12 (V, M) where a support of the span is clamped, 0.40 and 0.24 where both are pinned (spans
+# of 0.02 ... 0.08 L beside an end or between two supports inside, 101 ... 801 points: benchmarks/short_spans.py);
+# corrected and paper say their own first order beside a support inside
+SHORT_SPAN = {"held": {"V": 1.2, "M": 1.2}, "pinned": {"V": 0.45, "M": 0.3}}
 
 
 class _MoyerModel(Model):
@@ -283,6 +289,9 @@ class _MoyerModel(Model):
         if self.bending and info.get("analysis") == "static":
             delta = params["horizon"] * (disc.x[1] - disc.x[0])
             near = couple_deflection_warnings(scene, disc.x, result.w, delta, COUPLE_DEFLECTION[params["variant"]])
+            if params["variant"] == "energy":
+                fixed = params.get("horizon_length") is not None
+                near += short_span_warnings(scene, disc.x, result.fields, delta, SHORT_SPAN, fixed_horizon=fixed)
             result.info.setdefault("warnings", []).extend(near)
         return result
 

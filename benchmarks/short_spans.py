@@ -1,0 +1,117 @@
+"""A short span between two supports that hold the deflection: the PD beams' moment and shear errors in it against
+the exact beam, beside the estimate of their warning (pdverify/numerics/span_warnings.py; docs/trust.md):
+
+    PYTHONPATH=. python benchmarks/short_spans.py [--points 101 201 401 801] [--models pd-eb pd-timoshenko]
+
+A 1 m steel beam (20 x 50 mm). Spans of 0.02, 0.04 and 0.08 L: a pinned or clamped support inside that far from a
+pinned, clamped, guided or free end; and two supports inside at 0.5 L and 0.5 L + a (each pinned or clamped) on
+pinned-pinned, clamped-free and free-clamped beams. Loads: a force at 0.3 or 0.5 L (0.3 or 0.8 L beside two supports
+inside), or a uniform load.
+Printed per model: c = (error in the span) / ((h / a)^2 max_span |q| / max |q|) for q = V, M, its largest by the
+span's supports (spans over `shortest` spacings only), the cases whose error passes 1e-3 with no warning at all, and
+the cases where the line is the only warning and every error is below 1e-3. About a minute.
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+from collections import defaultdict
+
+import numpy as np
+
+from pdverify.core.scene_file import parse_scene
+from pdverify.exact.straight import solve_straight
+from pdverify.numerics.load_warnings import NEAR_TOLERANCE
+from pdverify.numerics.loads import within
+from pdverify.registry import run
+
+MODELS = ("pd-eb", "pd-timoshenko")
+SHORTEST = {"pd-eb": (10, 4), "pd-timoshenko": (0, 0)}  # as the models pass it (pd-eb: its layer and straddle lines)
+QUANTITIES = ("V", "M")
+
+
+def scenes():
+    """(label, scene dictionary, span (lo, hi), holds the rotation) of every case."""
+    for end, inner, a, load in itertools.product(
+        ("pinned", "clamped", "guided", "free"), ("pinned", "clamped"), (0.02, 0.04, 0.08), ("F0.3", "F0.5", "q")
+    ):
+        yield (
+            f"{inner} inside {a} from a {end} end, {load}",
+            {"left": "pinned", "right": end},
+            [{"type": inner, "position": 1.0 - a}],
+            load,
+            (1.0 - a, 1.0),
+            "clamped" in (inner, end),
+        )
+    for (t1, t2), (left, right), a, load in itertools.product(
+        (("clamped", "pinned"), ("pinned", "clamped"), ("clamped", "clamped"), ("pinned", "pinned")),
+        (("pinned", "pinned"), ("clamped", "free"), ("free", "clamped")),
+        (0.02, 0.04, 0.08),
+        ("F0.3", "F0.8", "q"),
+    ):
+        yield (
+            f"{t1} and {t2} {a} apart inside a {left}-{right} beam, {load}",
+            {"left": left, "right": right},
+            [{"type": t1, "position": 0.5}, {"type": t2, "position": 0.5 + a}],
+            load,
+            (0.5, 0.5 + a),
+            "clamped" in (t1, t2),
+        )
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--points", type=int, nargs="*", default=[101, 201, 401, 801])
+    ap.add_argument("--models", nargs="*", default=list(MODELS))
+    args = ap.parse_args()
+    for model in args.models:
+        worst, silent, alone, rows = defaultdict(float), 0, 0, 0
+        for label, ends, inner, load, (lo, hi), held in scenes():
+            at = {"F0.3": 0.3, "F0.5": 0.5, "F0.8": 0.8}.get(load)
+            ld = (
+                {"type": "distributed", "value": -1e3}
+                if at is None
+                else {"type": "point_force", "position": at, "value": -1e3}
+            )
+            sc = parse_scene(
+                {
+                    "name": "short span",
+                    "beam": {"length": 1.0},
+                    "section": {"width": 0.02, "height": 0.05},
+                    "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+                    "supports": {**ends, "inner": inner},
+                    "loads": [ld],
+                }
+            )
+            exact = solve_straight(sc, model != "pd-eb")
+            bounded = len(inner) > 1 or ends["right"] in ("pinned", "clamped")  # both ends of the span hold w
+            for n in args.points:
+                r = run(sc, model, points=n)
+                ex, dx, a = exact.fields(r.x), r.x[1] - r.x[0], hi - lo
+                span = (r.x >= lo - 1e-9) & (r.x <= hi + 1e-9)
+                errs, lines = {}, r.info.get("warnings", [])
+                for q, name in (("w", "w"), ("rotation", "rotation"), ("V", "V"), ("M", "M")):
+                    got = getattr(r, q) if q in ("w", "rotation") else np.asarray(r.fields[q])
+                    d = np.abs(got - ex[name]) / np.abs(ex[name]).max()
+                    errs[q] = float(d.max())
+                    if q in QUANTITIES and bounded:
+                        share = np.abs(got[span]).max() / np.abs(got).max()
+                        if not within(a, SHORTEST[model][len(inner) > 1], dx) and share > 0:
+                            key = (q, "held" if held else "pinned")
+                            worst[key] = max(worst[key], float(d[span].max()) / ((dx / a) ** 2 * share))
+                rows += 1
+                if max(errs.values()) > NEAR_TOLERANCE and not lines:
+                    silent += 1
+                    print(f"{model} {label} {n} points: errors {errs}, no warning")
+                if max(errs.values()) <= NEAR_TOLERANCE and lines and all(w.startswith("the span of") for w in lines):
+                    alone += 1
+        print(
+            f"{model}: {rows} cases; {silent} over {NEAR_TOLERANCE:g} with no warning; {alone} with the span line "
+            f"alone and every error below {NEAR_TOLERANCE:g}; largest c: "
+            + ", ".join(f"{q} ({h}) {c:.3g}" for (q, h), c in sorted(worst.items()))
+        )
+
+
+if __name__ == "__main__":
+    main()

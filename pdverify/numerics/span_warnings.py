@@ -1,0 +1,84 @@
+"""The moment and shear of a short span between two supports that hold the deflection.
+
+Between two such supports a distance a apart the moment and shear of a PD beam carry an error of about
+c (h / a)² times their largest value in that span (h = max(spacing, horizon / 3)): second order, but with the span,
+not the beam, as the length, so a support placed close to an end or to another support leaves them off by far more
+than the rest of the beam at the same grid. Measured (docs/trust.md, Random scenes: "The moment and shear of a short
+span"): pd-eb and pd-timoshenko on spans of 0.02-0.08 L beside an end or between two supports inside, pinned and
+clamped, under point forces and a uniform load, 101-801 points."""
+
+import numpy as np
+
+from ..core.scene import HELD, Scene
+from ..core.text import rounded_up
+from .load_warnings import NEAR_TOLERANCE
+from .loads import within
+
+QUANTITIES = ("V", "M")
+
+
+def span_bounds(scene: Scene) -> list[tuple[float, str, bool, bool]]:
+    """(position, name, holds the rotation, inside the beam) of the supports that hold the deflection rigidly, left
+    to right: the named ends that do (:data:`~pdverify.core.scene.HELD`) and the pinned, roller and clamped supports
+    inside (a spring holds it only as stiffly as it is)."""
+    L, out = scene.length, []
+    for side, at in (("left", 0.0), ("right", L)):
+        kind = scene.supports.kind(side)
+        if kind != "spring" and HELD[kind][1]:
+            out.append((at, f"the {side} end ({kind})", HELD[kind][2], False))
+    out += [
+        (s.position, f"supports.inner[{i}] ({s.type})", s.type == "clamped", True)
+        for i, s in enumerate(scene.supports.inner)
+        if s.type != "spring"
+    ]
+    return sorted(out, key=lambda b: b[0])
+
+
+def short_span_warnings(
+    scene: Scene,
+    x: np.ndarray,
+    fields: dict,
+    delta: float,
+    constants: dict,
+    shortest: tuple = (0.0, 0.0),
+    fixed_horizon: bool = False,
+) -> list[str]:
+    """One line per span between two neighbouring supports that hold the deflection, one of them inside the beam,
+    whose estimate c (h / a)² max_span |q| / max |q| passes NEAR_TOLERANCE for the shear or the moment q (``fields``
+    "V" and "M", the model's own on the points ``x``; h = max(spacing, ``delta`` / 3), a the span's length;
+    ``constants`` {"held": {"V": c, "M": c}, "pinned": {...}}: "held" where a support of the span holds the
+    rotation). Spans under ``shortest`` = (beside an end, between two supports inside) spacings are left to the
+    model's own layer and straddle lines (where the estimate does not hold). ``fixed_horizon``: the horizon is a given
+    length, so more points do not shrink h below delta / 3 and the fix named is a shorter horizon."""
+    dx = float(x[1] - x[0])
+    h = max(dx, delta / 3.0)
+    bounds = span_bounds(scene)
+    out = []
+    for (p, left, held_left, inner_left), (q, right, held_right, inner_right) in zip(bounds, bounds[1:]):
+        a = q - p
+        if not (inner_left or inner_right) or within(a, shortest[inner_left and inner_right], dx):
+            continue
+        inside = (x >= p - 1e-9 * a) & (x <= q + 1e-9 * a)
+        c = constants["held" if held_left or held_right else "pinned"]
+        shares = {}
+        for name in QUANTITIES:
+            f = np.abs(np.asarray(fields[name], dtype=float))
+            top = float(f.max()) if f.size else 0.0
+            if top > 0.0 and inside.any():
+                shares[name] = c[name] * (h / a) ** 2 * float(f[inside].max()) / top
+        est = {k: v for k, v in shares.items() if v > NEAR_TOLERANCE}
+        if not est:
+            continue
+        target = h * np.sqrt(NEAR_TOLERANCE / max(est.values())) / 1.1  # the h that brings it to 1e-3
+        if fixed_horizon and delta / 3.0 > target:
+            fix = f"a spacing and a third of the horizon of at most {target:.3g} (horizon_length {3 * target:.3g})"
+        else:
+            fix = f"at least {int(np.ceil(scene.length / (dx * target / h))) + 1} points"  # h in proportion to dx
+        said = ", ".join(f"{k} {rounded_up(v)} of max |{k}|" for k, v in est.items())
+        form = ", ".join(f"{k} {c[k]:g}" for k in est)
+        out.append(
+            f"the span of {a:g} ({a / dx:.3g} spacings) between {left} at {p:g} and {right} at {q:g}: its moment "
+            f"and shear are off by about c (h / a)² times their largest in the span (h = max(spacing, horizon / 3), "
+            f"a the span; c: {form}), here {said}; second order: use {fix} for 1e-3"
+        )
+    return out
