@@ -15,7 +15,7 @@ agree to their round-off (the solves' own bounds) the model is exact on the scen
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -37,12 +37,17 @@ class Estimate:
     asymptotic: bool
     why: str  # how the estimate was made, or why it is not to be trusted
     resolved: bool = True  # the coarsest grid places the scene's features apart (False: the estimate means nothing)
+    note: str = ""  # what the estimate leaves out (at a fixed horizon length: the model error)
 
     def line(self) -> str:
         """One line for every output format."""
         head = f"estimate: discretisation error ~{self.error:.2g} (relative; Richardson on {self.grids}"
         head += f", observed order {self.order:.2f})" if math.isfinite(self.order) else ")"
-        return head + ("" if self.asymptotic else f"; not asymptotic: {self.why}")
+        return (
+            head
+            + ("" if self.asymptotic else f"; not asymptotic: {self.why}")
+            + (f"; {self.note}" if self.note else "")
+        )
 
 
 def nested_grids(n: int, least: int) -> tuple[tuple[int, ...], int]:
@@ -126,8 +131,23 @@ def with_estimate(scene, model, options: dict, run) -> object:
         grids, at = nested_grids(n, n + 1)
         results = [run(scene, model, **dict(options, points=g)) for g in grids]
     est = richardson(results, at, model.measures, model.promised_order(params), scene)
+    if params.get("horizon_length") is not None and not params.get("continuum"):
+        est = replace(est, note=fixed_horizon_note(scene, model, float(params["horizon_length"])))
     result = results[at]
     result.info["estimate"] = {**est.__dict__, "grids": list(est.grids), "line": est.line()}
-    if not est.asymptotic:
+    if not est.asymptotic or est.note:
         result.info.setdefault("warnings", []).append(est.line())
     return result
+
+
+def fixed_horizon_note(scene, model, delta: float) -> str:
+    """What an estimate on grids that share the horizon length ``delta`` leaves out: they converge to the model's
+    continuum at that horizon, not to the local beam theory, whose difference (the model error) is about
+    g (pi delta / L)^2 on the first sine mode (g the model's gradient coefficient, docs/nonlocal.md)."""
+    g = model.gradient_coefficient(scene, {})
+    size = "" if g is None else f", about {abs(g) * (math.pi * delta / scene.length) ** 2:.2g} on the first sine mode"
+    return (
+        f"the grids share horizon_length = {delta:g}, so this is the error to the model's own continuum at that "
+        f"horizon, not to the local beam theory: the model error{size}{',' if size else ''} comes on top "
+        "(docs/nonlocal.md)"
+    )

@@ -92,18 +92,28 @@ class PDTimoshenko(_MoyerModel):
     def continuum_limit(self, scene: Scene, params: dict) -> tuple[str, int] | None:
         """Variant energy's fitted end bonds exist for horizons 1-12 only (:mod:`.energy`): no limit at fixed delta.
         Under a transverse point force inside the beam the deflection at the load grows like ln m at fixed delta
-        (measured, docs/nonlocal.md: the shear kernel's response to a point force): no limit there either."""
+        (measured, docs/nonlocal.md: the shear kernel's response to a point force): no limit there either; nor beside a
+        support inside the beam, whose reaction is such a force (and a spring's couple, a point couple)."""
         if params["variant"] == "energy":
             return (
                 "variant energy's fitted end bonds exist for horizons 1-12 only, so it has no limit at fixed delta",
                 12,
             )
+        m = int(params.get("continuum_m") or self.continuum_m)
         inside = beam_points_loaded(scene)
         if inside:
             return (
                 f"a point force inside the beam (x = {min(inside):g}): the deflection at the load grows like ln m at "
                 "fixed delta (docs/nonlocal.md), so there is no limit",
-                int(params.get("continuum_m") or self.continuum_m),
+                m,
+            )
+        if scene.supports.inner:
+            at = min(s.position for s in scene.supports.inner)
+            return (
+                f"a support inside the beam (x = {at:g}): its reaction is a point force (a couple too where it holds "
+                "the rotation) on the points around it, under which the deflection grows like ln m at fixed delta "
+                "(docs/nonlocal.md), so there is no limit",
+                m,
             )
         return None
 

@@ -49,3 +49,24 @@ def test_timoshenko_point_force_has_no_limit():
     assert steps[1] / steps[0] > 0.9  # a converging model would halve (first order) or quarter its steps
     r = run(s, "pd-timoshenko", points=41, horizon_length=0.2, variant="corrected", continuum=True, continuum_m=16)
     assert "point force inside the beam" in r.info["no_limit"]
+
+
+def test_timoshenko_support_inside_has_no_limit():
+    """A support inside is a point force on the beam (its reaction): pd-timoshenko corrected on a pinned-pinned beam
+    held at 0.4 L under a uniform load, delta = 0.05 L, moves away from the beam as m grows (sweep 28 R1: 1.69e-2 at
+    m = 4, 3.58e-2 at m = 128 off exact-timoshenko, growth like ln m); its continuum and its discrete solves at that
+    horizon say there is no limit."""
+    d = load_scene("studies/nonlocal/pp_uniform.toml").model_dump(exclude_none=True)
+    d["supports"]["inner"] = [{"type": "pinned", "position": 0.4}]
+    d["section"].update(height=0.05, width=0.05)
+    s = parse_scene(d)
+    exact = get_model("exact-timoshenko").evaluator(s, {})
+    errors = []
+    for m in (4, 16, 64):
+        r = run(s, "pd-timoshenko", points=int(round(m / DELTA)) + 1, horizon_length=DELTA, variant="corrected")
+        e = exact(r.x)["w"]
+        errors.append(float(np.abs(r.w - e).max() / np.abs(e).max()))
+    assert errors[0] < errors[1] < errors[2]  # refining at a fixed horizon moves away
+    assert any("support inside the beam" in w and "no limit" in w for w in r.info["warnings"])
+    c = run(s, "pd-timoshenko", points=41, horizon_length=DELTA, variant="corrected", continuum=True, continuum_m=16)
+    assert "support inside the beam" in c.info["no_limit"]
