@@ -31,6 +31,7 @@ from .symbols import series_solution
 
 M_MIN = 8  # the coarsest level's m: below it the expansions in dx / delta are not yet asymptotic
 TOL = 1e-9  # stop adding levels when the estimate (relative to the largest value) is below this
+NOISE = 10.0  # ... or below this many times the levels' round-off bounds (pdverify.measure.richardson: NOISE)
 ACHIEVED = 1e-8  # an estimate above this carries a warning with its number
 SERIES_TOL = 1e-10  # the closed form is used when the rest of its series is below this
 
@@ -215,14 +216,21 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float, limi
     stopped = ""
     while m_user * r <= top * (1 + 1e-9) or len(levels) < 2:
         try:
-            values.append(_values_at(model, scene, base, _refined(model, scene, base, r), x_user))
+            points = _refined(model, scene, base, r)
+            values.append(_values_at(model, scene, base, points, x_user))
         except (InputError, SolveError) as exc:  # the model refuses this grid (a memory or size limit) or cannot
             stopped = f"; the grid of m = {m_user * r:g} not solved: {exc.lines[0].split('; ')[0]}"  # solve it
+            break
+        bound = _bound_of(model, scene, base, points)
+        if len(levels) >= 3 and bound > est:  # a level whose round-off passes the estimate adds only noise
+            values.pop()
+            stopped = f"; m = {m_user * r:g} not used: its round-off bound {bound:.2g} passes the estimate"
             break
         levels.append(r)
         if len(levels) >= 3:
             best, est, each = neville(np.array([1.0 / q for q in levels]), values, key)
-            if est <= TOL:
+            floor = NOISE * max(_bound_of(model, scene, base, _refined(model, scene, base, q)) for q in levels)
+            if est <= max(TOL, floor):  # converged, or to the levels' own round-off
                 break
         r *= step
     if best is None:
@@ -259,7 +267,12 @@ def _values_at(model, scene, base, points: int, x_user) -> dict:
     idx = _indices(np.asarray(solved["x"]), x_user, scene.length)
     if idx is None:
         raise InputError(f"model {model.name}: the grid of {points} points does not hold the asked points")
-    return {k: np.asarray(v)[idx] for k, v in solved.items() if k != "x"}
+    return {k: np.asarray(v)[idx] for k, v in solved.items() if k not in ("x", "bound")}
+
+
+def _bound_of(model, scene, base, points: int) -> float:
+    """The round-off bound (relative) of the level with ``points``, as its solve reported it (0 where none)."""
+    return float(_level(model, scene, base, points)["bound"])
 
 
 def _level(model, scene: Scene, base: dict, points: int) -> dict:
@@ -273,7 +286,8 @@ def _cached_level(model, scene_json: str, key: str) -> dict:
     scene = Scene.model_validate_json(scene_json)
     params = model.resolve(scene, json.loads(key))
     r = model.solve(scene, params)
-    out = {"x": np.asarray(r.x, float), "w": np.asarray(r.w, float)}
+    bound = r.info.get("error_bound")
+    out = {"x": np.asarray(r.x, float), "w": np.asarray(r.w, float), "bound": float(bound or 0.0)}
     if r.rotation is not None:
         out["rotation"] = np.asarray(r.rotation, float)
     for k, v in r.fields.items():

@@ -234,15 +234,46 @@ def test_a_fractional_m_of_a_full_volume_variant_has_no_continuum_estimate():
     assert any("m = 3.015 is not whole" in w for w in c.info["warnings"])
 
 
-def test_a_singular_level_ends_the_extrapolation():
+def test_a_singular_level_ends_the_extrapolation(monkeypatch):
     """The extrapolation in m stops at the levels it could solve: pd-timoshenko corrected on a cantilever at
     delta = 0.2 L is singular to working precision at m = 128 (its condition grows like m^6 at fixed delta), which
-    ends the levels with a note instead of failing the continuum."""
+    ends the levels with a note instead of failing the continuum. (Its levels reach their round-off first: the
+    estimate at m = 64, 1.7e-4, is within ten times m = 64's round-off bound, 2.0e-5, and the levels stop there;
+    without that floor the m = 128 level is tried.)"""
     s = load_scene("studies/nonlocal/cf_sine.toml")
+    r = run(s, "pd-timoshenko", points=41, horizon_length=0.2, variant="corrected", continuum=True)
+    assert r.info["continuum_levels"] == [8.0, 16.0, 32.0, 64.0] and "not solved" not in r.info["continuum"]
+    C._cached_level.cache_clear()
+    monkeypatch.setattr(C, "NOISE", 0.0)
     r = run(s, "pd-timoshenko", points=41, horizon_length=0.2, variant="corrected", continuum=True)
     assert r.info["continuum_levels"] == [8.0, 16.0, 32.0, 64.0]
     assert "the grid of m = 128 not solved: " in r.info["continuum"] and "singular" in r.info["continuum"]
     assert np.isfinite(r.info["error_bound"]) and np.all(np.isfinite(r.w))
+
+
+def test_the_extrapolation_stops_at_the_levels_round_off():
+    """pd-eb is exact on a guided-spring beam under two couples (its deflection is piecewise quadratic), so its levels
+    agree to round-off, which grows like m^4 at fixed delta. Scaled to 96.5 m and E = 5.8e5 (sweep 28 R2) the m = 32
+    level's change (1.2e-9) passed the 1e-9 tolerance by round-off alone and the levels m = 64 and 128 were added
+    (round-off bounds 1.2e-6 and 0.05): the continuum was 0.104 off exact-eb. The levels now stop at their own
+    round-off: the continuum is exact-eb to a few times 1e-9, as the unscaled scene's is."""
+    s = parse_scene(
+        {
+            "name": "couples, scaled",
+            "beam": {"length": 96.50950031847954},
+            "section": {"width": 1.4230205869026573, "height": 2.8456202863202797},
+            "material": {"youngs_modulus": 580568.8645728022, "poissons_ratio": 0.3},
+            "supports": {"left": "guided", "right": {"type": "spring", "stiffness": 1.0346645401124135}},
+            "loads": [
+                {"type": "point_moment", "position": 70.58283124033588, "value": -0.7196202915138756},
+                {"type": "point_moment", "position": 63.26359787558072, "value": 0.9175542309707839},
+            ],
+        }
+    )
+    c = run(s, "pd-eb", points=81, horizon_length=s.length / 20, continuum=True)
+    e = run(s, "exact-eb", points=81)
+    assert max(c.info["continuum_levels"]) <= 32.0
+    assert np.abs(c.w - e.w).max() / np.abs(e.w).max() < 1e-8 and not c.info.get("warnings")
 
 
 @pytest.mark.parametrize("scene, delta", [("pp_uniform", 0.2), ("pp_uniform", 0.05), ("pg_uniform", 0.1)])
