@@ -128,6 +128,11 @@ def solve(
         layers=layers,
         form=form,
     )
+    if "continuum_m" in given and str(given.get("continuum", "")).strip().lower() not in ("1", "true", "yes", "on"):
+        raise InputError(  # a study's runs give it for the continuum that splits their errors; a solve has none
+            f"continuum_m = {given['continuum_m']}: sets the levels of the continuum, which a solve computes with "
+            "continuum = true only; add -o continuum=true or drop continuum_m"
+        )
     if tolerance is not None and model != "auto":
         raise InputError(f"--tolerance {tolerance:g}: applies to --model auto only; drop it or use --model auto")
     if model == "auto":
@@ -136,6 +141,12 @@ def solve(
         if tolerance is None:
             raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
         positive("--tolerance", tolerance)
+        chosen = sorted(k for k in given if k != "static")
+        if chosen:
+            raise InputError(
+                f"--model auto chooses the model and its grid, so {', '.join(chosen)} would be dropped: name a model "
+                "(-m MODEL) to give them, or drop them"
+            )
         choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
         of = get_model(choice.model).measures
         typer.echo(

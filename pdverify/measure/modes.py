@@ -212,6 +212,11 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
         raise InputError(f"model {m.name}: gives no mass and stiffness operator for natural frequencies; use {can}")
     if count < 1:
         raise InputError(f"--count {count}: give a number of modes, 1 or more")
+    if "continuum" in given and m.option("continuum") and m.option("continuum").coerce(m.name, given["continuum"]):
+        raise InputError(
+            "continuum = true: modes gives the frequencies of the discrete operator, and its nonlocal column the "
+            "shift of the continuum at the horizon; drop continuum (a static solve takes it)"
+        )
     if scene.material.density is None:
         raise InputError("material.density: needed for natural frequencies; add density to the scene")
     beyond = [
