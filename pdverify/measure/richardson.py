@@ -124,6 +124,19 @@ def with_estimate(scene, model, options: dict, run) -> object:
     if grid is None:
         return run(scene, model, **options)
     n = params["points"]
+    if params.get("continuum"):  # no grid to refine: the continuum carries its own estimate
+        result = run(scene, model, **options)
+        bound = float(result.info.get("error_bound", math.inf))
+        line = (
+            f"estimate: the model's continuum has no discretisation error; its own estimate (of its series or its "
+            f"extrapolation in m) is {bound:.2g}"
+        )
+        result.info["estimate"] = {
+            **Estimate(bound, math.nan, (n,), 0, True, "the continuum's own estimate").__dict__,
+            "grids": [n],
+            "line": line,
+        }
+        return result
     grids, at = nested_grids(n, int(grid.minimum or 2))
     try:
         results = [run(scene, model, **dict(options, points=g)) for g in grids]
