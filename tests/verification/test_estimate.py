@@ -181,7 +181,7 @@ def test_an_estimate_at_a_fixed_horizon_length_says_it_leaves_out_the_model_erro
 
 def test_an_estimate_of_a_continuum_is_its_own():
     """A continuum has no grid to refine: three continua of one function agree, and the Richardson line read
-    "discretisation error ~0" (sweep 28 R8). The estimate is the continuum's own (its series' or its extrapolation's)."""
+    "discretisation error ~0" (sweep 28 R8). The estimate is the continuum's own (its series' or extrapolation's)."""
     s = parse_scene(scene_dict("pinned", "pinned", [{"type": "distributed", "shape": "sine", "value": -1e3}]))
     r = with_estimate(s, get_model("pd-eb"), {"points": 41, "horizon_length": 0.1, "continuum": True}, run)
     assert r.info["estimate"]["error"] == r.info["error_bound"] > 0
