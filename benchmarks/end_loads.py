@@ -1,8 +1,8 @@
-"""Loads near an end that holds the deflection: each PD beam's deflection and moment errors against its exact beam
-(each relative to its largest value, the larger of the two) against the estimate of its warning, C (h / d)², d the
-load's distance from the end (a distributed load's centroid), h = max(spacing, horizon / 3) and C the model's
-constant for the end's kind (``Model.estimate_constants``; pdverify/registry/end_loads.py; docs/trust.md). Where it
-warns the ratio error / estimate must be below 1:
+"""Loads near an end that holds the deflection: each PD beam's deflection and moment errors against its exact beam (each
+relative to its largest value, the larger of the two; and the rotation's apart) against the estimate of its warning, C
+(h / d)², d the load's distance from the end (a distributed load's centroid), h = max(spacing, horizon / 3) and C the
+model's constant for the end's kind (``Model.estimate_constants``; pdverify/registry/end_loads.py; docs/trust.md). Where
+it warns the ratio error / estimate must be below 1:
 
     PYTHONPATH=. python benchmarks/end_loads.py [--points 101 201 401] [--models pd-eb ...] [--horizons 3 5] [-o k=v]
 
@@ -63,18 +63,20 @@ def scene(left: str, right: str, kind: str, arm: float):
 
 
 def error(sc, name: str, n: int, m: float, options: dict | None = None):
-    """(the larger of w's and M's largest errors, each relative to its own largest value, the warnings)."""
+    """(the larger of w's and M's largest errors, each relative to its own largest value, the rotation's, the
+    warnings)."""
     r, e = run(sc, name, points=n, horizon=m, **(options or {})), run(sc, MODELS[name], points=n)
     M, Me = (quantity_of(x.w, x.rotation, x.fields, "moment") for x in (r, e))
     errors = [np.abs(a - b).max() / np.abs(b).max() for a, b in ((r.w, e.w), (M, Me)) if b is not None and b.any()]
-    return max(errors), r.info.get("warnings", [])
+    turn = np.abs(r.rotation - e.rotation).max() / np.abs(e.rotation).max() if np.abs(e.rotation).any() else 0.0
+    return max(errors), float(turn), r.info.get("warnings", [])
 
 
 def main() -> None:
     args, options = parse(__doc__, [101, 201, 401], list(MODELS))
     for name in args.models:
         for m in args.horizons:
-            worst, silent, need = (0.0, ""), [], {}
+            worst, turned, silent, need = (0.0, ""), (0.0, ""), [], {}
             for left, right in ENDS:
                 for n in args.points:
                     dx = 1.0 / (n - 1)
@@ -82,11 +84,14 @@ def main() -> None:
                         for k in ARMS:
                             if 2 * k * dx >= 1.0:  # a patch twice its arm long would not fit on a coarse grid
                                 continue
-                            err, said = error(scene(left, right, kind, k * dx), name, n, m, options)
+                            err, turn, said = error(scene(left, right, kind, k * dx), name, n, m, options)
                             # the same load k spacings off at twice the points: the end's part stays, the rest falls
                             # 4 times
-                            finer, _ = error(scene(left, right, kind, k * dx / 2), name, 2 * n - 1, m, options)
+                            finer, turn_fine, _ = error(
+                                scene(left, right, kind, k * dx / 2), name, 2 * n - 1, m, options
+                            )
                             end = max((4 * finer - err) / 3, finer)
+                            end_turn = max((4 * turn_fine - turn) / 3, turn_fine)
                             label = f"{kind} arm {k} spacings, {left}-{right}, {n} points"
                             h = max(dx, m * dx / 3)
                             if (
@@ -97,10 +102,12 @@ def main() -> None:
                             if mine:
                                 est = float(mine[0].split(", here ")[1].split(",")[0])
                                 worst = max(worst, (end / est, label))
+                                turned = max(turned, (end_turn / est, label))
                             elif err > 1e-3 and not said:
                                 silent.append(f"{label}: {err:.2g} (the end's part {end:.2g})")
             c = get_model(name).estimate_constants(scene("clamped", "free", "force", 0.1), options)[0]
             print(f"{name} horizon {m:g}, C = {c}: largest error / estimate {worst[0]:.3f} ({worst[1]})")
+            print(f"  the rotation's: {turned[0]:.3f} ({turned[1]})")
             for kind, (c_need, label) in sorted(need.items()):
                 print(f"  the {kind} end's cases need C >= {c_need:.3g} ({label})")
             for line in silent:

@@ -122,11 +122,13 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
                 f"(docs/trust.md); use at least {more} points"
             )
     c_of = {side: c for side, _, c in ends}
+    turn = constants.get("rotation")  # the rotation's error beside the estimate's, measured (None: not measured)
     for side, items in parts.items():
         total = min(sum(est for _, est, _, _ in items), 1.0)
-        if total <= TOLERANCE:
+        worst = total * max(1.0, turn or 1.0)
+        if worst <= TOLERANCE:
             continue
-        more = int(np.ceil(scene.length / dx * np.sqrt(total / TOLERANCE))) + 1
+        more = int(np.ceil(scene.length / dx * np.sqrt(worst / TOLERANCE))) + 1
         kind = scene.supports.kind(side)
         if len(items) == 1:
             (i, _, d, part), ld = items[0], scene.loads[items[0][0]]
@@ -145,10 +147,16 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
                 "of each load's own (h = max(spacing, horizon / 3), d its distance), summed with each load's response "
                 "beside the whole's"
             )
+        which = (
+            "the deflection, the rotation and the moment" if turn and turn <= 1.0 else "the deflection and the moment"
+        )
+        rotation = (
+            f", the rotation up to {turn:g} times that ({rounded_up(total * turn)})" if turn and turn > 1.0 else ""
+        )
         out.append(
-            f"{head}: the deflection and the moment are off by about {c_of[side]:g} (h / d)² {what}, here "
-            f"{rounded_up(total)}, which a load close to the end makes large beside their largest values "
-            f"(docs/trust.md); second order: use at least {more} points for 1e-3"
+            f"{head}: {which} are off by about {c_of[side]:g} (h / d)² {what}, here {rounded_up(total)}{rotation}, "
+            "which a load close to the end makes large beside their largest values (docs/trust.md); second order: "
+            f"use at least {more} points for 1e-3"
         )
     return out
 
