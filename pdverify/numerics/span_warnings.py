@@ -17,20 +17,35 @@ from .loads import within
 QUANTITIES = ("V", "M")
 
 
+RIGID = 100.0  # k a³ / EI (and kr a / EI) from which a spring holds like a support: a span a beside it bends 100 times
+# more easily than the spring gives
+
+
 def span_bounds(scene: Scene) -> list[tuple[float, str, bool, bool]]:
-    """(position, name, holds the rotation, inside the beam) of the supports that hold the deflection rigidly, left
-    to right: the named ends that do (:data:`~pdverify.core.scene.HELD`) and the pinned, roller and clamped supports
-    inside (a spring holds it only as stiffly as it is)."""
-    L, out = scene.length, []
+    """(position, name, holds the rotation, inside the beam) of the supports that hold the deflection, left to right:
+    the named ends that do (:data:`~pdverify.core.scene.HELD`), the pinned, roller and clamped supports inside, and the
+    springs (at an end or inside) stiff beside the span next to them, k a³ / EI of at least :data:`RIGID` (a the
+    distance to the nearest other support; a rotational stiffness kr holds the rotation where kr a / EI is too)."""
+    L = scene.length
+    rigid, springs = [], []
     for side, at in (("left", 0.0), ("right", L)):
-        kind = scene.supports.kind(side)
+        kind, sup = scene.supports.kind(side), getattr(scene.supports, side)
         if kind != "spring" and HELD[kind][1]:
-            out.append((at, f"the {side} end ({kind})", HELD[kind][2], False))
-    out += [
-        (s.position, f"supports.inner[{i}] ({s.type})", s.type == "clamped", True)
-        for i, s in enumerate(scene.supports.inner)
-        if s.type != "spring"
-    ]
+            rigid.append((at, f"the {side} end ({kind})", HELD[kind][2], False))
+        elif kind == "spring" and sup.stiffness:
+            springs.append((at, f"the {side} end (spring)", sup.stiffness, sup.rotational_stiffness, False))
+    for i, s in enumerate(scene.supports.inner):
+        if s.type != "spring":
+            rigid.append((s.position, f"supports.inner[{i}] ({s.type})", s.type == "clamped", True))
+        elif s.stiffness:
+            springs.append((s.position, f"supports.inner[{i}] (spring)", s.stiffness, s.rotational_stiffness, True))
+    everywhere = [b[0] for b in rigid] + [b[0] for b in springs]
+    out = list(rigid)
+    for at, name, k, kr, inner in springs:
+        a = min((abs(p - at) for p in everywhere if p != at), default=L)
+        EI = float(scene.stiffness_at(np.array([at]))["EI"][0])
+        if k * a**3 / EI >= RIGID:
+            out.append((at, name, bool(kr) and kr * a / EI >= RIGID, inner))
     return sorted(out, key=lambda b: b[0])
 
 
@@ -44,7 +59,8 @@ def short_span_warnings(
     fixed_horizon: bool = False,
 ) -> list[str]:
     """One line per span between two neighbouring supports that hold the deflection, one of them inside the beam,
-    whose estimate c (h / a)² max_span |q| / max |q| passes NEAR_TOLERANCE for the shear or the moment q (``fields``
+    whose estimate c (h / a)² max_span |q| / max |q| passes NEAR_TOLERANCE for the shear or the moment q (max_span:
+    over the span and a horizon beyond each of its ends; ``fields``
     "V" and "M", the model's own on the points ``x``; h = max(spacing, ``delta`` / 3), a the span's length;
     ``constants`` {"held": {"V": c, "M": c}, "pinned": {...}}: "held" where a support of the span holds the
     rotation). Spans under ``shortest`` = (beside an end, between two supports inside) spacings are left to the
@@ -58,7 +74,10 @@ def short_span_warnings(
         a = q - p
         if not (inner_left or inner_right) or within(a, shortest[inner_left and inner_right], dx):
             continue
-        inside = (x >= p - 1e-9 * a) & (x <= q + 1e-9 * a)
+        # the families reach a horizon across each support: its reaction's jump counts whether or not a point
+        # carries it (a span between points holds little of its own shear where it is unloaded)
+        reach = max(delta, dx) * (1 + 1e-9)
+        inside = (x >= p - reach) & (x <= q + reach)
         c = constants["held" if held_left or held_right else "pinned"]
         shares = {}
         for name in QUANTITIES:

@@ -36,6 +36,10 @@ SCENES = [
      (0.5, 0.54)),
     (("clamped", "free"), [{"type": "pinned", "position": 0.5}, {"type": "pinned", "position": 0.52}], UNIFORM,
      (0.5, 0.52)),
+    # an unloaded span between two clamps, the inner one between grid points (sweep 29 S1: unwarned, V 8.5e-3 at 201)
+    (("clamped", "pinned"), [{"type": "clamped", "position": 0.0512}], dict(UNIFORM, start=0.1, end=1.0), (0, 0.0512)),
+    # a stiff spring in place of the clamp (sweep 29 S2: unwarned, V 2.35e-3 at 401 points)
+    (("pinned", "pinned"), [{"type": "spring", "stiffness": 1e12, "position": 0.96}], FORCE, (0.96, 1.0)),
 ]  # fmt: skip
 
 

@@ -115,12 +115,12 @@ def paper_bias(m: float) -> str:
 COUPLE_AT_JOINT = "measured 3.0e-3, 1.5e-3, 7.7e-4 of max |w| at 101, 201, 401 points on a two-material beam"
 # measured on a clamped-free, -guided and -spring beam, L/h = 100, 101 points (docs/models/diyaroglu.md)
 # the moment and shear of a short span between two supports that hold w: c (h / a)² of their largest in the span,
-# measured c up to 2.8 (V) and 1.2 (M) where a support of the span is clamped, 0.43 and 0.35 where both are pinned
-# (spans of 0.02 ... 0.08 L beside an end or between two supports inside, 101 ... 801 points:
+# measured c up to 1.31 (V) and 1.17 (M) where a support of the span is clamped, 0.43 and 0.36 where both are pinned
+# (spans of 0.02 ... 0.08 L, on and off the grid, beside an end or between two supports inside, 101 ... 801 points:
 # benchmarks/short_spans.py);
 # spans inside an end's layer (its 2 J + 4 spacings) or under 4 spacings between two supports take the layer and
 # straddle lines instead (up to 76 times this estimate there)
-SHORT_SPAN = {"held": {"V": 3.0, "M": 1.2}, "pinned": {"V": 0.5, "M": 0.4}}
+SHORT_SPAN = {"held": {"V": 1.5, "M": 1.2}, "pinned": {"V": 0.5, "M": 0.4}}
 EDGE_ERRORS = (
     "errors of about 1e-2 there (w 1.1e-2 ... 5.8e-3 with the edge 0.3 ... 1.5 spacings from a free end; V 3.2e-2, "
     "1.9e-2, 9.9e-3, 7.8e-3 at 2.5, 3, 4, 5 spacings from a guided or free end, at any number of points)"
