@@ -57,6 +57,7 @@ def short_span_warnings(
     constants: dict,
     shortest: tuple = (0.0, 0.0),
     fixed_horizon: bool = False,
+    inside_only: bool = False,
 ) -> list[str]:
     """One line per span between two neighbouring supports that hold the deflection, one of them inside the beam,
     whose estimate c (h / a)² max_span |q| / max |q| passes NEAR_TOLERANCE for the shear or the moment q (max_span:
@@ -65,7 +66,9 @@ def short_span_warnings(
     ``constants`` {"held": {"V": c, "M": c}, "pinned": {...}}: "held" where a support of the span holds the
     rotation). Spans under ``shortest`` = (beside an end, between two supports inside) spacings are left to the
     model's own layer and straddle lines (where the estimate does not hold). ``fixed_horizon``: the horizon is a given
-    length, so more points do not shrink h below delta / 3 and the fix named is a shorter horizon."""
+    length, so more points do not shrink h below delta / 3 and the fix named is a shorter horizon. ``inside_only``:
+    only a support inside the beam that holds the rotation makes the span "held" (pd-eb: a clamped end beside a pin
+    inside keeps the pin's constant)."""
     dx = float(x[1] - x[0])
     h = max(dx, delta / 3.0)
     bounds = span_bounds(scene)
@@ -78,7 +81,8 @@ def short_span_warnings(
         # carries it (a span between points holds little of its own shear where it is unloaded)
         reach = max(delta, dx) * (1 + 1e-9)
         inside = (x >= p - reach) & (x <= q + reach)
-        c = constants["held" if held_left or held_right else "pinned"]
+        held = (held_left and (inner_left or not inside_only)) or (held_right and (inner_right or not inside_only))
+        c = constants["held" if held else "pinned"]
         shares = {}
         for name in QUANTITIES:
             f = np.abs(np.asarray(fields[name], dtype=float))

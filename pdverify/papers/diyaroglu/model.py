@@ -115,7 +115,8 @@ def paper_bias(m: float) -> str:
 COUPLE_AT_JOINT = "measured 3.0e-3, 1.5e-3, 7.7e-4 of max |w| at 101, 201, 401 points on a two-material beam"
 # measured on a clamped-free, -guided and -spring beam, L/h = 100, 101 points (docs/models/diyaroglu.md)
 # the moment and shear of a short span between two supports that hold w: c (h / a)² of their largest in the span,
-# measured c up to 1.31 (V) and 1.17 (M) where a support of the span is clamped, 0.43 and 0.36 where both are pinned
+# measured c up to 1.31 (V) and 1.17 (M) where a support inside the span's ends holds the rotation, 0.43 and 0.36 where
+# none does (a clamped end beside a pin inside among them)
 # (spans of 0.02 ... 0.08 L, on and off the grid, beside an end or between two supports inside, 101 ... 801 points:
 # benchmarks/short_spans.py);
 # spans inside an end's layer (its 2 J + 4 spacings) or under 4 spacings between two supports take the layer and
@@ -427,7 +428,7 @@ class PDEulerBernoulli(Model):
         if params["variant"] != "paper":  # the paper's equations take no supports inside
             reach = 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4  # the ends' layer
             fixed = params.get("horizon_length") is not None
-            flags += short_span_warnings(scene, x, out, delta, SHORT_SPAN, (reach, 4), fixed)
+            flags += short_span_warnings(scene, x, out, delta, SHORT_SPAN, (reach, 4), fixed, inside_only=True)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return self.new_result(
