@@ -128,11 +128,7 @@ def solve(
         layers=layers,
         form=form,
     )
-    if "continuum_m" in given and str(given.get("continuum", "")).strip().lower() not in ("1", "true", "yes", "on"):
-        raise InputError(  # a study's runs give it for the continuum that splits their errors; a solve has none
-            f"continuum_m = {given['continuum_m']}: sets the levels of the continuum, which a solve computes with "
-            "continuum = true only; add -o continuum=true or drop continuum_m"
-        )
+    model = "auto" if model.strip().lower() == "auto" else model
     if tolerance is not None and model != "auto":
         raise InputError(f"--tolerance {tolerance:g}: applies to --model auto only; drop it or use --model auto")
     if model == "auto":
@@ -158,6 +154,11 @@ def solve(
     from ..registry import model_argument
 
     m = get_model(model_argument(model))  # a manifest path registers its external model first
+    if "continuum_m" in given and m.option("continuum") is not None and not m.resolve(sc, given).get("continuum"):
+        raise InputError(  # a study's runs give it for the continuum that splits their errors; a solve has none
+            f"continuum_m = {given['continuum_m']}: sets the levels of the continuum, which a solve computes with "
+            "continuum = true only; add -o continuum=true or drop continuum_m"
+        )
     check_memory(sc, m, given)
     if estimate:
         from ..measure.richardson import with_estimate

@@ -236,7 +236,8 @@ CONTINUUM_M = Option(
     "continuum_m",
     int,
     None,
-    "the finest m of the continuum's extrapolation (default: the model's; fewer is cheaper and less accurate)",
+    "the finest m of the continuum's extrapolation, two levels at least (default: the model's; fewer is cheaper and "
+    "less accurate)",
     minimum=8,
     maximum=256,  # past m = 128 the extrapolation's levels gain round-off, not accuracy (docs/nonlocal.md)
 )

@@ -161,6 +161,6 @@ def fixed_horizon_note(scene, model, delta: float) -> str:
     size = "" if g is None else f", about {abs(g) * (math.pi * delta / scene.length) ** 2:.2g} on the first sine mode"
     return (
         f"the grids share horizon_length = {delta:g}, so this is the error to the model's own continuum at that "
-        f"horizon, not to the local beam theory: the model error{size}{',' if size else ''} comes on top "
-        "(docs/nonlocal.md)"
+        f"horizon, not to the local beam theory: the model error{size}{',' if size else ''} comes on top (more "
+        "with supports inside, partial or point loads: docs/nonlocal.md)"
     )

@@ -94,7 +94,7 @@ def short_span_warnings(
             continue
         target = h * np.sqrt(NEAR_TOLERANCE / max(est.values())) / 1.1  # the h that brings it to 1e-3
         if fixed_horizon and delta / 3.0 > target:
-            fix = f"a spacing and a third of the horizon of at most {target:.3g} (horizon_length {3 * target:.3g})"
+            fix = f"a spacing of at most {target:.3g} and horizon_length at most {3 * target:.3g}"
         else:
             fix = f"at least {int(np.ceil(scene.length / (dx * target / h))) + 1} points"  # h in proportion to dx
         said = ", ".join(f"{k} {rounded_up(v)} of max |{k}|" for k, v in est.items())

@@ -303,6 +303,24 @@ CLI_CASES = [
         "continuum = true: modes gives the frequencies of the discrete operator",
     ),
     (
+        "modes-continuum-m",
+        ["modes", "{dyn}", "-m", "pd-eb", "--points", "41", "-o", "continuum_m=16"],
+        2,
+        "continuum_m = 16: sets the levels of a static solve's continuum, which modes does not compute",
+    ),
+    (
+        "solve-continuum-m-bad-continuum",  # the bad value is named, not the option beside it
+        ["solve", "{scene}", "-m", "pd-eb", "--points", "41", "-o", "continuum_m=16", "-o", "continuum=maybe"],
+        2,
+        "continuum = 'maybe': model pd-eb needs true or false here",
+    ),
+    (
+        "solve-continuum-m-on-a-reference",  # no continuum to add: the model's own refusal of the option
+        ["solve", "{scene}", "-m", "exact-eb", "-o", "continuum_m=16"],
+        2,
+        "continuum_m: model exact-eb takes no option 'continuum_m'",
+    ),
+    (
         "solve-auto-with-grid-options",
         ["solve", "{scene}", "-m", "auto", "--tolerance", "1e-3", "--horizon-length", "0.1", "--points", "11"],
         2,
