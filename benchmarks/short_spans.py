@@ -4,13 +4,14 @@ the exact beam, beside the estimate of their warning (pdverify/numerics/span_war
     PYTHONPATH=. python benchmarks/short_spans.py [--points 101 201 401 801] [--models pd-eb pd-timoshenko]
 
 A 1 m steel beam (20 x 50 mm). Spans of 0.02, 0.0212, 0.04, 0.0437 and 0.08 L (on and off the grids): a pinned or
-clamped support or a stiff, stiff and rotational, or soft spring inside that far from a pinned, clamped, guided or free
-end; and two supports inside at 0.5 L and 0.5 L + a (each pinned or clamped) on pinned-pinned, clamped-free and
-free-clamped beams. Loads: a force at 0.3 or 0.5 L (0.3 or 0.8 L beside two supports inside), or a uniform load.
+clamped support or a stiff, stiff and (partly) rotational, medium or soft spring inside that far from a pinned, clamped,
+guided or free end; and two supports inside at 0.5 L and 0.5 L + a (each pinned or clamped) on pinned-pinned,
+clamped-free and free-clamped beams. Loads: a force at 0.3 or 0.5 L (0.3 or 0.8 L beside two supports inside), or a
+uniform load.
 Printed per model: c = (error in the span) / ((h / a)^2 max_span |q| / max |q|) for q = V, M (max_span: in the span and
-a horizon beyond its ends), its largest by the
-span's supports (spans over `shortest` spacings only), the cases whose error passes 1e-3 with no warning at all, and
-the cases where the line is the only warning and every error is below 1e-3. About 45 seconds.
+a horizon beyond its ends), its largest by the span's supports (spans over `shortest` spacings only), the cases whose
+error passes 1e-3 with no warning at all, and the cases where the line is the only warning and every error is below
+1e-3. About 45 seconds.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.numerics.load_warnings import NEAR_TOLERANCE
 from pdverify.numerics.loads import within
+from pdverify.numerics.span_warnings import span_bounds
 from pdverify.registry import run
 
 MODELS = ("pd-eb", "pd-timoshenko")
@@ -34,10 +36,13 @@ QUANTITIES = ("V", "M")
 
 
 # springs inside (EI = 4.17e4 N m²): stiff (k a³ / EI from 160 at a = 0.02 L: a support to the line), stiff with a
-# stiff rotational stiffness (a clamp to it), and soft (k a³ / EI at most 0.12: no support to it)
+# stiff rotational stiffness (a clamp to it) or a partial one (kr a / EI 1.4 ... 5.8), medium (k a³ / EI 5.8 ... 369: a
+# support to the line from 10) and soft (k a³ / EI at most 0.12: no support to it)
 SPRINGS = {
     "stiff spring": ({"type": "spring", "stiffness": 1e12}, False),
     "stiff spring kr": ({"type": "spring", "stiffness": 1e12, "rotational_stiffness": 1e12}, True),
+    "stiff spring, partial kr": ({"type": "spring", "stiffness": 1e12, "rotational_stiffness": 3e6}, True),
+    "medium spring": ({"type": "spring", "stiffness": 3e10}, False),  # k a³ / EI 5.8 ... 369
     "soft spring": ({"type": "spring", "stiffness": 1e7}, False),
 }
 
@@ -90,7 +95,7 @@ def main():
     ap.add_argument("--models", nargs="*", default=list(MODELS))
     args = ap.parse_args()
     for model in args.models:
-        worst, silent, alone, rows = defaultdict(float), 0, 0, 0
+        worst, silent, alone, rows = defaultdict(lambda: (0.0, "")), 0, 0, 0
         for label, ends, inner, load, (lo, hi), held in scenes(INSIDE_ONLY[model]):
             at = {"F0.3": 0.3, "F0.5": 0.5, "F0.8": 0.8}.get(load)
             ld = (
@@ -109,8 +114,9 @@ def main():
                 }
             )
             exact = solve_straight(sc, model != "pd-eb")
-            # both ends of the span hold w (a soft spring does not)
-            bounded = (len(inner) > 1 or ends["right"] in ("pinned", "clamped")) and "soft" not in label
+            # both ends of the span hold w as the models count it (a soft spring does not)
+            at = [b[0] for b in span_bounds(sc)]
+            bounded = any(abs(p - lo) < 1e-12 for p in at) and any(abs(p - hi) < 1e-12 for p in at)
             for n in args.points:
                 r = run(sc, model, points=n)
                 ex, dx, a = exact.fields(r.x), r.x[1] - r.x[0], hi - lo
@@ -125,7 +131,8 @@ def main():
                         share = np.abs(got[near]).max() / np.abs(got).max()
                         if not within(a, SHORTEST[model][len(inner) > 1], dx) and share > 0:
                             key = (q, "held" if held else "pinned")
-                            worst[key] = max(worst[key], float(d[span].max()) / ((dx / a) ** 2 * share))
+                            c = float(d[span].max()) / ((dx / a) ** 2 * share)
+                            worst[key] = max(worst[key], (c, f"{label}, {n} points"))
                 rows += 1
                 if max(errs.values()) > NEAR_TOLERANCE and not lines:
                     silent += 1
@@ -135,7 +142,7 @@ def main():
         print(
             f"{model}: {rows} cases; {silent} over {NEAR_TOLERANCE:g} with no warning; {alone} with the span line "
             f"alone and every error below {NEAR_TOLERANCE:g}; largest c: "
-            + ", ".join(f"{q} ({h}) {c:.3g}" for (q, h), c in sorted(worst.items()))
+            + "; ".join(f"{q} ({h}) {c:.3g} ({where})" for (q, h), (c, where) in sorted(worst.items()))
         )
 
 

@@ -130,7 +130,10 @@ def solve(
     )
     model = "auto" if model.strip().lower() == "auto" else model
     if tolerance is not None and model != "auto":
-        raise InputError(f"--tolerance {tolerance:g}: applies to --model auto only; drop it or use --model auto")
+        raise InputError(
+            f"--tolerance {tolerance:g}: applies to --model auto only (the model given: {model!r}); drop it or use "
+            "--model auto"
+        )
     if model == "auto":
         from .advise import advise as _advise
 

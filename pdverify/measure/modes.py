@@ -217,7 +217,11 @@ def modes(scene: Scene, model: str, given: dict, count: int) -> ModeTable:
             "continuum = true: modes gives the frequencies of the discrete operator, and its nonlocal column the "
             "shift of the continuum at the horizon; drop continuum (a static solve takes it)"
         )
-    if "continuum_m" in given and m.option("continuum_m"):
+    if (
+        "continuum_m" in given
+        and m.option("continuum_m")
+        and m.option("continuum_m").coerce(m.name, given["continuum_m"])
+    ):
         raise InputError(
             f"continuum_m = {given['continuum_m']}: sets the levels of a static solve's continuum, which modes does "
             "not compute (its nonlocal column is the continuum's closed-form shift); drop continuum_m"

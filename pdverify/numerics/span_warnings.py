@@ -17,15 +17,17 @@ from .loads import within
 QUANTITIES = ("V", "M")
 
 
-RIGID = 100.0  # k a³ / EI (and kr a / EI) from which a spring holds like a support: a span a beside it bends 100 times
-# more easily than the spring gives
+# k a³ / EI from which a spring holds the deflection like a support, kr a / EI from which it holds the rotation (a the
+# span beside it): a spring of k a³ / EI = 30 already leaves 85-95 % of a rigid one's error in the span, one of
+# kr a / EI = 1.5 the clamp's constant (sweep 30 T1, T2)
+RIGID = {"k": 10.0, "kr": 1.0}
 
 
 def span_bounds(scene: Scene) -> list[tuple[float, str, bool, bool]]:
     """(position, name, holds the rotation, inside the beam) of the supports that hold the deflection, left to right:
     the named ends that do (:data:`~pdverify.core.scene.HELD`), the pinned, roller and clamped supports inside, and the
     springs (at an end or inside) stiff beside the span next to them, k a³ / EI of at least :data:`RIGID` (a the
-    distance to the nearest other support; a rotational stiffness kr holds the rotation where kr a / EI is too)."""
+    distance to the nearest other support; a rotational stiffness kr holds the rotation where kr a / EI is)."""
     L = scene.length
     rigid, springs = [], []
     for side, at in (("left", 0.0), ("right", L)):
@@ -44,8 +46,8 @@ def span_bounds(scene: Scene) -> list[tuple[float, str, bool, bool]]:
     for at, name, k, kr, inner in springs:
         a = min((abs(p - at) for p in everywhere if p != at), default=L)
         EI = float(scene.stiffness_at(np.array([at]))["EI"][0])
-        if k * a**3 / EI >= RIGID:
-            out.append((at, name, bool(kr) and kr * a / EI >= RIGID, inner))
+        if k * a**3 / EI >= RIGID["k"]:
+            out.append((at, name, bool(kr) and kr * a / EI >= RIGID["kr"], inner))
     return sorted(out, key=lambda b: b[0])
 
 

@@ -125,16 +125,18 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
     turn = constants.get("rotation")  # the rotation's error beside the estimate's, measured (None: not measured)
     for side, items in parts.items():
         total = min(sum(est for _, est, _, _ in items), 1.0)
-        worst = total * max(1.0, turn or 1.0)
-        if worst <= TOLERANCE:
+        if total <= TOLERANCE:  # the line speaks where w and M need it; the rotation's part rides along
             continue
+        worst = total * max(1.0, turn or 1.0)
         more = int(np.ceil(scene.length / dx * np.sqrt(worst / TOLERANCE))) + 1
         kind = scene.supports.kind(side)
         if len(items) == 1:
             (i, _, d, part), ld = items[0], scene.loads[items[0][0]]
             at = d if side == "left" else scene.length - d
             head = f"loads[{i}] ({describe(ld)} {at:g}) is {d / dx:.3g} spacings from the {side} end ({kind})"
-            whole = "" if part == 1.0 else f" ({part:.2g} times the whole's: the load's own response beside all's)"
+            # its response alone is the whole's (to rounding: a scaled copy of the scene reads the same)
+            alone = abs(part - 1.0) <= 1e-9
+            whole = "" if alone else f" ({part:.2g} times the whole's: the load's own response beside all's)"
             what = f"of the load's own (h = max(spacing, horizon / 3), d its distance){whole}"
         else:
             names = ", ".join(str(i) for i, *_ in items[:6]) + (", ..." if len(items) > 6 else "")

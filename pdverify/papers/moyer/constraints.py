@@ -114,8 +114,10 @@ def solve_with_holds(scene: Scene, disc: Discrete, build, kind: str, what: str, 
     _check_apart(rigid, x, scene)
     P = _pivots(rigid, fixed)
     reach = [abs(q - p) for p in P for _, c, f, _ in rigid for q in list(f) + list(c)]
-    reach += [abs(q - d) for _, c, f, _ in springs for q in f for d in c]
-    extra = max(reach, default=0)  # a row moved onto another, or a condition's entries, that far from the diagonal
+    spread = [abs(q - d) for _, c, f, _ in springs for q in f for d in c]
+    # a row moved onto another, or a condition's entries, that far from the diagonal; a pivot row that a spring's terms
+    # reach carries them along when it is moved, so the two reaches add
+    extra = max(reach, default=0) + max(spread, default=0)
     if extra > 0:
         B = _widened(B, extra)
     for h, c, f, eps in springs:  # K + k' f cᵀ, k' = k / (1 + k ε)

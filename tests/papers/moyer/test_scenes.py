@@ -486,3 +486,31 @@ def test_a_rods_spike_is_sized_by_the_force_on_its_point(model, exact, field, in
                 continue
             est = (float(said[0].split(") = ")[1].split(",")[0]), float(said[0].split("layer) = ")[1].split(";")[0]))
             assert errs[0] <= est[0] and errs[1] <= est[1], (m, n, errs, est)
+
+
+def test_a_clamp_and_a_stiff_spring_a_few_spacings_apart_solve_at_a_long_horizon():
+    """Sweep 30 T4: a clamp and a 3.8e13 N/m spring 6.3 spacings apart at 201 points, horizon 5: the elimination of the
+    clamp's reaction moved its pivot row, which the spring's terms reached, beyond the widened band ("entries outside
+    the matrix or its band", exit 70). The two reaches now add; the solve is pd-timoshenko's second-order one (w 1.0e-3
+    off exact-timoshenko, 3.7e-4 at horizon 3)."""
+    sc = parse_scene(
+        {
+            "name": "S3001_0011",
+            "beam": {"length": 4.0889},
+            "section": {"width": 0.079085, "height": 0.15817},
+            "material": {"youngs_modulus": 8.1373e9, "poissons_ratio": 0.3},
+            "supports": {
+                "left": "pinned",
+                "right": {"type": "spring", "stiffness": 1.3158e9, "rotational_stiffness": 1.07e6},
+                "inner": [
+                    {"type": "spring", "position": 2.8057, "stiffness": 3.776e13, "rotational_stiffness": 1.3269e10},
+                    {"type": "clamped", "position": 2.6766},
+                ],
+            },
+            "loads": [{"type": "distributed", "shape": "sine", "value": 3.6734}],
+        }
+    )
+    exact = run(sc, "exact-timoshenko", points=201)
+    for horizon in (4, 5):
+        r = run(sc, "pd-timoshenko", points=201, horizon=horizon)
+        assert np.abs(r.w - exact.w).max() / np.abs(exact.w).max() < 2e-3
