@@ -4,8 +4,8 @@ Between two such supports a distance a apart the moment and shear of a PD beam c
 c (h / a)² times their largest value in that span (h = max(spacing, horizon / 3)): second order, but with the span,
 not the beam, as the length, so a support placed close to an end or to another support leaves them off by far more
 than the rest of the beam at the same grid. Measured (docs/trust.md, Random scenes: "The moment and shear of a short
-span"): pd-eb and pd-timoshenko on spans of 0.02-0.08 L beside an end or between two supports inside, pinned and
-clamped, under point forces and a uniform load, 101-801 points."""
+span"; benchmarks/short_spans.py): pd-eb and pd-timoshenko on spans of 0.02-0.08 L beside an end or between two
+supports inside, pinned, clamped and springs, under point forces and a uniform load, 101-801 points."""
 
 import numpy as np
 
@@ -61,10 +61,10 @@ def short_span_warnings(
     fixed_horizon: bool = False,
     inside_only: bool = False,
 ) -> list[str]:
-    """One line per span between two neighbouring supports that hold the deflection, one of them inside the beam,
-    whose estimate c (h / a)² max_span |q| / max |q| passes NEAR_TOLERANCE for the shear or the moment q (max_span:
-    over the span and a horizon beyond each of its ends; ``fields``
-    "V" and "M", the model's own on the points ``x``; h = max(spacing, ``delta`` / 3), a the span's length;
+    """One line per span between two neighbouring supports that hold the deflection (:func:`span_bounds`), one of them
+    inside the beam, whose estimate c (h / a)² max_span |q| / max |q| passes NEAR_TOLERANCE for the shear or the moment
+    q (max_span: over the span and a horizon beyond each of its ends; ``fields`` "V" and "M", the model's own on the
+    points ``x``; h = max(spacing, ``delta`` / 3), a the span's length;
     ``constants`` {"held": {"V": c, "M": c}, "pinned": {...}}: "held" where a support of the span holds the
     rotation). Spans under ``shortest`` = (beside an end, between two supports inside) spacings are left to the
     model's own layer and straddle lines (where the estimate does not hold). ``fixed_horizon``: the horizon is a given
@@ -103,7 +103,8 @@ def short_span_warnings(
         form = ", ".join(f"{k} {c[k]:g}" for k in est)
         out.append(
             f"the span of {a:g} ({a / dx:.3g} spacings) between {left} at {p:g} and {right} at {q:g}: its moment "
-            f"and shear are off by about c (h / a)² times their largest in the span (h = max(spacing, horizon / 3), "
+            f"and shear are off by about c (h / a)² times their largest in and beside the span (h = max(spacing, "
+            "horizon / 3), "
             f"a the span; c: {form}), here {said}; second order: use {fix} for 1e-3"
         )
     return out
