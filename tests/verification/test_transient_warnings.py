@@ -27,9 +27,7 @@ NEAR_END = [
 # the recovered fields' warnings (the transient has no M, V) and the static rotation's beside a jump of the shear (its
 # estimate takes the static reactions; docs/trust.md says the transient's is not estimated)
 # the static solve's estimates from its own solution (max |rotation|, max |w|), which a transient does not make
-RECOVERED = re.compile(
-    r"\bmoment and shear\b|^rotation beside |: the deflection beside (it|them) is off |Σ \|F\| delta"
-)  # estimates from the static solution (a rod's spike from its forces: the transient says it is first order instead)
+RECOVERED = re.compile(r"\bmoment and shear\b|^rotation beside |: the deflection beside (it|them) is off ")
 SMOOTH_AXIAL = [{"type": "distributed", "value": 0.0, "axial": 3000.0, "shape": "sine"}]
 SMOOTH_FORCE = [{"type": "distributed", "value": -1000.0, "shape": "sine"}]
 SMOOTH_TORQUE = [{"type": "distributed", "value": 0.0, "torque": 30.0, "shape": "sine"}]
@@ -77,7 +75,6 @@ def test_a_transient_carries_the_static_solves_point_load_warnings(model, option
     static = _warnings(model, options, loads, static=True)
     dynamic = _warnings(model, options, loads, static=False)
     assert any(phrase in w for w in static), static  # the case is one the static solve warns of
-    assert any(phrase in w for w in dynamic), dynamic
     missing = [w for w in static if w not in dynamic and not RECOVERED.search(w)]
     assert not missing, missing
 

@@ -28,7 +28,7 @@ from .couples import couple_warnings
 from .ends import FIT_POINTS
 from .energy import ENERGY_HORIZONS, zone
 from .pieces import plain_ends
-from .point_loads import point_force_order, rod_point_load_estimate, rod_point_load_order
+from .point_loads import point_force_order
 from .published import paper_warnings
 from .system import Discrete, prescribed_motions, static_solution, static_system
 from .transient import STABILISATION, History, integrate
@@ -285,15 +285,9 @@ class _MoyerModel(Model):
             with timer("solve"):
                 u, sinfo = static_solution(scene, disc, f"{self.name} ({params['variant']})", system)
             merge_info(info, sinfo, analysis="static")
-        flags = self.discretisation_warnings(scene, params, disc.x)  # a transient's too: the same operator
-        sized = not self.bending and info.get("analysis") == "static"  # a static rod's spikes: sized from its forces
-        if sized:
-            flags = [f for f in flags if f not in rod_point_load_order(self, scene, params)]
-        if flags:
+        if flags := self.discretisation_warnings(scene, params, disc.x):  # a transient's too: the same operator
             info.setdefault("warnings", []).extend(flags)
         result = self.from_solution(scene, params, disc, u, fields, info, timer, writers, **extra)
-        if sized and (spike := rod_point_load_estimate(self, scene, params, disc.x, result)):
-            result.info.setdefault("warnings", []).extend(spike)
         if self.bending and info.get("analysis") == "static":
             delta = params["horizon"] * (disc.x[1] - disc.x[0])
             near = couple_deflection_warnings(scene, disc.x, result.w, delta, COUPLE_DEFLECTION[params["variant"]])

@@ -3,14 +3,10 @@ numbers (docs/models/moyer.md, "Known limits"): arrays and scenes in, lines out.
 
 from __future__ import annotations
 
-import numpy as np
-
 from ...core.scene import Scene, Spring
-from ...core.text import listed, rounded_up
-from ...numerics.load_warnings import NEAR_TOLERANCE
+from ...core.text import listed
 from ...numerics.recovery import kink_positions
-from .ends import FIT_POINTS
-from .pieces import holds, piece_stiffness
+from .pieces import holds
 
 
 def rod_points_loaded(model, scene: Scene) -> list[float]:
@@ -40,61 +36,6 @@ def rod_point_load_order(model, scene: Scene, params: dict) -> list[str]:
         "a sine load; a stiff spring at mid-span of a free-free bar 5.1e-2, 2.6e-2, 1.3e-2 at 101, 201, 401; more at "
         "a longer horizon, and the resultant near a spring a few spacings from an end up to 0.2 of its largest); "
         "with horizon = 1 the points are exact"
-    ]
-
-
-# pd-rod and pd-torsion, a force F on one point (a point load, an inner support's or a spring's reaction): u (the twist)
-# off by about ROD_SPIKE |F| delta / (S max |u|) (S = EA or GJ, first order at a fixed m), and N (T) by
-# ROD_RESULTANT |F| delta / max |N|, the larger constant within an end's fitted layer (FIT_POINTS + m spacings):
-# measured up to 0.46 (u), 1.57 and 38.6 (N) over point forces, pins and springs (1e5 ... 1e9 N/m) inside
-# clamped-clamped, clamped-free and free-free bars under uniform and sine loads, m = 3 and 5, 101 ... 801 points
-# (docs/models/moyer.md)
-ROD_SPIKE = 0.5
-ROD_RESULTANT = {"inside": 2.0, "end layer": 40.0}
-
-
-def rod_point_load_estimate(model, scene: Scene, params: dict, x, result) -> list[str]:
-    """The static solve's sized form of :func:`rod_point_load_order`: where the estimate passes 1e-3, one line with the
-    estimates of u (twist) and N (T) from the forces on single points inside (the point loads and ``result``'s inner
-    reactions) beside the solution's largest values, and the points that bring them to 1e-3 (first order)."""
-    torsion = model.unknowns == "torsion"
-    if params["horizon"] <= 1:
-        return []
-    forces = [
-        (ld.position, abs(ld.value if torsion else ld.axial))
-        for ld in scene.loads
-        if (ld.type == "point_torque" if torsion else ld.type == "point_force" and ld.axial != 0.0)
-        and 0.0 < ld.position < scene.length
-    ]
-    held = {h.label: h.position for h in holds(scene, model.unknowns) if h.label.startswith("inner")}
-    reactions = result.info.get("reactions") or {}
-    forces += [(held[k.split("_", 1)[1]], abs(v)) for k, v in reactions.items() if k.split("_", 1)[-1] in held]
-    if not forces:
-        return []
-    u_name, N_name, S_key = ("twist", "T", "GJ") if torsion else ("u", "N", "EA")
-    u, N = np.abs(np.asarray(result.fields[u_name])), np.abs(np.asarray(result.fields[N_name]))
-    dx = float(x[1] - x[0])
-    delta = params["horizon"] * dx
-    layer = (FIT_POINTS + params["horizon"]) * dx
-    stiff = piece_stiffness(scene, S_key)
-    S = lambda at: next(v for a, b, v in stiff if a <= at <= b)  # noqa: E731
-    est_u = sum(ROD_SPIKE * F * delta / (S(at) * u.max()) for at, F in forces) if u.max() > 0 else 0.0
-    est_N = 0.0
-    if N.max() > 0:
-        near = lambda at: min(at, scene.length - at) < layer  # noqa: E731
-        est_N = sum(ROD_RESULTANT["end layer" if near(at) else "inside"] * F * delta / N.max() for at, F in forces)
-    worst = max(est_u, est_N)
-    if worst <= NEAR_TOLERANCE:
-        return []
-    what = "a point torque" if torsion else "an axial point force"
-    points = int(np.ceil((len(x) - 1) * worst / NEAR_TOLERANCE)) + 1
-    return [
-        f"{model.name} converges at first order near {what}, a support or a spring inside (x = "
-        f"{listed([at for at, _ in forces])}): the force F on one point makes a spike about a horizon wide, {u_name} "
-        f"off by about {ROD_SPIKE:g} Σ |F| delta / ({S_key} max |{u_name}|) = {rounded_up(est_u)}, {N_name} by about "
-        f"{ROD_RESULTANT['inside']:g} Σ |F| delta / max |{N_name}| ({ROD_RESULTANT['end layer']:g} within an end's "
-        f"fitted layer) = {rounded_up(est_N)}; use at least {points} points for 1e-3 (with horizon = 1 the points "
-        "are exact)"
     ]
 
 

@@ -101,12 +101,9 @@ def test_rods_over_a_rigid_inner_support_are_first_order(model, exact, field, lo
     ],
 )
 def test_rods_say_they_are_first_order_at_a_point_load_with_the_numbers_they_give(model, exact, field, load):
-    """The transient's warning (:func:`rod_point_load_order`) quotes the model's numbers: a centre load on a 1 m
-    clamped-clamped rod at m = 3; a static solve gives its own estimate from the force (sweep 28 R5: the quoted line
-    was on every static solve, on errors of 1e-7 beside a soft spring), above the error; none at m = 1, where the
-    three-point kernel is exact at the points."""
+    """The warning's numbers are the model's: a centre load on a 1 m clamped-clamped rod at m = 3; none at m = 1,
+    where the three-point kernel is exact at the points."""
     from pdverify.core.scene_file import parse_scene
-    from pdverify.papers.moyer.point_loads import rod_point_load_order
 
     sc = parse_scene(
         {
@@ -124,11 +121,8 @@ def test_rods_say_they_are_first_order_at_a_point_load_with_the_numbers_they_giv
         err = np.abs(r.measured(field) - e.measured(field)).max() / np.abs(e.measured(field)).max()
         said.append(f"{err:.2e}".replace("e-0", "e-"))
         (warning,) = [w for w in r.info["warnings"] if "first order" in w]
-        assert err <= float(warning.split(") = ")[1].split(",")[0]), (n, err, warning)
-    mdl = get_model(model)
-    (quoted,) = rod_point_load_order(mdl, sc, mdl.resolve(sc, {}))
     claim = f"(m = 3: {', '.join(said)} at 101, 201, 401 points on a centre load;"
-    assert claim in quoted, (said, quoted)
+    assert claim in warning, (said, warning)
     assert not run(sc, model, points=101, horizon=1).info.get("warnings")
 
 
@@ -442,50 +436,6 @@ def test_a_spring_inside_a_rod_or_a_bar_is_said_first_order(model, reference, fi
         said = [w for w in r.info.get("warnings", []) if "converges at first order" in w and "a spring inside" in w]
         assert said, r.info.get("warnings")
     assert abs(np.log2(errors[0] / errors[2]) / 2 - 1.0) < 0.1, errors  # first order, as the line says
-
-
-@pytest.mark.parametrize(
-    "model, exact, field", [("pd-rod", "exact-rod", "u"), ("pd-torsion", "exact-torsion", "twist")]
-)
-@pytest.mark.parametrize(
-    "inner",
-    [
-        {"type": "pinned", "position": 0.4},
-        {"type": "spring", "position": 0.5, "stiffness": 1e9, "rotational_stiffness": 1e6},
-        {"type": "spring", "position": 0.5, "stiffness": 1e5, "rotational_stiffness": 1e2},
-    ],
-)
-def test_a_rods_spike_is_sized_by_the_force_on_its_point(model, exact, field, inner):
-    """Sweep 28 R5: pd-rod's and pd-torsion's first-order line was on every static solve with a support or a spring
-    inside, also where a soft spring carries almost nothing (errors 3.7e-6 ... 1.8e-7 at 101 ... 1601 points). The
-    static solve now sizes it from the forces on single points: above the errors of u (twist) and N (T) where it
-    speaks, and where it does not they are below 1e-3."""
-    load = {"type": "distributed", "value": 0.0, **({"axial": -500.0} if field == "u" else {"torque": -50.0})}
-    sc = parse_scene(
-        {
-            "name": "a support inside",
-            "beam": {"length": 1.0},
-            "section": {"width": 0.02, "height": 0.05},
-            "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
-            "supports": {"left": "clamped", "right": "free", "inner": [inner]},
-            "loads": [load],
-        }
-    )
-    resultant = {"u": "N", "twist": "T"}[field]
-    for m in (3, 5):
-        for n in (101, 401):
-            r, e = run(sc, model, points=n, horizon=m), run(sc, exact, points=n)
-            errs = [
-                float(np.abs(np.asarray(r.fields[q]) - np.asarray(e.fields[q])).max() / np.abs(e.fields[q]).max())
-                for q in (field, resultant)
-            ]
-            said = [w for w in r.info.get("warnings", []) if "Σ |F| delta" in w]
-            if not said:
-                assert max(errs) <= 1e-3, (m, n, errs, r.info.get("warnings"))
-                assert not [w for w in r.info.get("warnings", []) if "converges at first order near" in w]
-                continue
-            est = (float(said[0].split(") = ")[1].split(",")[0]), float(said[0].split("layer) = ")[1].split(";")[0]))
-            assert errs[0] <= est[0] and errs[1] <= est[1], (m, n, errs, est)
 
 
 def test_a_clamp_and_a_stiff_spring_a_few_spacings_apart_solve_at_a_long_horizon():
