@@ -19,7 +19,7 @@ QUANTITIES = ("V", "M")
 
 # k a³ / EI from which a spring holds the deflection like a support, kr a / EI from which it holds the rotation (a the
 # span beside it): a spring of k a³ / EI = 30 already leaves 85-95 % of a rigid one's error in the span, one of
-# kr a / EI = 1.5 the clamp's constant (sweep 30 T1, T2)
+# kr a / EI = 1.5 the clamp's constant (benchmarks/short_spans.py)
 RIGID = {"k": 10.0, "kr": 1.0}
 
 
