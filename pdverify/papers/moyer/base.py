@@ -79,8 +79,7 @@ COUPLE_DEFLECTION = {"energy": 0.35, "corrected": 3.5, "paper": 3.5}
 # span, measured c up to 1.85 (V: a stiff spring with a partial rotational stiffness beside a clamped end; 1.09 at a
 # clamp) and 1.12 (M) where a support of the span holds the rotation, 0.40 and 0.24 where neither does (spans of 0.02
 # ... 0.08 L, on and off the grid, beside an end or between two supports inside, 101 ... 801 points:
-# benchmarks/short_spans.py);
-# corrected and paper say their own first order beside a support inside
+# benchmarks/short_spans.py); corrected and paper say their own first order beside a support inside
 SHORT_SPAN = {"held": {"V": 2.0, "M": 1.2}, "pinned": {"V": 0.45, "M": 0.3}}
 
 
