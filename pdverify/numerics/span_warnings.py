@@ -74,6 +74,8 @@ def short_span_warnings(
     dx = float(x[1] - x[0])
     h = max(dx, delta / 3.0)
     bounds = span_bounds(scene)
+    size = {name: np.abs(np.asarray(fields[name], dtype=float)) for name in QUANTITIES}
+    top = {name: float(f.max()) if f.size else 0.0 for name, f in size.items()}
     out = []
     for (p, left, held_left, inner_left), (q, right, held_right, inner_right) in zip(bounds, bounds[1:]):
         a = q - p
@@ -87,10 +89,8 @@ def short_span_warnings(
         c = constants["held" if held else "pinned"]
         shares = {}
         for name in QUANTITIES:
-            f = np.abs(np.asarray(fields[name], dtype=float))
-            top = float(f.max()) if f.size else 0.0
-            if top > 0.0 and inside.any():
-                shares[name] = c[name] * (h / a) ** 2 * float(f[inside].max()) / top
+            if top[name] > 0.0 and inside.any():
+                shares[name] = c[name] * (h / a) ** 2 * float(size[name][inside].max()) / top[name]
         est = {k: v for k, v in shares.items() if v > NEAR_TOLERANCE}
         if not est:
             continue

@@ -208,7 +208,7 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float, limi
     if not _nested(model, scene, base, x_user, r0 * step):
         step = 3  # cell-centred grids nest under odd refinements only
         r0 = r0 if r0 % 2 else r0 + 1
-    levels, values = [], []
+    levels, values, bounds = [], [], []  # bounds: each level's round-off bound, as its solve reported it
     best, est, each = None, math.inf, {}
     key = model.measures
     r = r0
@@ -227,10 +227,10 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float, limi
             stopped = f"; m = {m_user * r:g} not used: its round-off bound {bound:.2g} passes the estimate"
             break
         levels.append(r)
+        bounds.append(bound)
         if len(levels) >= 3:
             best, est, each = neville(np.array([1.0 / q for q in levels]), values, key)
-            floor = NOISE * max(_bound_of(model, scene, base, _refined(model, scene, base, q)) for q in levels)
-            if est <= max(TOL, floor):  # converged, or to the levels' own round-off
+            if est <= max(TOL, NOISE * max(bounds)):  # converged, or to the levels' own round-off
                 break
         r *= step
     if best is None:
