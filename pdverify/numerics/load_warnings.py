@@ -311,3 +311,59 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
         f"{'couple deflects' if len(couples) == 1 else 'couples deflect'} the beam little); second order: use at "
         f"least {points} points for 1e-3"
     ]
+
+
+# a distributed load's edge within the ends' layer of pd-eb's corrected variant (its loads are spread by their jumps in
+# the interior, where an edge costs nothing; the end's ghosts carry one smooth w): the shear beside the edge is off by
+# about EDGE_SHEAR[0] |q| h nearer than EDGE_NEAR spacings to the end, EDGE_SHEAR[1] |q| h farther (q the load's value
+# at the edge, h = max(spacing, horizon / 3); measured: benchmarks/load_edges.py, docs/trust.md "A load's edge in an
+# end's layer")
+EDGE_NEAR = 2.5
+
+
+def edge_shear_warnings(
+    scene: Scene, x: np.ndarray, V: np.ndarray, delta: float, constants: tuple, said=(), params=None
+) -> list[str]:
+    """One line per end where the edges of distributed loads strictly inside its first 2 m + 0.5 spacings (two
+    horizons ``delta``, m = delta / spacing: the ghosts' reach) make the shear ``V`` (the model's, on ``x``) off by more
+    than NEAR_TOLERANCE of max |V|: the sum over those edges of ``constants[0]`` |q| h (nearer than :data:`EDGE_NEAR`
+    spacings) or ``constants[1]`` |q| h (farther), q the load's value at its edge, h = max(spacing, delta / 3). Edges
+    that a line in ``said`` already names (``loads[i] has an edge at E``) are left to it. ``params``: the run's, whose
+    ``horizon_length`` makes a layer that more points do not leave (:func:`horizon_layer`)."""
+    dx, L = x[1] - x[0], scene.length
+    reach, h = 2 * delta / dx + 0.5, max(dx, delta / 3)
+    fixed = horizon_layer(params or {}, dx, reach, 2)
+    top = float(np.max(np.abs(V))) if len(V) else 0.0
+    if not (top > 0.0 and np.isfinite(top)):
+        return []
+    parts = {"left": [], "right": []}
+    for i, ld in enumerate(scene.loads):
+        if not isinstance(ld, Distributed) or not ld.value:
+            continue
+        for edge in scene.span(ld):
+            q = abs(ld.value * float(scene.load_shape(ld, edge)))
+            if any(s.startswith(f"loads[{i}] has an edge at {edge:g},") for s in said):
+                continue
+            for side, d in (("left", edge), ("right", L - edge)):
+                if 1e-12 * L < d and within(d, reach, dx) and q > 0.0:
+                    c = constants[0] if within(d, EDGE_NEAR, dx) else constants[1]
+                    parts[side].append((i, edge, d, c * q * h / top))
+    out = []
+    for side, items in parts.items():
+        total = sum(est for *_, est in items)
+        if total <= NEAR_TOLERANCE:
+            continue
+        nearest = min(d for _, _, d, _ in items)
+        if fixed is None:  # the layer and h shrink together: whichever brings the estimate to the tolerance first
+            fix = more_points(min(np.ceil(reach * L / nearest), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
+        else:
+            fix = layer_fix(nearest, dx, L, reach, fixed)
+        names = ", ".join(f"loads[{i}] at {edge:g} ({d / dx:.3g} spacings)" for i, edge, d, _ in items)
+        out.append(
+            f"{'an edge' if len(items) == 1 else 'edges'} of {names} inside the {reach:g} spacings of the {side} end "
+            f"({scene.supports.kind(side)}) that its ghosts reach: the shear beside "
+            f"{'it' if len(items) == 1 else 'them'} is off by about {constants[0]:g} |q| h within {EDGE_NEAR:g} "
+            f"spacings of the end and {constants[1]:g} |q| h farther (q the load at its edge, h = max(spacing, "
+            f"horizon / 3)), here {rounded_up(total)} of max |V| (docs/trust.md); {fix}"
+        )
+    return out
