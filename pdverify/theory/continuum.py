@@ -235,6 +235,10 @@ def _extrapolated(model, scene: Scene, base: dict, delta: float, dx: float, limi
         r *= step
     if best is None:
         best, est, each = values[-1], _change(values[0], values[-1]) if len(values) > 1 else math.inf, {}
+    if levels and m_user * levels[-1] > top * (1 + 1e-9):
+        stopped += (
+            f"; m = {m_user * levels[-1]:g} past continuum_m = {top:g}: two levels at least, each {step} times the last"
+        )
     info = {
         "continuum": f"extrapolated in m at fixed delta from m = {', '.join(f'{m_user * q:g}' for q in levels)}"
         + stopped,

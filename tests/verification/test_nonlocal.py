@@ -484,3 +484,14 @@ def test_pd_curved_s_continuum_names_its_own_family():
     scene = parse_scene(scene_dict("pinned", "pinned", [{"type": "distributed", "value": -1000.0, "shape": "sine"}]))
     r = run(scene, "pd-curved", points=41, continuum=True, continuum_m=8)
     assert np.isfinite(r.w).all() and np.abs(r.w).max() > 0
+
+
+def test_levels_past_continuum_m_say_why():
+    """Two nested levels at least, each twice the last: continuum_m = 16 at m = 3 takes m = 9 and 18 (sweep 31 U7),
+    and the note says that 18 passes it; levels within it say nothing of the kind."""
+    sc = load_scene(STUDIES / "nonlocal/pp_sine.toml")
+    r = run(sc, "pd-eb", points=21, horizon=3, continuum=True, continuum_m=16)
+    assert np.allclose(r.info["continuum_levels"], [9.0, 18.0], rtol=1e-12)  # m of the grid: the points' rounding
+    assert "m = 18 past continuum_m = 16: two levels at least, each 2 times the last" in r.info["continuum"]
+    r = run(sc, "pd-eb", points=21, horizon=3, continuum=True, continuum_m=36)
+    assert "past continuum_m" not in r.info["continuum"]
