@@ -313,57 +313,62 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
     ]
 
 
-# a distributed load's edge within the ends' layer of pd-eb's corrected variant (its loads are spread by their jumps in
-# the interior, where an edge costs nothing; the end's ghosts carry one smooth w): the shear beside the edge is off by
-# about EDGE_SHEAR[0] |q| h nearer than EDGE_NEAR spacings to the end, EDGE_SHEAR[1] |q| h farther (q the load's value
-# at the edge, h = max(spacing, horizon / 3); measured: benchmarks/load_edges.py, docs/trust.md "A load's edge in an
-# end's layer")
-EDGE_NEAR = 2.5
+# a distributed load that a PD beam takes by its cell averages, not by its jumps (pd-eb's corrected variant: an edge
+# within the 2 J spacings of an end where the rows of its kinks would leave the grid): the shear beside each of its
+# edges inside the beam, the far one too, is off by up to about c (|q| dx + |q'| dx^2), q and q' the load and its
+# slope at the edge (a sine load's value is small near an end, its slope is not), and an edge farther than
+# CELL_REACH spacings beyond the layer by that times 2 |1/2 - f| (at least CELL_FLOOR), f its place between two points
+# (a cell's average is right for an edge on a point or half-way: measured 0.05 there, 0.6 at f = 0.02); measured:
+# benchmarks/load_edges.py, docs/trust.md "A load taken by its cell averages"
+CELL_REACH, CELL_FLOOR = 4, 0.1
 
 
-def edge_shear_warnings(
-    scene: Scene, x: np.ndarray, V: np.ndarray, delta: float, constants: tuple, said=(), params=None
+def cell_place(t: float) -> float:
+    """The share of the constant an edge ``t`` spacings from the beam's start takes beyond the layer: 2 |1/2 - f| for f
+    its place between two points, at least CELL_FLOOR (the edge on a point counts as half-way)."""
+    f = t % 1.0
+    if min(f, 1.0 - f) < 1e-9:
+        f = 0.5
+    return max(2.0 * abs(0.5 - f), CELL_FLOOR)
+
+
+def cell_average_warnings(
+    scene: Scene, x: np.ndarray, V: np.ndarray, loads: list, constant: float, reach: float, params=None
 ) -> list[str]:
-    """One line per end where the edges of distributed loads strictly inside its first 2 m + 0.5 spacings (two
-    horizons ``delta``, m = delta / spacing: the ghosts' reach) make the shear ``V`` (the model's, on ``x``) off by more
-    than NEAR_TOLERANCE of max |V|: the sum over those edges of ``constants[0]`` |q| h (nearer than :data:`EDGE_NEAR`
-    spacings) or ``constants[1]`` |q| h (farther), q the load's value at its edge, h = max(spacing, delta / 3). Edges
-    that a line in ``said`` already names (``loads[i] has an edge at E``) are left to it. ``params``: the run's, whose
+    """One line per distributed load ``loads[k]`` (indices into the scene's loads) that the model takes by its cell
+    averages because an edge lies within ``reach`` spacings of an end, where ``constant`` (|q| dx + |q'| dx²) summed
+    over its edges inside the beam (beyond ``reach`` + CELL_REACH spacings of both ends times :func:`cell_place`)
+    passes NEAR_TOLERANCE of the shear ``V``'s largest (the model's, on ``x``); an edge that the fitted ends' own line
+    names counts too (its share of the shear's error reaches the far edge). ``params``: the run's, whose
     ``horizon_length`` makes a layer that more points do not leave (:func:`horizon_layer`)."""
     dx, L = x[1] - x[0], scene.length
-    reach, h = 2 * delta / dx + 0.5, max(dx, delta / 3)
     fixed = horizon_layer(params or {}, dx, reach, 2)
     top = float(np.max(np.abs(V))) if len(V) else 0.0
     if not (top > 0.0 and np.isfinite(top)):
         return []
-    parts = {"left": [], "right": []}
-    for i, ld in enumerate(scene.loads):
-        if not isinstance(ld, Distributed) or not ld.value:
-            continue
-        for edge in scene.span(ld):
-            q = abs(ld.value * float(scene.load_shape(ld, edge)))
-            if any(s.startswith(f"loads[{i}] has an edge at {edge:g},") for s in said):
-                continue
-            for side, d in (("left", edge), ("right", L - edge)):
-                if 1e-12 * L < d and within(d, reach, dx) and q > 0.0:
-                    c = constants[0] if within(d, EDGE_NEAR, dx) else constants[1]
-                    parts[side].append((i, edge, d, c * q * h / top))
     out = []
-    for side, items in parts.items():
-        total = sum(est for *_, est in items)
+    for i in loads:
+        ld = scene.loads[i]
+        edges = [e for e in scene.span(ld) if 1e-12 * L < e < L * (1 - 1e-12)]
+        if not edges:
+            continue
+        k = np.pi / L if ld.shape == "sine" else 0.0
+        q = [abs(ld.value * float(scene.load_shape(ld, e))) for e in edges]
+        slope = [abs(ld.value * k * np.cos(k * e)) for e in edges]
+        place = [1.0 if within(min(e, L - e), reach + CELL_REACH, dx) else cell_place(e / dx) for e in edges]
+        total = sum(constant * p * (a * dx + b * dx * dx) for a, b, p in zip(q, slope, place, strict=True)) / top
         if total <= NEAR_TOLERANCE:
             continue
-        nearest = min(d for _, _, d, _ in items)
-        if fixed is None:  # the layer and h shrink together: whichever brings the estimate to the tolerance first
-            fix = more_points(min(np.ceil(reach * L / nearest), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
+        d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in scene.span(ld) if 0.0 < e < L)
+        if fixed is None:  # the edge leaves the layer, or the estimate falls as dx: whichever comes first
+            fix = more_points(min(np.ceil(reach * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
         else:
-            fix = layer_fix(nearest, dx, L, reach, fixed)
-        names = ", ".join(f"loads[{i}] at {edge:g} ({d / dx:.3g} spacings)" for i, edge, d, _ in items)
+            fix = layer_fix(d, dx, L, reach, fixed)
         out.append(
-            f"{'an edge' if len(items) == 1 else 'edges'} of {names} inside the {reach:g} spacings of the {side} end "
-            f"({scene.supports.kind(side)}) that its ghosts reach: the shear beside "
-            f"{'it' if len(items) == 1 else 'them'} is off by about {constants[0]:g} |q| h within {EDGE_NEAR:g} "
-            f"spacings of the end and {constants[1]:g} |q| h farther (q the load at its edge, h = max(spacing, "
-            f"horizon / 3)), here {rounded_up(total)} of max |V| (docs/trust.md); {fix}"
+            f"loads[{i}] has an edge {d / dx:.3g} spacings from the {side} end ({scene.supports.kind(side)}), within "
+            f"the {reach:g} spacings where the rows of its jump would leave the grid, so it enters by its cell "
+            f"averages: the shear beside its edges (x = {listed(edges)}) is off by up to about {constant:g} (|q| "
+            f"spacing + |q'| spacing²) (q, q' the load and its slope at an edge), here {rounded_up(total)} of max |V| "
+            f"(docs/trust.md); {fix}"
         )
     return out

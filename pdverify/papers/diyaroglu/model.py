@@ -48,9 +48,9 @@ from ...core.scene import Distributed, PointMoment, Scene
 from ...numerics.linalg import eliminate
 from ...numerics.load_warnings import (
     boundary_layer_warnings,
+    cell_average_warnings,
     couple_at_joint_warnings,
     edge_layer_warnings,
-    edge_shear_warnings,
     horizon_layer,
     moment_rotation_warnings,
 )
@@ -61,7 +61,7 @@ from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
-from .scenes import inner_layer_warnings, spreads
+from .scenes import by_cells, inner_layer_warnings, spreads
 
 
 def mirror_scene(scene: Scene) -> Scene:
@@ -123,7 +123,7 @@ COUPLE_AT_JOINT = "measured 3.0e-3, 1.5e-3, 7.7e-4 of max |w| at 101, 201, 401 p
 # spans inside an end's layer (its 2 J + 4 spacings) or under 4 spacings between two supports take the layer and
 # straddle lines instead (up to 76 times this estimate there)
 SHORT_SPAN = {"held": {"V": 1.5, "M": 1.2}, "pinned": {"V": 0.5, "M": 0.4}}
-EDGE_SHEAR = (0.9, 0.25)  # c of edge_shear_warnings, nearer than 2.5 spacings and farther (benchmarks/load_edges.py)
+CELL_SHEAR = 1.2  # c of cell_average_warnings (benchmarks/load_edges.py)
 EDGE_ERRORS = (
     "errors of about 1e-2 there (w 1.1e-2 ... 5.8e-3 with the edge 0.3 ... 1.5 spacings from a free end; V 3.2e-2, "
     "1.9e-2, 9.9e-3, 7.8e-3 at 2.5, 3, 4, 5 spacings from a guided or free end, at any number of points)"
@@ -428,10 +428,10 @@ class PDEulerBernoulli(Model):
         merge_info(info, binfo, spacing=dx, horizon_factor=params["horizon"], horizon=delta, variant=params["variant"])
         flags = self.discretisation_warnings(scene, params, x) + outputs.recovery_warnings(scene, params)
         if params["variant"] != "paper":  # the paper's equations take no supports inside
-            reach = 2 * len(curvature_weights(params["horizon"], dx, params["variant"])) + 4  # the ends' layer
-            fixed = params.get("horizon_length") is not None
-            flags += short_span_warnings(scene, x, out, delta, SHORT_SPAN, (reach, 4), fixed, inside_only=True)
-            flags += edge_shear_warnings(scene, x, out["V"], delta, EDGE_SHEAR, flags, params)
+            J = len(curvature_weights(params["horizon"], dx, params["variant"]))  # the ends' layer: 2 J + 4
+            fixed, cells = params.get("horizon_length") is not None, by_cells(scene, len(x), dx, J)
+            flags += short_span_warnings(scene, x, out, delta, SHORT_SPAN, (2 * J + 4, 4), fixed, inside_only=True)
+            flags += cell_average_warnings(scene, x, out["V"], cells, CELL_SHEAR, 2 * J, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return self.new_result(

@@ -127,6 +127,13 @@ def spreads(load, scene: Scene, n: int, dx: float, J: int) -> bool:
     return all(spread_ok(v / dx, n, J) for v in scene.span(load) if 0.0 < v < scene.length)
 
 
+def by_cells(scene: Scene, n: int, dx: float, J: int) -> list[int]:
+    """The distributed loads that enter by their cell averages, not by their kinks (:func:`spreads`: an edge within 2J
+    spacings of an end), as indices into the scene's loads."""
+    return [i for i, ld in enumerate(scene.loads) if ld.type == "distributed" and ld.value != 0.0
+            and not spreads(ld, scene, n, dx, J)]  # fmt: skip
+
+
 def distributed_kink(load, scene: Scene, n: int, dx: float, st: np.ndarray) -> np.ndarray | None:
     """The line load on the n points of a distributed load as the divergence of its particular moment,
     q_p = D2[Mp]_p, Mp the mean of the two particular moments of the span [a, b], S_a - S_b and T_b - T_a (S_e the
