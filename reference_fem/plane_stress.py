@@ -288,9 +288,9 @@ class FemPlaneStress(Model):
 
     def check(self, scene: Scene) -> list[str]:
         out = super().check(scene)
-        if scene.section.height is None:
-            out.append("section: the plane-stress reference needs a rectangle (width and height)")
-            return out
+        if scene.section.height is None:  # one line: the declared shapes' own where it names the shape
+            said = any(line.startswith("section.shape") for line in out)
+            return out if said else [*out, "section: the plane-stress reference needs a rectangle (width and height)"]
 
         if not scene.is_straight:
             h = scene.section.height

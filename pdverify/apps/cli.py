@@ -27,6 +27,7 @@ from .cliargs import (
     HORIZON,
     HORIZON_LENGTH,
     POINTS,
+    auto_options,
     given_file,
     given_path,
     grid_options,
@@ -109,8 +110,7 @@ def solve(
 ):
     """Solve one scene with one model and print the point results (--model auto: see `advise`)."""
     from ..core.scene_file import load_scene
-    from ..core.text import close_match
-    from ..registry import as_flag, get_model, model_argument, models, run
+    from ..registry import as_flag, get_model, run
 
     fmt = _out_format(out, fmt)
     if out is not None:
@@ -130,34 +130,10 @@ def solve(
         form=form,
     )
     model = "auto" if model.strip().lower() == "auto" else model
-    if tolerance is not None and model != "auto":
-        if close_match(model.strip().lower(), ["auto"]) and model not in models():
-            raise InputError(
-                f"--model {model}: unknown model; did you mean 'auto'? (--tolerance asks for --model auto)"
-            )
-        get_model(model_argument(model))  # a misspelt model is named first: the line that mends it
-        raise InputError(
-            f"--tolerance {tolerance:g}: applies to --model auto only (the model given: {model!r}); drop it or use "
-            "--model auto"
-        )
+    auto_options(model, tolerance, given)  # --tolerance and --model auto, and what auto leaves out
     if model == "auto":
         from .advise import advise as _advise
 
-        if tolerance is None:
-            raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
-        positive("--tolerance", tolerance)
-        chosen = sorted(k for k in given if k != "static")
-        unknown = [k for k in chosen if all(m.option(k) is None for m in models().values())]
-        if unknown:
-            raise InputError(
-                f"-o {unknown[0]}: no model takes this option; drop it (`pdverify models` lists each one's)"
-            )
-        if chosen:
-            them = "them" if len(chosen) > 1 else "it"
-            raise InputError(
-                f"--model auto chooses the model and its grid, so {', '.join(chosen)} would be dropped: name a model "
-                f"(-m MODEL) to give {them}, or drop {them}"
-            )
         choice = _advise(sc, tolerance, static=as_flag(given.get("static", False))).choice
         of = get_model(choice.model).measures
         typer.echo(

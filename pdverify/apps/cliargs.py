@@ -235,3 +235,37 @@ def prepared(command, argv: list[str]) -> list[str]:
     if line := single_repeats(command, argv):
         raise click.UsageError(line)
     return spread_repeats(argv)
+
+
+def auto_options(model: str, tolerance: float | None, given: dict) -> None:
+    """InputError for ``solve``'s --model auto and --tolerance that do not go together: --tolerance beside a named
+    model (a misspelt one named first, and 'auto' where it looks like it), --model auto without --tolerance or with
+    options it would drop (one that no model takes named as such)."""
+    from ..core.text import close_match  # deferred: `pdverify --help` starts without the library
+    from ..registry import get_model, model_argument, models  # deferred: the models load when a command asks
+
+    if tolerance is not None and model != "auto":
+        if close_match(model.strip().lower(), ["auto"]) and model not in models():
+            raise InputError(
+                f"--model {model}: unknown model; did you mean 'auto'? (--tolerance asks for --model auto)"
+            )
+        get_model(model_argument(model))  # a misspelt model is named first: the line that mends it
+        raise InputError(
+            f"--tolerance {tolerance:g}: applies to --model auto only (the model given: {model!r}); drop it or use "
+            "--model auto"
+        )
+    if model != "auto":
+        return
+    if tolerance is None:
+        raise InputError("--model auto needs --tolerance (relative error you can accept, e.g. 1e-3)")
+    positive("--tolerance", tolerance)
+    chosen = sorted(k for k in given if k != "static")
+    unknown = [k for k in chosen if all(m.option(k) is None for m in models().values())]
+    if unknown:
+        raise InputError(f"-o {unknown[0]}: no model takes this option; drop it (`pdverify models` lists each one's)")
+    if chosen:
+        them = "them" if len(chosen) > 1 else "it"
+        raise InputError(
+            f"--model auto chooses the model and its grid, so {', '.join(chosen)} would be dropped: name a model "
+            f"(-m MODEL) to give {them}, or drop {them}"
+        )

@@ -218,6 +218,10 @@ def test_parabolic_axis_converges(record_property):
     "over,needle",
     [
         ({"section": {"area": 0.005, "inertia": 4e-6}}, "section: the plane-stress reference needs a rectangle"),
+        (  # a profile: the declared shapes' one line, not a second one beside it (sweep 32 B2)
+            {"section": {"shape": "profile", "y": [0.0, 0.2, 0.2, 0.24], "b": [0.02, 0.02, 0.15, 0.15]}},
+            "section.shape = 'profile': model fem-plane-stress takes a rectangle",
+        ),
         ({"section": {"width": 0.05, "height": 2.5}}, "section.height = 2.5"),
         ({"supports": {"left": "pinned", "right": "roller"}}, "rigid rotation about (1, 0)"),
         ({"supports": {"left": "free", "right": "pinned"}}, "rigid rotation about (-1, 0)"),
@@ -238,7 +242,7 @@ def test_unsupported_curved_inputs_rejected(over, needle):
     d.update(over)
     with pytest.raises(InputError) as exc:
         run(parse_scene(d), "fem-plane-stress", points=21, layers=2)
-    assert needle in str(exc.value)
+    assert needle in str(exc.value) and len(exc.value.lines) == 1, exc.value.lines
 
 
 def test_quarter_circle_pinned_pinned_solves():

@@ -60,7 +60,7 @@ from .recovery import (
     rotation_warnings,
 )
 from .taylor import assemble_mixed, assemble_taylor, factored_stencils, operator_stencil
-from .weights import WEIGHTS, moment_curvature_curve, weights
+from .weights import WEIGHTS, check_section, moment_curvature_curve, weights
 
 ENDS = ("auto", "taylor", "mirror", "none")
 
@@ -136,15 +136,22 @@ def pair_form(scene: Scene, params: dict) -> bool:
     return general or params["ends"] == "none" or (params["weight"] != "uniform" and params["ends"] == "mirror")
 
 
-def omega(scene: Scene, params: dict):
-    """The members' weights of ``params["weight"]`` (None for uniform; :mod:`.weights`)."""
-    if params["weight"] == "uniform":
-        return None
-    if scene.segments:
+def check_weight(scene: Scene, params: dict) -> None:
+    """InputError when ``params["weight"]`` cannot be made on ``scene``: segments (one section along the beam) or a
+    section :func:`.weights.check_section` refuses."""
+    if params["weight"] != "uniform" and scene.segments:
         raise InputError(
             f"weight = {params['weight']}: a section weight takes one section along the beam; use weight = uniform "
             "with segments"
         )
+    check_section(scene.section.profile, params["weight"])
+
+
+def omega(scene: Scene, params: dict):
+    """The members' weights of ``params["weight"]`` (None for uniform; :mod:`.weights`)."""
+    if params["weight"] == "uniform":
+        return None
+    check_weight(scene, params)
     dx = scene.length / (params["points"] - 1)
     return weights(scene.section.profile, params["weight"], params["horizon"], dx, params["variant"])
 
@@ -331,9 +338,11 @@ class PDBondPair(Model):
         return end_load, jump
 
     def refusals(self, scene: Scene, params: dict) -> list[str]:
-        """The ends and loads the chosen ends do not take (:func:`pair_form`'s line)."""
+        """The ends and loads the chosen ends do not take (:func:`pair_form`'s line) and a section weight the scene's
+        sections do not define (:func:`check_weight`)."""
         try:
             pair_form(scene, params)
+            check_weight(scene, params)
         except InputError as exc:
             return list(exc.lines)
         return []

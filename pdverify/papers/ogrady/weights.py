@@ -30,11 +30,11 @@ def section_depth_map(profile: Profile, delta: float):
     return lambda xi: np.asarray(xi, float) / delta * c
 
 
-def weights(profile: Profile | None, weight: str, m: float, dx: float, variant: str) -> np.ndarray | None:
-    """omega_j of the family's members (None for ``uniform``): ``paper`` = xi_j b(y_j) (Eq. 6 at the member),
-    ``fibre`` = the mean of b over the member's cell within the horizon (per its volume fraction)."""
+def check_section(profile: Profile | None, weight: str) -> None:
+    """InputError when a section weight other than ``uniform`` cannot be made for ``profile``: none given, or one not
+    symmetric about its centroid (a pair maps onto the fibres at +-y)."""
     if weight == "uniform":
-        return None
+        return
     if profile is None:
         raise InputError(
             f"weight = {weight}: a section weight needs the section's shape; give width and height or a shape"
@@ -44,6 +44,14 @@ def weights(profile: Profile | None, weight: str, m: float, dx: float, variant: 
             f"weight = {weight}: the bond pairs map a pair onto the fibres at +-y, so the section must be symmetric "
             "about its centroid; use weight = uniform"
         )
+
+
+def weights(profile: Profile | None, weight: str, m: float, dx: float, variant: str) -> np.ndarray | None:
+    """omega_j of the family's members (None for ``uniform``): ``paper`` = xi_j b(y_j) (Eq. 6 at the member),
+    ``fibre`` = the mean of b over the member's cell within the horizon (per its volume fraction)."""
+    if weight == "uniform":
+        return None
+    check_section(profile, weight)
     j, beta = pair_family(m, dx, variant)
     delta = horizon_length(m, dx, variant)
     yc, y_of = profile.centroid, section_depth_map(profile, delta)

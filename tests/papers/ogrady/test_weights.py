@@ -82,3 +82,26 @@ def test_a_weight_the_path_does_not_define_is_one_line(options, match):
     d["loads"] = [{"type": "distributed", "value": -1.0}]
     with pytest.raises(InputError, match=match):
         run(parse_scene(d), "pd-bond-pair", points=41, **options)
+
+
+def test_a_section_weight_the_scene_does_not_define_is_a_refusal_before_any_work():
+    """weight = fibre on an unsymmetric T profile or on segments: the solve's line is also the model's refusal, so a
+    study lists the combination as skipped (sweep 32 B1: failed cases, exit 1)."""
+    from pdverify.registry import get_model
+
+    m = get_model("pd-bond-pair")
+    tee = parse_scene(
+        {
+            "name": "T profile cantilever",
+            "beam": {"length": 2.0},
+            "section": {"shape": "profile", "y": [0.0, 0.2, 0.2, 0.24], "b": [0.02, 0.02, 0.15, 0.15]},
+            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+            "supports": {"left": "clamped", "right": "free"},
+            "loads": [{"type": "point_force", "position": 2.0, "value": -1000.0}],
+        }
+    )
+    why = m.refusals(tee, m.resolve(tee, {"points": 41, "weight": "fibre"}))
+    assert len(why) == 1 and "symmetric about its centroid" in why[0]
+    with pytest.raises(InputError, match="symmetric about its centroid"):
+        run(tee, "pd-bond-pair", points=41, weight="fibre")
+    assert m.refusals(tee, m.resolve(tee, {"points": 41})) == []

@@ -827,11 +827,18 @@ SEGMENTS = (
             "variant corrected of pd-timoshenko takes one",
             SEGMENTS,
         ),
+        (  # sweep 32 B1: a section weight on segments was a failed case
+            "pd-bond-pair",
+            'weight = ["fibre", "uniform"]',
+            "a section weight takes one section along the beam",
+            SEGMENTS,
+        ),
     ],
 )
 def test_a_run_whose_options_a_scene_refuses_skips_those_cases(tmp_path, capsys, model, options, why, extra):
     """Options a scene cannot be solved with (pd-bond-pair's Taylor ends, the paper variants of pd-eb and
-    pd-higher-order, and a support inside the span; pd-timoshenko's corrected variant and segments) are skipped with
+    pd-higher-order, and a support inside the span; pd-timoshenko's corrected variant and pd-bond-pair's section
+    weights, and segments) are skipped with
     the reason, as a scene its model refuses is: they were failed cases, and the study exited 1."""
     from helpers import cli
 
