@@ -313,20 +313,34 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
     ]
 
 
-# the part of a distributed load that a PD beam takes by its cell averages, not by its jumps (pd-eb's corrected variant:
-# an edge within the 2 J spacings of an end, where the rows of its kink would leave the grid): the shear beside that
-# edge is off by up to about c (|q| dx + |q'| dx^2), q and q' the load and its slope at the edge (a sine load's value is
-# small near an end, its slope is not), and by as much across the beam beside a free or guided end, whose shear the
-# cell's lost share shifts; measured: benchmarks/load_edges.py, docs/trust.md "A load taken by its cell averages"
+# a distributed load that a PD beam takes by its cell averages, not by its jumps (pd-eb's corrected variant: an edge
+# within the 2 J spacings of an end where the rows of its kinks would leave the grid): the shear beside each of its
+# edges inside the beam, the far one too, is off by up to about c (|q| dx + |q'| dx^2), q and q' the load and its
+# slope at the edge (a sine load's value is small near an end, its slope is not), and an edge farther than
+# CELL_REACH spacings beyond the layer by that times 2 |1/2 - f| (at least CELL_FLOOR), f its place between two points
+# (a cell's average is right for an edge on a point or half-way: measured 0.05 there, 0.6 at f = 0.02); measured:
+# benchmarks/load_edges.py, docs/trust.md "A load taken by its cell averages"
+CELL_REACH, CELL_FLOOR = 4, 0.1
+
+
+def cell_place(t: float) -> float:
+    """The share of the constant an edge ``t`` spacings from the beam's start takes beyond the layer: 2 |1/2 - f| for f
+    its place between two points, at least CELL_FLOOR (the edge on a point counts as half-way)."""
+    f = t % 1.0
+    if min(f, 1.0 - f) < 1e-9:
+        f = 0.5
+    return max(2.0 * abs(0.5 - f), CELL_FLOOR)
 
 
 def cell_average_warnings(
     scene: Scene, x: np.ndarray, V: np.ndarray, loads: list, constant: float, reach: float, params=None
 ) -> list[str]:
-    """One line per distributed load ``loads[k]`` (indices into the scene's loads) with edges strictly inside the
-    first ``reach`` spacings of an end, which the model takes by cell averages, where ``constant`` (|q| dx + |q'| dx²)
-    summed over those edges passes NEAR_TOLERANCE of the shear ``V``'s largest (the model's, on ``x``). ``params``: the
-    run's, whose ``horizon_length`` makes a layer that more points do not leave (:func:`horizon_layer`)."""
+    """One line per distributed load ``loads[k]`` (indices into the scene's loads) that the model takes by its cell
+    averages because an edge lies within ``reach`` spacings of an end, where ``constant`` (|q| dx + |q'| dx²) summed
+    over its edges inside the beam (beyond ``reach`` + CELL_REACH spacings of both ends times :func:`cell_place`)
+    passes NEAR_TOLERANCE of the shear ``V``'s largest (the model's, on ``x``); an edge that the fitted ends' own line
+    names counts too (its share of the shear's error reaches the far edge). ``params``: the run's, whose
+    ``horizon_length`` makes a layer that more points do not leave (:func:`horizon_layer`)."""
     dx, L = x[1] - x[0], scene.length
     fixed = horizon_layer(params or {}, dx, reach, 2)
     top = float(np.max(np.abs(V))) if len(V) else 0.0
@@ -335,27 +349,26 @@ def cell_average_warnings(
     out = []
     for i in loads:
         ld = scene.loads[i]
-        edges = [e for e in scene.span(ld) if 1e-12 * L < min(e, L - e) and within(min(e, L - e), reach, dx)]
+        edges = [e for e in scene.span(ld) if 1e-12 * L < e < L * (1 - 1e-12)]
         if not edges:
             continue
         k = np.pi / L if ld.shape == "sine" else 0.0
-        q = [
-            abs(ld.value * float(scene.load_shape(ld, e))) * dx + abs(ld.value * k * np.cos(k * e)) * dx**2
-            for e in edges
-        ]
-        total = constant * sum(q) / top
+        q = [abs(ld.value * float(scene.load_shape(ld, e))) for e in edges]
+        slope = [abs(ld.value * k * np.cos(k * e)) for e in edges]
+        place = [1.0 if within(min(e, L - e), reach + CELL_REACH, dx) else cell_place(e / dx) for e in edges]
+        total = sum(constant * p * (a * dx + b * dx * dx) for a, b, p in zip(q, slope, place, strict=True)) / top
         if total <= NEAR_TOLERANCE:
             continue
-        d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in edges)
+        d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in scene.span(ld) if 0.0 < e < L)
         if fixed is None:  # the edge leaves the layer, or the estimate falls as dx: whichever comes first
             fix = more_points(min(np.ceil(reach * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
         else:
             fix = layer_fix(d, dx, L, reach, fixed)
         out.append(
             f"loads[{i}] has an edge {d / dx:.3g} spacings from the {side} end ({scene.supports.kind(side)}), within "
-            f"the {reach:g} spacings where the rows of its jump would leave the grid, so its part there enters by cell "
-            f"averages: the shear beside {'it' if len(edges) == 1 else f'its edges (x = {listed(edges)})'} is off by "
-            f"up to about {constant:g} (|q| spacing + |q'| spacing²) (q, q' the load and its slope at the edge), here "
-            f"{rounded_up(total)} of max |V| (docs/trust.md); {fix}"
+            f"the {reach:g} spacings where the rows of its jump would leave the grid, so it enters by its cell "
+            f"averages: the shear beside its edges (x = {listed(edges)}) is off by up to about {constant:g} (|q| "
+            f"spacing + |q'| spacing²) (q, q' the load and its slope at an edge), here {rounded_up(total)} of max |V| "
+            f"(docs/trust.md); {fix}"
         )
     return out

@@ -31,7 +31,6 @@ from .scenes import (
     force_kink,
     measure_row,
     reaction_unknowns,
-    split_near_end,
     spreads,
     unit_load,
 )
@@ -123,17 +122,16 @@ def point_load_terms(scene: Scene, n: int, dx: float, st: np.ndarray, skip: dict
     J = len(st) // 2
     kinked = [ld for ld in scene.loads if isinstance(ld, (PointForce, PointMoment)) and spreads(ld, scene, n, dx, J)]
     q = np.zeros(n)
-    spread, cut = list(kinked), []
+    spread = list(kinked)
     for ld in scene.loads:
-        if not isinstance(ld, Distributed) or ld.value == 0.0:
-            continue
-        if (qd := distributed_kink(ld, scene, n, dx, st)) is None and (pair := split_near_end(ld, scene, n, dx, J)):
-            qd = distributed_kink(pair[0], scene, n, dx, st)  # to the far edge by its kink, the near piece by cells
-            cut.append(pair[1])
-        if qd is not None:
+        if (
+            isinstance(ld, Distributed)
+            and ld.value != 0.0
+            and (qd := distributed_kink(ld, scene, n, dx, st)) is not None
+        ):
             spread.append(ld)
             q += qd
-    rest = [ld for ld in scene.loads if not any(ld is k for k in spread)] + cut
+    rest = [ld for ld in scene.loads if not any(ld is k for k in spread)]
     x = np.arange(n) * dx
     if rest:
         q += body_loads(scene.model_copy(update={"loads": rest}), x, skip_ends=skip)

@@ -127,31 +127,9 @@ def spreads(load, scene: Scene, n: int, dx: float, J: int) -> bool:
     return all(spread_ok(v / dx, n, J) for v in scene.span(load) if 0.0 < v < scene.length)
 
 
-def split_near_end(load, scene: Scene, n: int, dx: float, J: int) -> tuple | None:
-    """A distributed load with one edge within 2J spacings of an end and the other beyond, as the difference of two
-    loads from that end: (the one to the far edge, taken by its kink; the one to the near edge, with the value
-    reversed, taken by its cell averages), so that only the near edge enters by cell averages; None for any other
-    load (the whole load spreads, or neither edge does). q 1[a, b] = q 1[0, b] - q 1[0, a] near the left end, q 1[a, L]
-    - q 1[b, L] near the right: the mirror image splits alike."""
-    if load.type != "distributed" or load.value == 0.0:
-        return None
-    L = scene.length
-    a, b = scene.span(load)
-    ok = [not (0.0 < v < L) or spread_ok(v / dx, n, J) for v in (a, b)]
-    if ok[0] == ok[1] or not (0.0 < a and b < L):  # a load from an end has one edge: it spreads or not as it is
-        return None
-    near_left = not ok[0]
-    near, far = (a, b) if near_left else (b, a)
-    end = 0.0 if near_left else L
-    span = lambda e: {"start": min(end, e), "end": max(end, e)}  # noqa: E731
-    whole = load.model_copy(update=span(far))
-    cut = load.model_copy(update={**span(near), "value": -load.value, "axial": -load.axial, "torque": -load.torque})
-    return whole, cut
-
-
 def by_cells(scene: Scene, n: int, dx: float, J: int) -> list[int]:
-    """The distributed loads that enter by their cell averages, not by their kinks, in part (:func:`split_near_end`)
-    or whole (:func:`spreads`: an edge within 2J spacings of an end), as indices into the scene's loads."""
+    """The distributed loads that enter by their cell averages, not by their kinks (:func:`spreads`: an edge within 2J
+    spacings of an end), as indices into the scene's loads."""
     return [i for i, ld in enumerate(scene.loads) if ld.type == "distributed" and ld.value != 0.0
             and not spreads(ld, scene, n, dx, J)]  # fmt: skip
 
