@@ -33,7 +33,7 @@ from pdverify.numerics.load_warnings import CELL_REACH, NEAR_TOLERANCE, cell_pla
 from pdverify.numerics.loads import within
 from pdverify.papers.diyaroglu.model import CELL_SHEAR
 from pdverify.papers.diyaroglu.operator import curvature_weights
-from pdverify.papers.diyaroglu.scenes import by_cells
+from pdverify.papers.diyaroglu.scenes import spreads
 from pdverify.registry import run
 
 ENDS = {
@@ -80,7 +80,7 @@ def main():
         given = {"horizon": m} if float(m).is_integer() else {"horizon_length": m * dx}
         r = run(sc, "pd-eb", points=n, **given)
         J = len(curvature_weights(r.info["horizon_factor"], dx, "corrected"))
-        cells = bool(by_cells(sc, n, dx, J))
+        cells = not spreads(sc.loads[0], sc, n, dx, J)
         ex = solve_straight(sc, False).fields(r.x)
         errs = {}
         for q in ("w", "rotation", "M", "V"):
@@ -99,7 +99,7 @@ def main():
                 worst[key] = max(worst[key], (c, f"{kind} end, {form}, d {d}, far +{f}, m {m}, {n} points"))
         rows += 1
         lines = r.info.get("warnings", [])
-        mine = [w for w in lines if "enters by its cell averages" in w]
+        mine = [w for w in lines if "by its cell averages" in w]
         label = f"{kind} end, {form}, d {d}, far +{f}, m {m}, {n} points"
         if max(errs.values()) > NEAR_TOLERANCE and not lines:
             silent += 1

@@ -366,9 +366,9 @@ def cell_average_warnings(
             fix = layer_fix(d, dx, L, reach, fixed)
         out.append(
             f"loads[{i}] has an edge {d / dx:.3g} spacings from the {side} end ({scene.supports.kind(side)}), within "
-            f"the {reach:g} spacings where the rows of its jump would leave the grid, so it enters by its cell "
-            f"averages: the shear beside its edges (x = {listed(edges)}) is off by up to about {constant:g} (|q| "
-            f"spacing + |q'| spacing²) (q, q' the load and its slope at an edge), here {rounded_up(total)} of max |V| "
-            f"(docs/trust.md); {fix}"
+            f"the {reach:g} spacings where the model takes it by its cell averages (the rows of its jump would leave "
+            f"the grid) or differences the shear across it: the shear beside its edges (x = {listed(edges)}) is off "
+            f"by up to about {constant:g} (|q| spacing + |q'| spacing²) (q, q' the load and its slope at an edge), "
+            f"here {rounded_up(total)} of max |V| (docs/trust.md); {fix}"
         )
     return out

@@ -28,7 +28,7 @@ def beam(left, right, load, length=1.0):
 
 
 def cells_line(lines):
-    said = [w for w in lines if "enters by its cell averages" in w]
+    said = [w for w in lines if "by its cell averages" in w]
     assert len(said) <= 1, said
     return float(said[0].split(" here ")[1].split(" ")[0]) if said else None
 
@@ -111,3 +111,14 @@ def test_an_edge_far_from_the_ends_counts_by_its_place_between_points():
         for f in (0.0, 0.02)
     )
     assert on < off
+
+
+def test_at_horizon_one_an_edge_two_spacings_from_an_end_is_named():
+    """Horizon 1 (J = 1): an edge 2 spacings from a pinned end is taken by its jump, but the shear's differences cross
+    it (fewer than three points beside it): V 7.0e-3 off at 101 points, unwarned (sweep 33 N2)."""
+    dx = 1 / 100
+    sc = beam("pinned", "pinned", patch(2 * dx, 0.5))
+    r = run(sc, "pd-eb", points=101, horizon=1)
+    est, err = cells_line(r.info.get("warnings", [])), shear_error(sc, r)
+    assert err > 1e-3
+    assert est is not None and est >= err, (est, err)

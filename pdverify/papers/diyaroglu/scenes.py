@@ -127,11 +127,26 @@ def spreads(load, scene: Scene, n: int, dx: float, J: int) -> bool:
     return all(spread_ok(v / dx, n, J) for v in scene.span(load) if 0.0 < v < scene.length)
 
 
-def by_cells(scene: Scene, n: int, dx: float, J: int) -> list[int]:
-    """The distributed loads that enter by their cell averages, not by their kinks (:func:`spreads`: an edge within 2J
-    spacings of an end), as indices into the scene's loads."""
-    return [i for i, ld in enumerate(scene.loads) if ld.type == "distributed" and ld.value != 0.0
-            and not spreads(ld, scene, n, dx, J)]  # fmt: skip
+RECOVERY_SIDE = (
+    3  # points a load's edge needs beside it for the shear's differences not to cross it (numerics.recovery)
+)
+
+
+def edge_loads(scene: Scene, n: int, dx: float, J: int) -> list[int]:
+    """The distributed loads whose shear an edge near an end spoils, as indices into the scene's loads: taken by their
+    cell averages (:func:`spreads`: an edge within 2J spacings of an end), or with an edge within RECOVERY_SIDE
+    spacings of an end, across which the shear is differenced (horizon 1: 2J = 2)."""
+    L = scene.length
+    return [
+        i
+        for i, ld in enumerate(scene.loads)
+        if ld.type == "distributed"
+        and ld.value != 0.0
+        and (
+            not spreads(ld, scene, n, dx, J)
+            or any(0.0 < e < L and within(min(e, L - e), RECOVERY_SIDE, dx) for e in scene.span(ld))
+        )
+    ]
 
 
 def distributed_kink(load, scene: Scene, n: int, dx: float, st: np.ndarray) -> np.ndarray | None:
