@@ -314,7 +314,8 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
 
 
 # a distributed load that a PD beam takes by its cell averages, not by its jumps (pd-eb's corrected variant: an edge
-# within the 2 J spacings of an end where the rows of its kinks would leave the grid): the shear beside each of its
+# within the 2 J spacings of an end where the rows of its kinks would leave the grid; or one so near an end that the
+# shear's differences cross it, numerics.recovery.STRETCH): the shear beside each of its
 # edges inside the beam, the far one too, is off by up to about c (|q| dx + |q'| dx^2), q and q' the load and its
 # slope at the edge (a sine load's value is small near an end, its slope is not), and an edge farther than
 # CELL_REACH spacings beyond the layer by that times 2 |1/2 - f| (at least CELL_FLOOR), f its place between two points
@@ -359,7 +360,7 @@ def cell_average_warnings(
         total = sum(constant * p * (a * dx + b * dx * dx) for a, b, p in zip(q, slope, place, strict=True)) / top
         if total <= NEAR_TOLERANCE:
             continue
-        d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in scene.span(ld) if 0.0 < e < L)
+        d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in edges)
         if fixed is None:  # the edge leaves the layer, or the estimate falls as dx: whichever comes first
             fix = more_points(min(np.ceil(reach * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
         else:

@@ -38,6 +38,9 @@ def kink_positions(scene) -> np.ndarray:
     return np.array(sorted(at), float)
 
 
+STRETCH = 3  # the points on each side of a kink for it to cut the differences (fewer: they cross it)
+
+
 def derivative(x: np.ndarray, f: np.ndarray, jumps=(), kinks=()) -> np.ndarray:
     """df/dx at the points x (uniform spacing) by second-order differences within each stretch between jumps
     (``numpy.gradient``: central inside a stretch, one-sided at its ends), so that no difference takes values from
@@ -60,8 +63,8 @@ def derivative(x: np.ndarray, f: np.ndarray, jumps=(), kinks=()) -> np.ndarray:
         cuts = np.r_[-1.0, t, tk, float(n)]
         cuts = np.unique(np.where(np.abs(cuts - np.round(cuts)) <= 1e-9, np.round(cuts), cuts))
         keep = [
-            np.ceil(k - 1e-9) - np.floor(cuts[cuts < k - 1e-9].max() + 1e-9) - 1 >= 3
-            and np.ceil(cuts[cuts > k + 1e-9].min() - 1e-9) - np.floor(k + 1e-9) - 1 >= 3
+            np.ceil(k - 1e-9) - np.floor(cuts[cuts < k - 1e-9].max() + 1e-9) - 1 >= STRETCH
+            and np.ceil(cuts[cuts > k + 1e-9].min() - 1e-9) - np.floor(k + 1e-9) - 1 >= STRETCH
             for k in tk
         ]
         t = np.unique(np.r_[t, tk[np.asarray(keep, bool)]])

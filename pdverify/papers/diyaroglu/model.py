@@ -61,7 +61,7 @@ from ...theory.model_error import pair_factor
 from ...theory.symbols import GRADIENT, Series, beam_series
 from . import dynamics, mixed, outputs
 from .operator import corrected_system, curvature_weights, paper_system
-from .scenes import RECOVERY_SIDE, edge_loads, inner_layer_warnings, spreads
+from .scenes import edge_loads, inner_layer_warnings, spreads
 
 
 def mirror_scene(scene: Scene) -> Scene:
@@ -429,9 +429,9 @@ class PDEulerBernoulli(Model):
         flags = self.discretisation_warnings(scene, params, x) + outputs.recovery_warnings(scene, params)
         if params["variant"] != "paper":  # the paper's equations take no supports inside
             J = len(curvature_weights(params["horizon"], dx, params["variant"]))  # the ends' layer: 2 J + 4
-            fixed, cells = params.get("horizon_length") is not None, edge_loads(scene, len(x), dx, J)
+            fixed, (cells, layer) = params.get("horizon_length") is not None, edge_loads(scene, len(x), dx, J)
             flags += short_span_warnings(scene, x, out, delta, SHORT_SPAN, (2 * J + 4, 4), fixed, inside_only=True)
-            flags += cell_average_warnings(scene, x, out["V"], cells, CELL_SHEAR, max(2 * J, RECOVERY_SIDE), params)
+            flags += cell_average_warnings(scene, x, out["V"], cells, CELL_SHEAR, layer, params)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return self.new_result(

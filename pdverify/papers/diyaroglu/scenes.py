@@ -35,6 +35,7 @@ from ...core.scene import InnerSupport, PointForce, PointMoment, Scene, Spring
 from ...core.text import more_points
 from ...numerics.load_warnings import held_rotation_warnings
 from ...numerics.loads import within
+from ...numerics.recovery import STRETCH
 
 
 def pieces_flexibility(scene: Scene, EI0: float) -> tuple[np.ndarray, np.ndarray]:
@@ -127,26 +128,24 @@ def spreads(load, scene: Scene, n: int, dx: float, J: int) -> bool:
     return all(spread_ok(v / dx, n, J) for v in scene.span(load) if 0.0 < v < scene.length)
 
 
-RECOVERY_SIDE = (
-    3  # points a load's edge needs beside it for the shear's differences not to cross it (numerics.recovery)
-)
-
-
-def edge_loads(scene: Scene, n: int, dx: float, J: int) -> list[int]:
-    """The distributed loads whose shear an edge near an end spoils, as indices into the scene's loads: taken by their
-    cell averages (:func:`spreads`: an edge within 2J spacings of an end), or with an edge within RECOVERY_SIDE
-    spacings of an end, across which the shear is differenced (horizon 1: 2J = 2)."""
+def edge_loads(scene: Scene, n: int, dx: float, J: int) -> tuple[list[int], int]:
+    """(the distributed loads whose shear an edge near an end spoils, as indices into the scene's loads; the spacings
+    from an end where that happens): taken by their cell averages (:func:`spreads`: an edge within 2J spacings of an
+    end), or with fewer than STRETCH points between an edge and its end, where the shear is differenced across it
+    (:func:`~pdverify.numerics.recovery.derivative`; at horizon 1, 2J = 2, an edge on the second point from an end)."""
     L = scene.length
-    return [
+
+    def crossed(e: float) -> bool:
+        return 0.0 < e < L and np.ceil(min(e, L - e) / dx - 1e-9) < STRETCH
+
+    loads = [
         i
         for i, ld in enumerate(scene.loads)
         if ld.type == "distributed"
         and ld.value != 0.0
-        and (
-            not spreads(ld, scene, n, dx, J)
-            or any(0.0 < e < L and within(min(e, L - e), RECOVERY_SIDE, dx) for e in scene.span(ld))
-        )
+        and (not spreads(ld, scene, n, dx, J) or any(crossed(e) for e in scene.span(ld)))
     ]
+    return loads, max(2 * J, STRETCH)
 
 
 def distributed_kink(load, scene: Scene, n: int, dx: float, st: np.ndarray) -> np.ndarray | None:
