@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from .errors import InputError
 from .scene import Scene
+from .text import spacings
 
 
 class Horizon:
@@ -45,14 +46,14 @@ class Horizon:
         if m < least or m <= 0:
             what = f"{least:g} spacing{'' if least == 1 else 's'}" if least > 0 else "more than 0 spacings"
             raise InputError(
-                f"horizon_length = {delta:g}: {m:.6g} spacings of {dx:.6g}, below the least horizon of model "
+                f"horizon_length = {delta:g}: {spacings(m, '.6g')} of {dx:.6g}, below the least horizon of model "
                 f"{self.name} ({what}); give horizon_length >= {max(least, 1.0) * dx:.6g} or more points"
             )
         if (self.whole_horizon or opt.kind is int) and m != round(m):
             near = self.nearest_whole(scene, params, m)
             raise InputError(
-                f"horizon_length = {float(delta)!r}: {m:.10g} spacings of {dx:.10g}; model {self.name} needs a whole "
-                f"number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
+                f"horizon_length = {float(delta)!r}: {spacings(m, '.10g')} of {dx:.10g}; model {self.name} needs a "
+                f"whole number ({self.whole_horizon or 'its horizon counts whole spacings'}); give horizon_length = "
                 f"{near * dx:.12g} or points with (points - 1) delta / length whole"  # digits enough to be whole
             )
         value = m - self.horizon_offset(params)
@@ -100,7 +101,7 @@ class Horizon:
         if params.get("horizon_length") is None:
             return f"horizon = {m:g}"
         dx = self.spacing(scene, params)
-        return f"horizon_length = {params['horizon_length']:g} (horizon = {m:g} spacings of {dx:.6g})"
+        return f"horizon_length = {params['horizon_length']:g} (horizon = {spacings(m, 'g')} of {dx:.6g})"
 
     def horizon_refusal(self, scene: Scene, params: dict, what: str, fits, fix: str = "", more_points=True) -> str:
         """One line refusing the horizon of ``params`` on its grid before any work: the horizon as the user set it
@@ -123,7 +124,7 @@ class Horizon:
                 way = f"use more points or horizon <= {most} at {n} points"
         elif most:
             length = (most + self.horizon_offset(params)) * self.spacing(scene, params)
-            way = f"give horizon_length <= {length:.6g} ({most} spacings)"
+            way = f"give horizon_length <= {length:.6g} ({spacings(most, 'g')})"
         else:
             way = "give a shorter horizon_length"
         return f"{self.horizon_named(scene, params)}: {what}; {way}{fix}"

@@ -14,6 +14,17 @@ def apart(value: float, limit: float, digits: int = 2) -> str:
     )
 
 
+def counted(value, noun: str, spec: str = "g") -> str:
+    """``value`` formatted with ``spec`` and ``noun``, plural unless it reads 1: "1 spacing", "2.5 spacings"."""
+    shown = f"{value:{spec}}"
+    return f"{shown} {noun}" if shown == "1" else f"{shown} {noun}s"
+
+
+def spacings(value, spec: str = ".3g") -> str:
+    """A distance in spacings of the grid: "1 spacing", "2.5 spacings"."""
+    return counted(value, "spacing", spec)
+
+
 def listed(values) -> str:
     """Positions or values in a message, each with ``g`` formatting: "0.02, 0.1"."""
     return ", ".join(f"{v:g}" for v in values)
@@ -28,6 +39,15 @@ def rounded_up(value: float, digits: int = 2) -> str:
         return f"{value:.{digits}g}"
     step = 10.0 ** (math.floor(math.log10(value)) - digits + 1)
     return f"{math.ceil(value / step * (1 - 1e-12)) * step:.{digits}g}"
+
+
+def rounded_down(value: float, digits: int = 3) -> str:
+    """``value`` to ``digits`` significant digits, rounded down (a limit "below X" printed is not above itself, and a
+    mirror image's value a rounding lower reads the same)."""
+    if not (value > 0 and math.isfinite(value)):
+        return f"{value:.{digits}g}"
+    step = 10.0 ** (math.floor(math.log10(value)) - digits + 1)
+    return f"{math.floor(value / step * (1 + 1e-12)) * step:.{digits}g}"
 
 
 def more_points(points: float) -> str:

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.scene import Distributed, PointMoment, Scene
-from ..core.text import listed, more_points, rounded_up
-from .loads import within
+from ..core.text import counted, listed, more_points, rounded_down, rounded_up, spacings
+from .loads import TIE, within
 
 
 def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int, fixed: tuple | None = None) -> list[str]:
@@ -27,8 +27,8 @@ def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int, fixed: tupl
             if 1e-12 * scene.length < d and within(d, reach, dx):
                 fix = layer_fix(d, dx, scene.length, reach, fixed)
                 out.append(
-                    f"loads[{i}] at {load.position:g} is {d / dx:.3g} spacings from an end, inside the "
-                    f"boundary layer of {reach} spacings: expect large errors; {fix}"
+                    f"loads[{i}] at {load.position:g} is {spacings(d / dx)} from an end, inside the "
+                    f"boundary layer of {spacings(reach, 'g')}: expect large errors; {fix}"
                 )
     return out + narrow_load_warnings(scene, x)
 
@@ -48,17 +48,17 @@ def layer_fix(d: float, dx: float, length: float, reach: float, fixed: tuple | N
     is a multiple of the spacing; at a fixed horizon length delta (``fixed`` = (a, b, delta): the layer is a delta + b
     spacings) a shorter horizon, and more points too when the b spacings leave no room for a horizon of a spacing."""
     if fixed is None:
-        return more_points(np.ceil(reach * length / d) + 1)
+        return more_points(np.ceil((reach - TIE) * length / d) + 1)
     a, b, delta = fixed
-    head = f"at horizon_length = {delta:.6g} the layer is {a:g} horizons and {b:g} spacings wide, so more points alone "
+    wide = f"{counted(a, 'horizon')} and {spacings(b, 'g')}"
+    head = f"at horizon_length = {delta:.6g} the layer is {wide} wide, so more points alone "
     below = (d - b * dx) / a
     whole = int(np.floor(below / dx * (1 - 1e-9)))  # the largest whole number of spacings below it
     if whole >= 1:  # room for a horizon of a spacing at least
-        return (
-            head + f"do not leave it: give horizon_length below {below:.3g} (e.g. {whole * dx:.6g}, {whole} spacings)"
-        )
+        e_g = f"{whole * dx:.6g}, {spacings(whole, 'g')}"
+        return head + f"do not leave it: give horizon_length below {rounded_down(below)} (e.g. {e_g})"
     return head + (
-        f"do not leave it: give horizon_length below {d / (2 * a):.3g} and at least "
+        f"do not leave it: give horizon_length below {rounded_down(d / (2 * a))} and at least "
         f"{int(np.ceil(2 * b * length / d)) + 1} points"
     )
 
@@ -85,9 +85,9 @@ def edge_layer_warnings(
                 d = abs(edge - at)
                 if 1e-12 * L < d and within(d, layer, dx):
                     out.append(
-                        f"loads[{i}] has an edge at {edge:g}, {d / dx:.3g} spacings from the {side} end "
-                        f"({scene.supports.kind(side)}), inside the {layer} spacings its ghosts are fitted on: "
-                        f"{measured}; {more_points(np.ceil(layer * L / d) + 1)}"
+                        f"loads[{i}] has an edge at {edge:g}, {spacings(d / dx)} from the {side} end "
+                        f"({scene.supports.kind(side)}), inside the {spacings(layer, 'g')} its ghosts are fitted on: "
+                        f"{measured}; {more_points(np.ceil((layer - TIE) * L / d) + 1)}"
                     )
     return out
 
@@ -133,7 +133,7 @@ def held_rotation_warnings(
             if estimate > NEAR_TOLERANCE:
                 most = 3.0 * d * np.sqrt(NEAR_TOLERANCE / constant)  # the horizon that gives 1e-3
                 out.append(
-                    f"loads[{j}] at {ld.position:g} is {d / dx:.3g} spacings from supports.inner[{i}] at "
+                    f"loads[{j}] at {ld.position:g} is {spacings(d / dx)} from supports.inner[{i}] at "
                     f"{sup.position:g}, which holds the rotation: the horizon's families reach across the support "
                     f"(a model error of the horizon, not of the grid), up to about {FORCE_NEAR_HELD_ROTATION:g} "
                     f"(max(spacing, horizon / 3) / distance)^2 (at most 1){how} = {estimate:.2g}; use a horizon of "
@@ -362,14 +362,14 @@ def cell_average_warnings(
             continue
         d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in edges)
         if fixed is None:  # the edge leaves the layer, or the estimate falls as dx: whichever comes first
-            fix = more_points(min(np.ceil(reach * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
+            fix = more_points(min(np.ceil((reach - TIE) * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
         else:
             fix = layer_fix(d, dx, L, reach, fixed)
         out.append(
-            f"loads[{i}] has an edge {d / dx:.3g} spacings from the {side} end ({scene.supports.kind(side)}), within "
-            f"the {reach:g} spacings where the model takes it by its cell averages (the rows of its jump would leave "
-            f"the grid) or differences the shear across it: the shear beside its edges (x = {listed(edges)}) is off "
-            f"by up to about {constant:g} (|q| spacing + |q'| spacing²) (q, q' the load and its slope at an edge), "
+            f"loads[{i}] has an edge {spacings(d / dx)} from the {side} end ({scene.supports.kind(side)}), within "
+            f"the {spacings(reach, 'g')} where the model takes it by its cell averages (the rows of its jump would "
+            f"leave the grid) or differences the shear across it: the shear beside its edges (x = {listed(edges)}) is "
+            f"off by up to about {constant:g} (|q| spacing + |q'| spacing²) (q, q' the load and its slope at an edge), "
             f"here {rounded_up(total)} of max |V| (docs/trust.md); {fix}"
         )
     return out

@@ -10,7 +10,7 @@ supports inside, pinned, clamped and springs, under point forces and a uniform l
 import numpy as np
 
 from ..core.scene import HELD, Scene
-from ..core.text import rounded_up
+from ..core.text import rounded_up, spacings
 from .load_warnings import NEAR_TOLERANCE
 from .loads import within
 
@@ -102,7 +102,7 @@ def short_span_warnings(
         said = ", ".join(f"{k} {rounded_up(v)} of max |{k}|" for k, v in est.items())
         form = ", ".join(f"{k} {c[k]:g}" for k in est)
         out.append(
-            f"the span of {a:g} ({a / dx:.3g} spacings) between {left} at {p:g} and {right} at {q:g}: its moment "
+            f"the span of {a:g} ({spacings(a / dx)}) between {left} at {p:g} and {right} at {q:g}: its moment "
             f"and shear are off by about c (h / a)² times their largest in and beside the span (h = max(spacing, "
             "horizon / 3), "
             f"a the span; c: {form}), here {said}; second order: use {fix} for 1e-3"

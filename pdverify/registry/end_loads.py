@@ -15,7 +15,7 @@ from ..core.errors import InputError, SolveError
 from ..core.result import quantity_of
 from ..core.scene import Distributed, PointForce, Scene
 from ..core.scene_file import parse_scene
-from ..core.text import rounded_up
+from ..core.text import rounded_up, spacings
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
 CLOSEST = 2.5  # in h: nearer, the estimate is not measured (benchmarks/end_loads.py starts there) and the error can
@@ -116,7 +116,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
             at = d if side == "left" else scene.length - d
             more = int(np.ceil(scene.length / d * max(CLOSEST, np.sqrt(c / TOLERANCE)) * (h / dx))) + 1
             out.append(
-                f"loads[{i}] ({describe(ld)} {at:g}) is {d / dx:.3g} spacings from the {side} end "
+                f"loads[{i}] ({describe(ld)} {at:g}) is {spacings(d / dx)} from the {side} end "
                 f"({scene.supports.kind(side)}): nearer than {CLOSEST:g} h (h = max(spacing, horizon / 3)) its "
                 "deflection and moment are not estimated: expect large errors, up to the solution's own size "
                 f"(docs/trust.md); use at least {more} points"
@@ -133,7 +133,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
         if len(items) == 1:
             (i, _, d, part), ld = items[0], scene.loads[items[0][0]]
             at = d if side == "left" else scene.length - d
-            head = f"loads[{i}] ({describe(ld)} {at:g}) is {d / dx:.3g} spacings from the {side} end ({kind})"
+            head = f"loads[{i}] ({describe(ld)} {at:g}) is {spacings(d / dx)} from the {side} end ({kind})"
             # its response alone is the whole's (to rounding: a scaled copy of the scene reads the same)
             alone = abs(part - 1.0) <= 1e-9
             whole = "" if alone else f" ({part:.2g} times the whole's: the load's own response beside all's)"
@@ -143,7 +143,7 @@ def end_load_warnings(constants: dict, scene: Scene, info: dict, exact) -> list[
             nearest = min(d for *_, d, _ in items)
             head = (
                 f"loads[{names}] ({len(items)} loads in the quarter of the beam next to the {side} end ({kind}), the "
-                f"nearest {nearest / dx:.3g} spacings from it)"
+                f"nearest {spacings(nearest / dx)} from it)"
             )
             what = (
                 "of each load's own (h = max(spacing, horizon / 3), d its distance), summed with each load's response "

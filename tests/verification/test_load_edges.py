@@ -6,6 +6,8 @@ spacings from a guided end V 1.1e-2 at its far edge 83 spacings in, with no warn
 (pdverify/numerics/load_warnings.py: cell_average_warnings) estimates it from above; benchmarks/load_edges.py sweeps
 the constant."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -75,6 +77,26 @@ def test_the_mirror_image_and_a_scaled_copy_read_the_same():
     assert [w for w in r.info["warnings"] if "cell averages" in w][0].count("left end (clamped)") == 1
     assert [w for w in m.info["warnings"] if "cell averages" in w][0].count("right end (clamped)") == 1
     assert cells_line(m.info["warnings"]) == cells_line(r.info["warnings"]) == cells_line(s.info["warnings"])
+
+
+def advice(r):
+    """The points and horizon lengths a result's lines suggest."""
+    return sorted(re.findall(r"at least (\d+) points|below ([\d.e+-]+)", " ".join(r.info["warnings"])))
+
+
+@pytest.mark.parametrize(
+    "points,edge,end,option",
+    [(201, 0.3, "guided", {"horizon": 4}), (201, 1.5, "guided", {"horizon": 4}), (401, 6.3, "pinned", {"h": 5.5})],
+)
+def test_the_mirror_image_is_given_the_same_advice(points, edge, end, option):
+    """Sweep 33 N3: the mirror image's distance from its end, L - x, rounds differently, and the advice read "4001
+    points" on one side and "4002" on the other, "below 0.00662" and "below 0.00663" (a limit is rounded down now)."""
+    dx = 1 / (points - 1)
+    opts = {"horizon_length": option["h"] * dx} if "h" in option else option
+    a, b = edge * dx, (edge + 9) * dx
+    r = run(beam(end, "clamped", patch(a, b)), "pd-eb", points=points, variant="corrected", **opts)
+    m = run(beam("clamped", end, patch(1 - b, 1 - a)), "pd-eb", points=points, variant="corrected", **opts)
+    assert advice(r) and advice(r) == advice(m)
 
 
 def test_an_edge_at_2J_spacings_is_taken_by_its_jump_and_not_named():

@@ -467,7 +467,10 @@ def test_a_load_in_the_end_layer_at_a_fixed_horizon_length_is_told_the_fix_that_
     flags = lambda r: [w for w in r.info.get("warnings", []) if "boundary layer" in w]  # noqa: E731
     for points in (161, 481):
         (flag,) = flags(run(scene, model, points=points, horizon_length=0.2, **options))
-        assert f"the layer is {per_horizon} horizons and" in flag and "give horizon_length below" in flag
+        assert (
+            f"the layer is {per_horizon} horizon{'s' if per_horizon != 1 else ''} and" in flag
+            and "give horizon_length below" in flag
+        )
         below = float(flag.rsplit("below ", 1)[1].split()[0])
         more = int(flag.rsplit("at least ", 1)[1].split()[0]) if flag.endswith(" points") else points
         dx = 2.0 / (more - 1)

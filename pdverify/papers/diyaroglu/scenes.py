@@ -32,9 +32,9 @@ import numpy as np
 
 from ...core.errors import InputError
 from ...core.scene import InnerSupport, PointForce, PointMoment, Scene, Spring
-from ...core.text import more_points
+from ...core.text import more_points, spacings
 from ...numerics.load_warnings import held_rotation_warnings
-from ...numerics.loads import within
+from ...numerics.loads import TIE, within
 from ...numerics.recovery import STRETCH
 
 
@@ -312,8 +312,8 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
         d = min(a, L - a)
         if within(d, reach, dx):
             out.append(
-                f"{name} at {a:g} is {d / dx:.3g} spacings from an end, inside the boundary layer of {reach} "
-                f"spacings: expect large errors; {more_points(np.ceil(reach * L / d) + 1)}"
+                f"{name} at {a:g} is {spacings(d / dx)} from an end, inside the boundary layer of {reach} "
+                f"spacings: expect large errors; {more_points(np.ceil((reach - TIE) * L / d) + 1)}"
             )
     # a support's measures reach 4 points either side (deflection_row, rotation_row): another kink there spoils them
     others = [(f"loads[{i}]", ld.position) for i, ld in enumerate(scene.loads) if hasattr(ld, "position")]
@@ -331,7 +331,7 @@ def inner_layer_warnings(scene: Scene, x: np.ndarray, reach: int, delta: float |
         for o, b in near:
             said.add((name, o))
             out.append(
-                f"{name} at {a:g} and {o} at {b:g} are {abs(b - a) / dx:.3g} spacings apart: the support's "
+                f"{name} at {a:g} and {o} at {b:g} are {spacings(abs(b - a) / dx)} apart: the support's "
                 f"one-sided rows (4 points a side) straddle it, first order there; at least "
                 f"{int(np.ceil(4 * L / abs(b - a))) + 1} points set them 4 spacings apart"
             )

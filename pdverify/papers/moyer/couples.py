@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import Scene
+from ...core.text import spacings
 from ...numerics.load_warnings import layer_fix
 
 
@@ -87,9 +88,9 @@ def couple_warnings(scene: Scene, m: int, dx: float, fixed: tuple | None) -> lis
         d = abs(ld.position - j)
         if d > tol:
             out.append(
-                f"loads[{i}], a point moment at {ld.position:g}, is {d / dx:.3g} spacings from the segment joint at "
-                f"{j:g}, inside the {m + 3} spacings its kink's rows reach: it is put on the two points around it and "
-                f"the rotation near it is first order in the spacing ({NEAR_JOINT}); "
+                f"loads[{i}], a point moment at {ld.position:g}, is {spacings(d / dx)} from the segment joint at "
+                f"{j:g}, inside the {spacings(m + 3, 'g')} its kink's rows reach: it is put on the two points around "
+                f"it and the rotation near it is first order in the spacing ({NEAR_JOINT}); "
                 + layer_fix(d, dx, scene.length, m + 3, fixed)
             )
     return out

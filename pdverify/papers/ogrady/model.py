@@ -33,6 +33,7 @@ from ...core.contract import LOAD_TYPES, MAX_POINTS, NONLOCAL, Model, Option, Ru
 from ...core.errors import InputError
 from ...core.result import Result, Timer, merge_info
 from ...core.scene import Scene
+from ...core.text import spacings
 from ...numerics.linalg import forward_error_bound, record_bound, solve_linear
 from ...numerics.load_warnings import (
     boundary_layer_warnings,
@@ -362,7 +363,7 @@ class PDBondPair(Model):
 
         ends = resolved_ends(scene, params)["ends"]
         if ends == "mirror":
-            what = f"its mirror ghosts reflect the beam's {n} points, so a pair reaches at most {n - 1} spacings"
+            what = f"its mirror ghosts reflect the beam's {n} points, so a pair reaches at most {spacings(n - 1, 'g')}"
             return [] if fits(params["horizon"]) else [self.horizon_refusal(scene, params, what, fits)]
         if ends != "taylor" or params["nonlinear"] or needs_pairs(scene):
             return []

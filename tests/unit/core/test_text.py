@@ -30,3 +30,23 @@ def test_an_estimate_printed_is_rounded_up():
         "0.001",
         "0.1",
     ]
+
+
+def test_a_count_of_one_is_singular_and_a_limit_is_rounded_down():
+    """Sweep 33 N3: "the layer is 2 horizons and 1 spacings wide"; a limit "below X" rounded to 3 digits is not above
+    itself, and a value a rounding lower (a mirror image's) reads the same."""
+    from pdverify.core.text import counted, rounded_down, spacings
+
+    assert [spacings(1.0), spacings(1), spacings(2.5), spacings(0.999999, ".3g")] == [
+        "1 spacing",
+        "1 spacing",
+        "2.5 spacings",
+        "1 spacing",
+    ]
+    assert counted(2, "horizon") == "2 horizons" and counted(1.0, "horizon") == "1 horizon"
+    assert [rounded_down(v) for v in (0.0066289, 0.00663, 0.006629999999999999, 1e-3)] == [
+        "0.00662",
+        "0.00663",
+        "0.00663",
+        "0.001",
+    ]
