@@ -5,13 +5,16 @@ the exact beam, beside the estimate of their warning (pdverify/numerics/span_war
 
 A 1 m steel beam (20 x 50 mm). Spans of 0.02, 0.0212, 0.04, 0.0437 and 0.08 L (on and off the grids): a pinned or
 clamped support or a stiff, stiff and (partly) rotational, medium or soft spring inside that far from a pinned, clamped,
-guided or free end; and two supports inside at 0.5 L and 0.5 L + a (each pinned or clamped) on pinned-pinned,
+guided or free end; and two supports inside at 0.5 L and 0.5 L + a (each pinned or clamped, or a softer spring beside
+a pin or a clamp) on pinned-pinned,
 clamped-free and free-clamped beams. Loads: a force at 0.3 or 0.5 L (0.3 or 0.8 L beside two supports inside), or a
 uniform load.
-Printed per model: c = (error in the span) / ((h / a)^2 max_span |q| / max |q|) for q = V, M (max_span: in the span and
-a horizon beyond its ends), its largest by the span's supports (spans over `shortest` spacings only), the cases whose
+Printed per model: c = (error in the span) / (s (h / a)^2 max_span |q| / max |q|) for q = V, M (max_span: in the span
+and a horizon beyond its ends; s the share a spring softer than 10 EI / a³ leaves, span_warnings.spring_share), its
+largest by the span's supports (spans over `shortest` spacings only; a span to a softer spring apart), the cases whose
 error passes 1e-3 with no warning at all, and the cases where the line is the only warning and every error is below
-1e-3. About 45 seconds.
+1e-3.
+About a minute.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
 from pdverify.numerics.load_warnings import NEAR_TOLERANCE
 from pdverify.numerics.loads import within
-from pdverify.numerics.span_warnings import span_bounds
+from pdverify.numerics.span_warnings import spans
 from pdverify.registry import run
 
 MODELS = ("pd-eb", "pd-timoshenko")
@@ -37,12 +40,14 @@ QUANTITIES = ("V", "M")
 
 # springs inside (EI = 4.17e4 N m²): stiff (k a³ / EI from 160 at a = 0.02 L: a support to the line), stiff with a
 # stiff rotational stiffness (a clamp to it) or a partial one (kr a / EI 1.4 ... 5.8), medium (k a³ / EI 5.8 ... 369: a
-# support to the line from 10) and soft (k a³ / EI at most 0.12: no support to it)
+# support to the line from 10), softer (0.19 ... 12 and 0.019 ... 1.2: a share of one below 10) and soft (at most 0.12)
 SPRINGS = {
     "stiff spring": ({"type": "spring", "stiffness": 1e12}, False),
     "stiff spring kr": ({"type": "spring", "stiffness": 1e12, "rotational_stiffness": 1e12}, True),
     "stiff spring, partial kr": ({"type": "spring", "stiffness": 1e12, "rotational_stiffness": 3e6}, True),
     "medium spring": ({"type": "spring", "stiffness": 3e10}, False),  # k a³ / EI 5.8 ... 369
+    "softer spring": ({"type": "spring", "stiffness": 1e9}, False),  # k a³ / EI 0.19 ... 12
+    "softer spring 1e8": ({"type": "spring", "stiffness": 1e8}, False),  # k a³ / EI 0.019 ... 1.2
     "soft spring": ({"type": "spring", "stiffness": 1e7}, False),
 }
 
@@ -74,7 +79,15 @@ def scenes(inside_only: bool):
             held or (end == "clamped" and not inside_only),
         )
     for (t1, t2), (left, right), a, load in itertools.product(
-        (("clamped", "pinned"), ("pinned", "clamped"), ("clamped", "clamped"), ("pinned", "pinned")),
+        (
+            ("clamped", "pinned"),
+            ("pinned", "clamped"),
+            ("clamped", "clamped"),
+            ("pinned", "pinned"),
+            ("clamped", "softer spring"),
+            ("pinned", "softer spring"),
+            ("clamped", "softer spring 1e8"),
+        ),
         (("pinned", "pinned"), ("clamped", "free"), ("free", "clamped")),
         (0.02, 0.0212, 0.04, 0.0437, 0.08),
         ("F0.3", "F0.8", "q"),
@@ -82,10 +95,10 @@ def scenes(inside_only: bool):
         yield (
             f"{t1} and {t2} {a} apart inside a {left}-{right} beam, {load}",
             {"left": left, "right": right},
-            [{"type": t1, "position": 0.5}, {"type": t2, "position": 0.5 + a}],
+            [inner_support(t1, 0.5)[0], inner_support(t2, 0.5 + a)[0]],
             load,
             (0.5, 0.5 + a),
-            "clamped" in (t1, t2),
+            inner_support(t1, 0.5)[1] or inner_support(t2, 0.5 + a)[1],
         )
 
 
@@ -114,9 +127,9 @@ def main():
                 }
             )
             exact = solve_straight(sc, model != "pd-eb")
-            # both ends of the span hold w as the models count it (a soft spring does not)
-            at = [b[0] for b in span_bounds(sc)]
-            bounded = any(abs(p - lo) < 1e-12 for p in at) and any(abs(p - hi) < 1e-12 for p in at)
+            # the span as the models count it, and the share of a rigid support's error its springs leave
+            shares = [s for p, q, s in spans(sc) if abs(p[0] - lo) < 1e-12 and abs(q[0] - hi) < 1e-12]
+            bounded = bool(shares)
             for n in args.points:
                 r = run(sc, model, points=n)
                 ex, dx, a = exact.fields(r.x), r.x[1] - r.x[0], hi - lo
@@ -130,8 +143,8 @@ def main():
                     if q in QUANTITIES and bounded:
                         share = np.abs(got[near]).max() / np.abs(got).max()
                         if not within(a, SHORTEST[model][len(inner) > 1], dx) and share > 0:
-                            key = (q, "held" if held else "pinned")
-                            c = float(d[span].max()) / ((dx / a) ** 2 * share)
+                            key = (q, ("held" if held else "pinned") + (", softer spring" if shares[0] < 1 else ""))
+                            c = float(d[span].max()) / ((dx / a) ** 2 * share * shares[0])
                             worst[key] = max(worst[key], (c, f"{label}, {n} points"))
                 rows += 1
                 if max(errs.values()) > NEAR_TOLERANCE and not lines:

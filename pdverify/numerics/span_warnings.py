@@ -23,11 +23,20 @@ QUANTITIES = ("V", "M")
 RIGID = {"k": 10.0, "kr": 1.0}
 
 
-def span_bounds(scene: Scene) -> list[tuple[float, str, bool, bool]]:
+def spring_share(kappa: float) -> float:
+    """The share of a rigid support's span error that a spring of k a³ / EI = ``kappa`` below ``RIGID["k"]`` leaves
+    beside it, (kappa / RIGID["k"])^(1/3): measured at most 0.64, 0.31, 0.19 of the rigid estimate at kappa = 3, 1, 0.3
+    (pd-eb and pd-timoshenko, a spring 0.02-0.08 L from a clamp or a pin inside or a clamped end, a force or a uniform
+    load, 201-801 points, horizons 3 and 4: docs/trust.md; the cube root 0.67, 0.46, 0.31)."""
+    return min(1.0, max(kappa, 0.0) / RIGID["k"]) ** (1.0 / 3.0)
+
+
+def span_bounds(scene: Scene, soft: bool = False) -> list[tuple]:
     """(position, name, holds the rotation, inside the beam) of the supports that hold the deflection, left to right:
     the named ends that do (:data:`~pdverify.core.scene.HELD`), the pinned, roller and clamped supports inside, and the
     springs (at an end or inside) stiff beside the span next to them, k a³ / EI of at least :data:`RIGID` (a the
-    distance to the nearest other support; a rotational stiffness kr holds the rotation where kr a / EI is)."""
+    distance to the nearest other support; a rotational stiffness kr holds the rotation where kr a / EI is).
+    ``soft``: the softer springs too, each with a fifth entry, its :func:`spring_share` (1 for the others)."""
     L = scene.length
     rigid, springs = [], []
     for side, at in (("left", 0.0), ("right", L)):
@@ -46,9 +55,26 @@ def span_bounds(scene: Scene) -> list[tuple[float, str, bool, bool]]:
     for at, name, k, kr, inner in springs:
         a = min((abs(p - at) for p in everywhere if p != at), default=L)
         EI = float(scene.stiffness_at(np.array([at]))["EI"][0])
-        if k * a**3 / EI >= RIGID["k"]:
-            out.append((at, name, bool(kr) and kr * a / EI >= RIGID["kr"], inner))
+        if k * a**3 / EI >= RIGID["k"] or soft:
+            out.append((at, name, bool(kr) and kr * a / EI >= RIGID["kr"], inner, spring_share(k * a**3 / EI)))
+    if soft:
+        out = [b if len(b) == 5 else (*b, 1.0) for b in out]
+    else:
+        out = [b[:4] for b in out]
     return sorted(out, key=lambda b: b[0])
+
+
+def spans(scene: Scene) -> list[tuple[tuple, tuple, float]]:
+    """(left bound, right bound, share) of each span :func:`short_span_warnings` judges: the neighbouring pairs of
+    :func:`span_bounds` (share 1), and each softer spring's span to its neighbour on either side among them all, at its
+    :func:`spring_share` (the smaller of two springs'; the span between two stiff supports is kept whole beside it)."""
+    rigid = span_bounds(scene)
+    out = [(p, q, 1.0) for p, q in zip(rigid, rigid[1:])]
+    every = span_bounds(scene, soft=True)
+    for p, q in zip(every, every[1:]):
+        if min(p[4], q[4]) < 1.0:
+            out.append((p[:4], q[:4], min(p[4], q[4])))
+    return sorted(out, key=lambda s: (s[0][0], s[1][0]))
 
 
 def short_span_warnings(
@@ -73,11 +99,10 @@ def short_span_warnings(
     inside keeps the pin's constant)."""
     dx = float(x[1] - x[0])
     h = max(dx, delta / 3.0)
-    bounds = span_bounds(scene)
     size = {name: np.abs(np.asarray(fields[name], dtype=float)) for name in QUANTITIES}
     top = {name: float(f.max()) if f.size else 0.0 for name, f in size.items()}
     out = []
-    for (p, left, held_left, inner_left), (q, right, held_right, inner_right) in zip(bounds, bounds[1:]):
+    for (p, left, held_left, inner_left), (q, right, held_right, inner_right), share in spans(scene):
         a = q - p
         if not (inner_left or inner_right) or within(a, shortest[inner_left and inner_right], dx):
             continue
@@ -90,7 +115,7 @@ def short_span_warnings(
         shares = {}
         for name in QUANTITIES:
             if top[name] > 0.0 and inside.any():
-                shares[name] = c[name] * (h / a) ** 2 * float(size[name][inside].max()) / top[name]
+                shares[name] = share * c[name] * (h / a) ** 2 * float(size[name][inside].max()) / top[name]
         est = {k: v for k, v in shares.items() if v > NEAR_TOLERANCE}
         if not est:
             continue
@@ -101,10 +126,11 @@ def short_span_warnings(
             fix = f"at least {int(np.ceil(scene.length / (dx * target / h))) + 1} points"  # h in proportion to dx
         said = ", ".join(f"{k} {rounded_up(v)} of max |{k}|" for k, v in est.items())
         form = ", ".join(f"{k} {c[k]:g}" for k in est)
+        soft = "" if share == 1.0 else f", times {share:.2g} for a spring softer than {RIGID['k']:g} EI / a³"
         out.append(
             f"the span of {a:g} ({spacings(a / dx)}) between {left} at {p:g} and {right} at {q:g}: its moment "
-            f"and shear are off by about c (h / a)² times their largest in and beside the span (h = max(spacing, "
-            "horizon / 3), "
+            f"and shear are off by about c (h / a)² times their largest in and beside the span{soft} (h = "
+            "max(spacing, horizon / 3), "
             f"a the span; c: {form}), here {said}; second order: use {fix} for 1e-3"
         )
     return out

@@ -115,3 +115,26 @@ def test_a_spring_counts_from_a_tenth_of_the_stiffness_that_makes_it_rigid_besid
         error = float(np.abs(r.fields["V"] - e.fields["V"])[inside].max() / np.abs(e.fields["V"]).max())
         est = span_line(r.info.get("warnings", []))
         assert est is not None and error <= est["V"], (model, error, est)
+
+
+@pytest.mark.parametrize("model,kappa", [("pd-eb", 3.0), ("pd-timoshenko", 1.0), ("pd-timoshenko", 3.0)])
+def test_a_softer_spring_beside_a_clamp_counts_at_its_share(model, kappa):
+    """Sweep 31 U4: a spring inside 0.462 from an inner clamp, k a³ / EI = 0.52, below the 10 from which it counts as
+    a support, left pd-timoshenko's V 4.86e-3 off at 401 points with no warning; here a spring 0.02 L beside a clamp
+    inside, k a³ / EI = 1 and 3, left V 1.0e-3 ... 4.7e-3 unwarned. The span to such a spring counts at the share of a
+    rigid support's error it leaves, (k a³ / EI / 10)^(1/3) (span_warnings.spring_share)."""
+    from pdverify.numerics.span_warnings import RIGID, spring_share
+
+    assert spring_share(RIGID["k"]) == 1.0 and spring_share(1e3) == 1.0
+    assert spring_share(RIGID["k"] / 8) == pytest.approx(0.5)
+    EI = 2e11 * 0.02 * 0.05**3 / 12
+    spring = {"type": "spring", "position": 0.52, "stiffness": kappa * EI / 0.02**3}
+    sc = beam(("pinned", "pinned"), [{"type": "clamped", "position": 0.5}, spring], FORCE)
+    r, e = run(sc, model, points=401), run(sc, REFERENCE[model], points=401)
+    inside = (r.x >= 0.5 - 1e-9) & (r.x <= 0.52 + 1e-9)
+    error = float(np.abs(r.fields["V"] - e.fields["V"])[inside].max() / np.abs(e.fields["V"]).max())
+    assert error > NEAR_TOLERANCE  # the case the line must tell
+    (line,) = [w for w in r.info["warnings"] if w.startswith("the span of 0.02 ")]
+    assert f"times {spring_share(kappa):.2g} for a spring softer than" in line
+    est = span_line([line])
+    assert error <= est["V"] <= 100 * error, (error, est)
