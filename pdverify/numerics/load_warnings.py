@@ -373,3 +373,35 @@ def cell_average_warnings(
             f"here {rounded_up(total)} of max |V| (docs/trust.md); {fix}"
         )
     return out
+
+
+def slope_jump_warnings(
+    scene: Scene, x: np.ndarray, V: np.ndarray, skip: list, constant: float, delta: float
+) -> list[str]:
+    """One line per sine load (not in ``skip``: the loads another line covers) whose slope jumps at an edge inside the
+    beam, where ``constant`` Σ |q'| h² over those edges (h = max(spacing, ``delta`` / 3), ``delta`` the horizon) passes
+    NEAR_TOLERANCE of the shear ``V``'s largest (the model's, on ``x``): the shear beside such an edge is off by about
+    that, second order, and large beside max |V| where the load is small and its slope is not (a short patch near an
+    end; the constant measured: benchmarks/slope_jumps.py, docs/trust.md)."""
+    dx, L = float(x[1] - x[0]), scene.length
+    h = max(dx, delta / 3.0)
+    top = float(np.max(np.abs(V))) if len(V) else 0.0
+    if not (top > 0.0 and np.isfinite(top)):
+        return []
+    out = []
+    for i, ld in enumerate(scene.loads):
+        if not isinstance(ld, Distributed) or ld.shape == "uniform" or not ld.value or i in skip:
+            continue
+        edges = [e for e in scene.span(ld) if 1e-12 * L < e < L * (1 - 1e-12)]
+        total = sum(constant * abs(ld.value * np.pi / L * np.cos(np.pi * e / L)) * h * h for e in edges) / top
+        if not total > NEAR_TOLERANCE:
+            continue
+        points = int(np.ceil(1.05 * L / dx * np.sqrt(total / NEAR_TOLERANCE))) + 1
+        out.append(
+            f"loads[{i}] (a sine load) ends inside the beam at x = {listed(edges)}, where its slope q' jumps: the "
+            f"shear beside {'it' if len(edges) == 1 else 'them'} is off by up to about {constant:g} |q'| h² (h = "
+            f"max(spacing, horizon / 3)), "
+            f"here {rounded_up(total)} of max |V| (large where the load is small beside its slope, near an end; "
+            f"docs/trust.md); second order: use at least {points} points for 1e-3"
+        )
+    return out

@@ -53,6 +53,7 @@ from ...numerics.load_warnings import (
     edge_layer_warnings,
     horizon_layer,
     moment_rotation_warnings,
+    slope_jump_warnings,
 )
 from ...numerics.loads import solve_without_support_couples, support_couples
 from ...numerics.solvers import SOLVER, solve
@@ -114,16 +115,14 @@ def paper_bias(m: float) -> str:
 # pd-eb (corrected), clamped-pinned 2 m beam, aluminium and steel segments joined at 0.8 m, a couple there: the
 # deflection's largest error against exact-eb at 101, 201, 401 points (docs/models/diyaroglu.md)
 COUPLE_AT_JOINT = "measured 3.0e-3, 1.5e-3, 7.7e-4 of max |w| at 101, 201, 401 points on a two-material beam"
-# measured on a clamped-free, -guided and -spring beam, L/h = 100, 101 points (docs/models/diyaroglu.md)
 # the moment and shear of a short span between two supports that hold w: c (h / a)² of their largest in the span,
-# measured c up to 1.31 (V) and 1.17 (M) where a support inside the span's ends holds the rotation, 0.43 and 0.36 where
-# none does (a clamped end beside a pin inside among them)
-# (spans of 0.02 ... 0.08 L, on and off the grid, beside an end or between two supports inside, 101 ... 801 points:
-# benchmarks/short_spans.py);
-# spans inside an end's layer (its 2 J + 4 spacings) or under 4 spacings between two supports take the layer and
-# straddle lines instead (up to 76 times this estimate there)
+# measured up to 1.31 (V) and 1.17 (M) where a support inside at the span's ends holds the rotation, 0.43 and 0.36
+# where none does (a clamped end beside a pin inside among them; spans of 0.02 ... 0.08 L, on and off the grid, 101 ...
+# 801 points: benchmarks/short_spans.py); spans inside an end's layer (2 J + 4 spacings) or under 4 spacings between
+# two supports take the layer and straddle lines instead (up to 76 times this estimate there); load edges' shear:
+# benchmarks/load_edges.py and slope_jumps.py
 SHORT_SPAN = {"held": {"V": 1.5, "M": 1.2}, "pinned": {"V": 0.5, "M": 0.4}}
-CELL_SHEAR = 1.2  # c of cell_average_warnings (benchmarks/load_edges.py)
+CELL_SHEAR, SLOPE_SHEAR = 1.2, 1.1  # the c of cell_average_warnings and of slope_jump_warnings
 EDGE_ERRORS = (
     "errors of about 1e-2 there (w 1.1e-2 ... 5.8e-3 with the edge 0.3 ... 1.5 spacings from a free end; V 3.2e-2, "
     "1.9e-2, 9.9e-3, 7.8e-3 at 2.5, 3, 4, 5 spacings from a guided or free end, at any number of points)"
@@ -432,6 +431,7 @@ class PDEulerBernoulli(Model):
             fixed, (cells, layer) = params.get("horizon_length") is not None, edge_loads(scene, len(x), dx, J)
             flags += short_span_warnings(scene, x, out, delta, SHORT_SPAN, (2 * J + 4, 4), fixed, inside_only=True)
             flags += cell_average_warnings(scene, x, out["V"], cells, CELL_SHEAR, layer, params)
+            flags += slope_jump_warnings(scene, x, out["V"], cells, SLOPE_SHEAR, delta)
         if flags:
             info.setdefault("warnings", []).extend(flags)
         return self.new_result(
