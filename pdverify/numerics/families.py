@@ -12,12 +12,17 @@ from .band import Band
 # -- families --------------------------------------------------------------------------------
 
 
+MEMBER_TIE = 1e-9  # a cell inside the horizon by less than this share of itself is no member: m = horizon_length / dx
+# rounds (2.5 at one scale, 2.5000000000000004 at another), and a member of weight 4e-16 would change J and the layers
+
+
 def partial_volumes(m: float) -> tuple[np.ndarray, np.ndarray]:
-    """Family offsets j and volume fractions beta_j of the cells [j - 1/2, j + 1/2] dx inside m dx."""
+    """Family offsets j and volume fractions beta_j of the cells [j - 1/2, j + 1/2] dx inside m dx (a share below
+    MEMBER_TIE: none)."""
     J = int(np.ceil(m + 0.5 - 1e-12))
     j = np.arange(1, J + 1)
     beta = np.clip(m - (j - 0.5), 0.0, 1.0)
-    return j[beta > 0], beta[beta > 0]
+    return j[beta > MEMBER_TIE], beta[beta > MEMBER_TIE]
 
 
 def family(m: float, dx: float, variant: str, volumes: str = "full") -> tuple[np.ndarray, np.ndarray]:

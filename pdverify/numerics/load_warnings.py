@@ -45,21 +45,23 @@ def horizon_layer(params: dict, dx: float, reach: float, per_horizon: float) -> 
 
 def layer_fix(d: float, dx: float, length: float, reach: float, fixed: tuple | None) -> str:
     """What leaves a layer of ``reach`` spacings ``dx`` a distance ``d`` from its end: more points when the horizon
-    is a multiple of the spacing; at a fixed horizon length delta (``fixed`` = (a, b, delta): the layer is a delta + b
-    spacings) a shorter horizon, and more points too when the b spacings leave no room for a horizon of a spacing."""
+    is a multiple of the spacing; at a fixed horizon length delta (``fixed`` = (a, b, delta): the layer is at most
+    a delta + b spacings) a shorter horizon, and where the b spacings leave no room for a horizon of a whole spacing at
+    these points, a horizon of one spacing on a grid fine enough that (a + b) spacings fall short of d."""
     if fixed is None:
         return more_points(np.ceil((reach - TIE) * length / d) + 1)
     a, b, delta = fixed
     wide = f"{counted(a, 'horizon')} and {spacings(b, 'g')}"
-    head = f"at horizon_length = {delta:.6g} the layer is {wide} wide, so more points alone "
+    head = f"at horizon_length = {delta:.6g} the layer is up to {wide} wide, so more points alone "
     below = (d - b * dx) / a
     whole = int(np.floor(below / dx * (1 - 1e-9)))  # the largest whole number of spacings below it
     if whole >= 1:  # room for a horizon of a spacing at least
         e_g = f"{whole * dx:.6g}, {spacings(whole, 'g')}"
         return head + f"do not leave it: give horizon_length below {rounded_down(below)} (e.g. {e_g})"
+    n = int(np.floor(length * (a + b) / d * (1 + 1e-9))) + 2  # (a + b) spacings of the new grid below d
     return head + (
-        f"do not leave it: give horizon_length below {rounded_down(d / (2 * a))} and at least "
-        f"{int(np.ceil(2 * b * length / d)) + 1} points"
+        f"do not leave it: give horizon_length = {length / (n - 1):.12g} (one spacing) and {n} points, or more points "
+        "with a horizon of one spacing"
     )
 
 

@@ -65,7 +65,7 @@ def pair_factor(scene: Scene, variant: str, delta: float) -> tuple[float, str]:
     the scene has supports inside the span, a spring or a pair the table does not hold; (1, "") where the factor is 1
     or there is no table."""
     tables = [FACTORS.get(variant) or {}]
-    if delta > MEASURED_UP_TO[0] * scene.length:
+    if delta > MEASURED_UP_TO[0] * scene.length * (1 + 1e-9):  # 0.1 L to rounding is 0.1 L (a scaled copy's too)
         tables.append(FACTORS_02.get(variant) or {})
     if not any(tables):
         return 1.0, ""
@@ -75,7 +75,7 @@ def pair_factor(scene: Scene, variant: str, delta: float) -> tuple[float, str]:
         return 1.0, ""
     beyond = (
         f" (measured up to delta = {MEASURED_UP_TO[-1]:g} L; more beyond)"
-        if delta > MEASURED_UP_TO[-1] * scene.length
+        if delta > MEASURED_UP_TO[-1] * scene.length * (1 + 1e-9)
         else ""
     )
     return factor, WHY + beyond

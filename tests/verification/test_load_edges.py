@@ -176,3 +176,16 @@ def test_no_slope_line_for_a_uniform_load_or_a_sine_patch_at_mid_span():
     for sc in (uniform, middle):
         r = run(sc, "pd-eb", points=401, horizon=3)
         assert slope_line(r.info.get("warnings", [])) is None and shear_error(sc, r) <= 1e-3
+
+
+def test_where_no_shorter_horizon_fits_the_grid_the_advice_names_one_that_does():
+    """Sweep 34 S34-3: an edge 2 spacings from a clamped end at horizon_length = 2.5 spacings (101 points) was told
+    "give horizon_length below 0.005 and at least 101 points", which is refused (below the least horizon, a spacing).
+    The advice now names a horizon of one spacing and the points that put the edge outside the layer; followed, the
+    line goes."""
+    sc = beam("clamped", "pinned", patch(0.02, 0.5))
+    (line,) = [w for w in run(sc, "pd-eb", points=101, horizon_length=0.025).info["warnings"] if "cell averages" in w]
+    assert "the layer is up to 2 horizons and 1 spacing wide" in line
+    delta, points = re.search(r"give horizon_length = ([\d.e-]+) \(one spacing\) and (\d+) points", line).groups()
+    r = run(sc, "pd-eb", points=int(points), horizon_length=float(delta))
+    assert r.info["horizon_factor"] == pytest.approx(1.0) and cells_line(r.info.get("warnings", [])) is None

@@ -243,3 +243,31 @@ def test_a_scaled_rod_or_shaft_gives_the_same_relative_result(name, pair, length
     diff = np.abs(b / np.abs(b).max() - a / np.abs(a).max()).max()
     assert diff <= tolerance(base, other), (diff, tolerance(base, other))
     assert words(other.info.get("warnings", [])) == words(base.info.get("warnings", []))
+
+
+def test_a_horizon_length_of_whole_and_half_spacings_scales_too():
+    """Sweep 34 S34-2: at horizon_length = 2.5 spacings the scaled copy's 0.0175 / 0.007 = 2.5000000000000004 kept a
+    member of weight 4e-16 (pd-eb: J 3 against 2, the load taken by its cell averages, w 2.1e-2 against 9.5e-3 off),
+    and pd-higher-order's statics stretch of two depths, 10.000000000000002 spacings, took 11 (V 9.5e-3 against
+    5.2e-4). A share of a spacing within 1e-9 of a whole number now counts as whole."""
+
+    def scene(length, width, height, start, end):  # the scaled copy's numbers as a user types them
+        load = {"type": "distributed", "value": -1e3, "start": start, "end": end}
+        return parse_scene(
+            {
+                "name": "a patch beside a clamp",
+                "beam": {"length": length},
+                "section": {"width": width, "height": height},
+                "material": {"youngs_modulus": 2e11, "poissons_ratio": 0.3},
+                "supports": {"left": "clamped", "right": "pinned"},
+                "loads": [load],
+            }
+        )
+
+    one, scaled = scene(1.0, 0.02, 0.05, 0.045, 0.075), scene(0.7, 0.014, 0.035, 0.0315, 0.0525)
+    for model in ("pd-eb", "pd-higher-order"):
+        a, c = run(one, model, points=101, horizon_length=0.025), run(scaled, model, points=101, horizon_length=0.0175)
+        for q in ("V", "M"):
+            qa, qc = np.asarray(a.fields[q]), np.asarray(c.fields[q])
+            assert np.abs(qa / np.abs(qa).max() - qc / np.abs(qc).max()).max() < 1e-9, (model, q)
+        assert len(a.info.get("warnings", [])) == len(c.info.get("warnings", []))

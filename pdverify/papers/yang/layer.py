@@ -55,7 +55,7 @@ def grid_layer_stiffness(B: Band, end: int, n: int, reach: int, dx: float, ell: 
     """s_d: the Schur complement onto w* of the end point (``end`` = 0 or n - 1) of the band's w*-w* block over
     the end's window: ``reach`` points (the end's bonds and end layers) plus DECAY ell. The other DOFs are held:
     the layer is w*'s alone, as S is."""
-    size = min(n, reach + int(np.ceil(DECAY * ell / dx)) + 1)
+    size = min(n, reach + int(np.ceil(DECAY * ell / dx - 1e-9)) + 1)
     points = np.arange(size) if end == 0 else n - 1 - np.arange(size)
     K = block_window(B, points)
     c = K[1:, 0].toarray().ravel()

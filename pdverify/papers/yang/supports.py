@@ -165,7 +165,8 @@ def section_forces(
         return {"M": M, "V": V}, loads, inner
     held, unknown = reaction_loads(scene, reactions or {})
     loaded = scene.model_copy(update={"loads": list(scene.loads) + held})
-    wide = max(layer, int(np.ceil(DEPTHS * h / dx)))  # the stretch each side: the layers reach about half a depth
+    wide = max(layer, int(np.ceil(DEPTHS * h / dx - 1e-9)))  # the stretch each side: the layers reach about half a
+    # depth (a whole number of spacings to rounding counts as whole: a scaled copy's 10.000000000000002 is 10)
     M, V, kl, kr = from_ends(loaded, x, M, V, reactions or {}, wide, unknown)
     at = [(p - x[0]) / dx for p in [ld.position for ld in loads] + inner]  # in spacings; the two points around each
     spans = [(np.floor(t + 1e-9) - wide, np.ceil(t - 1e-9) + wide + 1) for t in at]
