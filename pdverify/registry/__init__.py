@@ -44,6 +44,7 @@ from ..theory.continuum import continuum_solution, model_error_warning, no_limit
 from .close_supports import close_supports_warning
 from .end_loads import end_load_warnings
 from .external import ExternalModel, load_manifest
+from .history_check import history_check
 from .jump_rotation import jump_rotation_warning
 from .plugins import discover, remember_manifest
 
@@ -203,12 +204,14 @@ def exact_on(points: int):
 def run(scene: Scene, model: str | Model, **given) -> Result:
     """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
 
-    ``static = true`` (CLI ``-o static=true``; not a model option): the static response to the loads of a
-    scene that has a ``[dynamics]`` table (:func:`static_part`); without it a static-only model rejects
-    such a scene. Before solving, the scene is checked against the model's declared capabilities and the
-    options against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2).
-    Floating-point overflow and invalid operations inside the solve raise no numpy warning: a result that
-    holds NaN or inf is refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
+    ``static = true`` (CLI ``-o static=true``; not a model option): the static response to the loads of a scene that
+    has a ``[dynamics]`` table (:func:`static_part`); without it a static-only model rejects such a scene. A
+    transient of a model that is not a reference carries the estimate of its error from the same history on about
+    half the points (:func:`~pdverify.registry.history_check.history_check`; ``history_check = false``, not a model
+    option: none). Before solving, the scene is checked against the model's declared capabilities and the options
+    against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2). Floating-point
+    overflow and invalid operations inside the solve raise no numpy warning: a result that holds NaN or inf is
+    refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
     t0 = time.perf_counter()
     if not isinstance(model, (str, Model)):
         raise InputError(f"model = {model!r}: give a model's name (see `pdverify models`) or a pdverify Model")
@@ -216,6 +219,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         raise InputError(f"scene = {type(scene).__name__}: give a Scene (pdverify.load_scene or parse_scene)")
     scene = parse_scene(scene.to_dict(), source=f"scene {scene.name!r}")  # a copy changed by model_copy is checked too
     m = get_model(model) if isinstance(model, str) else model
+    check_history = as_flag(given.pop("history_check", True))
     if as_flag(given.pop("static", False)):
         scene, given = static_part(scene, m, given)
     found = m.check(scene)
@@ -269,6 +273,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if any(jump_constants) and "reactions" in result.info and scene.dynamics is None:
         if jump := jump_rotation_warning(jump_constants, scene, result.rotation, result.info):
             result.info.setdefault("warnings", []).append(jump)
+    if check_history and "history" in result.info and "points" in params and not (m.histories or m.reference):
+        history_check(scene, m, params, result, lambda n: run(scene, m, **dict(given, points=n, history_check=False)))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)
