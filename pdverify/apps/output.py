@@ -177,7 +177,10 @@ def write_file(out: Path, write, option: str) -> None:
         write(str(tmp))
         os.replace(tmp, out)
     except OSError as exc:
-        raise OutputError(f"{option} {out}: cannot write ({exc.strerror or exc}); nothing was written") from None
+        where = f"a file in {out.parent}" if exc.filename in (str(tmp), str(out.parent)) else "it"
+        raise OutputError(
+            f"{option} {out}: cannot write {where} ({exc.strerror or exc}); nothing was written"
+        ) from None
     finally:
         try:
             tmp.unlink(missing_ok=True)

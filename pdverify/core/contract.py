@@ -106,7 +106,9 @@ class Option:
         except (TypeError, ValueError, OverflowError):
             raise InputError(
                 f"{self.name} = {value!r}: model {model} needs "
-                + {int: "an integer", float: "a number", bool: "true or false"}.get(self.kind, self.kind.__name__)
+                + {int: "an integer", float: "a finite number", bool: "true or false"}.get(
+                    self.kind, self.kind.__name__
+                )
                 + " here"
             ) from None
         if self.choices is not None and v not in self.choices:
@@ -123,8 +125,11 @@ class Option:
                 + (" (the horizon must cover at least one spacing)" if self.name == "horizon" else "")
             )
         if self.maximum is not None and v > self.maximum:
-            shown = _short(v) if isinstance(v, int) and v > 10**15 else repr(value)  # not 400 digits
-            raise InputError(f"{self.name} = {shown}: model {model} needs {self.name} <= {self.maximum:g}")
+            shown = (_short(v) if v > 10**18 else str(v)) if isinstance(v, int) else repr(value)  # not 400 digits
+            most = (
+                f"{int(self.maximum)}" if self.kind is int and float(self.maximum).is_integer() else f"{self.maximum:g}"
+            )
+            raise InputError(f"{self.name} = {shown}: model {model} needs {self.name} <= {most}")
         return v
 
 

@@ -195,10 +195,16 @@ class ClusterLost(Exception):
 
 
 def on_dask(run, todo, ids, scheduler: str):
-    """The cases on the Dask cluster at ``scheduler`` (no artefact files: the workers may be remote)."""
+    """The cases on the Dask cluster at ``scheduler`` (no artefact files: the workers may be remote), connected at
+    once: an address where no scheduler answers is one error before anything is shown (a progress bar)."""
+    return _on_client(connect(scheduler), run, todo, ids)
+
+
+def _on_client(client, run, todo, ids):
+    """The records of :func:`on_dask` as they finish; the client closed with the loop."""
     from dask.distributed import as_completed as dask_completed
 
-    with connect(scheduler) as client:
+    with client:
         try:
             futures = client.map(run, todo, [None] * len(todo), ids, pure=False)
             by_key = {f.key: cid for f, cid in zip(futures, ids)}

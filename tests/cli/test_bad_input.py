@@ -115,7 +115,7 @@ CLI_CASES = [
         "solve-points-past-int64",
         ["solve", "{scene}", "-m", "exact-eb", "--points", str(2**63)],
         2,
-        "points <= 9.0072e+15",
+        "points <= 9007199254740992",
     ),
     (  # the value, its count of spacings and the suggestion were all rounded to 2: the line contradicted itself
         "solve-horizon-length-a-hair-off-whole",
@@ -127,13 +127,21 @@ CLI_CASES = [
         "solve-points-400-digits",
         ["solve", "{scene}", "-m", "fem-eb", "-o", "points=" + "9" * 400],
         2,
-        "points = 1.00e+400: model fem-eb needs points <= 9.0072e+15",
+        "points = 1.00e+400: model fem-eb needs points <= 9007199254740992",
+    ),
+    # sweep 34 S34-10: "needs a number here" for inf; a file that exists in a place no file can be made "No such file"
+    ("solve-horizon-inf", ["solve", "{scene}", "-m", "pd-eb", "--horizon", "inf"], 2, "needs a finite number here"),
+    (
+        "solve-out-proc-file",
+        ["solve", "{scene}", "-m", "exact-eb", "--points", "11", "--out", "/proc/version"],
+        4,
+        "cannot write a file in /proc",
     ),
     (  # through a float 2**53 + 1 was 2**53, within the limit: the memory guard's exit 3
         "solve-points-past-2-53",
         ["solve", "{scene}", "-m", "exact-eb", "--points", str(2**53 + 1)],
         2,
-        "points <= 9.0072e+15",
+        "points = 9007199254740993: model exact-eb needs points <= 9007199254740992",  # not 9.01e+15 <= 9.0072e+15
     ),
     (
         "solve-spacing-1e-300",
@@ -394,7 +402,7 @@ CLI_CASES = [
     ("verify-order-0", ["verify", "pd-eb", "--order", "0"], 2, "--order 0"),
     ("verify-order-negative", ["verify", "pd-eb", "--order", "-1"], 2, "--order -1"),
     # accepted before, and every order check failed: no order above 52/3 is observable on the suite's grids
-    ("verify-order-1e300", ["verify", "pd-eb", "--order", "1e300"], 2, "up to 17.333333333333332 "),
+    ("verify-order-1e300", ["verify", "pd-eb", "--order", "1e300"], 2, "up to 17.33 "),
     ("verify-bad-option", ["verify", "pd-eb", "-o", "bogus=1", "--out", "{tmp}/v3"], 2, "bogus"),
     ("verify-bad-variant", ["verify", "pd-eb", "-o", "variant=nosuch", "--out", "{tmp}/v4"], 2, "variant = 'nosuch'"),
     ("advise-budget-negative", ["advise", "{scene}", "--budget", "-5"], 2, "--budget -5"),
@@ -857,6 +865,29 @@ def test_bad_cli_input_in_a_process(case, files):
         [sys.executable, "-m", "pdverify", *[a.format(**files) for a in args]], capture_output=True, text=True, cwd=ROOT
     )
     assert_one_error_line(r.returncode, r.stdout, r.stderr, code, text.format(**files))
+
+
+@pytest.mark.slow
+def test_verify_with_no_scheduler_there_prints_nothing_before_its_error(files):
+    """Sweep 34 S34-10: the progress line "cases 0/439" went to stdout before the exit-2 line (the connection was
+    made when the first case was asked for; now before anything is shown)."""
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pdverify",
+            "verify",
+            "pd-eb",
+            "--scheduler",
+            "tcp://127.0.0.1:1",
+            "--out",
+            str(files["tmp"] / "v9"),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert_one_error_line(r.returncode, r.stdout, r.stderr, 2, "no Dask scheduler reached there")
 
 
 VALID = tomllib.loads((ROOT / "studies/examples/cantilever_tip_load.toml").read_text())
