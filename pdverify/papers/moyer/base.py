@@ -27,7 +27,8 @@ from .constraints import reactions, solve_with_holds
 from .couples import couple_warnings
 from .ends import FIT_POINTS
 from .energy import ENERGY_HORIZONS, zone
-from .pieces import plain_ends
+from .load_edges import member_edge_warnings
+from .pieces import piece_stiffness, plain_ends
 from .point_loads import point_force_order
 from .published import paper_warnings
 from .system import Discrete, prescribed_motions, static_solution, static_system
@@ -65,6 +66,7 @@ COUPLE_AT_JOINT = "measured 5.5e-2, 2.8e-2, 1.4e-2 of max |rotation| at 101, 201
 # pd-rod and pd-torsion: a distributed load's edge inside an end's fitted layer (FIT_POINTS + m spacings) spoils the
 # resultant there, first order (a 1 m bar, the load's edge 0.4 ... 5.4 spacings from a free or clamped end, the other
 # end clamped or free: docs/models/moyer.md); the displacement (twist) stays second order
+MEMBER_EDGE = 0.6  # c of member_edge_warnings (measured up to 0.56: benchmarks/member_edges.py)
 ROD_EDGE = (
     "N (T) off by 1.2e-2, 4.8e-3, 9.6e-4, 6.0e-4 of its largest at 0.4, 3.2, 4.2, 5.0 spacings from the end at 101 "
     "points, first order (half at twice the points); u (the twist) second order"
@@ -294,6 +296,15 @@ class _MoyerModel(Model):
                 fixed = params.get("horizon_length") is not None
                 near += short_span_warnings(scene, disc.x, result.fields, delta, SHORT_SPAN, fixed_horizon=fixed)
             result.info.setdefault("warnings", []).extend(near)
+        elif info.get("analysis") == "static":  # a rod's or a bar's distributed load ending inside it
+            key, dx = ("EA", "axial") if self.axial else ("GJ", "torque"), disc.x[1] - disc.x[0]
+            pieces = piece_stiffness(scene, key[0])
+            S = lambda e: next((s for a, b, s in pieces if e <= b * (1 + 1e-12)), pieces[-1][2])  # noqa: E731
+            edges = member_edge_warnings(
+                scene, disc.x, np.asarray(result.fields[self.measures]), S, key[1], MEMBER_EDGE,
+                params["horizon"] * dx, params.get("horizon_length") is not None,
+            )  # fmt: skip
+            result.info.setdefault("warnings", []).extend(edges)
         return result
 
     def discretisation_warnings(self, scene: Scene, params: dict, x: np.ndarray) -> list[str]:
