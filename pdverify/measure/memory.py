@@ -80,7 +80,7 @@ def check_memory(scene, model, given: dict) -> None:
     have = available_bytes()
     if have is not None and BYTES_PER_POINT * points > have:  # the output alone (exact models: all of it)
         raise SolveError(
-            f"points = {points if points < 1e15 else format(points, '.3g')}: model {model.name} would need at least "
+            f"points = {points if points < 1e18 else format(points, '.3g')}: model {model.name} would need at least "
             f"{BYTES_PER_POINT * points / 2**30:.3g} GiB for "
             f"its grid and fields, {have / 2**30:.1f} GiB is available; use at most about {have // BYTES_PER_POINT} "
             "points"

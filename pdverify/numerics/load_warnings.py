@@ -10,6 +10,7 @@ import numpy as np
 from ..core.scene import Distributed, PointMoment, Scene
 from ..core.text import counted, listed, more_points, rounded_down, rounded_up, spacings
 from .loads import TIE, within
+from .recovery import STRETCH
 
 
 def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int, fixed: tuple | None = None) -> list[str]:
@@ -363,10 +364,13 @@ def cell_average_warnings(
         if total <= NEAR_TOLERANCE:
             continue
         d, side = min((min(e, L - e), "left" if e < L - e else "right") for e in edges)
+        # beside fitted ghosts the edge must leave their layer too (edge_layer_warnings: EDGE_LAYER spacings)
+        fit = EDGE_LAYER if scene.supports.kind(side) in FITTED_ENDS else 0
         if fixed is None:  # the edge leaves the layer, or the estimate falls as dx: whichever comes first
-            fix = more_points(min(np.ceil((reach - TIE) * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE)) + 1)
+            n = min(np.ceil((reach - TIE) * L / d), np.ceil((L / dx) * total / NEAR_TOLERANCE))
+            fix = more_points(max(n, np.ceil((fit - TIE) * L / d)) + 1)
         else:
-            fix = layer_fix(d, dx, L, reach, fixed)
+            fix = layer_fix(d, dx, L, reach, fixed if not fit else (fixed[0], max(fixed[1], fit), fixed[2]))
         out.append(
             f"loads[{i}] has an edge {spacings(d / dx)} from the {side} end ({scene.supports.kind(side)}), within "
             f"the {spacings(reach, 'g')} where the model takes it by its cell averages (the rows of its jump would "
@@ -377,16 +381,15 @@ def cell_average_warnings(
     return out
 
 
-def slope_jump_warnings(
-    scene: Scene, x: np.ndarray, V: np.ndarray, skip: list, constant: float, delta: float
-) -> list[str]:
+def slope_jump_warnings(scene: Scene, x: np.ndarray, V: np.ndarray, skip: list, constant: float) -> list[str]:
     """One line per sine load (not in ``skip``: the loads another line covers) whose slope jumps at an edge inside the
-    beam, where ``constant`` Σ |q'| h² over those edges (h = max(spacing, ``delta`` / 3), ``delta`` the horizon) passes
-    NEAR_TOLERANCE of the shear ``V``'s largest (the model's, on ``x``): the shear beside such an edge is off by about
-    that, second order, and large beside max |V| where the load is small and its slope is not (a short patch near an
-    end; the constant measured: benchmarks/slope_jumps.py, docs/trust.md)."""
+    beam, where ``constant`` Σ |q'| dx² over those edges passes NEAR_TOLERANCE of the shear ``V``'s largest (the
+    model's, on ``x``): the shear, differenced from the moment beside such an edge (:func:`.recovery.derivative`), is
+    off by about that at any horizon, second order, and large beside max |V| where the load is small and its slope is
+    not (a short patch near an end). A patch of at most STRETCH spacings, whose two edges the differences take
+    together, leaves no such error (measured 4e-6 and below). The constant measured: benchmarks/slope_jumps.py,
+    docs/trust.md."""
     dx, L = float(x[1] - x[0]), scene.length
-    h = max(dx, delta / 3.0)
     top = float(np.max(np.abs(V))) if len(V) else 0.0
     if not (top > 0.0 and np.isfinite(top)):
         return []
@@ -394,15 +397,17 @@ def slope_jump_warnings(
     for i, ld in enumerate(scene.loads):
         if not isinstance(ld, Distributed) or ld.shape == "uniform" or not ld.value or i in skip:
             continue
-        edges = [e for e in scene.span(ld) if 1e-12 * L < e < L * (1 - 1e-12)]
-        total = sum(constant * abs(ld.value * np.pi / L * np.cos(np.pi * e / L)) * h * h for e in edges) / top
+        a, b = scene.span(ld)
+        if b - a <= (STRETCH + TIE) * dx:
+            continue
+        edges = [e for e in (a, b) if 1e-12 * L < e < L * (1 - 1e-12)]
+        total = sum(constant * abs(ld.value * np.pi / L * np.cos(np.pi * e / L)) * dx * dx for e in edges) / top
         if not total > NEAR_TOLERANCE:
             continue
         points = int(np.ceil(1.05 * L / dx * np.sqrt(total / NEAR_TOLERANCE))) + 1
         out.append(
             f"loads[{i}] (a sine load) ends inside the beam at x = {listed(edges)}, where its slope q' jumps: the "
-            f"shear beside {'it' if len(edges) == 1 else 'them'} is off by up to about {constant:g} |q'| h² (h = "
-            f"max(spacing, horizon / 3)), "
+            f"shear beside {'it' if len(edges) == 1 else 'them'} is off by up to about {constant:g} |q'| spacing², "
             f"here {rounded_up(total)} of max |V| (large where the load is small beside its slope, near an end; "
             f"docs/trust.md); second order: use at least {points} points for 1e-3"
         )

@@ -175,8 +175,8 @@ def problems(scene: Scene, m: Model, static: bool = False) -> list[str]:
     return m.check(scene)
 
 
-def as_flag(value) -> bool:
-    """A yes/no run option given as a bool or a string (``-o static=true``)."""
+def as_flag(value, name: str = "static") -> bool:
+    """A yes/no run option ``name`` given as a bool or a string (``-o static=true``)."""
     if isinstance(value, bool):
         return value
     v = str(value).strip().lower()
@@ -184,7 +184,7 @@ def as_flag(value) -> bool:
         return True
     if v in ("0", "false", "no", "off"):
         return False
-    raise InputError(f"static = {value!r}: give true or false")
+    raise InputError(f"{name} = {value!r}: give true or false")
 
 
 def horizon_info(m: Model, scene: Scene, params: dict, info: dict) -> None:
@@ -219,7 +219,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         raise InputError(f"scene = {type(scene).__name__}: give a Scene (pdverify.load_scene or parse_scene)")
     scene = parse_scene(scene.to_dict(), source=f"scene {scene.name!r}")  # a copy changed by model_copy is checked too
     m = get_model(model) if isinstance(model, str) else model
-    check_history = as_flag(given.pop("history_check", True))
+    check_history = as_flag(given.pop("history_check", True), "history_check")
     if as_flag(given.pop("static", False)):
         scene, given = static_part(scene, m, given)
     found = m.check(scene)

@@ -7,9 +7,9 @@ points, 7.0 % at 321 (first order), with no warning (sweep 34). The history on (
 one on n by about (2^p - 1) times the finer one's error at order p (Richardson), so that difference, taken as the
 estimate, is the error's at first order and above it at higher orders (beside a travelling front, whose largest error
 need not fall with the spacing, it says only that the error is of that size); the result records it
-(``info["history_estimate"]``) and warns where it passes 1e-3 of a series' largest value. Reference models (fem-*,
-exact-modal-*) are left out: a study runs them on the grid it chooses, and fem-timoshenko's implicit transient costs
-about as much on half the points."""
+(``info["history_estimate"]``) and warns where it passes 1e-3 of a series' largest value, or where the coarser run
+does not run (blows up, or is refused). The closed-form references (``Model.reference``: exact-modal-*) are left
+out; fem-timoshenko's transient, a discretised reference, is checked too (its history was 5.6 % off at 161 points)."""
 
 from __future__ import annotations
 
@@ -54,6 +54,11 @@ def history_check(scene, m, params: dict, result, solve) -> None:
         coarse = solve(coarse_n)
     except (InputError, SolveError) as exc:  # the model's rules refuse the coarser grid, or its transient blows up
         record["note"] = f"the coarser grid does not run: {str(exc).splitlines()[0]}"
+        result.info.setdefault("warnings", []).append(
+            f"the history's error is not estimated: the same run on {coarse_n} points does not run "
+            f"({str(exc).splitlines()[0][:160]}); refine and compare, or measure it against a reference history "
+            "(exact-modal-*) in a study"
+        )
         return
     if "history" not in coarse.info:
         record["note"] = "the coarser grid gives no history"

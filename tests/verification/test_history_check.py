@@ -2,6 +2,8 @@
 (pdverify/registry/history_check.py): sweep 34 S34-5 found pd-timoshenko's history on a clamped-clamped beam with a
 patch and a couple 13.7 % of its largest value off exact-modal-timoshenko at 161 points, with no warning."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -66,3 +68,19 @@ def test_the_difference_is_taken_at_the_finer_history_s_times_relative_to_each_s
     fine = {"t": [0.0, 1.0, 2.0], "series": {"a": [0.0, 2.0, 4.0], "b": [0.0, 1.0, 0.0]}}
     coarse = {"t": [0.0, 2.0], "series": {"a": [0.0, 4.0], "b": [0.0, 0.0]}}  # b at t = 1 interpolated: 0
     assert history_difference(fine, coarse) == (pytest.approx(1.0), "b")
+
+
+def test_an_estimate_that_cannot_be_made_says_so():
+    """Sweep 35 S35-6: where the run on half the points blows up (pd-timoshenko corrected on Moyer & Miraglia's
+    cantilever at 41 points: at 21 its closures have a growing mode) the result carried a note only; a bad
+    history_check was named 'static' (S35-5)."""
+    from pdverify.core.errors import InputError
+    from pdverify.core.scene_file import load_scene
+
+    with pytest.raises(InputError, match="history_check = 'maybe': give true or false"):
+        run(strip(end_time=0.05), "pd-timoshenko", points=41, history_check="maybe")
+    sc = load_scene(Path(__file__).resolve().parents[2] / "studies/paper_moyer/cantilever_table1_transient.toml")
+    r = run(sc, "pd-timoshenko", points=41, variant="corrected")
+    assert "blew up" in r.info["history_estimate"]["note"]
+    (said,) = [w for w in r.info["warnings"] if w.startswith("the history's error is not estimated")]
+    assert "on 21 points does not run" in said
