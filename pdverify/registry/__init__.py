@@ -274,7 +274,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         if jump := jump_rotation_warning(jump_constants, scene, result.rotation, result.info):
             result.info.setdefault("warnings", []).append(jump)
     if check_history and "history" in result.info and "points" in params and not (m.histories or m.reference):
-        history_check(scene, m, params, result, lambda n: run(scene, m, **dict(given, points=n, history_check=False)))
+        coarse = {k: v for k, v in given.items() if k != "spacing"}  # the grid given as a spacing: as points
+        history_check(scene, m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, history_check=False)))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

@@ -62,6 +62,9 @@ def test_the_estimate_leaves_the_history_as_it_is_and_warns_past_1e_3():
     np.testing.assert_array_equal(
         quiet.info["history"]["series"]["w(x=0.10237)"], r.info["history"]["series"]["w(x=0.10237)"]
     )
+    # the grid given as a spacing: the coarser run on half the points all the same (not the same grid twice)
+    spaced = run(sc, "pd-timoshenko", spacing=0.23791 / 80)
+    assert spaced.info["history_estimate"] == record
 
 
 def test_the_difference_is_taken_at_the_finer_history_s_times_relative_to_each_series():
