@@ -51,17 +51,13 @@ def span_bounds(scene: Scene, soft: bool = False) -> list[tuple]:
         elif s.stiffness:
             springs.append((s.position, f"supports.inner[{i}] (spring)", s.stiffness, s.rotational_stiffness, True))
     everywhere = [b[0] for b in rigid] + [b[0] for b in springs]
-    out = list(rigid)
+    out = [(*b, 1.0) for b in rigid]
     for at, name, k, kr, inner in springs:
         a = min((abs(p - at) for p in everywhere if p != at), default=L)
         EI = float(scene.stiffness_at(np.array([at]))["EI"][0])
         if k * a**3 / EI >= RIGID["k"] or soft:
             out.append((at, name, bool(kr) and kr * a / EI >= RIGID["kr"], inner, spring_share(k * a**3 / EI)))
-    if soft:
-        out = [b if len(b) == 5 else (*b, 1.0) for b in out]
-    else:
-        out = [b[:4] for b in out]
-    return sorted(out, key=lambda b: b[0])
+    return sorted(out if soft else [b[:4] for b in out], key=lambda b: b[0])
 
 
 def spans(scene: Scene) -> list[tuple[tuple, tuple, float]]:
