@@ -142,10 +142,11 @@ def solve(
         model = choice.model
         given = dict(choice.options, points=choice.points, static=given.get("static", False))
     from ..measure.memory import check_memory
-    from ..registry import model_argument
+    from ..registry import model_argument, model_options
 
     m = get_model(model_argument(model))  # a manifest path registers its external model first
-    if "continuum_m" in given and m.option("continuum") is not None and not m.resolve(sc, given).get("continuum"):
+    has_continuum = "continuum_m" in given and m.option("continuum") is not None
+    if has_continuum and not m.resolve(sc, model_options(given)).get("continuum"):
         raise InputError(  # a study's runs give it for the continuum that splits their errors; a solve has none
             f"continuum_m = {given['continuum_m']}: sets the levels of the continuum, which a solve computes with "
             "continuum = true only; add -o continuum=true or drop continuum_m"

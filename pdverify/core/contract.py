@@ -298,6 +298,12 @@ class Model(Horizon):
         hold an observed order against."""
         return float(self.order)
 
+    def checks_own_grid(self, scene: Scene, params: dict) -> bool:
+        """Whether a static solve of ``scene`` with these options (resolved) carries its own estimate from the same
+        solve on about half the points (:func:`~pdverify.registry.grid_check.grid_check`): where the model's error on
+        coarse grids is known to outrun its warnings (pd-curved on a curved axis). False by default."""
+        return False
+
     def estimate_constants(self, scene: Scene, params: dict) -> tuple[dict, tuple[float, float]]:
         """(:attr:`end_load_error`, :attr:`jump_rotation`) for these options (``params``, or the defaults where they
         name none): the attributes, measured on the default variant, for that variant, nothing for another. A model

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..numerics.features import features
+from ..registry import model_options
 
 ASYMPTOTIC = (0.75, 1.5)  # the observed order's band around the promised one, as fractions of it
 NOISE = 10.0  # grids closer than this many times their round-off bounds agree to round-off
@@ -120,7 +121,8 @@ def with_estimate(scene, model, options: dict, run) -> object:
     """The result of ``run(scene, model, **options)`` with ``info["estimate"]`` (the :class:`Estimate` as a dict,
     its ``line`` included), from two more solves on nested grids; a model without a grid gets none."""
     grid = model.option("points")
-    params = model.resolve(scene, options)
+    params = model.resolve(scene, model_options(options))
+    options = dict(options, grid_check=False)  # the nested grids are the better estimate
     if grid is None:
         return run(scene, model, **options)
     n = params["points"]

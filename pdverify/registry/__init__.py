@@ -44,6 +44,7 @@ from ..theory.continuum import continuum_solution, model_error_warning, no_limit
 from .close_supports import close_supports_warning
 from .end_loads import end_load_warnings
 from .external import ExternalModel, load_manifest
+from .grid_check import grid_check
 from .history_check import history_check
 from .jump_rotation import jump_rotation_warning
 from .plugins import discover, remember_manifest
@@ -175,6 +176,21 @@ def problems(scene: Scene, m: Model, static: bool = False) -> list[str]:
     return m.check(scene)
 
 
+CHECK_FLAGS = ("history_check", "grid_check")  # run's own estimates of a result's error, on by default
+RUN_FLAGS = ("static", *CHECK_FLAGS)  # options of :func:`run` itself, not of a model
+
+
+def model_options(options: dict) -> dict:
+    """``options`` without :data:`RUN_FLAGS`: what the model's own ``resolve`` takes."""
+    return {k: v for k, v in options.items() if k not in RUN_FLAGS}
+
+
+def resolved(m: Model, scene: Scene, given: dict) -> dict:
+    """The options ``m`` resolves from ``given`` on ``scene``, with :data:`CHECK_FLAGS` where given (a study's row
+    records them beside the model's options)."""
+    return {**m.resolve(scene, model_options(given)), **{k: given[k] for k in CHECK_FLAGS if k in given}}
+
+
 def as_flag(value, name: str = "static") -> bool:
     """A yes/no run option ``name`` given as a bool or a string (``-o static=true``)."""
     if isinstance(value, bool):
@@ -208,10 +224,12 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     has a ``[dynamics]`` table (:func:`static_part`); without it a static-only model rejects such a scene. A
     transient of a model that is not a reference carries the estimate of its error from the same history on about
     half the points (:func:`~pdverify.registry.history_check.history_check`; ``history_check = false``, not a model
-    option: none). Before solving, the scene is checked against the model's declared capabilities and the options
-    against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2). Floating-point
-    overflow and invalid operations inside the solve raise no numpy warning: a result that holds NaN or inf is
-    refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
+    option: none); a static solve of a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved axis)
+    the estimate from the same solve on about half the points (:func:`~pdverify.registry.grid_check.grid_check`;
+    ``grid_check = false``: none). Before solving, the scene is checked against the model's declared capabilities
+    and the options against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2).
+    Floating-point overflow and invalid operations inside the solve raise no numpy warning: a result that holds NaN
+    or inf is refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
     t0 = time.perf_counter()
     if not isinstance(model, (str, Model)):
         raise InputError(f"model = {model!r}: give a model's name (see `pdverify models`) or a pdverify Model")
@@ -220,6 +238,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     scene = parse_scene(scene.to_dict(), source=f"scene {scene.name!r}")  # a copy changed by model_copy is checked too
     m = get_model(model) if isinstance(model, str) else model
     check_history = as_flag(given.pop("history_check", True), "history_check")
+    check_grid = as_flag(given.pop("grid_check", True), "grid_check")
     if as_flag(given.pop("static", False)):
         scene, given = static_part(scene, m, given)
     found = m.check(scene)
@@ -276,6 +295,9 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if check_history and "history" in result.info and "points" in params and not (m.histories or m.reference):
         coarse = {k: v for k, v in given.items() if k != "spacing"}  # the grid given as a spacing: as points
         history_check(scene, m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, history_check=False)))
+    if check_grid and scene.dynamics is None and "points" in params and m.checks_own_grid(scene, params):
+        coarse = {k: v for k, v in given.items() if k != "spacing"}
+        grid_check(m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, grid_check=False)))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

@@ -23,7 +23,7 @@ from ..measure.paths import peak_history
 from ..measure.shapes import with_exact_shapes
 from ..measure.status import case_status, reference_status
 from ..numerics.timeint import ledger_columns
-from ..registry import get_model
+from ..registry import get_model, resolved
 from . import execute, solves
 from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
@@ -117,7 +117,7 @@ def _describe(case: Case, row: dict):
     scene = case.scene()
     row["scene"] = scene.name
     row["units"] = scene.units  # labels the report's axes (m or in)
-    params = get_model(case.model).resolve(scene, case.given)
+    params = resolved(get_model(case.model), scene, case.given)
     row.update({k: params.get(k, row.get(k)) for k in PARAM_COLUMNS})
     # the option is the horizon factor; the horizon in length units is known once solved (a failed case has none)
     row["horizon_factor"], row["horizon"] = row.get("horizon"), None

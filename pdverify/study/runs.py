@@ -11,7 +11,7 @@ from pathlib import Path
 from ..core.errors import InputError
 from ..core.result import QUANTITIES
 from ..core.text import close_match
-from ..registry import Model, get_model, models
+from ..registry import CHECK_FLAGS, Model, get_model, models
 from .checks import finite_number, meant_key, misspelt, strict_type
 
 RUN_KEYS = {"model", "reference", "scenes", "slenderness", "quantities"}
@@ -133,15 +133,21 @@ def _run_axes(where: str, run: dict, model: Model) -> tuple[dict | None, list[st
     """The run's sweep axes and their error lines: values of the wrong type (then None: the coerced values
     would only add confusing errors) or an empty list."""
     axes = {k: as_list(v) for k, v in run.items() if k not in RUN_KEYS}
-    unknown = [k for k in axes if model.option(k) is None and k != "spacing"]
+    unknown = [k for k in axes if model.option(k) is None and k not in ("spacing", *CHECK_FLAGS)]
     if unknown:  # before the types: a misspelt key's values would only add confusing lines
-        return None, [f"{where}.{k}: {misspelt(k, RUN_KEYS | {'spacing'}, model)}" for k in unknown]
+        return None, [f"{where}.{k}: {misspelt(k, RUN_KEYS | {'spacing', *CHECK_FLAGS}, model)}" for k in unknown]
     typed = [
         f"{where}.{why}"
         for k, v in axes.items()
         if model.option(k) is not None
         for why in dict.fromkeys(strict_type(model.option(k), x) for x in v)
         if why
+    ]
+    typed += [
+        f"{where}.{k} = {x!r}: give true or false"
+        for k in CHECK_FLAGS
+        for x in dict.fromkeys(axes.get(k, []))
+        if not isinstance(x, bool)
     ]
     if typed:
         return None, typed

@@ -55,7 +55,7 @@ from ..core.scene import Scene
 from ..core.scene_file import load_scene, parse_scene, read_toml
 from ..core.text import close_match
 from ..core.version import __version__
-from ..registry import Model, get_model, models, use_manifest
+from ..registry import Model, get_model, model_options, models, use_manifest
 from ..registry.plugins import GROUP
 from .checks import BENCH_VALUES, finite_number, meant_key, option_filter_errors, strict_type, validate_checks
 from .entries import model_errors, verify_entries
@@ -459,7 +459,7 @@ def _run_cases(run: Run, study: Study, scene_objs: dict, reasons_of: dict, refs_
                     if sl and (sfile, sl) not in refs_checked:  # the scaled scene is a scene too (its numbers' range)
                         refs_checked.add((sfile, sl))
                         parse_scene(scx.to_dict(), source=f"{sfile} at slenderness = {sl!r}")
-                    params = run.model.resolve(scx, given)
+                    params = run.model.resolve(scx, model_options(given))
                 except InputError as exc:
                     errors.append(f"{run.where}: {exc.lines[0]}")
                     continue

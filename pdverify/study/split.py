@@ -24,7 +24,7 @@ import numpy as np
 from ..core.errors import InputError, PdverifyError
 from ..core.result import quantity_of
 from ..measure.metrics import errors
-from ..registry import get_model, run
+from ..registry import get_model, model_options, run
 from ..theory.continuum import coarsest_nested
 from .spec import Case
 
@@ -91,7 +91,9 @@ def split_errors(case: Case, scene, solved: dict, w_ref: np.ndarray, row: dict) 
     w = np.asarray(quantity_of(solved["w"], solved.get("rotation"), solved["fields"], quantity), float)
     try:
         model = get_model(case.model)
-        params = model.resolve(scene, {k: v for k, v in case.given.items() if k not in ("continuum", "continuum_m")})
+        params = model.resolve(
+            scene, {k: v for k, v in model_options(case.given).items() if k not in ("continuum", "continuum_m")}
+        )
         points, at = coarsest_nested(model, scene, params, x)
         cont, bound, no_limit = continuum_at(case, scene, x[at], own=True)
     except PdverifyError as exc:

@@ -15,7 +15,7 @@ from pathlib import Path
 from ..core.errors import InputError
 from ..core.scene_file import parse_scene
 from ..core.version import __version__
-from ..registry import get_model, run
+from ..registry import RUN_FLAGS, as_flag, get_model, model_options, run
 from ..study import forked, load_study, run_study
 from ..study.checks import strict_type
 from . import checks as C
@@ -117,7 +117,7 @@ def _declined(model, p, options: dict | None = None) -> dict:
             if p.meta[f]["set"] == "engineering":
                 run(scene, model, **options, points=p.grids[0])
             else:
-                out[f] = model.refusals(scene, model.resolve(scene, {**options, "points": p.grids[0]}))
+                out[f] = model.refusals(scene, model.resolve(scene, {**model_options(options), "points": p.grids[0]}))
         except InputError as exc:
             out[f] = list(exc.lines)
         except Exception:  # noqa: BLE001 - a failed solve is judged by the suite, not declined here
@@ -166,7 +166,7 @@ def entry_errors(model_name: str, options: dict, full: bool = False) -> list[str
 def _resolve_coarsest(model, p, scene_file: str, options: dict) -> None:
     """The options resolved on one of the suite's scenes at its coarsest grid (InputError, one line each, before
     anything is written: a horizon that does not fit the grid is refused here, not by the suite's study)."""
-    model.resolve(parse_scene(p.scenes[scene_file]), {**options, "points": min(p.grids)})
+    model.resolve(parse_scene(p.scenes[scene_file]), {**model_options(options), "points": min(p.grids)})
 
 
 def verify(
@@ -194,7 +194,8 @@ def verify(
         raise InputError(why)
     solved = next(f for f, why in declined.items() if not why)
     _resolve_coarsest(model, p, solved, options)  # bad options: one line each before anything runs
-    typed = model.with_defaults(options)
+    typed = model.with_defaults(model_options(options))
+    typed.update({k: as_flag(v, k) for k, v in options.items() if k in RUN_FLAGS})
     options = {k: typed[k] for k in options}  # -o degree=4.0: 4, as solve reads it (the suite's study file holds it)
     expected = expected_order(model, options, order)
     run_plan = runnable(p, declined)

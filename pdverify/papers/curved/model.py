@@ -239,6 +239,11 @@ class PDCurved(Model):
         P = int(p["degree"])
         return float(2 * ((P + 1) // 2) if p["form"] == "mixed" else 2 * (P // 2))
 
+    def checks_own_grid(self, scene: Scene, params: dict) -> bool:
+        """On a curved axis, on a grid of ``points`` (not given particle positions): its error on coarse grids
+        outruns the frame-defect warning (docs/models/curved.md, "Coarse grids on a curved axis")."""
+        return not scene.is_straight and not params.get("positions")
+
     def assemble(self, scene: Scene, params: dict, body=None) -> System:
         """The collocation system of all the scene's loads as one :class:`~pdverify.numerics.band.Band`
         (:meth:`assemble_band`), z = (u_t, u_n, φ[, N, Q, M]) interleaved per particle; every unknown is

@@ -132,6 +132,10 @@ BAD_STUDIES = {
     "horizon below spacing": ('[[runs]]\nmodel = "pd-eb"\nhorizon = 0.5\n', "horizon = 0.5"),
     "bad reference": ('reference2 = 1\n[[runs]]\nmodel = "pd-eb"\n', "unknown key 'reference2'"),
     "typo key": ('[[runs]]\nmodel = "pd-eb"\nvariant = "papr"\n', "variant = 'papr'"),
+    "check flag not a boolean": (
+        '[[runs]]\nmodel = "pd-eb"\ngrid_check = "no"\n',
+        "grid_check = 'no': give true or false",
+    ),
     "bad slenderness": ('[sweep]\nslenderness = [-3]\n[[runs]]\nmodel = "pd-eb"\n', "slenderness value -3"),
     # a model or name of the wrong type was called "missing"
     "model a number": ("[[runs]]\nmodel = 3\n", "runs[0]: model = 3: not a model name"),
