@@ -13,6 +13,7 @@ from ..core.text import rounded_up
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
 NEAR = 0.25  # a jump within this share of the length of a support held at first order is beside it
+TIE = 1e-9  # estimates within this share of the largest: equal jumps, rounded apart
 MARGIN = 1.1  # on the points the warning asks for: the estimate divides by the model's max |rotation|, off by its error
 
 
@@ -75,6 +76,9 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
     if not len(est) or est.max() <= TOLERANCE:
         return ""
     worst, dx = int(np.argmax(est)), float(info["spacing"])
+    # equal jumps (a symmetric scene's two ends) are named together: which one rounding puts first is no fact of the
+    # scene, and its mirror image would name the other
+    ties = [jumps[i][0] for i in np.flatnonzero(est >= est[worst] * (1 - TIE))]
     points = int(np.ceil(MARGIN * scene.length / dx * np.sqrt(est[worst] / TOLERANCE))) + 1
     where = ", ".join(tag.strip() for tag, _ in held)
     # the first-order support's error is not confined to its neighbourhood: it turns the whole span (docs/trust.md),
@@ -86,8 +90,9 @@ def jump_rotation_warning(constants: tuple[float, float], scene: Scene, rotation
         else f"; second order: use at least {points} points for 1e-3"
     )
     return (
-        f"rotation beside {jumps[worst][0]}: the shear jumps by {jumps[worst][2]:.3g} there, and the rotation at the "
-        f"points next to it is off by about {c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
+        f"rotation beside {' and '.join(ties)}: the shear jumps by {jumps[worst][2]:.3g} "
+        f"{'there' if len(ties) == 1 else 'at each'}, and the rotation at the points next to it is off by about "
+        f"{c[worst]:g} |J| h² / EI (h = max(spacing, horizon / 3)), here "
         f"{rounded_up(est[worst])} of max |rotation| (large where the rotation is small beside the shear: a point "
         f"force near a support, a clamp; docs/trust.md){tail}"
     )

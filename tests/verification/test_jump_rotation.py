@@ -147,3 +147,16 @@ def test_a_jump_far_from_a_support_held_at_first_order_is_estimated(points):
     d = scene_dict(spring, "clamped", [{"type": "point_force", "position": 0.93, "value": -700.0}])
     error, estimate = rotation_error(d, "pd-bond-pair", points)
     assert error > TOLERANCE and error <= estimate, (error, estimate)
+
+
+@pytest.mark.parametrize("scale", [1.0, 0.7])
+def test_a_symmetric_scene_names_both_ends(scale):
+    """Sweep 35 S35-7: a clamped-clamped beam under a uniform load named its left end, and a copy scaled by 0.7 its
+    right, by the rounding of two equal reactions."""
+    L = 2.92564 * scale
+    d = scene_dict("clamped", "clamped", [{"type": "distributed", "value": -1000.0}])
+    d.update(beam={"length": L}, section={"width": 0.02 * L, "height": 0.1 * L})
+    d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
+    r = run(parse_scene(d), "pd-eb", points=51, horizon_length=2.5 * L / 50)
+    (line,) = [w for w in r.info["warnings"] if w.startswith("rotation beside")]
+    assert line.startswith("rotation beside the left end and the right end: the shear jumps by ")
