@@ -178,9 +178,10 @@ def write_file(out: Path, write, option: str) -> None:
         os.replace(tmp, out)
     except OSError as exc:
         where = f"a file in {out.parent}" if exc.filename in (str(tmp), str(out.parent)) else "it"
-        raise OutputError(
-            f"{option} {out}: cannot write {where} ({exc.strerror or exc}); nothing was written"
-        ) from None
+        why = exc.strerror or str(exc)
+        if exc.errno == errno.ENOENT and out.parent.is_dir():  # a folder that exists and takes no new file: /proc
+            why = "the folder exists but takes no new files: a virtual file system such as /proc or /sys"
+        raise OutputError(f"{option} {out}: cannot write {where} ({why}); nothing was written") from None
     finally:
         try:
             tmp.unlink(missing_ok=True)
