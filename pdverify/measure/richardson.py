@@ -21,7 +21,7 @@ import numpy as np
 
 from ..core.errors import InputError
 from ..numerics.features import features
-from ..registry import model_options
+from ..registry import CHECK_FLAGS, as_flag, model_options
 
 ASYMPTOTIC = (0.75, 1.5)  # the observed order's band around the promised one, as fractions of it
 NOISE = 10.0  # grids closer than this many times their round-off bounds agree to round-off
@@ -122,6 +122,9 @@ def with_estimate(scene, model, options: dict, run) -> object:
     its ``line`` included), from two more solves on nested grids; a model without a grid gets none."""
     grid = model.option("points")
     params = model.resolve(scene, model_options(options))
+    for k in CHECK_FLAGS:  # a bad value is refused here as run would (this run leaves the grid check out)
+        if k in options:
+            as_flag(options[k], k)
     options = dict(options, grid_check=False)  # the nested grids are the better estimate
     if grid is None:
         return run(scene, model, **options)

@@ -297,7 +297,7 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         history_check(scene, m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, history_check=False)))
     if check_grid and scene.dynamics is None and "points" in params and m.checks_own_grid(scene, params):
         coarse = {k: v for k, v in given.items() if k != "spacing"}
-        grid_check(m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, grid_check=False)))
+        grid_check(m, scene, params, result, lambda n: run(scene, m, **dict(coarse, points=n, grid_check=False)))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

@@ -3,24 +3,35 @@
 For a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved axis, whose PDDO derivative of the
 axis frame strains a rigid motion, docs/models/curved.md), the solve on (n + 1) / 2 points differs from the one on n
 by about (2^p - 1) times the finer one's error at order p (Richardson): the difference is the finer one's error at
-first order and above it at higher orders, so a difference past 1e-3 of a field's largest value says the finer
-grid's error may not be small. The result records it (``info["grid_estimate"]``) and
-warns where it passes the tolerance, or where the coarser solve is refused (the grid is then near the least the
-model takes). Grids that converge slowly, or to a locked answer, can differ by less than their error: the
-difference is an estimate, not a bound.
+first order and above it at higher orders, so a difference past 1e-3 says the finer grid's error may not be small.
+The fields are compared at the coarser grid's points, which an odd n shares with the finer grid; with an even n the
+finer one is interpolated between the scene's features, never across a jump (:func:`on_coarse`), and each field
+relative to its group's scale (:data:`GROUPS`). The result records the difference (``info["grid_estimate"]``) and
+warns where it passes the tolerance; where it estimates nothing (the coarser grid refused, or the model's own note
+that its error does not fall with the grid there) it says so. Grids that converge slowly, or to a locked answer,
+can differ by less than their error: the difference is an estimate, not a bound.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.interpolate import CubicSpline
 
 from ..core.errors import InputError, SolveError
 from ..core.text import rounded_up
+from ..numerics.features import features
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
-# fields compared relative to their group's largest value, so a component that is nearly zero beside its partner
-# (N beside Q on a beam bent nearly straight) does not read its round-off as a difference
-GROUPS = (("w", "u", "ux", "uy"), ("rotation",), ("N", "Q", "V"), ("M",))
+# the fields' groups, each compared relative to its own largest value or, where that is smaller, to the size the
+# next group gives it over the length L (a component nearly zero beside its partner, N beside Q on a beam bent nearly
+# straight, or a group that is zero but for round-off, N and Q under a pure couple, does not read its round-off as a
+# difference): (names, the group whose largest value sets its floor, that value's power of L)
+GROUPS = (
+    (("w", "u", "ux", "uy"), 1, 1, "max |rotation| L"),
+    (("rotation",), 0, -1, "max |w, u| / L"),
+    (("N", "Q", "V"), 3, -1, "max |M| / L"),
+    (("M",), 2, 1, "max |N, Q| L"),
+)
 
 
 def fields_of(result) -> dict[str, np.ndarray]:
@@ -30,57 +41,85 @@ def fields_of(result) -> dict[str, np.ndarray]:
     return out
 
 
-def grid_difference(fine, coarse) -> tuple[float, str]:
-    """(the largest difference of the two results' common fields at the coarser one's points, relative to the
-    largest value of the field's group on the finer one; where it is, "field (relative to the largest of a, b)"):
-    the finer one interpolated linearly where the grids are not nested (an even number of points)."""
+def on_coarse(xf: np.ndarray, values: np.ndarray, xc: np.ndarray, breaks: np.ndarray) -> np.ndarray:
+    """The fine grid's ``values`` at the coarse points ``xc``: where a fine point is there, its value; elsewhere a
+    cubic spline through the fine points between the same two ``breaks`` (where the fields jump or kink: supports,
+    loads; a point on a break holds the left limit, as the models give it), linear with fewer than 4 there; NaN
+    with fewer than 2 (not compared)."""
+    h = float(np.diff(xf).min()) if len(xf) > 1 else 1.0
+    out = np.full(len(xc), np.nan)
+    near = np.clip(np.searchsorted(xf, xc), 0, len(xf) - 1)
+    near = np.where((near > 0) & (np.abs(xf[near - 1] - xc) < np.abs(xf[near] - xc)), near - 1, near)
+    on = np.abs(xf[near] - xc) <= 1e-9 * h
+    out[on] = values[near[on]]
+    cut = breaks[(breaks > xf[0]) & (breaks < xf[-1])]
+    piece_f, piece_c = np.searchsorted(cut, xf, side="left"), np.searchsorted(cut, xc, side="left")
+    for k in np.unique(piece_c[~on]):  # a loop over the pieces between breaks (a few), not over points
+        xs, ys, at = xf[piece_f == k], values[piece_f == k], ~on & (piece_c == k)
+        if len(xs) >= 4:
+            out[at] = CubicSpline(xs, ys)(xc[at])
+        elif len(xs) >= 2:
+            out[at] = np.interp(xc[at], xs, ys)
+    return out
+
+
+def grid_difference(fine, coarse, breaks=()) -> tuple[float, str, str]:
+    """(the largest difference of the two results' common fields at the coarser one's points (:func:`on_coarse`),
+    relative to the field's group's scale on the finer one (:data:`GROUPS`); the field where it is; that scale in
+    words and its value)."""
     a, b = fields_of(fine), fields_of(coarse)
     xf, xc = np.asarray(fine.x, float), np.asarray(coarse.x, float)
-    worst, where = 0.0, ""
-    for group in GROUPS:
-        names = [k for k in group if k in a and k in b and len(a[k]) == len(xf) and len(b[k]) == len(xc)]
-        top = max((float(np.abs(a[k]).max()) for k in names), default=0.0)
-        if top <= 0.0:
+    L = float(xf[-1] - xf[0]) or 1.0
+    names = [[k for k in g[0] if k in a and k in b and len(a[k]) == len(xf) and len(b[k]) == len(xc)] for g in GROUPS]
+    tops = [max((float(np.abs(a[k]).max()) for k in ks), default=0.0) for ks in names]
+    cuts = np.asarray(breaks, float)
+    worst, field, against = 0.0, "", ""
+    for (_, other, power, floor), ks, top in zip(GROUPS, names, tops):
+        scale = max(top, tops[other] * L**power)
+        if not scale > 0.0:
             continue
-        for k in names:
-            d = float(np.abs(b[k] - np.interp(xc, xf, a[k])).max() / top)
+        for k in ks:
+            d = float(np.nanmax(np.abs(b[k] - on_coarse(xf, a[k], xc, cuts)), initial=0.0)) / scale
             if d > worst:
-                worst, where = d, k if len(names) == 1 else f"{k}, relative to the largest of {', '.join(names)}"
-    return worst, where
+                said = f"max |{', '.join(ks)}|" if scale == top else floor
+                worst, field, against = d, k, f"{said} = {scale:.3g}"
+    return worst, field, against
 
 
-def grid_check(m, params: dict, result, solve) -> None:
-    """Add ``info["grid_estimate"]`` ({"grids", "difference", "field"}) to a static ``result`` of model ``m`` on
-    ``params["points"]`` points, from ``solve(points)`` (the same scene and options on (n + 1) / 2 points), and a
-    warning where the difference passes the tolerance or where the coarser grid is refused."""
+def grid_check(m, scene, params: dict, result, solve) -> None:
+    """Add ``info["grid_estimate"]`` ({"grids", "difference", "field"}, or a "note") to a static ``result`` of model
+    ``m`` on ``scene`` on ``params["points"]`` points, from ``solve(points)`` (the same scene and options on
+    (n + 1) / 2 points), and a warning where the difference passes the tolerance, or where it estimates nothing: the
+    coarser grid refused, or a model's own note that its error does not fall with the grid there
+    (``info["irregular"]``: both grids can then agree and both be off)."""
     n = int(params["points"])
     least = int(m.option("points").minimum or 2)
     coarse_n = (n + 1) // 2
     record: dict = {"grids": [coarse_n, n]}
     result.info["grid_estimate"] = record
-    why = f"{coarse_n} points is below the model's {least}" if coarse_n < least else ""
+    why = f"the same solve on {coarse_n} points is below the model's least, {least}" if coarse_n < least else ""
     coarse = None
     if not why:
         try:
             coarse = solve(coarse_n)
         except (InputError, SolveError) as exc:  # the model's rules refuse the coarser grid (a segment too short)
-            why = str(exc).splitlines()[0][:160]
-    if coarse is None:
-        record["note"] = f"no coarser grid: {why}"
+            why = f"the same solve on {coarse_n} points does not run ({str(exc).splitlines()[0][:160]})"
+    if coarse is not None and (irregular := result.info.get("irregular")):  # (a coarser grid's alone: its own error)
+        why = irregular.removeprefix(m.name + ": ")
+        why += f"; the solves on {coarse_n} and {n} points can agree while both are off"
+    if why:
+        record["note"] = why
         result.info.setdefault("warnings", []).append(
-            f"{m.name}: the error on {n} points is not estimated: the same solve on {coarse_n} points does not run "
-            f"({why}), so this grid is near the coarsest the model takes; use more points, or check the result with "
+            f"{m.name}: the error on {n} points is not estimated: {why}; use more points, or check the result with "
             "`pdverify solve --estimate`"
         )
         return
-    diff, where = grid_difference(result, coarse)
-    record.update(difference=diff, field=where)
-    p = m.promised_order(params)
+    diff, field, against = grid_difference(result, coarse, features(scene))
+    record.update(difference=diff, field=field)
     if diff > TOLERANCE:
         result.info.setdefault("warnings", []).append(
-            f"{m.name}: the same solve on {coarse_n} points differs from this one on {n} by {rounded_up(diff)} of "
-            f"its largest value ({where}), so this grid's error may pass {TOLERANCE:g}: it is about that difference "
-            f"at first order, about {rounded_up(diff / (2**p - 1))} once the model's order {p:g} holds, and grids "
-            "that converge slowly can differ by less than their error; use more points and compare, or check the "
-            "result with `pdverify solve --estimate`"
+            f"{m.name}: the same solve on {coarse_n} points differs from this one on {n} by {rounded_up(diff)} in "
+            f"{field} (relative to {against}), so this grid's error may pass {TOLERANCE:g} (the difference is the "
+            "error's size at first order; grids not yet converging can differ by less than their error); use more "
+            "points and compare, or check the result with `pdverify solve --estimate`"
         )
