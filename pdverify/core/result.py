@@ -132,6 +132,13 @@ class Result:
         out = []
         if self.info.get("estimate"):
             out.append(self.info["estimate"]["line"])
+        for key, part in (("grid_estimate", "field"), ("history_estimate", "series")):  # run's own estimates
+            if est := self.info.get(key):
+                coarse, fine = est["grids"]
+                said = f"difference {est['difference']:.3g} in {est[part]}" if "difference" in est else est.get("note")
+                out.append(
+                    f"{key}: the same {'solve' if part == 'field' else 'run'} on {coarse} points against {fine}: {said}"
+                )
         r = self.info.get("reactions")
         if r:
             out.append("reactions: " + ", ".join(f"{k}={v:.8g}" for k, v in r.items() if not isinstance(v, str)))

@@ -9,6 +9,7 @@ import tomllib
 import numpy as np
 import pytest
 
+from pdverify.apps.output import result_table
 from pdverify.core.errors import InputError
 from pdverify.core.scene_file import parse_scene
 from pdverify.measure.richardson import with_estimate
@@ -60,6 +61,7 @@ def test_a_coarse_grid_on_a_curved_axis_says_so():
     (line,) = said(r)
     assert line.startswith("pd-curved: the same solve on 26 points differs from this one on 51 by ")
     assert not any("too coarsely" in w for w in r.info["warnings"])  # the frame defect's warning does not see it
+    assert "# grid_estimate: the same solve on 26 points against 51: difference 0.345 in N" in result_table(r)
 
 
 def test_the_check_warns_past_1e_3_and_leaves_the_result_as_it_is():
