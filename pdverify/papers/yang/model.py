@@ -122,6 +122,7 @@ from .outputs import (
     point_load_warnings,
     reactions,
     recovery_warnings,
+    section_fields_warning,
     section_stresses,
     shear_stiff_warning,
     spurious_shear_warning,
@@ -536,7 +537,7 @@ class PDHigherOrder(Model):
         held = [s.position for s in scene.supports.inner if s.holds_rotation]
         constant = HIGHER_ORDER_LOADS_NEAR_HELD_ROTATION["not cut" if not_cut(scene, held, info) else "cut"]
         near = held_rotation_warnings(scene, dx, 4 * J + 1, delta, constant)
-        layer = clamp_layer_warning(scene, dx)
+        layer = clamp_layer_warning(scene, dx) + section_fields_warning(scene, dx)
         spurious = spurious_shear_warning(scene, delta) if info.get("shear") == "point" else []
         return flags + point_load_warnings(scene, params, info) + layer + near + shear_stiff_warning(scene) + spurious
 

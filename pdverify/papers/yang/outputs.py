@@ -20,6 +20,8 @@ from __future__ import annotations
 import numpy as np
 
 from ...core.scene import PointForce, PointMoment, Scene
+from ...core.text import rounded_up
+from ...numerics.load_warnings import NEAR_TOLERANCE
 from ...numerics.loads import end_side
 from ...theory.higher_order import layer_width
 
@@ -210,4 +212,31 @@ def clamp_layer_warning(scene: Scene, dx: float) -> list[str]:
         f"clamped {' and '.join(clamped)} end: the spacing is {dx / width:.3g} widths of the clamp's layer of w* "
         f"({width:.3g}, Eq. 9), in its transition: the error may change irregularly instead of falling at second "
         f"order until the spacing is an eighth of a width (at least {points} points)"
+    ]
+
+
+SECTION_LAYER = 1.0  # theta*, w*: error up to about this times min((dx / width)^2, 1) of their largest values (below)
+
+
+def section_fields_warning(scene: Scene, dx: float) -> list[str]:
+    """theta* and w* (the section's fields, Eq. 2-3) turn within the section's boundary layers (of
+    :func:`~pdverify.theory.higher_order.layer_width`, Eq. 9) beside every support that holds w, every point load
+    and the ends, which w, the rotation, M and V barely see: there they are off by about c (dx / width)^2 of their
+    largest values once the spacing is below a width, and by up to their own size above (measured against
+    exact-higher-order, L/h = 5 to 1000, 101 to 3,201 points: c up to 0.16 beside pinned and spring ends, 0.53
+    beside pins inside the span, 1.0 beside a point force; docs/models/yang.md). One line where
+    :data:`SECTION_LAYER` min((dx / width)^2, 1) passes 1e-3."""
+    mat = scene.material
+    width = layer_width(mat.poissons_ratio, mat.G * (1 - mat.poissons_ratio**2) / mat.E, scene.section.depth)
+    q = dx / width
+    estimate = SECTION_LAYER * min(q * q, 1.0)
+    if not estimate > NEAR_TOLERANCE:
+        return []
+    points = int(np.ceil(scene.length / (width * np.sqrt(NEAR_TOLERANCE / SECTION_LAYER)))) + 1
+    return [
+        f"theta_star and w_star (the section's fields θ*, w*) turn within the section's boundary layers (width "
+        f"{width:.3g}, Eq. 9) beside the supports, point loads and ends, which w, the rotation, M and V barely see: "
+        f"at a spacing of {q:.3g} widths they are off there by up to about {rounded_up(estimate)} of their largest "
+        f"values ({SECTION_LAYER:g} min((spacing / width)², 1); docs/models/yang.md); use at least {points} points "
+        "for 1e-3 in them"
     ]
