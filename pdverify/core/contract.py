@@ -301,7 +301,8 @@ class Model(Horizon):
     def checks_own_grid(self, scene: Scene, params: dict) -> bool:
         """Whether a static solve of ``scene`` with these options (resolved) carries its own estimate from the same
         solve on about half the points (:func:`~pdverify.registry.grid_check.grid_check`): where the model's error on
-        coarse grids is known to outrun its warnings (pd-curved on a curved axis). False by default."""
+        coarse grids is known to outrun its warnings (pd-curved on a curved axis, pd-rod, pd-torsion). False by
+        default."""
         return False
 
     def estimate_constants(self, scene: Scene, params: dict) -> tuple[dict, tuple[float, float]]:

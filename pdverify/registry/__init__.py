@@ -224,12 +224,13 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     has a ``[dynamics]`` table (:func:`static_part`); without it a static-only model rejects such a scene. A
     transient of a model that is not a reference carries the estimate of its error from the same history on about
     half the points (:func:`~pdverify.registry.history_check.history_check`; ``history_check = false``, not a model
-    option: none); a static solve of a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved axis)
-    the estimate from the same solve on about half the points (:func:`~pdverify.registry.grid_check.grid_check`;
-    ``grid_check = false``: none). Before solving, the scene is checked against the model's declared capabilities
-    and the options against its ``variant_rules``: every problem one line of the :class:`InputError` (exit 2).
-    Floating-point overflow and invalid operations inside the solve raise no numpy warning: a result that holds NaN
-    or inf is refused as a whole by :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
+    option: none); a static solve of a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved
+    axis, pd-rod, pd-torsion) the estimate from the same solve on about half the points
+    (:func:`~pdverify.registry.grid_check.grid_check`; ``grid_check = false``: none). Before solving, the scene is
+    checked against the model's declared capabilities and the options against its ``variant_rules``: every problem
+    one line of the :class:`InputError` (exit 2). Floating-point overflow and invalid operations inside the solve
+    raise no numpy warning: a result that holds NaN or inf is refused as a whole by
+    :func:`~pdverify.core.result.check_finite` (one error, exit 3)."""
     t0 = time.perf_counter()
     if not isinstance(model, (str, Model)):
         raise InputError(f"model = {model!r}: give a model's name (see `pdverify models`) or a pdverify Model")

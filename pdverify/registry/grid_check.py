@@ -1,7 +1,8 @@
 """A static result's discretisation error estimated from the model itself: the same solve on about half the points.
 
 For a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved axis, whose PDDO derivative of the
-axis frame strains a rigid motion, docs/models/curved.md), the solve on (n + 1) / 2 points differs from the one on n
+axis frame strains a rigid motion, docs/models/curved.md; pd-rod and pd-torsion, whose horizon's error on coarse grids
+has no other line), the solve on (n + 1) / 2 points differs from the one on n
 by about (2^p - 1) times the finer one's error at order p (Richardson): the difference is the finer one's error at
 first order and above it at higher orders, so a difference past 1e-3 says the finer grid's error may not be small.
 The fields are compared at the coarser grid's points, which an odd n shares with the finer grid; with an even n the
@@ -25,7 +26,8 @@ from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimate
 # the fields' groups, each compared relative to its own largest value or, where that is smaller, to the size the
 # next group gives it over the length L (a component nearly zero beside its partner, N beside Q on a beam bent nearly
 # straight, or a group that is zero but for round-off, N and Q under a pure couple, does not read its round-off as a
-# difference): (names, the group whose largest value sets its floor, that value's power of L)
+# difference): (names, the group whose largest value sets its floor, that value's power of L, the floor in words);
+# any other field (a bar's twist and torque) is a group of its own, relative to its own largest value
 GROUPS = (
     (("w", "u", "ux", "uy"), 1, 1, "max |rotation| L"),
     (("rotation",), 0, -1, "max |w, u| / L"),
@@ -36,9 +38,9 @@ GROUPS = (
 
 def fields_of(result) -> dict[str, np.ndarray]:
     """The result's output fields by name: w and rotation, then its other fields."""
-    out = {"w": np.asarray(result.w, float), "rotation": np.asarray(result.rotation, float)}
-    out.update({k: np.asarray(v, float) for k, v in result.fields.items() if k not in out})
-    return out
+    given = {"w": result.w, "rotation": result.rotation, **result.fields}
+    out = {k: np.asarray(v, float) for k, v in given.items() if v is not None}
+    return {k: v for k, v in out.items() if v.ndim == 1 and len(v) == len(result.x)}
 
 
 def on_coarse(xf: np.ndarray, values: np.ndarray, xc: np.ndarray, breaks: np.ndarray) -> np.ndarray:
@@ -70,12 +72,15 @@ def grid_difference(fine, coarse, breaks=()) -> tuple[float, str, str]:
     a, b = fields_of(fine), fields_of(coarse)
     xf, xc = np.asarray(fine.x, float), np.asarray(coarse.x, float)
     L = float(xf[-1] - xf[0]) or 1.0
-    names = [[k for k in g[0] if k in a and k in b and len(a[k]) == len(xf) and len(b[k]) == len(xc)] for g in GROUPS]
+    common = [k for k in a if k in b]
+    grouped = {k for g in GROUPS for k in g[0]}
+    groups = [*GROUPS, *(((k,), None, 0, "") for k in common if k not in grouped)]  # others (twist, T): their own
+    names = [[k for k in g[0] if k in common] for g in groups]
     tops = [max((float(np.abs(a[k]).max()) for k in ks), default=0.0) for ks in names]
     cuts = np.asarray(breaks, float)
     worst, field, against = 0.0, "", ""
-    for (_, other, power, floor), ks, top in zip(GROUPS, names, tops):
-        scale = max(top, tops[other] * L**power)
+    for (_, other, power, floor), ks, top in zip(groups, names, tops):
+        scale = top if other is None else max(top, tops[other] * L**power)
         if not scale > 0.0:
             continue
         for k in ks:
@@ -119,7 +124,8 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
     if diff > TOLERANCE:
         result.info.setdefault("warnings", []).append(
             f"{m.name}: the same solve on {coarse_n} points differs from this one on {n} by {rounded_up(diff)} in "
-            f"{field} (relative to {against}), so this grid's error may pass {TOLERANCE:g} (the difference is the "
-            "error's size at first order; grids not yet converging can differ by less than their error); use more "
-            "points and compare, or check the result with `pdverify solve --estimate`"
+            f"{field} (relative to {against}), so this grid's error may pass {TOLERANCE:g} (the difference is about "
+            "the error where it falls like the spacing, above it where it falls faster, and can be below it where the "
+            "grids are not yet converging); use more points and compare, or check the result with `pdverify solve "
+            "--estimate`"
         )
