@@ -23,11 +23,12 @@ from ..core.text import rounded_up
 from ..numerics.features import features
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
 
-# the fields' groups, each compared relative to its own largest value or, where that is smaller, to the size the
-# next group gives it over the length L (a component nearly zero beside its partner, N beside Q on a beam bent nearly
-# straight, or a group that is zero but for round-off, N and Q under a pure couple, does not read its round-off as a
-# difference): (names, the group whose largest value sets its floor, that value's power of L, the floor in words);
-# any other field (a bar's twist and torque) is a group of its own, relative to its own largest value
+# each field is compared relative to the largest of its own largest value, SHARE of its group's and the size the next
+# group gives it over the length L, so a component nearly zero beside its partner (N beside Q on a beam bent nearly
+# straight) or a group that is zero but for round-off (N and Q under a pure couple) does not read its round-off as a
+# difference: (names, the group whose largest value sets that size, that value's power of L, the size in words); any
+# other field (a bar's twist and torque) is a group of its own
+SHARE = 1e-2
 GROUPS = (
     (("w", "u", "ux", "uy"), 1, 1, "max |rotation| L"),
     (("rotation",), 0, -1, "max |w, u| / L"),
@@ -67,8 +68,8 @@ def on_coarse(xf: np.ndarray, values: np.ndarray, xc: np.ndarray, breaks: np.nda
 
 def grid_difference(fine, coarse, breaks=()) -> tuple[float, str, str]:
     """(the largest difference of the two results' common fields at the coarser one's points (:func:`on_coarse`),
-    relative to the field's group's scale on the finer one (:data:`GROUPS`); the field where it is; that scale in
-    words and its value)."""
+    relative to the field's scale on the finer one (:data:`GROUPS`); the field where it is; that scale in words and
+    its value)."""
     a, b = fields_of(fine), fields_of(coarse)
     xf, xc = np.asarray(fine.x, float), np.asarray(coarse.x, float)
     L = float(xf[-1] - xf[0]) or 1.0
@@ -80,13 +81,14 @@ def grid_difference(fine, coarse, breaks=()) -> tuple[float, str, str]:
     cuts = np.asarray(breaks, float)
     worst, field, against = 0.0, "", ""
     for (_, other, power, floor), ks, top in zip(groups, names, tops):
-        scale = top if other is None else max(top, tops[other] * L**power)
-        if not scale > 0.0:
-            continue
+        across = 0.0 if other is None else tops[other] * L**power
         for k in ks:
+            sizes = {f"max |{k}|": float(np.abs(a[k]).max()), f"{SHARE:g} max |{', '.join(ks)}|": SHARE * top}
+            said, scale = max({**sizes, floor: across}.items(), key=lambda item: item[1])
+            if not scale > 0.0:
+                continue
             d = float(np.nanmax(np.abs(b[k] - on_coarse(xf, a[k], xc, cuts)), initial=0.0)) / scale
             if d > worst:
-                said = f"max |{', '.join(ks)}|" if scale == top else floor
                 worst, field, against = d, k, f"{said} = {scale:.3g}"
     return worst, field, against
 

@@ -209,3 +209,24 @@ def test_rods_and_bars_estimate_their_coarse_grids(model, exact, field):
         assert (err > 1e-3) == (n < 161) and bool(said(r)) == (n < 161), (n, err)
         assert r.info["grid_estimate"]["difference"] > err
     assert not said(run(member(model, "uniform"), model, points=21))  # the nonlocal operator is exact there
+
+
+def test_a_field_small_beside_its_partner_is_measured_on_its_own_scale():
+    """Sweep 37 S37-3: on a shallow arc N is a twentieth of Q; measured against the larger Q the halves of a grid
+    whose N was 2.1 % off its own largest value differed by 9.4e-4, unwarned."""
+    sc = parse_scene(
+        {
+            "name": "R3703_1065",
+            "beam": {"length": 0.0303638370799},
+            "section": {"width": 0.0005218, "height": 0.00031113},
+            "material": {"youngs_modulus": 829680000.0, "poissons_ratio": 0.3},
+            "supports": {"left": "clamped", "right": "roller"},
+            "loads": [
+                {"type": "distributed", "value": 9.7409e-07},
+                {"type": "point_force", "position": 0.0010588, "value": 3.3799e-08},
+            ],
+            "axis": {"type": "arc", "radius": 0.064695, "opening_angle_deg": 26.8911, "start_angle_deg": -74.617},
+        }
+    )
+    r = run(sc, "pd-curved", points=201, degree=3)
+    assert error(sc, r) > 0.01 and said(r)
