@@ -99,6 +99,9 @@ def eliminate(C: sp.csr_matrix, g: np.ndarray, n: int, what: str) -> Elimination
         return Elimination(sp.identity(n, format="csr"), np.zeros(n), np.zeros(0, int), np.zeros((0, 0)), np.arange(n))
     cols = np.unique(C.indices)
     Cs = C[:, cols].toarray()
+    # each row at its own scale: a slope's rows carry 1 / dx, a deflection's 1, so an absolute mix reads a short
+    # beam's (a spacing of 4e-11) slope rows as dependent on nothing (the rank's test is relative to the largest)
+    Cs /= np.abs(Cs).max(axis=1, keepdims=True)
     _, R, piv = la.qr(Cs, pivoting=True, mode="economic")
     d = np.abs(np.diag(R))
     if len(d) < m or d.min() <= 1e-10 * d.max():

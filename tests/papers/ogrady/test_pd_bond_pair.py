@@ -200,3 +200,33 @@ def test_a_patch_edge_up_to_ten_spacings_from_a_guided_end_is_warned():
         error = np.abs(r.w - exact).max() / np.abs(exact).max()
         said = [w for w in r.info.get("warnings", []) if "its ghosts are fitted on" in w]
         assert bool(said) == warned and (warned or error < 1e-3), (start, end, error, said)
+
+
+def test_the_supports_conditions_hold_at_every_scale():
+    """Sweep 37 S37-6: a beam clamped at the left, guided at the right and clamped inside, solved at L = 7.2 um, was
+    refused at 22 nm ("the supports' conditions repeat or contradict one another"): the rank test of the conditions
+    compared a slope's rows (1 / dx, 2.6e10 here) with a deflection's (1) at one scale."""
+
+    def scene(L: float):
+        return parse_scene(
+            {
+                "name": "clamped inside",
+                "beam": {"length": L},
+                "section": {"width": 2.6e-4 * L, "height": 1.366e-4 * L},
+                "material": {"youngs_modulus": 87388.0, "poissons_ratio": 0.3},
+                "supports": {
+                    "left": "clamped",
+                    "right": "guided",
+                    "inner": [{"type": "clamped", "position": 0.0684 * L}],
+                },
+                "loads": [
+                    {"type": "distributed", "value": 1.0, "start": 0.1754 * L, "end": 0.567 * L, "shape": "sine"}
+                ],
+            }
+        )
+
+    w = [
+        run(scene(L), "pd-bond-pair", points=569, horizon_length=0.003508 * L, ends="mirror").w
+        for L in (7.2e-6, 2.2e-8)
+    ]
+    np.testing.assert_allclose(w[1] / np.abs(w[1]).max(), w[0] / np.abs(w[0]).max(), atol=1e-12)
