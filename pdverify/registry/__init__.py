@@ -296,7 +296,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if check_history and "history" in result.info and "points" in params and not (m.histories or m.reference):
         coarse = {k: v for k, v in given.items() if k != "spacing"}  # the grid given as a spacing: as points
         history_check(scene, m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, history_check=False)))
-    if check_grid and scene.dynamics is None and "points" in params and m.checks_own_grid(scene, params):
+    own_grid = "points" in params and not params.get("continuum") and m.checks_own_grid(scene, params)
+    if check_grid and scene.dynamics is None and own_grid:  # (a continuum has no grid to estimate)
         coarse = {k: v for k, v in given.items() if k != "spacing"}
         grid_check(m, scene, params, result, lambda n: run(scene, m, **dict(coarse, points=n, grid_check=False)))
     result.timings["total_s"] = time.perf_counter() - t0

@@ -209,6 +209,8 @@ def test_rods_and_bars_estimate_their_coarse_grids(model, exact, field):
         assert (err > 1e-3) == (n < 161) and bool(said(r)) == (n < 161), (n, err)
         assert r.info["grid_estimate"]["difference"] > err
     assert not said(run(member(model, "uniform"), model, points=21))  # the nonlocal operator is exact there
+    continuum = run(sc, model, points=41, horizon_length=0.1, continuum=True)
+    assert "grid_estimate" not in continuum.info  # no grid to estimate
 
 
 def test_a_field_small_beside_its_partner_is_measured_on_its_own_scale():
