@@ -1,5 +1,8 @@
 """pdverify advise: physics decisions, a-posteriori estimate confirmed by the exact error, auto solve."""
 
+import json
+import re
+
 import pytest
 from helpers import ROOT, pdverify_process, scene_dict
 
@@ -93,7 +96,11 @@ def test_solve_model_auto():
         "json",
     )
     assert r.returncode == 0, r.stderr
-    assert "auto: fem-timoshenko" in r.stderr and '"model": "fem-timoshenko"' in r.stdout
+    # the cheapest candidate by its measured time: fem-timoshenko (3 ms) or pd-curved (7 ms), both exact here, by the
+    # machine's load; either carries the shear the scene needs and an estimate below a third of the tolerance
+    chosen = re.search(r"auto: (\S+) --points (\d+) \(estimated error of w ([0-9.e+-]+)\)", r.stderr)
+    assert chosen and chosen[1] in ("fem-timoshenko", "pd-curved") and float(chosen[3]) < 5e-2 / 3, r.stderr
+    assert json.loads(r.stdout)["model"] == chosen[1]
     r = pdverify_process("solve", "studies/paper_yang/cantilever_tip_force.toml", "--model", "auto")
     assert r.returncode == 2 and "needs --tolerance" in r.stderr
 
