@@ -298,7 +298,9 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
         history_check(scene, m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, history_check=False)))
     own_grid = "points" in params and not params.get("continuum") and m.checks_own_grid(scene, params)
     if check_grid and scene.dynamics is None and own_grid:  # (a continuum has no grid to estimate)
-        coarse = {k: v for k, v in given.items() if k != "spacing"}
+        coarse = {k: v for k, v in given.items() if k not in ("spacing", "horizon_length")}
+        if params.get("horizon_length") is not None:  # the same horizon factor: the error against the local theory
+            coarse["horizon"] = result.info["m"]  # (at a fixed length the halves share the model error, unseen)
         grid_check(m, scene, params, result, lambda n: run(scene, m, **dict(coarse, points=n, grid_check=False)))
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)

@@ -2,14 +2,15 @@
 
 For a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved axis, whose PDDO derivative of the
 axis frame strains a rigid motion, docs/models/curved.md; pd-rod and pd-torsion, whose horizon's error on coarse grids
-has no other line), the solve on (n + 1) / 2 points differs from the one on n
-by about (2^p - 1) times the finer one's error at order p (Richardson): the difference is the finer one's error at
-first order and above it at higher orders, so a difference past 1e-3 says the finer grid's error may not be small.
-The fields are compared at the coarser grid's points, which an odd n shares with the finer grid; with an even n the
-finer one is interpolated between the scene's features, never across a jump (:func:`on_coarse`), and each field
-relative to its group's scale (:data:`GROUPS`). The result records the difference (``info["grid_estimate"]``) and
-warns where it passes the tolerance; where it estimates nothing (the coarser grid refused, or the model's own note
-that its error does not fall with the grid there) it says so. Grids that converge slowly, or to a locked answer,
+has no other line), the solve on (n + 1) / 2 points differs from the one on n by about (2^p - 1) times the finer
+one's error at order p (Richardson): the difference is the finer one's error at first order and above it at higher
+orders, so a difference past 1e-3 says the finer grid's error may not be small. At a fixed horizon length the coarser
+solve keeps the horizon factor (twice the horizon), so the difference carries the model error too, which two grids at
+one horizon share. The fields are compared at the coarser grid's points, which an odd n shares with the finer grid;
+with an even n the finer one is interpolated between the scene's features, never across a jump (:func:`on_coarse`),
+and each field relative to its scale (:data:`GROUPS`). The result records the difference (``info["grid_estimate"]``)
+and warns where it passes the tolerance; where it estimates nothing (the coarser grid refused, or the model's own
+note that its error does not fall with the grid there) it says so. Grids that converge slowly, or to a locked answer,
 can differ by less than their error: the difference is an estimate, not a bound.
 """
 
@@ -123,11 +124,14 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
         return
     diff, field, against = grid_difference(result, coarse, features(scene))
     record.update(difference=diff, field=field)
+    fixed = params.get("horizon_length") is not None  # the coarser solve at the same factor: twice the horizon
+    same = f" at the same horizon factor ({result.info.get('m', 0):g} spacings: twice the horizon)" if fixed else ""
     if diff > TOLERANCE:
         result.info.setdefault("warnings", []).append(
-            f"{m.name}: the same solve on {coarse_n} points differs from this one on {n} by {rounded_up(diff)} in "
-            f"{field} (relative to {against}), so this grid's error may pass {TOLERANCE:g} (the difference is about "
-            "the error where it falls like the spacing, above it where it falls faster, and can be below it where the "
-            "grids are not yet converging); use more points and compare, or check the result with `pdverify solve "
-            "--estimate`"
+            f"{m.name}: the same solve on {coarse_n} points{same} differs from this one on {n} by {rounded_up(diff)} "
+            f"in {field} (relative to {against}), so this grid's error may pass {TOLERANCE:g} (the difference is "
+            "about the error where it falls like the spacing, above it where it falls faster, and can be below it "
+            "where the grids are not yet converging); "
+            + ("a shorter horizon with more points" if fixed else "use more points and compare")
+            + ", or check the result with `pdverify solve --estimate`"
         )
