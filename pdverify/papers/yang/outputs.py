@@ -215,28 +215,49 @@ def clamp_layer_warning(scene: Scene, dx: float) -> list[str]:
     ]
 
 
-SECTION_LAYER = 1.0  # theta*, w*: error up to about this times min((dx / width)^2, 1) of their largest values (below)
+SECTION_LAYER = 2.0  # theta*, w*: error up to about this times (dx / width)^2 of their largest values (below)
+
+
+def off_grid(scene: Scene, dx: float) -> list[str]:
+    """The point loads and supports inside the span that lie between two points of the uniform grid of spacing
+    ``dx`` (by more than 1e-9 of a spacing), named as the scene's keys."""
+    at = [(f"loads[{i}]", ld.position) for i, ld in enumerate(scene.loads) if isinstance(ld, (PointForce, PointMoment))]
+    at += [(f"supports.inner[{i}]", sp.position) for i, sp in enumerate(scene.supports.inner)]
+    return [name for name, x in at if abs(x / dx - round(x / dx)) > 1e-9]
 
 
 def section_fields_warning(scene: Scene, dx: float) -> list[str]:
     """theta* and w* (the section's fields, Eq. 2-3) turn within the section's boundary layers (of
     :func:`~pdverify.theory.higher_order.layer_width`, Eq. 9) beside every support that holds w, every point load
     and the ends, which w, the rotation, M and V barely see: there they are off by about c (dx / width)^2 of their
-    largest values once the spacing is below a width, and by up to their own size above (measured against
-    exact-higher-order, L/h = 5 to 1000, 101 to 3,201 points: c up to 0.16 beside pinned and spring ends, 0.53
-    beside pins inside the span, 1.0 beside a point force; docs/models/yang.md). One line where
-    :data:`SECTION_LAYER` min((dx / width)^2, 1) passes 1e-3."""
+    largest values once the spacing is below a width (measured against exact-higher-order, L/h = 5 to 1000, 101 to
+    3,201 points, loads and supports on grid points: c up to 0.16 beside pinned ends, 0.53 beside pins inside the span,
+    1.0 beside a point force, 1.2 beside springs), by their own size or more above, and by far more beside a point load
+    or support between two grid points (w* 0.087 off at 1,601 points beside such a pin, where (dx / width)^2 gave
+    0.0024; theta* 1.2e4 times its largest value beside such a couple at 51 points; docs/models/yang.md). One line
+    where :data:`SECTION_LAYER` (dx / width)^2 passes 1e-3, or where such a load or support lies between two points."""
     mat = scene.material
     width = layer_width(mat.poissons_ratio, mat.G * (1 - mat.poissons_ratio**2) / mat.E, scene.section.depth)
     q = dx / width
-    estimate = SECTION_LAYER * min(q * q, 1.0)
-    if not estimate > NEAR_TOLERANCE:
+    estimate, between = SECTION_LAYER * q * q, off_grid(scene, dx)
+    if not (estimate > NEAR_TOLERANCE or between):
         return []
     points = int(np.ceil(scene.length / (width * np.sqrt(NEAR_TOLERANCE / SECTION_LAYER)))) + 1
+    size = (
+        f"off there by up to about {rounded_up(estimate)} of their largest values ({SECTION_LAYER:g} (spacing / "
+        "width)²)"
+        if q < 1.0
+        else "off there by their own size or more (the spacing passes a width)"
+    )
+    beside = (
+        f", and by far more beside {', '.join(between)}, between two grid points (up to many times their size: "
+        "put it on a point)"
+        if between
+        else ""
+    )
     return [
         f"theta_star and w_star (the section's fields θ*, w*) turn within the section's boundary layers (width "
         f"{width:.3g}, Eq. 9) beside the supports, point loads and ends, which w, the rotation, M and V barely see: "
-        f"at a spacing of {q:.3g} widths they are off there by up to about {rounded_up(estimate)} of their largest "
-        f"values ({SECTION_LAYER:g} min((spacing / width)², 1); docs/models/yang.md); use at least {points} points "
+        f"at a spacing of {q:.3g} widths they are {size}{beside} (docs/models/yang.md); use at least {points} points "
         "for 1e-3 in them"
     ]
