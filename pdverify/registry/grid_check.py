@@ -111,7 +111,7 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
         try:
             coarse = solve(coarse_n)
         except (InputError, SolveError) as exc:  # the model's rules refuse the coarser grid (a segment too short)
-            why = f"the same solve on {coarse_n} points does not run ({str(exc).splitlines()[0][:160]})"
+            why = f"the same solve on {coarse_n} points does not run ({str(exc).splitlines()[0]})"
     if coarse is not None and (irregular := result.info.get("irregular")):  # (a coarser grid's alone: its own error)
         why = irregular.removeprefix(m.name + ": ")
         why += f"; the solves on {coarse_n} and {n} points can agree while both are off"

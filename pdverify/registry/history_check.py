@@ -56,7 +56,7 @@ def history_check(scene, m, params: dict, result, solve) -> None:
         record["note"] = f"the coarser grid does not run: {str(exc).splitlines()[0]}"
         result.info.setdefault("warnings", []).append(
             f"the history's error is not estimated: the same run on {coarse_n} points does not run "
-            f"({str(exc).splitlines()[0][:160]}); refine and compare, or measure it against a reference history "
+            f"({str(exc).splitlines()[0]}); refine and compare, or measure it against a reference history "
             "(exact-modal-*) in a study"
         )
         return

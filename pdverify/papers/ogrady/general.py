@@ -89,7 +89,8 @@ class Elimination:
         the reactions the conditions exert (force up, moment counter-clockwise)."""
         if not len(self.dep):
             return np.zeros(0)
-        return la.solve(self.Cd.T, residual[self.dep])
+        r = np.abs(self.Cd).max(axis=1)  # each condition at its own scale (eliminate): C_d = diag(r) (C_d / r)
+        return la.solve((self.Cd / r[:, None]).T, residual[self.dep]) / r
 
 
 def eliminate(C: sp.csr_matrix, g: np.ndarray, n: int, what: str) -> Elimination:
@@ -109,7 +110,8 @@ def eliminate(C: sp.csr_matrix, g: np.ndarray, n: int, what: str) -> Elimination
     dep = cols[piv[:m]]
     ind = np.setdiff1d(np.arange(n), dep)
     Cd = C[:, dep].toarray()
-    Cd_inv = la.inv(Cd)
+    r = np.abs(Cd).max(axis=1)
+    Cd_inv = la.inv(Cd / r[:, None]) / r[None, :]  # inv(diag(1/r) C_d) diag(1/r): each row at its own scale
     top = sp.csr_matrix((np.ones(len(ind)), (ind, np.arange(len(ind)))), shape=(n, len(ind)))
     dense = -Cd_inv @ C[:, ind].toarray()  # m rows: the fixed points' w in terms of the free ones
     nz = np.nonzero(dense)

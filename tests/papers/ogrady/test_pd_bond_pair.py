@@ -1,5 +1,7 @@
 """pd-bond-pair (O'Grady & Foster), linear path: calibration, ghost rules, every support pair."""
 
+import warnings
+
 import numpy as np
 import pytest
 from helpers import MIXED_LOADS, PAIRS, load_edge_error, scene_dict
@@ -225,8 +227,9 @@ def test_the_supports_conditions_hold_at_every_scale():
             }
         )
 
-    w = [
-        run(scene(L), "pd-bond-pair", points=569, horizon_length=0.003508 * L, ends="mirror").w
-        for L in (7.2e-6, 2.2e-8)
-    ]
-    np.testing.assert_allclose(w[1] / np.abs(w[1]).max(), w[0] / np.abs(w[0]).max(), atol=1e-12)
+    lengths = (7.2e-6, 2.2e-8, 2.2e-14)
+    with warnings.catch_warnings():  # at 2.2e-14 SciPy warned of the conditions' scale (sweep 38 S38-6)
+        warnings.simplefilter("error")
+        w = [run(scene(L), "pd-bond-pair", points=569, horizon_length=0.003508 * L, ends="mirror").w for L in lengths]
+    for v in w[1:]:
+        np.testing.assert_allclose(v / np.abs(v).max(), w[0] / np.abs(w[0]).max(), atol=1e-12)
