@@ -19,10 +19,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ..core.errors import InputError, SolveError
 from ..core.text import rounded_up
 from ..numerics.features import features
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
+from .history_check import coarser_run
 
 # each field is compared relative to the largest of its own largest value, SHARE of its group's and the size the next
 # group gives it over the length L, so a component nearly zero beside its partner (N beside Q on a beam bent nearly
@@ -100,18 +100,13 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
     (n + 1) / 2 points), and a warning where the difference passes the tolerance, or where it estimates nothing: the
     coarser grid refused, or a model's own note that its error does not fall with the grid there
     (``info["irregular"]``: both grids can then agree and both be off)."""
-    n = int(params["points"])
-    least = int(m.option("points").minimum or 2)
-    coarse_n = (n + 1) // 2
-    record: dict = {"grids": [coarse_n, n]}
-    result.info["grid_estimate"] = record
-    why = f"the same solve on {coarse_n} points is below the model's least, {least}" if coarse_n < least else ""
-    coarse = None
-    if not why:
-        try:
-            coarse = solve(coarse_n)
-        except (InputError, SolveError) as exc:  # the model's rules refuse the coarser grid (a segment too short)
-            why = f"the same solve on {coarse_n} points does not run ({str(exc).splitlines()[0]})"
+    n, coarse_n, record, coarse, least, refusal = coarser_run(m, params, result, "grid_estimate", solve)
+    why = (
+        ""
+        if coarse is not None
+        else f"the same solve on {coarse_n} points "
+        + (f"does not run ({refusal})" if refusal else f"is below the model's least, {least}")
+    )
     if coarse is not None and (irregular := result.info.get("irregular")):  # (a coarser grid's alone: its own error)
         why = irregular.removeprefix(m.name + ": ")
         why += f"; the solves on {coarse_n} and {n} points can agree while both are off"

@@ -13,11 +13,41 @@ out; fem-timoshenko's transient, a discretised reference, is checked too (its hi
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ..core.errors import InputError, SolveError
 from ..core.text import rounded_up
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
+
+
+class Coarser(NamedTuple):
+    """The same run on (n + 1) / 2 points: ``result`` None where the grid is below the model's least (``least``) or
+    refused (``refusal``: the first line of the model's error)."""
+
+    n: int
+    points: int
+    record: dict
+    result: object
+    least: int
+    refusal: str
+
+
+def coarser_run(m, params: dict, result, key: str, solve) -> Coarser:
+    """:class:`Coarser` from ``solve((n + 1) / 2)`` for ``params["points"]`` = n; its record ({"grids"}) is put in
+    ``result.info[key]``."""
+    n = int(params["points"])
+    least = int(m.option("points").minimum or 2)
+    coarse_n = (n + 1) // 2
+    record: dict = {"grids": [coarse_n, n]}
+    result.info[key] = record
+    if coarse_n < least:
+        return Coarser(n, coarse_n, record, None, least, "")
+    try:
+        return Coarser(n, coarse_n, record, solve(coarse_n), least, "")
+    except (InputError, SolveError) as exc:  # the model's rules refuse the coarser grid, or it blows up
+        return Coarser(n, coarse_n, record, None, least, str(exc).splitlines()[0])
 
 
 def history_difference(fine: dict, coarse: dict) -> tuple[float, str]:
@@ -42,22 +72,15 @@ def history_check(scene, m, params: dict, result, solve) -> None:
     on ``params["points"]`` points, from ``solve(points)`` (the same scene and options on (n + 1) / 2 points), and a
     warning where the difference passes the tolerance. Nothing where the coarser grid is refused or does not run (a
     note in the record says why)."""
-    n = int(params["points"])
-    least = int(m.option("points").minimum or 2)
-    coarse_n = (n + 1) // 2
-    record: dict = {"grids": [coarse_n, n]}
-    result.info["history_estimate"] = record
-    if coarse_n < least:
+    n, coarse_n, record, coarse, least, refusal = coarser_run(m, params, result, "history_estimate", solve)
+    if coarse is None and not refusal:
         record["note"] = f"no coarser grid: {coarse_n} points is below the model's {least}"
         return
-    try:
-        coarse = solve(coarse_n)
-    except (InputError, SolveError) as exc:  # the model's rules refuse the coarser grid, or its transient blows up
-        record["note"] = f"the coarser grid does not run: {str(exc).splitlines()[0]}"
+    if coarse is None:  # the model's rules refuse the coarser grid, or its transient blows up
+        record["note"] = f"the coarser grid does not run: {refusal}"
         result.info.setdefault("warnings", []).append(
-            f"the history's error is not estimated: the same run on {coarse_n} points does not run "
-            f"({str(exc).splitlines()[0]}); refine and compare, or measure it against a reference history "
-            "(exact-modal-*) in a study"
+            f"the history's error is not estimated: the same run on {coarse_n} points does not run ({refusal}); "
+            "refine and compare, or measure it against a reference history (exact-modal-*) in a study"
         )
         return
     if "history" not in coarse.info:
