@@ -59,7 +59,7 @@ def on_coarse(xf: np.ndarray, values: np.ndarray, xc: np.ndarray, breaks: np.nda
     piece_f, piece_c = np.searchsorted(cut, xf, side="left"), np.searchsorted(cut, xc, side="left")
     if np.all(on):  # nested grids (an odd n): nothing to interpolate
         return out
-    from scipy.interpolate import CubicSpline  # here: scipy.interpolate's import takes 0.4 s, an even n alone needs it
+    from scipy.interpolate import CubicSpline  # here: its import takes 0.15 s, and an even n alone needs it
 
     for k in np.unique(piece_c[~on]):  # a loop over the pieces between breaks (a few), not over points
         xs, ys, at = xf[piece_f == k], values[piece_f == k], ~on & (piece_c == k)
