@@ -119,10 +119,11 @@ class Band:
             yield off, sl
 
     def values(self, rows, cols) -> np.ndarray:
-        """A[rows, cols] element by element (arrays of one shape; 0 outside the band)."""
+        """A[rows, cols] element by element (arrays of one shape; 0 outside the band and outside the matrix)."""
         rows, cols = np.broadcast_arrays(np.asarray(rows, np.int64), np.asarray(cols, np.int64))
         off = cols - rows
-        inside = (off <= self.upper) & (off >= -self.lower)
+        inside = (off <= self.upper) & (off >= -self.lower) & (rows >= 0) & (rows < self.n) & (cols >= 0)
+        inside &= cols < self.n
         out = np.zeros(rows.shape)
         out[inside] = self.data[self.upper - off[inside], cols[inside]]
         return out

@@ -63,6 +63,7 @@ def test_entries_fix_sparse_round_trip_matvec_and_scale():
         B.add_entries([0], [9], [1.0])  # outside the band
     i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
     assert np.array_equal(B.values(i, j), A)  # entry by entry, zero outside the band
+    assert np.array_equal(B.values([n - 1, n - 1, 0, -1], [n, n + 2, -1, 0]), np.zeros(4))  # and outside the matrix
     s = rng.uniform(0.5, 2.0, size=n)
     assert np.allclose(B.copy().scale(s).toarray(), s[:, None] * A * s[None, :])
     B.fix([0, 17])
