@@ -119,9 +119,9 @@ class Result:
     def to_csv(self) -> str:
         """A header line and one row per point; a result that carries warnings starts with one comment
         line per warning, ``# warning: ...``, and, when through-section stresses were asked for (option
-        ``stations``), the lines of :meth:`output_lines` (read it back with ``pandas.read_csv(..., comment="#")``;
-        without either it is a plain table)."""
-        shown = self.info.get("sections") or self.info.get("estimate")
+        ``stations``) or the run made an estimate of its own error, the lines of :meth:`output_lines` (read it back
+        with ``pandas.read_csv(..., comment="#")``; without either it is a plain table)."""
+        shown = any(self.info.get(k) for k in ("sections", "estimate", "grid_estimate", "history_estimate"))
         head = self.warning_lines() + (self.output_lines() if shown else [])
         return "".join(f"# {one_line(line)}\n" for line in head) + columns_csv(self.columns())
 

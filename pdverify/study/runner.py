@@ -1,7 +1,6 @@
-"""Run a study: each case solved and measured (:func:`solve_case`, :func:`measure_case`) in this process,
-a process pool or on a Dask cluster (execute.py), stored as soon as it finishes, atomically (outdir.py), so
-a run resumes where it stopped; then the tables (derived.py).
-"""
+"""Run a study: each case solved and measured (:func:`solve_case`, :func:`measure_case`) in this process, a process
+pool or on a Dask cluster (execute.py), stored as soon as it finishes, atomically (outdir.py), so a run resumes where it
+stopped; then the tables (derived.py)."""
 
 from __future__ import annotations
 
@@ -37,6 +36,7 @@ PARAM_COLUMNS = ("variant", "points", "horizon", "horizon_length", "degree", "el
 
 
 INFO_KEYS = ("horizon", "m", "cond", "error_bound", "load_steps", "history", "factorisation", "moment_curvature")
+OWN_ESTIMATES = ("grid_estimate", "history_estimate")  # columns: the difference from the same run on half the points
 
 
 def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
@@ -56,6 +56,7 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
             "timings": {k: result.timings.get(k) for k in ("assemble_s", "solve_s", "total_s")},
             "dofs": int(result.dofs),
             "info": {k: _plain_scalar(result.info[k]) for k in INFO_KEYS if k in result.info},
+            **{k: result.info[k].get("difference") for k in OWN_ESTIMATES if k in result.info},
             "warnings": "; ".join(str(w) for w in result.info.get("warnings", [])),
         }
         if result.path:  # a load path: the load factor against the deflection at its peak point, for the report
@@ -81,8 +82,7 @@ def solve_case(case: Case, artefacts: str | None = None, case_id: str | None = N
 
 
 def _failure_message(exc: Exception) -> str:
-    """A failed case's message: a PdverifyError's lines, a replayed failure's text, else the exception's type
-    and text (a bug)."""
+    """A failed case's message: a PdverifyError's lines, a replayed failure's text, else the exception (a bug)."""
     if isinstance(exc, PdverifyError):
         return " ".join(exc.lines)
     if isinstance(exc, _Failed):
@@ -166,8 +166,8 @@ def measure_case(case: Case, solved: dict, case_id: str | None = None) -> dict:
 
 
 def _row_skeleton(case: Case, case_id: str) -> dict:
-    """The columns of a case's row known from the case alone: its key, code, scene file, model, slenderness,
-    reference and version, and its options as given."""
+    """The row's columns known from the case alone: key, code, scene file, model, slenderness, reference, version,
+    options as given."""
     row = {
         "case_id": case_id,
         "code": code_digest(),
@@ -268,6 +268,7 @@ def _measure_status(case: Case, solved: dict, params: dict, row: dict) -> None:
     # the digest of the factorised operator: the cases with the same one in a process share its LU
     # (numerics/factorcache.py); whether this case made it or took it depends on the run's order, not recorded
     row["factorisation"] = info.get("factorisation")
+    row.update({k: solved[k] for k in OWN_ESTIMATES if solved.get(k) is not None})
     row["status"], row["message"] = "ok", ""
     row.update(case_status(info, row.get("err_max", np.nan)))  # suspect: a bound that could decide it (trust.md)
     if case.reference.get("continuum"):  # ... or the reference's: the error is measured against it
@@ -311,8 +312,7 @@ def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: 
 
 
 def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
-    """Solve one case and measure it (:func:`solve_case`, then :func:`measure_case`). Never raises: a
-    failure is a record with status 'failed'."""
+    """Solve one case and measure it (:func:`solve_case`, :func:`measure_case`); a failure is a record, never raised."""
     return measure_case(case, solve_case(case, artefacts, case_id), case_id)
 
 

@@ -7,6 +7,7 @@ import json
 import tomllib
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from pdverify.apps.output import result_table
@@ -62,6 +63,7 @@ def test_a_coarse_grid_on_a_curved_axis_says_so():
     assert line.startswith("pd-curved: the same solve on 26 points differs from this one on 51 by ")
     assert not any("too coarsely" in w for w in r.info["warnings"])  # the frame defect's warning does not see it
     assert "# grid_estimate: the same solve on 26 points against 51: difference 0.345 in N" in result_table(r)
+    assert "# grid_estimate: the same solve on 26 points against 51: difference 0.345 in N\n" in r.to_csv()  # S38-5
 
 
 def test_the_check_warns_past_1e_3_and_leaves_the_result_as_it_is():
@@ -106,6 +108,13 @@ def test_a_study_run_may_leave_the_check_out(tmp_path):
     df = run_study(load_study(study), tmp_path / "out", workers=1, progress=False)
     said = {json.loads(o)["grid_check"]: str(w) for o, w in zip(df["options"], df["warnings"])}
     assert "the same solve on 26 points" in said[True] and "the same solve on" not in said[False]
+    # the difference is a column of results.csv (sweep 38 S38-5: only the table and JSON formats carried it)
+    made = {json.loads(o)["grid_check"]: d for o, d in zip(df["options"], df["grid_estimate"])}
+    direct = run(arc(), "pd-curved", points=51, degree=3).info["grid_estimate"]["difference"]
+    assert made[True] == direct and np.isnan(made[False])
+    assert list(pd.read_csv(tmp_path / "out" / "results.csv")["grid_estimate"].isna()) == list(
+        np.isnan(df["grid_estimate"])
+    )
 
 
 def audit_scene(name: str, L: float, width: float, height: float, E: float, supports: tuple, loads: list, axis: dict):
