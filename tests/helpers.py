@@ -80,6 +80,12 @@ def pdverify_process(*args, cwd=ROOT, timeout: float = 300) -> subprocess.Comple
     )
 
 
+def own_grid(line: str) -> bool:
+    """Whether a warning is a static solve's own estimate from the same solve on about half the points
+    (pdverify/registry/grid_check.py: "the same solve on N points differs from this one on n by ...")."""
+    return ": the same solve on " in line
+
+
 def scene_dict(left="clamped", right="free", loads=(), **over):
     d = copy.deepcopy(BASE)
     d["supports"] = {"left": left, "right": right}

@@ -291,6 +291,8 @@ class Model(Horizon):
     # ({"clamped": C, "pinned": C}; measured on its default variant: registry/end_loads.py)
     modes: bool = False  # gives the mass and stiffness of its transient: implements eigenproblem()
     histories: bool = False  # a reference giving time histories at any probes and times: implements history_at()
+    grid_checked: bool = False  # its error on coarse grids outruns its warnings: every static solve on a grid carries
+    # the same solve on about half the points (checks_own_grid)
 
     def promised_order(self, params: dict) -> float:
         """The order of convergence the equations promise with these options (``params`` over the defaults): the
@@ -301,9 +303,9 @@ class Model(Horizon):
     def checks_own_grid(self, scene: Scene, params: dict) -> bool:
         """Whether a static solve of ``scene`` with these options (resolved) carries its own estimate from the same
         solve on about half the points (:func:`~pdverify.registry.grid_check.grid_check`): where the model's error on
-        coarse grids is known to outrun its warnings (pd-curved on a curved axis, pd-rod, pd-torsion). False by
-        default."""
-        return False
+        coarse grids is known to outrun its warnings (pd-curved on a curved axis; :attr:`grid_checked`: pd-eb,
+        pd-bond-pair, pd-rod, pd-torsion). The model's :attr:`grid_checked` by default."""
+        return self.grid_checked
 
     def estimate_constants(self, scene: Scene, params: dict) -> tuple[dict, tuple[float, float]]:
         """(:attr:`end_load_error`, :attr:`jump_rotation`) for these options (``params``, or the defaults where they

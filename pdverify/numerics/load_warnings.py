@@ -12,6 +12,16 @@ from ..core.text import counted, listed, more_points, rounded_down, rounded_up, 
 from .loads import TIE, within
 from .recovery import STRETCH
 
+# the words of the lines that name a feature (a load, its edge, an inner support, a joint) inside a zone a number of
+# spacings wide next to an end, where the model takes it differently (its boundary layer, its fitted ghosts, its cell
+# averages); two grids that put a feature on different sides of such a zone treat the scene differently there
+ZONES = ("inside the boundary layer of", "its ghosts are fitted on", "where the model takes it by its cell averages")
+
+
+def zoned(lines: list[str]) -> set[str]:
+    """The features (``loads[2]``, ``supports.inner[0]``) that ``lines`` name inside an end's zone (:data:`ZONES`)."""
+    return {w.split(" ", 1)[0] for w in lines if any(z in w for z in ZONES)}
+
 
 def boundary_layer_warnings(scene: Scene, x: np.ndarray, reach: int, fixed: tuple | None = None) -> list[str]:
     """Point loads (force, moment, torque) strictly inside the first ``reach`` spacings of an end: the

@@ -21,6 +21,7 @@ import numpy as np
 from ..core.text import rounded_up
 from ..numerics.features import features
 from ..numerics.load_warnings import NEAR_TOLERANCE as TOLERANCE  # the estimates' threshold of a warning
+from ..numerics.load_warnings import zoned
 from .history_check import coarser_run
 
 # each field is compared relative to the largest of its own largest value, SHARE of its group's and the size the next
@@ -101,8 +102,9 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
     """Add ``info["grid_estimate"]`` ({"grids", "difference", "field"}, or a "note") to a static ``result`` of model
     ``m`` on ``scene`` on ``params["points"]`` points, from ``solve(points)`` (the same scene and options on
     (n + 1) / 2 points), and a warning where the difference passes the tolerance, or where it estimates nothing: the
-    coarser grid refused, or a model's own note that its error does not fall with the grid there
-    (``info["irregular"]``: both grids can then agree and both be off)."""
+    coarser grid refused, a model's own note that its error does not fall with the grid there (``info["irregular"]``:
+    both grids can then agree and both be off), or grids that differ where the coarser one alone has a feature inside
+    an end's zone (:data:`~pdverify.numerics.load_warnings.ZONES`)."""
     n, coarse_n, record, coarse, least, refusal = coarser_run(m, params, result, "grid_estimate", solve)
     why = (
         ""
@@ -113,6 +115,16 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
     if coarse is not None and (irregular := result.info.get("irregular")):  # (a coarser grid's alone: its own error)
         why = irregular.removeprefix(m.name + ": ")
         why += f"; the solves on {coarse_n} and {n} points can agree while both are off"
+    if not why:
+        diff, field, against = grid_difference(result, coarse, features(scene))
+        # grids that differ where the coarser one alone puts a feature inside an end's zone (its boundary layer, its
+        # fitted ghosts, its cell averages: its own line) differ by that grid's error there, not this one's
+        moved = zoned(coarse.info.get("warnings", [])) - zoned(result.info.get("warnings", []))
+        if moved and diff > TOLERANCE:
+            why = (
+                f"the same solve on {coarse_n} points puts {' and '.join(sorted(moved))} inside an end's zone (its "
+                "own warning), where this grid does not, so their difference would be that grid's error, not this one's"
+            )
     if why:
         record["note"] = why
         result.info.setdefault("warnings", []).append(
@@ -120,7 +132,6 @@ def grid_check(m, scene, params: dict, result, solve) -> None:
             "`pdverify solve --estimate`"
         )
         return
-    diff, field, against = grid_difference(result, coarse, features(scene))
     record.update(difference=diff, field=field)
     fixed = params.get("horizon_length") is not None  # the coarser solve at the same factor: twice the horizon
     same = f" at the same horizon factor ({result.info.get('m', 0):g} spacings: twice the horizon)" if fixed else ""

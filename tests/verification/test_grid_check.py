@@ -15,7 +15,7 @@ from pdverify.core.errors import InputError
 from pdverify.core.scene_file import parse_scene
 from pdverify.measure.richardson import with_estimate
 from pdverify.registry import get_model, run
-from pdverify.registry.grid_check import fields_of
+from pdverify.registry.grid_check import fields_of, grid_difference
 from pdverify.study.runner import run_study
 from pdverify.study.spec import load_study
 
@@ -254,3 +254,74 @@ def test_at_a_fixed_horizon_length_the_coarser_solve_keeps_the_horizon_factor():
         assert err > 1e-3 and r.info["grid_estimate"]["difference"] > err
         m = round(0.07 * (n - 1))
         assert f"at the same horizon factor ({m} spacings: twice the horizon)" in line and "a shorter horizon" in line
+
+
+def straight(left: str, right: str, loads: list) -> object:
+    """A 1 m steel beam of 20 mm square section."""
+    return parse_scene(
+        {
+            "name": f"{left}-{right}",
+            "beam": {"length": 1.0},
+            "section": {"width": 0.02, "height": 0.02},
+            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+            "supports": {"left": left, "right": right},
+            "loads": loads,
+        }
+    )
+
+
+def beam_error(scene, r) -> float:
+    """The largest error of w and the rotation against exact-eb's, each relative to its own largest value."""
+    e = run(scene, "exact-eb", points=len(r.x))
+    return max(float(np.abs(a - b).max() / np.abs(b).max()) for a, b in ((r.w, e.w), (r.rotation, e.rotation)))
+
+
+@pytest.mark.parametrize(
+    "model, left, right, n",
+    [
+        ("pd-eb", "pinned", "guided", 41),
+        ("pd-bond-pair", "pinned", "pinned", 81),
+        ("pd-bond-pair", "roller", "guided", 81),
+    ],
+)
+def test_pd_eb_and_bond_pair_estimate_their_coarse_grids(model, left, right, n):
+    """Their verification suite's sine loads: pd-eb 2.4e-3 off at 41 points, pd-bond-pair (its mirror ends: the model
+    error of its horizon, 3 spacings) 1.5e-3 and 1.1e-3 at 81 in w, with no line (their cards: 4 and 12 such rows;
+    sweep 39: 29 silent rows of 16,830 random ones). Now warned; four times the points, the line goes."""
+    sc = straight(left, right, [{"type": "distributed", "value": -1000.0, "shape": "sine"}])
+    r = run(sc, model, points=n)
+    err = beam_error(sc, r)
+    assert err > 1e-3 and len(said(r)) == 1 and r.info["grid_estimate"]["difference"] > err
+    assert [w for w in r.info["warnings"] if w not in said(r)] == []  # no other line told
+    fine = run(sc, model, points=4 * n - 3)
+    assert beam_error(sc, fine) < 1e-3 and not said(fine)
+
+
+def test_a_load_the_coarser_grid_alone_puts_in_an_end_zone_is_not_estimated():
+    """Sweep 39: a couple 10.4 spacings from a clamp at 201 points is outside pd-eb's end layer (10 spacings at horizon
+    3), where its cantilever is exact; on 101 points it is 5.2 spacings from the clamp, inside, and that grid's shear
+    is off by 70 times max |M| / L: the difference is the coarser grid's error, not this one's, so the check says it
+    does not estimate it (its line, not a difference's)."""
+    sc = straight("clamped", "free", [{"type": "point_moment", "position": 0.052, "value": 10.0}])
+    r = run(sc, "pd-eb", points=201)
+    assert beam_error(sc, r) < 1e-9  # exact
+    coarse = run(sc, "pd-eb", points=101, grid_check=False)
+    assert any("inside the boundary layer" in w for w in coarse.info["warnings"])
+    (line,) = r.info["warnings"]
+    assert (
+        "the error on 201 points is not estimated: the same solve on 101 points puts loads[0] inside an end's zone"
+        in line
+    )
+    assert r.info["grid_estimate"] == {"grids": [101, 201], "note": line.split("not estimated: ")[1].split("; use")[0]}
+    assert not said(run(sc, "pd-eb", points=201, grid_check=False))
+
+
+def test_a_fractional_factor_at_a_horizon_length_is_estimated_where_the_variant_takes_the_length():
+    """Sweep 39: pd-eb's paper variant defines a fractional m only through a horizon length (Eq. 11a with delta given),
+    and its coarser solve was given the factor (4.44) and refused it: "not estimated" on 127 of 148 such rows. The
+    coarser solve takes the same factor as a length."""
+    sc = straight("pinned", "pinned", [{"type": "distributed", "value": -1000.0, "shape": "sine"}])
+    r = run(sc, "pd-eb", points=21, horizon_length=0.222, variant="paper")
+    assert abs(r.info["m"] - 4.44) < 1e-9 and "difference" in r.info["grid_estimate"]
+    twice = run(sc, "pd-eb", points=11, horizon_length=0.444, variant="paper", grid_check=False)
+    assert r.info["grid_estimate"]["difference"] == grid_difference(r, twice)[0]

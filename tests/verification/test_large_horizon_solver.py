@@ -86,6 +86,19 @@ def test_krylov_refuses_what_is_not_a_uniform_band():
         run(sc, "pd-bond-pair", points=41, horizon=3, ends="mirror", solver="krylov")
 
 
+def test_krylov_refuses_a_grid_shorter_than_its_stencil():
+    """A horizon of 40 spacings on 161 points: no interior row repeats the stencil (every row reaches an end), so
+    ``solver = krylov`` is refused in one line (the stencil was read past the matrix's last column); auto solves it,
+    and a run asked for Krylov on a grid that takes it checks its grid on half the points with the solver's own
+    choice."""
+    sc = scene("pinned", "pinned")
+    with pytest.raises(InputError, match="solver = krylov: no block stencil repeats"):
+        run(sc, "pd-eb", points=161, horizon=40, variant="paper", solver="krylov", grid_check=False)
+    assert run(sc, "pd-eb", points=161, horizon=40, variant="paper").info["solver_choice"].startswith("banded")
+    r = run(sc, "pd-eb", points=401, horizon=40, variant="paper", solver="krylov")
+    assert r.info["grid_estimate"]["grids"] == [201, 401]
+
+
 def test_automatic_choice_is_deterministic():
     """The choice is a function of the matrix: the same plan twice on one matrix; a wide band on a uniform grid held
     at both ends goes to Krylov, a narrow one (below KRYLOV_MIN_HALF_BANDWIDTH) stays banded, with the reason."""

@@ -10,6 +10,7 @@ import re
 
 import numpy as np
 import pytest
+from helpers import own_grid
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.numerics.load_warnings import CELL_FLOOR, cell_place
@@ -182,7 +183,11 @@ def test_no_slope_line_for_a_uniform_load_a_sine_patch_at_mid_span_or_one_of_thr
     fine = 1 / 1600
     narrow = beam("free", "clamped", patch(15 * fine, 18 * fine, shape="sine"))
     r = run(narrow, "pd-eb", points=1601, horizon=5)
-    assert not r.info.get("warnings") and shear_error(narrow, r) <= 1e-3
+    assert shear_error(narrow, r) <= 1e-3
+    # the solve's own estimate (half the points) is not made: there the patch lies within the end's 10 spacings, where
+    # the coarser grid's shear is 1.7e-2 off (its own line says so), which is not this grid's error (sweep 39)
+    (line,) = r.info.get("warnings")
+    assert "not estimated: the same solve on 801 points puts loads[0] inside an end's zone" in line
 
 
 def test_where_no_shorter_horizon_fits_the_grid_the_advice_names_one_that_does():
@@ -204,4 +209,6 @@ def test_beside_a_free_end_the_advice_leaves_the_fitted_ghosts_layer_too():
     sc = beam("free", "clamped", patch(0.015, 0.215))
     (line,) = [w for w in run(sc, "pd-eb", points=201, horizon_length=0.015).info["warnings"] if "cell averages" in w]
     delta, points = re.search(r"give horizon_length = ([\d.e-]+) \(one spacing\) and (\d+) points", line).groups()
-    assert not run(sc, "pd-eb", points=int(points), horizon_length=float(delta)).info.get("warnings")
+    said = run(sc, "pd-eb", points=int(points), horizon_length=float(delta)).info.get("warnings", [])
+    # but for the solve's own estimate, which half the points cannot give: there the edge is inside the layer
+    assert not [w for w in said if not own_grid(w)] and all("not estimated" in w for w in said)

@@ -231,6 +231,7 @@ class PDBondPair(Model):
     name = "pd-bond-pair"
     jump_rotation, end_load_error = ESTIMATES[("corrected", "taylor")]  # the defaults' (variant, ends = auto)
     dispersion = "bond-pair"  # its waves' frequencies (pdverify.theory.symbols)
+    grid_checked = True  # its suite's sine loads 1.5e-3 off at 81 points with no other line (docs/trust.md)
     title = "non-ordinary state-based bond-pair PD beam (linear path)"
     source = (
         "O'Grady & Foster 2014, Peridynamic beams: a non-ordinary, state-based model (alpha calibration and ghost "

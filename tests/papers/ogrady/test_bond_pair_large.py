@@ -3,7 +3,7 @@ conditions of free and guided ends written on the curvature) keeps the round-off
 
 import numpy as np
 import pytest
-from helpers import MIXED_LOADS, PAIRS, scene_dict
+from helpers import MIXED_LOADS, PAIRS, own_grid, scene_dict
 
 from pdverify.core.scene_file import parse_scene
 from pdverify.exact.straight import solve_straight
@@ -46,8 +46,10 @@ def test_mixed_and_direct_forms_are_the_same_discretisation_away_from_free_and_g
     assert em < 1e-3 and ed < 1e-3
     e401, _ = err(sc, points=401)
     assert np.log2(em / e401) > 1.8
-    # rotation: first order; a couple's deflection: its estimate (test_couple_deflection.py)
-    assert not [w for w in rm.info.get("warnings", []) if not w.startswith("rotation") and COUPLE not in w]
+    # rotation: first order; a couple's deflection: its estimate (test_couple_deflection.py); the solve's own
+    # estimate from half the points (the rotation's: 7e-4 .. 1.7e-2 off at 201 points, the estimate 1.3-1.6 times that)
+    lines = rm.info.get("warnings", [])
+    assert not [w for w in lines if not w.startswith("rotation") and COUPLE not in w and not own_grid(w)]
 
 
 @pytest.mark.slow

@@ -5,7 +5,7 @@ import copy
 
 import numpy as np
 import pytest
-from helpers import BASE, STUDIES, scene_dict
+from helpers import BASE, STUDIES, own_grid, scene_dict
 
 from pdverify.core.errors import InputError
 from pdverify.core.scene_file import load_scene, parse_scene
@@ -78,8 +78,10 @@ def test_second_order_against_exact_eb(name):
         assert e2 < 1e-2, (variant, e2)
         assert np.log2(e1 / e2) > 1.7, (variant, e1, e2)
         assert r.info["ends"] == "mirror"
-        # rotation: first order; a couple's deflection: its estimate (test_couple_deflection.py)
-        assert not [w for w in r.info.get("warnings", []) if not w.startswith("rotation") and COUPLE not in w]
+        # rotation: first order; a couple's deflection: its estimate (test_couple_deflection.py); the solve's own
+        # estimate from half the points (the rotation's, measured 1.6e-3 .. 6e-2 off where it speaks)
+        lines = r.info.get("warnings", [])
+        assert not [w for w in lines if not w.startswith("rotation") and COUPLE not in w and not own_grid(w)]
 
 
 @pytest.mark.parametrize("name", ["two spans", "overhangs", "spring end", "spring inside", "stepped"])
