@@ -188,21 +188,26 @@ def test_a_segment_whose_error_does_not_fall_is_not_estimated():
     assert "the solves on 43 and 85 points can agree while both are off" in line
 
 
+def straight(left: str, right: str, loads: list, name: str = "") -> object:
+    """A 1 m steel beam of 20 mm square section."""
+    return parse_scene(
+        {
+            "name": name or f"{left}-{right}",
+            "beam": {"length": 1.0},
+            "section": {"width": 0.02, "height": 0.02},
+            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+            "supports": {"left": left, "right": right},
+            "loads": loads,
+        }
+    )
+
+
 def member(model: str, shape: str):
     """Sweep 37 S37-2: a 1 m rod clamped at both ends (pd-rod) or bar pinned at both ends (pd-torsion) under a line
     load of ``shape``."""
     ends = "clamped" if model == "pd-rod" else "pinned"
     load = {"type": "distributed", "value": 0.0, "shape": shape, "axial" if model == "pd-rod" else "torque": 100.0}
-    return parse_scene(
-        {
-            "name": f"{model} {shape}",
-            "beam": {"length": 1.0},
-            "section": {"width": 0.02, "height": 0.02},
-            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
-            "supports": {"left": ends, "right": ends},
-            "loads": [load],
-        }
-    )
+    return straight(ends, ends, [load], f"{model} {shape}")
 
 
 @pytest.mark.parametrize(
@@ -254,20 +259,6 @@ def test_at_a_fixed_horizon_length_the_coarser_solve_keeps_the_horizon_factor():
         assert err > 1e-3 and r.info["grid_estimate"]["difference"] > err
         m = round(0.07 * (n - 1))
         assert f"at the same horizon factor ({m} spacings: twice the horizon)" in line and "a shorter horizon" in line
-
-
-def straight(left: str, right: str, loads: list) -> object:
-    """A 1 m steel beam of 20 mm square section."""
-    return parse_scene(
-        {
-            "name": f"{left}-{right}",
-            "beam": {"length": 1.0},
-            "section": {"width": 0.02, "height": 0.02},
-            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
-            "supports": {"left": left, "right": right},
-            "loads": loads,
-        }
-    )
 
 
 def beam_error(scene, r) -> float:
