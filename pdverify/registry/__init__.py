@@ -13,7 +13,9 @@ re-exported here, the import path plug-ins use.
 
 from __future__ import annotations
 
+import copy
 import importlib
+import json
 import pkgutil
 import time
 
@@ -39,6 +41,7 @@ from ..core.scene import Scene
 from ..core.scene_file import parse_scene
 from ..core.text import close_match
 from ..numerics.features import stiffness_step_warnings, unresolved_features_warnings
+from ..numerics.kept import Kept
 from ..numerics.loads import POINT_SPAN, narrow_spans_as_points
 from ..theory.continuum import continuum_solution, model_error_warning, no_limit_warning
 from .close_supports import close_supports_warning
@@ -217,6 +220,40 @@ def exact_on(points: int):
     return lambda scene: run(scene, "exact-eb", points=points)
 
 
+# the last static solves without their grid check, by scene, model and options: a card's cases run by operator (one
+# grid, the loads and scenes on it) and each scene's grids finest first, so a grid's check comes back after others
+_unchecked_kept = Kept(64, budget=1_000_000, size=lambda r: len(r.x))  # at most a million points together
+
+
+def _unchecked(scene: Scene, m: Model, given: dict) -> Result:
+    """``run(scene, m, **given, grid_check=False)``, or a copy of the same call made before in this process: on a
+    series of grids solved finest first (a verification card's), the grid check of one grid is the next coarser
+    grid's solve. A solve is deterministic (the same bits); a kept one's timings are those of the solve that made it.
+    A model object the registry does not hold (made by the caller) is solved afresh."""
+    if models().get(m.name) is not m:
+        return run(scene, m, **given, grid_check=False)
+    key = json.dumps([scene.to_dict(), m.name, given], sort_keys=True, default=repr)
+    return copy.deepcopy(_unchecked_kept.get(key, lambda: run(scene, m, **given, grid_check=False)))
+
+
+def _check_own_grid(scene: Scene, m: Model, params: dict, given: dict, result: Result) -> None:
+    """:func:`~pdverify.registry.grid_check.grid_check` of ``result``, its coarser solve through :func:`_unchecked`
+    with the same options but the grid (and the solver: the same system, and a Krylov one may refuse the smaller
+    grid)."""
+    coarse = {k: v for k, v in given.items() if k not in ("spacing", "solver", "points")}
+
+    def grown(n: int) -> dict:
+        """At a fixed horizon length the coarser solve's horizon grows with its spacing: the same factor (as a
+        length, which a variant that needs a whole factor takes), so the difference carries the model error too,
+        which two grids at one length share unseen."""
+        if params.get("horizon_length") is None:
+            return {}
+        ratio = m.spacing(scene, dict(params, points=n)) / m.spacing(scene, params)
+        return {"horizon_length": params["horizon_length"] * ratio}
+
+    grid_check(m, scene, params, result, lambda n: _unchecked(scene, m, {**coarse, **grown(n), "points": n}))
+
+
 def run(scene: Scene, model: str | Model, **given) -> Result:
     """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
 
@@ -249,6 +286,13 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if found := m.refusals(scene, params):  # what the variant does not define on this scene: before any work
         raise InputError(found)
     scene = narrow_spans_as_points(scene, POINT_SPAN)  # a span whose two ends would round to one point
+    own_grid = "points" in params and not params.get("continuum") and m.checks_own_grid(scene, params)
+    if check_grid and scene.dynamics is None and own_grid:  # (a continuum has no grid to estimate)
+        result = _unchecked(scene, m, given if check_history else {**given, "history_check": False})
+        t1 = time.perf_counter()
+        _check_own_grid(scene, m, params, given, result)
+        result.timings["total_s"] = result.timings.get("total_s", 0.0) + time.perf_counter() - t1
+        return result
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             solved = continuum_solution(m, scene, params) if params.get("continuum") else m.solve(scene, params)
@@ -296,27 +340,6 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     if check_history and "history" in result.info and "points" in params and not (m.histories or m.reference):
         coarse = {k: v for k, v in given.items() if k != "spacing"}  # the grid given as a spacing: as points
         history_check(scene, m, params, result, lambda n: run(scene, m, **dict(coarse, points=n, history_check=False)))
-    own_grid = "points" in params and not params.get("continuum") and m.checks_own_grid(scene, params)
-    if check_grid and scene.dynamics is None and own_grid:  # (a continuum has no grid to estimate)
-        # the solver asked for (a Krylov one) solves the same system and may refuse the smaller grid: its own choice
-        coarse = {k: v for k, v in given.items() if k not in ("spacing", "solver")}
-
-        def grown(n: int) -> dict:
-            """At a fixed horizon length the coarser solve's horizon grows with its spacing: the same factor (as a
-            length, which a variant that needs a whole factor takes), so the difference carries the model error too,
-            which two grids at one length share unseen."""
-            if params.get("horizon_length") is None:
-                return {}
-            ratio = m.spacing(scene, dict(params, points=n)) / m.spacing(scene, params)
-            return {"horizon_length": params["horizon_length"] * ratio}
-
-        grid_check(
-            m,
-            scene,
-            params,
-            result,
-            lambda n: run(scene, m, **{**coarse, **grown(n), "points": n, "grid_check": False}),
-        )
     result.timings["total_s"] = time.perf_counter() - t0
     result.timings.setdefault("assemble_s", 0.0)
     result.timings.setdefault("solve_s", 0.0)

@@ -316,3 +316,21 @@ def test_a_fractional_factor_at_a_horizon_length_is_estimated_where_the_variant_
     assert abs(r.info["m"] - 4.44) < 1e-9 and "difference" in r.info["grid_estimate"]
     twice = run(sc, "pd-eb", points=11, horizon_length=0.444, variant="paper", grid_check=False)
     assert r.info["grid_estimate"]["difference"] == grid_difference(r, twice)[0]
+
+
+def test_a_series_finest_first_solves_each_grid_once_and_gives_the_same_results():
+    """The coarser solve of the grid check is kept (registry._unchecked): on a series solved finest first, as a card
+    does, a grid's own solve is the finer grid's check, given back as a copy, bit for bit the result made apart."""
+    from pdverify import registry
+
+    sc = straight("pinned", "guided", [{"type": "distributed", "value": -1000.0, "shape": "sine"}])
+    registry._unchecked_kept.clear()
+    made = [run(sc, "pd-eb", points=n) for n in (161, 81, 41)]  # 81 and 41 were the checks of 161 and 81
+    assert len(registry._unchecked_kept) == 4  # 161, 81, 41, 21: four solves for three grids and their checks
+    registry._unchecked_kept.clear()
+    apart = [run(sc, "pd-eb", points=n) for n in (41, 81, 161)][::-1]
+    for a, b in zip(made, apart, strict=True):
+        assert np.array_equal(a.w, b.w) and np.array_equal(a.rotation, b.rotation)
+        assert a.info.get("warnings") == b.info.get("warnings") and a.info["grid_estimate"] == b.info["grid_estimate"]
+    made[2].info.setdefault("warnings", []).append("changed by the caller")
+    assert "changed by the caller" not in run(sc, "pd-eb", points=41).info.get("warnings", [])  # a copy

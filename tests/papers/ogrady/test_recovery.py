@@ -213,7 +213,7 @@ def test_a_pair_form_too_large_for_the_memory_is_refused_before_its_factorisatio
     r = run(sc, "pd-bond-pair", points=81, horizon_length=0.2)  # fits
     monkeypatch.setattr(memory, "available_bytes", lambda: 2**20)
     with pytest.raises(SolveError, match=r"unknowns in a band of [\d,]+, whose factorisation would need about"):
-        run(sc, "pd-bond-pair", points=81, horizon_length=0.2)
+        run(sc, "pd-bond-pair", points=81, horizon_length=0.2, grid_check=False)  # (with it: the solve kept above)
     assert r.w.any()
 
 
