@@ -262,8 +262,9 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
     transient of a model that is not a reference carries the estimate of its error from the same history on about
     half the points (:func:`~pdverify.registry.history_check.history_check`; ``history_check = false``, not a model
     option: none); a static solve of a model that asks for it (``Model.checks_own_grid``: pd-curved on a curved
-    axis, pd-rod, pd-torsion) the estimate from the same solve on about half the points
-    (:func:`~pdverify.registry.grid_check.grid_check`; ``grid_check = false``: none). Before solving, the scene is
+    axis, pd-eb, pd-bond-pair, pd-rod, pd-torsion) the estimate from the same solve on about half the points
+    (:func:`~pdverify.registry.grid_check.grid_check`; ``grid_check = false``: none), both solves kept
+    (:func:`_unchecked`: ``total_s`` the solve's as it was made, plus the check's). Before solving, the scene is
     checked against the model's declared capabilities and the options against its ``variant_rules``: every problem
     one line of the :class:`InputError` (exit 2). Floating-point overflow and invalid operations inside the solve
     raise no numpy warning: a result that holds NaN or inf is refused as a whole by
