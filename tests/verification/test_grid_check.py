@@ -9,6 +9,7 @@ import tomllib
 import numpy as np
 import pandas as pd
 import pytest
+from helpers import scene_dict
 
 from pdverify.apps.output import result_table
 from pdverify.core.errors import InputError
@@ -188,18 +189,16 @@ def test_a_segment_whose_error_does_not_fall_is_not_estimated():
     assert "the solves on 43 and 85 points can agree while both are off" in line
 
 
+STEEL = {
+    "beam": {"length": 1.0},
+    "section": {"width": 0.02, "height": 0.02},
+    "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
+}
+
+
 def straight(left: str, right: str, loads: list, name: str = "") -> object:
     """A 1 m steel beam of 20 mm square section."""
-    return parse_scene(
-        {
-            "name": name or f"{left}-{right}",
-            "beam": {"length": 1.0},
-            "section": {"width": 0.02, "height": 0.02},
-            "material": {"youngs_modulus": 200e9, "poissons_ratio": 0.3},
-            "supports": {"left": left, "right": right},
-            "loads": loads,
-        }
-    )
+    return parse_scene(scene_dict(left, right, loads, name=name or f"{left}-{right}", **STEEL))
 
 
 def member(model: str, shape: str):
