@@ -159,12 +159,13 @@ class Keeper:
         self.out, self.cases_dir, self.code = out, out / "cases", code
         self.rows: dict = {}
         self.mismatched: list[str] = []
-        self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the models' own time; cleaning, encoding, writing
+        self.clock = {"solver_s": 0.0, "store_s": 0.0}  # the solves' time this run; cleaning, encoding, writing
 
     def add(self, rec: dict, cid: str) -> bool:
         """Store one record; whether its case failed (a suspect case solved: the progress bar does not count it).
         Raises OutputError when the file cannot be written."""
         t = time.perf_counter()
+        spent = rec.pop("spent_s", None)  # this run's seconds in the solve (runner.run_case), not stored
         rec = _clean(rec)
         row = rec["row"]
         if row.get("code") != self.code:
@@ -175,6 +176,6 @@ class Keeper:
         except OSError as exc:  # disk full, permissions: stop with one line; the cases written so far stay
             raise output_error(self.out, exc) from None
         self.rows[cid] = row
-        self.clock["solver_s"] += row.get("total_s") or 0.0
+        self.clock["solver_s"] += spent if spent is not None else row.get("total_s") or 0.0
         self.clock["store_s"] += time.perf_counter() - t
         return row["status"] == "failed"

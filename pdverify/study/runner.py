@@ -312,8 +312,13 @@ def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: 
 
 
 def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
-    """Solve one case and measure it (:func:`solve_case`, :func:`measure_case`); a failure is a record, never raised."""
-    return measure_case(case, solve_case(case, artefacts, case_id), case_id)
+    """Solve one case and measure it (:func:`solve_case`, :func:`measure_case`); a failure is a record, never raised.
+    ``spent_s``: the seconds this process spent in the solve (a kept solve taken again costs almost none, though its
+    row's ``total_s`` is that of its making): what meta.json's ``solver_s`` adds up (outdir.Keeper)."""
+    t0 = time.perf_counter()
+    solved = solve_case(case, artefacts, case_id)
+    spent = time.perf_counter() - t0
+    return {**measure_case(case, solved, case_id), "spent_s": spent}
 
 
 def run_study(
