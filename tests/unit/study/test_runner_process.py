@@ -27,17 +27,17 @@ def write_study(tmp_path, body, name="s"):
     return p
 
 
-# 12 cases of similar cost (each a large banded solve): the pool holds at most 2 running + 3 queued when it is
-# stopped, so a run stopped after its first stored cases cannot end in the meantime, whatever the machine's
-# speed (with many tiny cases a run can end, every case stored, between its 3rd stored case and the signal)
-# eight batches (one per horizon: an operator group) of three grids: a pool of two runs two and holds one queued, so a
-# stop after the first batch's three cases leaves batches unstarted (with four batches all four could be handed out by
-# then, and a run stopped on a fast machine kept all 12 cases)
+# twelve batches (one per slenderness: an operator group; the grid options, points and horizon, are not) of three grids,
+# cases of similar cost (each a banded solve of about a tenth of a second and its grid check): a pool of two runs two
+# batches and holds at most three queued when it is stopped, and it hands a batch's records back when the batch ends,
+# so a stop soon after the first stored cases (two batches may end together) leaves batches unstarted whatever the
+# machine's speed (with one batch, every case was stored at its end, and only a stop among the store's writes kept
+# fewer than all)
 SLOW_RUNS = (
-    '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [64001, 80001, 96001]\n'
-    "horizon = [2, 3, 4, 5, 6, 7, 8, 9]\n"
+    '[[runs]]\nmodel = "pd-eb"\nvariant = "corrected"\npoints = [16001, 20001, 24001]\n'
+    "slenderness = [10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120]\n"
 )
-SLOW_CASES = 24
+SLOW_CASES = 36
 
 
 def one_error_line(r, code):
