@@ -100,6 +100,26 @@ def test_newmark_is_the_trapezoidal_rule_exactly():
     assert np.abs(u[:, 0] - F / w**2 * (1 - np.cos(wt * t))).max() < 1e-12 * F / w**2
 
 
+@pytest.mark.parametrize("shift", [4.0, -1.0])  # positive definite (banded Cholesky), negative definite (sparse LU)
+@pytest.mark.parametrize("half_band", [1, 3, 70])  # 70: wider than BANDED_MAX (sparse LU)
+def test_newmark_step_solves_are_the_matrix_inverse(shift, half_band):
+    """The step's factorisation (reference_fem.newmark.factorised) solves S u = r to round-off whichever path it takes:
+    a symmetric matrix with a narrow band, positive definite or not, and one too wide to factorise as a band."""
+    import scipy.sparse as sp
+
+    from reference_fem.newmark import factorised
+
+    n = 300
+    rng = np.random.default_rng(half_band)
+    bands = {k: rng.uniform(-1, 1, n - k) / (2 * half_band) for k in range(1, half_band + 1)}
+    S = sp.diags([np.full(n, shift), *bands.values(), *bands.values()], [0, *bands, *(-k for k in bands)])
+    r = rng.standard_normal(n)
+    u = factorised(S)(r)
+    cond = np.linalg.cond(S.toarray())
+    assert np.abs(S @ u - r).max() < 10 * n * cond * np.finfo(float).eps * np.abs(r).max()
+    assert np.abs(u - np.linalg.solve(S.toarray(), r)).max() < 10 * n * cond * np.finfo(float).eps * np.abs(u).max()
+
+
 @pytest.mark.slow
 def test_fem_transient_converges_to_the_exact_modal_solution():
     """fem-timoshenko's Newmark transient (IIE stiffness, consistent linear mass, dt = the Courant-1 step) against

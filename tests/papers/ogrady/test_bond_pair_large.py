@@ -57,15 +57,16 @@ def test_within_1e_6_at_100001_points():
     """Measured, every pair, mixed loads: 2e-9 .. 2e-7 (direct form: 3e-3 at 10,001, 0.97 at 100,001;
     Taylor ghosts of w at free and guided ends: 1e-4 .. 3e-2 at 100,001 in the mixed form too)."""
     for left, right in PAIRS:
-        e, r = err(parse_scene(scene_dict(left, right, MIXED_LOADS)), points=100_001)
+        e, r = err(parse_scene(scene_dict(left, right, MIXED_LOADS)), points=100_001, grid_check=False)
         assert e < 1e-6, (left, right, e)
         assert not any("round-off estimate" in w for w in r.info.get("warnings", []))
 
 
 @pytest.mark.slow
 def test_within_1e_4_at_a_million_points_and_warned():
-    """Measured 2e-7 .. 2.2e-5 (pinned-guided); the estimate 0.1 eps N^2 = 2.2e-5 is past 1e-6: warned."""
+    """Measured 2e-7 .. 2.2e-5 (pinned-guided); the estimate 0.1 eps N^2 = 2.2e-5 is past 1e-6: warned. (The error is
+    measured against the exact solution: the solve's own estimate from half the points is not asked for.)"""
     for left, right in (("pinned", "guided"), ("clamped", "free")):
-        e, r = err(parse_scene(scene_dict(left, right, MIXED_LOADS)), points=1_000_001)
+        e, r = err(parse_scene(scene_dict(left, right, MIXED_LOADS)), points=1_000_001, grid_check=False)
         assert e < 1e-4, (left, right, e)
         assert any("round-off estimate" in w for w in r.info["warnings"])
