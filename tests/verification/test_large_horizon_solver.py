@@ -134,8 +134,9 @@ def test_krylov_bound_covers_the_round_off_where_hager_alone_missed():
     d["material"]["youngs_modulus"] *= fe
     d["loads"] = [dict(ld, value=ld["value"] * fq / fl) for ld in d["loads"]]
     copy = parse_scene(d)
-    a = run(sc, "pd-bond-pair", points=8193, horizon_length=0.1 * sc.length, solver="krylov", form="direct")
-    b = run(copy, "pd-bond-pair", points=8193, horizon_length=0.1 * copy.length, solver="krylov", form="direct")
+    krylov = {"points": 8193, "solver": "krylov", "form": "direct", "grid_check": False}  # (no estimate from 4097)
+    a = run(sc, "pd-bond-pair", horizon_length=0.1 * sc.length, **krylov)
+    b = run(copy, "pd-bond-pair", horizon_length=0.1 * copy.length, **krylov)
     measured = np.abs(a.w / np.abs(a.w).max() - b.w / np.abs(b.w).max()).max()
     assert measured > 1e-4  # the round-off is real here (measured 1.5e-3)
     assert a.info["error_bound"] >= measured and b.info["error_bound"] >= measured
