@@ -26,6 +26,7 @@ from ..registry import get_model, resolved
 from . import execute, solves
 from .derived import results_frame, results_table, write_tables
 from .outdir import FolderLock, Keeper, claim, finished, output_error
+from .progress import CaseProgress
 from .reference import _reference_text, measured, reference_at, reference_bound, theory_gap_warning
 from .spec import Case, Study, code_digest
 from .split import continuum_at, split_errors
@@ -313,12 +314,11 @@ def _fill_curves(curve: dict, scene, solved: dict, w_ref: np.ndarray, quantity: 
 
 def run_case(case: Case, artefacts: str | None = None, case_id: str | None = None) -> dict:
     """Solve one case and measure it (:func:`solve_case`, :func:`measure_case`); a failure is a record, never raised.
-    ``spent_s``: the seconds this process spent in the solve (a kept solve taken again costs almost none, though its
-    row's ``total_s`` is that of its making): what meta.json's ``solver_s`` adds up (outdir.Keeper)."""
+    ``spent_s``: this process's seconds in the solve, what meta.json's ``solver_s`` adds up (a kept solve costs almost
+    none again, though its row's ``total_s`` is that of its making)."""
     t0 = time.perf_counter()
     solved = solve_case(case, artefacts, case_id)
-    spent = time.perf_counter() - t0
-    return {**measure_case(case, solved, case_id), "spent_s": spent}
+    return {**measure_case(case, solved, case_id), "spent_s": time.perf_counter() - t0}
 
 
 def run_study(
@@ -397,7 +397,7 @@ def _run_study(
         else:
             loop = execute.serial(run_case, todo_cases, todo_ids, files, groups, sizes, order)
     keep = Keeper(out, code_digest())
-    bar = _progress(len(todo), progress)
+    bar = CaseProgress(len(todo), progress)
     try:
         with closing(loop):  # closed on any way out: a pool's workers are ended
             for cid, rec in loop:
@@ -423,33 +423,3 @@ def _run_study(
     except OSError as exc:
         raise output_error(out, exc, "a table") from None
     return df
-
-
-class _progress:
-    """rich progress bar: cases done, failures, time left (silent when disabled)."""
-
-    def __init__(self, total, enabled):
-        self.enabled = enabled and total > 0
-        self.failed = 0
-        if self.enabled:
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
-
-            self.p = Progress(
-                TextColumn("cases"),
-                BarColumn(),
-                MofNCompleteColumn(),
-                TextColumn("failed {task.fields[failed]}"),
-                TimeRemainingColumn(),
-                transient=False,
-            )
-            self.p.start()
-            self.task = self.p.add_task("cases", total=total, failed=0)
-
-    def advance(self, failed=False):
-        self.failed += int(failed)
-        if self.enabled:
-            self.p.update(self.task, advance=1, failed=self.failed)
-
-    def close(self):
-        if self.enabled:
-            self.p.stop()
