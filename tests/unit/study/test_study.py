@@ -949,3 +949,13 @@ def test_the_api_refuses_an_output_file_before_any_case(tmp_path):
     with pytest.raises(OutputError, match="is a file, not a folder"):
         pdverify.run_study(ROOT / "studies/convergence.toml", out=target)
     assert target.read_text() == "keep me\n"
+
+
+def test_a_run_can_leave_out_the_solves_own_estimate(tmp_path):
+    """``grid_check = false`` in a run: its rows carry no grid_estimate (the second solve on half the points is not
+    made); the same run without it carries one on every row (pd-eb checks its own grid)."""
+    p = write_study(tmp_path, '[[runs]]\nmodel = "pd-eb"\npoints = [41, 81]\ngrid_check = [true, false]\n')
+    df = run_study(load_study(p), tmp_path / "out", workers=1, progress=False)
+    checked = df["options"].str.contains('"grid_check": true')
+    assert checked.sum() == 2 and df.loc[checked, "grid_estimate"].notna().all()
+    assert (~checked).sum() == 2 and df.loc[~checked, "grid_estimate"].isna().all()
