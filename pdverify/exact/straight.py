@@ -114,6 +114,21 @@ def _basis(scene: Scene, load, x: np.ndarray) -> np.ndarray:
     return np.stack(particular(scene, x, [load]))
 
 
+def _condition_row(lin: dict, i: int, field: str, extra: dict, factor: float, col, divisor: float = 1.0):
+    """(row, right-hand side) of boundary condition ``i``: ``field`` plus ``extra``'s coefficients times other fields,
+    times ``factor``, plus the unknown ``col`` (a spring's reaction) where given; all divided by ``divisor`` (1: the
+    condition as written, bit for bit)."""
+    A, p = lin[field]
+    f = factor / divisor
+    row, r = f * A[i], -(f * p[i])
+    for other, coef in extra.items():
+        row += (f * coef) * lin[other][0][i]
+        r -= (f * coef) * lin[other][1][i]
+    if col is not None:
+        row[col] += 1.0 / divisor
+    return row, r
+
+
 class StraightSolution:
     """The exact solution of a straight scene: end supports, springs, supports inside the span and segments of
     their own section and material. Call :meth:`fields` at any x.
@@ -241,14 +256,12 @@ class StraightSolution:
         lin = self._linear(np.array([c[1] for c in conds]))  # every condition's point in one evaluation
         rows, rhs = [], []
         for i, (field, _, extra, factor, col) in enumerate(conds):
-            A, p = lin[field]
-            row, r = A[i].copy(), -p[i]
-            for other, coef in extra.items():
-                row += coef * lin[other][0][i]
-                r -= coef * lin[other][1][i]
-            row, r = row * factor, r * factor
-            if col is not None:
-                row[col] += 1.0
+            row, r = _condition_row(lin, i, field, extra, factor, col)
+            if not (np.all(np.isfinite(row)) and np.isfinite(r)):  # a spring so stiff that its terms overflow: the
+                # same condition divided by its largest coefficient (k_r phi + M = 0 as phi + M / k_r = 0)
+                row, r = _condition_row(
+                    lin, i, field, extra, factor, col, max([abs(factor), *map(abs, extra.values())])
+                )
             rows.append(row)
             rhs.append(r)
         A, b = np.array(rows), np.array(rhs)

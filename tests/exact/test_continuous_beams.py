@@ -178,3 +178,38 @@ def test_models_that_hold_the_beam_at_its_ends_only_refuse_in_one_line():
         assert any(p.startswith("segments") for p in problems) or m.segments, name
         with pytest.raises(InputError):
             run(sc, name)
+
+
+@pytest.mark.parametrize("model", ["exact-eb", "exact-timoshenko"])
+@pytest.mark.parametrize(
+    "spring,rigid",
+    [
+        ({"right": {"type": "spring", "stiffness": 0.0, "rotational_stiffness": 1e300}}, {"right": "guided"}),
+        ({"right": {"type": "spring", "stiffness": 1e300}}, {"right": "pinned"}),
+        (
+            {"inner": [{"position": 0.61, "type": "spring", "stiffness": 1e300}], "right": "free"},
+            {"inner": [{"position": 0.61, "type": "pinned"}], "right": "free"},
+        ),
+    ],
+    ids=["end rotational", "end translational", "inner"],
+)
+def test_a_spring_too_stiff_to_write_is_the_rigid_support(model, spring, rigid):
+    """A spring of 1e300 on a soft beam (E = 1e-3, 20 mm square: k L^3 / EI about 1e313, past float64): the boundary
+    condition k w + V = 0 is written as w + V / k = 0, so the closed form is the rigid support's (it raised
+    LinAlgError from the rank test's SVD on the overflowed rows, exit 70: sweep 40 F1); fem-eb and fem-timoshenko
+    agree with it to 1e-14 where they solve."""
+
+    def scene(supports):
+        d = {
+            "name": "soft",
+            "beam": {"length": 1.0},
+            "section": {"width": 0.02, "height": 0.02},
+            "material": {"youngs_modulus": 1e-3, "poissons_ratio": 0.3},
+            "supports": {"left": "clamped", **supports},
+            "loads": [{"type": "point_force", "position": 0.5, "value": -1.0}],
+        }
+        return parse_scene(d)
+
+    a, b = run(scene(spring), model, points=21), run(scene(rigid), model, points=21)
+    assert np.abs(a.w - b.w).max() <= 1e-12 * np.abs(b.w).max()
+    assert np.abs(a.rotation - b.rotation).max() <= 1e-12 * np.abs(b.rotation).max()
