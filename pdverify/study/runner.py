@@ -336,7 +336,7 @@ def run_study(
     is lost) when ``out`` cannot be written, is in use by another run or holds another study's results, or
     when a process solving cases dies. ``artefacts``: write the models' own files (plane-stress VTU and PNG, time
     histories as CSV) under ``out``; the verification suite's cases skip them."""
-    workers = _whole_workers(workers)
+    workers = whole_workers(workers)
     if scheduler is not None:
         execute.check_scheduler(scheduler)
     out = Path(out)
@@ -362,7 +362,7 @@ def run_study(
         lock.release()
 
 
-def _whole_workers(workers):
+def whole_workers(workers):
     """``workers`` as a number of processes (None: every core; numpy integers too); InputError (exit 2)
     unless a whole number of at least 1."""
     if workers is None:

@@ -18,6 +18,7 @@ from ..core.version import __version__
 from ..registry import RUN_FLAGS, as_flag, get_model, model_options, run
 from ..study import forked, load_study, run_study
 from ..study.checks import strict_type
+from ..study.runner import whole_workers
 from . import checks as C
 from .card import write_card
 from .dynamics import dynamics_check
@@ -185,6 +186,7 @@ def verify(
     options = dict(options or {})
     model = get_model(model_name)
     out = Path(out)
+    workers = whole_workers(workers)  # a bad --workers: one line before the suite is written
     grid = [f"{k}: the suite sets the grids; drop it" for k in options if k in ("points", "spacing")]
     if grid:
         raise InputError(grid)

@@ -221,6 +221,11 @@ CLI_CASES = [
         for m in ("exact-eb", "fem-eb", "pd-eb", "pd-bond-pair", "pd-higher-order", "pd-timoshenko")
     ),
     ("study-workers-0", ["study", "{tmp}/s.toml", "--workers", "0"], 2, "--workers"),
+    # sweep 40 F2: verify wrote its suite (111 files) before refusing --workers
+    *(
+        (f"verify-workers-{w}", ["verify", "pd-eb", "--workers", w, "--out", "{tmp}/v40"], 2, "--workers")
+        for w in ("0", "-1")
+    ),
     ("study-workers-negative", ["study", "{tmp}/s.toml", "--workers", "-1"], 2, "--workers"),
     ("study-workers-text", ["study", "{tmp}/s.toml", "--workers", "two"], 2, "--workers"),
     ("study-missing-file", ["study", "{tmp}/missing.toml"], 2, "missing.toml: no such study file"),
