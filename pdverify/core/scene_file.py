@@ -446,4 +446,9 @@ def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene TOML file."""
     _, data = read_toml(path, "scene")
+    if not data:  # empty, or comments only: one line, not one per missing table
+        raise InputError(
+            f"{path}: no scene in the file (empty, or comments only); a scene gives name, beam, section, material, "
+            "supports and loads (docs/scenes.md)"
+        )
     return parse_scene(data, source=str(path))
