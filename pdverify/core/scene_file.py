@@ -4,6 +4,7 @@ raise :class:`~pdverify.core.errors.InputError` with one line per problem (field
 from __future__ import annotations
 
 import datetime
+import difflib
 import math
 import tomllib
 from pathlib import Path
@@ -163,8 +164,8 @@ def _as_toml(value) -> str:
 def _messages(errors: list[dict], data: dict) -> list[str]:
     """One line per problem; a misspelt key (``positon``) and the required key it stands for (``position``,
     then missing) are one problem: the unknown key's line says 'did you mean', the 'missing' line goes."""
-    import difflib
-
+    if not data:  # an empty file, or comments only: one line, not one per missing table
+        return ["no scene given (an empty file or table); a scene gives name, beam, section, material, supports"]
     missing = {tuple(e["loc"]): e for e in errors if e["type"] == "missing"}
     dropped, hints = set(), {}
     for i, e in enumerate(errors):
@@ -446,9 +447,4 @@ def read_toml(path: str | Path, what: str) -> tuple[str, dict]:
 def load_scene(path: str | Path) -> Scene:
     """Read and validate a scene TOML file."""
     _, data = read_toml(path, "scene")
-    if not data:  # empty, or comments only: one line, not one per missing table
-        raise InputError(
-            f"{path}: no scene in the file (empty, or comments only); a scene gives name, beam, section, material, "
-            "supports and loads (docs/scenes.md)"
-        )
     return parse_scene(data, source=str(path))

@@ -1044,4 +1044,4 @@ def test_an_empty_scene_file_is_one_line(tmp_path, capsys):
     """Sweep 40 F6: an empty scene file gave five lines, one per missing table; now one naming what a scene gives."""
     empty = tmp_path / "empty.toml"
     empty.write_text("")
-    assert_one_error_line(*cli(["solve", str(empty), "--model", "exact-eb"], capsys), 2, "no scene in the file")
+    assert_one_error_line(*cli(["solve", str(empty), "--model", "exact-eb"], capsys), 2, "no scene given")
