@@ -254,6 +254,18 @@ def _check_own_grid(scene: Scene, m: Model, params: dict, given: dict, result: R
     grid_check(m, scene, params, result, lambda n: _unchecked(scene, m, {**coarse, **grown(n), "points": n}))
 
 
+UNLOADED = (
+    "the scene has no loads (or only zero ones): every displacement, force and reaction is zero; give its "
+    "[[loads]] (docs/scenes.md)"
+)
+
+
+def loaded(scene: Scene) -> bool:
+    """True when a load of the scene has a value that is not zero (a force, moment, torque, an axial or torque
+    share of a distributed load, a prescribed deflection): a static solve without one is zero everywhere."""
+    return any(getattr(ld, k, 0.0) != 0.0 for ld in scene.loads for k in ("value", "axial", "torque"))
+
+
 def run(scene: Scene, model: str | Model, **given) -> Result:
     """Solve ``scene`` with ``model`` and the given options; the whole call is timed (``total_s``).
 
@@ -304,6 +316,8 @@ def run(scene: Scene, model: str | Model, **given) -> Result:
             "(pdverify.solve and the command line estimate the limit before solving)"
         ) from None
     result = check_finite(solved)
+    if scene.dynamics is None and not loaded(scene):
+        result.info.setdefault("warnings", []).append(UNLOADED)
     if m.option("horizon") is not None:
         horizon_info(m, scene, params, result.info)
         grid_flags = [] if m.breaks else unresolved_features_warnings(scene, float(result.info["spacing"]))

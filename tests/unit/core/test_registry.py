@@ -417,3 +417,26 @@ def test_a_stiff_spring_beside_a_support_says_its_split_is_the_theorys(stiffness
     for model in ("exact-eb", "exact-timoshenko"):
         flags = run(parse_scene(d), model, points=201).info.get("warnings") or []
         assert any("depths: how the load" in w for w in flags) == warned, flags
+
+
+@pytest.mark.parametrize("model", ["pd-eb", "fem-eb", "exact-timoshenko", "pd-rod"])
+@pytest.mark.parametrize(
+    "loads, warned",
+    [
+        ([], True),
+        ([{"type": "point_force", "position": 0.5, "value": 0.0}], True),
+        ([{"type": "distributed", "value": 0.0, "axial": -5.0}], False),
+        ([{"type": "point_moment", "position": 0.5, "value": 2.0}], False),
+    ],
+)
+def test_a_scene_without_loads_says_its_zeros_are_no_answer(model, loads, warned):
+    """Sweep 40 F6: a scene with no loads solved to zeros everywhere without a line. Every static result of one says
+    so; an axial share or a moment is a load."""
+    if model == "pd-rod" and loads and loads[0]["type"] == "point_moment":  # a rod's load: an axial force
+        loads = [{"type": "point_force", "position": 0.5, "value": 0.0, "axial": 3.0}]
+    elif model != "pd-rod" and loads and loads[0].get("axial"):  # a beam's: a distributed load across its axis
+        loads = [{"type": "distributed", "value": -5.0, "start": 0.2, "end": 0.4}]
+    result = run(parse_scene(scene_dict("clamped", "pinned", loads)), model, points=21)
+    assert (registry.UNLOADED in (result.info.get("warnings") or [])) == warned
+    if warned:
+        assert not np.any(result.w)
