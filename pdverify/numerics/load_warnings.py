@@ -288,13 +288,18 @@ def narrow_load_warnings(scene: Scene, x: np.ndarray) -> list[str]:
     return out
 
 
-def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta: float, constant: float) -> list[str]:
+def couple_deflection_warnings(
+    scene: Scene, x: np.ndarray, w: np.ndarray, delta: float, constant: float, shear: np.ndarray | None = None
+) -> list[str]:
     """One line where the estimate ``constant`` Σ |C| h² / (EI max |w|) of the deflection's error beside the point
     moments inside the span passes NEAR_TOLERANCE (h = max(spacing, ``delta`` / 3), ``delta`` the horizon; the sum
     over the couples: their errors add where they are near each other), with the points that bring it there: a model
     that takes a couple C as a force pair on the points around it leaves w beside it off by about c |C| h² / EI,
     second order, large beside max |w| where the couples deflect the beam little (the model's ``constant``, measured:
-    docs/trust.md)."""
+    docs/trust.md). ``shear``: the result's shear force, for a model exact where the beam carries no shear (w
+    piecewise quadratic: pd-timoshenko ``energy``); the estimate is then times the couples' share carried as shear,
+    min(1, L max |V| / Σ |C|), since the couples are a part that leaves V zero, which such a model solves exactly,
+    and a rest of about that size."""
     top = float(np.abs(w).max()) if len(w) else 0.0
     L = scene.length
     couples = [
@@ -309,6 +314,9 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
     at = np.array([ld.position for _, ld in couples])
     size = np.sum(np.abs([ld.value for _, ld in couples]) / scene.stiffness_at(at)["EI"])  # Σ |C| / EI
     estimate = constant * size * h**2 / top
+    total = float(np.sum(np.abs([ld.value for _, ld in couples])))
+    share = 1.0 if shear is None else min(1.0, L * float(np.abs(shear).max(initial=0.0)) / total)
+    estimate *= share
     if not estimate > NEAR_TOLERANCE:
         return []
     points = int(np.ceil(1.1 * L / dx * np.sqrt(estimate / NEAR_TOLERANCE))) + 1
@@ -320,7 +328,13 @@ def couple_deflection_warnings(scene: Scene, x: np.ndarray, w: np.ndarray, delta
     )
     return [
         f"{which} is off by up to about {constant:g} {'|C|' if len(couples) == 1 else 'Σ |C|'} h² / EI (h = "
-        f"max(spacing, horizon / 3)), here {rounded_up(estimate)} of max |w| (large where the "
+        f"max(spacing, horizon / 3)"
+        + (
+            f"; times the share of the couples the beam carries as shear, L max |V| / Σ |C| = {share:.2g}"
+            if share < 1
+            else ""
+        )
+        + f"), here {rounded_up(estimate)} of max |w| (large where the "
         f"{'couple deflects' if len(couples) == 1 else 'couples deflect'} the beam little); second order: use at "
         f"least {points} points for 1e-3"
     ]

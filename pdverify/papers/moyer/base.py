@@ -291,7 +291,10 @@ class _MoyerModel(Model):
         result = self.from_solution(scene, params, disc, u, fields, info, timer, writers, **extra)
         if self.bending and info.get("analysis") == "static":
             delta = params["horizon"] * (disc.x[1] - disc.x[0])
-            near = couple_deflection_warnings(scene, disc.x, result.w, delta, COUPLE_DEFLECTION[params["variant"]])
+            shear = result.fields["V"] if params["variant"] == "energy" else None  # exact where V is zero
+            near = couple_deflection_warnings(
+                scene, disc.x, result.w, delta, COUPLE_DEFLECTION[params["variant"]], shear
+            )
             if params["variant"] == "energy":
                 fixed = params.get("horizon_length") is not None
                 near += short_span_warnings(scene, disc.x, result.fields, delta, SHORT_SPAN, fixed_horizon=fixed)
