@@ -12,6 +12,7 @@ import numpy as np
 import typer
 
 from ..core.errors import InputError, PdverifyError, SolveError
+from ..core.text import PAST_RANGE
 
 
 def _fail(exc: PdverifyError) -> None:
@@ -134,7 +135,8 @@ def positive(option: str, value: float) -> float:
     import math
 
     if not (math.isfinite(value) and value > 0):
-        raise InputError(f"{option} {value}: give a positive number")
+        said = PAST_RANGE if math.isinf(value) else ""
+        raise InputError(f"{option} {value}{said}: give a positive, finite number")
     return value
 
 

@@ -66,3 +66,6 @@ def close_match(word: str, choices, cutoff: float = 0.75) -> str | None:
 
     found = difflib.get_close_matches(str(word), [str(c) for c in choices], n=1, cutoff=cutoff)
     return found[0] if found else None
+
+
+PAST_RANGE = " (past float64's range: read as infinite)"  # said of a number typed past 1.8e308 (1e400 reads as inf)

@@ -14,6 +14,7 @@ from pathlib import Path
 
 from ..core.errors import InputError
 from ..core.scene_file import parse_scene
+from ..core.text import PAST_RANGE
 from ..core.version import __version__
 from ..registry import RUN_FLAGS, as_flag, get_model, model_options, run
 from ..study import forked, load_study, run_study
@@ -214,7 +215,8 @@ def expected_order(model, options: dict, order: float | None = None) -> float:
     InputError unless ``order`` is a positive number up to :data:`~pdverify.verify.suite.MAX_ORDER`."""
     if order is not None and not (math.isfinite(order) and 0 < order <= MAX_ORDER):
         raise InputError(
-            f"--order {order:g}: give the expected order of convergence, a positive number up to {MAX_ORDER:.4g} "
+            f"--order {order:g}{PAST_RANGE if math.isinf(order) else ''}: give the "
+            f"expected order of convergence, a positive number up to {MAX_ORDER:.4g} "
             "(e.g. 2; a higher order cannot be observed on the suite's grids within float64's round-off)"
         )
     return float(order) if order is not None else model.promised_order(model.with_defaults(options))
