@@ -15,6 +15,7 @@ from pdverify.apps.output import result_table
 from pdverify.core.errors import InputError
 from pdverify.core.scene_file import parse_scene
 from pdverify.measure.richardson import with_estimate
+from pdverify.numerics.features import features
 from pdverify.registry import get_model, run
 from pdverify.registry.grid_check import fields_of, grid_difference
 from pdverify.study.runner import run_study
@@ -333,3 +334,22 @@ def test_a_series_finest_first_solves_each_grid_once_and_gives_the_same_results(
         assert a.info.get("warnings") == b.info.get("warnings") and a.info["grid_estimate"] == b.info["grid_estimate"]
     made[2].info.setdefault("warnings", []).append("changed by the caller")
     assert "changed by the caller" not in run(sc, "pd-eb", points=41).info.get("warnings", [])  # a copy
+
+
+def test_a_load_both_grids_put_in_an_end_zone_is_not_estimated_from_the_coarser_one():
+    """A couple 8.07 spacings from a clamp at 101 points is inside pd-eb's end layer (10 spacings at horizon 3) on both
+    grids, and exact on this one; on 51 points it is 4.04 spacings from the clamp, where that grid's shear is far
+    off, and the check read their difference as this grid's possible error (a sweep of random straight scenes:
+    "differs ... by 52 in V relative to max |M| / L" on a clamped-spring beam; here 51). The layer's error falls
+    steeply with the spacings from the end, so the coarser grid's error is the larger: not estimated, and this grid's
+    own layer line stays."""
+    sc = straight("clamped", "free", [{"type": "point_moment", "position": 0.0807, "value": 10.0}])
+    r = run(sc, "pd-eb", points=101)
+    assert beam_error(sc, r) < 1e-9  # exact
+    coarse = run(sc, "pd-eb", points=51, grid_check=False)
+    assert grid_difference(r, coarse, features(sc))[0] > 1e-3  # what was read as this grid's error
+    lines = r.info["warnings"]
+    assert any("inside the boundary layer" in w for w in lines)  # this grid's own line
+    (line,) = [w for w in lines if "points" in w and "estimated" in w]
+    assert "not estimated: the same solve on 51 points puts loads[0] inside an end's zone" in line
+    assert "half as many of its spacings from the end as this grid" in line
