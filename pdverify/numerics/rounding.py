@@ -157,6 +157,7 @@ class BandRounding(_Rounding):
         self.k_matrix = k_matrix
         self.gid = gid.astype(np.int32 if k_matrix < 2**31 else np.int64, copy=False).reshape(data.shape)
         self._load_part(b, k_matrix)
+        self.runs = {r: _runs(self.gid[r, cs]) for _, cs, r in self._diagonals()}  # a stencil repeated: a few runs
 
     def _diagonals(self):
         """(row slice, column slice, data row) of every stored diagonal that holds a nonzero entry (an all-zero one
@@ -181,9 +182,28 @@ class BandRounding(_Rounding):
             out = np.zeros(self.k)
             for rs, cs, r in self._diagonals():
                 terms = self.data[r, cs] * self.x[cs] * y[rs]
-                out[: self.k_matrix] += np.bincount(self.gid[r, cs], weights=terms, minlength=self.k_matrix)
+                if self.runs[r] is not None:  # each run's sum, then the runs' sums by group
+                    starts, groups = self.runs[r]
+                    terms, ids = np.add.reduceat(terms, starts), groups
+                else:
+                    ids = self.gid[r, cs]
+                out[: self.k_matrix] += np.bincount(ids, weights=terms, minlength=self.k_matrix)
             return self._load_t(out, y)
         w = np.zeros(self.data.shape)
         for rs, cs, r in self._diagonals():
             w[r, cs] = self.data[r, cs] * self.x[cs] * y[rs]
         return self._load_t(np.bincount(self.gid.ravel(), weights=w.ravel(), minlength=self.k), y)
+
+
+RUN_SHARE = (
+    8  # a diagonal is summed by its runs of one group where it has at most 1 / RUN_SHARE as many runs as entries
+)
+
+
+def _runs(ids: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """(the start of each run of one group id along a diagonal, its id), or None where the runs are too many (or the
+    diagonal empty) for summing run by run (``np.add.reduceat``) to beat one weighted count of every entry."""
+    if ids.size == 0:
+        return None
+    starts = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+    return (starts, ids[starts]) if len(starts) * RUN_SHARE <= ids.size else None

@@ -40,3 +40,44 @@ def test_a_band_keeps_its_shape_of_values():
     band = np.vstack([np.zeros(1000), np.tile([1.0, 2.0], 500), np.tile([-4.0, 2.0], 500)])
     got, k = significand_groups(band)
     assert k == 2 and np.array_equal(got, reference(band)[0])  # 0, and 1, 2, -4 (one significand)
+
+
+def band_g(data: np.ndarray, upper: int, x: np.ndarray, b: np.ndarray):
+    """The map G of the module docstring, dense, entry by entry from its definition (a band in LAPACK's layout)."""
+    from pdverify.numerics.rounding import BandRounding
+
+    m = BandRounding(data, upper, x, b)
+    G = np.zeros(m.shape)
+    n = data.shape[1]
+    for r in range(data.shape[0]):
+        o = upper - r
+        for j in range(max(0, o), n + min(0, o)):
+            if data[r, j]:
+                G[j - o, m.gid[r, j]] += data[r, j] * x[j]
+    G[np.arange(n), m.bgid] += b
+    return m, G
+
+
+def stencil_band(n: int, rows: int) -> np.ndarray:
+    """A fourth-difference band (1, -4, 6, -4, 1) times 1.1, with its first and last ``rows`` columns perturbed."""
+    data = np.outer([1.0, -4.0, 6.0, -4.0, 1.0], np.full(n, 1.1))
+    data[:, :rows] *= 1.0 + rng.normal(size=(5, rows))
+    data[:, n - rows :] *= 1.0 + rng.normal(size=(5, rows))
+    return data
+
+
+@pytest.mark.parametrize(
+    "data", [stencil_band(400, 3), stencil_band(400, 0), rng.normal(size=(5, 400))], ids=["ends", "runs", "random"]
+)
+def test_the_band_products_are_g_and_its_transpose(data):
+    """BandRounding's G z and G^T y (diagonal by diagonal, a repeated stencil's runs summed run by run) equal the dense
+    G of the definition, to the rounding of their sums (400 terms of each sign at most: 1e3 eps of the terms' size)."""
+    n = data.shape[1]
+    x, b, y = rng.normal(size=n), rng.normal(size=n), rng.normal(size=n)
+    m, G = band_g(data, 2, x, b)
+    z = rng.normal(size=m.shape[1])
+    eps = np.finfo(float).eps
+    assert np.allclose(m.matvec(z), G @ z, rtol=0, atol=1e3 * eps * (np.abs(G) @ np.abs(z)).max())
+    assert np.allclose(m.rmatvec(y), G.T @ y, rtol=0, atol=1e3 * eps * (np.abs(G.T) @ np.abs(y)).max())
+    repeated = np.ptp(data[:, 10:-10], axis=1).max() == 0  # a stencil repeated inside: summed by its runs
+    assert any(v is not None for v in m.runs.values()) == repeated
