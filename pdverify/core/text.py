@@ -68,4 +68,4 @@ def close_match(word: str, choices, cutoff: float = 0.75) -> str | None:
     return found[0] if found else None
 
 
-PAST_RANGE = " (past float64's range: read as infinite)"  # said of a number typed past 1.8e308 (1e400 reads as inf)
+PAST_RANGE = " (infinite, or typed past float64's range: 1e400 reads as inf)"  # said of an infinite number given

@@ -312,10 +312,10 @@ def couple_deflection_warnings(
     dx = float(x[1] - x[0])
     h = max(dx, delta / 3.0)
     at = np.array([ld.position for _, ld in couples])
-    size = np.sum(np.abs([ld.value for _, ld in couples]) / scene.stiffness_at(at)["EI"])  # Σ |C| / EI
+    values = np.abs([ld.value for _, ld in couples])
+    size = np.sum(values / scene.stiffness_at(at)["EI"])  # Σ |C| / EI
     estimate = constant * size * h**2 / top
-    total = float(np.sum(np.abs([ld.value for _, ld in couples])))
-    share = 1.0 if shear is None else min(1.0, L * float(np.abs(shear).max(initial=0.0)) / total)
+    share = 1.0 if shear is None else min(1.0, L * float(np.abs(shear).max(initial=0.0)) / float(values.sum()))
     estimate *= share
     if not estimate > NEAR_TOLERANCE:
         return []

@@ -197,9 +197,8 @@ class BandRounding(_Rounding):
         return self._load_t(np.bincount(self.gid.ravel(), weights=w.ravel(), minlength=self.k), y)
 
 
-RUN_SHARE = (
-    8  # a diagonal is summed by its runs of one group where it has at most 1 / RUN_SHARE as many runs as entries
-)
+# a diagonal is summed by its runs of one group where it has at most 1 / RUN_SHARE as many runs as entries
+RUN_SHARE = 8
 
 
 def _runs(ids: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:

@@ -414,8 +414,18 @@ CLI_CASES = [
     ("advise-budget-nan", ["advise", "{scene}", "--budget", "nan"], 2, "--budget nan"),
     ("advise-budget-0", ["advise", "{scene}", "--budget", "0"], 2, "--budget 0"),
     # a number past float64's range reads as inf: said so, not echoed as if typed (sweep 40 F6)
-    ("advise-budget-1e400", ["advise", "{scene}", "--budget", "1e400"], 2, "--budget inf (past float64's range"),
-    ("verify-order-1e400", ["verify", "pd-eb", "--order", "1e400"], 2, "--order inf (past float64's range"),
+    (
+        "advise-budget-1e400",
+        ["advise", "{scene}", "--budget", "1e400"],
+        2,
+        "--budget inf (infinite, or typed past float64's range",
+    ),
+    (
+        "verify-order-1e400",
+        ["verify", "pd-eb", "--order", "1e400"],
+        2,
+        "--order inf (infinite, or typed past float64's range",
+    ),
     ("advise-tolerance-negative", ["advise", "{scene}", "--tolerance", "-1e-3"], 2, "--tolerance -0.001"),
     ("advise-tolerance-inf", ["advise", "{scene}", "--tolerance", "inf"], 2, "--tolerance inf"),
     # study files
