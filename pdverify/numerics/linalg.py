@@ -387,7 +387,7 @@ def _lu_solve(
             return ("banded LU (LAPACK gbtrf/gbtrs)", solve, solve_t, None), 8 * n * (2 * lo + up + 1)
         Ks = scale_symmetric(K, s)
         lu = spla.splu(Ks.tocsc())
-        size = 12 * (lu.L.nnz + lu.U.nnz) + Ks.data.nbytes + Ks.indices.nbytes  # values and indices
+        size = 12 * lu.nnz + Ks.data.nbytes + Ks.indices.nbytes  # values and indices (lu.L, lu.U: copies)
         return ("sparse LU (SuperLU)", lu.solve, (lambda z: lu.solve(z, trans="T")), Ks), size
 
     try:

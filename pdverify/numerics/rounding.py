@@ -25,6 +25,7 @@ counted as rounded.
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 
 LAGS = 8  # the longest period of interleaved unknowns per point looked for
 SAMPLE = 1 << 16  # values sampled to choose the period
@@ -101,9 +102,13 @@ class SharedRounding(_Rounding):
     in :meth:`from_csr`) at the solution ``x`` with load vector ``b``; ``row_scale`` multiplies G's rows (the
     symmetric scaling of a system solved as diag(s) A diag(s)); ``weight`` multiplies the matrix's columns (its
     entries' rounding in units of the load vector's). ``matvec(z)`` = G z (z in R^k), ``rmatvec(y)`` = G^T y, the
-    entries in any order."""
+    entries in any order; with ``indptr`` (the entries in CSR order, row by row) the products are sparse
+    matrix-vector products of the terms held as a CSR matrix whose column indices are the groups (a group met twice in
+    a row is summed there, as by ``bincount``)."""
 
-    def __init__(self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, groups=None):
+    def __init__(
+        self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, groups=None, indptr=None
+    ):
         self.n = int(n)
         self.s = np.ones(self.n) if row_scale is None else np.asarray(row_scale, float)
         x = weight * np.asarray(x, float)
@@ -111,22 +116,35 @@ class SharedRounding(_Rounding):
         self.terms = vals * x[cols] * self.s[rows]  # a_ij x_j, scaled by row
         self.gid, k_matrix = significand_groups(vals) if groups is None else groups
         self._load_part(b, k_matrix)
+        self.G = None if indptr is None else _csr(self.terms, self.gid, indptr, (self.n, k_matrix))
 
     @classmethod
     def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, layout=None) -> SharedRounding:
         """``layout``: :func:`csr_layout` of K made before (a matrix met again with another load)."""
-        rows, cols, vals, groups = csr_layout(K)[0] if layout is None else layout
-        return cls(rows, cols, vals, x, b, row_scale, K.shape[0], weight, groups)
+        rows, cols, vals, groups, indptr = csr_layout(K)[0] if layout is None else layout
+        return cls(rows, cols, vals, x, b, row_scale, K.shape[0], weight, groups, indptr)
 
     def matvec(self, z: np.ndarray) -> np.ndarray:
         """G z: each entry's term times its group's weight, summed by row; plus the load vector's."""
         z = np.asarray(z, float)
+        if self.G is not None:
+            return self._add_load(self.G @ z[: self.G.shape[1]], z)
         return self._add_load(np.bincount(self.rows, weights=self.terms * z[self.gid], minlength=self.n), z)
 
     def rmatvec(self, y: np.ndarray) -> np.ndarray:
         """G^T y: each group's terms weighted by their rows' y, summed by group."""
         y = np.asarray(y, float)
+        if self.G is not None:
+            out = np.zeros(self.k)
+            out[: self.G.shape[1]] = self.G.T @ y
+            return self._load_t(out, y)
         return self._load_t(np.bincount(self.gid, weights=self.terms * y[self.rows], minlength=self.k), y)
+
+
+def _csr(terms: np.ndarray, gid: np.ndarray, indptr: np.ndarray, shape: tuple[int, int]):
+    """The terms as a CSR matrix (rows as ``indptr`` gives them, column = group), taken as they are: no copy, no sort,
+    no sum of a row's repeated groups (SciPy's products sum them)."""
+    return sp.csr_matrix((terms, gid, indptr), shape=shape, copy=False)
 
 
 def csr_layout(K) -> tuple[tuple, int]:
@@ -136,12 +154,14 @@ def csr_layout(K) -> tuple[tuple, int]:
     diagonal by diagonal first, so that a repeated stencil's runs are found, cost more than it saved: a 2D mesh's
     entries repeat little (0.13 s against 0.09 s on a q8 strip's 945,000 entries), and a 1D model's CSR systems are
     small."""
-    K = K.tocoo()
-    rows, cols, vals = K.row.astype(np.int64), K.col.astype(np.int64), K.data.copy()  # (K's own stay writable)
+    K = K.tocsr()
+    C = K.tocoo()
+    rows, cols, vals = C.row.astype(np.int64), C.col.astype(np.int64), C.data.copy()  # (K's own stay writable)
     gid, k = significand_groups(vals)
-    for a in (rows, cols, vals, gid):
+    indptr = K.indptr.astype(gid.dtype)  # the CSR matrix of G's terms takes one index type
+    for a in (rows, cols, vals, gid, indptr):
         a.flags.writeable = False
-    return (rows, cols, vals, (gid, k)), rows.nbytes + cols.nbytes + vals.nbytes + gid.nbytes
+    return (rows, cols, vals, (gid, k), indptr), rows.nbytes + cols.nbytes + vals.nbytes + gid.nbytes + indptr.nbytes
 
 
 class BandRounding(_Rounding):

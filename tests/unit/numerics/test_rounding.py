@@ -81,3 +81,41 @@ def test_the_band_products_are_g_and_its_transpose(data):
     assert np.allclose(m.rmatvec(y), G.T @ y, rtol=0, atol=1e3 * eps * (np.abs(G.T) @ np.abs(y)).max())
     repeated = np.ptp(data[:, 10:-10], axis=1).max() == 0  # a stencil repeated inside: summed by its runs
     assert any(v is not None for v in m.runs.values()) == repeated
+
+
+def csr_g(K, x: np.ndarray, b: np.ndarray, s: np.ndarray):
+    """The map G of the module docstring, dense, entry by entry from its definition (a CSR matrix scaled by row)."""
+    from pdverify.numerics.rounding import SharedRounding
+
+    m = SharedRounding.from_csr(K, x, b, s)
+    G = np.zeros(m.shape)
+    C = K.tocoo()
+    for e, (i, j, a) in enumerate(zip(C.row, C.col, C.data, strict=True)):
+        G[i, m.gid[e]] += s[i] * a * x[j]
+    G[np.arange(K.shape[0]), m.bgid] += s * b
+    return m, G
+
+
+def test_the_csr_products_are_g_and_its_transpose():
+    """SharedRounding's G z and G^T y (the terms held as a CSR matrix whose columns are the groups, a group met twice in
+    one row summed by the product) equal the dense G of the definition and the products by weighted counts of every
+    entry, on a matrix whose rows hold one value several times (the stencil (1, -2, 1) and its multiples by powers of
+    two: one group)."""
+    import scipy.sparse as sp
+
+    from pdverify.numerics.rounding import SharedRounding
+
+    n = 300
+    K = sp.diags([np.full(n - 1, 1.0), np.full(n, -2.0), np.full(n - 1, 0.5)], [-1, 0, 1], format="lil")
+    K[5, 20], K[7, 7] = 1.1 * rng.normal(), 3.3
+    K = K.tocsr()
+    x, b, s, y = rng.normal(size=n), rng.normal(size=n), rng.uniform(0.5, 2.0, n), rng.normal(size=n)
+    m, G = csr_g(K, x, b, s)
+    assert m.G is not None and m.G.shape[1] == 3  # the matrix's groups: 1, -2 and 0.5; 1.1 x; 3.3
+    z = rng.normal(size=m.shape[1])
+    eps = np.finfo(float).eps
+    assert np.allclose(m.matvec(z), G @ z, rtol=0, atol=8 * eps * (np.abs(G) @ np.abs(z)).max())
+    assert np.allclose(m.rmatvec(y), G.T @ y, rtol=0, atol=n * eps * (np.abs(G.T) @ np.abs(y)).max())
+    counted = SharedRounding(m.rows, K.tocoo().col, K.tocoo().data, x, b, s, n, 1.0, (m.gid, 3))  # no indptr
+    assert counted.G is None
+    assert np.array_equal(counted.matvec(z), m.matvec(z)) and np.array_equal(counted.rmatvec(y), m.rmatvec(y))
