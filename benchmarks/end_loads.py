@@ -6,13 +6,13 @@ it warns the ratio error / estimate must be below 1:
 
     PYTHONPATH=. python benchmarks/end_loads.py [--points 101 201 401] [--models pd-eb ...] [--horizons 3 5] [-o k=v]
 
-A 1 m steel beam, 20 x 50 mm, on thirteen end pairs (the left end clamped, pinned, or a spring: soft, stiff, with a
-soft or a stiff rotational stiffness), under one load near the left end: a patch from the end or off it, or a point
-force, its arm 2.5 to 40 spacings. Printed per model and horizon: the largest ratio of the end's part of the error to
-the estimate where the warning estimates (the end's part: with the load the same number of spacings off at twice the
-points it stays while the rest falls 4 times; cases an earlier warning names are left out: a point load in the end's
-layer), the constant each end kind's cases need, and the cases over 1e-3 no warning names. ``-o key=value``: a model
-option (pd-bond-pair's variant and ends).
+A 1 m steel beam, 20 x 50 mm, on fifteen end pairs (the left end clamped, pinned, a spring: soft, stiff, with a soft
+or a stiff rotational stiffness, free or guided), under one load near the left end: a patch from the end or off it, or
+a point force, its arm 2.5 to 40 spacings. Printed per model and horizon: the largest ratio of the end's part of the
+error to the estimate where the warning estimates (the end's part: with the load the same number of spacings off at
+twice the points it stays while the rest falls 4 times; cases an earlier warning names are left out: a point load in
+the end's layer), the constant each end kind's cases need, and the cases over 1e-3 no warning names. ``-o key=value``:
+a model option (pd-bond-pair's variant and ends).
 """
 
 from __future__ import annotations
@@ -35,6 +35,7 @@ SPRINGS = {
     "spring kr 1e12": {"type": "spring", "stiffness": 1e12, "rotational_stiffness": 1e12},
 }
 ENDS += [(name, right) for name in SPRINGS for right in ("pinned", "clamped")]
+ENDS += [("free", "clamped"), ("guided", "clamped")]  # a load near a free or guided end (the ends' ghosts carry it)
 ARMS = (2.5, 5, 10, 20, 40)  # spacings
 
 

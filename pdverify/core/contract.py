@@ -427,9 +427,12 @@ class Model(Horizon):
                 )
             if load.value != 0.0 and not self.bending and load.type != "point_torque":
                 what = "moments" if load.type == "point_moment" else "transverse loads"
+                only, field = (
+                    ("twist only", "torque (or a point_torque load)") if self.torsion else ("axial only", "axial")
+                )
                 out.append(
-                    f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} (axial only); "
-                    "give the load as loads[i].axial or use a bending model"
+                    f"loads[{i}].value = {load.value!r}: model {self.name} carries no {what} ({only}); "
+                    f"give the load as loads[i].{field} or use a bending model"
                 )
         return out
 

@@ -143,6 +143,7 @@ def with_estimate(scene, model, options: dict, run) -> object:
         }
         return result
     grids, at = nested_grids(n, int(grid.minimum or 2))
+    options = {k: v for k, v in options.items() if k != "spacing"}  # a grid given as a spacing: n points (params)
     try:
         results = [run(scene, model, **dict(options, points=g)) for g in grids]
     except InputError:  # a coarser grid than the model's rules allow (e.g. its ends' families would overlap)

@@ -411,7 +411,7 @@ def _read_scenes(path: Path, scenes: list[str]) -> tuple[dict[str, tuple[str, Sc
         p = (path.parent / s) if not Path(s).is_absolute() else Path(s)
         try:
             sc = load_scene(p)
-            scene_objs[s] = (p.read_text(encoding="utf-8"), sc)
+            scene_objs[s] = (p.read_text(encoding="utf-8-sig"), sc)  # the text load_scene read: no byte-order mark
         except InputError as exc:
             errors.extend(exc.lines)
     return scene_objs, errors + _shared_names(path, scene_objs)

@@ -1030,6 +1030,15 @@ def test_a_byte_order_mark_is_read(tmp_path):
     assert pdverify.load_scene(path) == pdverify.load_scene(SCENE)
 
 
+def test_a_study_of_a_scene_with_a_byte_order_mark_runs(tmp_path):
+    """A study's cases read the scene text its checks read: a byte-order mark does not fail every case."""
+    (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + SCENE.read_bytes())
+    study = tmp_path / "study.toml"
+    study.write_text('name = "bom"\nscenes = ["bom.toml"]\n[[runs]]\nmodel = "exact-eb"\npoints = [5]\n')
+    table = pdverify.run_study(study, out=tmp_path / "out", workers=1)
+    assert list(table["status"]) == ["ok"]
+
+
 def test_an_estimate_whose_coarser_grids_a_model_refuses_takes_finer_ones(capsys):
     """pd-eb's support rows need four points on a side: --estimate at 11 points, whose coarser nested grid (6 points)
     is refused, solves 21 and 41 points instead."""
@@ -1053,8 +1062,29 @@ def test_an_estimate_whose_coarser_grids_a_model_refuses_takes_finer_ones(capsys
     assert json.loads(out)["info"]["estimate"]["grids"] == [11, 21, 41]
 
 
+def test_an_estimate_takes_a_grid_given_as_a_spacing(capsys):
+    """--spacing 0.01 --estimate solves the nested grids of the points that spacing gives (101 on 1 m), as --points 101
+    --estimate does (its nested grids about them); they are not refused as "points and spacing both given"."""
+    args = ["solve", SCENE, "-m", "pd-eb", "--estimate", "--format", "json"]
+    code, out, err = cli([*args, "--spacing", "0.01"], capsys)
+    assert code == 0, err
+    code2, out2, _ = cli([*args, "--points", "101"], capsys)
+    assert code2 == 0 and json.loads(out)["info"]["estimate"] == json.loads(out2)["info"]["estimate"]
+    assert 101 in json.loads(out)["info"]["estimate"]["grids"]
+
+
 def test_an_empty_scene_file_is_one_line(tmp_path, capsys):
     """Sweep 40 F6: an empty scene file gave five lines, one per missing table; now one naming what a scene gives."""
     empty = tmp_path / "empty.toml"
     empty.write_text("")
     assert_one_error_line(*cli(["solve", str(empty), "--model", "exact-eb"], capsys), 2, "no scene given")
+
+
+@pytest.mark.parametrize("model,field", [("pd-torsion", "loads[i].torque"), ("pd-rod", "loads[i].axial")])
+def test_a_transverse_load_on_a_rod_or_a_bar_names_the_field_it_takes(tmp_path, capsys, model, field):
+    """A torsion bar takes torques: its advice for a transverse load names loads[i].torque, not the rod's axial."""
+    scene = tmp_path / "patch.toml"
+    text = SCENE.read_text().split("[[loads]]")[0]
+    scene.write_text(text + '[[loads]]\ntype = "distributed"\nvalue = -1000.0\n')
+    code, out, err = cli(["solve", scene, "-m", model], capsys)
+    assert_one_error_line(code, out, err, 2, f"give the load as {field}")

@@ -206,3 +206,18 @@ def test_the_rotation_s_part_does_not_make_the_line_speak_alone():
     d["material"] = {"youngs_modulus": 2e11, "poissons_ratio": 0.3}
     r = run(parse_scene(d), "pd-timoshenko", points=201)
     assert not [w for w in r.info.get("warnings", []) if "(h / d)²" in w]
+
+
+@pytest.mark.parametrize("model", ["pd-eb", "pd-bond-pair"])
+@pytest.mark.parametrize("ends", [("free", "clamped"), ("guided", "clamped")])
+@pytest.mark.parametrize("points", [101, 201])
+def test_a_patch_on_the_last_spacings_of_a_free_or_guided_end_is_warned(model, ends, points):
+    """A patch on the last 0.5 ... 5 spacings of a free or guided end: the ends' Taylor ghosts, fitted to M = V = 0
+    there, carry it (up to 1.3 and 3.2 times max |w| on half a spacing, at any grid): nearer than 2.5 h the line expects
+    large errors; farther the error is small or the ghosts' own line names it (sweep 43, finding 1)."""
+    dx = 1.0 / (points - 1)
+    for spacings in (0.5, 1, 2, 3, 5, 8):
+        load = {"type": "distributed", "value": -5000.0, "start": 0.0, "end": spacings * dx}
+        error, estimate, said = near_end(model, ends, load, points=points)
+        ghosts = any("its ghosts are fitted on: errors of about 1e-2" in w for w in said)
+        assert error <= max(estimate, TOLERANCE) or estimate == 1.0 or (ghosts and error < 1e-2), (spacings, error)

@@ -213,7 +213,10 @@ def element_bound(model, lu, b, free, full) -> float:
 # at a clamped end, the paper variant beside a support inside and at a clamp; the rotation's end error up to 1.58 times
 # the estimate for the defaults ("rotation"; the others' not measured)
 ESTIMATES = {
-    ("corrected", "taylor"): ((2.3, 0.62), {"clamped": 2.3, "pinned": 0.8, "spring": 0.8, "rotation": 2.0}),
+    ("corrected", "taylor"): (
+        (2.3, 0.62),
+        {"clamped": 2.3, "pinned": 0.8, "spring": 0.8, "rotation": 2.0, "free": 0.35, "guided": 0.35},
+    ),
     ("corrected", "mirror"): ((2.3, 3.9), {"clamped": 2.3, "pinned": 0.8, "spring": 0.8}),
     ("paper", "taylor"): ((3.3, 0.66), {"clamped": 2.5, "pinned": 0.8, "spring": 0.8}),
     ("paper", "mirror"): ((3.3, 5.0), {"clamped": 2.3, "pinned": 0.8, "spring": 0.8}),
