@@ -102,9 +102,9 @@ class SharedRounding(_Rounding):
     in :meth:`from_csr`) at the solution ``x`` with load vector ``b``; ``row_scale`` multiplies G's rows (the
     symmetric scaling of a system solved as diag(s) A diag(s)); ``weight`` multiplies the matrix's columns (its
     entries' rounding in units of the load vector's). ``matvec(z)`` = G z (z in R^k), ``rmatvec(y)`` = G^T y, the
-    entries in any order; with ``indptr`` (the entries in CSR order, row by row) the products are sparse
-    matrix-vector products of the terms held as a CSR matrix whose column indices are the groups (a group met twice in
-    a row is summed there, as by ``bincount``)."""
+    entries in any order. The products are sparse matrix-vector products of the terms held as a matrix whose column
+    indices are the groups (a group met twice in a row is summed there): CSR with ``indptr`` (the entries in CSR order,
+    row by row: :func:`csr_layout`), else COO."""
 
     def __init__(
         self, rows, cols, vals, x, b, row_scale=None, n: int = 0, weight: float = 1.0, groups=None, indptr=None
@@ -116,7 +116,11 @@ class SharedRounding(_Rounding):
         self.terms = vals * x[cols] * self.s[rows]  # a_ij x_j, scaled by row
         self.gid, k_matrix = significand_groups(vals) if groups is None else groups
         self._load_part(b, k_matrix)
-        self.G = None if indptr is None else _csr(self.terms, self.gid, indptr, (self.n, k_matrix))
+        shape = (self.n, k_matrix)  # taken as they are: no copy, no sort, no sum of a row's repeated groups
+        if indptr is None:
+            self.G = sp.coo_matrix((self.terms, (rows, self.gid)), shape=shape, copy=False)
+        else:
+            self.G = sp.csr_matrix((self.terms, self.gid, indptr), shape=shape, copy=False)
 
     @classmethod
     def from_csr(cls, K, x, b, row_scale=None, weight: float = 1.0, layout=None) -> SharedRounding:
@@ -127,24 +131,14 @@ class SharedRounding(_Rounding):
     def matvec(self, z: np.ndarray) -> np.ndarray:
         """G z: each entry's term times its group's weight, summed by row; plus the load vector's."""
         z = np.asarray(z, float)
-        if self.G is not None:
-            return self._add_load(self.G @ z[: self.G.shape[1]], z)
-        return self._add_load(np.bincount(self.rows, weights=self.terms * z[self.gid], minlength=self.n), z)
+        return self._add_load(self.G @ z[: self.G.shape[1]], z)
 
     def rmatvec(self, y: np.ndarray) -> np.ndarray:
         """G^T y: each group's terms weighted by their rows' y, summed by group."""
         y = np.asarray(y, float)
-        if self.G is not None:
-            out = np.zeros(self.k)
-            out[: self.G.shape[1]] = self.G.T @ y
-            return self._load_t(out, y)
-        return self._load_t(np.bincount(self.gid, weights=self.terms * y[self.rows], minlength=self.k), y)
-
-
-def _csr(terms: np.ndarray, gid: np.ndarray, indptr: np.ndarray, shape: tuple[int, int]):
-    """The terms as a CSR matrix (rows as ``indptr`` gives them, column = group), taken as they are: no copy, no sort,
-    no sum of a row's repeated groups (SciPy's products sum them)."""
-    return sp.csr_matrix((terms, gid, indptr), shape=shape, copy=False)
+        out = np.zeros(self.k)
+        out[: self.G.shape[1]] = self.G.T @ y
+        return self._load_t(out, y)
 
 
 def csr_layout(K) -> tuple[tuple, int]:

@@ -133,8 +133,8 @@ class PDEulerBernoulli(Model):
     jump_rotation = (0.65, 0.45)  # inside, at an end: above the ratios of benchmarks/jump_rotation.py (docs/trust.md)
     # above benchmarks/end_loads.py's values (docs/trust.md): the moment's error near a point force sets it at every
     # held end (the deflection's alone: 1.3 at a clamp, 0.3 at a pin); the rotation's within it (at most 0.71)
-    end_load_error = dict(clamped=1.8, pinned=1.8, spring=1.8, rotation=1.0, free=0.25, guided=0.25)  # free, guided:
-    end_load_error["rotational spring"] = 1.8  # a patch near the end (its ghosts' fit) needs 0.2
+    end_load_error = {"clamped": 1.8, "pinned": 1.8, "spring": 1.8, "rotational spring": 1.8, "rotation": 1.0}
+    end_load_error |= {"free": 0.25, "guided": 0.25}  # the line of a load nearer than 2.5 h (the ghosts' fit)
     dispersion = "curvature"  # its waves' frequencies (pdverify.theory.symbols)
     grid_checked = True  # its suite's sine loads 2.4e-3 off at 41 points with no other line (docs/trust.md)
     title = "ordinary state-based PD Euler–Bernoulli beam"
